@@ -1,0 +1,12 @@
+//! The numeric kernel that generated gcs solvers call, and that the interpreter shares:
+//! frames and Kramer's actions, loci, the locus intersection table with branch selection,
+//! polynomial roots, error accounting and named tolerances.
+//!
+//! Architecture invariants: this crate depends on nalgebra only; nothing in it panics on finite
+//! or non-finite input; nothing on a solve path allocates.
+#![deny(missing_docs)]
+
+pub mod roots;
+pub mod tol;
+
+pub use roots::{Contact, Intersection, Roots};

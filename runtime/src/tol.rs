@@ -1,0 +1,47 @@
+//! Named tolerances, in one place, scaled to the magnitude of the inputs.
+//!
+//! Every comparison against "zero" in the kernel goes through this module, so that a model drawn
+//! in micrometres behaves exactly like the same model drawn in kilometres. A tolerance is always
+//! *relative*: it is multiplied by a [`scale`] computed from the inputs of the operation.
+
+/// Relative tolerance under which two lengths are the same, or a length is zero:
+/// about 64 units in the last place of the inputs.
+pub const LENGTH_REL: f64 = 64.0 * f64::EPSILON;
+
+/// Absolute tolerance under which an angle (radians) or the sine of one is zero, and two unit
+/// vectors are parallel.
+pub const ANGLE: f64 = 1e-12;
+
+/// Relative tolerance of a tangency: loci whose gap or overlap is below this, relative to the
+/// scale, touch in one double root rather than missing each other or crossing twice.
+pub const TANGENT_REL: f64 = 1e-10;
+
+/// The magnitude of a set of inputs: the largest absolute value among them, never below 1e-300
+/// so that a tolerance scaled by it is never zero.
+#[inline]
+pub fn scale(values: &[f64]) -> f64 {
+    let mut s: f64 = 0.0;
+    for v in values {
+        s = s.max(v.abs());
+    }
+    s.max(1e-300)
+}
+
+/// Whether `x` is zero relative to `scale`, with relative tolerance `rel`.
+#[inline]
+pub fn is_zero(x: f64, scale: f64, rel: f64) -> bool {
+    x.abs() <= rel * scale
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scale_is_never_zero_and_tracks_magnitude() {
+        assert!(scale(&[0.0, 0.0]) > 0.0);
+        assert_eq!(scale(&[1e6, -3e6, 2.0]), 3e6);
+        assert!(is_zero(1e-10, 1e6, LENGTH_REL));
+        assert!(!is_zero(1e-10, 1.0, LENGTH_REL));
+    }
+}
