@@ -6,6 +6,13 @@
 //! or non-finite input; nothing on a solve path allocates.
 #![deny(missing_docs)]
 
+pub mod error;
+pub mod frame;
+pub mod intersect2d;
+pub mod intersect3d;
+pub mod locus2d;
+pub mod locus3d;
+pub mod poly;
 pub mod roots;
 pub mod tol;
 
