@@ -1,1 +1,623 @@
-//! (in progress)
+//! Rigid frames and Kramer's three actions: translate, rotate and scale (paper 000, section 4).
+//!
+//! Every geom is a rigid frame (a position and an orientation) plus optional dimensions (a
+//! radius, a length). Its member points and vectors are stored in the frame's *local*
+//! coordinates; [`Frame2::point_to_global`] and [`Frame3::point_to_global`] give their global
+//! position, and the `*_to_local` methods go back. A plan fragment moves a geom only through the
+//! actions:
+//!
+//! - **translate** by a vector ([`Frame2::translate`], [`Frame3::translate`]);
+//! - **rotate** about a point (2d) or about a point and an axis (3d) by an angle
+//!   ([`Frame2::rotate_about`], [`Frame3::rotate_about`], [`Frame3::rotate_about_by`]);
+//! - **scale** the dimensions about a point ([`Frame2::scale_about`], [`Frame3::scale_about`],
+//!   with the free functions [`scale_point2_about`] and [`scale_point3_about`]).
+//!
+//! Measurements used to build actions live here too: [`signed_angle2`], [`signed_angle3`] and
+//! [`rotation_between3`] (rotate one vector onto another, the identity when their cross product
+//! vanishes, paper 000 footnote 6).
+//!
+//! Nothing here allocates or panics. Non-finite input (NaN, infinity) is not detected here: it
+//! propagates into the resulting frame as NaN or infinite components, which the solver's input
+//! validation ([`crate::error::check_finite`]) is meant to prevent. A zero rotation axis yields
+//! the identity rotation, never NaN.
+
+use nalgebra::{Point2, Point3, Unit, UnitComplex, UnitQuaternion, Vector2, Vector3};
+
+use crate::tol;
+
+/// A rigid frame in the plane: the global position of its local origin and the rotation that
+/// takes local directions to global ones.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame2 {
+    /// Global position of the local origin.
+    pub origin: Point2<f64>,
+    /// Rotation from local to global directions.
+    pub rotation: UnitComplex<f64>,
+}
+
+impl Default for Frame2 {
+    fn default() -> Self {
+        Self::identity()
+    }
+}
+
+impl Frame2 {
+    /// The global frame itself.
+    #[inline]
+    pub fn identity() -> Self {
+        Self {
+            origin: Point2::origin(),
+            rotation: UnitComplex::identity(),
+        }
+    }
+
+    /// A frame at `origin`, rotated counter-clockwise by `angle` radians.
+    #[inline]
+    pub fn new(origin: Point2<f64>, angle: f64) -> Self {
+        Self {
+            origin,
+            rotation: UnitComplex::new(angle),
+        }
+    }
+
+    /// The counter-clockwise angle of the local x axis, in `(-pi, pi]`.
+    #[inline]
+    pub fn angle(&self) -> f64 {
+        self.rotation.angle()
+    }
+
+    /// The global direction of the local x axis.
+    #[inline]
+    pub fn x_axis(&self) -> Vector2<f64> {
+        self.rotation * Vector2::x()
+    }
+
+    /// The global direction of the local y axis.
+    #[inline]
+    pub fn y_axis(&self) -> Vector2<f64> {
+        self.rotation * Vector2::y()
+    }
+
+    /// Global position of a member point given in local coordinates.
+    #[inline]
+    pub fn point_to_global(&self, local: &Point2<f64>) -> Point2<f64> {
+        self.origin + self.rotation * local.coords
+    }
+
+    /// Local coordinates of a global point.
+    #[inline]
+    pub fn point_to_local(&self, global: &Point2<f64>) -> Point2<f64> {
+        Point2::from(self.rotation.inverse() * (global - self.origin))
+    }
+
+    /// Global direction of a member vector given in local coordinates.
+    #[inline]
+    pub fn vector_to_global(&self, local: &Vector2<f64>) -> Vector2<f64> {
+        self.rotation * local
+    }
+
+    /// Local coordinates of a global vector.
+    #[inline]
+    pub fn vector_to_local(&self, global: &Vector2<f64>) -> Vector2<f64> {
+        self.rotation.inverse() * global
+    }
+
+    /// Action **translate**: moves the frame by `v`.
+    #[inline]
+    pub fn translate(&mut self, v: &Vector2<f64>) {
+        self.origin += v;
+    }
+
+    /// Action **rotate**: turns the frame counter-clockwise by `angle` radians about the global
+    /// point `center`, which stays fixed (as does every member point located there).
+    #[inline]
+    pub fn rotate_about(&mut self, center: &Point2<f64>, angle: f64) {
+        self.rotate_about_by(center, &UnitComplex::new(angle));
+    }
+
+    /// Action **rotate** by a given rotation about the global point `center`.
+    #[inline]
+    pub fn rotate_about_by(&mut self, center: &Point2<f64>, rotation: &UnitComplex<f64>) {
+        self.origin = center + rotation * (self.origin - center);
+        self.rotation = rotation * self.rotation;
+    }
+
+    /// Action **scale**: scales the geom about the global point `center` by `factor`.
+    ///
+    /// The origin moves to `center + factor * (origin - center)`, the orientation is unchanged,
+    /// and every dimension in `dims` (a radius, a length) is multiplied by `factor`. Member points
+    /// whose local coordinates are defined by those dimensions (a circle's rim point, a segment's
+    /// end) therefore scale with them, and `center` stays fixed. `factor` should be positive; a
+    /// negative factor would mirror the geom and is applied to the dimensions as given (the
+    /// caller must not pass one), a zero factor collapses it.
+    #[inline]
+    pub fn scale_about(&mut self, center: &Point2<f64>, factor: f64, dims: &mut [f64]) {
+        self.origin = scale_point2_about(&self.origin, center, factor);
+        for d in dims.iter_mut() {
+            *d *= factor;
+        }
+    }
+}
+
+/// A rigid frame in space: the global position of its local origin and the rotation that takes
+/// local directions to global ones.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame3 {
+    /// Global position of the local origin.
+    pub origin: Point3<f64>,
+    /// Rotation from local to global directions.
+    pub rotation: UnitQuaternion<f64>,
+}
+
+impl Default for Frame3 {
+    fn default() -> Self {
+        Self::identity()
+    }
+}
+
+impl Frame3 {
+    /// The global frame itself.
+    #[inline]
+    pub fn identity() -> Self {
+        Self {
+            origin: Point3::origin(),
+            rotation: UnitQuaternion::identity(),
+        }
+    }
+
+    /// A frame at `origin` with orientation `rotation`.
+    #[inline]
+    pub fn new(origin: Point3<f64>, rotation: UnitQuaternion<f64>) -> Self {
+        Self { origin, rotation }
+    }
+
+    /// The global direction of the local x axis.
+    #[inline]
+    pub fn x_axis(&self) -> Vector3<f64> {
+        self.rotation * Vector3::x()
+    }
+
+    /// The global direction of the local y axis.
+    #[inline]
+    pub fn y_axis(&self) -> Vector3<f64> {
+        self.rotation * Vector3::y()
+    }
+
+    /// The global direction of the local z axis.
+    #[inline]
+    pub fn z_axis(&self) -> Vector3<f64> {
+        self.rotation * Vector3::z()
+    }
+
+    /// Global position of a member point given in local coordinates.
+    #[inline]
+    pub fn point_to_global(&self, local: &Point3<f64>) -> Point3<f64> {
+        self.origin + self.rotation * local.coords
+    }
+
+    /// Local coordinates of a global point.
+    #[inline]
+    pub fn point_to_local(&self, global: &Point3<f64>) -> Point3<f64> {
+        Point3::from(
+            self.rotation
+                .inverse_transform_vector(&(global - self.origin)),
+        )
+    }
+
+    /// Global direction of a member vector given in local coordinates.
+    #[inline]
+    pub fn vector_to_global(&self, local: &Vector3<f64>) -> Vector3<f64> {
+        self.rotation * local
+    }
+
+    /// Local coordinates of a global vector.
+    #[inline]
+    pub fn vector_to_local(&self, global: &Vector3<f64>) -> Vector3<f64> {
+        self.rotation.inverse_transform_vector(global)
+    }
+
+    /// Action **translate**: moves the frame by `v`.
+    #[inline]
+    pub fn translate(&mut self, v: &Vector3<f64>) {
+        self.origin += v;
+    }
+
+    /// Action **rotate**: turns the frame by `angle` radians about the line through the global
+    /// point `center` with direction `axis` (right-handed: counter-clockwise seen from the tip
+    /// of `axis`). Every point on that line stays fixed.
+    ///
+    /// `axis` need not be a unit vector. A zero (or sub-normal) `axis` is the case of
+    /// footnote 6 of paper 000: the action does nothing.
+    #[inline]
+    pub fn rotate_about(&mut self, center: &Point3<f64>, axis: &Vector3<f64>, angle: f64) {
+        self.rotate_about_by(center, &rotation_about_axis(axis, angle));
+    }
+
+    /// Action **rotate** by a given rotation about the global point `center`, which stays fixed.
+    #[inline]
+    pub fn rotate_about_by(&mut self, center: &Point3<f64>, rotation: &UnitQuaternion<f64>) {
+        self.origin = center + rotation * (self.origin - center);
+        self.rotation = rotation * self.rotation;
+    }
+
+    /// Action **scale**: scales the geom about the global point `center` by `factor`.
+    ///
+    /// The origin moves to `center + factor * (origin - center)`, the orientation is unchanged,
+    /// and every dimension in `dims` (a radius, a length) is multiplied by `factor`. Member points
+    /// whose local coordinates are defined by those dimensions scale with them, and `center`
+    /// stays fixed. `factor` should be positive (see [`Frame2::scale_about`]).
+    #[inline]
+    pub fn scale_about(&mut self, center: &Point3<f64>, factor: f64, dims: &mut [f64]) {
+        self.origin = scale_point3_about(&self.origin, center, factor);
+        for d in dims.iter_mut() {
+            *d *= factor;
+        }
+    }
+}
+
+/// The point `center + factor * (p - center)`: `p` scaled about `center` (2d).
+#[inline]
+pub fn scale_point2_about(p: &Point2<f64>, center: &Point2<f64>, factor: f64) -> Point2<f64> {
+    center + (p - center) * factor
+}
+
+/// The point `center + factor * (p - center)`: `p` scaled about `center` (3d).
+#[inline]
+pub fn scale_point3_about(p: &Point3<f64>, center: &Point3<f64>, factor: f64) -> Point3<f64> {
+    center + (p - center) * factor
+}
+
+/// The scale factor that takes a dimension from `current` to `target` (`target / current`), for
+/// the **scale** action. `None` when `current` is zero relative to `target`
+/// ([`tol::LENGTH_REL`]) or either is not finite: no factor can then grow the dimension.
+#[inline]
+pub fn scale_factor(current: f64, target: f64) -> Option<f64> {
+    let s = tol::scale(&[current, target]);
+    if !current.is_finite() || !target.is_finite() || tol::is_zero(current, s, tol::LENGTH_REL) {
+        None
+    } else {
+        Some(target / current)
+    }
+}
+
+/// The rotation by `angle` radians about `axis` (right-handed), or the identity when `axis` is
+/// zero (footnote 6 of paper 000). A NaN in `axis` or `angle` yields a NaN quaternion.
+#[inline]
+pub fn rotation_about_axis(axis: &Vector3<f64>, angle: f64) -> UnitQuaternion<f64> {
+    match Unit::try_new(*axis, 0.0) {
+        Some(a) => UnitQuaternion::from_axis_angle(&a, angle),
+        None => UnitQuaternion::identity(),
+    }
+}
+
+/// The signed counter-clockwise angle from `u` to `v`, in `[-pi, pi]`. Zero when either vector
+/// is zero; NaN when either has a NaN component.
+#[inline]
+pub fn signed_angle2(u: &Vector2<f64>, v: &Vector2<f64>) -> f64 {
+    (u.x * v.y - u.y * v.x).atan2(u.dot(v))
+}
+
+/// The signed angle from `u` to `v` measured about `axis`, in `[-pi, pi]`: the angle by which
+/// [`Frame3::rotate_about`] with this `axis` turns the projection of `u` onto the plane
+/// perpendicular to `axis` onto the projection of `v`.
+///
+/// `axis` need not be a unit vector. Zero when `axis`, or a projection, is zero. Paper 000's
+/// brick measures the angle from v1 to v2 about `v1 x v2`, which this returns in `[0, pi]`.
+#[inline]
+pub fn signed_angle3(u: &Vector3<f64>, v: &Vector3<f64>, axis: &Vector3<f64>) -> f64 {
+    let n = axis.norm();
+    if !(n > 0.0) {
+        return 0.0;
+    }
+    let a = axis / n;
+    let sin = a.dot(&u.cross(v));
+    let cos = u.dot(v) - u.dot(&a) * v.dot(&a);
+    sin.atan2(cos)
+}
+
+/// The rotation that turns the direction of `u` onto the direction of `v` about the axis
+/// `u x v` (the rotate step of paper 000's brick).
+///
+/// - When `u` and `v` are parallel and point the same way (their cross product vanishes,
+///   footnote 6 of paper 000), or either is zero, the result is the identity, never NaN.
+/// - When they are anti-parallel, any axis perpendicular to `u` works and the cross product
+///   cannot choose one: the result is the half turn about `fallback_axis` with its component
+///   along `u` removed (pass the axis the geom is allowed to rotate about). If that leaves
+///   nothing (`fallback_axis` zero or parallel to `u`), the half turn is about the
+///   deterministic axis `u x e_k`, `e_k` the coordinate axis least aligned with `u`.
+///
+/// "Parallel" means that the sine of the angle is below [`tol::ANGLE`].
+pub fn rotation_between3(
+    u: &Vector3<f64>,
+    v: &Vector3<f64>,
+    fallback_axis: &Vector3<f64>,
+) -> UnitQuaternion<f64> {
+    let nu = u.norm();
+    let nv = v.norm();
+    if !(nu > 0.0 && nv > 0.0) {
+        return UnitQuaternion::identity();
+    }
+    let uh = u / nu;
+    let vh = v / nv;
+    let cross = uh.cross(&vh);
+    let sin = cross.norm();
+    let cos = uh.dot(&vh);
+    if sin > tol::ANGLE {
+        return UnitQuaternion::from_axis_angle(&Unit::new_unchecked(cross / sin), sin.atan2(cos));
+    }
+    if !(cos < 0.0) {
+        // Parallel, or NaN: identity (footnote 6).
+        return UnitQuaternion::identity();
+    }
+    // Anti-parallel: half turn about an axis perpendicular to u.
+    let f = fallback_axis - uh * uh.dot(fallback_axis);
+    let fn_ = f.norm();
+    let axis = if fn_ > tol::ANGLE * fallback_axis.norm() && fn_ > 0.0 {
+        f / fn_
+    } else {
+        let p = perpendicular(&uh);
+        p / p.norm()
+    };
+    UnitQuaternion::from_axis_angle(&Unit::new_unchecked(axis), std::f64::consts::PI)
+}
+
+/// A non-zero vector perpendicular to `u` (for a non-zero `u`): `u x e_k`, with `e_k` the
+/// coordinate axis along which `u` has its smallest absolute component. Deterministic.
+#[inline]
+pub fn perpendicular(u: &Vector3<f64>) -> Vector3<f64> {
+    let (ax, ay, az) = (u.x.abs(), u.y.abs(), u.z.abs());
+    let e = if ax <= ay && ax <= az {
+        Vector3::x()
+    } else if ay <= az {
+        Vector3::y()
+    } else {
+        Vector3::z()
+    };
+    u.cross(&e)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    fn close3(a: &Point3<f64>, b: &Point3<f64>, eps: f64) -> bool {
+        (a - b).norm() <= eps
+    }
+
+    #[test]
+    fn frame2_round_trips_and_actions() {
+        let mut f = Frame2::new(Point2::new(1.0, 2.0), 0.5);
+        let p = Point2::new(3.0, -1.0);
+        let g = f.point_to_global(&p);
+        assert!((f.point_to_local(&g) - p).norm() < 1e-15);
+        let v = Vector2::new(0.3, 0.7);
+        assert!((f.vector_to_local(&f.vector_to_global(&v)) - v).norm() < 1e-15);
+        // Rotation about a global point keeps that point fixed and preserves distances.
+        let c = Point2::new(-2.0, 5.0);
+        let local_c = f.point_to_local(&c);
+        let q = Point2::new(7.0, 1.0);
+        let before = (f.point_to_global(&q) - f.point_to_global(&p)).norm();
+        f.rotate_about(&c, 1.3);
+        assert!((f.point_to_global(&local_c) - c).norm() < 1e-14);
+        let after = (f.point_to_global(&q) - f.point_to_global(&p)).norm();
+        assert!((before - after).abs() < 1e-14);
+        assert!((f.angle() - 1.8).abs() < 1e-15);
+        f.translate(&Vector2::new(1.0, 1.0));
+        assert!((f.point_to_global(&local_c) - (c + Vector2::new(1.0, 1.0))).norm() < 1e-14);
+        assert!((f.x_axis() - Vector2::new(1.8f64.cos(), 1.8f64.sin())).norm() < 1e-15);
+        assert!((f.y_axis() - Vector2::new(-(1.8f64.sin()), 1.8f64.cos())).norm() < 1e-15);
+    }
+
+    #[test]
+    fn scale_moves_origin_and_dimensions_about_a_fixed_centre() {
+        let mut f = Frame2::new(Point2::new(2.0, 0.0), 0.0);
+        let mut dims = [1.5];
+        f.scale_about(&Point2::new(0.0, 0.0), 2.0, &mut dims);
+        assert_eq!(f.origin, Point2::new(4.0, 0.0));
+        assert_eq!(dims, [3.0]);
+        // A circle centred at the scaling centre only changes radius.
+        let mut c = Frame3::new(Point3::new(1.0, 2.0, 3.0), UnitQuaternion::identity());
+        let mut r = [2.0];
+        c.scale_about(&Point3::new(1.0, 2.0, 3.0), 0.25, &mut r);
+        assert_eq!(c.origin, Point3::new(1.0, 2.0, 3.0));
+        assert_eq!(r, [0.5]);
+        assert_eq!(scale_factor(2.0, 5.0), Some(2.5));
+        assert_eq!(scale_factor(0.0, 5.0), None);
+        assert_eq!(scale_factor(f64::NAN, 5.0), None);
+        let p = scale_point3_about(
+            &Point3::new(1.0, 1.0, 1.0),
+            &Point3::new(0.0, 0.0, 1.0),
+            3.0,
+        );
+        assert_eq!(p, Point3::new(3.0, 3.0, 1.0));
+    }
+
+    #[test]
+    fn frame3_round_trips_and_rotation_keeps_the_axis_fixed() {
+        let axis = Vector3::new(1.0, 1.0, 0.0);
+        let mut f = Frame3::new(
+            Point3::new(10.0, 5.0, 2.0),
+            rotation_about_axis(&axis, 40f64.to_radians()),
+        );
+        let p = Point3::new(1.0, -2.0, 0.5);
+        assert!(close3(&f.point_to_local(&f.point_to_global(&p)), &p, 1e-14));
+        let v = Vector3::new(0.1, 0.2, 0.3);
+        assert!((f.vector_to_local(&f.vector_to_global(&v)) - v).norm() < 1e-15);
+        let c = Point3::new(1.0, 2.0, 3.0);
+        let dir = Vector3::new(0.0, 0.0, 2.0);
+        let on_axis = [f.point_to_local(&c), f.point_to_local(&(c + dir * 1.7))];
+        f.rotate_about(&c, &dir, 0.9);
+        assert!(close3(&f.point_to_global(&on_axis[0]), &c, 1e-14));
+        assert!(close3(
+            &f.point_to_global(&on_axis[1]),
+            &(c + dir * 1.7),
+            1e-14
+        ));
+        assert!((f.x_axis().cross(&f.y_axis()) - f.z_axis()).norm() < 1e-15);
+    }
+
+    #[test]
+    fn zero_axis_rotation_is_identity_not_nan() {
+        let mut f = Frame3::new(Point3::new(1.0, 2.0, 3.0), UnitQuaternion::identity());
+        f.rotate_about(&Point3::origin(), &Vector3::zeros(), 1.0);
+        assert_eq!(
+            f,
+            Frame3::new(Point3::new(1.0, 2.0, 3.0), UnitQuaternion::identity())
+        );
+        let q = rotation_between3(&Vector3::x(), &(Vector3::x() * 3.0), &Vector3::z());
+        assert_eq!(q, UnitQuaternion::identity());
+        let q = rotation_between3(&Vector3::zeros(), &Vector3::x(), &Vector3::z());
+        assert_eq!(q, UnitQuaternion::identity());
+        assert_eq!(
+            signed_angle3(&Vector3::x(), &Vector3::y(), &Vector3::zeros()),
+            0.0
+        );
+    }
+
+    #[test]
+    fn rotation_between_general_and_antiparallel() {
+        let u = Vector3::new(1.0, 2.0, 3.0);
+        let v = Vector3::new(-2.0, 0.5, 1.0);
+        let q = rotation_between3(&u, &v, &Vector3::z());
+        assert!(((q * u).normalize() - v.normalize()).norm() < 1e-15);
+        // Anti-parallel: half turn about the fallback axis (made perpendicular to u).
+        let q = rotation_between3(&Vector3::x(), &-Vector3::x(), &Vector3::new(1.0, 0.0, 1.0));
+        assert!(((q * Vector3::x()) + Vector3::x()).norm() < 1e-15);
+        assert!(((q * Vector3::z()) - Vector3::z()).norm() < 1e-15);
+        // Unusable fallback: still a half turn, deterministic, no NaN.
+        let q = rotation_between3(&Vector3::y(), &-Vector3::y(), &Vector3::y());
+        assert!(((q * Vector3::y()) + Vector3::y()).norm() < 1e-15);
+        assert_eq!(perpendicular(&Vector3::y()).dot(&Vector3::y()), 0.0);
+        // NaN input gives NaN or identity, never a panic.
+        let _ = rotation_between3(&Vector3::new(f64::NAN, 0.0, 0.0), &v, &Vector3::z());
+    }
+
+    #[test]
+    fn signed_angles() {
+        assert!((signed_angle2(&Vector2::x(), &Vector2::y()) - PI / 2.0).abs() < 1e-15);
+        assert!((signed_angle2(&Vector2::y(), &Vector2::x()) + PI / 2.0).abs() < 1e-15);
+        let a = signed_angle3(&Vector3::x(), &Vector3::y(), &Vector3::z());
+        assert!((a - PI / 2.0).abs() < 1e-15);
+        let a = signed_angle3(&Vector3::x(), &Vector3::y(), &-Vector3::z());
+        assert!((a + PI / 2.0).abs() < 1e-15);
+        // Components along the axis are ignored.
+        let a = signed_angle3(
+            &Vector3::new(1.0, 0.0, 5.0),
+            &Vector3::new(0.0, -1.0, -3.0),
+            &Vector3::z(),
+        );
+        assert!((a + PI / 2.0).abs() < 1e-15);
+        assert_eq!(signed_angle2(&Vector2::zeros(), &Vector2::x()), 0.0);
+    }
+
+    /// Kramer's brick (paper 000, section 4.1, figure 3).
+    #[test]
+    fn kramer_brick() {
+        let b = [
+            Point3::new(0.0, 0.0, 0.0),
+            Point3::new(4.0, 0.0, 0.0),
+            Point3::new(0.0, 3.0, 0.0),
+        ];
+        let g = b;
+        let mut brick = Frame3::new(
+            Point3::new(10.0, 5.0, 2.0),
+            rotation_about_axis(&Vector3::new(1.0, 1.0, 0.0), 40f64.to_radians()),
+        );
+        let d01 = (b[1] - b[0]).norm();
+        let d02 = (b[2] - b[0]).norm();
+        let d12 = (b[2] - b[1]).norm();
+        let rigid = |f: &Frame3| {
+            let p: [Point3<f64>; 3] = [
+                f.point_to_global(&b[0]),
+                f.point_to_global(&b[1]),
+                f.point_to_global(&b[2]),
+            ];
+            ((p[1] - p[0]).norm() - d01).abs() < 1e-13
+                && ((p[2] - p[0]).norm() - d02).abs() < 1e-13
+                && ((p[2] - p[1]).norm() - d12).abs() < 1e-13
+        };
+        // Step 1: translate by the vector from b1 to g1.
+        let t = g[0] - brick.point_to_global(&b[0]);
+        brick.translate(&t);
+        assert!(close3(&brick.point_to_global(&b[0]), &g[0], 1e-14));
+        assert!(rigid(&brick));
+        // Step 2: rotate about b1 around cp = v1 x v2, where v1 = g3 - g1 and v2 = b3' - g1, by
+        // the angle between them; measured about cp, turning v2 onto v1 is a negative angle.
+        let v1 = g[2] - g[0];
+        let v2 = brick.point_to_global(&b[2]) - g[0];
+        let cp = v1.cross(&v2);
+        let angle = signed_angle3(&v2, &v1, &cp);
+        assert!(angle < 0.0);
+        let center = brick.point_to_global(&b[0]);
+        brick.rotate_about(&center, &cp, angle);
+        assert!(
+            close3(&brick.point_to_global(&b[0]), &g[0], 1e-14),
+            "b1 kept"
+        );
+        assert!(
+            close3(&brick.point_to_global(&b[2]), &g[2], 1e-14),
+            "b3 on g3"
+        );
+        assert!(rigid(&brick));
+        // Step 3: rotate about the line g1-g3 to bring b2 onto g2. The circle of b2 about that
+        // line has its centre at the foot of the perpendicular from b2.
+        let axis = (g[2] - g[0]).normalize();
+        let b2 = brick.point_to_global(&b[1]);
+        let foot = g[0] + axis * axis.dot(&(b2 - g[0]));
+        let angle = signed_angle3(&(b2 - foot), &(g[1] - foot), &axis);
+        brick.rotate_about(&g[0], &axis, angle);
+        for i in 0..3 {
+            assert!(
+                close3(&brick.point_to_global(&b[i]), &g[i], 1e-14),
+                "b{} on g{}",
+                i + 1,
+                i + 1
+            );
+        }
+        assert!(rigid(&brick));
+        // The brick's frame is now the global one.
+        assert!((brick.origin - Point3::origin()).norm() < 1e-14);
+        assert!(brick.rotation.angle() < 1e-14);
+    }
+
+    #[test]
+    fn brick_step_two_through_rotation_between() {
+        let mut f = Frame3::new(
+            Point3::new(10.0, 5.0, 2.0),
+            rotation_about_axis(&Vector3::new(1.0, 1.0, 0.0), 40f64.to_radians()),
+        );
+        let b3 = Point3::new(0.0, 3.0, 0.0);
+        let t = -f.origin.coords;
+        f.translate(&t);
+        let q = rotation_between3(&(f.point_to_global(&b3).coords), &b3.coords, &Vector3::z());
+        f.rotate_about_by(&Point3::origin(), &q);
+        assert!(close3(&f.point_to_global(&b3), &b3, 1e-14));
+        assert!(close3(
+            &f.point_to_global(&Point3::origin()),
+            &Point3::origin(),
+            1e-14
+        ));
+    }
+
+    #[test]
+    fn non_finite_input_never_panics() {
+        let mut f = Frame3::identity();
+        f.rotate_about(
+            &Point3::new(f64::NAN, 0.0, 0.0),
+            &Vector3::new(f64::INFINITY, 0.0, 0.0),
+            1.0,
+        );
+        f.translate(&Vector3::new(f64::NAN, 0.0, 0.0));
+        f.scale_about(&Point3::origin(), f64::INFINITY, &mut [1.0]);
+        assert!(f.origin.x.is_nan());
+        let mut g = Frame2::identity();
+        g.rotate_about(&Point2::origin(), f64::NAN);
+        assert!(g.angle().is_nan() || g.angle().is_finite());
+        let _ = signed_angle3(
+            &Vector3::x(),
+            &Vector3::y(),
+            &Vector3::new(f64::NAN, 0.0, 0.0),
+        );
+    }
+}
