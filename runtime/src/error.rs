@@ -1,1 +1,342 @@
-//! (in progress)
+//! Errors of a solve and the error accumulator of plans with defaults.
+//!
+//! A [`SolveError`] names the user's constraint by its label and source text, says what went
+//! wrong ([`ErrorKind`]) and by how much. Generated solvers build it from string literals
+//! (`Cow::Borrowed`, no allocation); the interpreter may pass owned strings.
+//!
+//! An [`ErrorAccumulator`] measures how far an assembly is from closing when a plan had to
+//! default some degrees of freedom (paper 000, section 5.2.1): see its documentation for how an
+//! outer iteration uses it.
+
+use std::borrow::Cow;
+use std::fmt;
+
+use crate::roots::Contact;
+
+/// What kind of failure a [`SolveError`] reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ErrorKind {
+    /// Two loci do not meet: the magnitude is the gap by which they miss.
+    NoIntersection,
+    /// The constraint contradicts those already met (e.g. a distance that differs from one
+    /// already fixed): the magnitude is the size of the contradiction.
+    Inconsistent,
+    /// The configuration is degenerate (coincident or zero-size loci, a zero axis): the
+    /// constraint does not determine the geom. The magnitude is the offending size, often 0.
+    Degenerate,
+    /// An outer iteration did not converge: the magnitude is the residual it reached.
+    NoConvergence,
+    /// An input is invalid, such as a NaN or infinite parameter: the magnitude is the value.
+    InvalidInput,
+}
+
+/// The failure of a solve, naming the user's constraint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolveError {
+    /// The constraint's label (or, for [`ErrorKind::InvalidInput`], the parameter's name).
+    pub label: Cow<'static, str>,
+    /// The constraint's source text, e.g. `coincident(coupler.c, rocker.c)`; may be empty.
+    pub text: Cow<'static, str>,
+    /// What went wrong.
+    pub kind: ErrorKind,
+    /// The magnitude of the violation, in the constraint's units (length or radians).
+    pub magnitude: f64,
+}
+
+impl SolveError {
+    /// An error for the constraint `label` with source `text` (string literals or owned
+    /// strings; literals do not allocate).
+    #[inline]
+    pub fn new(
+        label: impl Into<Cow<'static, str>>,
+        text: impl Into<Cow<'static, str>>,
+        kind: ErrorKind,
+        magnitude: f64,
+    ) -> Self {
+        Self {
+            label: label.into(),
+            text: text.into(),
+            kind,
+            magnitude,
+        }
+    }
+
+    /// The error an intersection's classification means for the constraint, if any:
+    /// `Disjoint` and `Parallel` are [`ErrorKind::NoIntersection`] with the gap, `Coincident`
+    /// and `ZeroRadius` are [`ErrorKind::Degenerate`] (magnitude 0); `Crossing` and `Tangent`
+    /// are no error.
+    #[inline]
+    pub fn from_contact(label: &'static str, text: &'static str, contact: Contact) -> Option<Self> {
+        match contact {
+            Contact::Crossing | Contact::Tangent => None,
+            Contact::Disjoint { gap } | Contact::Parallel { gap } => {
+                Some(Self::new(label, text, ErrorKind::NoIntersection, gap))
+            }
+            Contact::Coincident | Contact::ZeroRadius => {
+                Some(Self::new(label, text, ErrorKind::Degenerate, 0.0))
+            }
+        }
+    }
+}
+
+impl fmt::Display for SolveError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let m = self.magnitude;
+        if self.kind == ErrorKind::InvalidInput {
+            write!(f, "parameter `{}`", self.label)?;
+            if !self.text.is_empty() {
+                write!(f, " ({})", self.text)?;
+            }
+            return write!(f, " is invalid: {m} is not a finite number");
+        }
+        write!(f, "constraint `{}`", self.label)?;
+        if !self.text.is_empty() {
+            write!(f, " ({})", self.text)?;
+        }
+        match self.kind {
+            ErrorKind::NoIntersection => {
+                write!(f, " cannot be met: no intersection, the loci miss by {m}")
+            }
+            ErrorKind::Inconsistent => {
+                write!(f, " cannot be met: it is inconsistent with the constraints already met, by {m}")
+            }
+            ErrorKind::Degenerate => write!(
+                f,
+                " cannot be met: the configuration is degenerate (coincident or zero-size loci), size {m}"
+            ),
+            ErrorKind::NoConvergence => {
+                write!(f, " cannot be met: the iteration did not converge, residual {m}")
+            }
+            ErrorKind::InvalidInput => Ok(()),
+        }
+    }
+}
+
+impl std::error::Error for SolveError {}
+
+/// `Ok(value)` when `value` is finite, otherwise an [`ErrorKind::InvalidInput`] error naming
+/// the parameter `name`, whose magnitude is the offending value (NaN or infinite).
+#[inline]
+pub fn check_finite(name: &'static str, value: f64) -> Result<f64, SolveError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(SolveError::new(name, "", ErrorKind::InvalidInput, value))
+    }
+}
+
+/// Checks every `(name, value)` pair with [`check_finite`], reporting the first non-finite one.
+#[inline]
+pub fn check_all_finite(params: &[(&'static str, f64)]) -> Result<(), SolveError> {
+    for &(name, value) in params {
+        check_finite(name, value)?;
+    }
+    Ok(())
+}
+
+/// How far an assembly is from closing: the residuals of the constraints a plan with defaults
+/// could only measure, not satisfy by construction (paper 000, section 5.2.1).
+///
+/// When degrees of freedom analysis cannot solve a loop in closed form, the plan assigns
+/// default values to a few variables (an angle, a distance), runs its actions, and at the end
+/// measures the constraints left open. An outer iteration (Newton, secant or bracketing on
+/// those few variables) then:
+///
+/// 1. resets the accumulator and runs the plan with its current guesses;
+/// 2. calls [`ErrorAccumulator::add`] with each open constraint's signed residual;
+/// 3. stops when [`ErrorAccumulator::max`] is below its tolerance, otherwise updates the
+///    guesses from the residuals (or [`ErrorAccumulator::sum_squares`] for a minimizer) and
+///    repeats, at most a bounded number of times;
+/// 4. on failure reports [`ErrorKind::NoConvergence`] for [`ErrorAccumulator::worst`] with
+///    magnitude [`ErrorAccumulator::max`].
+///
+/// The key `K` names a constraint: `&'static str` labels in generated code, an index in the
+/// interpreter. Adding is a few flops; nothing allocates. A NaN residual counts as infinite, so
+/// it can never look closed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorAccumulator<K: Copy = &'static str> {
+    sum_squares: f64,
+    max: f64,
+    worst: Option<K>,
+    count: usize,
+}
+
+impl<K: Copy> Default for ErrorAccumulator<K> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<K: Copy> ErrorAccumulator<K> {
+    /// An empty accumulator: closed, with no residual.
+    #[inline]
+    pub const fn new() -> Self {
+        Self {
+            sum_squares: 0.0,
+            max: 0.0,
+            worst: None,
+            count: 0,
+        }
+    }
+
+    /// Forgets every residual.
+    #[inline]
+    pub fn reset(&mut self) {
+        *self = Self::new();
+    }
+
+    /// Records the residual of constraint `key` (its sign is ignored; NaN counts as infinite).
+    #[inline]
+    pub fn add(&mut self, key: K, residual: f64) {
+        let r = if residual.is_nan() {
+            f64::INFINITY
+        } else {
+            residual.abs()
+        };
+        self.sum_squares += r * r;
+        self.count += 1;
+        if self.worst.is_none() || r > self.max {
+            self.max = r;
+            self.worst = Some(key);
+        }
+    }
+
+    /// The sum of the squared residuals.
+    #[inline]
+    pub fn sum_squares(&self) -> f64 {
+        self.sum_squares
+    }
+
+    /// The largest absolute residual (0 when none was added).
+    #[inline]
+    pub fn max(&self) -> f64 {
+        self.max
+    }
+
+    /// The constraint with the largest residual (the first one on ties), if any.
+    #[inline]
+    pub fn worst(&self) -> Option<K> {
+        self.worst
+    }
+
+    /// The number of residuals added.
+    #[inline]
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// The root mean square of the residuals (0 when none was added).
+    #[inline]
+    pub fn rms(&self) -> f64 {
+        if self.count == 0 {
+            0.0
+        } else {
+            (self.sum_squares / self.count as f64).sqrt()
+        }
+    }
+
+    /// Whether every residual is at most `tolerance`.
+    #[inline]
+    pub fn is_closed(&self, tolerance: f64) -> bool {
+        self.max <= tolerance
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn display_reads_as_a_sentence() {
+        let e = SolveError::new(
+            "elbow",
+            "coincident(coupler.c, rocker.c)",
+            ErrorKind::NoIntersection,
+            0.3,
+        );
+        assert_eq!(
+            e.to_string(),
+            "constraint `elbow` (coincident(coupler.c, rocker.c)) cannot be met: no intersection, the loci miss by 0.3"
+        );
+        let owned = SolveError::new(
+            String::from("a"),
+            String::new(),
+            ErrorKind::Inconsistent,
+            2.0,
+        );
+        assert_eq!(
+            owned.to_string(),
+            "constraint `a` cannot be met: it is inconsistent with the constraints already met, by 2"
+        );
+        for kind in [ErrorKind::Degenerate, ErrorKind::NoConvergence] {
+            let s = SolveError::new("k", "t", kind, 1.0).to_string();
+            assert!(s.starts_with("constraint `k` (t) cannot be met: "), "{s}");
+        }
+        let err: Box<dyn std::error::Error> = Box::new(e);
+        assert!(err.to_string().contains("elbow"));
+    }
+
+    #[test]
+    fn finite_checks_name_the_parameter() {
+        assert_eq!(check_finite("len", 2.0), Ok(2.0));
+        let e = check_finite("len", f64::NAN).err();
+        let e = e
+            .as_ref()
+            .map(|e| (e.kind, e.label.as_ref(), e.to_string()));
+        assert_eq!(
+            e,
+            Some((
+                ErrorKind::InvalidInput,
+                "len",
+                "parameter `len` is invalid: NaN is not a finite number".to_string()
+            ))
+        );
+        let e = check_all_finite(&[("a", 1.0), ("b", f64::INFINITY), ("c", f64::NAN)]).err();
+        assert_eq!(e.map(|e| e.label), Some(Cow::Borrowed("b")));
+        assert_eq!(check_all_finite(&[("a", 1.0)]), Ok(()));
+    }
+
+    #[test]
+    fn contact_maps_to_kinds() {
+        assert_eq!(SolveError::from_contact("l", "t", Contact::Crossing), None);
+        assert_eq!(SolveError::from_contact("l", "t", Contact::Tangent), None);
+        let e = SolveError::from_contact("l", "t", Contact::Disjoint { gap: 0.5 });
+        assert_eq!(
+            e.map(|e| (e.kind, e.magnitude)),
+            Some((ErrorKind::NoIntersection, 0.5))
+        );
+        let e = SolveError::from_contact("l", "t", Contact::Parallel { gap: 0.25 });
+        assert_eq!(
+            e.map(|e| (e.kind, e.magnitude)),
+            Some((ErrorKind::NoIntersection, 0.25))
+        );
+        let e = SolveError::from_contact("l", "t", Contact::Coincident);
+        assert_eq!(e.map(|e| e.kind), Some(ErrorKind::Degenerate));
+        let e = SolveError::from_contact("l", "t", Contact::ZeroRadius);
+        assert_eq!(e.map(|e| e.kind), Some(ErrorKind::Degenerate));
+    }
+
+    #[test]
+    fn accumulator_tracks_sum_max_and_worst() {
+        let mut acc: ErrorAccumulator = ErrorAccumulator::new();
+        assert!(acc.is_closed(0.0));
+        assert_eq!(acc.rms(), 0.0);
+        acc.add("a", 0.1);
+        acc.add("b", -0.4);
+        acc.add("c", 0.4);
+        assert!((acc.sum_squares() - 0.33).abs() < 1e-15);
+        assert_eq!(acc.max(), 0.4);
+        assert_eq!(acc.worst(), Some("b"));
+        assert_eq!(acc.count(), 3);
+        assert!((acc.rms() - 0.11f64.sqrt()).abs() < 1e-15);
+        assert!(!acc.is_closed(0.3));
+        acc.add("d", f64::NAN);
+        assert_eq!(acc.worst(), Some("d"));
+        assert!(!acc.is_closed(1e300));
+        acc.reset();
+        assert_eq!(acc, ErrorAccumulator::default());
+        let mut by_index: ErrorAccumulator<usize> = ErrorAccumulator::new();
+        by_index.add(7, 1e-3);
+        assert_eq!(by_index.worst(), Some(7));
+    }
+}
