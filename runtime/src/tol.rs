@@ -16,6 +16,12 @@ pub const ANGLE: f64 = 1e-12;
 /// scale, touch in one double root rather than missing each other or crossing twice.
 pub const TANGENT_REL: f64 = 1e-10;
 
+/// Relative tolerance under which a polynomial's value counts as zero, in units of its running
+/// error bound: `|p(x)| <= POLY_ZERO_REL * degree * sum |c_i| |x|^i` is indistinguishable from
+/// zero by Horner evaluation (and by the rounding of coefficients built from their roots), so a
+/// critical point with such a value is reported as a multiple root.
+pub const POLY_ZERO_REL: f64 = 8.0 * f64::EPSILON;
+
 /// The magnitude of a set of inputs: the largest absolute value among them, never below 1e-300
 /// so that a tolerance scaled by it is never zero.
 #[inline]
