@@ -1,1 +1,1160 @@
-//! (in progress)
+//! The 3d locus intersection table: one small function per pair of loci.
+//!
+//! Every function returns an [`Intersection`]: its roots in a fixed-capacity [`crate::Roots`]
+//! (slot `i` is branch `i`) and a [`Contact`] that classifies the meeting. The doc comment of each
+//! function states what its branch index means geometrically and how it classifies degenerate
+//! inputs. The meanings are chosen so that a fixed branch moves continuously under any motion
+//! that passes no singularity (a tangency, parallel or coincident loci).
+//!
+//! # Conventions shared by every function
+//!
+//! - **Scale.** Tolerances are those of [`crate::tol`], multiplied by the *scale* of the inputs:
+//!   the largest absolute coordinate, radius or offset among them.
+//! - **Zero size.** A radius at most `LENGTH_REL * scale` (or negative), or a zero direction or
+//!   normal, gives [`Contact::ZeroRadius`] with no roots: the caller handles the point (or
+//!   refuses) with the function of the lower-dimensional locus.
+//! - **Tangency.** When the loci miss or overlap by at most `TANGENT_REL * scale`, the contact
+//!   is [`Contact::Tangent`] and the double root, placed midway between the loci's closest
+//!   points, fills *both* branch slots, so a fixed branch stays defined through the tangency.
+//!   Such a root is within `TANGENT_REL * scale / 2` of each locus.
+//! - **Parallel.** Directions whose angle has a sine at most [`tol::ANGLE`] are parallel.
+//! - **Accuracy.** Outside tangency, every root lies on both loci within a few units in the last
+//!   place of `max(scale, |root|)`: the tests check `1e-13` of that. The `|root|` term matters
+//!   only for nearly parallel loci, whose meeting point can be far beyond the inputs; its
+//!   coordinates alone then carry that rounding.
+//! - **Non-finite input** (NaN or infinite coordinates, radii or offsets) gives no roots and
+//!   `Contact::Disjoint { gap: NaN }`. Nothing here allocates or panics.
+
+use nalgebra::{Point3, Vector3};
+
+use crate::frame::perpendicular;
+use crate::locus3d::{Circle3, Cylinder, Ellipse3, Line3, Plane, Sphere};
+use crate::roots::{Contact, Intersection, Roots};
+use crate::tol::{self, ANGLE, LENGTH_REL, TANGENT_REL};
+
+/// What a plane cuts from a cylinder: an ellipse, or lines along the cylinder's axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CylinderSection {
+    /// The section by a plane not parallel to the axis (a circle when perpendicular).
+    Ellipse(Ellipse3),
+    /// A line along the axis, when the plane is parallel to the axis.
+    Line(Line3),
+}
+
+impl Default for CylinderSection {
+    fn default() -> Self {
+        CylinderSection::Line(Line3::default())
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Helpers.
+
+/// `a * b - c * d` to about one unit in the last place (Kahan's algorithm with fused
+/// multiply-adds): no cancellation error when the two products nearly agree.
+#[inline]
+fn diff_of_products(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    let w = c * d;
+    let e = (-c).mul_add(d, w);
+    let f = a.mul_add(b, -w);
+    f + e
+}
+
+/// `a x b` with every component accurate to about one unit in its last place, even for nearly
+/// parallel vectors (where the plain formula loses all its digits).
+#[inline]
+fn cross_accurate(a: &Vector3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        diff_of_products(a.y, b.z, a.z, b.y),
+        diff_of_products(a.z, b.x, a.x, b.z),
+        diff_of_products(a.x, b.y, a.y, b.x),
+    )
+}
+
+#[inline]
+fn finite(values: &[f64]) -> bool {
+    values.iter().all(|v| v.is_finite())
+}
+
+#[inline]
+fn abs_max(v: &Vector3<f64>) -> f64 {
+    v.x.abs().max(v.y.abs()).max(v.z.abs())
+}
+
+/// `sqrt(r^2 - d^2)` computed as `sqrt((r - d)(r + d))`, zero when negative.
+#[inline]
+fn leg(r: f64, d: f64) -> f64 {
+    ((r - d) * (r + d)).max(0.0).sqrt()
+}
+
+#[inline]
+fn mid(a: &Point3<f64>, b: &Point3<f64>) -> Point3<f64> {
+    a + (b - a) * 0.5
+}
+
+#[inline]
+fn is_zero_dir(v: &Vector3<f64>) -> bool {
+    !(v.norm_squared() >= 0.25)
+}
+
+#[inline]
+fn not_finite<T: Copy + Default, const N: usize>() -> Intersection<T, N> {
+    Intersection::none(Contact::Disjoint { gap: f64::NAN })
+}
+
+#[inline]
+fn two<T: Copy + Default>(a: T, b: T, contact: Contact) -> Intersection<T, 2> {
+    let mut roots = Roots::new();
+    roots.push(a);
+    roots.push(b);
+    Intersection { roots, contact }
+}
+
+#[inline]
+fn one<T: Copy + Default, const N: usize>(a: T, contact: Contact) -> Intersection<T, N> {
+    let mut roots = Roots::new();
+    roots.push(a);
+    Intersection { roots, contact }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sphere and plane pairs.
+
+/// Sphere-sphere: the circle common to two spheres.
+///
+/// - **Branch:** a single root (branch 0), the circle whose centre lies on the line of centres
+///   and whose normal points from `a`'s centre to `b`'s.
+/// - `Crossing`: the circle. `Tangent` (externally or internally, within `TANGENT_REL * scale`):
+///   a circle of radius 0 at the touching point.
+/// - `Disjoint { gap }`: the spheres are apart (`gap = d - ra - rb`), or one holds the other
+///   (`gap = |ra - rb| - d`), or they are concentric with different radii (`gap = |ra - rb|`).
+/// - `Coincident`: same centre and radius. `ZeroRadius`: a radius is zero.
+pub fn sphere_sphere(a: &Sphere, b: &Sphere) -> Intersection<Circle3, 1> {
+    let (ca, cb, ra, rb) = (a.center, b.center, a.radius, b.radius);
+    if !finite(&[ca.x, ca.y, ca.z, cb.x, cb.y, cb.z, ra, rb]) {
+        return not_finite();
+    }
+    let s = tol::scale(&[abs_max(&ca.coords), abs_max(&cb.coords), ra, rb]);
+    let (tl, tt) = (LENGTH_REL * s, TANGENT_REL * s);
+    if ra <= tl || rb <= tl {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let w = cb - ca;
+    let d = w.norm();
+    if d <= tl {
+        let g = (ra - rb).abs();
+        return if g <= tt {
+            Intersection::none(Contact::Coincident)
+        } else {
+            Intersection::none(Contact::Disjoint { gap: g })
+        };
+    }
+    let n = w / d;
+    let outer = d - (ra + rb);
+    let inner = (ra - rb).abs() - d;
+    if outer > tt {
+        return Intersection::none(Contact::Disjoint { gap: outer });
+    }
+    if inner > tt {
+        return Intersection::none(Contact::Disjoint { gap: inner });
+    }
+    if outer.abs() <= tt || inner.abs() <= tt {
+        let (pa, pb) = if outer.abs() <= tt {
+            (ca + n * ra, cb - n * rb)
+        } else if ra >= rb {
+            (ca + n * ra, cb + n * rb)
+        } else {
+            (ca - n * ra, cb - n * rb)
+        };
+        return one(
+            Circle3 {
+                center: mid(&pa, &pb),
+                normal: n,
+                radius: 0.0,
+            },
+            Contact::Tangent,
+        );
+    }
+    let h = 0.5 * (d + (ra - rb) * (ra + rb) / d);
+    let r = leg(ra, h);
+    one(
+        Circle3 {
+            center: ca + n * h,
+            normal: n,
+            radius: r,
+        },
+        Contact::Crossing,
+    )
+}
+
+/// Sphere-plane: the circle a plane cuts from a sphere.
+///
+/// - **Branch:** a single root (branch 0), the circle centred at the foot of the perpendicular
+///   from the sphere's centre, with the plane's normal.
+/// - `Crossing`: the circle. `Tangent`: a circle of radius 0 at the touching point.
+/// - `Disjoint { gap }`: the plane misses the sphere by `gap = |signed distance| - r`.
+/// - `ZeroRadius`: the radius or the plane's normal is zero.
+pub fn sphere_plane(s: &Sphere, p: &Plane) -> Intersection<Circle3, 1> {
+    let (c, r, n) = (s.center, s.radius, p.normal);
+    if !finite(&[c.x, c.y, c.z, r, n.x, n.y, n.z, p.offset]) {
+        return not_finite();
+    }
+    let sc = tol::scale(&[abs_max(&c.coords), r, p.offset]);
+    let (tl, tt) = (LENGTH_REL * sc, TANGENT_REL * sc);
+    if r <= tl || is_zero_dir(&n) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let sd = p.signed_distance(&c);
+    let g = sd.abs() - r;
+    if g > tt {
+        return Intersection::none(Contact::Disjoint { gap: g });
+    }
+    let foot = c - n * sd;
+    if g.abs() <= tt {
+        let on_sphere = c - n * (r.copysign(sd));
+        return one(
+            Circle3 {
+                center: mid(&foot, &on_sphere),
+                normal: n,
+                radius: 0.0,
+            },
+            Contact::Tangent,
+        );
+    }
+    one(
+        Circle3 {
+            center: foot,
+            normal: n,
+            radius: leg(r, sd.abs()),
+        },
+        Contact::Crossing,
+    )
+}
+
+/// Plane-plane: the line common to two planes.
+///
+/// - **Branch:** a single root (branch 0), the line directed along `a.normal x b.normal`,
+///   through the point of the line nearest to the origin.
+/// - `Crossing`: the line. `Parallel { gap }`: parallel and distinct, `gap` apart.
+///   `Coincident`: the same plane (up to `TANGENT_REL * scale`, either orientation).
+/// - `ZeroRadius`: a normal is zero.
+/// - Accuracy: the line's point is within a few ulps of `max(scale, |point|)` of both planes; its
+///   direction is perpendicular to both normals to a few ulps (the cross product is computed
+///   without cancellation).
+pub fn plane_plane(a: &Plane, b: &Plane) -> Intersection<Line3, 1> {
+    let (na, nb) = (a.normal, b.normal);
+    if !finite(&[na.x, na.y, na.z, nb.x, nb.y, nb.z, a.offset, b.offset]) {
+        return not_finite();
+    }
+    if is_zero_dir(&na) || is_zero_dir(&nb) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let sc = tol::scale(&[a.offset, b.offset]);
+    let u = cross_accurate(&na, &nb);
+    let su = u.norm();
+    if su <= ANGLE {
+        let gap = (a.offset - b.offset * na.dot(&nb).signum()).abs();
+        return if gap <= TANGENT_REL * sc {
+            Intersection::none(Contact::Coincident)
+        } else {
+            Intersection::none(Contact::Parallel { gap })
+        };
+    }
+    let point = (nb.cross(&u) * a.offset + u.cross(&na) * b.offset) / (su * su);
+    one(
+        Line3 {
+            point: Point3::from(point),
+            dir: u / su,
+        },
+        Contact::Crossing,
+    )
+}
+
+/// Line-plane: the point where a line crosses a plane.
+///
+/// - **Branch:** a single root (branch 0).
+/// - `Crossing`: the point. `Parallel { gap }`: the line is parallel to the plane, `gap` away.
+///   `Coincident`: the line lies in the plane (within `TANGENT_REL * scale`).
+/// - `ZeroRadius`: the line's direction or the plane's normal is zero.
+pub fn line_plane(l: &Line3, p: &Plane) -> Intersection<Point3<f64>, 1> {
+    let (q, d, n) = (l.point, l.dir, p.normal);
+    if !finite(&[q.x, q.y, q.z, d.x, d.y, d.z, n.x, n.y, n.z, p.offset]) {
+        return not_finite();
+    }
+    if is_zero_dir(&d) || is_zero_dir(&n) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let sc = tol::scale(&[abs_max(&q.coords), p.offset]);
+    let sd = p.signed_distance(&q);
+    let denom = n.dot(&d);
+    if denom.abs() <= ANGLE {
+        return if sd.abs() <= TANGENT_REL * sc {
+            Intersection::none(Contact::Coincident)
+        } else {
+            Intersection::none(Contact::Parallel { gap: sd.abs() })
+        };
+    }
+    one(q + d * (-sd / denom), Contact::Crossing)
+}
+
+/// Line-sphere: the points where a line pierces a sphere.
+///
+/// - **Branch:** order along the line's direction: branch 0 is the entry point (smaller
+///   parameter), branch 1 the exit point. At tangency both slots hold the touching point.
+/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Disjoint { gap }`: the line passes `gap` outside the sphere.
+/// - `ZeroRadius`: the radius or the line's direction is zero.
+pub fn line_sphere(l: &Line3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
+    let (q, d, c, r) = (l.point, l.dir, s.center, s.radius);
+    if !finite(&[q.x, q.y, q.z, d.x, d.y, d.z, c.x, c.y, c.z, r]) {
+        return not_finite();
+    }
+    let sc = tol::scale(&[abs_max(&q.coords), abs_max(&c.coords), r]);
+    let (tl, tt) = (LENGTH_REL * sc, TANGENT_REL * sc);
+    if r <= tl || is_zero_dir(&d) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let foot = l.closest(&c);
+    let off = foot - c;
+    let m = off.norm();
+    let g = m - r;
+    if g > tt {
+        return Intersection::none(Contact::Disjoint { gap: g });
+    }
+    if g.abs() <= tt {
+        // m is close to r > 0, so off / m is a unit vector.
+        let t = mid(&foot, &(c + off * (r / m)));
+        return two(t, t, Contact::Tangent);
+    }
+    let h = leg(r, m);
+    two(foot - d * h, foot + d * h, Contact::Crossing)
+}
+
+/// Line-cylinder: the points where a line pierces a cylinder.
+///
+/// - **Branch:** order along the line's direction (branch 0 first), as for [`line_sphere`].
+/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Disjoint { gap }`: the line passes `gap` outside the cylinder.
+/// - `Parallel { gap }`: the line is parallel to the axis, `gap` off the surface (inside or
+///   outside). `Coincident`: the line lies on the surface.
+/// - `ZeroRadius`: the radius, the axis direction or the line's direction is zero.
+/// - Accuracy: a line nearly parallel to the axis meets the surface far away; the roots are then
+///   accurate relative to their own magnitude.
+pub fn line_cylinder(l: &Line3, cy: &Cylinder) -> Intersection<Point3<f64>, 2> {
+    let (q, d, o, a, r) = (l.point, l.dir, cy.axis.point, cy.axis.dir, cy.radius);
+    if !finite(&[
+        q.x, q.y, q.z, d.x, d.y, d.z, o.x, o.y, o.z, a.x, a.y, a.z, r,
+    ]) {
+        return not_finite();
+    }
+    let sc = tol::scale(&[abs_max(&q.coords), abs_max(&o.coords), r]);
+    let (tl, tt) = (LENGTH_REL * sc, TANGENT_REL * sc);
+    if r <= tl || is_zero_dir(&d) || is_zero_dir(&a) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let w = q - o;
+    let wp = w - a * a.dot(&w);
+    let dp = d - a * a.dot(&d);
+    let sp = dp.norm();
+    if sp <= ANGLE {
+        let g = (wp.norm() - r).abs();
+        return if g <= tt {
+            Intersection::none(Contact::Coincident)
+        } else {
+            Intersection::none(Contact::Parallel { gap: g })
+        };
+    }
+    let t0 = -wp.dot(&dp) / (sp * sp);
+    let radial = wp + dp * t0;
+    let m = radial.norm();
+    let g = m - r;
+    if g > tt {
+        return Intersection::none(Contact::Disjoint { gap: g });
+    }
+    let foot = q + d * t0;
+    if g.abs() <= tt {
+        let t = foot + radial * ((r - m) / (2.0 * m));
+        return two(t, t, Contact::Tangent);
+    }
+    let dt = leg(r, m) / sp;
+    two(q + d * (t0 - dt), q + d * (t0 + dt), Contact::Crossing)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Circle pairs.
+
+/// Circle-plane: the points where a plane cuts a circle.
+///
+/// - **Branch:** order along `u = circle.normal x plane.normal`, the direction of the line common
+///   to the two planes: branch 0 has the smaller coordinate along `u`, i.e. it lies on the
+///   negative side of `u` from the chord's midpoint. This is `-(normal x g)` with `g` the
+///   in-plane direction from the centre towards the plane, a direction fixed by the two normals,
+///   so the branch does not flip when the plane sweeps through the circle's centre.
+/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Disjoint { gap }`: the plane misses the circle by `gap` (distance from the plane to the
+///   circle's nearest point).
+/// - `Parallel { gap }`: the planes are parallel, `gap` apart. `Coincident`: the circle lies in
+///   the plane.
+/// - `ZeroRadius`: the radius or a normal is zero.
+pub fn circle_plane(c: &Circle3, p: &Plane) -> Intersection<Point3<f64>, 2> {
+    let (cc, nc, r, np) = (c.center, c.normal, c.radius, p.normal);
+    if !finite(&[
+        cc.x, cc.y, cc.z, nc.x, nc.y, nc.z, r, np.x, np.y, np.z, p.offset,
+    ]) {
+        return not_finite();
+    }
+    let sc = tol::scale(&[abs_max(&cc.coords), r, p.offset]);
+    let (tl, tt) = (LENGTH_REL * sc, TANGENT_REL * sc);
+    if r <= tl || is_zero_dir(&nc) || is_zero_dir(&np) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let sd = p.signed_distance(&cc);
+    let u = cross_accurate(&nc, &np);
+    let su = u.norm();
+    if su <= ANGLE {
+        return if sd.abs() <= tt {
+            Intersection::none(Contact::Coincident)
+        } else {
+            Intersection::none(Contact::Parallel { gap: sd.abs() })
+        };
+    }
+    let uh = u / su;
+    // In the circle's plane, towards increasing signed distance from `p`.
+    let gh = uh.cross(&nc);
+    // Signed in-plane offset of the chord's midpoint from the centre along `gh`.
+    let s = -sd / su;
+    let g = s.abs() - r;
+    if g > tt {
+        return Intersection::none(Contact::Disjoint { gap: g * su });
+    }
+    if g.abs() <= tt {
+        let t = cc + gh * (0.5 * (r + s.abs())).copysign(s);
+        return two(t, t, Contact::Tangent);
+    }
+    let m = cc + gh * s;
+    let h = leg(r, s.abs());
+    two(m - uh * h, m + uh * h, Contact::Crossing)
+}
+
+/// Circle-sphere: the points of a circle on a sphere.
+///
+/// - **Branch:** let `e` be the direction, in the circle's plane, from the circle's centre to the
+///   projection of the sphere's centre. Branch 0 is the root on the positive side of
+///   `normal x e` (counter-clockwise from `e` seen from the tip of the circle's normal),
+///   branch 1 the other. `e` is defined away from the singular configuration where the sphere's
+///   centre is on the circle's axis (then the circle lies on the sphere or misses it entirely).
+/// - `Crossing`: two points. `Tangent`: the double root in both slots (the sphere touches the
+///   circle at its point nearest to or farthest from the sphere's centre).
+/// - `Disjoint { gap }`: `gap` is how far the sphere's radius is outside the range of distances
+///   from its centre to the circle's points.
+/// - `Coincident`: the circle lies on the sphere. `ZeroRadius`: a radius or the normal is zero.
+pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
+    let (cc, nc, rc, cs, rs) = (c.center, c.normal, c.radius, s.center, s.radius);
+    if !finite(&[cc.x, cc.y, cc.z, nc.x, nc.y, nc.z, rc, cs.x, cs.y, cs.z, rs]) {
+        return not_finite();
+    }
+    let sc = tol::scale(&[abs_max(&cc.coords), abs_max(&cs.coords), rc, rs]);
+    let (tl, tt) = (LENGTH_REL * sc, TANGENT_REL * sc);
+    if rc <= tl || rs <= tl || is_zero_dir(&nc) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let w = cs - cc;
+    let sd = nc.dot(&w);
+    let ev = w - nc * sd;
+    let rho = ev.norm();
+    if rho <= tl {
+        let g = rs - sd.hypot(rc);
+        return if g.abs() <= tt {
+            Intersection::none(Contact::Coincident)
+        } else {
+            Intersection::none(Contact::Disjoint { gap: g.abs() })
+        };
+    }
+    let e = ev / rho;
+    let dmin = sd.hypot(rho - rc);
+    let dmax = sd.hypot(rho + rc);
+    if rs < dmin - tt {
+        return Intersection::none(Contact::Disjoint { gap: dmin - rs });
+    }
+    if rs > dmax + tt {
+        return Intersection::none(Contact::Disjoint { gap: rs - dmax });
+    }
+    let near = (rs - dmin).abs() <= tt;
+    if near || (rs - dmax).abs() <= tt {
+        let on_circle = if near { cc + e * rc } else { cc - e * rc };
+        let to = on_circle - cs;
+        let n = to.norm();
+        let on_sphere = if n > 0.0 {
+            cs + to * (rs / n)
+        } else {
+            on_circle
+        };
+        let t = mid(&on_circle, &on_sphere);
+        return two(t, t, Contact::Tangent);
+    }
+    // Coplanar circle-circle with the sphere's section by the circle's plane.
+    let r2sq = (rs - sd.abs()) * (rs + sd.abs());
+    let a = 0.5 * (rho + (rc - r2sq.max(0.0).sqrt()) * (rc + r2sq.max(0.0).sqrt()) / rho);
+    let h = leg(rc, a);
+    let side = nc.cross(&e);
+    let m = cc + e * a;
+    two(m + side * h, m - side * h, Contact::Crossing)
+}
+
+/// Circle-circle: the points common to two circles, coplanar or not.
+///
+/// **Coplanar** (parallel normals and `b`'s centre within `TANGENT_REL * scale` of `a`'s plane;
+/// the circles are treated as lying in `a`'s plane):
+/// - **Branch:** with `e` the direction from `a`'s centre to `b`'s, branch 0 is the root on the
+///   positive side of `a.normal x e` (left of the directed line of centres seen from the tip of
+///   `a`'s normal), branch 1 the other.
+/// - `Crossing`: two points. `Tangent` (externally or internally): the double root in both slots.
+/// - `Disjoint { gap }`: apart (`d - ra - rb`), nested (`|ra - rb| - d`) or concentric with
+///   different radii (`|ra - rb|`). `Coincident`: the same circle.
+///
+/// **Parallel planes**, not coplanar: `Parallel { gap }` with the distance between the planes.
+///
+/// **Non-coplanar:** common points lie on the line `L` common to the two planes, directed along
+/// `a.normal x b.normal`; each circle meets `L` in a chord, and the circles meet where chord ends
+/// coincide (within `TANGENT_REL * scale`).
+/// - **Branch:** order along `L`'s direction. When the two chords coincide, both roots (or at
+///   tangency to `L`, the double root with `Tangent`). When one end of each chord coincides, the
+///   single common point fills both slots: `Tangent` if a circle touches `L` there, otherwise
+///   `Crossing`.
+/// - `Disjoint { gap }`: `gap` is the distance between the nearest pair among each circle's
+///   points on `L` (or, for a circle that does not reach `L`, its point nearest to `L`): the
+///   distance between actual points of the two circles, so an upper bound of their true distance
+///   (which needs a degree-8 solve) that vanishes exactly when they meet.
+///
+/// `ZeroRadius`: a radius or a normal is zero.
+///
+/// Accuracy: a root is within `TANGENT_REL * scale` of both circles (plus rounding), a looser
+/// bound than other functions because the meeting of two non-coplanar circles, and the
+/// coplanarity of two circles, are themselves decided with that tolerance; exactly coplanar or
+/// exactly meeting inputs give roots within a few ulps.
+pub fn circle_circle(a: &Circle3, b: &Circle3) -> Intersection<Point3<f64>, 2> {
+    let (ca, na, ra) = (a.center, a.normal, a.radius);
+    let (cb, nb, rb) = (b.center, b.normal, b.radius);
+    if !finite(&[
+        ca.x, ca.y, ca.z, na.x, na.y, na.z, ra, cb.x, cb.y, cb.z, nb.x, nb.y, nb.z, rb,
+    ]) {
+        return not_finite();
+    }
+    let sc = tol::scale(&[abs_max(&ca.coords), abs_max(&cb.coords), ra, rb]);
+    let (tl, tt) = (LENGTH_REL * sc, TANGENT_REL * sc);
+    if ra <= tl || rb <= tl || is_zero_dir(&na) || is_zero_dir(&nb) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let w = cb - ca;
+    let off = na.dot(&w);
+    let u = cross_accurate(&na, &nb);
+    let su = u.norm();
+    if su <= ANGLE {
+        if off.abs() > tt {
+            return Intersection::none(Contact::Parallel { gap: off.abs() });
+        }
+        return coplanar_circles(ca, na, ra, ca + (w - na * off), rb, tl, tt);
+    }
+    // Non-coplanar: chords on the common line L, parametrized from a's chord midpoint.
+    let uh = u / su;
+    // Circle a against b's plane.
+    let ga = uh.cross(&na);
+    let sa = -nb.dot(&(ca - cb)) / su;
+    // Circle b against a's plane (common direction -uh).
+    let gb = nb.cross(&uh);
+    let sb = -off / su;
+    let ma = ca + ga * sa;
+    let mb = cb + gb * sb;
+    let tb = uh.dot(&(mb - ma));
+    let reach_a = sa.abs() - ra <= tt;
+    let reach_b = sb.abs() - rb <= tt;
+    if !(reach_a && reach_b) {
+        // Nearest points of each circle to L (its chord ends if it reaches L).
+        let ha = leg(ra, sa.abs());
+        let hb = leg(rb, sb.abs());
+        let pa = [
+            ca + ga * ra.min(sa.abs()).copysign(sa) - uh * ha,
+            ca + ga * ra.min(sa.abs()).copysign(sa) + uh * ha,
+        ];
+        let pb = [
+            cb + gb * rb.min(sb.abs()).copysign(sb) - uh * hb,
+            cb + gb * rb.min(sb.abs()).copysign(sb) + uh * hb,
+        ];
+        let mut gap = f64::INFINITY;
+        for p in &pa {
+            for q in &pb {
+                gap = gap.min((p - q).norm());
+            }
+        }
+        return Intersection::none(Contact::Disjoint { gap });
+    }
+    let ha = leg(ra, sa.abs());
+    let hb = leg(rb, sb.abs());
+    let ends_a = [-ha, ha];
+    let ends_b = [tb - hb, tb + hb];
+    let at = |t: f64| ma + uh * t;
+    let lo = (ends_a[0] - ends_b[0]).abs() <= tt;
+    let hi = (ends_a[1] - ends_b[1]).abs() <= tt;
+    let touch_l = ha <= tt || hb <= tt;
+    if lo && hi {
+        let p0 = at(0.5 * (ends_a[0] + ends_b[0]));
+        let p1 = at(0.5 * (ends_a[1] + ends_b[1]));
+        return if touch_l {
+            two(p0, p0, Contact::Tangent)
+        } else {
+            two(p0, p1, Contact::Crossing)
+        };
+    }
+    let contact = if touch_l {
+        Contact::Tangent
+    } else {
+        Contact::Crossing
+    };
+    let mut gap = f64::INFINITY;
+    for &ta in &ends_a {
+        for &tb_ in &ends_b {
+            let g = (ta - tb_).abs();
+            if g <= tt {
+                let p = at(0.5 * (ta + tb_));
+                return two(p, p, contact);
+            }
+            gap = gap.min(g);
+        }
+    }
+    Intersection::none(Contact::Disjoint { gap })
+}
+
+/// Two circles in one plane (normal `n`): the coplanar case of [`circle_circle`].
+fn coplanar_circles(
+    ca: Point3<f64>,
+    n: Vector3<f64>,
+    ra: f64,
+    cb: Point3<f64>,
+    rb: f64,
+    tl: f64,
+    tt: f64,
+) -> Intersection<Point3<f64>, 2> {
+    let w = cb - ca;
+    let d = w.norm();
+    if d <= tl {
+        let g = (ra - rb).abs();
+        return if g <= tt {
+            Intersection::none(Contact::Coincident)
+        } else {
+            Intersection::none(Contact::Disjoint { gap: g })
+        };
+    }
+    let e = w / d;
+    let outer = d - (ra + rb);
+    let inner = (ra - rb).abs() - d;
+    if outer > tt {
+        return Intersection::none(Contact::Disjoint { gap: outer });
+    }
+    if inner > tt {
+        return Intersection::none(Contact::Disjoint { gap: inner });
+    }
+    if outer.abs() <= tt || inner.abs() <= tt {
+        let (pa, pb) = if outer.abs() <= tt {
+            (ca + e * ra, cb - e * rb)
+        } else if ra >= rb {
+            (ca + e * ra, cb + e * rb)
+        } else {
+            (ca - e * ra, cb - e * rb)
+        };
+        let t = mid(&pa, &pb);
+        return two(t, t, Contact::Tangent);
+    }
+    let h = 0.5 * (d + (ra - rb) * (ra + rb) / d);
+    let k = leg(ra, h);
+    let m = ca + e * h;
+    let side = n.cross(&e);
+    two(m + side * k, m - side * k, Contact::Crossing)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Plane and cylinder.
+
+/// Plane-cylinder: the section of a cylinder by a plane.
+///
+/// **Plane not parallel to the axis:** `Crossing` with a single root (branch 0; slot 1 stays
+/// empty), the [`CylinderSection::Ellipse`] centred where the axis meets the plane, with the
+/// plane's normal, semi-axis `b = r` along `minor = unit(normal x axis)` and semi-axis
+/// `a = r / |cos(angle between normal and axis)|` along `major = minor x normal`. When the plane
+/// is perpendicular to the axis the ellipse is a circle (`a = b = r`) and `minor` is the
+/// deterministic [`perpendicular`] of the normal.
+///
+/// **Plane parallel to the axis** (sine of the angle between axis and plane at most
+/// [`tol::ANGLE`]): lines along the axis direction ([`CylinderSection::Line`]).
+/// - **Branch:** order along `normal x axis`: branch 0 has the smaller coordinate.
+/// - `Crossing`: two lines. `Tangent`: the touching line in both slots.
+/// - `Parallel { gap }`: the plane misses the cylinder by `gap`.
+///
+/// `ZeroRadius`: the radius, the axis direction or the normal is zero.
+pub fn plane_cylinder(p: &Plane, cy: &Cylinder) -> Intersection<CylinderSection, 2> {
+    let (n, o, a, r) = (p.normal, cy.axis.point, cy.axis.dir, cy.radius);
+    if !finite(&[n.x, n.y, n.z, p.offset, o.x, o.y, o.z, a.x, a.y, a.z, r]) {
+        return not_finite();
+    }
+    let sc = tol::scale(&[abs_max(&o.coords), p.offset, r]);
+    let (tl, tt) = (LENGTH_REL * sc, TANGENT_REL * sc);
+    if r <= tl || is_zero_dir(&n) || is_zero_dir(&a) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let cos = n.dot(&a);
+    let delta = p.signed_distance(&o);
+    let nxa = cross_accurate(&n, &a);
+    let snxa = nxa.norm();
+    if cos.abs() <= ANGLE {
+        let g = delta.abs() - r;
+        if g > tt {
+            return Intersection::none(Contact::Parallel { gap: g });
+        }
+        if g.abs() <= tt {
+            let point = o - n * (0.5 * (delta.abs() + r)).copysign(delta);
+            let l = CylinderSection::Line(Line3 { point, dir: a });
+            return two(l, l, Contact::Tangent);
+        }
+        let side = nxa / snxa;
+        let foot = o - n * delta;
+        let k = leg(r, delta.abs());
+        return two(
+            CylinderSection::Line(Line3 {
+                point: foot - side * k,
+                dir: a,
+            }),
+            CylinderSection::Line(Line3 {
+                point: foot + side * k,
+                dir: a,
+            }),
+            Contact::Crossing,
+        );
+    }
+    let center = o - a * (delta / cos);
+    let minor = if snxa > ANGLE {
+        nxa / snxa
+    } else {
+        let q = perpendicular(&n);
+        q / q.norm()
+    };
+    let major = minor.cross(&n);
+    one(
+        CylinderSection::Ellipse(Ellipse3 {
+            center,
+            normal: n,
+            major,
+            minor,
+            a: r / cos.abs(),
+            b: r,
+        }),
+        Contact::Crossing,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::locus3d::Locus3;
+
+    const EPS: f64 = 1e-13;
+
+    fn p(x: f64, y: f64, z: f64) -> Point3<f64> {
+        Point3::new(x, y, z)
+    }
+
+    fn v(x: f64, y: f64, z: f64) -> Vector3<f64> {
+        Vector3::new(x, y, z)
+    }
+
+    /// Every root is on both loci within `tol`.
+    fn on_both(roots: &[Point3<f64>], a: &dyn Locus3, b: &dyn Locus3, tol: f64) {
+        for r in roots {
+            assert!(
+                a.distance(r) <= tol,
+                "root {r:?} off first locus by {}",
+                a.distance(r)
+            );
+            assert!(
+                b.distance(r) <= tol,
+                "root {r:?} off second locus by {}",
+                b.distance(r)
+            );
+        }
+    }
+
+    fn circle_points(c: &Circle3) -> [Point3<f64>; 4] {
+        let u = perpendicular(&c.normal).normalize();
+        let w = c.normal.cross(&u);
+        [
+            c.center + u * c.radius,
+            c.center + w * c.radius,
+            c.center - u * c.radius,
+            c.center - w * c.radius,
+        ]
+    }
+
+    #[test]
+    fn sphere_sphere_cases() {
+        let a = Sphere::new(p(0.0, 0.0, 0.0), 2.0);
+        let b = Sphere::new(p(2.0, 0.0, 0.0), 2.0);
+        let x = sphere_sphere(&a, &b);
+        assert_eq!(x.contact, Contact::Crossing);
+        let c = x.branch(0).unwrap_or_default();
+        assert!((c.center - p(1.0, 0.0, 0.0)).norm() < EPS);
+        assert!((c.radius - 3f64.sqrt()).abs() < EPS);
+        assert_eq!(c.normal, Vector3::x());
+        on_both(&circle_points(&c), &a, &b, EPS);
+        // Tangent externally and internally.
+        let t = sphere_sphere(&a, &Sphere::new(p(0.0, 5.0, 0.0), 3.0));
+        assert_eq!(t.contact, Contact::Tangent);
+        assert!((t.branch(0).unwrap_or_default().center - p(0.0, 2.0, 0.0)).norm() < EPS);
+        let t = sphere_sphere(&a, &Sphere::new(p(0.0, 0.0, 1.0), 1.0));
+        assert_eq!(t.contact, Contact::Tangent);
+        assert!((t.branch(0).unwrap_or_default().center - p(0.0, 0.0, 2.0)).norm() < EPS);
+        let t = sphere_sphere(&Sphere::new(p(0.0, 0.0, 1.0), 1.0), &a);
+        assert!((t.branch(0).unwrap_or_default().center - p(0.0, 0.0, 2.0)).norm() < EPS);
+        // Disjoint, nested, concentric, coincident, zero radius.
+        let d = sphere_sphere(&a, &Sphere::new(p(5.0, 0.0, 0.0), 1.0));
+        assert_eq!(d.contact, Contact::Disjoint { gap: 2.0 });
+        assert!(d.roots.is_empty());
+        let d = sphere_sphere(&a, &Sphere::new(p(0.5, 0.0, 0.0), 1.0));
+        assert_eq!(d.contact, Contact::Disjoint { gap: 0.5 });
+        let d = sphere_sphere(&a, &Sphere::new(p(0.0, 0.0, 0.0), 1.0));
+        assert_eq!(d.contact, Contact::Disjoint { gap: 1.0 });
+        assert_eq!(sphere_sphere(&a, &a).contact, Contact::Coincident);
+        let z = sphere_sphere(&a, &Sphere::new(p(1.0, 0.0, 0.0), 0.0));
+        assert_eq!(z.contact, Contact::ZeroRadius);
+        let n = sphere_sphere(&a, &Sphere::new(p(f64::NAN, 0.0, 0.0), 1.0));
+        assert!(matches!(n.contact, Contact::Disjoint { gap } if gap.is_nan()));
+    }
+
+    #[test]
+    fn sphere_plane_cases() {
+        let s = Sphere::new(p(1.0, 1.0, 1.0), 2.0);
+        let x = sphere_plane(&s, &Plane::new(v(0.0, 0.0, 1.0), 2.0));
+        assert_eq!(x.contact, Contact::Crossing);
+        let c = x.branch(0).unwrap_or_default();
+        assert!((c.center - p(1.0, 1.0, 2.0)).norm() < EPS);
+        assert!((c.radius - 3f64.sqrt()).abs() < EPS);
+        on_both(
+            &circle_points(&c),
+            &s,
+            &Plane::new(v(0.0, 0.0, 1.0), 2.0),
+            EPS,
+        );
+        let t = sphere_plane(&s, &Plane::new(v(0.0, 0.0, -1.0), 1.0));
+        assert_eq!(t.contact, Contact::Tangent);
+        assert!((t.branch(0).unwrap_or_default().center - p(1.0, 1.0, -1.0)).norm() < EPS);
+        let d = sphere_plane(&s, &Plane::new(v(0.0, 0.0, 1.0), 4.0));
+        assert_eq!(d.contact, Contact::Disjoint { gap: 1.0 });
+        assert_eq!(
+            sphere_plane(&s, &Plane::new(v(0.0, 0.0, 0.0), 4.0)).contact,
+            Contact::ZeroRadius
+        );
+        assert_eq!(
+            sphere_plane(
+                &Sphere::new(p(0.0, 0.0, 0.0), 0.0),
+                &Plane::new(Vector3::z(), 0.0)
+            )
+            .contact,
+            Contact::ZeroRadius
+        );
+    }
+
+    #[test]
+    fn plane_plane_cases() {
+        let a = Plane::new(v(0.0, 0.0, 1.0), 1.0);
+        let b = Plane::new(v(1.0, 0.0, 0.0), 2.0);
+        let x = plane_plane(&a, &b);
+        assert_eq!(x.contact, Contact::Crossing);
+        let l = x.branch(0).unwrap_or_default();
+        assert_eq!(l.dir, Vector3::y());
+        assert!((l.point - p(2.0, 0.0, 1.0)).norm() < EPS);
+        assert_eq!(
+            plane_plane(&a, &Plane::new(v(0.0, 0.0, -2.0), 4.0)).contact,
+            Contact::Parallel { gap: 3.0 }
+        );
+        assert_eq!(
+            plane_plane(&a, &Plane::new(v(0.0, 0.0, -1.0), -1.0)).contact,
+            Contact::Coincident
+        );
+        assert_eq!(
+            plane_plane(&a, &Plane::new(Vector3::zeros(), 0.0)).contact,
+            Contact::ZeroRadius
+        );
+        // Nearly parallel: the line is far, but on both planes relative to its magnitude.
+        let b = Plane::new(v(1e-9, 0.0, 1.0), 1.5);
+        let l = plane_plane(&a, &b).branch(0).unwrap_or_default();
+        let m = l.point.coords.norm();
+        assert!(m > 1e8);
+        assert!(a.distance(&l.point) <= 1e-15 * m && b.distance(&l.point) <= 1e-15 * m);
+        assert!(a.normal.dot(&l.dir).abs() < 1e-15 && b.normal.dot(&l.dir).abs() < 1e-15);
+    }
+
+    #[test]
+    fn line_plane_cases() {
+        let l = Line3::new(p(1.0, 2.0, 3.0), v(0.0, 0.0, -2.0));
+        let pl = Plane::new(v(0.0, 0.0, 1.0), 1.0);
+        let x = line_plane(&l, &pl);
+        assert_eq!(x.contact, Contact::Crossing);
+        assert_eq!(x.branch(0), Some(p(1.0, 2.0, 1.0)));
+        let par = Line3::new(p(1.0, 2.0, 3.0), v(1.0, 0.0, 0.0));
+        assert_eq!(
+            line_plane(&par, &pl).contact,
+            Contact::Parallel { gap: 2.0 }
+        );
+        let inside = Line3::new(p(1.0, 2.0, 1.0), v(1.0, 1.0, 0.0));
+        assert_eq!(line_plane(&inside, &pl).contact, Contact::Coincident);
+        let z = Line3::new(p(1.0, 2.0, 1.0), Vector3::zeros());
+        assert_eq!(line_plane(&z, &pl).contact, Contact::ZeroRadius);
+    }
+
+    #[test]
+    fn line_sphere_cases() {
+        let s = Sphere::new(p(0.0, 0.0, 0.0), 5.0);
+        let l = Line3::new(p(3.0, -10.0, 0.0), v(0.0, 1.0, 0.0));
+        let x = line_sphere(&l, &s);
+        assert_eq!(x.contact, Contact::Crossing);
+        assert_eq!(x.roots.as_slice(), &[p(3.0, -4.0, 0.0), p(3.0, 4.0, 0.0)]);
+        // Reversing the line swaps the branches (order along the direction).
+        let r = Line3::new(p(3.0, -10.0, 0.0), v(0.0, -1.0, 0.0));
+        assert_eq!(
+            line_sphere(&r, &s).roots.as_slice(),
+            &[p(3.0, 4.0, 0.0), p(3.0, -4.0, 0.0)]
+        );
+        let t = line_sphere(&Line3::new(p(5.0, 7.0, 0.0), v(0.0, 1.0, 0.0)), &s);
+        assert_eq!(t.contact, Contact::Tangent);
+        assert_eq!(t.roots.as_slice(), &[p(5.0, 0.0, 0.0), p(5.0, 0.0, 0.0)]);
+        let d = line_sphere(&Line3::new(p(6.0, 7.0, 0.0), v(0.0, 1.0, 0.0)), &s);
+        assert_eq!(d.contact, Contact::Disjoint { gap: 1.0 });
+        assert_eq!(
+            line_sphere(&l, &Sphere::new(p(0.0, 0.0, 0.0), -1.0)).contact,
+            Contact::ZeroRadius
+        );
+    }
+
+    #[test]
+    fn line_cylinder_cases() {
+        let cy = Cylinder::new(Line3::new(p(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0)), 2.0);
+        let l = Line3::new(p(-5.0, 0.0, -5.0), v(1.0, 0.0, 1.0));
+        let x = line_cylinder(&l, &cy);
+        assert_eq!(x.contact, Contact::Crossing);
+        on_both(x.roots.as_slice(), &l, &cy, EPS);
+        let r = x.roots.as_slice();
+        assert!((r[0] - p(-2.0, 0.0, -2.0)).norm() < EPS && (r[1] - p(2.0, 0.0, 2.0)).norm() < EPS);
+        let t = line_cylinder(&Line3::new(p(2.0, -3.0, 1.0), v(0.0, 1.0, 0.0)), &cy);
+        assert_eq!(t.contact, Contact::Tangent);
+        assert_eq!(t.roots.len(), 2);
+        assert!((t.roots.as_slice()[0] - p(2.0, 0.0, 1.0)).norm() < EPS);
+        let d = line_cylinder(&Line3::new(p(3.0, -3.0, 1.0), v(0.0, 1.0, 1.0)), &cy);
+        assert_eq!(d.contact, Contact::Disjoint { gap: 1.0 });
+        let par = line_cylinder(&Line3::new(p(3.0, 0.0, 0.0), v(0.0, 0.0, -1.0)), &cy);
+        assert_eq!(par.contact, Contact::Parallel { gap: 1.0 });
+        let inside = line_cylinder(&Line3::new(p(0.5, 0.0, 0.0), v(0.0, 0.0, 1.0)), &cy);
+        assert_eq!(inside.contact, Contact::Parallel { gap: 1.5 });
+        let on = line_cylinder(&Line3::new(p(0.0, 2.0, 0.0), v(0.0, 0.0, 1.0)), &cy);
+        assert_eq!(on.contact, Contact::Coincident);
+        let z = Cylinder::new(Line3::new(p(0.0, 0.0, 0.0), Vector3::zeros()), 2.0);
+        assert_eq!(line_cylinder(&l, &z).contact, Contact::ZeroRadius);
+    }
+
+    #[test]
+    fn circle_plane_cases() {
+        let c = Circle3::new(p(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 2.0);
+        let pl = Plane::new(v(1.0, 0.0, 0.0), 1.0);
+        let x = circle_plane(&c, &pl);
+        assert_eq!(x.contact, Contact::Crossing);
+        on_both(x.roots.as_slice(), &c, &pl, EPS);
+        // u = z x x = y: branch 0 has the smaller y.
+        let r = x.roots.as_slice();
+        assert!(r[0].y < 0.0 && r[1].y > 0.0);
+        // The branch does not flip as the plane sweeps through the centre.
+        for off in [-1.0, -1e-9, 0.0, 1e-9, 1.0] {
+            let x = circle_plane(&c, &Plane::new(v(1.0, 0.0, 0.0), off));
+            let r = x.roots.as_slice();
+            assert!(r[0].y < 0.0 && r[1].y > 0.0, "{off}");
+        }
+        let t = circle_plane(&c, &Plane::new(v(-1.0, 0.0, 0.0), 2.0));
+        assert_eq!(t.contact, Contact::Tangent);
+        assert_eq!(t.roots.len(), 2);
+        assert!((t.roots.as_slice()[1] - p(-2.0, 0.0, 0.0)).norm() < EPS);
+        // Tilted plane missing the circle: gap is the distance to the circle's nearest point.
+        let tilted = Plane::new(v(1.0, 0.0, 1.0), 3.0 / 2f64.sqrt());
+        let d = circle_plane(&c, &tilted);
+        match d.contact {
+            Contact::Disjoint { gap } => {
+                assert!((gap - tilted.distance(&p(2.0, 0.0, 0.0))).abs() < EPS)
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            circle_plane(&c, &Plane::new(v(0.0, 0.0, 1.0), 1.0)).contact,
+            Contact::Parallel { gap: 1.0 }
+        );
+        assert_eq!(
+            circle_plane(&c, &Plane::new(v(0.0, 0.0, -1.0), 0.0)).contact,
+            Contact::Coincident
+        );
+        let z = Circle3::new(p(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 0.0);
+        assert_eq!(circle_plane(&z, &pl).contact, Contact::ZeroRadius);
+    }
+
+    #[test]
+    fn circle_sphere_cases() {
+        let c = Circle3::new(p(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 2.0);
+        let s = Sphere::new(p(2.0, 0.0, 1.0), 1.5);
+        let x = circle_sphere(&c, &s);
+        assert_eq!(x.contact, Contact::Crossing);
+        on_both(x.roots.as_slice(), &c, &s, EPS);
+        // e = +x, normal x e = +y: branch 0 has positive y.
+        let r = x.roots.as_slice();
+        assert!(r[0].y > 0.0 && r[1].y < 0.0);
+        // Tangent at the nearest and at the farthest point.
+        let t = circle_sphere(&c, &Sphere::new(p(5.0, 0.0, 4.0), 5.0));
+        assert_eq!(t.contact, Contact::Tangent);
+        assert!((t.roots.as_slice()[0] - p(2.0, 0.0, 0.0)).norm() < EPS);
+        let t = circle_sphere(&c, &Sphere::new(p(1.0, 0.0, 0.0), 3.0));
+        assert_eq!(t.contact, Contact::Tangent);
+        assert!((t.roots.as_slice()[1] - p(-2.0, 0.0, 0.0)).norm() < EPS);
+        let d = circle_sphere(&c, &Sphere::new(p(5.0, 0.0, 0.0), 1.0));
+        assert_eq!(d.contact, Contact::Disjoint { gap: 2.0 });
+        let d = circle_sphere(&c, &Sphere::new(p(0.5, 0.0, 0.0), 5.0));
+        assert_eq!(d.contact, Contact::Disjoint { gap: 2.5 });
+        // Sphere centred on the circle's axis: the circle lies on it, or misses it.
+        let on = circle_sphere(&c, &Sphere::new(p(0.0, 0.0, 1.5), 2.5));
+        assert_eq!(on.contact, Contact::Coincident);
+        let off = circle_sphere(&c, &Sphere::new(p(0.0, 0.0, 1.5), 3.5));
+        assert_eq!(off.contact, Contact::Disjoint { gap: 1.0 });
+        assert_eq!(
+            circle_sphere(&c, &Sphere::new(p(0.0, 0.0, 1.5), 0.0)).contact,
+            Contact::ZeroRadius
+        );
+    }
+
+    #[test]
+    fn circle_circle_coplanar_cases() {
+        let a = Circle3::new(p(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 2.0);
+        let b = Circle3::new(p(2.0, 0.0, 0.0), v(0.0, 0.0, -1.0), 2.0);
+        let x = circle_circle(&a, &b);
+        assert_eq!(x.contact, Contact::Crossing);
+        on_both(x.roots.as_slice(), &a, &b, EPS);
+        // Left of the directed line of centres (+x), seen from +z: positive y first.
+        let r = x.roots.as_slice();
+        assert!(r[0].y > 0.0 && r[1].y < 0.0);
+        let t = circle_circle(&a, &Circle3::new(p(3.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 1.0));
+        assert_eq!(t.contact, Contact::Tangent);
+        assert!((t.roots.as_slice()[0] - p(2.0, 0.0, 0.0)).norm() < EPS);
+        let t = circle_circle(&a, &Circle3::new(p(-1.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 1.0));
+        assert_eq!(t.contact, Contact::Tangent);
+        assert!((t.roots.as_slice()[1] - p(-2.0, 0.0, 0.0)).norm() < EPS);
+        let d = circle_circle(&a, &Circle3::new(p(5.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 1.0));
+        assert_eq!(d.contact, Contact::Disjoint { gap: 2.0 });
+        let d = circle_circle(&a, &Circle3::new(p(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 1.0));
+        assert_eq!(d.contact, Contact::Disjoint { gap: 1.0 });
+        assert_eq!(circle_circle(&a, &a).contact, Contact::Coincident);
+        let par = circle_circle(&a, &Circle3::new(p(1.0, 0.0, 3.0), v(0.0, 0.0, 1.0), 2.0));
+        assert_eq!(par.contact, Contact::Parallel { gap: 3.0 });
+    }
+
+    #[test]
+    fn circle_circle_spatial_cases() {
+        // Two unit circles through (1,0,0) and (-1,0,0): one in z=0, one in y=0.
+        let a = Circle3::new(p(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 1.0);
+        let b = Circle3::new(p(0.0, 0.0, 0.0), v(0.0, 1.0, 0.0), 1.0);
+        let x = circle_circle(&a, &b);
+        assert_eq!(x.contact, Contact::Crossing);
+        // L directed along z x y = -x: branch 0 has the larger x.
+        assert_eq!(x.roots.as_slice(), &[p(1.0, 0.0, 0.0), p(-1.0, 0.0, 0.0)]);
+        // Linked circles meeting in one point (a chain link through the other).
+        let b = Circle3::new(p(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0), 2.0);
+        let x = circle_circle(&a, &b);
+        assert_eq!(x.contact, Contact::Crossing);
+        assert_eq!(x.roots.as_slice(), &[p(-1.0, 0.0, 0.0), p(-1.0, 0.0, 0.0)]);
+        // Touching L: the circle in y=1 meets z=0 only at (0,1,0).
+        let b = Circle3::new(p(0.0, 1.0, 1.0), v(1.0, 0.0, 0.0), 1.0);
+        let x = circle_circle(&a, &b);
+        assert_eq!(x.contact, Contact::Tangent);
+        assert!((x.roots.as_slice()[0] - p(0.0, 1.0, 0.0)).norm() < EPS);
+        // Missing: the gap is the distance between nearest points on L.
+        let b = Circle3::new(p(3.0, 0.0, 0.0), v(0.0, 1.0, 0.0), 1.0);
+        assert_eq!(
+            circle_circle(&a, &b).contact,
+            Contact::Disjoint { gap: 1.0 }
+        );
+        // One circle does not reach L.
+        let b = Circle3::new(p(0.0, 0.0, 3.0), v(0.0, 1.0, 0.0), 1.0);
+        match circle_circle(&a, &b).contact {
+            Contact::Disjoint { gap } => assert!((gap - 5f64.sqrt()).abs() < EPS),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            circle_circle(&a, &Circle3::new(p(0.0, 0.0, 0.0), Vector3::zeros(), 1.0)).contact,
+            Contact::ZeroRadius
+        );
+    }
+
+    #[test]
+    fn plane_cylinder_cases() {
+        let cy = Cylinder::new(Line3::new(p(1.0, 0.0, 0.0), v(0.0, 0.0, 1.0)), 2.0);
+        // Tilted plane through z = 3 on the axis: an ellipse.
+        let pl = Plane::from_point_normal(&p(1.0, 0.0, 3.0), &v(1.0, 0.0, 1.0));
+        let x = plane_cylinder(&pl, &cy);
+        assert_eq!(x.contact, Contact::Crossing);
+        assert_eq!(x.roots.len(), 1);
+        let CylinderSection::Ellipse(e) = x.branch(0).unwrap_or_default() else {
+            panic!("expected an ellipse")
+        };
+        assert!((e.center - p(1.0, 0.0, 3.0)).norm() < EPS);
+        assert!((e.a - 2.0 * 2f64.sqrt()).abs() < EPS && (e.b - 2.0).abs() < EPS);
+        for i in 0..12 {
+            let q = e.point_at(i as f64 * 0.5);
+            assert!(pl.distance(&q) < EPS && cy.distance(&q) < EPS);
+        }
+        // Perpendicular plane: a circle.
+        let x = plane_cylinder(&Plane::new(v(0.0, 0.0, 1.0), 1.0), &cy);
+        let CylinderSection::Ellipse(e) = x.branch(0).unwrap_or_default() else {
+            panic!("expected an ellipse")
+        };
+        assert!((e.a - 2.0).abs() < EPS && (e.b - 2.0).abs() < EPS);
+        // Parallel to the axis: two lines, one, or none.
+        let x = plane_cylinder(&Plane::new(v(1.0, 0.0, 0.0), 2.0), &cy);
+        assert_eq!(x.contact, Contact::Crossing);
+        let lines: Vec<Line3> = x
+            .roots
+            .as_slice()
+            .iter()
+            .filter_map(|s| match s {
+                CylinderSection::Line(l) => Some(*l),
+                CylinderSection::Ellipse(_) => None,
+            })
+            .collect();
+        assert_eq!(lines.len(), 2);
+        // normal x axis = x x z = -y: branch 0 has the larger y.
+        assert!(lines[0].point.y > 0.0 && lines[1].point.y < 0.0);
+        for l in &lines {
+            assert!(cy.distance(&l.point) < EPS && cy.distance(&l.at(7.0)) < EPS);
+            assert!((l.point.x - 2.0).abs() < EPS);
+        }
+        let t = plane_cylinder(&Plane::new(v(1.0, 0.0, 0.0), 3.0), &cy);
+        assert_eq!(t.contact, Contact::Tangent);
+        assert_eq!(t.roots.len(), 2);
+        let m = plane_cylinder(&Plane::new(v(1.0, 0.0, 0.0), 4.0), &cy);
+        assert_eq!(m.contact, Contact::Parallel { gap: 1.0 });
+        assert_eq!(
+            plane_cylinder(
+                &Plane::new(v(1.0, 0.0, 0.0), 4.0),
+                &Cylinder::new(cy.axis, 0.0)
+            )
+            .contact,
+            Contact::ZeroRadius
+        );
+    }
+
+    #[test]
+    fn cross_accurate_keeps_digits_of_nearly_parallel_vectors() {
+        let a = v(1.0, 0.0, 0.0);
+        let b = v(1.0, 1e-12, 3e-13).normalize();
+        let c = cross_accurate(&a, &b);
+        assert!((c.z - b.y).abs() <= 1e-28 && (c.y + b.z).abs() <= 1e-28);
+        assert_eq!(diff_of_products(3.0, 5.0, 2.0, 7.0), 1.0);
+    }
+}
