@@ -306,7 +306,7 @@ pub fn signed_angle2(u: &Vector2<f64>, v: &Vector2<f64>) -> f64 {
 #[inline]
 pub fn signed_angle3(u: &Vector3<f64>, v: &Vector3<f64>, axis: &Vector3<f64>) -> f64 {
     let n = axis.norm();
-    if !(n > 0.0) {
+    if n.is_nan() || n <= 0.0 {
         return 0.0;
     }
     let a = axis / n;
@@ -334,7 +334,7 @@ pub fn rotation_between3(
 ) -> UnitQuaternion<f64> {
     let nu = u.norm();
     let nv = v.norm();
-    if !(nu > 0.0 && nv > 0.0) {
+    if nu.is_nan() || nv.is_nan() || nu <= 0.0 || nv <= 0.0 {
         return UnitQuaternion::identity();
     }
     let uh = u / nu;
@@ -345,7 +345,7 @@ pub fn rotation_between3(
     if sin > tol::ANGLE {
         return UnitQuaternion::from_axis_angle(&Unit::new_unchecked(cross / sin), sin.atan2(cos));
     }
-    if !(cos < 0.0) {
+    if cos.is_nan() || cos >= 0.0 {
         // Parallel, or NaN: identity (footnote 6).
         return UnitQuaternion::identity();
     }

@@ -94,7 +94,8 @@ fn mid(a: &Point3<f64>, b: &Point3<f64>) -> Point3<f64> {
 
 #[inline]
 fn is_zero_dir(v: &Vector3<f64>) -> bool {
-    !(v.norm_squared() >= 0.25)
+    let n = v.norm_squared();
+    n.is_nan() || n < 0.25
 }
 
 #[inline]

@@ -338,7 +338,7 @@ impl Locus3 for Ellipse3 {
 /// Distance from `(y0, y1)` (both >= 0) to the ellipse with semi-axes `e0 >= e1 >= 0`, by
 /// Eberly's robust bisection ("Distance from a point to an ellipse", Geometric Tools).
 fn ellipse_distance_2d(e0: f64, e1: f64, y0: f64, y1: f64) -> f64 {
-    if !(e1 > 0.0) {
+    if e1.is_nan() || e1 <= 0.0 {
         // Degenerate: the segment from (-e0, 0) to (e0, 0).
         return (y0 - y0.min(e0)).hypot(y1);
     }
