@@ -22,7 +22,10 @@ impl<T: Copy + Default, const N: usize> Roots<T, N> {
     /// No roots.
     #[inline]
     pub fn new() -> Self {
-        Self { len: 0, items: [T::default(); N] }
+        Self {
+            len: 0,
+            items: [T::default(); N],
+        }
     }
 
     /// Roots from a slice; values past the capacity `N` are ignored (callers never pass more).
@@ -138,7 +141,10 @@ impl<T: Copy + Default, const N: usize> Intersection<T, N> {
     /// An intersection with no roots.
     #[inline]
     pub fn none(contact: Contact) -> Self {
-        Self { roots: Roots::new(), contact }
+        Self {
+            roots: Roots::new(),
+            contact,
+        }
     }
 
     /// The root of branch `index`.

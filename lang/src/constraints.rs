@@ -1,0 +1,550 @@
+//! The one table of constraints: for each, its argument forms, its value, the spaces it is
+//! valid in, and the degrees of freedom it nominally removes. The resolver checks every
+//! constraint against this table and nothing else.
+
+use crate::expr::Dim;
+use crate::model::{GeomKind, Space};
+
+/// Every constraint of the language.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ConstraintKind {
+    /// `coincident(a, b)`
+    Coincident,
+    /// `distance(a, b) = d`
+    Distance,
+    /// `on(p, g)`
+    On,
+    /// `tangent(a, b)`
+    Tangent,
+    /// `angle(u, v) = a`
+    Angle,
+    /// `parallel(u, v)`
+    Parallel,
+    /// `perpendicular(u, v)`
+    Perpendicular,
+    /// `horizontal(x)`
+    Horizontal,
+    /// `vertical(x)`
+    Vertical,
+    /// `length(s) = l`
+    Length,
+    /// `radius(c) = r`
+    Radius,
+    /// `in_line(m1, m2)`
+    InLine,
+    /// `in_plane(m1, m2)`
+    InPlane,
+    /// `parallel_z(m1, m2)`
+    ParallelZ,
+    /// `offset_z(m1, m2) = a`
+    OffsetZ,
+    /// `offset_x(m1, m2) = a`
+    OffsetX,
+    /// `helical(m1, m2) = pitch`
+    Helical,
+    /// `revolute(m1, m2)`
+    Revolute,
+    /// `prismatic(m1, m2)`
+    Prismatic,
+    /// `cylindrical(m1, m2)`
+    Cylindrical,
+    /// `spherical(a, b)`
+    Spherical,
+    /// `planar(m1, m2)`
+    Planar,
+}
+
+/// A class of argument a constraint accepts at one position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ArgClass {
+    /// A point, or a marker (its point).
+    Point,
+    /// A marker.
+    Marker,
+    /// A line, or a segment (its supporting line).
+    Line,
+    /// A segment.
+    Segment,
+    /// A circle.
+    Circle,
+    /// A plane.
+    Plane,
+    /// Anything with a direction: a vector (marker axes included), line, segment, or plane (its
+    /// normal).
+    Direction,
+    /// A vector, line or segment (what can be horizontal or vertical).
+    Heading,
+}
+
+impl ArgClass {
+    /// Whether a geom of `kind` fits.
+    pub fn accepts(self, kind: GeomKind) -> bool {
+        use GeomKind as K;
+        match self {
+            ArgClass::Point => matches!(kind, K::Point | K::Marker),
+            ArgClass::Marker => kind == K::Marker,
+            ArgClass::Line => matches!(kind, K::Line | K::Segment),
+            ArgClass::Segment => kind == K::Segment,
+            ArgClass::Circle => kind == K::Circle,
+            ArgClass::Plane => kind == K::Plane,
+            ArgClass::Direction => matches!(kind, K::Vector | K::Line | K::Segment | K::Plane),
+            ArgClass::Heading => matches!(kind, K::Vector | K::Line | K::Segment),
+        }
+    }
+
+    /// The class with its article, for messages.
+    pub fn noun(self) -> &'static str {
+        match self {
+            ArgClass::Point => "a point",
+            ArgClass::Marker => "a marker",
+            ArgClass::Line => "a line",
+            ArgClass::Segment => "a segment",
+            ArgClass::Circle => "a circle",
+            ArgClass::Plane => "a plane",
+            ArgClass::Direction => "a vector, line, segment or plane",
+            ArgClass::Heading => "a vector, line or segment",
+        }
+    }
+}
+
+/// What a constraint's value is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ValueKind {
+    /// It takes no value.
+    None,
+    /// A length.
+    Length,
+    /// An angle (radians).
+    Angle,
+    /// A helical pitch: length per turn.
+    Pitch,
+}
+
+impl ValueKind {
+    /// The dimension the value must have, if it takes one.
+    pub fn dim(self) -> Option<Dim> {
+        match self {
+            ValueKind::None => None,
+            ValueKind::Length | ValueKind::Pitch => Some(Dim::Length),
+            ValueKind::Angle => Some(Dim::Angle),
+        }
+    }
+}
+
+/// Which spaces a constraint (or one of its forms) is valid in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Spaces {
+    /// 2d and 3d.
+    Both,
+    /// 2d only.
+    Only2d,
+    /// 3d only.
+    Only3d,
+}
+
+impl Spaces {
+    /// Whether `space` is allowed.
+    pub fn allows(self, space: Space) -> bool {
+        match self {
+            Spaces::Both => true,
+            Spaces::Only2d => space == Space::D2,
+            Spaces::Only3d => space == Space::D3,
+        }
+    }
+}
+
+/// One row of the table.
+#[derive(Debug)]
+pub struct ConstraintSpec {
+    /// Which constraint.
+    pub kind: ConstraintKind,
+    /// Its name in the language.
+    pub name: &'static str,
+    /// The argument forms it accepts, in canonical order.
+    pub forms: &'static [&'static [ArgClass]],
+    /// Whether a two-argument form may also be written the other way round (the arguments are
+    /// then normalised to the canonical order).
+    pub symmetric: bool,
+    /// Its value.
+    pub value: ValueKind,
+    /// Where it is valid.
+    pub spaces: Spaces,
+    /// One line for `gcs check` and the docs.
+    pub meaning: &'static str,
+}
+
+use ArgClass as A;
+
+const MARKERS: &[&[ArgClass]] = &[&[A::Marker, A::Marker]];
+const POINT_MARKER: &[&[ArgClass]] = &[&[A::Point, A::Marker]];
+const DIRECTIONS: &[&[ArgClass]] = &[&[A::Direction, A::Direction]];
+
+/// The table: every constraint of the language.
+pub static TABLE: &[ConstraintSpec] = &[
+    ConstraintSpec {
+        kind: ConstraintKind::Coincident,
+        name: "coincident",
+        forms: &[&[A::Point, A::Point]],
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "same position",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Distance,
+        name: "distance",
+        forms: &[
+            &[A::Point, A::Point],
+            &[A::Point, A::Line],
+            &[A::Point, A::Plane],
+            &[A::Point, A::Circle],
+            &[A::Line, A::Circle],
+            &[A::Circle, A::Circle],
+        ],
+        symmetric: true,
+        value: ValueKind::Length,
+        spaces: Spaces::Both,
+        meaning: "distance; signed for point-line in 2d and point-plane",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::On,
+        name: "on",
+        forms: &[
+            &[A::Point, A::Line],
+            &[A::Point, A::Plane],
+            &[A::Point, A::Circle],
+        ],
+        symmetric: true,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "incidence",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Tangent,
+        name: "tangent",
+        forms: &[&[A::Line, A::Circle], &[A::Circle, A::Circle]],
+        symmetric: true,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "tangency, internal or external as in the sketch",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Angle,
+        name: "angle",
+        forms: DIRECTIONS,
+        symmetric: false,
+        value: ValueKind::Angle,
+        spaces: Spaces::Both,
+        meaning: "angle from u to v",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Parallel,
+        name: "parallel",
+        forms: DIRECTIONS,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "angle 0 or pi, as in the sketch",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Perpendicular,
+        name: "perpendicular",
+        forms: DIRECTIONS,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "angle pi/2",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Horizontal,
+        name: "horizontal",
+        forms: &[&[A::Heading]],
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Only2d,
+        meaning: "parallel to the X axis",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Vertical,
+        name: "vertical",
+        forms: &[&[A::Heading]],
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Only2d,
+        meaning: "parallel to the Y axis",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Length,
+        name: "length",
+        forms: &[&[A::Segment]],
+        symmetric: false,
+        value: ValueKind::Length,
+        spaces: Spaces::Both,
+        meaning: "a segment's length",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Radius,
+        name: "radius",
+        forms: &[&[A::Circle]],
+        symmetric: false,
+        value: ValueKind::Length,
+        spaces: Spaces::Both,
+        meaning: "a circle's radius",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::InLine,
+        name: "in_line",
+        forms: POINT_MARKER,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "on the line through m2 along its z axis (2d: its x axis)",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::InPlane,
+        name: "in_plane",
+        forms: POINT_MARKER,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Only3d,
+        meaning: "in the plane through m2 normal to its z axis",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::ParallelZ,
+        name: "parallel_z",
+        forms: MARKERS,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Only3d,
+        meaning: "z axes parallel",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::OffsetZ,
+        name: "offset_z",
+        forms: MARKERS,
+        symmetric: false,
+        value: ValueKind::Angle,
+        spaces: Spaces::Only3d,
+        meaning: "z axes at an angle",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::OffsetX,
+        name: "offset_x",
+        forms: MARKERS,
+        symmetric: false,
+        value: ValueKind::Angle,
+        spaces: Spaces::Both,
+        meaning: "z axes parallel and x axes at an angle about z",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Helical,
+        name: "helical",
+        forms: MARKERS,
+        symmetric: false,
+        value: ValueKind::Pitch,
+        spaces: Spaces::Only3d,
+        meaning: "z axes parallel, x angle linear in the distance along z",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Revolute,
+        name: "revolute",
+        forms: MARKERS,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "joint: coincident + parallel_z",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Prismatic,
+        name: "prismatic",
+        forms: MARKERS,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "joint: in_line + offset_x(0)",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Cylindrical,
+        name: "cylindrical",
+        forms: MARKERS,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Only3d,
+        meaning: "joint: in_line + parallel_z",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Spherical,
+        name: "spherical",
+        forms: &[&[A::Point, A::Point]],
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "joint: coincident",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Planar,
+        name: "planar",
+        forms: MARKERS,
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Only3d,
+        meaning: "joint: in_plane + parallel_z",
+    },
+];
+
+/// The row for a constraint name.
+pub fn lookup(name: &str) -> Option<&'static ConstraintSpec> {
+    TABLE.iter().find(|s| s.name == name)
+}
+
+impl ConstraintKind {
+    /// Its row of the table.
+    pub fn spec(self) -> &'static ConstraintSpec {
+        // The table has a row for every kind; `table_covers_every_kind` tests it.
+        TABLE.iter().find(|s| s.kind == self).unwrap_or(&TABLE[0])
+    }
+
+    /// Its name in the language.
+    pub fn name(self) -> &'static str {
+        self.spec().name
+    }
+
+    /// The degrees of freedom the constraint removes when independent of the others, given
+    /// its argument kinds (in canonical order) and its value. This is the nominal count that
+    /// `gcs check` adds up before the real analysis; a zero distance removes as much as a
+    /// coincidence, an angle of 0 or pi as much as parallelism.
+    pub fn nominal_dof(self, space: Space, args: &[GeomKind], value: Option<f64>) -> usize {
+        use ConstraintKind as C;
+        use GeomKind as K;
+        let d3 = space == Space::D3;
+        let n = space.coords();
+        let zero = value.is_some_and(|v| v == 0.0);
+        let pair = (args.first().copied(), args.get(1).copied());
+        match self {
+            C::Coincident | C::Spherical => n,
+            C::Distance => match pair {
+                (_, Some(K::Point | K::Marker)) if zero => n,
+                (_, Some(K::Line | K::Segment)) if d3 && zero => 2,
+                (_, Some(K::Circle)) if d3 && zero && args[0].is_pointlike() => 2,
+                _ => 1,
+            },
+            C::On => match pair {
+                (_, Some(K::Line | K::Segment | K::Circle)) if d3 => 2,
+                _ => 1,
+            },
+            C::Tangent => 1,
+            C::Angle => {
+                let straight = value
+                    .is_some_and(|v| v == 0.0 || (v.abs() - std::f64::consts::PI).abs() < 1e-12);
+                if d3 && straight {
+                    2
+                } else {
+                    1
+                }
+            }
+            C::Parallel => {
+                if d3 {
+                    2
+                } else {
+                    1
+                }
+            }
+            C::Perpendicular | C::Horizontal | C::Vertical | C::Length | C::Radius => 1,
+            C::InLine => {
+                if d3 {
+                    2
+                } else {
+                    1
+                }
+            }
+            C::InPlane | C::OffsetZ => 1,
+            C::ParallelZ => 2,
+            C::OffsetX => {
+                if d3 {
+                    3
+                } else {
+                    1
+                }
+            }
+            C::Helical => 3,
+            C::Revolute => {
+                if d3 {
+                    5
+                } else {
+                    2
+                }
+            }
+            C::Prismatic => {
+                if d3 {
+                    5
+                } else {
+                    2
+                }
+            }
+            C::Cylindrical => 4,
+            C::Planar => 3,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_covers_every_kind_once() {
+        use ConstraintKind as C;
+        let all = [
+            C::Coincident,
+            C::Distance,
+            C::On,
+            C::Tangent,
+            C::Angle,
+            C::Parallel,
+            C::Perpendicular,
+            C::Horizontal,
+            C::Vertical,
+            C::Length,
+            C::Radius,
+            C::InLine,
+            C::InPlane,
+            C::ParallelZ,
+            C::OffsetZ,
+            C::OffsetX,
+            C::Helical,
+            C::Revolute,
+            C::Prismatic,
+            C::Cylindrical,
+            C::Spherical,
+            C::Planar,
+        ];
+        assert_eq!(all.len(), TABLE.len());
+        for k in all {
+            assert_eq!(TABLE.iter().filter(|s| s.kind == k).count(), 1, "{k:?}");
+            assert_eq!(k.spec().kind, k);
+            assert_eq!(lookup(k.name()).map(|s| s.kind), Some(k));
+        }
+    }
+
+    #[test]
+    fn nominal_dof_follows_kramer() {
+        use GeomKind as K;
+        let pp = [K::Point, K::Point];
+        assert_eq!(
+            ConstraintKind::Distance.nominal_dof(Space::D3, &pp, Some(0.0)),
+            3
+        );
+        assert_eq!(
+            ConstraintKind::Distance.nominal_dof(Space::D3, &pp, Some(2.0)),
+            1
+        );
+        assert_eq!(
+            ConstraintKind::Revolute.nominal_dof(Space::D3, &[K::Marker, K::Marker], None),
+            5
+        );
+        assert_eq!(
+            ConstraintKind::Revolute.nominal_dof(Space::D2, &[K::Marker, K::Marker], None),
+            2
+        );
+    }
+}
