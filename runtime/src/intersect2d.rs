@@ -1,1 +1,1147 @@
-//! (in progress)
+//! The 2d locus intersection table: one function per pair of loci that locus analysis meets.
+//!
+//! Every function returns an [`Intersection`]: the roots in a fixed-capacity [`Roots`] (no
+//! allocation) and a [`Contact`] classification. Slot `i` is branch `i`, and each function
+//! documents what its index means:
+//! - **sign-separated roots** keep the sign as the index: circle-circle branch 0 is to the left
+//!   of the directed line from the first centre to the second; line-circle and line-conic order
+//!   along the line's direction. A motion that passes no singularity keeps its branch.
+//! - **ray functions** with two roots return `Option<P2>` slots that keep the supporting line's
+//!   branch index: a root behind the ray's origin is `None` in its slot rather than shifting the
+//!   next root into it, so branch 1 never silently becomes branch 0.
+//! - **polynomial roots** (circle-conic, conic-conic) are ordered by ascending parameter along
+//!   the conic that is parametrised (documented per function); use [`nearest`] to follow a
+//!   branch through a sweep.
+//!
+//! Tangency: when the loci miss or overlap by at most [`tol::TANGENT_REL`] times the scale of
+//! the inputs, the contact is [`Contact::Tangent`] and the touching point fills **both** slots
+//! it merges. Tangent roots lie within that tolerance of both loci; transversal roots lie on
+//! both to rounding (relative 1e-13 of the scale, or of the root's distance from the origin when
+//! nearly parallel lines cross far away).
+//!
+//! Disjoint loci report the gap: the distance by which they miss at their closest approach
+//! (exact for lines, rays, circles and line-conic; for circle-conic and conic-conic, the
+//! distance from the second locus of the first locus's point where the intersection polynomial
+//! comes closest to zero, which is exact for circle-parabola and a close estimate otherwise).
+//!
+//! Non-finite input cannot be built (constructors of [`crate::locus2d`] refuse it); inputs so
+//! large that intermediate squares overflow (|coordinates| beyond about 1e150) give
+//! `Disjoint { gap: f64::INFINITY }` rather than NaN roots. Nothing here panics or allocates.
+
+use crate::locus2d::{cross, perp, Circle, Conic, Focal, Line, Rational, Ray, P2, V2};
+use crate::poly;
+use crate::roots::{Contact, Intersection, Roots};
+use crate::tol;
+
+/// The index of the root nearest to `reference`, to follow a branch through a sweep.
+pub fn nearest<const N: usize>(roots: &Roots<P2, N>, reference: P2) -> Option<usize> {
+    roots.nearest_to(reference, |a, b| (a - b).norm())
+}
+
+fn overflow<T: Copy + Default, const N: usize>() -> Intersection<T, N> {
+    Intersection::none(Contact::Disjoint { gap: f64::INFINITY })
+}
+
+fn finite(p: P2) -> bool {
+    p.x.is_finite() && p.y.is_finite()
+}
+
+fn line_scale(l: &Line) -> [f64; 2] {
+    [l.point().x, l.point().y]
+}
+
+fn circle_scale(c: &Circle) -> [f64; 3] {
+    [c.center().x, c.center().y, c.radius()]
+}
+
+/// Two lines.
+///
+/// One branch: the crossing point. Degenerate cases: directions parallel within
+/// [`tol::ANGLE`] (sine of the angle): [`Contact::Coincident`] when the lines are within
+/// [`tol::LENGTH_REL`] of the scale of each other, else [`Contact::Parallel`] with their
+/// distance. Nearly parallel lines beyond that tolerance cross far away; the root is then exact
+/// relative to its own distance from the origin.
+pub fn line_line(a: &Line, b: &Line) -> Intersection<P2, 1> {
+    let s = tol::scale(&[a.point().x, a.point().y, b.point().x, b.point().y]);
+    let sin = cross(a.dir(), b.dir());
+    if sin.abs() <= tol::ANGLE {
+        let gap = a.signed_distance(b.point()).abs();
+        return if gap <= tol::LENGTH_REL * s {
+            Intersection::none(Contact::Coincident)
+        } else {
+            Intersection::none(Contact::Parallel { gap })
+        };
+    }
+    let t = cross(b.point() - a.point(), b.dir()) / sin;
+    let x = a.at(t);
+    if !finite(x) {
+        return overflow();
+    }
+    Intersection {
+        roots: Roots::from_slice(&[x]),
+        contact: Contact::Crossing,
+    }
+}
+
+/// A line and a ray.
+///
+/// One branch: the crossing point, when it is on the ray (parameter `≥ -`[`tol::LENGTH_REL`]
+/// of the scale). The ray pointing away from the line gives [`Contact::Disjoint`] with the
+/// distance of its origin from the line. Parallel and coincident (the ray lies on the line) as
+/// in [`line_line`].
+pub fn line_ray(l: &Line, r: &Ray) -> Intersection<P2, 1> {
+    let i = line_line(l, &r.line());
+    let Some(x) = i.branch(0) else { return i };
+    let s = tol::scale(&[l.point().x, l.point().y, r.origin().x, r.origin().y]);
+    if r.param_of(x) >= -tol::LENGTH_REL * s {
+        i
+    } else {
+        Intersection::none(Contact::Disjoint {
+            gap: l.residual(r.origin()),
+        })
+    }
+}
+
+/// Two rays.
+///
+/// One branch: the crossing point when it is on both rays. Degenerate cases:
+/// - supporting lines cross outside a ray: [`Contact::Disjoint`], gap the smallest distance
+///   between the rays (from an origin to the other ray);
+/// - parallel distinct lines: [`Contact::Parallel`] with their distance;
+/// - collinear, same direction, or opposite directions facing each other: [`Contact::Coincident`]
+///   (they share a ray or a segment);
+/// - collinear, opposite directions, origins within tolerance: [`Contact::Tangent`], the one
+///   root the midpoint of the origins;
+/// - collinear, opposite directions, pointing apart: [`Contact::Disjoint`], gap between origins.
+pub fn ray_ray(a: &Ray, b: &Ray) -> Intersection<P2, 1> {
+    let s = tol::scale(&[a.origin().x, a.origin().y, b.origin().x, b.origin().y]);
+    let eps = tol::LENGTH_REL * s;
+    let i = line_line(&a.line(), &b.line());
+    match i.contact {
+        Contact::Crossing => {
+            let Some(x) = i.branch(0) else { return i };
+            if a.param_of(x) >= -eps && b.param_of(x) >= -eps {
+                i
+            } else {
+                let gap = a.residual(b.origin()).min(b.residual(a.origin()));
+                Intersection::none(Contact::Disjoint { gap })
+            }
+        }
+        Contact::Coincident => {
+            if a.dir().dot(&b.dir()) > 0.0 {
+                return i;
+            }
+            let t = a.param_of(b.origin());
+            if t > eps {
+                i
+            } else if t >= -eps {
+                let m = nalgebra::center(&a.origin(), &b.origin());
+                Intersection {
+                    roots: Roots::from_slice(&[m]),
+                    contact: Contact::Tangent,
+                }
+            } else {
+                Intersection::none(Contact::Disjoint { gap: -t })
+            }
+        }
+        _ => i,
+    }
+}
+
+/// Parameters along `l` of its crossings with `c`, ascending, with the contact.
+fn line_circle_t(l: &Line, c: &Circle) -> (Roots<f64, 2>, Contact) {
+    let [px, py] = line_scale(l);
+    let [cx, cy, r] = circle_scale(c);
+    let s = tol::scale(&[px, py, cx, cy, r]);
+    if r <= tol::LENGTH_REL * s {
+        return (Roots::new(), Contact::ZeroRadius);
+    }
+    let sd = l.signed_distance(c.center());
+    let t0 = l.param_of(c.center());
+    let gap = sd.abs() - r;
+    if !gap.is_finite() || !t0.is_finite() {
+        return (Roots::new(), Contact::Disjoint { gap: f64::INFINITY });
+    }
+    if gap.abs() <= tol::TANGENT_REL * s {
+        // The point midway between the line's and the circle's closest points: the foot of
+        // the centre moved by half the gap towards the circle's point.
+        return (Roots::from_slice(&[t0, t0]), Contact::Tangent);
+    }
+    if gap > 0.0 {
+        return (Roots::new(), Contact::Disjoint { gap });
+    }
+    let h = ((r - sd.abs()) * (r + sd.abs())).sqrt();
+    (Roots::from_slice(&[t0 - h, t0 + h]), Contact::Crossing)
+}
+
+/// The tangent point of a line and a circle: midway between the foot of the centre on the line
+/// and the circle's nearest point.
+fn line_circle_tangent_point(l: &Line, c: &Circle) -> P2 {
+    let foot = l.at(l.param_of(c.center()));
+    let sd = l.signed_distance(c.center());
+    // The circle's point nearest the line: from the centre towards the line.
+    let towards = if sd >= 0.0 { -l.normal() } else { l.normal() };
+    let on_circle = c.center() + towards * c.radius();
+    nalgebra::center(&foot, &on_circle)
+}
+
+/// A line and a circle.
+///
+/// Branch 0 is the first crossing along the line's direction, branch 1 the second.
+/// Degenerate cases: [`Contact::ZeroRadius`] (no roots) for a radius within
+/// [`tol::LENGTH_REL`] of the scale; [`Contact::Tangent`] when the distance of the centre from
+/// the line is the radius within [`tol::TANGENT_REL`] of the scale, the touching point (midway
+/// between the line's and the circle's closest points) in both slots; [`Contact::Disjoint`] with
+/// gap `|sd| - r` when the line misses.
+pub fn line_circle(l: &Line, c: &Circle) -> Intersection<P2, 2> {
+    let (ts, contact) = line_circle_t(l, c);
+    let mut roots = Roots::new();
+    if contact == Contact::Tangent {
+        let x = line_circle_tangent_point(l, c);
+        roots.push(x);
+        roots.push(x);
+    } else {
+        for &t in ts.as_slice() {
+            roots.push(l.at(t));
+        }
+    }
+    Intersection { roots, contact }
+}
+
+/// Maps the line's roots to the ray's `Option` slots; all behind the origin gives `Disjoint`
+/// with `gap`.
+fn onto_ray(
+    r: &Ray,
+    line: Intersection<P2, 2>,
+    scale: f64,
+    gap_from_origin: f64,
+) -> Intersection<Option<P2>, 2> {
+    let mut roots = Roots::new();
+    let mut any = false;
+    for &x in line.roots.as_slice() {
+        let ahead = r.param_of(x) >= -tol::LENGTH_REL * scale;
+        any |= ahead;
+        roots.push(ahead.then_some(x));
+    }
+    if line.roots.is_empty() {
+        return Intersection::none(line.contact);
+    }
+    if !any {
+        return Intersection::none(Contact::Disjoint {
+            gap: gap_from_origin,
+        });
+    }
+    Intersection {
+        roots,
+        contact: line.contact,
+    }
+}
+
+/// A ray and a circle.
+///
+/// Branches are those of [`line_circle`] on the supporting line (0 = first along the
+/// direction), so the index never depends on filtering: a root behind the origin (parameter
+/// below `-`[`tol::LENGTH_REL`] of the scale) is `None` in its slot. When both are behind, the
+/// result is [`Contact::Disjoint`] with the distance of the origin from the circle. Other
+/// degenerate cases as in [`line_circle`].
+pub fn ray_circle(r: &Ray, c: &Circle) -> Intersection<Option<P2>, 2> {
+    let [cx, cy, rad] = circle_scale(c);
+    let s = tol::scale(&[r.origin().x, r.origin().y, cx, cy, rad]);
+    onto_ray(r, line_circle(&r.line(), c), s, c.residual(r.origin()))
+}
+
+/// Two circles.
+///
+/// Branch 0 is the root to the **left** of the directed line from the first centre to the
+/// second, branch 1 the root to its right. Degenerate cases, with `d` the distance of the
+/// centres and the scale the largest coordinate or radius:
+/// - a radius within [`tol::LENGTH_REL`] of the scale: [`Contact::ZeroRadius`], no roots;
+/// - `d` and `r1 - r2` both within [`tol::LENGTH_REL`] of the scale: [`Contact::Coincident`];
+/// - `d - (r1 + r2)` or `|r1 - r2| - d` within [`tol::TANGENT_REL`] of the scale (externally
+///   or internally touching): [`Contact::Tangent`], the touching point on the line of centres
+///   in both slots;
+/// - apart (`d > r1 + r2`) or nested (`d < |r1 - r2|`, including concentric circles):
+///   [`Contact::Disjoint`] with gap `d - (r1 + r2)` or `|r1 - r2| - d`.
+pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
+    let (r1, r2) = (a.radius(), b.radius());
+    let s = tol::scale(&[
+        a.center().x,
+        a.center().y,
+        b.center().x,
+        b.center().y,
+        r1,
+        r2,
+    ]);
+    if r1 <= tol::LENGTH_REL * s || r2 <= tol::LENGTH_REL * s {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let dv = b.center() - a.center();
+    let d = dv.norm();
+    if !d.is_finite() {
+        return overflow();
+    }
+    if d <= tol::LENGTH_REL * s && (r1 - r2).abs() <= tol::LENGTH_REL * s {
+        return Intersection::none(Contact::Coincident);
+    }
+    let outer = d - (r1 + r2);
+    let inner = (r1 - r2).abs() - d;
+    let tangent = tol::TANGENT_REL * s;
+    let u = if d > 0.0 { dv / d } else { V2::x() };
+    if outer.abs() <= tangent || (inner.abs() <= tangent && d > tol::LENGTH_REL * s) {
+        // External: along u from the first centre; internal: towards the side of the larger.
+        let along = if outer.abs() <= tangent {
+            // Midway between the two circles' points on the line of centres.
+            0.5 * (r1 + (d - r2))
+        } else if r1 >= r2 {
+            0.5 * (r1 + (d + r2))
+        } else {
+            -0.5 * (r1 + (r2 - d))
+        };
+        let x = a.center() + u * along;
+        return Intersection {
+            roots: Roots::from_slice(&[x, x]),
+            contact: Contact::Tangent,
+        };
+    }
+    if outer > 0.0 {
+        return Intersection::none(Contact::Disjoint { gap: outer });
+    }
+    if inner > 0.0 {
+        return Intersection::none(Contact::Disjoint { gap: inner });
+    }
+    // Distance along u from the first centre, and the half chord by Heron's formula, whose
+    // factors are each a sum or difference of inputs (no cancellation near tangency).
+    let along = 0.5 * (d + (r1 - r2) * (r1 + r2) / d);
+    let area16 = (d + r1 + r2) * (r1 + r2 - d) * (d - r1 + r2) * (d + r1 - r2);
+    let h = area16.max(0.0).sqrt() / (2.0 * d);
+    let m = a.center() + u * along;
+    let v = perp(u);
+    let (left, right) = (m + v * h, m - v * h);
+    if !finite(left) || !finite(right) {
+        return overflow();
+    }
+    Intersection {
+        roots: Roots::from_slice(&[left, right]),
+        contact: Contact::Crossing,
+    }
+}
+
+/// The implicit function of a curve, its gradient, and its residual; for 2d Newton polishing.
+#[derive(Clone, Copy, Debug)]
+enum Curve<'a> {
+    Line(&'a Line),
+    Circle(&'a Circle),
+    Conic(&'a Conic),
+}
+
+fn unit_or_zero(v: V2) -> V2 {
+    let n = v.norm();
+    if n > 0.0 {
+        v / n
+    } else {
+        V2::zeros()
+    }
+}
+
+impl Curve<'_> {
+    fn value_grad(&self, x: P2) -> (f64, V2) {
+        match self {
+            Curve::Line(l) => (l.signed_distance(x), l.normal()),
+            Curve::Circle(c) => (c.implicit(x), unit_or_zero(x - c.center())),
+            Curve::Conic(k) => {
+                let g = match k {
+                    Conic::Parabola(p) => unit_or_zero(x - p.focus()) - p.directrix().normal(),
+                    Conic::Ellipse(e) => {
+                        let (f1, f2) = e.foci();
+                        unit_or_zero(x - f1) + unit_or_zero(x - f2)
+                    }
+                    Conic::Hyperbola(h) => {
+                        let (f1, f2) = h.foci();
+                        unit_or_zero(x - f1) - unit_or_zero(x - f2)
+                    }
+                };
+                (k.implicit(x), g)
+            }
+        }
+    }
+
+    fn residual(&self, x: P2) -> f64 {
+        match self {
+            Curve::Line(l) => l.residual(x),
+            Curve::Circle(c) => c.residual(x),
+            Curve::Conic(k) => k.residual(x),
+        }
+    }
+}
+
+/// Two Newton steps on the pair of implicit equations, kept only if they reduce the larger
+/// residual; skipped where the curves are nearly tangent (the step is ill-conditioned there).
+fn polish(x: P2, a: Curve<'_>, b: Curve<'_>) -> P2 {
+    let mut best = x;
+    let mut best_r = a.residual(x).max(b.residual(x));
+    let mut y = x;
+    for _ in 0..2 {
+        let (fa, ga) = a.value_grad(y);
+        let (fb, gb) = b.value_grad(y);
+        let det = cross(ga, gb);
+        if det.abs() <= 1e-6 * ga.norm() * gb.norm() || !det.is_finite() {
+            break;
+        }
+        // Solve [ga; gb] dx = -[fa; fb].
+        let dx = V2::new(
+            -(fa * gb.y - fb * ga.y) / det,
+            -(ga.x * fb - gb.x * fa) / det,
+        );
+        y += dx;
+        let r = a.residual(y).max(b.residual(y));
+        if r.is_finite() && r < best_r {
+            best = y;
+            best_r = r;
+        }
+    }
+    best
+}
+
+/// Parameters along `l` of its crossings with the conic, ascending (branch-filtered, polished),
+/// with the contact, the tangent point if any.
+fn line_conic_t(l: &Line, c: &Conic) -> (Roots<f64, 2>, Contact, Option<P2>) {
+    let [px, py] = line_scale(l);
+    let s = c.scale().max(tol::scale(&[px, py]));
+    let f: Focal = c.focal();
+    let d = l.dir();
+    let q = l.point() - f.f;
+    let alpha = f.w.dot(&q) + f.k;
+    let beta = f.w.dot(&d);
+    let wn = f.w.norm();
+    let mut ts: Roots<f64, 2> = Roots::new();
+    if f.mu <= tol::TANGENT_REL * wn {
+        // The hyperbola's `diff = 0` (or within tolerance): its perpendicular-bisector line.
+        if beta.abs() <= tol::ANGLE * wn {
+            let gap = (alpha / wn).abs();
+            let contact = if gap <= tol::LENGTH_REL * s {
+                Contact::Coincident
+            } else {
+                Contact::Parallel { gap }
+            };
+            return (ts, contact, None);
+        }
+        ts.push(-alpha / beta);
+        return (ts, Contact::Crossing, None);
+    }
+    let mu2 = f.mu * f.mu;
+    let qa = mu2 - beta * beta;
+    let qb = 2.0 * (mu2 * d.dot(&q) - alpha * beta);
+    let qc = mu2 * q.norm_squared() - alpha * alpha;
+    if !(qa.is_finite() && qb.is_finite() && qc.is_finite()) {
+        return (ts, Contact::Disjoint { gap: f64::INFINITY }, None);
+    }
+    let curve = Curve::Conic(c);
+    let eps_h = tol::LENGTH_REL * s * (wn + f.mu);
+    // The extremum of the squared equation: a tangent point when it lies on the conic.
+    if qa.abs() > tol::ANGLE * mu2 {
+        let t0 = -qb / (2.0 * qa);
+        let x0 = l.at(t0);
+        if finite(x0) && f.h(x0) >= -eps_h && curve.residual(x0) <= tol::TANGENT_REL * s {
+            let disc = qb * qb - 4.0 * qa * qc;
+            let split = if disc > 0.0 {
+                disc.sqrt() / (2.0 * qa.abs())
+            } else {
+                0.0
+            };
+            if split <= 1e-4 * s {
+                // Move the point onto the curve along the line's normal by half its residual,
+                // so that it is within half the tangency tolerance of both.
+                let (v, g) = curve.value_grad(x0);
+                let gn = g.norm_squared();
+                let x = if gn > 0.0 {
+                    x0 - g * (0.5 * v / gn)
+                } else {
+                    x0
+                };
+                return (Roots::from_slice(&[t0, t0]), Contact::Tangent, Some(x));
+            }
+        }
+    }
+    for t in poly::quadratic(qa, qb, qc).as_slice() {
+        let x = l.at(*t);
+        if finite(x) && f.h(x) >= -eps_h {
+            // Polish along the line on the unsquared focal equation.
+            let x = polish(x, Curve::Line(l), curve);
+            ts.push(l.param_of(x));
+        }
+    }
+    if ts.len() == 2 && ts.get(0) > ts.get(1) {
+        ts = Roots::from_slice(&[ts.get(1).unwrap_or(0.0), ts.get(0).unwrap_or(0.0)]);
+    }
+    if ts.is_empty() {
+        return (
+            ts,
+            Contact::Disjoint {
+                gap: line_conic_gap(l, c),
+            },
+            None,
+        );
+    }
+    (ts, Contact::Crossing, None)
+}
+
+/// The distance by which a line misses a conic: the distance from the line of the conic's point
+/// whose tangent is parallel to the line, or, for a hyperbola met only by the other branch or
+/// parallel to an asymptote, of the asymptotes' centre.
+fn line_conic_gap(l: &Line, c: &Conic) -> f64 {
+    let n = l.normal();
+    let gap = match c {
+        Conic::Parabola(p) => {
+            let dn = n.dot(&p.directrix().normal());
+            if dn.abs() > tol::ANGLE {
+                let t = -p.focal_distance() * n.dot(&p.directrix().dir()) / dn;
+                l.residual(p.at(t))
+            } else {
+                l.residual(p.vertex())
+            }
+        }
+        Conic::Ellipse(e) => {
+            let (m, a, b, u) = e.axes();
+            let reach = (a * n.dot(&u)).hypot(b * n.dot(&perp(u)));
+            (l.residual(m) - reach).max(0.0)
+        }
+        Conic::Hyperbola(h) => {
+            let (m, a, b, u) = h.axes();
+            let (nu, nv) = (a * n.dot(&u), b * n.dot(&perp(u)));
+            if nv.abs() < nu.abs() {
+                l.residual(h.at((-nv / nu).atanh()))
+            } else {
+                l.residual(m)
+            }
+        }
+    };
+    if gap.is_finite() {
+        gap
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// A line and a conic (parabola, ellipse or hyperbola branch).
+///
+/// Branch 0 is the first crossing along the line's direction, branch 1 the second; crossings
+/// with the other branch of a hyperbola are not roots (so a line through both branches has one
+/// root). Degenerate cases: [`Contact::Tangent`] when the line touches within
+/// [`tol::TANGENT_REL`] of the scale (the touching point, within half that of both, in both
+/// slots); [`Contact::Disjoint`] with the distance at closest approach (for a hyperbola missed
+/// along an asymptote, the distance to that asymptote); a line parallel to a parabola's axis or
+/// a hyperbola's asymptote has one root (the other went to infinity). For the hyperbola with
+/// `diff = 0` (a line): [`Contact::Parallel`] or [`Contact::Coincident`] as in [`line_line`].
+pub fn line_conic(l: &Line, c: &Conic) -> Intersection<P2, 2> {
+    let (ts, contact, tangent) = line_conic_t(l, c);
+    let mut roots = Roots::new();
+    match tangent {
+        Some(x) => {
+            roots.push(x);
+            roots.push(x);
+        }
+        None => {
+            for &t in ts.as_slice() {
+                roots.push(l.at(t));
+            }
+        }
+    }
+    Intersection { roots, contact }
+}
+
+/// A ray and a conic.
+///
+/// Branches are those of [`line_conic`] on the supporting line, with a root behind the origin
+/// `None` in its slot (as in [`ray_circle`]); both behind gives [`Contact::Disjoint`] with the
+/// first-order distance of the origin from the conic. Other cases as in [`line_conic`].
+pub fn ray_conic(r: &Ray, c: &Conic) -> Intersection<Option<P2>, 2> {
+    let s = c.scale().max(tol::scale(&[r.origin().x, r.origin().y]));
+    onto_ray(r, line_conic(&r.line(), c), s, c.residual(r.origin()))
+}
+
+/// The implicit quadric `Xᵀ A X + 2 b·X + c` of a curve, in coordinates relative to `origin`.
+#[derive(Clone, Copy, Debug)]
+struct Quadric {
+    a: [[f64; 2]; 2],
+    b: V2,
+    c: f64,
+}
+
+fn circle_quadric(c: &Circle, origin: P2) -> Quadric {
+    let cc = c.center() - origin;
+    Quadric {
+        a: [[1.0, 0.0], [0.0, 1.0]],
+        b: -cc,
+        c: (cc.norm() - c.radius()) * (cc.norm() + c.radius()),
+    }
+}
+
+fn conic_quadric(k: &Conic, origin: P2) -> Quadric {
+    let f = k.focal();
+    let fp = f.f - origin;
+    let kp = f.k - f.w.dot(&fp);
+    let wn = f.w.norm();
+    if f.mu <= tol::TANGENT_REL * wn {
+        // The line w·X + k' = 0.
+        return Quadric {
+            a: [[0.0; 2]; 2],
+            b: f.w * 0.5,
+            c: kp,
+        };
+    }
+    let mu2 = f.mu * f.mu;
+    Quadric {
+        a: [
+            [mu2 - f.w.x * f.w.x, -f.w.x * f.w.y],
+            [-f.w.x * f.w.y, mu2 - f.w.y * f.w.y],
+        ],
+        b: -fp * mu2 - f.w * kp,
+        c: mu2 * fp.norm_squared() - kp * kp,
+    }
+}
+
+impl Quadric {
+    fn form(&self, p: V2, q: V2) -> f64 {
+        p.x * (self.a[0][0] * q.x + self.a[0][1] * q.y)
+            + p.y * (self.a[1][0] * q.x + self.a[1][1] * q.y)
+    }
+
+    fn form_abs(&self, p: V2, q: V2) -> f64 {
+        p.x.abs() * (self.a[0][0].abs() * q.x.abs() + self.a[0][1].abs() * q.y.abs())
+            + p.y.abs() * (self.a[1][0].abs() * q.x.abs() + self.a[1][1].abs() * q.y.abs())
+    }
+
+    /// The quartic `Q(P(s)/w(s)) w(s)²` (lowest degree first) and the magnitudes of its terms.
+    fn substitute(&self, r: &Rational) -> ([f64; 5], [f64; 5]) {
+        let (mut c, mut m) = ([0.0; 5], [0.0; 5]);
+        for i in 0..3 {
+            for j in 0..3 {
+                let (pi, pj) = (r.p[i], r.p[j]);
+                let (wi, wj) = (r.w[i], r.w[j]);
+                let term = self.form(pi, pj) + 2.0 * wi * self.b.dot(&pj) + self.c * wi * wj;
+                let mag = self.form_abs(pi, pj)
+                    + 2.0 * (wi * (self.b.x * pj.x).abs() + wi.abs() * (self.b.y * pj.y).abs())
+                    + (self.c * wi * wj).abs();
+                if let (Some(ci), Some(mi)) = (c.get_mut(i + j), m.get_mut(i + j)) {
+                    *ci += term;
+                    *mi += mag;
+                }
+            }
+        }
+        (c, m)
+    }
+}
+
+/// Intersects the conic `a`, parametrised, with the curve `b` given by its quadric; roots in
+/// ascending parameter of `a`, tangent points doubled.
+fn param_implicit(a: &Conic, b: Curve<'_>, scale: f64) -> Intersection<P2, 4> {
+    let origin = a.rational(0.0).origin;
+    let quadric = match b {
+        Curve::Circle(c) => circle_quadric(c, origin),
+        Curve::Conic(k) => conic_quadric(k, origin),
+        // Not called with a line (line_conic solves that pair directly).
+        Curve::Line(l) => Quadric {
+            a: [[0.0; 2]; 2],
+            b: l.normal() * 0.5,
+            c: l.signed_distance(origin),
+        },
+    };
+    // For an ellipse, start the tangent-half-angle parameter so that the one point it cannot
+    // reach (θ0 + π) is the farthest from `b` among eight candidates.
+    let theta0 = match a {
+        Conic::Ellipse(_) => {
+            let mut best = (0.0, -1.0);
+            for k in 0..8 {
+                let th = k as f64 * std::f64::consts::FRAC_PI_4;
+                let r = b.residual(a.at(th + std::f64::consts::PI));
+                if r > best.1 {
+                    best = (th, r);
+                }
+            }
+            best.0
+        }
+        _ => 0.0,
+    };
+    let rat = a.rational(theta0);
+    let (low, mag) = quadric.substitute(&rat);
+    let coeffs = [low[4], low[3], low[2], low[1], low[0]];
+    if coeffs.iter().any(|c| !c.is_finite()) {
+        return overflow();
+    }
+    let top = mag.iter().fold(0.0f64, |m, &x| m.max(x));
+    if low
+        .iter()
+        .zip(&mag)
+        .all(|(c, m)| c.abs() <= tol::TANGENT_REL * m.max(top * 1e-3))
+    {
+        return Intersection::none(Contact::Coincident);
+    }
+    let deriv = [4.0 * low[4], 3.0 * low[3], 2.0 * low[2], low[1]];
+    let roots = poly::real_roots(&coeffs);
+    let crit = poly::real_roots(&deriv);
+    let valid = |s: f64| -> Option<(f64, P2)> {
+        let t = a.param_from_s(s, theta0)?;
+        let x = rat.at(s)?;
+        if let Curve::Conic(k) = b {
+            let f = k.focal();
+            if f.h(x) < -tol::LENGTH_REL * scale * (f.w.norm() + f.mu) {
+                return None;
+            }
+        }
+        Some((t, x))
+    };
+    // Tangent points: critical points of the polynomial where `a` touches `b`.
+    let mut tangents: Roots<(f64, f64, P2), 3> = Roots::new(); // (s, t, point)
+    for r in crit.as_slice() {
+        if let Some((t, x)) = valid(r.x) {
+            if b.residual(x) <= tol::TANGENT_REL * scale {
+                tangents.push((r.x, t, x));
+            }
+        }
+    }
+    let mut out: Roots<(f64, P2, bool), 4> = Roots::new();
+    for r in roots.as_slice() {
+        let Some((t, x)) = valid(r.x) else { continue };
+        // A root that a tangent point absorbs: its close partner in the merged pair.
+        let absorbed = tangents
+            .as_slice()
+            .iter()
+            .any(|&(_, _, y)| (x - y).norm() <= 1e-4 * scale);
+        if absorbed {
+            continue;
+        }
+        let x = polish(x, Curve::Conic(a), b);
+        out.push((t, x, false));
+    }
+    for &(_, t, x) in tangents.as_slice() {
+        // Within half the tolerance of both: move halfway towards `b` along its gradient.
+        let (v, g) = b.value_grad(x);
+        let gn = g.norm_squared();
+        let y = if gn > 0.0 { x - g * (0.5 * v / gn) } else { x };
+        out.push((t, y, true));
+        out.push((t, y, true));
+    }
+    // Ascending parameter of `a` (insertion sort on at most four).
+    let mut items = [(0.0, P2::origin(), false); 4];
+    let n = out.len();
+    for (dst, src) in items.iter_mut().zip(out.as_slice()) {
+        *dst = *src;
+    }
+    for i in 1..n {
+        let mut j = i;
+        while j > 0 && items.get(j - 1).map(|p| p.0) > items.get(j).map(|p| p.0) {
+            items.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let mut result = Roots::new();
+    let mut tangent = false;
+    for it in items.iter().take(n) {
+        result.push(it.1);
+        tangent |= it.2;
+    }
+    if result.is_empty() {
+        // The closest approach: the critical point whose point is nearest to `b`.
+        let mut gap = f64::INFINITY;
+        for r in crit.as_slice() {
+            if a.param_from_s(r.x, theta0).is_some() {
+                if let Some(x) = rat.at(r.x) {
+                    gap = gap.min(b.residual(x));
+                }
+            }
+        }
+        if !gap.is_finite() {
+            gap = b.residual(a.at(0.0));
+        }
+        let gap = if gap.is_finite() { gap } else { f64::INFINITY };
+        return Intersection::none(Contact::Disjoint { gap });
+    }
+    Intersection {
+        roots: result,
+        contact: if tangent {
+            Contact::Tangent
+        } else {
+            Contact::Crossing
+        },
+    }
+}
+
+/// A circle and a conic: up to four roots.
+///
+/// Order: ascending parameter along the **conic** (parabola: coordinate along the directrix
+/// from the vertex; ellipse: eccentric angle in `(-π, π]`, which wraps at `π`; hyperbola: `t`
+/// of `cosh t, sinh t`), found as roots of a quartic in that parameter and polished by Newton's
+/// method on both curves. Use [`nearest`] to follow a branch through a sweep. Degenerate cases:
+/// [`Contact::ZeroRadius`] for a radius within [`tol::LENGTH_REL`] of the scale;
+/// [`Contact::Coincident`] when the conic is this circle (an ellipse with equal foci);
+/// [`Contact::Tangent`] when they touch within [`tol::TANGENT_REL`] of the scale, the touching
+/// point in two consecutive slots (other crossings, if any, keep their own slots);
+/// [`Contact::Disjoint`] with the gap at closest approach (exact for a parabola).
+pub fn circle_conic(c: &Circle, k: &Conic) -> Intersection<P2, 4> {
+    let [cx, cy, r] = circle_scale(c);
+    let s = k.scale().max(tol::scale(&[cx, cy, r]));
+    if r <= tol::LENGTH_REL * s {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    param_implicit(k, Curve::Circle(c), s)
+}
+
+/// Two conics: up to four roots.
+///
+/// Order: ascending parameter along the **first** conic `a` (see [`circle_conic`] for each
+/// parameter), found as the roots of a quartic and polished on both curves; use [`nearest`] to
+/// follow a branch. Crossings with the other branch of a hyperbola `b` are not roots.
+/// Degenerate cases: [`Contact::Coincident`] when the conics are the same curve;
+/// [`Contact::Tangent`] (touching point in two consecutive slots) and [`Contact::Disjoint`]
+/// (gap estimate) as in [`circle_conic`].
+pub fn conic_conic(a: &Conic, b: &Conic) -> Intersection<P2, 4> {
+    let s = a.scale().max(b.scale());
+    param_implicit(a, Curve::Conic(b), s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::locus2d::{centres_line_circle, Ellipse, Hyperbola, Parabola, Sense};
+
+    fn p(x: f64, y: f64) -> P2 {
+        P2::new(x, y)
+    }
+    fn line(x: f64, y: f64, dx: f64, dy: f64) -> Line {
+        Line::new(p(x, y), V2::new(dx, dy)).unwrap()
+    }
+    fn circle(x: f64, y: f64, r: f64) -> Circle {
+        Circle::new(p(x, y), r).unwrap()
+    }
+    fn close(a: P2, b: P2, tol: f64) -> bool {
+        (a - b).norm() <= tol
+    }
+
+    #[test]
+    fn line_line_cases() {
+        let i = line_line(&line(0.0, 0.0, 1.0, 0.0), &line(2.0, -1.0, 0.0, 1.0));
+        assert_eq!(i.contact, Contact::Crossing);
+        assert_eq!(i.branch(0), Some(p(2.0, 0.0)));
+        let i = line_line(&line(0.0, 0.0, 1.0, 0.0), &line(5.0, 3.0, -1.0, 0.0));
+        assert_eq!(i.contact, Contact::Parallel { gap: 3.0 });
+        assert!(i.roots.is_empty());
+        let i = line_line(&line(0.0, 0.0, 1.0, 0.0), &line(5.0, 0.0, 2.0, 0.0));
+        assert_eq!(i.contact, Contact::Coincident);
+        // Nearly parallel beyond tolerance: a far crossing, on both lines relative to its size.
+        let b = line(0.0, 1.0, 1.0, 1e-9);
+        let i = line_line(&line(0.0, 0.0, 1.0, 0.0), &b);
+        let x = i.branch(0).unwrap();
+        assert!(x.y.abs() < 1e-6 && b.residual(x) < 1e-13 * x.coords.norm());
+    }
+
+    #[test]
+    fn line_ray_and_ray_ray_cases() {
+        let l = line(0.0, 0.0, 1.0, 0.0);
+        let r = Ray::new(p(1.0, 2.0), V2::new(0.0, -1.0)).unwrap();
+        assert_eq!(line_ray(&l, &r).branch(0), Some(p(1.0, 0.0)));
+        let away = Ray::new(p(1.0, 2.0), V2::new(0.0, 1.0)).unwrap();
+        assert_eq!(line_ray(&l, &away).contact, Contact::Disjoint { gap: 2.0 });
+        let par = Ray::new(p(1.0, 2.0), V2::new(1.0, 0.0)).unwrap();
+        assert_eq!(line_ray(&l, &par).contact, Contact::Parallel { gap: 2.0 });
+        let on = Ray::new(p(1.0, 0.0), V2::new(-1.0, 0.0)).unwrap();
+        assert_eq!(line_ray(&l, &on).contact, Contact::Coincident);
+        // Ray-ray.
+        let r1 = Ray::new(p(0.0, 0.0), V2::new(1.0, 1.0)).unwrap();
+        let r2 = Ray::new(p(2.0, 0.0), V2::new(-1.0, 1.0)).unwrap();
+        let i = ray_ray(&r1, &r2);
+        assert_eq!(i.contact, Contact::Crossing);
+        assert!(close(i.branch(0).unwrap(), p(1.0, 1.0), 1e-15));
+        let r3 = Ray::new(p(2.0, 0.0), V2::new(1.0, -1.0)).unwrap();
+        let i = ray_ray(&r1, &r3);
+        assert!(
+            matches!(i.contact, Contact::Disjoint { gap } if (gap - 2f64.sqrt()).abs() < 1e-15)
+        );
+        let r4 = Ray::new(p(5.0, 0.0), V2::new(-1.0, 0.0)).unwrap();
+        let r5 = Ray::new(p(0.0, 0.0), V2::new(1.0, 0.0)).unwrap();
+        assert_eq!(ray_ray(&r5, &r4).contact, Contact::Coincident);
+        let r6 = Ray::new(p(0.0, 0.0), V2::new(-1.0, 0.0)).unwrap();
+        let i = ray_ray(&r5, &r6);
+        assert_eq!(i.contact, Contact::Tangent);
+        assert_eq!(i.branch(0), Some(p(0.0, 0.0)));
+        let r7 = Ray::new(p(-3.0, 0.0), V2::new(-1.0, 0.0)).unwrap();
+        assert_eq!(ray_ray(&r5, &r7).contact, Contact::Disjoint { gap: 3.0 });
+        let r8 = Ray::new(p(-3.0, 0.0), V2::new(1.0, 0.0)).unwrap();
+        assert_eq!(ray_ray(&r5, &r8).contact, Contact::Coincident);
+        let r9 = Ray::new(p(0.0, 1.0), V2::new(1.0, 0.0)).unwrap();
+        assert_eq!(ray_ray(&r5, &r9).contact, Contact::Parallel { gap: 1.0 });
+    }
+
+    #[test]
+    fn line_circle_cases() {
+        let c = circle(0.0, 0.0, 1.0);
+        let i = line_circle(&line(-5.0, 0.0, 1.0, 0.0), &c);
+        assert_eq!(i.contact, Contact::Crossing);
+        assert_eq!(i.roots.as_slice(), &[p(-1.0, 0.0), p(1.0, 0.0)]);
+        // Reversing the line swaps the branches.
+        let i = line_circle(&line(-5.0, 0.0, -1.0, 0.0), &c);
+        assert_eq!(i.roots.as_slice(), &[p(1.0, 0.0), p(-1.0, 0.0)]);
+        let i = line_circle(&line(0.0, 1.0, 1.0, 0.0), &c);
+        assert_eq!(i.contact, Contact::Tangent);
+        assert_eq!(i.roots.as_slice(), &[p(0.0, 1.0), p(0.0, 1.0)]);
+        // Slightly missing within tolerance: still tangent.
+        let i = line_circle(&line(0.0, 1.0 + 1e-12, 1.0, 0.0), &c);
+        assert_eq!(i.contact, Contact::Tangent);
+        let i = line_circle(&line(0.0, 3.0, 1.0, 0.0), &c);
+        assert_eq!(i.contact, Contact::Disjoint { gap: 2.0 });
+        let i = line_circle(&line(0.0, 0.0, 1.0, 0.0), &circle(0.0, 0.0, 0.0));
+        assert_eq!(i.contact, Contact::ZeroRadius);
+        // Rays keep the line's branch slots.
+        let r = Ray::new(p(0.0, 0.0), V2::x()).unwrap();
+        let i = ray_circle(&r, &c);
+        assert_eq!(i.roots.as_slice(), &[None, Some(p(1.0, 0.0))]);
+        let r = Ray::new(p(3.0, 0.0), V2::x()).unwrap();
+        assert_eq!(ray_circle(&r, &c).contact, Contact::Disjoint { gap: 2.0 });
+        let r = Ray::new(p(-3.0, 0.0), V2::x()).unwrap();
+        assert_eq!(ray_circle(&r, &c).roots.len(), 2);
+    }
+
+    #[test]
+    fn circle_circle_cases() {
+        let a = circle(0.0, 0.0, 5.0);
+        let b = circle(8.0, 0.0, 5.0);
+        let i = circle_circle(&a, &b);
+        assert_eq!(i.contact, Contact::Crossing);
+        // Branch 0 left of the line from a's centre to b's: +y.
+        assert!(close(i.branch(0).unwrap(), p(4.0, 3.0), 1e-15));
+        assert!(close(i.branch(1).unwrap(), p(4.0, -3.0), 1e-15));
+        let i = circle_circle(&b, &a);
+        assert!(close(i.branch(0).unwrap(), p(4.0, -3.0), 1e-15));
+        let i = circle_circle(&a, &circle(10.0, 0.0, 5.0));
+        assert_eq!(i.contact, Contact::Tangent);
+        assert_eq!(i.roots.as_slice(), &[p(5.0, 0.0), p(5.0, 0.0)]);
+        let i = circle_circle(&a, &circle(2.0, 0.0, 3.0));
+        assert_eq!(i.contact, Contact::Tangent);
+        assert!(close(i.branch(0).unwrap(), p(5.0, 0.0), 1e-15));
+        let i = circle_circle(&circle(2.0, 0.0, 3.0), &a);
+        assert!(close(i.branch(1).unwrap(), p(5.0, 0.0), 1e-15));
+        assert_eq!(
+            circle_circle(&a, &circle(12.0, 0.0, 5.0)).contact,
+            Contact::Disjoint { gap: 2.0 }
+        );
+        assert_eq!(
+            circle_circle(&a, &circle(1.0, 0.0, 1.0)).contact,
+            Contact::Disjoint { gap: 3.0 }
+        );
+        assert_eq!(
+            circle_circle(&a, &circle(0.0, 0.0, 1.0)).contact,
+            Contact::Disjoint { gap: 4.0 }
+        );
+        assert_eq!(circle_circle(&a, &a).contact, Contact::Coincident);
+        assert_eq!(
+            circle_circle(&a, &circle(1.0, 0.0, 0.0)).contact,
+            Contact::ZeroRadius
+        );
+    }
+
+    fn check_on(x: P2, a: f64, b: f64, tol: f64) {
+        assert!(a <= tol && b <= tol, "{x} residuals {a:e} {b:e}");
+    }
+
+    #[test]
+    fn line_conic_cases() {
+        // Parabola y = x²/4 (focus (0,1), directrix y = -1).
+        let par: Conic = Parabola::new(p(0.0, 1.0), line(0.0, -1.0, 1.0, 0.0))
+            .unwrap()
+            .into();
+        let i = line_conic(&line(-10.0, 1.0, 1.0, 0.0), &par);
+        assert_eq!(i.contact, Contact::Crossing);
+        assert!(close(i.branch(0).unwrap(), p(-2.0, 1.0), 1e-14));
+        assert!(close(i.branch(1).unwrap(), p(2.0, 1.0), 1e-14));
+        let i = line_conic(&line(-10.0, 0.0, 1.0, 0.0), &par);
+        assert_eq!(i.contact, Contact::Tangent);
+        assert!(close(i.branch(0).unwrap(), p(0.0, 0.0), 1e-14));
+        assert_eq!(i.branch(0), i.branch(1));
+        let i = line_conic(&line(-10.0, -2.0, 1.0, 0.0), &par);
+        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 2.0).abs() < 1e-14));
+        // Parallel to the axis: one root.
+        let i = line_conic(&line(2.0, -5.0, 0.0, 1.0), &par);
+        assert_eq!(i.roots.len(), 1);
+        assert!(close(i.branch(0).unwrap(), p(2.0, 1.0), 1e-14));
+        // Ellipse x²/25 + y²/9 = 1 (foci ±4).
+        let ell: Conic = Ellipse::new(p(-4.0, 0.0), p(4.0, 0.0), 10.0)
+            .unwrap()
+            .into();
+        let i = line_conic(&line(0.0, -10.0, 0.0, 1.0), &ell);
+        assert!(close(i.branch(0).unwrap(), p(0.0, -3.0), 1e-14));
+        assert!(close(i.branch(1).unwrap(), p(0.0, 3.0), 1e-14));
+        let i = line_conic(&line(0.0, 4.0, 1.0, 0.0), &ell);
+        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 1.0).abs() < 1e-14));
+        assert_eq!(
+            line_conic(&line(5.0, 0.0, 0.0, 1.0), &ell).contact,
+            Contact::Tangent
+        );
+        // Hyperbola branch x²/4 - y²/5 = 1, x > 0 (foci ±3, diff 4): the x axis meets it once.
+        let hyp: Conic = Hyperbola::new(p(-3.0, 0.0), p(3.0, 0.0), 4.0)
+            .unwrap()
+            .into();
+        let i = line_conic(&line(-10.0, 0.0, 1.0, 0.0), &hyp);
+        assert_eq!(i.roots.as_slice().len(), 1);
+        assert!(close(i.branch(0).unwrap(), p(2.0, 0.0), 1e-14));
+        // Only the other branch: disjoint.
+        let i = line_conic(&line(-3.0, -10.0, 0.0, 1.0), &hyp);
+        assert!(matches!(i.contact, Contact::Disjoint { .. }), "{i:?}");
+        // diff = 0: the perpendicular bisector x = 0.
+        let bis: Conic = Hyperbola::new(p(-3.0, 0.0), p(3.0, 0.0), 0.0)
+            .unwrap()
+            .into();
+        let i = line_conic(&line(-10.0, 1.0, 1.0, 0.0), &bis);
+        assert!(close(i.branch(0).unwrap(), p(0.0, 1.0), 1e-14));
+        assert_eq!(
+            line_conic(&line(0.0, 5.0, 0.0, 1.0), &bis).contact,
+            Contact::Coincident
+        );
+        assert_eq!(
+            line_conic(&line(1.0, 5.0, 0.0, 1.0), &bis).contact,
+            Contact::Parallel { gap: 1.0 }
+        );
+        // Ray-conic keeps slots.
+        let r = Ray::new(p(0.0, 1.0), V2::x()).unwrap();
+        let i = ray_conic(&r, &par);
+        assert_eq!(i.roots.len(), 2);
+        assert_eq!(i.branch(0), Some(None));
+        assert!(close(i.branch(1).unwrap().unwrap(), p(2.0, 1.0), 1e-14));
+    }
+
+    /// Kramer's circle problem (paper 000, section 4.2): circle G tangent to the line y = -4 and
+    /// externally tangent to the circle C of radius 2 about the origin; the end of a segment of
+    /// length 3 from P = (6, 3) is G's centre.
+    #[test]
+    fn kramer_circle_problem_parabola_circle() {
+        let l = line(0.0, -4.0, 1.0, 0.0);
+        let (c, rc) = (p(0.0, 0.0), 2.0);
+        let par = centres_line_circle(&l, 0.0, c, Sense::Plus, rc).unwrap();
+        let end = circle(6.0, 3.0, 3.0);
+        let i = circle_conic(&end, &par.into());
+        assert!(matches!(i.contact, Contact::Crossing), "{i:?}");
+        assert_eq!(i.roots.len(), 2, "{i:?}");
+        let mut last = f64::NEG_INFINITY;
+        for &x in i.roots.as_slice() {
+            let radius = l.signed_distance(x); // G's radius: tangent to L from above
+            assert!(radius > 0.0);
+            assert!((l.signed_distance(x) - radius).abs() < 1e-13); // tangent to L
+            assert!(((x - c).norm() - (radius + rc)).abs() < 1e-13, "{x}"); // tangent to C
+            assert!(((x - p(6.0, 3.0)).norm() - 3.0).abs() < 1e-13); // segment length 3
+            let t = par.param_of(x);
+            assert!(t > last);
+            last = t;
+        }
+    }
+
+    #[test]
+    fn circle_conic_cases() {
+        let par: Conic = Parabola::new(p(0.0, 1.0), line(0.0, -1.0, 1.0, 0.0))
+            .unwrap()
+            .into();
+        // Four crossings: a circle about (0, 3) of radius 2.9; 2.5 misses by √8 - 2.5.
+        let i = circle_conic(&circle(0.0, 3.0, 2.9), &par);
+        assert_eq!(i.roots.len(), 4, "{i:?}");
+        let xs: Vec<f64> = i.roots.as_slice().iter().map(|x| x.x).collect();
+        assert!(xs.windows(2).all(|w| w[0] < w[1]));
+        let gap = 8f64.sqrt() - 2.5;
+        assert!(matches!(circle_conic(&circle(0.0, 3.0, 2.5), &par).contact,
+            Contact::Disjoint { gap: g } if (g - gap).abs() < 1e-14));
+        // Tangent at the vertex from below: circle about (0, -1) radius 1.
+        let i = circle_conic(&circle(0.0, -1.0, 1.0), &par);
+        assert_eq!(i.contact, Contact::Tangent, "{i:?}");
+        assert_eq!(i.roots.len(), 2);
+        assert!(close(i.branch(0).unwrap(), p(0.0, 0.0), 1e-9));
+        assert!(
+            matches!(circle_conic(&circle(0.0, -3.0, 1.0), &par).contact, Contact::Disjoint { gap } if (gap - 2.0).abs() < 1e-12)
+        );
+        assert_eq!(
+            circle_conic(&circle(0.0, 3.0, 0.0), &par).contact,
+            Contact::ZeroRadius
+        );
+        // An ellipse with equal foci is a circle: coincident.
+        let e: Conic = Ellipse::new(p(1.0, 1.0), p(1.0, 1.0), 4.0).unwrap().into();
+        assert_eq!(
+            circle_conic(&circle(1.0, 1.0, 2.0), &e).contact,
+            Contact::Coincident
+        );
+        // Ellipse and circle: x²/25 + y²/9 = 1 against the circle r = 4 about the centre.
+        let ell: Conic = Ellipse::new(p(-4.0, 0.0), p(4.0, 0.0), 10.0)
+            .unwrap()
+            .into();
+        let c = circle(0.0, 0.0, 4.0);
+        let i = circle_conic(&c, &ell);
+        assert_eq!(i.roots.len(), 4);
+        for &x in i.roots.as_slice() {
+            check_on(x, c.residual(x), ell.residual(x), 1e-14);
+        }
+        // Internally tangent at (±5, 0) and (0, ±3): circles r = 5 and r = 3.
+        assert_eq!(
+            circle_conic(&circle(0.0, 0.0, 5.0), &ell).contact,
+            Contact::Tangent
+        );
+        assert_eq!(circle_conic(&circle(0.0, 0.0, 5.0), &ell).roots.len(), 4);
+        // Hyperbola and circle.
+        let hyp: Conic = Hyperbola::new(p(-3.0, 0.0), p(3.0, 0.0), 4.0)
+            .unwrap()
+            .into();
+        let c = circle(0.0, 0.0, 3.0);
+        let i = circle_conic(&c, &hyp);
+        assert_eq!(i.roots.len(), 2, "{i:?}");
+        for &x in i.roots.as_slice() {
+            assert!(x.x > 0.0);
+            check_on(x, c.residual(x), hyp.residual(x), 1e-14);
+        }
+    }
+
+    #[test]
+    fn conic_conic_cases() {
+        let par: Conic = Parabola::new(p(0.0, 1.0), line(0.0, -1.0, 1.0, 0.0))
+            .unwrap()
+            .into();
+        let ell: Conic = Ellipse::new(p(-4.0, 0.0), p(4.0, 0.0), 10.0)
+            .unwrap()
+            .into();
+        let hyp: Conic = Hyperbola::new(p(-3.0, 0.0), p(3.0, 0.0), 4.0)
+            .unwrap()
+            .into();
+        let hyp_left: Conic = Hyperbola::new(p(-3.0, 0.0), p(3.0, 0.0), -4.0)
+            .unwrap()
+            .into();
+        for (a, b, n) in [
+            (&par, &ell, 2),
+            (&ell, &par, 2),
+            (&hyp, &ell, 2),
+            (&ell, &hyp, 2),
+            (&par, &hyp, 2),
+            (&hyp, &par, 2),
+            (&hyp, &hyp_left, 0),
+        ] {
+            let i = conic_conic(a, b);
+            assert_eq!(i.roots.len(), n, "{a:?} {b:?} {i:?}");
+            let mut last = f64::NEG_INFINITY;
+            for &x in i.roots.as_slice() {
+                check_on(x, a.residual(x), b.residual(x), 1e-13);
+                let t = a.param_of(x);
+                assert!(t >= last);
+                last = t;
+            }
+        }
+        assert_eq!(conic_conic(&ell, &ell).contact, Contact::Coincident);
+        assert_eq!(conic_conic(&par, &par).contact, Contact::Coincident);
+        // Two ellipses touching at (5, 0): the second is x²/25 + y²/16 = 1.
+        let tall: Conic = Ellipse::new(p(-3.0, 0.0), p(3.0, 0.0), 10.0)
+            .unwrap()
+            .into();
+        let i = conic_conic(&ell, &tall);
+        assert_eq!(i.contact, Contact::Tangent, "{i:?}");
+        assert_eq!(i.roots.len(), 4);
+        // A small ellipse far away: disjoint with a positive gap.
+        let far: Conic = Ellipse::new(p(20.0, 0.0), p(22.0, 0.0), 4.0)
+            .unwrap()
+            .into();
+        assert!(matches!(conic_conic(&ell, &far).contact, Contact::Disjoint { gap } if gap > 10.0));
+        assert_eq!(
+            nearest(&conic_conic(&par, &ell).roots, p(100.0, 0.0)),
+            Some(1)
+        );
+    }
+}
