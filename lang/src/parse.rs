@@ -100,8 +100,15 @@ fn syntax_error(
         return (d, resume);
     }
 
+    // A missing `,` or `)` says more than the operators that could also continue.
+    let structural = positives
+        .iter()
+        .any(|r| matches!(r, Rule::comma | Rule::close));
     let mut wanted: Vec<&'static str> = Vec::new();
-    for r in &positives {
+    for r in positives
+        .iter()
+        .filter(|r| !structural || matches!(r, Rule::comma | Rule::close))
+    {
         let w = describe_rule(*r);
         if !wanted.contains(&w) {
             wanted.push(w);
@@ -120,7 +127,25 @@ fn syntax_error(
     } else {
         Span::empty(pos)
     };
-    (Diagnostic::error(span, message), None)
+    let mut d = Diagnostic::error(span, message);
+    // `fixed: ...` and the like: a reserved word where a label stands.
+    if text.get(found_span.range()) == Some(":") {
+        let before = text[chunk.start..pos].trim_end();
+        let word = before
+            .rsplit(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .next()
+            .unwrap_or("");
+        if crate::resolve::RESERVED.contains(&word) {
+            let at = chunk.start + before.len() - word.len();
+            d = Diagnostic::error(
+                Span::new(at, at + word.len()),
+                format!("`{word}` is a reserved word and cannot be a label"),
+            )
+            .with_label("reserved word")
+            .with_note("choose another label");
+        }
+    }
+    (d, None)
 }
 
 fn is_space_or_comment_char(c: char) -> bool {
@@ -173,6 +198,8 @@ fn token_span(text: &str, pos: usize, end: usize) -> Span {
 fn describe_rule(rule: Rule) -> &'static str {
     match rule {
         Rule::semi => "`;`",
+        Rule::comma => "`,`",
+        Rule::close => "`)`",
         Rule::expr | Rule::number | Rule::bad_number | Rule::call | Rule::paren | Rule::neg => {
             "an expression"
         }
@@ -497,7 +524,11 @@ impl Builder<'_> {
                         Rule::name => name = Some(self.ident(p)),
                         Rule::args => {
                             args_span = self.span(&p);
-                            args = p.into_inner().map(|e| self.expr(e)).collect();
+                            args = p
+                                .into_inner()
+                                .filter(|e| e.as_rule() == Rule::expr)
+                                .map(|e| self.expr(e))
+                                .collect();
                         }
                         Rule::value => value = p.into_inner().next().map(|e| self.expr(e)),
                         _ => {}
@@ -558,7 +589,8 @@ impl Builder<'_> {
         match inner {
             Some(p) if p.as_rule() == Rule::tuple => {
                 let tspan = self.span(&p);
-                SpecValue::Tuple(p.into_inner().map(|e| self.expr(e)).collect(), tspan)
+                let items = p.into_inner().filter(|e| e.as_rule() == Rule::expr);
+                SpecValue::Tuple(items.map(|e| self.expr(e)).collect(), tspan)
             }
             Some(p) => SpecValue::Expr(self.expr(p)),
             None => SpecValue::Expr(Expr {
@@ -649,7 +681,7 @@ impl Builder<'_> {
             Rule::kw_pi => ExprKind::Pi,
             Rule::path => ExprKind::Path(self.path(pair)),
             Rule::paren => {
-                let inner = pair.into_inner().next();
+                let inner = pair.into_inner().find(|e| e.as_rule() == Rule::expr);
                 match inner {
                     Some(e) => ExprKind::Paren(Box::new(self.expr_pairs(e.into_inner()))),
                     None => ExprKind::Number(f64::NAN),
@@ -658,7 +690,10 @@ impl Builder<'_> {
             Rule::call => {
                 let mut it = pair.into_inner();
                 let name = it.next().map(|w| self.ident(w));
-                let args = it.map(|e| self.expr_pairs(e.into_inner())).collect();
+                let args = it
+                    .filter(|e| e.as_rule() == Rule::expr)
+                    .map(|e| self.expr_pairs(e.into_inner()))
+                    .collect();
                 match name {
                     Some(name) => ExprKind::Call(name, args),
                     None => ExprKind::Number(f64::NAN),

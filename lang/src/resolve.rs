@@ -48,6 +48,7 @@ pub fn resolve(
         param_syntax: Vec::new(),
         vector_checks: Vec::new(),
         used_params: Vec::new(),
+        poisoned: Vec::new(),
     };
     r.header(file);
     r.declare(file);
@@ -130,6 +131,9 @@ struct Resolver<'a> {
     param_syntax: Vec<(ParamId, Option<&'a syntax::Expr>)>,
     vector_checks: Vec<VectorCheck>,
     used_params: Vec<ParamId>,
+    /// Params whose default is already reported as wrong: expressions that read them are
+    /// not reported again.
+    poisoned: Vec<ParamId>,
 }
 
 impl<'a> Resolver<'a> {
@@ -423,10 +427,9 @@ impl<'a> Resolver<'a> {
     fn lower(&mut self, file: &'a syntax::File) {
         let syntaxes: Vec<(ParamId, Option<&syntax::Expr>)> = self.param_syntax.clone();
         for (id, e) in syntaxes {
-            if let Some(e) = e {
-                if let Some(x) = self.expr(e) {
-                    self.params[id].default_expr = x;
-                }
+            match e.and_then(|e| self.expr(e)) {
+                Some(x) => self.params[id].default_expr = x,
+                None => self.poisoned.push(id),
             }
         }
         for stmt in &file.statements {
@@ -1259,20 +1262,27 @@ impl<'a> Resolver<'a> {
                         | (GeomKind::Segment, "length")
                         | (GeomKind::Plane, "offset")
                 );
-                d = Diagnostic::error(p.span, format!("`{prefix}` has no {what} `{last}`"));
+                let noun = if g.kind == GeomKind::Body {
+                    "member"
+                } else {
+                    "part"
+                };
+                d = if is_dimension {
+                    Diagnostic::error(p.span, format!("`{dotted}` is a dimension, not a geom"))
+                } else {
+                    Diagnostic::error(p.span, format!("`{prefix}` has no {noun} `{last}`"))
+                };
                 if is_dimension {
-                    d = d
-                        .with_label(format!("`{dotted}` is a dimension, not a geom"))
-                        .with_note(format!(
-                            "constrain it with `{}({prefix}) = ...`",
-                            if last == "radius" {
-                                "radius"
-                            } else if last == "length" {
-                                "length"
-                            } else {
-                                "distance"
-                            }
-                        ));
+                    d = d.with_label("dimensions are not geoms").with_note(format!(
+                        "constrain it with `{}({prefix}) = ...`",
+                        if last == "radius" {
+                            "radius"
+                        } else if last == "length" {
+                            "length"
+                        } else {
+                            "distance"
+                        }
+                    ));
                 } else if let Some(s) = suggest(&last, members.iter().map(String::as_str)) {
                     d = d
                         .with_label(format!("unknown member of {}", g.kind.noun()))
@@ -1408,6 +1418,7 @@ impl<'a> Resolver<'a> {
                 let cycle: Vec<ParamId> = stack[start..].to_vec();
                 if !in_cycle.contains(&id) {
                     in_cycle.extend(cycle.iter().copied());
+                    self.poisoned.extend(cycle.iter().copied());
                     let p = &self.params[id];
                     let mut d = if cycle.len() == 1 {
                         Diagnostic::error(
@@ -1448,26 +1459,33 @@ impl<'a> Resolver<'a> {
         }
         stack.pop();
         state.insert(id, 2);
-        if in_cycle.contains(&id) {
+        if in_cycle.contains(&id) || self.poisoned.contains(&id) {
             return;
         }
         let values: Vec<f64> = self.params.iter().map(|(_, p)| p.default).collect();
         let e = self.params[id].default_expr;
-        if self.spans.contains_key(&e) || self.exprs.is_constant(e) {
-            let v = self.checked_eval(e, &values);
-            self.params[id].default = v;
-            let dim = self.dim(e, &HashMap::new());
-            self.params[id].dim = if dim == Dim::Angle {
-                Dim::Angle
-            } else {
-                Dim::Number
-            };
+        let v = self.checked_eval(e, &values);
+        if !v.is_finite() {
+            self.poisoned.push(id);
         }
+        self.params[id].default = v;
+        let dim = self.dim(e, &HashMap::new());
+        self.params[id].dim = if dim == Dim::Angle {
+            Dim::Angle
+        } else {
+            Dim::Number
+        };
     }
 
     /// Evaluates with the default params and reports the innermost node that turns finite
     /// inputs into a non-finite value: division by zero, a square root of a negative, ...
     fn checked_eval(&mut self, e: ExprId, params: &[f64]) -> f64 {
+        let mut deps = Vec::new();
+        self.exprs.params(e, &mut deps);
+        if deps.iter().any(|d| self.poisoned.contains(d)) {
+            // The param's own definition is reported; do not blame every use of it.
+            return self.exprs.eval(e, params);
+        }
         let mut problem: Option<(ExprId, String)> = None;
         let v = self.eval_find(e, params, &mut problem);
         if let Some((at, msg)) = problem {
@@ -1539,7 +1557,7 @@ impl<'a> Resolver<'a> {
                         fmt_num(self.exprs.eval(*a, params))
                     )
                 }
-                ExprNode::Binary(crate::syntax::BinaryOp::Pow, ..) => {
+                ExprNode::Binary(crate::syntax::BinaryOp::Pow, ..) if v.is_nan() => {
                     "this power is not a real number".to_string()
                 }
                 _ if v.is_nan() => "this expression is not a number (NaN)".to_string(),
@@ -1732,7 +1750,13 @@ impl<'a> Resolver<'a> {
                         }
                     }
                 }
-                d = d.with_note("angle units (`deg`, `rad`) go only on angles");
+                d = if us.is_empty() {
+                    d.with_note(
+                        "a length cannot be computed from an angle param; declare a separate param",
+                    )
+                } else {
+                    d.with_note("angle units (`deg`, `rad`) go only on angles")
+                };
                 self.push(d);
                 continue;
             }
@@ -1772,6 +1796,10 @@ impl<'a> Resolver<'a> {
     }
 
     fn check_unused_params(&mut self) {
+        if self.diags.iter().any(Diagnostic::is_error) {
+            // Uses may sit in statements that failed; the warning would mislead.
+            return;
+        }
         // A param used only by other params' defaults is still used.
         let mut used = self.used_params.clone();
         let ids: Vec<ParamId> = self.params.iter().map(|(id, _)| id).collect();
@@ -1864,9 +1892,11 @@ fn constraint_text(source: &SourceFile, start: usize, end: usize) -> String {
 
 /// The candidate closest to `word` by edit distance, if it is close enough to be a typo.
 pub fn suggest<'c>(word: &str, candidates: impl Iterator<Item = &'c str>) -> Option<&'c str> {
-    let limit = (word.chars().count() / 3).max(1);
+    // One edit in three characters; short names only match up to case.
+    let limit = word.chars().count() / 3;
+    let lower = word.to_lowercase();
     candidates
-        .map(|c| (edit_distance(word, c), c))
+        .map(|c| (edit_distance(&lower, &c.to_lowercase()), c))
         .filter(|&(d, c)| d <= limit && c != word)
         .min_by_key(|&(d, c)| (d, c))
         .map(|(_, c)| c)
@@ -1912,6 +1942,8 @@ mod tests {
         assert_eq!(suggest("distnace", names.iter().copied()), Some("distance"));
         assert_eq!(suggest("zzz", names.iter().copied()), None);
         assert_eq!(edit_distance("ab", "ba"), 1);
+        assert_eq!(suggest("Q", ["P"].iter().copied()), None);
+        assert_eq!(suggest("a", ["A"].iter().copied()), Some("A"));
     }
 
     #[test]
