@@ -312,7 +312,8 @@ pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
     // Distance along u from the first centre, and the half chord by Heron's formula, whose
     // factors are each a sum or difference of inputs (no cancellation near tangency).
     let along = 0.5 * (d + (r1 - r2) * (r1 + r2) / d);
-    let area16 = (d + r1 + r2) * (r1 + r2 - d) * (d - r1 + r2) * (d + r1 - r2);
+    // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last.
+    let area16 = (d + (r1 + r2)) * ((r1 + r2) - d) * (d + (r2 - r1)) * (d + (r1 - r2));
     let h = area16.max(0.0).sqrt() / (2.0 * d);
     let m = a.center() + u * along;
     let v = perp(u);
@@ -441,14 +442,16 @@ fn line_conic_t(l: &Line, c: &Conic) -> (Roots<f64, 2>, Contact, Option<P2>) {
     if qa.abs() > tol::ANGLE * mu2 {
         let t0 = -qb / (2.0 * qa);
         let x0 = l.at(t0);
-        if finite(x0) && f.h(x0) >= -eps_h && curve.residual(x0) <= tol::TANGENT_REL * s {
+        // Far from the inputs (a parabola's arm), rounding grows with the point's magnitude.
+        let sx = s.max(x0.coords.norm());
+        if finite(x0) && f.h(x0) >= -eps_h && curve.residual(x0) <= tol::TANGENT_REL * sx {
             let disc = qb * qb - 4.0 * qa * qc;
             let split = if disc > 0.0 {
                 disc.sqrt() / (2.0 * qa.abs())
             } else {
                 0.0
             };
-            if split <= 1e-4 * s {
+            if split <= 1e-4 * sx {
                 // Move the point onto the curve along the line's normal by half its residual,
                 // so that it is within half the tangency tolerance of both.
                 let (v, g) = curve.value_grad(x0);
@@ -694,7 +697,7 @@ fn param_implicit(a: &Conic, b: Curve<'_>, scale: f64) -> Intersection<P2, 4> {
     let mut tangents: Roots<(f64, f64, P2), 3> = Roots::new(); // (s, t, point)
     for r in crit.as_slice() {
         if let Some((t, x)) = valid(r.x) {
-            if b.residual(x) <= tol::TANGENT_REL * scale {
+            if b.residual(x) <= tol::TANGENT_REL * scale.max(x.coords.norm()) {
                 tangents.push((r.x, t, x));
             }
         }
@@ -706,7 +709,7 @@ fn param_implicit(a: &Conic, b: Curve<'_>, scale: f64) -> Intersection<P2, 4> {
         let absorbed = tangents
             .as_slice()
             .iter()
-            .any(|&(_, _, y)| (x - y).norm() <= 1e-4 * scale);
+            .any(|&(_, _, y)| (x - y).norm() <= 1e-4 * scale.max(y.coords.norm()));
         if absorbed {
             continue;
         }
@@ -800,6 +803,7 @@ pub fn conic_conic(a: &Conic, b: &Conic) -> Intersection<P2, 4> {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
     use crate::locus2d::{centres_line_circle, Ellipse, Hyperbola, Parabola, Sense};

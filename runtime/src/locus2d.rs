@@ -310,8 +310,20 @@ impl Parabola {
     }
 
     /// The implicit function `|p - F| - sd_D(p)`: negative inside (on the focus side).
+    ///
+    /// Evaluated without cancellation far along the arms: with `p - F = a D + b N` and
+    /// `sd_D(p) = k + b`, it is `(a² - k (k + 2b)) / (|p - F| + k + b)`.
     pub fn implicit(&self, p: P2) -> f64 {
-        (p - self.focus).norm() - self.directrix.signed_distance(p)
+        let d = p - self.focus;
+        let k = self.focal_distance();
+        let (a, b) = (self.directrix.dir.dot(&d), self.directrix.normal().dot(&d));
+        let (dist, sd) = (d.norm(), k + b);
+        let den = dist + sd;
+        if den > 0.5 * dist {
+            (a * a - k * (k + 2.0 * b)) / den
+        } else {
+            dist - sd
+        }
     }
 
     /// The distance of `p` from the parabola to first order: the implicit value over the length
@@ -456,9 +468,17 @@ impl Hyperbola {
         (perp(u).dot(&(p - m)) / b).asinh()
     }
 
-    /// The implicit function `|p - F1| - |p - F2| - diff`.
+    /// The implicit function `|p - F1| - |p - F2| - diff`, evaluated without cancellation far
+    /// from the foci as `2 (F2 - F1)·(p - M) / (|p - F1| + |p - F2|) - diff`.
     pub fn implicit(&self, p: P2) -> f64 {
-        (p - self.f1).norm() - (p - self.f2).norm() - self.diff
+        let (d1, d2) = ((p - self.f1).norm(), (p - self.f2).norm());
+        let m = nalgebra::center(&self.f1, &self.f2);
+        let den = d1 + d2;
+        if den > 0.0 {
+            2.0 * (self.f2 - self.f1).dot(&(p - m)) / den - self.diff
+        } else {
+            -self.diff
+        }
     }
 
     /// The distance of `p` from the branch to first order (points near the other branch are
@@ -804,6 +824,7 @@ pub fn centres_line_line(l1: &Line, a1: f64, l2: &Line, a2: f64) -> Option<Line>
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
 

@@ -1,0 +1,330 @@
+//! Properties of the 2d intersection table on random and near-degenerate inputs, at scales from
+//! 1e-6 to 1e6.
+//!
+//! Bounds, relative to the scale `s` of the inputs (largest coordinate or radius):
+//! - transversal roots of line, ray and circle pairs lie on both loci within 1e-13 s; a far
+//!   crossing of nearly parallel lines within 1e-13 of its own distance from the origin;
+//! - roots involving conics within 1e-12 s: their residual is first-order (implicit value over
+//!   gradient), whose evaluation costs a few more roundings than a circle's;
+//! - tangent roots within [`tol::TANGENT_REL`] s of both loci (the classification tolerance).
+#![allow(clippy::unwrap_used)]
+
+use gcs_runtime::intersect2d::*;
+use gcs_runtime::locus2d::*;
+use gcs_runtime::{tol, Contact, Intersection};
+use proptest::prelude::*;
+
+fn p(x: f64, y: f64) -> P2 {
+    P2::new(x, y)
+}
+
+/// A scale 10^e for e in [-6, 6].
+fn scale() -> impl Strategy<Value = f64> {
+    (-6i32..=6).prop_map(|e| 10f64.powi(e))
+}
+
+/// A unit-range value.
+fn u() -> impl Strategy<Value = f64> {
+    -1.0f64..1.0
+}
+
+/// An offset magnitude from 1e-15 to 1e-6 (log-uniform), with a sign.
+fn tiny() -> impl Strategy<Value = f64> {
+    (-15.0f64..-6.0, any::<bool>())
+        .prop_map(|(e, neg)| if neg { -(10f64.powf(e)) } else { 10f64.powf(e) })
+}
+
+fn count_matches<const N: usize>(i: &Intersection<P2, N>) -> bool {
+    match i.contact {
+        Contact::Crossing => !i.roots.is_empty(),
+        Contact::Tangent => i.roots.len() >= 2,
+        _ => i.roots.is_empty(),
+    }
+}
+
+fn check_roots<const N: usize>(
+    i: &Intersection<P2, N>,
+    s: f64,
+    transversal: f64,
+    ra: impl Fn(P2) -> f64,
+    rb: impl Fn(P2) -> f64,
+) -> Result<(), TestCaseError> {
+    prop_assert!(count_matches(i), "{i:?}");
+    for &x in i.roots.as_slice() {
+        // Relative to the inputs' scale, or to the root's own magnitude when it lies farther out
+        // (a parabola's arm): its coordinates carry rounding relative to that.
+        let m = s.max(x.coords.norm());
+        let b = match i.contact {
+            Contact::Tangent => tol::TANGENT_REL * m,
+            _ => transversal * m,
+        };
+        prop_assert!(
+            ra(x) <= b && rb(x) <= b,
+            "{x} {:e} {:e} bound {b:e} {i:?}",
+            ra(x),
+            rb(x)
+        );
+    }
+    Ok(())
+}
+
+fn circle_at(s: f64, x: f64, y: f64, r: f64) -> Circle {
+    Circle::new(p(x * s, y * s), r.abs() * s).unwrap()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn circle_circle_roots_on_both(s in scale(), x1 in u(), y1 in u(), r1 in 0.05f64..1.0,
+                                   x2 in u(), y2 in u(), r2 in 0.05f64..1.0) {
+        let (a, b) = (circle_at(s, x1, y1, r1), circle_at(s, x2, y2, r2));
+        let i = circle_circle(&a, &b);
+        check_roots(&i, s, 1e-13, |x| a.residual(x), |x| b.residual(x))?;
+        if i.contact == Contact::Crossing {
+            // Branch 0 is left of the line of centres.
+            let l = Line::through(a.center(), b.center()).unwrap();
+            prop_assert!(l.signed_distance(i.branch(0).unwrap()) >= 0.0);
+            prop_assert!(l.signed_distance(i.branch(1).unwrap()) <= 0.0);
+        }
+        // Scaling by a power of two scales the answer exactly.
+        let k = 1024.0;
+        let (ak, bk) = (circle_at(s * k, x1, y1, r1), circle_at(s * k, x2, y2, r2));
+        let ik = circle_circle(&ak, &bk);
+        prop_assert_eq!(i.roots.len(), ik.roots.len());
+        for (x, xk) in i.roots.as_slice().iter().zip(ik.roots.as_slice()) {
+            prop_assert_eq!(*x * k, *xk);
+        }
+    }
+
+    #[test]
+    fn circle_circle_near_tangency(s in scale(), x1 in u(), y1 in u(), r1 in 0.05f64..1.0,
+                                   r2 in 0.05f64..1.0, angle in -3.2f64..3.2,
+                                   delta in tiny(), internal in any::<bool>()) {
+        let d = if internal { (r1 - r2).abs() } else { r1 + r2 } + delta;
+        prop_assume!(d > 0.0);
+        let a = circle_at(s, x1, y1, r1);
+        let b = Circle::new(a.center() + V2::new(angle.cos(), angle.sin()) * (d * s), r2 * s).unwrap();
+        let i = circle_circle(&a, &b);
+        check_roots(&i, s, 1e-13, |x| a.residual(x), |x| b.residual(x))?;
+        // The true gap is `delta` (external) or `-delta` (internal), up to rounding of the
+        // centre coordinates.
+        let gap = if internal { -delta } else { delta } * s;
+        let noise = 1e-14 * s;
+        let t = tol::TANGENT_REL * tol::scale(&[a.center().x, a.center().y, b.center().x, b.center().y, r1 * s, r2 * s]);
+        match i.contact {
+            Contact::Tangent => prop_assert!(gap.abs() <= t + noise),
+            Contact::Disjoint { gap: g } => prop_assert!(gap > t - noise && (g - gap).abs() <= noise),
+            Contact::Crossing => prop_assert!(gap < -t + noise),
+            c => prop_assert!(false, "{c:?}"),
+        }
+    }
+
+    #[test]
+    fn circle_circle_nearly_coincident(s in scale(), x1 in u(), y1 in u(), r in 0.05f64..1.0,
+                                       dx in tiny(), dr in tiny()) {
+        let a = circle_at(s, x1, y1, r);
+        let b = Circle::new(a.center() + V2::new(dx * s, 0.0), (r + dr) * s).unwrap();
+        let i = circle_circle(&a, &b);
+        check_roots(&i, s, 1e-13, |x| a.residual(x), |x| b.residual(x))?;
+    }
+
+    #[test]
+    fn circle_circle_branches_are_stable(s in scale(), x1 in u(), y1 in u(), r1 in 0.2f64..1.0,
+                                         x2 in u(), y2 in u(), r2 in 0.2f64..1.0,
+                                         ex in u(), ey in u()) {
+        let (a, b) = (circle_at(s, x1, y1, r1), circle_at(s, x2, y2, r2));
+        let i = circle_circle(&a, &b);
+        prop_assume!(i.contact == Contact::Crossing);
+        let (l, r) = (i.branch(0).unwrap(), i.branch(1).unwrap());
+        prop_assume!((l - r).norm() > 1e-3 * s);
+        let b2 = Circle::new(b.center() + V2::new(ex, ey) * (1e-7 * s), b.radius()).unwrap();
+        let j = circle_circle(&a, &b2);
+        prop_assert_eq!(j.contact, Contact::Crossing);
+        prop_assert_eq!(nearest(&j.roots, l), Some(0));
+        prop_assert_eq!(nearest(&j.roots, r), Some(1));
+    }
+
+    #[test]
+    fn line_circle_roots_and_branches(s in scale(), px in u(), py in u(), angle in -3.2f64..3.2,
+                                      cx in u(), cy in u(), r in 0.05f64..1.0, e in u()) {
+        let l = Line::new(p(px * s, py * s), V2::new(angle.cos(), angle.sin())).unwrap();
+        let c = circle_at(s, cx, cy, r);
+        let i = line_circle(&l, &c);
+        check_roots(&i, s, 1e-13, |x| l.residual(x), |x| c.residual(x))?;
+        if i.contact == Contact::Crossing {
+            let (a, b) = (i.branch(0).unwrap(), i.branch(1).unwrap());
+            prop_assert!(l.param_of(a) < l.param_of(b));
+            if (a - b).norm() > 1e-3 * s {
+                let l2 = Line::new(l.point() + l.normal() * (1e-7 * s * e), V2::new((angle + 1e-9).cos(), (angle + 1e-9).sin())).unwrap();
+                let j = line_circle(&l2, &c);
+                prop_assert_eq!(nearest(&j.roots, a), Some(0));
+                prop_assert_eq!(nearest(&j.roots, b), Some(1));
+            }
+        }
+        // The ray from the line's point keeps the line's slots.
+        let ray = Ray::new(l.point(), l.dir()).unwrap();
+        let ri = ray_circle(&ray, &c);
+        if !ri.roots.is_empty() {
+            prop_assert_eq!(ri.roots.len(), i.roots.len());
+            for (slot, x) in ri.roots.as_slice().iter().zip(i.roots.as_slice()) {
+                if let Some(y) = slot {
+                    prop_assert_eq!(y, x);
+                    prop_assert!(l.param_of(*x) >= -1e-13 * s);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn line_circle_near_tangency(s in scale(), cx in u(), cy in u(), r in 0.05f64..1.0,
+                                 angle in -3.2f64..3.2, delta in tiny()) {
+        let c = circle_at(s, cx, cy, r);
+        let n = V2::new(-angle.sin(), angle.cos());
+        let l = Line::new(c.center() - n * ((r + delta) * s), V2::new(angle.cos(), angle.sin())).unwrap();
+        let i = line_circle(&l, &c);
+        check_roots(&i, s, 1e-13, |x| l.residual(x), |x| c.residual(x))?;
+        let t = tol::TANGENT_REL
+            * tol::scale(&[l.point().x, l.point().y, c.center().x, c.center().y, c.radius()]);
+        match i.contact {
+            Contact::Tangent => prop_assert!(delta.abs() * s <= 2.0 * t),
+            Contact::Disjoint { .. } => prop_assert!(delta * s > 0.5 * t),
+            Contact::Crossing => prop_assert!(delta * s < -0.5 * t),
+            other => prop_assert!(false, "{other:?}"),
+        }
+    }
+
+    #[test]
+    fn nearly_parallel_lines(s in scale(), px in u(), py in u(), angle in -3.2f64..3.2,
+                             gap in u(), tilt in tiny()) {
+        let a = Line::new(p(px * s, py * s), V2::new(angle.cos(), angle.sin())).unwrap();
+        let b = Line::new(a.point() + a.normal() * (gap * s), V2::new((angle + tilt).cos(), (angle + tilt).sin())).unwrap();
+        let i = line_line(&a, &b);
+        prop_assert!(count_matches(&i));
+        if let Some(x) = i.branch(0) {
+            let m = s.max(x.coords.norm());
+            prop_assert!(a.residual(x) <= 1e-13 * m && b.residual(x) <= 1e-13 * m,
+                "{x} {:e} {:e}", a.residual(x), b.residual(x));
+        } else {
+            let parallel = matches!(i.contact, Contact::Parallel { .. } | Contact::Coincident);
+            prop_assert!(parallel, "{:?}", i);
+        }
+        // Rays along them agree with the lines where they cross.
+        let (ra, rb) = (Ray::new(a.point(), a.dir()).unwrap(), Ray::new(b.point(), b.dir()).unwrap());
+        let j = ray_ray(&ra, &rb);
+        prop_assert!(j.roots.len() <= 1);
+        let k = line_ray(&a, &rb);
+        prop_assert!(k.roots.len() <= 1);
+    }
+}
+
+/// A random conic of each kind at scale `s`.
+fn conic(kind: u8, s: f64, a: f64, b: f64, c: f64, d: f64, e: f64) -> Option<Conic> {
+    let f1 = p(a * s, b * s);
+    match kind % 3 {
+        0 => {
+            let dir = V2::new(c.cos(), c.sin());
+            let l = Line::new(f1 + perp(dir) * (-(0.1 + d.abs()) * s), dir)?;
+            Parabola::new(f1, l).map(Conic::from)
+        }
+        1 => {
+            let f2 = p(c * s, d * s);
+            Ellipse::new(f1, f2, (f2 - f1).norm() + (0.1 + e.abs()) * s).map(Conic::from)
+        }
+        _ => {
+            let f2 = p(c * s, d * s + 0.2 * s);
+            Hyperbola::new(f1, f2, (f2 - f1).norm() * e * 0.95).map(Conic::from)
+        }
+    }
+}
+
+fn conic_strategy() -> impl Strategy<Value = (u8, f64, f64, f64, f64, f64)> {
+    (0u8..3, u(), u(), -3.2f64..3.2, u(), u())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn line_conic_roots_on_both(s in scale(), (kind, a, b, c, d, e) in conic_strategy(),
+                                px in u(), py in u(), angle in -3.2f64..3.2) {
+        let Some(k) = conic(kind, s, a, b, c, d, e) else { return Ok(()) };
+        let l = Line::new(p(px * s, py * s), V2::new(angle.cos(), angle.sin())).unwrap();
+        let i = line_conic(&l, &k);
+        check_roots(&i, 3.5 * s, 1e-12, |x| l.residual(x), |x| k.residual(x))?;
+        if i.roots.len() == 2 && i.contact == Contact::Crossing {
+            prop_assert!(l.param_of(i.branch(0).unwrap()) < l.param_of(i.branch(1).unwrap()));
+        }
+    }
+
+    #[test]
+    fn line_conic_near_tangency(s in scale(), (kind, a, b, c, d, e) in conic_strategy(),
+                                t in u(), delta in tiny()) {
+        let Some(k) = conic(kind, s, a, b, c, d, e) else { return Ok(()) };
+        // The tangent at a point of the conic, moved off by delta along the normal.
+        // A parabola's parameter is a length: scale it.
+        let (t, h) = if kind % 3 == 0 { (t * s, 1e-6 * s) } else { (t, 1e-6) };
+        let x = k.at(t);
+        let tan = (k.at(t + h) - k.at(t - h)).normalize();
+        let l = Line::new(x + perp(tan) * (delta * s), tan).unwrap();
+        let i = line_conic(&l, &k);
+        check_roots(&i, 3.5 * s, 1e-12, |x| l.residual(x), |x| k.residual(x))?;
+    }
+
+    #[test]
+    fn circle_conic_roots_on_both(s in scale(), (kind, a, b, c, d, e) in conic_strategy(),
+                                  cx in u(), cy in u(), r in 0.05f64..1.5) {
+        let Some(k) = conic(kind, s, a, b, c, d, e) else { return Ok(()) };
+        let circ = circle_at(s, cx, cy, r);
+        let i = circle_conic(&circ, &k);
+        check_roots(&i, 3.5 * s, 1e-12, |x| circ.residual(x), |x| k.residual(x))?;
+        // Ordered by the conic's parameter.
+        let ts: Vec<f64> = i.roots.as_slice().iter().map(|&x| k.param_of(x)).collect();
+        prop_assert!(ts.windows(2).all(|w| w[0] <= w[1] + 1e-9), "{ts:?}");
+    }
+
+    #[test]
+    fn circle_conic_near_tangency(s in scale(), (kind, a, b, c, d, e) in conic_strategy(),
+                                  t in u(), r in 0.05f64..1.5, delta in tiny()) {
+        let Some(k) = conic(kind, s, a, b, c, d, e) else { return Ok(()) };
+        // A circle touching the conic at X(t) from its normal side, moved by delta.
+        // A parabola's parameter is a length: scale it.
+        let (t, h) = if kind % 3 == 0 { (t * s, 1e-6 * s) } else { (t, 1e-6) };
+        let x = k.at(t);
+        let tan = (k.at(t + h) - k.at(t - h)).normalize();
+        let circ = Circle::new(x + perp(tan) * ((r + delta) * s), r * s).unwrap();
+        let i = circle_conic(&circ, &k);
+        check_roots(&i, 3.5 * s, 1e-12, |x| circ.residual(x), |x| k.residual(x))?;
+    }
+
+    #[test]
+    fn conic_conic_roots_on_both(s in scale(), (k1, a, b, c, d, e) in conic_strategy(),
+                                 (k2, a2, b2, c2, d2, e2) in conic_strategy()) {
+        let Some(ka) = conic(k1, s, a, b, c, d, e) else { return Ok(()) };
+        let Some(kb) = conic(k2, s, a2, b2, c2, d2, e2) else { return Ok(()) };
+        let i = conic_conic(&ka, &kb);
+        check_roots(&i, 3.5 * s, 1e-12, |x| ka.residual(x), |x| kb.residual(x))?;
+        let ts: Vec<f64> = i.roots.as_slice().iter().map(|&x| ka.param_of(x)).collect();
+        prop_assert!(ts.windows(2).all(|w| w[0] <= w[1] + 1e-9), "{ts:?}");
+    }
+
+    #[test]
+    fn conic_branches_are_stable(s in scale(), (kind, a, b, c, d, e) in conic_strategy(),
+                                 cx in u(), cy in u(), r in 0.05f64..1.5, ex in u(), ey in u()) {
+        let Some(k) = conic(kind, s, a, b, c, d, e) else { return Ok(()) };
+        let circ = circle_at(s, cx, cy, r);
+        let i = circle_conic(&circ, &k);
+        prop_assume!(i.contact == Contact::Crossing && i.roots.len() >= 2);
+        let xs = i.roots.as_slice();
+        let sep = xs.windows(2).map(|w| (w[0] - w[1]).norm()).fold(f64::INFINITY, f64::min);
+        prop_assume!(sep > 1e-3 * s);
+        // Ellipse parameters wrap at π: stay away from it.
+        prop_assume!(xs.iter().all(|&x| (k.param_of(x).abs() - std::f64::consts::PI).abs() > 1e-3));
+        let c2 = Circle::new(circ.center() + V2::new(ex, ey) * (1e-9 * s), circ.radius()).unwrap();
+        let j = circle_conic(&c2, &k);
+        prop_assert_eq!(j.roots.len(), i.roots.len());
+        for (n, &x) in xs.iter().enumerate() {
+            prop_assert_eq!(nearest(&j.roots, x), Some(n));
+        }
+    }
+}
