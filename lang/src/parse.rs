@@ -208,9 +208,13 @@ fn describe_rule(rule: Rule) -> &'static str {
         Rule::unit => "a unit (`deg` or `rad`)",
         Rule::space_dim => "`2d` or `3d`",
         Rule::tuple => "a coordinate tuple such as `(0, 0)`",
-        Rule::spec | Rule::tagged | Rule::spec_value | Rule::spec_tag | Rule::arrow => {
-            "a coordinate tuple or a value"
-        }
+        Rule::spec
+        | Rule::tagged
+        | Rule::spec_value
+        | Rule::spec_tag
+        | Rule::point_tag
+        | Rule::tuple_value
+        | Rule::arrow => "a coordinate tuple or a value",
         Rule::member => "a member declaration (`point`, `vector` or `marker`)",
         Rule::at_clause | Rule::kw_at => "`at`",
         Rule::rotated_clause | Rule::kw_rotated => "`rotated`",
@@ -585,7 +589,10 @@ impl Builder<'_> {
 
     fn spec_value(&mut self, pair: Pair<'_, Rule>) -> SpecValue {
         let span = self.span(&pair);
-        let inner = pair.into_inner().next();
+        let mut inner = pair.into_inner().next();
+        if let Some(p) = inner.clone().filter(|p| p.as_rule() == Rule::tuple_value) {
+            inner = p.into_inner().next();
+        }
         match inner {
             Some(p) if p.as_rule() == Rule::tuple => {
                 let tspan = self.span(&p);

@@ -1,0 +1,208 @@
+//! `gcs check` end to end: the summary of every example, errors on stderr with a non-zero exit,
+//! and a missing file.
+
+use expect_test::{expect, Expect};
+use std::path::Path;
+use std::process::Command;
+
+/// Runs `gcs check` on a path (relative to the workspace root) and returns exit code, stdout
+/// and stderr.
+fn gcs_check(path: &str) -> (i32, String, String) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
+        .current_dir(&root)
+        .args(["check", path])
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("run gcs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn check_example(name: &str, expected: Expect) {
+    let (code, stdout, stderr) = gcs_check(&format!("examples/{name}.gcs"));
+    assert_eq!(code, 0, "stderr: {stderr}");
+    assert_eq!(stderr, "");
+    expected.assert_eq(&stdout);
+}
+
+#[test]
+fn fourbar() {
+    check_example(
+        "fourbar",
+        expect![[r#"
+        examples/fourbar.gcs: space 2d, 2 params, 6 geoms, 5 constraints
+
+        geoms                    DOF
+          A        fixed point     0
+          D        fixed point     0
+          X        fixed vector    0
+          crank    body            3   members: a, b, u
+          coupler  body            3   members: b, c
+          rocker   body            3   members: d, c
+
+        constraints                                                      removes
+          coincident_crank_a_A          coincident(crank.a, A)                 2
+          drive                         angle(X, crank.u) = theta              1
+          coincident_crank_b_coupler_b  coincident(crank.b, coupler.b)         2
+          elbow                         coincident(coupler.c, rocker.c)        2
+          coincident_rocker_d_D         coincident(rocker.d, D)                2
+
+        nominal DOF: 9 - 9 = 0
+          (a count of equations against unknowns, not the analysis: it cannot see redundant constraints or which motions stay free)
+    "#]],
+    );
+}
+
+#[test]
+fn brick() {
+    check_example(
+        "brick",
+        expect![[r#"
+        examples/brick.gcs: space 3d, 0 params, 4 geoms, 3 constraints
+
+        geoms                 DOF
+          g1     fixed point    0
+          g2     fixed point    0
+          g3     fixed point    0
+          brick  body           6   members: b1, b2, b3
+
+        constraints                                         removes
+          coincident_brick_b1_g1  coincident(brick.b1, g1)        3
+          coincident_brick_b2_g2  coincident(brick.b2, g2)        3
+          coincident_brick_b3_g3  coincident(brick.b3, g3)        3
+
+        nominal DOF: 6 - 9 = -3
+          (a count of equations against unknowns, not the analysis: it cannot see redundant constraints or which motions stay free)
+    "#]],
+    );
+}
+
+#[test]
+fn circle() {
+    check_example(
+        "circle",
+        expect![[r#"
+        examples/circle.gcs: space 2d, 0 params, 5 geoms, 5 constraints
+
+        geoms                 DOF
+          C     fixed circle    0
+          L     fixed line      0
+          P     fixed point     0
+          Ls    segment         4
+          G     circle          3
+
+        constraints                                            removes
+          length_Ls              length(Ls) = 3                      1
+          coincident_Ls_start_P  coincident(Ls.start, P)             2
+          meet                   coincident(Ls.end, G.center)        2
+          tangent_L_G            tangent(L, G)                       1
+          tangent_C_G            tangent(C, G)                       1
+
+        nominal DOF: 7 - 7 = 0
+          (a count of equations against unknowns, not the analysis: it cannot see redundant constraints or which motions stay free)
+    "#]],
+    );
+}
+
+#[test]
+fn slider_crank() {
+    check_example(
+        "slider_crank",
+        expect![[r#"
+        examples/slider_crank.gcs: space 3d, 1 param, 4 geoms, 5 constraints
+
+        geoms                 DOF
+          ground  fixed body    0   members: o, rail
+          arm     body          6   members: o, tip
+          rod     body          6   members: a, b
+          slider  body          6   members: s, pin
+
+        constraints                                                         removes
+          revolute_arm_o_ground_o         revolute(arm.o, ground.o)               5
+          offset_x_ground_o_arm_o         offset_x(ground.o, arm.o) = phi         3
+          revolute_arm_tip_rod_a          revolute(arm.tip, rod.a)                5
+          revolute_rod_b_slider_pin       revolute(rod.b, slider.pin)             5
+          prismatic_slider_s_ground_rail  prismatic(slider.s, ground.rail)        5
+
+        nominal DOF: 18 - 23 = -5
+          (a count of equations against unknowns, not the analysis: it cannot see redundant constraints or which motions stay free)
+    "#]],
+    );
+}
+
+#[test]
+fn points_planes() {
+    check_example(
+        "points_planes",
+        expect![[r#"
+        examples/points_planes.gcs: space 3d, 0 params, 6 geoms, 12 constraints
+
+        geoms          DOF
+          p1    point    3
+          p2    point    3
+          P3    plane    3
+          P4    plane    3
+          p5    point    3
+          p6    point    3
+
+        constraints                                       removes
+          distance_p1_P3  distance(p1, P3) = 0                  1
+          distance_p1_P4  distance(p1, P4) = -5                 1
+          distance_p2_P4  distance(p2, P4) = -16/5              1
+          distance_p2_P3  distance(p2, P3) = 4                  1
+          distance_p1_p2  distance(p1, p2) = 5                  1
+          distance_p1_p5  distance(p1, p5) = 2 * sqrt(3)        1
+          distance_p5_P4  distance(p5, P4) = -11/5              1
+          distance_p6_P4  distance(p6, P4) = -3/5               1
+          distance_p2_p6  distance(p2, p6) = sqrt(19)           1
+          distance_p5_P3  distance(p5, P3) = 2                  1
+          distance_p6_P3  distance(p6, P3) = 1                  1
+          distance_p5_p6  distance(p5, p6) = 3 * sqrt(2)        1
+
+        nominal DOF: 18 - 12 = 6
+          (a count of equations against unknowns, not the analysis: it cannot see redundant constraints or which motions stay free)
+    "#]],
+    );
+}
+
+#[test]
+fn errors_go_to_stderr_with_exit_code_1() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("bad.gcs");
+    std::fs::write(
+        &file,
+        "space 2d;\npoint P = (0, 0)\npoint Q = (1, 0);\ncoincident(P, R);\n",
+    )
+    .expect("write");
+    let (code, stdout, stderr) = gcs_check(file.to_str().expect("utf-8 path"));
+    assert_eq!(code, 1);
+    assert_eq!(stdout, "");
+    let stderr = stderr.replace(file.to_str().expect("path"), "bad.gcs");
+    expect![[r#"
+        error: expected `;`, found `point`
+          ┌─ bad.gcs:2:17
+          │
+        2 │ point P = (0, 0)
+          │                 ^ add `;` here
+        3 │ point Q = (1, 0);
+          │ ----- unexpected here
+
+        error: could not check `bad.gcs` due to 1 previous error
+    "#]]
+    .assert_eq(&stderr);
+}
+
+#[test]
+fn missing_file_is_a_clear_error() {
+    let (code, stdout, stderr) = gcs_check("examples/no_such_model.gcs");
+    assert_eq!(code, 2);
+    assert_eq!(stdout, "");
+    expect![[r#"
+        error: cannot read `examples/no_such_model.gcs`: No such file or directory (os error 2)
+    "#]]
+    .assert_eq(&stderr);
+}
