@@ -567,7 +567,14 @@ impl Builder<'_> {
                 Rule::arrow => SpecPart::Arrow(self.span(&p)),
                 Rule::tagged => {
                     let mut t = p.into_inner();
-                    let tag = t.next().map(|t| self.ident(t));
+                    let tag = t.next().map(|t| {
+                        // `point_tag` includes the blanks before its `(`.
+                        let mut id = self.ident(t);
+                        let word = id.text.trim_end().len();
+                        id.text.truncate(word);
+                        id.span = Span::new(id.span.start, id.span.start + word);
+                        id
+                    });
                     let value = t.next().map(|v| self.spec_value(v));
                     match (tag, value) {
                         (Some(tag), Some(value)) => SpecPart::Tagged { tag, value },

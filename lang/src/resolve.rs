@@ -108,6 +108,11 @@ enum VectorCheck {
         x: Coords,
         span: Span,
     },
+    NonNegative {
+        value: ExprId,
+        span: Span,
+        what: &'static str,
+    },
 }
 
 struct Resolver<'a> {
@@ -837,6 +842,9 @@ impl<'a> Resolver<'a> {
                 }
                 let center = self.coords(c, "the centre");
                 let radius = self.scalar(r, Need::Length, "the radius");
+                if let Some(value) = radius {
+                    self.vector_checks.push(VectorCheck::NonNegative { value, span: r.span(), what: "radius" });
+                }
                 let normal = match tagged.get("normal") {
                     Some(v) => {
                         let c = self.coords(v, "the normal");
@@ -1607,6 +1615,15 @@ impl<'a> Resolver<'a> {
                         )
                         .with_label("the direction is undefined")
                         .with_note(format!("sketch the {what} with two distinct points"));
+                        self.push(d);
+                    }
+                }
+                VectorCheck::NonNegative { value, span, what } => {
+                    let v = self.exprs.eval(value, &values);
+                    if v < 0.0 {
+                        let d = Diagnostic::error(span, format!("negative {what}"))
+                            .with_label(format!("this is {}", fmt_num(v)))
+                            .with_note(format!("a {what} is a length, zero or more"));
                         self.push(d);
                     }
                 }

@@ -747,6 +747,23 @@ fn zero_length_line() {
 }
 
 #[test]
+fn negative_radius() {
+    check(
+        "space 2d;\ncircle C = center (0, 0) radius -2;\n",
+        expect![[r#"
+            error: negative radius
+              ┌─ model.gcs:2:33
+              │
+            2 │ circle C = center (0, 0) radius -2;
+              │                                 ^^ this is -2
+              │
+              = a radius is a length, zero or more
+
+        "#]],
+    );
+}
+
+#[test]
 fn zero_normal() {
     check(
         "space 3d;\nplane Q = normal (0, 0, 0) offset 1;\n",
