@@ -575,7 +575,7 @@ pub fn circle_circle(a: &Circle3, b: &Circle3) -> Intersection<Point3<f64>, 2> {
     let mut n = 0;
     let mut gap = f64::INFINITY;
     for x in pts_a.iter().take(ka).chain(pts_b.iter().take(kb)) {
-        let (pa, pb) = refine_on_circles(a, b, x);
+        let (pa, pb) = refine_on_circles(a, b, x, tt);
         let d = (pa - pb).norm();
         if d <= tt {
             if let Some(slot) = acc.get_mut(n) {
@@ -654,12 +654,21 @@ fn project_on_circle(c: &Circle3, x: &Point3<f64>) -> Point3<f64> {
 }
 
 /// Alternating projections from `x`: a point of `a` and its nearest point of `b`, after a few
-/// rounds that pull them towards a common point (or a locally nearest pair).
+/// rounds that pull them towards a common point (or a locally nearest pair). Stops as soon as
+/// the two are within `tt`.
 #[inline]
-fn refine_on_circles(a: &Circle3, b: &Circle3, x: &Point3<f64>) -> (Point3<f64>, Point3<f64>) {
+fn refine_on_circles(
+    a: &Circle3,
+    b: &Circle3,
+    x: &Point3<f64>,
+    tt: f64,
+) -> (Point3<f64>, Point3<f64>) {
     let mut pa = project_on_circle(a, x);
     let mut pb = project_on_circle(b, &pa);
     for _ in 0..3 {
+        if (pa - pb).norm() <= tt {
+            break;
+        }
         pa = project_on_circle(a, &pb);
         pb = project_on_circle(b, &pa);
     }
