@@ -728,3 +728,85 @@ pub fn depth(e: &Expr) -> usize {
         ExprKind::Call(_, args) => 1 + args.iter().map(depth).max().unwrap_or(0),
     }
 }
+
+/// Evaluates one expression of the language given as text, such as a `--set` value, with the
+/// model's params at their defaults. A unit makes it an angle (radians); a bare number is
+/// itself.
+pub fn eval_expression(model: &crate::Model, text: &str) -> Result<f64, String> {
+    if text.len() > 4096 {
+        return Err("expression too long".into());
+    }
+    if text.bytes().filter(|&b| b == b'(').count() > MAX_NESTING {
+        return Err("expression nested too deeply".into());
+    }
+    let mut pairs = GcsParser::parse(Rule::single_expr, text).map_err(|e| {
+        let (d, _) = syntax_error(text, Span::new(0, text.len()), &e);
+        d.message
+    })?;
+    let expr_pair = pairs
+        .next()
+        .and_then(|p| p.into_inner().find(|p| p.as_rule() == Rule::expr))
+        .ok_or_else(|| "empty expression".to_string())?;
+    let mut diags = Vec::new();
+    let e = Builder {
+        offset: 0,
+        diags: &mut diags,
+    }
+    .expr(expr_pair);
+    if let Some(d) = diags.first() {
+        return Err(d.message.clone());
+    }
+    let v = eval_syntax(model, &e)?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("`{text}` is not a finite number"))
+    }
+}
+
+fn eval_syntax(model: &crate::Model, e: &Expr) -> Result<f64, String> {
+    Ok(match &e.kind {
+        ExprKind::Number(v) => *v,
+        ExprKind::BadNumber(t) => return Err(format!("malformed number `{t}`")),
+        ExprKind::Pi => std::f64::consts::PI,
+        ExprKind::Path(p) => {
+            let name = p.dotted();
+            let id = model
+                .param_named(&name)
+                .ok_or_else(|| format!("unknown param `{name}`"))?;
+            model.params[id].default
+        }
+        ExprKind::Neg(a) => -eval_syntax(model, a)?,
+        ExprKind::Paren(a) => eval_syntax(model, a)?,
+        ExprKind::Unit(a, u, _) => {
+            let v = eval_syntax(model, a)?;
+            match u {
+                AngleUnit::Deg => v.to_radians(),
+                AngleUnit::Rad => v,
+            }
+        }
+        ExprKind::Binary(op, a, b) => {
+            let (x, y) = (eval_syntax(model, a)?, eval_syntax(model, b)?);
+            match op {
+                BinaryOp::Add => x + y,
+                BinaryOp::Sub => x - y,
+                BinaryOp::Mul => x * y,
+                BinaryOp::Div => x / y,
+                BinaryOp::Pow => x.powf(y),
+            }
+        }
+        ExprKind::Call(name, args) => {
+            let f = crate::expr::Func::from_name(&name.text)
+                .ok_or_else(|| format!("unknown function `{}`", name.text))?;
+            if args.len() != f.arity() {
+                return Err(format!("`{}` takes {} arguments", f.name(), f.arity()));
+            }
+            let a = eval_syntax(model, &args[0])?;
+            let b = match args.get(1) {
+                Some(b) => eval_syntax(model, b)?,
+                None => 0.0,
+            };
+            f.apply(a, b)
+        }
+    })
+}

@@ -843,7 +843,11 @@ impl<'a> Resolver<'a> {
                 let center = self.coords(c, "the centre");
                 let radius = self.scalar(r, Need::Length, "the radius");
                 if let Some(value) = radius {
-                    self.vector_checks.push(VectorCheck::NonNegative { value, span: r.span(), what: "radius" });
+                    self.vector_checks.push(VectorCheck::NonNegative {
+                        value,
+                        span: r.span(),
+                        what: "radius",
+                    });
                 }
                 let normal = match tagged.get("normal") {
                     Some(v) => {

@@ -26,6 +26,31 @@ enum Command {
         /// The .gcs file.
         file: PathBuf,
     },
+    /// Solve a model with the interpreter and print every geom's configuration.
+    Solve {
+        /// The .gcs file.
+        file: PathBuf,
+        /// Set a param: `NAME=EXPR`, units allowed (`theta=45deg`); a bare number for an angle
+        /// is radians.
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// Choose a branch: `NAME=INDEX` (see `gcs explain` for what each index means).
+        #[arg(long = "branch", value_name = "NAME=INDEX")]
+        branch: Vec<String>,
+        /// Print one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Print the assembly plan as steps a person can follow.
+    Explain {
+        /// The .gcs file.
+        file: PathBuf,
+    },
+    /// Print the plan's stable text dump.
+    Plan {
+        /// The .gcs file.
+        file: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
@@ -39,7 +64,155 @@ fn main() -> ExitCode {
     };
     match cli.command {
         Command::Check { file } => check(&file, color),
+        Command::Solve {
+            file,
+            set,
+            branch,
+            json,
+        } => solve(&file, &set, &branch, json, color),
+        Command::Explain { file } => with_analysis(&file, color, |model, a| {
+            print!("{}", gcs_compiler::explain::explain(model, a));
+            ExitCode::SUCCESS
+        }),
+        Command::Plan { file } => with_analysis(&file, color, |model, a| {
+            print!("{}", a.plan.dump(model));
+            ExitCode::SUCCESS
+        }),
     }
+}
+
+/// Loads and analyses a model, reporting problems; runs `then` on a model that can be solved.
+fn with_analysis(
+    path: &PathBuf,
+    color: termcolor::ColorChoice,
+    then: impl FnOnce(&gcs_lang::Model, &gcs_compiler::analysis::Analysis) -> ExitCode,
+) -> ExitCode {
+    let Some(model) = load(path, color) else {
+        return ExitCode::FAILURE;
+    };
+    let analysis = match gcs_compiler::analysis::analyse(&model) {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let problems = gcs_compiler::report::problems(&model, &analysis);
+    if !problems.is_empty() {
+        emit(&model.source, &problems, color);
+        if problems.iter().any(|d| d.is_error()) {
+            eprintln!("error: `{}` has no complete plan", path.display());
+            return ExitCode::FAILURE;
+        }
+    }
+    then(&model, &analysis)
+}
+
+/// Reads and resolves a model, printing its diagnostics; `None` when it has errors.
+fn load(path: &PathBuf, color: termcolor::ColorChoice) -> Option<gcs_lang::Model> {
+    let name = path.display().to_string();
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            eprintln!("error: cannot read `{name}`: {e}");
+            return None;
+        }
+    };
+    let (source, model, diags) = gcs_lang::load(&name, &bytes);
+    emit(&source, &diags, color);
+    if model.is_none() {
+        let errors = diags.iter().filter(|d| d.is_error()).count();
+        eprintln!(
+            "error: could not load `{name}` due to {errors} previous error{}",
+            if errors == 1 { "" } else { "s" }
+        );
+    }
+    model
+}
+
+fn solve(
+    path: &PathBuf,
+    set: &[String],
+    branch: &[String],
+    json: bool,
+    color: termcolor::ColorChoice,
+) -> ExitCode {
+    with_analysis(path, color, |model, analysis| {
+        let mut params = model.default_params();
+        for s in set {
+            let Some((name, value)) = s.split_once('=') else {
+                eprintln!("error: `--set {s}`: expected NAME=VALUE");
+                return ExitCode::from(2);
+            };
+            let Some(id) = model.param_named(name.trim()) else {
+                let names: Vec<&str> = model.params.iter().map(|(_, p)| p.name.as_str()).collect();
+                eprintln!(
+                    "error: `--set {s}`: no param `{}`; the params are: {}",
+                    name.trim(),
+                    names.join(", ")
+                );
+                return ExitCode::from(2);
+            };
+            match gcs_lang::parse::eval_expression(model, value) {
+                Ok(v) => params[id.into_raw().into_u32() as usize] = v,
+                Err(e) => {
+                    eprintln!("error: `--set {s}`: {e}");
+                    return ExitCode::from(2);
+                }
+            }
+        }
+        let mut branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
+        for b in branch {
+            let parsed = b
+                .split_once('=')
+                .and_then(|(n, i)| Some((n.trim(), i.trim().parse::<usize>().ok()?)));
+            let Some((name, index)) = parsed else {
+                eprintln!("error: `--branch {b}`: expected NAME=INDEX");
+                return ExitCode::from(2);
+            };
+            match analysis.plan.branches.iter().position(|x| x.name == name) {
+                Some(i) if index < analysis.plan.branches[i].count => branches[i] = index,
+                Some(i) => {
+                    eprintln!(
+                        "error: `--branch {b}`: `{name}` has indices 0 to {}",
+                        analysis.plan.branches[i].count - 1
+                    );
+                    return ExitCode::from(2);
+                }
+                None => {
+                    let names: Vec<&str> = analysis
+                        .plan
+                        .branches
+                        .iter()
+                        .map(|x| x.name.as_str())
+                        .collect();
+                    eprintln!(
+                        "error: `--branch {b}`: no branch `{name}`; the branches are: {}",
+                        if names.is_empty() {
+                            "(none)".to_string()
+                        } else {
+                            names.join(", ")
+                        }
+                    );
+                    return ExitCode::from(2);
+                }
+            }
+        }
+        match gcs_compiler::solve(model, analysis, &params, &branches) {
+            Ok(solution) => {
+                if json {
+                    println!("{}", solution.to_json());
+                } else {
+                    print!("{}", gcs_compiler::report::solution_text(&solution));
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        }
+    })
 }
 
 fn check(path: &PathBuf, color: termcolor::ColorChoice) -> ExitCode {

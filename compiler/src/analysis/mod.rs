@@ -1,0 +1,1279 @@
+//! Degrees-of-freedom analysis of a 2d model into a [`Plan`] (paper 000, sections 3-5 and
+//! Appendix A).
+//!
+//! Every top-level geom starts as a *cluster*: a set of geoms that move together, with an
+//! invariants record. Action analysis takes a relation one of whose sides is known ("fixed
+//! enough") and moves the other side's cluster with the freedom its record leaves, then updates
+//! the record. Locus analysis takes a coincidence between two partially fixed clusters, asks
+//! the locus table where each feature can lie, and intersects the two loci (a branch variable).
+//! Relations whose both sides are already known become run-time checks.
+//!
+//! The record of a cluster is kept in the canonical form of a rigid frame in the plane:
+//! its rotation ([`Rot`]) and its position ([`Pos`]); [`Record::table2`] gives the slots of
+//! Kramer's Table 2 for reports.
+
+pub mod relation;
+
+use crate::config::{Config, V2};
+use crate::plan::{BranchId, BranchVar, Meet, Op, Plan, Reg, Step, Ty};
+use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Space};
+use gcs_lang::Model;
+use relation::{AngleValue, Dir, Rel, Relation, Unsupported};
+use std::collections::HashMap;
+
+/// What a cluster's rotation is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rot {
+    /// Still free (one DOF).
+    Free,
+    /// Invariant: an invariant vector fixes it.
+    Known,
+    /// The cluster has no orientation (a point, a circle).
+    None,
+}
+
+/// A world locus held in a register.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Locus {
+    /// A line.
+    Line(Reg),
+    /// A circle.
+    Circle(Reg),
+}
+
+/// What a cluster's position is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pos {
+    /// Free to translate (two DOF; one for a line, whose slide along itself is no motion).
+    Free,
+    /// A feature is on a 1-dimensional locus (one DOF).
+    On {
+        /// The feature.
+        feature: GeomId,
+        /// Its locus.
+        locus: Locus,
+    },
+    /// The cluster may only rotate about a known point (an invariant point).
+    Pivot {
+        /// The pivot's position.
+        at: Reg,
+        /// The feature at the pivot.
+        feature: GeomId,
+    },
+    /// Position invariant.
+    Fixed,
+    /// The cluster has no position (a vector).
+    None,
+}
+
+/// A cluster's invariants record.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Record {
+    /// Rotation.
+    pub rot: Rot,
+    /// Position.
+    pub pos: Pos,
+    /// The geom with a free dimension (segment length, circle radius), if still free.
+    pub free_dim: Option<GeomId>,
+    /// Invariant dimensions.
+    pub fixed_dims: Vec<GeomId>,
+    /// Whether the cluster is a lone line (its slide along itself is a symmetry).
+    pub line: bool,
+}
+
+impl Record {
+    /// The degrees of freedom the record leaves.
+    pub fn dof(&self) -> usize {
+        let rot = usize::from(self.rot == Rot::Free);
+        let pos = match self.pos {
+            Pos::Free if self.line => 1,
+            Pos::Free => 2,
+            Pos::On { .. } => 1,
+            Pos::Pivot { .. } | Pos::Fixed | Pos::None => 0,
+        };
+        rot + pos + usize::from(self.free_dim.is_some())
+    }
+
+    /// Whether nothing about the cluster can move any more.
+    pub fn grounded(&self) -> bool {
+        self.dof() == 0
+    }
+
+    /// The cardinalities of Kramer's Table 2 slots: invariant points, 1D-constrained points,
+    /// 2D-constrained points, invariant vectors, 1D-constrained vectors, invariant dimensions,
+    /// fixed-distance points, lines and planes.
+    pub fn table2(&self) -> [usize; 9] {
+        let (inv_pts, pts_1d) = match self.pos {
+            Pos::Pivot { .. } => (1, 0),
+            Pos::Fixed => (if self.rot == Rot::Known { 2 } else { 1 }, 0),
+            Pos::On { .. } => (0, 1),
+            _ => (0, 0),
+        };
+        let inv_vec = usize::from(self.rot == Rot::Known);
+        [
+            inv_pts,
+            pts_1d,
+            0,
+            inv_vec,
+            0,
+            self.fixed_dims.len(),
+            0,
+            0,
+            0,
+        ]
+    }
+
+    /// The signature as Kramer writes it: `IR[100_10_1_000]`.
+    pub fn signature(&self) -> String {
+        let t = self.table2();
+        format!(
+            "IR[{}{}{}_{}{}_{}_{}{}{}]",
+            t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]
+        )
+    }
+}
+
+/// A cluster: geoms moving together, and their record.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cluster {
+    /// The top-level geoms.
+    pub geoms: Vec<GeomId>,
+    /// The record.
+    pub record: Record,
+}
+
+/// The outcome of the analysis.
+#[derive(Clone, Debug)]
+pub struct Analysis {
+    /// The plan.
+    pub plan: Plan,
+    /// Every cluster at the end, with its record.
+    pub clusters: Vec<Cluster>,
+    /// Relations no fragment could satisfy, by constraint, with the reason.
+    pub unsolved: Vec<Unsupported>,
+    /// Constraints that are implied by others (kept as run-time checks).
+    pub redundant: Vec<ConstraintId>,
+}
+
+impl Analysis {
+    /// The DOF left on each top-level geom's cluster, for geoms not grounded.
+    pub fn free_geoms(&self) -> Vec<(GeomId, usize)> {
+        let mut out = Vec::new();
+        for c in &self.clusters {
+            let dof = c.record.dof();
+            if dof > 0 {
+                for &g in &c.geoms {
+                    out.push((g, dof));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Analyses a 2d model. Fails only for models outside the analysis (3d for now): every 2d model
+/// gets a plan, with whatever it cannot solve reported in [`Analysis::unsolved`].
+pub fn analyse(model: &Model) -> Result<Analysis, String> {
+    if model.space != Space::D2 {
+        return Err(
+            "the degrees-of-freedom analysis covers 2d models; 3d lands with the 3d issue".into(),
+        );
+    }
+    let params = model.default_params();
+    let sketch = Config::from_sketch(model, &params).map_err(|b| {
+        format!(
+            "the sketch of `{}` is invalid: {}",
+            model.geoms[b.geom].name, b.what
+        )
+    })?;
+    let sketch_angle = |u: Dir, v: Dir| {
+        let d = |x: Dir| match x {
+            Dir::Feature(g) => sketch.dir(model, g),
+            Dir::World(x, y) => V2::new(x, y),
+        };
+        let (a, b) = (d(u), d(v));
+        (a.x * b.y - a.y * b.x).atan2(a.dot(&b))
+    };
+    let (mut rels, unsupported) = relation::decompose(model, sketch_angle);
+    // Canonical order: by constraint name, then relation order within the constraint, so that
+    // the plan does not depend on the order of statements.
+    rels.sort_by(|a, b| {
+        model.constraints[a.constraint]
+            .name
+            .cmp(&model.constraints[b.constraint].name)
+    });
+    let mut b = Builder::new(model);
+    b.run(rels);
+    let mut unsolved = unsupported;
+    for r in b.pending.drain(..) {
+        if !unsolved.iter().any(|u| u.constraint == r.constraint) {
+            unsolved.push(Unsupported {
+                constraint: r.constraint,
+                reason: "no plan fragment applies: its geoms keep too much freedom".into(),
+            });
+        }
+    }
+    b.calibrate_branches();
+    Ok(Analysis {
+        plan: b.plan,
+        clusters: b.clusters,
+        unsolved,
+        redundant: b.redundant,
+    })
+}
+
+/// A target for a feature: a point or a locus.
+#[derive(Clone, Copy, Debug)]
+enum Target {
+    Point(Reg),
+    On(Locus),
+}
+
+struct Builder<'m> {
+    model: &'m Model,
+    plan: Plan,
+    clusters: Vec<Cluster>,
+    cluster_of: HashMap<GeomId, usize>,
+    /// Registers holding invariant positions, reused once measured.
+    known_points: HashMap<GeomId, Reg>,
+    /// Registers holding current positions and directions, valid until their cluster moves.
+    measured: HashMap<(GeomId, bool), Reg>,
+    /// The centre of each circle register, in words, for branch meanings.
+    centers: HashMap<Reg, String>,
+    exprs: HashMap<gcs_lang::expr::ExprId, Reg>,
+    /// Words for registers, to write explanations and branch meanings.
+    words: HashMap<Reg, String>,
+    pending: Vec<Rel>,
+    redundant: Vec<ConstraintId>,
+}
+
+impl<'m> Builder<'m> {
+    fn new(model: &'m Model) -> Self {
+        let mut clusters = Vec::new();
+        let mut cluster_of = HashMap::new();
+        for (id, g) in model.top_level() {
+            let (rot, pos) = match g.kind {
+                GeomKind::Point | GeomKind::Circle => (Rot::None, Pos::Free),
+                GeomKind::Vector => (Rot::Free, Pos::None),
+                _ => (Rot::Free, Pos::Free),
+            };
+            let free_dim = matches!(g.kind, GeomKind::Segment | GeomKind::Circle).then_some(id);
+            let mut record = Record {
+                rot,
+                pos,
+                free_dim,
+                fixed_dims: Vec::new(),
+                line: g.kind == GeomKind::Line,
+            };
+            if g.fixed {
+                record.rot = if rot == Rot::Free { Rot::Known } else { rot };
+                record.pos = if pos == Pos::None {
+                    Pos::None
+                } else {
+                    Pos::Fixed
+                };
+                if let Some(d) = record.free_dim.take() {
+                    record.fixed_dims.push(d);
+                }
+            }
+            cluster_of.insert(id, clusters.len());
+            clusters.push(Cluster {
+                geoms: vec![id],
+                record,
+            });
+        }
+        Builder {
+            model,
+            plan: Plan::default(),
+            clusters,
+            cluster_of,
+            known_points: HashMap::new(),
+            measured: HashMap::new(),
+            centers: HashMap::new(),
+            exprs: HashMap::new(),
+            words: HashMap::new(),
+            pending: Vec::new(),
+            redundant: Vec::new(),
+        }
+    }
+
+    // ------------------------------------------------------------ emitting
+
+    fn emit(
+        &mut self,
+        op: Op,
+        ty: Option<Ty>,
+        satisfies: Vec<ConstraintId>,
+        explain: String,
+    ) -> Reg {
+        // An action invalidates what was measured on the geoms it moves.
+        if let Op::Translate { geoms, .. }
+        | Op::RotatePoint { geoms, .. }
+        | Op::RotateDir { geoms, .. } = &op
+        {
+            let moved: Vec<GeomId> = geoms.clone();
+            let model = self.model;
+            self.measured
+                .retain(|(f, _), _| !moved.contains(&model.top_level_of(*f)));
+        }
+        if let Op::SetDim { geom, .. } = &op {
+            let g = *geom;
+            let model = self.model;
+            self.measured
+                .retain(|(f, _), _| model.top_level_of(*f) != g);
+        }
+        let reg = Reg(self.plan.regs);
+        let out = ty.map(|t| {
+            self.plan.regs += 1;
+            (reg, t)
+        });
+        self.plan.steps.push(Step {
+            op,
+            out,
+            satisfies,
+            explain,
+        });
+        reg
+    }
+
+    fn value(&mut self, op: Op, ty: Ty, words: String) -> Reg {
+        let r = self.emit(op, Some(ty), Vec::new(), String::new());
+        self.words.insert(r, words);
+        r
+    }
+
+    fn word(&self, r: Reg) -> String {
+        self.words
+            .get(&r)
+            .cloned()
+            .unwrap_or_else(|| format!("r{}", r.0))
+    }
+
+    fn name(&self, g: GeomId) -> String {
+        self.model.geoms[g].name.clone()
+    }
+
+    fn cname(&self, c: ConstraintId) -> String {
+        let c = &self.model.constraints[c];
+        match &c.label {
+            Some(l) => format!("{l}: {}", c.text),
+            None => c.text.clone(),
+        }
+    }
+
+    fn expr(&mut self, e: gcs_lang::expr::ExprId) -> Reg {
+        if let Some(r) = self.exprs.get(&e) {
+            return *r;
+        }
+        let text = crate::plan::expr_text(self.model, e);
+        let r = self.value(Op::Expr(e), Ty::Scalar, text);
+        self.exprs.insert(e, r);
+        r
+    }
+
+    /// The current position of a point feature (re-measured unless invariant).
+    fn point(&mut self, f: GeomId) -> Reg {
+        if let Some(r) = self
+            .known_points
+            .get(&f)
+            .or_else(|| self.measured.get(&(f, true)))
+        {
+            return *r;
+        }
+        let r = self.value(Op::PointOf(f), Ty::Point, self.name(f));
+        if self.point_known(f) {
+            self.known_points.insert(f, r);
+        } else {
+            self.measured.insert((f, true), r);
+        }
+        r
+    }
+
+    fn dir(&mut self, d: Dir) -> Reg {
+        match d {
+            Dir::Feature(g) => {
+                if let Some(r) = self.measured.get(&(g, false)) {
+                    return *r;
+                }
+                let words = self.name(g);
+                let r = self.value(Op::DirOf(g), Ty::Vector, words);
+                self.measured.insert((g, false), r);
+                r
+            }
+            Dir::World(x, y) => {
+                let words = if x != 0.0 { "the X axis" } else { "the Y axis" }.to_string();
+                self.value(Op::Axis(x, y), Ty::Vector, words)
+            }
+        }
+    }
+
+    // ------------------------------------------------------------ knowledge
+
+    fn cluster(&self, g: GeomId) -> usize {
+        let top = self.model.top_level_of(g);
+        self.cluster_of.get(&top).copied().unwrap_or(0)
+    }
+
+    fn record(&self, g: GeomId) -> &Record {
+        &self.clusters[self.cluster(g)].record
+    }
+
+    fn point_known(&self, f: GeomId) -> bool {
+        let r = self.record(f);
+        r.grounded() || matches!(r.pos, Pos::Pivot { feature, .. } if feature == f)
+    }
+
+    fn dir_known(&self, d: Dir) -> bool {
+        match d {
+            Dir::World(..) => true,
+            Dir::Feature(g) => matches!(self.record(g).rot, Rot::Known | Rot::None),
+        }
+    }
+
+    // ------------------------------------------------------------ the driver
+
+    fn run(&mut self, rels: Vec<Rel>) {
+        // Unary constraints first (Appendix A.3): dimensions.
+        let (dims, others): (Vec<Rel>, Vec<Rel>) = rels
+            .into_iter()
+            .partition(|r| matches!(r.relation, Relation::Dim { .. }));
+        for r in dims {
+            self.dimension(&r);
+        }
+        self.ground_if_nothing_fixed();
+        self.pending = others;
+        loop {
+            let mut progress = false;
+            for i in 0..self.pending.len() {
+                let r = self.pending[i].clone();
+                if self.action(&r) {
+                    self.pending.remove(i);
+                    progress = true;
+                    break;
+                }
+            }
+            if progress {
+                continue;
+            }
+            for i in 0..self.pending.len() {
+                let r = self.pending[i].clone();
+                if self.locus(&r) {
+                    self.pending.remove(i);
+                    progress = true;
+                    break;
+                }
+            }
+            if !progress {
+                break;
+            }
+        }
+    }
+
+    fn ground_if_nothing_fixed(&mut self) {
+        if self.model.top_level().any(|(_, g)| g.fixed) || self.clusters.is_empty() {
+            return;
+        }
+        // Deterministically: the geom with the most DOF, then the first name.
+        let mut best: Option<(usize, String, usize)> = None;
+        for (i, c) in self.clusters.iter().enumerate() {
+            let key = (c.record.dof(), self.model.geoms[c.geoms[0]].name.clone());
+            if best
+                .as_ref()
+                .map_or(true, |b| key.0 > b.0 || (key.0 == b.0 && key.1 < b.1))
+            {
+                best = Some((key.0, key.1, i));
+            }
+        }
+        if let Some((_, _, i)) = best {
+            let r = &mut self.clusters[i].record;
+            if r.rot == Rot::Free {
+                r.rot = Rot::Known;
+            }
+            if r.pos != Pos::None {
+                r.pos = Pos::Fixed;
+            }
+            self.plan.grounded = Some(self.clusters[i].geoms[0]);
+        }
+    }
+
+    fn satisfies(&self, r: &Rel) -> Vec<ConstraintId> {
+        if r.last {
+            vec![r.constraint]
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// A relation already implied: a run-time check of its constraint (once, on its last
+    /// relation).
+    fn check(&mut self, r: &Rel) {
+        if r.last {
+            let explain = format!(
+                "Check that {} holds: it is implied by the steps before.",
+                self.cname(r.constraint)
+            );
+            self.emit(
+                Op::Check {
+                    constraint: r.constraint,
+                },
+                None,
+                vec![r.constraint],
+                explain,
+            );
+            self.redundant.push(r.constraint);
+        }
+    }
+
+    fn dimension(&mut self, r: &Rel) {
+        let Relation::Dim { geom, value } = r.relation else {
+            return;
+        };
+        let k = self.cluster(geom);
+        if self.clusters[k].record.free_dim == Some(geom) {
+            let v = self.expr(value);
+            let what = if self.model.geoms[geom].kind == GeomKind::Circle {
+                "radius"
+            } else {
+                "length"
+            };
+            let explain = format!(
+                "Scale {} so that its {what} is {} ({}). This fixes its dimension.",
+                self.name(geom),
+                self.word(v),
+                self.cname(r.constraint)
+            );
+            self.emit(
+                Op::SetDim { geom, value: v },
+                None,
+                self.satisfies(r),
+                explain,
+            );
+            let rec = &mut self.clusters[k].record;
+            rec.free_dim = None;
+            rec.fixed_dims.push(geom);
+        } else {
+            self.check(r);
+        }
+    }
+
+    // ------------------------------------------------------------ action analysis
+
+    /// Action analysis: one side known enough, the other side moved. Returns whether the
+    /// relation was satisfied (or became a check).
+    fn action(&mut self, r: &Rel) -> bool {
+        match r.relation.clone() {
+            Relation::PointPoint { a, b, d } => {
+                let (ka, kb) = (self.point_known(a), self.point_known(b));
+                if ka && kb
+                    || (self.cluster(a) == self.cluster(b)
+                        && self.clusters[self.cluster(a)].record.free_dim.is_none())
+                {
+                    self.check(r);
+                    return true;
+                }
+                let (known, free) = match (ka, kb) {
+                    (true, false) => (a, b),
+                    (false, true) => (b, a),
+                    _ => return false,
+                };
+                let at = self.point(known);
+                let target = match d {
+                    None => Target::Point(at),
+                    Some(d) => {
+                        let radius = self.expr(d);
+                        let words = format!(
+                            "the circle of radius {} about {}",
+                            self.word(radius),
+                            self.word(at)
+                        );
+                        let c = self.value(Op::Circle { center: at, radius }, Ty::Circle, words);
+                        self.centers.insert(c, self.word(at));
+                        Target::On(Locus::Circle(c))
+                    }
+                };
+                self.move_feature(free, target, r)
+            }
+            Relation::PointLine { p, base, dir, d } => {
+                let line_known = self.point_known(base) && self.dir_known(Dir::Feature(dir));
+                let p_known = self.point_known(p);
+                if line_known && p_known || self.cluster(p) == self.cluster(base) {
+                    if self.clusters[self.cluster(p)].record.free_dim.is_none() {
+                        self.check(r);
+                        return true;
+                    }
+                    return false;
+                }
+                if line_known {
+                    let bp = self.point(base);
+                    let dv = self.dir(Dir::Feature(dir));
+                    let offset = d.map(|d| self.expr(d));
+                    let words = match offset {
+                        Some(o) => format!(
+                            "the line along {} at distance {} from {}",
+                            self.name(dir),
+                            self.word(o),
+                            self.name(base)
+                        ),
+                        None => format!(
+                            "the line through {} along {}",
+                            self.name(base),
+                            self.name(dir)
+                        ),
+                    };
+                    let line = self.value(
+                        Op::Line {
+                            point: bp,
+                            dir: dv,
+                            offset,
+                        },
+                        Ty::Line,
+                        words,
+                    );
+                    return self.move_feature(p, Target::On(Locus::Line(line)), r);
+                }
+                if p_known {
+                    return self.move_line_to_point(p, base, dir, d, r);
+                }
+                false
+            }
+            Relation::Angle { u, v, angle } => {
+                let (ku, kv) = (self.dir_known(u), self.dir_known(v));
+                if ku && kv
+                    || matches!((u, v), (Dir::Feature(x), Dir::Feature(y)) if self.cluster(x) == self.cluster(y))
+                {
+                    self.check(r);
+                    return true;
+                }
+                let a = match angle {
+                    AngleValue::Expr(e) => self.expr(e),
+                    AngleValue::Const(c) => self.value(Op::Const(c), Ty::Scalar, angle_words(c)),
+                };
+                match (ku, kv, u, v) {
+                    (true, false, _, Dir::Feature(fv)) => {
+                        let base = self.dir(u);
+                        let words = format!("{} turned by {}", self.word(base), self.word(a));
+                        let target = self.value(
+                            Op::Rotated {
+                                dir: base,
+                                angle: a,
+                            },
+                            Ty::Vector,
+                            words,
+                        );
+                        self.turn(fv, target, r)
+                    }
+                    (false, true, Dir::Feature(fu), _) => {
+                        let base = self.dir(v);
+                        let words = format!("{} turned back by {}", self.word(base), self.word(a));
+                        let minus = self.neg(a);
+                        let target = self.value(
+                            Op::Rotated {
+                                dir: base,
+                                angle: minus,
+                            },
+                            Ty::Vector,
+                            words,
+                        );
+                        self.turn(fu, target, r)
+                    }
+                    _ => false,
+                }
+            }
+            Relation::Dim { .. } => {
+                self.dimension(r);
+                true
+            }
+        }
+    }
+
+    fn neg(&mut self, a: Reg) -> Reg {
+        let words = format!("-{}", self.word(a));
+        self.value(Op::Neg(a), Ty::Scalar, words)
+    }
+
+    /// Moves the cluster of feature `f` so that `f` meets `target`, with the freedom its record
+    /// leaves (the plan fragment table for a rigid frame in the plane).
+    fn move_feature(&mut self, f: GeomId, target: Target, r: &Rel) -> bool {
+        let k = self.cluster(f);
+        let rec = self.clusters[k].record.clone();
+        if rec.free_dim.is_some() {
+            // Dimensions before positions: wait for the dimension or a fragment that scales.
+            return false;
+        }
+        let geoms = self.clusters[k].geoms.clone();
+        let names = geoms
+            .iter()
+            .map(|&g| self.name(g))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let c = self.cname(r.constraint);
+        let fname = self.name(f);
+        match (rec.pos, target) {
+            (Pos::Free, Target::Point(x)) => {
+                let from = self.point(f);
+                let explain = format!(
+                    "{names} is free to translate: translate it so that {fname} lands on {} ({c}).",
+                    self.word(x)
+                );
+                self.emit(
+                    Op::Translate { geoms, from, to: x },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                rec.pos = if rec.rot == Rot::Free {
+                    Pos::Pivot { at: x, feature: f }
+                } else {
+                    Pos::Fixed
+                };
+                if rec.pos == Pos::Fixed {
+                    rec.rot = if rec.rot == Rot::None {
+                        Rot::None
+                    } else {
+                        Rot::Known
+                    };
+                }
+                self.known_points.insert(f, x);
+                true
+            }
+            (Pos::Free, Target::On(locus)) => {
+                let from = self.point(f);
+                let lreg = locus_reg(locus);
+                let to = self.value(
+                    Op::Nearest {
+                        locus: lreg,
+                        point: from,
+                    },
+                    Ty::Point,
+                    format!("the point of {} nearest {fname}", self.word(lreg)),
+                );
+                let explain = format!(
+                    "{names} is free to translate: translate it by the least motion that puts {fname} on {} ({c}).",
+                    self.word(lreg)
+                );
+                self.emit(
+                    Op::Translate { geoms, from, to },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                if rec.line {
+                    // A line through a point of a locus: with its direction known it is fixed.
+                    rec.pos = if rec.rot == Rot::Known {
+                        Pos::Fixed
+                    } else {
+                        Pos::Pivot { at: to, feature: f }
+                    };
+                    if rec.pos == Pos::Fixed {
+                        return true;
+                    }
+                    self.known_points.insert(f, to);
+                } else {
+                    rec.pos = Pos::On { feature: f, locus };
+                }
+                true
+            }
+            (
+                Pos::On {
+                    feature: g,
+                    locus: lg,
+                },
+                target,
+            ) if rec.rot != Rot::Free => {
+                // Translation along the locus: f moves on the locus shifted by f - g.
+                let from = self.point(f);
+                let own = if g == f {
+                    locus_reg(lg)
+                } else {
+                    self.shifted(lg, g, f)
+                };
+                let to = self.meet(own, target, from, r);
+                let explain = format!(
+                    "{names} can only slide so that {} stays on {}: move it so that {fname} reaches {} ({c}).",
+                    self.name(g),
+                    self.word(locus_reg(lg)),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::Translate { geoms, from, to },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.pos = Pos::Fixed;
+                true
+            }
+            (
+                Pos::On {
+                    feature: g,
+                    locus: lg,
+                },
+                target,
+            ) if g == f => {
+                // Rotation free, f already on a locus: put it at the locus' meeting point.
+                let from = self.point(f);
+                let to = self.meet(locus_reg(lg), target, from, r);
+                let explain = format!(
+                    "{fname} must stay on {}: translate {names} so that it reaches {} ({c}); {names} may still rotate about it.",
+                    self.word(locus_reg(lg)),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::Translate { geoms, from, to },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.pos = Pos::Pivot { at: to, feature: f };
+                self.known_points.insert(f, to);
+                true
+            }
+            (Pos::Pivot { at, feature: g }, target) if g != f => {
+                let from = self.point(f);
+                let own = self.circle_through(at, from, f);
+                let to = self.meet(own, target, from, r);
+                let explain = format!(
+                    "{names} may only rotate about {} ({}): rotate it so that {fname} reaches {} ({c}).",
+                    self.name(g),
+                    self.word(at),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::RotatePoint {
+                        geoms,
+                        pivot: at,
+                        from,
+                        to,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                rec.pos = Pos::Fixed;
+                rec.rot = Rot::Known;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The circle about `at` through the current position `from` of feature `f`.
+    fn circle_through(&mut self, at: Reg, from: Reg, f: GeomId) -> Reg {
+        let words = format!(
+            "the circle about {} through {}",
+            self.word(at),
+            self.name(f)
+        );
+        let c = self.value(
+            Op::CircleThrough {
+                center: at,
+                through: from,
+            },
+            Ty::Circle,
+            words,
+        );
+        self.centers.insert(c, self.word(at));
+        c
+    }
+
+    /// The locus `lg` (of feature `g`) moved by `f - g`: where `f` goes when the cluster
+    /// translates keeping `g` on `lg`.
+    fn shifted(&mut self, lg: Locus, g: GeomId, f: GeomId) -> Reg {
+        let pg = self.point(g);
+        let pf = self.point(f);
+        let fname = self.name(f);
+        match lg {
+            Locus::Line(l) => {
+                let words = format!("the parallel to {} through {fname}", self.word(l));
+                self.value(
+                    Op::ParallelLine {
+                        line: l,
+                        through: pf,
+                    },
+                    Ty::Line,
+                    words,
+                )
+            }
+            Locus::Circle(c) => {
+                let words = format!("{} moved with {fname}", self.word(c));
+                self.value(
+                    Op::ShiftedCircle {
+                        circle: c,
+                        from: pg,
+                        to: pf,
+                    },
+                    Ty::Circle,
+                    words,
+                )
+            }
+        }
+    }
+
+    /// Where a feature moving on `own` meets `target`: an intersection (a branch variable), or
+    /// the target point itself, which must lie on `own`.
+    fn meet(&mut self, own: Reg, target: Target, near: Reg, r: &Rel) -> Reg {
+        match target {
+            Target::Point(x) => {
+                let words = self.word(x);
+                self.value(
+                    Op::Onto {
+                        locus: own,
+                        point: x,
+                        constraint: r.constraint,
+                    },
+                    Ty::Point,
+                    words,
+                )
+            }
+            Target::On(locus) => {
+                let other = locus_reg(locus);
+                let own_ty = self.ty(own);
+                let (meet, a, b) = match (own_ty, locus) {
+                    (Ty::Circle, Locus::Circle(c)) => (Meet::CircleCircle, own, c),
+                    (Ty::Circle, Locus::Line(l)) => (Meet::LineCircle, l, own),
+                    (Ty::Line, Locus::Circle(c)) => (Meet::LineCircle, own, c),
+                    _ => (Meet::LineLine, own, other),
+                };
+                self.intersect(meet, a, b, near, r.constraint)
+            }
+        }
+    }
+
+    fn ty(&self, r: Reg) -> Ty {
+        self.plan
+            .steps
+            .iter()
+            .find_map(|s| s.out.filter(|o| o.0 == r).map(|o| o.1))
+            .unwrap_or(Ty::Scalar)
+    }
+
+    fn intersect(
+        &mut self,
+        meet: Meet,
+        a: Reg,
+        b: Reg,
+        near: Reg,
+        constraint: ConstraintId,
+    ) -> Reg {
+        let name = self.model.constraints[constraint].name.clone();
+        let (wa, wb, wn) = (self.word(a), self.word(b), self.word(near));
+        let centre = |s: &Self, r: Reg| {
+            s.centers
+                .get(&r)
+                .cloned()
+                .unwrap_or_else(|| format!("the centre of {}", s.word(r)))
+        };
+        let (ca, cb) = (centre(self, a), centre(self, b));
+        let (count, meanings) = match meet {
+            Meet::CircleCircle => (
+                2,
+                vec![
+                    format!("{wn} to the left of the line from {ca} to {cb}"),
+                    format!("{wn} to the right of the line from {ca} to {cb}"),
+                ],
+            ),
+            Meet::LineCircle => (
+                2,
+                vec![
+                    format!("the first crossing of {wa} with {wb}, along the line"),
+                    "the second crossing, along the line".to_string(),
+                ],
+            ),
+            Meet::LineLine => (1, vec![format!("the crossing of {wa} and {wb}")]),
+            Meet::CircleConic | Meet::LineConic => {
+                (4, vec!["roots in order along the conic".to_string()])
+            }
+        };
+        let branch = if count > 1 {
+            let id = BranchId(self.plan.branches.len() as u32);
+            self.plan.branches.push(BranchVar {
+                name: name.clone(),
+                constraint,
+                count,
+                meanings,
+                default: 0,
+            });
+            id
+        } else {
+            // A single root still declares its (trivial) branch so every intersection is named.
+            let id = BranchId(self.plan.branches.len() as u32);
+            self.plan.branches.push(BranchVar {
+                name: name.clone(),
+                constraint,
+                count,
+                meanings,
+                default: 0,
+            });
+            id
+        };
+        let words = format!("the meeting point of {wa} and {wb}");
+        self.value(
+            Op::Intersect {
+                meet,
+                a,
+                b,
+                branch,
+                constraint,
+                near,
+            },
+            Ty::Point,
+            words,
+        )
+    }
+
+    /// Turns the cluster of direction feature `v` so that it points along `target`.
+    fn turn(&mut self, v: GeomId, target: Reg, r: &Rel) -> bool {
+        let k = self.cluster(v);
+        let rec = self.clusters[k].record.clone();
+        if rec.rot != Rot::Free {
+            return false;
+        }
+        let geoms = self.clusters[k].geoms.clone();
+        let names = geoms
+            .iter()
+            .map(|&g| self.name(g))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let c = self.cname(r.constraint);
+        let (pivot, about) = match rec.pos {
+            Pos::Pivot { at, feature } => (at, self.name(feature)),
+            Pos::On { feature, .. } => (self.point(feature), self.name(feature)),
+            _ => {
+                let origin = geoms[0];
+                (
+                    self.point(origin),
+                    format!("the origin of {}", self.name(origin)),
+                )
+            }
+        };
+        let from = self.dir(Dir::Feature(v));
+        let explain = format!(
+            "Rotate {names} about {about} so that {} points along {} ({c}). This fixes its rotation.",
+            self.name(v),
+            self.word(target)
+        );
+        self.emit(
+            Op::RotateDir {
+                geoms,
+                pivot,
+                from,
+                to: target,
+            },
+            None,
+            self.satisfies(r),
+            explain,
+        );
+        let rec = &mut self.clusters[k].record;
+        rec.rot = Rot::Known;
+        if matches!(rec.pos, Pos::Pivot { .. }) {
+            rec.pos = Pos::Fixed;
+        }
+        true
+    }
+
+    /// A point feature `p` is known; the line (`base`, `dir`) of another cluster must pass at
+    /// signed distance `d` from it.
+    fn move_line_to_point(
+        &mut self,
+        p: GeomId,
+        base: GeomId,
+        dir: GeomId,
+        d: Option<gcs_lang::expr::ExprId>,
+        r: &Rel,
+    ) -> bool {
+        let k = self.cluster(base);
+        let rec = self.clusters[k].record.clone();
+        if rec.free_dim.is_some() {
+            return false;
+        }
+        let at = self.point(p);
+        if rec.rot == Rot::Known {
+            // Its direction is known: the base must lie on the parallel at the right offset.
+            let dv = self.dir(Dir::Feature(dir));
+            let offset = d.map(|d| {
+                let e = self.expr(d);
+                self.neg(e)
+            });
+            let words = format!(
+                "the line along {} placing {} at the right distance",
+                self.name(dir),
+                self.name(p)
+            );
+            let line = self.value(
+                Op::Line {
+                    point: at,
+                    dir: dv,
+                    offset,
+                },
+                Ty::Line,
+                words,
+            );
+            return self.move_feature(base, Target::On(Locus::Line(line)), r);
+        }
+        if rec.line && d.is_none() && rec.pos == Pos::Free {
+            // A lone line with free direction through a known point: slide its base there.
+            return self.move_feature(base, Target::Point(at), r);
+        }
+        false
+    }
+
+    // ------------------------------------------------------------ locus analysis
+
+    /// The locus table: where feature `f` of a partially fixed cluster can lie, if on a curve.
+    fn locus_of(&mut self, f: GeomId) -> Option<Reg> {
+        let rec = self.record(f).clone();
+        if rec.free_dim.is_some() {
+            return None;
+        }
+        match rec.pos {
+            Pos::On { feature, locus } if rec.rot != Rot::Free => Some(if feature == f {
+                locus_reg(locus)
+            } else {
+                self.shifted(locus, feature, f)
+            }),
+            Pos::Pivot { at, feature } if feature != f => {
+                let from = self.point(f);
+                Some(self.circle_through(at, from, f))
+            }
+            _ => None,
+        }
+    }
+
+    /// Locus analysis: a coincidence between features of two partially fixed clusters, each on
+    /// a curve: intersect the curves (a pseudo-point, 003 Example 2) and move both clusters.
+    fn locus(&mut self, r: &Rel) -> bool {
+        let Relation::PointPoint { a, b, d: None } = r.relation else {
+            return false;
+        };
+        let (ka, kb) = (self.cluster(a), self.cluster(b));
+        if ka == kb {
+            return false;
+        }
+        let ready = |s: &Self, f: GeomId| {
+            let rec = s.record(f);
+            rec.free_dim.is_none()
+                && match rec.pos {
+                    Pos::On { .. } => rec.rot != Rot::Free,
+                    Pos::Pivot { feature, .. } => feature != f,
+                    _ => false,
+                }
+        };
+        if !ready(self, a) || !ready(self, b) {
+            return false;
+        }
+        let (Some(la), Some(lb)) = (self.locus_of(a), self.locus_of(b)) else {
+            return false;
+        };
+        let near = self.point(b);
+        let meet = match (self.ty(la), self.ty(lb)) {
+            (Ty::Circle, Ty::Circle) => Meet::CircleCircle,
+            (Ty::Line, Ty::Line) => Meet::LineLine,
+            _ => Meet::LineCircle,
+        };
+        let (x, y) = if meet == Meet::LineCircle && self.ty(la) == Ty::Circle {
+            (lb, la)
+        } else {
+            (la, lb)
+        };
+        let pseudo = self.intersect(meet, x, y, near, r.constraint);
+        // The pseudo-point lies on both loci: move a's cluster there, then b's (which
+        // satisfies the constraint), each with its one remaining motion.
+        self.reach(a, pseudo, &[]);
+        let sat = self.satisfies(r);
+        self.reach(b, pseudo, &sat);
+        true
+    }
+
+    /// Moves the cluster of `f`, whose one-DOF motion is known to reach `x`, so that `f` is at
+    /// `x`: a rotation about its pivot, or a translation along its locus.
+    fn reach(&mut self, f: GeomId, x: Reg, satisfies: &[ConstraintId]) {
+        let k = self.cluster(f);
+        let rec = self.clusters[k].record.clone();
+        let geoms = self.clusters[k].geoms.clone();
+        let names = geoms
+            .iter()
+            .map(|&g| self.name(g))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let from = self.point(f);
+        let fname = self.name(f);
+        let to = self.word(x);
+        match rec.pos {
+            Pos::Pivot { at, feature } => {
+                let explain = format!(
+                    "{names} may only rotate about {}: rotate it so that {fname} reaches {to}.",
+                    self.name(feature)
+                );
+                self.emit(
+                    Op::RotatePoint {
+                        geoms,
+                        pivot: at,
+                        from,
+                        to: x,
+                    },
+                    None,
+                    satisfies.to_vec(),
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                rec.rot = Rot::Known;
+                rec.pos = Pos::Fixed;
+            }
+            _ => {
+                let explain = format!("{names} may only slide along its locus: translate it so that {fname} reaches {to}.");
+                self.emit(
+                    Op::Translate { geoms, from, to: x },
+                    None,
+                    satisfies.to_vec(),
+                    explain,
+                );
+                self.clusters[k].record.pos = Pos::Fixed;
+            }
+        }
+    }
+
+    // ------------------------------------------------------------ branch defaults
+
+    /// Runs the plan on the sketch, taking at each intersection the root nearest to where the
+    /// moving feature is: that index is the sketch's branch, the default.
+    fn calibrate_branches(&mut self) {
+        let params = self.model.default_params();
+        if let Ok(run) = crate::interp::run(
+            self.model,
+            &self.plan,
+            &params,
+            &crate::interp::Choice::Nearest,
+        ) {
+            for (b, idx) in self.plan.branches.iter_mut().zip(run.chosen) {
+                if let Some(i) = idx {
+                    b.default = i;
+                }
+            }
+        }
+    }
+}
+
+fn locus_reg(l: Locus) -> Reg {
+    match l {
+        Locus::Line(r) | Locus::Circle(r) => r,
+    }
+}
+
+/// An angle constant in words: `0`, `pi`, `pi/2`, `-pi/2`.
+fn angle_words(c: f64) -> String {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    if c == 0.0 {
+        "0".into()
+    } else if c == PI {
+        "pi".into()
+    } else if c == FRAC_PI_2 {
+        "pi/2".into()
+    } else if c == -FRAC_PI_2 {
+        "-pi/2".into()
+    } else {
+        crate::plan::fmt_f64(c)
+    }
+}

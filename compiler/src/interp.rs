@@ -1,0 +1,335 @@
+//! The interpreter: runs a [`Plan`] on a model's sketch with given params and branches.
+//!
+//! It is the reference the generated solvers are compared with, and what `gcs solve` uses.
+//! Every failure is a [`SolveError`] naming the user's constraint: a locus intersection that
+//! does not exist (with the gap), a check that does not hold (with the residual), a degenerate
+//! configuration, or a non-finite param.
+
+use crate::config::{Config, P2, V2};
+use crate::plan::{Meet, Op, Plan};
+use gcs_lang::constraints::ConstraintKind as K;
+use gcs_lang::model::{ConstraintId, GeomKind, Part};
+use gcs_lang::Model;
+use gcs_runtime::error::{ErrorKind, SolveError};
+use gcs_runtime::intersect2d;
+use gcs_runtime::locus2d::{Circle, Line};
+use gcs_runtime::{Contact, Roots};
+use nalgebra::UnitComplex;
+
+/// How to choose the root of each intersection.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Choice {
+    /// The index given for each branch variable (by [`crate::plan::BranchId`] order).
+    Given(Vec<usize>),
+    /// The root nearest to the moving feature's position before the move (used once, on the
+    /// sketch, to find each branch's default).
+    Nearest,
+}
+
+/// A finished run.
+#[derive(Clone, Debug)]
+pub struct Run {
+    /// The configuration reached.
+    pub config: Config,
+    /// The index taken at each branch variable, if its intersection ran.
+    pub chosen: Vec<Option<usize>>,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Val {
+    S(f64),
+    P(P2),
+    V(V2),
+    L(Line),
+    C(Circle),
+}
+
+/// Relative tolerance of run-time checks and of points that must lie on a locus, times the
+/// model's scale.
+pub const CHECK_REL: f64 = 1e-9;
+
+fn err(model: &Model, c: ConstraintId, kind: ErrorKind, magnitude: f64) -> SolveError {
+    let con = &model.constraints[c];
+    SolveError::new(con.name.clone(), con.text.clone(), kind, magnitude)
+}
+
+/// Runs `plan` with `params` (indexed like the model's params).
+pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Result<Run, SolveError> {
+    for ((_, p), v) in model.params.iter().zip(params) {
+        if !v.is_finite() {
+            return Err(SolveError::new(
+                p.name.clone(),
+                String::new(),
+                ErrorKind::InvalidInput,
+                *v,
+            ));
+        }
+    }
+    let mut config = Config::from_sketch(model, params).map_err(|b| {
+        SolveError::new(
+            model.geoms[b.geom].name.clone(),
+            b.what,
+            ErrorKind::InvalidInput,
+            f64::NAN,
+        )
+    })?;
+    let scale = config_scale(&config);
+    let tol = CHECK_REL * (1.0 + scale);
+    let mut regs: Vec<Val> = vec![Val::S(0.0); plan.regs as usize];
+    let mut chosen = vec![None; plan.branches.len()];
+    let get = |regs: &[Val], r: crate::plan::Reg| {
+        regs.get(r.0 as usize).copied().unwrap_or(Val::S(f64::NAN))
+    };
+    for step in &plan.steps {
+        let s = |r| match get(&regs, r) {
+            Val::S(x) => x,
+            _ => f64::NAN,
+        };
+        let p = |r| match get(&regs, r) {
+            Val::P(x) => x,
+            _ => P2::new(f64::NAN, f64::NAN),
+        };
+        let v = |r| match get(&regs, r) {
+            Val::V(x) => x,
+            _ => V2::new(f64::NAN, f64::NAN),
+        };
+        let out: Option<Val> = match &step.op {
+            Op::Expr(e) => Some(Val::S(model.exprs.eval(*e, params))),
+            Op::Const(c) => Some(Val::S(*c)),
+            Op::Neg(x) => Some(Val::S(-s(*x))),
+            Op::PointOf(g) => Some(Val::P(config.point(model, *g))),
+            Op::DirOf(g) => Some(Val::V(config.dir(model, *g))),
+            Op::Axis(x, y) => Some(Val::V(V2::new(*x, *y))),
+            Op::Rotated { dir, angle } => Some(Val::V(UnitComplex::new(s(*angle)) * v(*dir))),
+            Op::Circle { center, radius } => {
+                let c = Circle::new(p(*center), s(*radius).abs())
+                    .ok_or_else(|| bad_step(model, step))?;
+                Some(Val::C(c))
+            }
+            Op::CircleThrough { center, through } => {
+                let c = p(*center);
+                let circle = Circle::new(c, (p(*through) - c).norm())
+                    .ok_or_else(|| bad_step(model, step))?;
+                Some(Val::C(circle))
+            }
+            Op::Line { point, dir, offset } => {
+                let l = Line::new(p(*point), v(*dir)).ok_or_else(|| bad_step(model, step))?;
+                Some(Val::L(match offset {
+                    Some(o) => l.offset(s(*o)),
+                    None => l,
+                }))
+            }
+            Op::ParallelLine { line, through } => match get(&regs, *line) {
+                Val::L(l) => Some(Val::L(
+                    Line::new(p(*through), l.dir()).ok_or_else(|| bad_step(model, step))?,
+                )),
+                _ => return Err(bad_step(model, step)),
+            },
+            Op::ShiftedCircle { circle, from, to } => match get(&regs, *circle) {
+                Val::C(c) => {
+                    let moved = Circle::new(c.center() + (p(*to) - p(*from)), c.radius());
+                    Some(Val::C(moved.ok_or_else(|| bad_step(model, step))?))
+                }
+                _ => return Err(bad_step(model, step)),
+            },
+            Op::Nearest { locus, point } => {
+                let q = p(*point);
+                Some(Val::P(match get(&regs, *locus) {
+                    Val::L(l) => l.point() + l.dir() * (q - l.point()).dot(&l.dir()),
+                    Val::C(c) => {
+                        let d = q - c.center();
+                        let n = d.norm();
+                        let u = if n > 0.0 { d / n } else { V2::x() };
+                        c.center() + u * c.radius()
+                    }
+                    _ => return Err(bad_step(model, step)),
+                }))
+            }
+            Op::Onto {
+                locus,
+                point,
+                constraint,
+            } => {
+                let q = p(*point);
+                let gap = match get(&regs, *locus) {
+                    Val::L(l) => l.residual(q),
+                    Val::C(c) => c.residual(q),
+                    _ => f64::NAN,
+                };
+                if !(gap <= tol) {
+                    return Err(err(model, *constraint, ErrorKind::Inconsistent, gap));
+                }
+                Some(Val::P(q))
+            }
+            Op::Intersect {
+                meet,
+                a,
+                b,
+                branch,
+                constraint,
+                near,
+            } => {
+                let (roots, contact): (Roots<P2, 2>, Contact) =
+                    match (meet, get(&regs, *a), get(&regs, *b)) {
+                        (Meet::CircleCircle, Val::C(x), Val::C(y)) => {
+                            let i = intersect2d::circle_circle(&x, &y);
+                            (i.roots, i.contact)
+                        }
+                        (Meet::LineCircle, Val::L(x), Val::C(y)) => {
+                            let i = intersect2d::line_circle(&x, &y);
+                            (i.roots, i.contact)
+                        }
+                        (Meet::LineLine, Val::L(x), Val::L(y)) => {
+                            let i = intersect2d::line_line(&x, &y);
+                            (Roots::from_slice(i.roots.as_slice()), i.contact)
+                        }
+                        _ => return Err(bad_step(model, step)),
+                    };
+                match contact {
+                    Contact::Crossing | Contact::Tangent => {}
+                    Contact::Disjoint { gap } | Contact::Parallel { gap } => {
+                        return Err(err(model, *constraint, ErrorKind::NoIntersection, gap));
+                    }
+                    Contact::Coincident | Contact::ZeroRadius => {
+                        return Err(err(model, *constraint, ErrorKind::Degenerate, 0.0));
+                    }
+                }
+                let index = match choice {
+                    Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
+                    Choice::Nearest => {
+                        let n = p(*near);
+                        roots.nearest_to(n, |x, y| (x - y).norm()).unwrap_or(0)
+                    }
+                };
+                if let Some(slot) = chosen.get_mut(branch.0 as usize) {
+                    *slot = Some(index);
+                }
+                match roots.get(index) {
+                    Some(x) => Some(Val::P(x)),
+                    None => {
+                        // The chosen branch has no root here: say so, never take another.
+                        return Err(err(model, *constraint, ErrorKind::NoIntersection, 0.0));
+                    }
+                }
+            }
+            Op::Translate { geoms, from, to } => {
+                let d = p(*to) - p(*from);
+                for g in geoms {
+                    config.translate(*g, d);
+                }
+                None
+            }
+            Op::RotatePoint {
+                geoms,
+                pivot,
+                from,
+                to,
+            } => {
+                let c = p(*pivot);
+                let rot = UnitComplex::rotation_between(&(p(*from) - c), &(p(*to) - c));
+                for g in geoms {
+                    config.rotate(*g, c, rot);
+                }
+                None
+            }
+            Op::RotateDir {
+                geoms,
+                pivot,
+                from,
+                to,
+            } => {
+                let c = p(*pivot);
+                let rot = UnitComplex::rotation_between(&v(*from), &v(*to));
+                for g in geoms {
+                    config.rotate(*g, c, rot);
+                }
+                None
+            }
+            Op::SetDim { geom, value } => {
+                let x = s(*value);
+                if !(x >= 0.0) || !x.is_finite() {
+                    let c = step.satisfies.first().copied();
+                    return Err(match c {
+                        Some(c) => err(model, c, ErrorKind::InvalidInput, x),
+                        None => bad_step(model, step),
+                    });
+                }
+                config.dims.insert(*geom, x);
+                None
+            }
+            Op::Check { constraint } => {
+                let r = residual(model, &config, *constraint);
+                if !(r <= tol) {
+                    return Err(err(model, *constraint, ErrorKind::Inconsistent, r));
+                }
+                None
+            }
+        };
+        if let (Some(val), Some((r, _))) = (out, step.out) {
+            if let Some(slot) = regs.get_mut(r.0 as usize) {
+                *slot = val;
+            }
+        }
+    }
+    Ok(Run { config, chosen })
+}
+
+fn bad_step(model: &Model, step: &crate::plan::Step) -> SolveError {
+    match step.satisfies.first() {
+        Some(c) => err(model, *c, ErrorKind::Degenerate, 0.0),
+        None => SolveError::new("plan", step.explain.clone(), ErrorKind::Degenerate, 0.0),
+    }
+}
+
+/// The largest coordinate or dimension of a configuration: what tolerances scale with.
+pub fn config_scale(config: &Config) -> f64 {
+    let mut s: f64 = 0.0;
+    for f in config.frames.values() {
+        s = s.max(f.origin.x.abs()).max(f.origin.y.abs());
+    }
+    for d in config.dims.values() {
+        s = s.max(d.abs());
+    }
+    s
+}
+
+/// The residual of a constraint on a configuration, for run-time checks of implied
+/// constraints. (The independent verifier is [`crate::verify`].)
+fn residual(model: &Model, cfg: &Config, c: ConstraintId) -> f64 {
+    let con = &model.constraints[c];
+    let params = model.default_params();
+    let _ = params;
+    let a = con.args.first().copied();
+    let b = con.args.get(1).copied();
+    let pt = |g| cfg.point(model, center_of(model, g));
+    let dir = |g| cfg.dir(model, dir_of(model, g));
+    match (con.kind, a, b) {
+        (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => (pt(a) - pt(b)).norm(),
+        (K::Horizontal, Some(a), _) => dir(a).y.abs(),
+        (K::Vertical, Some(a), _) => dir(a).x.abs(),
+        (K::Parallel, Some(a), Some(b)) => cross(dir(a), dir(b)).abs(),
+        (K::Perpendicular, Some(a), Some(b)) => dir(a).dot(&dir(b)).abs(),
+        _ => 0.0,
+    }
+}
+
+fn cross(a: V2, b: V2) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+fn center_of(model: &Model, g: gcs_lang::model::GeomId) -> gcs_lang::model::GeomId {
+    if model.geoms[g].kind == GeomKind::Circle {
+        crate::analysis::relation::part(model, g, Part::Center).unwrap_or(g)
+    } else {
+        g
+    }
+}
+
+fn dir_of(model: &Model, g: gcs_lang::model::GeomId) -> gcs_lang::model::GeomId {
+    match model.geoms[g].kind {
+        GeomKind::Line | GeomKind::Segment => {
+            crate::analysis::relation::part(model, g, Part::Dir).unwrap_or(g)
+        }
+        _ => g,
+    }
+}

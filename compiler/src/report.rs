@@ -1,0 +1,259 @@
+//! What `gcs check` and `gcs solve` tell a user about an analysed model: its problems as
+//! diagnostics (constraints without a plan, geoms left free, constraints that conflict at the
+//! default params), the DOF summary, and a solution as text.
+
+use crate::analysis::{Analysis, Pos, Rot};
+use crate::solution::Solution;
+use gcs_lang::model::{GeomId, GeomKind};
+use gcs_lang::{Diagnostic, Model};
+use std::fmt::Write as _;
+
+/// What freedom a cluster's record leaves, in words.
+fn freedom(model: &Model, a: &Analysis, g: GeomId) -> String {
+    let Some(c) = a.clusters.iter().find(|c| c.geoms.contains(&g)) else {
+        return String::new();
+    };
+    let r = &c.record;
+    let mut parts = Vec::new();
+    match (r.rot, r.pos) {
+        (Rot::Free, Pos::Pivot { feature, .. }) => parts.push(format!(
+            "it may still rotate about {}",
+            model.geoms[feature].name
+        )),
+        (Rot::Free, Pos::Free) => parts.push("it may still translate and rotate".into()),
+        (Rot::Free, Pos::On { feature, .. }) => parts.push(format!(
+            "it may still slide {} along its locus and rotate about it",
+            model.geoms[feature].name
+        )),
+        (Rot::Free, _) => parts.push("it may still rotate".into()),
+        (_, Pos::Free) if r.line => parts.push("it may still move sideways".into()),
+        (_, Pos::Free) => parts.push("it may still translate".into()),
+        (_, Pos::On { feature, .. }) => parts.push(format!(
+            "it may still slide {} along its locus",
+            model.geoms[feature].name
+        )),
+        _ => {}
+    }
+    if r.free_dim.is_some() {
+        let what = if model.geoms[g].kind == GeomKind::Circle {
+            "radius"
+        } else {
+            "length"
+        };
+        parts.push(format!("its {what} is free"));
+    }
+    parts.join(", and ")
+}
+
+/// The problems of an analysed model: constraints no fragment covers yet, geoms left free
+/// (under-constrained), and, run at the default params with the sketch's branches,
+/// constraints that cannot be met.
+pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    for u in &a.unsolved {
+        let c = &model.constraints[u.constraint];
+        out.push(
+            Diagnostic::error(
+                c.span,
+                format!("no assembly plan satisfies `{}` yet", c.name),
+            )
+            .with_label(u.reason.clone())
+            .with_note("this model needs a plan fragment or a loop analysis gcs does not have yet"),
+        );
+    }
+    let free = a.free_geoms();
+    if !free.is_empty() && a.unsolved.is_empty() {
+        for (g, dof) in &free {
+            let geom = &model.geoms[*g];
+            out.push(
+                Diagnostic::error(
+                    geom.span,
+                    format!("`{}` is under-constrained: {dof} DOF left", geom.name),
+                )
+                .with_label(freedom(model, a, *g))
+                .with_note("add constraints to fix it, or declare it `fixed`"),
+            );
+        }
+    }
+    if out.is_empty() {
+        let params = model.default_params();
+        let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
+        if let Err(e) = crate::interp::run(
+            model,
+            &a.plan,
+            &params,
+            &crate::interp::Choice::Given(branches),
+        ) {
+            if let Some((_, c)) = model.constraints.iter().find(|(_, c)| c.name == e.label) {
+                let what = match e.kind {
+                    gcs_runtime::error::ErrorKind::Inconsistent => {
+                        format!("conflicting constraint: it is off by {:.6e}", e.magnitude)
+                    }
+                    gcs_runtime::error::ErrorKind::NoIntersection => {
+                        format!("no assembly: the loci miss by {:.6e}", e.magnitude)
+                    }
+                    _ => "a degenerate configuration".to_string(),
+                };
+                out.push(
+                    Diagnostic::error(
+                        c.span,
+                        format!("`{}` cannot be met with the default params", c.name),
+                    )
+                    .with_label(what)
+                    .with_note(e.to_string()),
+                );
+            } else {
+                out.push(Diagnostic::error(gcs_lang::Span::default(), e.to_string()));
+            }
+        }
+    }
+    out
+}
+
+/// The summary `gcs check` prints after a successful analysis.
+pub fn check_report(model: &Model, a: &Analysis) -> String {
+    let nominal = crate::nominal::count(model);
+    let mut out = String::new();
+    let plural = |k: usize, w: &str| format!("{k} {w}{}", if k == 1 { "" } else { "s" });
+    let _ = writeln!(
+        out,
+        "{}: space {}, {}, {}, {}",
+        model.source.name(),
+        model.space,
+        plural(model.params.len(), "param"),
+        plural(nominal.geoms.len(), "geom"),
+        plural(nominal.constraints.len(), "constraint"),
+    );
+    let left = |g: GeomId| -> usize {
+        a.clusters
+            .iter()
+            .find(|c| c.geoms.contains(&g))
+            .map_or(0, |c| c.record.dof())
+    };
+    let name_w = nominal
+        .geoms
+        .iter()
+        .map(|g| g.name.len())
+        .max()
+        .unwrap_or(0)
+        .max(4);
+    let kind_w = nominal
+        .geoms
+        .iter()
+        .map(|g| g.kind.len())
+        .max()
+        .unwrap_or(0)
+        .max(4);
+    let _ = writeln!(out, "\ngeoms{:>w$}  left", "DOF", w = name_w + kind_w + 4);
+    for ((id, _), row) in model.top_level().zip(&nominal.geoms) {
+        let _ = writeln!(
+            out,
+            "  {:name_w$}  {:kind_w$}  {:>3}  {:>4}",
+            row.name,
+            row.kind,
+            row.dof,
+            left(id)
+        );
+    }
+    let c_name_w = nominal
+        .constraints
+        .iter()
+        .map(|c| c.name.len())
+        .max()
+        .unwrap_or(0)
+        .max(4);
+    let c_text_w = nominal
+        .constraints
+        .iter()
+        .map(|c| c.text.len())
+        .max()
+        .unwrap_or(0)
+        .max(4);
+    let _ = writeln!(
+        out,
+        "\nconstraints{:>w$}",
+        "removes",
+        w = c_name_w + c_text_w + 2
+    );
+    for c in &nominal.constraints {
+        let _ = writeln!(
+            out,
+            "  {:c_name_w$}  {:c_text_w$}  {:>7}",
+            c.name, c.text, c.removes
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\nnominal DOF: {} - {} = {}",
+        nominal.total_dof,
+        nominal.total_removed,
+        nominal.balance()
+    );
+    if let Some(g) = a.plan.grounded {
+        let _ = writeln!(
+            out,
+            "grounded: {} (nothing is fixed: it is held at its sketch placement, and the rest is solved relative to it)",
+            model.geoms[g].name
+        );
+    }
+    let free = a.free_geoms();
+    let status = if !free.is_empty() {
+        "under-constrained"
+    } else if !a.redundant.is_empty() {
+        "well-constrained, with redundant constraints"
+    } else {
+        "well-constrained"
+    };
+    let _ = writeln!(out, "analysis: {status}");
+    for c in &a.redundant {
+        let con = &model.constraints[*c];
+        let _ = writeln!(
+            out,
+            "  redundant: {} ({}, line {}) is implied by the others; it is kept as a run-time check",
+            con.name,
+            con.text,
+            model.line(con.span)
+        );
+    }
+    for b in &a.plan.branches {
+        if b.count > 1 {
+            let _ = writeln!(
+                out,
+                "  branch {}: {} roots, sketch takes {}: {}",
+                b.name,
+                b.count,
+                b.default,
+                b.meanings.get(b.default).cloned().unwrap_or_default()
+            );
+        }
+    }
+    out
+}
+
+/// A solution as text: one line a value.
+pub fn solution_text(s: &Solution) -> String {
+    let mut out = String::new();
+    let f = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x:.12}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    for (n, v) in &s.points {
+        let _ = writeln!(out, "point  {n} = ({})", f(v));
+    }
+    for (n, v) in &s.vectors {
+        let _ = writeln!(out, "vector {n} = ({})", f(v));
+    }
+    for (n, v) in &s.scalars {
+        let _ = writeln!(out, "scalar {n} = {v:.12}");
+    }
+    for (n, b) in &s.branches {
+        let _ = writeln!(out, "branch {n} = {b}");
+    }
+    if let Some(g) = &s.grounded {
+        let _ = writeln!(out, "grounded {g}");
+    }
+    let _ = writeln!(out, "max residual {:.3e}", s.max_residual);
+    out
+}

@@ -1,0 +1,195 @@
+//! A solved configuration read by the model's names: every point, vector and dimension of every
+//! geom, and the frame of every body, as `gcs solve --json` prints them (DESIGN.md's contract).
+
+use crate::config::Config;
+use gcs_lang::model::{GeomKind, Owner, Part};
+use gcs_lang::Model;
+use std::fmt::Write as _;
+
+/// A solution: global values by dotted name, in model order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Solution {
+    /// Points: point geoms, members, markers, `S.start`, `S.end`, `C.center`, `L.point`.
+    pub points: Vec<(String, Vec<f64>)>,
+    /// Unit vectors: vector geoms, members, `L.dir`, `S.dir`, marker axes.
+    pub vectors: Vec<(String, Vec<f64>)>,
+    /// Dimensions: `G.radius`, `S.length`.
+    pub scalars: Vec<(String, f64)>,
+    /// Body frames: origin and axes.
+    pub frames: Vec<(String, Vec<f64>, Vec<Vec<f64>>)>,
+    /// The index of every branch variable.
+    pub branches: Vec<(String, usize)>,
+    /// The value of every default (none yet: defaults land with their issue).
+    pub defaults: Vec<(String, f64)>,
+    /// The geom grounded at its sketch, if nothing was fixed.
+    pub grounded: Option<String>,
+    /// The largest constraint violation, measured by [`crate::verify`].
+    pub max_residual: f64,
+}
+
+impl Solution {
+    /// Reads every geom of the model from a configuration.
+    pub fn read(model: &Model, cfg: &Config) -> Solution {
+        let mut s = Solution::default();
+        for (id, g) in model.geoms.iter() {
+            let v2 = |p: nalgebra::Point2<f64>| vec![p.x, p.y];
+            match (g.kind, g.owner) {
+                (GeomKind::Point | GeomKind::Marker, _) => {
+                    s.points.push((g.name.clone(), v2(cfg.point(model, id))))
+                }
+                (GeomKind::Vector, _) => {
+                    let d = cfg.dir(model, id);
+                    s.vectors.push((g.name.clone(), vec![d.x, d.y]));
+                }
+                _ => {}
+            }
+            if let Owner::Part(owner, Part::BasePoint) = g.owner {
+                // `L.point` reads the solved line, not a frame origin.
+                if let Some(last) = s.points.last_mut() {
+                    let p = cfg.line_point(owner);
+                    last.1 = vec![p.x, p.y];
+                }
+            }
+            match g.kind {
+                GeomKind::Circle => s.scalars.push((format!("{}.radius", g.name), cfg.dim(id))),
+                GeomKind::Segment => s.scalars.push((format!("{}.length", g.name), cfg.dim(id))),
+                GeomKind::Body => {
+                    if let Some(f) = cfg.frames.get(&id) {
+                        let (x, y) = (f.x_axis(), f.y_axis());
+                        s.frames.push((
+                            g.name.clone(),
+                            vec![f.origin.x, f.origin.y],
+                            vec![vec![x.x, x.y], vec![y.x, y.y]],
+                        ));
+                    }
+                }
+                _ => {}
+            }
+        }
+        s
+    }
+
+    /// The point called `name`.
+    pub fn point(&self, name: &str) -> Option<&[f64]> {
+        self.points
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_slice())
+    }
+
+    /// The vector called `name`.
+    pub fn vector(&self, name: &str) -> Option<&[f64]> {
+        self.vectors
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_slice())
+    }
+
+    /// The scalar called `name`.
+    pub fn scalar(&self, name: &str) -> Option<f64> {
+        self.scalars
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| *v)
+    }
+
+    /// The JSON object of DESIGN.md, with numbers in shortest round-trip form.
+    pub fn to_json(&self) -> String {
+        let num = |x: f64| {
+            if x.is_finite() {
+                format!("{x:?}")
+            } else {
+                "null".to_string()
+            }
+        };
+        let arr = |v: &[f64]| {
+            format!(
+                "[{}]",
+                v.iter().map(|x| num(*x)).collect::<Vec<_>>().join(", ")
+            )
+        };
+        let key = |k: &str| format!("\"{}\"", k.replace('\\', "\\\\").replace('"', "\\\""));
+        let mut o = String::from("{\n");
+        let section = |o: &mut String, name: &str, items: Vec<String>, last: bool| {
+            let _ = write!(o, "  \"{name}\": {{");
+            if items.is_empty() {
+                o.push('}');
+            } else {
+                o.push('\n');
+                o.push_str(&items.join(",\n"));
+                o.push_str("\n  }");
+            }
+            o.push_str(if last { "\n" } else { ",\n" });
+        };
+        section(
+            &mut o,
+            "points",
+            self.points
+                .iter()
+                .map(|(k, v)| format!("    {}: {}", key(k), arr(v)))
+                .collect(),
+            false,
+        );
+        section(
+            &mut o,
+            "vectors",
+            self.vectors
+                .iter()
+                .map(|(k, v)| format!("    {}: {}", key(k), arr(v)))
+                .collect(),
+            false,
+        );
+        section(
+            &mut o,
+            "scalars",
+            self.scalars
+                .iter()
+                .map(|(k, v)| format!("    {}: {}", key(k), num(*v)))
+                .collect(),
+            false,
+        );
+        section(
+            &mut o,
+            "frames",
+            self.frames
+                .iter()
+                .map(|(k, origin, axes)| {
+                    let axes = axes.iter().map(|a| arr(a)).collect::<Vec<_>>().join(", ");
+                    format!(
+                        "    {}: {{\"origin\": {}, \"axes\": [{}]}}",
+                        key(k),
+                        arr(origin),
+                        axes
+                    )
+                })
+                .collect(),
+            false,
+        );
+        section(
+            &mut o,
+            "branches",
+            self.branches
+                .iter()
+                .map(|(k, v)| format!("    {}: {v}", key(k)))
+                .collect(),
+            false,
+        );
+        section(
+            &mut o,
+            "defaults",
+            self.defaults
+                .iter()
+                .map(|(k, v)| format!("    {}: {}", key(k), num(*v)))
+                .collect(),
+            false,
+        );
+        let _ = writeln!(
+            o,
+            "  \"grounded\": {},",
+            self.grounded.as_deref().map_or("null".to_string(), key)
+        );
+        let _ = writeln!(o, "  \"max_residual\": {}", num(self.max_residual));
+        o.push('}');
+        o
+    }
+}

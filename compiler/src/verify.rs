@@ -1,0 +1,231 @@
+//! The verifier: every constraint of the file re-evaluated on a [`Solution`], by plain
+//! arithmetic on the solution's named values.
+//!
+//! It shares no code with the plan, the fragments, the configuration or the runtime's
+//! intersections: it reads points, vectors and dimensions by name and measures each
+//! constraint's violation from its definition in LANGUAGE.md. A plan bug therefore cannot hide
+//! itself here.
+
+use crate::solution::Solution;
+use gcs_lang::constraints::ConstraintKind as K;
+use gcs_lang::model::{ConstraintId, GeomKind};
+use gcs_lang::Model;
+
+/// The violation of one constraint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Residual {
+    /// The constraint.
+    pub constraint: ConstraintId,
+    /// How far from satisfied (length or radians); NaN when a value it needs is missing.
+    pub value: f64,
+}
+
+type V = [f64; 2];
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1]]
+}
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+fn cross(a: V, b: V) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+fn norm(a: V) -> f64 {
+    a[0].hypot(a[1])
+}
+fn unit(a: V) -> V {
+    let n = norm(a);
+    [a[0] / n, a[1] / n]
+}
+fn wrap(a: f64) -> f64 {
+    let t = std::f64::consts::TAU;
+    let r = a.rem_euclid(t);
+    if r > std::f64::consts::PI {
+        r - t
+    } else {
+        r
+    }
+}
+
+/// Named lookups that yield NaN for anything missing, so a missing value is a failure, not a
+/// pass.
+struct Look<'a> {
+    model: &'a Model,
+    s: &'a Solution,
+}
+
+impl Look<'_> {
+    fn p(&self, name: &str) -> V {
+        match self.s.point(name) {
+            Some([x, y, ..]) => [*x, *y],
+            _ => [f64::NAN, f64::NAN],
+        }
+    }
+    fn v(&self, name: &str) -> V {
+        match self.s.vector(name) {
+            Some([x, y, ..]) => unit([*x, *y]),
+            _ => [f64::NAN, f64::NAN],
+        }
+    }
+    fn x(&self, name: &str) -> f64 {
+        self.s.scalar(name).unwrap_or(f64::NAN)
+    }
+    /// A point argument: a point or marker by its name; a circle by its centre.
+    fn point_arg(&self, g: gcs_lang::model::GeomId) -> V {
+        let geom = &self.model.geoms[g];
+        match geom.kind {
+            GeomKind::Circle => self.p(&format!("{}.center", geom.name)),
+            _ => self.p(&geom.name),
+        }
+    }
+    /// A line argument: (a point on it, its unit direction).
+    fn line_arg(&self, g: gcs_lang::model::GeomId) -> (V, V) {
+        let n = &self.model.geoms[g].name;
+        match self.model.geoms[g].kind {
+            GeomKind::Line => (self.p(&format!("{n}.point")), self.v(&format!("{n}.dir"))),
+            GeomKind::Segment => (self.p(&format!("{n}.start")), self.v(&format!("{n}.dir"))),
+            GeomKind::Marker => (self.p(n), self.v(&format!("{n}.x"))),
+            _ => ([f64::NAN; 2], [f64::NAN; 2]),
+        }
+    }
+    /// A direction argument: a vector, or the direction of a line or segment.
+    fn dir_arg(&self, g: gcs_lang::model::GeomId) -> V {
+        let n = &self.model.geoms[g].name;
+        match self.model.geoms[g].kind {
+            GeomKind::Line | GeomKind::Segment => self.v(&format!("{n}.dir")),
+            _ => self.v(n),
+        }
+    }
+    fn circle_arg(&self, g: gcs_lang::model::GeomId) -> (V, f64) {
+        let n = &self.model.geoms[g].name;
+        (
+            self.p(&format!("{n}.center")),
+            self.x(&format!("{n}.radius")),
+        )
+    }
+}
+
+/// The residual of every constraint of the model on `solution`, with `params` for values.
+pub fn residuals(model: &Model, solution: &Solution, params: &[f64]) -> Vec<Residual> {
+    let look = Look { model, s: solution };
+    model
+        .constraints
+        .iter()
+        .map(|(id, c)| {
+            let value = c.value.map_or(0.0, |e| model.exprs.eval(e, params));
+            let a = c.args.first().copied();
+            let b = c.args.get(1).copied();
+            let kind = |g: Option<gcs_lang::model::GeomId>| g.map(|g| model.geoms[g].kind);
+            let r = match (c.kind, a, b) {
+                (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => {
+                    norm(sub(look.point_arg(a), look.point_arg(b)))
+                }
+                (K::Distance, Some(a), Some(b)) => match (kind(Some(a)), kind(Some(b))) {
+                    (
+                        Some(GeomKind::Point | GeomKind::Marker),
+                        Some(GeomKind::Point | GeomKind::Marker),
+                    ) => (norm(sub(look.point_arg(a), look.point_arg(b))) - value.abs()).abs(),
+                    (_, Some(GeomKind::Line | GeomKind::Segment)) => {
+                        let (base, dir) = look.line_arg(b);
+                        (cross(dir, sub(look.point_arg(a), base)) - value).abs()
+                    }
+                    (Some(GeomKind::Point | GeomKind::Marker), Some(GeomKind::Circle)) => {
+                        let (c, r) = look.circle_arg(b);
+                        ((norm(sub(look.point_arg(a), c)) - r).abs() - value).abs()
+                    }
+                    (Some(GeomKind::Line | GeomKind::Segment), Some(GeomKind::Circle)) => {
+                        let (base, dir) = look.line_arg(a);
+                        let (c, r) = look.circle_arg(b);
+                        (cross(dir, sub(c, base)).abs() - r - value).abs()
+                    }
+                    (Some(GeomKind::Circle), Some(GeomKind::Circle)) => {
+                        let (c1, r1) = look.circle_arg(a);
+                        let (c2, r2) = look.circle_arg(b);
+                        let d = norm(sub(c1, c2));
+                        let outside = d - r1 - r2;
+                        let nested = (r1 - r2).abs() - d;
+                        (outside - value).abs().min((nested - value).abs())
+                    }
+                    _ => f64::NAN,
+                },
+                (K::On, Some(a), Some(b)) => match kind(Some(b)) {
+                    Some(GeomKind::Line | GeomKind::Segment) => {
+                        let (base, dir) = look.line_arg(b);
+                        cross(dir, sub(look.point_arg(a), base)).abs()
+                    }
+                    Some(GeomKind::Circle) => {
+                        let (c, r) = look.circle_arg(b);
+                        (norm(sub(look.point_arg(a), c)) - r).abs()
+                    }
+                    _ => f64::NAN,
+                },
+                (K::Tangent, Some(a), Some(b)) => match kind(Some(a)) {
+                    Some(GeomKind::Line | GeomKind::Segment) => {
+                        let (base, dir) = look.line_arg(a);
+                        let (c, r) = look.circle_arg(b);
+                        (cross(dir, sub(c, base)).abs() - r).abs()
+                    }
+                    _ => {
+                        let (c1, r1) = look.circle_arg(a);
+                        let (c2, r2) = look.circle_arg(b);
+                        let d = norm(sub(c1, c2));
+                        (d - r1 - r2).abs().min((d - (r1 - r2).abs()).abs())
+                    }
+                },
+                (K::Angle, Some(a), Some(b)) => {
+                    let (u, v) = (look.dir_arg(a), look.dir_arg(b));
+                    wrap(cross(u, v).atan2(dot(u, v)) - value).abs()
+                }
+                (K::Parallel, Some(a), Some(b)) => cross(look.dir_arg(a), look.dir_arg(b)).abs(),
+                (K::Perpendicular, Some(a), Some(b)) => dot(look.dir_arg(a), look.dir_arg(b)).abs(),
+                (K::Horizontal, Some(a), _) => look.dir_arg(a)[1].abs(),
+                (K::Vertical, Some(a), _) => look.dir_arg(a)[0].abs(),
+                (K::Length, Some(a), _) => {
+                    let n = &model.geoms[a].name;
+                    let len = norm(sub(
+                        look.p(&format!("{n}.end")),
+                        look.p(&format!("{n}.start")),
+                    ));
+                    (len - value).abs()
+                }
+                (K::Radius, Some(a), _) => (look.circle_arg(a).1 - value).abs(),
+                (K::InLine, Some(a), Some(b)) => {
+                    let (base, dir) = look.line_arg(b);
+                    cross(dir, sub(look.point_arg(a), base)).abs()
+                }
+                (K::OffsetX | K::Prismatic, Some(a), Some(b)) => {
+                    let (na, nb) = (&model.geoms[a].name, &model.geoms[b].name);
+                    let (u, v) = (look.v(&format!("{na}.x")), look.v(&format!("{nb}.x")));
+                    let target = if c.kind == K::OffsetX { value } else { 0.0 };
+                    let angle = wrap(cross(u, v).atan2(dot(u, v)) - target).abs();
+                    if c.kind == K::Prismatic {
+                        let (base, dir) = look.line_arg(b);
+                        angle.max(cross(dir, sub(look.point_arg(a), base)).abs())
+                    } else {
+                        angle
+                    }
+                }
+                _ => f64::NAN,
+            };
+            Residual {
+                constraint: id,
+                value: r,
+            }
+        })
+        .collect()
+}
+
+/// The largest residual (NaN-aware: a NaN residual is infinite).
+pub fn max_residual(residuals: &[Residual]) -> f64 {
+    residuals
+        .iter()
+        .map(|r| {
+            if r.value.is_nan() {
+                f64::INFINITY
+            } else {
+                r.value
+            }
+        })
+        .fold(0.0, f64::max)
+}
