@@ -12,7 +12,7 @@ use gcs_lang::model::{ConstraintId, GeomKind, Part};
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::intersect2d;
-use gcs_runtime::locus2d::{Circle, Line};
+use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};
 use gcs_runtime::{Contact, Roots};
 use nalgebra::UnitComplex;
 
@@ -42,6 +42,7 @@ enum Val {
     V(V2),
     L(Line),
     C(Circle),
+    Q(Conic),
 }
 
 /// Relative tolerance of run-time checks and of points that must lie on a locus, times the
@@ -97,13 +98,84 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             Op::Expr(e) => Some(Val::S(model.exprs.eval(*e, params))),
             Op::Const(c) => Some(Val::S(*c)),
             Op::Neg(x) => Some(Val::S(-s(*x))),
+            Op::DimOf(g) => Some(Val::S(config.dim(*g))),
+            Op::Sum(terms) => Some(Val::S(terms.iter().map(|(k, r)| k * s(*r)).sum())),
+            Op::Reversed(x) => match get(&regs, *x) {
+                Val::L(l) => Some(Val::L(l.reversed())),
+                _ => return Err(bad_step(model, step)),
+            },
+            Op::OffsetLine { line, by } => match get(&regs, *line) {
+                Val::L(l) => Some(Val::L(l.offset(s(*by)))),
+                _ => return Err(bad_step(model, step)),
+            },
+            Op::CentresLineLine { l1, a1, l2, a2 } => match (get(&regs, *l1), get(&regs, *l2)) {
+                (Val::L(x), Val::L(y)) => {
+                    let l = locus2d::centres_line_line(&x, s(*a1), &y, s(*a2))
+                        .ok_or_else(|| bad_step(model, step))?;
+                    Some(Val::L(l))
+                }
+                _ => return Err(bad_step(model, step)),
+            },
+            Op::CentresLinePoint {
+                line,
+                a,
+                at,
+                b,
+                plus,
+            } => match get(&regs, *line) {
+                Val::L(l) => {
+                    let q = locus2d::centres_line_circle(&l, s(*a), p(*at), sense(*plus), s(*b))
+                        .ok_or_else(|| bad_step(model, step))?;
+                    Some(Val::Q(Conic::Parabola(q)))
+                }
+                _ => return Err(bad_step(model, step)),
+            },
+            Op::CentresPointPoint {
+                c1,
+                b1,
+                p1,
+                c2,
+                b2,
+                p2,
+            } => {
+                let q = locus2d::centres_circle_circle(
+                    p(*c1),
+                    sense(*p1),
+                    s(*b1),
+                    p(*c2),
+                    sense(*p2),
+                    s(*b2),
+                )
+                .ok_or_else(|| bad_step(model, step))?;
+                Some(Val::Q(q))
+            }
+            Op::RadiusFromLine { line, a, centre } => match get(&regs, *line) {
+                Val::L(l) => Some(Val::S(l.signed_distance(p(*centre)) - s(*a))),
+                _ => return Err(bad_step(model, step)),
+            },
+            Op::RadiusFromPoint {
+                at,
+                b,
+                plus,
+                centre,
+            } => {
+                let d = (p(*centre) - p(*at)).norm();
+                Some(Val::S(if *plus { d - s(*b) } else { s(*b) - d }))
+            }
             Op::PointOf(g) => Some(Val::P(config.point(model, *g))),
             Op::DirOf(g) => Some(Val::V(config.dir(model, *g))),
             Op::Axis(x, y) => Some(Val::V(V2::new(*x, *y))),
             Op::Rotated { dir, angle } => Some(Val::V(UnitComplex::new(s(*angle)) * v(*dir))),
             Op::Circle { center, radius } => {
-                let c = Circle::new(p(*center), s(*radius).abs())
-                    .ok_or_else(|| bad_step(model, step))?;
+                let rr = s(*radius);
+                if rr < 0.0 {
+                    // A locus circle of negative radius: the distance cannot be met.
+                    return Err(match constraint_of(plan, step) {
+                        Some(c) => err(model, c, ErrorKind::NoIntersection, -rr),
+                        None => bad_step(model, step),
+                    });
+                }
+                let c = Circle::new(p(*center), rr).ok_or_else(|| bad_step(model, step))?;
                 Some(Val::C(c))
             }
             Op::CircleThrough { center, through } => {
@@ -169,15 +241,23 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 constraint,
                 near,
             } => {
-                let (roots, contact): (Roots<P2, 2>, Contact) =
+                let (roots, contact): (Roots<P2, 4>, Contact) =
                     match (meet, get(&regs, *a), get(&regs, *b)) {
                         (Meet::CircleCircle, Val::C(x), Val::C(y)) => {
                             let i = intersect2d::circle_circle(&x, &y);
-                            (i.roots, i.contact)
+                            (Roots::from_slice(i.roots.as_slice()), i.contact)
                         }
                         (Meet::LineCircle, Val::L(x), Val::C(y)) => {
                             let i = intersect2d::line_circle(&x, &y);
+                            (Roots::from_slice(i.roots.as_slice()), i.contact)
+                        }
+                        (Meet::CircleConic, Val::C(x), Val::Q(y)) => {
+                            let i = intersect2d::circle_conic(&x, &y);
                             (i.roots, i.contact)
+                        }
+                        (Meet::LineConic, Val::L(x), Val::Q(y)) => {
+                            let i = intersect2d::line_conic(&x, &y);
+                            (Roots::from_slice(i.roots.as_slice()), i.contact)
                         }
                         (Meet::LineLine, Val::L(x), Val::L(y)) => {
                             let i = intersect2d::line_line(&x, &y);
@@ -208,7 +288,12 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                     Some(x) => Some(Val::P(x)),
                     None => {
                         // The chosen branch has no root here: say so, never take another.
-                        return Err(err(model, *constraint, ErrorKind::NoIntersection, 0.0));
+                        return Err(err(
+                            model,
+                            *constraint,
+                            ErrorKind::NoSuchBranch,
+                            roots.len() as f64,
+                        ));
                     }
                 }
             }
@@ -272,6 +357,25 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
         }
     }
     Ok(Run { config, chosen })
+}
+
+fn sense(plus: bool) -> Sense {
+    if plus {
+        Sense::Plus
+    } else {
+        Sense::Minus
+    }
+}
+
+/// The constraint a step works for: its own, or that of the next step that satisfies one.
+fn constraint_of(plan: &Plan, step: &crate::plan::Step) -> Option<ConstraintId> {
+    if let Some(c) = step.satisfies.first() {
+        return Some(*c);
+    }
+    let i = plan.steps.iter().position(|s| std::ptr::eq(s, step))?;
+    plan.steps[i..]
+        .iter()
+        .find_map(|s| s.satisfies.first().copied())
 }
 
 fn bad_step(model: &Model, step: &crate::plan::Step) -> SolveError {

@@ -77,6 +77,45 @@ pub enum Op {
     Const(f64),
     /// `-x`.
     Neg(Reg),
+    /// The current dimension of a geom (a segment's length, a circle's radius).
+    DimOf(GeomId),
+    /// A linear combination of scalars.
+    Sum(Vec<(f64, Reg)>),
+    /// A line with its direction reversed (left and right swap).
+    Reversed(Reg),
+    /// Line `line` moved `by` to its left.
+    OffsetLine { line: Reg, by: Reg },
+    /// The centres `X` of circles of any radius `r` with `sd_l1(X) = r + a1` and
+    /// `sd_l2(X) = r + a2`: an angular bisector (002, RR-1).
+    CentresLineLine { l1: Reg, a1: Reg, l2: Reg, a2: Reg },
+    /// The centres with `sd_line(X) = r + a` and `|X - at| = r + b` (`plus`) or `b - r`: a
+    /// parabola.
+    CentresLinePoint {
+        line: Reg,
+        a: Reg,
+        at: Reg,
+        b: Reg,
+        plus: bool,
+    },
+    /// The centres with `|X - c1| = ±r + b1` and `|X - c2| = ±r + b2`: a hyperbola branch or an
+    /// ellipse.
+    CentresPointPoint {
+        c1: Reg,
+        b1: Reg,
+        p1: bool,
+        c2: Reg,
+        b2: Reg,
+        p2: bool,
+    },
+    /// The radius `sd_line(centre) - a`.
+    RadiusFromLine { line: Reg, a: Reg, centre: Reg },
+    /// The radius `|centre - at| - b` (`plus`) or `b - |centre - at|`.
+    RadiusFromPoint {
+        at: Reg,
+        b: Reg,
+        plus: bool,
+        centre: Reg,
+    },
     /// The global position of a point feature (a point geom, member, marker or part).
     PointOf(GeomId),
     /// The global direction of a vector feature (a vector geom, member, axis or `dir`).
@@ -185,7 +224,15 @@ impl Plan {
             | Op::Check { .. } => {
                 vec![]
             }
-            Op::Neg(x) => vec![*x],
+            Op::Neg(x) | Op::Reversed(x) => vec![*x],
+            Op::DimOf(_) => vec![],
+            Op::Sum(terms) => terms.iter().map(|t| t.1).collect(),
+            Op::OffsetLine { line, by } => vec![*line, *by],
+            Op::CentresLineLine { l1, a1, l2, a2 } => vec![*l1, *a1, *l2, *a2],
+            Op::CentresLinePoint { line, a, at, b, .. } => vec![*line, *a, *at, *b],
+            Op::CentresPointPoint { c1, b1, c2, b2, .. } => vec![*c1, *b1, *c2, *b2],
+            Op::RadiusFromLine { line, a, centre } => vec![*line, *a, *centre],
+            Op::RadiusFromPoint { at, b, centre, .. } => vec![*at, *b, *centre],
             Op::Rotated { dir, angle } => vec![*dir, *angle],
             Op::Circle { center, radius } => vec![*center, *radius],
             Op::CircleThrough { center, through } => vec![*center, *through],
@@ -240,6 +287,65 @@ impl Plan {
                 Op::Expr(e) => format!("expr {}", expr_text(model, *e)),
                 Op::Const(c) => format!("const {}", fmt_f64(*c)),
                 Op::Neg(x) => format!("neg {}", r(x)),
+                Op::DimOf(g) => format!("dim_of {}", name(g)),
+                Op::Sum(terms) => format!(
+                    "sum {}",
+                    terms
+                        .iter()
+                        .map(|(s, x)| format!("{}*{}", fmt_f64(*s), r(x)))
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                ),
+                Op::Reversed(x) => format!("reversed {}", r(x)),
+                Op::OffsetLine { line, by } => format!("offset_line {} by {}", r(line), r(by)),
+                Op::CentresLineLine { l1, a1, l2, a2 } => {
+                    format!("centres_line_line {} {} {} {}", r(l1), r(a1), r(l2), r(a2))
+                }
+                Op::CentresLinePoint {
+                    line,
+                    a,
+                    at,
+                    b,
+                    plus,
+                } => format!(
+                    "centres_line_point {} {} {} {} {}",
+                    r(line),
+                    r(a),
+                    r(at),
+                    r(b),
+                    if *plus { "plus" } else { "minus" }
+                ),
+                Op::CentresPointPoint {
+                    c1,
+                    b1,
+                    p1,
+                    c2,
+                    b2,
+                    p2,
+                } => format!(
+                    "centres_point_point {} {} {} {} {} {}",
+                    r(c1),
+                    r(b1),
+                    if *p1 { "plus" } else { "minus" },
+                    r(c2),
+                    r(b2),
+                    if *p2 { "plus" } else { "minus" }
+                ),
+                Op::RadiusFromLine { line, a, centre } => {
+                    format!("radius_from_line {} {} {}", r(line), r(a), r(centre))
+                }
+                Op::RadiusFromPoint {
+                    at,
+                    b,
+                    plus,
+                    centre,
+                } => format!(
+                    "radius_from_point {} {} {} {}",
+                    r(at),
+                    r(b),
+                    if *plus { "plus" } else { "minus" },
+                    r(centre)
+                ),
                 Op::PointOf(g) => format!("point_of {}", name(g)),
                 Op::DirOf(g) => format!("dir_of {}", name(g)),
                 Op::Axis(x, y) => format!("axis ({x}, {y})"),

@@ -28,6 +28,9 @@ pub enum ErrorKind {
     NoConvergence,
     /// An input is invalid, such as a NaN or infinite parameter: the magnitude is the value.
     InvalidInput,
+    /// The loci meet, but not in the chosen branch: the magnitude is how many real roots the
+    /// intersection has. The solver never takes another branch instead.
+    NoSuchBranch,
 }
 
 /// The failure of a solve, naming the user's constraint.
@@ -107,7 +110,11 @@ impl fmt::Display for SolveError {
             ErrorKind::NoConvergence => {
                 write!(f, " cannot be met: the iteration did not converge, residual {m}")
             }
-            ErrorKind::InvalidInput => Ok(()),
+                        ErrorKind::InvalidInput => Ok(()),
+            ErrorKind::NoSuchBranch => write!(
+                f,
+                " cannot be met on the chosen branch: the loci meet in only {m} real point(s) here"
+            ),
         }
     }
 }

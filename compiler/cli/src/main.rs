@@ -74,10 +74,30 @@ fn main() -> ExitCode {
             print!("{}", gcs_compiler::explain::explain(model, a));
             ExitCode::SUCCESS
         }),
-        Command::Plan { file } => with_analysis(&file, color, |model, a| {
-            print!("{}", a.plan.dump(model));
-            ExitCode::SUCCESS
-        }),
+        Command::Plan { file } => {
+            let model = match load(&file, color) {
+                Ok(m) => m,
+                Err(code) => return code,
+            };
+            match gcs_compiler::analysis::analyse(&model) {
+                Ok(a) => {
+                    // The dump is printed even when the plan is incomplete: it shows how far
+                    // the analysis got.
+                    let problems = gcs_compiler::report::problems(&model, &a);
+                    emit(&model.source, &problems, color);
+                    print!("{}", a.plan.dump(&model));
+                    if problems.iter().any(|d| d.is_error()) {
+                        ExitCode::FAILURE
+                    } else {
+                        ExitCode::SUCCESS
+                    }
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
     }
 }
 
@@ -87,8 +107,9 @@ fn with_analysis(
     color: termcolor::ColorChoice,
     then: impl FnOnce(&gcs_lang::Model, &gcs_compiler::analysis::Analysis) -> ExitCode,
 ) -> ExitCode {
-    let Some(model) = load(path, color) else {
-        return ExitCode::FAILURE;
+    let model = match load(path, color) {
+        Ok(m) => m,
+        Err(code) => return code,
     };
     let analysis = match gcs_compiler::analysis::analyse(&model) {
         Ok(a) => a,
@@ -109,13 +130,13 @@ fn with_analysis(
 }
 
 /// Reads and resolves a model, printing its diagnostics; `None` when it has errors.
-fn load(path: &PathBuf, color: termcolor::ColorChoice) -> Option<gcs_lang::Model> {
+fn load(path: &PathBuf, color: termcolor::ColorChoice) -> Result<gcs_lang::Model, ExitCode> {
     let name = path.display().to_string();
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) => {
             eprintln!("error: cannot read `{name}`: {e}");
-            return None;
+            return Err(ExitCode::from(2));
         }
     };
     let (source, model, diags) = gcs_lang::load(&name, &bytes);
@@ -127,7 +148,7 @@ fn load(path: &PathBuf, color: termcolor::ColorChoice) -> Option<gcs_lang::Model
             if errors == 1 { "" } else { "s" }
         );
     }
-    model
+    model.ok_or(ExitCode::FAILURE)
 }
 
 fn solve(
@@ -216,30 +237,31 @@ fn solve(
 }
 
 fn check(path: &PathBuf, color: termcolor::ColorChoice) -> ExitCode {
-    let name = path.display().to_string();
-    let bytes = match std::fs::read(path) {
-        Ok(b) => b,
-        Err(e) => {
-            eprintln!("error: cannot read `{name}`: {e}");
-            return ExitCode::from(2);
-        }
+    let model = match load(path, color) {
+        Ok(m) => m,
+        Err(code) => return code,
     };
-    let (source, model, diags) = gcs_lang::load(&name, &bytes);
-    emit(&source, &diags, color);
-    match model {
-        Some(model) => {
-            print!("{}", gcs_compiler::nominal::report(&model));
-            ExitCode::SUCCESS
+    match gcs_compiler::analysis::analyse(&model) {
+        Ok(analysis) => {
+            let problems = gcs_compiler::report::problems(&model, &analysis);
+            emit(&model.source, &problems, color);
+            if problems.iter().any(|d| d.is_error()) {
+                let n = problems.iter().filter(|d| d.is_error()).count();
+                eprintln!(
+                    "error: `{}` has {n} analysis error{}",
+                    path.display(),
+                    if n == 1 { "" } else { "s" }
+                );
+                return ExitCode::FAILURE;
+            }
+            print!("{}", gcs_compiler::report::check_report(&model, &analysis));
         }
-        None => {
-            let errors = diags.iter().filter(|d| d.is_error()).count();
-            eprintln!(
-                "error: could not check `{name}` due to {errors} previous error{}",
-                if errors == 1 { "" } else { "s" }
-            );
-            ExitCode::FAILURE
+        Err(why) => {
+            print!("{}", gcs_compiler::nominal::report(&model));
+            println!("analysis: not run: {why}");
         }
     }
+    ExitCode::SUCCESS
 }
 
 /// Renders diagnostics to stderr, with colour when the terminal has it.

@@ -12,6 +12,7 @@
 //! its rotation ([`Rot`]) and its position ([`Pos`]); [`Record::table2`] gives the slots of
 //! Kramer's Table 2 for reports.
 
+pub mod circle;
 pub mod relation;
 
 use crate::config::{Config, V2};
@@ -39,6 +40,8 @@ pub enum Locus {
     Line(Reg),
     /// A circle.
     Circle(Reg),
+    /// A conic (parabola, ellipse or hyperbola branch) from locus analysis of a circle.
+    Conic(Reg),
 }
 
 /// What a cluster's position is.
@@ -75,6 +78,12 @@ pub struct Record {
     pub pos: Pos,
     /// The geom with a free dimension (segment length, circle radius), if still free.
     pub free_dim: Option<GeomId>,
+    /// Fixed-distance lines and points of a circle whose radius is still free (Table 2's last
+    /// slots): each ties its centre to its radius.
+    pub fd: Vec<circle::Fd>,
+    /// Whether the position is the centre locus those fixed distances make (RR-1 and kin):
+    /// then they fix the radius once the centre is placed, and count once, not twice.
+    pub fd_locus: bool,
     /// Invariant dimensions.
     pub fixed_dims: Vec<GeomId>,
     /// Whether the cluster is a lone line (its slide along itself is a symmetry).
@@ -91,7 +100,14 @@ impl Record {
             Pos::On { .. } => 1,
             Pos::Pivot { .. } | Pos::Fixed | Pos::None => 0,
         };
-        rot + pos + usize::from(self.free_dim.is_some())
+        // Each fixed distance ties the free radius to the centre: one DOF less, except those
+        // already folded into the centre's locus.
+        let tied = if self.fd_locus {
+            self.fd.len().saturating_sub(1)
+        } else {
+            self.fd.len()
+        };
+        (rot + pos + usize::from(self.free_dim.is_some())).saturating_sub(tied)
     }
 
     /// Whether nothing about the cluster can move any more.
@@ -110,6 +126,8 @@ impl Record {
             _ => (0, 0),
         };
         let inv_vec = usize::from(self.rot == Rot::Known);
+        let fd_pts = self.fd.iter().filter(|f| !f.is_line()).count();
+        let fd_lines = self.fd.len() - fd_pts;
         [
             inv_pts,
             pts_1d,
@@ -117,8 +135,8 @@ impl Record {
             inv_vec,
             0,
             self.fixed_dims.len(),
-            0,
-            0,
+            fd_pts,
+            fd_lines,
             0,
         ]
     }
@@ -186,15 +204,11 @@ pub fn analyse(model: &Model) -> Result<Analysis, String> {
             model.geoms[b.geom].name, b.what
         )
     })?;
-    let sketch_angle = |u: Dir, v: Dir| {
-        let d = |x: Dir| match x {
-            Dir::Feature(g) => sketch.dir(model, g),
-            Dir::World(x, y) => V2::new(x, y),
-        };
-        let (a, b) = (d(u), d(v));
-        (a.x * b.y - a.y * b.x).atan2(a.dot(&b))
+    let view = SketchOf {
+        model,
+        config: &sketch,
     };
-    let (mut rels, unsupported) = relation::decompose(model, sketch_angle);
+    let (mut rels, unsupported) = relation::decompose(model, &view);
     // Canonical order: by constraint name, then relation order within the constraint, so that
     // the plan does not depend on the order of statements.
     rels.sort_by(|a, b| {
@@ -220,6 +234,34 @@ pub fn analyse(model: &Model) -> Result<Analysis, String> {
         unsolved,
         redundant: b.redundant,
     })
+}
+
+/// The sketch configuration, as the decomposition sees it.
+struct SketchOf<'a> {
+    model: &'a Model,
+    config: &'a Config,
+}
+
+impl relation::SketchView for SketchOf<'_> {
+    fn angle(&self, u: Dir, v: Dir) -> f64 {
+        let d = |x: Dir| match x {
+            Dir::Feature(g) => self.config.dir(self.model, g),
+            Dir::World(x, y) => V2::new(x, y),
+        };
+        let (a, b) = (d(u), d(v));
+        (a.x * b.y - a.y * b.x).atan2(a.dot(&b))
+    }
+    fn point(&self, p: GeomId) -> [f64; 2] {
+        let q = self.config.point(self.model, p);
+        [q.x, q.y]
+    }
+    fn dir(&self, v: GeomId) -> [f64; 2] {
+        let d = self.config.dir(self.model, v);
+        [d.x, d.y]
+    }
+    fn radius(&self, c: GeomId) -> f64 {
+        self.config.dim(c)
+    }
 }
 
 /// A target for a feature: a point or a locus.
@@ -262,6 +304,8 @@ impl<'m> Builder<'m> {
                 rot,
                 pos,
                 free_dim,
+                fd: Vec::new(),
+                fd_locus: false,
                 fixed_dims: Vec::new(),
                 line: g.kind == GeomKind::Line,
             };
@@ -632,6 +676,7 @@ impl<'m> Builder<'m> {
                     return self.move_feature(p, Target::On(Locus::Line(line)), r);
                 }
                 if p_known {
+                    let d = d.map(|d| self.expr(d));
                     return self.move_line_to_point(p, base, dir, d, r);
                 }
                 false
@@ -683,6 +728,9 @@ impl<'m> Builder<'m> {
                 self.dimension(r);
                 true
             }
+            Relation::PointCircle { .. }
+            | Relation::CircleLine { .. }
+            | Relation::CircleCircle { .. } => self.circle_relation(r),
         }
     }
 
@@ -693,13 +741,24 @@ impl<'m> Builder<'m> {
 
     /// Moves the cluster of feature `f` so that `f` meets `target`, with the freedom its record
     /// leaves (the plan fragment table for a rigid frame in the plane).
-    fn move_feature(&mut self, f: GeomId, target: Target, r: &Rel) -> bool {
+    pub(super) fn move_feature(&mut self, f: GeomId, target: Target, r: &Rel) -> bool {
         let k = self.cluster(f);
-        let rec = self.clusters[k].record.clone();
-        if rec.free_dim.is_some() {
-            // Dimensions before positions: wait for the dimension or a fragment that scales.
+        if self.clusters[k].record.free_dim.is_some() && depends_on_dim(self.model, f) {
+            // The feature moves with the free dimension: wait until it is fixed.
             return false;
         }
+        let moved = self.move_feature_rigidly(f, target, r);
+        if moved {
+            self.settle(k);
+        }
+        moved
+    }
+
+    /// The fragments of a rigid frame in the plane (the free dimension, if any, does not move
+    /// `f`).
+    fn move_feature_rigidly(&mut self, f: GeomId, target: Target, r: &Rel) -> bool {
+        let k = self.cluster(f);
+        let rec = self.clusters[k].record.clone();
         let geoms = self.clusters[k].geoms.clone();
         let names = geoms
             .iter()
@@ -897,6 +956,8 @@ impl<'m> Builder<'m> {
                     words,
                 )
             }
+            // Only a circle's own centre rides on a conic: nothing else of it to shift.
+            Locus::Conic(c) => c,
             Locus::Circle(c) => {
                 let words = format!("{} moved with {fname}", self.word(c));
                 self.value(
@@ -935,6 +996,10 @@ impl<'m> Builder<'m> {
                     (Ty::Circle, Locus::Circle(c)) => (Meet::CircleCircle, own, c),
                     (Ty::Circle, Locus::Line(l)) => (Meet::LineCircle, l, own),
                     (Ty::Line, Locus::Circle(c)) => (Meet::LineCircle, own, c),
+                    (Ty::Circle, Locus::Conic(q)) => (Meet::CircleConic, own, q),
+                    (Ty::Line, Locus::Conic(q)) => (Meet::LineConic, own, q),
+                    (Ty::Conic, Locus::Circle(c)) => (Meet::CircleConic, c, own),
+                    (Ty::Conic, Locus::Line(l)) => (Meet::LineConic, l, own),
                     _ => (Meet::LineLine, own, other),
                 };
                 self.intersect(meet, a, b, near, r.constraint)
@@ -983,9 +1048,19 @@ impl<'m> Builder<'m> {
                 ],
             ),
             Meet::LineLine => (1, vec![format!("the crossing of {wa} and {wb}")]),
-            Meet::CircleConic | Meet::LineConic => {
-                (4, vec!["roots in order along the conic".to_string()])
-            }
+            Meet::CircleConic => (
+                4,
+                (0..4)
+                    .map(|i| format!("root {i} in increasing parameter along {wb}"))
+                    .collect(),
+            ),
+            Meet::LineConic => (
+                2,
+                vec![
+                    format!("the first crossing of {wa} with {wb}, along the line"),
+                    "the second crossing, along the line".to_string(),
+                ],
+            ),
         };
         let branch = if count > 1 {
             let id = BranchId(self.plan.branches.len() as u32);
@@ -1076,12 +1151,12 @@ impl<'m> Builder<'m> {
 
     /// A point feature `p` is known; the line (`base`, `dir`) of another cluster must pass at
     /// signed distance `d` from it.
-    fn move_line_to_point(
+    pub(super) fn move_line_to_point(
         &mut self,
         p: GeomId,
         base: GeomId,
         dir: GeomId,
-        d: Option<gcs_lang::expr::ExprId>,
+        d: Option<Reg>,
         r: &Rel,
     ) -> bool {
         let k = self.cluster(base);
@@ -1093,10 +1168,7 @@ impl<'m> Builder<'m> {
         if rec.rot == Rot::Known {
             // Its direction is known: the base must lie on the parallel at the right offset.
             let dv = self.dir(Dir::Feature(dir));
-            let offset = d.map(|d| {
-                let e = self.expr(d);
-                self.neg(e)
-            });
+            let offset = d.map(|d| self.neg(d));
             let words = format!(
                 "the line along {} placing {} at the right distance",
                 self.name(dir),
@@ -1125,7 +1197,7 @@ impl<'m> Builder<'m> {
     /// The locus table: where feature `f` of a partially fixed cluster can lie, if on a curve.
     fn locus_of(&mut self, f: GeomId) -> Option<Reg> {
         let rec = self.record(f).clone();
-        if rec.free_dim.is_some() {
+        if rec.free_dim.is_some() && depends_on_dim(self.model, f) {
             return None;
         }
         match rec.pos {
@@ -1154,7 +1226,7 @@ impl<'m> Builder<'m> {
         }
         let ready = |s: &Self, f: GeomId| {
             let rec = s.record(f);
-            rec.free_dim.is_none()
+            (rec.free_dim.is_none() || !depends_on_dim(s.model, f))
                 && match rec.pos {
                     Pos::On { .. } => rec.rot != Rot::Free,
                     Pos::Pivot { feature, .. } => feature != f,
@@ -1168,15 +1240,24 @@ impl<'m> Builder<'m> {
             return false;
         };
         let near = self.point(b);
-        let meet = match (self.ty(la), self.ty(lb)) {
+        // The intersection table wants (line, circle), (circle, conic), (line, conic).
+        let rank = |t: Ty| match t {
+            Ty::Line => 0,
+            Ty::Circle => 1,
+            _ => 2,
+        };
+        let (x, y) = if rank(self.ty(la)) <= rank(self.ty(lb)) {
+            (la, lb)
+        } else {
+            (lb, la)
+        };
+        let meet = match (self.ty(x), self.ty(y)) {
             (Ty::Circle, Ty::Circle) => Meet::CircleCircle,
             (Ty::Line, Ty::Line) => Meet::LineLine,
-            _ => Meet::LineCircle,
-        };
-        let (x, y) = if meet == Meet::LineCircle && self.ty(la) == Ty::Circle {
-            (lb, la)
-        } else {
-            (la, lb)
+            (Ty::Line, Ty::Circle) => Meet::LineCircle,
+            (Ty::Line, Ty::Conic) => Meet::LineConic,
+            (Ty::Circle, Ty::Conic) => Meet::CircleConic,
+            _ => return false,
         };
         let pseudo = self.intersect(meet, x, y, near, r.constraint);
         // The pseudo-point lies on both loci: move a's cluster there, then b's (which
@@ -1233,6 +1314,7 @@ impl<'m> Builder<'m> {
                 self.clusters[k].record.pos = Pos::Fixed;
             }
         }
+        self.settle(k);
     }
 
     // ------------------------------------------------------------ branch defaults
@@ -1258,8 +1340,16 @@ impl<'m> Builder<'m> {
 
 fn locus_reg(l: Locus) -> Reg {
     match l {
-        Locus::Line(r) | Locus::Circle(r) => r,
+        Locus::Line(r) | Locus::Circle(r) | Locus::Conic(r) => r,
     }
+}
+
+/// Whether a feature's position depends on its geom's dimension (a segment's end).
+fn depends_on_dim(model: &Model, f: GeomId) -> bool {
+    matches!(
+        model.geoms[f].owner,
+        gcs_lang::model::Owner::Part(_, gcs_lang::model::Part::End)
+    )
 }
 
 /// An angle constant in words: `0`, `pi`, `pi/2`, `-pi/2`.

@@ -62,6 +62,44 @@ pub enum Relation {
         /// How much.
         angle: AngleValue,
     },
+    /// Circle `circle` lies on side `side` (+1 left, -1 right) of the line through `base` along
+    /// `dir`, its perimeter `gap` from it: `side * sd(centre) = radius + gap` (tangent: no gap).
+    CircleLine {
+        /// The circle.
+        circle: GeomId,
+        /// A point feature on the line.
+        base: GeomId,
+        /// The line's direction.
+        dir: GeomId,
+        /// The gap, or none for tangency.
+        gap: Option<ExprId>,
+        /// Which side, from the sketch.
+        side: f64,
+    },
+    /// The distance of point `p` from circle `circle`'s perimeter is `gap` (none: `p` on the
+    /// circle), outside or inside as in the sketch.
+    PointCircle {
+        /// The point feature.
+        p: GeomId,
+        /// The circle.
+        circle: GeomId,
+        /// The gap, or none for incidence.
+        gap: Option<ExprId>,
+        /// Whether `p` is outside the circle.
+        outside: bool,
+    },
+    /// Two circles at perimeter distance `gap` (none: tangent), externally or one inside the
+    /// other as in the sketch.
+    CircleCircle {
+        /// First circle.
+        a: GeomId,
+        /// Second circle.
+        b: GeomId,
+        /// The gap, or none for tangency.
+        gap: Option<ExprId>,
+        /// How they sit.
+        mode: Nesting,
+    },
     /// A geom's dimension (segment length, circle radius) is `value`.
     Dim {
         /// The geom.
@@ -69,6 +107,17 @@ pub enum Relation {
         /// Its value.
         value: ExprId,
     },
+}
+
+/// How two circles sit, from the sketch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Nesting {
+    /// Each outside the other: `|c1 - c2| = r1 + r2 + gap`.
+    Apart,
+    /// The first inside the second: `|c1 - c2| = r2 - r1 - gap`.
+    FirstInside,
+    /// The second inside the first: `|c1 - c2| = r1 - r2 - gap`.
+    SecondInside,
 }
 
 /// One relation with the constraint it comes from.
@@ -129,12 +178,23 @@ fn dir_feature(model: &Model, g: GeomId) -> Option<GeomId> {
     }
 }
 
+/// What the decomposition asks of the sketch: angles between directions, and positions and
+/// radii, to choose the sense of parallelism, the side of a tangency, and nesting.
+pub trait SketchView {
+    /// The counter-clockwise angle from `u` to `v` in the sketch.
+    fn angle(&self, u: Dir, v: Dir) -> f64;
+    /// The position of a point feature in the sketch.
+    fn point(&self, p: GeomId) -> [f64; 2];
+    /// The direction of a vector feature in the sketch.
+    fn dir(&self, v: GeomId) -> [f64; 2];
+    /// The radius of a circle in the sketch.
+    fn radius(&self, c: GeomId) -> f64;
+}
+
 /// Decomposes every constraint of a 2d model. Constraints the analysis does not cover yet are
 /// returned as [`Unsupported`], never dropped.
-pub fn decompose(
-    model: &Model,
-    sketch_angle: impl Fn(Dir, Dir) -> f64,
-) -> (Vec<Rel>, Vec<Unsupported>) {
+pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsupported>) {
+    let sketch_angle = |u: Dir, v: Dir| sketch.angle(u, v);
     let mut rels = Vec::new();
     let mut unsupported = Vec::new();
     for (id, c) in model.constraints.iter() {
@@ -165,7 +225,11 @@ pub fn decompose(
         use std::f64::consts::{FRAC_PI_2, PI};
         match (c.kind, a, b) {
             (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => {
-                out.push(Relation::PointPoint { a: point_feature(model, a), b: point_feature(model, b), d: None });
+                out.push(Relation::PointPoint {
+                    a: point_feature(model, a),
+                    b: point_feature(model, b),
+                    d: None,
+                });
             }
             (K::Distance, Some(a), Some(b)) => match kinds {
                 (Some(ka), Some(kb)) if ka.is_pointlike() && kb.is_pointlike() => {
@@ -173,22 +237,50 @@ pub fn decompose(
                 }
                 (Some(ka), Some(GeomKind::Line | GeomKind::Segment)) if ka.is_pointlike() => {
                     match line_features(model, b) {
-                        Some((base, dir)) => out.push(Relation::PointLine { p: a, base, dir, d: c.value }),
+                        Some((base, dir)) => out.push(Relation::PointLine {
+                            p: a,
+                            base,
+                            dir,
+                            d: c.value,
+                        }),
                         None => missing("line without features"),
                     }
                 }
-                _ => missing("distances involving circles need the circle records (fixed-distance invariants)"),
+                (Some(ka), Some(GeomKind::Circle)) if ka.is_pointlike() => {
+                    out.push(point_circle(model, sketch, a, b, c.value));
+                }
+                (Some(GeomKind::Line | GeomKind::Segment), Some(GeomKind::Circle)) => {
+                    match circle_line(model, sketch, b, a, c.value) {
+                        Some(rel) => out.push(rel),
+                        None => missing("line without features"),
+                    }
+                }
+                (Some(GeomKind::Circle), Some(GeomKind::Circle)) => {
+                    out.push(circle_circle(model, sketch, a, b, c.value))
+                }
+                _ => missing("not a distance of the language"),
             },
             (K::On, Some(a), Some(b)) => match kinds.1 {
                 Some(GeomKind::Line | GeomKind::Segment) => match line_features(model, b) {
-                    Some((base, dir)) => out.push(Relation::PointLine { p: a, base, dir, d: None }),
+                    Some((base, dir)) => out.push(Relation::PointLine {
+                        p: a,
+                        base,
+                        dir,
+                        d: None,
+                    }),
                     None => missing("line without features"),
                 },
-                _ => missing("incidence with a circle needs the circle records"),
+                Some(GeomKind::Circle) => out.push(point_circle(model, sketch, a, b, None)),
+                _ => missing("not an incidence of 2d"),
             },
             (K::InLine | K::Prismatic, Some(a), Some(b)) => match line_features(model, b) {
                 Some((base, dir)) => {
-                    out.push(Relation::PointLine { p: point_feature(model, a), base, dir, d: None });
+                    out.push(Relation::PointLine {
+                        p: point_feature(model, a),
+                        base,
+                        dir,
+                        d: None,
+                    });
                     if c.kind == K::Prismatic {
                         match part(model, a, Part::AxisX) {
                             Some(ax) => out.push(Relation::Angle {
@@ -221,24 +313,46 @@ pub fn decompose(
             }
             (K::Horizontal | K::Vertical, Some(a), None) => match dir_feature(model, a) {
                 Some(v) => {
-                    let axis = if c.kind == K::Horizontal { Dir::World(1.0, 0.0) } else { Dir::World(0.0, 1.0) };
+                    let axis = if c.kind == K::Horizontal {
+                        Dir::World(1.0, 0.0)
+                    } else {
+                        Dir::World(0.0, 1.0)
+                    };
                     let v = Dir::Feature(v);
-                    out.push(Relation::Angle { u: axis, v, angle: AngleValue::Const(snap(axis, v, &[0.0, PI])) });
+                    out.push(Relation::Angle {
+                        u: axis,
+                        v,
+                        angle: AngleValue::Const(snap(axis, v, &[0.0, PI])),
+                    });
                 }
                 None => missing("needs a direction"),
             },
-            (K::OffsetX, Some(a), Some(b)) => match (part(model, a, Part::AxisX), part(model, b, Part::AxisX)) {
-                (Some(u), Some(v)) => match c.value {
-                    Some(e) => out.push(Relation::Angle { u: Dir::Feature(u), v: Dir::Feature(v), angle: AngleValue::Expr(e) }),
-                    None => missing("offset_x needs a value"),
-                },
-                _ => missing("offset_x needs two markers"),
-            },
+            (K::OffsetX, Some(a), Some(b)) => {
+                match (part(model, a, Part::AxisX), part(model, b, Part::AxisX)) {
+                    (Some(u), Some(v)) => match c.value {
+                        Some(e) => out.push(Relation::Angle {
+                            u: Dir::Feature(u),
+                            v: Dir::Feature(v),
+                            angle: AngleValue::Expr(e),
+                        }),
+                        None => missing("offset_x needs a value"),
+                    },
+                    _ => missing("offset_x needs two markers"),
+                }
+            }
             (K::Length | K::Radius, Some(a), None) => match c.value {
                 Some(value) => out.push(Relation::Dim { geom: a, value }),
                 None => missing("needs a value"),
             },
-            (K::Tangent, _, _) => missing("tangency needs the circle records (fixed-distance invariants)"),
+            (K::Tangent, Some(a), Some(b)) => match kinds {
+                (Some(GeomKind::Line | GeomKind::Segment), Some(GeomKind::Circle)) => {
+                    match circle_line(model, sketch, b, a, None) {
+                        Some(rel) => out.push(rel),
+                        None => missing("line without features"),
+                    }
+                }
+                _ => out.push(circle_circle(model, sketch, a, b, None)),
+            },
             _ => missing("not valid in 2d"),
         }
         let n = out.len();
@@ -251,6 +365,84 @@ pub fn decompose(
         }
     }
     (rels, unsupported)
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn circle_line(
+    model: &Model,
+    sketch: &dyn SketchView,
+    circle: GeomId,
+    line: GeomId,
+    gap: Option<ExprId>,
+) -> Option<Relation> {
+    let (base, dir) = line_features(model, line)?;
+    let centre = point_feature(model, circle);
+    let d = sketch.dir(dir);
+    let v = sub(sketch.point(centre), sketch.point(base));
+    let sd = d[0] * v[1] - d[1] * v[0];
+    let side = if sd < 0.0 { -1.0 } else { 1.0 };
+    Some(Relation::CircleLine {
+        circle,
+        base,
+        dir,
+        gap,
+        side,
+    })
+}
+
+fn point_circle(
+    model: &Model,
+    sketch: &dyn SketchView,
+    p: GeomId,
+    circle: GeomId,
+    gap: Option<ExprId>,
+) -> Relation {
+    let c = sketch.point(point_feature(model, circle));
+    let q = sketch.point(p);
+    let dist = sub(q, c);
+    let outside = dist[0].hypot(dist[1]) >= sketch.radius(circle);
+    Relation::PointCircle {
+        p,
+        circle,
+        gap,
+        outside,
+    }
+}
+
+fn circle_circle(
+    model: &Model,
+    sketch: &dyn SketchView,
+    a: GeomId,
+    b: GeomId,
+    gap: Option<ExprId>,
+) -> Relation {
+    let (ca, cb) = (
+        sketch.point(point_feature(model, a)),
+        sketch.point(point_feature(model, b)),
+    );
+    let d = sub(ca, cb);
+    let d = d[0].hypot(d[1]);
+    let (ra, rb) = (sketch.radius(a), sketch.radius(b));
+    // The reading the sketch is closest to.
+    let readings = [
+        (Nesting::Apart, (d - ra - rb).abs()),
+        (
+            Nesting::FirstInside,
+            (d - (rb - ra)).abs() + if ra <= rb { 0.0 } else { f64::INFINITY },
+        ),
+        (
+            Nesting::SecondInside,
+            (d - (ra - rb)).abs() + if rb <= ra { 0.0 } else { f64::INFINITY },
+        ),
+    ];
+    let mode = readings
+        .iter()
+        .fold(readings[0], |best, r| if r.1 < best.1 { *r } else { best })
+        .0;
+    Relation::CircleCircle { a, b, gap, mode }
 }
 
 /// The distance between two angles, modulo a full turn.

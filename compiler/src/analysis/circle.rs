@@ -1,0 +1,461 @@
+//! Plan fragments for circles of variable radius: fixed-distance lines and points (the last
+//! slots of Table 2), and 002's reformulation rules that turn two of them into a locus of the
+//! centre: two lines give an angular bisector (RR-1), a line and a point (or circle) a
+//! parabola, two points (or circles) a hyperbola branch or an ellipse.
+//!
+//! A fixed distance ties the centre to the radius. While the radius is free it is only
+//! recorded (its constraint is satisfied by the step that finally places the circle); once the
+//! radius is fixed it becomes a locus of the centre; once the centre is fixed it gives the
+//! radius.
+
+use super::relation::{Nesting, Rel, Relation};
+use super::{Builder, Locus, Pos, Target};
+use crate::plan::{Op, Reg, Ty};
+use gcs_lang::model::{ConstraintId, GeomId, Part};
+
+/// A fixed-distance invariant of a circle with centre `X` and free radius `ρ`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Fd {
+    /// `sd_line(X) = ρ + a`: the circle on the line's left, its perimeter `a` from it.
+    Line {
+        /// The line, directed so that the circle is on its left.
+        line: Reg,
+        /// The gap.
+        a: Reg,
+        /// The constraint it records.
+        constraint: ConstraintId,
+        /// Whether that is the constraint's last relation.
+        last: bool,
+    },
+    /// `|X - at| = ρ + b` (`plus`) or `b - ρ`.
+    Point {
+        /// The fixed point (a point, or the centre of a fixed circle).
+        at: Reg,
+        /// The offset.
+        b: Reg,
+        /// Which sense.
+        plus: bool,
+        /// The constraint it records.
+        constraint: ConstraintId,
+        /// Whether that is the constraint's last relation.
+        last: bool,
+    },
+}
+
+impl Fd {
+    /// Whether it is a fixed-distance line.
+    pub fn is_line(&self) -> bool {
+        matches!(self, Fd::Line { .. })
+    }
+
+    fn satisfies(&self) -> Option<ConstraintId> {
+        match *self {
+            Fd::Line {
+                constraint, last, ..
+            }
+            | Fd::Point {
+                constraint, last, ..
+            } => last.then_some(constraint),
+        }
+    }
+}
+
+impl Builder<'_> {
+    /// The relations that involve a circle's radius. Returns whether the relation was
+    /// satisfied, recorded or turned into a check.
+    pub(super) fn circle_relation(&mut self, r: &Rel) -> bool {
+        match r.relation.clone() {
+            Relation::PointCircle {
+                p,
+                circle,
+                gap,
+                outside,
+            } => {
+                let centre = self.centre(circle);
+                let circle_known = self.record(circle).grounded();
+                let p_known = self.point_known(p);
+                if circle_known && p_known {
+                    self.check(r);
+                    return true;
+                }
+                let sign = if outside { 1.0 } else { -1.0 };
+                if circle_known {
+                    let at = self.point(centre);
+                    let radius = self.dim_of(circle);
+                    let mut terms = vec![(1.0, radius)];
+                    if let Some(g) = gap {
+                        terms.push((sign, self.expr(g)));
+                    }
+                    let rr = self.sum(terms);
+                    let words = format!(
+                        "the circle of radius {} about {}",
+                        self.word(rr),
+                        self.name(centre)
+                    );
+                    let c = self.value(
+                        Op::Circle {
+                            center: at,
+                            radius: rr,
+                        },
+                        Ty::Circle,
+                        words,
+                    );
+                    self.centers.insert(c, self.name(centre));
+                    return self.move_feature(p, Target::On(Locus::Circle(c)), r);
+                }
+                if p_known {
+                    let at = self.point(p);
+                    let b = match gap {
+                        Some(g) => {
+                            let e = self.expr(g);
+                            self.sum(vec![(sign, e)])
+                        }
+                        None => self.value(Op::Const(0.0), Ty::Scalar, "0".into()),
+                    };
+                    let fd = Fd::Point {
+                        at,
+                        b,
+                        plus: true,
+                        constraint: r.constraint,
+                        last: r.last,
+                    };
+                    return self.add_fd(circle, fd, r);
+                }
+                false
+            }
+            Relation::CircleLine {
+                circle,
+                base,
+                dir,
+                gap,
+                side,
+            } => {
+                let centre = self.centre(circle);
+                let circle_known = self.record(circle).grounded();
+                let line_known = self.point_known(base) && self.dir_known(super::Dir::Feature(dir));
+                if circle_known && line_known {
+                    self.check(r);
+                    return true;
+                }
+                let a = match gap {
+                    Some(g) => self.expr(g),
+                    None => self.value(Op::Const(0.0), Ty::Scalar, "0".into()),
+                };
+                if line_known {
+                    let bp = self.point(base);
+                    let dv = self.dir(super::Dir::Feature(dir));
+                    let words = format!(
+                        "the line through {} along {}",
+                        self.name(base),
+                        self.name(dir)
+                    );
+                    let mut line = self.value(
+                        Op::Line {
+                            point: bp,
+                            dir: dv,
+                            offset: None,
+                        },
+                        Ty::Line,
+                        words,
+                    );
+                    if side < 0.0 {
+                        let words = format!("{} reversed", self.word(line));
+                        line = self.value(Op::Reversed(line), Ty::Line, words);
+                    }
+                    let fd = Fd::Line {
+                        line,
+                        a,
+                        constraint: r.constraint,
+                        last: r.last,
+                    };
+                    return self.add_fd(circle, fd, r);
+                }
+                if circle_known {
+                    // The line must pass at signed distance side * (r + gap) from the centre.
+                    let radius = self.dim_of(circle);
+                    let d = self.sum(vec![(side, radius), (side, a)]);
+                    return self.move_line_to_point(centre, base, dir, Some(d), r);
+                }
+                false
+            }
+            Relation::CircleCircle { a, b, gap, mode } => {
+                let (ka, kb) = (self.record(a).grounded(), self.record(b).grounded());
+                if ka && kb {
+                    self.check(r);
+                    return true;
+                }
+                let (known, free, known_first) = match (ka, kb) {
+                    (true, false) => (a, b, true),
+                    (false, true) => (b, a, false),
+                    _ => return false,
+                };
+                let at = {
+                    let c = self.centre(known);
+                    self.point(c)
+                };
+                let rk = self.dim_of(known);
+                let g = gap.map(|g| self.expr(g));
+                let with_gap = |s: &mut Self, sign_r: f64, sign_g: f64| {
+                    let mut terms = vec![(sign_r, rk)];
+                    if let Some(g) = g {
+                        terms.push((sign_g, g));
+                    }
+                    s.sum(terms)
+                };
+                // |X - c_known| in terms of the free radius, per nesting (see `Nesting`).
+                let free_inside = matches!(
+                    (mode, known_first),
+                    (Nesting::SecondInside, true) | (Nesting::FirstInside, false)
+                );
+                let known_inside = matches!(
+                    (mode, known_first),
+                    (Nesting::FirstInside, true) | (Nesting::SecondInside, false)
+                );
+                let (b, plus) = if free_inside {
+                    (with_gap(self, 1.0, -1.0), false)
+                } else if known_inside {
+                    (with_gap(self, -1.0, -1.0), true)
+                } else {
+                    (with_gap(self, 1.0, 1.0), true)
+                };
+                let fd = Fd::Point {
+                    at,
+                    b,
+                    plus,
+                    constraint: r.constraint,
+                    last: r.last,
+                };
+                self.add_fd(free, fd, r)
+            }
+            _ => false,
+        }
+    }
+
+    /// The centre feature of a circle.
+    fn centre(&self, circle: GeomId) -> GeomId {
+        super::relation::part(self.model, circle, Part::Center).unwrap_or(circle)
+    }
+
+    fn dim_of(&mut self, g: GeomId) -> Reg {
+        let what = if self.model.geoms[g].kind == gcs_lang::model::GeomKind::Circle {
+            "radius"
+        } else {
+            "length"
+        };
+        let words = format!("the {what} of {}", self.name(g));
+        self.value(Op::DimOf(g), Ty::Scalar, words)
+    }
+
+    fn sum(&mut self, terms: Vec<(f64, Reg)>) -> Reg {
+        if let [(s, r)] = terms.as_slice() {
+            if *s == 1.0 {
+                return *r;
+            }
+        }
+        let words = terms
+            .iter()
+            .enumerate()
+            .map(|(i, (s, r))| {
+                let w = self.word(*r);
+                match (i, *s < 0.0) {
+                    (0, true) => format!("-{w}"),
+                    (0, false) => w,
+                    (_, true) => format!(" - {w}"),
+                    (_, false) => format!(" + {w}"),
+                }
+            })
+            .collect::<String>();
+        self.value(Op::Sum(terms), Ty::Scalar, words)
+    }
+
+    /// Records a fixed-distance invariant on a circle, turning it into a locus of the centre
+    /// when the radius is fixed, or into the radius when the centre is.
+    fn add_fd(&mut self, circle: GeomId, fd: Fd, r: &Rel) -> bool {
+        let k = self.cluster(circle);
+        let rec = self.clusters[k].record.clone();
+        let centre = self.centre(circle);
+        if rec.free_dim.is_none() {
+            // Radius fixed: the centre lies on a curve.
+            let radius = self.dim_of(circle);
+            let locus = match fd {
+                Fd::Line { line, a, .. } => {
+                    let by = self.sum(vec![(1.0, radius), (1.0, a)]);
+                    let words = format!("{} moved {} to its left", self.word(line), self.word(by));
+                    Locus::Line(self.value(Op::OffsetLine { line, by }, Ty::Line, words))
+                }
+                Fd::Point { at, b, plus, .. } => {
+                    let rr = if plus {
+                        self.sum(vec![(1.0, radius), (1.0, b)])
+                    } else {
+                        self.sum(vec![(1.0, b), (-1.0, radius)])
+                    };
+                    let words = format!(
+                        "the circle of radius {} about {}",
+                        self.word(rr),
+                        self.word(at)
+                    );
+                    let c = self.value(
+                        Op::Circle {
+                            center: at,
+                            radius: rr,
+                        },
+                        Ty::Circle,
+                        words,
+                    );
+                    self.centers.insert(c, self.word(at));
+                    Locus::Circle(c)
+                }
+            };
+            return self.move_feature(centre, Target::On(locus), r);
+        }
+        if rec.pos == Pos::Fixed {
+            self.clusters[k].record.fd.push(fd);
+            self.settle(k);
+            return true;
+        }
+        match (rec.fd.as_slice(), rec.pos) {
+            ([], _) => {
+                self.clusters[k].record.fd.push(fd);
+                true
+            }
+            ([first], Pos::Free) => {
+                let locus = self.centre_locus(*first, fd, circle);
+                let rec = &mut self.clusters[k].record;
+                rec.fd.push(fd);
+                rec.pos = Pos::On {
+                    feature: centre,
+                    locus,
+                };
+                rec.fd_locus = true;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The locus of the centre of a circle of free radius under two fixed distances.
+    fn centre_locus(&mut self, f1: Fd, f2: Fd, circle: GeomId) -> Locus {
+        let name = self.name(circle);
+        match (f1, f2) {
+            (
+                Fd::Line {
+                    line: l1, a: a1, ..
+                },
+                Fd::Line {
+                    line: l2, a: a2, ..
+                },
+            ) => {
+                let words = format!("the bisector of centres of {name}");
+                Locus::Line(self.value(Op::CentresLineLine { l1, a1, l2, a2 }, Ty::Line, words))
+            }
+            (Fd::Line { line, a, .. }, Fd::Point { at, b, plus, .. })
+            | (Fd::Point { at, b, plus, .. }, Fd::Line { line, a, .. }) => {
+                let words = format!("the parabola of centres of {name}");
+                Locus::Conic(self.value(
+                    Op::CentresLinePoint {
+                        line,
+                        a,
+                        at,
+                        b,
+                        plus,
+                    },
+                    Ty::Conic,
+                    words,
+                ))
+            }
+            (
+                Fd::Point {
+                    at: c1,
+                    b: b1,
+                    plus: p1,
+                    ..
+                },
+                Fd::Point {
+                    at: c2,
+                    b: b2,
+                    plus: p2,
+                    ..
+                },
+            ) => {
+                let words = format!("the conic of centres of {name}");
+                Locus::Conic(self.value(
+                    Op::CentresPointPoint {
+                        c1,
+                        b1,
+                        p1,
+                        c2,
+                        b2,
+                        p2,
+                    },
+                    Ty::Conic,
+                    words,
+                ))
+            }
+        }
+    }
+
+    /// A circle whose centre has just become fixed: its radius follows from its first fixed
+    /// distance, and that step satisfies every fixed distance recorded (the centre was placed
+    /// on their common locus).
+    pub(super) fn settle(&mut self, k: usize) {
+        let rec = self.clusters[k].record.clone();
+        let (Some(circle), Some(first)) = (rec.free_dim, rec.fd.first().copied()) else {
+            return;
+        };
+        if rec.pos != Pos::Fixed {
+            return;
+        }
+        let centre = self.centre(circle);
+        let x = self.point(centre);
+        let radius = match first {
+            Fd::Line { line, a, .. } => {
+                let words = format!(
+                    "the distance of {} from {} less {}",
+                    self.name(centre),
+                    self.word(line),
+                    self.word(a)
+                );
+                self.value(Op::RadiusFromLine { line, a, centre: x }, Ty::Scalar, words)
+            }
+            Fd::Point { at, b, plus, .. } => {
+                let words = format!(
+                    "the radius that keeps {} at its distance from {}",
+                    self.name(circle),
+                    self.word(at)
+                );
+                self.value(
+                    Op::RadiusFromPoint {
+                        at,
+                        b,
+                        plus,
+                        centre: x,
+                    },
+                    Ty::Scalar,
+                    words,
+                )
+            }
+        };
+        let satisfies: Vec<ConstraintId> = rec.fd.iter().filter_map(Fd::satisfies).collect();
+        let texts: Vec<String> = satisfies.iter().map(|c| self.cname(*c)).collect();
+        let explain = format!(
+            "The centre of {} is placed: set its radius to {} ({}).",
+            self.name(circle),
+            self.word(radius),
+            texts.join("; ")
+        );
+        self.emit(
+            Op::SetDim {
+                geom: circle,
+                value: radius,
+            },
+            None,
+            satisfies,
+            explain,
+        );
+        let rec = &mut self.clusters[k].record;
+        rec.fd.clear();
+        rec.fd_locus = false;
+        rec.free_dim = None;
+        rec.fixed_dims.push(circle);
+    }
+}
