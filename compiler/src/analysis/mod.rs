@@ -271,6 +271,7 @@ enum Target {
     On(Locus),
 }
 
+#[derive(Clone)]
 struct Builder<'m> {
     model: &'m Model,
     plan: Plan,
@@ -393,6 +394,22 @@ impl<'m> Builder<'m> {
             .unwrap_or_else(|| format!("r{}", r.0))
     }
 
+    /// A cluster's geoms as the subject of a sentence: `crank`, or `link10 (with link7, link8)`.
+    fn group_name(&self, geoms: &[GeomId]) -> String {
+        match geoms {
+            [] => String::new(),
+            [one] => self.name(*one),
+            [first, rest @ ..] => format!(
+                "{} (with {})",
+                self.name(*first),
+                rest.iter()
+                    .map(|&g| self.name(g))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        }
+    }
+
     fn name(&self, g: GeomId) -> String {
         self.model.geoms[g].name.clone()
     }
@@ -486,31 +503,216 @@ impl<'m> Builder<'m> {
         }
         self.ground_if_nothing_fixed();
         self.pending = others;
+        // POSITION-ANALYSIS (000, Appendix A.3): action and locus analysis until stuck; then
+        // the smallest rigid chain or loop is assembled on a temporary ground and rewritten as
+        // a macro-geom; repeat.
+        loop {
+            self.fixpoint(None);
+            if self.pending.is_empty() || !self.group() {
+                break;
+            }
+        }
+    }
+
+    /// Action analysis, then locus analysis, until neither applies to any pending relation
+    /// (restricted to relations among the clusters `within`, when given).
+    fn fixpoint(&mut self, within: Option<&[usize]>) {
         loop {
             let mut progress = false;
-            for i in 0..self.pending.len() {
-                let r = self.pending[i].clone();
-                if self.action(&r) {
-                    self.pending.remove(i);
-                    progress = true;
-                    break;
+            for locus in [false, true] {
+                for i in 0..self.pending.len() {
+                    let r = self.pending[i].clone();
+                    if let Some(set) = within {
+                        if !self.clusters_of(&r).iter().all(|k| set.contains(k)) {
+                            continue;
+                        }
+                    }
+                    let cp = self.checkpoint();
+                    let done = if locus {
+                        self.locus(&r)
+                    } else {
+                        self.action(&r)
+                    };
+                    if done {
+                        self.pending.remove(i);
+                        progress = true;
+                        break;
+                    }
+                    self.rollback(cp);
                 }
-            }
-            if progress {
-                continue;
-            }
-            for i in 0..self.pending.len() {
-                let r = self.pending[i].clone();
-                if self.locus(&r) {
-                    self.pending.remove(i);
-                    progress = true;
+                if progress {
                     break;
                 }
             }
             if !progress {
-                break;
+                return;
             }
         }
+    }
+
+    /// The clusters a relation involves.
+    fn clusters_of(&self, r: &Rel) -> Vec<usize> {
+        let mut gs: Vec<GeomId> = Vec::new();
+        match &r.relation {
+            Relation::PointPoint { a, b, .. } => gs.extend([*a, *b]),
+            Relation::PointLine { p, base, dir, .. } => gs.extend([*p, *base, *dir]),
+            Relation::Angle { u, v, .. } => {
+                for d in [u, v] {
+                    if let Dir::Feature(g) = d {
+                        gs.push(*g);
+                    }
+                }
+            }
+            Relation::Dim { geom, .. } => gs.push(*geom),
+            Relation::CircleLine {
+                circle, base, dir, ..
+            } => gs.extend([*circle, *base, *dir]),
+            Relation::PointCircle { p, circle, .. } => gs.extend([*p, *circle]),
+            Relation::CircleCircle { a, b, .. } => gs.extend([*a, *b]),
+        }
+        let mut ks: Vec<usize> = gs.into_iter().map(|g| self.cluster(g)).collect();
+        ks.sort_unstable();
+        ks.dedup();
+        ks
+    }
+
+    fn checkpoint(&self) -> (usize, u32, usize) {
+        (
+            self.plan.steps.len(),
+            self.plan.regs,
+            self.plan.branches.len(),
+        )
+    }
+
+    /// Undoes the steps of a failed attempt, and forgets the registers they defined.
+    fn rollback(&mut self, (steps, regs, branches): (usize, u32, usize)) {
+        if self.plan.steps.len() == steps {
+            return;
+        }
+        self.plan.steps.truncate(steps);
+        self.plan.regs = regs;
+        self.plan.branches.truncate(branches);
+        let live = |r: &Reg| r.0 < regs;
+        self.known_points.retain(|_, r| live(r));
+        self.measured.retain(|_, r| live(r));
+        self.exprs.retain(|_, r| live(r));
+        self.words.retain(|r, _| live(r));
+        self.centers.retain(|r, _| live(r));
+    }
+
+    /// SOLVE-RIGID-CHAINS and SOLVE-LOOP (000, Appendix A.1-A.2): among clusters that are
+    /// entirely free, find the smallest chain (2 clusters) or loop (3, the limit in the plane)
+    /// whose relations make it rigid, assemble it on one of its clusters as a temporary
+    /// ground, and rewrite it as one macro-geom that keeps the ground's freedom. Candidates are
+    /// tried in name order, so the choice does not depend on statement order.
+    fn group(&mut self) -> bool {
+        // Rigid clusters that still move; a group holds at most one that is partially fixed,
+        // and then that one is its temporary ground and gives the macro-geom its record.
+        let free: Vec<usize> = (0..self.clusters.len())
+            .filter(|&k| {
+                let c = &self.clusters[k];
+                !c.geoms.is_empty()
+                    && !c.record.grounded()
+                    && c.record.free_dim.is_none()
+                    && c.record.fd.is_empty()
+            })
+            .collect();
+        let loose = |s: &Self, k: usize| {
+            let r = &s.clusters[k].record;
+            matches!(r.rot, Rot::Free | Rot::None) && r.pos == Pos::Free
+        };
+        let mut edges: std::collections::BTreeSet<(usize, usize)> = Default::default();
+        for r in &self.pending {
+            if let [x, y] = self.clusters_of(r).as_slice() {
+                if free.contains(x) && free.contains(y) {
+                    edges.insert((*x, *y));
+                }
+            }
+        }
+        let linked = |x: usize, y: usize| edges.contains(&(x.min(y), x.max(y)));
+        let key = |s: &Self, set: &[usize]| {
+            let mut names: Vec<String> = set
+                .iter()
+                .map(|&k| s.name(s.clusters[k].geoms[0]))
+                .collect();
+            names.sort();
+            names
+        };
+        let mut sets: Vec<Vec<usize>> = edges.iter().map(|&(x, y)| vec![x, y]).collect();
+        for &(x, y) in &edges {
+            for &z in &free {
+                if z > y && linked(x, z) && linked(y, z) {
+                    sets.push(vec![x, y, z]);
+                }
+            }
+        }
+        sets.sort_by_key(|s| (s.len(), key(self, s)));
+        for set in sets {
+            let held: Vec<usize> = set.iter().copied().filter(|&k| !loose(self, k)).collect();
+            let mut grounds = match held.as_slice() {
+                [] => set.clone(),
+                [one] => vec![*one],
+                _ => continue,
+            };
+            grounds.sort_by_key(|&k| self.name(self.clusters[k].geoms[0]));
+            for ground in grounds {
+                let mut trial = self.clone();
+                if trial.solve_group(&set, ground) {
+                    *self = trial;
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    fn solve_group(&mut self, set: &[usize], ground: usize) -> bool {
+        let saved = self.clusters[ground].record.clone();
+        let first_step = self.plan.steps.len();
+        {
+            let rec = &mut self.clusters[ground].record;
+            if rec.rot == Rot::Free {
+                rec.rot = Rot::Known;
+            }
+            if rec.pos != Pos::None {
+                rec.pos = Pos::Fixed;
+            }
+        }
+        self.fixpoint(Some(set));
+        if !set.iter().all(|&k| self.clusters[k].record.grounded()) {
+            return false;
+        }
+        // Rewrite the group as one macro-geom with the ground's record.
+        let mut geoms = self.clusters[ground].geoms.clone();
+        for &k in set {
+            if k != ground {
+                geoms.extend(std::mem::take(&mut self.clusters[k].geoms));
+            }
+        }
+        for &g in &geoms {
+            self.cluster_of.insert(g, ground);
+        }
+        let names: Vec<String> = geoms.iter().map(|&g| self.name(g)).collect();
+        if let Some(step) = self.plan.steps[first_step..]
+            .iter_mut()
+            .find(|s| !s.explain.is_empty())
+        {
+            step.explain = format!(
+                "{} form a rigid {}: hold {} where it is, assemble the others on it, and move \
+                 them from now on as one body (a macro-geom).\n   {}",
+                names.join(", "),
+                if set.len() == 2 { "chain" } else { "loop" },
+                names[0],
+                step.explain
+            );
+        }
+        self.clusters[ground].geoms = geoms.clone();
+        self.clusters[ground].record = saved;
+        // Positions measured relative to the temporary ground are not invariant in the world.
+        let model = self.model;
+        self.known_points
+            .retain(|f, _| !geoms.contains(&model.top_level_of(*f)));
+        true
     }
 
     fn ground_if_nothing_fixed(&mut self) {
@@ -760,11 +962,7 @@ impl<'m> Builder<'m> {
         let k = self.cluster(f);
         let rec = self.clusters[k].record.clone();
         let geoms = self.clusters[k].geoms.clone();
-        let names = geoms
-            .iter()
-            .map(|&g| self.name(g))
-            .collect::<Vec<_>>()
-            .join(", ");
+        let names = self.group_name(&geoms);
         let c = self.cname(r.constraint);
         let fname = self.name(f);
         match (rec.pos, target) {
@@ -1107,11 +1305,7 @@ impl<'m> Builder<'m> {
             return false;
         }
         let geoms = self.clusters[k].geoms.clone();
-        let names = geoms
-            .iter()
-            .map(|&g| self.name(g))
-            .collect::<Vec<_>>()
-            .join(", ");
+        let names = self.group_name(&geoms);
         let c = self.cname(r.constraint);
         let (pivot, about) = match rec.pos {
             Pos::Pivot { at, feature } => (at, self.name(feature)),
@@ -1274,11 +1468,7 @@ impl<'m> Builder<'m> {
         let k = self.cluster(f);
         let rec = self.clusters[k].record.clone();
         let geoms = self.clusters[k].geoms.clone();
-        let names = geoms
-            .iter()
-            .map(|&g| self.name(g))
-            .collect::<Vec<_>>()
-            .join(", ");
+        let names = self.group_name(&geoms);
         let from = self.point(f);
         let fname = self.name(f);
         let to = self.word(x);
