@@ -99,6 +99,15 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             Op::Const(c) => Some(Val::S(*c)),
             Op::Neg(x) => Some(Val::S(-s(*x))),
             Op::DimOf(g) => Some(Val::S(config.dim(*g))),
+            Op::Along { from, dir, to } => Some(Val::S((p(*to) - p(*from)).dot(&v(*dir)))),
+            Op::DirectionTo { from, to } => {
+                let d = p(*to) - p(*from);
+                let n = d.norm();
+                if !(n > 0.0) {
+                    return Err(bad_step(model, step));
+                }
+                Some(Val::V(d / n))
+            }
             Op::Sum(terms) => Some(Val::S(terms.iter().map(|(k, r)| k * s(*r)).sum())),
             Op::Reversed(x) => match get(&regs, *x) {
                 Val::L(l) => Some(Val::L(l.reversed())),

@@ -81,6 +81,10 @@ pub enum Op {
     DimOf(GeomId),
     /// A linear combination of scalars.
     Sum(Vec<(f64, Reg)>),
+    /// The signed distance from point `from` to point `to` along direction `dir`.
+    Along { from: Reg, dir: Reg, to: Reg },
+    /// The unit direction from point `from` to point `to`.
+    DirectionTo { from: Reg, to: Reg },
     /// A line with its direction reversed (left and right swap).
     Reversed(Reg),
     /// Line `line` moved `by` to its left.
@@ -227,6 +231,8 @@ impl Plan {
             Op::Neg(x) | Op::Reversed(x) => vec![*x],
             Op::DimOf(_) => vec![],
             Op::Sum(terms) => terms.iter().map(|t| t.1).collect(),
+            Op::Along { from, dir, to } => vec![*from, *dir, *to],
+            Op::DirectionTo { from, to } => vec![*from, *to],
             Op::OffsetLine { line, by } => vec![*line, *by],
             Op::CentresLineLine { l1, a1, l2, a2 } => vec![*l1, *a1, *l2, *a2],
             Op::CentresLinePoint { line, a, at, b, .. } => vec![*line, *a, *at, *b],
@@ -297,6 +303,8 @@ impl Plan {
                         .join(" ")
                 ),
                 Op::Reversed(x) => format!("reversed {}", r(x)),
+                Op::Along { from, dir, to } => format!("along {} {} {}", r(from), r(dir), r(to)),
+                Op::DirectionTo { from, to } => format!("direction_to {} {}", r(from), r(to)),
                 Op::OffsetLine { line, by } => format!("offset_line {} by {}", r(line), r(by)),
                 Op::CentresLineLine { l1, a1, l2, a2 } => {
                     format!("centres_line_line {} {} {} {}", r(l1), r(a1), r(l2), r(a2))

@@ -132,7 +132,9 @@ impl Builder<'_> {
             } => {
                 let centre = self.centre(circle);
                 let circle_known = self.record(circle).grounded();
-                let line_known = self.point_known(base) && self.dir_known(super::Dir::Feature(dir));
+                let on_line = self.line_point(base);
+                let line_known = on_line.is_some() && self.dir_known(super::Dir::Feature(dir));
+                let base = on_line.unwrap_or(base);
                 if circle_known && line_known {
                     self.check(r);
                     return true;
@@ -247,6 +249,18 @@ impl Builder<'_> {
     }
 
     fn sum(&mut self, terms: Vec<(f64, Reg)>) -> Reg {
+        // Zero constants (a tangency's gap) add nothing.
+        let zero = |s: &Self, r: Reg| {
+            s.plan
+                .steps
+                .iter()
+                .any(|st| st.out.map(|o| o.0) == Some(r) && st.op == Op::Const(0.0))
+        };
+        let mut terms: Vec<(f64, Reg)> = terms.into_iter().filter(|t| !zero(self, t.1)).collect();
+        if terms.is_empty() {
+            return self.value(Op::Const(0.0), Ty::Scalar, "0".into());
+        }
+        let terms = std::mem::take(&mut terms);
         if let [(s, r)] = terms.as_slice() {
             if *s == 1.0 {
                 return *r;

@@ -14,6 +14,7 @@
 
 pub mod circle;
 pub mod relation;
+pub mod segment;
 
 use crate::config::{Config, V2};
 use crate::plan::{BranchId, BranchVar, Meet, Op, Plan, Reg, Step, Ty};
@@ -481,7 +482,24 @@ impl<'m> Builder<'m> {
 
     fn point_known(&self, f: GeomId) -> bool {
         let r = self.record(f);
-        r.grounded() || matches!(r.pos, Pos::Pivot { feature, .. } if feature == f)
+        r.grounded()
+            || matches!(r.pos, Pos::Pivot { feature, .. } if feature == f)
+            || (r.pos == Pos::Fixed && r.rot != Rot::Free && !depends_on_dim(self.model, f))
+    }
+
+    /// A known point on the line of (`base`, its direction): `base` itself, or the other end
+    /// of the same segment.
+    pub(super) fn line_point(&self, base: GeomId) -> Option<GeomId> {
+        if self.point_known(base) {
+            return Some(base);
+        }
+        match self.model.geoms[base].owner {
+            gcs_lang::model::Owner::Part(s, gcs_lang::model::Part::Start) => {
+                relation::part(self.model, s, gcs_lang::model::Part::End)
+                    .filter(|&e| self.point_known(e))
+            }
+            _ => None,
+        }
     }
 
     fn dir_known(&self, d: Dir) -> bool {
@@ -840,7 +858,9 @@ impl<'m> Builder<'m> {
                 self.move_feature(free, target, r)
             }
             Relation::PointLine { p, base, dir, d } => {
-                let line_known = self.point_known(base) && self.dir_known(Dir::Feature(dir));
+                let on_line = self.line_point(base);
+                let line_known = on_line.is_some() && self.dir_known(Dir::Feature(dir));
+                let base = on_line.unwrap_or(base);
                 let p_known = self.point_known(p);
                 if line_known && p_known || self.cluster(p) == self.cluster(base) {
                     if self.clusters[self.cluster(p)].record.free_dim.is_none() {
@@ -896,6 +916,14 @@ impl<'m> Builder<'m> {
                     AngleValue::Const(c) => self.value(Op::Const(c), Ty::Scalar, angle_words(c)),
                 };
                 match (ku, kv, u, v) {
+                    (true, false, _, Dir::Feature(fv)) if angle == AngleValue::Const(0.0) => {
+                        let base = self.dir(u);
+                        self.turn(fv, base, r)
+                    }
+                    (false, true, Dir::Feature(fu), _) if angle == AngleValue::Const(0.0) => {
+                        let base = self.dir(v);
+                        self.turn(fu, base, r)
+                    }
                     (true, false, _, Dir::Feature(fv)) => {
                         let base = self.dir(u);
                         let words = format!("{} turned by {}", self.word(base), self.word(a));
@@ -945,6 +973,9 @@ impl<'m> Builder<'m> {
     /// leaves (the plan fragment table for a rigid frame in the plane).
     pub(super) fn move_feature(&mut self, f: GeomId, target: Target, r: &Rel) -> bool {
         let k = self.cluster(f);
+        if let Some(done) = self.segment_fragment(f, target, r) {
+            return done;
+        }
         if self.clusters[k].record.free_dim.is_some() && depends_on_dim(self.model, f) {
             // The feature moves with the free dimension: wait until it is fixed.
             return false;
@@ -1337,7 +1368,9 @@ impl<'m> Builder<'m> {
         );
         let rec = &mut self.clusters[k].record;
         rec.rot = Rot::Known;
-        if matches!(rec.pos, Pos::Pivot { .. }) {
+        // Rotation known about a pivot: fixed, unless the pivot is a segment's end that its
+        // free length still slides (the start then moves along the line).
+        if matches!(rec.pos, Pos::Pivot { feature, .. } if !depends_on_dim(self.model, feature)) {
             rec.pos = Pos::Fixed;
         }
         true

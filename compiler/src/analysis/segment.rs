@@ -1,0 +1,220 @@
+//! Plan fragments for segments of free length: moves that scale (paper 002: a segment's
+//! signatures include its length). While the length is free, a segment's end moves with it;
+//! these fragments pin the end, or place it along the segment's line and set the length.
+
+use super::relation::{part, Rel};
+use super::{Builder, Dir, Pos, Rot, Target};
+use crate::plan::{Op, Ty};
+use gcs_lang::model::{GeomId, GeomKind, Owner, Part};
+
+impl Builder<'_> {
+    /// The fragments of a lone segment whose length is free, for a target on its start or end.
+    /// `None` when they do not concern `f`; `Some(false)` when no fragment applies yet.
+    pub(super) fn segment_fragment(&mut self, f: GeomId, target: Target, r: &Rel) -> Option<bool> {
+        let k = self.cluster(f);
+        let rec = self.clusters[k].record.clone();
+        let seg = rec.free_dim?;
+        if self.model.geoms[seg].kind != GeomKind::Segment || self.clusters[k].geoms.len() != 1 {
+            return None;
+        }
+        let (start, end, dir) = (
+            part(self.model, seg, Part::Start)?,
+            part(self.model, seg, Part::End)?,
+            part(self.model, seg, Part::Dir)?,
+        );
+        let is_end = matches!(self.model.geoms[f].owner, Owner::Part(_, Part::End));
+        let geoms = vec![seg];
+        let name = self.name(seg);
+        let c = self.cname(r.constraint);
+        match (is_end, rec.rot, rec.pos, target) {
+            // The end reaches a point while the segment is free to translate: translate it
+            // there and keep the length free; the end is now pinned.
+            (true, _, Pos::Free, Target::Point(x)) => {
+                let from = self.point(end);
+                let explain = format!("{name} is free to translate: translate it so that {} lands on {} ({c}); its length stays free.", self.name(end), self.word(x));
+                self.emit(
+                    Op::Translate { geoms, from, to: x },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.pos = Pos::Pivot {
+                    at: x,
+                    feature: end,
+                };
+                self.known_points.insert(end, x);
+                Some(true)
+            }
+            // Start and direction known: the end runs along the line; the target fixes where,
+            // and the length follows.
+            (true, Rot::Known, _, target) if self.point_known(start) => {
+                let s = self.point(start);
+                let d = self.dir(Dir::Feature(dir));
+                let words = format!("the line of {name}");
+                let line = self.value(
+                    Op::Line {
+                        point: s,
+                        dir: d,
+                        offset: None,
+                    },
+                    Ty::Line,
+                    words,
+                );
+                let near = self.point(end);
+                let x = self.meet(line, target, near, r);
+                let words = format!("the distance from {} to {}", self.name(start), self.word(x));
+                let len = self.value(
+                    Op::Along {
+                        from: s,
+                        dir: d,
+                        to: x,
+                    },
+                    Ty::Scalar,
+                    words,
+                );
+                let explain = format!(
+                    "Scale {name} about {} so that {} reaches {} ({c}).",
+                    self.name(start),
+                    self.name(end),
+                    self.word(x)
+                );
+                self.emit(
+                    Op::SetDim {
+                        geom: seg,
+                        value: len,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.finish_length(k, seg);
+                Some(true)
+            }
+            // Start known, direction free: turn towards the target point and scale.
+            (true, Rot::Free, Pos::Pivot { at, feature }, Target::Point(x)) if feature == start => {
+                let d = self.dir(Dir::Feature(dir));
+                let words = format!(
+                    "the direction from {} to {}",
+                    self.name(start),
+                    self.word(x)
+                );
+                let to = self.value(Op::DirectionTo { from: at, to: x }, Ty::Vector, words);
+                let explain = format!(
+                    "Rotate {name} about {} towards {}.",
+                    self.name(start),
+                    self.word(x)
+                );
+                self.emit(
+                    Op::RotateDir {
+                        geoms: geoms.clone(),
+                        pivot: at,
+                        from: d,
+                        to,
+                    },
+                    None,
+                    Vec::new(),
+                    explain,
+                );
+                let words = format!("the distance from {} to {}", self.name(start), self.word(x));
+                let len = self.value(
+                    Op::Along {
+                        from: at,
+                        dir: to,
+                        to: x,
+                    },
+                    Ty::Scalar,
+                    words,
+                );
+                let explain = format!(
+                    "Scale {name} so that {} lands on {} ({c}).",
+                    self.name(end),
+                    self.word(x)
+                );
+                self.emit(
+                    Op::SetDim {
+                        geom: seg,
+                        value: len,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.rot = Rot::Known;
+                self.clusters[k].record.pos = Pos::Fixed;
+                self.finish_length(k, seg);
+                Some(true)
+            }
+            // End pinned and direction known: the start runs along the line through the end;
+            // the target fixes where, the length follows.
+            (false, Rot::Known, Pos::Pivot { at, feature }, target)
+                if feature == end && f == start =>
+            {
+                let d = self.dir(Dir::Feature(dir));
+                let words = format!("the line of {name} through {}", self.name(end));
+                let line = self.value(
+                    Op::Line {
+                        point: at,
+                        dir: d,
+                        offset: None,
+                    },
+                    Ty::Line,
+                    words,
+                );
+                let near = self.point(start);
+                let x = self.meet(line, target, near, r);
+                let explain = format!(
+                    "{name}'s end is pinned at {}: translate it so that {} reaches {} ...",
+                    self.word(at),
+                    self.name(start),
+                    self.word(x)
+                );
+                self.emit(
+                    Op::Translate {
+                        geoms,
+                        from: near,
+                        to: x,
+                    },
+                    None,
+                    Vec::new(),
+                    explain,
+                );
+                let words = format!("the distance from {} to {}", self.word(x), self.name(end));
+                let len = self.value(
+                    Op::Along {
+                        from: x,
+                        dir: d,
+                        to: at,
+                    },
+                    Ty::Scalar,
+                    words,
+                );
+                let explain = format!(
+                    "... and scale it so that its end is back on {} ({c}).",
+                    self.word(at)
+                );
+                self.emit(
+                    Op::SetDim {
+                        geom: seg,
+                        value: len,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.pos = Pos::Fixed;
+                self.finish_length(k, seg);
+                Some(true)
+            }
+            _ if is_end || matches!(rec.pos, Pos::Pivot { feature, .. } if feature == end) => {
+                Some(false)
+            }
+            _ => None,
+        }
+    }
+
+    fn finish_length(&mut self, k: usize, seg: GeomId) {
+        let rec = &mut self.clusters[k].record;
+        rec.free_dim = None;
+        rec.fixed_dims.push(seg);
+    }
+}
