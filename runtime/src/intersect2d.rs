@@ -214,7 +214,7 @@ fn onto_ray(
     r: &Ray,
     line: Intersection<P2, 2>,
     scale: f64,
-    gap_from_origin: f64,
+    gap_from_origin: impl FnOnce() -> f64,
 ) -> Intersection<Option<P2>, 2> {
     let mut roots = Roots::new();
     let mut any = false;
@@ -228,7 +228,7 @@ fn onto_ray(
     }
     if !any {
         return Intersection::none(Contact::Disjoint {
-            gap: gap_from_origin,
+            gap: gap_from_origin(),
         });
     }
     Intersection {
@@ -247,7 +247,7 @@ fn onto_ray(
 pub fn ray_circle(r: &Ray, c: &Circle) -> Intersection<Option<P2>, 2> {
     let [cx, cy, rad] = circle_scale(c);
     let s = tol::scale(&[r.origin().x, r.origin().y, cx, cy, rad]);
-    onto_ray(r, line_circle(&r.line(), c), s, c.residual(r.origin()))
+    onto_ray(r, line_circle(&r.line(), c), s, || c.residual(r.origin()))
 }
 
 /// Two circles.
@@ -330,7 +330,6 @@ pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
 /// The implicit function of a curve, its gradient, and its residual; for 2d Newton polishing.
 #[derive(Clone, Copy, Debug)]
 enum Curve<'a> {
-    Line(&'a Line),
     Circle(&'a Circle),
     Conic(&'a Conic),
 }
@@ -347,7 +346,6 @@ fn unit_or_zero(v: V2) -> V2 {
 impl Curve<'_> {
     fn value_grad(&self, x: P2) -> (f64, V2) {
         match self {
-            Curve::Line(l) => (l.signed_distance(x), l.normal()),
             Curve::Circle(c) => (c.implicit(x), unit_or_zero(x - c.center())),
             Curve::Conic(k) => {
                 let g = match k {
@@ -368,22 +366,38 @@ impl Curve<'_> {
 
     fn residual(&self, x: P2) -> f64 {
         match self {
-            Curve::Line(l) => l.residual(x),
             Curve::Circle(c) => c.residual(x),
             Curve::Conic(k) => k.residual(x),
         }
     }
 }
 
+/// The first-order distance `|f| / |∇f|` from an implicit value and gradient, as each curve's
+/// `residual` computes it (`|f|` where the gradient vanishes).
+#[inline]
+fn first_order(f: f64, g: V2) -> f64 {
+    let n = g.norm();
+    if n > 1e-300 {
+        f.abs() / n
+    } else {
+        f.abs()
+    }
+}
+
 /// Two Newton steps on the pair of implicit equations, kept only if they reduce the larger
 /// residual; skipped where the curves are nearly tangent (the step is ill-conditioned there).
+/// Each point is evaluated once: its values and gradients give both its residuals and the next
+/// step.
 fn polish(x: P2, a: Curve<'_>, b: Curve<'_>) -> P2 {
+    let (mut fa, mut ga) = a.value_grad(x);
+    let (mut fb, mut gb) = b.value_grad(x);
     let mut best = x;
-    let mut best_r = a.residual(x).max(b.residual(x));
+    let mut best_r = first_order(fa, ga).max(first_order(fb, gb));
     let mut y = x;
     for _ in 0..2 {
-        let (fa, ga) = a.value_grad(y);
-        let (fb, gb) = b.value_grad(y);
+        if best_r == 0.0 {
+            break;
+        }
         let det = cross(ga, gb);
         if det.abs() <= 1e-6 * ga.norm() * gb.norm() || !det.is_finite() {
             break;
@@ -394,7 +408,9 @@ fn polish(x: P2, a: Curve<'_>, b: Curve<'_>) -> P2 {
             -(ga.x * fb - gb.x * fa) / det,
         );
         y += dx;
-        let r = a.residual(y).max(b.residual(y));
+        (fa, ga) = a.value_grad(y);
+        (fb, gb) = b.value_grad(y);
+        let r = first_order(fa, ga).max(first_order(fb, gb));
         if r.is_finite() && r < best_r {
             best = y;
             best_r = r;
@@ -444,33 +460,58 @@ fn line_conic_t(l: &Line, c: &Conic) -> (Roots<f64, 2>, Contact, Option<P2>) {
         let x0 = l.at(t0);
         // Far from the inputs (a parabola's arm), rounding grows with the point's magnitude.
         let sx = s.max(x0.coords.norm());
-        if finite(x0) && f.h(x0) >= -eps_h && curve.residual(x0) <= tol::TANGENT_REL * sx {
-            let disc = qb * qb - 4.0 * qa * qc;
-            let split = if disc > 0.0 {
-                disc.sqrt() / (2.0 * qa.abs())
+        let disc = qb * qb - 4.0 * qa * qc;
+        let split = if disc > 0.0 {
+            disc.sqrt() / (2.0 * qa.abs())
+        } else {
+            0.0
+        };
+        // The cheap test first: only a close pair of roots can be a tangency.
+        if split <= 1e-4 * sx
+            && finite(x0)
+            && f.h(x0) >= -eps_h
+            && curve.residual(x0) <= tol::TANGENT_REL * sx
+        {
+            // Move the point onto the curve along the line's normal by half its residual, so
+            // that it is within half the tangency tolerance of both.
+            let (v, g) = curve.value_grad(x0);
+            let gn = g.norm_squared();
+            let x = if gn > 0.0 {
+                x0 - g * (0.5 * v / gn)
             } else {
-                0.0
+                x0
             };
-            if split <= 1e-4 * sx {
-                // Move the point onto the curve along the line's normal by half its residual,
-                // so that it is within half the tangency tolerance of both.
-                let (v, g) = curve.value_grad(x0);
-                let gn = g.norm_squared();
-                let x = if gn > 0.0 {
-                    x0 - g * (0.5 * v / gn)
-                } else {
-                    x0
-                };
-                return (Roots::from_slice(&[t0, t0]), Contact::Tangent, Some(x));
-            }
+            return (Roots::from_slice(&[t0, t0]), Contact::Tangent, Some(x));
         }
     }
-    for t in poly::quadratic(qa, qb, qc).as_slice() {
-        let x = l.at(*t);
+    // The focal equation along the line, unsquared: g(t) = μ |q + t d| - (α + β t).
+    let focal_eq = |t: f64| -> (f64, f64) {
+        let v = q + d * t;
+        let n = v.norm();
+        let slope = if n > 0.0 { f.mu * v.dot(&d) / n } else { 0.0 };
+        (f.mu * n - (alpha + beta * t), slope - beta)
+    };
+    for &t in poly::quadratic(qa, qb, qc).as_slice() {
+        let x = l.at(t);
         if finite(x) && f.h(x) >= -eps_h {
-            // Polish along the line on the unsquared focal equation.
-            let x = polish(x, Curve::Line(l), curve);
-            ts.push(l.param_of(x));
+            // Polish along the line by Newton's method on the unsquared focal equation (whose
+            // root the squaring may have moved), keeping a step only if it reduces |g|.
+            let (mut best, (mut g, mut dg)) = (t, focal_eq(t));
+            let mut best_g = g.abs();
+            let mut u = t;
+            for _ in 0..2 {
+                let step = g / dg;
+                if best_g == 0.0 || !step.is_finite() || step.abs() <= f64::EPSILON * u.abs() {
+                    break;
+                }
+                u -= step;
+                (g, dg) = focal_eq(u);
+                if g.abs() < best_g {
+                    best = u;
+                    best_g = g.abs();
+                }
+            }
+            ts.push(best);
         }
     }
     if ts.len() == 2 && ts.get(0) > ts.get(1) {
@@ -559,7 +600,7 @@ pub fn line_conic(l: &Line, c: &Conic) -> Intersection<P2, 2> {
 /// first-order distance of the origin from the conic. Other cases as in [`line_conic`].
 pub fn ray_conic(r: &Ray, c: &Conic) -> Intersection<Option<P2>, 2> {
     let s = c.scale().max(tol::scale(&[r.origin().x, r.origin().y]));
-    onto_ray(r, line_conic(&r.line(), c), s, c.residual(r.origin()))
+    onto_ray(r, line_conic(&r.line(), c), s, || c.residual(r.origin()))
 }
 
 /// The implicit quadric `Xᵀ A X + 2 b·X + c` of a curve, in coordinates relative to `origin`.
@@ -642,23 +683,32 @@ fn param_implicit(a: &Conic, b: Curve<'_>, scale: f64) -> Intersection<P2, 4> {
     let quadric = match b {
         Curve::Circle(c) => circle_quadric(c, origin),
         Curve::Conic(k) => conic_quadric(k, origin),
-        // Not called with a line (line_conic solves that pair directly).
-        Curve::Line(l) => Quadric {
-            a: [[0.0; 2]; 2],
-            b: l.normal() * 0.5,
-            c: l.signed_distance(origin),
-        },
     };
     // For an ellipse, start the tangent-half-angle parameter so that the one point it cannot
-    // reach (θ0 + π) is the farthest from `b` among eight candidates.
+    // reach (θ0 + π) is the farthest from `b` among eight candidates, by the first-order
+    // distance `|Q| / |∇Q|` of `b`'s quadric (compared squared).
     let theta0 = match a {
-        Conic::Ellipse(_) => {
+        Conic::Ellipse(e) => {
+            let (m, ax, bx, u) = e.axes();
+            let (u, v) = (u * ax, perp(u) * bx);
+            let off = m - origin;
+            let h = std::f64::consts::FRAC_1_SQRT_2;
+            let cs = [(1.0, 0.0), (h, h), (0.0, 1.0), (-h, h)];
             let mut best = (0.0, -1.0);
             for k in 0..8 {
-                let th = k as f64 * std::f64::consts::FRAC_PI_4;
-                let r = b.residual(a.at(th + std::f64::consts::PI));
+                let (c, sn) = cs[k % 4];
+                let sign = if k < 4 { 1.0 } else { -1.0 };
+                // The point at θ + π, relative to the quadric's origin.
+                let p = off - (u * c + v * sn) * sign;
+                let q = quadric.form(p, p) + 2.0 * quadric.b.dot(&p) + quadric.c;
+                let g = V2::new(
+                    quadric.a[0][0] * p.x + quadric.a[0][1] * p.y,
+                    quadric.a[1][0] * p.x + quadric.a[1][1] * p.y,
+                ) + quadric.b;
+                let gn = g.norm_squared();
+                let r = if gn > 0.0 { q * q / gn } else { q * q };
                 if r > best.1 {
-                    best = (th, r);
+                    best = (k as f64 * std::f64::consts::FRAC_PI_4, r);
                 }
             }
             best.0
@@ -679,15 +729,20 @@ fn param_implicit(a: &Conic, b: Curve<'_>, scale: f64) -> Intersection<P2, 4> {
     {
         return Intersection::none(Contact::Coincident);
     }
-    let deriv = [4.0 * low[4], 3.0 * low[3], 2.0 * low[2], low[1]];
-    let roots = poly::real_roots(&coeffs);
-    let crit = poly::real_roots(&deriv);
+    let (roots, crit) = poly::roots_and_critical(&coeffs);
+    // The branch side of a hyperbola `b` (every point of the other conics is on it).
+    let side = match b {
+        Curve::Conic(k) => {
+            let f = k.focal();
+            Some((f, -tol::LENGTH_REL * scale * (f.w.norm() + f.mu)))
+        }
+        Curve::Circle(_) => None,
+    };
     let valid = |s: f64| -> Option<(f64, P2)> {
         let t = a.param_from_s(s, theta0)?;
         let x = rat.at(s)?;
-        if let Curve::Conic(k) = b {
-            let f = k.focal();
-            if f.h(x) < -tol::LENGTH_REL * scale * (f.w.norm() + f.mu) {
+        if let Some((f, min)) = side {
+            if f.h(x) < min {
                 return None;
             }
         }
