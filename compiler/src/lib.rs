@@ -14,36 +14,60 @@ pub mod explain;
 pub mod interp;
 pub mod nominal;
 pub mod plan;
+pub mod prune;
 pub mod report;
 pub mod solution;
 pub mod verify;
 
+use gcs_lang::model::GeomId;
 use gcs_runtime::error::SolveError;
+use std::collections::BTreeSet;
 
-/// Solves a model with its analysis, params (indexed like the model's params) and branch
-/// indices (by branch id; the defaults when `None`), and measures the residual of every
-/// constraint independently.
+/// Solves a model with its whole plan: every geom. `branches` are indices by branch order.
 pub fn solve(
     model: &gcs_lang::Model,
     analysis: &analysis::Analysis,
     params: &[f64],
     branches: &[usize],
 ) -> Result<solution::Solution, SolveError> {
+    let all: BTreeSet<GeomId> = model.top_level().map(|(id, _)| id).collect();
+    solve_plan(model, &analysis.plan, &all, params, branches)
+}
+
+/// Runs `plan` (whole or pruned to `scope`, the top-level geoms it computes) and reads the
+/// solution of those geoms; its `max_residual` covers every constraint among them, measured
+/// independently of the plan.
+pub fn solve_plan(
+    model: &gcs_lang::Model,
+    plan: &plan::Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    branches: &[usize],
+) -> Result<solution::Solution, SolveError> {
     let run = interp::run(
         model,
-        &analysis.plan,
+        plan,
         params,
         &interp::Choice::Given(branches.to_vec()),
     )?;
-    let mut s = solution::Solution::read(model, &run.config);
-    s.branches = analysis
-        .plan
+    let mut s = solution::Solution::read(model, &run.config, scope);
+    s.branches = plan
         .branches
         .iter()
         .zip(branches)
         .map(|(b, i)| (b.name.clone(), *i))
         .collect();
-    s.grounded = analysis.plan.grounded.map(|g| model.geoms[g].name.clone());
-    s.max_residual = verify::max_residual(&verify::residuals(model, &s, params));
+    s.grounded = plan.grounded.map(|g| model.geoms[g].name.clone());
+    let residuals = verify::residuals(model, &s, params);
+    let in_scope: Vec<verify::Residual> = residuals
+        .into_iter()
+        .filter(|r| {
+            model.constraints[r.constraint]
+                .args
+                .iter()
+                .all(|a| scope.contains(&model.top_level_of(*a)))
+        })
+        .collect();
+    s.max_residual = verify::max_residual(&in_scope);
     Ok(s)
 }

@@ -29,9 +29,16 @@ pub struct Solution {
 
 impl Solution {
     /// Reads every geom of the model from a configuration.
-    pub fn read(model: &Model, cfg: &Config) -> Solution {
+    pub fn read(
+        model: &Model,
+        cfg: &Config,
+        scope: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
+    ) -> Solution {
         let mut s = Solution::default();
         for (id, g) in model.geoms.iter() {
+            if !scope.contains(&model.top_level_of(id)) {
+                continue;
+            }
             let v2 = |p: nalgebra::Point2<f64>| vec![p.x, p.y];
             match (g.kind, g.owner) {
                 (GeomKind::Point | GeomKind::Marker, _) => {

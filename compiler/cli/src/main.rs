@@ -40,6 +40,9 @@ enum Command {
         /// Print one JSON object.
         #[arg(long)]
         json: bool,
+        /// Solve every geom, not only what the `output` statements need.
+        #[arg(long)]
+        all: bool,
     },
     /// Print the assembly plan as steps a person can follow.
     Explain {
@@ -69,7 +72,8 @@ fn main() -> ExitCode {
             set,
             branch,
             json,
-        } => solve(&file, &set, &branch, json, color),
+            all,
+        } => solve(&file, &set, &branch, json, all, color),
         Command::Explain { file } => with_analysis(&file, color, |model, a| {
             print!("{}", gcs_compiler::explain::explain(model, a));
             ExitCode::SUCCESS
@@ -156,6 +160,7 @@ fn solve(
     set: &[String],
     branch: &[String],
     json: bool,
+    all: bool,
     color: termcolor::ColorChoice,
 ) -> ExitCode {
     with_analysis(path, color, |model, analysis| {
@@ -219,7 +224,36 @@ fn solve(
                 }
             }
         }
-        match gcs_compiler::solve(model, analysis, &params, &branches) {
+        // With `output` statements, only what they need is computed, as in a compiled solver.
+        let all_geoms: std::collections::BTreeSet<_> =
+            model.top_level().map(|(id, _)| id).collect();
+        let (plan, scope) = if all {
+            (analysis.plan.clone(), all_geoms)
+        } else {
+            gcs_compiler::prune::prune(model, &analysis.plan)
+        };
+        let mut chosen = Vec::new();
+        for b in &plan.branches {
+            let i = analysis
+                .plan
+                .branches
+                .iter()
+                .position(|x| x.name == b.name)
+                .unwrap_or(0);
+            chosen.push(branches.get(i).copied().unwrap_or(b.default));
+        }
+        for (b, i) in analysis.plan.branches.iter().zip(&branches) {
+            let given = branch
+                .iter()
+                .any(|s| s.split_once('=').is_some_and(|(n, _)| n.trim() == b.name));
+            if given && !plan.branches.iter().any(|x| x.name == b.name) {
+                eprintln!(
+                    "note: branch `{}` = {i} does not affect the outputs; pass --all to solve everything",
+                    b.name
+                );
+            }
+        }
+        match gcs_compiler::solve_plan(model, &plan, &scope, &params, &chosen) {
             Ok(solution) => {
                 if json {
                     println!("{}", solution.to_json());
