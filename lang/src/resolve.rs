@@ -1113,6 +1113,25 @@ impl<'a> Resolver<'a> {
             return;
         };
         let args: Vec<GeomId> = order.iter().map(|&i| resolved[i].0).collect();
+        // `L.point` depends on where the sketch put the line's first point: an output, never
+        // something to constrain.
+        if let Some((g, span)) = resolved
+            .iter()
+            .find(|(g, _)| matches!(self.geoms[*g].owner, Owner::Part(_, Part::BasePoint)))
+        {
+            let name = self.geoms[*g].name.clone();
+            let line = name.trim_end_matches(".point").to_string();
+            let d = Diagnostic::error(
+                *span,
+                format!("`{name}` is an output, not a constraint argument"),
+            )
+            .with_label("the foot of the perpendicular from the line's first sketch point")
+            .with_note(format!(
+                "to put a point on the line, write `on(P, {line});`"
+            ));
+            self.push(d);
+            return;
+        }
         if args.len() == 2 && args[0] == args[1] {
             let d = Diagnostic::error(
                 args_span,

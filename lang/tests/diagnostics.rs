@@ -1205,6 +1205,23 @@ fn dimension_as_argument() {
 }
 
 #[test]
+fn line_point_is_output_only() {
+    check(
+        "space 2d;\nfixed point A = (0, 0);\nline L = (0, 1) -> (1, 1);\ncoincident(L.point, A);\n",
+        expect![[r#"
+            error: `L.point` is an output, not a constraint argument
+              ┌─ model.gcs:4:12
+              │
+            4 │ coincident(L.point, A);
+              │            ^^^^^^^ the foot of the perpendicular from the line's first sketch point
+              │
+              = to put a point on the line, write `on(P, L);`
+
+        "#]],
+    );
+}
+
+#[test]
 fn geom_in_expression() {
     check(
         "space 2d;\npoint P = (0, 0);\npoint Q = (P, 0);\n",
