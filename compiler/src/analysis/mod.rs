@@ -13,6 +13,7 @@
 //! Kramer's Table 2 for reports.
 
 pub mod circle;
+pub mod loops;
 pub mod relation;
 pub mod segment;
 
@@ -656,13 +657,17 @@ impl<'m> Builder<'m> {
             names.sort();
             names
         };
+        // Chains first (SOLVE-RIGID-CHAINS), then loops of up to three clusters, the limit in
+        // the plane (IDENTIFY-LOOPS over the free clusters numbered in name order).
         let mut sets: Vec<Vec<usize>> = edges.iter().map(|&(x, y)| vec![x, y]).collect();
-        for &(x, y) in &edges {
-            for &z in &free {
-                if z > y && linked(x, z) && linked(y, z) {
-                    sets.push(vec![x, y, z]);
-                }
-            }
+        let mut order: Vec<usize> = free.clone();
+        order.sort_by_key(|&k| self.name(self.clusters[k].geoms[0]));
+        let adj: Vec<Vec<usize>> = order
+            .iter()
+            .map(|&x| (0..order.len()).filter(|&j| linked(x, order[j])).collect())
+            .collect();
+        for l in loops::identify_loops(&adj, 3) {
+            sets.push(l.into_iter().map(|i| order[i]).collect());
         }
         sets.sort_by_key(|s| (s.len(), key(self, s)));
         for set in sets {
