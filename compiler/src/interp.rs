@@ -103,7 +103,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             Op::DirectionTo { from, to } => {
                 let d = p(*to) - p(*from);
                 let n = d.norm();
-                if !(n > 0.0) {
+                if n.is_nan() || n <= 0.0 {
                     return Err(bad_step(model, step));
                 }
                 Some(Val::V(d / n))
@@ -237,7 +237,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                     Val::C(c) => c.residual(q),
                     _ => f64::NAN,
                 };
-                if !(gap <= tol) {
+                if gap.is_nan() || gap > tol {
                     return Err(err(model, *constraint, ErrorKind::Inconsistent, gap));
                 }
                 Some(Val::P(q))
@@ -341,7 +341,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             }
             Op::SetDim { geom, value } => {
                 let x = s(*value);
-                if !(x >= 0.0) || !x.is_finite() {
+                if !x.is_finite() || x < 0.0 {
                     let c = step.satisfies.first().copied();
                     return Err(match c {
                         Some(c) => err(model, c, ErrorKind::InvalidInput, x),
@@ -353,7 +353,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             }
             Op::Check { constraint } => {
                 let r = residual(model, &config, *constraint);
-                if !(r <= tol) {
+                if r.is_nan() || r > tol {
                     return Err(err(model, *constraint, ErrorKind::Inconsistent, r));
                 }
                 None
