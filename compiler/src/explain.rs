@@ -17,6 +17,13 @@ pub fn explain(model: &Model, a: &Analysis) -> String {
             model.geoms[g].name
         );
     }
+    if let Some((x, y)) = a.plan.grounded_direction {
+        let _ = writeln!(
+            out,
+            "The direction from {} to {} is held as sketched: {} keeps to that line.",
+            model.geoms[x].name, model.geoms[y].name, model.geoms[y].name
+        );
+    }
     let mut n = 0;
     for step in &a.plan.steps {
         if step.explain.is_empty() {

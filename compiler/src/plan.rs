@@ -212,6 +212,9 @@ pub struct Plan {
     pub branches: Vec<BranchVar>,
     /// The geom grounded at its sketch because nothing was fixed, if any.
     pub grounded: Option<GeomId>,
+    /// When the grounded geom has no orientation: the two points whose sketch direction is
+    /// held too, so that only a rigid motion is factored out.
+    pub grounded_direction: Option<(GeomId, GeomId)>,
     /// The number of registers.
     pub regs: u32,
 }
@@ -272,6 +275,14 @@ impl Plan {
         let mut out = String::new();
         if let Some(g) = self.grounded {
             let _ = writeln!(out, "ground {} at its sketch", name(&g));
+        }
+        if let Some((a, b)) = self.grounded_direction {
+            let _ = writeln!(
+                out,
+                "hold the sketch direction from {} to {}",
+                name(&a),
+                name(&b)
+            );
         }
         for b in &self.branches {
             let _ = writeln!(

@@ -192,8 +192,15 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
     if let Some(g) = a.plan.grounded {
         let _ = writeln!(
             out,
-            "grounded: {} (nothing is fixed: it is held at its sketch placement, and the rest is solved relative to it)",
+                        "grounded: {} (nothing is fixed: it is held at its sketch placement, and the rest is solved relative to it)",
             model.geoms[g].name
+        );
+    }
+    if let Some((x, y)) = a.plan.grounded_direction {
+        let _ = writeln!(
+            out,
+            "  and the direction from {} to {} is held as sketched (a point has no orientation of its own)",
+            model.geoms[x].name, model.geoms[y].name
         );
     }
     let free = a.free_geoms();

@@ -520,8 +520,8 @@ impl<'m> Builder<'m> {
         for r in dims {
             self.dimension(&r);
         }
-        self.ground_if_nothing_fixed();
         self.pending = others;
+        self.ground_if_nothing_fixed();
         // POSITION-ANALYSIS (000, Appendix A.3): action and locus analysis until stuck; then
         // the smallest rigid chain or loop is assembled on a temporary ground and rewritten as
         // a macro-geom; repeat.
@@ -754,6 +754,7 @@ impl<'m> Builder<'m> {
             }
         }
         if let Some((_, _, i)) = best {
+            let had_rotation = self.clusters[i].record.rot == Rot::Free;
             let r = &mut self.clusters[i].record;
             if r.rot == Rot::Free {
                 r.rot = Rot::Known;
@@ -762,7 +763,60 @@ impl<'m> Builder<'m> {
                 r.pos = Pos::Fixed;
             }
             self.plan.grounded = Some(self.clusters[i].geoms[0]);
+            if !had_rotation {
+                self.ground_direction(i);
+            }
         }
+    }
+
+    /// A geom without orientation (a point, a circle) held at its sketch leaves the model free
+    /// to turn about it: hold the direction to the first point related to it (in name order)
+    /// as the sketch has it too, so that the model is solved up to a rigid motion only.
+    fn ground_direction(&mut self, i: usize) {
+        let held = |s: &Self, f: GeomId| s.cluster(f) == i;
+        let mut pair = None;
+        for r in &self.pending {
+            if let Relation::PointPoint { a, b, .. } = r.relation {
+                let (ka, kb) = (self.cluster(a), self.cluster(b));
+                if held(self, a) && kb != i && self.clusters[kb].record.pos == Pos::Free {
+                    pair = Some((a, b));
+                } else if held(self, b) && ka != i && self.clusters[ka].record.pos == Pos::Free {
+                    pair = Some((b, a));
+                }
+                if pair.is_some() {
+                    break;
+                }
+            }
+        }
+        let Some((at, other)) = pair else { return };
+        let a = self.point(at);
+        let o = self.point(other);
+        let words = format!(
+            "the direction from {} to {} in the sketch",
+            self.name(at),
+            self.name(other)
+        );
+        let d = self.value(Op::DirectionTo { from: a, to: o }, Ty::Vector, words);
+        let words = format!(
+            "the line from {} through {} as sketched",
+            self.name(at),
+            self.name(other)
+        );
+        let line = self.value(
+            Op::Line {
+                point: a,
+                dir: d,
+                offset: None,
+            },
+            Ty::Line,
+            words,
+        );
+        let k = self.cluster(other);
+        self.clusters[k].record.pos = Pos::On {
+            feature: other,
+            locus: Locus::Line(line),
+        };
+        self.plan.grounded_direction = Some((at, other));
     }
 
     fn satisfies(&self, r: &Rel) -> Vec<ConstraintId> {
