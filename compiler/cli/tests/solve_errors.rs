@@ -1,0 +1,131 @@
+//! `gcs solve` on an impossible assembly exits non-zero, and its stderr names the constraint
+//! (`elbow`) and the gap by which the loop misses, equal to the true gap computed here.
+
+use std::path::Path;
+use std::process::Command;
+
+/// The four-bar of examples/fourbar.gcs with its coupler's and rocker's `c` members replaced.
+fn fourbar(coupler_c: &str, rocker_c: &str) -> String {
+    format!(
+        "space 2d;
+param theta = 30 deg;
+param crank_len = 1.5;
+fixed point A = (0, 0);
+fixed point D = (4, 0);
+fixed vector X = (1, 0);
+body crank   at (0, 0)   {{ point a = (0, 0); point b = (crank_len, 0); vector u = (1, 0); }}
+body coupler at (1.5, 0) {{ point b = (0, 0); point c = {coupler_c}; }}
+body rocker  at (4, 0)   {{ point d = (0, 0); point c = {rocker_c}; }}
+coincident(crank.a, A);
+drive: angle(X, crank.u) = theta;
+coincident(crank.b, coupler.b);
+elbow: coincident(coupler.c, rocker.c);
+coincident(rocker.d, D);
+output coupler.c;
+"
+    )
+}
+
+/// The gap between the circle about crank.b (crank of length `crank` at `theta_deg`) with
+/// radius `r1` and the circle about D = (4, 0) with radius `r2`.
+fn gap(crank: f64, theta_deg: f64, r1: f64, r2: f64) -> f64 {
+    let t = theta_deg.to_radians();
+    let d = (4.0 - crank * t.cos()).hypot(crank * t.sin());
+    if d > r1 + r2 {
+        d - (r1 + r2)
+    } else {
+        (r1 - r2).abs() - d
+    }
+}
+
+/// Runs `gcs solve` with `args` after the file and returns exit code, stdout and stderr.
+fn gcs_solve(path: &Path, args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
+        .arg("solve")
+        .arg(path)
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("run gcs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Every number that follows "miss by " in `text`.
+fn gaps_in(text: &str) -> Vec<f64> {
+    text.match_indices("miss by ")
+        .filter_map(|(i, m)| {
+            let rest = &text[i + m.len()..];
+            let end = rest
+                .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '-' | '+')))
+                .unwrap_or(rest.len());
+            rest[..end].parse::<f64>().ok()
+        })
+        .collect()
+}
+
+fn assert_fails_with_gap(text: &str, args: &[&str], want: f64) {
+    assert!(want > 0.0, "the test model must not close (gap {want})");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("broken.gcs");
+    std::fs::write(&path, text).expect("write model");
+    for json in [false, true] {
+        let mut args = args.to_vec();
+        if json {
+            args.push("--json");
+        }
+        let (code, stdout, stderr) = gcs_solve(&path, &args);
+        assert_ne!(
+            code, 0,
+            "{args:?}: exit 0\nstdout: {stdout}\nstderr: {stderr}"
+        );
+        assert!(
+            !stdout.contains("\"points\"") && !stdout.contains("max residual"),
+            "{args:?}: a solution was printed: {stdout}"
+        );
+        assert!(stderr.contains("`elbow`"), "{args:?}: stderr: {stderr}");
+        let gaps = gaps_in(&stderr);
+        assert!(
+            gaps.iter().any(|g| (g - want).abs() <= 1e-12 * 5.0),
+            "{args:?}: no gap {want} in stderr (found {gaps:?}): {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
+
+#[test]
+fn a_coupler_too_short_to_reach_fails_naming_elbow_and_the_gap() {
+    // Coupler 0.5 and rocker 1 cannot span the 2.80 from crank.b to D.
+    assert_fails_with_gap(
+        &fourbar("(0.5, 0)", "(0, 1)"),
+        &[],
+        gap(1.5, 30.0, 0.5, 1.0),
+    );
+}
+
+#[test]
+fn a_coupler_too_long_to_fold_fails_naming_elbow_and_the_gap() {
+    assert_fails_with_gap(&fourbar("(8, 0)", "(0, 3)"), &[], gap(1.5, 30.0, 8.0, 3.0));
+}
+
+#[test]
+fn the_example_four_bar_in_a_dead_zone_fails_naming_elbow_and_the_gap() {
+    // With a crank of 3.5 at 0 degrees, crank.b is 0.5 from D, but coupler 4 and rocker 3 meet
+    // only at distances of at least 1.
+    let text = fourbar("(4, 0)", "(0, 3)");
+    assert_fails_with_gap(
+        &text,
+        &["--set", "crank_len=3.5", "--set", "theta=0"],
+        gap(3.5, 0.0, 4.0, 3.0),
+    );
+    // And at its defaults it solves.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("ok.gcs");
+    std::fs::write(&path, &text).expect("write model");
+    let (code, stdout, stderr) = gcs_solve(&path, &[]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    assert!(stdout.contains("coupler.c"), "{stdout}");
+}

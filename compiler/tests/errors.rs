@@ -1,0 +1,409 @@
+//! Errors: every way a model can fail to assemble is reported, naming the constraint (or param)
+//! and by how much, never as a panic or a wrong answer.
+//!
+//! (a) an impossible assembly: a four-bar whose loop cannot close; (b) an under-constrained
+//! model; (c) over-constrained models, consistent (a redundant check) and inconsistent (a
+//! conflict of a known size); (d) non-finite params; (e) a branch index with no real root.
+//! The CLI side of (a) is in `compiler/cli/tests/solve_errors.rs`.
+
+use gcs_compiler::analysis::{analyse, Analysis};
+use gcs_compiler::report::problems;
+use gcs_lang::Model;
+use gcs_runtime::error::{ErrorKind, SolveError};
+
+/// The four-bar of examples/fourbar.gcs, with its coupler's and rocker's `c` members and the
+/// extra statements given.
+fn fourbar(coupler_c: &str, rocker_c: &str, extra: &str, drive: bool) -> String {
+    format!(
+        "space 2d;
+param theta = 30 deg;
+param crank_len = 1.5;
+fixed point A = (0, 0);
+fixed point D = (4, 0);
+fixed vector X = (1, 0);
+body crank   at (0, 0)   {{ point a = (0, 0); point b = (crank_len, 0); vector u = (1, 0); }}
+body coupler at (1.5, 0) {{ point b = (0, 0); point c = {coupler_c}; }}
+body rocker  at (4, 0)   {{ point d = (0, 0); point c = {rocker_c}; }}
+coincident(crank.a, A);
+{}coincident(crank.b, coupler.b);
+elbow: coincident(coupler.c, rocker.c);
+coincident(rocker.d, D);
+{extra}
+",
+        if drive {
+            "drive: angle(X, crank.u) = theta;\n"
+        } else {
+            ""
+        }
+    )
+}
+
+fn load(text: &str) -> Model {
+    let (_, model, diags) = gcs_lang::load("test.gcs", text.as_bytes());
+    assert!(diags.iter().all(|d| !d.is_error()), "{diags:?}\n{text}");
+    model.unwrap_or_else(|| panic!("no model\n{text}"))
+}
+
+fn example(name: &str) -> Model {
+    let path = format!("{}/../examples/{name}.gcs", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("read {path}: {e}"));
+    load(&text)
+}
+
+fn defaults(a: &Analysis) -> Vec<usize> {
+    a.plan.branches.iter().map(|b| b.default).collect()
+}
+
+fn solve_defaults(
+    model: &Model,
+    a: &Analysis,
+) -> Result<gcs_compiler::solution::Solution, SolveError> {
+    gcs_compiler::solve(model, a, &model.default_params(), &defaults(a))
+}
+
+/// Every diagnostic as one line: message, labels and notes.
+fn diag_text(d: &gcs_lang::Diagnostic) -> String {
+    let mut s = d.message.clone();
+    s.push_str(" | ");
+    s.push_str(&d.primary.message);
+    for l in &d.secondary {
+        s.push_str(" | ");
+        s.push_str(&l.message);
+    }
+    for n in &d.notes {
+        s.push_str(" | ");
+        s.push_str(n);
+    }
+    s
+}
+
+/// The gap between the circle about `crank.b` (crank at 30 degrees, length 1.5) with radius
+/// `r1` and the circle about D = (4, 0) with radius `r2`.
+fn fourbar_gap(r1: f64, r2: f64) -> f64 {
+    let t = 30f64.to_radians();
+    let b = (1.5 * t.cos(), 1.5 * t.sin());
+    let d = (4.0 - b.0).hypot(0.0 - b.1);
+    if d > r1 + r2 {
+        d - (r1 + r2)
+    } else {
+        (r1 - r2).abs() - d
+    }
+}
+
+fn assert_no_assembly(text: &str, gap: f64) {
+    assert!(gap > 0.0, "the test model must not close (gap {gap})");
+    let model = load(text);
+    let a = analyse(&model).expect("analyse");
+    let e = match solve_defaults(&model, &a) {
+        Ok(s) => panic!("the loop cannot close, yet solve gave {:?}", s.points),
+        Err(e) => e,
+    };
+    assert_eq!(e.kind, ErrorKind::NoIntersection, "{e}");
+    assert_eq!(e.label, "elbow", "{e}");
+    assert_eq!(e.text, "coincident(coupler.c, rocker.c)", "{e}");
+    assert!(e.magnitude > 0.0, "{e}");
+    assert!(
+        (e.magnitude - gap).abs() <= 1e-12 * 5.0,
+        "gap {} reported, {gap} true",
+        e.magnitude
+    );
+    let msg = e.to_string();
+    assert!(
+        msg.contains("`elbow`") && msg.contains(&format!("{}", e.magnitude)),
+        "{msg}"
+    );
+    // `check` reports the same problem on the constraint.
+    let p = problems(&model, &a);
+    assert!(
+        p.iter()
+            .any(|d| d.is_error() && diag_text(d).contains("elbow")),
+        "{:?}",
+        p.iter().map(diag_text).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn a_coupler_too_short_to_reach_names_elbow_and_the_gap() {
+    // Coupler 0.5 and rocker 1 cannot span the 2.80 from crank.b to D.
+    let text = fourbar("(0.5, 0)", "(0, 1)", "", true);
+    let gap = fourbar_gap(0.5, 1.0);
+    assert!((gap - 1.3031580680701431).abs() < 1e-12);
+    assert_no_assembly(&text, gap);
+}
+
+#[test]
+fn a_coupler_too_long_to_fold_names_elbow_and_the_gap() {
+    // Only the coupler's c member moves: a coupler of 8 against a rocker of 3 needs crank.b at
+    // least 5 from D, but it is 2.80 away.
+    let text = fourbar("(8, 0)", "(0, 3)", "", true);
+    let gap = fourbar_gap(8.0, 3.0);
+    assert_no_assembly(&text, gap);
+}
+
+#[test]
+fn the_example_four_bar_assembles() {
+    let text = fourbar("(4, 0)", "(0, 3)", "", true);
+    let model = load(&text);
+    let a = analyse(&model).expect("analyse");
+    let s = solve_defaults(&model, &a).expect("the example closes");
+    assert!(s.max_residual <= 1e-12 * 5.0);
+    assert!(problems(&model, &a).is_empty());
+}
+
+/// Asserts `problems` says `geom` is under-constrained with `dof` DOF left.
+fn assert_free(model: &Model, a: &Analysis, geoms: &[(&str, usize)]) {
+    let p: Vec<String> = problems(model, a)
+        .iter()
+        .filter(|d| d.is_error())
+        .map(diag_text)
+        .collect();
+    for (geom, dof) in geoms {
+        assert!(
+            p.iter().any(|d| d.contains(&format!("`{geom}`"))
+                && d.contains("under-constrained")
+                && d.contains(&format!("{dof} DOF"))),
+            "no error names `{geom}` as free with {dof} DOF: {p:#?}"
+        );
+    }
+    let free: Vec<(String, usize)> = a
+        .free_geoms()
+        .into_iter()
+        .map(|(g, d)| (model.geoms[g].name.clone(), d))
+        .collect();
+    for (geom, dof) in geoms {
+        assert!(
+            free.contains(&(geom.to_string(), *dof)),
+            "free_geoms {free:?} lacks ({geom}, {dof})"
+        );
+    }
+}
+
+#[test]
+fn a_pinned_crank_without_its_drive_is_free_to_rotate() {
+    let model = load(
+        "space 2d;
+fixed point A = (0, 0);
+body crank { point a = (0, 0); point b = (1.5, 0); }
+coincident(crank.a, A);
+",
+    );
+    let a = analyse(&model).expect("analyse");
+    assert!(a.unsolved.is_empty());
+    assert_free(&model, &a, &[("crank", 1)]);
+}
+
+#[test]
+fn a_four_bar_without_its_drive_is_under_constrained() {
+    // Without `drive` the four-bar keeps its one DOF: the report must say which geoms are left
+    // free and by how much (each of the three moving links turns with the mechanism's one DOF),
+    // not that some constraint has no plan.
+    let model = load(&fourbar("(4, 0)", "(0, 3)", "", false));
+    let a = analyse(&model).expect("analyse");
+    let p: Vec<String> = problems(&model, &a)
+        .iter()
+        .filter(|d| d.is_error())
+        .map(diag_text)
+        .collect();
+    assert!(!p.is_empty(), "an under-constrained model has problems");
+    let free: Vec<(String, usize)> = a
+        .free_geoms()
+        .into_iter()
+        .map(|(g, d)| (model.geoms[g].name.clone(), d))
+        .collect();
+    assert!(
+        p.iter().any(|d| d.contains("under-constrained")
+            && ["crank", "coupler", "rocker"]
+                .iter()
+                .any(|g| d.contains(&format!("`{g}`")))
+            && d.contains("DOF")),
+        "no error names the free links and their DOF: {p:#?}\nfree_geoms: {free:?}"
+    );
+    // Never a wrong answer: whatever the plan does, it does not claim a solution that breaks
+    // a constraint.
+    if let Ok(s) = solve_defaults(&model, &a) {
+        assert!(s.max_residual <= 1e-12 * 5.0, "{}", s.max_residual);
+    }
+}
+
+fn redundant_names(model: &Model, a: &Analysis) -> Vec<String> {
+    a.redundant
+        .iter()
+        .map(|c| model.constraints[*c].name.clone())
+        .collect()
+}
+
+#[test]
+fn an_implied_distance_is_redundant_and_solves() {
+    let model = load(&fourbar(
+        "(4, 0)",
+        "(0, 3)",
+        "distance(crank.a, A) = 0;",
+        true,
+    ));
+    let a = analyse(&model).expect("analyse");
+    assert!(a.unsolved.is_empty());
+    let red = redundant_names(&model, &a);
+    assert_eq!(red.len(), 1, "{red:?}");
+    assert!(
+        red[0] == "distance_crank_a_A" || red[0] == "coincident_crank_a_A",
+        "{red:?}"
+    );
+    assert!(a.plan.validate(&model).is_ok());
+    let s = solve_defaults(&model, &a).expect("a consistent model solves");
+    assert!(s.max_residual <= 1e-12 * 5.0);
+    assert!(problems(&model, &a).iter().all(|d| !d.is_error()));
+}
+
+#[test]
+fn a_duplicate_coincidence_is_redundant_and_solves() {
+    let model = load(&fourbar(
+        "(4, 0)",
+        "(0, 3)",
+        "coincident(A, crank.a);",
+        true,
+    ));
+    let a = analyse(&model).expect("analyse");
+    assert!(a.unsolved.is_empty());
+    let red = redundant_names(&model, &a);
+    assert_eq!(red.len(), 1, "{red:?}");
+    assert!(
+        red[0] == "coincident_A_crank_a" || red[0] == "coincident_crank_a_A",
+        "{red:?}"
+    );
+    let s = solve_defaults(&model, &a).expect("a consistent model solves");
+    assert!(s.max_residual <= 1e-12 * 5.0);
+    // The same solution as without the duplicate.
+    let plain = load(&fourbar("(4, 0)", "(0, 3)", "", true));
+    let pa = analyse(&plain).expect("analyse");
+    let ps = solve_defaults(&plain, &pa).expect("solves");
+    for (name, v) in &ps.points {
+        let w = s.point(name).expect("same points");
+        assert!(
+            (v[0] - w[0]).abs() <= 1e-12 && (v[1] - w[1]).abs() <= 1e-12,
+            "{name}"
+        );
+    }
+    assert!(problems(&model, &a).iter().all(|d| !d.is_error()));
+}
+
+#[test]
+fn an_inconsistent_distance_names_the_conflict_and_its_size() {
+    // The crank is 1.5 long and pinned at A: crank.b cannot be 2 from A.
+    let model = load(&fourbar(
+        "(4, 0)",
+        "(0, 3)",
+        "distance(crank.b, A) = 2;",
+        true,
+    ));
+    let a = analyse(&model).expect("analyse");
+    let p: Vec<String> = problems(&model, &a)
+        .iter()
+        .filter(|d| d.is_error())
+        .map(diag_text)
+        .collect();
+    assert!(
+        p.iter()
+            .any(|d| d.contains("distance_crank_b_A") && d.contains("0.5")),
+        "no error names distance_crank_b_A with its conflict 0.5: {p:#?}"
+    );
+    let e = match solve_defaults(&model, &a) {
+        Ok(s) => panic!("an inconsistent model solved: {:?}", s.points),
+        Err(e) => e,
+    };
+    assert_eq!(e.label, "distance_crank_b_A", "{e}");
+    assert!(
+        matches!(e.kind, ErrorKind::Inconsistent | ErrorKind::NoIntersection),
+        "{e}"
+    );
+    assert!((e.magnitude - 0.5).abs() <= 1e-12 * 5.0, "{e}");
+}
+
+#[test]
+fn non_finite_params_are_invalid_input_naming_the_param() {
+    let model = example("fourbar");
+    let a = analyse(&model).expect("analyse");
+    for name in ["theta", "crank_len"] {
+        let i = model
+            .param_named(name)
+            .expect("param")
+            .into_raw()
+            .into_u32() as usize;
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut params = model.default_params();
+            params[i] = bad;
+            let e = match gcs_compiler::solve(&model, &a, &params, &defaults(&a)) {
+                Ok(s) => panic!("{name} = {bad} solved: {:?}", s.points),
+                Err(e) => e,
+            };
+            assert_eq!(e.kind, ErrorKind::InvalidInput, "{name} = {bad}: {e}");
+            assert_eq!(e.label, name, "{name} = {bad}: {e}");
+            assert!(
+                e.magnitude.is_nan() && bad.is_nan() || e.magnitude == bad,
+                "{name} = {bad}: magnitude {}",
+                e.magnitude
+            );
+            assert!(e.to_string().contains(&format!("`{name}`")), "{e}");
+        }
+    }
+}
+
+#[test]
+fn finite_params_that_overflow_the_sketch_are_invalid_input() {
+    // A finite param whose sketch overflows: no panic, no answer, an InvalidInput error.
+    let model = load(
+        "space 2d;
+param s = 1;
+fixed point A = (0, 0);
+fixed vector X = (1, 0);
+body crank { point a = (0, 0); point b = (s * s, 0); vector u = (1, 0); }
+coincident(crank.a, A);
+angle(X, crank.u) = 0.5;
+",
+    );
+    let a = analyse(&model).expect("analyse");
+    let mut params = model.default_params();
+    params[0] = 1e200;
+    match gcs_compiler::solve(&model, &a, &params, &defaults(&a)) {
+        Ok(s) => panic!("an overflowing sketch solved: {:?}", s.points),
+        Err(e) => assert_eq!(e.kind, ErrorKind::InvalidInput, "{e}"),
+    }
+}
+
+#[test]
+fn circle_problem_has_two_real_branches_of_four() {
+    let model = example("circle");
+    let a = analyse(&model).expect("analyse");
+    let k = a
+        .plan
+        .branches
+        .iter()
+        .position(|b| b.name == "meet")
+        .expect("branch meet");
+    assert_eq!(a.plan.branches[k].count, 4);
+    let params = model.default_params();
+    let mut centres = Vec::new();
+    for i in 0..4 {
+        let mut br = defaults(&a);
+        br[k] = i;
+        match gcs_compiler::solve(&model, &a, &params, &br) {
+            Ok(s) => {
+                assert!(i < 2, "meet = {i} solved, but only 2 roots are real");
+                assert!(
+                    s.max_residual <= 1e-12 * 10.0,
+                    "meet = {i}: {}",
+                    s.max_residual
+                );
+                centres.push(s.point("G.center").expect("G.center").to_vec());
+            }
+            Err(e) => {
+                assert!(i >= 2, "meet = {i}: {e}");
+                assert_eq!(e.kind, ErrorKind::NoSuchBranch, "meet = {i}: {e}");
+                assert_eq!(e.label, "meet", "{e}");
+                assert_eq!(e.magnitude, 2.0, "two real roots: {e}");
+            }
+        }
+    }
+    assert_eq!(centres.len(), 2);
+    let d = (centres[0][0] - centres[1][0]).hypot(centres[0][1] - centres[1][1]);
+    assert!(d > 1e-6, "the two real branches are distinct: {centres:?}");
+}
