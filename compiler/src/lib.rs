@@ -30,6 +30,26 @@ pub fn solve(
     params: &[f64],
     branches: &[usize],
 ) -> Result<solution::Solution, SolveError> {
+    // An incomplete plan never produces an answer: a constraint it cannot satisfy, or a geom
+    // it leaves free, is an error naming it.
+    if let Some(u) = analysis.unsolved.first() {
+        let c = &model.constraints[u.constraint];
+        let dof: usize = analysis.free_geoms().iter().map(|(_, d)| d).sum();
+        return Err(SolveError::new(
+            c.name.clone(),
+            c.text.clone(),
+            gcs_runtime::error::ErrorKind::Degenerate,
+            dof as f64,
+        ));
+    }
+    if let Some((g, dof)) = analysis.free_geoms().first() {
+        return Err(SolveError::new(
+            model.geoms[*g].name.clone(),
+            "under-constrained".to_string(),
+            gcs_runtime::error::ErrorKind::Degenerate,
+            *dof as f64,
+        ));
+    }
     let all: BTreeSet<GeomId> = model.top_level().map(|(id, _)| id).collect();
     solve_plan(model, &analysis.plan, &all, params, branches)
 }

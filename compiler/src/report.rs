@@ -50,28 +50,45 @@ fn freedom(model: &Model, a: &Analysis, g: GeomId) -> String {
 /// constraints that cannot be met.
 pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
     let mut out = Vec::new();
-    for u in &a.unsolved {
-        let c = &model.constraints[u.constraint];
-        out.push(
-            Diagnostic::error(
-                c.span,
-                format!("no assembly plan satisfies `{}` yet", c.name),
-            )
-            .with_label(u.reason.clone())
-            .with_note("this model needs a plan fragment or a loop analysis gcs does not have yet"),
-        );
-    }
     let free = a.free_geoms();
-    if !free.is_empty() && a.unsolved.is_empty() {
+    let nominal = crate::nominal::count(model);
+    // More freedom than the constraints nominally remove: the model is under-constrained, and
+    // the constraints left unsolved wait on that freedom (defaults land with their issue).
+    let under = nominal.balance() > 0 || (a.unsolved.is_empty() && !free.is_empty());
+    if under {
+        let waiting: Vec<String> = a
+            .unsolved
+            .iter()
+            .map(|u| model.constraints[u.constraint].name.clone())
+            .collect();
         for (g, dof) in &free {
             let geom = &model.geoms[*g];
+            let mut d = Diagnostic::error(geom.span, format!("`{}` is under-constrained: {dof} DOF left", geom.name))
+                .with_label(freedom(model, a, *g))
+                .with_note(format!(
+                    "the model has {} DOF and its constraints remove {} (nominally): add constraints, or declare geoms `fixed`",
+                    nominal.total_dof, nominal.total_removed
+                ));
+            if !waiting.is_empty() {
+                d = d.with_note(format!(
+                    "constraints that wait on this freedom: {}",
+                    waiting.join(", ")
+                ));
+            }
+            out.push(d);
+        }
+    } else {
+        for u in &a.unsolved {
+            let c = &model.constraints[u.constraint];
             out.push(
                 Diagnostic::error(
-                    geom.span,
-                    format!("`{}` is under-constrained: {dof} DOF left", geom.name),
+                    c.span,
+                    format!("no assembly plan satisfies `{}` yet", c.name),
                 )
-                .with_label(freedom(model, a, *g))
-                .with_note("add constraints to fix it, or declare it `fixed`"),
+                .with_label(u.reason.clone())
+                .with_note(
+                    "this model needs a plan fragment or a loop analysis gcs does not have yet",
+                ),
             );
         }
     }

@@ -126,7 +126,7 @@ fn with_analysis(
     if !problems.is_empty() {
         emit(&model.source, &problems, color);
         if problems.iter().any(|d| d.is_error()) {
-            eprintln!("error: `{}` has no complete plan", path.display());
+            eprintln!("error: could not solve `{}`", path.display());
             return ExitCode::FAILURE;
         }
     }
