@@ -235,6 +235,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 let gap = match get(&regs, *locus) {
                     Val::L(l) => l.residual(q),
                     Val::C(c) => c.residual(q),
+                    Val::Q(k) => conic_residual(&k, q),
                     _ => f64::NAN,
                 };
                 if gap.is_nan() || gap > tol {
@@ -352,7 +353,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 None
             }
             Op::Check { constraint } => {
-                let r = residual(model, &config, *constraint);
+                let r = residual(model, &config, *constraint, params);
                 if r.is_nan() || r > tol {
                     return Err(err(model, *constraint, ErrorKind::Inconsistent, r));
                 }
@@ -407,22 +408,90 @@ pub fn config_scale(config: &Config) -> f64 {
 }
 
 /// The residual of a constraint on a configuration, for run-time checks of implied
-/// constraints. (The independent verifier is [`crate::verify`].)
-fn residual(model: &Model, cfg: &Config, c: ConstraintId) -> f64 {
+/// constraints: every constraint of the 2d language, measured through the configuration. (The
+/// independent verifier is [`crate::verify`], which shares none of this.)
+fn residual(model: &Model, cfg: &Config, c: ConstraintId, params: &[f64]) -> f64 {
+    use gcs_lang::model::GeomId;
     let con = &model.constraints[c];
-    let params = model.default_params();
-    let _ = params;
+    let value = con.value.map_or(0.0, |e| model.exprs.eval(e, params));
     let a = con.args.first().copied();
     let b = con.args.get(1).copied();
+    let kind = |g: GeomId| model.geoms[g].kind;
     let pt = |g| cfg.point(model, center_of(model, g));
     let dir = |g| cfg.dir(model, dir_of(model, g));
+    let part = |g, p| crate::analysis::relation::part(model, g, p).unwrap_or(g);
+    // A line-like argument: a point on it and its direction (a marker: its x axis).
+    let line = |g: GeomId| match kind(g) {
+        GeomKind::Segment => (cfg.point(model, part(g, Part::Start)), dir(g)),
+        GeomKind::Marker => (cfg.point(model, g), cfg.dir(model, part(g, Part::AxisX))),
+        _ => (cfg.point(model, g), dir(g)),
+    };
+    let radius = |g| cfg.dim(g);
+    let sd = |(p, d): (P2, V2), q: P2| cross(d, q - p);
+    let angle = |u: V2, v: V2| cross(u, v).atan2(u.dot(&v));
+    let wrap = |x: f64| {
+        let t = std::f64::consts::TAU;
+        let r = x.rem_euclid(t);
+        if r > std::f64::consts::PI {
+            r - t
+        } else {
+            r
+        }
+    };
+    let circles = |x: GeomId, y: GeomId, gap: f64| {
+        let d = (pt(x) - pt(y)).norm();
+        let (r1, r2) = (radius(x), radius(y));
+        (d - r1 - r2 - gap)
+            .abs()
+            .min(((r1 - r2).abs() - d - gap).abs())
+    };
     match (con.kind, a, b) {
         (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => (pt(a) - pt(b)).norm(),
+        (K::Distance, Some(a), Some(b)) => match (kind(a), kind(b)) {
+            (GeomKind::Line | GeomKind::Segment, GeomKind::Circle) => {
+                (sd(line(a), pt(b)).abs() - radius(b) - value).abs()
+            }
+            (GeomKind::Circle, GeomKind::Circle) => circles(a, b, value),
+            (_, GeomKind::Line | GeomKind::Segment) => (sd(line(b), pt(a)) - value).abs(),
+            (_, GeomKind::Circle) => (((pt(a) - pt(b)).norm() - radius(b)).abs() - value).abs(),
+            _ => ((pt(a) - pt(b)).norm() - value.abs()).abs(),
+        },
+        (K::On, Some(a), Some(b)) => match kind(b) {
+            GeomKind::Circle => ((pt(a) - pt(b)).norm() - radius(b)).abs(),
+            _ => sd(line(b), pt(a)).abs(),
+        },
+        (K::Tangent, Some(a), Some(b)) => match kind(a) {
+            GeomKind::Circle => circles(a, b, 0.0),
+            _ => (sd(line(a), pt(b)).abs() - radius(b)).abs(),
+        },
+        (K::Angle, Some(a), Some(b)) => wrap(angle(dir(a), dir(b)) - value).abs(),
         (K::Horizontal, Some(a), _) => dir(a).y.abs(),
         (K::Vertical, Some(a), _) => dir(a).x.abs(),
         (K::Parallel, Some(a), Some(b)) => cross(dir(a), dir(b)).abs(),
         (K::Perpendicular, Some(a), Some(b)) => dir(a).dot(&dir(b)).abs(),
-        _ => 0.0,
+        (K::Length | K::Radius, Some(a), _) => (cfg.dim(a) - value).abs(),
+        (K::InLine, Some(a), Some(b)) => sd(line(b), pt(a)).abs(),
+        (K::OffsetX | K::Prismatic, Some(a), Some(b)) => {
+            let (u, v) = (line(a).1, line(b).1);
+            let target = if con.kind == K::OffsetX { value } else { 0.0 };
+            let turn = wrap(angle(u, v) - target).abs();
+            if con.kind == K::Prismatic {
+                turn.max(sd(line(b), pt(a)).abs())
+            } else {
+                turn
+            }
+        }
+        // Every 2d constraint is above; anything else cannot be checked, so it fails.
+        _ => f64::INFINITY,
+    }
+}
+
+/// The distance of a point from a conic (to first order).
+fn conic_residual(k: &Conic, q: P2) -> f64 {
+    match k {
+        Conic::Parabola(p) => p.residual(q),
+        Conic::Ellipse(e) => e.residual(q),
+        Conic::Hyperbola(h) => h.residual(q),
     }
 }
 

@@ -13,9 +13,12 @@
 //!   the conic that is parametrised (documented per function); use [`nearest`] to follow a
 //!   branch through a sweep.
 //!
-//! Tangency: when the loci miss or overlap by at most [`tol::TANGENT_REL`] times the scale of
-//! the inputs, the contact is [`Contact::Tangent`] and the touching point fills **both** slots
-//! it merges. Tangent roots lie within that tolerance of both loci; transversal roots lie on
+//! Tangency: when the loci touch, or miss by at most [`tol::TANGENT_REL`] times the scale of
+//! the inputs (rounding), the contact is [`Contact::Tangent`] and the touching point fills
+//! **both** slots it merges; such a root lies within that tolerance of both loci. Loci that
+//! overlap, however little, cross: line-circle and circle-circle then return their two exact
+//! roots (which merge continuously at tangency), so a solvable near-tangent assembly is solved
+//! to rounding rather than snapped. Transversal roots lie on
 //! both to rounding (relative 1e-13 of the scale, or of the root's distance from the origin when
 //! nearly parallel lines cross far away).
 //!
@@ -162,16 +165,22 @@ fn line_circle_t(l: &Line, c: &Circle) -> (Roots<f64, 2>, Contact) {
     if !gap.is_finite() || !t0.is_finite() {
         return (Roots::new(), Contact::Disjoint { gap: f64::INFINITY });
     }
-    if gap.abs() <= tol::TANGENT_REL * s {
-        // The point midway between the line's and the circle's closest points: the foot of
-        // the centre moved by half the gap towards the circle's point.
+    if (0.0..=tol::TANGENT_REL * s).contains(&gap) {
+        // Missing by rounding: the point midway between the line's and the circle's closest
+        // points (the foot of the centre moved by half the gap towards the circle's point).
+        // Overlapping loci, however little, cross: their two roots are computed exactly below.
         return (Roots::from_slice(&[t0, t0]), Contact::Tangent);
     }
     if gap > 0.0 {
         return (Roots::new(), Contact::Disjoint { gap });
     }
     let h = ((r - sd.abs()) * (r + sd.abs())).sqrt();
-    (Roots::from_slice(&[t0 - h, t0 + h]), Contact::Crossing)
+    let contact = if h > 0.0 {
+        Contact::Crossing
+    } else {
+        Contact::Tangent
+    };
+    (Roots::from_slice(&[t0 - h, t0 + h]), contact)
 }
 
 /// The tangent point of a line and a circle: midway between the foot of the centre on the line
@@ -287,9 +296,13 @@ pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
     let inner = (r1 - r2).abs() - d;
     let tangent = tol::TANGENT_REL * s;
     let u = if d > 0.0 { dv / d } else { V2::x() };
-    if outer.abs() <= tangent || (inner.abs() <= tangent && d > tol::LENGTH_REL * s) {
+    // Missing by rounding (at most `tangent`): the touching point. Overlapping loci, however
+    // little, cross, and their two roots are computed exactly below.
+    let external = (0.0..=tangent).contains(&outer);
+    let internal = (0.0..=tangent).contains(&inner) && d > tol::LENGTH_REL * s;
+    if external || internal {
         // External: along u from the first centre; internal: towards the side of the larger.
-        let along = if outer.abs() <= tangent {
+        let along = if external {
             // Midway between the two circles' points on the line of centres.
             0.5 * (r1 + (d - r2))
         } else if r1 >= r2 {
@@ -323,7 +336,11 @@ pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
     }
     Intersection {
         roots: Roots::from_slice(&[left, right]),
-        contact: Contact::Crossing,
+        contact: if h > 0.0 {
+            Contact::Crossing
+        } else {
+            Contact::Tangent
+        },
     }
 }
 

@@ -753,7 +753,30 @@ impl<'m> Builder<'m> {
                 best = Some((key.0, key.1, i));
             }
         }
+        // Horizontal and vertical constraints refer to the world's axes: they anchor the
+        // rotation, so only the position of the chosen geom is held.
+        let anchored = self.pending.iter().any(|r| {
+            matches!(
+                r.relation,
+                Relation::Angle {
+                    u: Dir::World(..),
+                    ..
+                } | Relation::Angle {
+                    v: Dir::World(..),
+                    ..
+                }
+            )
+        });
         if let Some((_, _, i)) = best {
+            if anchored && self.clusters[i].record.rot == Rot::Free {
+                if let Some(f) = self.first_point_feature(i) {
+                    let at = self.point(f);
+                    self.clusters[i].record.pos = Pos::Pivot { at, feature: f };
+                    self.known_points.insert(f, at);
+                    self.plan.grounded = Some(self.clusters[i].geoms[0]);
+                    return;
+                }
+            }
             let had_rotation = self.clusters[i].record.rot == Rot::Free;
             let r = &mut self.clusters[i].record;
             if r.rot == Rot::Free {
@@ -766,6 +789,23 @@ impl<'m> Builder<'m> {
             if !had_rotation {
                 self.ground_direction(i);
             }
+        }
+    }
+
+    /// The first point feature of a cluster: a line's base, a segment's start, a body's first
+    /// point or marker.
+    fn first_point_feature(&self, k: usize) -> Option<GeomId> {
+        let g = *self.clusters[k].geoms.first()?;
+        match self.model.geoms[g].kind {
+            GeomKind::Line | GeomKind::Point => Some(g),
+            GeomKind::Segment => relation::part(self.model, g, gcs_lang::model::Part::Start),
+            GeomKind::Circle => relation::part(self.model, g, gcs_lang::model::Part::Center),
+            GeomKind::Body => self.model.geoms[g]
+                .parts
+                .iter()
+                .copied()
+                .find(|&m| self.model.geoms[m].kind.is_pointlike()),
+            _ => None,
         }
     }
 
@@ -921,7 +961,12 @@ impl<'m> Builder<'m> {
                 let line_known = on_line.is_some() && self.dir_known(Dir::Feature(dir));
                 let base = on_line.unwrap_or(base);
                 let p_known = self.point_known(p);
-                if line_known && p_known || self.cluster(p) == self.cluster(base) {
+                if line_known && p_known {
+                    self.check(r);
+                    return true;
+                }
+                if self.cluster(p) == self.cluster(base) {
+                    // Within one rigid cluster the relation is fixed: implied (a check).
                     if self.clusters[self.cluster(p)].record.free_dim.is_none() {
                         self.check(r);
                         return true;
