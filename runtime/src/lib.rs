@@ -17,3 +17,7 @@ pub mod roots;
 pub mod tol;
 
 pub use roots::{Contact, Intersection, Roots};
+
+/// The linear algebra crate the kernel is built on, re-exported so that generated solvers
+/// depend on this crate alone.
+pub use nalgebra;
