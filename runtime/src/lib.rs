@@ -21,3 +21,28 @@ pub use roots::{Contact, Intersection, Roots};
 /// The linear algebra crate the kernel is built on, re-exported so that generated solvers
 /// depend on this crate alone.
 pub use nalgebra;
+
+/// Brings in a solver that a build script generated with `gcs_compiler::build::compile_models`:
+/// `include_solver!("fourbar")` includes `$OUT_DIR/fourbar.rs`, the module generated from a
+/// model file named `fourbar.gcs`.
+///
+/// Use it as the body of a module, so that the solver's items (`Params`, `Branches`,
+/// `Defaults`, `Solution`, `solve`) live under the name you choose:
+///
+/// ```ignore
+/// pub mod fourbar {
+///     gcs_runtime::include_solver!("fourbar");
+/// }
+///
+/// let solution = fourbar::solve(
+///     &fourbar::Params { theta: 0.5, ..Default::default() },
+///     &fourbar::Branches::default(),
+///     &fourbar::Defaults::default(),
+/// )?;
+/// ```
+#[macro_export]
+macro_rules! include_solver {
+    ($name:literal) => {
+        include!(concat!(env!("OUT_DIR"), "/", $name, ".rs"));
+    };
+}
