@@ -45,10 +45,6 @@ enum Val {
     Q(Conic),
 }
 
-/// Relative tolerance of run-time checks and of points that must lie on a locus, times the
-/// model's scale.
-pub const CHECK_REL: f64 = 1e-9;
-
 fn err(model: &Model, c: ConstraintId, kind: ErrorKind, magnitude: f64) -> SolveError {
     let con = &model.constraints[c];
     SolveError::new(con.name.clone(), con.text.clone(), kind, magnitude)
@@ -75,7 +71,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
         )
     })?;
     let scale = config_scale(&config);
-    let tol = CHECK_REL * (1.0 + scale);
+    let tol = gcs_runtime::tol::CHECK_REL * (1.0 + scale);
     let mut regs: Vec<Val> = vec![Val::S(0.0); plan.regs as usize];
     let mut chosen = vec![None; plan.branches.len()];
     let get = |regs: &[Val], r: crate::plan::Reg| {
@@ -216,13 +212,8 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             Op::Nearest { locus, point } => {
                 let q = p(*point);
                 Some(Val::P(match get(&regs, *locus) {
-                    Val::L(l) => l.point() + l.dir() * (q - l.point()).dot(&l.dir()),
-                    Val::C(c) => {
-                        let d = q - c.center();
-                        let n = d.norm();
-                        let u = if n > 0.0 { d / n } else { V2::x() };
-                        c.center() + u * c.radius()
-                    }
+                    Val::L(l) => l.nearest(q),
+                    Val::C(c) => c.nearest(q),
                     _ => return Err(bad_step(model, step)),
                 }))
             }
@@ -235,7 +226,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 let gap = match get(&regs, *locus) {
                     Val::L(l) => l.residual(q),
                     Val::C(c) => c.residual(q),
-                    Val::Q(k) => conic_residual(&k, q),
+                    Val::Q(k) => k.residual(q),
                     _ => f64::NAN,
                 };
                 if gap.is_nan() || gap > tol {
@@ -483,15 +474,6 @@ fn residual(model: &Model, cfg: &Config, c: ConstraintId, params: &[f64]) -> f64
         }
         // Every 2d constraint is above; anything else cannot be checked, so it fails.
         _ => f64::INFINITY,
-    }
-}
-
-/// The distance of a point from a conic (to first order).
-fn conic_residual(k: &Conic, q: P2) -> f64 {
-    match k {
-        Conic::Parabola(p) => p.residual(q),
-        Conic::Ellipse(e) => e.residual(q),
-        Conic::Hyperbola(h) => h.residual(q),
     }
 }
 

@@ -6,6 +6,7 @@
 //! or non-finite input; nothing on a solve path allocates.
 #![deny(missing_docs)]
 
+pub mod check;
 pub mod error;
 pub mod frame;
 pub mod intersect2d;

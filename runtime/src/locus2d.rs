@@ -70,6 +70,12 @@ pub struct Line {
 }
 
 impl Line {
+    /// The point of the line nearest to `p` (the foot of the perpendicular): least motion.
+    #[inline]
+    pub fn nearest(&self, p: P2) -> P2 {
+        self.at(self.param_of(p))
+    }
+
     /// The line through `point` along `dir` (normalised). `None` when `dir` is zero or a value
     /// is not finite.
     pub fn new(point: P2, dir: V2) -> Option<Self> {
@@ -205,6 +211,16 @@ pub struct Circle {
 }
 
 impl Circle {
+    /// The point of the circle nearest to `p`: least motion. For `p` at the centre, where
+    /// every point is nearest, the point at angle 0.
+    #[inline]
+    pub fn nearest(&self, p: P2) -> P2 {
+        let d = p - self.center;
+        let n = d.norm();
+        let u = if n > 0.0 { d / n } else { V2::x() };
+        self.center + u * self.radius
+    }
+
     /// The circle about `center` with `radius`. `None` when the radius is negative or a value is
     /// not finite. A zero radius is accepted (intersections classify it as
     /// [`crate::Contact::ZeroRadius`]).

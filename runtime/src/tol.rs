@@ -12,6 +12,11 @@ pub const LENGTH_REL: f64 = 64.0 * f64::EPSILON;
 /// vectors are parallel.
 pub const ANGLE: f64 = 1e-12;
 
+/// Relative tolerance of a plan's run-time checks (an implied constraint re-measured, a point
+/// that must lie on a locus), times one plus the model's scale: far above rounding, far below
+/// any violation a user would call small.
+pub const CHECK_REL: f64 = 1e-9;
+
 /// Relative tolerance of a tangency: loci whose gap or overlap is below this, relative to the
 /// scale, touch in one double root rather than missing each other or crossing twice.
 pub const TANGENT_REL: f64 = 1e-10;

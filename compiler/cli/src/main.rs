@@ -49,6 +49,14 @@ enum Command {
         /// The .gcs file.
         file: PathBuf,
     },
+    /// Emit the Rust solver module.
+    Compile {
+        /// The .gcs file.
+        file: PathBuf,
+        /// Where to write it; standard output when absent.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
     /// Print the plan's stable text dump.
     Plan {
         /// The .gcs file.
@@ -74,6 +82,22 @@ fn main() -> ExitCode {
             json,
             all,
         } => solve(&file, &set, &branch, json, all, color),
+        Command::Compile { file, output } => with_analysis(&file, color, |model, a| {
+            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(model, a));
+            match output {
+                Some(path) => match std::fs::write(&path, code) {
+                    Ok(()) => ExitCode::SUCCESS,
+                    Err(e) => {
+                        eprintln!("error: cannot write `{}`: {e}", path.display());
+                        ExitCode::from(2)
+                    }
+                },
+                None => {
+                    print!("{code}");
+                    ExitCode::SUCCESS
+                }
+            }
+        }),
         Command::Explain { file } => with_analysis(&file, color, |model, a| {
             print!("{}", gcs_compiler::explain::explain(model, a));
             ExitCode::SUCCESS

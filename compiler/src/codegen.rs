@@ -1,0 +1,1595 @@
+//! The code generator: a plan as one Rust module that depends on the runtime crate alone.
+//!
+//! The module has `Params`, `Branches` and `Defaults` (each `Default` from the file), a
+//! `Solution` with accessors named after the model, and `solve`, a straight line of the plan's
+//! steps with a comment quoting, for each action, the constraint it satisfies and its
+//! `file:line`. Every identifier comes from the model's names through one [`Namer`]
+//! (keyword-safe, never an index); the text is written through a small indenting writer, so it is
+//! deterministic and rustfmt-clean. `solve` never panics and allocates nothing: every failure is
+//! a `SolveError` built from string literals.
+
+use crate::analysis::Analysis;
+use crate::plan::{Meet, Op, Plan, Reg};
+use gcs_lang::constraints::ConstraintKind as K;
+use gcs_lang::expr::{ExprId, ExprNode, Func};
+use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
+use gcs_lang::syntax::{AngleUnit, BinaryOp};
+use gcs_lang::Model;
+use std::collections::{BTreeSet, HashMap, HashSet};
+
+/// The generated module for a model, pruned to its `output` statements.
+pub fn generate(model: &Model, analysis: &Analysis) -> String {
+    let (plan, scope) = crate::prune::prune(model, &analysis.plan);
+    Gen::new(model, &plan, &scope).module()
+}
+
+/// Makes every identifier of the generated module: snake case, keyword-safe, unique within its
+/// scope, derived from the model's names (repeats get `_2`, `_3`, ... in order of first use).
+#[derive(Debug, Default)]
+pub struct Namer {
+    used: HashSet<String>,
+}
+
+const KEYWORDS: &[&str] = &[
+    "as", "break", "const", "continue", "crate", "else", "enum", "extern", "false", "fn", "for",
+    "if", "impl", "in", "let", "loop", "match", "mod", "move", "mut", "pub", "ref", "return",
+    "self", "Self", "static", "struct", "super", "trait", "true", "type", "unsafe", "use", "where",
+    "while", "async", "await", "dyn", "abstract", "become", "box", "do", "final", "macro",
+    "override", "priv", "typeof", "unsized", "virtual", "yield", "try", "gen",
+];
+
+impl Namer {
+    /// `text` as a snake-case identifier (not yet unique).
+    pub fn snake(text: &str) -> String {
+        let mut out = String::new();
+        for c in text.chars() {
+            if c.is_ascii_alphanumeric() {
+                out.push(c.to_ascii_lowercase());
+            } else if !out.ends_with('_') {
+                out.push('_');
+            }
+        }
+        let mut out = out.trim_matches('_').to_string();
+        if out.is_empty() {
+            out = "value".into();
+        }
+        if out.starts_with(|c: char| c.is_ascii_digit()) {
+            out.insert_str(0, "v_");
+        }
+        if KEYWORDS.contains(&out.as_str()) {
+            out.push('_');
+        }
+        out
+    }
+
+    /// A fresh identifier from `text`.
+    pub fn fresh(&mut self, text: &str) -> String {
+        let base = Self::snake(text);
+        let mut name = base.clone();
+        let mut n = 1;
+        while self.used.contains(&name) {
+            n += 1;
+            name = format!("{base}_{n}");
+        }
+        self.used.insert(name.clone());
+        name
+    }
+
+    /// Marks a name as taken.
+    pub fn reserve(&mut self, name: &str) {
+        self.used.insert(name.to_string());
+    }
+}
+
+/// An indenting writer over a `String`: infallible, so no `unwrap` on every line.
+#[derive(Debug, Default)]
+struct Writer {
+    out: String,
+    indent: usize,
+}
+
+impl Writer {
+    fn line(&mut self, text: &str) {
+        if text.is_empty() {
+            self.out.push('\n');
+            return;
+        }
+        for _ in 0..self.indent {
+            self.out.push_str("    ");
+        }
+        self.out.push_str(text);
+        self.out.push('\n');
+    }
+    fn open(&mut self, text: &str) {
+        self.line(text);
+        self.indent += 1;
+    }
+    fn close(&mut self, text: &str) {
+        self.indent = self.indent.saturating_sub(1);
+        self.line(text);
+    }
+}
+
+/// A struct field initialiser, in shorthand when the names agree.
+fn field_init(field: &str, value: &str) -> String {
+    if field == value {
+        format!("{field},")
+    } else {
+        format!("{field}: {value},")
+    }
+}
+
+/// A Rust string literal.
+fn lit(s: &str) -> String {
+    format!("{s:?}")
+}
+
+/// A float literal: shortest round-trip form, always with a decimal point or exponent.
+fn float(v: f64) -> String {
+    if v.is_nan() {
+        return "f64::NAN".into();
+    }
+    if v.is_infinite() {
+        return if v > 0.0 {
+            "f64::INFINITY".into()
+        } else {
+            "f64::NEG_INFINITY".into()
+        };
+    }
+    for (c, name) in [
+        (std::f64::consts::PI, "std::f64::consts::PI"),
+        (std::f64::consts::FRAC_PI_2, "std::f64::consts::FRAC_PI_2"),
+        (std::f64::consts::FRAC_PI_3, "std::f64::consts::FRAC_PI_3"),
+        (std::f64::consts::FRAC_PI_4, "std::f64::consts::FRAC_PI_4"),
+        (std::f64::consts::FRAC_PI_6, "std::f64::consts::FRAC_PI_6"),
+        (std::f64::consts::TAU, "std::f64::consts::TAU"),
+    ] {
+        if v == c {
+            return name.into();
+        }
+        if v == -c {
+            return format!("-{name}");
+        }
+    }
+    let s = format!("{v:?}");
+    if s.contains('.') || s.contains('e') || s.contains("inf") {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+struct Gen<'a> {
+    model: &'a Model,
+    plan: &'a Plan,
+    scope: &'a BTreeSet<GeomId>,
+    names: Namer,
+    /// The Rust expression of each register (a local's name, or an inline expression).
+    regs: HashMap<Reg, String>,
+    /// Locals of frames and dimensions by top-level geom.
+    frames: HashMap<GeomId, String>,
+    dims: HashMap<GeomId, String>,
+    /// Locals (or literals) of members' local coordinates.
+    locals: HashMap<GeomId, String>,
+    /// Param field names.
+    params: HashMap<gcs_lang::expr::ParamId, String>,
+    /// Branch field names by branch index.
+    branches: Vec<String>,
+    file: String,
+    /// Dimensions declared where the plan sets them (nothing reads their sketch value).
+    deferred: HashSet<GeomId>,
+    /// Registers some generated step reads (an intersection's `near` is for the sketch's
+    /// branch only, so it is not among them).
+    used: HashSet<Reg>,
+}
+
+impl<'a> Gen<'a> {
+    fn new(model: &'a Model, plan: &'a Plan, scope: &'a BTreeSet<GeomId>) -> Self {
+        let mut names = Namer::default();
+        for reserved in ["params", "branches", "defaults", "tol", "solution"] {
+            names.reserve(reserved);
+        }
+        let mut field_names = Namer::default();
+        let params = model
+            .params
+            .iter()
+            .map(|(id, p)| (id, field_names.fresh(&p.name)))
+            .collect();
+        let mut branch_names = Namer::default();
+        let branches = plan
+            .branches
+            .iter()
+            .map(|b| branch_names.fresh(&b.name))
+            .collect();
+        let file = std::path::Path::new(model.source.name())
+            .file_name()
+            .map_or_else(
+                || model.source.name().to_string(),
+                |f| f.to_string_lossy().into_owned(),
+            );
+        let mut used = HashSet::new();
+        for step in &plan.steps {
+            match &step.op {
+                Op::Intersect { a, b, .. } => {
+                    used.insert(*a);
+                    used.insert(*b);
+                }
+                op => used.extend(Plan::reads(op)),
+            }
+        }
+        Gen {
+            deferred: HashSet::new(),
+            used,
+            model,
+            plan,
+            scope,
+            names,
+            regs: HashMap::new(),
+            frames: HashMap::new(),
+            dims: HashMap::new(),
+            locals: HashMap::new(),
+            params,
+            branches,
+            file,
+        }
+    }
+
+    // ------------------------------------------------------------ expressions
+
+    /// The Rust code of an expression, with the precedence of its outermost operator
+    /// (1: sum, 2: product, 3: negation, 4: an atom or method call).
+    fn expr_prec(&self, e: ExprId) -> (String, u8) {
+        let m = self.model;
+        if m.exprs.is_constant(e) {
+            let v = m.exprs.eval(e, &[]);
+            return (float(v), if v < 0.0 { 3 } else { 4 });
+        }
+        match m.exprs.node(e) {
+            ExprNode::Const(v) => (float(*v), if *v < 0.0 { 3 } else { 4 }),
+            ExprNode::Param(p) => (format!("params.{}", self.params[p]), 4),
+            ExprNode::Neg(a) => (format!("-{}", self.wrap(*a, 3)), 3),
+            ExprNode::Binary(op, a, b) => match op {
+                BinaryOp::Add => (format!("{} + {}", self.wrap(*a, 1), self.wrap(*b, 2)), 1),
+                BinaryOp::Sub => (format!("{} - {}", self.wrap(*a, 1), self.wrap(*b, 2)), 1),
+                BinaryOp::Mul => (format!("{} * {}", self.wrap(*a, 2), self.wrap(*b, 3)), 2),
+                BinaryOp::Div => (format!("{} / {}", self.wrap(*a, 2), self.wrap(*b, 3)), 2),
+                BinaryOp::Pow => (format!("{}.powf({})", self.receiver(*a), self.expr(*b)), 4),
+            },
+            ExprNode::Call(f, a, b) => {
+                let method = match f {
+                    Func::Sqrt => "sqrt",
+                    Func::Abs => "abs",
+                    Func::Sin => "sin",
+                    Func::Cos => "cos",
+                    Func::Tan => "tan",
+                    Func::Asin => "asin",
+                    Func::Acos => "acos",
+                    Func::Atan => "atan",
+                    Func::Atan2 => "atan2",
+                    Func::Min => "min",
+                    Func::Max => "max",
+                };
+                match b {
+                    Some(b) => (
+                        format!("{}.{method}({})", self.receiver(*a), self.expr(*b)),
+                        4,
+                    ),
+                    None => (format!("{}.{method}()", self.receiver(*a)), 4),
+                }
+            }
+            ExprNode::Unit(AngleUnit::Deg, a) => (format!("{}.to_radians()", self.receiver(*a)), 4),
+            ExprNode::Unit(AngleUnit::Rad, a) => self.expr_prec(*a),
+        }
+    }
+
+    fn expr(&self, e: ExprId) -> String {
+        self.expr_prec(e).0
+    }
+
+    /// The expression, parenthesised if its precedence is below `at`.
+    fn wrap(&self, e: ExprId, at: u8) -> String {
+        let (code, prec) = self.expr_prec(e);
+        if prec < at {
+            format!("({code})")
+        } else {
+            code
+        }
+    }
+
+    /// The expression as the receiver of a method call: an atom, and a typed literal.
+    fn receiver(&self, e: ExprId) -> String {
+        let (code, prec) = self.expr_prec(e);
+        if prec < 4 {
+            return format!("({code})");
+        }
+        if code.starts_with(|c: char| c.is_ascii_digit()) {
+            return format!("{code}_f64");
+        }
+        code
+    }
+
+    fn point_lit(&self, c: &[ExprId]) -> String {
+        let x = c.first().map_or("0.0".into(), |&e| self.expr(e));
+        let y = c.get(1).map_or("0.0".into(), |&e| self.expr(e));
+        format!("Point2::new({x}, {y})")
+    }
+
+    fn vector_lit(&self, c: &[ExprId]) -> String {
+        let x = c.first().map_or("0.0".into(), |&e| self.expr(e));
+        let y = c.get(1).map_or("0.0".into(), |&e| self.expr(e));
+        format!("Vector2::new({x}, {y})")
+    }
+
+    // ------------------------------------------------------------ the module
+
+    fn module(mut self) -> String {
+        let mut w = Writer::default();
+        let m = self.model;
+        w.line(&format!(
+            "// @generated by gcs from {}. Do not edit: edit the model and regenerate.",
+            self.file
+        ));
+        w.line("//");
+        w.line("// The solver's steps follow the model's assembly plan; `gcs explain` prints it in words.");
+        w.line("");
+        w.line(&format!(
+            "//! Solver for `{}`, generated by gcs.",
+            self.file
+        ));
+        w.line("//!");
+        w.line("//! Call [`solve`] with [`Params`], [`Branches`] and [`Defaults`]; read the result through");
+        w.line("//! the accessors of [`Solution`]. The solver never panics and allocates nothing.");
+        w.line("");
+        w.line("#[allow(unused_imports)]");
+        w.line("use gcs_runtime::error::{ErrorKind, SolveError};");
+        w.line("#[allow(unused_imports)]");
+        w.line("use gcs_runtime::check;");
+        w.line("#[allow(unused_imports)]");
+        w.line("use gcs_runtime::frame::Frame2;");
+        w.line("#[allow(unused_imports)]");
+        w.line("use gcs_runtime::intersect2d;");
+        w.line("#[allow(unused_imports)]");
+        w.line("use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};");
+        w.line("#[allow(unused_imports)]");
+        w.line("use gcs_runtime::nalgebra::{Point2, UnitComplex, Vector2};");
+        w.line("");
+        self.params_struct(&mut w);
+        self.branches_struct(&mut w);
+        w.line("/// Values of the degrees of freedom the analysis had to default (none for this model).");
+        w.line("#[derive(Clone, Copy, Debug, Default, PartialEq)]");
+        w.line("pub struct Defaults {}");
+        w.line("");
+        let solution_fields = self.solution_struct(&mut w);
+        self.solve_fn(&mut w, &solution_fields);
+        let _ = m;
+        w.out
+    }
+
+    fn params_struct(&self, w: &mut Writer) {
+        let m = self.model;
+        w.line("/// The run-time inputs: one field per `param` of the model.");
+        w.line("#[derive(Clone, Copy, Debug, PartialEq)]");
+        if m.params.is_empty() {
+            w.line("pub struct Params {}");
+        } else {
+            w.open("pub struct Params {");
+            for (id, p) in m.params.iter() {
+                let unit = if p.dim == gcs_lang::expr::Dim::Angle {
+                    " (radians)"
+                } else {
+                    ""
+                };
+                w.line(&format!("/// `{}`{unit}, line {}.", p.name, m.line(p.span)));
+                w.line(&format!("pub {}: f64,", self.params[&id]));
+            }
+            w.close("}");
+        }
+        w.line("");
+        w.open("impl Default for Params {");
+        w.line("/// The values the model gives.");
+        w.open("fn default() -> Self {");
+        if m.params.is_empty() {
+            w.line("Params {}");
+        } else {
+            w.open("Params {");
+            for (id, p) in m.params.iter() {
+                w.line(&format!("{}: {},", self.params[&id], float(p.default)));
+            }
+            w.close("}");
+        }
+        w.close("}");
+        w.close("}");
+        w.line("");
+    }
+
+    fn branches_struct(&self, w: &mut Writer) {
+        w.line("/// Which assembly: one field per branch variable, each an index with a geometric meaning.");
+        w.line("#[derive(Clone, Copy, Debug, PartialEq, Eq)]");
+        if self.plan.branches.is_empty() {
+            w.line("pub struct Branches {}");
+        } else {
+            w.open("pub struct Branches {");
+            for (b, name) in self.plan.branches.iter().zip(&self.branches) {
+                w.line(&format!("/// `{}`:", b.name));
+                for (i, meaning) in b.meanings.iter().enumerate() {
+                    w.line(&format!("/// - {i}: {meaning}"));
+                }
+                w.line(&format!("pub {name}: u8,"));
+            }
+            w.close("}");
+        }
+        w.line("");
+        w.open("impl Default for Branches {");
+        w.line("/// The sketch's assembly.");
+        w.open("fn default() -> Self {");
+        if self.plan.branches.is_empty() {
+            w.line("Branches {}");
+        } else {
+            w.open("Branches {");
+            for (b, name) in self.plan.branches.iter().zip(&self.branches) {
+                w.line(&format!("{name}: {},", b.default));
+            }
+            w.close("}");
+        }
+        w.close("}");
+        w.close("}");
+        w.line("");
+    }
+
+    /// The top-level geoms the solver computes, in model order.
+    fn solved(&self) -> Vec<GeomId> {
+        self.model
+            .top_level()
+            .map(|(id, _)| id)
+            .filter(|id| self.scope.contains(id))
+            .collect()
+    }
+
+    /// Whether a member's local coordinates depend on params (then the solution stores them).
+    fn local_is_param(&self, g: GeomId) -> bool {
+        match &self.model.geoms[g].sketch {
+            Sketch::Point(c) | Sketch::Vector(c) => {
+                c.iter().any(|&e| !self.model.exprs.is_constant(e))
+            }
+            Sketch::Marker { origin, x, .. } => origin
+                .iter()
+                .chain(x)
+                .any(|&e| !self.model.exprs.is_constant(e)),
+            _ => false,
+        }
+    }
+
+    /// The solution struct and its accessors; returns the field names (frames, dims, locals).
+    fn solution_struct(&mut self, w: &mut Writer) -> Vec<(String, String)> {
+        let m = self.model;
+        let mut fields: Vec<(String, String)> = Vec::new(); // (field, type)
+        let mut field_names = Namer::default();
+        let mut frame_field: HashMap<GeomId, String> = HashMap::new();
+        let mut dim_field: HashMap<GeomId, String> = HashMap::new();
+        let mut local_field: HashMap<GeomId, String> = HashMap::new();
+        for g in self.solved() {
+            let geom = &m.geoms[g];
+            let f = field_names.fresh(&geom.name);
+            fields.push((f.clone(), "Frame2".into()));
+            frame_field.insert(g, f);
+            if matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
+                let what = if geom.kind == GeomKind::Circle {
+                    "radius"
+                } else {
+                    "length"
+                };
+                let f = field_names.fresh(&format!("{}_{what}", geom.name));
+                fields.push((f.clone(), "f64".into()));
+                dim_field.insert(g, f);
+            }
+            for &part in &geom.parts {
+                let p = &m.geoms[part];
+                if matches!(p.owner, Owner::Member(_)) && self.local_is_param(part) {
+                    let f = field_names.fresh(&format!("{}_local", p.name));
+                    let ty = if p.kind == GeomKind::Vector {
+                        "Vector2<f64>"
+                    } else {
+                        "Point2<f64>"
+                    };
+                    fields.push((f.clone(), ty.into()));
+                    local_field.insert(part, f.clone());
+                    if p.kind == GeomKind::Marker {
+                        if let Some(&ax) = p.parts.first() {
+                            let f = field_names.fresh(&format!("{}_x_local", p.name));
+                            fields.push((f.clone(), "Vector2<f64>".into()));
+                            local_field.insert(ax, f);
+                        }
+                    }
+                }
+            }
+        }
+        w.line("/// The solved configuration of every geom the outputs need: frames and dimensions, read");
+        w.line("/// through accessors named after the model.");
+        w.line("#[derive(Clone, Copy, Debug, PartialEq)]");
+        if fields.is_empty() {
+            w.line("pub struct Solution {}");
+        } else {
+            w.open("pub struct Solution {");
+            for (f, ty) in &fields {
+                w.line(&format!("{f}: {ty},"));
+            }
+            w.close("}");
+        }
+        w.line("");
+        w.open("impl Solution {");
+        let mut accessors = Namer::default();
+        for g in self.solved() {
+            let geom = &m.geoms[g];
+            let frame = format!("self.{}", frame_field[&g]);
+            let mut items: Vec<(String, String, String, String)> = Vec::new(); // (name, doc, type, body)
+            match geom.kind {
+                GeomKind::Body => {
+                    items.push((
+                        geom.name.clone(),
+                        format!("The frame of body `{}`.", geom.name),
+                        "Frame2".into(),
+                        frame.clone(),
+                    ));
+                }
+                GeomKind::Point => items.push((
+                    geom.name.clone(),
+                    format!("Point `{}`.", geom.name),
+                    "Point2<f64>".into(),
+                    format!("{frame}.origin"),
+                )),
+                GeomKind::Vector => items.push((
+                    geom.name.clone(),
+                    format!("Vector `{}`.", geom.name),
+                    "Vector2<f64>".into(),
+                    format!("{frame}.x_axis()"),
+                )),
+                GeomKind::Circle => {
+                    items.push((
+                        format!("{}.radius", geom.name),
+                        format!("The radius of `{}`.", geom.name),
+                        "f64".into(),
+                        format!("self.{}", dim_field[&g]),
+                    ));
+                }
+                GeomKind::Segment => {
+                    items.push((
+                        format!("{}.length", geom.name),
+                        format!("The length of `{}`.", geom.name),
+                        "f64".into(),
+                        format!("self.{}", dim_field[&g]),
+                    ));
+                }
+                _ => {}
+            }
+            for &part in &geom.parts {
+                let p = &m.geoms[part];
+                let local = |s: &Self, id: GeomId, point: bool| -> String {
+                    match local_field.get(&id) {
+                        Some(f) => format!("self.{f}"),
+                        None => s.local_literal(id, point),
+                    }
+                };
+                match (p.owner, p.kind) {
+                    (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
+                        items.push((
+                            p.name.clone(),
+                            format!("Point `{}`.", p.name),
+                            "Point2<f64>".into(),
+                            format!("{frame}.point_to_global(&{})", local(self, part, true)),
+                        ));
+                        if p.kind == GeomKind::Marker {
+                            if let Some(&ax) = p.parts.first() {
+                                let n = &m.geoms[ax].name;
+                                items.push((
+                                    n.clone(),
+                                    format!("Axis `{n}`."),
+                                    "Vector2<f64>".into(),
+                                    format!(
+                                        "{frame}.vector_to_global(&{})",
+                                        local(self, ax, false)
+                                    ),
+                                ));
+                            }
+                        }
+                    }
+                    (Owner::Member(_), GeomKind::Vector) => {
+                        items.push((
+                            p.name.clone(),
+                            format!("Vector `{}`.", p.name),
+                            "Vector2<f64>".into(),
+                            format!("{frame}.vector_to_global(&{})", local(self, part, false)),
+                        ));
+                    }
+                    (Owner::Part(_, Part::Start | Part::Center), _) => items.push((
+                        p.name.clone(),
+                        format!("Point `{}`.", p.name),
+                        "Point2<f64>".into(),
+                        format!("{frame}.origin"),
+                    )),
+                    (Owner::Part(_, Part::End), _) => items.push((
+                        p.name.clone(),
+                        format!("Point `{}`.", p.name),
+                        "Point2<f64>".into(),
+                        format!("{frame}.origin + {frame}.x_axis() * self.{}", dim_field[&g]),
+                    )),
+                    (Owner::Part(_, Part::Dir), _) => items.push((
+                        p.name.clone(),
+                        format!("Direction `{}`.", p.name),
+                        "Vector2<f64>".into(),
+                        format!("{frame}.x_axis()"),
+                    )),
+                    (Owner::Part(_, Part::BasePoint), _) => {
+                        // The foot of the perpendicular from the first sketch point.
+                        if let Sketch::Line { from, .. } = &geom.sketch {
+                            if from.iter().all(|&e| m.exprs.is_constant(e)) {
+                                let s = self.point_lit(from);
+                                items.push((p.name.clone(), format!("Point `{}`: the foot of the perpendicular from the line's first sketch point.", p.name), "Point2<f64>".into(),
+                                    format!("{frame}.origin + {frame}.x_axis() * ({s} - {frame}.origin).dot(&{frame}.x_axis())")));
+                            }
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            for (name, doc, ty, body) in items {
+                w.line(&format!("/// {doc}"));
+                w.open(&format!(
+                    "pub fn {}(&self) -> {ty} {{",
+                    accessors.fresh(&name)
+                ));
+                w.line(&body);
+                w.close("}");
+                w.line("");
+            }
+        }
+        if self.out_trailing_blank(w) {
+            w.out.pop();
+        }
+        w.close("}");
+        w.line("");
+        self.frames = frame_field;
+        self.dims = dim_field;
+        self.locals = local_field;
+        fields
+    }
+
+    fn out_trailing_blank(&self, w: &Writer) -> bool {
+        w.out.ends_with("\n\n")
+    }
+
+    /// A member's local coordinates as a literal (constant sketch).
+    fn local_literal(&self, g: GeomId, point: bool) -> String {
+        let m = self.model;
+        let coords: Vec<f64> = match &m.geoms[g].sketch {
+            Sketch::Point(c) | Sketch::Vector(c) => {
+                c.iter().map(|&e| m.exprs.eval(e, &[])).collect()
+            }
+            Sketch::Marker { origin, .. } => origin.iter().map(|&e| m.exprs.eval(e, &[])).collect(),
+            Sketch::Derived => match m.geoms[g].owner {
+                Owner::Part(owner, Part::AxisX) => match &m.geoms[owner].sketch {
+                    Sketch::Marker { x, .. } => x.iter().map(|&e| m.exprs.eval(e, &[])).collect(),
+                    _ => vec![1.0, 0.0],
+                },
+                _ => vec![0.0, 0.0],
+            },
+            _ => vec![0.0, 0.0],
+        };
+        let (x, y) = (
+            coords.first().copied().unwrap_or(0.0),
+            coords.get(1).copied().unwrap_or(0.0),
+        );
+        if point {
+            format!("Point2::new({}, {})", float(x), float(y))
+        } else {
+            let n = x.hypot(y);
+            format!("Vector2::new({}, {})", float(x / n), float(y / n))
+        }
+    }
+
+    // ------------------------------------------------------------ solve
+
+    fn solve_fn(&mut self, w: &mut Writer, fields: &[(String, String)]) {
+        let m = self.model;
+        w.line("/// Solves the model: the assembly plan's steps, in order. Never panics, allocates nothing.");
+        w.line("///");
+        w.line("/// # Errors");
+        w.line("///");
+        w.line("/// A [`SolveError`] naming the constraint that cannot be met (no intersection, inconsistent,");
+        w.line("/// degenerate, or a branch with no assembly here) and by how much, or a non-finite param.");
+        w.open("pub fn solve(params: &Params, branches: &Branches, defaults: &Defaults) -> Result<Solution, SolveError> {");
+        w.line("let _ = (params, branches, defaults);");
+        // Params must be finite.
+        if !m.params.is_empty() {
+            let list: Vec<String> = m
+                .params
+                .iter()
+                .map(|(id, p)| format!("({}, params.{})", lit(&p.name), self.params[&id]))
+                .collect();
+            w.line(&format!(
+                "gcs_runtime::error::check_all_finite(&[{}])?;",
+                list.join(", ")
+            ));
+        }
+        // The sketch: frames, dimensions and members' local coordinates.
+        w.line("// The sketch: where every geom starts.");
+        let solved = self.solved();
+        for &g in &solved {
+            let geom = &m.geoms[g];
+            let name = self.names.fresh(&geom.name);
+            let (origin, angle) = match &geom.sketch {
+                Sketch::Point(c) => (self.point_lit(c), "0.0".to_string()),
+                Sketch::Vector(_) => ("Point2::origin()".into(), String::new()),
+                Sketch::Line { from, to } | Sketch::Segment { from, to } => {
+                    let (a, b) = (self.point_lit(from), self.point_lit(to));
+                    let constant = from.iter().chain(to).all(|&e| m.exprs.is_constant(e));
+                    let angle = if constant {
+                        let v = |c: &[ExprId], i: usize| {
+                            c.get(i).map_or(0.0, |&e| m.exprs.eval(e, &[]))
+                        };
+                        float((v(to, 1) - v(from, 1)).atan2(v(to, 0) - v(from, 0)))
+                    } else {
+                        format!("{{ let d: Vector2<f64> = {b} - {a}; d.y.atan2(d.x) }}")
+                    };
+                    (a.clone(), angle)
+                }
+                Sketch::Circle { center, .. } => (self.point_lit(center), "0.0".into()),
+                Sketch::Body { at, angle, .. } => (
+                    at.as_ref()
+                        .map_or("Point2::origin()".into(), |c| self.point_lit(c)),
+                    angle.map_or("0.0".into(), |e| self.expr(e)),
+                ),
+                _ => ("Point2::origin()".into(), "0.0".into()),
+            };
+            let angle = if let Sketch::Vector(c) = &geom.sketch {
+                if c.iter().all(|&e| m.exprs.is_constant(e)) {
+                    let (x, y) = (
+                        m.exprs.eval(c[0], &[]),
+                        c.get(1).map_or(0.0, |&e| m.exprs.eval(e, &[])),
+                    );
+                    float(y.atan2(x))
+                } else {
+                    let v = self.vector_lit(c);
+                    format!("{{ let v = {v}; v.y.atan2(v.x) }}")
+                }
+            } else {
+                angle
+            };
+            let mutable = if self.moved(g) { "mut " } else { "" };
+            w.line(&format!(
+                "let {mutable}{name} = Frame2::new({origin}, {angle});"
+            ));
+            self.frames.insert(g, name);
+            if matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
+                let what = if geom.kind == GeomKind::Circle {
+                    "radius"
+                } else {
+                    "length"
+                };
+                let dname = self.names.fresh(&format!("{}_{what}", geom.name));
+                let value = match &geom.sketch {
+                    Sketch::Segment { from, to }
+                        if from.iter().chain(to).all(|&e| m.exprs.is_constant(e)) =>
+                    {
+                        let v = |c: &[ExprId], i: usize| {
+                            c.get(i).map_or(0.0, |&e| m.exprs.eval(e, &[]))
+                        };
+                        float((v(to, 0) - v(from, 0)).hypot(v(to, 1) - v(from, 1)))
+                    }
+                    Sketch::Segment { from, to } => {
+                        format!("({} - {}).norm()", self.point_lit(to), self.point_lit(from))
+                    }
+                    Sketch::Circle { radius, .. } => self.expr(*radius),
+                    _ => "0.0".into(),
+                };
+                if self.dim_set_before_read(g) {
+                    // Set once by the plan before anything reads it: declared there.
+                    self.deferred.insert(g);
+                } else {
+                    let mutable = if self.dim_set(g) { "mut " } else { "" };
+                    w.line(&format!("let {mutable}{dname} = {value};"));
+                }
+                self.dims.insert(g, dname);
+            }
+            for &part in &geom.parts {
+                let p = &m.geoms[part];
+                if !matches!(p.owner, Owner::Member(_)) || !self.local_is_param(part) {
+                    continue;
+                }
+                let lname = self.names.fresh(&format!("{}_local", p.name));
+                match &p.sketch {
+                    Sketch::Point(c) => w.line(&format!("let {lname} = {};", self.point_lit(c))),
+                    Sketch::Vector(c) => w.line(&format!(
+                        "let {lname} = {}.normalize();",
+                        self.vector_lit(c)
+                    )),
+                    Sketch::Marker { origin, x, .. } => {
+                        w.line(&format!("let {lname} = {};", self.point_lit(origin)));
+                        if let Some(&ax) = p.parts.first() {
+                            let xname = self.names.fresh(&format!("{}_x_local", p.name));
+                            w.line(&format!(
+                                "let {xname} = {}.normalize();",
+                                self.vector_lit(x)
+                            ));
+                            self.locals.insert(ax, xname);
+                        }
+                    }
+                    _ => {}
+                }
+                self.locals.insert(part, lname);
+            }
+        }
+        // Tolerance of run-time checks: relative to the model's scale.
+        if self
+            .plan
+            .steps
+            .iter()
+            .any(|s| matches!(s.op, Op::Check { .. } | Op::Onto { .. }))
+        {
+            let mut terms = Vec::new();
+            for &g in &solved {
+                let f = &self.frames[&g];
+                terms.push(format!("{f}.origin.x"));
+                terms.push(format!("{f}.origin.y"));
+                if let Some(d) = self.dims.get(&g) {
+                    terms.push(d.clone());
+                }
+            }
+            w.line(&format!(
+                "let tol = gcs_runtime::tol::CHECK_REL * (1.0 + gcs_runtime::tol::scale(&[{}]));",
+                terms.join(", ")
+            ));
+        }
+        // Each group of steps, up to the one that satisfies a constraint, opens with a comment
+        // quoting that constraint and its place in the file.
+        let mut group_start = true;
+        for (i, step) in self.plan.steps.iter().enumerate() {
+            if group_start {
+                if let Some(end) = self.plan.steps[i..]
+                    .iter()
+                    .find(|s| !s.satisfies.is_empty())
+                {
+                    w.line("");
+                    for c in &end.satisfies {
+                        let con = &m.constraints[*c];
+                        let label = con
+                            .label
+                            .as_ref()
+                            .map_or(String::new(), |l| format!("{l}: "));
+                        w.line(&format!(
+                            "// {label}{} ({}:{})",
+                            con.text,
+                            self.file,
+                            m.line(con.span)
+                        ));
+                    }
+                }
+                group_start = false;
+            }
+            self.step(w, i, step);
+            if !step.satisfies.is_empty() {
+                group_start = true;
+            }
+        }
+        // The solution.
+        w.line("");
+        w.open("Ok(Solution {");
+        let frames = self.frames.clone();
+        let dims = self.dims.clone();
+        let locals = self.locals.clone();
+        let mut field_iter = fields.iter();
+        for g in solved {
+            if let Some((f, _)) = field_iter.next() {
+                w.line(&field_init(f, &frames[&g]));
+            }
+            if dims.contains_key(&g) {
+                if let Some((f, _)) = field_iter.next() {
+                    w.line(&field_init(f, &dims[&g]));
+                }
+            }
+            for &part in &m.geoms[g].parts {
+                let p = &m.geoms[part];
+                if matches!(p.owner, Owner::Member(_)) && self.local_is_param(part) {
+                    if let Some((f, _)) = field_iter.next() {
+                        w.line(&field_init(f, &locals[&part]));
+                    }
+                    if p.kind == GeomKind::Marker {
+                        if let (Some(&ax), Some((f, _))) = (p.parts.first(), field_iter.next()) {
+                            w.line(&field_init(f, &locals[&ax]));
+                        }
+                    }
+                }
+            }
+        }
+        w.close("})");
+        w.close("}");
+    }
+
+    /// Whether any step moves geom `g`.
+    fn moved(&self, g: GeomId) -> bool {
+        self.plan.steps.iter().any(|s| match &s.op {
+            Op::Translate { geoms, .. }
+            | Op::RotatePoint { geoms, .. }
+            | Op::RotateDir { geoms, .. } => geoms.contains(&g),
+            _ => false,
+        })
+    }
+
+    /// Whether the plan sets geom `g`'s dimension before any step reads it.
+    fn dim_set_before_read(&self, g: GeomId) -> bool {
+        let m = self.model;
+        for step in &self.plan.steps {
+            match &step.op {
+                Op::SetDim { geom, .. } if *geom == g => return true,
+                Op::DimOf(x) if *x == g => return false,
+                Op::PointOf(f)
+                    if m.top_level_of(*f) == g
+                        && matches!(m.geoms[*f].owner, Owner::Part(_, Part::End))
+                        && step.out.is_some_and(|o| self.used.contains(&o.0)) =>
+                {
+                    return false
+                }
+                Op::Check { constraint }
+                    if m.constraints[*constraint]
+                        .args
+                        .iter()
+                        .any(|a| m.top_level_of(*a) == g) =>
+                {
+                    return false
+                }
+                _ => {}
+            }
+        }
+        false
+    }
+
+    fn dim_set(&self, g: GeomId) -> bool {
+        self.plan
+            .steps
+            .iter()
+            .any(|s| matches!(s.op, Op::SetDim { geom, .. } if geom == g))
+    }
+
+    /// The constraint a step works for: its own, or that of the next step that satisfies one.
+    fn constraint_of(&self, i: usize) -> Option<ConstraintId> {
+        self.plan.steps[i..]
+            .iter()
+            .find_map(|s| s.satisfies.first().copied())
+    }
+
+    /// `SolveError::new(label, text, kind, magnitude)` for the constraint of step `i`.
+    fn error(&self, i: usize, kind: &str, magnitude: &str) -> String {
+        let (label, text) = match self.constraint_of(i) {
+            Some(c) => (
+                self.model.constraints[c].name.clone(),
+                self.model.constraints[c].text.clone(),
+            ),
+            None => ("plan".to_string(), String::new()),
+        };
+        format!(
+            "SolveError::new({}, {}, ErrorKind::{kind}, {magnitude})",
+            lit(&label),
+            lit(&text)
+        )
+    }
+
+    fn r(&self, r: Reg) -> String {
+        self.regs
+            .get(&r)
+            .cloned()
+            .unwrap_or_else(|| "f64::NAN".into())
+    }
+
+    /// The global position of a point feature, read from the frames now.
+    fn point_code(&self, g: GeomId) -> String {
+        let m = self.model;
+        let top = m.top_level_of(g);
+        let f = self.frames.get(&top).cloned().unwrap_or_default();
+        match m.geoms[g].owner {
+            Owner::TopLevel => format!("{f}.origin"),
+            Owner::Member(_) => format!("{f}.point_to_global(&{})", self.local_code(g, true)),
+            Owner::Part(owner, Part::End) => format!(
+                "{f}.origin + {f}.x_axis() * {}",
+                self.dims.get(&owner).cloned().unwrap_or_default()
+            ),
+            Owner::Part(..) => format!("{f}.origin"),
+        }
+    }
+
+    fn local_code(&self, g: GeomId, point: bool) -> String {
+        match self.locals.get(&g) {
+            Some(l) => l.clone(),
+            None => self.local_literal(g, point),
+        }
+    }
+
+    /// The global direction of a vector feature, read from the frames now.
+    fn dir_code(&self, g: GeomId) -> String {
+        let m = self.model;
+        let top = m.top_level_of(g);
+        let f = self.frames.get(&top).cloned().unwrap_or_default();
+        match m.geoms[g].owner {
+            Owner::Member(_) | Owner::Part(_, Part::AxisX) => {
+                format!("{f}.vector_to_global(&{})", self.local_code(g, false))
+            }
+            _ => format!("{f}.x_axis()"),
+        }
+    }
+
+    fn define(&mut self, w: &mut Writer, reg: Reg, name: &str, code: &str) {
+        if !self.used.contains(&reg) {
+            return;
+        }
+        let local = self.names.fresh(name);
+        w.line(&format!("let {local} = {code};"));
+        self.regs.insert(reg, local);
+    }
+
+    fn step(&mut self, w: &mut Writer, i: usize, step: &crate::plan::Step) {
+        let m = self.model;
+        let out = step.out.map(|o| o.0);
+        let name_of = |g: GeomId| m.geoms[g].name.clone();
+        match &step.op {
+            Op::Expr(e) => {
+                let code = self.expr(*e);
+                if let (Some(r), ExprNode::Param(_)) = (out, m.exprs.node(*e)) {
+                    self.regs.insert(r, code);
+                } else if let Some(r) = out {
+                    if m.exprs.is_constant(*e) {
+                        self.regs.insert(r, code);
+                    } else {
+                        self.define(w, r, "value", &code);
+                    }
+                }
+            }
+            Op::Const(c) => {
+                if let Some(r) = out {
+                    self.regs.insert(r, float(*c));
+                }
+            }
+            Op::Neg(x) => {
+                if let Some(r) = out {
+                    let code = format!("-{}", self.r(*x));
+                    self.define(w, r, "minus", &code);
+                }
+            }
+            Op::PointOf(g) => {
+                if let Some(r) = out {
+                    let code = self.point_code(*g);
+                    self.define(w, r, &name_of(*g), &code);
+                }
+            }
+            Op::DirOf(g) => {
+                if let Some(r) = out {
+                    let code = self.dir_code(*g);
+                    let n = name_of(*g);
+                    let n = if n.ends_with(".dir") {
+                        n
+                    } else {
+                        format!("{n}_dir")
+                    };
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::DimOf(g) => {
+                if let Some(r) = out {
+                    let d = self.dims.get(g).cloned().unwrap_or_default();
+                    self.regs.insert(r, d);
+                }
+            }
+            Op::Axis(x, y) => {
+                if let Some(r) = out {
+                    let n = if *x != 0.0 { "x_axis" } else { "y_axis" };
+                    let code = format!("Vector2::new({}, {})", float(*x), float(*y));
+                    self.define(w, r, n, &code);
+                }
+            }
+            Op::Rotated { dir, angle } => {
+                if let Some(r) = out {
+                    let code = format!("UnitComplex::new({}) * {}", self.r(*angle), self.r(*dir));
+                    let n = format!("{}_turned", self.r(*dir));
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::Sum(terms) => {
+                if let Some(r) = out {
+                    let mut code = String::new();
+                    for (k, (s, x)) in terms.iter().enumerate() {
+                        let v = self.r(*x);
+                        match (k, *s) {
+                            (0, s) if s == 1.0 => code.push_str(&v),
+                            (0, s) if s == -1.0 => code.push_str(&format!("-{v}")),
+                            (0, s) => code.push_str(&format!("{} * {v}", float(s))),
+                            (_, s) if s == 1.0 => code.push_str(&format!(" + {v}")),
+                            (_, s) if s == -1.0 => code.push_str(&format!(" - {v}")),
+                            (_, s) => code.push_str(&format!(" + {} * {v}", float(s))),
+                        }
+                    }
+                    self.define(w, r, "sum", &code);
+                }
+            }
+            Op::Along { from, dir, to } => {
+                if let Some(r) = out {
+                    let code = format!(
+                        "({} - {}).dot(&{})",
+                        self.r(*to),
+                        self.r(*from),
+                        self.r(*dir)
+                    );
+                    self.define(w, r, "length", &code);
+                }
+            }
+            Op::DirectionTo { from, to } => {
+                if let Some(r) = out {
+                    let err = self.error(i, "Degenerate", "0.0");
+                    let code = format!(
+                        "({} - {}).try_normalize(0.0).ok_or({err})?",
+                        self.r(*to),
+                        self.r(*from)
+                    );
+                    self.define(w, r, "direction", &code);
+                }
+            }
+            Op::Circle { center, radius } => {
+                if let Some(r) = out {
+                    let rad = self.r(*radius);
+                    if !rad.parse::<f64>().is_ok_and(|x| x >= 0.0) {
+                        w.open(&format!("if {rad} < 0.0 {{"));
+                        w.line(&format!(
+                            "return Err({});",
+                            self.error(i, "NoIntersection", &format!("-{rad}"))
+                        ));
+                        w.close("}");
+                    }
+                    let code = format!(
+                        "Circle::new({}, {rad}).ok_or({})?",
+                        self.r(*center),
+                        self.error(i, "Degenerate", "0.0")
+                    );
+                    let n = format!("circle_{}", self.r(*center));
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::CircleThrough { center, through } => {
+                if let Some(r) = out {
+                    let (c, t) = (self.r(*center), self.r(*through));
+                    let code = format!(
+                        "Circle::new({c}, ({t} - {c}).norm()).ok_or({})?",
+                        self.error(i, "Degenerate", "0.0")
+                    );
+                    let n = format!("circle_{c}_{t}");
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::Line { point, dir, offset } => {
+                if let Some(r) = out {
+                    let mut code = format!(
+                        "Line::new({}, {}).ok_or({})?",
+                        self.r(*point),
+                        self.r(*dir),
+                        self.error(i, "Degenerate", "0.0")
+                    );
+                    if let Some(o) = offset {
+                        code = format!("{code}.offset({})", self.r(*o));
+                    }
+                    let n = format!("line_{}", self.r(*point));
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::ParallelLine { line, through } => {
+                if let Some(r) = out {
+                    let code = format!(
+                        "Line::new({}, {}.dir()).ok_or({})?",
+                        self.r(*through),
+                        self.r(*line),
+                        self.error(i, "Degenerate", "0.0")
+                    );
+                    let n = format!("parallel_{}", self.r(*through));
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::ShiftedCircle { circle, from, to } => {
+                if let Some(r) = out {
+                    let c = self.r(*circle);
+                    let code = format!(
+                        "Circle::new({c}.center() + ({} - {}), {c}.radius()).ok_or({})?",
+                        self.r(*to),
+                        self.r(*from),
+                        self.error(i, "Degenerate", "0.0")
+                    );
+                    let n = format!("{c}_moved");
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::Reversed(x) => {
+                if let Some(r) = out {
+                    let code = format!("{}.reversed()", self.r(*x));
+                    let n = format!("{}_reversed", self.r(*x));
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::OffsetLine { line, by } => {
+                if let Some(r) = out {
+                    let code = format!("{}.offset({})", self.r(*line), self.r(*by));
+                    let n = format!("{}_offset", self.r(*line));
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::CentresLineLine { l1, a1, l2, a2 } => {
+                if let Some(r) = out {
+                    let code = format!(
+                        "locus2d::centres_line_line(&{}, {}, &{}, {}).ok_or({})?",
+                        self.r(*l1),
+                        self.r(*a1),
+                        self.r(*l2),
+                        self.r(*a2),
+                        self.error(i, "Degenerate", "0.0")
+                    );
+                    self.define(w, r, "bisector", &code);
+                }
+            }
+            Op::CentresLinePoint {
+                line,
+                a,
+                at,
+                b,
+                plus,
+            } => {
+                if let Some(r) = out {
+                    let code = format!(
+                        "Conic::Parabola(locus2d::centres_line_circle(&{}, {}, {}, Sense::{}, {}).ok_or({})?)",
+                        self.r(*line),
+                        self.r(*a),
+                        self.r(*at),
+                        if *plus { "Plus" } else { "Minus" },
+                        self.r(*b),
+                        self.error(i, "Degenerate", "0.0")
+                    );
+                    self.define(w, r, "parabola", &code);
+                }
+            }
+            Op::CentresPointPoint {
+                c1,
+                b1,
+                p1,
+                c2,
+                b2,
+                p2,
+            } => {
+                if let Some(r) = out {
+                    let code = format!(
+                        "locus2d::centres_circle_circle({}, Sense::{}, {}, {}, Sense::{}, {}).ok_or({})?",
+                        self.r(*c1),
+                        if *p1 { "Plus" } else { "Minus" },
+                        self.r(*b1),
+                        self.r(*c2),
+                        if *p2 { "Plus" } else { "Minus" },
+                        self.r(*b2),
+                        self.error(i, "Degenerate", "0.0")
+                    );
+                    self.define(w, r, "conic", &code);
+                }
+            }
+            Op::RadiusFromLine { line, a, centre } => {
+                if let Some(r) = out {
+                    let code = format!(
+                        "{}.signed_distance({}) - {}",
+                        self.r(*line),
+                        self.r(*centre),
+                        self.r(*a)
+                    );
+                    self.define(w, r, "radius", &code);
+                }
+            }
+            Op::RadiusFromPoint {
+                at,
+                b,
+                plus,
+                centre,
+            } => {
+                if let Some(r) = out {
+                    let d = format!("({} - {}).norm()", self.r(*centre), self.r(*at));
+                    let code = if *plus {
+                        format!("{d} - {}", self.r(*b))
+                    } else {
+                        format!("{} - {d}", self.r(*b))
+                    };
+                    self.define(w, r, "radius", &code);
+                }
+            }
+            Op::Nearest { locus, point } => {
+                if let Some(r) = out {
+                    let code = format!("{}.nearest({})", self.r(*locus), self.r(*point));
+                    let n = format!("nearest_{}", self.r(*point));
+                    self.define(w, r, &n, &code);
+                }
+            }
+            Op::Onto {
+                locus,
+                point,
+                constraint,
+            } => {
+                if let Some(r) = out {
+                    let gap = self.names.fresh("gap");
+                    w.line(&format!(
+                        "let {gap} = {}.residual({});",
+                        self.r(*locus),
+                        self.r(*point)
+                    ));
+                    w.open(&format!("if {gap}.is_nan() || {gap} > tol {{"));
+                    let con = &m.constraints[*constraint];
+                    w.line(&format!(
+                        "return Err(SolveError::new({}, {}, ErrorKind::Inconsistent, {gap}));",
+                        lit(&con.name),
+                        lit(&con.text)
+                    ));
+                    w.close("}");
+                    let p = self.r(*point);
+                    self.regs.insert(r, p);
+                }
+            }
+            Op::Intersect {
+                meet,
+                a,
+                b,
+                branch,
+                constraint,
+                ..
+            } => {
+                if let Some(r) = out {
+                    let con = &m.constraints[*constraint];
+                    let f = match meet {
+                        Meet::CircleCircle => "circle_circle",
+                        Meet::LineCircle => "line_circle",
+                        Meet::LineLine => "line_line",
+                        Meet::CircleConic => "circle_conic",
+                        Meet::LineConic => "line_conic",
+                    };
+                    let meeting = self.names.fresh(&format!("{}_meeting", con.name));
+                    w.line(&format!(
+                        "let {meeting} = intersect2d::{f}(&{}, &{});",
+                        self.r(*a),
+                        self.r(*b)
+                    ));
+                    w.open(&format!(
+                        "if let Some(e) = SolveError::from_contact({}, {}, {meeting}.contact) {{",
+                        lit(&con.name),
+                        lit(&con.text)
+                    ));
+                    w.line("return Err(e);");
+                    w.close("}");
+                    let index = match self.branches.get(branch.0 as usize) {
+                        Some(field) if self.plan.branches[branch.0 as usize].count > 1 => {
+                            format!("usize::from(branches.{field})")
+                        }
+                        _ => "0".into(),
+                    };
+                    let code = format!(
+                        "{meeting}.branch({index}).ok_or(SolveError::new({}, {}, ErrorKind::NoSuchBranch, {meeting}.roots.len() as f64))?",
+                        lit(&con.name),
+                        lit(&con.text)
+                    );
+                    self.define(w, r, &con.name, &code);
+                }
+            }
+            Op::Translate { geoms, from, to } => {
+                let shift = self.names.fresh("shift");
+                w.line(&format!(
+                    "let {shift} = {} - {};",
+                    self.r(*to),
+                    self.r(*from)
+                ));
+                for g in geoms {
+                    w.line(&format!(
+                        "{}.translate(&{shift});",
+                        self.frames.get(g).cloned().unwrap_or_default()
+                    ));
+                }
+            }
+            Op::RotatePoint {
+                geoms,
+                pivot,
+                from,
+                to,
+            } => {
+                let turn = self.names.fresh("turn");
+                let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
+                w.line(&format!(
+                    "let {turn} = UnitComplex::rotation_between(&({f} - {p}), &({t} - {p}));"
+                ));
+                for g in geoms {
+                    w.line(&format!(
+                        "{}.rotate_about_by(&{p}, &{turn});",
+                        self.frames.get(g).cloned().unwrap_or_default()
+                    ));
+                }
+            }
+            Op::RotateDir {
+                geoms,
+                pivot,
+                from,
+                to,
+            } => {
+                let turn = self.names.fresh("turn");
+                let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
+                w.line(&format!(
+                    "let {turn} = UnitComplex::rotation_between(&{f}, &{t});"
+                ));
+                for g in geoms {
+                    w.line(&format!(
+                        "{}.rotate_about_by(&{p}, &{turn});",
+                        self.frames.get(g).cloned().unwrap_or_default()
+                    ));
+                }
+            }
+            Op::SetDim { geom, value } => {
+                let v = self.r(*value);
+                let known_good = v.parse::<f64>().is_ok_and(|x| x.is_finite() && x >= 0.0);
+                if !known_good {
+                    w.open(&format!("if !f64::is_finite({v}) || {v} < 0.0 {{"));
+                    w.line(&format!(
+                        "return Err({});",
+                        self.error(i, "InvalidInput", &v)
+                    ));
+                    w.close("}");
+                }
+                let d = self.dims.get(geom).cloned().unwrap_or_default();
+                if self.deferred.remove(geom) {
+                    w.line(&format!("let {d} = {v};"));
+                } else {
+                    w.line(&format!("{d} = {v};"));
+                }
+            }
+            Op::Check { constraint } => {
+                let residual = self.residual_code(*constraint);
+                let name = self.names.fresh("residual");
+                w.line(&format!("let {name} = {residual};"));
+                w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
+                let con = &m.constraints[*constraint];
+                w.line(&format!(
+                    "return Err(SolveError::new({}, {}, ErrorKind::Inconsistent, {name}));",
+                    lit(&con.name),
+                    lit(&con.text)
+                ));
+                w.close("}");
+            }
+        }
+    }
+
+    /// The residual of a constraint, measured on the frames now (run-time checks).
+    fn residual_code(&self, c: ConstraintId) -> String {
+        let m = self.model;
+        let con = &m.constraints[c];
+        let value = con.value.map_or("0.0".to_string(), |e| self.wrap(e, 2));
+        let kind = |g: GeomId| m.geoms[g].kind;
+        let part = |g, p| crate::analysis::relation::part(m, g, p).unwrap_or(g);
+        let pt = |g: GeomId| {
+            let g = if kind(g) == GeomKind::Circle {
+                part(g, Part::Center)
+            } else {
+                g
+            };
+            self.point_code(g)
+        };
+        let dir = |g: GeomId| {
+            let g = if matches!(kind(g), GeomKind::Line | GeomKind::Segment) {
+                part(g, Part::Dir)
+            } else {
+                g
+            };
+            self.dir_code(g)
+        };
+        let line = |g: GeomId| -> (String, String) {
+            match kind(g) {
+                GeomKind::Segment => (self.point_code(part(g, Part::Start)), dir(g)),
+                GeomKind::Marker => (self.point_code(g), self.dir_code(part(g, Part::AxisX))),
+                _ => (self.point_code(g), dir(g)),
+            }
+        };
+        let radius = |g: GeomId| self.dims.get(&g).cloned().unwrap_or_else(|| "0.0".into());
+        let sd =
+            |(p, d): (String, String), q: String| format!("check::signed_distance({p}, {d}, {q})");
+        let angle = |u: String, v: String| format!("check::angle({u}, {v})");
+        let circles = |x: GeomId, y: GeomId, gap: &str| {
+            format!(
+                "check::circles({}, {}, {}, {}, {gap})",
+                pt(x),
+                radius(x),
+                pt(y),
+                radius(y)
+            )
+        };
+        let (a, b) = (con.args.first().copied(), con.args.get(1).copied());
+        match (con.kind, a, b) {
+            (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => {
+                format!("({} - ({})).norm()", pt(a), pt(b))
+            }
+            (K::Distance, Some(a), Some(b)) => match (kind(a), kind(b)) {
+                (GeomKind::Line | GeomKind::Segment, GeomKind::Circle) => format!(
+                    "({}.abs() - {} - {value}).abs()",
+                    sd(line(a), pt(b)),
+                    radius(b)
+                ),
+                (GeomKind::Circle, GeomKind::Circle) => circles(a, b, &value),
+                (_, GeomKind::Line | GeomKind::Segment) => {
+                    format!("({} - {value}).abs()", sd(line(b), pt(a)))
+                }
+                (_, GeomKind::Circle) => format!(
+                    "((({} - ({})).norm() - {}).abs() - {value}).abs()",
+                    pt(a),
+                    pt(b),
+                    radius(b)
+                ),
+                _ => format!(
+                    "(({} - ({})).norm() - f64::abs({value})).abs()",
+                    pt(a),
+                    pt(b)
+                ),
+            },
+            (K::On, Some(a), Some(b)) => match kind(b) {
+                GeomKind::Circle => {
+                    format!("(({} - ({})).norm() - {}).abs()", pt(a), pt(b), radius(b))
+                }
+                _ => format!("{}.abs()", sd(line(b), pt(a))),
+            },
+            (K::Tangent, Some(a), Some(b)) => match kind(a) {
+                GeomKind::Circle => circles(a, b, "0.0"),
+                _ => format!("({}.abs() - {}).abs()", sd(line(a), pt(b)), radius(b)),
+            },
+            (K::Angle, Some(a), Some(b)) => {
+                format!("check::angle_gap({}, {value})", angle(dir(a), dir(b)))
+            }
+            (K::Horizontal, Some(a), _) => format!("{}.y.abs()", dir(a)),
+            (K::Vertical, Some(a), _) => format!("{}.x.abs()", dir(a)),
+            (K::Parallel, Some(a), Some(b)) => {
+                format!("check::angle({}, {}).sin().abs()", dir(a), dir(b))
+            }
+            (K::Perpendicular, Some(a), Some(b)) => format!("{}.dot(&{}).abs()", dir(a), dir(b)),
+            (K::Length | K::Radius, Some(a), _) => format!("({} - {value}).abs()", radius(a)),
+            (K::InLine, Some(a), Some(b)) => format!("{}.abs()", sd(line(b), pt(a))),
+            (K::OffsetX | K::Prismatic, Some(a), Some(b)) => {
+                let target = if con.kind == K::OffsetX {
+                    value.clone()
+                } else {
+                    "0.0".into()
+                };
+                let turn = format!(
+                    "check::angle_gap({}, {target})",
+                    angle(line(a).1, line(b).1)
+                );
+                if con.kind == K::Prismatic {
+                    format!("{turn}.max({}.abs())", sd(line(b), pt(a)))
+                } else {
+                    turn
+                }
+            }
+            _ => "f64::INFINITY".into(),
+        }
+    }
+}
+
+/// The module formatted by `rustfmt`, when a `rustfmt` is on the path (as it is wherever cargo
+/// is installed with its usual components); otherwise the module as generated.
+pub fn format(code: &str) -> String {
+    use std::io::Write as _;
+    use std::process::{Command, Stdio};
+    let child = Command::new("rustfmt")
+        .args(["--edition", "2021", "--emit", "stdout", "--quiet"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn();
+    let Ok(mut child) = child else {
+        return code.to_string();
+    };
+    if let Some(mut stdin) = child.stdin.take() {
+        if stdin.write_all(code.as_bytes()).is_err() {
+            return code.to_string();
+        }
+    }
+    match child.wait_with_output() {
+        Ok(out) if out.status.success() && !out.stdout.is_empty() => {
+            String::from_utf8(out.stdout).unwrap_or_else(|_| code.to_string())
+        }
+        _ => code.to_string(),
+    }
+}
