@@ -9,6 +9,7 @@
 //! it never prints or exits.
 
 pub mod analysis;
+pub mod build;
 pub mod codegen;
 pub mod config;
 pub mod explain;
