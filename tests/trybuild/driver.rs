@@ -1,0 +1,100 @@
+// The driver of a generated solver: included after `mod solver { include!(...) }`, `MODEL` (the
+// model's text) and `NAME`. It solves the model with the interpreter and with the generated
+// solver on the same params and branches, asks for equal results (1e-14 relative) or equal
+// errors, and re-checks every constraint of the generated solution with `verify`.
+
+fn close(what: &str, a: f64, b: f64) {
+    let scale = a.abs().max(b.abs()).max(1.0);
+    assert!((a - b).abs() <= 1e-14 * scale, "{NAME}: {what}: generated {a} vs interpreter {b}");
+}
+
+fn main() {
+    let (_, model, diags) = gcs_lang::load(NAME, MODEL.as_bytes());
+    let model = model.unwrap_or_else(|| panic!("{NAME} does not load: {diags:?}"));
+    let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
+    let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
+    // Params: the defaults, and each one moved a little and a lot.
+    let base = model.default_params();
+    let names: Vec<String> = model.params.iter().map(|(_, p)| p.name.clone()).collect();
+    let mut cases = vec![base.clone()];
+    for i in 0..base.len() {
+        for k in [0.97, 1.03, 1.25, -0.5] {
+            let mut p = base.clone();
+            p[i] = if p[i] == 0.0 { 0.1 * k } else { p[i] * k };
+            cases.push(p);
+        }
+    }
+    // Branches: the sketch's, and each variable on each of its other indices.
+    let defaults: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+    let mut branch_sets = vec![defaults.clone()];
+    for (i, b) in plan.branches.iter().enumerate() {
+        for k in 0..b.count {
+            if k != b.default {
+                let mut set = defaults.clone();
+                set[i] = k;
+                branch_sets.push(set);
+            }
+        }
+    }
+    let (mut equal, mut errors) = (0, 0);
+    for params in &cases {
+        for branches in &branch_sets {
+            let mut gp = solver::Params::default();
+            for (n, v) in names.iter().zip(params) {
+                assert!(gp.set(n, *v), "no param {n}");
+            }
+            let mut gb = solver::Branches::default();
+            for (b, i) in plan.branches.iter().zip(branches) {
+                assert!(gb.set(&b.name, *i as u8), "no branch {}", b.name);
+            }
+            let interpreted = gcs_compiler::solve_plan(&model, &plan, &scope, params, branches);
+            let generated = solver::solve(&gp, &gb, &solver::Defaults::default());
+            match (interpreted, generated) {
+                (Ok(s), Ok(g)) => {
+                    let mut solution = gcs_compiler::solution::Solution::default();
+                    let mut size: f64 = 1.0;
+                    for (name, p) in g.points() {
+                        let q = s.point(name).unwrap_or_else(|| panic!("{NAME}: no point {name}"));
+                        close(name, p.x, q[0]);
+                        close(name, p.y, q[1]);
+                        size = size.max(p.x.abs()).max(p.y.abs());
+                        solution.points.push((name.to_string(), vec![p.x, p.y]));
+                    }
+                    for (name, v) in g.vectors() {
+                        let q = s.vector(name).unwrap_or_else(|| panic!("{NAME}: no vector {name}"));
+                        close(name, v.x, q[0]);
+                        close(name, v.y, q[1]);
+                        solution.vectors.push((name.to_string(), vec![v.x, v.y]));
+                    }
+                    for (name, x) in g.scalars() {
+                        let q = s.scalar(name).unwrap_or_else(|| panic!("{NAME}: no scalar {name}"));
+                        close(name, x, q);
+                        size = size.max(x.abs());
+                        solution.scalars.push((name.to_string(), x));
+                    }
+                    // Every constraint among the solved geoms, re-measured independently.
+                    for r in gcs_compiler::verify::residuals(&model, &solution, params) {
+                        let c = &model.constraints[r.constraint];
+                        let solved = c.args.iter().all(|a| scope.contains(&model.top_level_of(*a)));
+                        if solved {
+                            assert!(
+                                r.value <= 1e-12 * size,
+                                "{NAME}: `{}` violated by {:e} with params {params:?}",
+                                c.text,
+                                r.value
+                            );
+                        }
+                    }
+                    equal += 1;
+                }
+                (Err(a), Err(b)) => {
+                    assert_eq!((&a.label, a.kind), (&b.label, b.kind), "{NAME}: different errors");
+                    errors += 1;
+                }
+                (a, b) => panic!("{NAME}: interpreter {a:?} but generated {b:?}"),
+            }
+        }
+    }
+    assert!(equal > 0, "{NAME}: nothing solved");
+    println!("{NAME}: {equal} equal solutions, {errors} equal errors");
+}

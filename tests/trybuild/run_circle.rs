@@ -1,0 +1,10 @@
+// Runs the generated solver of `examples/circle.gcs` against the interpreter.
+
+mod solver {
+    include!("generated/circle.rs");
+}
+
+const NAME: &str = "circle.gcs";
+const MODEL: &str = include_str!("../../examples/circle.gcs");
+
+include!("driver.rs");

@@ -1,0 +1,10 @@
+// Runs the generated solver of `examples/fourbar.gcs` against the interpreter.
+
+mod solver {
+    include!("generated/fourbar.rs");
+}
+
+const NAME: &str = "fourbar.gcs";
+const MODEL: &str = include_str!("../../examples/fourbar.gcs");
+
+include!("driver.rs");

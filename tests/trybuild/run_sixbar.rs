@@ -1,0 +1,10 @@
+// Runs the generated solver of `examples/sixbar.gcs` against the interpreter.
+
+mod solver {
+    include!("generated/sixbar.rs");
+}
+
+const NAME: &str = "sixbar.gcs";
+const MODEL: &str = include_str!("../../examples/sixbar.gcs");
+
+include!("driver.rs");
