@@ -1,7 +1,12 @@
 // The driver of a generated solver: included after `mod solver { include!(...) }`, `MODEL` (the
 // model's text) and `NAME`. It solves the model with the interpreter and with the generated
 // solver on the same params and branches, asks for equal results (1e-14 relative) or equal
-// errors, and re-checks every constraint of the generated solution with `verify`.
+// errors, re-checks every constraint of the generated solution with `verify`, and counts the
+// generated solve's allocations (none, errors included).
+
+// Counts allocations, to show that a generated solve allocates nothing.
+#[global_allocator]
+static ALLOCATOR: &stats_alloc::StatsAlloc<std::alloc::System> = &stats_alloc::INSTRUMENTED_SYSTEM;
 
 fn close(what: &str, a: f64, b: f64) {
     let scale = a.abs().max(b.abs()).max(1.0);
@@ -48,7 +53,14 @@ fn main() {
                 assert!(gb.set(&b.name, *i as u8), "no branch {}", b.name);
             }
             let interpreted = gcs_compiler::solve_plan(&model, &plan, &scope, params, branches);
+            let region = stats_alloc::Region::new(ALLOCATOR);
             let generated = solver::solve(&gp, &gb, &solver::Defaults::default());
+            let change = region.change();
+            assert_eq!(
+                (change.allocations, change.reallocations),
+                (0, 0),
+                "{NAME}: the generated solve allocated"
+            );
             match (interpreted, generated) {
                 (Ok(s), Ok(g)) => {
                     let mut solution = gcs_compiler::solution::Solution::default();
