@@ -1193,7 +1193,7 @@ impl<'a> Gen<'a> {
                 if let Some(r) = out {
                     let err = self.error(i, "Degenerate", "0.0");
                     let code = format!(
-                        "({} - {}).try_normalize(0.0).ok_or({err})?",
+                        "({} - {}).try_normalize(0.0).ok_or_else(|| {err})?",
                         self.r(*to),
                         self.r(*from)
                     );
@@ -1212,7 +1212,7 @@ impl<'a> Gen<'a> {
                         w.close("}");
                     }
                     let code = format!(
-                        "Circle::new({}, {rad}).ok_or({})?",
+                        "Circle::new({}, {rad}).ok_or_else(|| {})?",
                         self.r(*center),
                         self.error(i, "Degenerate", "0.0")
                     );
@@ -1224,7 +1224,7 @@ impl<'a> Gen<'a> {
                 if let Some(r) = out {
                     let (c, t) = (self.r(*center), self.r(*through));
                     let code = format!(
-                        "Circle::new({c}, ({t} - {c}).norm()).ok_or({})?",
+                        "Circle::new({c}, ({t} - {c}).norm()).ok_or_else(|| {})?",
                         self.error(i, "Degenerate", "0.0")
                     );
                     let n = format!("circle_{c}_{t}");
@@ -1234,7 +1234,7 @@ impl<'a> Gen<'a> {
             Op::Line { point, dir, offset } => {
                 if let Some(r) = out {
                     let mut code = format!(
-                        "Line::new({}, {}).ok_or({})?",
+                        "Line::new({}, {}).ok_or_else(|| {})?",
                         self.r(*point),
                         self.r(*dir),
                         self.error(i, "Degenerate", "0.0")
@@ -1249,7 +1249,7 @@ impl<'a> Gen<'a> {
             Op::ParallelLine { line, through } => {
                 if let Some(r) = out {
                     let code = format!(
-                        "Line::new({}, {}.dir()).ok_or({})?",
+                        "Line::new({}, {}.dir()).ok_or_else(|| {})?",
                         self.r(*through),
                         self.r(*line),
                         self.error(i, "Degenerate", "0.0")
@@ -1262,7 +1262,7 @@ impl<'a> Gen<'a> {
                 if let Some(r) = out {
                     let c = self.r(*circle);
                     let code = format!(
-                        "Circle::new({c}.center() + ({} - {}), {c}.radius()).ok_or({})?",
+                        "Circle::new({c}.center() + ({} - {}), {c}.radius()).ok_or_else(|| {})?",
                         self.r(*to),
                         self.r(*from),
                         self.error(i, "Degenerate", "0.0")
@@ -1288,7 +1288,7 @@ impl<'a> Gen<'a> {
             Op::CentresLineLine { l1, a1, l2, a2 } => {
                 if let Some(r) = out {
                     let code = format!(
-                        "locus2d::centres_line_line(&{}, {}, &{}, {}).ok_or({})?",
+                        "locus2d::centres_line_line(&{}, {}, &{}, {}).ok_or_else(|| {})?",
                         self.r(*l1),
                         self.r(*a1),
                         self.r(*l2),
@@ -1307,7 +1307,7 @@ impl<'a> Gen<'a> {
             } => {
                 if let Some(r) = out {
                     let code = format!(
-                        "Conic::Parabola(locus2d::centres_line_circle(&{}, {}, {}, Sense::{}, {}).ok_or({})?)",
+                        "Conic::Parabola(locus2d::centres_line_circle(&{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?)",
                         self.r(*line),
                         self.r(*a),
                         self.r(*at),
@@ -1328,7 +1328,7 @@ impl<'a> Gen<'a> {
             } => {
                 if let Some(r) = out {
                     let code = format!(
-                        "locus2d::centres_circle_circle({}, Sense::{}, {}, {}, Sense::{}, {}).ok_or({})?",
+                        "locus2d::centres_circle_circle({}, Sense::{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?",
                         self.r(*c1),
                         if *p1 { "Plus" } else { "Minus" },
                         self.r(*b1),
@@ -1435,7 +1435,7 @@ impl<'a> Gen<'a> {
                         _ => "0".into(),
                     };
                     let code = format!(
-                        "{meeting}.branch({index}).ok_or(SolveError::new({}, {}, ErrorKind::NoSuchBranch, {meeting}.roots.len() as f64))?",
+                        "{meeting}.branch({index}).ok_or_else(|| SolveError::new({}, {}, ErrorKind::NoSuchBranch, {meeting}.roots.len() as f64))?",
                         lit(&con.name),
                         lit(&con.text)
                     );

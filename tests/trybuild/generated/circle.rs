@@ -201,29 +201,35 @@ pub fn solve(
     let c_center = c.origin;
     let l_2 = l.origin;
     let l_dir = l.x_axis();
-    let line_l_2 = Line::new(l_2, l_dir).ok_or(SolveError::new(
-        "meet",
-        "coincident(Ls.end, G.center)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let line_l_2 = Line::new(l_2, l_dir).ok_or_else(|| {
+        SolveError::new(
+            "meet",
+            "coincident(Ls.end, G.center)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let parabola = Conic::Parabola(
-        locus2d::centres_line_circle(&line_l_2, 0.0, c_center, Sense::Plus, c_radius).ok_or(
-            SolveError::new(
-                "meet",
-                "coincident(Ls.end, G.center)",
-                ErrorKind::Degenerate,
-                0.0,
-            ),
+        locus2d::centres_line_circle(&line_l_2, 0.0, c_center, Sense::Plus, c_radius).ok_or_else(
+            || {
+                SolveError::new(
+                    "meet",
+                    "coincident(Ls.end, G.center)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            },
         )?,
     );
     let ls_end = ls.origin + ls.x_axis() * ls_length;
-    let circle_p_2_ls_end = Circle::new(p_2, (ls_end - p_2).norm()).ok_or(SolveError::new(
-        "meet",
-        "coincident(Ls.end, G.center)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_p_2_ls_end = Circle::new(p_2, (ls_end - p_2).norm()).ok_or_else(|| {
+        SolveError::new(
+            "meet",
+            "coincident(Ls.end, G.center)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let g_center = g.origin;
     let meet_meeting = intersect2d::circle_conic(&circle_p_2_ls_end, &parabola);
     if let Some(e) =
@@ -233,12 +239,14 @@ pub fn solve(
     }
     let meet = meet_meeting
         .branch(usize::from(branches.meet))
-        .ok_or(SolveError::new(
-            "meet",
-            "coincident(Ls.end, G.center)",
-            ErrorKind::NoSuchBranch,
-            meet_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "meet",
+                "coincident(Ls.end, G.center)",
+                ErrorKind::NoSuchBranch,
+                meet_meeting.roots.len() as f64,
+            )
+        })?;
     let turn = UnitComplex::rotation_between(&(ls_end - p_2), &(meet - p_2));
     ls.rotate_about_by(&p_2, &turn);
     let shift_2 = meet - g_center;

@@ -237,19 +237,23 @@ pub fn solve(
     // elbow: coincident(coupler.c, rocker.c) (fourbar.gcs:18)
     let coupler_c = coupler.point_to_global(&Point2::new(4.0, 0.0));
     let circle_crank_b_coupler_c =
-        Circle::new(crank_b, (coupler_c - crank_b).norm()).ok_or(SolveError::new(
+        Circle::new(crank_b, (coupler_c - crank_b).norm()).ok_or_else(|| {
+            SolveError::new(
+                "elbow",
+                "coincident(coupler.c, rocker.c)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let rocker_c = rocker.point_to_global(&Point2::new(0.0, 3.0));
+    let circle_d_2_rocker_c = Circle::new(d_2, (rocker_c - d_2).norm()).ok_or_else(|| {
+        SolveError::new(
             "elbow",
             "coincident(coupler.c, rocker.c)",
             ErrorKind::Degenerate,
             0.0,
-        ))?;
-    let rocker_c = rocker.point_to_global(&Point2::new(0.0, 3.0));
-    let circle_d_2_rocker_c = Circle::new(d_2, (rocker_c - d_2).norm()).ok_or(SolveError::new(
-        "elbow",
-        "coincident(coupler.c, rocker.c)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+        )
+    })?;
     let elbow_meeting = intersect2d::circle_circle(&circle_crank_b_coupler_c, &circle_d_2_rocker_c);
     if let Some(e) = SolveError::from_contact(
         "elbow",
@@ -260,12 +264,14 @@ pub fn solve(
     }
     let elbow = elbow_meeting
         .branch(usize::from(branches.elbow))
-        .ok_or(SolveError::new(
-            "elbow",
-            "coincident(coupler.c, rocker.c)",
-            ErrorKind::NoSuchBranch,
-            elbow_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "elbow",
+                "coincident(coupler.c, rocker.c)",
+                ErrorKind::NoSuchBranch,
+                elbow_meeting.roots.len() as f64,
+            )
+        })?;
     let turn_2 = UnitComplex::rotation_between(&(coupler_c - crank_b), &(elbow - crank_b));
     coupler.rotate_about_by(&crank_b, &turn_2);
     let turn_3 = UnitComplex::rotation_between(&(rocker_c - d_2), &(elbow - d_2));

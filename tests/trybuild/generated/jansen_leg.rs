@@ -234,24 +234,28 @@ pub fn solve(
 
     // distance(B, top) = 40.1 (jansen_leg.gcs:25)
     let b_2 = b.origin;
-    let circle_b_2 = Circle::new(b_2, 40.1).ok_or(SolveError::new(
-        "distance_B_top",
-        "distance(B, top) = 40.1",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_b_2 = Circle::new(b_2, 40.1).ok_or_else(|| {
+        SolveError::new(
+            "distance_B_top",
+            "distance(B, top) = 40.1",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let top_2 = top.origin;
     let nearest_top_2 = circle_b_2.nearest(top_2);
     let shift_2 = nearest_top_2 - top_2;
     top.translate(&shift_2);
 
     // down: distance(B, lower) = 39.3 (jansen_leg.gcs:24)
-    let circle_b_2_2 = Circle::new(b_2, 39.3).ok_or(SolveError::new(
-        "down",
-        "distance(B, lower) = 39.3",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_b_2_2 = Circle::new(b_2, 39.3).ok_or_else(|| {
+        SolveError::new(
+            "down",
+            "distance(B, lower) = 39.3",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let lower_2 = lower.origin;
     let nearest_lower_2 = circle_b_2_2.nearest(lower_2);
     let shift_3 = nearest_lower_2 - lower_2;
@@ -266,12 +270,14 @@ pub fn solve(
 
     // distance(crank.tip, lower) = 61.9 (jansen_leg.gcs:23)
     let crank_tip = crank.point_to_global(&Point2::new(15.0, 0.0));
-    let circle_crank_tip = Circle::new(crank_tip, 61.9).ok_or(SolveError::new(
-        "distance_crank_tip_lower",
-        "distance(crank.tip, lower) = 61.9",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_crank_tip = Circle::new(crank_tip, 61.9).ok_or_else(|| {
+        SolveError::new(
+            "distance_crank_tip_lower",
+            "distance(crank.tip, lower) = 61.9",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let lower_3 = lower.origin;
     let distance_crank_tip_lower_meeting =
         intersect2d::circle_circle(&circle_b_2_2, &circle_crank_tip);
@@ -284,84 +290,96 @@ pub fn solve(
     }
     let distance_crank_tip_lower = distance_crank_tip_lower_meeting
         .branch(usize::from(branches.distance_crank_tip_lower))
-        .ok_or(SolveError::new(
-            "distance_crank_tip_lower",
-            "distance(crank.tip, lower) = 61.9",
-            ErrorKind::NoSuchBranch,
-            distance_crank_tip_lower_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_crank_tip_lower",
+                "distance(crank.tip, lower) = 61.9",
+                ErrorKind::NoSuchBranch,
+                distance_crank_tip_lower_meeting.roots.len() as f64,
+            )
+        })?;
     let shift_4 = distance_crank_tip_lower - lower_3;
     lower.translate(&shift_4);
 
     // bend: distance(lower, knee) = 36.7 (jansen_leg.gcs:28)
     let lower_4 = lower.origin;
-    let circle_lower_4 = Circle::new(lower_4, 36.7).ok_or(SolveError::new(
-        "bend",
-        "distance(lower, knee) = 36.7",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_lower_4 = Circle::new(lower_4, 36.7).ok_or_else(|| {
+        SolveError::new(
+            "bend",
+            "distance(lower, knee) = 36.7",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let knee_2 = knee.origin;
     let nearest_knee_2 = circle_lower_4.nearest(knee_2);
     let shift_5 = nearest_knee_2 - knee_2;
     knee.translate(&shift_5);
 
     // distance(crank.tip, upper) = 50 (jansen_leg.gcs:21)
-    let circle_crank_tip_2 = Circle::new(crank_tip, 50.0).ok_or(SolveError::new(
-        "distance_crank_tip_upper",
-        "distance(crank.tip, upper) = 50",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_crank_tip_2 = Circle::new(crank_tip, 50.0).ok_or_else(|| {
+        SolveError::new(
+            "distance_crank_tip_upper",
+            "distance(crank.tip, upper) = 50",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let upper_2 = upper.origin;
     let nearest_upper_2 = circle_crank_tip_2.nearest(upper_2);
     let shift_6 = nearest_upper_2 - upper_2;
     upper.translate(&shift_6);
 
     // distance(lower, foot) = 49 (jansen_leg.gcs:29)
-    let circle_lower_4_2 = Circle::new(lower_4, 49.0).ok_or(SolveError::new(
-        "distance_lower_foot",
-        "distance(lower, foot) = 49",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_lower_4_2 = Circle::new(lower_4, 49.0).ok_or_else(|| {
+        SolveError::new(
+            "distance_lower_foot",
+            "distance(lower, foot) = 49",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let foot_2 = foot.origin;
     let nearest_foot_2 = circle_lower_4_2.nearest(foot_2);
     let shift_7 = nearest_foot_2 - foot_2;
     foot.translate(&shift_7);
 
     // up: distance(B, upper) = 41.5 (jansen_leg.gcs:22)
-    let circle_b_2_3 = Circle::new(b_2, 41.5).ok_or(SolveError::new(
-        "up",
-        "distance(B, upper) = 41.5",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_b_2_3 = Circle::new(b_2, 41.5).ok_or_else(|| {
+        SolveError::new(
+            "up",
+            "distance(B, upper) = 41.5",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let upper_3 = upper.origin;
     let up_meeting = intersect2d::circle_circle(&circle_crank_tip_2, &circle_b_2_3);
     if let Some(e) = SolveError::from_contact("up", "distance(B, upper) = 41.5", up_meeting.contact)
     {
         return Err(e);
     }
-    let up = up_meeting
-        .branch(usize::from(branches.up))
-        .ok_or(SolveError::new(
+    let up = up_meeting.branch(usize::from(branches.up)).ok_or_else(|| {
+        SolveError::new(
             "up",
             "distance(B, upper) = 41.5",
             ErrorKind::NoSuchBranch,
             up_meeting.roots.len() as f64,
-        ))?;
+        )
+    })?;
     let shift_8 = up - upper_3;
     upper.translate(&shift_8);
 
     // apex: distance(upper, top) = 55.8 (jansen_leg.gcs:26)
     let upper_4 = upper.origin;
-    let circle_upper_4 = Circle::new(upper_4, 55.8).ok_or(SolveError::new(
-        "apex",
-        "distance(upper, top) = 55.8",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_upper_4 = Circle::new(upper_4, 55.8).ok_or_else(|| {
+        SolveError::new(
+            "apex",
+            "distance(upper, top) = 55.8",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let top_3 = top.origin;
     let apex_meeting = intersect2d::circle_circle(&circle_b_2, &circle_upper_4);
     if let Some(e) =
@@ -371,23 +389,27 @@ pub fn solve(
     }
     let apex = apex_meeting
         .branch(usize::from(branches.apex))
-        .ok_or(SolveError::new(
-            "apex",
-            "distance(upper, top) = 55.8",
-            ErrorKind::NoSuchBranch,
-            apex_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "apex",
+                "distance(upper, top) = 55.8",
+                ErrorKind::NoSuchBranch,
+                apex_meeting.roots.len() as f64,
+            )
+        })?;
     let shift_9 = apex - top_3;
     top.translate(&shift_9);
 
     // distance(top, knee) = 39.4 (jansen_leg.gcs:27)
     let top_4 = top.origin;
-    let circle_top_4 = Circle::new(top_4, 39.4).ok_or(SolveError::new(
-        "distance_top_knee",
-        "distance(top, knee) = 39.4",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_top_4 = Circle::new(top_4, 39.4).ok_or_else(|| {
+        SolveError::new(
+            "distance_top_knee",
+            "distance(top, knee) = 39.4",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let knee_3 = knee.origin;
     let distance_top_knee_meeting = intersect2d::circle_circle(&circle_lower_4, &circle_top_4);
     if let Some(e) = SolveError::from_contact(
@@ -399,23 +421,27 @@ pub fn solve(
     }
     let distance_top_knee = distance_top_knee_meeting
         .branch(usize::from(branches.distance_top_knee))
-        .ok_or(SolveError::new(
-            "distance_top_knee",
-            "distance(top, knee) = 39.4",
-            ErrorKind::NoSuchBranch,
-            distance_top_knee_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_top_knee",
+                "distance(top, knee) = 39.4",
+                ErrorKind::NoSuchBranch,
+                distance_top_knee_meeting.roots.len() as f64,
+            )
+        })?;
     let shift_10 = distance_top_knee - knee_3;
     knee.translate(&shift_10);
 
     // stride: distance(knee, foot) = 65.7 (jansen_leg.gcs:30)
     let knee_4 = knee.origin;
-    let circle_knee_4 = Circle::new(knee_4, 65.7).ok_or(SolveError::new(
-        "stride",
-        "distance(knee, foot) = 65.7",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let circle_knee_4 = Circle::new(knee_4, 65.7).ok_or_else(|| {
+        SolveError::new(
+            "stride",
+            "distance(knee, foot) = 65.7",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let foot_3 = foot.origin;
     let stride_meeting = intersect2d::circle_circle(&circle_lower_4_2, &circle_knee_4);
     if let Some(e) = SolveError::from_contact(
@@ -427,12 +453,14 @@ pub fn solve(
     }
     let stride = stride_meeting
         .branch(usize::from(branches.stride))
-        .ok_or(SolveError::new(
-            "stride",
-            "distance(knee, foot) = 65.7",
-            ErrorKind::NoSuchBranch,
-            stride_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "stride",
+                "distance(knee, foot) = 65.7",
+                ErrorKind::NoSuchBranch,
+                stride_meeting.roots.len() as f64,
+            )
+        })?;
     let shift_11 = stride - foot_3;
     foot.translate(&shift_11);
 

@@ -302,19 +302,23 @@ pub fn solve(
     // first: coincident(coupler.c, rocker.c) (sixbar.gcs:21)
     let coupler_c = coupler.point_to_global(&Point2::new(3.5, 2.5));
     let circle_crank_b_coupler_c =
-        Circle::new(crank_b, (coupler_c - crank_b).norm()).ok_or(SolveError::new(
+        Circle::new(crank_b, (coupler_c - crank_b).norm()).ok_or_else(|| {
+            SolveError::new(
+                "first",
+                "coincident(coupler.c, rocker.c)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let rocker_c = rocker.point_to_global(&Point2::new(3.5, 2.5));
+    let circle_d_2_rocker_c = Circle::new(d_2, (rocker_c - d_2).norm()).ok_or_else(|| {
+        SolveError::new(
             "first",
             "coincident(coupler.c, rocker.c)",
             ErrorKind::Degenerate,
             0.0,
-        ))?;
-    let rocker_c = rocker.point_to_global(&Point2::new(3.5, 2.5));
-    let circle_d_2_rocker_c = Circle::new(d_2, (rocker_c - d_2).norm()).ok_or(SolveError::new(
-        "first",
-        "coincident(coupler.c, rocker.c)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+        )
+    })?;
     let first_meeting = intersect2d::circle_circle(&circle_crank_b_coupler_c, &circle_d_2_rocker_c);
     if let Some(e) = SolveError::from_contact(
         "first",
@@ -325,12 +329,14 @@ pub fn solve(
     }
     let first = first_meeting
         .branch(usize::from(branches.first))
-        .ok_or(SolveError::new(
-            "first",
-            "coincident(coupler.c, rocker.c)",
-            ErrorKind::NoSuchBranch,
-            first_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "first",
+                "coincident(coupler.c, rocker.c)",
+                ErrorKind::NoSuchBranch,
+                first_meeting.roots.len() as f64,
+            )
+        })?;
     let turn_2 = UnitComplex::rotation_between(&(coupler_c - crank_b), &(first - crank_b));
     coupler.rotate_about_by(&crank_b, &turn_2);
     let turn_3 = UnitComplex::rotation_between(&(rocker_c - d_2), &(first - d_2));
@@ -345,20 +351,23 @@ pub fn solve(
     // second: coincident(link.g, follower.g) (sixbar.gcs:25)
     let link_g = link.point_to_global(&Point2::new(7.5, 3.8));
     let circle_rocker_e_link_g =
-        Circle::new(rocker_e, (link_g - rocker_e).norm()).ok_or(SolveError::new(
-            "second",
-            "coincident(link.g, follower.g)",
-            ErrorKind::Degenerate,
-            0.0,
-        ))?;
+        Circle::new(rocker_e, (link_g - rocker_e).norm()).ok_or_else(|| {
+            SolveError::new(
+                "second",
+                "coincident(link.g, follower.g)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let follower_g = follower.point_to_global(&Point2::new(7.5, 3.8));
-    let circle_f_2_follower_g =
-        Circle::new(f_2, (follower_g - f_2).norm()).ok_or(SolveError::new(
+    let circle_f_2_follower_g = Circle::new(f_2, (follower_g - f_2).norm()).ok_or_else(|| {
+        SolveError::new(
             "second",
             "coincident(link.g, follower.g)",
             ErrorKind::Degenerate,
             0.0,
-        ))?;
+        )
+    })?;
     let second_meeting =
         intersect2d::circle_circle(&circle_rocker_e_link_g, &circle_f_2_follower_g);
     if let Some(e) = SolveError::from_contact(
@@ -370,12 +379,14 @@ pub fn solve(
     }
     let second = second_meeting
         .branch(usize::from(branches.second))
-        .ok_or(SolveError::new(
-            "second",
-            "coincident(link.g, follower.g)",
-            ErrorKind::NoSuchBranch,
-            second_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "second",
+                "coincident(link.g, follower.g)",
+                ErrorKind::NoSuchBranch,
+                second_meeting.roots.len() as f64,
+            )
+        })?;
     let turn_4 = UnitComplex::rotation_between(&(link_g - rocker_e), &(second - rocker_e));
     link.rotate_about_by(&rocker_e, &turn_4);
     let turn_5 = UnitComplex::rotation_between(&(follower_g - f_2), &(second - f_2));

@@ -349,12 +349,14 @@ pub fn solve(
 
     // tangent(top, fillet) (sketch_profile.gcs:25)
     let top_dir_2 = top.x_axis();
-    let line_left_start = Line::new(left_start, top_dir_2).ok_or(SolveError::new(
-        "tangent_top_fillet",
-        "tangent(top, fillet)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let line_left_start = Line::new(left_start, top_dir_2).ok_or_else(|| {
+        SolveError::new(
+            "tangent_top_fillet",
+            "tangent(top, fillet)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let line_left_start_offset = line_left_start.offset(fillet_radius);
     let fillet_center = fillet.origin;
     let nearest_fillet_center = line_left_start_offset.nearest(fillet_center);
@@ -369,12 +371,14 @@ pub fn solve(
 
     // tangent(right, fillet) (sketch_profile.gcs:24)
     let right_dir_2 = right.x_axis();
-    let line_bottom_end = Line::new(bottom_end, right_dir_2).ok_or(SolveError::new(
-        "tangent_right_fillet",
-        "tangent(right, fillet)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let line_bottom_end = Line::new(bottom_end, right_dir_2).ok_or_else(|| {
+        SolveError::new(
+            "tangent_right_fillet",
+            "tangent(right, fillet)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let line_bottom_end_offset = line_bottom_end.offset(fillet_radius);
     let fillet_center_2 = fillet.origin;
     let tangent_right_fillet_meeting =
@@ -386,14 +390,14 @@ pub fn solve(
     ) {
         return Err(e);
     }
-    let tangent_right_fillet = tangent_right_fillet_meeting
-        .branch(0)
-        .ok_or(SolveError::new(
+    let tangent_right_fillet = tangent_right_fillet_meeting.branch(0).ok_or_else(|| {
+        SolveError::new(
             "tangent_right_fillet",
             "tangent(right, fillet)",
             ErrorKind::NoSuchBranch,
             tangent_right_fillet_meeting.roots.len() as f64,
-        ))?;
+        )
+    })?;
     let shift_6 = tangent_right_fillet - fillet_center_2;
     fillet.translate(&shift_6);
 
@@ -407,19 +411,22 @@ pub fn solve(
             -fillet_radius,
         ));
     }
-    let circle_fillet_center_3 =
-        Circle::new(fillet_center_3, fillet_radius).ok_or(SolveError::new(
+    let circle_fillet_center_3 = Circle::new(fillet_center_3, fillet_radius).ok_or_else(|| {
+        SolveError::new(
             "on_right_end_fillet",
             "on(right.end, fillet)",
             ErrorKind::Degenerate,
             0.0,
-        ))?;
-    let line_bottom_end_2 = Line::new(bottom_end, right_dir_2).ok_or(SolveError::new(
-        "on_right_end_fillet",
-        "on(right.end, fillet)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+        )
+    })?;
+    let line_bottom_end_2 = Line::new(bottom_end, right_dir_2).ok_or_else(|| {
+        SolveError::new(
+            "on_right_end_fillet",
+            "on(right.end, fillet)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let on_right_end_fillet_meeting =
         intersect2d::line_circle(&line_bottom_end_2, &circle_fillet_center_3);
     if let Some(e) = SolveError::from_contact(
@@ -431,12 +438,14 @@ pub fn solve(
     }
     let on_right_end_fillet = on_right_end_fillet_meeting
         .branch(usize::from(branches.on_right_end_fillet))
-        .ok_or(SolveError::new(
-            "on_right_end_fillet",
-            "on(right.end, fillet)",
-            ErrorKind::NoSuchBranch,
-            on_right_end_fillet_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "on_right_end_fillet",
+                "on(right.end, fillet)",
+                ErrorKind::NoSuchBranch,
+                on_right_end_fillet_meeting.roots.len() as f64,
+            )
+        })?;
     let length = (on_right_end_fillet - bottom_end).dot(&right_dir_2);
     if !f64::is_finite(length) || length < 0.0 {
         return Err(SolveError::new(
@@ -458,18 +467,22 @@ pub fn solve(
         ));
     }
     let circle_fillet_center_3_2 =
-        Circle::new(fillet_center_3, fillet_radius).ok_or(SolveError::new(
+        Circle::new(fillet_center_3, fillet_radius).ok_or_else(|| {
+            SolveError::new(
+                "on_top_start_fillet",
+                "on(top.start, fillet)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let line_left_start_2 = Line::new(left_start, top_dir_2).ok_or_else(|| {
+        SolveError::new(
             "on_top_start_fillet",
             "on(top.start, fillet)",
             ErrorKind::Degenerate,
             0.0,
-        ))?;
-    let line_left_start_2 = Line::new(left_start, top_dir_2).ok_or(SolveError::new(
-        "on_top_start_fillet",
-        "on(top.start, fillet)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+        )
+    })?;
     let top_start = top.origin;
     let on_top_start_fillet_meeting =
         intersect2d::line_circle(&line_left_start_2, &circle_fillet_center_3_2);
@@ -482,12 +495,14 @@ pub fn solve(
     }
     let on_top_start_fillet = on_top_start_fillet_meeting
         .branch(usize::from(branches.on_top_start_fillet))
-        .ok_or(SolveError::new(
-            "on_top_start_fillet",
-            "on(top.start, fillet)",
-            ErrorKind::NoSuchBranch,
-            on_top_start_fillet_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "on_top_start_fillet",
+                "on(top.start, fillet)",
+                ErrorKind::NoSuchBranch,
+                on_top_start_fillet_meeting.roots.len() as f64,
+            )
+        })?;
     let shift_7 = on_top_start_fillet - top_start;
     top.translate(&shift_7);
     let length_2 = (left_start - on_top_start_fillet).dot(&top_dir_2);

@@ -271,12 +271,14 @@ pub fn solve(
     // prismatic(slider.s, ground.rail) (slider_crank_2d.gcs:18)
     let ground_rail = ground.point_to_global(&Point2::new(0.0, 0.0));
     let ground_rail_x_dir = ground.vector_to_global(&Vector2::new(1.0, 0.0));
-    let line_ground_rail = Line::new(ground_rail, ground_rail_x_dir).ok_or(SolveError::new(
-        "prismatic_slider_s_ground_rail",
-        "prismatic(slider.s, ground.rail)",
-        ErrorKind::Degenerate,
-        0.0,
-    ))?;
+    let line_ground_rail = Line::new(ground_rail, ground_rail_x_dir).ok_or_else(|| {
+        SolveError::new(
+            "prismatic_slider_s_ground_rail",
+            "prismatic(slider.s, ground.rail)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let slider_s = slider.point_to_global(&Point2::new(0.0, 0.0));
     let nearest_slider_s = line_ground_rail.nearest(slider_s);
     let shift = nearest_slider_s - slider_s;
@@ -301,20 +303,23 @@ pub fn solve(
     // stroke: revolute(rod.b, slider.pin) (slider_crank_2d.gcs:17)
     let rod_b = rod.point_to_global(&rod_b_local);
     let circle_crank_tip_rod_b =
-        Circle::new(crank_tip, (rod_b - crank_tip).norm()).ok_or(SolveError::new(
-            "stroke",
-            "revolute(rod.b, slider.pin)",
-            ErrorKind::Degenerate,
-            0.0,
-        ))?;
+        Circle::new(crank_tip, (rod_b - crank_tip).norm()).ok_or_else(|| {
+            SolveError::new(
+                "stroke",
+                "revolute(rod.b, slider.pin)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let slider_pin = slider.point_to_global(&Point2::new(0.0, 0.0));
-    let parallel_slider_pin =
-        Line::new(slider_pin, line_ground_rail.dir()).ok_or(SolveError::new(
+    let parallel_slider_pin = Line::new(slider_pin, line_ground_rail.dir()).ok_or_else(|| {
+        SolveError::new(
             "stroke",
             "revolute(rod.b, slider.pin)",
             ErrorKind::Degenerate,
             0.0,
-        ))?;
+        )
+    })?;
     let stroke_meeting = intersect2d::line_circle(&parallel_slider_pin, &circle_crank_tip_rod_b);
     if let Some(e) = SolveError::from_contact(
         "stroke",
@@ -325,12 +330,14 @@ pub fn solve(
     }
     let stroke = stroke_meeting
         .branch(usize::from(branches.stroke))
-        .ok_or(SolveError::new(
-            "stroke",
-            "revolute(rod.b, slider.pin)",
-            ErrorKind::NoSuchBranch,
-            stroke_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "stroke",
+                "revolute(rod.b, slider.pin)",
+                ErrorKind::NoSuchBranch,
+                stroke_meeting.roots.len() as f64,
+            )
+        })?;
     let turn_3 = UnitComplex::rotation_between(&(rod_b - crank_tip), &(stroke - crank_tip));
     rod.rotate_about_by(&crank_tip, &turn_3);
     let shift_4 = stroke - slider_pin;

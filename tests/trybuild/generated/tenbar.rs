@@ -466,20 +466,24 @@ pub fn solve(
     // coincident(link8.b, link9.a) (tenbar.gcs:32)
     let link8_b = link8.point_to_global(&Point2::new(6.5, 5.2));
     let circle_link10_c_link8_b =
-        Circle::new(link10_c, (link8_b - link10_c).norm()).ok_or(SolveError::new(
-            "coincident_link8_b_link9_a",
-            "coincident(link8.b, link9.a)",
-            ErrorKind::Degenerate,
-            0.0,
-        ))?;
+        Circle::new(link10_c, (link8_b - link10_c).norm()).ok_or_else(|| {
+            SolveError::new(
+                "coincident_link8_b_link9_a",
+                "coincident(link8.b, link9.a)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let link9_a = link9.point_to_global(&Point2::new(6.5, 5.2));
     let circle_link7_a_link9_a =
-        Circle::new(link7_a, (link9_a - link7_a).norm()).ok_or(SolveError::new(
-            "coincident_link8_b_link9_a",
-            "coincident(link8.b, link9.a)",
-            ErrorKind::Degenerate,
-            0.0,
-        ))?;
+        Circle::new(link7_a, (link9_a - link7_a).norm()).ok_or_else(|| {
+            SolveError::new(
+                "coincident_link8_b_link9_a",
+                "coincident(link8.b, link9.a)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let coincident_link8_b_link9_a_meeting =
         intersect2d::circle_circle(&circle_link10_c_link8_b, &circle_link7_a_link9_a);
     if let Some(e) = SolveError::from_contact(
@@ -491,12 +495,14 @@ pub fn solve(
     }
     let coincident_link8_b_link9_a = coincident_link8_b_link9_a_meeting
         .branch(usize::from(branches.coincident_link8_b_link9_a))
-        .ok_or(SolveError::new(
-            "coincident_link8_b_link9_a",
-            "coincident(link8.b, link9.a)",
-            ErrorKind::NoSuchBranch,
-            coincident_link8_b_link9_a_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "coincident_link8_b_link9_a",
+                "coincident(link8.b, link9.a)",
+                ErrorKind::NoSuchBranch,
+                coincident_link8_b_link9_a_meeting.roots.len() as f64,
+            )
+        })?;
     let turn_4 = UnitComplex::rotation_between(
         &(link8_b - link10_c),
         &(coincident_link8_b_link9_a - link10_c),
@@ -526,20 +532,24 @@ pub fn solve(
     // coincident(link5.b, link8.a) (tenbar.gcs:31)
     let link5_b = link5.point_to_global(&Point2::new(5.6, 4.2));
     let circle_link4_p_link5_b =
-        Circle::new(link4_p, (link5_b - link4_p).norm()).ok_or(SolveError::new(
-            "coincident_link5_b_link8_a",
-            "coincident(link5.b, link8.a)",
-            ErrorKind::Degenerate,
-            0.0,
-        ))?;
+        Circle::new(link4_p, (link5_b - link4_p).norm()).ok_or_else(|| {
+            SolveError::new(
+                "coincident_link5_b_link8_a",
+                "coincident(link5.b, link8.a)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let link8_a = link8.point_to_global(&Point2::new(5.6, 4.2));
     let circle_link4_q_link8_a =
-        Circle::new(link4_q, (link8_a - link4_q).norm()).ok_or(SolveError::new(
-            "coincident_link5_b_link8_a",
-            "coincident(link5.b, link8.a)",
-            ErrorKind::Degenerate,
-            0.0,
-        ))?;
+        Circle::new(link4_q, (link8_a - link4_q).norm()).ok_or_else(|| {
+            SolveError::new(
+                "coincident_link5_b_link8_a",
+                "coincident(link5.b, link8.a)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let coincident_link5_b_link8_a_meeting =
         intersect2d::circle_circle(&circle_link4_p_link5_b, &circle_link4_q_link8_a);
     if let Some(e) = SolveError::from_contact(
@@ -551,12 +561,14 @@ pub fn solve(
     }
     let coincident_link5_b_link8_a = coincident_link5_b_link8_a_meeting
         .branch(usize::from(branches.coincident_link5_b_link8_a))
-        .ok_or(SolveError::new(
-            "coincident_link5_b_link8_a",
-            "coincident(link5.b, link8.a)",
-            ErrorKind::NoSuchBranch,
-            coincident_link5_b_link8_a_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "coincident_link5_b_link8_a",
+                "coincident(link5.b, link8.a)",
+                ErrorKind::NoSuchBranch,
+                coincident_link5_b_link8_a_meeting.roots.len() as f64,
+            )
+        })?;
     let turn_6 = UnitComplex::rotation_between(
         &(link5_b - link4_p),
         &(coincident_link5_b_link8_a - link4_p),
@@ -573,21 +585,25 @@ pub fn solve(
 
     // close: coincident(link5.c, link6.b) (tenbar.gcs:36)
     let link5_c = link5.point_to_global(&Point2::new(6.8, 2.6));
-    let circle_crank_tip_link5_c =
-        Circle::new(crank_tip, (link5_c - crank_tip).norm()).ok_or(SolveError::new(
-            "close",
-            "coincident(link5.c, link6.b)",
-            ErrorKind::Degenerate,
-            0.0,
-        ))?;
+    let circle_crank_tip_link5_c = Circle::new(crank_tip, (link5_c - crank_tip).norm())
+        .ok_or_else(|| {
+            SolveError::new(
+                "close",
+                "coincident(link5.c, link6.b)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let link6_b = link6.point_to_global(&Point2::new(6.8, 2.6));
-    let circle_ground_o6_link6_b =
-        Circle::new(ground_o6, (link6_b - ground_o6).norm()).ok_or(SolveError::new(
-            "close",
-            "coincident(link5.c, link6.b)",
-            ErrorKind::Degenerate,
-            0.0,
-        ))?;
+    let circle_ground_o6_link6_b = Circle::new(ground_o6, (link6_b - ground_o6).norm())
+        .ok_or_else(|| {
+            SolveError::new(
+                "close",
+                "coincident(link5.c, link6.b)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let close_meeting =
         intersect2d::circle_circle(&circle_crank_tip_link5_c, &circle_ground_o6_link6_b);
     if let Some(e) = SolveError::from_contact(
@@ -599,12 +615,14 @@ pub fn solve(
     }
     let close = close_meeting
         .branch(usize::from(branches.close))
-        .ok_or(SolveError::new(
-            "close",
-            "coincident(link5.c, link6.b)",
-            ErrorKind::NoSuchBranch,
-            close_meeting.roots.len() as f64,
-        ))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                "close",
+                "coincident(link5.c, link6.b)",
+                ErrorKind::NoSuchBranch,
+                close_meeting.roots.len() as f64,
+            )
+        })?;
     let turn_8 = UnitComplex::rotation_between(&(link5_c - crank_tip), &(close - crank_tip));
     link3.rotate_about_by(&crank_tip, &turn_8);
     link4.rotate_about_by(&crank_tip, &turn_8);
