@@ -344,7 +344,7 @@ impl<'a> Gen<'a> {
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::check;");
         w.line("#[allow(unused_imports)]");
-        w.line("use gcs_runtime::frame::Frame2;");
+        w.line("use gcs_runtime::frame::{rotation_between2, Frame2};");
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::intersect2d;");
         w.line("#[allow(unused_imports)]");
@@ -787,48 +787,63 @@ impl<'a> Gen<'a> {
         for &g in &solved {
             let geom = &m.geoms[g];
             let name = self.names.fresh(&geom.name);
-            let (origin, angle) = match &geom.sketch {
-                Sketch::Point(c) => (self.point_lit(c), "0.0".to_string()),
-                Sketch::Vector(_) => ("Point2::origin()".into(), String::new()),
+            // The same construction as the interpreter's configuration, so that both agree to
+            // the last bits: no rotation, a direction, or an angle.
+            let ctor = match &geom.sketch {
+                Sketch::Point(c) | Sketch::Circle { center: c, .. } => {
+                    format!("Frame2::at({})", self.point_lit(c))
+                }
+                Sketch::Vector(c) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
+                    // The frame the runtime would build, computed once here.
+                    let v = |i: usize| c.get(i).map_or(0.0, |&e| m.exprs.eval(e, &[]));
+                    let f = gcs_runtime::frame::Frame2::along(
+                        nalgebra::Point2::origin(),
+                        nalgebra::Vector2::new(v(0), v(1)),
+                    );
+                    let (cos, sin) = (f.rotation.re, f.rotation.im);
+                    if (cos, sin) == (1.0, 0.0) {
+                        "Frame2::at(Point2::origin())".to_string()
+                    } else {
+                        format!(
+                            "Frame2::from_cos_sin(Point2::origin(), {}, {})",
+                            float(cos),
+                            float(sin)
+                        )
+                    }
+                }
+                Sketch::Vector(c) => {
+                    format!("Frame2::along(Point2::origin(), {})", self.vector_lit(c))
+                }
                 Sketch::Line { from, to } | Sketch::Segment { from, to } => {
                     let (a, b) = (self.point_lit(from), self.point_lit(to));
-                    let constant = from.iter().chain(to).all(|&e| m.exprs.is_constant(e));
-                    let angle = if constant {
-                        let v = |c: &[ExprId], i: usize| {
-                            c.get(i).map_or(0.0, |&e| m.exprs.eval(e, &[]))
-                        };
-                        float((v(to, 1) - v(from, 1)).atan2(v(to, 0) - v(from, 0)))
-                    } else {
-                        format!("{{ let d: Vector2<f64> = {b} - {a}; d.y.atan2(d.x) }}")
-                    };
-                    (a.clone(), angle)
+                    format!("Frame2::along({a}, {b} - {a})")
                 }
-                Sketch::Circle { center, .. } => (self.point_lit(center), "0.0".into()),
-                Sketch::Body { at, angle, .. } => (
-                    at.as_ref()
-                        .map_or("Point2::origin()".into(), |c| self.point_lit(c)),
-                    angle.map_or("0.0".into(), |e| self.expr(e)),
-                ),
-                _ => ("Point2::origin()".into(), "0.0".into()),
-            };
-            let angle = if let Sketch::Vector(c) = &geom.sketch {
-                if c.iter().all(|&e| m.exprs.is_constant(e)) {
-                    let (x, y) = (
-                        m.exprs.eval(c[0], &[]),
-                        c.get(1).map_or(0.0, |&e| m.exprs.eval(e, &[])),
-                    );
-                    float(y.atan2(x))
-                } else {
-                    let v = self.vector_lit(c);
-                    format!("{{ let v = {v}; v.y.atan2(v.x) }}")
+                Sketch::Body { at, angle, .. } => {
+                    let origin = at
+                        .as_ref()
+                        .map_or("Point2::origin()".into(), |c| self.point_lit(c));
+                    match angle {
+                        None => format!("Frame2::at({origin})"),
+                        Some(e) if m.exprs.is_constant(*e) => {
+                            let a = m.exprs.eval(*e, &[]);
+                            if a == 0.0 {
+                                format!("Frame2::at({origin})")
+                            } else {
+                                let (sin, cos) = a.sin_cos();
+                                format!(
+                                    "Frame2::from_cos_sin({origin}, {}, {})",
+                                    float(cos),
+                                    float(sin)
+                                )
+                            }
+                        }
+                        Some(e) => format!("Frame2::new({origin}, {})", self.expr(*e)),
+                    }
                 }
-            } else {
-                angle
+                _ => "Frame2::at(Point2::origin())".into(),
             };
             let mutable = if self.moved(g) { "mut " } else { "" };
-            w.line(&format!(
-                "let {mutable}{name} = Frame2::new({origin}, {angle});"
-            ));
+            w.line(&format!("let {mutable}{name} = {ctor};"));
             self.frames.insert(g, name);
             if matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
                 let what = if geom.kind == GeomKind::Circle {
@@ -1465,7 +1480,7 @@ impl<'a> Gen<'a> {
                 let turn = self.names.fresh("turn");
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
                 w.line(&format!(
-                    "let {turn} = UnitComplex::rotation_between(&({f} - {p}), &({t} - {p}));"
+                    "let {turn} = rotation_between2(&({f} - {p}), &({t} - {p}));"
                 ));
                 for g in geoms {
                     w.line(&format!(
@@ -1482,9 +1497,7 @@ impl<'a> Gen<'a> {
             } => {
                 let turn = self.names.fresh("turn");
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
-                w.line(&format!(
-                    "let {turn} = UnitComplex::rotation_between(&{f}, &{t});"
-                ));
+                w.line(&format!("let {turn} = rotation_between2(&{f}, &{t});"));
                 for g in geoms {
                     w.line(&format!(
                         "{}.rotate_about_by(&{p}, &{turn});",

@@ -67,15 +67,14 @@ impl Config {
                     if !finite(&p) {
                         return Err(bad("its position is not finite"));
                     }
-                    cfg.frames.insert(id, Frame2::new(Point2::from(p), 0.0));
+                    cfg.frames.insert(id, Frame2::at(Point2::from(p)));
                 }
                 (Sketch::Vector(c), Owner::TopLevel) => {
                     let v = coords(model, c, params);
                     if !finite(&v) || v.norm() == 0.0 {
                         return Err(bad("its direction is zero or not finite"));
                     }
-                    cfg.frames
-                        .insert(id, Frame2::new(P2::origin(), v.y.atan2(v.x)));
+                    cfg.frames.insert(id, Frame2::along(P2::origin(), v));
                 }
                 (Sketch::Line { from, to } | Sketch::Segment { from, to }, Owner::TopLevel) => {
                     let a = coords(model, from, params);
@@ -84,8 +83,7 @@ impl Config {
                     if !finite(&a) || !finite(&b) || d.norm() == 0.0 {
                         return Err(bad("its two points coincide or are not finite"));
                     }
-                    cfg.frames
-                        .insert(id, Frame2::new(Point2::from(a), d.y.atan2(d.x)));
+                    cfg.frames.insert(id, Frame2::along(Point2::from(a), d));
                     if g.kind == GeomKind::Segment {
                         cfg.dims.insert(id, d.norm());
                     } else {
@@ -100,7 +98,7 @@ impl Config {
                             "its centre or radius is not finite, or the radius is negative",
                         ));
                     }
-                    cfg.frames.insert(id, Frame2::new(Point2::from(c), 0.0));
+                    cfg.frames.insert(id, Frame2::at(Point2::from(c)));
                     cfg.dims.insert(id, r);
                 }
                 (Sketch::Body { at, angle, .. }, Owner::TopLevel) => {

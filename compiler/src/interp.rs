@@ -312,7 +312,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 to,
             } => {
                 let c = p(*pivot);
-                let rot = UnitComplex::rotation_between(&(p(*from) - c), &(p(*to) - c));
+                let rot = gcs_runtime::frame::rotation_between2(&(p(*from) - c), &(p(*to) - c));
                 for g in geoms {
                     config.rotate(*g, c, rot);
                 }
@@ -325,7 +325,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 to,
             } => {
                 let c = p(*pivot);
-                let rot = UnitComplex::rotation_between(&v(*from), &v(*to));
+                let rot = gcs_runtime::frame::rotation_between2(&v(*from), &v(*to));
                 for g in geoms {
                     config.rotate(*g, c, rot);
                 }

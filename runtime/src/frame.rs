@@ -60,6 +60,36 @@ impl Frame2 {
         }
     }
 
+    /// A frame at `origin`, not rotated. No trigonometry: what a generated solver uses for a
+    /// sketch with no rotation.
+    #[inline]
+    pub fn at(origin: Point2<f64>) -> Self {
+        Self {
+            origin,
+            rotation: UnitComplex::identity(),
+        }
+    }
+
+    /// A frame at `origin` whose x axis points along `dir` (normalised here; a zero or
+    /// non-finite `dir` gives no rotation). No trigonometry.
+    #[inline]
+    pub fn along(origin: Point2<f64>, dir: Vector2<f64>) -> Self {
+        Self {
+            origin,
+            rotation: rotation_between2(&Vector2::x(), &dir),
+        }
+    }
+
+    /// A frame at `origin` rotated by the angle whose cosine and sine are given (a unit pair,
+    /// as computed once when the solver was generated).
+    #[inline]
+    pub fn from_cos_sin(origin: Point2<f64>, cos: f64, sin: f64) -> Self {
+        Self {
+            origin,
+            rotation: UnitComplex::from_cos_sin_unchecked(cos, sin),
+        }
+    }
+
     /// The counter-clockwise angle of the local x axis, in `(-pi, pi]`.
     #[inline]
     pub fn angle(&self) -> f64 {
@@ -619,5 +649,49 @@ mod tests {
             &Vector3::y(),
             &Vector3::new(f64::NAN, 0.0, 0.0),
         );
+    }
+}
+
+/// The rotation that turns the direction of `a` onto the direction of `b`, computed without
+/// trigonometry (a normalised complex number `(a . b, a x b)`). When either vector is zero or
+/// not finite, or the two are exactly opposite with a zero cross product, the result is
+/// well-defined: the identity for a zero vector (paper 000, footnote 6), a half turn for
+/// opposite directions.
+#[inline]
+pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
+    let c = a.dot(b);
+    let s = a.x * b.y - a.y * b.x;
+    // Scaled by the larger component first, so that the square root neither overflows nor
+    // underflows, without the cost of `hypot`.
+    let m = c.abs().max(s.abs());
+    if !(m > 0.0 && m.is_finite()) {
+        return UnitComplex::identity();
+    }
+    let (c, s) = (c / m, s / m);
+    let n = (c * c + s * s).sqrt();
+    UnitComplex::from_cos_sin_unchecked(c / n, s / n)
+}
+
+#[cfg(test)]
+mod rotation_between2_tests {
+    use super::*;
+
+    #[test]
+    fn turns_a_onto_b_without_trigonometry() {
+        for (a, b) in [
+            (Vector2::new(1.0, 0.0), Vector2::new(0.0, 2.0)),
+            (Vector2::new(3.0, -1.0), Vector2::new(-2.0, 0.5)),
+            (Vector2::new(1.0, 1.0), Vector2::new(-1.0, -1.0)),
+        ] {
+            let r = rotation_between2(&a, &b);
+            let turned = r * a.normalize();
+            assert!((turned - b.normalize()).norm() < 1e-15, "{a} {b}");
+        }
+        assert_eq!(
+            rotation_between2(&Vector2::zeros(), &Vector2::x()),
+            UnitComplex::identity()
+        );
+        let f = Frame2::along(Point2::new(1.0, 2.0), Vector2::new(0.0, 3.0));
+        assert!((f.x_axis() - Vector2::y()).norm() < 1e-15);
     }
 }

@@ -49,10 +49,12 @@ fn finite(p: P2) -> bool {
     p.x.is_finite() && p.y.is_finite()
 }
 
+#[inline]
 fn line_scale(l: &Line) -> [f64; 2] {
     [l.point().x, l.point().y]
 }
 
+#[inline]
 fn circle_scale(c: &Circle) -> [f64; 3] {
     [c.center().x, c.center().y, c.radius()]
 }
@@ -64,6 +66,7 @@ fn circle_scale(c: &Circle) -> [f64; 3] {
 /// [`tol::LENGTH_REL`] of the scale of each other, else [`Contact::Parallel`] with their
 /// distance. Nearly parallel lines beyond that tolerance cross far away; the root is then exact
 /// relative to its own distance from the origin.
+#[inline]
 pub fn line_line(a: &Line, b: &Line) -> Intersection<P2, 1> {
     let s = tol::scale(&[a.point().x, a.point().y, b.point().x, b.point().y]);
     let sin = cross(a.dir(), b.dir());
@@ -152,6 +155,7 @@ pub fn ray_ray(a: &Ray, b: &Ray) -> Intersection<P2, 1> {
 }
 
 /// Parameters along `l` of its crossings with `c`, ascending, with the contact.
+#[inline]
 fn line_circle_t(l: &Line, c: &Circle) -> (Roots<f64, 2>, Contact) {
     let [px, py] = line_scale(l);
     let [cx, cy, r] = circle_scale(c);
@@ -202,6 +206,7 @@ fn line_circle_tangent_point(l: &Line, c: &Circle) -> P2 {
 /// the line is the radius within [`tol::TANGENT_REL`] of the scale, the touching point (midway
 /// between the line's and the circle's closest points) in both slots; [`Contact::Disjoint`] with
 /// gap `|sd| - r` when the line misses.
+#[inline]
 pub fn line_circle(l: &Line, c: &Circle) -> Intersection<P2, 2> {
     let (ts, contact) = line_circle_t(l, c);
     let mut roots = Roots::new();
@@ -271,6 +276,7 @@ pub fn ray_circle(r: &Ray, c: &Circle) -> Intersection<Option<P2>, 2> {
 ///   in both slots;
 /// - apart (`d > r1 + r2`) or nested (`d < |r1 - r2|`, including concentric circles):
 ///   [`Contact::Disjoint`] with gap `d - (r1 + r2)` or `|r1 - r2| - d`.
+#[inline]
 pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
     let (r1, r2) = (a.radius(), b.radius());
     let s = tol::scale(&[

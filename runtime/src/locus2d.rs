@@ -78,6 +78,7 @@ impl Line {
 
     /// The line through `point` along `dir` (normalised). `None` when `dir` is zero or a value
     /// is not finite.
+    #[inline]
     pub fn new(point: P2, dir: V2) -> Option<Self> {
         if !finite_p(point) {
             return None;
@@ -89,48 +90,57 @@ impl Line {
     }
 
     /// The line from `a` towards `b`. `None` when they coincide or are not finite.
+    #[inline]
     pub fn through(a: P2, b: P2) -> Option<Self> {
         Line::new(a, b - a)
     }
 
     /// The point the line was built with (parameter 0).
+    #[inline]
     pub fn point(&self) -> P2 {
         self.point
     }
 
     /// The unit direction.
+    #[inline]
     pub fn dir(&self) -> V2 {
         self.dir
     }
 
     /// The unit normal pointing to the left of the direction.
+    #[inline]
     pub fn normal(&self) -> V2 {
         perp(self.dir)
     }
 
     /// The point at parameter `t` (signed length along the direction from [`Line::point`]).
+    #[inline]
     pub fn at(&self, t: f64) -> P2 {
         self.point + self.dir * t
     }
 
     /// The parameter of the foot of `p` on the line.
+    #[inline]
     pub fn param_of(&self, p: P2) -> f64 {
         self.dir.dot(&(p - self.point))
     }
 
     /// The signed distance of `p`: positive to the left of the direction. Also the implicit
     /// function of the line.
+    #[inline]
     pub fn signed_distance(&self, p: P2) -> f64 {
         cross(self.dir, p - self.point)
     }
 
     /// The distance of `p` from the line (the residual).
+    #[inline]
     pub fn residual(&self, p: P2) -> f64 {
         self.signed_distance(p).abs()
     }
 
     /// The parallel line displaced by `d` to the left (to the right for negative `d`), with the
     /// same direction. A non-finite `d` leaves the line unchanged.
+    #[inline]
     pub fn offset(&self, d: f64) -> Line {
         let d = if d.is_finite() { d } else { 0.0 };
         Line {
@@ -140,6 +150,7 @@ impl Line {
     }
 
     /// The same line with the opposite direction (left and right swap).
+    #[inline]
     pub fn reversed(&self) -> Line {
         Line {
             point: self.point,
@@ -158,6 +169,7 @@ pub struct Ray {
 impl Ray {
     /// The ray from `origin` along `dir` (normalised). `None` when `dir` is zero or a value is
     /// not finite.
+    #[inline]
     pub fn new(origin: P2, dir: V2) -> Option<Self> {
         let l = Line::new(origin, dir)?;
         Some(Ray { origin, dir: l.dir })
@@ -169,6 +181,7 @@ impl Ray {
     }
 
     /// The unit direction.
+    #[inline]
     pub fn dir(&self) -> V2 {
         self.dir
     }
@@ -182,17 +195,20 @@ impl Ray {
     }
 
     /// The point at parameter `t` (distance from the origin; on the ray for `t ≥ 0`).
+    #[inline]
     pub fn at(&self, t: f64) -> P2 {
         self.origin + self.dir * t
     }
 
     /// The parameter of the foot of `p` on the supporting line (negative behind the origin).
+    #[inline]
     pub fn param_of(&self, p: P2) -> f64 {
         self.dir.dot(&(p - self.origin))
     }
 
     /// The distance of `p` from the ray: from its foot when that is ahead of the origin, else
     /// from the origin.
+    #[inline]
     pub fn residual(&self, p: P2) -> f64 {
         if self.param_of(p) >= 0.0 {
             self.line().residual(p)
@@ -224,6 +240,7 @@ impl Circle {
     /// The circle about `center` with `radius`. `None` when the radius is negative or a value is
     /// not finite. A zero radius is accepted (intersections classify it as
     /// [`crate::Contact::ZeroRadius`]).
+    #[inline]
     pub fn new(center: P2, radius: f64) -> Option<Self> {
         if finite_p(center) && radius.is_finite() && radius >= 0.0 {
             Some(Circle { center, radius })
@@ -233,32 +250,38 @@ impl Circle {
     }
 
     /// The centre.
+    #[inline]
     pub fn center(&self) -> P2 {
         self.center
     }
 
     /// The radius.
+    #[inline]
     pub fn radius(&self) -> f64 {
         self.radius
     }
 
     /// The point at angle `theta` from the +x axis.
+    #[inline]
     pub fn at(&self, theta: f64) -> P2 {
         self.center + V2::new(theta.cos(), theta.sin()) * self.radius
     }
 
     /// The angle of `p` about the centre, in `(-π, π]` (0 at the centre itself).
+    #[inline]
     pub fn param_of(&self, p: P2) -> f64 {
         let d = p - self.center;
         d.y.atan2(d.x)
     }
 
     /// The implicit function `|p - center| - radius`: positive outside.
+    #[inline]
     pub fn implicit(&self, p: P2) -> f64 {
         (p - self.center).norm() - self.radius
     }
 
     /// The distance of `p` from the circle.
+    #[inline]
     pub fn residual(&self, p: P2) -> f64 {
         self.implicit(p).abs()
     }
@@ -280,6 +303,7 @@ impl Parabola {
     /// The parabola with this focus and directrix. `None` unless the focus lies strictly to the
     /// left of the directrix (beyond [`tol::LENGTH_REL`] of the coordinates): a focus on the
     /// directrix degenerates to a ray, and one on its right gives an empty locus.
+    #[inline]
     pub fn new(focus: P2, directrix: Line) -> Option<Self> {
         if !finite_p(focus) {
             return None;
@@ -314,6 +338,7 @@ impl Parabola {
     }
 
     /// The point at parameter `t`.
+    #[inline]
     pub fn at(&self, t: f64) -> P2 {
         let k = self.focal_distance();
         self.vertex() + self.directrix.dir * t + self.directrix.normal() * (t * t / (2.0 * k))
@@ -321,6 +346,7 @@ impl Parabola {
 
     /// The parameter of the point of the parabola nearest in `t` to `p` (exact for points on
     /// it): the coordinate of `p` along the directrix from the vertex.
+    #[inline]
     pub fn param_of(&self, p: P2) -> f64 {
         self.directrix.dir.dot(&(p - self.vertex()))
     }
@@ -329,6 +355,7 @@ impl Parabola {
     ///
     /// Evaluated without cancellation far along the arms: with `p - F = a D + b N` and
     /// `sd_D(p) = k + b`, it is `(a² - k (k + 2b)) / (|p - F| + k + b)`.
+    #[inline]
     pub fn implicit(&self, p: P2) -> f64 {
         let d = p - self.focus;
         let k = self.focal_distance();
@@ -344,6 +371,7 @@ impl Parabola {
 
     /// The distance of `p` from the parabola to first order: the implicit value over the length
     /// of its gradient.
+    #[inline]
     pub fn residual(&self, p: P2) -> f64 {
         let g = unit(p - self.focus).unwrap_or_else(V2::zeros) - self.directrix.normal();
         first_order(self.implicit(p), g.norm())
@@ -366,6 +394,7 @@ impl Ellipse {
     /// exceeds the focal distance by more than [`tol::LENGTH_REL`] of the scale (at equality
     /// the locus is the segment between the foci, below it empty), or when a value is not
     /// finite.
+    #[inline]
     pub fn new(f1: P2, f2: P2, sum: f64) -> Option<Self> {
         if !finite_p(f1) || !finite_p(f2) || !sum.is_finite() {
             return None;
@@ -398,12 +427,14 @@ impl Ellipse {
     }
 
     /// The point at eccentric angle `theta`.
+    #[inline]
     pub fn at(&self, theta: f64) -> P2 {
         let (m, a, b, u) = self.axes();
         m + u * (a * theta.cos()) + perp(u) * (b * theta.sin())
     }
 
     /// The eccentric angle of `p` (exact for points on the ellipse).
+    #[inline]
     pub fn param_of(&self, p: P2) -> f64 {
         let (m, a, b, u) = self.axes();
         let d = p - m;
@@ -411,11 +442,13 @@ impl Ellipse {
     }
 
     /// The implicit function `|p - F1| + |p - F2| - sum`: positive outside.
+    #[inline]
     pub fn implicit(&self, p: P2) -> f64 {
         (p - self.f1).norm() + (p - self.f2).norm() - self.sum
     }
 
     /// The distance of `p` from the ellipse to first order.
+    #[inline]
     pub fn residual(&self, p: P2) -> f64 {
         let g = unit(p - self.f1).unwrap_or_else(V2::zeros)
             + unit(p - self.f2).unwrap_or_else(V2::zeros);
@@ -440,6 +473,7 @@ impl Hyperbola {
     /// The branch with foci `f1`, `f2` and difference of focal distances `diff`. `None` unless
     /// `|diff|` is below the focal distance by more than [`tol::LENGTH_REL`] of the scale (at
     /// equality the locus is a ray, above it empty), or when a value is not finite.
+    #[inline]
     pub fn new(f1: P2, f2: P2, diff: f64) -> Option<Self> {
         if !finite_p(f1) || !finite_p(f2) || !diff.is_finite() {
             return None;
@@ -473,12 +507,14 @@ impl Hyperbola {
     }
 
     /// The point at parameter `t`.
+    #[inline]
     pub fn at(&self, t: f64) -> P2 {
         let (m, a, b, u) = self.axes();
         m + u * (a * t.cosh()) + perp(u) * (b * t.sinh())
     }
 
     /// The parameter of `p` (exact for points on the branch): `asinh(v·(p - M) / b)`.
+    #[inline]
     pub fn param_of(&self, p: P2) -> f64 {
         let (m, _, b, u) = self.axes();
         (perp(u).dot(&(p - m)) / b).asinh()
@@ -486,6 +522,7 @@ impl Hyperbola {
 
     /// The implicit function `|p - F1| - |p - F2| - diff`, evaluated without cancellation far
     /// from the foci as `2 (F2 - F1)·(p - M) / (|p - F1| + |p - F2|) - diff`.
+    #[inline]
     pub fn implicit(&self, p: P2) -> f64 {
         let (d1, d2) = ((p - self.f1).norm(), (p - self.f2).norm());
         let m = nalgebra::center(&self.f1, &self.f2);
@@ -499,6 +536,7 @@ impl Hyperbola {
 
     /// The distance of `p` from the branch to first order (points near the other branch are
     /// far from this one: their distance is not small).
+    #[inline]
     pub fn residual(&self, p: P2) -> f64 {
         let g = unit(p - self.f1).unwrap_or_else(V2::zeros)
             - unit(p - self.f2).unwrap_or_else(V2::zeros);
@@ -550,6 +588,7 @@ impl From<Hyperbola> for Conic {
 
 impl Conic {
     /// The point at parameter `t` (see each conic for its parameter).
+    #[inline]
     pub fn at(&self, t: f64) -> P2 {
         match self {
             Conic::Parabola(c) => c.at(t),
@@ -559,6 +598,7 @@ impl Conic {
     }
 
     /// The parameter of a point on the conic.
+    #[inline]
     pub fn param_of(&self, p: P2) -> f64 {
         match self {
             Conic::Parabola(c) => c.param_of(p),
@@ -568,6 +608,7 @@ impl Conic {
     }
 
     /// The implicit function (length units, zero on the locus).
+    #[inline]
     pub fn implicit(&self, p: P2) -> f64 {
         match self {
             Conic::Parabola(c) => c.implicit(p),
@@ -577,6 +618,7 @@ impl Conic {
     }
 
     /// The first-order distance of `p` from the conic.
+    #[inline]
     pub fn residual(&self, p: P2) -> f64 {
         match self {
             Conic::Parabola(c) => c.residual(p),

@@ -31,8 +31,12 @@ fn generated_solvers_are_golden() {
         let (_, model, diags) = gcs_lang::load(&format!("{m}.gcs"), &bytes);
         let model = model.unwrap_or_else(|| panic!("{m}: {diags:?}"));
         let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
-        let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&model, &analysis));
-        assert!(code.starts_with("// @generated"), "{m}: no @generated header");
+        let code =
+            gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&model, &analysis));
+        assert!(
+            code.starts_with("// @generated"),
+            "{m}: no @generated header"
+        );
         expect_file![root().join(format!("trybuild/generated/{m}.rs"))].assert_eq(&code);
     }
 }

@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::Frame2;
+use gcs_runtime::frame::{rotation_between2, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -181,12 +181,18 @@ pub fn solve(
 ) -> Result<Solution, SolveError> {
     let _ = (params, branches, defaults);
     // The sketch: where every geom starts.
-    let c = Frame2::new(Point2::new(0.0, 0.0), 0.0);
+    let c = Frame2::at(Point2::new(0.0, 0.0));
     let c_radius = 2.0;
-    let l = Frame2::new(Point2::new(-10.0, -4.0), 0.0);
-    let p = Frame2::new(Point2::new(6.0, 3.0), 0.0);
-    let mut ls = Frame2::new(Point2::new(5.0, 3.0), 0.0);
-    let mut g = Frame2::new(Point2::new(3.0, 0.0), 0.0);
+    let l = Frame2::along(
+        Point2::new(-10.0, -4.0),
+        Point2::new(10.0, -4.0) - Point2::new(-10.0, -4.0),
+    );
+    let p = Frame2::at(Point2::new(6.0, 3.0));
+    let mut ls = Frame2::along(
+        Point2::new(5.0, 3.0),
+        Point2::new(8.0, 3.0) - Point2::new(5.0, 3.0),
+    );
+    let mut g = Frame2::at(Point2::new(3.0, 0.0));
 
     // length(Ls) = 3 (circle.gcs:8)
     let ls_length = 3.0;
@@ -247,7 +253,7 @@ pub fn solve(
                 meet_meeting.roots.len() as f64,
             )
         })?;
-    let turn = UnitComplex::rotation_between(&(ls_end - p_2), &(meet - p_2));
+    let turn = rotation_between2(&(ls_end - p_2), &(meet - p_2));
     ls.rotate_about_by(&p_2, &turn);
     let shift_2 = meet - g_center;
     g.translate(&shift_2);

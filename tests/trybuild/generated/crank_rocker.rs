@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::Frame2;
+use gcs_runtime::frame::{rotation_between2, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -197,12 +197,12 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
     // The sketch: where every geom starts.
-    let a = Frame2::new(Point2::new(0.0, 0.0), 0.0);
-    let d = Frame2::new(Point2::new(4.0, 0.0), 0.0);
-    let x = Frame2::new(Point2::origin(), 0.0);
-    let mut crank = Frame2::new(Point2::origin(), 0.0);
-    let mut coupler = Frame2::new(Point2::origin(), 0.0);
-    let mut rocker = Frame2::new(Point2::origin(), 0.0);
+    let a = Frame2::at(Point2::new(0.0, 0.0));
+    let d = Frame2::at(Point2::new(4.0, 0.0));
+    let x = Frame2::at(Point2::origin());
+    let mut crank = Frame2::at(Point2::origin());
+    let mut coupler = Frame2::at(Point2::origin());
+    let mut rocker = Frame2::at(Point2::origin());
 
     // coincident(crank.a, A) (crank_rocker.gcs:15)
     let a_2 = a.origin;
@@ -220,7 +220,7 @@ pub fn solve(
     let x_dir = x.x_axis();
     let x_dir_turned = UnitComplex::new(params.theta) * x_dir;
     let crank_u_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = UnitComplex::rotation_between(&crank_u_dir, &x_dir_turned);
+    let turn = rotation_between2(&crank_u_dir, &x_dir_turned);
     crank.rotate_about_by(&a_2, &turn);
 
     // coincident(crank.b, coupler.b) (crank_rocker.gcs:17)
@@ -267,9 +267,9 @@ pub fn solve(
                 elbow_meeting.roots.len() as f64,
             )
         })?;
-    let turn_2 = UnitComplex::rotation_between(&(coupler_c - crank_b), &(elbow - crank_b));
+    let turn_2 = rotation_between2(&(coupler_c - crank_b), &(elbow - crank_b));
     coupler.rotate_about_by(&crank_b, &turn_2);
-    let turn_3 = UnitComplex::rotation_between(&(rocker_c - d_2), &(elbow - d_2));
+    let turn_3 = rotation_between2(&(rocker_c - d_2), &(elbow - d_2));
     rocker.rotate_about_by(&d_2, &turn_3);
 
     Ok(Solution {

@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::Frame2;
+use gcs_runtime::frame::{rotation_between2, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -216,15 +216,15 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
     // The sketch: where every geom starts.
-    let o = Frame2::new(Point2::new(0.0, 0.0), 0.0);
-    let b = Frame2::new(Point2::new(-38.0, -7.8), 0.0);
-    let x = Frame2::new(Point2::origin(), 0.0);
-    let mut crank = Frame2::new(Point2::origin(), 0.0);
-    let mut upper = Frame2::new(Point2::new(-24.0135, 31.2721), 0.0);
-    let mut lower = Frame2::new(Point2::new(-26.9521, -45.5152), 0.0);
-    let mut top = Frame2::new(Point2::new(-74.7944, 8.1432), 0.0);
-    let mut knee = Frame2::new(Point2::new(-59.2315, -28.0529), 0.0);
-    let mut foot = Frame2::new(Point2::new(-43.1601, -91.7569), 0.0);
+    let o = Frame2::at(Point2::new(0.0, 0.0));
+    let b = Frame2::at(Point2::new(-38.0, -7.8));
+    let x = Frame2::at(Point2::origin());
+    let mut crank = Frame2::at(Point2::origin());
+    let mut upper = Frame2::at(Point2::new(-24.0135, 31.2721));
+    let mut lower = Frame2::at(Point2::new(-26.9521, -45.5152));
+    let mut top = Frame2::at(Point2::new(-74.7944, 8.1432));
+    let mut knee = Frame2::at(Point2::new(-59.2315, -28.0529));
+    let mut foot = Frame2::at(Point2::new(-43.1601, -91.7569));
 
     // coincident(crank.o, O) (jansen_leg.gcs:19)
     let o_2 = o.origin;
@@ -265,7 +265,7 @@ pub fn solve(
     let x_dir = x.x_axis();
     let x_dir_turned = UnitComplex::new(params.theta) * x_dir;
     let crank_u_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = UnitComplex::rotation_between(&crank_u_dir, &x_dir_turned);
+    let turn = rotation_between2(&crank_u_dir, &x_dir_turned);
     crank.rotate_about_by(&o_2, &turn);
 
     // distance(crank.tip, lower) = 61.9 (jansen_leg.gcs:23)

@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::Frame2;
+use gcs_runtime::frame::{rotation_between2, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -258,15 +258,15 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
     // The sketch: where every geom starts.
-    let a = Frame2::new(Point2::new(0.0, 0.0), 0.0);
-    let d = Frame2::new(Point2::new(4.0, 0.0), 0.0);
-    let f = Frame2::new(Point2::new(7.0, 1.0), 0.0);
-    let x = Frame2::new(Point2::origin(), 0.0);
-    let mut crank = Frame2::new(Point2::origin(), 0.0);
-    let mut coupler = Frame2::new(Point2::origin(), 0.0);
-    let mut rocker = Frame2::new(Point2::origin(), 0.0);
-    let mut link = Frame2::new(Point2::origin(), 0.0);
-    let mut follower = Frame2::new(Point2::origin(), 0.0);
+    let a = Frame2::at(Point2::new(0.0, 0.0));
+    let d = Frame2::at(Point2::new(4.0, 0.0));
+    let f = Frame2::at(Point2::new(7.0, 1.0));
+    let x = Frame2::at(Point2::origin());
+    let mut crank = Frame2::at(Point2::origin());
+    let mut coupler = Frame2::at(Point2::origin());
+    let mut rocker = Frame2::at(Point2::origin());
+    let mut link = Frame2::at(Point2::origin());
+    let mut follower = Frame2::at(Point2::origin());
 
     // coincident(crank.a, A) (sixbar.gcs:18)
     let a_2 = a.origin;
@@ -290,7 +290,7 @@ pub fn solve(
     let x_dir = x.x_axis();
     let x_dir_turned = UnitComplex::new(params.theta) * x_dir;
     let crank_u_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = UnitComplex::rotation_between(&crank_u_dir, &x_dir_turned);
+    let turn = rotation_between2(&crank_u_dir, &x_dir_turned);
     crank.rotate_about_by(&a_2, &turn);
 
     // coincident(crank.b, coupler.b) (sixbar.gcs:20)
@@ -337,9 +337,9 @@ pub fn solve(
                 first_meeting.roots.len() as f64,
             )
         })?;
-    let turn_2 = UnitComplex::rotation_between(&(coupler_c - crank_b), &(first - crank_b));
+    let turn_2 = rotation_between2(&(coupler_c - crank_b), &(first - crank_b));
     coupler.rotate_about_by(&crank_b, &turn_2);
-    let turn_3 = UnitComplex::rotation_between(&(rocker_c - d_2), &(first - d_2));
+    let turn_3 = rotation_between2(&(rocker_c - d_2), &(first - d_2));
     rocker.rotate_about_by(&d_2, &turn_3);
 
     // coincident(rocker.e, link.e) (sixbar.gcs:23)
@@ -387,9 +387,9 @@ pub fn solve(
                 second_meeting.roots.len() as f64,
             )
         })?;
-    let turn_4 = UnitComplex::rotation_between(&(link_g - rocker_e), &(second - rocker_e));
+    let turn_4 = rotation_between2(&(link_g - rocker_e), &(second - rocker_e));
     link.rotate_about_by(&rocker_e, &turn_4);
-    let turn_5 = UnitComplex::rotation_between(&(follower_g - f_2), &(second - f_2));
+    let turn_5 = rotation_between2(&(follower_g - f_2), &(second - f_2));
     follower.rotate_about_by(&f_2, &turn_5);
 
     Ok(Solution {

@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::Frame2;
+use gcs_runtime::frame::{rotation_between2, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -262,13 +262,25 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("w", params.w), ("h", params.h), ("r", params.r)])?;
     // The sketch: where every geom starts.
-    let origin = Frame2::new(Point2::new(0.0, 0.0), 0.0);
-    let mut bottom = Frame2::new(Point2::new(0.0, 0.0), 0.0);
-    let mut right = Frame2::new(Point2::new(10.0, 0.0), std::f64::consts::FRAC_PI_2);
-    let mut fillet = Frame2::new(Point2::new(8.0, 4.0), 0.0);
-    let mut top = Frame2::new(Point2::new(8.0, 6.0), std::f64::consts::PI);
+    let origin = Frame2::at(Point2::new(0.0, 0.0));
+    let mut bottom = Frame2::along(
+        Point2::new(0.0, 0.0),
+        Point2::new(10.0, 0.0) - Point2::new(0.0, 0.0),
+    );
+    let mut right = Frame2::along(
+        Point2::new(10.0, 0.0),
+        Point2::new(10.0, 4.0) - Point2::new(10.0, 0.0),
+    );
+    let mut fillet = Frame2::at(Point2::new(8.0, 4.0));
+    let mut top = Frame2::along(
+        Point2::new(8.0, 6.0),
+        Point2::new(0.0, 6.0) - Point2::new(8.0, 6.0),
+    );
     let mut top_length = 8.0;
-    let mut left = Frame2::new(Point2::new(0.0, 6.0), -std::f64::consts::FRAC_PI_2);
+    let mut left = Frame2::along(
+        Point2::new(0.0, 6.0),
+        Point2::new(0.0, 0.0) - Point2::new(0.0, 6.0),
+    );
 
     // height: length(left) = h (sketch_profile.gcs:29)
     if !f64::is_finite(params.h) || params.h < 0.0 {
@@ -317,7 +329,7 @@ pub fn solve(
     // horizontal(bottom) (sketch_profile.gcs:20)
     let x_axis = Vector2::new(1.0, 0.0);
     let bottom_dir = bottom.x_axis();
-    let turn = UnitComplex::rotation_between(&bottom_dir, &x_axis);
+    let turn = rotation_between2(&bottom_dir, &x_axis);
     bottom.rotate_about_by(&origin_2, &turn);
 
     // coincident(bottom.end, right.start) (sketch_profile.gcs:17)
@@ -331,14 +343,14 @@ pub fn solve(
     let x_axis_2_turned = UnitComplex::new(std::f64::consts::PI) * x_axis_2;
     let top_2 = top.origin;
     let top_dir = top.x_axis();
-    let turn_2 = UnitComplex::rotation_between(&top_dir, &x_axis_2_turned);
+    let turn_2 = rotation_between2(&top_dir, &x_axis_2_turned);
     top.rotate_about_by(&top_2, &turn_2);
 
     // vertical(left) (sketch_profile.gcs:23)
     let y_axis = Vector2::new(0.0, 1.0);
     let y_axis_turned = UnitComplex::new(std::f64::consts::PI) * y_axis;
     let left_dir = left.x_axis();
-    let turn_3 = UnitComplex::rotation_between(&left_dir, &y_axis_turned);
+    let turn_3 = rotation_between2(&left_dir, &y_axis_turned);
     left.rotate_about_by(&origin_2, &turn_3);
 
     // coincident(top.end, left.start) (sketch_profile.gcs:18)
@@ -366,7 +378,7 @@ pub fn solve(
     // vertical(right) (sketch_profile.gcs:21)
     let y_axis_2 = Vector2::new(0.0, 1.0);
     let right_dir = right.x_axis();
-    let turn_4 = UnitComplex::rotation_between(&right_dir, &y_axis_2);
+    let turn_4 = rotation_between2(&right_dir, &y_axis_2);
     right.rotate_about_by(&bottom_end, &turn_4);
 
     // tangent(right, fillet) (sketch_profile.gcs:24)

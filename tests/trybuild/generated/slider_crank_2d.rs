@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::Frame2;
+use gcs_runtime::frame::{rotation_between2, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -251,21 +251,21 @@ pub fn solve(
         ("rod_len", params.rod_len),
     ])?;
     // The sketch: where every geom starts.
-    let ground = Frame2::new(Point2::origin(), 0.0);
-    let mut crank = Frame2::new(Point2::new(0.0, 0.0), 0.0);
+    let ground = Frame2::at(Point2::origin());
+    let mut crank = Frame2::at(Point2::new(0.0, 0.0));
     let crank_tip_local = Point2::new(params.crank_len, 0.0);
     let crank_tip_x_local = Vector2::new(1.0, 0.0).normalize();
-    let mut rod = Frame2::new(Point2::new(1.5, 0.0), 0.0);
+    let mut rod = Frame2::at(Point2::new(1.5, 0.0));
     let rod_b_local = Point2::new(params.rod_len, 0.0);
     let rod_b_x_local = Vector2::new(1.0, 0.0).normalize();
-    let mut slider = Frame2::new(Point2::new(5.2, 0.0), 0.0);
+    let mut slider = Frame2::at(Point2::new(5.2, 0.0));
 
     // drive: offset_x(ground.o, crank.o) = phi (slider_crank_2d.gcs:15)
     let ground_o_x_dir = ground.vector_to_global(&Vector2::new(1.0, 0.0));
     let ground_o_x_dir_turned = UnitComplex::new(params.phi) * ground_o_x_dir;
     let crank_2 = crank.origin;
     let crank_o_x_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = UnitComplex::rotation_between(&crank_o_x_dir, &ground_o_x_dir_turned);
+    let turn = rotation_between2(&crank_o_x_dir, &ground_o_x_dir_turned);
     crank.rotate_about_by(&crank_2, &turn);
 
     // prismatic(slider.s, ground.rail) (slider_crank_2d.gcs:18)
@@ -285,7 +285,7 @@ pub fn solve(
     slider.translate(&shift);
     let slider_s_2 = slider.point_to_global(&Point2::new(0.0, 0.0));
     let slider_s_x_dir = slider.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn_2 = UnitComplex::rotation_between(&slider_s_x_dir, &ground_rail_x_dir);
+    let turn_2 = rotation_between2(&slider_s_x_dir, &ground_rail_x_dir);
     slider.rotate_about_by(&slider_s_2, &turn_2);
 
     // revolute(crank.o, ground.o) (slider_crank_2d.gcs:14)
@@ -338,7 +338,7 @@ pub fn solve(
                 stroke_meeting.roots.len() as f64,
             )
         })?;
-    let turn_3 = UnitComplex::rotation_between(&(rod_b - crank_tip), &(stroke - crank_tip));
+    let turn_3 = rotation_between2(&(rod_b - crank_tip), &(stroke - crank_tip));
     rod.rotate_about_by(&crank_tip, &turn_3);
     let shift_4 = stroke - slider_pin;
     slider.translate(&shift_4);

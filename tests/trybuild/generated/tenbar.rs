@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::Frame2;
+use gcs_runtime::frame::{rotation_between2, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -386,16 +386,16 @@ pub fn solve(
         ("theta3", params.theta3),
     ])?;
     // The sketch: where every geom starts.
-    let ground = Frame2::new(Point2::origin(), 0.0);
-    let mut crank = Frame2::new(Point2::origin(), 0.0);
-    let mut link3 = Frame2::new(Point2::origin(), 0.0);
-    let mut link4 = Frame2::new(Point2::origin(), 0.0);
-    let mut link5 = Frame2::new(Point2::origin(), 0.0);
-    let mut link6 = Frame2::new(Point2::origin(), 0.0);
-    let mut link7 = Frame2::new(Point2::origin(), 0.0);
-    let mut link10 = Frame2::new(Point2::origin(), 0.0);
-    let mut link8 = Frame2::new(Point2::origin(), 0.0);
-    let mut link9 = Frame2::new(Point2::origin(), 0.0);
+    let ground = Frame2::at(Point2::origin());
+    let mut crank = Frame2::at(Point2::origin());
+    let mut link3 = Frame2::at(Point2::origin());
+    let mut link4 = Frame2::at(Point2::origin());
+    let mut link5 = Frame2::at(Point2::origin());
+    let mut link6 = Frame2::at(Point2::origin());
+    let mut link7 = Frame2::at(Point2::origin());
+    let mut link10 = Frame2::at(Point2::origin());
+    let mut link8 = Frame2::at(Point2::origin());
+    let mut link9 = Frame2::at(Point2::origin());
 
     // coincident(crank.o, ground.o1) (tenbar.gcs:22)
     let ground_o1 = ground.point_to_global(&Point2::new(0.0, 0.0));
@@ -413,7 +413,7 @@ pub fn solve(
     let ground_x_dir = ground.vector_to_global(&Vector2::new(1.0, 0.0));
     let ground_x_dir_turned = UnitComplex::new(params.theta1) * ground_x_dir;
     let crank_u_dir = crank.vector_to_global(&Vector2::new(0.5000001748438417, 0.8660253028382761));
-    let turn = UnitComplex::rotation_between(&crank_u_dir, &ground_x_dir_turned);
+    let turn = rotation_between2(&crank_u_dir, &ground_x_dir_turned);
     crank.rotate_about_by(&ground_o1, &turn);
 
     // coincident(link3.a, crank.tip) (tenbar.gcs:24)
@@ -435,7 +435,7 @@ pub fn solve(
     let link10_u_dir_turned = UnitComplex::new(minus) * link10_u_dir;
     let link7_u_dir =
         link7.vector_to_global(&Vector2::new(-0.9701425001453319, -0.24253562503633297));
-    let turn_2 = UnitComplex::rotation_between(&link7_u_dir, &link10_u_dir_turned);
+    let turn_2 = rotation_between2(&link7_u_dir, &link10_u_dir_turned);
     link7.rotate_about_by(&link10_a, &turn_2);
 
     // coincident(link3.b, link4.a) (tenbar.gcs:25)
@@ -448,7 +448,7 @@ pub fn solve(
     let link3_u_dir = link3.vector_to_global(&Vector2::new(0.9848077908426043, 0.1736479631199549));
     let link3_u_dir_turned = UnitComplex::new(params.theta2) * link3_u_dir;
     let link4_u_dir = link4.vector_to_global(&Vector2::new(0.7129333647431632, 0.7012317858140715));
-    let turn_3 = UnitComplex::rotation_between(&link4_u_dir, &link3_u_dir_turned);
+    let turn_3 = rotation_between2(&link4_u_dir, &link3_u_dir_turned);
     link4.rotate_about_by(&link3_b, &turn_3);
 
     // coincident(link10.c, link8.c) (tenbar.gcs:34)
@@ -503,12 +503,12 @@ pub fn solve(
                 coincident_link8_b_link9_a_meeting.roots.len() as f64,
             )
         })?;
-    let turn_4 = UnitComplex::rotation_between(
+    let turn_4 = rotation_between2(
         &(link8_b - link10_c),
         &(coincident_link8_b_link9_a - link10_c),
     );
     link8.rotate_about_by(&link10_c, &turn_4);
-    let turn_5 = UnitComplex::rotation_between(
+    let turn_5 = rotation_between2(
         &(link9_a - link7_a),
         &(coincident_link8_b_link9_a - link7_a),
     );
@@ -569,12 +569,12 @@ pub fn solve(
                 coincident_link5_b_link8_a_meeting.roots.len() as f64,
             )
         })?;
-    let turn_6 = UnitComplex::rotation_between(
+    let turn_6 = rotation_between2(
         &(link5_b - link4_p),
         &(coincident_link5_b_link8_a - link4_p),
     );
     link5.rotate_about_by(&link4_p, &turn_6);
-    let turn_7 = UnitComplex::rotation_between(
+    let turn_7 = rotation_between2(
         &(link8_a - link4_q),
         &(coincident_link5_b_link8_a - link4_q),
     );
@@ -623,7 +623,7 @@ pub fn solve(
                 close_meeting.roots.len() as f64,
             )
         })?;
-    let turn_8 = UnitComplex::rotation_between(&(link5_c - crank_tip), &(close - crank_tip));
+    let turn_8 = rotation_between2(&(link5_c - crank_tip), &(close - crank_tip));
     link3.rotate_about_by(&crank_tip, &turn_8);
     link4.rotate_about_by(&crank_tip, &turn_8);
     link10.rotate_about_by(&crank_tip, &turn_8);
@@ -631,7 +631,7 @@ pub fn solve(
     link8.rotate_about_by(&crank_tip, &turn_8);
     link9.rotate_about_by(&crank_tip, &turn_8);
     link5.rotate_about_by(&crank_tip, &turn_8);
-    let turn_9 = UnitComplex::rotation_between(&(link6_b - ground_o6), &(close - ground_o6));
+    let turn_9 = rotation_between2(&(link6_b - ground_o6), &(close - ground_o6));
     link6.rotate_about_by(&ground_o6, &turn_9);
 
     Ok(Solution {
