@@ -661,8 +661,14 @@ mod tests {
 pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
     let c = a.dot(b);
     let s = a.x * b.y - a.y * b.x;
-    // Scaled by the larger component first, so that the square root neither overflows nor
-    // underflows, without the cost of `hypot`.
+    // The common case: one square root and one division.
+    let n2 = c * c + s * s;
+    if n2 > 1e-250 && n2 < 1e250 {
+        let inv = 1.0 / n2.sqrt();
+        return UnitComplex::from_cos_sin_unchecked(c * inv, s * inv);
+    }
+    // Tiny or huge: scaled by the larger component first, so that the square root neither
+    // overflows nor underflows.
     let m = c.abs().max(s.abs());
     if !(m > 0.0 && m.is_finite()) {
         return UnitComplex::identity();
