@@ -1181,14 +1181,16 @@ impl<'a> Gen<'a> {
                     let mut code = String::new();
                     for (k, (s, x)) in terms.iter().enumerate() {
                         let v = self.r(*x);
-                        match (k, *s) {
-                            (0, s) if s == 1.0 => code.push_str(&v),
-                            (0, s) if s == -1.0 => code.push_str(&format!("-{v}")),
-                            (0, s) => code.push_str(&format!("{} * {v}", float(s))),
-                            (_, s) if s == 1.0 => code.push_str(&format!(" + {v}")),
-                            (_, s) if s == -1.0 => code.push_str(&format!(" - {v}")),
-                            (_, s) => code.push_str(&format!(" + {} * {v}", float(s))),
-                        }
+                        let (first, unit, minus) = (k == 0, *s == 1.0, *s == -1.0);
+                        let term = match (first, unit, minus) {
+                            (true, true, _) => v,
+                            (true, _, true) => format!("-{v}"),
+                            (true, _, _) => format!("{} * {v}", float(*s)),
+                            (false, true, _) => format!(" + {v}"),
+                            (false, _, true) => format!(" - {v}"),
+                            (false, _, _) => format!(" + {} * {v}", float(*s)),
+                        };
+                        code.push_str(&term);
                     }
                     self.define(w, r, "sum", &code);
                 }

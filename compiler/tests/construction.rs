@@ -1484,7 +1484,7 @@ fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &
                             } else {
                                 tol_len
                             };
-                            !(r.value <= tol)
+                            r.value.is_nan() || r.value > tol
                         })
                         .map(|r| {
                             worst = worst.max(r.value / inst.scale.max(1.0));
@@ -1605,7 +1605,7 @@ fn run_inconsistent(entry_id: &str, seed: u64, inst: &Instance, stats: &mut Stat
                 .iter()
                 .find(|r| r.constraint == z)
                 .map_or(0.0, |r| r.value);
-            if !(rz <= 1e-9 * inst.scale.max(1.0)) {
+            if rz.is_nan() || rz > 1e-9 * inst.scale.max(1.0) {
                 stats.inconsistent_accepted.push(format!(
                     "{entry_id}: seed {seed}, branches {combo:?}: `{}` checked but violated by {rz:.3e}\n```gcs\n{}```",
                     model.constraints[z].text,
