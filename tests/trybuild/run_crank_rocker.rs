@@ -1,4 +1,5 @@
 // Runs the generated solver of `examples/crank_rocker.gcs` against the interpreter.
+#![deny(warnings)]
 
 mod solver {
     include!("generated/crank_rocker.rs");

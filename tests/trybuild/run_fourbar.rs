@@ -1,4 +1,5 @@
 // Runs the generated solver of `examples/fourbar.gcs` against the interpreter.
+#![deny(warnings)]
 
 mod solver {
     include!("generated/fourbar.rs");

@@ -1,4 +1,5 @@
 // Runs the generated solver of `examples/jansen_leg.gcs` against the interpreter.
+#![deny(warnings)]
 
 mod solver {
     include!("generated/jansen_leg.rs");

@@ -1,4 +1,5 @@
 // Runs the generated solver of `examples/sketch_profile.gcs` against the interpreter.
+#![deny(warnings)]
 
 mod solver {
     include!("generated/sketch_profile.rs");

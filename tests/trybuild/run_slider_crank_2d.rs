@@ -1,4 +1,5 @@
 // Runs the generated solver of `examples/slider_crank_2d.gcs` against the interpreter.
+#![deny(warnings)]
 
 mod solver {
     include!("generated/slider_crank_2d.rs");

@@ -1,4 +1,5 @@
 // Runs the generated solver of `examples/tenbar.gcs` against the interpreter.
+#![deny(warnings)]
 
 mod solver {
     include!("generated/tenbar.rs");
