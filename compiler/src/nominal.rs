@@ -144,6 +144,19 @@ pub fn report(model: &Model) -> String {
         }
         out.push('\n');
     }
+    out.push_str(&constraints_table(&n));
+    let _ = writeln!(
+        out,
+        "  (a count of equations against unknowns, not the analysis: it cannot see redundant \
+         constraints or which motions stay free)"
+    );
+    out
+}
+
+/// The constraints table (each constraint with the DOF it nominally removes) and the nominal
+/// total: shared by `check`'s nominal summary and its analysis report.
+pub fn constraints_table(n: &Nominal) -> String {
+    let mut out = String::new();
     let c_name_w = n
         .constraints
         .iter()
@@ -177,11 +190,6 @@ pub fn report(model: &Model) -> String {
         n.total_dof,
         n.total_removed,
         n.balance()
-    );
-    let _ = writeln!(
-        out,
-        "  (a count of equations against unknowns, not the analysis: it cannot see redundant \
-         constraints or which motions stay free)"
     );
     out
 }

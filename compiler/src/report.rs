@@ -172,40 +172,7 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
             left(id)
         );
     }
-    let c_name_w = nominal
-        .constraints
-        .iter()
-        .map(|c| c.name.len())
-        .max()
-        .unwrap_or(0)
-        .max(4);
-    let c_text_w = nominal
-        .constraints
-        .iter()
-        .map(|c| c.text.len())
-        .max()
-        .unwrap_or(0)
-        .max(4);
-    let _ = writeln!(
-        out,
-        "\nconstraints{:>w$}",
-        "removes",
-        w = c_name_w + c_text_w + 2
-    );
-    for c in &nominal.constraints {
-        let _ = writeln!(
-            out,
-            "  {:c_name_w$}  {:c_text_w$}  {:>7}",
-            c.name, c.text, c.removes
-        );
-    }
-    let _ = writeln!(
-        out,
-        "\nnominal DOF: {} - {} = {}",
-        nominal.total_dof,
-        nominal.total_removed,
-        nominal.balance()
-    );
+    out.push_str(&crate::nominal::constraints_table(&nominal));
     if let Some(g) = a.plan.grounded {
         let _ = writeln!(
             out,
