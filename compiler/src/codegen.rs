@@ -784,7 +784,14 @@ impl<'a> Gen<'a> {
         // The sketch: frames, dimensions and members' local coordinates.
         w.line("// The sketch: where every geom starts.");
         let solved = self.solved();
-        for &g in &solved {
+        // Every geom the plan reads or moves gets a frame; the solution reports `solved` ones.
+        let worked: Vec<GeomId> = self
+            .model
+            .top_level()
+            .map(|(id, _)| id)
+            .filter(|id| solved.contains(id) || self.touched(*id))
+            .collect();
+        for &g in &worked {
             let geom = &m.geoms[g];
             let name = self.names.fresh(&geom.name);
             // The same construction as the interpreter's configuration, so that both agree to
@@ -881,27 +888,37 @@ impl<'a> Gen<'a> {
                 if !matches!(p.owner, Owner::Member(_)) || !self.local_is_param(part) {
                     continue;
                 }
-                let lname = self.names.fresh(&format!("{}_local", p.name));
+                // The solution stores the locals of the geoms it reports; other geoms need a
+                // local only where a step reads it.
+                let reported = solved.contains(&g);
+                let axis = p.parts.first().copied();
+                let wanted = |s: &Self, f: GeomId| reported || s.reads_feature(f);
                 match &p.sketch {
-                    Sketch::Point(c) => w.line(&format!("let {lname} = {};", self.point_lit(c))),
-                    Sketch::Vector(c) => w.line(&format!(
-                        "let {lname} = {}.normalize();",
-                        self.vector_lit(c)
-                    )),
-                    Sketch::Marker { origin, x, .. } => {
-                        w.line(&format!("let {lname} = {};", self.point_lit(origin)));
-                        if let Some(&ax) = p.parts.first() {
-                            let xname = self.names.fresh(&format!("{}_x_local", p.name));
-                            w.line(&format!(
-                                "let {xname} = {}.normalize();",
-                                self.vector_lit(x)
-                            ));
-                            self.locals.insert(ax, xname);
-                        }
+                    Sketch::Point(c) | Sketch::Marker { origin: c, .. } if wanted(self, part) => {
+                        let lname = self.names.fresh(&format!("{}_local", p.name));
+                        w.line(&format!("let {lname} = {};", self.point_lit(c)));
+                        self.locals.insert(part, lname);
+                    }
+                    Sketch::Vector(c) if wanted(self, part) => {
+                        let lname = self.names.fresh(&format!("{}_local", p.name));
+                        w.line(&format!(
+                            "let {lname} = {}.normalize();",
+                            self.vector_lit(c)
+                        ));
+                        self.locals.insert(part, lname);
                     }
                     _ => {}
                 }
-                self.locals.insert(part, lname);
+                if let (Sketch::Marker { x, .. }, Some(ax)) = (&p.sketch, axis) {
+                    if wanted(self, ax) {
+                        let xname = self.names.fresh(&format!("{}_x_local", p.name));
+                        w.line(&format!(
+                            "let {xname} = {}.normalize();",
+                            self.vector_lit(x)
+                        ));
+                        self.locals.insert(ax, xname);
+                    }
+                }
             }
         }
         // Tolerance of run-time checks: relative to the model's scale.
@@ -912,12 +929,21 @@ impl<'a> Gen<'a> {
             .any(|s| matches!(s.op, Op::Check { .. } | Op::Onto { .. }))
         {
             let mut terms = Vec::new();
-            for &g in &solved {
+            // The scale of the geoms the plan works on, as the interpreter measures it.
+            let touched = self.plan.touched(m);
+            for &g in worked.iter().filter(|g| touched.contains(g)) {
                 let f = &self.frames[&g];
                 terms.push(format!("{f}.origin.x"));
                 terms.push(format!("{f}.origin.y"));
                 if let Some(d) = self.dims.get(&g) {
-                    terms.push(d.clone());
+                    if self.deferred.contains(&g) {
+                        // Not declared yet: its sketch value, as the interpreter has it now.
+                        if let Some(v) = self.sketch_dim(g) {
+                            terms.push(v);
+                        }
+                    } else {
+                        terms.push(d.clone());
+                    }
                 }
             }
             w.line(&format!(
@@ -990,6 +1016,41 @@ impl<'a> Gen<'a> {
         w.close("}");
     }
 
+    /// Whether a step reads feature `f` (a member point, vector, marker or marker axis).
+    fn reads_feature(&self, f: GeomId) -> bool {
+        let m = self.model;
+        let owner = match m.geoms[f].owner {
+            Owner::Part(o, _) => Some(o),
+            _ => None,
+        };
+        self.plan.steps.iter().any(|s| match &s.op {
+            Op::PointOf(g) | Op::DirOf(g) => *g == f,
+            Op::Check { constraint } => m.constraints[*constraint]
+                .args
+                .iter()
+                .any(|a| *a == f || Some(*a) == owner),
+            _ => false,
+        })
+    }
+
+    /// The sketch value of a segment's length or a circle's radius, as code.
+    fn sketch_dim(&self, g: GeomId) -> Option<String> {
+        match &self.model.geoms[g].sketch {
+            Sketch::Segment { from, to } => Some(format!(
+                "({} - {}).norm()",
+                self.point_lit(to),
+                self.point_lit(from)
+            )),
+            Sketch::Circle { radius, .. } => Some(self.expr(*radius)),
+            _ => None,
+        }
+    }
+
+    /// Whether any step reads or moves geom `g`.
+    fn touched(&self, g: GeomId) -> bool {
+        self.plan.touched(self.model).contains(&g)
+    }
+
     /// Whether any step moves geom `g`.
     fn moved(&self, g: GeomId) -> bool {
         self.plan.steps.iter().any(|s| match &s.op {
@@ -1037,9 +1098,7 @@ impl<'a> Gen<'a> {
 
     /// The constraint a step works for: its own, or that of the next step that satisfies one.
     fn constraint_of(&self, i: usize) -> Option<ConstraintId> {
-        self.plan.steps[i..]
-            .iter()
-            .find_map(|s| s.satisfies.first().copied())
+        self.plan.constraint_of(i)
     }
 
     /// `SolveError::new(label, text, kind, magnitude)` for the constraint of step `i`.

@@ -70,7 +70,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             f64::NAN,
         )
     })?;
-    let scale = config_scale(&config);
+    let scale = config_scale(&config, &plan.touched(model));
     let tol = gcs_runtime::tol::CHECK_REL * (1.0 + scale);
     let mut regs: Vec<Val> = vec![Val::S(0.0); plan.regs as usize];
     let mut chosen = vec![None; plan.branches.len()];
@@ -100,26 +100,26 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 let d = p(*to) - p(*from);
                 let n = d.norm();
                 if n.is_nan() || n <= 0.0 {
-                    return Err(bad_step(model, step));
+                    return Err(bad_step(model, plan, step));
                 }
                 Some(Val::V(d / n))
             }
             Op::Sum(terms) => Some(Val::S(terms.iter().map(|(k, r)| k * s(*r)).sum())),
             Op::Reversed(x) => match get(&regs, *x) {
                 Val::L(l) => Some(Val::L(l.reversed())),
-                _ => return Err(bad_step(model, step)),
+                _ => return Err(bad_step(model, plan, step)),
             },
             Op::OffsetLine { line, by } => match get(&regs, *line) {
                 Val::L(l) => Some(Val::L(l.offset(s(*by)))),
-                _ => return Err(bad_step(model, step)),
+                _ => return Err(bad_step(model, plan, step)),
             },
             Op::CentresLineLine { l1, a1, l2, a2 } => match (get(&regs, *l1), get(&regs, *l2)) {
                 (Val::L(x), Val::L(y)) => {
                     let l = locus2d::centres_line_line(&x, s(*a1), &y, s(*a2))
-                        .ok_or_else(|| bad_step(model, step))?;
+                        .ok_or_else(|| bad_step(model, plan, step))?;
                     Some(Val::L(l))
                 }
-                _ => return Err(bad_step(model, step)),
+                _ => return Err(bad_step(model, plan, step)),
             },
             Op::CentresLinePoint {
                 line,
@@ -130,10 +130,10 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             } => match get(&regs, *line) {
                 Val::L(l) => {
                     let q = locus2d::centres_line_circle(&l, s(*a), p(*at), sense(*plus), s(*b))
-                        .ok_or_else(|| bad_step(model, step))?;
+                        .ok_or_else(|| bad_step(model, plan, step))?;
                     Some(Val::Q(Conic::Parabola(q)))
                 }
-                _ => return Err(bad_step(model, step)),
+                _ => return Err(bad_step(model, plan, step)),
             },
             Op::CentresPointPoint {
                 c1,
@@ -151,12 +151,12 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                     sense(*p2),
                     s(*b2),
                 )
-                .ok_or_else(|| bad_step(model, step))?;
+                .ok_or_else(|| bad_step(model, plan, step))?;
                 Some(Val::Q(q))
             }
             Op::RadiusFromLine { line, a, centre } => match get(&regs, *line) {
                 Val::L(l) => Some(Val::S(l.signed_distance(p(*centre)) - s(*a))),
-                _ => return Err(bad_step(model, step)),
+                _ => return Err(bad_step(model, plan, step)),
             },
             Op::RadiusFromPoint {
                 at,
@@ -177,20 +177,20 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                     // A locus circle of negative radius: the distance cannot be met.
                     return Err(match constraint_of(plan, step) {
                         Some(c) => err(model, c, ErrorKind::NoIntersection, -rr),
-                        None => bad_step(model, step),
+                        None => bad_step(model, plan, step),
                     });
                 }
-                let c = Circle::new(p(*center), rr).ok_or_else(|| bad_step(model, step))?;
+                let c = Circle::new(p(*center), rr).ok_or_else(|| bad_step(model, plan, step))?;
                 Some(Val::C(c))
             }
             Op::CircleThrough { center, through } => {
                 let c = p(*center);
                 let circle = Circle::new(c, (p(*through) - c).norm())
-                    .ok_or_else(|| bad_step(model, step))?;
+                    .ok_or_else(|| bad_step(model, plan, step))?;
                 Some(Val::C(circle))
             }
             Op::Line { point, dir, offset } => {
-                let l = Line::new(p(*point), v(*dir)).ok_or_else(|| bad_step(model, step))?;
+                let l = Line::new(p(*point), v(*dir)).ok_or_else(|| bad_step(model, plan, step))?;
                 Some(Val::L(match offset {
                     Some(o) => l.offset(s(*o)),
                     None => l,
@@ -198,23 +198,23 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             }
             Op::ParallelLine { line, through } => match get(&regs, *line) {
                 Val::L(l) => Some(Val::L(
-                    Line::new(p(*through), l.dir()).ok_or_else(|| bad_step(model, step))?,
+                    Line::new(p(*through), l.dir()).ok_or_else(|| bad_step(model, plan, step))?,
                 )),
-                _ => return Err(bad_step(model, step)),
+                _ => return Err(bad_step(model, plan, step)),
             },
             Op::ShiftedCircle { circle, from, to } => match get(&regs, *circle) {
                 Val::C(c) => {
                     let moved = Circle::new(c.center() + (p(*to) - p(*from)), c.radius());
-                    Some(Val::C(moved.ok_or_else(|| bad_step(model, step))?))
+                    Some(Val::C(moved.ok_or_else(|| bad_step(model, plan, step))?))
                 }
-                _ => return Err(bad_step(model, step)),
+                _ => return Err(bad_step(model, plan, step)),
             },
             Op::Nearest { locus, point } => {
                 let q = p(*point);
                 Some(Val::P(match get(&regs, *locus) {
                     Val::L(l) => l.nearest(q),
                     Val::C(c) => c.nearest(q),
-                    _ => return Err(bad_step(model, step)),
+                    _ => return Err(bad_step(model, plan, step)),
                 }))
             }
             Op::Onto {
@@ -264,7 +264,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                             let i = intersect2d::line_line(&x, &y);
                             (Roots::from_slice(i.roots.as_slice()), i.contact)
                         }
-                        _ => return Err(bad_step(model, step)),
+                        _ => return Err(bad_step(model, plan, step)),
                     };
                 match contact {
                     Contact::Crossing | Contact::Tangent => {}
@@ -334,10 +334,9 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             Op::SetDim { geom, value } => {
                 let x = s(*value);
                 if !x.is_finite() || x < 0.0 {
-                    let c = step.satisfies.first().copied();
-                    return Err(match c {
+                    return Err(match constraint_of(plan, step) {
                         Some(c) => err(model, c, ErrorKind::InvalidInput, x),
-                        None => bad_step(model, step),
+                        None => SolveError::new("plan", String::new(), ErrorKind::InvalidInput, x),
                     });
                 }
                 config.dims.insert(*geom, x);
@@ -368,32 +367,35 @@ fn sense(plus: bool) -> Sense {
     }
 }
 
-/// The constraint a step works for: its own, or that of the next step that satisfies one.
+/// The constraint a step works for (see [`Plan::constraint_of`]).
 fn constraint_of(plan: &Plan, step: &crate::plan::Step) -> Option<ConstraintId> {
-    if let Some(c) = step.satisfies.first() {
-        return Some(*c);
-    }
     let i = plan.steps.iter().position(|s| std::ptr::eq(s, step))?;
-    plan.steps[i..]
-        .iter()
-        .find_map(|s| s.satisfies.first().copied())
+    plan.constraint_of(i)
 }
 
-fn bad_step(model: &Model, step: &crate::plan::Step) -> SolveError {
-    match step.satisfies.first() {
-        Some(c) => err(model, *c, ErrorKind::Degenerate, 0.0),
-        None => SolveError::new("plan", step.explain.clone(), ErrorKind::Degenerate, 0.0),
+fn bad_step(model: &Model, plan: &Plan, step: &crate::plan::Step) -> SolveError {
+    match constraint_of(plan, step) {
+        Some(c) => err(model, c, ErrorKind::Degenerate, 0.0),
+        None => SolveError::new("plan", String::new(), ErrorKind::Degenerate, 0.0),
     }
 }
 
-/// The largest coordinate or dimension of a configuration: what tolerances scale with.
-pub fn config_scale(config: &Config) -> f64 {
+/// The largest coordinate or dimension of the given geoms in a configuration: what tolerances
+/// scale with.
+pub fn config_scale(
+    config: &Config,
+    geoms: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
+) -> f64 {
     let mut s: f64 = 0.0;
-    for f in config.frames.values() {
-        s = s.max(f.origin.x.abs()).max(f.origin.y.abs());
+    for (g, f) in &config.frames {
+        if geoms.contains(g) {
+            s = s.max(f.origin.x.abs()).max(f.origin.y.abs());
+        }
     }
-    for d in config.dims.values() {
-        s = s.max(d.abs());
+    for (g, d) in &config.dims {
+        if geoms.contains(g) {
+            s = s.max(d.abs());
+        }
     }
     s
 }

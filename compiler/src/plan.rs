@@ -267,6 +267,51 @@ impl Plan {
         }
     }
 
+    /// The top-level geoms the plan reads or moves.
+    pub fn touched(&self, model: &Model) -> std::collections::BTreeSet<GeomId> {
+        let mut out = std::collections::BTreeSet::new();
+        for s in &self.steps {
+            match &s.op {
+                Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) => {
+                    out.insert(model.top_level_of(*f));
+                }
+                Op::Translate { geoms, .. }
+                | Op::RotatePoint { geoms, .. }
+                | Op::RotateDir { geoms, .. } => {
+                    out.extend(geoms.iter().copied());
+                }
+                Op::SetDim { geom, .. } => {
+                    out.insert(*geom);
+                }
+                Op::Check { constraint } => {
+                    out.extend(
+                        model.constraints[*constraint]
+                            .args
+                            .iter()
+                            .map(|a| model.top_level_of(*a)),
+                    );
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// The constraint step `i` works for, to name it in errors: the one it satisfies, else the
+    /// next step's that satisfies or intersects for one, else the previous such step's.
+    pub fn constraint_of(&self, i: usize) -> Option<ConstraintId> {
+        let of = |s: &Step| {
+            s.satisfies.first().copied().or(match &s.op {
+                Op::Intersect { constraint, .. }
+                | Op::Onto { constraint, .. }
+                | Op::Check { constraint } => Some(*constraint),
+                _ => None,
+            })
+        };
+        let later = self.steps.get(i..).unwrap_or(&[]).iter().find_map(of);
+        later.or_else(|| self.steps.get(..i).unwrap_or(&[]).iter().rev().find_map(of))
+    }
+
     /// The stable text dump of the plan, one step a line, with names from the model.
     pub fn dump(&self, model: &Model) -> String {
         let name = |g: &GeomId| model.geoms[*g].name.clone();

@@ -1,9 +1,11 @@
 //! Pruning a plan to a model's `output` statements: only the steps the outputs depend on stay.
 //!
-//! A backward slice over the straight-line program. An output needs its top-level geom; a geom
-//! needs every action that moved it; an action needs the registers it reads; a measurement
-//! needs the geom it measures (as moved by the actions before it). Actions keep only the geoms
-//! that are needed; branch variables of pruned intersections disappear.
+//! A backward slice over the straight-line program. An output needs its top-level geom's final
+//! state; a measurement needs the state of the geom it reads at that point, so the actions
+//! before it; an action is kept for the geoms whose later state is read, and dropped after the
+//! last read of a geom that is not an output (a rocker need not be turned into place once the
+//! coupler has been placed from it). Only geoms the pruned plan places completely are reported;
+//! branch variables of pruned intersections disappear.
 
 use crate::plan::{BranchId, Op, Plan, Reg};
 use gcs_lang::model::GeomId;
@@ -17,58 +19,78 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
     if model.outputs.is_empty() {
         return (plan.clone(), all);
     }
-    let mut geoms: BTreeSet<GeomId> = model
+    // One backward pass over the straight line: `live` holds the geoms whose state after the
+    // current step is still read (by an output, or by a later kept measurement or check).
+    let outputs: BTreeSet<GeomId> = model
         .outputs
         .iter()
         .map(|o| model.top_level_of(o.geom))
         .collect();
+    let mut live: BTreeSet<GeomId> = outputs.clone();
+    let mut touched: BTreeSet<GeomId> = outputs;
     let mut regs: BTreeSet<Reg> = BTreeSet::new();
     let mut keep = vec![false; plan.steps.len()];
-    // Iterate to a fixpoint: a measurement found needed late can make earlier actions needed.
-    loop {
-        let before = (geoms.len(), regs.len());
-        for (i, step) in plan.steps.iter().enumerate().rev() {
-            let needed = match &step.op {
-                Op::Translate { geoms: gs, .. }
-                | Op::RotatePoint { geoms: gs, .. }
-                | Op::RotateDir { geoms: gs, .. } => gs.iter().any(|g| geoms.contains(g)),
-                Op::SetDim { geom, .. } => geoms.contains(geom),
-                Op::Check { constraint } => model.constraints[*constraint]
-                    .args
-                    .iter()
-                    .all(|a| geoms.contains(&model.top_level_of(*a))),
-                _ => step.out.is_some_and(|(r, _)| regs.contains(&r)),
-            };
-            if !needed {
-                continue;
+    let mut moved: Vec<Vec<GeomId>> = vec![Vec::new(); plan.steps.len()];
+    let tops = |c: &gcs_lang::model::ConstraintId| -> Vec<GeomId> {
+        model.constraints[*c]
+            .args
+            .iter()
+            .map(|a| model.top_level_of(*a))
+            .collect()
+    };
+    for (i, step) in plan.steps.iter().enumerate().rev() {
+        let needed = match &step.op {
+            Op::Translate { geoms: gs, .. }
+            | Op::RotatePoint { geoms: gs, .. }
+            | Op::RotateDir { geoms: gs, .. } => {
+                moved[i] = gs.iter().copied().filter(|g| live.contains(g)).collect();
+                !moved[i].is_empty()
             }
-            keep[i] = true;
-            regs.extend(Plan::reads(&step.op));
-            match &step.op {
-                Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) => {
-                    geoms.insert(model.top_level_of(*f));
-                }
-                Op::Check { constraint } => {
-                    for a in &model.constraints[*constraint].args {
-                        geoms.insert(model.top_level_of(*a));
-                    }
-                }
-                _ => {}
-            }
+            Op::SetDim { geom, .. } => live.contains(geom),
+            // A check is kept when everything it measures is computed anyway.
+            Op::Check { constraint } => tops(constraint).iter().all(|g| live.contains(g)),
+            _ => step.out.is_some_and(|(r, _)| regs.contains(&r)),
+        };
+        if !needed {
+            continue;
         }
-        if (geoms.len(), regs.len()) == before {
-            break;
+        keep[i] = true;
+        regs.extend(Plan::reads(&step.op));
+        if let Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) = &step.op {
+            live.insert(model.top_level_of(*f));
+            touched.insert(model.top_level_of(*f));
         }
     }
-    // Rebuild: keep the needed steps, drop unneeded geoms from actions, renumber branches.
+    // The geoms the pruned plan places completely: read somewhere, and never left behind by a
+    // move or a scaling the whole plan makes. Only these are reported.
+    let mut geoms = touched;
+    for (i, step) in plan.steps.iter().enumerate() {
+        match &step.op {
+            Op::Translate { geoms: gs, .. }
+            | Op::RotatePoint { geoms: gs, .. }
+            | Op::RotateDir { geoms: gs, .. } => {
+                for g in gs {
+                    if !moved[i].contains(g) {
+                        geoms.remove(g);
+                    }
+                }
+            }
+            Op::SetDim { geom, .. } if !keep[i] => {
+                geoms.remove(geom);
+            }
+            _ => {}
+        }
+    }
+    // Rebuild: the kept steps, actions on the geoms that need them, branches renumbered.
     let mut branch_map: HashMap<BranchId, BranchId> = HashMap::new();
     let mut out = Plan {
         regs: plan.regs,
         grounded: plan.grounded,
+        grounded_direction: plan.grounded_direction,
         ..Plan::default()
     };
-    for (step, k) in plan.steps.iter().zip(&keep) {
-        if !k {
+    for (i, step) in plan.steps.iter().enumerate() {
+        if !keep[i] {
             continue;
         }
         let mut s = step.clone();
@@ -76,7 +98,7 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             Op::Translate { geoms: gs, .. }
             | Op::RotatePoint { geoms: gs, .. }
             | Op::RotateDir { geoms: gs, .. } => {
-                gs.retain(|g| geoms.contains(g));
+                gs.retain(|g| moved[i].contains(g));
             }
             Op::Intersect { branch, .. } => {
                 let next = BranchId(branch_map.len() as u32);

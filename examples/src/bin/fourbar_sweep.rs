@@ -37,7 +37,7 @@ impl Pose {
             a: s.crank_a(),
             b: s.coupler_b(),
             c: s.coupler_c(),
-            d: s.rocker_d(),
+            d: s.d(),
             p: s.coupler_p(),
         }
     }

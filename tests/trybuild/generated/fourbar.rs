@@ -90,7 +90,6 @@ pub struct Solution {
     crank: Frame2,
     crank_b_local: Point2<f64>,
     coupler: Frame2,
-    rocker: Frame2,
 }
 
 impl Solution {
@@ -144,23 +143,8 @@ impl Solution {
         self.coupler.point_to_global(&Point2::new(4.0, 0.0))
     }
 
-    /// The frame of body `rocker`.
-    pub fn rocker(&self) -> Frame2 {
-        self.rocker
-    }
-
-    /// Point `rocker.d`.
-    pub fn rocker_d(&self) -> Point2<f64> {
-        self.rocker.point_to_global(&Point2::new(0.0, 0.0))
-    }
-
-    /// Point `rocker.c`.
-    pub fn rocker_c(&self) -> Point2<f64> {
-        self.rocker.point_to_global(&Point2::new(0.0, 3.0))
-    }
-
     /// Every point of the solution, by its dotted name in the model.
-    pub fn points(&self) -> [(&'static str, Point2<f64>); 8] {
+    pub fn points(&self) -> [(&'static str, Point2<f64>); 6] {
         [
             ("A", self.a()),
             ("D", self.d()),
@@ -168,8 +152,6 @@ impl Solution {
             ("crank.b", self.crank_b()),
             ("coupler.b", self.coupler_b()),
             ("coupler.c", self.coupler_c()),
-            ("rocker.d", self.rocker_d()),
-            ("rocker.c", self.rocker_c()),
         ]
     }
 
@@ -233,8 +215,6 @@ pub fn solve(
     let coupler_b = coupler.point_to_global(&Point2::new(0.0, 0.0));
     let shift_3 = crank_b - coupler_b;
     coupler.translate(&shift_3);
-
-    // elbow: coincident(coupler.c, rocker.c) (fourbar.gcs:18)
     let coupler_c = coupler.point_to_global(&Point2::new(4.0, 0.0));
     let circle_crank_b_coupler_c =
         Circle::new(crank_b, (coupler_c - crank_b).norm()).ok_or_else(|| {
@@ -274,8 +254,6 @@ pub fn solve(
         })?;
     let turn_2 = rotation_between2(&(coupler_c - crank_b), &(elbow - crank_b));
     coupler.rotate_about_by(&crank_b, &turn_2);
-    let turn_3 = rotation_between2(&(rocker_c - d_2), &(elbow - d_2));
-    rocker.rotate_about_by(&d_2, &turn_3);
 
     Ok(Solution {
         a,
@@ -284,6 +262,5 @@ pub fn solve(
         crank,
         crank_b_local,
         coupler,
-        rocker,
     })
 }

@@ -91,9 +91,7 @@ pub struct Solution {
     f: Frame2,
     x: Frame2,
     crank: Frame2,
-    coupler: Frame2,
     rocker: Frame2,
-    link: Frame2,
     follower: Frame2,
 }
 
@@ -138,21 +136,6 @@ impl Solution {
         self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
-    /// The frame of body `coupler`.
-    pub fn coupler(&self) -> Frame2 {
-        self.coupler
-    }
-
-    /// Point `coupler.b`.
-    pub fn coupler_b(&self) -> Point2<f64> {
-        self.coupler.point_to_global(&Point2::new(1.0, 0.0))
-    }
-
-    /// Point `coupler.c`.
-    pub fn coupler_c(&self) -> Point2<f64> {
-        self.coupler.point_to_global(&Point2::new(3.5, 2.5))
-    }
-
     /// The frame of body `rocker`.
     pub fn rocker(&self) -> Frame2 {
         self.rocker
@@ -171,21 +154,6 @@ impl Solution {
     /// Point `rocker.e`.
     pub fn rocker_e(&self) -> Point2<f64> {
         self.rocker.point_to_global(&Point2::new(5.0, 2.8))
-    }
-
-    /// The frame of body `link`.
-    pub fn link(&self) -> Frame2 {
-        self.link
-    }
-
-    /// Point `link.e`.
-    pub fn link_e(&self) -> Point2<f64> {
-        self.link.point_to_global(&Point2::new(5.0, 2.8))
-    }
-
-    /// Point `link.g`.
-    pub fn link_g(&self) -> Point2<f64> {
-        self.link.point_to_global(&Point2::new(7.5, 3.8))
     }
 
     /// The frame of body `follower`.
@@ -210,20 +178,16 @@ impl Solution {
     }
 
     /// Every point of the solution, by its dotted name in the model.
-    pub fn points(&self) -> [(&'static str, Point2<f64>); 14] {
+    pub fn points(&self) -> [(&'static str, Point2<f64>); 10] {
         [
             ("A", self.a()),
             ("D", self.d()),
             ("F", self.f()),
             ("crank.a", self.crank_a()),
             ("crank.b", self.crank_b()),
-            ("coupler.b", self.coupler_b()),
-            ("coupler.c", self.coupler_c()),
             ("rocker.d", self.rocker_d()),
             ("rocker.c", self.rocker_c()),
             ("rocker.e", self.rocker_e()),
-            ("link.e", self.link_e()),
-            ("link.g", self.link_g()),
             ("follower.f", self.follower_f()),
             ("follower.g", self.follower_g()),
         ]
@@ -337,10 +301,8 @@ pub fn solve(
                 first_meeting.roots.len() as f64,
             )
         })?;
-    let turn_2 = rotation_between2(&(coupler_c - crank_b), &(first - crank_b));
-    coupler.rotate_about_by(&crank_b, &turn_2);
-    let turn_3 = rotation_between2(&(rocker_c - d_2), &(first - d_2));
-    rocker.rotate_about_by(&d_2, &turn_3);
+    let turn_2 = rotation_between2(&(rocker_c - d_2), &(first - d_2));
+    rocker.rotate_about_by(&d_2, &turn_2);
 
     // coincident(rocker.e, link.e) (sixbar.gcs:23)
     let rocker_e = rocker.point_to_global(&Point2::new(5.0, 2.8));
@@ -387,10 +349,8 @@ pub fn solve(
                 second_meeting.roots.len() as f64,
             )
         })?;
-    let turn_4 = rotation_between2(&(link_g - rocker_e), &(second - rocker_e));
-    link.rotate_about_by(&rocker_e, &turn_4);
-    let turn_5 = rotation_between2(&(follower_g - f_2), &(second - f_2));
-    follower.rotate_about_by(&f_2, &turn_5);
+    let turn_3 = rotation_between2(&(follower_g - f_2), &(second - f_2));
+    follower.rotate_about_by(&f_2, &turn_3);
 
     Ok(Solution {
         a,
@@ -398,9 +358,7 @@ pub fn solve(
         f,
         x,
         crank,
-        coupler,
         rocker,
-        link,
         follower,
     })
 }

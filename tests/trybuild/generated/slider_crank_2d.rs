@@ -92,9 +92,6 @@ pub struct Solution {
     crank: Frame2,
     crank_tip_local: Point2<f64>,
     crank_tip_x_local: Vector2<f64>,
-    rod: Frame2,
-    rod_b_local: Point2<f64>,
-    rod_b_x_local: Vector2<f64>,
     slider: Frame2,
 }
 
@@ -149,31 +146,6 @@ impl Solution {
         self.crank.vector_to_global(&self.crank_tip_x_local)
     }
 
-    /// The frame of body `rod`.
-    pub fn rod(&self) -> Frame2 {
-        self.rod
-    }
-
-    /// Point `rod.a`.
-    pub fn rod_a(&self) -> Point2<f64> {
-        self.rod.point_to_global(&Point2::new(0.0, 0.0))
-    }
-
-    /// Axis `rod.a.x`.
-    pub fn rod_a_x(&self) -> Vector2<f64> {
-        self.rod.vector_to_global(&Vector2::new(1.0, 0.0))
-    }
-
-    /// Point `rod.b`.
-    pub fn rod_b(&self) -> Point2<f64> {
-        self.rod.point_to_global(&self.rod_b_local)
-    }
-
-    /// Axis `rod.b.x`.
-    pub fn rod_b_x(&self) -> Vector2<f64> {
-        self.rod.vector_to_global(&self.rod_b_x_local)
-    }
-
     /// The frame of body `slider`.
     pub fn slider(&self) -> Frame2 {
         self.slider
@@ -200,28 +172,24 @@ impl Solution {
     }
 
     /// Every point of the solution, by its dotted name in the model.
-    pub fn points(&self) -> [(&'static str, Point2<f64>); 8] {
+    pub fn points(&self) -> [(&'static str, Point2<f64>); 6] {
         [
             ("ground.o", self.ground_o()),
             ("ground.rail", self.ground_rail()),
             ("crank.o", self.crank_o()),
             ("crank.tip", self.crank_tip()),
-            ("rod.a", self.rod_a()),
-            ("rod.b", self.rod_b()),
             ("slider.s", self.slider_s()),
             ("slider.pin", self.slider_pin()),
         ]
     }
 
     /// Every vector of the solution, by its dotted name in the model.
-    pub fn vectors(&self) -> [(&'static str, Vector2<f64>); 8] {
+    pub fn vectors(&self) -> [(&'static str, Vector2<f64>); 6] {
         [
             ("ground.o.x", self.ground_o_x()),
             ("ground.rail.x", self.ground_rail_x()),
             ("crank.o.x", self.crank_o_x()),
             ("crank.tip.x", self.crank_tip_x()),
-            ("rod.a.x", self.rod_a_x()),
-            ("rod.b.x", self.rod_b_x()),
             ("slider.s.x", self.slider_s_x()),
             ("slider.pin.x", self.slider_pin_x()),
         ]
@@ -257,7 +225,6 @@ pub fn solve(
     let crank_tip_x_local = Vector2::new(1.0, 0.0).normalize();
     let mut rod = Frame2::at(Point2::new(1.5, 0.0));
     let rod_b_local = Point2::new(params.rod_len, 0.0);
-    let rod_b_x_local = Vector2::new(1.0, 0.0).normalize();
     let mut slider = Frame2::at(Point2::new(5.2, 0.0));
 
     // drive: offset_x(ground.o, crank.o) = phi (slider_crank_2d.gcs:15)
@@ -338,8 +305,6 @@ pub fn solve(
                 stroke_meeting.roots.len() as f64,
             )
         })?;
-    let turn_3 = rotation_between2(&(rod_b - crank_tip), &(stroke - crank_tip));
-    rod.rotate_about_by(&crank_tip, &turn_3);
     let shift_4 = stroke - slider_pin;
     slider.translate(&shift_4);
 
@@ -348,9 +313,6 @@ pub fn solve(
         crank,
         crank_tip_local,
         crank_tip_x_local,
-        rod,
-        rod_b_local,
-        rod_b_x_local,
         slider,
     })
 }
