@@ -214,6 +214,19 @@ impl<'a> Gen<'a> {
                     used.insert(*a);
                     used.insert(*b);
                 }
+                Op::CircleThrough {
+                    center,
+                    through,
+                    rigid,
+                } => {
+                    used.insert(*center);
+                    if rigid
+                        .and_then(|(a, b)| crate::plan::constant_distance(model, a, b))
+                        .is_none()
+                    {
+                        used.insert(*through);
+                    }
+                }
                 op => used.extend(Plan::reads(op)),
             }
         }
@@ -344,7 +357,7 @@ impl<'a> Gen<'a> {
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::check;");
         w.line("#[allow(unused_imports)]");
-        w.line("use gcs_runtime::frame::{rotation_between2, Frame2};");
+        w.line("use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};");
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::intersect2d;");
         w.line("#[allow(unused_imports)]");
@@ -752,8 +765,9 @@ impl<'a> Gen<'a> {
         if point {
             format!("Point2::new({}, {})", float(x), float(y))
         } else {
-            let n = x.hypot(y);
-            format!("Vector2::new({}, {})", float(x / n), float(y / n))
+            // Normalised exactly as the interpreter's configuration does, to the bit.
+            let u = nalgebra::Vector2::new(x, y).normalize();
+            format!("Vector2::new({}, {})", float(u.x), float(u.y))
         }
     }
 
@@ -1296,11 +1310,20 @@ impl<'a> Gen<'a> {
                     self.define(w, r, &n, &code);
                 }
             }
-            Op::CircleThrough { center, through } => {
+            Op::CircleThrough {
+                center,
+                through,
+                rigid,
+            } => {
                 if let Some(r) = out {
                     let (c, t) = (self.r(*center), self.r(*through));
+                    // Two features of one rigid geom with constant local coordinates: their
+                    // distance is known now.
+                    let radius = rigid
+                        .and_then(|(a, b)| crate::plan::constant_distance(m, a, b))
+                        .map_or_else(|| format!("({t} - {c}).norm()"), float);
                     let code = format!(
-                        "Circle::new({c}, ({t} - {c}).norm()).ok_or_else(|| {})?",
+                        "Circle::new({c}, {radius}).ok_or_else(|| {})?",
                         self.error(i, "Degenerate", "0.0")
                     );
                     let n = format!("circle_{c}_{t}");
@@ -1558,7 +1581,7 @@ impl<'a> Gen<'a> {
             } => {
                 let turn = self.names.fresh("turn");
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
-                w.line(&format!("let {turn} = rotation_between2(&{f}, &{t});"));
+                w.line(&format!("let {turn} = rotation_between_units(&{f}, &{t});"));
                 for g in geoms {
                     w.line(&format!(
                         "{}.rotate_about_by(&{p}, &{turn});",

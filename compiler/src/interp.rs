@@ -183,9 +183,14 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 let c = Circle::new(p(*center), rr).ok_or_else(|| bad_step(model, plan, step))?;
                 Some(Val::C(c))
             }
-            Op::CircleThrough { center, through } => {
+            Op::CircleThrough {
+                center,
+                through,
+                rigid,
+            } => {
                 let c = p(*center);
-                let circle = Circle::new(c, (p(*through) - c).norm())
+                let known = rigid.and_then(|(a, b)| crate::plan::constant_distance(model, a, b));
+                let circle = Circle::new(c, known.unwrap_or_else(|| (p(*through) - c).norm()))
                     .ok_or_else(|| bad_step(model, plan, step))?;
                 Some(Val::C(circle))
             }
@@ -325,7 +330,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 to,
             } => {
                 let c = p(*pivot);
-                let rot = gcs_runtime::frame::rotation_between2(&v(*from), &v(*to));
+                let rot = gcs_runtime::frame::rotation_between_units(&v(*from), &v(*to));
                 for g in geoms {
                     config.rotate(*g, c, rot);
                 }

@@ -131,7 +131,13 @@ pub enum Op {
     /// The circle about `center` with `radius`.
     Circle { center: Reg, radius: Reg },
     /// The circle about `center` through `through`.
-    CircleThrough { center: Reg, through: Reg },
+    /// `rigid` names the two features (at the centre, and the one moving) when they belong to
+    /// one rigid geom: the radius is then their distance in it, known when generating code.
+    CircleThrough {
+        center: Reg,
+        through: Reg,
+        rigid: Option<(GeomId, GeomId)>,
+    },
     /// The line through `point` along `dir`, moved `offset` to its left.
     Line {
         point: Reg,
@@ -244,7 +250,9 @@ impl Plan {
             Op::RadiusFromPoint { at, b, centre, .. } => vec![*at, *b, *centre],
             Op::Rotated { dir, angle } => vec![*dir, *angle],
             Op::Circle { center, radius } => vec![*center, *radius],
-            Op::CircleThrough { center, through } => vec![*center, *through],
+            Op::CircleThrough {
+                center, through, ..
+            } => vec![*center, *through],
             Op::Line { point, dir, offset } => {
                 let mut v = vec![*point, *dir];
                 v.extend(*offset);
@@ -415,7 +423,9 @@ impl Plan {
                 Op::Axis(x, y) => format!("axis ({x}, {y})"),
                 Op::Rotated { dir, angle } => format!("rotated {} by {}", r(dir), r(angle)),
                 Op::Circle { center, radius } => format!("circle {} {}", r(center), r(radius)),
-                Op::CircleThrough { center, through } => {
+                Op::CircleThrough {
+                    center, through, ..
+                } => {
                     format!("circle_through {} {}", r(center), r(through))
                 }
                 Op::Line { point, dir, offset } => match offset {
@@ -548,6 +558,29 @@ impl Plan {
             Err(errors)
         }
     }
+}
+
+/// The distance between two point features of one body whose local coordinates do not depend
+/// on params: known when the plan is built. A circle through one about the other has this
+/// radius; the interpreter and generated code both use it, so that they agree to the bit.
+pub fn constant_distance(model: &Model, a: GeomId, b: GeomId) -> Option<f64> {
+    use gcs_lang::model::{Owner, Sketch};
+    let local = |f: GeomId| -> Option<(f64, f64)> {
+        match (&model.geoms[f].sketch, model.geoms[f].owner) {
+            (Sketch::Point(c) | Sketch::Marker { origin: c, .. }, Owner::Member(_))
+                if c.iter().all(|&e| model.exprs.is_constant(e)) =>
+            {
+                let v = |i: usize| c.get(i).map_or(0.0, |&e| model.exprs.eval(e, &[]));
+                Some((v(0), v(1)))
+            }
+            _ => None,
+        }
+    };
+    let ((ax, ay), (bx, by)) = (local(a)?, local(b)?);
+    if model.top_level_of(a) != model.top_level_of(b) {
+        return None;
+    }
+    Some(nalgebra::Vector2::new(ax - bx, ay - by).norm())
 }
 
 /// An expression as text, for dumps and explanations.

@@ -678,6 +678,19 @@ pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64>
     UnitComplex::from_cos_sin_unchecked(c / n, s / n)
 }
 
+/// The rotation that turns unit vector `a` onto unit vector `b`: `(a . b, a x b)` with no
+/// square root or division. The plan's directions are unit by construction; their products
+/// stay unit to rounding. Non-finite input gives the identity.
+#[inline]
+pub fn rotation_between_units(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
+    let (c, s) = (a.dot(b), a.x * b.y - a.y * b.x);
+    if c.is_finite() && s.is_finite() && (c != 0.0 || s != 0.0) {
+        UnitComplex::from_cos_sin_unchecked(c, s)
+    } else {
+        UnitComplex::identity()
+    }
+}
+
 #[cfg(test)]
 mod rotation_between2_tests {
     use super::*;

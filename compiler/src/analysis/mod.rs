@@ -1224,7 +1224,7 @@ impl<'m> Builder<'m> {
             }
             (Pos::Pivot { at, feature: g }, target) if g != f => {
                 let from = self.point(f);
-                let own = self.circle_through(at, from, f);
+                let own = self.circle_through(at, from, f, g);
                 let to = self.meet(own, target, from, r);
                 let explain = format!(
                     "{names} may only rotate about {} ({}): rotate it so that {fname} reaches {} ({c}).",
@@ -1253,7 +1253,10 @@ impl<'m> Builder<'m> {
     }
 
     /// The circle about `at` through the current position `from` of feature `f`.
-    fn circle_through(&mut self, at: Reg, from: Reg, f: GeomId) -> Reg {
+    fn circle_through(&mut self, at: Reg, from: Reg, f: GeomId, pivot: GeomId) -> Reg {
+        // Both on one rigid geom: the radius is their distance in it.
+        let rigid =
+            (self.model.top_level_of(pivot) == self.model.top_level_of(f)).then_some((pivot, f));
         let words = format!(
             "the circle about {} through {}",
             self.word(at),
@@ -1263,6 +1266,7 @@ impl<'m> Builder<'m> {
             Op::CircleThrough {
                 center: at,
                 through: from,
+                rigid,
             },
             Ty::Circle,
             words,
@@ -1539,7 +1543,7 @@ impl<'m> Builder<'m> {
             }),
             Pos::Pivot { at, feature } if feature != f => {
                 let from = self.point(f);
-                Some(self.circle_through(at, from, f))
+                Some(self.circle_through(at, from, f, feature))
             }
             _ => None,
         }

@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, Frame2};
+use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -207,7 +207,7 @@ pub fn solve(
     let x_dir = x.x_axis();
     let x_dir_turned = UnitComplex::new(params.theta) * x_dir;
     let crank_u_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = rotation_between2(&crank_u_dir, &x_dir_turned);
+    let turn = rotation_between_units(&crank_u_dir, &x_dir_turned);
     crank.rotate_about_by(&a_2, &turn);
 
     // coincident(crank.b, coupler.b) (fourbar.gcs:17)
@@ -216,17 +216,7 @@ pub fn solve(
     let shift_3 = crank_b - coupler_b;
     coupler.translate(&shift_3);
     let coupler_c = coupler.point_to_global(&Point2::new(4.0, 0.0));
-    let circle_crank_b_coupler_c =
-        Circle::new(crank_b, (coupler_c - crank_b).norm()).ok_or_else(|| {
-            SolveError::new(
-                "elbow",
-                "coincident(coupler.c, rocker.c)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
-    let rocker_c = rocker.point_to_global(&Point2::new(0.0, 3.0));
-    let circle_d_2_rocker_c = Circle::new(d_2, (rocker_c - d_2).norm()).ok_or_else(|| {
+    let circle_crank_b_coupler_c = Circle::new(crank_b, 4.0).ok_or_else(|| {
         SolveError::new(
             "elbow",
             "coincident(coupler.c, rocker.c)",
@@ -234,7 +224,15 @@ pub fn solve(
             0.0,
         )
     })?;
-    let elbow_meeting = intersect2d::circle_circle(&circle_crank_b_coupler_c, &circle_d_2_rocker_c);
+    let circle_d_2_f64_nan = Circle::new(d_2, 3.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow",
+            "coincident(coupler.c, rocker.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow_meeting = intersect2d::circle_circle(&circle_crank_b_coupler_c, &circle_d_2_f64_nan);
     if let Some(e) = SolveError::from_contact(
         "elbow",
         "coincident(coupler.c, rocker.c)",

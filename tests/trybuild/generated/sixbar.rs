@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, Frame2};
+use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -174,7 +174,7 @@ impl Solution {
     /// Vector `follower.u`.
     pub fn follower_u(&self) -> Vector2<f64> {
         self.follower
-            .vector_to_global(&Vector2::new(0.17579063848365753, 0.984427575508482))
+            .vector_to_global(&Vector2::new(0.1757906384836575, 0.9844275755084819))
     }
 
     /// Every point of the solution, by its dotted name in the model.
@@ -254,7 +254,7 @@ pub fn solve(
     let x_dir = x.x_axis();
     let x_dir_turned = UnitComplex::new(params.theta) * x_dir;
     let crank_u_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = rotation_between2(&crank_u_dir, &x_dir_turned);
+    let turn = rotation_between_units(&crank_u_dir, &x_dir_turned);
     crank.rotate_about_by(&a_2, &turn);
 
     // coincident(crank.b, coupler.b) (sixbar.gcs:20)
@@ -264,18 +264,7 @@ pub fn solve(
     coupler.translate(&shift_4);
 
     // first: coincident(coupler.c, rocker.c) (sixbar.gcs:21)
-    let coupler_c = coupler.point_to_global(&Point2::new(3.5, 2.5));
-    let circle_crank_b_coupler_c =
-        Circle::new(crank_b, (coupler_c - crank_b).norm()).ok_or_else(|| {
-            SolveError::new(
-                "first",
-                "coincident(coupler.c, rocker.c)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
-    let rocker_c = rocker.point_to_global(&Point2::new(3.5, 2.5));
-    let circle_d_2_rocker_c = Circle::new(d_2, (rocker_c - d_2).norm()).ok_or_else(|| {
+    let circle_crank_b_f64_nan = Circle::new(crank_b, 3.5355339059327378).ok_or_else(|| {
         SolveError::new(
             "first",
             "coincident(coupler.c, rocker.c)",
@@ -283,7 +272,16 @@ pub fn solve(
             0.0,
         )
     })?;
-    let first_meeting = intersect2d::circle_circle(&circle_crank_b_coupler_c, &circle_d_2_rocker_c);
+    let rocker_c = rocker.point_to_global(&Point2::new(3.5, 2.5));
+    let circle_d_2_rocker_c = Circle::new(d_2, 2.5495097567963922).ok_or_else(|| {
+        SolveError::new(
+            "first",
+            "coincident(coupler.c, rocker.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let first_meeting = intersect2d::circle_circle(&circle_crank_b_f64_nan, &circle_d_2_rocker_c);
     if let Some(e) = SolveError::from_contact(
         "first",
         "coincident(coupler.c, rocker.c)",
@@ -311,18 +309,16 @@ pub fn solve(
     link.translate(&shift_5);
 
     // second: coincident(link.g, follower.g) (sixbar.gcs:25)
-    let link_g = link.point_to_global(&Point2::new(7.5, 3.8));
-    let circle_rocker_e_link_g =
-        Circle::new(rocker_e, (link_g - rocker_e).norm()).ok_or_else(|| {
-            SolveError::new(
-                "second",
-                "coincident(link.g, follower.g)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
+    let circle_rocker_e_f64_nan = Circle::new(rocker_e, 2.692582403567252).ok_or_else(|| {
+        SolveError::new(
+            "second",
+            "coincident(link.g, follower.g)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let follower_g = follower.point_to_global(&Point2::new(7.5, 3.8));
-    let circle_f_2_follower_g = Circle::new(f_2, (follower_g - f_2).norm()).ok_or_else(|| {
+    let circle_f_2_follower_g = Circle::new(f_2, 2.8442925306655784).ok_or_else(|| {
         SolveError::new(
             "second",
             "coincident(link.g, follower.g)",
@@ -331,7 +327,7 @@ pub fn solve(
         )
     })?;
     let second_meeting =
-        intersect2d::circle_circle(&circle_rocker_e_link_g, &circle_f_2_follower_g);
+        intersect2d::circle_circle(&circle_rocker_e_f64_nan, &circle_f_2_follower_g);
     if let Some(e) = SolveError::from_contact(
         "second",
         "coincident(link.g, follower.g)",

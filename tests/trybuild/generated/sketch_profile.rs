@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, Frame2};
+use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -329,7 +329,7 @@ pub fn solve(
     // horizontal(bottom) (sketch_profile.gcs:20)
     let x_axis = Vector2::new(1.0, 0.0);
     let bottom_dir = bottom.x_axis();
-    let turn = rotation_between2(&bottom_dir, &x_axis);
+    let turn = rotation_between_units(&bottom_dir, &x_axis);
     bottom.rotate_about_by(&origin_2, &turn);
 
     // coincident(bottom.end, right.start) (sketch_profile.gcs:17)
@@ -343,14 +343,14 @@ pub fn solve(
     let x_axis_2_turned = UnitComplex::new(std::f64::consts::PI) * x_axis_2;
     let top_2 = top.origin;
     let top_dir = top.x_axis();
-    let turn_2 = rotation_between2(&top_dir, &x_axis_2_turned);
+    let turn_2 = rotation_between_units(&top_dir, &x_axis_2_turned);
     top.rotate_about_by(&top_2, &turn_2);
 
     // vertical(left) (sketch_profile.gcs:23)
     let y_axis = Vector2::new(0.0, 1.0);
     let y_axis_turned = UnitComplex::new(std::f64::consts::PI) * y_axis;
     let left_dir = left.x_axis();
-    let turn_3 = rotation_between2(&left_dir, &y_axis_turned);
+    let turn_3 = rotation_between_units(&left_dir, &y_axis_turned);
     left.rotate_about_by(&origin_2, &turn_3);
 
     // coincident(top.end, left.start) (sketch_profile.gcs:18)
@@ -378,7 +378,7 @@ pub fn solve(
     // vertical(right) (sketch_profile.gcs:21)
     let y_axis_2 = Vector2::new(0.0, 1.0);
     let right_dir = right.x_axis();
-    let turn_4 = rotation_between2(&right_dir, &y_axis_2);
+    let turn_4 = rotation_between_units(&right_dir, &y_axis_2);
     right.rotate_about_by(&bottom_end, &turn_4);
 
     // tangent(right, fillet) (sketch_profile.gcs:24)

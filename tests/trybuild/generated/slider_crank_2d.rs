@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, Frame2};
+use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -232,7 +232,7 @@ pub fn solve(
     let ground_o_x_dir_turned = UnitComplex::new(params.phi) * ground_o_x_dir;
     let crank_2 = crank.origin;
     let crank_o_x_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = rotation_between2(&crank_o_x_dir, &ground_o_x_dir_turned);
+    let turn = rotation_between_units(&crank_o_x_dir, &ground_o_x_dir_turned);
     crank.rotate_about_by(&crank_2, &turn);
 
     // prismatic(slider.s, ground.rail) (slider_crank_2d.gcs:18)
@@ -252,7 +252,7 @@ pub fn solve(
     slider.translate(&shift);
     let slider_s_2 = slider.point_to_global(&Point2::new(0.0, 0.0));
     let slider_s_x_dir = slider.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn_2 = rotation_between2(&slider_s_x_dir, &ground_rail_x_dir);
+    let turn_2 = rotation_between_units(&slider_s_x_dir, &ground_rail_x_dir);
     slider.rotate_about_by(&slider_s_2, &turn_2);
 
     // revolute(crank.o, ground.o) (slider_crank_2d.gcs:14)

@@ -10,7 +10,7 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, Frame2};
+use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -174,7 +174,7 @@ impl Solution {
     /// Vector `link3.u`.
     pub fn link3_u(&self) -> Vector2<f64> {
         self.link3
-            .vector_to_global(&Vector2::new(0.9848077908426043, 0.1736479631199549))
+            .vector_to_global(&Vector2::new(0.9848077908426045, 0.17364796311995495))
     }
 
     /// The frame of body `link4`.
@@ -256,7 +256,7 @@ impl Solution {
     /// Vector `link7.u`.
     pub fn link7_u(&self) -> Vector2<f64> {
         self.link7
-            .vector_to_global(&Vector2::new(-0.9701425001453319, -0.24253562503633297))
+            .vector_to_global(&Vector2::new(-0.9701425001453318, -0.24253562503633294))
     }
 
     /// The frame of body `link10`.
@@ -413,7 +413,7 @@ pub fn solve(
     let ground_x_dir = ground.vector_to_global(&Vector2::new(1.0, 0.0));
     let ground_x_dir_turned = UnitComplex::new(params.theta1) * ground_x_dir;
     let crank_u_dir = crank.vector_to_global(&Vector2::new(0.5000001748438417, 0.8660253028382761));
-    let turn = rotation_between2(&crank_u_dir, &ground_x_dir_turned);
+    let turn = rotation_between_units(&crank_u_dir, &ground_x_dir_turned);
     crank.rotate_about_by(&ground_o1, &turn);
 
     // coincident(link3.a, crank.tip) (tenbar.gcs:24)
@@ -434,8 +434,8 @@ pub fn solve(
     let minus = -params.theta3;
     let link10_u_dir_turned = UnitComplex::new(minus) * link10_u_dir;
     let link7_u_dir =
-        link7.vector_to_global(&Vector2::new(-0.9701425001453319, -0.24253562503633297));
-    let turn_2 = rotation_between2(&link7_u_dir, &link10_u_dir_turned);
+        link7.vector_to_global(&Vector2::new(-0.9701425001453318, -0.24253562503633294));
+    let turn_2 = rotation_between_units(&link7_u_dir, &link10_u_dir_turned);
     link7.rotate_about_by(&link10_a, &turn_2);
 
     // coincident(link3.b, link4.a) (tenbar.gcs:25)
@@ -445,10 +445,11 @@ pub fn solve(
     link4.translate(&shift_5);
 
     // drive2: angle(link3.u, link4.u) = theta2 (tenbar.gcs:26)
-    let link3_u_dir = link3.vector_to_global(&Vector2::new(0.9848077908426043, 0.1736479631199549));
+    let link3_u_dir =
+        link3.vector_to_global(&Vector2::new(0.9848077908426045, 0.17364796311995495));
     let link3_u_dir_turned = UnitComplex::new(params.theta2) * link3_u_dir;
     let link4_u_dir = link4.vector_to_global(&Vector2::new(0.7129333647431632, 0.7012317858140715));
-    let turn_3 = rotation_between2(&link4_u_dir, &link3_u_dir_turned);
+    let turn_3 = rotation_between_units(&link4_u_dir, &link3_u_dir_turned);
     link4.rotate_about_by(&link3_b, &turn_3);
 
     // coincident(link10.c, link8.c) (tenbar.gcs:34)
@@ -465,25 +466,23 @@ pub fn solve(
 
     // coincident(link8.b, link9.a) (tenbar.gcs:32)
     let link8_b = link8.point_to_global(&Point2::new(6.5, 5.2));
-    let circle_link10_c_link8_b =
-        Circle::new(link10_c, (link8_b - link10_c).norm()).ok_or_else(|| {
-            SolveError::new(
-                "coincident_link8_b_link9_a",
-                "coincident(link8.b, link9.a)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
+    let circle_link10_c_link8_b = Circle::new(link10_c, 1.4866068747318508).ok_or_else(|| {
+        SolveError::new(
+            "coincident_link8_b_link9_a",
+            "coincident(link8.b, link9.a)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let link9_a = link9.point_to_global(&Point2::new(6.5, 5.2));
-    let circle_link7_a_link9_a =
-        Circle::new(link7_a, (link9_a - link7_a).norm()).ok_or_else(|| {
-            SolveError::new(
-                "coincident_link8_b_link9_a",
-                "coincident(link8.b, link9.a)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
+    let circle_link7_a_link9_a = Circle::new(link7_a, 3.269556544854363).ok_or_else(|| {
+        SolveError::new(
+            "coincident_link8_b_link9_a",
+            "coincident(link8.b, link9.a)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let coincident_link8_b_link9_a_meeting =
         intersect2d::circle_circle(&circle_link10_c_link8_b, &circle_link7_a_link9_a);
     if let Some(e) = SolveError::from_contact(
@@ -531,15 +530,14 @@ pub fn solve(
 
     // coincident(link5.b, link8.a) (tenbar.gcs:31)
     let link5_b = link5.point_to_global(&Point2::new(5.6, 4.2));
-    let circle_link4_p_link5_b =
-        Circle::new(link4_p, (link5_b - link4_p).norm()).ok_or_else(|| {
-            SolveError::new(
-                "coincident_link5_b_link8_a",
-                "coincident(link5.b, link8.a)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
+    let circle_link4_p_link5_b = Circle::new(link4_p, 1.6278820596099706).ok_or_else(|| {
+        SolveError::new(
+            "coincident_link5_b_link8_a",
+            "coincident(link5.b, link8.a)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let link8_a = link8.point_to_global(&Point2::new(5.6, 4.2));
     let circle_link4_q_link8_a =
         Circle::new(link4_q, (link8_a - link4_q).norm()).ok_or_else(|| {
@@ -595,15 +593,14 @@ pub fn solve(
             )
         })?;
     let link6_b = link6.point_to_global(&Point2::new(6.8, 2.6));
-    let circle_ground_o6_link6_b = Circle::new(ground_o6, (link6_b - ground_o6).norm())
-        .ok_or_else(|| {
-            SolveError::new(
-                "close",
-                "coincident(link5.c, link6.b)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
+    let circle_ground_o6_link6_b = Circle::new(ground_o6, 2.7202941017470885).ok_or_else(|| {
+        SolveError::new(
+            "close",
+            "coincident(link5.c, link6.b)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let close_meeting =
         intersect2d::circle_circle(&circle_crank_tip_link5_c, &circle_ground_o6_link6_b);
     if let Some(e) = SolveError::from_contact(
