@@ -11,8 +11,8 @@ use gcs_lang::constraints::ConstraintKind as K;
 use gcs_lang::model::{ConstraintId, GeomKind, Part};
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
-use gcs_runtime::intersect2d;
 use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};
+use gcs_runtime::{check, intersect2d};
 use gcs_runtime::{Contact, Roots};
 use nalgebra::UnitComplex;
 
@@ -425,24 +425,9 @@ fn residual(model: &Model, cfg: &Config, c: ConstraintId, params: &[f64]) -> f64
         _ => (cfg.point(model, g), dir(g)),
     };
     let radius = |g| cfg.dim(g);
-    let sd = |(p, d): (P2, V2), q: P2| cross(d, q - p);
-    let angle = |u: V2, v: V2| cross(u, v).atan2(u.dot(&v));
-    let wrap = |x: f64| {
-        let t = std::f64::consts::TAU;
-        let r = x.rem_euclid(t);
-        if r > std::f64::consts::PI {
-            r - t
-        } else {
-            r
-        }
-    };
-    let circles = |x: GeomId, y: GeomId, gap: f64| {
-        let d = (pt(x) - pt(y)).norm();
-        let (r1, r2) = (radius(x), radius(y));
-        (d - r1 - r2 - gap)
-            .abs()
-            .min(((r1 - r2).abs() - d - gap).abs())
-    };
+    let sd = |(p, d): (P2, V2), q: P2| check::signed_distance(p, d, q);
+    let circles =
+        |x: GeomId, y: GeomId, gap: f64| check::circles(pt(x), radius(x), pt(y), radius(y), gap);
     match (con.kind, a, b) {
         (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => (pt(a) - pt(b)).norm(),
         (K::Distance, Some(a), Some(b)) => match (kind(a), kind(b)) {
@@ -462,7 +447,7 @@ fn residual(model: &Model, cfg: &Config, c: ConstraintId, params: &[f64]) -> f64
             GeomKind::Circle => circles(a, b, 0.0),
             _ => (sd(line(a), pt(b)).abs() - radius(b)).abs(),
         },
-        (K::Angle, Some(a), Some(b)) => wrap(angle(dir(a), dir(b)) - value).abs(),
+        (K::Angle, Some(a), Some(b)) => check::angle_gap(check::angle(dir(a), dir(b)), value),
         (K::Horizontal, Some(a), _) => dir(a).y.abs(),
         (K::Vertical, Some(a), _) => dir(a).x.abs(),
         (K::Parallel, Some(a), Some(b)) => cross(dir(a), dir(b)).abs(),
@@ -472,7 +457,7 @@ fn residual(model: &Model, cfg: &Config, c: ConstraintId, params: &[f64]) -> f64
         (K::OffsetX | K::Prismatic, Some(a), Some(b)) => {
             let (u, v) = (line(a).1, line(b).1);
             let target = if con.kind == K::OffsetX { value } else { 0.0 };
-            let turn = wrap(angle(u, v) - target).abs();
+            let turn = check::angle_gap(check::angle(u, v), target);
             if con.kind == K::Prismatic {
                 turn.max(sd(line(b), pt(a)).abs())
             } else {
