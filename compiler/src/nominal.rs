@@ -118,20 +118,8 @@ pub fn report(model: &Model) -> String {
         plural(n.geoms.len(), "geom"),
         plural(n.constraints.len(), "constraint"),
     );
-    let name_w = n
-        .geoms
-        .iter()
-        .map(|g| g.name.len())
-        .max()
-        .unwrap_or(0)
-        .max(4);
-    let kind_w = n
-        .geoms
-        .iter()
-        .map(|g| g.kind.len())
-        .max()
-        .unwrap_or(0)
-        .max(4);
+    let name_w = column_width(&n.geoms, |g| &g.name);
+    let kind_w = column_width(&n.geoms, |g| &g.kind);
     let _ = writeln!(out, "\ngeoms{:>w$}", "DOF", w = name_w + kind_w + 4);
     for g in &n.geoms {
         let _ = write!(
@@ -153,24 +141,17 @@ pub fn report(model: &Model) -> String {
     out
 }
 
+/// The width of a table column: its widest entry, and never under four characters.
+pub fn column_width<T>(rows: &[T], text: impl Fn(&T) -> &str) -> usize {
+    rows.iter().map(|r| text(r).len()).max().unwrap_or(0).max(4)
+}
+
 /// The constraints table (each constraint with the DOF it nominally removes) and the nominal
 /// total: shared by `check`'s nominal summary and its analysis report.
 pub fn constraints_table(n: &Nominal) -> String {
     let mut out = String::new();
-    let c_name_w = n
-        .constraints
-        .iter()
-        .map(|c| c.name.len())
-        .max()
-        .unwrap_or(0)
-        .max(4);
-    let c_text_w = n
-        .constraints
-        .iter()
-        .map(|c| c.text.len())
-        .max()
-        .unwrap_or(0)
-        .max(4);
+    let c_name_w = column_width(&n.constraints, |c| &c.name);
+    let c_text_w = column_width(&n.constraints, |c| &c.text);
     let _ = writeln!(
         out,
         "\nconstraints{:>w$}",

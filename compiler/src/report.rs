@@ -147,20 +147,8 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
             .find(|c| c.geoms.contains(&g))
             .map_or(0, |c| c.record.dof())
     };
-    let name_w = nominal
-        .geoms
-        .iter()
-        .map(|g| g.name.len())
-        .max()
-        .unwrap_or(0)
-        .max(4);
-    let kind_w = nominal
-        .geoms
-        .iter()
-        .map(|g| g.kind.len())
-        .max()
-        .unwrap_or(0)
-        .max(4);
+    let name_w = crate::nominal::column_width(&nominal.geoms, |g| &g.name);
+    let kind_w = crate::nominal::column_width(&nominal.geoms, |g| &g.kind);
     let _ = writeln!(out, "\ngeoms{:>w$}  left", "DOF", w = name_w + kind_w + 4);
     for ((id, _), row) in model.top_level().zip(&nominal.geoms) {
         let _ = writeln!(
