@@ -4,16 +4,7 @@
 use gcs_compiler::analysis::analyse;
 use gcs_lang::Model;
 
-const EXAMPLES_2D: [&str; 8] = [
-    "fourbar",
-    "crank_rocker",
-    "circle",
-    "tenbar",
-    "slider_crank_2d",
-    "sixbar",
-    "jansen_leg",
-    "sketch_profile",
-];
+include!("../../examples/examples_2d.rs");
 
 const EXAMPLES_3D: [&str; 3] = ["brick", "slider_crank", "points_planes"];
 

@@ -8,16 +8,7 @@
 use expect_test::expect_file;
 use std::path::Path;
 
-const MODELS: &[&str] = &[
-    "fourbar",
-    "circle",
-    "tenbar",
-    "slider_crank_2d",
-    "crank_rocker",
-    "sixbar",
-    "jansen_leg",
-    "sketch_profile",
-];
+include!("../../examples/examples_2d.rs");
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -25,7 +16,7 @@ fn root() -> &'static Path {
 
 #[test]
 fn generated_solvers_are_golden() {
-    for m in MODELS {
+    for m in EXAMPLES_2D {
         let path = root().join(format!("../examples/{m}.gcs"));
         let bytes = std::fs::read(&path).expect("example");
         let (_, model, diags) = gcs_lang::load(&format!("{m}.gcs"), &bytes);
@@ -44,7 +35,7 @@ fn generated_solvers_are_golden() {
 #[test]
 fn generated_solvers_agree_with_the_interpreter() {
     let t = trybuild::TestCases::new();
-    for m in MODELS {
+    for m in EXAMPLES_2D {
         t.pass(format!("trybuild/run_{m}.rs"));
     }
     t.compile_fail("trybuild/ui/*.rs");
