@@ -142,50 +142,66 @@ pub fn sphere_sphere(a: &Sphere, b: &Sphere) -> Intersection<Circle3, 1> {
     }
     let w = cb - ca;
     let d = w.norm();
-    if d <= tl {
-        let g = (ra - rb).abs();
-        return if g <= tt {
-            Intersection::none(Contact::Coincident)
-        } else {
-            Intersection::none(Contact::Disjoint { gap: g })
-        };
-    }
+    // The radical plane, where the circle lies, is `h` from `a`'s centre along `n`.
     let n = w / d;
-    let outer = d - (ra + rb);
-    let inner = (ra - rb).abs() - d;
-    if outer > tt {
-        return Intersection::none(Contact::Disjoint { gap: outer });
-    }
-    if inner > tt {
-        return Intersection::none(Contact::Disjoint { gap: inner });
-    }
-    if outer.abs() <= tt || inner.abs() <= tt {
-        let (pa, pb) = if outer.abs() <= tt {
-            (ca + n * ra, cb - n * rb)
-        } else if ra >= rb {
-            (ca + n * ra, cb + n * rb)
-        } else {
-            (ca - n * ra, cb - n * rb)
-        };
-        return one(
-            Circle3 {
-                center: mid(&pa, &pb),
-                normal: n,
-                radius: 0.0,
-            },
-            Contact::Tangent,
-        );
-    }
-    let h = 0.5 * (d + (ra - rb) * (ra + rb) / d);
-    let r = leg(ra, h);
+    let (h, r, contact) = match centres_meeting(d, ra, rb, tl, tt) {
+        Meeting::Apart(contact) => return Intersection::none(contact),
+        Meeting::Touching(h) => (h, 0.0, Contact::Tangent),
+        Meeting::Crossing { h, r } => (h, r, Contact::Crossing),
+    };
     one(
         Circle3 {
             center: ca + n * h,
             normal: n,
             radius: r,
         },
-        Contact::Crossing,
+        contact,
     )
+}
+
+/// How two spheres, or two circles in one plane, with centres `d` apart and radii `ra`, `rb`
+/// meet: the classification [`sphere_sphere`] and the coplanar case of [`circle_circle`] share.
+/// Lengths under `tl` are zero; gaps under `tt` are touching.
+enum Meeting {
+    /// They do not meet: concentric (`Coincident` or `Disjoint`) or apart (`Disjoint`).
+    Apart(Contact),
+    /// They touch, at this distance from the first centre along the line of centres.
+    Touching(f64),
+    /// They cross in a circle (two points, in a plane) at distance `h` from the first centre
+    /// along the line of centres, `r` off that line.
+    Crossing { h: f64, r: f64 },
+}
+
+fn centres_meeting(d: f64, ra: f64, rb: f64, tl: f64, tt: f64) -> Meeting {
+    if d <= tl {
+        let g = (ra - rb).abs();
+        return Meeting::Apart(if g <= tt {
+            Contact::Coincident
+        } else {
+            Contact::Disjoint { gap: g }
+        });
+    }
+    let outer = d - (ra + rb);
+    let inner = (ra - rb).abs() - d;
+    if outer > tt {
+        return Meeting::Apart(Contact::Disjoint { gap: outer });
+    }
+    if inner > tt {
+        return Meeting::Apart(Contact::Disjoint { gap: inner });
+    }
+    if outer.abs() <= tt || inner.abs() <= tt {
+        // Midway between the two spheres' own touching points, which differ by at most `tt`.
+        let (pa, pb) = if outer.abs() <= tt {
+            (ra, d - rb)
+        } else if ra >= rb {
+            (ra, d + rb)
+        } else {
+            (-ra, d - rb)
+        };
+        return Meeting::Touching(0.5 * (pa + pb));
+    }
+    let h = 0.5 * (d + (ra - rb) * (ra + rb) / d);
+    Meeting::Crossing { h, r: leg(ra, h) }
 }
 
 /// Sphere-plane: the circle a plane cuts from a sphere.
@@ -688,40 +704,19 @@ fn coplanar_circles(
     tt: f64,
 ) -> Intersection<Point3<f64>, 2> {
     let d = w.norm();
-    if d <= tl {
-        let g = (ra - rb).abs();
-        return if g <= tt {
-            Intersection::none(Contact::Coincident)
-        } else {
-            Intersection::none(Contact::Disjoint { gap: g })
-        };
-    }
     let e = w / d;
-    let outer = d - (ra + rb);
-    let inner = (ra - rb).abs() - d;
-    if outer > tt {
-        return Intersection::none(Contact::Disjoint { gap: outer });
+    match centres_meeting(d, ra, rb, tl, tt) {
+        Meeting::Apart(contact) => Intersection::none(contact),
+        Meeting::Touching(h) => {
+            let t = ca + e * h;
+            two(t, t, Contact::Tangent)
+        }
+        Meeting::Crossing { h, r } => {
+            let m = ca + e * h;
+            let side = n.cross(&e);
+            two(m + side * r, m - side * r, Contact::Crossing)
+        }
     }
-    if inner > tt {
-        return Intersection::none(Contact::Disjoint { gap: inner });
-    }
-    if outer.abs() <= tt || inner.abs() <= tt {
-        // Both points relative to `ca`, so that nearby centres lose nothing.
-        let (pa, pb) = if outer.abs() <= tt {
-            (e * ra, w - e * rb)
-        } else if ra >= rb {
-            (e * ra, w + e * rb)
-        } else {
-            (-e * ra, w - e * rb)
-        };
-        let t = ca + (pa + pb) * 0.5;
-        return two(t, t, Contact::Tangent);
-    }
-    let h = 0.5 * (d + (ra - rb) * (ra + rb) / d);
-    let k = leg(ra, h);
-    let m = ca + e * h;
-    let side = n.cross(&e);
-    two(m + side * k, m - side * k, Contact::Crossing)
 }
 
 // ---------------------------------------------------------------------------------------------
