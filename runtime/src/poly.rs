@@ -775,7 +775,7 @@ mod tests {
 
     mod reference {
         //! The previous method (bisection-heavy isolation, no closed forms), kept as an oracle.
-        use crate::poly::RealRoot;
+        use crate::poly::{bisect, RealRoot};
         use crate::roots::Roots;
         use crate::tol;
 
@@ -1012,26 +1012,6 @@ mod tests {
                     }
                 }
                 best
-            }
-        }
-
-        /// A point strictly inside `(lo, hi)` when there is one: 0 across a sign change, the midpoint of
-        /// the bit patterns (a geometric-like mean, so huge brackets shrink in at most 64 steps) when
-        /// the ends differ by more than a factor of four, else the arithmetic midpoint.
-        fn bisect(lo: f64, hi: f64) -> f64 {
-            if lo < 0.0 && hi > 0.0 {
-                return 0.0;
-            }
-            let (a, b) = (lo.abs().min(hi.abs()), lo.abs().max(hi.abs()));
-            let mid = if b > 4.0 * a {
-                f64::from_bits(a.to_bits() / 2 + b.to_bits() / 2)
-            } else {
-                0.5 * a + 0.5 * b
-            };
-            if lo < 0.0 || hi < 0.0 && lo <= 0.0 {
-                -mid
-            } else {
-                mid
             }
         }
 
