@@ -178,6 +178,9 @@ struct Gen<'a> {
     file: String,
     /// Dimensions declared where the plan sets them (nothing reads their sketch value).
     deferred: HashSet<GeomId>,
+    /// Reported points and vectors the plan never moves and whose sketch is constant: the
+    /// solution returns them as literals instead of storing them.
+    constant: HashSet<GeomId>,
     /// Registers some generated step reads (an intersection's `near` is for the sketch's
     /// branch only, so it is not among them).
     used: HashSet<Reg>,
@@ -232,6 +235,7 @@ impl<'a> Gen<'a> {
         }
         Gen {
             deferred: HashSet::new(),
+            constant: HashSet::new(),
             used,
             model,
             plan,
@@ -522,6 +526,11 @@ impl<'a> Gen<'a> {
         let mut local_field: HashMap<GeomId, String> = HashMap::new();
         for g in self.solved() {
             let geom = &m.geoms[g];
+            if let Some(value) = self.constant_value(g) {
+                self.constant.insert(g);
+                frame_field.insert(g, value);
+                continue;
+            }
             let f = field_names.fresh(&geom.name);
             fields.push((f.clone(), "Frame2".into()));
             frame_field.insert(g, f);
@@ -582,6 +591,18 @@ impl<'a> Gen<'a> {
             let frame = format!("self.{}", frame_field[&g]);
             let mut items: Vec<(String, String, String, String)> = Vec::new(); // (name, doc, type, body)
             match geom.kind {
+                GeomKind::Point if self.constant.contains(&g) => items.push((
+                    geom.name.clone(),
+                    format!("Point `{}`, which the solve never moves.", geom.name),
+                    "Point2<f64>".into(),
+                    frame_field[&g].clone(),
+                )),
+                GeomKind::Vector if self.constant.contains(&g) => items.push((
+                    geom.name.clone(),
+                    format!("Vector `{}`, which the solve never moves.", geom.name),
+                    "Vector2<f64>".into(),
+                    frame_field[&g].clone(),
+                )),
                 GeomKind::Body => {
                     items.push((
                         geom.name.clone(),
@@ -693,6 +714,7 @@ impl<'a> Gen<'a> {
             for (name, doc, ty, body) in items {
                 let accessor = accessors.fresh(&name);
                 w.line(&format!("/// {doc}"));
+                w.line("#[inline]");
                 w.open(&format!("pub fn {accessor}(&self) -> {ty} {{"));
                 w.line(&body);
                 w.close("}");
@@ -735,6 +757,35 @@ impl<'a> Gen<'a> {
         self.dims = dim_field;
         self.locals = local_field;
         fields
+    }
+
+    /// The literal value of a reported point or vector that stays where its constant sketch
+    /// puts it (a fixed reference, typically), computed as the solve's sketch frame would be.
+    fn constant_value(&self, g: GeomId) -> Option<String> {
+        let m = self.model;
+        let geom = &m.geoms[g];
+        if self.moved(g) {
+            return None;
+        }
+        let value = |c: &[ExprId], i: usize| c.get(i).map(|&e| m.exprs.eval(e, &[]));
+        match (&geom.kind, &geom.sketch) {
+            (GeomKind::Point, Sketch::Point(c)) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
+                Some(format!(
+                    "Point2::new({}, {})",
+                    float(value(c, 0)?),
+                    float(value(c, 1)?)
+                ))
+            }
+            (GeomKind::Vector, Sketch::Vector(c)) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
+                let f = gcs_runtime::frame::Frame2::along(
+                    nalgebra::Point2::origin(),
+                    nalgebra::Vector2::new(value(c, 0)?, value(c, 1)?),
+                );
+                let x = f.x_axis();
+                Some(format!("Vector2::new({}, {})", float(x.x), float(x.y)))
+            }
+            _ => None,
+        }
     }
 
     fn out_trailing_blank(&self, w: &Writer) -> bool {
@@ -803,7 +854,7 @@ impl<'a> Gen<'a> {
             .model
             .top_level()
             .map(|(id, _)| id)
-            .filter(|id| solved.contains(id) || self.touched(*id))
+            .filter(|id| (solved.contains(id) && !self.constant.contains(id)) || self.touched(*id))
             .collect();
         for &g in &worked {
             let geom = &m.geoms[g];
@@ -1004,6 +1055,9 @@ impl<'a> Gen<'a> {
         let locals = self.locals.clone();
         let mut field_iter = fields.iter();
         for g in solved {
+            if self.constant.contains(&g) {
+                continue;
+            }
             if let Some((f, _)) = field_iter.next() {
                 w.line(&field_init(f, &frames[&g]));
             }

@@ -661,7 +661,22 @@ mod tests {
 pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
     let c = a.dot(b);
     let s = a.x * b.y - a.y * b.x;
-    // The common case: one square root and one division.
+    // The plan's case: a point turned onto a target at its own distance from the pivot, so
+    // `|a| = |b|` to rounding and `|a| |b|` is their mean square, `(|a|^2 + |b|^2) / 2`, to
+    // second order in the difference: one division and no square root. One Newton step on the
+    // norm makes the pair unit to rounding; when the lengths differ by more than about 1e-4
+    // (relative), the exact path below takes over.
+    let mean = 0.5 * (a.norm_squared() + b.norm_squared());
+    if mean > 1e-250 && mean < 1e250 {
+        let inv = 1.0 / mean;
+        let (c1, s1) = (c * inv, s * inv);
+        let n1 = c1 * c1 + s1 * s1;
+        if (n1 - 1.0).abs() < 1e-8 {
+            let k = 1.5 - 0.5 * n1;
+            return UnitComplex::from_cos_sin_unchecked(c1 * k, s1 * k);
+        }
+    }
+    // Lengths that differ: one square root and one division.
     let n2 = c * c + s * s;
     if n2 > 1e-250 && n2 < 1e250 {
         let inv = 1.0 / n2.sqrt();

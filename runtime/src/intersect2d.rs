@@ -301,7 +301,9 @@ pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
     let outer = d - (r1 + r2);
     let inner = (r1 - r2).abs() - d;
     let tangent = tol::TANGENT_REL * s;
-    let u = if d > 0.0 { dv / d } else { V2::x() };
+    // One division, shared by the direction, the distance along it and the half chord.
+    let inv_d = 1.0 / d;
+    let u = if d > 0.0 { dv * inv_d } else { V2::x() };
     // Missing by rounding (at most `tangent`): the touching point. Overlapping loci, however
     // little, cross, and their two roots are computed exactly below.
     let external = (0.0..=tangent).contains(&outer);
@@ -330,10 +332,10 @@ pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
     }
     // Distance along u from the first centre, and the half chord by Heron's formula, whose
     // factors are each a sum or difference of inputs (no cancellation near tangency).
-    let along = 0.5 * (d + (r1 - r2) * (r1 + r2) / d);
+    let along = 0.5 * (d + (r1 - r2) * (r1 + r2) * inv_d);
     // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last.
     let area16 = (d + (r1 + r2)) * ((r1 + r2) - d) * (d + (r2 - r1)) * (d + (r1 - r2));
-    let h = area16.max(0.0).sqrt() / (2.0 * d);
+    let h = area16.max(0.0).sqrt() * (0.5 * inv_d);
     let m = a.center() + u * along;
     let v = perp(u);
     let (left, right) = (m + v * h, m - v * h);

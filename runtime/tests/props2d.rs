@@ -331,3 +331,24 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// The rotation between two vectors turns the first onto the direction of the second and is
+    /// unit to rounding, whether their lengths are equal to rounding (the plan's case, taken
+    /// without a square root), nearly equal, or far apart (the exact path).
+    #[test]
+    fn rotation_between_is_unit_and_exact(s in scale(), angle in -3.2f64..3.2, turn in -3.2f64..3.2,
+                                          stretch in prop_oneof![Just(0.0), tiny(), -0.9f64..9.0]) {
+        use gcs_runtime::frame::rotation_between2;
+        use gcs_runtime::nalgebra::UnitComplex;
+        let a = UnitComplex::new(angle) * V2::new(s, 0.0);
+        let b = (UnitComplex::new(turn) * a) * (1.0 + stretch);
+        let r = rotation_between2(&a, &b);
+        prop_assert!((r.re * r.re + r.im * r.im - 1.0).abs() <= 4.0 * f64::EPSILON);
+        let turned = r * a / s;
+        let want = b / b.norm();
+        prop_assert!((turned - want).norm() <= 4.0 * f64::EPSILON, "{} vs {}", turned, want);
+    }
+}

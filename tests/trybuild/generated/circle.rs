@@ -77,7 +77,6 @@ pub struct Solution {
     c: Frame2,
     c_radius: f64,
     l: Frame2,
-    p: Frame2,
     ls: Frame2,
     ls_length: f64,
     g: Frame2,
@@ -86,57 +85,68 @@ pub struct Solution {
 
 impl Solution {
     /// The radius of `C`.
+    #[inline]
     pub fn c_radius(&self) -> f64 {
         self.c_radius
     }
 
     /// Point `C.center`.
+    #[inline]
     pub fn c_center(&self) -> Point2<f64> {
         self.c.origin
     }
 
     /// Direction `L.dir`.
+    #[inline]
     pub fn l_dir(&self) -> Vector2<f64> {
         self.l.x_axis()
     }
 
     /// Point `L.point`: the foot of the perpendicular from the line's first sketch point.
+    #[inline]
     pub fn l_point(&self) -> Point2<f64> {
         self.l.origin
             + self.l.x_axis() * (Point2::new(-10.0, -4.0) - self.l.origin).dot(&self.l.x_axis())
     }
 
-    /// Point `P`.
+    /// Point `P`, which the solve never moves.
+    #[inline]
     pub fn p(&self) -> Point2<f64> {
-        self.p.origin
+        Point2::new(6.0, 3.0)
     }
 
     /// The length of `Ls`.
+    #[inline]
     pub fn ls_length(&self) -> f64 {
         self.ls_length
     }
 
     /// Point `Ls.start`.
+    #[inline]
     pub fn ls_start(&self) -> Point2<f64> {
         self.ls.origin
     }
 
     /// Point `Ls.end`.
+    #[inline]
     pub fn ls_end(&self) -> Point2<f64> {
         self.ls.origin + self.ls.x_axis() * self.ls_length
     }
 
     /// Direction `Ls.dir`.
+    #[inline]
     pub fn ls_dir(&self) -> Vector2<f64> {
         self.ls.x_axis()
     }
 
     /// The radius of `G`.
+    #[inline]
     pub fn g_radius(&self) -> f64 {
         self.g_radius
     }
 
     /// Point `G.center`.
+    #[inline]
     pub fn g_center(&self) -> Point2<f64> {
         self.g.origin
     }
@@ -276,7 +286,6 @@ pub fn solve(
         c,
         c_radius,
         l,
-        p,
         ls,
         ls_length,
         g,

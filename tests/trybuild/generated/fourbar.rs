@@ -84,61 +84,68 @@ pub struct Defaults {}
 /// through accessors named after the model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Solution {
-    a: Frame2,
-    d: Frame2,
-    x: Frame2,
     crank: Frame2,
     crank_b_local: Point2<f64>,
     coupler: Frame2,
 }
 
 impl Solution {
-    /// Point `A`.
+    /// Point `A`, which the solve never moves.
+    #[inline]
     pub fn a(&self) -> Point2<f64> {
-        self.a.origin
+        Point2::new(0.0, 0.0)
     }
 
-    /// Point `D`.
+    /// Point `D`, which the solve never moves.
+    #[inline]
     pub fn d(&self) -> Point2<f64> {
-        self.d.origin
+        Point2::new(4.0, 0.0)
     }
 
-    /// Vector `X`.
+    /// Vector `X`, which the solve never moves.
+    #[inline]
     pub fn x(&self) -> Vector2<f64> {
-        self.x.x_axis()
+        Vector2::new(1.0, 0.0)
     }
 
     /// The frame of body `crank`.
+    #[inline]
     pub fn crank(&self) -> Frame2 {
         self.crank
     }
 
     /// Point `crank.a`.
+    #[inline]
     pub fn crank_a(&self) -> Point2<f64> {
         self.crank.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Point `crank.b`.
+    #[inline]
     pub fn crank_b(&self) -> Point2<f64> {
         self.crank.point_to_global(&self.crank_b_local)
     }
 
     /// Vector `crank.u`.
+    #[inline]
     pub fn crank_u(&self) -> Vector2<f64> {
         self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
     /// The frame of body `coupler`.
+    #[inline]
     pub fn coupler(&self) -> Frame2 {
         self.coupler
     }
 
     /// Point `coupler.b`.
+    #[inline]
     pub fn coupler_b(&self) -> Point2<f64> {
         self.coupler.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Point `coupler.c`.
+    #[inline]
     pub fn coupler_c(&self) -> Point2<f64> {
         self.coupler.point_to_global(&Point2::new(4.0, 0.0))
     }
@@ -254,9 +261,6 @@ pub fn solve(
     coupler.rotate_about_by(&crank_b, &turn_2);
 
     Ok(Solution {
-        a,
-        d,
-        x,
         crank,
         crank_b_local,
         coupler,

@@ -104,9 +104,6 @@ pub struct Defaults {}
 /// through accessors named after the model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Solution {
-    o: Frame2,
-    b: Frame2,
-    x: Frame2,
     crank: Frame2,
     upper: Frame2,
     lower: Frame2,
@@ -116,62 +113,74 @@ pub struct Solution {
 }
 
 impl Solution {
-    /// Point `O`.
+    /// Point `O`, which the solve never moves.
+    #[inline]
     pub fn o(&self) -> Point2<f64> {
-        self.o.origin
+        Point2::new(0.0, 0.0)
     }
 
-    /// Point `B`.
+    /// Point `B`, which the solve never moves.
+    #[inline]
     pub fn b(&self) -> Point2<f64> {
-        self.b.origin
+        Point2::new(-38.0, -7.8)
     }
 
-    /// Vector `X`.
+    /// Vector `X`, which the solve never moves.
+    #[inline]
     pub fn x(&self) -> Vector2<f64> {
-        self.x.x_axis()
+        Vector2::new(1.0, 0.0)
     }
 
     /// The frame of body `crank`.
+    #[inline]
     pub fn crank(&self) -> Frame2 {
         self.crank
     }
 
     /// Point `crank.o`.
+    #[inline]
     pub fn crank_o(&self) -> Point2<f64> {
         self.crank.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Point `crank.tip`.
+    #[inline]
     pub fn crank_tip(&self) -> Point2<f64> {
         self.crank.point_to_global(&Point2::new(15.0, 0.0))
     }
 
     /// Vector `crank.u`.
+    #[inline]
     pub fn crank_u(&self) -> Vector2<f64> {
         self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
     /// Point `upper`.
+    #[inline]
     pub fn upper(&self) -> Point2<f64> {
         self.upper.origin
     }
 
     /// Point `lower`.
+    #[inline]
     pub fn lower(&self) -> Point2<f64> {
         self.lower.origin
     }
 
     /// Point `top`.
+    #[inline]
     pub fn top(&self) -> Point2<f64> {
         self.top.origin
     }
 
     /// Point `knee`.
+    #[inline]
     pub fn knee(&self) -> Point2<f64> {
         self.knee.origin
     }
 
     /// Point `foot`.
+    #[inline]
     pub fn foot(&self) -> Point2<f64> {
         self.foot.origin
     }
@@ -465,9 +474,6 @@ pub fn solve(
     foot.translate(&shift_11);
 
     Ok(Solution {
-        o,
-        b,
-        x,
         crank,
         upper,
         lower,

@@ -86,92 +86,104 @@ pub struct Defaults {}
 /// through accessors named after the model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Solution {
-    a: Frame2,
-    d: Frame2,
-    f: Frame2,
-    x: Frame2,
     crank: Frame2,
     rocker: Frame2,
     follower: Frame2,
 }
 
 impl Solution {
-    /// Point `A`.
+    /// Point `A`, which the solve never moves.
+    #[inline]
     pub fn a(&self) -> Point2<f64> {
-        self.a.origin
+        Point2::new(0.0, 0.0)
     }
 
-    /// Point `D`.
+    /// Point `D`, which the solve never moves.
+    #[inline]
     pub fn d(&self) -> Point2<f64> {
-        self.d.origin
+        Point2::new(4.0, 0.0)
     }
 
-    /// Point `F`.
+    /// Point `F`, which the solve never moves.
+    #[inline]
     pub fn f(&self) -> Point2<f64> {
-        self.f.origin
+        Point2::new(7.0, 1.0)
     }
 
-    /// Vector `X`.
+    /// Vector `X`, which the solve never moves.
+    #[inline]
     pub fn x(&self) -> Vector2<f64> {
-        self.x.x_axis()
+        Vector2::new(1.0, 0.0)
     }
 
     /// The frame of body `crank`.
+    #[inline]
     pub fn crank(&self) -> Frame2 {
         self.crank
     }
 
     /// Point `crank.a`.
+    #[inline]
     pub fn crank_a(&self) -> Point2<f64> {
         self.crank.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Point `crank.b`.
+    #[inline]
     pub fn crank_b(&self) -> Point2<f64> {
         self.crank.point_to_global(&Point2::new(1.0, 0.0))
     }
 
     /// Vector `crank.u`.
+    #[inline]
     pub fn crank_u(&self) -> Vector2<f64> {
         self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
     /// The frame of body `rocker`.
+    #[inline]
     pub fn rocker(&self) -> Frame2 {
         self.rocker
     }
 
     /// Point `rocker.d`.
+    #[inline]
     pub fn rocker_d(&self) -> Point2<f64> {
         self.rocker.point_to_global(&Point2::new(4.0, 0.0))
     }
 
     /// Point `rocker.c`.
+    #[inline]
     pub fn rocker_c(&self) -> Point2<f64> {
         self.rocker.point_to_global(&Point2::new(3.5, 2.5))
     }
 
     /// Point `rocker.e`.
+    #[inline]
     pub fn rocker_e(&self) -> Point2<f64> {
         self.rocker.point_to_global(&Point2::new(5.0, 2.8))
     }
 
     /// The frame of body `follower`.
+    #[inline]
     pub fn follower(&self) -> Frame2 {
         self.follower
     }
 
     /// Point `follower.f`.
+    #[inline]
     pub fn follower_f(&self) -> Point2<f64> {
         self.follower.point_to_global(&Point2::new(7.0, 1.0))
     }
 
     /// Point `follower.g`.
+    #[inline]
     pub fn follower_g(&self) -> Point2<f64> {
         self.follower.point_to_global(&Point2::new(7.5, 3.8))
     }
 
     /// Vector `follower.u`.
+    #[inline]
     pub fn follower_u(&self) -> Vector2<f64> {
         self.follower
             .vector_to_global(&Vector2::new(0.1757906384836575, 0.9844275755084819))
@@ -349,10 +361,6 @@ pub fn solve(
     follower.rotate_about_by(&f_2, &turn_3);
 
     Ok(Solution {
-        a,
-        d,
-        f,
-        x,
         crank,
         rocker,
         follower,

@@ -101,7 +101,6 @@ pub struct Defaults {}
 /// through accessors named after the model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Solution {
-    origin: Frame2,
     bottom: Frame2,
     bottom_length: f64,
     right: Frame2,
@@ -115,97 +114,116 @@ pub struct Solution {
 }
 
 impl Solution {
-    /// Point `origin`.
+    /// Point `origin`, which the solve never moves.
+    #[inline]
     pub fn origin(&self) -> Point2<f64> {
-        self.origin.origin
+        Point2::new(0.0, 0.0)
     }
 
     /// The length of `bottom`.
+    #[inline]
     pub fn bottom_length(&self) -> f64 {
         self.bottom_length
     }
 
     /// Point `bottom.start`.
+    #[inline]
     pub fn bottom_start(&self) -> Point2<f64> {
         self.bottom.origin
     }
 
     /// Point `bottom.end`.
+    #[inline]
     pub fn bottom_end(&self) -> Point2<f64> {
         self.bottom.origin + self.bottom.x_axis() * self.bottom_length
     }
 
     /// Direction `bottom.dir`.
+    #[inline]
     pub fn bottom_dir(&self) -> Vector2<f64> {
         self.bottom.x_axis()
     }
 
     /// The length of `right`.
+    #[inline]
     pub fn right_length(&self) -> f64 {
         self.right_length
     }
 
     /// Point `right.start`.
+    #[inline]
     pub fn right_start(&self) -> Point2<f64> {
         self.right.origin
     }
 
     /// Point `right.end`.
+    #[inline]
     pub fn right_end(&self) -> Point2<f64> {
         self.right.origin + self.right.x_axis() * self.right_length
     }
 
     /// Direction `right.dir`.
+    #[inline]
     pub fn right_dir(&self) -> Vector2<f64> {
         self.right.x_axis()
     }
 
     /// The radius of `fillet`.
+    #[inline]
     pub fn fillet_radius(&self) -> f64 {
         self.fillet_radius
     }
 
     /// Point `fillet.center`.
+    #[inline]
     pub fn fillet_center(&self) -> Point2<f64> {
         self.fillet.origin
     }
 
     /// The length of `top`.
+    #[inline]
     pub fn top_length(&self) -> f64 {
         self.top_length
     }
 
     /// Point `top.start`.
+    #[inline]
     pub fn top_start(&self) -> Point2<f64> {
         self.top.origin
     }
 
     /// Point `top.end`.
+    #[inline]
     pub fn top_end(&self) -> Point2<f64> {
         self.top.origin + self.top.x_axis() * self.top_length
     }
 
     /// Direction `top.dir`.
+    #[inline]
     pub fn top_dir(&self) -> Vector2<f64> {
         self.top.x_axis()
     }
 
     /// The length of `left`.
+    #[inline]
     pub fn left_length(&self) -> f64 {
         self.left_length
     }
 
     /// Point `left.start`.
+    #[inline]
     pub fn left_start(&self) -> Point2<f64> {
         self.left.origin
     }
 
     /// Point `left.end`.
+    #[inline]
     pub fn left_end(&self) -> Point2<f64> {
         self.left.origin + self.left.x_axis() * self.left_length
     }
 
     /// Direction `left.dir`.
+    #[inline]
     pub fn left_dir(&self) -> Vector2<f64> {
         self.left.x_axis()
     }
@@ -529,7 +547,6 @@ pub fn solve(
     top_length = length_2;
 
     Ok(Solution {
-        origin,
         bottom,
         bottom_length,
         right,

@@ -97,76 +97,91 @@ pub struct Solution {
 
 impl Solution {
     /// The frame of body `ground`.
+    #[inline]
     pub fn ground(&self) -> Frame2 {
         self.ground
     }
 
     /// Point `ground.o`.
+    #[inline]
     pub fn ground_o(&self) -> Point2<f64> {
         self.ground.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Axis `ground.o.x`.
+    #[inline]
     pub fn ground_o_x(&self) -> Vector2<f64> {
         self.ground.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
     /// Point `ground.rail`.
+    #[inline]
     pub fn ground_rail(&self) -> Point2<f64> {
         self.ground.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Axis `ground.rail.x`.
+    #[inline]
     pub fn ground_rail_x(&self) -> Vector2<f64> {
         self.ground.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
     /// The frame of body `crank`.
+    #[inline]
     pub fn crank(&self) -> Frame2 {
         self.crank
     }
 
     /// Point `crank.o`.
+    #[inline]
     pub fn crank_o(&self) -> Point2<f64> {
         self.crank.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Axis `crank.o.x`.
+    #[inline]
     pub fn crank_o_x(&self) -> Vector2<f64> {
         self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
     /// Point `crank.tip`.
+    #[inline]
     pub fn crank_tip(&self) -> Point2<f64> {
         self.crank.point_to_global(&self.crank_tip_local)
     }
 
     /// Axis `crank.tip.x`.
+    #[inline]
     pub fn crank_tip_x(&self) -> Vector2<f64> {
         self.crank.vector_to_global(&self.crank_tip_x_local)
     }
 
     /// The frame of body `slider`.
+    #[inline]
     pub fn slider(&self) -> Frame2 {
         self.slider
     }
 
     /// Point `slider.s`.
+    #[inline]
     pub fn slider_s(&self) -> Point2<f64> {
         self.slider.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Axis `slider.s.x`.
+    #[inline]
     pub fn slider_s_x(&self) -> Vector2<f64> {
         self.slider.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
     /// Point `slider.pin`.
+    #[inline]
     pub fn slider_pin(&self) -> Point2<f64> {
         self.slider.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Axis `slider.pin.x`.
+    #[inline]
     pub fn slider_pin_x(&self) -> Vector2<f64> {
         self.slider.vector_to_global(&Vector2::new(1.0, 0.0))
     }

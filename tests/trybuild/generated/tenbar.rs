@@ -116,206 +116,246 @@ pub struct Solution {
 
 impl Solution {
     /// The frame of body `ground`.
+    #[inline]
     pub fn ground(&self) -> Frame2 {
         self.ground
     }
 
     /// Point `ground.o1`.
+    #[inline]
     pub fn ground_o1(&self) -> Point2<f64> {
         self.ground.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Point `ground.o6`.
+    #[inline]
     pub fn ground_o6(&self) -> Point2<f64> {
         self.ground.point_to_global(&Point2::new(6.0, 0.0))
     }
 
     /// Vector `ground.x`.
+    #[inline]
     pub fn ground_x(&self) -> Vector2<f64> {
         self.ground.vector_to_global(&Vector2::new(1.0, 0.0))
     }
 
     /// The frame of body `crank`.
+    #[inline]
     pub fn crank(&self) -> Frame2 {
         self.crank
     }
 
     /// Point `crank.o`.
+    #[inline]
     pub fn crank_o(&self) -> Point2<f64> {
         self.crank.point_to_global(&Point2::new(0.0, 0.0))
     }
 
     /// Point `crank.tip`.
+    #[inline]
     pub fn crank_tip(&self) -> Point2<f64> {
         self.crank.point_to_global(&Point2::new(0.75, 1.299038))
     }
 
     /// Vector `crank.u`.
+    #[inline]
     pub fn crank_u(&self) -> Vector2<f64> {
         self.crank
             .vector_to_global(&Vector2::new(0.5000001748438417, 0.8660253028382761))
     }
 
     /// The frame of body `link3`.
+    #[inline]
     pub fn link3(&self) -> Frame2 {
         self.link3
     }
 
     /// Point `link3.a`.
+    #[inline]
     pub fn link3_a(&self) -> Point2<f64> {
         self.link3.point_to_global(&Point2::new(0.75, 1.299038))
     }
 
     /// Point `link3.b`.
+    #[inline]
     pub fn link3_b(&self) -> Point2<f64> {
         self.link3.point_to_global(&Point2::new(3.212019, 1.733159))
     }
 
     /// Vector `link3.u`.
+    #[inline]
     pub fn link3_u(&self) -> Vector2<f64> {
         self.link3
             .vector_to_global(&Vector2::new(0.9848077908426045, 0.17364796311995495))
     }
 
     /// The frame of body `link4`.
+    #[inline]
     pub fn link4(&self) -> Frame2 {
         self.link4
     }
 
     /// Point `link4.a`.
+    #[inline]
     pub fn link4_a(&self) -> Point2<f64> {
         self.link4.point_to_global(&Point2::new(3.212019, 1.733159))
     }
 
     /// Point `link4.p`.
+    #[inline]
     pub fn link4_p(&self) -> Point2<f64> {
         self.link4.point_to_global(&Point2::new(4.5, 3.0))
     }
 
     /// Point `link4.q`.
+    #[inline]
     pub fn link4_q(&self) -> Point2<f64> {
         self.link4.point_to_global(&Point2::new(4.8, 1.2))
     }
 
     /// Vector `link4.u`.
+    #[inline]
     pub fn link4_u(&self) -> Vector2<f64> {
         self.link4
             .vector_to_global(&Vector2::new(0.7129333647431632, 0.7012317858140715))
     }
 
     /// The frame of body `link5`.
+    #[inline]
     pub fn link5(&self) -> Frame2 {
         self.link5
     }
 
     /// Point `link5.a`.
+    #[inline]
     pub fn link5_a(&self) -> Point2<f64> {
         self.link5.point_to_global(&Point2::new(4.5, 3.0))
     }
 
     /// Point `link5.b`.
+    #[inline]
     pub fn link5_b(&self) -> Point2<f64> {
         self.link5.point_to_global(&Point2::new(5.6, 4.2))
     }
 
     /// Point `link5.c`.
+    #[inline]
     pub fn link5_c(&self) -> Point2<f64> {
         self.link5.point_to_global(&Point2::new(6.8, 2.6))
     }
 
     /// The frame of body `link6`.
+    #[inline]
     pub fn link6(&self) -> Frame2 {
         self.link6
     }
 
     /// Point `link6.a`.
+    #[inline]
     pub fn link6_a(&self) -> Point2<f64> {
         self.link6.point_to_global(&Point2::new(6.0, 0.0))
     }
 
     /// Point `link6.b`.
+    #[inline]
     pub fn link6_b(&self) -> Point2<f64> {
         self.link6.point_to_global(&Point2::new(6.8, 2.6))
     }
 
     /// The frame of body `link7`.
+    #[inline]
     pub fn link7(&self) -> Frame2 {
         self.link7
     }
 
     /// Point `link7.a`.
+    #[inline]
     pub fn link7_a(&self) -> Point2<f64> {
         self.link7.point_to_global(&Point2::new(7.8, 2.2))
     }
 
     /// Point `link7.b`.
+    #[inline]
     pub fn link7_b(&self) -> Point2<f64> {
         self.link7.point_to_global(&Point2::new(6.2, 1.8))
     }
 
     /// Vector `link7.u`.
+    #[inline]
     pub fn link7_u(&self) -> Vector2<f64> {
         self.link7
             .vector_to_global(&Vector2::new(-0.9701425001453318, -0.24253562503633294))
     }
 
     /// The frame of body `link10`.
+    #[inline]
     pub fn link10(&self) -> Frame2 {
         self.link10
     }
 
     /// Point `link10.a`.
+    #[inline]
     pub fn link10_a(&self) -> Point2<f64> {
         self.link10.point_to_global(&Point2::new(6.2, 1.8))
     }
 
     /// Point `link10.b`.
+    #[inline]
     pub fn link10_b(&self) -> Point2<f64> {
         self.link10.point_to_global(&Point2::new(4.8, 1.2))
     }
 
     /// Point `link10.c`.
+    #[inline]
     pub fn link10_c(&self) -> Point2<f64> {
         self.link10.point_to_global(&Point2::new(7.0, 3.8))
     }
 
     /// Vector `link10.u`.
+    #[inline]
     pub fn link10_u(&self) -> Vector2<f64> {
         self.link10
             .vector_to_global(&Vector2::new(-0.9191450300180579, -0.3939192985791677))
     }
 
     /// The frame of body `link8`.
+    #[inline]
     pub fn link8(&self) -> Frame2 {
         self.link8
     }
 
     /// Point `link8.a`.
+    #[inline]
     pub fn link8_a(&self) -> Point2<f64> {
         self.link8.point_to_global(&Point2::new(5.6, 4.2))
     }
 
     /// Point `link8.b`.
+    #[inline]
     pub fn link8_b(&self) -> Point2<f64> {
         self.link8.point_to_global(&Point2::new(6.5, 5.2))
     }
 
     /// Point `link8.c`.
+    #[inline]
     pub fn link8_c(&self) -> Point2<f64> {
         self.link8.point_to_global(&Point2::new(7.0, 3.8))
     }
 
     /// The frame of body `link9`.
+    #[inline]
     pub fn link9(&self) -> Frame2 {
         self.link9
     }
 
     /// Point `link9.a`.
+    #[inline]
     pub fn link9_a(&self) -> Point2<f64> {
         self.link9.point_to_global(&Point2::new(6.5, 5.2))
     }
 
     /// Point `link9.b`.
+    #[inline]
     pub fn link9_b(&self) -> Point2<f64> {
         self.link9.point_to_global(&Point2::new(7.8, 2.2))
     }
