@@ -13,6 +13,7 @@ pub mod build;
 pub mod codegen;
 pub mod config;
 pub mod explain;
+pub mod families;
 pub mod interp;
 pub mod nominal;
 pub mod plan;

@@ -1,0 +1,211 @@
+//! Families of models of any size, written as `.gcs` text: the workloads of the scaling
+//! measurements, the benchmarks and the stress tests (issue 7).
+//!
+//! Each generator returns a well-constrained 2d model whose sketch is close to an assembly, so
+//! that the sketch's branches are the natural ones. Every family is a chain of the same local
+//! problem repeated `n` times, so analysis and solve time should grow linearly in `n`.
+
+use std::fmt::Write as _;
+
+/// One of the generated families.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    /// [`four_bar_chain`]: Kramer's chain of four-bars (paper 000, Fig. 10).
+    FourBarChain,
+    /// [`sketch_profile`]: segments joined by tangent arcs, as in a CAD sketch.
+    SketchProfile,
+    /// [`truss`]: a planar truss of triangles.
+    Truss,
+}
+
+impl Family {
+    /// Every family, in a fixed order.
+    pub const ALL: [Family; 3] = [Family::FourBarChain, Family::SketchProfile, Family::Truss];
+
+    /// The family's short name, as the command line and the reports spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::FourBarChain => "fourbar_chain",
+            Family::SketchProfile => "sketch_profile",
+            Family::Truss => "truss",
+        }
+    }
+
+    /// The family with that short name.
+    pub fn named(name: &str) -> Option<Family> {
+        Family::ALL.into_iter().find(|f| f.name() == name)
+    }
+
+    /// The model of size `n`.
+    pub fn model(self, n: usize) -> String {
+        match self {
+            Family::FourBarChain => four_bar_chain(n),
+            Family::SketchProfile => sketch_profile(n),
+            Family::Truss => truss(n),
+        }
+    }
+
+    /// The param the family's sweeps drive, and its range (radians or length).
+    pub fn driver(self) -> (&'static str, f64, f64) {
+        match self {
+            Family::FourBarChain => ("theta", 0.0, std::f64::consts::TAU),
+            Family::SketchProfile => ("len", 8.0, 12.0),
+            Family::Truss => ("bar", 1.5, 2.5),
+        }
+    }
+}
+
+/// `n` four-bars in series, each one's rocker the next one's crank (paper 000, Fig. 10).
+///
+/// Stage `k` has a fixed pivot `P{k}` at `(4k, 0)`, a coupler of length 4 and a rocker of length
+/// 3 whose point `b`, 1.5 below its pivot, drives stage `k + 1`: every stage is a Grashof
+/// crank-rocker (1.5 + 4 < 3 + 4), so it assembles at every input angle. The first crank turns
+/// by `theta`; the output is the last rocker's `b`. One branch variable `elbow{k}` per stage.
+pub fn four_bar_chain(n: usize) -> String {
+    let n = n.max(1);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// {n} four-bars in series: each rocker is the next stage's crank (paper 000, Fig. 10)."
+    );
+    s.push_str("space 2d;\n\nparam theta = 30 deg;\n\n");
+    s.push_str("fixed vector X = (1, 0);\nfixed point P0 = (0, 0);\n");
+    s.push_str(
+        "body crank at (0, 0) { point a = (0, 0); point b = (1.5, 0); vector u = (1, 0); }\n",
+    );
+    s.push_str("coincident(crank.a, P0);\ndrive: angle(X, crank.u) = theta;\n");
+    let mut prev = "crank".to_string();
+    for k in 1..=n {
+        let x = 4 * k;
+        let _ = writeln!(s, "\nfixed point P{k} = ({x}, 0);");
+        let _ = writeln!(
+            s,
+            "body coupler{k} at ({}, 0) {{ point b = (0, 0); point c = (4, 0); }}",
+            x - 3
+        );
+        let _ = writeln!(
+            s,
+            "body rocker{k} at ({x}, 0) {{ point d = (0, 0); point c = (0, 3); point b = (0, -1.5); }}"
+        );
+        let _ = writeln!(s, "coincident({prev}.b, coupler{k}.b);");
+        let _ = writeln!(s, "elbow{k}: coincident(coupler{k}.c, rocker{k}.c);");
+        let _ = writeln!(s, "coincident(rocker{k}.d, P{k});");
+        prev = format!("rocker{k}");
+    }
+    let _ = writeln!(s, "\noutput {prev}.b;");
+    s
+}
+
+/// A profile of `n` segments of length `len`, alternately at +20 and -20 degrees, each joined
+/// to the next by a fillet arc of radius `r` tangent to both (and a last arc after the last
+/// segment): `n` lines and `n` tangent arcs, dimensioned as a CAD sketch is.
+pub fn sketch_profile(n: usize) -> String {
+    let n = n.max(1);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// A sketch profile: {n} segments joined by {n} tangent fillet arcs."
+    );
+    s.push_str("space 2d;\n\nparam len = 10;\nparam r = 2;\n\n");
+    s.push_str("fixed point origin = (0, 0);\nfixed vector X = (1, 0);\n");
+    let (mut x, mut y) = (0.0f64, 0.0f64);
+    for k in 0..n {
+        let deg: f64 = if k % 2 == 0 { 20.0 } else { -20.0 };
+        let (dy, dx) = deg.to_radians().sin_cos();
+        let (ex, ey) = (x + 10.0 * dx, y + 10.0 * dy);
+        let _ = writeln!(
+            s,
+            "\nsegment s{k} = ({x:.3}, {y:.3}) -> ({ex:.3}, {ey:.3});"
+        );
+        if k == 0 {
+            s.push_str("coincident(s0.start, origin);\n");
+        }
+        let _ = writeln!(s, "angle(X, s{k}) = {deg} deg;");
+        let _ = writeln!(s, "length(s{k}) = len;");
+        // The fillet's centre: on the inside of the turn, 2 from the segment's end.
+        let side = if deg > 0.0 { -1.0 } else { 1.0 };
+        let (cx, cy) = (ex - side * 2.0 * dy, ey + side * 2.0 * dx);
+        let _ = writeln!(s, "circle f{k} = center ({cx:.3}, {cy:.3}) radius 2;");
+        let _ = writeln!(s, "radius(f{k}) = r;");
+        let _ = writeln!(s, "tangent(s{k}, f{k});");
+        let _ = writeln!(s, "on(s{k}.end, f{k});");
+        if k > 0 {
+            let _ = writeln!(s, "tangent(s{k}, f{});", k - 1);
+            let _ = writeln!(s, "on(s{k}.start, f{});", k - 1);
+        }
+        // The next segment starts past the arc.
+        x = ex + 1.0;
+        y = ey;
+    }
+    let _ = writeln!(s, "\noutput f{};", n - 1);
+    s
+}
+
+/// A Warren truss of `n` triangles: joints `p0`, `p1` fixed, and each later joint `p{k}` held
+/// by two bars of length `bar` to the two joints before it. One branch variable per joint
+/// (which side of the previous bar it lies on).
+pub fn truss(n: usize) -> String {
+    let n = n.max(1);
+    let h = 3f64.sqrt();
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// A Warren truss of {n} triangles, every bar of length `bar`."
+    );
+    s.push_str("space 2d;\n\nparam bar = 2;\n\n");
+    s.push_str("fixed point p0 = (0, 0);\n");
+    let _ = writeln!(s, "fixed point p1 = (1, {h:.17});");
+    for k in 2..n + 2 {
+        let y = if k % 2 == 1 { h } else { 0.0 };
+        // The sketch is off the assembly by a little, as a user's drawing would be.
+        let _ = writeln!(
+            s,
+            "\npoint p{k} = ({:.3}, {:.3});",
+            k as f64 + 0.05,
+            y - 0.04
+        );
+        let _ = writeln!(s, "distance(p{}, p{k}) = bar;", k - 2);
+        let _ = writeln!(s, "distance(p{}, p{k}) = bar;", k - 1);
+    }
+    let _ = writeln!(s, "\noutput p{};", n + 1);
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn solve(text: &str) -> f64 {
+        let (diags, model, _) = gcs_lang::load("family.gcs", text.as_bytes());
+        let model = model.unwrap_or_else(|| panic!("{diags:?}\n{text}"));
+        let analysis = crate::analysis::analyse(&model).expect("analysis");
+        assert!(analysis.unsolved.is_empty(), "{text}");
+        assert!(analysis.free_geoms().is_empty(), "{text}");
+        let branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
+        let s = crate::solve(&model, &analysis, &model.default_params(), &branches)
+            .unwrap_or_else(|e| panic!("{e}\n{text}"));
+        s.max_residual
+    }
+
+    #[test]
+    fn every_family_is_well_constrained_and_solves_exactly() {
+        for family in Family::ALL {
+            for n in [1, 2, 5, 20] {
+                let r = solve(&family.model(n));
+                assert!(
+                    r <= 1e-12 * (4.0 * n as f64 + 10.0),
+                    "{} {n}: {r}",
+                    family.name()
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for family in Family::ALL {
+            assert_eq!(Family::named(family.name()), Some(family));
+        }
+        assert_eq!(Family::named("nope"), None);
+    }
+}
