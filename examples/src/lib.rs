@@ -56,3 +56,27 @@ pub mod jansen_leg {
 pub mod sketch_profile {
     gcs_runtime::include_solver!("sketch_profile");
 }
+
+/// `families/fourbar_chain_16.gcs`: 16 four-bars in series (paper 000, Fig. 10), driven by
+/// `theta`; outputs `rocker16.b`.
+pub mod fourbar_chain_16 {
+    gcs_runtime::include_solver!("fourbar_chain_16");
+}
+
+/// `families/fourbar_chain_128.gcs`: 128 four-bars in series, driven by `theta`; outputs
+/// `rocker128.b`.
+pub mod fourbar_chain_128 {
+    gcs_runtime::include_solver!("fourbar_chain_128");
+}
+
+/// `families/sketch_profile_16.gcs`: 16 segments joined by 16 tangent fillet arcs, sized by
+/// `len` and `r`; outputs `f15`.
+pub mod sketch_profile_16 {
+    gcs_runtime::include_solver!("sketch_profile_16");
+}
+
+/// `families/truss_16.gcs`: a Warren truss of 16 triangles with bars of length `bar`; outputs
+/// `p17`.
+pub mod truss_16 {
+    gcs_runtime::include_solver!("truss_16");
+}
