@@ -967,9 +967,11 @@ mod tests {
         let i = line_circle(&line(0.0, 1.0, 1.0, 0.0), &c);
         assert_eq!(i.contact, Contact::Tangent);
         assert_eq!(i.roots.as_slice(), &[p(0.0, 1.0), p(0.0, 1.0)]);
-        // Slightly missing within tolerance: still tangent.
-        let i = line_circle(&line(0.0, 1.0 + 1e-12, 1.0, 0.0), &c);
+        // Missing by rounding: still tangent; missing by more: disjoint, with the gap.
+        let i = line_circle(&line(0.0, 1.0 + 2e-15, 1.0, 0.0), &c);
         assert_eq!(i.contact, Contact::Tangent);
+        let i = line_circle(&line(0.0, 1.0 + 1e-12, 1.0, 0.0), &c);
+        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 1e-12).abs() < 1e-15));
         let i = line_circle(&line(0.0, 3.0, 1.0, 0.0), &c);
         assert_eq!(i.contact, Contact::Disjoint { gap: 2.0 });
         let i = line_circle(&line(0.0, 0.0, 1.0, 0.0), &circle(0.0, 0.0, 0.0));

@@ -18,8 +18,11 @@ pub const ANGLE: f64 = 1e-12;
 pub const CHECK_REL: f64 = 1e-9;
 
 /// Relative tolerance of a tangency: loci whose gap or overlap is below this, relative to the
-/// scale, touch in one double root rather than missing each other or crossing twice.
-pub const TANGENT_REL: f64 = 1e-10;
+/// scale, touch in one double root rather than missing each other or crossing twice. It is a
+/// few units of rounding: loci built by earlier steps of a plan carry that much, and a gap any
+/// larger is real (the stress sweeps report it as an error with its size rather than answer
+/// with a residual of half of it).
+pub const TANGENT_REL: f64 = 32.0 * f64::EPSILON;
 
 /// Relative tolerance under which a polynomial's value counts as zero, in units of its running
 /// error bound: `|p(x)| <= POLY_ZERO_REL * degree * sum |c_i| |x|^i` is indistinguishable from
