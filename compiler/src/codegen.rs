@@ -28,6 +28,9 @@ pub fn generate(model: &Model, analysis: &Analysis) -> String {
 #[derive(Debug, Default)]
 pub struct Namer {
     used: HashSet<String>,
+    /// For a base, the suffix its last fresh name took: names are never released, so the
+    /// next search for that base starts there instead of at `_2`.
+    last: HashMap<String, usize>,
 }
 
 const KEYWORDS: &[&str] = &[
@@ -65,13 +68,18 @@ impl Namer {
     /// A fresh identifier from `text`.
     pub fn fresh(&mut self, text: &str) -> String {
         let base = Self::snake(text);
-        let mut name = base.clone();
-        let mut n = 1;
+        let mut n = self.last.get(&base).copied().unwrap_or(1);
+        let mut name = if n == 1 {
+            base.clone()
+        } else {
+            format!("{base}_{n}")
+        };
         while self.used.contains(&name) {
             n += 1;
             name = format!("{base}_{n}");
         }
         self.used.insert(name.clone());
+        self.last.insert(base, n);
         name
     }
 
@@ -184,6 +192,69 @@ struct Gen<'a> {
     /// Registers some generated step reads (an intersection's `near` is for the sketch's
     /// branch only, so it is not among them).
     used: HashSet<Reg>,
+    /// What the plan does to each geom, indexed once (the plan is fixed).
+    index: PlanIndex,
+}
+
+/// Per-geom facts about a plan, each from one pass over its steps, so that asking them of every
+/// geom costs no scan of the plan.
+#[derive(Default)]
+struct PlanIndex {
+    /// [`Plan::touched`].
+    touched: BTreeSet<GeomId>,
+    /// Geoms some action moves.
+    moved: HashSet<GeomId>,
+    /// Geoms whose dimension some step sets.
+    dim_set: HashSet<GeomId>,
+    /// Features a `PointOf` or `DirOf` reads.
+    read: HashSet<GeomId>,
+    /// The arguments of checked constraints.
+    checked: HashSet<GeomId>,
+    /// For a geom, whether the first step that decides it sets its dimension (see
+    /// [`Gen::dim_set_before_read`]).
+    dim_first: HashMap<GeomId, bool>,
+}
+
+impl PlanIndex {
+    fn new(model: &Model, plan: &Plan, used: &HashSet<Reg>) -> PlanIndex {
+        let mut ix = PlanIndex {
+            touched: plan.touched(model),
+            ..PlanIndex::default()
+        };
+        for step in &plan.steps {
+            match &step.op {
+                Op::Translate { geoms, .. }
+                | Op::RotatePoint { geoms, .. }
+                | Op::RotateDir { geoms, .. } => ix.moved.extend(geoms.iter().copied()),
+                Op::SetDim { geom, .. } => {
+                    ix.dim_set.insert(*geom);
+                    ix.dim_first.entry(*geom).or_insert(true);
+                }
+                Op::DimOf(x) => {
+                    ix.dim_first.entry(*x).or_insert(false);
+                }
+                Op::PointOf(f) => {
+                    ix.read.insert(*f);
+                    if matches!(model.geoms[*f].owner, Owner::Part(_, Part::End))
+                        && step.out.is_some_and(|o| used.contains(&o.0))
+                    {
+                        ix.dim_first.entry(model.top_level_of(*f)).or_insert(false);
+                    }
+                }
+                Op::DirOf(f) => {
+                    ix.read.insert(*f);
+                }
+                Op::Check { constraint } => {
+                    for &a in &model.constraints[*constraint].args {
+                        ix.checked.insert(a);
+                        ix.dim_first.entry(model.top_level_of(a)).or_insert(false);
+                    }
+                }
+                _ => {}
+            }
+        }
+        ix
+    }
 }
 
 impl<'a> Gen<'a> {
@@ -233,7 +304,9 @@ impl<'a> Gen<'a> {
                 op => used.extend(Plan::reads(op)),
             }
         }
+        let index = PlanIndex::new(model, plan, &used);
         Gen {
+            index,
             deferred: HashSet::new(),
             constant: HashSet::new(),
             used,
@@ -995,8 +1068,7 @@ impl<'a> Gen<'a> {
         {
             let mut terms = Vec::new();
             // The scale of the geoms the plan works on, as the interpreter measures it.
-            let touched = self.plan.touched(m);
-            for &g in worked.iter().filter(|g| touched.contains(g)) {
+            for &g in worked.iter().filter(|g| self.index.touched.contains(g)) {
                 let f = &self.frames[&g];
                 terms.push(format!("{f}.origin.x"));
                 terms.push(format!("{f}.origin.y"));
@@ -1091,14 +1163,9 @@ impl<'a> Gen<'a> {
             Owner::Part(o, _) => Some(o),
             _ => None,
         };
-        self.plan.steps.iter().any(|s| match &s.op {
-            Op::PointOf(g) | Op::DirOf(g) => *g == f,
-            Op::Check { constraint } => m.constraints[*constraint]
-                .args
-                .iter()
-                .any(|a| *a == f || Some(*a) == owner),
-            _ => false,
-        })
+        self.index.read.contains(&f)
+            || self.index.checked.contains(&f)
+            || owner.is_some_and(|o| self.index.checked.contains(&o))
     }
 
     /// The sketch value of a segment's length or a circle's radius, as code.
@@ -1116,52 +1183,21 @@ impl<'a> Gen<'a> {
 
     /// Whether any step reads or moves geom `g`.
     fn touched(&self, g: GeomId) -> bool {
-        self.plan.touched(self.model).contains(&g)
+        self.index.touched.contains(&g)
     }
 
     /// Whether any step moves geom `g`.
     fn moved(&self, g: GeomId) -> bool {
-        self.plan.steps.iter().any(|s| match &s.op {
-            Op::Translate { geoms, .. }
-            | Op::RotatePoint { geoms, .. }
-            | Op::RotateDir { geoms, .. } => geoms.contains(&g),
-            _ => false,
-        })
+        self.index.moved.contains(&g)
     }
 
     /// Whether the plan sets geom `g`'s dimension before any step reads it.
     fn dim_set_before_read(&self, g: GeomId) -> bool {
-        let m = self.model;
-        for step in &self.plan.steps {
-            match &step.op {
-                Op::SetDim { geom, .. } if *geom == g => return true,
-                Op::DimOf(x) if *x == g => return false,
-                Op::PointOf(f)
-                    if m.top_level_of(*f) == g
-                        && matches!(m.geoms[*f].owner, Owner::Part(_, Part::End))
-                        && step.out.is_some_and(|o| self.used.contains(&o.0)) =>
-                {
-                    return false
-                }
-                Op::Check { constraint }
-                    if m.constraints[*constraint]
-                        .args
-                        .iter()
-                        .any(|a| m.top_level_of(*a) == g) =>
-                {
-                    return false
-                }
-                _ => {}
-            }
-        }
-        false
+        self.index.dim_first.get(&g).copied().unwrap_or(false)
     }
 
     fn dim_set(&self, g: GeomId) -> bool {
-        self.plan
-            .steps
-            .iter()
-            .any(|s| matches!(s.op, Op::SetDim { geom, .. } if geom == g))
+        self.index.dim_set.contains(&g)
     }
 
     /// The constraint a step works for: its own, or that of the next step that satisfies one.

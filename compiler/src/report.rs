@@ -6,11 +6,23 @@ use crate::analysis::{Analysis, Pos, Rot};
 use crate::solution::Solution;
 use gcs_lang::model::{GeomId, GeomKind};
 use gcs_lang::{Diagnostic, Model};
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
+/// The (first) cluster holding each top-level geom.
+fn cluster_of(a: &Analysis) -> HashMap<GeomId, usize> {
+    let mut of = HashMap::new();
+    for (k, c) in a.clusters.iter().enumerate() {
+        for &g in &c.geoms {
+            of.entry(g).or_insert(k);
+        }
+    }
+    of
+}
+
 /// What freedom a cluster's record leaves, in words.
-fn freedom(model: &Model, a: &Analysis, g: GeomId) -> String {
-    let Some(c) = a.clusters.iter().find(|c| c.geoms.contains(&g)) else {
+fn freedom(model: &Model, a: &Analysis, of: &HashMap<GeomId, usize>, g: GeomId) -> String {
+    let Some(c) = of.get(&g).map(|&k| &a.clusters[k]) else {
         return String::new();
     };
     let r = &c.record;
@@ -61,10 +73,11 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
             .iter()
             .map(|u| model.constraints[u.constraint].name.clone())
             .collect();
+        let of = cluster_of(a);
         for (g, dof) in &free {
             let geom = &model.geoms[*g];
             let mut d = Diagnostic::error(geom.span, format!("`{}` is under-constrained: {dof} DOF left", geom.name))
-                .with_label(freedom(model, a, *g))
+                .with_label(freedom(model, a, &of, *g))
                 .with_note(format!(
                     "the model has {} DOF and its constraints remove {} (nominally): add constraints, or declare geoms `fixed`",
                     nominal.total_dof, nominal.total_removed
@@ -141,12 +154,8 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
         plural(nominal.geoms.len(), "geom"),
         plural(nominal.constraints.len(), "constraint"),
     );
-    let left = |g: GeomId| -> usize {
-        a.clusters
-            .iter()
-            .find(|c| c.geoms.contains(&g))
-            .map_or(0, |c| c.record.dof())
-    };
+    let of = cluster_of(a);
+    let left = |g: GeomId| -> usize { of.get(&g).map_or(0, |&k| a.clusters[k].record.dof()) };
     let name_w = crate::nominal::column_width(&nominal.geoms, |g| &g.name);
     let kind_w = crate::nominal::column_width(&nominal.geoms, |g| &g.kind);
     let _ = writeln!(out, "\ngeoms{:>w$}  left", "DOF", w = name_w + kind_w + 4);

@@ -250,12 +250,7 @@ impl Builder<'_> {
 
     fn sum(&mut self, terms: Vec<(f64, Reg)>) -> Reg {
         // Zero constants (a tangency's gap) add nothing.
-        let zero = |s: &Self, r: Reg| {
-            s.plan
-                .steps
-                .iter()
-                .any(|st| st.out.map(|o| o.0) == Some(r) && st.op == Op::Const(0.0))
-        };
+        let zero = |s: &Self, r: Reg| s.def(r).is_some_and(|st| st.op == Op::Const(0.0));
         let mut terms: Vec<(f64, Reg)> = terms.into_iter().filter(|t| !zero(self, t.1)).collect();
         if terms.is_empty() {
             return self.value(Op::Const(0.0), Ty::Scalar, "0".into());

@@ -22,7 +22,7 @@ use crate::plan::{BranchId, BranchVar, Meet, Op, Plan, Reg, Step, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Space};
 use gcs_lang::Model;
 use relation::{AngleValue, Dir, Rel, Relation, Unsupported};
-use std::collections::HashMap;
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 /// What a cluster's rotation is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -221,8 +221,9 @@ pub fn analyse(model: &Model) -> Result<Analysis, String> {
     let mut b = Builder::new(model);
     b.run(rels);
     let mut unsolved = unsupported;
+    let mut listed: BTreeSet<ConstraintId> = unsolved.iter().map(|u| u.constraint).collect();
     for r in b.pending.drain(..) {
-        if !unsolved.iter().any(|u| u.constraint == r.constraint) {
+        if listed.insert(r.constraint) {
             unsolved.push(Unsupported {
                 constraint: r.constraint,
                 reason: "no plan fragment applies: its geoms keep too much freedom".into(),
@@ -273,6 +274,14 @@ enum Target {
     On(Locus),
 }
 
+/// A key of one of the builder's register caches.
+#[derive(Clone, Copy, Debug)]
+enum Key {
+    Known(GeomId),
+    Measured((GeomId, bool)),
+    Expr(gcs_lang::expr::ExprId),
+}
+
 #[derive(Clone)]
 struct Builder<'m> {
     model: &'m Model,
@@ -283,11 +292,19 @@ struct Builder<'m> {
     known_points: HashMap<GeomId, Reg>,
     /// Registers holding current positions and directions, valid until their cluster moves.
     measured: HashMap<(GeomId, bool), Reg>,
+    /// The keys of `measured` by top-level geom (a superset: keys may have gone since), so
+    /// that an action forgets what it invalidates without scanning every measurement.
+    measured_by_top: HashMap<GeomId, Vec<(GeomId, bool)>>,
     /// The centre of each circle register, in words, for branch meanings.
-    centers: HashMap<Reg, String>,
+    centers: BTreeMap<Reg, String>,
     exprs: HashMap<gcs_lang::expr::ExprId, Reg>,
     /// Words for registers, to write explanations and branch meanings.
-    words: HashMap<Reg, String>,
+    words: BTreeMap<Reg, String>,
+    /// The keys inserted into `known_points`, `measured` and `exprs` since the last
+    /// checkpoint, so that a rollback forgets them without scanning the maps.
+    inserted: Vec<Key>,
+    /// The step defining each register, by register number.
+    def_step: Vec<usize>,
     pending: Vec<Rel>,
     redundant: Vec<ConstraintId>,
 }
@@ -336,9 +353,12 @@ impl<'m> Builder<'m> {
             cluster_of,
             known_points: HashMap::new(),
             measured: HashMap::new(),
-            centers: HashMap::new(),
+            measured_by_top: HashMap::new(),
+            centers: BTreeMap::new(),
             exprs: HashMap::new(),
-            words: HashMap::new(),
+            words: BTreeMap::new(),
+            inserted: Vec::new(),
+            def_step: Vec::new(),
             pending: Vec::new(),
             redundant: Vec::new(),
         }
@@ -359,21 +379,22 @@ impl<'m> Builder<'m> {
         | Op::RotateDir { geoms, .. } = &op
         {
             let moved: Vec<GeomId> = geoms.clone();
-            let model = self.model;
-            self.measured
-                .retain(|(f, _), _| !moved.contains(&model.top_level_of(*f)));
+            for g in moved {
+                self.forget_measured(g);
+            }
         }
         if let Op::SetDim { geom, .. } = &op {
             let g = *geom;
-            let model = self.model;
-            self.measured
-                .retain(|(f, _), _| model.top_level_of(*f) != g);
+            self.forget_measured(g);
         }
         let reg = Reg(self.plan.regs);
         let out = ty.map(|t| {
             self.plan.regs += 1;
             (reg, t)
         });
+        if out.is_some() {
+            self.def_step.push(self.plan.steps.len());
+        }
         self.plan.steps.push(Step {
             op,
             out,
@@ -381,6 +402,36 @@ impl<'m> Builder<'m> {
             explain,
         });
         reg
+    }
+
+    /// Forgets the measurements of the features of top-level geom `top` (it moves).
+    fn forget_measured(&mut self, top: GeomId) {
+        if let Some(keys) = self.measured_by_top.remove(&top) {
+            for k in keys {
+                self.measured.remove(&k);
+            }
+        }
+    }
+
+    fn insert_measured(&mut self, key: (GeomId, bool), r: Reg) {
+        self.measured.insert(key, r);
+        self.measured_by_top
+            .entry(self.model.top_level_of(key.0))
+            .or_default()
+            .push(key);
+        self.inserted.push(Key::Measured(key));
+    }
+
+    fn insert_known(&mut self, f: GeomId, r: Reg) {
+        self.known_points.insert(f, r);
+        self.inserted.push(Key::Known(f));
+    }
+
+    /// The step that defines register `r`.
+    fn def(&self, r: Reg) -> Option<&Step> {
+        self.def_step
+            .get(r.0 as usize)
+            .and_then(|&i| self.plan.steps.get(i))
     }
 
     fn value(&mut self, op: Op, ty: Ty, words: String) -> Reg {
@@ -431,6 +482,7 @@ impl<'m> Builder<'m> {
         let text = crate::plan::expr_text(self.model, e);
         let r = self.value(Op::Expr(e), Ty::Scalar, text);
         self.exprs.insert(e, r);
+        self.inserted.push(Key::Expr(e));
         r
     }
 
@@ -445,9 +497,9 @@ impl<'m> Builder<'m> {
         }
         let r = self.value(Op::PointOf(f), Ty::Point, self.name(f));
         if self.point_known(f) {
-            self.known_points.insert(f, r);
+            self.insert_known(f, r);
         } else {
-            self.measured.insert((f, true), r);
+            self.insert_measured((f, true), r);
         }
         r
     }
@@ -460,7 +512,7 @@ impl<'m> Builder<'m> {
                 }
                 let words = self.name(g);
                 let r = self.value(Op::DirOf(g), Ty::Vector, words);
-                self.measured.insert((g, false), r);
+                self.insert_measured((g, false), r);
                 r
             }
             Dir::World(x, y) => {
@@ -536,37 +588,78 @@ impl<'m> Builder<'m> {
     /// Action analysis, then locus analysis, until neither applies to any pending relation
     /// (restricted to relations among the clusters `within`, when given).
     fn fixpoint(&mut self, within: Option<&[usize]>) {
+        // In effect: repeatedly take the first pending relation (in canonical order) that
+        // action analysis satisfies, else the first that locus analysis satisfies. An attempt
+        // depends only on the records of the clusters its relation involves, so one that
+        // failed without side effects fails again until one of those records changes: it is
+        // tried again only then. (A failed attempt that forgot measurements is tried every
+        // round, as every attempt used to be, so that it forgets them again.)
+        let n = self.pending.len();
+        let mut involved: Vec<Vec<usize>> = Vec::with_capacity(n);
+        let mut by_cluster: HashMap<usize, Vec<usize>> = HashMap::new();
+        // Relations to try, by mode (action, locus).
+        let mut dirty: [BTreeSet<usize>; 2] = Default::default();
+        for i in 0..n {
+            let ks = self.clusters_of(&self.pending[i]);
+            let inside = within.map_or(true, |set| ks.iter().all(|k| set.contains(k)));
+            if inside {
+                for &k in &ks {
+                    by_cluster.entry(k).or_default().push(i);
+                }
+                dirty[0].insert(i);
+                dirty[1].insert(i);
+            }
+            involved.push(ks);
+        }
+        let mut alive = vec![true; n];
         loop {
-            let mut progress = false;
-            for locus in [false, true] {
-                for i in 0..self.pending.len() {
+            let mut done = None;
+            for (mode, locus) in [false, true].into_iter().enumerate() {
+                let mut next = 0;
+                while let Some(&i) = dirty[mode].range(next..).next() {
+                    next = i + 1;
                     let r = self.pending[i].clone();
-                    if let Some(set) = within {
-                        if !self.clusters_of(&r).iter().all(|k| set.contains(k)) {
-                            continue;
-                        }
-                    }
+                    let before: Vec<Record> = involved[i]
+                        .iter()
+                        .map(|&k| self.clusters[k].record.clone())
+                        .collect();
+                    let measured = self.measured.len();
                     let cp = self.checkpoint();
-                    let done = if locus {
+                    let ok = if locus {
                         self.locus(&r)
                     } else {
                         self.action(&r)
                     };
-                    if done {
-                        self.pending.remove(i);
-                        progress = true;
+                    if ok {
+                        done = Some((i, before));
                         break;
                     }
                     self.rollback(cp);
+                    if self.measured.len() == measured {
+                        dirty[mode].remove(&i);
+                    }
                 }
-                if progress {
+                if done.is_some() {
                     break;
                 }
             }
-            if !progress {
-                return;
+            let Some((i, before)) = done else { break };
+            alive[i] = false;
+            dirty[0].remove(&i);
+            dirty[1].remove(&i);
+            for (&k, old) in involved[i].iter().zip(&before) {
+                if self.clusters[k].record != *old {
+                    for &j in by_cluster.get(&k).into_iter().flatten() {
+                        if alive[j] {
+                            dirty[0].insert(j);
+                            dirty[1].insert(j);
+                        }
+                    }
+                }
             }
         }
+        let mut keep = alive.into_iter();
+        self.pending.retain(|_| keep.next().unwrap_or(false));
     }
 
     /// The clusters a relation involves.
@@ -595,7 +688,8 @@ impl<'m> Builder<'m> {
         ks
     }
 
-    fn checkpoint(&self) -> (usize, u32, usize) {
+    fn checkpoint(&mut self) -> (usize, u32, usize) {
+        self.inserted.clear();
         (
             self.plan.steps.len(),
             self.plan.regs,
@@ -611,12 +705,31 @@ impl<'m> Builder<'m> {
         self.plan.steps.truncate(steps);
         self.plan.regs = regs;
         self.plan.branches.truncate(branches);
-        let live = |r: &Reg| r.0 < regs;
-        self.known_points.retain(|_, r| live(r));
-        self.measured.retain(|_, r| live(r));
-        self.exprs.retain(|_, r| live(r));
-        self.words.retain(|r, _| live(r));
-        self.centers.retain(|r, _| live(r));
+        self.def_step.truncate(regs as usize);
+        // Every cache entry naming a register defined since the checkpoint was inserted since
+        // the checkpoint (checkpoints do not nest).
+        let live = |r: Option<&Reg>| r.is_some_and(|r| r.0 < regs);
+        for key in std::mem::take(&mut self.inserted) {
+            match key {
+                Key::Known(f) => {
+                    if !live(self.known_points.get(&f)) {
+                        self.known_points.remove(&f);
+                    }
+                }
+                Key::Measured(k) => {
+                    if !live(self.measured.get(&k)) {
+                        self.measured.remove(&k);
+                    }
+                }
+                Key::Expr(e) => {
+                    if !live(self.exprs.get(&e)) {
+                        self.exprs.remove(&e);
+                    }
+                }
+            }
+        }
+        self.words.split_off(&Reg(regs));
+        self.centers.split_off(&Reg(regs));
     }
 
     /// SOLVE-RIGID-CHAINS and SOLVE-LOOP (000, Appendix A.1-A.2): among clusters that are
@@ -772,7 +885,7 @@ impl<'m> Builder<'m> {
                 if let Some(f) = self.first_point_feature(i) {
                     let at = self.point(f);
                     self.clusters[i].record.pos = Pos::Pivot { at, feature: f };
-                    self.known_points.insert(f, at);
+                    self.insert_known(f, at);
                     self.plan.grounded = Some(self.clusters[i].geoms[0]);
                     return;
                 }
@@ -1126,7 +1239,7 @@ impl<'m> Builder<'m> {
                         Rot::Known
                     };
                 }
-                self.known_points.insert(f, x);
+                self.insert_known(f, x);
                 true
             }
             (Pos::Free, Target::On(locus)) => {
@@ -1161,7 +1274,7 @@ impl<'m> Builder<'m> {
                     if rec.pos == Pos::Fixed {
                         return true;
                     }
-                    self.known_points.insert(f, to);
+                    self.insert_known(f, to);
                 } else {
                     rec.pos = Pos::On { feature: f, locus };
                 }
@@ -1219,7 +1332,7 @@ impl<'m> Builder<'m> {
                     explain,
                 );
                 self.clusters[k].record.pos = Pos::Pivot { at: to, feature: f };
-                self.known_points.insert(f, to);
+                self.insert_known(f, to);
                 true
             }
             (Pos::Pivot { at, feature: g }, target) if g != f => {
@@ -1345,10 +1458,8 @@ impl<'m> Builder<'m> {
     }
 
     fn ty(&self, r: Reg) -> Ty {
-        self.plan
-            .steps
-            .iter()
-            .find_map(|s| s.out.filter(|o| o.0 == r).map(|o| o.1))
+        self.def(r)
+            .and_then(|s| s.out.filter(|o| o.0 == r).map(|o| o.1))
             .unwrap_or(Ty::Scalar)
     }
 

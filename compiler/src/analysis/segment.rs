@@ -42,7 +42,7 @@ impl Builder<'_> {
                     at: x,
                     feature: end,
                 };
-                self.known_points.insert(end, x);
+                self.insert_known(end, x);
                 Some(true)
             }
             // Start and direction known: the end runs along the line; the target fixes where,
