@@ -9,6 +9,8 @@
 //! it never prints or exits.
 
 pub mod analysis;
+pub mod baseline;
+pub mod bench;
 pub mod build;
 pub mod codegen;
 pub mod config;

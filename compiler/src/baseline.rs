@@ -1,0 +1,1640 @@
+//! The numeric baseline: Newton-Raphson and Levenberg-Marquardt on the raw constraint
+//! equations of a 2d model, the way a numeric CAD solver (SolveSpace, PlaneGCS) solves them.
+//!
+//! It exists for two reasons: it is the speed baseline the compiled plans are measured
+//! against, and it is an independent cross-check of the degrees-of-freedom analysis (same
+//! model, same branch, same answer). It shares nothing with the plan: it only reads the model.
+//!
+//! **Unknowns** are exactly the freedom [`Config`] has, per non-fixed top-level geom in
+//! declaration order: a point's `x, y`; a vector's angle; a line's angle and its offset `h`
+//! along the normal from its first sketch point (two numbers, so that a line has no gauge
+//! freedom: its origin is the foot of the perpendicular from that sketch point, which is
+//! `L.point`); a segment's origin, angle and length; a circle's centre and radius; a body's
+//! origin and angle. Fixed geoms (and their members) are constants. If the model fixes nothing,
+//! the top-level geom with the most DOF (then the first by name) is held at its sketch — the
+//! param-free rule; a model left free to turn about it is solved in the least-squares sense.
+//!
+//! **Equations** are the signed, smooth forms of what [`crate::verify`] measures, one or two
+//! per constraint. Choices the language leaves to the geometry (the side of a line or circle a
+//! tangency or a distance is on, internal or external circle tangency) are read from the start
+//! configuration of each solve, as a numeric CAD solver does. Angles are differences of frame
+//! rotations, wrapped to (-pi, pi]. Everything is precompiled to flat arrays: each equation
+//! knows the two frames it reads and the local coordinates of its features; constants (member
+//! coordinates, fixed geoms, values) are re-evaluated from the params at the start of a solve.
+//!
+//! **Jacobian**: analytic, assembled in O(nnz). Dense (in-place LU with partial pivoting,
+//! Cholesky for normal equations) up to [`DENSE_MAX`] unknowns; above it sparse, with `faer`'s
+//! sparse LU (COLAMD ordering) for square Newton steps and its sparse Cholesky (AMD ordering)
+//! for normal equations. The symbolic factorisations are computed once, in [`Baseline::new`];
+//! the iteration loop allocates nothing.
+//!
+//! **Methods**: Newton takes full steps (LU on a square system; regularised normal equations
+//! when the system is not square or the LU is singular) with Armijo backtracking on `|F|^2`.
+//! Levenberg-Marquardt solves `(JᵀJ + mu D) d = -JᵀF` with Marquardt's scaling `D = diag(JᵀJ)`
+//! and Nielsen's damping update. There is no branch steering: from a warm start Newton stays
+//! on the nearby assembly, from a cold start it lands where it lands.
+
+use crate::config::{BadSketch, Config};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, SymbolicCholesky};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, MatMut, Par, Side};
+use gcs_lang::constraints::ConstraintKind as K;
+use gcs_lang::expr::{ExprId, Exprs};
+use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch, Space};
+use gcs_lang::Model;
+use nalgebra::Point2;
+use std::time::Instant;
+
+/// Up to this many unknowns the linear algebra is dense; above it, sparse.
+pub const DENSE_MAX: usize = 120;
+
+/// Which iteration to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Newton-Raphson with backtracking: the fast one near a solution.
+    Newton,
+    /// Levenberg-Marquardt: the robust one far from a solution or on non-square systems.
+    LevenbergMarquardt,
+}
+
+/// Which linear algebra to use, so that tests and benchmarks can force either path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Linear {
+    /// Dense up to [`DENSE_MAX`] unknowns, sparse above.
+    Auto,
+    /// Always dense.
+    Dense,
+    /// Always sparse.
+    Sparse,
+}
+
+/// How to solve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Newton or Levenberg-Marquardt.
+    pub method: Method,
+    /// Stop when the largest absolute equation value (lengths and radians) is at most this.
+    pub tolerance: f64,
+    /// Stop after this many linear solves (Levenberg-Marquardt counts rejected trials too).
+    pub max_iterations: usize,
+    /// Record `(elapsed ns, max residual)` after every iteration, for time-to-accuracy plots.
+    pub trace: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            method: Method::Newton,
+            tolerance: 1e-12,
+            max_iterations: 50,
+            trace: false,
+        }
+    }
+}
+
+/// Why a solve stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop {
+    /// The residual reached the tolerance.
+    Converged,
+    /// `max_iterations` ran out.
+    MaxIterations,
+    /// No step decreased the residual (line search or damping gave up).
+    Stalled,
+    /// The equations or the step became non-finite.
+    NotFinite,
+}
+
+/// The result of one solve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// Linear solves done.
+    pub iterations: usize,
+    /// The largest absolute equation value at the returned point.
+    pub max_residual: f64,
+    /// Whether `max_residual <= tolerance`.
+    pub converged: bool,
+    /// Why it stopped.
+    pub stop: Stop,
+    /// `(ns since the solve began, max residual)`: the start, then after every iteration;
+    /// empty unless [`Options::trace`].
+    pub trace: Vec<(u64, f64)>,
+}
+
+/// How to compute a constant of a solve from the params.
+#[derive(Clone, Copy, Debug)]
+enum Recipe {
+    Const(f64),
+    Expr(ExprId),
+    /// The angle of the vector `(x, y)`.
+    Atan2(ExprId, ExprId),
+    /// A component of the unit vector along `(x, y)`: x if the flag is false.
+    Unit(ExprId, ExprId, bool),
+    /// The angle of `b - a`.
+    AngleTo([ExprId; 4]),
+    /// `|b - a|`.
+    DistTo([ExprId; 4]),
+}
+
+impl Recipe {
+    fn eval(self, e: &Exprs, p: &[f64]) -> f64 {
+        match self {
+            Recipe::Const(c) => c,
+            Recipe::Expr(x) => e.eval(x, p),
+            Recipe::Atan2(x, y) => e.eval(y, p).atan2(e.eval(x, p)),
+            Recipe::Unit(x, y, second) => {
+                let (x, y) = (e.eval(x, p), e.eval(y, p));
+                let n = x.hypot(y);
+                if second {
+                    y / n
+                } else {
+                    x / n
+                }
+            }
+            Recipe::AngleTo([ax, ay, bx, by]) => {
+                (e.eval(by, p) - e.eval(ay, p)).atan2(e.eval(bx, p) - e.eval(ax, p))
+            }
+            Recipe::DistTo([ax, ay, bx, by]) => {
+                (e.eval(by, p) - e.eval(ay, p)).hypot(e.eval(bx, p) - e.eval(ax, p))
+            }
+        }
+    }
+}
+
+/// How a top-level geom's frame reads its four slots.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Shape {
+    /// Slots are origin x, origin y, angle, dimension.
+    Frame,
+    /// A free line: slots are the sketch point x, y (constants), the angle and the offset `h`
+    /// along the normal; the origin is `s + h n(angle)`.
+    Line,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Geom {
+    shape: Shape,
+    /// Indices into `z` (unknowns first, then constants).
+    q: [usize; 4],
+}
+
+/// A frame evaluated at the current unknowns.
+#[derive(Clone, Copy, Debug, Default)]
+struct Fr {
+    ox: f64,
+    oy: f64,
+    th: f64,
+    c: f64,
+    s: f64,
+    dim: f64,
+    /// For a line: the offset along the normal.
+    h: f64,
+}
+
+/// A point feature: `o + R(th) (l + dim m e_x)`; `l` read from `z`.
+#[derive(Clone, Copy, Debug)]
+struct Pt {
+    g: usize,
+    lx: usize,
+    ly: usize,
+    m: f64,
+}
+
+/// A direction feature: `R(th) l` with `l` a unit vector of angle `phi`, read from `z`.
+#[derive(Clone, Copy, Debug)]
+struct Dir {
+    g: usize,
+    lx: usize,
+    ly: usize,
+    phi: usize,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Eq {
+    Diff { a: Pt, b: Pt, y: bool },
+    Dist { a: Pt, b: Pt, d: usize },
+    PointLine { p: Pt, base: Pt, dir: Dir, d: usize },
+    PointCircle { p: Pt, c: Pt, d: usize },
+    LineCircle { base: Pt, dir: Dir, c: Pt, d: usize },
+    CircleCircle { a: Pt, b: Pt, d: usize },
+    Angle { u: Dir, v: Dir, a: usize },
+    Cross { u: Dir, v: Dir },
+    Dot { u: Dir, v: Dir },
+    Comp { u: Dir, y: bool },
+    Dim { g: usize, v: usize },
+}
+
+impl Eq {
+    fn geoms(&self) -> [usize; 2] {
+        match *self {
+            Eq::Diff { a, b, .. } | Eq::Dist { a, b, .. } | Eq::CircleCircle { a, b, .. } => {
+                [a.g, b.g]
+            }
+            Eq::PointLine { p, base, .. } => [p.g, base.g],
+            Eq::PointCircle { p, c, .. } => [p.g, c.g],
+            Eq::LineCircle { base, c, .. } => [base.g, c.g],
+            Eq::Angle { u, v, .. } | Eq::Cross { u, v } | Eq::Dot { u, v } => [u.g, v.g],
+            Eq::Comp { u, .. } => [u.g, usize::MAX],
+            Eq::Dim { g, .. } => [g, usize::MAX],
+        }
+    }
+}
+
+type G4 = [f64; 4];
+
+fn wrap(a: f64) -> f64 {
+    let t = std::f64::consts::TAU;
+    let r = a.rem_euclid(t);
+    if r > std::f64::consts::PI {
+        r - t
+    } else {
+        r
+    }
+}
+
+/// A point feature's position and its offset from the frame origin.
+#[inline]
+fn point(f: &Fr, z: &[f64], p: &Pt) -> ([f64; 2], [f64; 2]) {
+    let ax = z[p.lx] + p.m * f.dim;
+    let ay = z[p.ly];
+    let q = [f.c * ax - f.s * ay, f.s * ax + f.c * ay];
+    ([f.ox + q[0], f.oy + q[1]], q)
+}
+
+/// Adds the gradient `gp` with respect to a point feature to its frame's gradient.
+#[inline]
+fn push_point(g: &mut G4, f: &Fr, q: [f64; 2], m: f64, gp: [f64; 2]) {
+    g[0] += gp[0];
+    g[1] += gp[1];
+    g[2] += -gp[0] * q[1] + gp[1] * q[0];
+    g[3] += m * (gp[0] * f.c + gp[1] * f.s);
+}
+
+#[inline]
+fn dir(f: &Fr, z: &[f64], d: &Dir) -> [f64; 2] {
+    let (lx, ly) = (z[d.lx], z[d.ly]);
+    [f.c * lx - f.s * ly, f.s * lx + f.c * ly]
+}
+
+/// Adds the gradient `gu` with respect to a direction feature `u` to its frame's gradient.
+#[inline]
+fn push_dir(g: &mut G4, u: [f64; 2], gu: [f64; 2]) {
+    g[2] += -gu[0] * u[1] + gu[1] * u[0];
+}
+
+/// The sparse structures, built once.
+struct Sparse {
+    /// The Jacobian's pattern (square systems only).
+    j: Option<SymbolicSparseColMat<usize>>,
+    lu: Option<SymbolicLu<usize>>,
+    numeric: NumericLu<usize, f64>,
+    /// The upper triangle of JᵀJ.
+    a: SymbolicSparseColMat<usize>,
+    chol: SymbolicCholesky<usize>,
+    l: Vec<f64>,
+    buf: MemBuffer,
+}
+
+/// The solver for one model, built once and reused for every solve.
+pub struct Baseline {
+    model: Model,
+    n: usize,
+    m: usize,
+    sparse_path: bool,
+    geoms: Vec<Geom>,
+    eqs: Vec<Eq>,
+    /// The side each equation's sign choice took at the start of the solve (0 means the
+    /// external form for circle pairs).
+    side: Vec<f64>,
+    /// Constant recipes, for `z[n..]`.
+    consts: Vec<Recipe>,
+    /// Cold-start recipes, for `z[..n]`.
+    start: Vec<Recipe>,
+    z: Vec<f64>,
+    frames: Vec<Fr>,
+    f: Vec<f64>,
+    f_trial: Vec<f64>,
+    x_trial: Vec<f64>,
+    // Jacobian entries: per equation a range of (side, slot, position in J).
+    ent_ptr: Vec<usize>,
+    ent_side: Vec<u8>,
+    ent_k: Vec<u8>,
+    ent_pos: Vec<usize>,
+    // Unique entries per equation: (column, position in J).
+    uent_ptr: Vec<usize>,
+    uent_col: Vec<usize>,
+    uent_pos: Vec<usize>,
+    // JᵀJ accumulation: J[pa] * J[pb] into A[pt].
+    pair_a: Vec<usize>,
+    pair_b: Vec<usize>,
+    pair_t: Vec<usize>,
+    diag: Vec<usize>,
+    jv: Vec<f64>,
+    av: Vec<f64>,
+    lu: Vec<f64>,
+    perm: Vec<usize>,
+    g: Vec<f64>,
+    dsave: Vec<f64>,
+    step: Vec<f64>,
+    sp: Option<Sparse>,
+}
+
+impl std::fmt::Debug for Baseline {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Baseline")
+            .field("unknowns", &self.n)
+            .field("equations", &self.m)
+            .field("sparse", &self.sparse_path)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The builder's state: constants allocated after the unknowns.
+struct Build<'a> {
+    model: &'a Model,
+    n: usize,
+    consts: Vec<Recipe>,
+    geom_index: std::collections::HashMap<GeomId, usize>,
+    geoms: Vec<Geom>,
+}
+
+impl Build<'_> {
+    fn konst(&mut self, r: Recipe) -> usize {
+        self.consts.push(r);
+        self.n + self.consts.len() - 1
+    }
+    fn zero(&self) -> usize {
+        self.n
+    }
+    fn one(&self) -> usize {
+        self.n + 1
+    }
+    fn top(&self, g: GeomId) -> Result<usize, String> {
+        let t = self.model.top_level_of(g);
+        self.geom_index
+            .get(&t)
+            .copied()
+            .ok_or_else(|| format!("{} has no frame", self.model.geoms[t].name))
+    }
+    fn xy(&self, c: &[ExprId], what: &str) -> Result<(ExprId, ExprId), String> {
+        match c {
+            [x, y] => Ok((*x, *y)),
+            _ => Err(format!("{what} is not 2d")),
+        }
+    }
+    /// A point argument: a point, marker, part or circle (its centre).
+    fn pt(&mut self, g: GeomId) -> Result<Pt, String> {
+        let model = self.model;
+        let geom = &model.geoms[g];
+        let top = self.top(g)?;
+        let (zero, name) = (self.zero(), geom.name.clone());
+        let at = |lx, ly, m| Pt { g: top, lx, ly, m };
+        match (geom.kind, geom.owner, &geom.sketch) {
+            (GeomKind::Point | GeomKind::Circle, Owner::TopLevel, _) => Ok(at(zero, zero, 0.0)),
+            (GeomKind::Point | GeomKind::Marker, Owner::Member(_), Sketch::Point(c))
+            | (GeomKind::Marker, Owner::Member(_), Sketch::Marker { origin: c, .. }) => {
+                let (x, y) = self.xy(c, &name)?;
+                let lx = self.konst(Recipe::Expr(x));
+                let ly = self.konst(Recipe::Expr(y));
+                Ok(at(lx, ly, 0.0))
+            }
+            (GeomKind::Point, Owner::Part(_, Part::End), _) => Ok(at(zero, zero, 1.0)),
+            (GeomKind::Point, Owner::Part(_, Part::Start | Part::Center | Part::BasePoint), _) => {
+                Ok(at(zero, zero, 0.0))
+            }
+            _ => Err(format!("{name} is not a 2d point the baseline can read")),
+        }
+    }
+    /// A direction argument: a vector, marker axis, line or segment; a marker reads its x axis.
+    fn dir(&mut self, g: GeomId) -> Result<Dir, String> {
+        let model = self.model;
+        let geom = &model.geoms[g];
+        let top = self.top(g)?;
+        let name = geom.name.clone();
+        let fixed_x = Dir {
+            g: top,
+            lx: self.one(),
+            ly: self.zero(),
+            phi: self.zero(),
+        };
+        let local = |b: &mut Self, c: &[ExprId]| -> Result<Dir, String> {
+            let (x, y) = b.xy(c, &name)?;
+            Ok(Dir {
+                g: top,
+                lx: b.konst(Recipe::Unit(x, y, false)),
+                ly: b.konst(Recipe::Unit(x, y, true)),
+                phi: b.konst(Recipe::Atan2(x, y)),
+            })
+        };
+        match (geom.kind, geom.owner, &geom.sketch) {
+            (GeomKind::Vector | GeomKind::Line | GeomKind::Segment, Owner::TopLevel, _) => {
+                Ok(fixed_x)
+            }
+            (GeomKind::Vector, Owner::Part(_, Part::Dir), _) => Ok(fixed_x),
+            (GeomKind::Vector, Owner::Member(_), Sketch::Vector(c)) => local(self, c),
+            (GeomKind::Vector, Owner::Part(marker, Part::AxisX), _) => {
+                match &model.geoms[marker].sketch {
+                    Sketch::Marker { x, .. } => local(self, x),
+                    _ => Err(format!("{name} is not a marker axis")),
+                }
+            }
+            (GeomKind::Marker, Owner::Member(_), Sketch::Marker { x, .. }) => local(self, x),
+            _ => Err(format!(
+                "{name} is not a 2d direction the baseline can read"
+            )),
+        }
+    }
+    /// A line argument: a point on it and its direction.
+    fn line(&mut self, g: GeomId) -> Result<(Pt, Dir), String> {
+        Ok((self.pt_or_origin(g)?, self.dir(g)?))
+    }
+    /// The origin of a line or segment, or a marker's point.
+    fn pt_or_origin(&mut self, g: GeomId) -> Result<Pt, String> {
+        match self.model.geoms[g].kind {
+            GeomKind::Line | GeomKind::Segment => Ok(Pt {
+                g: self.top(g)?,
+                lx: self.zero(),
+                ly: self.zero(),
+                m: 0.0,
+            }),
+            _ => self.pt(g),
+        }
+    }
+}
+
+/// The frame slots of a top-level geom's sketch: origin x, y, angle, dimension.
+fn sketch_recipes(model: &Model, g: GeomId) -> Result<[Recipe; 4], String> {
+    let geom = &model.geoms[g];
+    let z = Recipe::Const(0.0);
+    let two = |c: &[ExprId]| match c {
+        [x, y] => Ok((*x, *y)),
+        _ => Err(format!("{} is not 2d", geom.name)),
+    };
+    Ok(match &geom.sketch {
+        Sketch::Point(c) => {
+            let (x, y) = two(c)?;
+            [Recipe::Expr(x), Recipe::Expr(y), z, z]
+        }
+        Sketch::Vector(c) => {
+            let (x, y) = two(c)?;
+            [z, z, Recipe::Atan2(x, y), z]
+        }
+        Sketch::Line { from, to } | Sketch::Segment { from, to } => {
+            let (ax, ay) = two(from)?;
+            let (bx, by) = two(to)?;
+            let dim = if geom.kind == GeomKind::Segment {
+                Recipe::DistTo([ax, ay, bx, by])
+            } else {
+                z
+            };
+            [
+                Recipe::Expr(ax),
+                Recipe::Expr(ay),
+                Recipe::AngleTo([ax, ay, bx, by]),
+                dim,
+            ]
+        }
+        Sketch::Circle { center, radius, .. } => {
+            let (x, y) = two(center)?;
+            [Recipe::Expr(x), Recipe::Expr(y), z, Recipe::Expr(*radius)]
+        }
+        Sketch::Body { at, angle, .. } => {
+            let (x, y) = match at {
+                Some(c) => {
+                    let (x, y) = two(c)?;
+                    (Recipe::Expr(x), Recipe::Expr(y))
+                }
+                None => (z, z),
+            };
+            [x, y, angle.map_or(z, Recipe::Expr), z]
+        }
+        _ => {
+            return Err(format!(
+                "{} ({}) is not a 2d geom the baseline covers",
+                geom.name,
+                geom.kind.noun()
+            ))
+        }
+    })
+}
+
+/// Which of a geom's four frame slots are free, by kind.
+fn free_slots(kind: GeomKind) -> [bool; 4] {
+    match kind {
+        GeomKind::Point => [true, true, false, false],
+        GeomKind::Vector => [false, false, true, false],
+        GeomKind::Line => [false, false, true, true],
+        GeomKind::Segment => [true, true, true, true],
+        GeomKind::Circle => [true, true, false, true],
+        _ => [true, true, true, false],
+    }
+}
+
+impl Baseline {
+    /// Compiles the equations of a 2d model, choosing dense or sparse linear algebra by size.
+    pub fn new(model: &Model) -> Result<Baseline, String> {
+        Baseline::with_linear(model, Linear::Auto)
+    }
+
+    /// Like [`Baseline::new`], forcing the linear algebra (to compare the two paths).
+    pub fn with_linear(model: &Model, linear: Linear) -> Result<Baseline, String> {
+        if model.space != Space::D2 {
+            return Err("the numeric baseline covers 2d models only".into());
+        }
+        let tops: Vec<(GeomId, &gcs_lang::model::Geom)> = model.top_level().collect();
+        // Ground: fixed geoms; if none, the one with the most DOF, then by name.
+        let any_fixed = tops.iter().any(|(_, g)| g.fixed);
+        let held = if any_fixed {
+            None
+        } else {
+            tops.iter()
+                .max_by(|a, b| {
+                    let da = a.1.kind.dof(Space::D2);
+                    let db = b.1.kind.dof(Space::D2);
+                    da.cmp(&db).then_with(|| b.1.name.cmp(&a.1.name))
+                })
+                .map(|(id, _)| *id)
+        };
+        let mut b = Build {
+            model,
+            n: 0,
+            consts: vec![Recipe::Const(0.0), Recipe::Const(1.0)],
+            geom_index: Default::default(),
+            geoms: Vec::new(),
+        };
+        let mut recipes = Vec::new();
+        let mut start = Vec::new();
+        // Unknowns first.
+        let mut slots: Vec<[Option<usize>; 4]> = Vec::new();
+        for (id, g) in &tops {
+            let r = sketch_recipes(model, *id)?;
+            let constant = g.fixed || Some(*id) == held;
+            let mut s = [None; 4];
+            for (k, f) in free_slots(g.kind).iter().enumerate() {
+                if *f && !constant {
+                    s[k] = Some(start.len());
+                    start.push(if g.kind == GeomKind::Line && k == 3 {
+                        Recipe::Const(0.0)
+                    } else {
+                        r[k]
+                    });
+                }
+            }
+            slots.push(s);
+            recipes.push(r);
+        }
+        b.n = start.len();
+        for (i, (id, g)) in tops.iter().enumerate() {
+            let free_line = g.kind == GeomKind::Line && slots[i][2].is_some();
+            let mut q = [0; 4];
+            for k in 0..4 {
+                q[k] = match slots[i][k] {
+                    Some(u) => u,
+                    None => b.konst(recipes[i][k]),
+                };
+            }
+            b.geom_index.insert(*id, i);
+            b.geoms.push(Geom {
+                shape: if free_line { Shape::Line } else { Shape::Frame },
+                q,
+            });
+        }
+        let mut eqs = Vec::new();
+        for (_, c) in model.constraints.iter() {
+            let val = c.value.map(|e| b.konst(Recipe::Expr(e)));
+            let d = val.unwrap_or(b.n);
+            let (a0, a1) = (c.args.first().copied(), c.args.get(1).copied());
+            let kind = |g: Option<GeomId>| g.map(|g| model.geoms[g].kind);
+            let bad = || format!("the baseline cannot express {} ({})", c.name, c.text);
+            match (c.kind, a0, a1) {
+                (K::Coincident | K::Spherical | K::Revolute, Some(x), Some(y)) => {
+                    let (a, bb) = (b.pt(x)?, b.pt(y)?);
+                    eqs.push(Eq::Diff { a, b: bb, y: false });
+                    eqs.push(Eq::Diff { a, b: bb, y: true });
+                }
+                (K::Distance, Some(x), Some(y)) => match (kind(a0), kind(a1)) {
+                    (
+                        Some(GeomKind::Point | GeomKind::Marker),
+                        Some(GeomKind::Point | GeomKind::Marker),
+                    ) => eqs.push(Eq::Dist {
+                        a: b.pt(x)?,
+                        b: b.pt(y)?,
+                        d,
+                    }),
+                    (
+                        Some(GeomKind::Point | GeomKind::Marker),
+                        Some(GeomKind::Line | GeomKind::Segment),
+                    ) => {
+                        let p = b.pt(x)?;
+                        let (base, dir) = b.line(y)?;
+                        eqs.push(Eq::PointLine { p, base, dir, d });
+                    }
+                    (Some(GeomKind::Point | GeomKind::Marker), Some(GeomKind::Circle)) => {
+                        eqs.push(Eq::PointCircle {
+                            p: b.pt(x)?,
+                            c: b.pt(y)?,
+                            d,
+                        })
+                    }
+                    (Some(GeomKind::Line | GeomKind::Segment), Some(GeomKind::Circle)) => {
+                        let (base, dir) = b.line(x)?;
+                        let c = b.pt(y)?;
+                        eqs.push(Eq::LineCircle { base, dir, c, d });
+                    }
+                    (Some(GeomKind::Circle), Some(GeomKind::Circle)) => {
+                        eqs.push(Eq::CircleCircle {
+                            a: b.pt(x)?,
+                            b: b.pt(y)?,
+                            d,
+                        })
+                    }
+                    _ => return Err(bad()),
+                },
+                (K::On, Some(x), Some(y)) => match kind(a1) {
+                    Some(GeomKind::Line | GeomKind::Segment) => {
+                        let p = b.pt(x)?;
+                        let (base, dir) = b.line(y)?;
+                        eqs.push(Eq::PointLine { p, base, dir, d });
+                    }
+                    Some(GeomKind::Circle) => eqs.push(Eq::PointCircle {
+                        p: b.pt(x)?,
+                        c: b.pt(y)?,
+                        d,
+                    }),
+                    _ => return Err(bad()),
+                },
+                (K::Tangent, Some(x), Some(y)) => match (kind(a0), kind(a1)) {
+                    (Some(GeomKind::Line | GeomKind::Segment), Some(GeomKind::Circle)) => {
+                        let (base, dir) = b.line(x)?;
+                        let c = b.pt(y)?;
+                        eqs.push(Eq::LineCircle { base, dir, c, d });
+                    }
+                    (Some(GeomKind::Circle), Some(GeomKind::Circle)) => {
+                        eqs.push(Eq::CircleCircle {
+                            a: b.pt(x)?,
+                            b: b.pt(y)?,
+                            d,
+                        })
+                    }
+                    _ => return Err(bad()),
+                },
+                (K::Angle | K::OffsetX, Some(x), Some(y)) => eqs.push(Eq::Angle {
+                    u: b.dir(x)?,
+                    v: b.dir(y)?,
+                    a: d,
+                }),
+                (K::Parallel, Some(x), Some(y)) => eqs.push(Eq::Cross {
+                    u: b.dir(x)?,
+                    v: b.dir(y)?,
+                }),
+                (K::Perpendicular, Some(x), Some(y)) => eqs.push(Eq::Dot {
+                    u: b.dir(x)?,
+                    v: b.dir(y)?,
+                }),
+                (K::Horizontal, Some(x), _) => eqs.push(Eq::Comp {
+                    u: b.dir(x)?,
+                    y: true,
+                }),
+                (K::Vertical, Some(x), _) => eqs.push(Eq::Comp {
+                    u: b.dir(x)?,
+                    y: false,
+                }),
+                (K::Length | K::Radius, Some(x), _) => eqs.push(Eq::Dim { g: b.top(x)?, v: d }),
+                (K::InLine, Some(x), Some(y)) => {
+                    let p = b.pt(x)?;
+                    let (base, dir) = b.line(y)?;
+                    eqs.push(Eq::PointLine {
+                        p,
+                        base,
+                        dir,
+                        d: b.n,
+                    });
+                }
+                (K::Prismatic, Some(x), Some(y)) => {
+                    let (u, v) = (b.dir(x)?, b.dir(y)?);
+                    eqs.push(Eq::Angle { u, v, a: b.n });
+                    let p = b.pt(x)?;
+                    let (base, dir) = b.line(y)?;
+                    eqs.push(Eq::PointLine {
+                        p,
+                        base,
+                        dir,
+                        d: b.n,
+                    });
+                }
+                _ => return Err(bad()),
+            }
+        }
+        let n = b.n;
+        let m = eqs.len();
+        let sparse_path = match linear {
+            Linear::Auto => n > DENSE_MAX,
+            Linear::Dense => false,
+            Linear::Sparse => true,
+        };
+        let nz = n + b.consts.len();
+        let mut bl = Baseline {
+            model: model.clone(),
+            n,
+            m,
+            sparse_path,
+            geoms: b.geoms,
+            side: vec![1.0; m],
+            eqs,
+            consts: b.consts,
+            start,
+            z: vec![0.0; nz],
+            frames: vec![Fr::default(); tops.len()],
+            f: vec![0.0; m],
+            f_trial: vec![0.0; m],
+            x_trial: vec![0.0; n],
+            ent_ptr: vec![0],
+            ent_side: Vec::new(),
+            ent_k: Vec::new(),
+            ent_pos: Vec::new(),
+            uent_ptr: vec![0],
+            uent_col: Vec::new(),
+            uent_pos: Vec::new(),
+            pair_a: Vec::new(),
+            pair_b: Vec::new(),
+            pair_t: Vec::new(),
+            diag: Vec::new(),
+            jv: Vec::new(),
+            av: Vec::new(),
+            lu: Vec::new(),
+            perm: vec![0; n],
+            g: vec![0.0; n],
+            dsave: vec![0.0; n],
+            step: vec![0.0; n.max(m)],
+            sp: None,
+        };
+        bl.structure()?;
+        Ok(bl)
+    }
+
+    /// Builds the Jacobian's and JᵀJ's patterns, their entry positions and, on the sparse
+    /// path, the symbolic factorisations.
+    fn structure(&mut self) -> Result<(), String> {
+        let (n, m) = (self.n, self.m);
+        // Columns of each equation, by (side, slot).
+        let mut rows: Vec<Vec<(u8, u8, usize)>> = Vec::with_capacity(m);
+        for e in &self.eqs {
+            let mut r = Vec::new();
+            for (side, &g) in e.geoms().iter().enumerate() {
+                if g == usize::MAX {
+                    continue;
+                }
+                for k in 0..4 {
+                    let col = self.geoms[g].q[k];
+                    if col < n {
+                        r.push((side as u8, k as u8, col));
+                    }
+                }
+            }
+            rows.push(r);
+        }
+        let ucols: Vec<Vec<usize>> = rows
+            .iter()
+            .map(|r| {
+                let mut c: Vec<usize> = r.iter().map(|e| e.2).collect();
+                c.sort_unstable();
+                c.dedup();
+                c
+            })
+            .collect();
+        // Jacobian positions.
+        let jpos: Box<dyn Fn(usize, usize) -> usize>;
+        let mut jsym = None;
+        if self.sparse_path {
+            let mut col_rows: Vec<Vec<usize>> = vec![Vec::new(); n];
+            for (e, cs) in ucols.iter().enumerate() {
+                for &c in cs {
+                    col_rows[c].push(e);
+                }
+            }
+            let mut col_ptr = vec![0usize];
+            let mut row_idx = Vec::new();
+            for rs in &col_rows {
+                row_idx.extend_from_slice(rs);
+                col_ptr.push(row_idx.len());
+            }
+            let cp = col_ptr.clone();
+            let ri = row_idx.clone();
+            jpos = Box::new(move |e, c| {
+                let rs = &ri[cp[c]..cp[c + 1]];
+                cp[c] + rs.binary_search(&e).unwrap_or(0)
+            });
+            self.jv = vec![0.0; row_idx.len()];
+            jsym = Some(SymbolicSparseColMat::new_checked(
+                m, n, col_ptr, None, row_idx,
+            ));
+        } else {
+            self.jv = vec![0.0; m * n];
+            jpos = Box::new(move |e, c| e * n + c);
+        }
+        for (e, r) in rows.iter().enumerate() {
+            for &(side, k, col) in r {
+                self.ent_side.push(side);
+                self.ent_k.push(k);
+                self.ent_pos.push(jpos(e, col));
+            }
+            self.ent_ptr.push(self.ent_pos.len());
+            for &c in &ucols[e] {
+                self.uent_col.push(c);
+                self.uent_pos.push(jpos(e, c));
+            }
+            self.uent_ptr.push(self.uent_pos.len());
+        }
+        // JᵀJ: the upper triangle, (i <= j).
+        let mut upper: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for cs in &ucols {
+            for (ia, &i) in cs.iter().enumerate() {
+                for &j in &cs[ia..] {
+                    upper[j].push(i);
+                }
+            }
+        }
+        for (j, u) in upper.iter_mut().enumerate() {
+            u.push(j);
+            u.sort_unstable();
+            u.dedup();
+        }
+        let apos: Box<dyn Fn(usize, usize) -> usize>;
+        let mut asym = None;
+        if self.sparse_path {
+            let mut col_ptr = vec![0usize];
+            let mut row_idx = Vec::new();
+            for rs in &upper {
+                row_idx.extend_from_slice(rs);
+                col_ptr.push(row_idx.len());
+            }
+            let cp = col_ptr.clone();
+            let ri = row_idx.clone();
+            apos = Box::new(move |i, j| {
+                let rs = &ri[cp[j]..cp[j + 1]];
+                cp[j] + rs.binary_search(&i).unwrap_or(0)
+            });
+            self.av = vec![0.0; row_idx.len()];
+            asym = Some(SymbolicSparseColMat::new_checked(
+                n, n, col_ptr, None, row_idx,
+            ));
+        } else {
+            self.av = vec![0.0; n * n];
+            self.lu = vec![0.0; n * n];
+            apos = Box::new(move |i, j| i * n + j);
+        }
+        for e in 0..m {
+            let (s, t) = (self.uent_ptr[e], self.uent_ptr[e + 1]);
+            for a in s..t {
+                for bb in a..t {
+                    self.pair_a.push(self.uent_pos[a]);
+                    self.pair_b.push(self.uent_pos[bb]);
+                    self.pair_t.push(apos(self.uent_col[a], self.uent_col[bb]));
+                }
+            }
+        }
+        self.diag = (0..n).map(|i| apos(i, i)).collect();
+        if let Some(asym) = asym {
+            let chol = factorize_symbolic_cholesky(
+                asym.as_ref(),
+                Side::Upper,
+                Default::default(),
+                Default::default(),
+            )
+            .map_err(|e| format!("sparse Cholesky analysis failed: {e:?}"))?;
+            let mut req = chol
+                .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+                .or(chol.solve_in_place_scratch::<f64>(1, Par::Seq));
+            let mut lu = None;
+            if m == n {
+                if let Some(js) = &jsym {
+                    let s = factorize_symbolic_lu(js.as_ref(), Default::default())
+                        .map_err(|e| format!("sparse LU analysis failed: {e:?}"))?;
+                    req = req
+                        .or(s.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()))
+                        .or(s.solve_in_place_scratch::<f64>(1, Par::Seq));
+                    lu = Some(s);
+                }
+            }
+            self.sp = Some(Sparse {
+                l: vec![0.0; chol.len_val()],
+                j: jsym,
+                lu,
+                numeric: NumericLu::new(),
+                a: asym,
+                chol,
+                buf: MemBuffer::new(req),
+            });
+        }
+        Ok(())
+    }
+
+    /// The number of unknowns.
+    pub fn unknowns(&self) -> usize {
+        self.n
+    }
+
+    /// The number of scalar equations.
+    pub fn equations(&self) -> usize {
+        self.m
+    }
+
+    /// Whether the sparse linear algebra is in use.
+    pub fn is_sparse(&self) -> bool {
+        self.sparse_path
+    }
+
+    /// The cold start: the unknowns as the sketch has them, with `params`.
+    pub fn start_from_sketch(&self, params: &[f64]) -> Vec<f64> {
+        self.start
+            .iter()
+            .map(|r| r.eval(&self.model.exprs, params))
+            .collect()
+    }
+
+    /// The unknowns that describe configuration `cfg` (the plan's answer, say): a start on
+    /// the assembly `cfg` is on, for a continuation.
+    pub fn unknowns_from_config(&self, params: &[f64], cfg: &Config) -> Vec<f64> {
+        let n = self.n;
+        let mut z = self.z.clone();
+        for (k, r) in self.consts.iter().enumerate() {
+            z[n + k] = r.eval(&self.model.exprs, params);
+        }
+        for ((id, _), g) in self.model.top_level().zip(&self.geoms) {
+            let Some(f) = cfg.frames.get(&id) else {
+                continue;
+            };
+            let th = f.rotation.angle();
+            let dim = cfg.dims.get(&id).copied();
+            let (sx, sy) = (z[g.q[0]], z[g.q[1]]);
+            let mut put = |slot: usize, v: f64| {
+                if g.q[slot] < n {
+                    z[g.q[slot]] = v;
+                }
+            };
+            match g.shape {
+                Shape::Frame => {
+                    put(0, f.origin.x);
+                    put(1, f.origin.y);
+                    put(2, th);
+                    if let Some(d) = dim {
+                        put(3, d);
+                    }
+                }
+                Shape::Line => {
+                    // The offset of the line from its sketch point, along its normal.
+                    let (s, c) = th.sin_cos();
+                    let h = -s * (f.origin.x - sx) + c * (f.origin.y - sy);
+                    put(2, th);
+                    put(3, h);
+                }
+            }
+        }
+        z.truncate(n);
+        z
+    }
+
+    /// The configuration the unknowns `x` describe, to read a
+    /// [`crate::solution::Solution`] and re-check it with [`crate::verify`].
+    pub fn config(&self, params: &[f64], x: &[f64]) -> Result<Config, BadSketch> {
+        let mut cfg = Config::from_sketch(&self.model, params)?;
+        let mut z = self.z.clone();
+        z[..self.n].copy_from_slice(&x[..self.n]);
+        for (k, r) in self.consts.iter().enumerate() {
+            z[self.n + k] = r.eval(&self.model.exprs, params);
+        }
+        for ((id, _), g) in self.model.top_level().zip(&self.geoms) {
+            let f = frame(g, &z);
+            if let Some(fr) = cfg.frames.get_mut(&id) {
+                *fr = gcs_runtime::frame::Frame2::new(Point2::new(f.ox, f.oy), f.th);
+            }
+            if let Some(d) = cfg.dims.get_mut(&id) {
+                *d = f.dim;
+            }
+        }
+        Ok(cfg)
+    }
+
+    /// Solves in place: `x` holds the start (warm, or [`Baseline::start_from_sketch`]) and
+    /// receives the result. After the first call, the iteration allocates nothing (unless a
+    /// trace is asked for).
+    pub fn solve(&mut self, params: &[f64], x: &mut [f64], opts: &Options) -> Outcome {
+        let t0 = Instant::now();
+        let n = self.n;
+        for (k, r) in self.consts.iter().enumerate() {
+            self.z[n + k] = r.eval(&self.model.exprs, params);
+        }
+        self.z[..n].copy_from_slice(&x[..n]);
+        self.choose_sides();
+        let mut out = Outcome {
+            iterations: 0,
+            max_residual: f64::NAN,
+            converged: false,
+            stop: Stop::MaxIterations,
+            trace: Vec::new(),
+        };
+        let (mut r, mut ss) = self.residual();
+        self.f.copy_from_slice(&self.f_trial);
+        let trace = |out: &mut Outcome, r: f64| {
+            if opts.trace {
+                out.trace.push((t0.elapsed().as_nanos() as u64, r));
+            }
+        };
+        trace(&mut out, r);
+        let mut mu = 0.0;
+        let mut nu = 2.0;
+        let mut fresh = true; // whether J at z is up to date
+        loop {
+            if !r.is_finite() {
+                out.stop = Stop::NotFinite;
+                break;
+            }
+            if r <= opts.tolerance {
+                out.stop = Stop::Converged;
+                break;
+            }
+            if out.iterations >= opts.max_iterations {
+                out.stop = Stop::MaxIterations;
+                break;
+            }
+            out.iterations += 1;
+            match opts.method {
+                Method::Newton => {
+                    self.jacobian();
+                    if !self.newton_step() {
+                        self.normal_equations();
+                        if !self.damped_step(1e-10, false) {
+                            out.stop = Stop::NotFinite;
+                            break;
+                        }
+                    }
+                    // Backtracking on |F|^2 along the step.
+                    let mut alpha = 1.0;
+                    let mut accepted = false;
+                    for _ in 0..30 {
+                        for i in 0..n {
+                            self.x_trial[i] = self.z[i];
+                            self.z[i] += alpha * self.step[i];
+                        }
+                        let (rt, st) = self.residual();
+                        if st.is_finite() && st <= (1.0 - 1e-4 * alpha) * ss {
+                            r = rt;
+                            ss = st;
+                            self.f.copy_from_slice(&self.f_trial);
+                            accepted = true;
+                            break;
+                        }
+                        self.z[..n].copy_from_slice(&self.x_trial[..n]);
+                        alpha *= 0.5;
+                    }
+                    if !accepted {
+                        out.stop = Stop::Stalled;
+                        trace(&mut out, r);
+                        break;
+                    }
+                }
+                Method::LevenbergMarquardt => {
+                    if fresh {
+                        self.jacobian();
+                        self.normal_equations();
+                        if mu == 0.0 {
+                            mu = 1e-3;
+                        }
+                    }
+                    if !self.damped_step(mu, true) {
+                        mu *= nu;
+                        nu *= 2.0;
+                        fresh = false;
+                    } else {
+                        // Predicted reduction: d' (mu D d - g).
+                        let mut pred = 0.0;
+                        for i in 0..n {
+                            let dd = self.av[self.diag[i]].max(1e-12);
+                            pred += self.step[i] * (mu * dd * self.step[i] - self.g[i]);
+                        }
+                        for i in 0..n {
+                            self.x_trial[i] = self.z[i];
+                            self.z[i] += self.step[i];
+                        }
+                        let (rt, st) = self.residual();
+                        let rho = (ss - st) / pred;
+                        if st.is_finite() && rho > 0.0 {
+                            r = rt;
+                            ss = st;
+                            self.f.copy_from_slice(&self.f_trial);
+                            mu *= (1.0f64 / 3.0).max(1.0 - (2.0 * rho - 1.0).powi(3));
+                            nu = 2.0;
+                            fresh = true;
+                        } else {
+                            self.z[..n].copy_from_slice(&self.x_trial[..n]);
+                            mu *= nu;
+                            nu *= 2.0;
+                            fresh = false;
+                        }
+                    }
+                    if !mu.is_finite() || mu > 1e300 {
+                        out.stop = Stop::Stalled;
+                        trace(&mut out, r);
+                        break;
+                    }
+                }
+            }
+            trace(&mut out, r);
+        }
+        x[..n].copy_from_slice(&self.z[..n]);
+        out.max_residual = r;
+        out.converged = r <= opts.tolerance;
+        out
+    }
+
+    /// Evaluates every frame from `z`.
+    fn update_frames(&mut self) {
+        for (f, g) in self.frames.iter_mut().zip(&self.geoms) {
+            *f = frame(g, &self.z);
+        }
+    }
+
+    /// Evaluates the equations into `f_trial`; returns (max |F|, |F|^2).
+    fn residual(&mut self) -> (f64, f64) {
+        self.update_frames();
+        let (mut mx, mut ss) = (0.0f64, 0.0);
+        for e in 0..self.m {
+            let (v, _) = self.eval(e, false);
+            self.f_trial[e] = v;
+            mx = mx.max(v.abs());
+            if v.is_nan() {
+                mx = f64::NAN;
+            }
+            ss += v * v;
+        }
+        if mx.is_nan() {
+            return (f64::NAN, f64::NAN);
+        }
+        (mx, ss)
+    }
+
+    /// Picks each sign choice from the start configuration.
+    fn choose_sides(&mut self) {
+        self.update_frames();
+        for e in 0..self.m {
+            self.side[e] = 1.0;
+            let z = &self.z;
+            let fr = &self.frames;
+            match self.eqs[e] {
+                Eq::PointCircle { p, c, .. } => {
+                    let (pp, _) = point(&fr[p.g], z, &p);
+                    let (cc, _) = point(&fr[c.g], z, &c);
+                    let r = fr[c.g].dim;
+                    let s = (pp[0] - cc[0]).hypot(pp[1] - cc[1]) - r;
+                    self.side[e] = if s < 0.0 { -1.0 } else { 1.0 };
+                }
+                Eq::LineCircle {
+                    base, dir: dd, c, ..
+                } => {
+                    let (b, _) = point(&fr[base.g], z, &base);
+                    let u = dir(&fr[dd.g], z, &dd);
+                    let (cc, _) = point(&fr[c.g], z, &c);
+                    let s = u[0] * (cc[1] - b[1]) - u[1] * (cc[0] - b[0]);
+                    self.side[e] = if s < 0.0 { -1.0 } else { 1.0 };
+                }
+                Eq::CircleCircle { a, b, d } => {
+                    let (ca, _) = point(&fr[a.g], z, &a);
+                    let (cb, _) = point(&fr[b.g], z, &b);
+                    let (ra, rb) = (fr[a.g].dim, fr[b.g].dim);
+                    let dist = (ca[0] - cb[0]).hypot(ca[1] - cb[1]);
+                    let outside = dist - ra - rb - z[d];
+                    let nested = (ra - rb).abs() - dist - z[d];
+                    self.side[e] = if outside.abs() <= nested.abs() {
+                        0.0
+                    } else if ra >= rb {
+                        1.0
+                    } else {
+                        -1.0
+                    };
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// One equation's value and its gradient with respect to its two frames' (ox, oy, th,
+    /// dim).
+    #[inline]
+    fn eval(&self, e: usize, grad: bool) -> (f64, [G4; 2]) {
+        let z = &self.z;
+        let fr = &self.frames;
+        let mut gr = [[0.0; 4]; 2];
+        let side = self.side[e];
+        let v = match self.eqs[e] {
+            Eq::Diff { a, b, y } => {
+                let (fa, fb) = (&fr[a.g], &fr[b.g]);
+                let (pa, qa) = point(fa, z, &a);
+                let (pb, qb) = point(fb, z, &b);
+                let k = usize::from(y);
+                if grad {
+                    let gp = if y { [0.0, 1.0] } else { [1.0, 0.0] };
+                    push_point(&mut gr[0], fa, qa, a.m, gp);
+                    push_point(&mut gr[1], fb, qb, b.m, [-gp[0], -gp[1]]);
+                }
+                pa[k] - pb[k]
+            }
+            Eq::Dist { a, b, d } => {
+                let (fa, fb) = (&fr[a.g], &fr[b.g]);
+                let (pa, qa) = point(fa, z, &a);
+                let (pb, qb) = point(fb, z, &b);
+                let w = [pa[0] - pb[0], pa[1] - pb[1]];
+                let len = w[0].hypot(w[1]);
+                if grad && len > 0.0 {
+                    let gp = [w[0] / len, w[1] / len];
+                    push_point(&mut gr[0], fa, qa, a.m, gp);
+                    push_point(&mut gr[1], fb, qb, b.m, [-gp[0], -gp[1]]);
+                }
+                len - z[d].abs()
+            }
+            Eq::PointLine {
+                p,
+                base,
+                dir: dd,
+                d,
+            } => {
+                let (fp, fl) = (&fr[p.g], &fr[base.g]);
+                let (pp, qp) = point(fp, z, &p);
+                let (pb, qb) = point(fl, z, &base);
+                let u = dir(fl, z, &dd);
+                let w = [pp[0] - pb[0], pp[1] - pb[1]];
+                // cross(u, w) = u.x w.y - u.y w.x
+                if grad {
+                    let gw = [-u[1], u[0]];
+                    push_point(&mut gr[0], fp, qp, p.m, gw);
+                    push_point(&mut gr[1], fl, qb, base.m, [-gw[0], -gw[1]]);
+                    push_dir(&mut gr[1], u, [w[1], -w[0]]);
+                }
+                u[0] * w[1] - u[1] * w[0] - z[d]
+            }
+            Eq::PointCircle { p, c, d } => {
+                let (fp, fc) = (&fr[p.g], &fr[c.g]);
+                let (pp, qp) = point(fp, z, &p);
+                let (pc, qc) = point(fc, z, &c);
+                let w = [pp[0] - pc[0], pp[1] - pc[1]];
+                let len = w[0].hypot(w[1]);
+                if grad && len > 0.0 {
+                    let gp = [side * w[0] / len, side * w[1] / len];
+                    push_point(&mut gr[0], fp, qp, p.m, gp);
+                    push_point(&mut gr[1], fc, qc, c.m, [-gp[0], -gp[1]]);
+                    gr[1][3] -= side;
+                }
+                side * (len - fc.dim) - z[d]
+            }
+            Eq::LineCircle {
+                base,
+                dir: dd,
+                c,
+                d,
+            } => {
+                let (fl, fc) = (&fr[base.g], &fr[c.g]);
+                let (pb, qb) = point(fl, z, &base);
+                let u = dir(fl, z, &dd);
+                let (pc, qc) = point(fc, z, &c);
+                let w = [pc[0] - pb[0], pc[1] - pb[1]];
+                if grad {
+                    let gw = [-side * u[1], side * u[0]];
+                    push_point(&mut gr[1], fc, qc, c.m, gw);
+                    push_point(&mut gr[0], fl, qb, base.m, [-gw[0], -gw[1]]);
+                    push_dir(&mut gr[0], u, [side * w[1], -side * w[0]]);
+                    gr[1][3] -= 1.0;
+                }
+                side * (u[0] * w[1] - u[1] * w[0]) - fc.dim - z[d]
+            }
+            Eq::CircleCircle { a, b, d } => {
+                let (fa, fb) = (&fr[a.g], &fr[b.g]);
+                let (pa, qa) = point(fa, z, &a);
+                let (pb, qb) = point(fb, z, &b);
+                let w = [pa[0] - pb[0], pa[1] - pb[1]];
+                let len = w[0].hypot(w[1]);
+                // External: len - ra - rb - d; nested: side (ra - rb) - len - d.
+                let sgn = if side == 0.0 { 1.0 } else { -1.0 };
+                if grad && len > 0.0 {
+                    let gp = [sgn * w[0] / len, sgn * w[1] / len];
+                    push_point(&mut gr[0], fa, qa, a.m, gp);
+                    push_point(&mut gr[1], fb, qb, b.m, [-gp[0], -gp[1]]);
+                    if side == 0.0 {
+                        gr[0][3] -= 1.0;
+                        gr[1][3] -= 1.0;
+                    } else {
+                        gr[0][3] += side;
+                        gr[1][3] -= side;
+                    }
+                }
+                if side == 0.0 {
+                    len - fa.dim - fb.dim - z[d]
+                } else {
+                    side * (fa.dim - fb.dim) - len - z[d]
+                }
+            }
+            Eq::Angle { u, v, a } => {
+                if grad {
+                    gr[0][2] -= 1.0;
+                    gr[1][2] += 1.0;
+                }
+                wrap(fr[v.g].th + z[v.phi] - fr[u.g].th - z[u.phi] - z[a])
+            }
+            Eq::Cross { u, v } => {
+                let (uu, vv) = (dir(&fr[u.g], z, &u), dir(&fr[v.g], z, &v));
+                if grad {
+                    push_dir(&mut gr[0], uu, [vv[1], -vv[0]]);
+                    push_dir(&mut gr[1], vv, [-uu[1], uu[0]]);
+                }
+                uu[0] * vv[1] - uu[1] * vv[0]
+            }
+            Eq::Dot { u, v } => {
+                let (uu, vv) = (dir(&fr[u.g], z, &u), dir(&fr[v.g], z, &v));
+                if grad {
+                    push_dir(&mut gr[0], uu, vv);
+                    push_dir(&mut gr[1], vv, uu);
+                }
+                uu[0] * vv[0] + uu[1] * vv[1]
+            }
+            Eq::Comp { u, y } => {
+                let uu = dir(&fr[u.g], z, &u);
+                if grad {
+                    push_dir(&mut gr[0], uu, if y { [0.0, 1.0] } else { [1.0, 0.0] });
+                }
+                uu[usize::from(y)]
+            }
+            Eq::Dim { g, v } => {
+                if grad {
+                    gr[0][3] = 1.0;
+                }
+                fr[g].dim - z[v]
+            }
+        };
+        (v, gr)
+    }
+
+    /// Fills `jv` with the Jacobian at `z` (frames must be current).
+    fn jacobian(&mut self) {
+        self.update_frames();
+        self.jv.iter_mut().for_each(|v| *v = 0.0);
+        for e in 0..self.m {
+            let (_, gr) = self.eval(e, true);
+            let gs = self.eqs[e].geoms();
+            for t in self.ent_ptr[e]..self.ent_ptr[e + 1] {
+                let side = self.ent_side[t] as usize;
+                let k = self.ent_k[t] as usize;
+                let gi = gs[side];
+                let gg = &gr[side];
+                let val = match self.geoms[gi].shape {
+                    Shape::Frame => gg[k],
+                    Shape::Line => {
+                        let f = &self.frames[gi];
+                        if k == 2 {
+                            gg[0] * (-f.h * f.c) + gg[1] * (-f.h * f.s) + gg[2]
+                        } else {
+                            gg[0] * (-f.s) + gg[1] * f.c
+                        }
+                    }
+                };
+                self.jv[self.ent_pos[t]] += val;
+            }
+        }
+    }
+
+    /// A = JᵀJ (upper triangle) and g = JᵀF.
+    fn normal_equations(&mut self) {
+        self.av.iter_mut().for_each(|v| *v = 0.0);
+        for ((&a, &b), &t) in self.pair_a.iter().zip(&self.pair_b).zip(&self.pair_t) {
+            self.av[t] += self.jv[a] * self.jv[b];
+        }
+        self.g.iter_mut().for_each(|v| *v = 0.0);
+        for e in 0..self.m {
+            for u in self.uent_ptr[e]..self.uent_ptr[e + 1] {
+                self.g[self.uent_col[u]] += self.jv[self.uent_pos[u]] * self.f[e];
+            }
+        }
+    }
+
+    /// The Newton step `J d = -F` for a square system; false if not square or singular.
+    fn newton_step(&mut self) -> bool {
+        let n = self.n;
+        if self.m != n {
+            return false;
+        }
+        for i in 0..n {
+            self.step[i] = -self.f[i];
+        }
+        let ok = if let Some(sp) = &mut self.sp {
+            let (Some(js), Some(lu)) = (&sp.j, &sp.lu) else {
+                return false;
+            };
+            let mat = SparseColMatRef::new(js.as_ref(), &self.jv);
+            match lu.factorize_numeric_lu(
+                &mut sp.numeric,
+                mat,
+                Par::Seq,
+                MemStack::new(&mut sp.buf),
+                Default::default(),
+            ) {
+                Ok(f) => {
+                    f.solve_in_place_with_conj(
+                        Conj::No,
+                        MatMut::from_column_major_slice_mut(&mut self.step[..n], n, 1),
+                        Par::Seq,
+                        MemStack::new(&mut sp.buf),
+                    );
+                    true
+                }
+                Err(_) => false,
+            }
+        } else {
+            self.lu.copy_from_slice(&self.jv);
+            dense_lu(&mut self.lu, &mut self.perm, n) && {
+                dense_lu_solve(&self.lu, &self.perm, n, &mut self.step[..n]);
+                true
+            }
+        };
+        ok && self.step[..n].iter().all(|v| v.is_finite())
+    }
+
+    /// The step `(JᵀJ + mu D) d = -JᵀF`, with `D = diag(JᵀJ)` (floored) if `scaled`, else
+    /// `D = max diag` (a Levenberg step, used for Newton's fallback). Restores `av`.
+    fn damped_step(&mut self, mu: f64, scaled: bool) -> bool {
+        let n = self.n;
+        let mx = self.diag.iter().map(|&p| self.av[p]).fold(0.0, f64::max);
+        for i in 0..n {
+            let d = self.av[self.diag[i]];
+            self.dsave[i] = d;
+            let add = if scaled {
+                mu * d.max(1e-12)
+            } else {
+                mu * mx.max(1e-300)
+            };
+            self.av[self.diag[i]] = d + add;
+            self.step[i] = -self.g[i];
+        }
+        let ok = if let Some(sp) = &mut self.sp {
+            let mat = SparseColMatRef::new(sp.a.as_ref(), &self.av);
+            match sp.chol.factorize_numeric_llt(
+                &mut sp.l,
+                mat,
+                Side::Upper,
+                Default::default(),
+                Par::Seq,
+                MemStack::new(&mut sp.buf),
+                Default::default(),
+            ) {
+                Ok(_) => {
+                    LltRef::new(&sp.chol, &sp.l).solve_in_place_with_conj(
+                        Conj::No,
+                        MatMut::from_column_major_slice_mut(&mut self.step[..n], n, 1),
+                        Par::Seq,
+                        MemStack::new(&mut sp.buf),
+                    );
+                    true
+                }
+                Err(_) => false,
+            }
+        } else {
+            self.lu.copy_from_slice(&self.av);
+            dense_cholesky(&mut self.lu, n) && {
+                dense_cholesky_solve(&self.lu, n, &mut self.step[..n]);
+                true
+            }
+        };
+        for i in 0..n {
+            self.av[self.diag[i]] = self.dsave[i];
+        }
+        ok && self.step[..n].iter().all(|v| v.is_finite())
+    }
+}
+
+/// A geom's frame from `z`.
+#[inline]
+fn frame(g: &Geom, z: &[f64]) -> Fr {
+    let th = z[g.q[2]];
+    let (s, c) = th.sin_cos();
+    match g.shape {
+        Shape::Frame => Fr {
+            ox: z[g.q[0]],
+            oy: z[g.q[1]],
+            th,
+            c,
+            s,
+            dim: z[g.q[3]],
+            h: 0.0,
+        },
+        Shape::Line => {
+            let h = z[g.q[3]];
+            Fr {
+                ox: z[g.q[0]] - h * s,
+                oy: z[g.q[1]] + h * c,
+                th,
+                c,
+                s,
+                dim: 0.0,
+                h,
+            }
+        }
+    }
+}
+
+/// In-place LU with partial pivoting of a row-major `n x n` matrix; false if singular.
+fn dense_lu(a: &mut [f64], perm: &mut [usize], n: usize) -> bool {
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if scale == 0.0 || !scale.is_finite() {
+        return false;
+    }
+    for k in 0..n {
+        let mut p = k;
+        let mut best = a[k * n + k].abs();
+        for i in k + 1..n {
+            let v = a[i * n + k].abs();
+            if v > best {
+                best = v;
+                p = i;
+            }
+        }
+        if best <= 1e-14 * scale {
+            return false;
+        }
+        perm[k] = p;
+        if p != k {
+            for j in 0..n {
+                a.swap(k * n + j, p * n + j);
+            }
+        }
+        let piv = a[k * n + k];
+        for i in k + 1..n {
+            let l = a[i * n + k] / piv;
+            a[i * n + k] = l;
+            if l != 0.0 {
+                for j in k + 1..n {
+                    a[i * n + j] -= l * a[k * n + j];
+                }
+            }
+        }
+    }
+    true
+}
+
+fn dense_lu_solve(a: &[f64], perm: &[usize], n: usize, b: &mut [f64]) {
+    for (k, &p) in perm.iter().enumerate().take(n) {
+        b.swap(k, p);
+    }
+    for i in 0..n {
+        let mut s = b[i];
+        for j in 0..i {
+            s -= a[i * n + j] * b[j];
+        }
+        b[i] = s;
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for j in i + 1..n {
+            s -= a[i * n + j] * b[j];
+        }
+        b[i] = s / a[i * n + i];
+    }
+}
+
+/// In-place Cholesky `A = UᵀU` of the upper triangle of a row-major matrix; false if not
+/// positive definite.
+fn dense_cholesky(a: &mut [f64], n: usize) -> bool {
+    for j in 0..n {
+        for i in 0..=j {
+            let mut s = a[i * n + j];
+            for k in 0..i {
+                s -= a[k * n + i] * a[k * n + j];
+            }
+            if i == j {
+                if s <= 0.0 || !s.is_finite() {
+                    return false;
+                }
+                a[j * n + j] = s.sqrt();
+            } else {
+                a[i * n + j] = s / a[i * n + i];
+            }
+        }
+    }
+    true
+}
+
+fn dense_cholesky_solve(u: &[f64], n: usize, b: &mut [f64]) {
+    // Uᵀ y = b
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= u[k * n + i] * b[k];
+        }
+        b[i] = s / u[i * n + i];
+    }
+    // U x = y
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= u[i * n + k] * b[k];
+        }
+        b[i] = s / u[i * n + i];
+    }
+}

@@ -1,0 +1,338 @@
+//! The numeric baseline (Newton-Raphson and Levenberg-Marquardt on the raw equations) against
+//! the independent verifier and against the compiled plans: every 2d example solved cold from
+//! its sketch, a warm-started four-bar sweep on the plan's `elbow = 0` branch, and a chain of
+//! 200 four-bars on the sparse path.
+
+use gcs_compiler::analysis::analyse;
+use gcs_compiler::baseline::{Baseline, Linear, Method, Options, Stop};
+use gcs_compiler::solution::Solution;
+use gcs_compiler::verify;
+use gcs_lang::Model;
+use std::collections::BTreeSet;
+use std::fmt::Write as _;
+
+fn load_text(name: &str, text: &str) -> Model {
+    let (_, model, diags) = gcs_lang::load(name, text.as_bytes());
+    assert!(diags.iter().all(|d| !d.is_error()), "{name}: {diags:?}");
+    model.unwrap_or_else(|| panic!("{name}: no model"))
+}
+
+fn load(name: &str) -> Model {
+    let path = format!("{}/../examples/{name}.gcs", env!("CARGO_MANIFEST_DIR"));
+    let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("read {path}: {e}"));
+    load_text(&path, &String::from_utf8(bytes).expect("utf-8"))
+}
+
+fn param(model: &Model, name: &str) -> usize {
+    let id = model
+        .param_named(name)
+        .unwrap_or_else(|| panic!("no param {name}"));
+    id.into_raw().into_u32() as usize
+}
+
+/// The baseline's solution, read like the plan's, with its verified residual.
+fn read(model: &Model, b: &Baseline, params: &[f64], x: &[f64]) -> (Solution, f64) {
+    let all: BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+    let cfg = b.config(params, x).expect("config");
+    let s = Solution::read(model, &cfg, &all);
+    let r = verify::max_residual(&verify::residuals(model, &s, params));
+    (s, r)
+}
+
+/// The largest difference between two solutions over every point, vector and scalar.
+fn difference(a: &Solution, b: &Solution) -> f64 {
+    let mut d = 0.0f64;
+    for (name, p) in &a.points {
+        let q = b.point(name).unwrap_or(&[f64::NAN, f64::NAN]);
+        for (x, y) in p.iter().zip(q) {
+            d = d.max((x - y).abs());
+        }
+    }
+    for (name, p) in &a.vectors {
+        let q = b.vector(name).unwrap_or(&[f64::NAN, f64::NAN]);
+        for (x, y) in p.iter().zip(q) {
+            d = d.max((x - y).abs());
+        }
+    }
+    for (name, v) in &a.scalars {
+        d = d.max((v - b.scalar(name).unwrap_or(f64::NAN)).abs());
+    }
+    if d.is_nan() {
+        f64::INFINITY
+    } else {
+        d
+    }
+}
+
+const EXAMPLES: &[&str] = &[
+    "fourbar",
+    "circle",
+    "tenbar",
+    "slider_crank_2d",
+    "crank_rocker",
+    "sixbar",
+    "jansen_leg",
+    "sketch_profile",
+];
+
+#[test]
+fn every_example_solves_cold_from_its_sketch_and_verifies() {
+    let mut report = String::new();
+    for name in EXAMPLES {
+        let model = load(name);
+        let analysis = analyse(&model).expect("analysis");
+        let params = model.default_params();
+        let branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
+        let plan = gcs_compiler::solve(&model, &analysis, &params, &branches).expect("plan");
+        for method in [Method::Newton, Method::LevenbergMarquardt] {
+            for linear in [Linear::Dense, Linear::Sparse] {
+                let mut b = Baseline::with_linear(&model, linear).expect("baseline");
+                assert_eq!(b.is_sparse(), linear == Linear::Sparse);
+                let mut x = b.start_from_sketch(&params);
+                let opts = Options {
+                    method,
+                    max_iterations: 200,
+                    ..Options::default()
+                };
+                let out = b.solve(&params, &mut x, &opts);
+                assert!(
+                    out.converged,
+                    "{name} {method:?} {linear:?}: {out:?} ({} unknowns, {} equations)",
+                    b.unknowns(),
+                    b.equations()
+                );
+                let (s, r) = read(&model, &b, &params, &x);
+                assert!(
+                    r <= 1e-10,
+                    "{name} {method:?} {linear:?}: verify says {r:e}"
+                );
+                let diff = difference(&plan, &s);
+                let _ = writeln!(
+                    report,
+                    "{name:16} {method:?}/{linear:?}: {} unknowns, {} equations, {} iterations, \
+                     residual {:.1e}, verify {r:.1e}, differs from the plan's default branches by {diff:.1e}",
+                    b.unknowns(),
+                    b.equations(),
+                    out.iterations,
+                    out.max_residual,
+                );
+                if *name == "fourbar" {
+                    assert!(
+                        diff <= 1e-9,
+                        "fourbar: baseline and plan differ by {diff:e}"
+                    );
+                }
+            }
+        }
+    }
+    println!("{report}");
+}
+
+#[test]
+fn a_warm_four_bar_sweep_stays_on_the_plans_elbow_0_branch() {
+    let model = load("fourbar");
+    let analysis = analyse(&model).expect("analysis");
+    let elbow = analysis
+        .plan
+        .branches
+        .iter()
+        .position(|b| b.name == "elbow")
+        .expect("elbow");
+    let mut branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
+    branches[elbow] = 0;
+    let theta = param(&model, "theta");
+    let mut params = model.default_params();
+    let mut b = Baseline::new(&model).expect("baseline");
+    assert!(!b.is_sparse());
+    // Start on the plan's branch at theta = 0: cold from the sketch, then checked.
+    params[theta] = 0.0;
+    let mut x = b.start_from_sketch(&params);
+    let opts = Options::default();
+    let mut worst = 0.0f64;
+    for step in 0..=360 {
+        params[theta] = (step as f64).to_radians();
+        let out = b.solve(&params, &mut x, &opts);
+        assert!(out.converged, "theta = {step} deg: {out:?}");
+        let plan = gcs_compiler::solve(&model, &analysis, &params, &branches).expect("plan");
+        let (s, r) = read(&model, &b, &params, &x);
+        assert!(r <= 1e-10, "theta = {step} deg: verify says {r:e}");
+        let (p, q) = (
+            plan.point("coupler.c").expect("plan coupler.c"),
+            s.point("coupler.c").expect("baseline coupler.c"),
+        );
+        let d = (p[0] - q[0]).hypot(p[1] - q[1]);
+        worst = worst.max(d);
+        assert!(
+            d <= 1e-9,
+            "theta = {step} deg: coupler.c {q:?} but the plan's elbow = 0 gives {p:?}"
+        );
+    }
+    println!("warm sweep: worst |coupler.c - plan| = {worst:.1e}");
+}
+
+/// A chain of `n` four-bars on ground pivots `(4i, 0)`: body `l{i}` turns about pivot `i`
+/// (its point `b` at 1.5, `c` at 3 and 90 degrees), coupler `k{i}` (length 4) joins `l{i}.b`
+/// to `l{i+1}.c`, so the rocker of each four-bar is the crank of the next. `l0` is driven.
+/// The sketch is a true assembly (upper circle intersections) at `theta` with every
+/// placement perturbed, so a cold start has work to do.
+fn chain(n: usize, theta: f64) -> String {
+    let mut s = String::from("space 2d;\n");
+    let _ = writeln!(s, "param theta = {theta};");
+    s.push_str("fixed vector X = (1, 0);\n");
+    for i in 0..=n {
+        let _ = writeln!(s, "fixed point g{i} = ({}, 0);", 4 * i);
+    }
+    let mut phi = theta;
+    let mut bodies = String::new();
+    for i in 0..=n {
+        let pivot = [4.0 * i as f64, 0.0];
+        let jiggle = 0.03 * ((i as f64) * 1.7).sin();
+        let _ = writeln!(
+            bodies,
+            "body l{i} at ({}, {}) rotated {} {{ point o = (0, 0); point b = (1.5, 0); point c = (0, 3); vector u = (1, 0); }}",
+            pivot[0] + jiggle,
+            jiggle,
+            phi + jiggle
+        );
+        if i == n {
+            break;
+        }
+        // The next rocker: |C - B| = 4, |C - P'| = 3, upper intersection.
+        let bpt = [pivot[0] + 1.5 * phi.cos(), pivot[1] + 1.5 * phi.sin()];
+        let next = [pivot[0] + 4.0, 0.0];
+        let (ux, uy) = (next[0] - bpt[0], next[1] - bpt[1]);
+        let d = ux.hypot(uy);
+        let a = (16.0 - 9.0 + d * d) / (2.0 * d);
+        let h = (16.0 - a * a).max(0.0).sqrt();
+        let (ex, ey) = (ux / d, uy / d);
+        let c = [bpt[0] + a * ex - h * ey, bpt[1] + a * ey + h * ex];
+        let k = (c[1] - bpt[1]).atan2(c[0] - bpt[0]);
+        let _ = writeln!(
+            bodies,
+            "body k{i} at ({}, {}) rotated {} {{ point b = (0, 0); point c = (4, 0); }}",
+            bpt[0] - jiggle,
+            bpt[1] + jiggle,
+            k - jiggle
+        );
+        phi = (c[1] - next[1]).atan2(c[0] - next[0]) - std::f64::consts::FRAC_PI_2;
+    }
+    s.push_str(&bodies);
+    s.push_str("drive: angle(X, l0.u) = theta;\n");
+    for i in 0..=n {
+        let _ = writeln!(s, "coincident(l{i}.o, g{i});");
+    }
+    for i in 0..n {
+        let _ = writeln!(s, "coincident(k{i}.b, l{i}.b);");
+        let _ = writeln!(s, "coincident(k{i}.c, l{}.c);", i + 1);
+    }
+    s
+}
+
+#[test]
+fn a_chain_of_200_four_bars_solves_on_the_sparse_path() {
+    let model = load_text("chain200", &chain(200, 0.5));
+    let params = model.default_params();
+    for method in [Method::Newton, Method::LevenbergMarquardt] {
+        let mut b = Baseline::new(&model).expect("baseline");
+        assert!(b.is_sparse(), "{} unknowns", b.unknowns());
+        assert_eq!(b.unknowns(), 6 * 200 + 3);
+        assert_eq!(b.equations(), b.unknowns());
+        let mut x = b.start_from_sketch(&params);
+        let out = b.solve(
+            &params,
+            &mut x,
+            &Options {
+                method,
+                max_iterations: 200,
+                ..Options::default()
+            },
+        );
+        assert!(out.converged, "{method:?}: {out:?}");
+        let (_, r) = read(&model, &b, &params, &x);
+        assert!(r <= 1e-9, "{method:?}: verify says {r:e}");
+        // Warm: a small change of the drive converges in a few Newton steps.
+        let mut p2 = params.clone();
+        p2[0] += 0.01;
+        let out = b.solve(&p2, &mut x, &Options::default());
+        assert!(
+            out.converged && out.iterations <= 6,
+            "{method:?} warm: {out:?}"
+        );
+        let (_, r) = read(&model, &b, &p2, &x);
+        assert!(r <= 1e-9, "{method:?} warm: verify says {r:e}");
+    }
+}
+
+#[test]
+fn the_trace_records_every_iteration_and_errors_name_what_is_missing() {
+    let model = load("fourbar");
+    let params = model.default_params();
+    let mut b = Baseline::new(&model).expect("baseline");
+    let mut x = b.start_from_sketch(&params);
+    let out = b.solve(
+        &params,
+        &mut x,
+        &Options {
+            trace: true,
+            ..Options::default()
+        },
+    );
+    assert_eq!(out.stop, Stop::Converged);
+    assert_eq!(out.trace.len(), out.iterations + 1);
+    assert!(out.trace.windows(2).all(|w| w[0].0 <= w[1].0));
+    let three = load("brick");
+    assert!(Baseline::new(&three).is_err());
+}
+
+/// Not a test of speed (those live in the benches): prints per-solve times for the report.
+#[test]
+fn timing_report() {
+    let model = load("fourbar");
+    let theta = param(&model, "theta");
+    let mut params = model.default_params();
+    let mut b = Baseline::new(&model).expect("baseline");
+    let cold = b.start_from_sketch(&params);
+    let mut x = cold.clone();
+    let opts = Options::default();
+    let reps = 2000;
+    let t = std::time::Instant::now();
+    let mut its = 0;
+    for _ in 0..reps {
+        x.copy_from_slice(&cold);
+        its += b.solve(&params, &mut x, &opts).iterations;
+    }
+    let cold_ns = t.elapsed().as_nanos() as f64 / reps as f64;
+    let cold_its = its as f64 / reps as f64;
+    let t = std::time::Instant::now();
+    let mut its = 0;
+    for i in 0..reps {
+        params[theta] = (i % 360) as f64 * 1f64.to_radians();
+        its += b.solve(&params, &mut x, &opts).iterations;
+    }
+    let warm_ns = t.elapsed().as_nanos() as f64 / reps as f64;
+    let warm_its = its as f64 / reps as f64;
+    println!(
+        "fourbar: cold {cold_ns:.0} ns/solve ({cold_its:.1} it), warm 1-degree steps {warm_ns:.0} ns/solve ({warm_its:.1} it)"
+    );
+    for n in [200, 1000] {
+        let model = load_text("chain", &chain(n, 0.5));
+        let mut params = model.default_params();
+        let mut b = Baseline::new(&model).expect("baseline");
+        let mut x = b.start_from_sketch(&params);
+        let t = std::time::Instant::now();
+        let out = b.solve(&params, &mut x, &opts);
+        let cold = t.elapsed();
+        params[0] += 1f64.to_radians();
+        let t = std::time::Instant::now();
+        let warm = b.solve(&params, &mut x, &opts);
+        println!(
+            "chain of {n} four-bars ({} unknowns): cold {:?} ({} it, {:?}), warm {:?} ({} it)",
+            b.unknowns(),
+            cold,
+            out.iterations,
+            out.stop,
+            t.elapsed(),
+            warm.iterations
+        );
+    }
+}
