@@ -16,8 +16,8 @@ fn family_files_match_their_generators() {
         if std::env::var_os("GCS_WRITE_FAMILIES").is_some() {
             std::fs::write(&path, &want).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         }
-        let have = std::fs::read_to_string(&path)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let have =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert!(
             have == want,
             "{} differs from its generator: rewrite it with GCS_WRITE_FAMILIES=1",

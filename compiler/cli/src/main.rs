@@ -7,6 +7,8 @@ use gcs_lang::{Diagnostic, SourceFile};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+mod generated;
+
 /// Compiles geometric constraint models (.gcs) into specialised solvers.
 #[derive(Debug, Parser)]
 #[command(name = "gcs", version, about)]
@@ -62,6 +64,25 @@ enum Command {
         /// The .gcs file.
         file: PathBuf,
     },
+    /// Time the compiled plan against a numeric baseline (Newton on the raw constraint
+    /// equations) over a sweep of the model's params: per-solve time, residual, branch flips,
+    /// ratio, and the baseline's run time against error.
+    Bench {
+        /// The .gcs file.
+        file: PathBuf,
+        /// Points of the sweep.
+        #[arg(long, default_value_t = 100)]
+        samples: usize,
+        /// Print one JSON object.
+        #[arg(long)]
+        json: bool,
+        /// Write the run time against error as an SVG plot.
+        #[arg(long, value_name = "FILE.svg")]
+        plot: Option<PathBuf>,
+        /// Time the interpreter, without building the generated solver.
+        #[arg(long)]
+        interpreted: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -98,6 +119,13 @@ fn main() -> ExitCode {
                 }
             }
         }),
+        Command::Bench {
+            file,
+            samples,
+            json,
+            plot,
+            interpreted,
+        } => bench(&file, samples, json, plot.as_deref(), interpreted, color),
         Command::Explain { file } => with_analysis(&file, color, |model, a| {
             print!("{}", gcs_compiler::explain::explain(model, a));
             ExitCode::SUCCESS
@@ -291,6 +319,89 @@ fn solve(
                 ExitCode::FAILURE
             }
         }
+    })
+}
+
+fn bench(
+    path: &PathBuf,
+    samples: usize,
+    json: bool,
+    plot: Option<&std::path::Path>,
+    interpreted: bool,
+    color: termcolor::ColorChoice,
+) -> ExitCode {
+    use gcs_compiler::bench;
+    with_analysis(path, color, |model, analysis| {
+        let (plan, scope) = gcs_compiler::prune::prune(model, &analysis.plan);
+        let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+        let sweep = bench::sweep(model, samples);
+        let mut compiled = None;
+        if !interpreted {
+            let code =
+                gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(model, analysis));
+            let names: Vec<String> = model.params.iter().map(|(_, p)| p.name.clone()).collect();
+            let named: Vec<(String, usize)> = plan
+                .branches
+                .iter()
+                .map(|b| (b.name.clone(), b.default))
+                .collect();
+            match generated::run(path, &code, &names, &named, &sweep) {
+                Ok(answers) => {
+                    let mut run = bench::CompiledRun {
+                        kind: "generated",
+                        ns: Vec::new(),
+                        solutions: Vec::new(),
+                    };
+                    for (answer, params) in answers.into_iter().zip(&sweep.params) {
+                        run.ns.push(answer.ns);
+                        run.solutions.push(answer.values.map(|v| {
+                            let mut s = gcs_compiler::solution::Solution {
+                                points: v.points,
+                                vectors: v.vectors,
+                                scalars: v.scalars,
+                                ..Default::default()
+                            };
+                            s.max_residual = bench::max_residual_in(model, &s, params, &scope);
+                            s
+                        }));
+                    }
+                    compiled = Some(run);
+                }
+                Err(why) => eprintln!("note: timing the interpreter instead: {why}"),
+            }
+        }
+        let compiled =
+            compiled.unwrap_or_else(|| bench::interpreted(model, &plan, &scope, &branches, &sweep));
+        let whole: Vec<usize> = analysis
+            .plan
+            .branches
+            .iter()
+            .map(|b| {
+                plan.branches
+                    .iter()
+                    .position(|x| x.name == b.name)
+                    .map_or(b.default, |i| branches[i])
+            })
+            .collect();
+        let report = match bench::run(model, &analysis.plan, &whole, sweep, compiled) {
+            Ok(r) => r,
+            Err(e) => {
+                eprintln!("error: cannot bench `{}`: {e}", path.display());
+                return ExitCode::FAILURE;
+            }
+        };
+        if let Some(plot) = plot {
+            if let Err(e) = std::fs::write(plot, report.to_svg()) {
+                eprintln!("error: cannot write `{}`: {e}", plot.display());
+                return ExitCode::from(2);
+            }
+        }
+        if json {
+            println!("{}", report.to_json());
+        } else {
+            print!("{}", report.to_text());
+        }
+        ExitCode::SUCCESS
     })
 }
 

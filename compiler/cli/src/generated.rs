@@ -1,0 +1,245 @@
+//! The generated solver of a model, built with cargo into a small driver program and run on a
+//! bench sweep, for `gcs bench`.
+//!
+//! The driver crate lives under the workspace's `target/gcs-bench/`, depends on the runtime's
+//! sources by path, and shares one target directory between models, so that only the first
+//! bench compiles the runtime. Without cargo or the runtime's sources (an installed `gcs`), the
+//! caller falls back to the interpreter.
+
+use gcs_compiler::bench::Sweep;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+/// What the driver reports for one sample: nanoseconds per solve, and the solution's values
+/// by name, or the error's text.
+pub struct Sample {
+    /// Nanoseconds per solve.
+    pub ns: f64,
+    /// Points, vectors and scalars by dotted name; or the solve's error.
+    pub values: Result<Values, String>,
+}
+
+/// A generated solution's values by dotted name.
+#[derive(Default)]
+pub struct Values {
+    /// Points.
+    pub points: Vec<(String, Vec<f64>)>,
+    /// Unit vectors.
+    pub vectors: Vec<(String, Vec<f64>)>,
+    /// Dimensions.
+    pub scalars: Vec<(String, f64)>,
+}
+
+/// The workspace this binary was built in, if its sources are still there.
+fn workspace() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let dir = dir.canonicalize().ok()?;
+    dir.join("runtime/Cargo.toml").is_file().then_some(dir)
+}
+
+/// The driver's main: reads param names, then one line of values per sample, on stdin; prints
+/// one line per sample: `ok NS` then `p NAME X Y`, `v NAME X Y`, `s NAME X` lines and `end`,
+/// or `err NS TEXT`.
+const DRIVER: &str = r#"
+use std::io::BufRead as _;
+use std::io::Write as _;
+
+fn time_per_call(budget_ns: f64, mut solve: impl FnMut()) -> f64 {
+    let start = std::time::Instant::now();
+    solve();
+    let once = start.elapsed().as_nanos() as f64;
+    let reps = ((budget_ns / once.max(1.0)) as usize).clamp(1, 1_000_000);
+    let start = std::time::Instant::now();
+    for _ in 0..reps {
+        solve();
+    }
+    start.elapsed().as_nanos() as f64 / reps as f64
+}
+
+fn main() {
+    let stdin = std::io::stdin();
+    let mut lines = stdin.lock().lines().map_while(Result::ok);
+    let names: Vec<String> = lines
+        .next()
+        .unwrap_or_default()
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+    let mut branches = solver::Branches::default();
+    for arg in std::env::args().skip(1) {
+        if let Some((name, index)) = arg.split_once('=') {
+            let index: u8 = index.parse().unwrap_or(0);
+            branches.set(name, index);
+        }
+    }
+    let budget: f64 = std::env::var("GCS_BENCH_BUDGET_NS")
+        .ok()
+        .and_then(|b| b.parse().ok())
+        .unwrap_or(200_000.0);
+    let out = std::io::stdout();
+    let mut out = out.lock();
+    for line in lines {
+        let mut params = solver::Params::default();
+        for (name, value) in names.iter().zip(line.split_whitespace()) {
+            params.set(name, value.parse().unwrap_or(f64::NAN));
+        }
+        let defaults = solver::Defaults::default();
+        let ns = time_per_call(budget, || {
+            std::hint::black_box(solver::solve(
+                std::hint::black_box(&params),
+                &branches,
+                &defaults,
+            ).is_ok());
+        });
+        match solver::solve(&params, &branches, &defaults) {
+            Ok(s) => {
+                let _ = writeln!(out, "ok {ns}");
+                for (n, p) in s.points() {
+                    let _ = writeln!(out, "p {n} {:e} {:e}", p.x, p.y);
+                }
+                for (n, v) in s.vectors() {
+                    let _ = writeln!(out, "v {n} {:e} {:e}", v.x, v.y);
+                }
+                for (n, x) in s.scalars() {
+                    let _ = writeln!(out, "s {n} {x:e}");
+                }
+                let _ = writeln!(out, "end");
+            }
+            Err(e) => {
+                let _ = writeln!(out, "err {ns} {e}");
+            }
+        }
+    }
+}
+"#;
+
+/// Builds the generated solver `code` of the model at `path` and runs it on `sweep`, with the
+/// given branch indices by name. `Err` says why it could not (the caller then interprets).
+pub fn run(
+    path: &Path,
+    code: &str,
+    param_names: &[String],
+    branches: &[(String, usize)],
+    sweep: &Sweep,
+) -> Result<Vec<Sample>, String> {
+    let root = workspace().ok_or("the runtime's sources are not at hand")?;
+    let stem = path
+        .file_stem()
+        .map_or("model".into(), |s| s.to_string_lossy().into_owned())
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect::<String>();
+    let dir = root.join("target/gcs-bench").join(&stem);
+    std::fs::create_dir_all(dir.join("src")).map_err(|e| e.to_string())?;
+    let manifest = format!(
+        "[package]\nname = \"gcs-bench-{}\"\nversion = \"0.0.0\"\nedition = \"2021\"\npublish = false\n\n\
+         [dependencies]\ngcs-runtime = {{ path = {:?} }}\n\n\
+         [profile.release]\ncodegen-units = 1\n\n[workspace]\n",
+        stem.replace('_', "-"),
+        root.join("runtime").display().to_string()
+    );
+    let main = format!("mod solver {{\n{code}\n}}\n{DRIVER}");
+    write_if_changed(&dir.join("Cargo.toml"), &manifest)?;
+    write_if_changed(&dir.join("src/main.rs"), &main)?;
+    if let Ok(lock) = std::fs::read_to_string(root.join("Cargo.lock")) {
+        write_if_changed(&dir.join("Cargo.lock"), &lock)?;
+    }
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let target = root.join("target/gcs-bench/target");
+    let status = Command::new(&cargo)
+        .args(["build", "--release", "--quiet", "--offline"])
+        .current_dir(&dir)
+        .env("CARGO_TARGET_DIR", &target)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .output()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    if !status.status.success() {
+        return Err(format!(
+            "cargo could not build the generated solver:\n{}",
+            String::from_utf8_lossy(&status.stderr)
+        ));
+    }
+    let exe = target
+        .join("release")
+        .join(format!("gcs-bench-{}", stem.replace('_', "-")));
+    let mut child = Command::new(&exe)
+        .args(branches.iter().map(|(n, i)| format!("{n}={i}")))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+    let mut input = param_names.join(" ");
+    input.push('\n');
+    for params in &sweep.params {
+        let line: Vec<String> = params.iter().map(|v| format!("{v:e}")).collect();
+        input.push_str(&line.join(" "));
+        input.push('\n');
+    }
+    if let Some(mut stdin) = child.stdin.take() {
+        stdin
+            .write_all(input.as_bytes())
+            .map_err(|e| e.to_string())?;
+    }
+    let output = child.wait_with_output().map_err(|e| e.to_string())?;
+    parse(&String::from_utf8_lossy(&output.stdout), sweep.params.len())
+}
+
+fn write_if_changed(path: &Path, text: &str) -> Result<(), String> {
+    if std::fs::read_to_string(path).is_ok_and(|old| old == text) {
+        return Ok(());
+    }
+    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Reads the driver's output.
+fn parse(out: &str, samples: usize) -> Result<Vec<Sample>, String> {
+    let mut result = Vec::new();
+    let mut current: Option<(f64, Values)> = None;
+    let num = |s: Option<&str>| s.and_then(|v| v.parse::<f64>().ok()).unwrap_or(f64::NAN);
+    for line in out.lines() {
+        let mut words = line.split(' ');
+        match words.next() {
+            Some("ok") => current = Some((num(words.next()), Values::default())),
+            Some("err") => {
+                let ns = num(words.next());
+                let text: Vec<&str> = words.collect();
+                result.push(Sample {
+                    ns,
+                    values: Err(text.join(" ")),
+                });
+            }
+            Some(kind @ ("p" | "v" | "s")) => {
+                let Some((_, values)) = current.as_mut() else {
+                    return Err(format!("unexpected driver output: {line}"));
+                };
+                let name = words.next().unwrap_or_default().to_string();
+                let nums: Vec<f64> = words.map(|w| num(Some(w))).collect();
+                match kind {
+                    "p" => values.points.push((name, nums)),
+                    "v" => values.vectors.push((name, nums)),
+                    _ => values
+                        .scalars
+                        .push((name, nums.first().copied().unwrap_or(f64::NAN))),
+                }
+            }
+            Some("end") => {
+                if let Some((ns, values)) = current.take() {
+                    result.push(Sample {
+                        ns,
+                        values: Ok(values),
+                    });
+                }
+            }
+            _ => {}
+        }
+    }
+    if result.len() != samples {
+        return Err(format!(
+            "the generated solver answered {} of {samples} samples",
+            result.len()
+        ));
+    }
+    Ok(result)
+}
