@@ -8,7 +8,7 @@
 //! against a continuation: the baseline started from the compiled plan's previous answer and
 //! run to convergence on the next sample lands on the assembly continuous with it.
 
-use crate::baseline::{Baseline, Method, Options as NewtonOptions};
+use crate::baseline::{Baseline, Linear, Method, Options as NewtonOptions};
 use crate::plan::Plan;
 use crate::solution::Solution;
 use gcs_lang::expr::Dim;
@@ -192,6 +192,8 @@ pub struct BaselineSide {
     pub cold_branch_flips: usize,
     /// Unknowns and equations.
     pub size: (usize, usize),
+    /// Whether its linear algebra is sparse.
+    pub sparse: bool,
 }
 
 /// One point of the baseline's run time against error: after `iterations`, this residual.
@@ -268,6 +270,7 @@ pub fn run(
     branches: &[usize],
     sweep: Sweep,
     compiled: CompiledRun,
+    linear: Linear,
 ) -> Result<Report, String> {
     let choice = crate::interp::Choice::Given(branches.to_vec());
     // The whole plan's configuration at a sample, to start the baseline's continuation from
@@ -277,7 +280,7 @@ pub fn run(
             .ok()
             .map(|r| r.config)
     };
-    let mut baseline = Baseline::new(model)?;
+    let mut baseline = Baseline::with_linear(model, linear)?;
     let all: BTreeSet<GeomId> = model.top_level().map(|(id, _)| id).collect();
     // Converged at 1e-12 relative to the model's size (absolute below size 1), as a numeric
     // solver's stopping rule would be: an absolute 1e-12 is out of reach at size 1e6.
@@ -307,6 +310,7 @@ pub fn run(
     // The baseline along the sweep, warm-started from its previous answer.
     let mut side = BaselineSide {
         size: (baseline.unknowns(), baseline.equations()),
+        sparse: baseline.is_sparse(),
         ..BaselineSide::default()
     };
     let mut ns = Vec::new();
@@ -504,7 +508,7 @@ impl Report {
                 "\"ratio\": {}, \"branch_flips\": {}, ",
                 "\"compiled\": {{\"kind\": \"{}\", \"median_ns\": {}, \"p90_ns\": {}, ",
                 "\"max_residual\": {}, \"failures\": {}}}, ",
-                "\"baseline\": {{\"method\": \"newton\", \"start\": \"warm\", \"unknowns\": {}, ",
+                "\"baseline\": {{\"method\": \"newton\", \"start\": \"warm\", \"linear\": \"{}\", \"unknowns\": {}, ",
                 "\"equations\": {}, \"median_ns\": {}, \"p90_ns\": {}, \"max_residual\": {}, ",
                 "\"failures\": {}, \"branch_flips\": {}, \"cold_branch_flips\": {}}}, ",
                 "\"time_to_error\": {{\"cold\": {}, \"warm\": {}, ",
@@ -525,6 +529,7 @@ impl Report {
             json_num(self.compiled.p90_ns),
             json_num(self.compiled_max_residual),
             self.compiled_failures,
+            if b.sparse { "sparse" } else { "dense" },
             b.size.0,
             b.size.1,
             json_num(b.timing.median_ns),
@@ -565,12 +570,12 @@ impl Report {
         }
         let _ = writeln!(
             s,
-            "\n  {:<34} {:>12} {:>12} {:>13} {:>9} {:>6}",
+            "\n  {:<46} {:>12} {:>12} {:>13} {:>9} {:>6}",
             "solver", "median", "p90", "max residual", "failures", "flips"
         );
         let _ = writeln!(
             s,
-            "  {:<34} {:>12} {:>12} {:>13.3e} {:>9} {:>6}",
+            "  {:<46} {:>12} {:>12} {:>13.3e} {:>9} {:>6}",
             format!("compiled plan ({})", self.compiled_kind),
             human_ns(self.compiled.median_ns),
             human_ns(self.compiled.p90_ns),
@@ -580,8 +585,12 @@ impl Report {
         );
         let _ = writeln!(
             s,
-            "  {:<34} {:>12} {:>12} {:>13.3e} {:>9} {:>6}",
-            format!("baseline (Newton, warm; {} unknowns)", b.size.0),
+            "  {:<46} {:>12} {:>12} {:>13.3e} {:>9} {:>6}",
+            format!(
+                "baseline (Newton, warm, {}; {} unknowns)",
+                if b.sparse { "sparse" } else { "dense" },
+                b.size.0
+            ),
             human_ns(b.timing.median_ns),
             human_ns(b.timing.p90_ns),
             b.max_residual,

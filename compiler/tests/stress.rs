@@ -233,8 +233,15 @@ fn stress_sweeps_end_exact_or_in_a_measured_error() {
         };
         let compiled = bench::interpreted(&model, &plan, &scope, &branches, &sweep);
         let whole: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
-        let report =
-            bench::run(&model, &analysis.plan, &whole, sweep, compiled).expect("baseline builds");
+        let report = bench::run(
+            &model,
+            &analysis.plan,
+            &whole,
+            sweep,
+            compiled,
+            gcs_compiler::baseline::Linear::Auto,
+        )
+        .expect("baseline builds");
         assert_eq!(report.branch_flips, 0, "{}: the plan flipped", case.name);
         println!(
             "| {} | {} | {answers} | {errors} | {worst:.1e} | {} | {} | {} | {} |",

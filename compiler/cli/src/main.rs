@@ -82,6 +82,10 @@ enum Command {
         /// Time the interpreter, without building the generated solver.
         #[arg(long)]
         interpreted: bool,
+        /// Give the baseline dense linear algebra at any size (as numeric solvers with dense
+        /// factorisations have), instead of sparse above 120 unknowns.
+        #[arg(long)]
+        dense: bool,
     },
 }
 
@@ -125,7 +129,16 @@ fn main() -> ExitCode {
             json,
             plot,
             interpreted,
-        } => bench(&file, samples, json, plot.as_deref(), interpreted, color),
+            dense,
+        } => bench(
+            &file,
+            samples,
+            json,
+            plot.as_deref(),
+            interpreted,
+            dense,
+            color,
+        ),
         Command::Explain { file } => with_analysis(&file, color, |model, a| {
             print!("{}", gcs_compiler::explain::explain(model, a));
             ExitCode::SUCCESS
@@ -328,8 +341,10 @@ fn bench(
     json: bool,
     plot: Option<&std::path::Path>,
     interpreted: bool,
+    dense: bool,
     color: termcolor::ColorChoice,
 ) -> ExitCode {
+    use gcs_compiler::baseline::Linear;
     use gcs_compiler::bench;
     with_analysis(path, color, |model, analysis| {
         let (plan, scope) = gcs_compiler::prune::prune(model, &analysis.plan);
@@ -383,7 +398,8 @@ fn bench(
                     .map_or(b.default, |i| branches[i])
             })
             .collect();
-        let report = match bench::run(model, &analysis.plan, &whole, sweep, compiled) {
+        let linear = if dense { Linear::Dense } else { Linear::Auto };
+        let report = match bench::run(model, &analysis.plan, &whole, sweep, compiled, linear) {
             Ok(r) => r,
             Err(e) => {
                 eprintln!("error: cannot bench `{}`: {e}", path.display());
