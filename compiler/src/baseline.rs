@@ -28,11 +28,22 @@
 //! for normal equations. The symbolic factorisations are computed once, in [`Baseline::new`];
 //! the iteration loop allocates nothing.
 //!
+//! **Scaling**: each solve equilibrates the system by dimension: with `L` the length scale of
+//! the start configuration, length equations are divided by `L` and length unknowns measured
+//! in units of `L`, so the iteration runs on the dimensionless `W J C d = -W F`, `dx = C d`.
+//! The merit function `|W F|^2`, the LU's pivot threshold, the regularisation and every floor
+//! are then the same for a model and for that model scaled by any factor: Newton takes the
+//! same steps at unit scale and at 1e6 (an unweighted `|F|^2` adds squared lengths to squared
+//! radians, and at large scale the O(L theta^2) curvature error of a full step in lengths
+//! dwarfs the angle residual it removes, so backtracking cut every step to almost nothing).
+//! The tolerance stays on the raw largest residual.
+//!
 //! **Methods**: Newton takes full steps (LU on a square system; regularised normal equations
-//! when the system is not square or the LU is singular) with Armijo backtracking on `|F|^2`.
-//! Levenberg-Marquardt solves `(JᵀJ + mu D) d = -JᵀF` with Marquardt's scaling `D = diag(JᵀJ)`
-//! and Nielsen's damping update. There is no branch steering: from a warm start Newton stays
-//! on the nearby assembly, from a cold start it lands where it lands.
+//! when the system is not square or the LU is singular) with Armijo backtracking on `|W F|^2`.
+//! Levenberg-Marquardt solves `(JᵀJ + mu D) d = -JᵀF` (of the equilibrated system) with
+//! Marquardt's scaling `D = diag(JᵀJ)` and Nielsen's damping update. There is no branch
+//! steering: from a warm start Newton stays on the nearby assembly, from a cold start it lands
+//! where it lands.
 
 use crate::config::{BadSketch, Config};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -339,6 +350,15 @@ pub struct Baseline {
     dsave: Vec<f64>,
     step: Vec<f64>,
     sp: Option<Sparse>,
+    // Equilibration (see [`Baseline::equilibrate`]): per Jacobian position its row and
+    // column; per equation and per unknown whether it is a length (else an angle or a pure
+    // number); the row weights and column scales of the current solve.
+    jrow: Vec<usize>,
+    jcol: Vec<usize>,
+    row_len: Vec<bool>,
+    col_len: Vec<bool>,
+    w: Vec<f64>,
+    cs: Vec<f64>,
 }
 
 impl std::fmt::Debug for Baseline {
@@ -769,6 +789,12 @@ impl Baseline {
             dsave: vec![0.0; n],
             step: vec![0.0; n.max(m)],
             sp: None,
+            jrow: Vec::new(),
+            jcol: Vec::new(),
+            row_len: Vec::new(),
+            col_len: vec![false; n],
+            w: vec![1.0; m],
+            cs: vec![1.0; n],
         };
         bl.structure()?;
         Ok(bl)
@@ -778,6 +804,24 @@ impl Baseline {
     /// path, the symbolic factorisations.
     fn structure(&mut self) -> Result<(), String> {
         let (n, m) = (self.n, self.m);
+        // Dimensions: slot 2 of a frame is its angle; every other slot is a length.
+        for g in &self.geoms {
+            for (k, &col) in g.q.iter().enumerate() {
+                if col < n {
+                    self.col_len[col] = k != 2;
+                }
+            }
+        }
+        self.row_len = self
+            .eqs
+            .iter()
+            .map(|e| {
+                !matches!(
+                    e,
+                    Eq::Angle { .. } | Eq::Cross { .. } | Eq::Dot { .. } | Eq::Comp { .. }
+                )
+            })
+            .collect();
         // Columns of each equation, by (side, slot).
         let mut rows: Vec<Vec<(u8, u8, usize)>> = Vec::with_capacity(m);
         for e in &self.eqs {
@@ -827,11 +871,17 @@ impl Baseline {
                 cp[c] + rs.binary_search(&e).unwrap_or(0)
             });
             self.jv = vec![0.0; row_idx.len()];
+            self.jrow = row_idx.clone();
+            self.jcol = (0..n)
+                .flat_map(|c| std::iter::repeat(c).take(col_ptr[c + 1] - col_ptr[c]))
+                .collect();
             jsym = Some(SymbolicSparseColMat::new_checked(
                 m, n, col_ptr, None, row_idx,
             ));
         } else {
             self.jv = vec![0.0; m * n];
+            self.jrow = (0..m * n).map(|p| p / n).collect();
+            self.jcol = (0..m * n).map(|p| p % n).collect();
             jpos = Box::new(move |e, c| e * n + c);
         }
         for (e, r) in rows.iter().enumerate() {
@@ -1028,6 +1078,7 @@ impl Baseline {
         }
         self.z[..n].copy_from_slice(&x[..n]);
         self.choose_sides();
+        self.equilibrate();
         let mut out = Outcome {
             iterations: 0,
             max_residual: f64::NAN,
@@ -1076,7 +1127,7 @@ impl Baseline {
                     for _ in 0..30 {
                         for i in 0..n {
                             self.x_trial[i] = self.z[i];
-                            self.z[i] += alpha * self.step[i];
+                            self.z[i] += alpha * self.cs[i] * self.step[i];
                         }
                         let (rt, st) = self.residual();
                         if st.is_finite() && st <= (1.0 - 1e-4 * alpha) * ss {
@@ -1116,7 +1167,7 @@ impl Baseline {
                         }
                         for i in 0..n {
                             self.x_trial[i] = self.z[i];
-                            self.z[i] += self.step[i];
+                            self.z[i] += self.cs[i] * self.step[i];
                         }
                         let (rt, st) = self.residual();
                         let rho = (ss - st) / pred;
@@ -1156,17 +1207,19 @@ impl Baseline {
         }
     }
 
-    /// Evaluates the equations into `f_trial`; returns (max |F|, |F|^2).
+    /// Evaluates the equations into `f_trial`, weighted (`W F`); returns (max |F|, |W F|^2):
+    /// the raw largest residual (what the tolerance is on) and the dimensionless merit.
     fn residual(&mut self) -> (f64, f64) {
         self.update_frames();
         let (mut mx, mut ss) = (0.0f64, 0.0);
         for e in 0..self.m {
             let (v, _) = self.eval(e, false);
-            self.f_trial[e] = v;
             mx = mx.max(v.abs());
             if v.is_nan() {
                 mx = f64::NAN;
             }
+            let v = v * self.w[e];
+            self.f_trial[e] = v;
             ss += v * v;
         }
         if mx.is_nan() {
@@ -1374,6 +1427,57 @@ impl Baseline {
     }
 
     /// Fills `jv` with the Jacobian at `z` (frames must be current).
+    /// Sets the row weights and column scales of this solve from the length scale `L` of the
+    /// start configuration: a length equation is divided by `L`, a length unknown is measured
+    /// in units of `L` (angle equations and unknowns are left alone). The iteration then works
+    /// on the dimensionless system `W J C d = -W F`, `dx = C d`, whose merit `|W F|^2`, pivot
+    /// threshold, regularisation and floors are all independent of the model's units: a model
+    /// scaled by `s` takes the same steps. `L` is the largest of the spread of the frame
+    /// origins, the offsets of the features the equations read, frame dimensions and the
+    /// equations' distances (1 if all are zero); it is translation-invariant.
+    fn equilibrate(&mut self) {
+        let z = &self.z;
+        let fr = &self.frames;
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let mut l = 0.0f64;
+        for f in fr {
+            lo = [lo[0].min(f.ox), lo[1].min(f.oy)];
+            hi = [hi[0].max(f.ox), hi[1].max(f.oy)];
+            l = l.max(f.dim.abs()).max(f.h.abs());
+        }
+        let off = |p: &Pt| {
+            let (_, q) = point(&fr[p.g], z, p);
+            q[0].hypot(q[1])
+        };
+        for e in &self.eqs {
+            let (a, b, d) = match *e {
+                Eq::Diff { a, b, .. } => (off(&a), off(&b), 0.0),
+                Eq::Dist { a, b, d } | Eq::CircleCircle { a, b, d } => (off(&a), off(&b), z[d]),
+                Eq::PointLine { p, base, d, .. } => (off(&p), off(&base), z[d]),
+                Eq::PointCircle { p, c, d } => (off(&p), off(&c), z[d]),
+                Eq::LineCircle { base, c, d, .. } => (off(&base), off(&c), z[d]),
+                Eq::Dim { v, .. } => (0.0, 0.0, z[v]),
+                Eq::Angle { .. } | Eq::Cross { .. } | Eq::Dot { .. } | Eq::Comp { .. } => {
+                    (0.0, 0.0, 0.0)
+                }
+            };
+            l = l.max(a).max(b).max(d.abs());
+        }
+        if !fr.is_empty() {
+            l = l.max(hi[0] - lo[0]).max(hi[1] - lo[1]);
+        }
+        if !(l > 0.0 && l.is_finite()) {
+            l = 1.0;
+        }
+        for (w, &len) in self.w.iter_mut().zip(&self.row_len) {
+            *w = if len { 1.0 / l } else { 1.0 };
+        }
+        for (c, &len) in self.cs.iter_mut().zip(&self.col_len) {
+            *c = if len { l } else { 1.0 };
+        }
+    }
+
+    /// The equilibrated Jacobian `W J C` into `jv`.
     fn jacobian(&mut self) {
         self.update_frames();
         self.jv.iter_mut().for_each(|v| *v = 0.0);
@@ -1398,6 +1502,9 @@ impl Baseline {
                 };
                 self.jv[self.ent_pos[t]] += val;
             }
+        }
+        for ((v, &r), &c) in self.jv.iter_mut().zip(&self.jrow).zip(&self.jcol) {
+            *v *= self.w[r] * self.cs[c];
         }
     }
 

@@ -105,7 +105,8 @@ output P;
         },
         Case {
             // A point on two lines, one through A along X, one through B = (0, 1) at angle a
-            // to it; a goes from 0.5 rad down to 1e-12 and to 0 (parallel lines).
+            // to it; a goes from 0.5 rad down to 1.6e-9 (the point 6e8 away) and to 0
+            // (parallel lines).
             name: "lines becoming parallel",
             scale: 1.0,
             text: "space 2d;
@@ -126,7 +127,7 @@ output P;
 "
             .to_string(),
             param: "a",
-            values: (0..=24)
+            values: (0..=17)
                 .map(|k| 0.5 * 10f64.powf(-f64::from(k) * 0.5))
                 .chain([0.0])
                 .collect(),
