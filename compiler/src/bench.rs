@@ -194,6 +194,9 @@ pub struct BaselineSide {
     pub size: (usize, usize),
     /// Whether its linear algebra is sparse.
     pub sparse: bool,
+    /// Whether it starts from its previous answer (a sweep) or from the sketch every time (a
+    /// model without params, whose samples are all the same solve).
+    pub warm: bool,
 }
 
 /// One point of the baseline's run time against error: after `iterations`, this residual.
@@ -311,10 +314,12 @@ pub fn run(
     let compiled_ok: Vec<Option<&Solution>> =
         compiled.solutions.iter().map(|s| s.as_ref().ok()).collect();
 
-    // The baseline along the sweep, warm-started from its previous answer.
+    // The baseline along the sweep, warm-started from its previous answer (cold from the
+    // sketch every time for a model without params: its samples are all the same solve).
     let mut side = BaselineSide {
         size: (baseline.unknowns(), baseline.equations()),
         sparse: baseline.is_sparse(),
+        warm: sweep.driver.is_some(),
         ..BaselineSide::default()
     };
     let mut ns = Vec::new();
@@ -341,7 +346,9 @@ pub fn run(
             }
             agreed_before = agrees;
         }
-        previous.copy_from_slice(&x);
+        if side.warm {
+            previous.copy_from_slice(&x);
+        }
     }
     side.timing = Timing::of(&ns);
 
@@ -512,7 +519,7 @@ impl Report {
                 "\"ratio\": {}, \"branch_flips\": {}, ",
                 "\"compiled\": {{\"kind\": \"{}\", \"median_ns\": {}, \"p90_ns\": {}, ",
                 "\"max_residual\": {}, \"failures\": {}}}, ",
-                "\"baseline\": {{\"method\": \"newton\", \"start\": \"warm\", \"linear\": \"{}\", \"unknowns\": {}, ",
+                "\"baseline\": {{\"method\": \"newton\", \"start\": \"{}\", \"linear\": \"{}\", \"unknowns\": {}, ",
                 "\"equations\": {}, \"median_ns\": {}, \"p90_ns\": {}, \"max_residual\": {}, ",
                 "\"failures\": {}, \"branch_flips\": {}, \"cold_branch_flips\": {}}}, ",
                 "\"time_to_error\": {{\"cold\": {}, \"warm\": {}, ",
@@ -533,6 +540,7 @@ impl Report {
             json_num(self.compiled.p90_ns),
             json_num(self.compiled_max_residual),
             self.compiled_failures,
+            if b.warm { "warm" } else { "cold" },
             if b.sparse { "sparse" } else { "dense" },
             b.size.0,
             b.size.1,
@@ -591,7 +599,8 @@ impl Report {
             s,
             "  {:<46} {:>12} {:>12} {:>13.3e} {:>9} {:>6}",
             format!(
-                "baseline (Newton, warm, {}; {} unknowns)",
+                "baseline (Newton, {}, {}; {} unknowns)",
+                if b.warm { "warm" } else { "cold" },
                 if b.sparse { "sparse" } else { "dense" },
                 b.size.0
             ),
