@@ -873,7 +873,7 @@ impl Baseline {
             self.jv = vec![0.0; row_idx.len()];
             self.jrow = row_idx.clone();
             self.jcol = (0..n)
-                .flat_map(|c| std::iter::repeat(c).take(col_ptr[c + 1] - col_ptr[c]))
+                .flat_map(|c| std::iter::repeat_n(c, col_ptr[c + 1] - col_ptr[c]))
                 .collect();
             jsym = Some(SymbolicSparseColMat::new_checked(
                 m, n, col_ptr, None, row_idx,

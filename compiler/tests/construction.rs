@@ -1651,9 +1651,7 @@ fn construction_checker() {
         let class = classify(e, &canonical);
         let stats = class.outcome.checked().then(|| {
             let mut stats = Stats::default();
-            let modes = std::iter::repeat(Mode::Random)
-                .take(N_RANDOM)
-                .chain(DEGENERATE);
+            let modes = std::iter::repeat_n(Mode::Random, N_RANDOM).chain(DEGENERATE);
             for (i, mode) in modes.enumerate() {
                 let seed = ((n as u64) << 32) | (i as u64 + 1);
                 let inst = make(e, seed, mode);

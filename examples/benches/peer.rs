@@ -377,7 +377,7 @@ impl EzSketch {
             let f: DatumCircle = self.fillets[j];
             q.push(req(match form {
                 // Oriented so that the fillet is on its left.
-                Form::Literal if j % 2 == 0 => {
+                Form::Literal if j.is_multiple_of(2) => {
                     Constraint::LineTangentToCircle(DatumLineSegment::new(s.p1, s.p0), f)
                 }
                 Form::Literal => Constraint::LineTangentToCircle(s, f),

@@ -202,7 +202,7 @@ impl Exprs {
             ExprNode::Neg(a) | ExprNode::Unit(_, a) => self.is_constant(*a),
             ExprNode::Binary(_, a, b) => self.is_constant(*a) && self.is_constant(*b),
             ExprNode::Call(_, a, b) => {
-                self.is_constant(*a) && b.map_or(true, |b| self.is_constant(b))
+                self.is_constant(*a) && b.is_none_or(|b| self.is_constant(b))
             }
         }
     }

@@ -94,7 +94,7 @@ impl<T: Copy + Default, const N: usize> Roots<T, N> {
         let mut best: Option<(usize, f64)> = None;
         for (i, &v) in self.as_slice().iter().enumerate() {
             let d = distance(v, reference);
-            if best.map_or(true, |(_, bd)| d < bd) {
+            if best.is_none_or(|(_, bd)| d < bd) {
                 best = Some((i, d));
             }
         }

@@ -601,7 +601,7 @@ impl<'m> Builder<'m> {
         let mut dirty: [BTreeSet<usize>; 2] = Default::default();
         for i in 0..n {
             let ks = self.clusters_of(&self.pending[i]);
-            let inside = within.map_or(true, |set| ks.iter().all(|k| set.contains(k)));
+            let inside = within.is_none_or(|set| ks.iter().all(|k| set.contains(k)));
             if inside {
                 for &k in &ks {
                     by_cluster.entry(k).or_default().push(i);
@@ -861,7 +861,7 @@ impl<'m> Builder<'m> {
             let key = (c.record.dof(), self.model.geoms[c.geoms[0]].name.clone());
             if best
                 .as_ref()
-                .map_or(true, |b| key.0 > b.0 || (key.0 == b.0 && key.1 < b.1))
+                .is_none_or(|b| key.0 > b.0 || (key.0 == b.0 && key.1 < b.1))
             {
                 best = Some((key.0, key.1, i));
             }
