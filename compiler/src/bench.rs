@@ -651,6 +651,8 @@ impl Report {
         const R: f64 = 20.0;
         const T: f64 = 30.0;
         const B: f64 = 50.0;
+        // The legend's band under the plot.
+        const LEGEND: f64 = 50.0;
         let floor = 1e-17;
         let pts = self
             .cold_curve
@@ -672,16 +674,22 @@ impl Report {
         if t0 > t1 {
             (t0, t1, r0, r1) = (0.0, 1.0, -16.0, 0.0);
         }
-        let (t0, t1) = (t0.floor(), t1.ceil().max(t0.floor() + 1.0));
-        let (r0, r1) = (r0.floor(), r1.ceil().max(r0.floor() + 1.0));
+        // Whole decades, with room around the extreme points so none sits on the frame.
+        let (t0, t1) = ((t0 - 0.3).floor(), (t1 + 0.3).ceil());
+        let (r0, r1) = ((r0 - 0.5).floor(), (r1 + 0.5).ceil());
         let x = |t: f64| L + (t.log10() - t0) / (t1 - t0) * (W - L - R);
         let y = |r: f64| T + (r1 - r.max(floor).log10()) / (r1 - r0) * (H - T - B);
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{W}\" height=\"{H}\" font-family=\"sans-serif\" font-size=\"11\">"
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{W}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"11\">",
+            H + LEGEND
         );
-        let _ = writeln!(s, "<rect width=\"{W}\" height=\"{H}\" fill=\"white\"/>");
+        let _ = writeln!(
+            s,
+            "<rect width=\"{W}\" height=\"{}\" fill=\"white\"/>",
+            H + LEGEND
+        );
         let _ = writeln!(
             s,
             "<text x=\"{}\" y=\"18\" text-anchor=\"middle\" font-size=\"13\">{}: run time against error</text>",
@@ -790,9 +798,9 @@ impl Report {
                 "baseline Newton, warm from the previous sample".to_string(),
             ),
         ];
-        // Bottom left: the region the curves (slow, converging downwards) leave empty.
+        // Below the plot, so that it hides no point.
         for (i, (colour, text)) in legend.iter().enumerate() {
-            let ly = H - B - 50.0 + 15.0 * i as f64;
+            let ly = H + 5.0 + 15.0 * i as f64;
             let _ = writeln!(
                 s,
                 "<rect x=\"{}\" y=\"{}\" width=\"10\" height=\"10\" fill=\"{colour}\"/><text x=\"{}\" y=\"{}\">{}</text>",
