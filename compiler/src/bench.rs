@@ -122,33 +122,24 @@ pub fn time_per_call(budget_ns: f64, mut solve: impl FnMut()) -> f64 {
     start.elapsed().as_nanos() as f64 / reps as f64
 }
 
-/// Time spent repeating each sample's solve: enough to average out the clock's resolution.
-/// `GCS_BENCH_BUDGET_NS` changes it (tests set it to 1: one solve per sample).
-fn sample_budget_ns() -> f64 {
-    std::env::var("GCS_BENCH_BUDGET_NS")
-        .ok()
-        .and_then(|b| b.parse().ok())
-        .unwrap_or(200_000.0)
+/// How `gcs bench` measures: the time spent repeating each sample's solve (enough to average
+/// out the clock's resolution; 1 ns means one solve per sample, for tests), and the baseline's
+/// linear algebra.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Nanoseconds of repeated solves per sample.
+    pub budget_ns: f64,
+    /// Dense, sparse, or as the size demands.
+    pub linear: Linear,
 }
 
-/// The largest residual, by [`crate::verify`], of the constraints among the geoms of `scope`
-/// (those a plan pruned to the outputs computes).
-pub fn max_residual_in(
-    model: &Model,
-    solution: &Solution,
-    params: &[f64],
-    scope: &BTreeSet<GeomId>,
-) -> f64 {
-    let residuals: Vec<crate::verify::Residual> = crate::verify::residuals(model, solution, params)
-        .into_iter()
-        .filter(|r| {
-            model.constraints[r.constraint]
-                .args
-                .iter()
-                .all(|a| scope.contains(&model.top_level_of(*a)))
-        })
-        .collect();
-    crate::verify::max_residual(&residuals)
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            budget_ns: 200_000.0,
+            linear: Linear::Auto,
+        }
+    }
 }
 
 /// The compiled plan run by the interpreter on every sample.
@@ -158,12 +149,13 @@ pub fn interpreted(
     scope: &BTreeSet<GeomId>,
     branches: &[usize],
     sweep: &Sweep,
+    budget_ns: f64,
 ) -> CompiledRun {
     let choice = crate::interp::Choice::Given(branches.to_vec());
     let mut ns = Vec::new();
     let mut solutions = Vec::new();
     for params in &sweep.params {
-        ns.push(time_per_call(sample_budget_ns(), || {
+        ns.push(time_per_call(budget_ns, || {
             std::hint::black_box(crate::interp::run(model, plan, params, &choice).is_ok());
         }));
         solutions.push(
@@ -276,7 +268,7 @@ pub fn run(
     branches: &[usize],
     sweep: Sweep,
     compiled: CompiledRun,
-    linear: Linear,
+    settings: &Settings,
 ) -> Result<Report, String> {
     let choice = crate::interp::Choice::Given(branches.to_vec());
     // The whole plan's configuration at a sample, to start the baseline's continuation from
@@ -286,7 +278,7 @@ pub fn run(
             .ok()
             .map(|r| r.config)
     };
-    let mut baseline = Baseline::with_linear(model, linear)?;
+    let mut baseline = Baseline::with_linear(model, settings.linear)?;
     let all: BTreeSet<GeomId> = model.top_level().map(|(id, _)| id).collect();
     // Converged at 1e-12 relative to the model's size: an absolute 1e-12 is out of reach at
     // size 1e6 and loose at 1e-6. The floor is for angle equations, whose residuals stop at a
@@ -327,7 +319,7 @@ pub fn run(
     let mut agreed_before = true;
     let mut x = previous.clone();
     for (k, params) in sweep.params.iter().enumerate() {
-        ns.push(time_per_call(sample_budget_ns(), || {
+        ns.push(time_per_call(settings.budget_ns, || {
             x.copy_from_slice(&previous);
             std::hint::black_box(baseline.solve(params, &mut x, &newton).converged);
         }));
@@ -400,7 +392,7 @@ pub fn run(
                 ..NewtonOptions::default()
             };
             let mut x = start.to_vec();
-            let ns = time_per_call(sample_budget_ns(), || {
+            let ns = time_per_call(settings.budget_ns, || {
                 x.copy_from_slice(start);
                 std::hint::black_box(baseline.solve(params, &mut x, &opts).converged);
             });

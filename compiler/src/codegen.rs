@@ -832,6 +832,17 @@ impl<'a> Gen<'a> {
         fields
     }
 
+    /// The unit direction (cosine, sine) of a vector with a constant sketch: the frame the
+    /// runtime would build, computed once here, so the solve and the `Solution` agree to the bit.
+    fn constant_direction(&self, c: &[ExprId]) -> (f64, f64) {
+        let v = |i: usize| c.get(i).map_or(0.0, |&e| self.model.exprs.eval(e, &[]));
+        let f = gcs_runtime::frame::Frame2::along(
+            nalgebra::Point2::origin(),
+            nalgebra::Vector2::new(v(0), v(1)),
+        );
+        (f.rotation.re, f.rotation.im)
+    }
+
     /// The literal value of a reported point or vector that stays where its constant sketch
     /// puts it (a fixed reference, typically), computed as the solve's sketch frame would be.
     fn constant_value(&self, g: GeomId) -> Option<String> {
@@ -850,12 +861,8 @@ impl<'a> Gen<'a> {
                 ))
             }
             (GeomKind::Vector, Sketch::Vector(c)) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
-                let f = gcs_runtime::frame::Frame2::along(
-                    nalgebra::Point2::origin(),
-                    nalgebra::Vector2::new(value(c, 0)?, value(c, 1)?),
-                );
-                let x = f.x_axis();
-                Some(format!("Vector2::new({}, {})", float(x.x), float(x.y)))
+                let (cos, sin) = self.constant_direction(c);
+                Some(format!("Vector2::new({}, {})", float(cos), float(sin)))
             }
             _ => None,
         }
@@ -939,13 +946,7 @@ impl<'a> Gen<'a> {
                     format!("Frame2::at({})", self.point_lit(c))
                 }
                 Sketch::Vector(c) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
-                    // The frame the runtime would build, computed once here.
-                    let v = |i: usize| c.get(i).map_or(0.0, |&e| m.exprs.eval(e, &[]));
-                    let f = gcs_runtime::frame::Frame2::along(
-                        nalgebra::Point2::origin(),
-                        nalgebra::Vector2::new(v(0), v(1)),
-                    );
-                    let (cos, sin) = (f.rotation.re, f.rotation.im);
+                    let (cos, sin) = self.constant_direction(c);
                     if (cos, sin) == (1.0, 0.0) {
                         "Frame2::at(Point2::origin())".to_string()
                     } else {

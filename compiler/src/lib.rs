@@ -83,16 +83,6 @@ pub fn solve_plan(
         .map(|(b, i)| (b.name.clone(), *i))
         .collect();
     s.grounded = plan.grounded.map(|g| model.geoms[g].name.clone());
-    let residuals = verify::residuals(model, &s, params);
-    let in_scope: Vec<verify::Residual> = residuals
-        .into_iter()
-        .filter(|r| {
-            model.constraints[r.constraint]
-                .args
-                .iter()
-                .all(|a| scope.contains(&model.top_level_of(*a)))
-        })
-        .collect();
-    s.max_residual = verify::max_residual(&in_scope);
+    s.max_residual = verify::max_residual_in(model, &s, params, scope);
     Ok(s)
 }

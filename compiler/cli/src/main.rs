@@ -350,6 +350,17 @@ fn bench(
         let (plan, scope) = gcs_compiler::prune::prune(model, &analysis.plan);
         let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
         let sweep = bench::sweep(model, samples);
+        // `GCS_BENCH_BUDGET_NS` shortens the repeated solves of each sample (tests set 1).
+        let mut settings = bench::Settings {
+            linear: if dense { Linear::Dense } else { Linear::Auto },
+            ..bench::Settings::default()
+        };
+        if let Some(b) = std::env::var("GCS_BENCH_BUDGET_NS")
+            .ok()
+            .and_then(|b| b.parse().ok())
+        {
+            settings.budget_ns = b;
+        }
         let mut compiled = None;
         if !interpreted {
             let code =
@@ -376,7 +387,8 @@ fn bench(
                                 scalars: v.scalars,
                                 ..Default::default()
                             };
-                            s.max_residual = bench::max_residual_in(model, &s, params, &scope);
+                            s.max_residual =
+                                gcs_compiler::verify::max_residual_in(model, &s, params, &scope);
                             s
                         }));
                     }
@@ -385,8 +397,9 @@ fn bench(
                 Err(why) => eprintln!("note: timing the interpreter instead: {why}"),
             }
         }
-        let compiled =
-            compiled.unwrap_or_else(|| bench::interpreted(model, &plan, &scope, &branches, &sweep));
+        let compiled = compiled.unwrap_or_else(|| {
+            bench::interpreted(model, &plan, &scope, &branches, &sweep, settings.budget_ns)
+        });
         let whole: Vec<usize> = analysis
             .plan
             .branches
@@ -398,8 +411,7 @@ fn bench(
                     .map_or(b.default, |i| branches[i])
             })
             .collect();
-        let linear = if dense { Linear::Dense } else { Linear::Auto };
-        let report = match bench::run(model, &analysis.plan, &whole, sweep, compiled, linear) {
+        let report = match bench::run(model, &analysis.plan, &whole, sweep, compiled, &settings) {
             Ok(r) => r,
             Err(e) => {
                 eprintln!("error: cannot bench `{}`: {e}", path.display());
