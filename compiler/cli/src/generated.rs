@@ -38,7 +38,8 @@ fn workspace() -> Option<PathBuf> {
     dir.join("runtime/Cargo.toml").is_file().then_some(dir)
 }
 
-/// The driver's main: reads param names, then one line of values per sample, on stdin; prints
+/// The driver's main (its `time_per_call` repeats `gcs_compiler::bench::time_per_call`: the
+/// driver depends on the runtime alone, as generated code does): reads param names, then one line of values per sample, on stdin; prints
 /// one line per sample: `ok NS` then `p NAME X Y`, `v NAME X Y`, `s NAME X` lines and `end`,
 /// or `err NS TEXT`.
 const DRIVER: &str = r#"
