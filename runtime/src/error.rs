@@ -64,6 +64,20 @@ impl SolveError {
         }
     }
 
+    /// The error for loci that miss each other, as an intersection that reports only its
+    /// misses (such as [`crate::intersect2d::circle_circle_chord`]) gives it: the error of
+    /// [`SolveError::from_contact`].
+    #[inline]
+    pub fn from_miss(label: &'static str, text: &'static str, contact: Contact) -> Self {
+        match contact {
+            Contact::Disjoint { gap } | Contact::Parallel { gap } => {
+                Self::new(label, text, ErrorKind::NoIntersection, gap)
+            }
+            // Coincident, zero radius; and a meeting, which a miss never is.
+            _ => Self::new(label, text, ErrorKind::Degenerate, 0.0),
+        }
+    }
+
     /// The error an intersection's classification means for the constraint, if any:
     /// `Disjoint` and `Parallel` are [`ErrorKind::NoIntersection`] with the gap, `Coincident`
     /// and `ZeroRadius` are [`ErrorKind::Degenerate`] (magnitude 0); `Crossing` and `Tangent`
@@ -72,12 +86,7 @@ impl SolveError {
     pub fn from_contact(label: &'static str, text: &'static str, contact: Contact) -> Option<Self> {
         match contact {
             Contact::Crossing | Contact::Tangent => None,
-            Contact::Disjoint { gap } | Contact::Parallel { gap } => {
-                Some(Self::new(label, text, ErrorKind::NoIntersection, gap))
-            }
-            Contact::Coincident | Contact::ZeroRadius => {
-                Some(Self::new(label, text, ErrorKind::Degenerate, 0.0))
-            }
+            miss => Some(Self::from_miss(label, text, miss)),
         }
     }
 }

@@ -99,13 +99,15 @@ impl Frame2 {
     /// The global direction of the local x axis.
     #[inline]
     pub fn x_axis(&self) -> Vector2<f64> {
-        self.rotation * Vector2::x()
+        // The rotation's cosine and sine: what `rotation * x` gives, without multiplying by
+        // the zero component (which the compiler may not fold away: NaN times zero is NaN).
+        Vector2::new(self.rotation.re, self.rotation.im)
     }
 
     /// The global direction of the local y axis.
     #[inline]
     pub fn y_axis(&self) -> Vector2<f64> {
-        self.rotation * Vector2::y()
+        Vector2::new(-self.rotation.im, self.rotation.re)
     }
 
     /// Global position of a member point given in local coordinates.
@@ -691,6 +693,44 @@ pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64>
     let (c, s) = (c / m, s / m);
     let n = (c * c + s * s).sqrt();
     UnitComplex::from_cos_sin_unchecked(c / n, s / n)
+}
+
+/// The rotation about a circle's centre that turns `a` onto `b`, two radii of the circle:
+/// both of length `radius` to rounding, as the plan knows when it turns a point of a rigid
+/// geom onto a target on that point's circle. The same result as [`rotation_between2`],
+/// whose fast path it shortens: with the radius known (a constant in generated code), the
+/// division is by `radius^2`, which the compiler folds. When the lengths differ from it by
+/// more than about 1e-4 (relative), it is [`rotation_between2`].
+#[inline]
+pub fn rotation_on_circle(a: &Vector2<f64>, b: &Vector2<f64>, radius: f64) -> UnitComplex<f64> {
+    let inv = 1.0 / (radius * radius);
+    let (c1, s1) = (a.dot(b) * inv, (a.x * b.y - a.y * b.x) * inv);
+    let n1 = c1 * c1 + s1 * s1;
+    // The test also fails for a NaN, an infinite or a zero radius.
+    if (n1 - 1.0).abs() < 1e-8 {
+        let k = 1.5 - 0.5 * n1;
+        return UnitComplex::from_cos_sin_unchecked(c1 * k, s1 * k);
+    }
+    rotation_between2(a, b)
+}
+
+/// The rotation that turns the x axis onto unit vector `b`: [`rotation_between_units`] from
+/// `(1, 0)`, which is `b` itself read as a rotation. Non-finite input gives the identity.
+#[inline]
+pub fn rotation_from_x(b: &Vector2<f64>) -> UnitComplex<f64> {
+    if b.x.is_finite() && b.y.is_finite() && (b.x != 0.0 || b.y != 0.0) {
+        UnitComplex::from_cos_sin_unchecked(b.x, b.y)
+    } else {
+        UnitComplex::identity()
+    }
+}
+
+/// The unit vector at `angle` radians counter-clockwise from the x axis: the x axis turned
+/// by `angle`, `(cos, sin)`.
+#[inline]
+pub fn direction_at(angle: f64) -> Vector2<f64> {
+    let (sin, cos) = angle.sin_cos();
+    Vector2::new(cos, sin)
 }
 
 /// The rotation that turns unit vector `a` onto unit vector `b`: `(a . b, a x b)` with no

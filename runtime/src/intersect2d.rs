@@ -276,8 +276,65 @@ pub fn ray_circle(r: &Ray, c: &Circle) -> Intersection<Option<P2>, 2> {
 ///   in both slots;
 /// - apart (`d > r1 + r2`) or nested (`d < |r1 - r2|`, including concentric circles):
 ///   [`Contact::Disjoint`] with gap `d - (r1 + r2)` or `|r1 - r2| - d`.
+///
+/// The roots are those of [`circle_circle_chord`], which a plan that needs one root calls.
 #[inline]
 pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
+    match circle_circle_chord(a, b) {
+        Ok(chord) => Intersection {
+            roots: Roots::from_slice(&[chord.left(), chord.right()]),
+            contact: if chord.half == V2::zeros() {
+                Contact::Tangent
+            } else {
+                Contact::Crossing
+            },
+        },
+        Err(contact) => Intersection::none(contact),
+    }
+}
+
+/// Where two circles meet, as the midpoint of their common chord and half of it: the roots
+/// are `mid + half` (branch 0, left of the line from the first centre to the second) and
+/// `mid - half` (branch 1). Touching circles have a zero `half`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Chord {
+    /// The chord's midpoint, on the line of centres.
+    pub mid: P2,
+    /// From the midpoint to the left root.
+    pub half: V2,
+}
+
+impl Chord {
+    /// The root to the left of the line of centres (branch 0).
+    #[inline]
+    pub fn left(&self) -> P2 {
+        self.mid + self.half
+    }
+
+    /// The root to the right of the line of centres (branch 1).
+    #[inline]
+    pub fn right(&self) -> P2 {
+        self.mid - self.half
+    }
+
+    /// The root of `branch` (0 left, 1 right), computing only that one; `None` past 1.
+    #[inline]
+    pub fn root(&self, branch: usize) -> Option<P2> {
+        match branch {
+            0 => Some(self.left()),
+            1 => Some(self.right()),
+            _ => None,
+        }
+    }
+}
+
+/// Where two circles meet, as a [`Chord`], or the [`Contact`] that says why they do not: the
+/// cases and tolerances of [`circle_circle`], which is built on it.
+///
+/// Two circles that cross, the common case, take one test before the roots: the tangency
+/// and degeneracy cases are sorted out only when the circles do not plainly cross.
+#[inline]
+pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let (r1, r2) = (a.radius(), b.radius());
     let s = tol::scale(&[
         a.center().x,
@@ -288,24 +345,57 @@ pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
         r2,
     ]);
     if r1 <= tol::LENGTH_REL * s || r2 <= tol::LENGTH_REL * s {
-        return Intersection::none(Contact::ZeroRadius);
+        return Err(Contact::ZeroRadius);
     }
     let dv = b.center() - a.center();
     let d = dv.norm();
     if !d.is_finite() {
-        return overflow();
+        return Err(Contact::Disjoint {
+            gap: f64::INFINITY,
+        });
     }
+    let outer = d - (r1 + r2);
+    let inner = (r1 - r2).abs() - d;
+    // One division, shared by the direction, the distance along it and the half chord.
+    let inv_d = 1.0 / d;
+    if !(outer < 0.0 && inner < 0.0 && d > tol::LENGTH_REL * s) {
+        return touching(a, b, d, dv * inv_d, s);
+    }
+    // Plainly crossing, and the centres apart. The distance along the line of centres from
+    // the first, and the half chord by Heron's formula, whose factors are each a sum or
+    // difference of inputs (no cancellation near tangency).
+    let u = dv * inv_d;
+    let along = 0.5 * (d + (r1 - r2) * (r1 + r2) * inv_d);
+    // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last.
+    let area16 = (d + (r1 + r2)) * ((r1 + r2) - d) * (d + (r2 - r1)) * (d + (r1 - r2));
+    let h = area16.max(0.0).sqrt() * (0.5 * inv_d);
+    let chord = Chord {
+        mid: a.center() + u * along,
+        half: perp(u) * h,
+    };
+    if !finite(chord.left()) || !finite(chord.right()) {
+        return Err(Contact::Disjoint {
+            gap: f64::INFINITY,
+        });
+    }
+    Ok(chord)
+}
+
+/// The cases of [`circle_circle_chord`] where two circles do not plainly cross: coincident,
+/// touching (within [`tol::TANGENT_REL`]) or apart. `u` is the unit vector between the
+/// centres (not finite when they coincide).
+#[cold]
+fn touching(a: &Circle, b: &Circle, d: f64, u: V2, s: f64) -> Result<Chord, Contact> {
+    let (r1, r2) = (a.radius(), b.radius());
     if d <= tol::LENGTH_REL * s && (r1 - r2).abs() <= tol::LENGTH_REL * s {
-        return Intersection::none(Contact::Coincident);
+        return Err(Contact::Coincident);
     }
     let outer = d - (r1 + r2);
     let inner = (r1 - r2).abs() - d;
     let tangent = tol::TANGENT_REL * s;
-    // One division, shared by the direction, the distance along it and the half chord.
-    let inv_d = 1.0 / d;
-    let u = if d > 0.0 { dv * inv_d } else { V2::x() };
+    let u = if d > 0.0 { u } else { V2::x() };
     // Missing by rounding (at most `tangent`): the touching point. Overlapping loci, however
-    // little, cross, and their two roots are computed exactly below.
+    // little, cross, and their two roots are computed exactly by the caller.
     let external = (0.0..=tangent).contains(&outer);
     let internal = (0.0..=tangent).contains(&inner) && d > tol::LENGTH_REL * s;
     if external || internal {
@@ -319,37 +409,19 @@ pub fn circle_circle(a: &Circle, b: &Circle) -> Intersection<P2, 2> {
             -0.5 * (r1 + (r2 - d))
         };
         let x = a.center() + u * along;
-        return Intersection {
-            roots: Roots::from_slice(&[x, x]),
-            contact: Contact::Tangent,
-        };
+        if !finite(x) {
+            return Err(Contact::Disjoint {
+                gap: f64::INFINITY,
+            });
+        }
+        return Ok(Chord {
+            mid: x,
+            half: V2::zeros(),
+        });
     }
-    if outer > 0.0 {
-        return Intersection::none(Contact::Disjoint { gap: outer });
-    }
-    if inner > 0.0 {
-        return Intersection::none(Contact::Disjoint { gap: inner });
-    }
-    // Distance along u from the first centre, and the half chord by Heron's formula, whose
-    // factors are each a sum or difference of inputs (no cancellation near tangency).
-    let along = 0.5 * (d + (r1 - r2) * (r1 + r2) * inv_d);
-    // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last.
-    let area16 = (d + (r1 + r2)) * ((r1 + r2) - d) * (d + (r2 - r1)) * (d + (r1 - r2));
-    let h = area16.max(0.0).sqrt() * (0.5 * inv_d);
-    let m = a.center() + u * along;
-    let v = perp(u);
-    let (left, right) = (m + v * h, m - v * h);
-    if !finite(left) || !finite(right) {
-        return overflow();
-    }
-    Intersection {
-        roots: Roots::from_slice(&[left, right]),
-        contact: if h > 0.0 {
-            Contact::Crossing
-        } else {
-            Contact::Tangent
-        },
-    }
+    Err(Contact::Disjoint {
+        gap: if outer > 0.0 { outer } else { inner },
+    })
 }
 
 /// The implicit function of a curve, its gradient, and its residual; for 2d Newton polishing.

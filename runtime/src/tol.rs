@@ -34,11 +34,16 @@ pub const POLY_ZERO_REL: f64 = 8.0 * f64::EPSILON;
 /// so that a tolerance scaled by it is never zero.
 #[inline]
 pub fn scale(values: &[f64]) -> f64 {
-    let mut s: f64 = 0.0;
+    // A plain comparison, not `f64::max`: it skips a NaN just the same and compiles to one
+    // instruction, where `max` needs several to order signed zeros and NaNs.
+    let mut s: f64 = 1e-300;
     for v in values {
-        s = s.max(v.abs());
+        let a = v.abs();
+        if a > s {
+            s = a;
+        }
     }
-    s.max(1e-300)
+    s
 }
 
 /// Whether `x` is zero relative to `scale`, with relative tolerance `rel`.

@@ -147,6 +147,34 @@ proptest! {
     }
 
     #[test]
+    fn circle_circle_chord_is_its_roots(s in scale(), x1 in u(), y1 in u(), r1 in 0.05f64..1.0,
+                                        angle in -3.2f64..3.2, r2 in 0.05f64..1.0,
+                                        near in 0u8..3, t in tiny()) {
+        // Crossing, near external tangency, or near internal tangency.
+        let d = match near {
+            0 => (r1 + r2) * (0.5 + t.abs() * 1e5),
+            1 => (r1 + r2) * (1.0 + t),
+            _ => (r1 - r2).abs() * (1.0 + t),
+        };
+        let a = circle_at(s, x1, y1, r1);
+        let b = circle_at(s, x1 + d * angle.cos(), y1 + d * angle.sin(), r2);
+        let i = circle_circle(&a, &b);
+        match circle_circle_chord(&a, &b) {
+            Ok(chord) => {
+                for k in 0..3 {
+                    prop_assert_eq!(chord.root(k), i.branch(k));
+                }
+                let touching = chord.half == V2::zeros();
+                prop_assert_eq!(i.contact, if touching { Contact::Tangent } else { Contact::Crossing });
+            }
+            Err(contact) => {
+                prop_assert_eq!(contact, i.contact);
+                prop_assert!(i.roots.is_empty());
+            }
+        }
+    }
+
+    #[test]
     fn line_circle_roots_and_branches(s in scale(), px in u(), py in u(), angle in -3.2f64..3.2,
                                       cx in u(), cy in u(), r in 0.05f64..1.0, e in u()) {
         let l = Line::new(p(px * s, py * s), V2::new(angle.cos(), angle.sin())).unwrap();
@@ -350,5 +378,26 @@ proptest! {
         let turned = r * a / s;
         let want = b / b.norm();
         prop_assert!((turned - want).norm() <= 4.0 * f64::EPSILON, "{} vs {}", turned, want);
+    }
+
+    #[test]
+    fn rotation_on_circle_is_unit_and_exact(s in scale(), angle in -3.2f64..3.2, turn in -3.2f64..3.2,
+                                            stretch in prop_oneof![Just(0.0), tiny(), -0.9f64..9.0],
+                                            radius_off in prop_oneof![Just(0.0), tiny()]) {
+        // A radius of the circle turned onto another, of its length to rounding or not at
+        // all, with the radius as the plan knows it (itself off by rounding or more).
+        use gcs_runtime::frame::{direction_at, rotation_from_x, rotation_on_circle};
+        use gcs_runtime::nalgebra::UnitComplex;
+        let a = UnitComplex::new(angle) * V2::new(s, 0.0);
+        let b = (UnitComplex::new(turn) * a) * (1.0 + stretch);
+        let r = rotation_on_circle(&a, &b, s * (1.0 + radius_off));
+        prop_assert!((r.re * r.re + r.im * r.im - 1.0).abs() <= 4.0 * f64::EPSILON);
+        let turned = r * a / s;
+        let want = b / b.norm();
+        prop_assert!((turned - want).norm() <= 4.0 * f64::EPSILON, "{} vs {}", turned, want);
+        // The x axis turned by `angle`, and the rotation that does it.
+        let d = direction_at(angle);
+        prop_assert_eq!(d, UnitComplex::new(angle) * V2::x());
+        prop_assert_eq!(rotation_from_x(&d) * V2::x(), d);
     }
 }
