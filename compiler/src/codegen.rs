@@ -15,6 +15,7 @@ use gcs_lang::expr::{ExprId, ExprNode, Func};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::syntax::{AngleUnit, BinaryOp};
 use gcs_lang::Model;
+use std::cell::RefCell;
 use std::collections::{BTreeSet, HashMap, HashSet};
 
 /// The generated module for a model, pruned to its `output` statements.
@@ -167,6 +168,88 @@ fn float(v: f64) -> String {
     }
 }
 
+/// What codegen knows of a frame at the current step of the solve, so that it writes the same
+/// values with less work: a rotation still the identity needs no product, an origin known to
+/// equal a literal or an immutable local needs no reading, and an action that cannot move
+/// the frame is left out.
+#[derive(Clone, Debug, Default)]
+struct FrameFacts {
+    /// The rotation is exactly the identity (nothing has turned the frame yet).
+    identity: bool,
+    /// Code whose value is the frame's origin, to the bit.
+    origin: Option<Origin>,
+}
+
+/// Code equal to a frame's origin.
+#[derive(Clone, Debug, PartialEq)]
+enum Origin {
+    /// A constant point, which later constant offsets fold into.
+    Literal(f64, f64),
+    /// An immutable local, or an expression of params.
+    Code(String),
+}
+
+impl Origin {
+    fn code(&self) -> String {
+        match self {
+            Origin::Literal(x, y) => format!("Point2::new({}, {})", float(*x), float(*y)),
+            Origin::Code(c) => c.clone(),
+        }
+    }
+}
+
+/// A line of the solve's sketch: a frame's declaration (without `let`), written once the
+/// steps show whether the frame is read or moved, or any other line.
+enum Decl {
+    Frame(GeomId, String),
+    Line(String),
+}
+
+/// Whether generated code is a plain identifier (a local), not a literal or an expression.
+fn is_ident(code: &str) -> bool {
+    !code.is_empty()
+        && !code.starts_with(|c: char| c.is_ascii_digit())
+        && code.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// Code for the point at local coordinates `local` of frame `f`, with origin `origin`: the
+/// rotation's products by a zero coordinate left out (the compiler may not fold them, as a
+/// NaN times zero is NaN), and nothing at all for the origin itself.
+fn point_in(f: &str, origin: &str, local: (f64, f64)) -> String {
+    match local {
+        (0.0, 0.0) => origin.to_string(),
+        (x, 0.0) => offset(origin, &format!("{f}.x_axis() * {}", float(x))),
+        (0.0, y) => offset(origin, &format!("{f}.y_axis() * {}", float(y))),
+        (x, y) => format!(
+            "{f}.point_to_global(&Point2::new({}, {}))",
+            float(x),
+            float(y)
+        ),
+    }
+}
+
+/// Code for the point `origin + v`; just `v` as a point when the origin is the literal zero.
+fn offset(origin: &str, v: &str) -> String {
+    if origin == "Point2::new(0.0, 0.0)" {
+        format!("Point2::from({v})")
+    } else {
+        format!("{origin} + {v}")
+    }
+}
+
+/// Code for the direction at local unit vector `local` of frame `f` (see [`point_in`]).
+fn direction_in(f: &str, local: (f64, f64)) -> String {
+    match local {
+        (1.0, 0.0) => format!("{f}.x_axis()"),
+        (0.0, 1.0) => format!("{f}.y_axis()"),
+        (x, y) => format!(
+            "{f}.vector_to_global(&Vector2::new({}, {}))",
+            float(x),
+            float(y)
+        ),
+    }
+}
+
 struct Gen<'a> {
     model: &'a Model,
     plan: &'a Plan,
@@ -194,6 +277,20 @@ struct Gen<'a> {
     used: HashSet<Reg>,
     /// What the plan does to each geom, indexed once (the plan is fixed).
     index: PlanIndex,
+    /// What is known of each frame at the step being written.
+    facts: HashMap<GeomId, FrameFacts>,
+    /// Frames the solve's code reads, and frames it moves: one that is neither is not
+    /// declared, and only a moved one is `mut`.
+    frame_reads: RefCell<HashSet<GeomId>>,
+    frame_writes: HashSet<GeomId>,
+    /// Registers that hold the x axis `(1, 0)` exactly.
+    unit_x: HashSet<Reg>,
+    /// The constant radius of the circle about a pivot through a point of the same rigid
+    /// geom, by its (centre, through) registers: a rotation onto that circle knows it.
+    circle_radius: HashMap<(Reg, Reg), f64>,
+    /// Names for registers that are a literal rather than a local (to name what is derived
+    /// from them).
+    reg_names: HashMap<Reg, String>,
 }
 
 /// Per-geom facts about a plan, each from one pass over its steps, so that asking them of every
@@ -321,6 +418,12 @@ impl<'a> Gen<'a> {
             params,
             branches,
             file,
+            facts: HashMap::new(),
+            frame_reads: RefCell::new(HashSet::new()),
+            frame_writes: HashSet::new(),
+            unit_x: HashSet::new(),
+            circle_radius: HashMap::new(),
+            reg_names: HashMap::new(),
         }
     }
 
@@ -434,7 +537,7 @@ impl<'a> Gen<'a> {
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::check;");
         w.line("#[allow(unused_imports)]");
-        w.line("use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};");
+        w.line("use gcs_runtime::frame::{direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle, Frame2};");
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::intersect2d;");
         w.line("#[allow(unused_imports)]");
@@ -716,19 +819,19 @@ impl<'a> Gen<'a> {
             }
             for &part in &geom.parts {
                 let p = &m.geoms[part];
-                let local = |s: &Self, id: GeomId, point: bool| -> String {
-                    match local_field.get(&id) {
-                        Some(f) => format!("self.{f}"),
-                        None => s.local_literal(id, point),
-                    }
-                };
                 match (p.owner, p.kind) {
                     (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
                         items.push((
                             p.name.clone(),
                             format!("Point `{}`.", p.name),
                             "Point2<f64>".into(),
-                            format!("{frame}.point_to_global(&{})", local(self, part, true)),
+                            match local_field.get(&part) {
+                                Some(f) => format!("{frame}.point_to_global(&self.{f})"),
+                                None => {
+                                    let at = self.literal_coords(part, true);
+                                    point_in(&frame, &format!("{frame}.origin"), at)
+                                }
+                            },
                         ));
                         if p.kind == GeomKind::Marker {
                             if let Some(&ax) = p.parts.first() {
@@ -737,10 +840,12 @@ impl<'a> Gen<'a> {
                                     n.clone(),
                                     format!("Axis `{n}`."),
                                     "Vector2<f64>".into(),
-                                    format!(
-                                        "{frame}.vector_to_global(&{})",
-                                        local(self, ax, false)
-                                    ),
+                                    match local_field.get(&ax) {
+                                        Some(f) => format!("{frame}.vector_to_global(&self.{f})"),
+                                        None => {
+                                            direction_in(&frame, self.literal_coords(ax, false))
+                                        }
+                                    },
                                 ));
                             }
                         }
@@ -750,7 +855,10 @@ impl<'a> Gen<'a> {
                             p.name.clone(),
                             format!("Vector `{}`.", p.name),
                             "Vector2<f64>".into(),
-                            format!("{frame}.vector_to_global(&{})", local(self, part, false)),
+                            match local_field.get(&part) {
+                                Some(f) => format!("{frame}.vector_to_global(&self.{f})"),
+                                None => direction_in(&frame, self.literal_coords(part, false)),
+                            },
                         ));
                     }
                     (Owner::Part(_, Part::Start | Part::Center), _) => items.push((
@@ -874,6 +982,23 @@ impl<'a> Gen<'a> {
 
     /// A member's local coordinates as a literal (constant sketch).
     fn local_literal(&self, g: GeomId, point: bool) -> String {
+        let (x, y) = self.literal_coords(g, point);
+        let kind = if point { "Point2" } else { "Vector2" };
+        format!("{kind}::new({}, {})", float(x), float(y))
+    }
+
+    /// A member's local coordinates when they are a literal, `None` when params set them (a
+    /// local of the solve then holds them).
+    fn local_value(&self, g: GeomId, point: bool) -> Option<(f64, f64)> {
+        if self.locals.contains_key(&g) {
+            return None;
+        }
+        Some(self.literal_coords(g, point))
+    }
+
+    /// The constant sketch of a member's local coordinates; a vector normalised exactly as the
+    /// interpreter's configuration does, to the bit.
+    fn literal_coords(&self, g: GeomId, point: bool) -> (f64, f64) {
         let m = self.model;
         let coords: Vec<f64> = match &m.geoms[g].sketch {
             Sketch::Point(c) | Sketch::Vector(c) => {
@@ -894,12 +1019,36 @@ impl<'a> Gen<'a> {
             coords.get(1).copied().unwrap_or(0.0),
         );
         if point {
-            format!("Point2::new({}, {})", float(x), float(y))
+            (x, y)
         } else {
-            // Normalised exactly as the interpreter's configuration does, to the bit.
             let u = nalgebra::Vector2::new(x, y).normalize();
-            format!("Vector2::new({}, {})", float(u.x), float(u.y))
+            (u.x, u.y)
         }
+    }
+
+    /// Which coordinate (0 for x, 1 for y) of a member point's sketch is the constant zero, if
+    /// one is.
+    fn zero_coordinate(&self, g: GeomId) -> Option<usize> {
+        let m = self.model;
+        let c = match &m.geoms[g].sketch {
+            Sketch::Point(c) | Sketch::Marker { origin: c, .. } => c,
+            _ => return None,
+        };
+        let zero = |i: usize| {
+            c.get(i)
+                .is_some_and(|&e| m.exprs.is_constant(e) && m.exprs.eval(e, &[]) == 0.0)
+        };
+        (0..2).find(|&i| zero(i))
+    }
+
+    /// A point's constant coordinates, when every one is a constant.
+    fn point_value(&self, c: &[ExprId]) -> Option<(f64, f64)> {
+        let m = self.model;
+        if !c.iter().all(|&e| m.exprs.is_constant(e)) {
+            return None;
+        }
+        let v = |i: usize| c.get(i).map_or(0.0, |&e| m.exprs.eval(e, &[]));
+        Some((v(0), v(1)))
     }
 
     // ------------------------------------------------------------ solve
@@ -936,60 +1085,87 @@ impl<'a> Gen<'a> {
             .map(|(id, _)| id)
             .filter(|id| (solved.contains(id) && !self.constant.contains(id)) || self.touched(*id))
             .collect();
+        // Declarations wait for the steps: a frame the code never reads or moves is left out,
+        // and only a moved one is `mut`.
+        let mut decls = Vec::new();
         for &g in &worked {
             let geom = &m.geoms[g];
             let name = self.names.fresh(&geom.name);
             // The same construction as the interpreter's configuration, so that both agree to
             // the last bits: no rotation, a direction, or an angle.
-            let ctor = match &geom.sketch {
+            let at = |origin: String, identity: bool, value: Option<(f64, f64)>| {
+                let facts = FrameFacts {
+                    identity,
+                    origin: Some(
+                        value.map_or(Origin::Code(origin.clone()), |(x, y)| Origin::Literal(x, y)),
+                    ),
+                };
+                (origin, facts)
+            };
+            let (ctor, facts) = match &geom.sketch {
                 Sketch::Point(c) | Sketch::Circle { center: c, .. } => {
-                    format!("Frame2::at({})", self.point_lit(c))
+                    let (o, facts) = at(self.point_lit(c), true, self.point_value(c));
+                    (format!("Frame2::at({o})"), facts)
                 }
                 Sketch::Vector(c) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
                     let (cos, sin) = self.constant_direction(c);
-                    if (cos, sin) == (1.0, 0.0) {
-                        "Frame2::at(Point2::origin())".to_string()
+                    let identity = (cos, sin) == (1.0, 0.0);
+                    let (_, facts) = at("Point2::origin()".into(), identity, Some((0.0, 0.0)));
+                    if identity {
+                        ("Frame2::at(Point2::origin())".to_string(), facts)
                     } else {
-                        format!(
+                        let ctor = format!(
                             "Frame2::from_cos_sin(Point2::origin(), {}, {})",
                             float(cos),
                             float(sin)
-                        )
+                        );
+                        (ctor, facts)
                     }
                 }
                 Sketch::Vector(c) => {
-                    format!("Frame2::along(Point2::origin(), {})", self.vector_lit(c))
+                    let (_, facts) = at("Point2::origin()".into(), false, Some((0.0, 0.0)));
+                    let ctor = format!("Frame2::along(Point2::origin(), {})", self.vector_lit(c));
+                    (ctor, facts)
                 }
                 Sketch::Line { from, to } | Sketch::Segment { from, to } => {
-                    let (a, b) = (self.point_lit(from), self.point_lit(to));
-                    format!("Frame2::along({a}, {b} - {a})")
+                    let (a, facts) = at(self.point_lit(from), false, self.point_value(from));
+                    let b = self.point_lit(to);
+                    (format!("Frame2::along({a}, {b} - {a})"), facts)
                 }
-                Sketch::Body { at, angle, .. } => {
-                    let origin = at
-                        .as_ref()
-                        .map_or("Point2::origin()".into(), |c| self.point_lit(c));
-                    match angle {
-                        None => format!("Frame2::at({origin})"),
-                        Some(e) if m.exprs.is_constant(*e) => {
-                            let a = m.exprs.eval(*e, &[]);
-                            if a == 0.0 {
-                                format!("Frame2::at({origin})")
-                            } else {
-                                let (sin, cos) = a.sin_cos();
-                                format!(
-                                    "Frame2::from_cos_sin({origin}, {}, {})",
-                                    float(cos),
-                                    float(sin)
-                                )
-                            }
+                Sketch::Body {
+                    at: place, angle, ..
+                } => {
+                    let (origin, value) = match place {
+                        Some(c) => (self.point_lit(c), self.point_value(c)),
+                        None => ("Point2::origin()".into(), Some((0.0, 0.0))),
+                    };
+                    let angle = angle.map(|e| match m.exprs.is_constant(e) {
+                        true => Ok(m.exprs.eval(e, &[])),
+                        false => Err(e),
+                    });
+                    let identity = matches!(angle, None | Some(Ok(0.0)));
+                    let (origin, facts) = at(origin, identity, value);
+                    let ctor = match angle {
+                        None | Some(Ok(0.0)) => format!("Frame2::at({origin})"),
+                        Some(Ok(a)) => {
+                            let (sin, cos) = a.sin_cos();
+                            format!(
+                                "Frame2::from_cos_sin({origin}, {}, {})",
+                                float(cos),
+                                float(sin)
+                            )
                         }
-                        Some(e) => format!("Frame2::new({origin}, {})", self.expr(*e)),
-                    }
+                        Some(Err(e)) => format!("Frame2::new({origin}, {})", self.expr(e)),
+                    };
+                    (ctor, facts)
                 }
-                _ => "Frame2::at(Point2::origin())".into(),
+                _ => {
+                    let (_, facts) = at("Point2::origin()".into(), true, Some((0.0, 0.0)));
+                    ("Frame2::at(Point2::origin())".into(), facts)
+                }
             };
-            let mutable = if self.moved(g) { "mut " } else { "" };
-            w.line(&format!("let {mutable}{name} = {ctor};"));
+            decls.push(Decl::Frame(g, format!("{name} = {ctor};")));
+            self.facts.insert(g, facts);
             self.frames.insert(g, name);
             if matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
                 let what = if geom.kind == GeomKind::Circle {
@@ -1018,7 +1194,7 @@ impl<'a> Gen<'a> {
                     self.deferred.insert(g);
                 } else {
                     let mutable = if self.dim_set(g) { "mut " } else { "" };
-                    w.line(&format!("let {mutable}{dname} = {value};"));
+                    decls.push(Decl::Line(format!("let {mutable}{dname} = {value};")));
                 }
                 self.dims.insert(g, dname);
             }
@@ -1035,15 +1211,15 @@ impl<'a> Gen<'a> {
                 match &p.sketch {
                     Sketch::Point(c) | Sketch::Marker { origin: c, .. } if wanted(self, part) => {
                         let lname = self.names.fresh(&format!("{}_local", p.name));
-                        w.line(&format!("let {lname} = {};", self.point_lit(c)));
+                        decls.push(Decl::Line(format!("let {lname} = {};", self.point_lit(c))));
                         self.locals.insert(part, lname);
                     }
                     Sketch::Vector(c) if wanted(self, part) => {
                         let lname = self.names.fresh(&format!("{}_local", p.name));
-                        w.line(&format!(
+                        decls.push(Decl::Line(format!(
                             "let {lname} = {}.normalize();",
                             self.vector_lit(c)
-                        ));
+                        )));
                         self.locals.insert(part, lname);
                     }
                     _ => {}
@@ -1051,10 +1227,10 @@ impl<'a> Gen<'a> {
                 if let (Sketch::Marker { x, .. }, Some(ax)) = (&p.sketch, axis) {
                     if wanted(self, ax) {
                         let xname = self.names.fresh(&format!("{}_x_local", p.name));
-                        w.line(&format!(
+                        decls.push(Decl::Line(format!(
                             "let {xname} = {}.normalize();",
                             self.vector_lit(x)
-                        ));
+                        )));
                         self.locals.insert(ax, xname);
                     }
                 }
@@ -1070,7 +1246,7 @@ impl<'a> Gen<'a> {
             let mut terms = Vec::new();
             // The scale of the geoms the plan works on, as the interpreter measures it.
             for &g in worked.iter().filter(|g| self.index.touched.contains(g)) {
-                let f = &self.frames[&g];
+                let f = self.frame(g);
                 terms.push(format!("{f}.origin.x"));
                 terms.push(format!("{f}.origin.y"));
                 if let Some(d) = self.dims.get(&g) {
@@ -1084,14 +1260,23 @@ impl<'a> Gen<'a> {
                     }
                 }
             }
-            w.line(&format!(
+            decls.push(Decl::Line(format!(
                 "let tol = gcs_runtime::tol::CHECK_REL * (1.0 + gcs_runtime::tol::scale(&[{}]));",
                 terms.join(", ")
-            ));
+            )));
         }
         // Each group of steps, up to the one that satisfies a constraint, opens with a comment
         // quoting that constraint and its place in the file.
+        let mut body = Writer {
+            out: String::new(),
+            indent: w.indent,
+        };
+        let w_outer = w;
+        let w = &mut body;
         let mut group_start = true;
+        // Where the current group's code starts: a group whose steps all turn out to move
+        // nothing says so under its comment.
+        let mut group_code = 0;
         for (i, step) in self.plan.steps.iter().enumerate() {
             if group_start {
                 if let Some(end) = self.plan.steps[i..]
@@ -1114,9 +1299,13 @@ impl<'a> Gen<'a> {
                     }
                 }
                 group_start = false;
+                group_code = w.out.len();
             }
             self.step(w, i, step);
             if !step.satisfies.is_empty() {
+                if w.out.len() == group_code {
+                    w.line("// Already true where the sketch puts the geoms: nothing moves.");
+                }
                 group_start = true;
             }
         }
@@ -1132,6 +1321,7 @@ impl<'a> Gen<'a> {
                 continue;
             }
             if let Some((f, _)) = field_iter.next() {
+                self.frame_reads.borrow_mut().insert(g);
                 w.line(&field_init(f, &frames[&g]));
             }
             if dims.contains_key(&g) {
@@ -1154,7 +1344,20 @@ impl<'a> Gen<'a> {
             }
         }
         w.close("})");
-        w.close("}");
+        for decl in decls {
+            match decl {
+                Decl::Frame(g, rest) => {
+                    let moved = self.frame_writes.contains(&g);
+                    if moved || self.frame_reads.borrow().contains(&g) {
+                        let mutable = if moved { "mut " } else { "" };
+                        w_outer.line(&format!("let {mutable}{rest}"));
+                    }
+                }
+                Decl::Line(line) => w_outer.line(&line),
+            }
+        }
+        w_outer.out.push_str(&body.out);
+        w_outer.close("}");
     }
 
     /// Whether a step reads feature `f` (a member point, vector, marker or marker axis).
@@ -1229,19 +1432,76 @@ impl<'a> Gen<'a> {
             .unwrap_or_else(|| "f64::NAN".into())
     }
 
+    /// The local of top-level geom `g`'s frame, noted as read.
+    fn frame(&self, g: GeomId) -> String {
+        self.frame_reads.borrow_mut().insert(g);
+        self.frames.get(&g).cloned().unwrap_or_default()
+    }
+
+    /// Code for the origin of top-level geom `g`'s frame now: what is known of it, or a read.
+    fn origin_code(&self, g: GeomId) -> String {
+        match self.facts.get(&g).and_then(|f| f.origin.as_ref()) {
+            Some(o) => o.code(),
+            None => format!("{}.origin", self.frame(g)),
+        }
+    }
+
     /// The global position of a point feature, read from the frames now.
     fn point_code(&self, g: GeomId) -> String {
         let m = self.model;
         let top = m.top_level_of(g);
-        let f = self.frames.get(&top).cloned().unwrap_or_default();
+        let facts = self.facts.get(&top).cloned().unwrap_or_default();
         match m.geoms[g].owner {
-            Owner::TopLevel => format!("{f}.origin"),
-            Owner::Member(_) => format!("{f}.point_to_global(&{})", self.local_code(g, true)),
-            Owner::Part(owner, Part::End) => format!(
-                "{f}.origin + {f}.x_axis() * {}",
-                self.dims.get(&owner).cloned().unwrap_or_default()
-            ),
-            Owner::Part(..) => format!("{f}.origin"),
+            Owner::Member(_) => {
+                let value = self.local_value(g, true);
+                match (facts.identity, &facts.origin, value) {
+                    // Not turned yet: the origin plus the local coordinates, a literal when both are.
+                    (true, Some(Origin::Literal(ox, oy)), Some((x, y))) => {
+                        format!("Point2::new({}, {})", float(ox + x), float(oy + y))
+                    }
+                    (true, _, Some((0.0, 0.0))) => self.origin_code(top),
+                    (true, _, Some((x, y))) => format!(
+                        "{} + Vector2::new({}, {})",
+                        self.origin_code(top),
+                        float(x),
+                        float(y)
+                    ),
+                    (true, _, None) => {
+                        format!(
+                            "{} + {}.coords",
+                            self.origin_code(top),
+                            self.local_code(g, true)
+                        )
+                    }
+                    (false, _, Some(local)) => {
+                        let origin = self.origin_code(top);
+                        point_in(&self.frame(top), &origin, local)
+                    }
+                    (false, _, None) => {
+                        // Set by params, but one coordinate may still be a literal zero.
+                        let (f, l) = (self.frame(top), self.local_code(g, true));
+                        match self.zero_coordinate(g) {
+                            Some(1) => {
+                                offset(&self.origin_code(top), &format!("{f}.x_axis() * {l}.x"))
+                            }
+                            Some(0) => {
+                                offset(&self.origin_code(top), &format!("{f}.y_axis() * {l}.y"))
+                            }
+                            _ => format!("{f}.point_to_global(&{l})"),
+                        }
+                    }
+                }
+            }
+            Owner::Part(owner, Part::End) => {
+                let dim = self.dims.get(&owner).cloned().unwrap_or_default();
+                let origin = self.origin_code(top);
+                if facts.identity {
+                    format!("{origin} + Vector2::new({dim}, 0.0)")
+                } else {
+                    format!("{origin} + {}.x_axis() * {dim}", self.frame(top))
+                }
+            }
+            Owner::TopLevel | Owner::Part(..) => self.origin_code(top),
         }
     }
 
@@ -1256,12 +1516,23 @@ impl<'a> Gen<'a> {
     fn dir_code(&self, g: GeomId) -> String {
         let m = self.model;
         let top = m.top_level_of(g);
-        let f = self.frames.get(&top).cloned().unwrap_or_default();
+        let identity = self.facts.get(&top).is_some_and(|f| f.identity);
+        let literal = |(x, y): (f64, f64)| format!("Vector2::new({}, {})", float(x), float(y));
         match m.geoms[g].owner {
             Owner::Member(_) | Owner::Part(_, Part::AxisX) => {
-                format!("{f}.vector_to_global(&{})", self.local_code(g, false))
+                match (identity, self.local_value(g, false)) {
+                    (true, Some(local)) => literal(local),
+                    (true, None) => self.local_code(g, false),
+                    (false, Some(local)) => direction_in(&self.frame(top), local),
+                    (false, None) => format!(
+                        "{}.vector_to_global(&{})",
+                        self.frame(top),
+                        self.local_code(g, false)
+                    ),
+                }
             }
-            _ => format!("{f}.x_axis()"),
+            _ if identity => literal((1.0, 0.0)),
+            _ => format!("{}.x_axis()", self.frame(top)),
         }
     }
 
@@ -1272,6 +1543,65 @@ impl<'a> Gen<'a> {
         let local = self.names.fresh(name);
         w.line(&format!("let {local} = {code};"));
         self.regs.insert(reg, local);
+    }
+
+    /// Like [`Gen::define`], but a literal or a local needs no new local: the register is
+    /// that code.
+    fn define_or_alias(&mut self, w: &mut Writer, reg: Reg, name: &str, code: String) {
+        let literal = (code.starts_with("Point2::new(") || code.starts_with("Vector2::new("))
+            && code.matches('(').count() == 1
+            && !code.contains("params.");
+        if is_ident(&code) || literal {
+            if literal {
+                self.reg_names.insert(reg, Namer::snake(name));
+            }
+            self.regs.insert(reg, code);
+        } else {
+            self.define(w, reg, name, &code);
+        }
+    }
+
+    /// A name derived from register `r`: `{name}{suffix}` after its local or what it names,
+    /// else `fallback`.
+    fn derived_name(&self, r: Reg, suffix: &str, fallback: &str) -> String {
+        let code = self.r(r);
+        match self.reg_names.get(&r) {
+            Some(name) => format!("{name}{suffix}"),
+            None if is_ident(&code) => format!("{code}{suffix}"),
+            None => fallback.to_string(),
+        }
+    }
+
+    /// `{prefix}_{name}` after register `r` (see [`Gen::derived_name`]), or just `prefix`.
+    fn prefixed(&self, prefix: &str, r: Reg) -> String {
+        let n = self.derived_name(r, "", "");
+        if n.is_empty() {
+            prefix.to_string()
+        } else {
+            format!("{prefix}_{n}")
+        }
+    }
+
+    /// Rotates `geoms` about `pivot` by the rotation `code` computes: the frame's rotation
+    /// set outright while it is the identity, and its origin left alone when it is the pivot.
+    fn rotate(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: &str, code: &str) {
+        let turn = self.names.fresh("turn");
+        w.line(&format!("let {turn} = {code};"));
+        for &g in geoms {
+            let frame = self.frames.get(&g).cloned().unwrap_or_default();
+            let facts = self.facts.entry(g).or_default();
+            let about_origin = facts.origin.as_ref().is_some_and(|o| o.code() == pivot);
+            match (about_origin, facts.identity) {
+                (true, true) => w.line(&format!("{frame}.set_rotation(&{turn});")),
+                (true, false) => w.line(&format!("{frame}.turn_by(&{turn});")),
+                (false, _) => {
+                    facts.origin = None;
+                    w.line(&format!("{frame}.rotate_about_by(&{pivot}, &{turn});"));
+                }
+            }
+            facts.identity = false;
+            self.frame_writes.insert(g);
+        }
     }
 
     fn step(&mut self, w: &mut Writer, i: usize, step: &crate::plan::Step) {
@@ -1305,19 +1635,22 @@ impl<'a> Gen<'a> {
             Op::PointOf(g) => {
                 if let Some(r) = out {
                     let code = self.point_code(*g);
-                    self.define(w, r, &name_of(*g), &code);
+                    self.define_or_alias(w, r, &name_of(*g), code);
                 }
             }
             Op::DirOf(g) => {
                 if let Some(r) = out {
                     let code = self.dir_code(*g);
+                    if code == "Vector2::new(1.0, 0.0)" {
+                        self.unit_x.insert(r);
+                    }
                     let n = name_of(*g);
                     let n = if n.ends_with(".dir") {
                         n
                     } else {
                         format!("{n}_dir")
                     };
-                    self.define(w, r, &n, &code);
+                    self.define_or_alias(w, r, &n, code);
                 }
             }
             Op::DimOf(g) => {
@@ -1328,15 +1661,22 @@ impl<'a> Gen<'a> {
             }
             Op::Axis(x, y) => {
                 if let Some(r) = out {
-                    let n = if *x != 0.0 { "x_axis" } else { "y_axis" };
+                    if (*x, *y) == (1.0, 0.0) {
+                        self.unit_x.insert(r);
+                    }
                     let code = format!("Vector2::new({}, {})", float(*x), float(*y));
-                    self.define(w, r, n, &code);
+                    self.regs.insert(r, code);
                 }
             }
             Op::Rotated { dir, angle } => {
                 if let Some(r) = out {
-                    let code = format!("UnitComplex::new({}) * {}", self.r(*angle), self.r(*dir));
-                    let n = format!("{}_turned", self.r(*dir));
+                    let (d, a) = (self.r(*dir), self.r(*angle));
+                    let code = if self.unit_x.contains(dir) {
+                        format!("direction_at({a})")
+                    } else {
+                        format!("UnitComplex::new({a}) * {d}")
+                    };
+                    let n = self.derived_name(*dir, "_turned", "direction");
                     self.define(w, r, &n, &code);
                 }
             }
@@ -1397,7 +1737,7 @@ impl<'a> Gen<'a> {
                         self.r(*center),
                         self.error(i, "Degenerate", "0.0")
                     );
-                    let n = format!("circle_{}", self.r(*center));
+                    let n = self.prefixed("circle", *center);
                     self.define(w, r, &n, &code);
                 }
             }
@@ -1410,14 +1750,23 @@ impl<'a> Gen<'a> {
                     let (c, t) = (self.r(*center), self.r(*through));
                     // Two features of one rigid geom with constant local coordinates: their
                     // distance is known now.
-                    let radius = rigid
-                        .and_then(|(a, b)| crate::plan::constant_distance(m, a, b))
-                        .map_or_else(|| format!("({t} - {c}).norm()"), float);
+                    let known = rigid.and_then(|(a, b)| crate::plan::constant_distance(m, a, b));
+                    if let Some(k) = known {
+                        self.circle_radius.insert((*center, *through), k);
+                    }
+                    let radius = known.map_or_else(|| format!("({t} - {c}).norm()"), float);
                     let code = format!(
                         "Circle::new({c}, {radius}).ok_or_else(|| {})?",
                         self.error(i, "Degenerate", "0.0")
                     );
-                    let n = format!("circle_{c}_{t}");
+                    // Named after its centre and the point it goes through, when these are
+                    // locals (a constant radius needs no point).
+                    let about = self.derived_name(*center, "", "");
+                    let n = match (about.is_empty(), known.is_none() && is_ident(&t)) {
+                        (false, true) => format!("circle_{about}_{t}"),
+                        (false, false) => format!("circle_{about}"),
+                        (true, _) => "circle".into(),
+                    };
                     self.define(w, r, &n, &code);
                 }
             }
@@ -1432,7 +1781,7 @@ impl<'a> Gen<'a> {
                     if let Some(o) = offset {
                         code = format!("{code}.offset({})", self.r(*o));
                     }
-                    let n = format!("line_{}", self.r(*point));
+                    let n = self.prefixed("line", *point);
                     self.define(w, r, &n, &code);
                 }
             }
@@ -1444,7 +1793,7 @@ impl<'a> Gen<'a> {
                         self.r(*line),
                         self.error(i, "Degenerate", "0.0")
                     );
-                    let n = format!("parallel_{}", self.r(*through));
+                    let n = self.prefixed("parallel", *through);
                     self.define(w, r, &n, &code);
                 }
             }
@@ -1457,21 +1806,21 @@ impl<'a> Gen<'a> {
                         self.r(*from),
                         self.error(i, "Degenerate", "0.0")
                     );
-                    let n = format!("{c}_moved");
+                    let n = self.derived_name(*circle, "_moved", "circle_moved");
                     self.define(w, r, &n, &code);
                 }
             }
             Op::Reversed(x) => {
                 if let Some(r) = out {
                     let code = format!("{}.reversed()", self.r(*x));
-                    let n = format!("{}_reversed", self.r(*x));
+                    let n = self.derived_name(*x, "_reversed", "reversed");
                     self.define(w, r, &n, &code);
                 }
             }
             Op::OffsetLine { line, by } => {
                 if let Some(r) = out {
                     let code = format!("{}.offset({})", self.r(*line), self.r(*by));
-                    let n = format!("{}_offset", self.r(*line));
+                    let n = self.derived_name(*line, "_offset", "offset");
                     self.define(w, r, &n, &code);
                 }
             }
@@ -1560,7 +1909,7 @@ impl<'a> Gen<'a> {
             Op::Nearest { locus, point } => {
                 if let Some(r) = out {
                     let code = format!("{}.nearest({})", self.r(*locus), self.r(*point));
-                    let n = format!("nearest_{}", self.r(*point));
+                    let n = self.prefixed("nearest", *point);
                     self.define(w, r, &n, &code);
                 }
             }
@@ -1605,6 +1954,23 @@ impl<'a> Gen<'a> {
                         Meet::CircleConic => "circle_conic",
                         Meet::LineConic => "line_conic",
                     };
+                    let index = match self.branches.get(branch.0 as usize) {
+                        Some(field) if self.plan.branches[branch.0 as usize].count > 1 => {
+                            format!("usize::from(branches.{field})")
+                        }
+                        _ => "0".into(),
+                    };
+                    if *meet == Meet::CircleCircle {
+                        // Only the chosen root is computed.
+                        let (label, text) = (lit(&con.name), lit(&con.text));
+                        let code = format!(
+                            "intersect2d::circle_circle_chord(&{}, &{}).map_err(|miss| SolveError::from_miss({label}, {text}, miss))?.root({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 2.0))?",
+                            self.r(*a),
+                            self.r(*b),
+                        );
+                        self.define(w, r, &con.name, &code);
+                        return;
+                    }
                     let meeting = self.names.fresh(&format!("{}_meeting", con.name));
                     w.line(&format!(
                         "let {meeting} = intersect2d::{f}(&{}, &{});",
@@ -1618,12 +1984,6 @@ impl<'a> Gen<'a> {
                     ));
                     w.line("return Err(e);");
                     w.close("}");
-                    let index = match self.branches.get(branch.0 as usize) {
-                        Some(field) if self.plan.branches[branch.0 as usize].count > 1 => {
-                            format!("usize::from(branches.{field})")
-                        }
-                        _ => "0".into(),
-                    };
                     let code = format!(
                         "{meeting}.branch({index}).ok_or_else(|| SolveError::new({}, {}, ErrorKind::NoSuchBranch, {meeting}.roots.len() as f64))?",
                         lit(&con.name),
@@ -1633,17 +1993,29 @@ impl<'a> Gen<'a> {
                 }
             }
             Op::Translate { geoms, from, to } => {
-                let shift = self.names.fresh("shift");
-                w.line(&format!(
-                    "let {shift} = {} - {};",
-                    self.r(*to),
-                    self.r(*from)
-                ));
-                for g in geoms {
-                    w.line(&format!(
-                        "{}.translate(&{shift});",
-                        self.frames.get(g).cloned().unwrap_or_default()
-                    ));
+                let (f, t) = (self.r(*from), self.r(*to));
+                let mut shift = None;
+                for &g in geoms {
+                    let facts = self.facts.entry(g).or_default();
+                    if f == t {
+                        // From a point onto itself: nothing moves.
+                        continue;
+                    }
+                    let frame = self.frames.get(&g).cloned().unwrap_or_default();
+                    if facts.origin.as_ref().is_some_and(|o| o.code() == f) {
+                        // The point brought onto `to` is the origin: it lands there exactly.
+                        facts.origin = Some(Origin::Code(t.clone()));
+                        w.line(&format!("{frame}.place_origin(&{t});"));
+                    } else {
+                        facts.origin = None;
+                        let shift = shift.get_or_insert_with(|| {
+                            let name = self.names.fresh("shift");
+                            w.line(&format!("let {name} = {t} - {f};"));
+                            name
+                        });
+                        w.line(&format!("{frame}.translate(&{shift});"));
+                    }
+                    self.frame_writes.insert(g);
                 }
             }
             Op::RotatePoint {
@@ -1652,17 +2024,17 @@ impl<'a> Gen<'a> {
                 from,
                 to,
             } => {
-                let turn = self.names.fresh("turn");
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
-                w.line(&format!(
-                    "let {turn} = rotation_between2(&({f} - {p}), &({t} - {p}));"
-                ));
-                for g in geoms {
-                    w.line(&format!(
-                        "{}.rotate_about_by(&{p}, &{turn});",
-                        self.frames.get(g).cloned().unwrap_or_default()
-                    ));
-                }
+                let code = match self.circle_radius.get(&(*pivot, *from)) {
+                    // A point of a rigid geom turned onto its circle about the pivot: the
+                    // circle's radius is known, and with it the rotation's scale.
+                    Some(&radius) => format!(
+                        "rotation_on_circle(&({f} - {p}), &({t} - {p}), {})",
+                        float(radius)
+                    ),
+                    None => format!("rotation_between2(&({f} - {p}), &({t} - {p}))"),
+                };
+                self.rotate(w, geoms, &p, &code);
             }
             Op::RotateDir {
                 geoms,
@@ -1670,15 +2042,13 @@ impl<'a> Gen<'a> {
                 from,
                 to,
             } => {
-                let turn = self.names.fresh("turn");
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
-                w.line(&format!("let {turn} = rotation_between_units(&{f}, &{t});"));
-                for g in geoms {
-                    w.line(&format!(
-                        "{}.rotate_about_by(&{p}, &{turn});",
-                        self.frames.get(g).cloned().unwrap_or_default()
-                    ));
-                }
+                let code = if self.unit_x.contains(from) {
+                    format!("rotation_from_x(&{t})")
+                } else {
+                    format!("rotation_between_units(&{f}, &{t})")
+                };
+                self.rotate(w, geoms, &p, &code);
             }
             Op::SetDim { geom, value } => {
                 let v = self.r(*value);

@@ -147,6 +147,28 @@ impl Frame2 {
         self.rotate_about_by(center, &UnitComplex::new(angle));
     }
 
+    /// Action **translate**, when the point brought to `at` is the frame's origin: it lands
+    /// there exactly, where adding the shift `at - origin` could miss by a rounding.
+    #[inline]
+    pub fn place_origin(&mut self, at: &Point2<f64>) {
+        self.origin = *at;
+    }
+
+    /// Action **rotate** about the frame's own origin, which stays where it is:
+    /// [`Frame2::rotate_about_by`] with the origin as centre, without the arithmetic on it.
+    #[inline]
+    pub fn turn_by(&mut self, rotation: &UnitComplex<f64>) {
+        self.rotation = rotation * self.rotation;
+    }
+
+    /// Action **rotate** about the frame's own origin, when its rotation is still the
+    /// identity: the frame's rotation becomes `rotation`, to the bit what
+    /// [`Frame2::turn_by`] gives, without multiplying by the identity.
+    #[inline]
+    pub fn set_rotation(&mut self, rotation: &UnitComplex<f64>) {
+        self.rotation = *rotation;
+    }
+
     /// Action **rotate** by a given rotation about the global point `center`.
     #[inline]
     pub fn rotate_about_by(&mut self, center: &Point2<f64>, rotation: &UnitComplex<f64>) {

@@ -350,9 +350,7 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let dv = b.center() - a.center();
     let d = dv.norm();
     if !d.is_finite() {
-        return Err(Contact::Disjoint {
-            gap: f64::INFINITY,
-        });
+        return Err(Contact::Disjoint { gap: f64::INFINITY });
     }
     let outer = d - (r1 + r2);
     let inner = (r1 - r2).abs() - d;
@@ -374,9 +372,7 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
         half: perp(u) * h,
     };
     if !finite(chord.left()) || !finite(chord.right()) {
-        return Err(Contact::Disjoint {
-            gap: f64::INFINITY,
-        });
+        return Err(Contact::Disjoint { gap: f64::INFINITY });
     }
     Ok(chord)
 }
@@ -410,9 +406,7 @@ fn touching(a: &Circle, b: &Circle, d: f64, u: V2, s: f64) -> Result<Chord, Cont
         };
         let x = a.center() + u * along;
         if !finite(x) {
-            return Err(Contact::Disjoint {
-                gap: f64::INFINITY,
-            });
+            return Err(Contact::Disjoint { gap: f64::INFINITY });
         }
         return Ok(Chord {
             mid: x,

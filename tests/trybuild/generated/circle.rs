@@ -10,7 +10,10 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
+use gcs_runtime::frame::{
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
+    Frame2,
+};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -197,7 +200,6 @@ pub fn solve(
         Point2::new(-10.0, -4.0),
         Point2::new(10.0, -4.0) - Point2::new(-10.0, -4.0),
     );
-    let p = Frame2::at(Point2::new(6.0, 3.0));
     let mut ls = Frame2::along(
         Point2::new(5.0, 3.0),
         Point2::new(8.0, 3.0) - Point2::new(5.0, 3.0),
@@ -208,16 +210,11 @@ pub fn solve(
     let ls_length = 3.0;
 
     // coincident(Ls.start, P) (circle.gcs:9)
-    let p_2 = p.origin;
-    let ls_start = ls.origin;
-    let shift = p_2 - ls_start;
-    ls.translate(&shift);
+    ls.place_origin(&Point2::new(6.0, 3.0));
 
     // meet: coincident(Ls.end, G.center) (circle.gcs:10)
-    let c_center = c.origin;
-    let l_2 = l.origin;
     let l_dir = l.x_axis();
-    let line_l_2 = Line::new(l_2, l_dir).ok_or_else(|| {
+    let line_l = Line::new(Point2::new(-10.0, -4.0), l_dir).ok_or_else(|| {
         SolveError::new(
             "meet",
             "coincident(Ls.end, G.center)",
@@ -226,19 +223,22 @@ pub fn solve(
         )
     })?;
     let parabola = Conic::Parabola(
-        locus2d::centres_line_circle(&line_l_2, 0.0, c_center, Sense::Plus, c_radius).ok_or_else(
-            || {
+        locus2d::centres_line_circle(&line_l, 0.0, Point2::new(0.0, 0.0), Sense::Plus, c_radius)
+            .ok_or_else(|| {
                 SolveError::new(
                     "meet",
                     "coincident(Ls.end, G.center)",
                     ErrorKind::Degenerate,
                     0.0,
                 )
-            },
-        )?,
+            })?,
     );
-    let ls_end = ls.origin + ls.x_axis() * ls_length;
-    let circle_p_2_ls_end = Circle::new(p_2, (ls_end - p_2).norm()).ok_or_else(|| {
+    let ls_end = Point2::new(6.0, 3.0) + ls.x_axis() * ls_length;
+    let circle_p_ls_end = Circle::new(
+        Point2::new(6.0, 3.0),
+        (ls_end - Point2::new(6.0, 3.0)).norm(),
+    )
+    .ok_or_else(|| {
         SolveError::new(
             "meet",
             "coincident(Ls.end, G.center)",
@@ -246,8 +246,7 @@ pub fn solve(
             0.0,
         )
     })?;
-    let g_center = g.origin;
-    let meet_meeting = intersect2d::circle_conic(&circle_p_2_ls_end, &parabola);
+    let meet_meeting = intersect2d::circle_conic(&circle_p_ls_end, &parabola);
     if let Some(e) =
         SolveError::from_contact("meet", "coincident(Ls.end, G.center)", meet_meeting.contact)
     {
@@ -263,15 +262,16 @@ pub fn solve(
                 meet_meeting.roots.len() as f64,
             )
         })?;
-    let turn = rotation_between2(&(ls_end - p_2), &(meet - p_2));
-    ls.rotate_about_by(&p_2, &turn);
-    let shift_2 = meet - g_center;
-    g.translate(&shift_2);
+    let turn = rotation_between2(
+        &(ls_end - Point2::new(6.0, 3.0)),
+        &(meet - Point2::new(6.0, 3.0)),
+    );
+    ls.turn_by(&turn);
+    g.place_origin(&meet);
 
     // tangent(C, G) (circle.gcs:12)
     // tangent(L, G) (circle.gcs:11)
-    let g_center_2 = g.origin;
-    let radius = (g_center_2 - c_center).norm() - c_radius;
+    let radius = (meet - Point2::new(0.0, 0.0)).norm() - c_radius;
     if !f64::is_finite(radius) || radius < 0.0 {
         return Err(SolveError::new(
             "tangent_C_G",

@@ -10,7 +10,10 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
+use gcs_runtime::frame::{
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
+    Frame2,
+};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -117,7 +120,7 @@ impl Solution {
     /// Point `crank.a`.
     #[inline]
     pub fn crank_a(&self) -> Point2<f64> {
-        self.crank.point_to_global(&Point2::new(0.0, 0.0))
+        self.crank.origin
     }
 
     /// Point `crank.b`.
@@ -129,7 +132,7 @@ impl Solution {
     /// Vector `crank.u`.
     #[inline]
     pub fn crank_u(&self) -> Vector2<f64> {
-        self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.crank.x_axis()
     }
 
     /// The frame of body `coupler`.
@@ -141,13 +144,13 @@ impl Solution {
     /// Point `coupler.b`.
     #[inline]
     pub fn coupler_b(&self) -> Point2<f64> {
-        self.coupler.point_to_global(&Point2::new(0.0, 0.0))
+        self.coupler.origin
     }
 
     /// Point `coupler.c`.
     #[inline]
     pub fn coupler_c(&self) -> Point2<f64> {
-        self.coupler.point_to_global(&Point2::new(4.0, 0.0))
+        self.coupler.origin + self.coupler.x_axis() * 4.0
     }
 
     /// Every point of the solution, by its dotted name in the model.
@@ -190,40 +193,26 @@ pub fn solve(
         ("crank_len", params.crank_len),
     ])?;
     // The sketch: where every geom starts.
-    let a = Frame2::at(Point2::new(0.0, 0.0));
-    let d = Frame2::at(Point2::new(4.0, 0.0));
-    let x = Frame2::at(Point2::origin());
     let mut crank = Frame2::at(Point2::new(0.0, 0.0));
     let crank_b_local = Point2::new(params.crank_len, 0.0);
     let mut coupler = Frame2::at(Point2::new(1.5, 0.0));
-    let mut rocker = Frame2::at(Point2::new(4.0, 0.0));
 
     // coincident(crank.a, A) (fourbar.gcs:15)
-    let a_2 = a.origin;
-    let crank_a = crank.point_to_global(&Point2::new(0.0, 0.0));
-    let shift = a_2 - crank_a;
-    crank.translate(&shift);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // coincident(rocker.d, D) (fourbar.gcs:19)
-    let d_2 = d.origin;
-    let rocker_d = rocker.point_to_global(&Point2::new(0.0, 0.0));
-    let shift_2 = d_2 - rocker_d;
-    rocker.translate(&shift_2);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // drive: angle(X, crank.u) = theta (fourbar.gcs:16)
-    let x_dir = x.x_axis();
-    let x_dir_turned = UnitComplex::new(params.theta) * x_dir;
-    let crank_u_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = rotation_between_units(&crank_u_dir, &x_dir_turned);
-    crank.rotate_about_by(&a_2, &turn);
+    let x_dir_turned = direction_at(params.theta);
+    let turn = rotation_from_x(&x_dir_turned);
+    crank.set_rotation(&turn);
 
     // coincident(crank.b, coupler.b) (fourbar.gcs:17)
-    let crank_b = crank.point_to_global(&crank_b_local);
-    let coupler_b = coupler.point_to_global(&Point2::new(0.0, 0.0));
-    let shift_3 = crank_b - coupler_b;
-    coupler.translate(&shift_3);
-    let coupler_c = coupler.point_to_global(&Point2::new(4.0, 0.0));
-    let circle_crank_b_coupler_c = Circle::new(crank_b, 4.0).ok_or_else(|| {
+    let crank_b = Point2::from(crank.x_axis() * crank_b_local.x);
+    coupler.place_origin(&crank_b);
+    let coupler_c = crank_b + Vector2::new(4.0, 0.0);
+    let circle_crank_b = Circle::new(crank_b, 4.0).ok_or_else(|| {
         SolveError::new(
             "elbow",
             "coincident(coupler.c, rocker.c)",
@@ -231,7 +220,7 @@ pub fn solve(
             0.0,
         )
     })?;
-    let circle_d_2_f64_nan = Circle::new(d_2, 3.0).ok_or_else(|| {
+    let circle_d = Circle::new(Point2::new(4.0, 0.0), 3.0).ok_or_else(|| {
         SolveError::new(
             "elbow",
             "coincident(coupler.c, rocker.c)",
@@ -239,26 +228,19 @@ pub fn solve(
             0.0,
         )
     })?;
-    let elbow_meeting = intersect2d::circle_circle(&circle_crank_b_coupler_c, &circle_d_2_f64_nan);
-    if let Some(e) = SolveError::from_contact(
-        "elbow",
-        "coincident(coupler.c, rocker.c)",
-        elbow_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let elbow = elbow_meeting
-        .branch(usize::from(branches.elbow))
+    let elbow = intersect2d::circle_circle_chord(&circle_crank_b, &circle_d)
+        .map_err(|miss| SolveError::from_miss("elbow", "coincident(coupler.c, rocker.c)", miss))?
+        .root(usize::from(branches.elbow))
         .ok_or_else(|| {
             SolveError::new(
                 "elbow",
                 "coincident(coupler.c, rocker.c)",
                 ErrorKind::NoSuchBranch,
-                elbow_meeting.roots.len() as f64,
+                2.0,
             )
         })?;
-    let turn_2 = rotation_between2(&(coupler_c - crank_b), &(elbow - crank_b));
-    coupler.rotate_about_by(&crank_b, &turn_2);
+    let turn_2 = rotation_on_circle(&(coupler_c - crank_b), &(elbow - crank_b), 4.0);
+    coupler.set_rotation(&turn_2);
 
     Ok(Solution {
         crank,

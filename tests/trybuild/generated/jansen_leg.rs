@@ -10,7 +10,10 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
+use gcs_runtime::frame::{
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
+    Frame2,
+};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -140,19 +143,19 @@ impl Solution {
     /// Point `crank.o`.
     #[inline]
     pub fn crank_o(&self) -> Point2<f64> {
-        self.crank.point_to_global(&Point2::new(0.0, 0.0))
+        self.crank.origin
     }
 
     /// Point `crank.tip`.
     #[inline]
     pub fn crank_tip(&self) -> Point2<f64> {
-        self.crank.point_to_global(&Point2::new(15.0, 0.0))
+        self.crank.origin + self.crank.x_axis() * 15.0
     }
 
     /// Vector `crank.u`.
     #[inline]
     pub fn crank_u(&self) -> Vector2<f64> {
-        self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.crank.x_axis()
     }
 
     /// Point `upper`.
@@ -225,9 +228,6 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
     // The sketch: where every geom starts.
-    let o = Frame2::at(Point2::new(0.0, 0.0));
-    let b = Frame2::at(Point2::new(-38.0, -7.8));
-    let x = Frame2::at(Point2::origin());
     let mut crank = Frame2::at(Point2::origin());
     let mut upper = Frame2::at(Point2::new(-24.0135, 31.2721));
     let mut lower = Frame2::at(Point2::new(-26.9521, -45.5152));
@@ -236,14 +236,10 @@ pub fn solve(
     let mut foot = Frame2::at(Point2::new(-43.1601, -91.7569));
 
     // coincident(crank.o, O) (jansen_leg.gcs:19)
-    let o_2 = o.origin;
-    let crank_o = crank.point_to_global(&Point2::new(0.0, 0.0));
-    let shift = o_2 - crank_o;
-    crank.translate(&shift);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // distance(B, top) = 40.1 (jansen_leg.gcs:25)
-    let b_2 = b.origin;
-    let circle_b_2 = Circle::new(b_2, 40.1).ok_or_else(|| {
+    let circle_b = Circle::new(Point2::new(-38.0, -7.8), 40.1).ok_or_else(|| {
         SolveError::new(
             "distance_B_top",
             "distance(B, top) = 40.1",
@@ -251,13 +247,11 @@ pub fn solve(
             0.0,
         )
     })?;
-    let top_2 = top.origin;
-    let nearest_top_2 = circle_b_2.nearest(top_2);
-    let shift_2 = nearest_top_2 - top_2;
-    top.translate(&shift_2);
+    let nearest_top = circle_b.nearest(Point2::new(-74.7944, 8.1432));
+    top.place_origin(&nearest_top);
 
     // down: distance(B, lower) = 39.3 (jansen_leg.gcs:24)
-    let circle_b_2_2 = Circle::new(b_2, 39.3).ok_or_else(|| {
+    let circle_b_2 = Circle::new(Point2::new(-38.0, -7.8), 39.3).ok_or_else(|| {
         SolveError::new(
             "down",
             "distance(B, lower) = 39.3",
@@ -265,20 +259,16 @@ pub fn solve(
             0.0,
         )
     })?;
-    let lower_2 = lower.origin;
-    let nearest_lower_2 = circle_b_2_2.nearest(lower_2);
-    let shift_3 = nearest_lower_2 - lower_2;
-    lower.translate(&shift_3);
+    let nearest_lower = circle_b_2.nearest(Point2::new(-26.9521, -45.5152));
+    lower.place_origin(&nearest_lower);
 
     // drive: angle(X, crank.u) = theta (jansen_leg.gcs:20)
-    let x_dir = x.x_axis();
-    let x_dir_turned = UnitComplex::new(params.theta) * x_dir;
-    let crank_u_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = rotation_between_units(&crank_u_dir, &x_dir_turned);
-    crank.rotate_about_by(&o_2, &turn);
+    let x_dir_turned = direction_at(params.theta);
+    let turn = rotation_from_x(&x_dir_turned);
+    crank.set_rotation(&turn);
 
     // distance(crank.tip, lower) = 61.9 (jansen_leg.gcs:23)
-    let crank_tip = crank.point_to_global(&Point2::new(15.0, 0.0));
+    let crank_tip = Point2::from(crank.x_axis() * 15.0);
     let circle_crank_tip = Circle::new(crank_tip, 61.9).ok_or_else(|| {
         SolveError::new(
             "distance_crank_tip_lower",
@@ -287,43 +277,37 @@ pub fn solve(
             0.0,
         )
     })?;
-    let lower_3 = lower.origin;
-    let distance_crank_tip_lower_meeting =
-        intersect2d::circle_circle(&circle_b_2_2, &circle_crank_tip);
-    if let Some(e) = SolveError::from_contact(
-        "distance_crank_tip_lower",
-        "distance(crank.tip, lower) = 61.9",
-        distance_crank_tip_lower_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let distance_crank_tip_lower = distance_crank_tip_lower_meeting
-        .branch(usize::from(branches.distance_crank_tip_lower))
+    let distance_crank_tip_lower = intersect2d::circle_circle_chord(&circle_b_2, &circle_crank_tip)
+        .map_err(|miss| {
+            SolveError::from_miss(
+                "distance_crank_tip_lower",
+                "distance(crank.tip, lower) = 61.9",
+                miss,
+            )
+        })?
+        .root(usize::from(branches.distance_crank_tip_lower))
         .ok_or_else(|| {
             SolveError::new(
                 "distance_crank_tip_lower",
                 "distance(crank.tip, lower) = 61.9",
                 ErrorKind::NoSuchBranch,
-                distance_crank_tip_lower_meeting.roots.len() as f64,
+                2.0,
             )
         })?;
-    let shift_4 = distance_crank_tip_lower - lower_3;
-    lower.translate(&shift_4);
+    lower.place_origin(&distance_crank_tip_lower);
 
     // bend: distance(lower, knee) = 36.7 (jansen_leg.gcs:28)
-    let lower_4 = lower.origin;
-    let circle_lower_4 = Circle::new(lower_4, 36.7).ok_or_else(|| {
-        SolveError::new(
-            "bend",
-            "distance(lower, knee) = 36.7",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let knee_2 = knee.origin;
-    let nearest_knee_2 = circle_lower_4.nearest(knee_2);
-    let shift_5 = nearest_knee_2 - knee_2;
-    knee.translate(&shift_5);
+    let circle_distance_crank_tip_lower =
+        Circle::new(distance_crank_tip_lower, 36.7).ok_or_else(|| {
+            SolveError::new(
+                "bend",
+                "distance(lower, knee) = 36.7",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let nearest_knee = circle_distance_crank_tip_lower.nearest(Point2::new(-59.2315, -28.0529));
+    knee.place_origin(&nearest_knee);
 
     // distance(crank.tip, upper) = 50 (jansen_leg.gcs:21)
     let circle_crank_tip_2 = Circle::new(crank_tip, 50.0).ok_or_else(|| {
@@ -334,27 +318,24 @@ pub fn solve(
             0.0,
         )
     })?;
-    let upper_2 = upper.origin;
-    let nearest_upper_2 = circle_crank_tip_2.nearest(upper_2);
-    let shift_6 = nearest_upper_2 - upper_2;
-    upper.translate(&shift_6);
+    let nearest_upper = circle_crank_tip_2.nearest(Point2::new(-24.0135, 31.2721));
+    upper.place_origin(&nearest_upper);
 
     // distance(lower, foot) = 49 (jansen_leg.gcs:29)
-    let circle_lower_4_2 = Circle::new(lower_4, 49.0).ok_or_else(|| {
-        SolveError::new(
-            "distance_lower_foot",
-            "distance(lower, foot) = 49",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let foot_2 = foot.origin;
-    let nearest_foot_2 = circle_lower_4_2.nearest(foot_2);
-    let shift_7 = nearest_foot_2 - foot_2;
-    foot.translate(&shift_7);
+    let circle_distance_crank_tip_lower_2 = Circle::new(distance_crank_tip_lower, 49.0)
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_lower_foot",
+                "distance(lower, foot) = 49",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let nearest_foot = circle_distance_crank_tip_lower_2.nearest(Point2::new(-43.1601, -91.7569));
+    foot.place_origin(&nearest_foot);
 
     // up: distance(B, upper) = 41.5 (jansen_leg.gcs:22)
-    let circle_b_2_3 = Circle::new(b_2, 41.5).ok_or_else(|| {
+    let circle_b_3 = Circle::new(Point2::new(-38.0, -7.8), 41.5).ok_or_else(|| {
         SolveError::new(
             "up",
             "distance(B, upper) = 41.5",
@@ -362,26 +343,21 @@ pub fn solve(
             0.0,
         )
     })?;
-    let upper_3 = upper.origin;
-    let up_meeting = intersect2d::circle_circle(&circle_crank_tip_2, &circle_b_2_3);
-    if let Some(e) = SolveError::from_contact("up", "distance(B, upper) = 41.5", up_meeting.contact)
-    {
-        return Err(e);
-    }
-    let up = up_meeting.branch(usize::from(branches.up)).ok_or_else(|| {
-        SolveError::new(
-            "up",
-            "distance(B, upper) = 41.5",
-            ErrorKind::NoSuchBranch,
-            up_meeting.roots.len() as f64,
-        )
-    })?;
-    let shift_8 = up - upper_3;
-    upper.translate(&shift_8);
+    let up = intersect2d::circle_circle_chord(&circle_crank_tip_2, &circle_b_3)
+        .map_err(|miss| SolveError::from_miss("up", "distance(B, upper) = 41.5", miss))?
+        .root(usize::from(branches.up))
+        .ok_or_else(|| {
+            SolveError::new(
+                "up",
+                "distance(B, upper) = 41.5",
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    upper.place_origin(&up);
 
     // apex: distance(upper, top) = 55.8 (jansen_leg.gcs:26)
-    let upper_4 = upper.origin;
-    let circle_upper_4 = Circle::new(upper_4, 55.8).ok_or_else(|| {
+    let circle_up = Circle::new(up, 55.8).ok_or_else(|| {
         SolveError::new(
             "apex",
             "distance(upper, top) = 55.8",
@@ -389,29 +365,21 @@ pub fn solve(
             0.0,
         )
     })?;
-    let top_3 = top.origin;
-    let apex_meeting = intersect2d::circle_circle(&circle_b_2, &circle_upper_4);
-    if let Some(e) =
-        SolveError::from_contact("apex", "distance(upper, top) = 55.8", apex_meeting.contact)
-    {
-        return Err(e);
-    }
-    let apex = apex_meeting
-        .branch(usize::from(branches.apex))
+    let apex = intersect2d::circle_circle_chord(&circle_b, &circle_up)
+        .map_err(|miss| SolveError::from_miss("apex", "distance(upper, top) = 55.8", miss))?
+        .root(usize::from(branches.apex))
         .ok_or_else(|| {
             SolveError::new(
                 "apex",
                 "distance(upper, top) = 55.8",
                 ErrorKind::NoSuchBranch,
-                apex_meeting.roots.len() as f64,
+                2.0,
             )
         })?;
-    let shift_9 = apex - top_3;
-    top.translate(&shift_9);
+    top.place_origin(&apex);
 
     // distance(top, knee) = 39.4 (jansen_leg.gcs:27)
-    let top_4 = top.origin;
-    let circle_top_4 = Circle::new(top_4, 39.4).ok_or_else(|| {
+    let circle_apex = Circle::new(apex, 39.4).ok_or_else(|| {
         SolveError::new(
             "distance_top_knee",
             "distance(top, knee) = 39.4",
@@ -419,31 +387,24 @@ pub fn solve(
             0.0,
         )
     })?;
-    let knee_3 = knee.origin;
-    let distance_top_knee_meeting = intersect2d::circle_circle(&circle_lower_4, &circle_top_4);
-    if let Some(e) = SolveError::from_contact(
-        "distance_top_knee",
-        "distance(top, knee) = 39.4",
-        distance_top_knee_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let distance_top_knee = distance_top_knee_meeting
-        .branch(usize::from(branches.distance_top_knee))
-        .ok_or_else(|| {
-            SolveError::new(
-                "distance_top_knee",
-                "distance(top, knee) = 39.4",
-                ErrorKind::NoSuchBranch,
-                distance_top_knee_meeting.roots.len() as f64,
-            )
-        })?;
-    let shift_10 = distance_top_knee - knee_3;
-    knee.translate(&shift_10);
+    let distance_top_knee =
+        intersect2d::circle_circle_chord(&circle_distance_crank_tip_lower, &circle_apex)
+            .map_err(|miss| {
+                SolveError::from_miss("distance_top_knee", "distance(top, knee) = 39.4", miss)
+            })?
+            .root(usize::from(branches.distance_top_knee))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_top_knee",
+                    "distance(top, knee) = 39.4",
+                    ErrorKind::NoSuchBranch,
+                    2.0,
+                )
+            })?;
+    knee.place_origin(&distance_top_knee);
 
     // stride: distance(knee, foot) = 65.7 (jansen_leg.gcs:30)
-    let knee_4 = knee.origin;
-    let circle_knee_4 = Circle::new(knee_4, 65.7).ok_or_else(|| {
+    let circle_distance_top_knee = Circle::new(distance_top_knee, 65.7).ok_or_else(|| {
         SolveError::new(
             "stride",
             "distance(knee, foot) = 65.7",
@@ -451,27 +412,21 @@ pub fn solve(
             0.0,
         )
     })?;
-    let foot_3 = foot.origin;
-    let stride_meeting = intersect2d::circle_circle(&circle_lower_4_2, &circle_knee_4);
-    if let Some(e) = SolveError::from_contact(
-        "stride",
-        "distance(knee, foot) = 65.7",
-        stride_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let stride = stride_meeting
-        .branch(usize::from(branches.stride))
-        .ok_or_else(|| {
-            SolveError::new(
-                "stride",
-                "distance(knee, foot) = 65.7",
-                ErrorKind::NoSuchBranch,
-                stride_meeting.roots.len() as f64,
-            )
-        })?;
-    let shift_11 = stride - foot_3;
-    foot.translate(&shift_11);
+    let stride = intersect2d::circle_circle_chord(
+        &circle_distance_crank_tip_lower_2,
+        &circle_distance_top_knee,
+    )
+    .map_err(|miss| SolveError::from_miss("stride", "distance(knee, foot) = 65.7", miss))?
+    .root(usize::from(branches.stride))
+    .ok_or_else(|| {
+        SolveError::new(
+            "stride",
+            "distance(knee, foot) = 65.7",
+            ErrorKind::NoSuchBranch,
+            2.0,
+        )
+    })?;
+    foot.place_origin(&stride);
 
     Ok(Solution {
         crank,

@@ -10,7 +10,10 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
+use gcs_runtime::frame::{
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
+    Frame2,
+};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -125,19 +128,19 @@ impl Solution {
     /// Point `crank.a`.
     #[inline]
     pub fn crank_a(&self) -> Point2<f64> {
-        self.crank.point_to_global(&Point2::new(0.0, 0.0))
+        self.crank.origin
     }
 
     /// Point `crank.b`.
     #[inline]
     pub fn crank_b(&self) -> Point2<f64> {
-        self.crank.point_to_global(&Point2::new(1.0, 0.0))
+        self.crank.origin + self.crank.x_axis() * 1.0
     }
 
     /// Vector `crank.u`.
     #[inline]
     pub fn crank_u(&self) -> Vector2<f64> {
-        self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.crank.x_axis()
     }
 
     /// The frame of body `rocker`.
@@ -149,7 +152,7 @@ impl Solution {
     /// Point `rocker.d`.
     #[inline]
     pub fn rocker_d(&self) -> Point2<f64> {
-        self.rocker.point_to_global(&Point2::new(4.0, 0.0))
+        self.rocker.origin + self.rocker.x_axis() * 4.0
     }
 
     /// Point `rocker.c`.
@@ -234,10 +237,6 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
     // The sketch: where every geom starts.
-    let a = Frame2::at(Point2::new(0.0, 0.0));
-    let d = Frame2::at(Point2::new(4.0, 0.0));
-    let f = Frame2::at(Point2::new(7.0, 1.0));
-    let x = Frame2::at(Point2::origin());
     let mut crank = Frame2::at(Point2::origin());
     let mut coupler = Frame2::at(Point2::origin());
     let mut rocker = Frame2::at(Point2::origin());
@@ -245,38 +244,26 @@ pub fn solve(
     let mut follower = Frame2::at(Point2::origin());
 
     // coincident(crank.a, A) (sixbar.gcs:18)
-    let a_2 = a.origin;
-    let crank_a = crank.point_to_global(&Point2::new(0.0, 0.0));
-    let shift = a_2 - crank_a;
-    crank.translate(&shift);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // coincident(follower.f, F) (sixbar.gcs:24)
-    let f_2 = f.origin;
-    let follower_f = follower.point_to_global(&Point2::new(7.0, 1.0));
-    let shift_2 = f_2 - follower_f;
-    follower.translate(&shift_2);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // coincident(rocker.d, D) (sixbar.gcs:22)
-    let d_2 = d.origin;
-    let rocker_d = rocker.point_to_global(&Point2::new(4.0, 0.0));
-    let shift_3 = d_2 - rocker_d;
-    rocker.translate(&shift_3);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // drive: angle(X, crank.u) = theta (sixbar.gcs:19)
-    let x_dir = x.x_axis();
-    let x_dir_turned = UnitComplex::new(params.theta) * x_dir;
-    let crank_u_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = rotation_between_units(&crank_u_dir, &x_dir_turned);
-    crank.rotate_about_by(&a_2, &turn);
+    let x_dir_turned = direction_at(params.theta);
+    let turn = rotation_from_x(&x_dir_turned);
+    crank.set_rotation(&turn);
 
     // coincident(crank.b, coupler.b) (sixbar.gcs:20)
-    let crank_b = crank.point_to_global(&Point2::new(1.0, 0.0));
-    let coupler_b = coupler.point_to_global(&Point2::new(1.0, 0.0));
-    let shift_4 = crank_b - coupler_b;
-    coupler.translate(&shift_4);
+    let crank_b = Point2::from(crank.x_axis() * 1.0);
+    let shift = crank_b - Point2::new(1.0, 0.0);
+    coupler.translate(&shift);
 
     // first: coincident(coupler.c, rocker.c) (sixbar.gcs:21)
-    let circle_crank_b_f64_nan = Circle::new(crank_b, 3.5355339059327378).ok_or_else(|| {
+    let circle_crank_b = Circle::new(crank_b, 3.5355339059327378).ok_or_else(|| {
         SolveError::new(
             "first",
             "coincident(coupler.c, rocker.c)",
@@ -284,8 +271,7 @@ pub fn solve(
             0.0,
         )
     })?;
-    let rocker_c = rocker.point_to_global(&Point2::new(3.5, 2.5));
-    let circle_d_2_rocker_c = Circle::new(d_2, 2.5495097567963922).ok_or_else(|| {
+    let circle_d = Circle::new(Point2::new(4.0, 0.0), 2.5495097567963922).ok_or_else(|| {
         SolveError::new(
             "first",
             "coincident(coupler.c, rocker.c)",
@@ -293,35 +279,31 @@ pub fn solve(
             0.0,
         )
     })?;
-    let first_meeting = intersect2d::circle_circle(&circle_crank_b_f64_nan, &circle_d_2_rocker_c);
-    if let Some(e) = SolveError::from_contact(
-        "first",
-        "coincident(coupler.c, rocker.c)",
-        first_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let first = first_meeting
-        .branch(usize::from(branches.first))
+    let first = intersect2d::circle_circle_chord(&circle_crank_b, &circle_d)
+        .map_err(|miss| SolveError::from_miss("first", "coincident(coupler.c, rocker.c)", miss))?
+        .root(usize::from(branches.first))
         .ok_or_else(|| {
             SolveError::new(
                 "first",
                 "coincident(coupler.c, rocker.c)",
                 ErrorKind::NoSuchBranch,
-                first_meeting.roots.len() as f64,
+                2.0,
             )
         })?;
-    let turn_2 = rotation_between2(&(rocker_c - d_2), &(first - d_2));
-    rocker.rotate_about_by(&d_2, &turn_2);
+    let turn_2 = rotation_on_circle(
+        &(Point2::new(3.5, 2.5) - Point2::new(4.0, 0.0)),
+        &(first - Point2::new(4.0, 0.0)),
+        2.5495097567963922,
+    );
+    rocker.rotate_about_by(&Point2::new(4.0, 0.0), &turn_2);
 
     // coincident(rocker.e, link.e) (sixbar.gcs:23)
     let rocker_e = rocker.point_to_global(&Point2::new(5.0, 2.8));
-    let link_e = link.point_to_global(&Point2::new(5.0, 2.8));
-    let shift_5 = rocker_e - link_e;
-    link.translate(&shift_5);
+    let shift_2 = rocker_e - Point2::new(5.0, 2.8);
+    link.translate(&shift_2);
 
     // second: coincident(link.g, follower.g) (sixbar.gcs:25)
-    let circle_rocker_e_f64_nan = Circle::new(rocker_e, 2.692582403567252).ok_or_else(|| {
+    let circle_rocker_e = Circle::new(rocker_e, 2.692582403567252).ok_or_else(|| {
         SolveError::new(
             "second",
             "coincident(link.g, follower.g)",
@@ -329,8 +311,7 @@ pub fn solve(
             0.0,
         )
     })?;
-    let follower_g = follower.point_to_global(&Point2::new(7.5, 3.8));
-    let circle_f_2_follower_g = Circle::new(f_2, 2.8442925306655784).ok_or_else(|| {
+    let circle_f = Circle::new(Point2::new(7.0, 1.0), 2.8442925306655784).ok_or_else(|| {
         SolveError::new(
             "second",
             "coincident(link.g, follower.g)",
@@ -338,27 +319,23 @@ pub fn solve(
             0.0,
         )
     })?;
-    let second_meeting =
-        intersect2d::circle_circle(&circle_rocker_e_f64_nan, &circle_f_2_follower_g);
-    if let Some(e) = SolveError::from_contact(
-        "second",
-        "coincident(link.g, follower.g)",
-        second_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let second = second_meeting
-        .branch(usize::from(branches.second))
+    let second = intersect2d::circle_circle_chord(&circle_rocker_e, &circle_f)
+        .map_err(|miss| SolveError::from_miss("second", "coincident(link.g, follower.g)", miss))?
+        .root(usize::from(branches.second))
         .ok_or_else(|| {
             SolveError::new(
                 "second",
                 "coincident(link.g, follower.g)",
                 ErrorKind::NoSuchBranch,
-                second_meeting.roots.len() as f64,
+                2.0,
             )
         })?;
-    let turn_3 = rotation_between2(&(follower_g - f_2), &(second - f_2));
-    follower.rotate_about_by(&f_2, &turn_3);
+    let turn_3 = rotation_on_circle(
+        &(Point2::new(7.5, 3.8) - Point2::new(7.0, 1.0)),
+        &(second - Point2::new(7.0, 1.0)),
+        2.8442925306655784,
+    );
+    follower.rotate_about_by(&Point2::new(7.0, 1.0), &turn_3);
 
     Ok(Solution {
         crank,

@@ -10,7 +10,10 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
+use gcs_runtime::frame::{
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
+    Frame2,
+};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -280,7 +283,6 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("w", params.w), ("h", params.h), ("r", params.r)])?;
     // The sketch: where every geom starts.
-    let origin = Frame2::at(Point2::new(0.0, 0.0));
     let mut bottom = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(10.0, 0.0) - Point2::new(0.0, 0.0),
@@ -334,48 +336,39 @@ pub fn solve(
     let bottom_length = params.w;
 
     // coincident(bottom.start, origin) (sketch_profile.gcs:16)
-    let origin_2 = origin.origin;
-    let bottom_start = bottom.origin;
-    let shift = origin_2 - bottom_start;
-    bottom.translate(&shift);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // coincident(left.end, bottom.start) (sketch_profile.gcs:19)
-    let left_end = left.origin + left.x_axis() * left_length;
-    let shift_2 = origin_2 - left_end;
-    left.translate(&shift_2);
+    let left_end = Point2::new(0.0, 6.0) + left.x_axis() * left_length;
+    let shift = Point2::new(0.0, 0.0) - left_end;
+    left.translate(&shift);
 
     // horizontal(bottom) (sketch_profile.gcs:20)
-    let x_axis = Vector2::new(1.0, 0.0);
     let bottom_dir = bottom.x_axis();
-    let turn = rotation_between_units(&bottom_dir, &x_axis);
-    bottom.rotate_about_by(&origin_2, &turn);
+    let turn = rotation_between_units(&bottom_dir, &Vector2::new(1.0, 0.0));
+    bottom.turn_by(&turn);
 
     // coincident(bottom.end, right.start) (sketch_profile.gcs:17)
-    let bottom_end = bottom.origin + bottom.x_axis() * bottom_length;
-    let right_start = right.origin;
-    let shift_3 = bottom_end - right_start;
-    right.translate(&shift_3);
+    let bottom_end = Point2::new(0.0, 0.0) + bottom.x_axis() * bottom_length;
+    right.place_origin(&bottom_end);
 
     // horizontal(top) (sketch_profile.gcs:22)
-    let x_axis_2 = Vector2::new(1.0, 0.0);
-    let x_axis_2_turned = UnitComplex::new(std::f64::consts::PI) * x_axis_2;
-    let top_2 = top.origin;
+    let direction = direction_at(std::f64::consts::PI);
     let top_dir = top.x_axis();
-    let turn_2 = rotation_between_units(&top_dir, &x_axis_2_turned);
-    top.rotate_about_by(&top_2, &turn_2);
+    let turn_2 = rotation_between_units(&top_dir, &direction);
+    top.turn_by(&turn_2);
 
     // vertical(left) (sketch_profile.gcs:23)
-    let y_axis = Vector2::new(0.0, 1.0);
-    let y_axis_turned = UnitComplex::new(std::f64::consts::PI) * y_axis;
+    let direction_2 = UnitComplex::new(std::f64::consts::PI) * Vector2::new(0.0, 1.0);
     let left_dir = left.x_axis();
-    let turn_3 = rotation_between_units(&left_dir, &y_axis_turned);
-    left.rotate_about_by(&origin_2, &turn_3);
+    let turn_3 = rotation_between_units(&left_dir, &direction_2);
+    left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_3);
 
     // coincident(top.end, left.start) (sketch_profile.gcs:18)
     let left_start = left.origin;
-    let top_end = top.origin + top.x_axis() * top_length;
-    let shift_4 = left_start - top_end;
-    top.translate(&shift_4);
+    let top_end = Point2::new(8.0, 6.0) + top.x_axis() * top_length;
+    let shift_2 = left_start - top_end;
+    top.translate(&shift_2);
 
     // tangent(top, fillet) (sketch_profile.gcs:25)
     let top_dir_2 = top.x_axis();
@@ -388,16 +381,13 @@ pub fn solve(
         )
     })?;
     let line_left_start_offset = line_left_start.offset(fillet_radius);
-    let fillet_center = fillet.origin;
-    let nearest_fillet_center = line_left_start_offset.nearest(fillet_center);
-    let shift_5 = nearest_fillet_center - fillet_center;
-    fillet.translate(&shift_5);
+    let nearest_fillet_center = line_left_start_offset.nearest(Point2::new(8.0, 4.0));
+    fillet.place_origin(&nearest_fillet_center);
 
     // vertical(right) (sketch_profile.gcs:21)
-    let y_axis_2 = Vector2::new(0.0, 1.0);
     let right_dir = right.x_axis();
-    let turn_4 = rotation_between_units(&right_dir, &y_axis_2);
-    right.rotate_about_by(&bottom_end, &turn_4);
+    let turn_4 = rotation_between_units(&right_dir, &Vector2::new(0.0, 1.0));
+    right.turn_by(&turn_4);
 
     // tangent(right, fillet) (sketch_profile.gcs:24)
     let right_dir_2 = right.x_axis();
@@ -410,7 +400,6 @@ pub fn solve(
         )
     })?;
     let line_bottom_end_offset = line_bottom_end.offset(fillet_radius);
-    let fillet_center_2 = fillet.origin;
     let tangent_right_fillet_meeting =
         intersect2d::line_line(&line_left_start_offset, &line_bottom_end_offset);
     if let Some(e) = SolveError::from_contact(
@@ -428,11 +417,9 @@ pub fn solve(
             tangent_right_fillet_meeting.roots.len() as f64,
         )
     })?;
-    let shift_6 = tangent_right_fillet - fillet_center_2;
-    fillet.translate(&shift_6);
+    fillet.place_origin(&tangent_right_fillet);
 
     // on(right.end, fillet) (sketch_profile.gcs:26)
-    let fillet_center_3 = fillet.origin;
     if fillet_radius < 0.0 {
         return Err(SolveError::new(
             "on_right_end_fillet",
@@ -441,14 +428,15 @@ pub fn solve(
             -fillet_radius,
         ));
     }
-    let circle_fillet_center_3 = Circle::new(fillet_center_3, fillet_radius).ok_or_else(|| {
-        SolveError::new(
-            "on_right_end_fillet",
-            "on(right.end, fillet)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
+    let circle_tangent_right_fillet =
+        Circle::new(tangent_right_fillet, fillet_radius).ok_or_else(|| {
+            SolveError::new(
+                "on_right_end_fillet",
+                "on(right.end, fillet)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let line_bottom_end_2 = Line::new(bottom_end, right_dir_2).ok_or_else(|| {
         SolveError::new(
             "on_right_end_fillet",
@@ -458,7 +446,7 @@ pub fn solve(
         )
     })?;
     let on_right_end_fillet_meeting =
-        intersect2d::line_circle(&line_bottom_end_2, &circle_fillet_center_3);
+        intersect2d::line_circle(&line_bottom_end_2, &circle_tangent_right_fillet);
     if let Some(e) = SolveError::from_contact(
         "on_right_end_fillet",
         "on(right.end, fillet)",
@@ -496,8 +484,8 @@ pub fn solve(
             -fillet_radius,
         ));
     }
-    let circle_fillet_center_3_2 =
-        Circle::new(fillet_center_3, fillet_radius).ok_or_else(|| {
+    let circle_tangent_right_fillet_2 = Circle::new(tangent_right_fillet, fillet_radius)
+        .ok_or_else(|| {
             SolveError::new(
                 "on_top_start_fillet",
                 "on(top.start, fillet)",
@@ -515,7 +503,7 @@ pub fn solve(
     })?;
     let top_start = top.origin;
     let on_top_start_fillet_meeting =
-        intersect2d::line_circle(&line_left_start_2, &circle_fillet_center_3_2);
+        intersect2d::line_circle(&line_left_start_2, &circle_tangent_right_fillet_2);
     if let Some(e) = SolveError::from_contact(
         "on_top_start_fillet",
         "on(top.start, fillet)",
@@ -533,8 +521,8 @@ pub fn solve(
                 on_top_start_fillet_meeting.roots.len() as f64,
             )
         })?;
-    let shift_7 = on_top_start_fillet - top_start;
-    top.translate(&shift_7);
+    let shift_3 = on_top_start_fillet - top_start;
+    top.translate(&shift_3);
     let length_2 = (left_start - on_top_start_fillet).dot(&top_dir_2);
     if !f64::is_finite(length_2) || length_2 < 0.0 {
         return Err(SolveError::new(

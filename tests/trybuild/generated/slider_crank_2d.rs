@@ -10,7 +10,10 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
+use gcs_runtime::frame::{
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
+    Frame2,
+};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -105,25 +108,25 @@ impl Solution {
     /// Point `ground.o`.
     #[inline]
     pub fn ground_o(&self) -> Point2<f64> {
-        self.ground.point_to_global(&Point2::new(0.0, 0.0))
+        self.ground.origin
     }
 
     /// Axis `ground.o.x`.
     #[inline]
     pub fn ground_o_x(&self) -> Vector2<f64> {
-        self.ground.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.ground.x_axis()
     }
 
     /// Point `ground.rail`.
     #[inline]
     pub fn ground_rail(&self) -> Point2<f64> {
-        self.ground.point_to_global(&Point2::new(0.0, 0.0))
+        self.ground.origin
     }
 
     /// Axis `ground.rail.x`.
     #[inline]
     pub fn ground_rail_x(&self) -> Vector2<f64> {
-        self.ground.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.ground.x_axis()
     }
 
     /// The frame of body `crank`.
@@ -135,13 +138,13 @@ impl Solution {
     /// Point `crank.o`.
     #[inline]
     pub fn crank_o(&self) -> Point2<f64> {
-        self.crank.point_to_global(&Point2::new(0.0, 0.0))
+        self.crank.origin
     }
 
     /// Axis `crank.o.x`.
     #[inline]
     pub fn crank_o_x(&self) -> Vector2<f64> {
-        self.crank.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.crank.x_axis()
     }
 
     /// Point `crank.tip`.
@@ -165,25 +168,25 @@ impl Solution {
     /// Point `slider.s`.
     #[inline]
     pub fn slider_s(&self) -> Point2<f64> {
-        self.slider.point_to_global(&Point2::new(0.0, 0.0))
+        self.slider.origin
     }
 
     /// Axis `slider.s.x`.
     #[inline]
     pub fn slider_s_x(&self) -> Vector2<f64> {
-        self.slider.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.slider.x_axis()
     }
 
     /// Point `slider.pin`.
     #[inline]
     pub fn slider_pin(&self) -> Point2<f64> {
-        self.slider.point_to_global(&Point2::new(0.0, 0.0))
+        self.slider.origin
     }
 
     /// Axis `slider.pin.x`.
     #[inline]
     pub fn slider_pin_x(&self) -> Vector2<f64> {
-        self.slider.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.slider.x_axis()
     }
 
     /// Every point of the solution, by its dotted name in the model.
@@ -243,47 +246,34 @@ pub fn solve(
     let mut slider = Frame2::at(Point2::new(5.2, 0.0));
 
     // drive: offset_x(ground.o, crank.o) = phi (slider_crank_2d.gcs:15)
-    let ground_o_x_dir = ground.vector_to_global(&Vector2::new(1.0, 0.0));
-    let ground_o_x_dir_turned = UnitComplex::new(params.phi) * ground_o_x_dir;
-    let crank_2 = crank.origin;
-    let crank_o_x_dir = crank.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn = rotation_between_units(&crank_o_x_dir, &ground_o_x_dir_turned);
-    crank.rotate_about_by(&crank_2, &turn);
+    let ground_o_x_dir_turned = direction_at(params.phi);
+    let turn = rotation_from_x(&ground_o_x_dir_turned);
+    crank.set_rotation(&turn);
 
     // prismatic(slider.s, ground.rail) (slider_crank_2d.gcs:18)
-    let ground_rail = ground.point_to_global(&Point2::new(0.0, 0.0));
-    let ground_rail_x_dir = ground.vector_to_global(&Vector2::new(1.0, 0.0));
-    let line_ground_rail = Line::new(ground_rail, ground_rail_x_dir).ok_or_else(|| {
-        SolveError::new(
-            "prismatic_slider_s_ground_rail",
-            "prismatic(slider.s, ground.rail)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let slider_s = slider.point_to_global(&Point2::new(0.0, 0.0));
-    let nearest_slider_s = line_ground_rail.nearest(slider_s);
-    let shift = nearest_slider_s - slider_s;
-    slider.translate(&shift);
-    let slider_s_2 = slider.point_to_global(&Point2::new(0.0, 0.0));
-    let slider_s_x_dir = slider.vector_to_global(&Vector2::new(1.0, 0.0));
-    let turn_2 = rotation_between_units(&slider_s_x_dir, &ground_rail_x_dir);
-    slider.rotate_about_by(&slider_s_2, &turn_2);
+    let line_ground_rail =
+        Line::new(Point2::new(0.0, 0.0), Vector2::new(1.0, 0.0)).ok_or_else(|| {
+            SolveError::new(
+                "prismatic_slider_s_ground_rail",
+                "prismatic(slider.s, ground.rail)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let nearest_slider_s = line_ground_rail.nearest(Point2::new(5.2, 0.0));
+    slider.place_origin(&nearest_slider_s);
+    let turn_2 = rotation_from_x(&Vector2::new(1.0, 0.0));
+    slider.set_rotation(&turn_2);
 
     // revolute(crank.o, ground.o) (slider_crank_2d.gcs:14)
-    let ground_o = ground.point_to_global(&Point2::new(0.0, 0.0));
-    let crank_o = crank.point_to_global(&Point2::new(0.0, 0.0));
-    let shift_2 = ground_o - crank_o;
-    crank.translate(&shift_2);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // revolute(crank.tip, rod.a) (slider_crank_2d.gcs:16)
-    let crank_tip = crank.point_to_global(&crank_tip_local);
-    let rod_a = rod.point_to_global(&Point2::new(0.0, 0.0));
-    let shift_3 = crank_tip - rod_a;
-    rod.translate(&shift_3);
+    let crank_tip = Point2::from(crank.x_axis() * crank_tip_local.x);
+    rod.place_origin(&crank_tip);
 
     // stroke: revolute(rod.b, slider.pin) (slider_crank_2d.gcs:17)
-    let rod_b = rod.point_to_global(&rod_b_local);
+    let rod_b = crank_tip + rod_b_local.coords;
     let circle_crank_tip_rod_b =
         Circle::new(crank_tip, (rod_b - crank_tip).norm()).ok_or_else(|| {
             SolveError::new(
@@ -293,16 +283,17 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let slider_pin = slider.point_to_global(&Point2::new(0.0, 0.0));
-    let parallel_slider_pin = Line::new(slider_pin, line_ground_rail.dir()).ok_or_else(|| {
-        SolveError::new(
-            "stroke",
-            "revolute(rod.b, slider.pin)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let stroke_meeting = intersect2d::line_circle(&parallel_slider_pin, &circle_crank_tip_rod_b);
+    let parallel_nearest_slider_s = Line::new(nearest_slider_s, line_ground_rail.dir())
+        .ok_or_else(|| {
+            SolveError::new(
+                "stroke",
+                "revolute(rod.b, slider.pin)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let stroke_meeting =
+        intersect2d::line_circle(&parallel_nearest_slider_s, &circle_crank_tip_rod_b);
     if let Some(e) = SolveError::from_contact(
         "stroke",
         "revolute(rod.b, slider.pin)",
@@ -320,8 +311,7 @@ pub fn solve(
                 stroke_meeting.roots.len() as f64,
             )
         })?;
-    let shift_4 = stroke - slider_pin;
-    slider.translate(&shift_4);
+    slider.place_origin(&stroke);
 
     Ok(Solution {
         ground,

@@ -10,7 +10,10 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
-use gcs_runtime::frame::{rotation_between2, rotation_between_units, Frame2};
+use gcs_runtime::frame::{
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
+    Frame2,
+};
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
 #[allow(unused_imports)]
@@ -124,19 +127,19 @@ impl Solution {
     /// Point `ground.o1`.
     #[inline]
     pub fn ground_o1(&self) -> Point2<f64> {
-        self.ground.point_to_global(&Point2::new(0.0, 0.0))
+        self.ground.origin
     }
 
     /// Point `ground.o6`.
     #[inline]
     pub fn ground_o6(&self) -> Point2<f64> {
-        self.ground.point_to_global(&Point2::new(6.0, 0.0))
+        self.ground.origin + self.ground.x_axis() * 6.0
     }
 
     /// Vector `ground.x`.
     #[inline]
     pub fn ground_x(&self) -> Vector2<f64> {
-        self.ground.vector_to_global(&Vector2::new(1.0, 0.0))
+        self.ground.x_axis()
     }
 
     /// The frame of body `crank`.
@@ -148,7 +151,7 @@ impl Solution {
     /// Point `crank.o`.
     #[inline]
     pub fn crank_o(&self) -> Point2<f64> {
-        self.crank.point_to_global(&Point2::new(0.0, 0.0))
+        self.crank.origin
     }
 
     /// Point `crank.tip`.
@@ -253,7 +256,7 @@ impl Solution {
     /// Point `link6.a`.
     #[inline]
     pub fn link6_a(&self) -> Point2<f64> {
-        self.link6.point_to_global(&Point2::new(6.0, 0.0))
+        self.link6.origin + self.link6.x_axis() * 6.0
     }
 
     /// Point `link6.b`.
@@ -438,139 +441,125 @@ pub fn solve(
     let mut link9 = Frame2::at(Point2::origin());
 
     // coincident(crank.o, ground.o1) (tenbar.gcs:22)
-    let ground_o1 = ground.point_to_global(&Point2::new(0.0, 0.0));
-    let crank_o = crank.point_to_global(&Point2::new(0.0, 0.0));
-    let shift = ground_o1 - crank_o;
-    crank.translate(&shift);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // coincident(link6.a, ground.o6) (tenbar.gcs:35)
-    let ground_o6 = ground.point_to_global(&Point2::new(6.0, 0.0));
-    let link6_a = link6.point_to_global(&Point2::new(6.0, 0.0));
-    let shift_2 = ground_o6 - link6_a;
-    link6.translate(&shift_2);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // drive1: angle(ground.x, crank.u) = theta1 (tenbar.gcs:23)
-    let ground_x_dir = ground.vector_to_global(&Vector2::new(1.0, 0.0));
-    let ground_x_dir_turned = UnitComplex::new(params.theta1) * ground_x_dir;
-    let crank_u_dir = crank.vector_to_global(&Vector2::new(0.5000001748438417, 0.8660253028382761));
-    let turn = rotation_between_units(&crank_u_dir, &ground_x_dir_turned);
-    crank.rotate_about_by(&ground_o1, &turn);
+    let ground_x_dir_turned = direction_at(params.theta1);
+    let turn = rotation_between_units(
+        &Vector2::new(0.5000001748438417, 0.8660253028382761),
+        &ground_x_dir_turned,
+    );
+    crank.set_rotation(&turn);
 
     // coincident(link3.a, crank.tip) (tenbar.gcs:24)
     let crank_tip = crank.point_to_global(&Point2::new(0.75, 1.299038));
-    let link3_a = link3.point_to_global(&Point2::new(0.75, 1.299038));
-    let shift_3 = crank_tip - link3_a;
-    link3.translate(&shift_3);
+    let shift = crank_tip - Point2::new(0.75, 1.299038);
+    link3.translate(&shift);
 
     // coincident(link7.b, link10.a) (tenbar.gcs:27)
-    let link10_a = link10.point_to_global(&Point2::new(6.2, 1.8));
-    let link7_b = link7.point_to_global(&Point2::new(6.2, 1.8));
-    let shift_4 = link10_a - link7_b;
-    link7.translate(&shift_4);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // drive3: angle(link7.u, link10.u) = theta3 (tenbar.gcs:28)
-    let link10_u_dir =
-        link10.vector_to_global(&Vector2::new(-0.9191450300180579, -0.3939192985791677));
     let minus = -params.theta3;
-    let link10_u_dir_turned = UnitComplex::new(minus) * link10_u_dir;
-    let link7_u_dir =
-        link7.vector_to_global(&Vector2::new(-0.9701425001453318, -0.24253562503633294));
-    let turn_2 = rotation_between_units(&link7_u_dir, &link10_u_dir_turned);
-    link7.rotate_about_by(&link10_a, &turn_2);
+    let link10_u_dir_turned =
+        UnitComplex::new(minus) * Vector2::new(-0.9191450300180579, -0.3939192985791677);
+    let turn_2 = rotation_between_units(
+        &Vector2::new(-0.9701425001453318, -0.24253562503633294),
+        &link10_u_dir_turned,
+    );
+    link7.rotate_about_by(&Point2::new(6.2, 1.8), &turn_2);
 
     // coincident(link3.b, link4.a) (tenbar.gcs:25)
-    let link3_b = link3.point_to_global(&Point2::new(3.212019, 1.733159));
-    let link4_a = link4.point_to_global(&Point2::new(3.212019, 1.733159));
-    let shift_5 = link3_b - link4_a;
-    link4.translate(&shift_5);
+    let link3_b = link3.origin + Vector2::new(3.212019, 1.733159);
+    let shift_2 = link3_b - Point2::new(3.212019, 1.733159);
+    link4.translate(&shift_2);
 
     // drive2: angle(link3.u, link4.u) = theta2 (tenbar.gcs:26)
-    let link3_u_dir =
-        link3.vector_to_global(&Vector2::new(0.9848077908426045, 0.17364796311995495));
-    let link3_u_dir_turned = UnitComplex::new(params.theta2) * link3_u_dir;
-    let link4_u_dir = link4.vector_to_global(&Vector2::new(0.7129333647431632, 0.7012317858140715));
-    let turn_3 = rotation_between_units(&link4_u_dir, &link3_u_dir_turned);
+    let link3_u_dir_turned =
+        UnitComplex::new(params.theta2) * Vector2::new(0.9848077908426045, 0.17364796311995495);
+    let turn_3 = rotation_between_units(
+        &Vector2::new(0.7129333647431632, 0.7012317858140715),
+        &link3_u_dir_turned,
+    );
     link4.rotate_about_by(&link3_b, &turn_3);
 
     // coincident(link10.c, link8.c) (tenbar.gcs:34)
-    let link10_c = link10.point_to_global(&Point2::new(7.0, 3.8));
-    let link8_c = link8.point_to_global(&Point2::new(7.0, 3.8));
-    let shift_6 = link10_c - link8_c;
-    link8.translate(&shift_6);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // coincident(link9.b, link7.a) (tenbar.gcs:33)
     let link7_a = link7.point_to_global(&Point2::new(7.8, 2.2));
-    let link9_b = link9.point_to_global(&Point2::new(7.8, 2.2));
-    let shift_7 = link7_a - link9_b;
-    link9.translate(&shift_7);
+    let shift_3 = link7_a - Point2::new(7.8, 2.2);
+    link9.translate(&shift_3);
 
     // coincident(link8.b, link9.a) (tenbar.gcs:32)
-    let link8_b = link8.point_to_global(&Point2::new(6.5, 5.2));
-    let circle_link10_c_link8_b = Circle::new(link10_c, 1.4866068747318508).ok_or_else(|| {
-        SolveError::new(
-            "coincident_link8_b_link9_a",
-            "coincident(link8.b, link9.a)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let link9_a = link9.point_to_global(&Point2::new(6.5, 5.2));
-    let circle_link7_a_link9_a = Circle::new(link7_a, 3.269556544854363).ok_or_else(|| {
-        SolveError::new(
-            "coincident_link8_b_link9_a",
-            "coincident(link8.b, link9.a)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let coincident_link8_b_link9_a_meeting =
-        intersect2d::circle_circle(&circle_link10_c_link8_b, &circle_link7_a_link9_a);
-    if let Some(e) = SolveError::from_contact(
-        "coincident_link8_b_link9_a",
-        "coincident(link8.b, link9.a)",
-        coincident_link8_b_link9_a_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let coincident_link8_b_link9_a = coincident_link8_b_link9_a_meeting
-        .branch(usize::from(branches.coincident_link8_b_link9_a))
-        .ok_or_else(|| {
+    let circle_link10_c =
+        Circle::new(Point2::new(7.0, 3.8), 1.4866068747318508).ok_or_else(|| {
             SolveError::new(
                 "coincident_link8_b_link9_a",
                 "coincident(link8.b, link9.a)",
-                ErrorKind::NoSuchBranch,
-                coincident_link8_b_link9_a_meeting.roots.len() as f64,
+                ErrorKind::Degenerate,
+                0.0,
             )
         })?;
-    let turn_4 = rotation_between2(
-        &(link8_b - link10_c),
-        &(coincident_link8_b_link9_a - link10_c),
+    let link9_a = link9.origin + Vector2::new(6.5, 5.2);
+    let circle_link7_a = Circle::new(link7_a, 3.269556544854363).ok_or_else(|| {
+        SolveError::new(
+            "coincident_link8_b_link9_a",
+            "coincident(link8.b, link9.a)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let coincident_link8_b_link9_a =
+        intersect2d::circle_circle_chord(&circle_link10_c, &circle_link7_a)
+            .map_err(|miss| {
+                SolveError::from_miss(
+                    "coincident_link8_b_link9_a",
+                    "coincident(link8.b, link9.a)",
+                    miss,
+                )
+            })?
+            .root(usize::from(branches.coincident_link8_b_link9_a))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "coincident_link8_b_link9_a",
+                    "coincident(link8.b, link9.a)",
+                    ErrorKind::NoSuchBranch,
+                    2.0,
+                )
+            })?;
+    let turn_4 = rotation_on_circle(
+        &(Point2::new(6.5, 5.2) - Point2::new(7.0, 3.8)),
+        &(coincident_link8_b_link9_a - Point2::new(7.0, 3.8)),
+        1.4866068747318508,
     );
-    link8.rotate_about_by(&link10_c, &turn_4);
-    let turn_5 = rotation_between2(
+    link8.rotate_about_by(&Point2::new(7.0, 3.8), &turn_4);
+    let turn_5 = rotation_on_circle(
         &(link9_a - link7_a),
         &(coincident_link8_b_link9_a - link7_a),
+        3.269556544854363,
     );
     link9.rotate_about_by(&link7_a, &turn_5);
 
     // coincident(link4.p, link5.a) (tenbar.gcs:29)
     let link4_p = link4.point_to_global(&Point2::new(4.5, 3.0));
-    let link5_a = link5.point_to_global(&Point2::new(4.5, 3.0));
-    let shift_8 = link4_p - link5_a;
-    link5.translate(&shift_8);
+    let shift_4 = link4_p - Point2::new(4.5, 3.0);
+    link5.translate(&shift_4);
 
     // coincident(link4.q, link10.b) (tenbar.gcs:30)
     let link4_q = link4.point_to_global(&Point2::new(4.8, 1.2));
-    let link10_b = link10.point_to_global(&Point2::new(4.8, 1.2));
-    let shift_9 = link4_q - link10_b;
-    link10.translate(&shift_9);
-    link7.translate(&shift_9);
-    link8.translate(&shift_9);
-    link9.translate(&shift_9);
+    let shift_5 = link4_q - Point2::new(4.8, 1.2);
+    link10.translate(&shift_5);
+    link7.translate(&shift_5);
+    link8.translate(&shift_5);
+    link9.translate(&shift_5);
 
     // coincident(link5.b, link8.a) (tenbar.gcs:31)
-    let link5_b = link5.point_to_global(&Point2::new(5.6, 4.2));
-    let circle_link4_p_link5_b = Circle::new(link4_p, 1.6278820596099706).ok_or_else(|| {
+    let link5_b = link5.origin + Vector2::new(5.6, 4.2);
+    let circle_link4_p = Circle::new(link4_p, 1.6278820596099706).ok_or_else(|| {
         SolveError::new(
             "coincident_link5_b_link8_a",
             "coincident(link5.b, link8.a)",
@@ -588,28 +577,28 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let coincident_link5_b_link8_a_meeting =
-        intersect2d::circle_circle(&circle_link4_p_link5_b, &circle_link4_q_link8_a);
-    if let Some(e) = SolveError::from_contact(
-        "coincident_link5_b_link8_a",
-        "coincident(link5.b, link8.a)",
-        coincident_link5_b_link8_a_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let coincident_link5_b_link8_a = coincident_link5_b_link8_a_meeting
-        .branch(usize::from(branches.coincident_link5_b_link8_a))
-        .ok_or_else(|| {
-            SolveError::new(
-                "coincident_link5_b_link8_a",
-                "coincident(link5.b, link8.a)",
-                ErrorKind::NoSuchBranch,
-                coincident_link5_b_link8_a_meeting.roots.len() as f64,
-            )
-        })?;
-    let turn_6 = rotation_between2(
+    let coincident_link5_b_link8_a =
+        intersect2d::circle_circle_chord(&circle_link4_p, &circle_link4_q_link8_a)
+            .map_err(|miss| {
+                SolveError::from_miss(
+                    "coincident_link5_b_link8_a",
+                    "coincident(link5.b, link8.a)",
+                    miss,
+                )
+            })?
+            .root(usize::from(branches.coincident_link5_b_link8_a))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "coincident_link5_b_link8_a",
+                    "coincident(link5.b, link8.a)",
+                    ErrorKind::NoSuchBranch,
+                    2.0,
+                )
+            })?;
+    let turn_6 = rotation_on_circle(
         &(link5_b - link4_p),
         &(coincident_link5_b_link8_a - link4_p),
+        1.6278820596099706,
     );
     link5.rotate_about_by(&link4_p, &turn_6);
     let turn_7 = rotation_between2(
@@ -632,32 +621,24 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let link6_b = link6.point_to_global(&Point2::new(6.8, 2.6));
-    let circle_ground_o6_link6_b = Circle::new(ground_o6, 2.7202941017470885).ok_or_else(|| {
-        SolveError::new(
-            "close",
-            "coincident(link5.c, link6.b)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let close_meeting =
-        intersect2d::circle_circle(&circle_crank_tip_link5_c, &circle_ground_o6_link6_b);
-    if let Some(e) = SolveError::from_contact(
-        "close",
-        "coincident(link5.c, link6.b)",
-        close_meeting.contact,
-    ) {
-        return Err(e);
-    }
-    let close = close_meeting
-        .branch(usize::from(branches.close))
+    let circle_ground_o6 =
+        Circle::new(Point2::new(6.0, 0.0), 2.7202941017470885).ok_or_else(|| {
+            SolveError::new(
+                "close",
+                "coincident(link5.c, link6.b)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let close = intersect2d::circle_circle_chord(&circle_crank_tip_link5_c, &circle_ground_o6)
+        .map_err(|miss| SolveError::from_miss("close", "coincident(link5.c, link6.b)", miss))?
+        .root(usize::from(branches.close))
         .ok_or_else(|| {
             SolveError::new(
                 "close",
                 "coincident(link5.c, link6.b)",
                 ErrorKind::NoSuchBranch,
-                close_meeting.roots.len() as f64,
+                2.0,
             )
         })?;
     let turn_8 = rotation_between2(&(link5_c - crank_tip), &(close - crank_tip));
@@ -668,8 +649,12 @@ pub fn solve(
     link8.rotate_about_by(&crank_tip, &turn_8);
     link9.rotate_about_by(&crank_tip, &turn_8);
     link5.rotate_about_by(&crank_tip, &turn_8);
-    let turn_9 = rotation_between2(&(link6_b - ground_o6), &(close - ground_o6));
-    link6.rotate_about_by(&ground_o6, &turn_9);
+    let turn_9 = rotation_on_circle(
+        &(Point2::new(6.8, 2.6) - Point2::new(6.0, 0.0)),
+        &(close - Point2::new(6.0, 0.0)),
+        2.7202941017470885,
+    );
+    link6.rotate_about_by(&Point2::new(6.0, 0.0), &turn_9);
 
     Ok(Solution {
         ground,
