@@ -48,8 +48,10 @@ pub struct SolveError {
 
 impl SolveError {
     /// An error for the constraint `label` with source `text` (string literals or owned
-    /// strings; literals do not allocate).
-    #[inline]
+    /// strings; literals do not allocate). Cold and out of line: a solve's error paths are
+    /// then a call each, laid out away from the straight line of its steps.
+    #[cold]
+    #[inline(never)]
     pub fn new(
         label: impl Into<Cow<'static, str>>,
         text: impl Into<Cow<'static, str>>,
