@@ -719,10 +719,11 @@ pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64>
 
 /// The rotation about a circle's centre that turns `a` onto `b`, two radii of the circle:
 /// both of length `radius` to rounding, as the plan knows when it turns a point of a rigid
-/// geom onto a target on that point's circle. The same result as [`rotation_between2`],
-/// whose fast path it shortens: with the radius known (a constant in generated code), the
-/// division is by `radius^2`, which the compiler folds. When the lengths differ from it by
-/// more than about 1e-4 (relative), it is [`rotation_between2`].
+/// geom onto a target on that point's circle. The result of [`rotation_between2`] to
+/// rounding (unit to a few ulps, the direction exact), by a shorter fast path: with the
+/// radius known (a constant in generated code), the division is by `radius^2`, which the
+/// compiler folds. When the lengths differ from the radius by more than about 1e-4
+/// (relative), it is [`rotation_between2`].
 #[inline]
 pub fn rotation_on_circle(a: &Vector2<f64>, b: &Vector2<f64>, radius: f64) -> UnitComplex<f64> {
     let inv = 1.0 / (radius * radius);
