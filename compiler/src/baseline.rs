@@ -466,6 +466,47 @@ impl Build<'_> {
             )),
         }
     }
+    /// The equation "`x` is at distance `d` from `y`" for the kinds of the two (`None` for a
+    /// pair it has no form for): points, lines and circles, a circle measured from its centre
+    /// by the equation's own form. `distance`, `on` (`d` zero) and `tangent` share it.
+    fn distance(
+        &mut self,
+        x: GeomId,
+        kx: Option<GeomKind>,
+        y: GeomId,
+        ky: Option<GeomKind>,
+        d: usize,
+    ) -> Result<Option<Eq>, String> {
+        use GeomKind::{Circle, Line, Marker, Point, Segment};
+        Ok(Some(match (kx, ky) {
+            (Some(Point | Marker), Some(Point | Marker)) => Eq::Dist {
+                a: self.pt(x)?,
+                b: self.pt(y)?,
+                d,
+            },
+            (Some(Point | Marker), Some(Line | Segment)) => {
+                let p = self.pt(x)?;
+                let (base, dir) = self.line(y)?;
+                Eq::PointLine { p, base, dir, d }
+            }
+            (Some(Point | Marker), Some(Circle)) => Eq::PointCircle {
+                p: self.pt(x)?,
+                c: self.pt(y)?,
+                d,
+            },
+            (Some(Line | Segment), Some(Circle)) => {
+                let (base, dir) = self.line(x)?;
+                let c = self.pt(y)?;
+                Eq::LineCircle { base, dir, c, d }
+            }
+            (Some(Circle), Some(Circle)) => Eq::CircleCircle {
+                a: self.pt(x)?,
+                b: self.pt(y)?,
+                d,
+            },
+            _ => return Ok(None),
+        }))
+    }
     /// A line argument: a point on it and its direction.
     fn line(&mut self, g: GeomId) -> Result<(Pt, Dir), String> {
         Ok((self.pt_or_origin(g)?, self.dir(g)?))
@@ -634,72 +675,19 @@ impl Baseline {
                     eqs.push(Eq::Diff { a, b: bb, y: false });
                     eqs.push(Eq::Diff { a, b: bb, y: true });
                 }
-                (K::Distance, Some(x), Some(y)) => match (kind(a0), kind(a1)) {
-                    (
-                        Some(GeomKind::Point | GeomKind::Marker),
-                        Some(GeomKind::Point | GeomKind::Marker),
-                    ) => eqs.push(Eq::Dist {
-                        a: b.pt(x)?,
-                        b: b.pt(y)?,
-                        d,
-                    }),
-                    (
-                        Some(GeomKind::Point | GeomKind::Marker),
-                        Some(GeomKind::Line | GeomKind::Segment),
-                    ) => {
-                        let p = b.pt(x)?;
-                        let (base, dir) = b.line(y)?;
-                        eqs.push(Eq::PointLine { p, base, dir, d });
-                    }
-                    (Some(GeomKind::Point | GeomKind::Marker), Some(GeomKind::Circle)) => {
-                        eqs.push(Eq::PointCircle {
-                            p: b.pt(x)?,
-                            c: b.pt(y)?,
-                            d,
-                        })
-                    }
-                    (Some(GeomKind::Line | GeomKind::Segment), Some(GeomKind::Circle)) => {
-                        let (base, dir) = b.line(x)?;
-                        let c = b.pt(y)?;
-                        eqs.push(Eq::LineCircle { base, dir, c, d });
-                    }
-                    (Some(GeomKind::Circle), Some(GeomKind::Circle)) => {
-                        eqs.push(Eq::CircleCircle {
-                            a: b.pt(x)?,
-                            b: b.pt(y)?,
-                            d,
-                        })
-                    }
-                    _ => return Err(bad()),
-                },
-                (K::On, Some(x), Some(y)) => match kind(a1) {
-                    Some(GeomKind::Line | GeomKind::Segment) => {
-                        let p = b.pt(x)?;
-                        let (base, dir) = b.line(y)?;
-                        eqs.push(Eq::PointLine { p, base, dir, d });
-                    }
-                    Some(GeomKind::Circle) => eqs.push(Eq::PointCircle {
-                        p: b.pt(x)?,
-                        c: b.pt(y)?,
-                        d,
-                    }),
-                    _ => return Err(bad()),
-                },
-                (K::Tangent, Some(x), Some(y)) => match (kind(a0), kind(a1)) {
-                    (Some(GeomKind::Line | GeomKind::Segment), Some(GeomKind::Circle)) => {
-                        let (base, dir) = b.line(x)?;
-                        let c = b.pt(y)?;
-                        eqs.push(Eq::LineCircle { base, dir, c, d });
-                    }
-                    (Some(GeomKind::Circle), Some(GeomKind::Circle)) => {
-                        eqs.push(Eq::CircleCircle {
-                            a: b.pt(x)?,
-                            b: b.pt(y)?,
-                            d,
-                        })
-                    }
-                    _ => return Err(bad()),
-                },
+                (K::Distance, Some(x), Some(y)) => {
+                    eqs.push(b.distance(x, kind(a0), y, kind(a1), d)?.ok_or_else(bad)?)
+                }
+                // A point on a line or circle: its distance from it is zero.
+                (K::On, Some(x), Some(y)) => {
+                    let point = Some(GeomKind::Point);
+                    eqs.push(b.distance(x, point, y, kind(a1), d)?.ok_or_else(bad)?)
+                }
+                (K::Tangent, Some(x), Some(y))
+                    if !matches!(kind(a0), Some(GeomKind::Point | GeomKind::Marker)) =>
+                {
+                    eqs.push(b.distance(x, kind(a0), y, kind(a1), d)?.ok_or_else(bad)?)
+                }
                 (K::Angle | K::OffsetX, Some(x), Some(y)) => eqs.push(Eq::Angle {
                     u: b.dir(x)?,
                     v: b.dir(y)?,
