@@ -577,30 +577,32 @@ impl Report {
             "\n  {:<46} {:>12} {:>12} {:>13} {:>9} {:>6}",
             "solver", "median", "p90", "max residual", "failures", "flips"
         );
-        let _ = writeln!(
-            s,
-            "  {:<46} {:>12} {:>12} {:>13.3e} {:>9} {:>6}",
+        let mut row = |name: String, t: &Timing, residual: f64, failures: usize, flips: usize| {
+            let _ = writeln!(
+                s,
+                "  {name:<46} {:>12} {:>12} {residual:>13.3e} {failures:>9} {flips:>6}",
+                human_ns(t.median_ns),
+                human_ns(t.p90_ns),
+            );
+        };
+        row(
             format!("compiled plan ({})", self.compiled_kind),
-            human_ns(self.compiled.median_ns),
-            human_ns(self.compiled.p90_ns),
+            &self.compiled,
             self.compiled_max_residual,
             self.compiled_failures,
-            self.branch_flips
+            self.branch_flips,
         );
-        let _ = writeln!(
-            s,
-            "  {:<46} {:>12} {:>12} {:>13.3e} {:>9} {:>6}",
+        row(
             format!(
                 "baseline (Newton, {}, {}; {} unknowns)",
                 if b.warm { "warm" } else { "cold" },
                 if b.sparse { "sparse" } else { "dense" },
                 b.size.0
             ),
-            human_ns(b.timing.median_ns),
-            human_ns(b.timing.p90_ns),
+            &b.timing,
             b.max_residual,
             b.failures,
-            b.branch_flips
+            b.branch_flips,
         );
         let _ = writeln!(
             s,
