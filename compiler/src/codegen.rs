@@ -1994,13 +1994,13 @@ impl<'a> Gen<'a> {
             }
             Op::Translate { geoms, from, to } => {
                 let (f, t) = (self.r(*from), self.r(*to));
+                if f == t {
+                    // From a point onto itself: nothing moves.
+                    return;
+                }
                 let mut shift = None;
                 for &g in geoms {
                     let facts = self.facts.entry(g).or_default();
-                    if f == t {
-                        // From a point onto itself: nothing moves.
-                        continue;
-                    }
                     let frame = self.frames.get(&g).cloned().unwrap_or_default();
                     if facts.origin.as_ref().is_some_and(|o| o.code() == f) {
                         // The point brought onto `to` is the origin: it lands there exactly.
