@@ -38,14 +38,14 @@ fn unit(a: V) -> V {
     let n = norm(a);
     [a[0] / n, a[1] / n]
 }
-fn wrap(a: f64) -> f64 {
-    let t = std::f64::consts::TAU;
-    let r = a.rem_euclid(t);
-    if r > std::f64::consts::PI {
-        r - t
-    } else {
-        r
-    }
+/// How far the angle from `u` to `v` is from `target`, in radians (at most pi): the angle
+/// between `v` and `u` turned by `target`. Turning by the target's sine and cosine, rather than
+/// subtracting it from the measured angle, keeps the residual exact for any finite target:
+/// `1e300 - a` is `1e300` whatever `a` is.
+fn angle_off(u: V, v: V, target: f64) -> f64 {
+    let (s, c) = target.sin_cos();
+    let w = [u[0] * c - u[1] * s, u[0] * s + u[1] * c];
+    cross(w, v).atan2(dot(w, v)).abs()
 }
 
 /// Named lookups that yield NaN for anything missing, so a missing value is a failure, not a
@@ -175,7 +175,7 @@ pub fn residuals(model: &Model, solution: &Solution, params: &[f64]) -> Vec<Resi
                 },
                 (K::Angle, Some(a), Some(b)) => {
                     let (u, v) = (look.dir_arg(a), look.dir_arg(b));
-                    wrap(cross(u, v).atan2(dot(u, v)) - value).abs()
+                    angle_off(u, v, value)
                 }
                 (K::Parallel, Some(a), Some(b)) => cross(look.dir_arg(a), look.dir_arg(b)).abs(),
                 (K::Perpendicular, Some(a), Some(b)) => dot(look.dir_arg(a), look.dir_arg(b)).abs(),
@@ -198,7 +198,7 @@ pub fn residuals(model: &Model, solution: &Solution, params: &[f64]) -> Vec<Resi
                     let (na, nb) = (&model.geoms[a].name, &model.geoms[b].name);
                     let (u, v) = (look.v(&format!("{na}.x")), look.v(&format!("{nb}.x")));
                     let target = if c.kind == K::OffsetX { value } else { 0.0 };
-                    let angle = wrap(cross(u, v).atan2(dot(u, v)) - target).abs();
+                    let angle = angle_off(u, v, target);
                     if c.kind == K::Prismatic {
                         let (base, dir) = look.line_arg(b);
                         angle.max(cross(dir, sub(look.point_arg(a), base)).abs())

@@ -18,7 +18,8 @@ fn main() {
     let model = model.unwrap_or_else(|| panic!("{NAME} does not load: {diags:?}"));
     let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
     let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
-    // Params: the defaults, and each one moved a little and a lot.
+    // Params: the defaults, each one moved a little and a lot, and each one at values no
+    // model means (huge, or not a number), where both must give the same error or answer.
     let base = model.default_params();
     let names: Vec<String> = model.params.iter().map(|(_, p)| p.name.clone()).collect();
     let mut cases = vec![base.clone()];
@@ -26,6 +27,11 @@ fn main() {
         for k in [0.97, 1.03, 1.25, -0.5] {
             let mut p = base.clone();
             p[i] = if p[i] == 0.0 { 0.1 * k } else { p[i] * k };
+            cases.push(p);
+        }
+        for extreme in [1e300, -1e300, f64::NAN] {
+            let mut p = base.clone();
+            p[i] = extreme;
             cases.push(p);
         }
     }
