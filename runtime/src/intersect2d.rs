@@ -333,7 +333,7 @@ impl Chord {
 ///
 /// Two circles that cross, the common case, take one test before the roots: the tangency
 /// and degeneracy cases are sorted out only when the circles do not plainly cross.
-#[inline]
+#[inline(always)]
 pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let (r1, r2) = (a.radius(), b.radius());
     let s = tol::scale(&[
