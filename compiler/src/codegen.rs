@@ -228,6 +228,31 @@ fn point_in(f: &str, origin: &str, local: (f64, f64)) -> String {
     }
 }
 
+/// Code for the sum of `coefficient * value` terms, leaving out the zero coefficients (the
+/// compiler may not fold them: a NaN times zero is NaN) and writing a unit one as the value.
+fn linear(terms: &[(f64, String)]) -> String {
+    let mut code = String::new();
+    for (k, v) in terms.iter().filter(|(k, _)| *k != 0.0) {
+        let term = match *k {
+            1.0 => v.clone(),
+            -1.0 => format!("-{v}"),
+            k => format!("{v} * {}", float(k)),
+        };
+        if code.is_empty() {
+            code = term;
+        } else if let Some(minus) = term.strip_prefix('-') {
+            code = format!("{code} - {minus}");
+        } else {
+            code = format!("{code} + {term}");
+        }
+    }
+    if code.is_empty() {
+        "0.0".into()
+    } else {
+        code
+    }
+}
+
 /// Code for the point `origin + v`; just `v` as a point when the origin is the literal zero.
 fn offset(origin: &str, v: &str) -> String {
     if origin == "Point2::new(0.0, 0.0)" {
@@ -285,6 +310,16 @@ struct Gen<'a> {
     frame_writes: HashSet<GeomId>,
     /// Registers that hold the x axis `(1, 0)` exactly.
     unit_x: HashSet<Reg>,
+    /// Scalar registers known to be finite: a param (checked on entry), a finite literal, or
+    /// a value checked where it is computed. Their uses need no test of their own.
+    finite: HashSet<Reg>,
+    /// Registers that hold a finite unit direction by construction (`direction_at` of a
+    /// finite angle): a rotation onto one needs no test.
+    unit_dirs: HashSet<Reg>,
+    /// Point registers read while their frame was unturned, with an origin whose code stays
+    /// its value: that code and the point's constant local coordinates. The vector between
+    /// two such points of one frame is a constant, known here.
+    at_offset: HashMap<Reg, (String, (f64, f64))>,
     /// The constant radius of the circle about a pivot through a point of the same rigid
     /// geom, by its (centre, through) registers: a rotation onto that circle knows it.
     circle_radius: HashMap<(Reg, Reg), f64>,
@@ -422,6 +457,9 @@ impl<'a> Gen<'a> {
             frame_reads: RefCell::new(HashSet::new()),
             frame_writes: HashSet::new(),
             unit_x: HashSet::new(),
+            finite: HashSet::new(),
+            unit_dirs: HashSet::new(),
+            at_offset: HashMap::new(),
             circle_radius: HashMap::new(),
             reg_names: HashMap::new(),
         }
@@ -537,7 +575,7 @@ impl<'a> Gen<'a> {
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::check;");
         w.line("#[allow(unused_imports)]");
-        w.line("use gcs_runtime::frame::{direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle, Frame2};");
+        w.line("use gcs_runtime::frame::{direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit, rotation_on_circle, rotation_on_circle_from, Frame2};");
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::intersect2d;");
         w.line("#[allow(unused_imports)]");
@@ -1446,6 +1484,33 @@ impl<'a> Gen<'a> {
         }
     }
 
+    /// For a point of a frame not yet turned, whose origin's code stays its value: that code
+    /// and the point's constant offset from it (the local coordinates themselves).
+    fn offset_from_origin(&self, g: GeomId) -> Option<(String, (f64, f64))> {
+        let m = self.model;
+        let top = m.top_level_of(g);
+        let facts = self.facts.get(&top)?;
+        let origin = facts.origin.as_ref().filter(|_| facts.identity)?;
+        let local = match m.geoms[g].owner {
+            Owner::Member(_) => self.local_value(g, true)?,
+            Owner::TopLevel => (0.0, 0.0),
+            Owner::Part(..) => return None,
+        };
+        Some((origin.code(), local))
+    }
+
+    /// The vector from register `pivot` to register `from` when it is a constant: two points
+    /// read from one unturned frame, or a point of it and the frame's origin.
+    fn constant_arm(&self, pivot: Reg, from: Reg) -> Option<(f64, f64)> {
+        let (origin, (fx, fy)) = self.at_offset.get(&from)?;
+        let (px, py) = match self.at_offset.get(&pivot) {
+            Some((o, local)) if o == origin => *local,
+            _ if self.r(pivot) == *origin => (0.0, 0.0),
+            _ => return None,
+        };
+        Some((fx - px, fy - py))
+    }
+
     /// The global position of a point feature, read from the frames now.
     fn point_code(&self, g: GeomId) -> String {
         let m = self.model;
@@ -1545,6 +1610,24 @@ impl<'a> Gen<'a> {
         self.regs.insert(reg, local);
     }
 
+    /// Like [`Gen::define`] for a scalar the params give, which can overflow however finite
+    /// they are (`theta * 1e300`): the step's constraint cannot be met with a value that is
+    /// not finite, so the solve says so rather than going on with garbage.
+    fn define_finite(&mut self, w: &mut Writer, i: usize, reg: Reg, name: &str, code: &str) {
+        self.define(w, reg, name, code);
+        if !self.used.contains(&reg) {
+            return;
+        }
+        let v = self.r(reg);
+        w.open(&format!("if !f64::is_finite({v}) {{"));
+        w.line(&format!(
+            "return Err({});",
+            self.error(i, "InvalidValue", &v)
+        ));
+        w.close("}");
+        self.finite.insert(reg);
+    }
+
     /// Like [`Gen::define`], but a literal or a local needs no new local: the register is
     /// that code.
     fn define_or_alias(&mut self, w: &mut Writer, reg: Reg, name: &str, code: String) {
@@ -1612,28 +1695,42 @@ impl<'a> Gen<'a> {
             Op::Expr(e) => {
                 let code = self.expr(*e);
                 if let (Some(r), ExprNode::Param(_)) = (out, m.exprs.node(*e)) {
+                    // Params are checked finite on entry.
+                    self.finite.insert(r);
                     self.regs.insert(r, code);
                 } else if let Some(r) = out {
                     if m.exprs.is_constant(*e) {
+                        if m.exprs.eval(*e, &[]).is_finite() {
+                            self.finite.insert(r);
+                        }
                         self.regs.insert(r, code);
                     } else {
-                        self.define(w, r, "value", &code);
+                        self.define_finite(w, i, r, "value", &code);
                     }
                 }
             }
             Op::Const(c) => {
                 if let Some(r) = out {
+                    if c.is_finite() {
+                        self.finite.insert(r);
+                    }
                     self.regs.insert(r, float(*c));
                 }
             }
             Op::Neg(x) => {
                 if let Some(r) = out {
+                    if self.finite.contains(x) {
+                        self.finite.insert(r);
+                    }
                     let code = format!("-{}", self.r(*x));
                     self.define(w, r, "minus", &code);
                 }
             }
             Op::PointOf(g) => {
                 if let Some(r) = out {
+                    if let Some(at) = self.offset_from_origin(*g) {
+                        self.at_offset.insert(r, at);
+                    }
                     let code = self.point_code(*g);
                     self.define_or_alias(w, r, &name_of(*g), code);
                 }
@@ -1672,6 +1769,9 @@ impl<'a> Gen<'a> {
                 if let Some(r) = out {
                     let (d, a) = (self.r(*dir), self.r(*angle));
                     let code = if self.unit_x.contains(dir) {
+                        if self.finite.contains(angle) {
+                            self.unit_dirs.insert(r);
+                        }
                         format!("direction_at({a})")
                     } else {
                         format!("UnitComplex::new({a}) * {d}")
@@ -1696,7 +1796,7 @@ impl<'a> Gen<'a> {
                         };
                         code.push_str(&term);
                     }
-                    self.define(w, r, "sum", &code);
+                    self.define_finite(w, i, r, "sum", &code);
                 }
             }
             Op::Along { from, dir, to } => {
@@ -2025,14 +2125,30 @@ impl<'a> Gen<'a> {
                 to,
             } => {
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
-                let code = match self.circle_radius.get(&(*pivot, *from)) {
+                let radius = self.circle_radius.get(&(*pivot, *from)).copied();
+                let code = match (radius, self.constant_arm(*pivot, *from)) {
+                    // A point of a rigid geom turned onto its circle about the pivot, from where
+                    // the sketch put it: the arm and the circle's radius are constants, so the
+                    // rotation's cosine and sine are `(arm . reach, arm x reach) / radius²`
+                    // with constant coefficients.
+                    (Some(radius), Some((ax, ay))) if radius > 0.0 => {
+                        let reach = self.names.fresh(&self.derived_name(*to, "_reach", "reach"));
+                        w.line(&format!("let {reach} = {t} - {p};"));
+                        let k = 1.0 / (radius * radius);
+                        let (kx, ky) = (ax * k, ay * k);
+                        let c = linear(&[(kx, format!("{reach}.x")), (ky, format!("{reach}.y"))]);
+                        let s = linear(&[(kx, format!("{reach}.y")), (-ky, format!("{reach}.x"))]);
+                        // The arm itself is read only when the lengths disagree with the
+                        // radius, off the fast path.
+                        format!("rotation_on_circle_from({c}, {s}, &({f} - {p}), &{reach})")
+                    }
                     // A point of a rigid geom turned onto its circle about the pivot: the
                     // circle's radius is known, and with it the rotation's scale.
-                    Some(&radius) => format!(
+                    (Some(radius), _) => format!(
                         "rotation_on_circle(&({f} - {p}), &({t} - {p}), {})",
                         float(radius)
                     ),
-                    None => format!("rotation_between2(&({f} - {p}), &({t} - {p}))"),
+                    (None, _) => format!("rotation_between2(&({f} - {p}), &({t} - {p}))"),
                 };
                 self.rotate(w, geoms, &p, &code);
             }
@@ -2043,7 +2159,10 @@ impl<'a> Gen<'a> {
                 to,
             } => {
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
-                let code = if self.unit_x.contains(from) {
+                let code = if self.unit_x.contains(from) && self.unit_dirs.contains(to) {
+                    // A finite unit direction: it is the rotation, with nothing to test.
+                    format!("rotation_from_x_unit(&{t})")
+                } else if self.unit_x.contains(from) {
                     format!("rotation_from_x(&{t})")
                 } else {
                     format!("rotation_between_units(&{f}, &{t})")
@@ -2054,10 +2173,15 @@ impl<'a> Gen<'a> {
                 let v = self.r(*value);
                 let known_good = v.parse::<f64>().is_ok_and(|x| x.is_finite() && x >= 0.0);
                 if !known_good {
-                    w.open(&format!("if !f64::is_finite({v}) || {v} < 0.0 {{"));
+                    let test = if self.finite.contains(value) {
+                        format!("if {v} < 0.0 {{")
+                    } else {
+                        format!("if !f64::is_finite({v}) || {v} < 0.0 {{")
+                    };
+                    w.open(&test);
                     w.line(&format!(
                         "return Err({});",
-                        self.error(i, "InvalidInput", &v)
+                        self.error(i, "InvalidValue", &v)
                     ));
                     w.close("}");
                 }

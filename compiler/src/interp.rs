@@ -91,7 +91,14 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             _ => V2::new(f64::NAN, f64::NAN),
         };
         let out: Option<Val> = match &step.op {
-            Op::Expr(e) => Some(Val::S(model.exprs.eval(*e, params))),
+            // A value the params give, finite one by one, can still overflow (`theta * 1e300`):
+            // the constraint it belongs to cannot be met, rather than met by garbage.
+            Op::Expr(e) => Some(Val::S(finite_value(
+                model,
+                plan,
+                step,
+                model.exprs.eval(*e, params),
+            )?)),
             Op::Const(c) => Some(Val::S(*c)),
             Op::Neg(x) => Some(Val::S(-s(*x))),
             Op::DimOf(g) => Some(Val::S(config.dim(*g))),
@@ -104,7 +111,12 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 }
                 Some(Val::V(d / n))
             }
-            Op::Sum(terms) => Some(Val::S(terms.iter().map(|(k, r)| k * s(*r)).sum())),
+            Op::Sum(terms) => Some(Val::S(finite_value(
+                model,
+                plan,
+                step,
+                terms.iter().map(|(k, r)| k * s(*r)).sum(),
+            )?)),
             Op::Reversed(x) => match get(&regs, *x) {
                 Val::L(l) => Some(Val::L(l.reversed())),
                 _ => return Err(bad_step(model, plan, step)),
@@ -340,8 +352,8 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 let x = s(*value);
                 if !x.is_finite() || x < 0.0 {
                     return Err(match constraint_of(plan, step) {
-                        Some(c) => err(model, c, ErrorKind::InvalidInput, x),
-                        None => SolveError::new("plan", String::new(), ErrorKind::InvalidInput, x),
+                        Some(c) => err(model, c, ErrorKind::InvalidValue, x),
+                        None => SolveError::new("plan", String::new(), ErrorKind::InvalidValue, x),
                     });
                 }
                 config.dims.insert(*geom, x);
@@ -376,6 +388,23 @@ fn sense(plus: bool) -> Sense {
 fn constraint_of(plan: &Plan, step: &crate::plan::Step) -> Option<ConstraintId> {
     let i = plan.steps.iter().position(|s| std::ptr::eq(s, step))?;
     plan.constraint_of(i)
+}
+
+/// `x` when it is finite, otherwise the [`ErrorKind::InvalidValue`] error of the step's
+/// constraint.
+fn finite_value(
+    model: &Model,
+    plan: &Plan,
+    step: &crate::plan::Step,
+    x: f64,
+) -> Result<f64, SolveError> {
+    if x.is_finite() {
+        return Ok(x);
+    }
+    Err(match constraint_of(plan, step) {
+        Some(c) => err(model, c, ErrorKind::InvalidValue, x),
+        None => SolveError::new("plan", String::new(), ErrorKind::InvalidValue, x),
+    })
 }
 
 fn bad_step(model: &Model, plan: &Plan, step: &crate::plan::Step) -> SolveError {

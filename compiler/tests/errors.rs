@@ -38,6 +38,15 @@ coincident(rocker.d, D);
     )
 }
 
+/// The lines of a solve's body, without the body's indent.
+fn dedent(code: &str) -> String {
+    let lines: Vec<&str> = code
+        .lines()
+        .map(|l| l.strip_prefix("    ").unwrap_or(l))
+        .collect();
+    lines.join("\n")
+}
+
 fn load(text: &str) -> Model {
     let (_, model, diags) = gcs_lang::load("test.gcs", text.as_bytes());
     assert!(diags.iter().all(|d| !d.is_error()), "{diags:?}\n{text}");
@@ -367,6 +376,83 @@ angle(X, crank.u) = 0.5;
         Ok(s) => panic!("an overflowing sketch solved: {:?}", s.points),
         Err(e) => assert_eq!(e.kind, ErrorKind::InvalidInput, "{e}"),
     }
+}
+
+/// A four-bar whose drive angle is a value the params give, not a param itself.
+const SCALED_DRIVE: &str = "space 2d;
+param theta = 0.5;
+fixed point A = (0, 0);
+fixed point D = (4, 0);
+fixed vector X = (1, 0);
+body crank   at (0, 0)   { point a = (0, 0); point b = (1.5, 0); vector u = (1, 0); }
+body coupler at (1.5, 0) { point b = (0, 0); point c = (4, 0); }
+body rocker  at (4, 0)   { point d = (0, 0); point c = (0, 3); }
+coincident(crank.a, A);
+drive: angle(X, crank.u) = theta * 1e300;
+coincident(crank.b, coupler.b);
+elbow: coincident(coupler.c, rocker.c);
+coincident(rocker.d, D);
+output coupler.c;
+";
+
+#[test]
+fn a_value_that_overflows_finite_params_is_invalid_naming_its_constraint() {
+    // `theta * 1e300` is finite for small `theta` and infinite for `theta = 1e10`: the drive
+    // cannot be met, and the solve says so rather than leaving the crank where it was.
+    let model = load(SCALED_DRIVE);
+    let a = analyse(&model).expect("analyse");
+    let mut params = model.default_params();
+    params[0] = 1e-300;
+    let s = gcs_compiler::solve(&model, &a, &params, &defaults(&a)).expect("a finite drive");
+    assert!(s.max_residual <= 1e-12, "{}", s.max_residual);
+    params[0] = 1e10;
+    let e = match gcs_compiler::solve(&model, &a, &params, &defaults(&a)) {
+        Ok(s) => panic!("an infinite drive angle solved: {:?}", s.points),
+        Err(e) => e,
+    };
+    assert_eq!(
+        (e.kind, e.label.as_ref(), e.magnitude),
+        (ErrorKind::InvalidValue, "drive", f64::INFINITY),
+        "{e}"
+    );
+    assert_eq!(
+        e.to_string(),
+        "constraint `drive` (angle(X, crank.u) = theta * 1e300) cannot be met: its value, inf, is not a finite number"
+    );
+}
+
+#[test]
+fn generated_code_checks_a_value_the_params_give_and_trusts_a_param() {
+    // The drive's value is checked where it is computed, once; the rotation onto its
+    // direction then needs no test of its own. A plain param needs neither.
+    let model = load(SCALED_DRIVE);
+    let a = analyse(&model).expect("analyse");
+    let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&model, &a));
+    let start = code.find("    // drive:").expect("the drive's step");
+    let end = start + code[start..].find("\n\n").expect("the step's end");
+    expect_test::expect![[r#"
+            // drive: angle(X, crank.u) = theta * 1e300 (test.gcs:10)
+            let value = params.theta * 1e300;
+            if !f64::is_finite(value) {
+                return Err(SolveError::new(
+                    "drive",
+                    "angle(X, crank.u) = theta * 1e300",
+                    ErrorKind::InvalidValue,
+                    value,
+                ));
+            }
+            let x_dir_turned = direction_at(value);
+            let turn = rotation_from_x_unit(&x_dir_turned);
+            crank.set_rotation(&turn);"#]]
+    .assert_eq(&dedent(&code[start..end]));
+    let plain = load(&SCALED_DRIVE.replace("theta * 1e300", "theta"));
+    let a = analyse(&plain).expect("analyse");
+    let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&plain, &a));
+    assert!(
+        code.contains("rotation_from_x_unit(&x_dir_turned)"),
+        "{code}"
+    );
+    assert!(!code.contains("InvalidValue"), "{code}");
 }
 
 #[test]

@@ -26,8 +26,12 @@ pub enum ErrorKind {
     Degenerate,
     /// An outer iteration did not converge: the magnitude is the residual it reached.
     NoConvergence,
-    /// An input is invalid, such as a NaN or infinite parameter: the magnitude is the value.
+    /// An input is invalid, such as a NaN or infinite parameter, or a sketch the params make
+    /// non-finite: the magnitude is the value.
     InvalidInput,
+    /// A constraint's value, computed from finite params, cannot be used: an angle or distance
+    /// that is not finite (`theta * 1e300`), or a negative size. The magnitude is the value.
+    InvalidValue,
     /// The loci meet, but not in the chosen branch: the magnitude is how many real roots the
     /// intersection has. The solver never takes another branch instead.
     NoSuchBranch,
@@ -36,7 +40,8 @@ pub enum ErrorKind {
 /// The failure of a solve, naming the user's constraint.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolveError {
-    /// The constraint's label (or, for [`ErrorKind::InvalidInput`], the parameter's name).
+    /// The constraint's label (for [`ErrorKind::InvalidInput`], the parameter's or the
+    /// geom's name).
     pub label: Cow<'static, str>,
     /// The constraint's source text, e.g. `coincident(coupler.c, rocker.c)`; may be empty.
     pub text: Cow<'static, str>,
@@ -97,11 +102,20 @@ impl fmt::Display for SolveError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let m = self.magnitude;
         if self.kind == ErrorKind::InvalidInput {
-            write!(f, "parameter `{}`", self.label)?;
-            if !self.text.is_empty() {
-                write!(f, " ({})", self.text)?;
-            }
-            return write!(f, " is invalid: {m} is not a finite number");
+            // A parameter has no text; a geom's sketch says what is wrong with it.
+            return if self.text.is_empty() {
+                write!(
+                    f,
+                    "parameter `{}` is invalid: {m} is not a finite number",
+                    self.label
+                )
+            } else {
+                write!(
+                    f,
+                    "the sketch of `{}` is invalid: {}",
+                    self.label, self.text
+                )
+            };
         }
         write!(f, "constraint `{}`", self.label)?;
         if !self.text.is_empty() {
@@ -121,7 +135,13 @@ impl fmt::Display for SolveError {
             ErrorKind::NoConvergence => {
                 write!(f, " cannot be met: the iteration did not converge, residual {m}")
             }
-                        ErrorKind::InvalidInput => Ok(()),
+                        ErrorKind::InvalidValue if m.is_finite() => {
+                write!(f, " cannot be met: its value, {m}, is a negative size")
+            }
+            ErrorKind::InvalidValue => {
+                write!(f, " cannot be met: its value, {m}, is not a finite number")
+            }
+            ErrorKind::InvalidInput => Ok(()),
             ErrorKind::NoSuchBranch => write!(
                 f,
                 " cannot be met on the chosen branch: the loci meet in only {m} real point(s) here"
@@ -292,6 +312,35 @@ mod tests {
         }
         let err: Box<dyn std::error::Error> = Box::new(e);
         assert!(err.to_string().contains("elbow"));
+    }
+
+    #[test]
+    fn invalid_values_and_sketches_say_what_is_wrong() {
+        let angle = SolveError::new(
+            "drive",
+            "angle(X, u) = t * 1e300",
+            ErrorKind::InvalidValue,
+            f64::INFINITY,
+        );
+        assert_eq!(
+            angle.to_string(),
+            "constraint `drive` (angle(X, u) = t * 1e300) cannot be met: its value, inf, is not a finite number"
+        );
+        let size = SolveError::new("height", "length(left) = h", ErrorKind::InvalidValue, -1.0);
+        assert_eq!(
+            size.to_string(),
+            "constraint `height` (length(left) = h) cannot be met: its value, -1, is a negative size"
+        );
+        let sketch = SolveError::new(
+            "crank",
+            "its placement is not finite",
+            ErrorKind::InvalidInput,
+            f64::NAN,
+        );
+        assert_eq!(
+            sketch.to_string(),
+            "the sketch of `crank` is invalid: its placement is not finite"
+        );
     }
 
     #[test]

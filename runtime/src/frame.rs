@@ -727,12 +727,25 @@ pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64>
 #[inline]
 pub fn rotation_on_circle(a: &Vector2<f64>, b: &Vector2<f64>, radius: f64) -> UnitComplex<f64> {
     let inv = 1.0 / (radius * radius);
-    let (c1, s1) = (a.dot(b) * inv, (a.x * b.y - a.y * b.x) * inv);
-    let n1 = c1 * c1 + s1 * s1;
-    // The test also fails for a NaN, an infinite or a zero radius.
-    if (n1 - 1.0).abs() < 1e-8 {
-        let k = 1.5 - 0.5 * n1;
-        return UnitComplex::from_cos_sin_unchecked(c1 * k, s1 * k);
+    rotation_on_circle_from(a.dot(b) * inv, (a.x * b.y - a.y * b.x) * inv, a, b)
+}
+
+/// [`rotation_on_circle`] from its cosine and sine as the caller computed them,
+/// `(a . b, a x b) / radius²`: generated code that knows the arm `a` as constants writes them
+/// with constant coefficients, and no product by a zero coordinate. They are made unit by one
+/// Newton step when they are within 1e-8 of it (also false for NaN); otherwise the lengths
+/// disagree with the radius, and the rotation is [`rotation_between2`] of `a` and `b`.
+#[inline]
+pub fn rotation_on_circle_from(
+    c: f64,
+    s: f64,
+    a: &Vector2<f64>,
+    b: &Vector2<f64>,
+) -> UnitComplex<f64> {
+    let n = c * c + s * s;
+    if (n - 1.0).abs() < 1e-8 {
+        let k = 1.5 - 0.5 * n;
+        return UnitComplex::from_cos_sin_unchecked(c * k, s * k);
     }
     rotation_between2(a, b)
 }
@@ -746,6 +759,14 @@ pub fn rotation_from_x(b: &Vector2<f64>) -> UnitComplex<f64> {
     } else {
         UnitComplex::identity()
     }
+}
+
+/// The rotation that turns the x axis onto `b`, a unit vector known to be finite (such as
+/// [`direction_at`] of a finite angle): `b` itself read as a rotation, with no test. For a
+/// direction that may not be finite, [`rotation_from_x`].
+#[inline]
+pub fn rotation_from_x_unit(b: &Vector2<f64>) -> UnitComplex<f64> {
+    UnitComplex::from_cos_sin_unchecked(b.x, b.y)
 }
 
 /// The unit vector at `angle` radians counter-clockwise from the x axis: the x axis turned

@@ -11,8 +11,8 @@ use gcs_runtime::check;
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
-    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
-    Frame2,
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
+    rotation_on_circle, rotation_on_circle_from, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -276,7 +276,7 @@ pub fn solve(
         return Err(SolveError::new(
             "tangent_C_G",
             "tangent(C, G)",
-            ErrorKind::InvalidInput,
+            ErrorKind::InvalidValue,
             radius,
         ));
     }

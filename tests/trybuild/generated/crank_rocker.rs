@@ -11,8 +11,8 @@ use gcs_runtime::check;
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
-    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
-    Frame2,
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
+    rotation_on_circle, rotation_on_circle_from, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -201,7 +201,7 @@ pub fn solve(
 
     // drive: angle(X, crank.u) = theta (crank_rocker.gcs:16)
     let x_dir_turned = direction_at(params.theta);
-    let turn = rotation_from_x(&x_dir_turned);
+    let turn = rotation_from_x_unit(&x_dir_turned);
     crank.set_rotation(&turn);
 
     // coincident(crank.b, coupler.b) (crank_rocker.gcs:17)

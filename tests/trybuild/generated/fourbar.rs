@@ -11,8 +11,8 @@ use gcs_runtime::check;
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
-    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
-    Frame2,
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
+    rotation_on_circle, rotation_on_circle_from, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -205,7 +205,7 @@ pub fn solve(
 
     // drive: angle(X, crank.u) = theta (fourbar.gcs:16)
     let x_dir_turned = direction_at(params.theta);
-    let turn = rotation_from_x(&x_dir_turned);
+    let turn = rotation_from_x_unit(&x_dir_turned);
     crank.set_rotation(&turn);
 
     // coincident(crank.b, coupler.b) (fourbar.gcs:17)
@@ -239,7 +239,13 @@ pub fn solve(
                 2.0,
             )
         })?;
-    let turn_2 = rotation_on_circle(&(coupler_c - crank_b), &(elbow - crank_b), 4.0);
+    let elbow_reach = elbow - crank_b;
+    let turn_2 = rotation_on_circle_from(
+        elbow_reach.x * 0.25,
+        elbow_reach.y * 0.25,
+        &(coupler_c - crank_b),
+        &elbow_reach,
+    );
     coupler.set_rotation(&turn_2);
 
     Ok(Solution {

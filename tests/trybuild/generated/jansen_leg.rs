@@ -11,8 +11,8 @@ use gcs_runtime::check;
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
-    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
-    Frame2,
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
+    rotation_on_circle, rotation_on_circle_from, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -264,7 +264,7 @@ pub fn solve(
 
     // drive: angle(X, crank.u) = theta (jansen_leg.gcs:20)
     let x_dir_turned = direction_at(params.theta);
-    let turn = rotation_from_x(&x_dir_turned);
+    let turn = rotation_from_x_unit(&x_dir_turned);
     crank.set_rotation(&turn);
 
     // distance(crank.tip, lower) = 61.9 (jansen_leg.gcs:23)

@@ -11,8 +11,8 @@ use gcs_runtime::check;
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
-    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
-    Frame2,
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
+    rotation_on_circle, rotation_on_circle_from, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -303,33 +303,33 @@ pub fn solve(
     );
 
     // height: length(left) = h (sketch_profile.gcs:29)
-    if !f64::is_finite(params.h) || params.h < 0.0 {
+    if params.h < 0.0 {
         return Err(SolveError::new(
             "height",
             "length(left) = h",
-            ErrorKind::InvalidInput,
+            ErrorKind::InvalidValue,
             params.h,
         ));
     }
     let left_length = params.h;
 
     // radius(fillet) = r (sketch_profile.gcs:30)
-    if !f64::is_finite(params.r) || params.r < 0.0 {
+    if params.r < 0.0 {
         return Err(SolveError::new(
             "radius_fillet",
             "radius(fillet) = r",
-            ErrorKind::InvalidInput,
+            ErrorKind::InvalidValue,
             params.r,
         ));
     }
     let fillet_radius = params.r;
 
     // width: length(bottom) = w (sketch_profile.gcs:28)
-    if !f64::is_finite(params.w) || params.w < 0.0 {
+    if params.w < 0.0 {
         return Err(SolveError::new(
             "width",
             "length(bottom) = w",
-            ErrorKind::InvalidInput,
+            ErrorKind::InvalidValue,
             params.w,
         ));
     }
@@ -469,7 +469,7 @@ pub fn solve(
         return Err(SolveError::new(
             "on_right_end_fillet",
             "on(right.end, fillet)",
-            ErrorKind::InvalidInput,
+            ErrorKind::InvalidValue,
             length,
         ));
     }
@@ -528,7 +528,7 @@ pub fn solve(
         return Err(SolveError::new(
             "on_top_start_fillet",
             "on(top.start, fillet)",
-            ErrorKind::InvalidInput,
+            ErrorKind::InvalidValue,
             length_2,
         ));
     }

@@ -11,8 +11,8 @@ use gcs_runtime::check;
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
-    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
-    Frame2,
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
+    rotation_on_circle, rotation_on_circle_from, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -247,7 +247,7 @@ pub fn solve(
 
     // drive: offset_x(ground.o, crank.o) = phi (slider_crank_2d.gcs:15)
     let ground_o_x_dir_turned = direction_at(params.phi);
-    let turn = rotation_from_x(&ground_o_x_dir_turned);
+    let turn = rotation_from_x_unit(&ground_o_x_dir_turned);
     crank.set_rotation(&turn);
 
     // prismatic(slider.s, ground.rail) (slider_crank_2d.gcs:18)

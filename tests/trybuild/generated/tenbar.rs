@@ -11,8 +11,8 @@ use gcs_runtime::check;
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
-    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_on_circle,
-    Frame2,
+    direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
+    rotation_on_circle, rotation_on_circle_from, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -531,10 +531,14 @@ pub fn solve(
                     2.0,
                 )
             })?;
-    let turn_4 = rotation_on_circle(
+    let coincident_link8_b_link9_a_reach = coincident_link8_b_link9_a - Point2::new(7.0, 3.8);
+    let turn_4 = rotation_on_circle_from(
+        coincident_link8_b_link9_a_reach.x * -0.22624434389140263
+            + coincident_link8_b_link9_a_reach.y * 0.6334841628959276,
+        coincident_link8_b_link9_a_reach.y * -0.22624434389140263
+            + coincident_link8_b_link9_a_reach.x * -0.6334841628959276,
         &(Point2::new(6.5, 5.2) - Point2::new(7.0, 3.8)),
-        &(coincident_link8_b_link9_a - Point2::new(7.0, 3.8)),
-        1.4866068747318508,
+        &coincident_link8_b_link9_a_reach,
     );
     link8.rotate_about_by(&Point2::new(7.0, 3.8), &turn_4);
     let turn_5 = rotation_on_circle(
@@ -649,10 +653,12 @@ pub fn solve(
     link8.rotate_about_by(&crank_tip, &turn_8);
     link9.rotate_about_by(&crank_tip, &turn_8);
     link5.rotate_about_by(&crank_tip, &turn_8);
-    let turn_9 = rotation_on_circle(
+    let close_reach = close - Point2::new(6.0, 0.0);
+    let turn_9 = rotation_on_circle_from(
+        close_reach.x * 0.10810810810810809 + close_reach.y * 0.35135135135135137,
+        close_reach.y * 0.10810810810810809 + close_reach.x * -0.35135135135135137,
         &(Point2::new(6.8, 2.6) - Point2::new(6.0, 0.0)),
-        &(close - Point2::new(6.0, 0.0)),
-        2.7202941017470885,
+        &close_reach,
     );
     link6.rotate_about_by(&Point2::new(6.0, 0.0), &turn_9);
 
