@@ -732,9 +732,13 @@ pub fn rotation_on_circle(a: &Vector2<f64>, b: &Vector2<f64>, radius: f64) -> Un
 
 /// [`rotation_on_circle`] from its cosine and sine as the caller computed them,
 /// `(a . b, a x b) / radius²`: generated code that knows the arm `a` as constants writes them
-/// with constant coefficients, and no product by a zero coordinate. They are made unit by one
-/// Newton step when they are within 1e-8 of it (also false for NaN); otherwise the lengths
-/// disagree with the radius, and the rotation is [`rotation_between2`] of `a` and `b`.
+/// with constant coefficients, and no product by a zero coordinate.
+///
+/// - Unit to rounding (`|c² + s² - 1|` at most 4 ulps), as they are when `b` lies on
+///   the circle: they are the rotation as they are, with nothing on the solve's critical path.
+/// - Within 1e-8 of unit: one Newton step makes them unit.
+/// - Otherwise (and for NaN) the lengths disagree with the radius, and the rotation is
+///   [`rotation_between2`] of `a` and `b`.
 #[inline]
 pub fn rotation_on_circle_from(
     c: f64,
@@ -743,7 +747,11 @@ pub fn rotation_on_circle_from(
     b: &Vector2<f64>,
 ) -> UnitComplex<f64> {
     let n = c * c + s * s;
-    if (n - 1.0).abs() < 1e-8 {
+    let off = (n - 1.0).abs();
+    if off <= 4.0 * f64::EPSILON {
+        return UnitComplex::from_cos_sin_unchecked(c, s);
+    }
+    if off < 1e-8 {
         let k = 1.5 - 0.5 * n;
         return UnitComplex::from_cos_sin_unchecked(c * k, s * k);
     }
