@@ -336,13 +336,15 @@ impl Chord {
 #[inline(always)]
 pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let (r1, r2) = (a.radius(), b.radius());
+    // The radii first, then the second centre: in a plan they are the values most often
+    // constant, and a maximum taken in order folds its constant prefix at compile time.
     let s = tol::scale(&[
-        a.center().x,
-        a.center().y,
-        b.center().x,
-        b.center().y,
         r1,
         r2,
+        b.center().x,
+        b.center().y,
+        a.center().x,
+        a.center().y,
     ]);
     if r1 <= tol::LENGTH_REL * s || r2 <= tol::LENGTH_REL * s {
         return Err(Contact::ZeroRadius);
