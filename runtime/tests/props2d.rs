@@ -28,6 +28,20 @@ fn u() -> impl Strategy<Value = f64> {
     -1.0f64..1.0
 }
 
+/// `cases` cases (`PROPTEST_CASES` overrides them). The branch-stability tests keep only
+/// crossing inputs, about half of them: the bound on rejections grows with the cases, so that
+/// a long run (`PROPTEST_CASES=50000`) tests rather than aborts.
+fn config(cases: u32) -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(cases);
+    ProptestConfig {
+        max_global_rejects: 4 * cases,
+        ..ProptestConfig::with_cases(cases)
+    }
+}
+
 /// An offset magnitude from 1e-15 to 1e-6 (log-uniform), with a sign.
 fn tiny() -> impl Strategy<Value = f64> {
     (-15.0f64..-6.0, any::<bool>())
@@ -73,7 +87,7 @@ fn circle_at(s: f64, x: f64, y: f64, r: f64) -> Circle {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(config(512))]
 
     #[test]
     fn circle_circle_roots_on_both(s in scale(), x1 in u(), y1 in u(), r1 in 0.05f64..1.0,
@@ -274,7 +288,7 @@ fn conic_strategy() -> impl Strategy<Value = (u8, f64, f64, f64, f64, f64)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(config(256))]
 
     #[test]
     fn line_conic_roots_on_both(s in scale(), (kind, a, b, c, d, e) in conic_strategy(),
@@ -361,7 +375,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(config(512))]
 
     /// The rotation between two vectors turns the first onto the direction of the second and is
     /// unit to rounding, whether their lengths are equal to rounding (the plan's case, taken
