@@ -54,6 +54,9 @@ fn tiny() -> impl Strategy<Value = f64> {
 fn perp_to(n: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
     let w = v - n * n.dot(v);
     if w.norm() > 1e-3 {
+        // Once more: one projection leaves a component along `n` of rounding times |v| / |w|,
+        // up to 1000 times rounding here, enough to take a circle "through" a point off it.
+        let w = w - n * n.dot(&w);
         w.normalize()
     } else {
         perpendicular(n).normalize()
