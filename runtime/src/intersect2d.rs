@@ -359,7 +359,8 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     // One division, shared by the direction, the distance along it and the half chord.
     let inv_d = 1.0 / d;
     if !(outer < 0.0 && inner < 0.0 && d > tol::LENGTH_REL * s) {
-        return touching(a, b, d, dv * inv_d, s);
+        let (c, u) = (a.center(), dv * inv_d);
+        return touching([c.x, c.y, r1, r2, d, u.x, u.y, s]);
     }
     // Plainly crossing, and the centres apart. The distance along the line of centres from
     // the first, and the half chord by Heron's formula, whose factors are each a sum or
@@ -380,11 +381,15 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
 }
 
 /// The cases of [`circle_circle_chord`] where two circles do not plainly cross: coincident,
-/// touching (within [`tol::TANGENT_REL`]) or apart. `u` is the unit vector between the
-/// centres (not finite when they coincide).
+/// touching (within [`tol::TANGENT_REL`]) or apart. From the first circle's centre and
+/// radius, the second's radius, the distance `d` between the centres, the unit vector `u`
+/// from the first to the second (not finite when they coincide) and the scale `s`.
+///
+/// Plain numbers rather than the circles: eight floats travel in registers, where a circle by
+/// reference had the caller store both circles on its hot path for this cold call.
 #[cold]
-fn touching(a: &Circle, b: &Circle, d: f64, u: V2, s: f64) -> Result<Chord, Contact> {
-    let (r1, r2) = (a.radius(), b.radius());
+fn touching([cx, cy, r1, r2, d, ux, uy, s]: [f64; 8]) -> Result<Chord, Contact> {
+    let u = V2::new(ux, uy);
     if d <= tol::LENGTH_REL * s && (r1 - r2).abs() <= tol::LENGTH_REL * s {
         return Err(Contact::Coincident);
     }
@@ -406,7 +411,7 @@ fn touching(a: &Circle, b: &Circle, d: f64, u: V2, s: f64) -> Result<Chord, Cont
         } else {
             -0.5 * (r1 + (r2 - d))
         };
-        let x = a.center() + u * along;
+        let x = P2::new(cx, cy) + u * along;
         if !finite(x) {
             return Err(Contact::Disjoint { gap: f64::INFINITY });
         }
