@@ -1,7 +1,11 @@
 //! Generated solvers against the interpreter on every example, and the four-bar against a
 //! closed-form solve written by hand, in one run. `cargo bench -p gcs-examples --bench solvers`.
+//!
+//! After criterion's groups, the four-bar's two solves are also timed interleaved (see
+//! [`four_bar_interleaved`]): criterion times one after the other, and on a shared machine a
+//! slow spell that falls on one of them moves their ratio by half.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, Criterion};
 use gcs_examples as ex;
 use std::hint::black_box;
 
@@ -122,5 +126,81 @@ fn bench_examples(c: &mut Criterion) {
     );
 }
 
+/// The generated four-bar over the hand-written one, timed in alternating blocks so that both
+/// see the same machine: in each of 41 rounds, 100,000 solves by hand and 100,000 generated
+/// (in alternating order), the same crank angles on both sides. Prints the median ratio of the
+/// rounds, its quartiles, and each side's median time per solve.
+fn four_bar_interleaved() {
+    use std::time::Instant;
+    let thetas: Vec<f64> = (0..64).map(|i| i as f64 * 0.098).collect();
+    let (branches, defaults) = (
+        ex::fourbar::Branches::default(),
+        ex::fourbar::Defaults::default(),
+    );
+    let mut params = ex::fourbar::Params::default();
+    let n = 100_000;
+    let by_hand = || {
+        let t = Instant::now();
+        for k in 0..n {
+            black_box(four_bar_by_hand(black_box(thetas[k & 63])));
+        }
+        t.elapsed().as_secs_f64() / n as f64
+    };
+    let mut generated = || {
+        let t = Instant::now();
+        for k in 0..n {
+            params.theta = black_box(thetas[k & 63]);
+            let solution = ex::fourbar::solve(&params, &branches, &defaults);
+            black_box(solution.ok().map(|s| {
+                let c = s.coupler_c();
+                (c.x, c.y)
+            }));
+        }
+        t.elapsed().as_secs_f64() / n as f64
+    };
+    // Warm up both, then measure.
+    by_hand();
+    generated();
+    let (mut hand, mut gen, mut ratio) = (Vec::new(), Vec::new(), Vec::new());
+    for round in 0..41 {
+        let (h, g) = if round % 2 == 0 {
+            let h = by_hand();
+            (h, generated())
+        } else {
+            let g = generated();
+            (by_hand(), g)
+        };
+        hand.push(h);
+        gen.push(g);
+        ratio.push(g / h);
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let (h, g, r) = (median(&mut hand), median(&mut gen), median(&mut ratio));
+    println!(
+        "fourbar/interleaved     generated / by hand: {r:.2}x (quartiles {:.2}x-{:.2}x over 41 \
+         rounds); by hand {:.1} ns, generated {:.1} ns",
+        ratio[10],
+        ratio[30],
+        h * 1e9,
+        g * 1e9
+    );
+}
+
 criterion_group!(benches, bench_four_bar, bench_examples);
-criterion_main!(benches);
+
+fn main() {
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+    // Criterion's filter, if any (a word that is neither an option nor a number): the
+    // interleaved four-bar runs in a full run, and with a filter that names the four-bar.
+    let words: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-') && a.parse::<f64>().is_err())
+        .collect();
+    if words.is_empty() || words.iter().any(|w| w.contains("fourbar")) {
+        four_bar_interleaved();
+    }
+}
