@@ -389,9 +389,11 @@ proptest! {
         let b = (UnitComplex::new(turn) * a) * (1.0 + stretch);
         let r = rotation_between2(&a, &b);
         prop_assert!((r.re * r.re + r.im * r.im - 1.0).abs() <= 4.0 * f64::EPSILON);
+        // Unit to 4 ulps leaves the turned radius up to 2 eps long or short; turning and
+        // scaling it, and normalising `b`, round by up to 4 eps more.
         let turned = r * a / s;
         let want = b / b.norm();
-        prop_assert!((turned - want).norm() <= 4.0 * f64::EPSILON, "{} vs {}", turned, want);
+        prop_assert!((turned - want).norm() <= 6.0 * f64::EPSILON, "{} vs {}", turned, want);
     }
 
     #[test]
@@ -406,9 +408,11 @@ proptest! {
         let b = (UnitComplex::new(turn) * a) * (1.0 + stretch);
         let r = rotation_on_circle(&a, &b, s * (1.0 + radius_off));
         prop_assert!((r.re * r.re + r.im * r.im - 1.0).abs() <= 4.0 * f64::EPSILON);
+        // Unit to 4 ulps leaves the turned radius up to 2 eps long or short; turning and
+        // scaling it, and normalising `b`, round by up to 4 eps more.
         let turned = r * a / s;
         let want = b / b.norm();
-        prop_assert!((turned - want).norm() <= 4.0 * f64::EPSILON, "{} vs {}", turned, want);
+        prop_assert!((turned - want).norm() <= 6.0 * f64::EPSILON, "{} vs {}", turned, want);
         // The x axis turned by `angle`, and the rotation that does it.
         let d = direction_at(angle);
         prop_assert_eq!(d, UnitComplex::new(angle) * V2::x());
