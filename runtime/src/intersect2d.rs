@@ -367,9 +367,12 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     // difference of inputs (no cancellation near tangency).
     let u = dv * inv_d;
     let along = 0.5 * (d + (r1 - r2) * (r1 + r2) * inv_d);
-    // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last.
-    let area16 = (d + (r1 + r2)) * ((r1 + r2) - d) * (d + (r2 - r1)) * (d + (r1 - r2));
-    let h = area16.max(0.0).sqrt() * (0.5 * inv_d);
+    // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last. The crossing test
+    // above makes each factor positive as computed (`x - y` rounds to a positive number when
+    // `x > y`), so the product is never negative and needs no clamp before the square root;
+    // it is taken as two pairs, which the processor multiplies side by side.
+    let area16 = ((d + (r1 + r2)) * ((r1 + r2) - d)) * ((d + (r2 - r1)) * (d + (r1 - r2)));
+    let h = area16.sqrt() * (0.5 * inv_d);
     let chord = Chord {
         mid: a.center() + u * along,
         half: perp(u) * h,
