@@ -333,7 +333,7 @@ impl Chord {
 ///
 /// Two circles that cross, the common case, take one test before the roots: the tangency
 /// and degeneracy cases are sorted out only when the circles do not plainly cross.
-#[inline(always)]
+#[inline]
 pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let (r1, r2) = (a.radius(), b.radius());
     // The radii first, then the second centre: in a plan they are the values most often
