@@ -161,7 +161,7 @@ fn four_bar_interleaved() {
     // Warm up both, then measure.
     by_hand();
     generated();
-    let (mut hand, mut gen, mut ratio) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut hand_times, mut generated_times, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
     for round in 0..41 {
         let (h, g) = if round % 2 == 0 {
             let h = by_hand();
@@ -170,22 +170,23 @@ fn four_bar_interleaved() {
             let g = generated();
             (by_hand(), g)
         };
-        hand.push(h);
-        gen.push(g);
-        ratio.push(g / h);
+        hand_times.push(h);
+        generated_times.push(g);
+        ratios.push(g / h);
     }
-    let median = |v: &mut Vec<f64>| {
+    // The value at `at` (0 to 1) of the sorted times or ratios.
+    let quantile = |v: &mut Vec<f64>, at: f64| {
         v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
+        v[((v.len() - 1) as f64 * at).round() as usize]
     };
-    let (h, g, r) = (median(&mut hand), median(&mut gen), median(&mut ratio));
     println!(
-        "fourbar/interleaved     generated / by hand: {r:.2}x (quartiles {:.2}x-{:.2}x over 41 \
+        "fourbar/interleaved     generated / by hand: {:.2}x (quartiles {:.2}x-{:.2}x over 41 \
          rounds); by hand {:.1} ns, generated {:.1} ns",
-        ratio[10],
-        ratio[30],
-        h * 1e9,
-        g * 1e9
+        quantile(&mut ratios, 0.5),
+        quantile(&mut ratios, 0.25),
+        quantile(&mut ratios, 0.75),
+        quantile(&mut hand_times, 0.5) * 1e9,
+        quantile(&mut generated_times, 0.5) * 1e9
     );
 }
 
