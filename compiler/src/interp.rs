@@ -351,10 +351,7 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             Op::SetDim { geom, value } => {
                 let x = s(*value);
                 if !x.is_finite() || x < 0.0 {
-                    return Err(match constraint_of(plan, step) {
-                        Some(c) => err(model, c, ErrorKind::InvalidValue, x),
-                        None => SolveError::new("plan", String::new(), ErrorKind::InvalidValue, x),
-                    });
+                    return Err(step_error(model, plan, step, ErrorKind::InvalidValue, x));
                 }
                 config.dims.insert(*geom, x);
                 None
@@ -401,17 +398,25 @@ fn finite_value(
     if x.is_finite() {
         return Ok(x);
     }
-    Err(match constraint_of(plan, step) {
-        Some(c) => err(model, c, ErrorKind::InvalidValue, x),
-        None => SolveError::new("plan", String::new(), ErrorKind::InvalidValue, x),
-    })
+    Err(step_error(model, plan, step, ErrorKind::InvalidValue, x))
+}
+
+/// The error of the step's constraint, or of the plan when the step has none.
+fn step_error(
+    model: &Model,
+    plan: &Plan,
+    step: &crate::plan::Step,
+    kind: ErrorKind,
+    magnitude: f64,
+) -> SolveError {
+    match constraint_of(plan, step) {
+        Some(c) => err(model, c, kind, magnitude),
+        None => SolveError::new("plan", String::new(), kind, magnitude),
+    }
 }
 
 fn bad_step(model: &Model, plan: &Plan, step: &crate::plan::Step) -> SolveError {
-    match constraint_of(plan, step) {
-        Some(c) => err(model, c, ErrorKind::Degenerate, 0.0),
-        None => SolveError::new("plan", String::new(), ErrorKind::Degenerate, 0.0),
-    }
+    step_error(model, plan, step, ErrorKind::Degenerate, 0.0)
 }
 
 /// The largest coordinate or dimension of the given geoms in a configuration: what tolerances
