@@ -763,7 +763,7 @@ pub fn rotation_on_circle_from(
 #[inline]
 pub fn rotation_from_x(b: &Vector2<f64>) -> UnitComplex<f64> {
     if b.x.is_finite() && b.y.is_finite() && (b.x != 0.0 || b.y != 0.0) {
-        UnitComplex::from_cos_sin_unchecked(b.x, b.y)
+        rotation_from_x_unit(b)
     } else {
         UnitComplex::identity()
     }

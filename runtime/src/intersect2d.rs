@@ -358,14 +358,14 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let inner = (r1 - r2).abs() - d;
     // One division, shared by the direction, the distance along it and the half chord.
     let inv_d = 1.0 / d;
+    let u = dv * inv_d;
     if !(outer < 0.0 && inner < 0.0 && d > tol::LENGTH_REL * s) {
-        let (c, u) = (a.center(), dv * inv_d);
+        let c = a.center();
         return touching([c.x, c.y, r1, r2, d, u.x, u.y, s]);
     }
     // Plainly crossing, and the centres apart. The distance along the line of centres from
     // the first, and the half chord by Heron's formula, whose factors are each a sum or
     // difference of inputs (no cancellation near tangency).
-    let u = dv * inv_d;
     let along = 0.5 * (d + (r1 - r2) * (r1 + r2) * inv_d);
     // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last. The crossing test
     // above makes each factor positive as computed (`x - y` rounds to a positive number when
