@@ -29,7 +29,9 @@
 //!
 //! Non-finite input cannot be built (constructors of [`crate::locus2d`] refuse it); inputs so
 //! large that intermediate squares overflow (|coordinates| beyond about 1e150) give
-//! `Disjoint { gap: f64::INFINITY }` rather than NaN roots. Nothing here panics or allocates.
+//! `Disjoint { gap: f64::INFINITY }` rather than NaN roots, except in [`circle_circle`], which
+//! rescales by a power of two and solves circles at any finite scale (an infinite gap then
+//! means roots beyond `f64`). Nothing here panics or allocates.
 
 use crate::locus2d::{cross, perp, Circle, Conic, Focal, Line, Rational, Ray, P2, V2};
 use crate::poly;
@@ -331,77 +333,113 @@ impl Chord {
 /// Where two circles meet, as a [`Chord`], or the [`Contact`] that says why they do not: the
 /// cases and tolerances of [`circle_circle`], which is built on it.
 ///
-/// Two circles that cross, the common case, take one test before the roots: the tangency
-/// and degeneracy cases are sorted out only when the circles do not plainly cross.
+/// Two circles that cross, the common case, take one test before the roots: the scale, the
+/// radii, tangency and degeneracy are sorted out in a cold call only when the circles do not
+/// plainly cross. Circles whose scale lies outside [`CHORD_SCALES`] are solved scaled by a
+/// power of two, which is exact, so no step overflows or underflows at any finite scale.
 #[inline]
 pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
+    let (c1, c2) = (a.center(), b.center());
     let (r1, r2) = (a.radius(), b.radius());
-    // The radii first, then the second centre: in a plan they are the values most often
-    // constant, and a maximum taken in order folds its constant prefix at compile time.
-    let s = tol::scale(&[
-        r1,
-        r2,
-        b.center().x,
-        b.center().y,
-        a.center().x,
-        a.center().y,
-    ]);
-    if r1 <= tol::LENGTH_REL * s || r2 <= tol::LENGTH_REL * s {
-        return Err(Contact::ZeroRadius);
-    }
-    let dv = b.center() - a.center();
+    let s = chord_scale(c1, r1, c2, r2);
+    let dv = c2 - c1;
     let d = dv.norm();
-    if !d.is_finite() {
-        return Err(Contact::Disjoint { gap: f64::INFINITY });
-    }
     let outer = d - (r1 + r2);
     let inner = (r1 - r2).abs() - d;
     // One division, shared by the direction, the distance along it and the half chord.
     let inv_d = 1.0 / d;
-    let u = dv * inv_d;
-    if !(outer < 0.0 && inner < 0.0 && d > tol::LENGTH_REL * s) {
-        let c = a.center();
-        return touching([c.x, c.y, r1, r2, d, u.x, u.y, s]);
+    // Within `CHORD_SCALES` every value here is finite and Heron's product normal, so the
+    // roots need no test of their own. Out of it, the values above may be garbage: they are
+    // not used.
+    let plain = s >= *CHORD_SCALES.start()
+        && s <= *CHORD_SCALES.end()
+        && r1 > tol::LENGTH_REL * s
+        && r2 > tol::LENGTH_REL * s
+        && outer < 0.0
+        && inner < 0.0
+        && d > tol::LENGTH_REL * s;
+    if !plain {
+        return not_plainly_crossing([c1.x, c1.y, r1, c2.x, c2.y, r2]);
     }
-    // Plainly crossing, and the centres apart. The distance along the line of centres from
-    // the first, and the half chord by Heron's formula, whose factors are each a sum or
-    // difference of inputs (no cancellation near tangency).
-    let along = 0.5 * (d + (r1 - r2) * (r1 + r2) * inv_d);
-    // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last. The crossing test
-    // above makes each factor positive as computed (`x - y` rounds to a positive number when
-    // `x > y`), so the product is never negative and needs no clamp before the square root;
-    // it is taken as two pairs, which the processor multiplies side by side.
-    let area16 = ((d + (r1 + r2)) * ((r1 + r2) - d)) * ((d + (r2 - r1)) * (d + (r1 - r2)));
-    let h = area16.sqrt() * (0.5 * inv_d);
-    let chord = Chord {
-        mid: a.center() + u * along,
-        half: perp(u) * h,
-    };
-    if !finite(chord.left()) || !finite(chord.right()) {
-        return Err(Contact::Disjoint { gap: f64::INFINITY });
-    }
-    Ok(chord)
+    Ok(crossing(c1, r1, r2, d, dv * inv_d, inv_d))
 }
 
-/// The cases of [`circle_circle_chord`] where two circles do not plainly cross: coincident,
-/// touching (within [`tol::TANGENT_REL`]) or apart. From the first circle's centre and
-/// radius, the second's radius, the distance `d` between the centres, the unit vector `u`
-/// from the first to the second (not finite when they coincide) and the scale `s`.
+/// The scale of two circles: their largest coordinate or radius. The radii first, then the
+/// second centre: in a plan they are the values most often constant, and a maximum taken in
+/// order folds its constant prefix at compile time.
+#[inline(always)]
+fn chord_scale(c1: P2, r1: f64, c2: P2, r2: f64) -> f64 {
+    tol::scale(&[r1, r2, c2.x, c2.y, c1.x, c1.y])
+}
+
+/// The chord of two circles that plainly cross (radii above [`tol::LENGTH_REL`] of the scale,
+/// apart by `d` with `|r1 - r2| < d < r1 + r2`, at a scale in [`CHORD_SCALES`]), from the first
+/// centre, the radii, `d`, the unit vector `u` from the first centre to the second and `1/d`.
+#[inline(always)]
+fn crossing(c1: P2, r1: f64, r2: f64, d: f64, u: V2, inv_d: f64) -> Chord {
+    // The distance along the line of centres from the first, and the half chord by Heron's
+    // formula, whose factors are each a sum or difference of inputs (no cancellation near
+    // tangency).
+    let along = 0.5 * (d + (r1 - r2) * (r1 + r2) * inv_d);
+    // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last. Crossing makes each
+    // factor positive as computed (`x - y` rounds to a positive number when `x > y`), so the
+    // product is never negative and needs no clamp before the square root; it is taken as two
+    // pairs, which the processor multiplies side by side.
+    let area16 = ((d + (r1 + r2)) * ((r1 + r2) - d)) * ((d + (r2 - r1)) * (d + (r1 - r2)));
+    let h = area16.sqrt() * (0.5 * inv_d);
+    Chord {
+        mid: c1 + u * along,
+        half: perp(u) * h,
+    }
+}
+
+/// The scales (largest coordinate or radius) at which [`circle_circle_chord`] computes
+/// directly, `2^-150` to `2^150` (about 7e-46 to 1.4e45). With `s` the scale, every centre and
+/// radius is at most `s` and the distance of the centres at most `3s`; for crossing circles
+/// `|along| < r1`, so each root lies within `3s` of the origin, finite. Heron's four factors
+/// are each at most `5s`, and for crossing circles whose radii exceed [`tol::LENGTH_REL`]` * s`
+/// at most one of the last three is below `2^-46 s` (each pair sums to twice a radius or the
+/// distance), and none below the rounding of such a length, about `2^-100 s`: the product
+/// lies between `2^-240 s^4` and `625 s^4`, a normal number.
+pub const CHORD_SCALES: std::ops::RangeInclusive<f64> = {
+    // 2^-150 and 2^150, built from their exponents.
+    let lo = f64::from_bits((1023 - 150) << 52);
+    let hi = f64::from_bits((1023 + 150) << 52);
+    lo..=hi
+};
+
+/// The cases of [`circle_circle_chord`] where two circles, given as their centres and radii,
+/// do not plainly cross: a scale outside [`CHORD_SCALES`], a zero radius, coincident,
+/// touching (within [`tol::TANGENT_REL`]) or apart.
 ///
-/// Plain numbers rather than the circles: eight floats travel in registers, where a circle by
+/// Plain numbers rather than the circles: six floats travel in registers, where a circle by
 /// reference had the caller store both circles on its hot path for this cold call.
 #[cold]
-fn touching([cx, cy, r1, r2, d, ux, uy, s]: [f64; 8]) -> Result<Chord, Contact> {
-    let u = V2::new(ux, uy);
+fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Contact> {
+    let (c1, c2) = (P2::new(x1, y1), P2::new(x2, y2));
+    let s = chord_scale(c1, r1, c2, r2);
+    if !(s >= *CHORD_SCALES.start() && s <= *CHORD_SCALES.end()) {
+        return rescaled([x1, y1, r1, x2, y2, r2], s);
+    }
+    if r1 <= tol::LENGTH_REL * s || r2 <= tol::LENGTH_REL * s {
+        return Err(Contact::ZeroRadius);
+    }
+    let dv = c2 - c1;
+    let d = dv.norm();
+    let u = dv / d;
+    let outer = d - (r1 + r2);
+    let inner = (r1 - r2).abs() - d;
+    if outer < 0.0 && inner < 0.0 && d > tol::LENGTH_REL * s {
+        // Not reached: the caller computed the same values and found them crossing.
+        return Ok(crossing(c1, r1, r2, d, u, 1.0 / d));
+    }
     if d <= tol::LENGTH_REL * s && (r1 - r2).abs() <= tol::LENGTH_REL * s {
         return Err(Contact::Coincident);
     }
-    let outer = d - (r1 + r2);
-    let inner = (r1 - r2).abs() - d;
     let tangent = tol::TANGENT_REL * s;
     let u = if d > 0.0 { u } else { V2::x() };
     // Missing by rounding (at most `tangent`): the touching point. Overlapping loci, however
-    // little, cross, and their two roots are computed exactly by the caller.
+    // little, cross, and their two roots are computed exactly.
     let external = (0.0..=tangent).contains(&outer);
     let internal = (0.0..=tangent).contains(&inner) && d > tol::LENGTH_REL * s;
     if external || internal {
@@ -414,18 +452,53 @@ fn touching([cx, cy, r1, r2, d, ux, uy, s]: [f64; 8]) -> Result<Chord, Contact> 
         } else {
             -0.5 * (r1 + (r2 - d))
         };
-        let x = P2::new(cx, cy) + u * along;
-        if !finite(x) {
-            return Err(Contact::Disjoint { gap: f64::INFINITY });
-        }
         return Ok(Chord {
-            mid: x,
+            mid: c1 + u * along,
             half: V2::zeros(),
         });
     }
     Err(Contact::Disjoint {
         gap: if outer > 0.0 { outer } else { inner },
     })
+}
+
+/// [`circle_circle_chord`] of circles at scale `s` outside [`CHORD_SCALES`], given as their
+/// centres and radii: the same circles scaled by a power of two (exact) to a scale in `[1, 2)`,
+/// solved, and the chord scaled back. A chord too large for `f64` on the way back is
+/// [`Contact::Disjoint`] with an infinite gap.
+fn rescaled([x1, y1, r1, x2, y2, r2]: [f64; 6], s: f64) -> Result<Chord, Contact> {
+    // `s` is at least 1e-300, a normal number: its exponent field is its binary exponent.
+    let exponent = ((s.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // Two factors, each a normal power of two, for exponents up to 1023 either way.
+    let (down, up) = (pow2(-(exponent / 2)), pow2(-(exponent - exponent / 2)));
+    let shrink = |x: f64, y: f64, r: f64| Circle::new(P2::new(x, y) * down * up, r * down * up);
+    let (Some(a), Some(b)) = (shrink(x1, y1, r1), shrink(x2, y2, r2)) else {
+        // Unreachable: scaling finite values down by a power of two keeps them finite.
+        return Err(Contact::Disjoint { gap: f64::INFINITY });
+    };
+    let (back_down, back_up) = (pow2(exponent / 2), pow2(exponent - exponent / 2));
+    match circle_circle_chord(&a, &b) {
+        Ok(chord) => {
+            let chord = Chord {
+                mid: chord.mid * back_down * back_up,
+                half: chord.half * back_down * back_up,
+            };
+            if finite(chord.left()) && finite(chord.right()) {
+                Ok(chord)
+            } else {
+                Err(Contact::Disjoint { gap: f64::INFINITY })
+            }
+        }
+        Err(Contact::Disjoint { gap }) => Err(Contact::Disjoint {
+            gap: gap * back_down * back_up,
+        }),
+        Err(contact) => Err(contact),
+    }
+}
+
+/// `2^e` for `e` in `-1022..=1023`.
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
 }
 
 /// The implicit function of a curve, its gradient, and its residual; for 2d Newton polishing.
@@ -977,6 +1050,11 @@ mod tests {
     fn close(a: P2, b: P2, tol: f64) -> bool {
         (a - b).norm() <= tol
     }
+    /// Whether `a` is within 4e-16 of `b` relative to `scale`, at any scale: the difference
+    /// is scaled before it is squared, which neither overflows nor underflows.
+    fn close_at(a: P2, b: P2, scale: f64) -> bool {
+        ((a - b) / scale).norm() <= 4e-16
+    }
 
     #[test]
     fn line_line_cases() {
@@ -1105,6 +1183,54 @@ mod tests {
         assert!(a <= tol && b <= tol, "{x} residuals {a:e} {b:e}");
     }
 
+    /// The same crossing, tangent and disjoint circles at every scale a double holds: the
+    /// direct computation inside `CHORD_SCALES` and the rescaled one outside give the same
+    /// roots, scaled, to rounding. Heron's product overflows past about 1e76 and underflows
+    /// below 1e-77, where an unscaled computation would miss or snap the roots.
+    #[test]
+    fn circle_circle_at_every_scale() {
+        // Powers of two from 1e-300 to 1e300, across both edges of `CHORD_SCALES`, so that
+        // the inputs are exact at every scale.
+        for e in [
+            -996, -664, -266, -154, -152, -150, -133, -20, 0, 20, 133, 146, 148, 150, 266, 664, 996,
+        ] {
+            let k = 2f64.powi(e);
+            let i = circle_circle(&circle(0.0, 0.0, 5.0 * k), &circle(8.0 * k, 0.0, 5.0 * k));
+            assert_eq!(i.contact, Contact::Crossing, "scale {k:e}");
+            assert!(
+                close_at(i.branch(0).unwrap(), p(4.0 * k, 3.0 * k), k),
+                "scale {k:e}"
+            );
+            assert!(
+                close_at(i.branch(1).unwrap(), p(4.0 * k, -3.0 * k), k),
+                "scale {k:e}"
+            );
+            let i = circle_circle(&circle(0.0, 0.0, 5.0 * k), &circle(10.0 * k, 0.0, 5.0 * k));
+            assert_eq!(i.contact, Contact::Tangent, "scale {k:e}");
+            assert!(
+                close_at(i.branch(0).unwrap(), p(5.0 * k, 0.0), k),
+                "scale {k:e}"
+            );
+            let i = circle_circle(&circle(0.0, 0.0, 5.0 * k), &circle(12.0 * k, 0.0, 5.0 * k));
+            let Contact::Disjoint { gap } = i.contact else {
+                panic!("scale {k:e}: {:?}", i.contact);
+            };
+            assert!((gap / k - 2.0).abs() <= 4e-16, "scale {k:e}: gap {gap:e}");
+        }
+        // A root beyond the largest double (near x = 1.198 MAX): no roots, an infinite gap,
+        // never a NaN.
+        let m = f64::MAX;
+        let i = circle_circle(
+            &circle(0.6 * m, 0.0, 0.6 * m),
+            &circle(0.6 * m, 0.1 * m, 0.6 * m),
+        );
+        assert_eq!(i.contact, Contact::Disjoint { gap: f64::INFINITY });
+        // Circles as large as a double holds, whose roots are doubles, are solved.
+        let i = circle_circle(&circle(0.0, 0.0, m), &circle(m, 0.0, m));
+        assert_eq!(i.contact, Contact::Crossing);
+        let top = p(0.5 * m, m * 0.75f64.sqrt());
+        assert!(close_at(i.branch(0).unwrap(), top, m));
+    }
     #[test]
     fn line_conic_cases() {
         // Parabola y = x²/4 (focus (0,1), directrix y = -1).
