@@ -1619,7 +1619,7 @@ impl<'a> Gen<'a> {
             return;
         }
         let v = self.r(reg);
-        w.open(&format!("if !f64::is_finite({v}) {{"));
+        w.open(&format!("if !gcs_runtime::num::is_finite({v}) {{"));
         w.line(&format!(
             "return Err({});",
             self.error(i, "InvalidValue", &v)
@@ -2176,7 +2176,7 @@ impl<'a> Gen<'a> {
                     let test = if self.finite.contains(value) {
                         format!("if {v} < 0.0 {{")
                     } else {
-                        format!("if !f64::is_finite({v}) || {v} < 0.0 {{")
+                        format!("if !gcs_runtime::num::is_finite({v}) || {v} < 0.0 {{")
                     };
                     w.open(&test);
                     w.line(&format!(

@@ -431,19 +431,19 @@ fn generated_code_checks_a_value_the_params_give_and_trusts_a_param() {
     let start = code.find("    // drive:").expect("the drive's step");
     let end = start + code[start..].find("\n\n").expect("the step's end");
     expect_test::expect![[r#"
-            // drive: angle(X, crank.u) = theta * 1e300 (test.gcs:10)
-            let value = params.theta * 1e300;
-            if !f64::is_finite(value) {
-                return Err(SolveError::new(
-                    "drive",
-                    "angle(X, crank.u) = theta * 1e300",
-                    ErrorKind::InvalidValue,
-                    value,
-                ));
-            }
-            let x_dir_turned = direction_at(value);
-            let turn = rotation_from_x_unit(&x_dir_turned);
-            crank.set_rotation(&turn);"#]]
+        // drive: angle(X, crank.u) = theta * 1e300 (test.gcs:10)
+        let value = params.theta * 1e300;
+        if !gcs_runtime::num::is_finite(value) {
+            return Err(SolveError::new(
+                "drive",
+                "angle(X, crank.u) = theta * 1e300",
+                ErrorKind::InvalidValue,
+                value,
+            ));
+        }
+        let x_dir_turned = direction_at(value);
+        let turn = rotation_from_x_unit(&x_dir_turned);
+        crank.set_rotation(&turn);"#]]
     .assert_eq(&dedent(&code[start..end]));
     let plain = load(&SCALED_DRIVE.replace("theta * 1e300", "theta"));
     let a = analyse(&plain).expect("analyse");

@@ -156,7 +156,7 @@ impl std::error::Error for SolveError {}
 /// the parameter `name`, whose magnitude is the offending value (NaN or infinite).
 #[inline]
 pub fn check_finite(name: &'static str, value: f64) -> Result<f64, SolveError> {
-    if value.is_finite() {
+    if crate::num::is_finite(value) {
         Ok(value)
     } else {
         Err(SolveError::new(name, "", ErrorKind::InvalidInput, value))

@@ -23,6 +23,7 @@
 
 use nalgebra::{Point2, Point3, Unit, UnitComplex, UnitQuaternion, Vector2, Vector3};
 
+use crate::num::is_finite;
 use crate::tol;
 
 /// A rigid frame in the plane: the global position of its local origin and the rotation that
@@ -327,7 +328,7 @@ pub fn scale_point3_about(p: &Point3<f64>, center: &Point3<f64>, factor: f64) ->
 #[inline]
 pub fn scale_factor(current: f64, target: f64) -> Option<f64> {
     let s = tol::scale(&[current, target]);
-    if !current.is_finite() || !target.is_finite() || tol::is_zero(current, s, tol::LENGTH_REL) {
+    if !is_finite(current) || !is_finite(target) || tol::is_zero(current, s, tol::LENGTH_REL) {
         None
     } else {
         Some(target / current)
@@ -762,7 +763,7 @@ pub fn rotation_on_circle_from(
 /// `(1, 0)`, which is `b` itself read as a rotation. Non-finite input gives the identity.
 #[inline]
 pub fn rotation_from_x(b: &Vector2<f64>) -> UnitComplex<f64> {
-    if b.x.is_finite() && b.y.is_finite() && (b.x != 0.0 || b.y != 0.0) {
+    if is_finite(b.x) && is_finite(b.y) && (b.x != 0.0 || b.y != 0.0) {
         rotation_from_x_unit(b)
     } else {
         UnitComplex::identity()
@@ -791,7 +792,7 @@ pub fn direction_at(angle: f64) -> Vector2<f64> {
 #[inline]
 pub fn rotation_between_units(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
     let (c, s) = (a.dot(b), a.x * b.y - a.y * b.x);
-    if c.is_finite() && s.is_finite() && (c != 0.0 || s != 0.0) {
+    if is_finite(c) && is_finite(s) && (c != 0.0 || s != 0.0) {
         UnitComplex::from_cos_sin_unchecked(c, s)
     } else {
         UnitComplex::identity()

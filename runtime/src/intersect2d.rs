@@ -34,6 +34,7 @@
 //! means roots beyond `f64`). Nothing here panics or allocates.
 
 use crate::locus2d::{cross, perp, Circle, Conic, Focal, Line, Rational, Ray, P2, V2};
+use crate::num::is_finite;
 use crate::poly;
 use crate::roots::{Contact, Intersection, Roots};
 use crate::tol;
@@ -48,7 +49,7 @@ fn overflow<T: Copy + Default, const N: usize>() -> Intersection<T, N> {
 }
 
 fn finite(p: P2) -> bool {
-    p.x.is_finite() && p.y.is_finite()
+    is_finite(p.x) && is_finite(p.y)
 }
 
 #[inline]

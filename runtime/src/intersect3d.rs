@@ -29,6 +29,7 @@ use nalgebra::{Point3, Vector3};
 
 use crate::frame::perpendicular;
 use crate::locus3d::{Circle3, Cylinder, Ellipse3, Line3, Plane, Sphere};
+use crate::num::is_finite;
 use crate::roots::{Contact, Intersection, Roots};
 use crate::tol::{self, ANGLE, LENGTH_REL, TANGENT_REL};
 
@@ -73,7 +74,7 @@ fn cross_accurate(a: &Vector3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
 
 #[inline]
 fn finite(values: &[f64]) -> bool {
-    values.iter().all(|v| v.is_finite())
+    values.iter().all(|&v| is_finite(v))
 }
 
 #[inline]

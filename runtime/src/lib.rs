@@ -13,6 +13,7 @@ pub mod intersect2d;
 pub mod intersect3d;
 pub mod locus2d;
 pub mod locus3d;
+pub mod num;
 pub mod poly;
 pub mod roots;
 pub mod tol;

@@ -27,6 +27,7 @@
 
 use nalgebra::{Point2, Vector2};
 
+use crate::num::is_finite;
 use crate::tol;
 
 /// A point of the plane.
@@ -49,13 +50,13 @@ pub fn cross(a: V2, b: V2) -> f64 {
 
 #[inline]
 fn finite_p(p: P2) -> bool {
-    p.x.is_finite() && p.y.is_finite()
+    is_finite(p.x) && is_finite(p.y)
 }
 
 #[inline]
 fn unit(v: V2) -> Option<V2> {
     let n = v.norm();
-    if n > 0.0 && n.is_finite() && v.x.is_finite() && v.y.is_finite() {
+    if n > 0.0 && is_finite(n) && is_finite(v.x) && is_finite(v.y) {
         Some(v / n)
     } else {
         None
@@ -242,7 +243,7 @@ impl Circle {
     /// [`crate::Contact::ZeroRadius`]).
     #[inline]
     pub fn new(center: P2, radius: f64) -> Option<Self> {
-        if finite_p(center) && radius.is_finite() && radius >= 0.0 {
+        if finite_p(center) && is_finite(radius) && radius >= 0.0 {
             Some(Circle { center, radius })
         } else {
             None

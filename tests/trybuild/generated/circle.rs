@@ -272,7 +272,7 @@ pub fn solve(
     // tangent(C, G) (circle.gcs:12)
     // tangent(L, G) (circle.gcs:11)
     let radius = (meet - Point2::new(0.0, 0.0)).norm() - c_radius;
-    if !f64::is_finite(radius) || radius < 0.0 {
+    if !gcs_runtime::num::is_finite(radius) || radius < 0.0 {
         return Err(SolveError::new(
             "tangent_C_G",
             "tangent(C, G)",

@@ -465,7 +465,7 @@ pub fn solve(
             )
         })?;
     let length = (on_right_end_fillet - bottom_end).dot(&right_dir_2);
-    if !f64::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
         return Err(SolveError::new(
             "on_right_end_fillet",
             "on(right.end, fillet)",
@@ -524,7 +524,7 @@ pub fn solve(
     let shift_3 = on_top_start_fillet - top_start;
     top.translate(&shift_3);
     let length_2 = (left_start - on_top_start_fillet).dot(&top_dir_2);
-    if !f64::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
         return Err(SolveError::new(
             "on_top_start_fillet",
             "on(top.start, fillet)",
