@@ -253,3 +253,76 @@ fn stress_sweeps_end_exact_or_in_a_measured_error() {
         );
     }
 }
+
+/// Far beyond the sweeps above, where the baseline's tolerances lose their meaning: the
+/// four-bar at scales 1e-100, 1e-50, 1e50 and 1e100 gives, at every crank angle, the answers
+/// of the same four-bar at scale 1, scaled, to machine precision. Geometry does not depend on
+/// the unit, and neither may the plan. Circle-circle, whose Heron product overflows past
+/// 1e76 and underflows below 1e-77, solves such circles scaled by a power of two
+/// (`CHORD_SCALES`). Without that, at 1e-100 the coupler lands 3 units (scaled) off, on a
+/// false tangency, and at 1e100 there is no answer. Beyond about 1e±150 the squares in the
+/// norms of sketch vectors (a radius measured from the sketch) overflow or underflow; at
+/// 1e-300, 1e-200 and 1e200 the solve returns an error rather than an answer.
+#[test]
+fn four_bar_at_extreme_scales_is_the_unit_four_bar_scaled() {
+    // Each sample's points by name, or none where the solve failed.
+    type Points = Vec<(String, Vec<f64>)>;
+    let solve_all = |scale: f64| -> Vec<Option<Points>> {
+        let text = fourbar(1.5 * scale, 4.0 * scale, 3.0 * scale, 4.0 * scale);
+        let (diags, model, _) = gcs_lang::load("scaled", text.as_bytes());
+        let model = model.unwrap_or_else(|| panic!("{diags:?}"));
+        let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
+        let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
+        let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+        turn()
+            .into_iter()
+            .map(|theta| {
+                let s =
+                    gcs_compiler::solve_plan(&model, &plan, &scope, &[theta], &branches).ok()?;
+                for r in gcs_compiler::verify::residuals(&model, &s, &[theta]) {
+                    let c = &model.constraints[r.constraint];
+                    // Only constraints among the geoms the outputs need are solved.
+                    if !c
+                        .args
+                        .iter()
+                        .all(|a| scope.contains(&model.top_level_of(*a)))
+                    {
+                        continue;
+                    }
+                    let unit = if is_angle(c.kind) { 1.0 } else { scale };
+                    assert!(
+                        r.value <= 4e-15 * unit,
+                        "scale {scale:e}, theta {theta}: {} off by {:e}",
+                        c.text,
+                        r.value
+                    );
+                }
+                Some(s.points)
+            })
+            .collect()
+    };
+    let unit = solve_all(1.0);
+    assert!(
+        unit.iter().all(Option::is_some),
+        "the unit four-bar turns fully"
+    );
+    for scale in [1e-100, 1e-50, 1e50, 1e100] {
+        for (k, (scaled, unit)) in solve_all(scale).iter().zip(&unit).enumerate() {
+            let (Some(scaled), Some(unit)) = (scaled, unit) else {
+                panic!("scale {scale:e}: no answer at {k} degrees");
+            };
+            for ((name, p), (_, q)) in scaled.iter().zip(unit) {
+                // Scaled back before the difference is taken: no overflow or underflow.
+                let off = p
+                    .iter()
+                    .zip(q)
+                    .map(|(a, b)| (a / scale - b).abs())
+                    .fold(0.0, f64::max);
+                assert!(
+                    off <= 1e-14 * 8.0,
+                    "scale {scale:e}, {k} degrees: {name} is {off:e} off the unit answer"
+                );
+            }
+        }
+    }
+}
