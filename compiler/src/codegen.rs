@@ -569,6 +569,7 @@ impl<'a> Gen<'a> {
             self.file
         ));
         w.line("// the result through the accessors of `Solution`. It never panics and allocates nothing.");
+        w.line("// A caller uses what it needs of this API: the setters and accessors allow dead code.");
         w.line("");
         w.line("#[allow(unused_imports)]");
         w.line("use gcs_runtime::error::{ErrorKind, SolveError};");
@@ -615,6 +616,7 @@ impl<'a> Gen<'a> {
             w.close("}");
         }
         w.line("");
+        w.line("#[allow(dead_code)]");
         w.open("impl Params {");
         w.line("/// Sets the param called `name` (as in the model); `false` when there is none.");
         if m.params.is_empty() {
@@ -672,6 +674,7 @@ impl<'a> Gen<'a> {
             w.close("}");
         }
         w.line("");
+        w.line("#[allow(dead_code)]");
         w.open("impl Branches {");
         w.line("/// Sets the branch variable called `name` (as in the model); `false` when there is none.");
         w.open("pub fn set(&mut self, name: &str, index: u8) -> bool {");
@@ -792,6 +795,7 @@ impl<'a> Gen<'a> {
             w.close("}");
         }
         w.line("");
+        w.line("#[allow(dead_code)]");
         w.open("impl Solution {");
         let mut accessors = Namer::default();
         for reserved in ["points", "vectors", "scalars"] {

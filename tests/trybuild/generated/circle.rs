@@ -4,6 +4,7 @@
 
 // Solver for `circle.gcs`. Call `solve` with `Params`, `Branches` and `Defaults`, and read
 // the result through the accessors of `Solution`. It never panics and allocates nothing.
+// A caller uses what it needs of this API: the setters and accessors allow dead code.
 
 #[allow(unused_imports)]
 use gcs_runtime::check;
@@ -25,6 +26,7 @@ use gcs_runtime::nalgebra::{Point2, UnitComplex, Vector2};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {}
 
+#[allow(dead_code)]
 impl Params {
     /// Sets the param called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
@@ -51,6 +53,7 @@ pub struct Branches {
     pub meet: u8,
 }
 
+#[allow(dead_code)]
 impl Branches {
     /// Sets the branch variable called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, index: u8) -> bool {
@@ -86,6 +89,7 @@ pub struct Solution {
     g_radius: f64,
 }
 
+#[allow(dead_code)]
 impl Solution {
     /// The radius of `C`.
     #[inline]

@@ -4,6 +4,7 @@
 
 // Solver for `sixbar.gcs`. Call `solve` with `Params`, `Branches` and `Defaults`, and read
 // the result through the accessors of `Solution`. It never panics and allocates nothing.
+// A caller uses what it needs of this API: the setters and accessors allow dead code.
 
 #[allow(unused_imports)]
 use gcs_runtime::check;
@@ -28,6 +29,7 @@ pub struct Params {
     pub theta: f64,
 }
 
+#[allow(dead_code)]
 impl Params {
     /// Sets the param called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
@@ -59,6 +61,7 @@ pub struct Branches {
     pub second: u8,
 }
 
+#[allow(dead_code)]
 impl Branches {
     /// Sets the branch variable called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, index: u8) -> bool {
@@ -94,6 +97,7 @@ pub struct Solution {
     follower: Frame2,
 }
 
+#[allow(dead_code)]
 impl Solution {
     /// Point `A`, which the solve never moves.
     #[inline]

@@ -4,6 +4,7 @@
 
 // Solver for `sketch_profile.gcs`. Call `solve` with `Params`, `Branches` and `Defaults`, and read
 // the result through the accessors of `Solution`. It never panics and allocates nothing.
+// A caller uses what it needs of this API: the setters and accessors allow dead code.
 
 #[allow(unused_imports)]
 use gcs_runtime::check;
@@ -32,6 +33,7 @@ pub struct Params {
     pub r: f64,
 }
 
+#[allow(dead_code)]
 impl Params {
     /// Sets the param called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
@@ -72,6 +74,7 @@ pub struct Branches {
     pub on_top_start_fillet: u8,
 }
 
+#[allow(dead_code)]
 impl Branches {
     /// Sets the branch variable called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, index: u8) -> bool {
@@ -116,6 +119,7 @@ pub struct Solution {
     left_length: f64,
 }
 
+#[allow(dead_code)]
 impl Solution {
     /// Point `origin`, which the solve never moves.
     #[inline]

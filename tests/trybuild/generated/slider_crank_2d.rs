@@ -4,6 +4,7 @@
 
 // Solver for `slider_crank_2d.gcs`. Call `solve` with `Params`, `Branches` and `Defaults`, and read
 // the result through the accessors of `Solution`. It never panics and allocates nothing.
+// A caller uses what it needs of this API: the setters and accessors allow dead code.
 
 #[allow(unused_imports)]
 use gcs_runtime::check;
@@ -32,6 +33,7 @@ pub struct Params {
     pub rod_len: f64,
 }
 
+#[allow(dead_code)]
 impl Params {
     /// Sets the param called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
@@ -65,6 +67,7 @@ pub struct Branches {
     pub stroke: u8,
 }
 
+#[allow(dead_code)]
 impl Branches {
     /// Sets the branch variable called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, index: u8) -> bool {
@@ -98,6 +101,7 @@ pub struct Solution {
     slider: Frame2,
 }
 
+#[allow(dead_code)]
 impl Solution {
     /// The frame of body `ground`.
     #[inline]

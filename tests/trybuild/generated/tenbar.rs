@@ -4,6 +4,7 @@
 
 // Solver for `tenbar.gcs`. Call `solve` with `Params`, `Branches` and `Defaults`, and read
 // the result through the accessors of `Solution`. It never panics and allocates nothing.
+// A caller uses what it needs of this API: the setters and accessors allow dead code.
 
 #[allow(unused_imports)]
 use gcs_runtime::check;
@@ -32,6 +33,7 @@ pub struct Params {
     pub theta3: f64,
 }
 
+#[allow(dead_code)]
 impl Params {
     /// Sets the param called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
@@ -73,6 +75,7 @@ pub struct Branches {
     pub close: u8,
 }
 
+#[allow(dead_code)]
 impl Branches {
     /// Sets the branch variable called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, index: u8) -> bool {
@@ -117,6 +120,7 @@ pub struct Solution {
     link9: Frame2,
 }
 
+#[allow(dead_code)]
 impl Solution {
     /// The frame of body `ground`.
     #[inline]
