@@ -9,6 +9,13 @@ use criterion::{criterion_group, Criterion};
 use gcs_examples as ex;
 use std::hint::black_box;
 
+/// The same generated four-bar, included into this crate as the README shows a user doing it
+/// (`include_solver!` in their own crate), where `ex::fourbar` is called across crates: within
+/// one crate the compiler may specialise the call (its arguments, what the caller reads).
+mod fourbar_here {
+    gcs_runtime::include_solver!("fourbar");
+}
+
 /// A four-bar solved by hand, in closed form: the crank's end, then the coupler's far joint as
 /// the intersection of two circles, on the side the model's `elbow` = 0 means (left of the line
 /// from the crank's end to the rocker's pivot). Same geometry as examples/fourbar.gcs, and the
@@ -40,6 +47,20 @@ fn four_bar_generated(
     defaults: &ex::fourbar::Defaults,
 ) -> Option<(f64, f64)> {
     let solution = ex::fourbar::solve(params, branches, defaults);
+    solution.ok().map(|s| {
+        let c = s.coupler_c();
+        (c.x, c.y)
+    })
+}
+
+/// [`four_bar_generated`] with the solver included in this crate.
+#[inline]
+fn four_bar_generated_here(
+    params: &fourbar_here::Params,
+    branches: &fourbar_here::Branches,
+    defaults: &fourbar_here::Defaults,
+) -> Option<(f64, f64)> {
+    let solution = fourbar_here::solve(params, branches, defaults);
     solution.ok().map(|s| {
         let c = s.coupler_c();
         (c.x, c.y)
@@ -137,18 +158,15 @@ fn bench_examples(c: &mut Criterion) {
     );
 }
 
-/// The generated four-bar over the hand-written one, timed in alternating blocks so that both
-/// see the same machine: in each of 41 rounds, 100,000 solves by hand and 100,000 generated
-/// (in alternating order), the same crank angles on both sides. Prints the median ratio of the
-/// rounds, its quartiles, and each side's median time per solve.
+/// The generated four-bar over the hand-written one, timed in alternating blocks so that all
+/// sides see the same machine: in each of 42 rounds, 100,000 solves by hand, 100,000 by the
+/// solver included in this crate and 100,000 by the one called across crates, the same crank
+/// angles on every side, in an order that rotates from round to round. Prints each generated
+/// side's median ratio to the hand-written one over the rounds, its quartiles, and the median
+/// time per solve of each side.
 fn four_bar_interleaved() {
     use std::time::Instant;
     let thetas: Vec<f64> = (0..64).map(|i| i as f64 * 0.098).collect();
-    let (branches, defaults) = (
-        ex::fourbar::Branches::default(),
-        ex::fourbar::Defaults::default(),
-    );
-    let mut params = ex::fourbar::Params::default();
     let n = 100_000;
     let by_hand = || {
         let t = Instant::now();
@@ -157,7 +175,25 @@ fn four_bar_interleaved() {
         }
         t.elapsed().as_secs_f64() / n as f64
     };
-    let mut generated = || {
+    let here = || {
+        let (branches, defaults) = (
+            fourbar_here::Branches::default(),
+            fourbar_here::Defaults::default(),
+        );
+        let mut params = fourbar_here::Params::default();
+        let t = Instant::now();
+        for k in 0..n {
+            params.theta = black_box(thetas[k & 63]);
+            black_box(four_bar_generated_here(&params, &branches, &defaults));
+        }
+        t.elapsed().as_secs_f64() / n as f64
+    };
+    let across = || {
+        let (branches, defaults) = (
+            ex::fourbar::Branches::default(),
+            ex::fourbar::Defaults::default(),
+        );
+        let mut params = ex::fourbar::Params::default();
         let t = Instant::now();
         for k in 0..n {
             params.theta = black_box(thetas[k & 63]);
@@ -165,36 +201,47 @@ fn four_bar_interleaved() {
         }
         t.elapsed().as_secs_f64() / n as f64
     };
-    // Warm up both, then measure.
-    by_hand();
-    generated();
-    let (mut hand_times, mut generated_times, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
-    for round in 0..41 {
-        let (h, g) = if round % 2 == 0 {
-            let h = by_hand();
-            (h, generated())
-        } else {
-            let g = generated();
-            (by_hand(), g)
-        };
-        hand_times.push(h);
-        generated_times.push(g);
-        ratios.push(g / h);
+    let sides: [&dyn Fn() -> f64; 3] = [&by_hand, &here, &across];
+    // Warm up every side, then measure.
+    for side in sides {
+        side();
+    }
+    let mut times = [Vec::new(), Vec::new(), Vec::new()];
+    for round in 0..42 {
+        let mut this_round = [0.0; 3];
+        for k in 0..3 {
+            let i = (round + k) % 3;
+            this_round[i] = sides[i]();
+        }
+        for (all, t) in times.iter_mut().zip(this_round) {
+            all.push(t);
+        }
     }
     // The value at `at` (0 to 1) of the sorted times or ratios.
-    let quantile = |v: &mut Vec<f64>, at: f64| {
+    let quantile = |v: &[f64], at: f64| {
+        let mut v = v.to_vec();
         v.sort_by(f64::total_cmp);
         v[((v.len() - 1) as f64 * at).round() as usize]
     };
+    let median_ns = |v: &[f64]| quantile(v, 0.5) * 1e9;
     println!(
-        "fourbar/interleaved     generated / by hand: {:.2}x (quartiles {:.2}x-{:.2}x over 41 \
-         rounds); by hand {:.1} ns, generated {:.1} ns",
-        quantile(&mut ratios, 0.5),
-        quantile(&mut ratios, 0.25),
-        quantile(&mut ratios, 0.75),
-        quantile(&mut hand_times, 0.5) * 1e9,
-        quantile(&mut generated_times, 0.5) * 1e9
+        "fourbar/interleaved     by hand {:.1} ns over 42 rounds",
+        median_ns(&times[0])
     );
+    for (i, what) in [
+        (1, "included in this crate (as the README embeds it)"),
+        (2, "called across crates (gcs_examples::fourbar)"),
+    ] {
+        let ratios: Vec<f64> = times[i].iter().zip(&times[0]).map(|(g, h)| g / h).collect();
+        println!(
+            "fourbar/interleaved     generated, {what}: {:.1} ns, {:.2}x by hand (quartiles \
+             {:.2}x-{:.2}x)",
+            median_ns(&times[i]),
+            quantile(&ratios, 0.5),
+            quantile(&ratios, 0.25),
+            quantile(&ratios, 0.75),
+        );
+    }
 }
 
 criterion_group!(benches, bench_four_bar, bench_examples);
