@@ -34,6 +34,30 @@ fn is_angle(kind: gcs_lang::constraints::ConstraintKind) -> bool {
     )
 }
 
+/// What `verify` measures on an answer, for the constraints among the geoms the outputs need
+/// (only those are solved): each constraint's text and its residual in units of `length`, or
+/// in radians for an angle.
+fn relative_residuals(
+    model: &gcs_lang::Model,
+    scope: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
+    answer: &gcs_compiler::solution::Solution,
+    params: &[f64],
+    length: f64,
+) -> Vec<(String, f64)> {
+    gcs_compiler::verify::residuals(model, answer, params)
+        .into_iter()
+        .filter_map(|r| {
+            let c = &model.constraints[r.constraint];
+            let solved = c
+                .args
+                .iter()
+                .all(|a| scope.contains(&model.top_level_of(*a)));
+            let unit = if is_angle(c.kind) { 1.0 } else { length };
+            solved.then(|| (c.text.clone(), r.value / unit))
+        })
+        .collect()
+}
+
 fn fourbar(crank: f64, coupler: f64, rocker: f64, ground: f64) -> String {
     format!(
         "space 2d;
@@ -198,25 +222,14 @@ fn stress_sweeps_end_exact_or_in_a_measured_error() {
                         .flat_map(|(_, p)| p.iter())
                         .fold(scale, |m, x| m.max(x.abs()));
                     // Angles are measured in radians, lengths relative to the answer's size.
-                    for r in gcs_compiler::verify::residuals(&model, &s, p) {
-                        let c = &model.constraints[r.constraint];
-                        if !c
-                            .args
-                            .iter()
-                            .all(|a| scope.contains(&model.top_level_of(*a)))
-                        {
-                            continue;
-                        }
-                        let unit = if is_angle(c.kind) { 1.0 } else { size };
-                        worst = worst.max(r.value / unit);
+                    for (text, off) in relative_residuals(&model, &scope, &s, p, size) {
+                        worst = worst.max(off);
                         assert!(
-                            r.value <= case.tolerance * unit,
-                            "{}: {} = {}: {} off by {}",
+                            off <= case.tolerance,
+                            "{}: {} = {}: {text} off by {off:e} of its size",
                             case.name,
                             case.param,
                             p[index],
-                            c.text,
-                            r.value
                         );
                     }
                 }
@@ -279,22 +292,10 @@ fn four_bar_at_extreme_scales_is_the_unit_four_bar_scaled() {
             .map(|theta| {
                 let s =
                     gcs_compiler::solve_plan(&model, &plan, &scope, &[theta], &branches).ok()?;
-                for r in gcs_compiler::verify::residuals(&model, &s, &[theta]) {
-                    let c = &model.constraints[r.constraint];
-                    // Only constraints among the geoms the outputs need are solved.
-                    if !c
-                        .args
-                        .iter()
-                        .all(|a| scope.contains(&model.top_level_of(*a)))
-                    {
-                        continue;
-                    }
-                    let unit = if is_angle(c.kind) { 1.0 } else { scale };
+                for (text, off) in relative_residuals(&model, &scope, &s, &[theta], scale) {
                     assert!(
-                        r.value <= 4e-15 * unit,
-                        "scale {scale:e}, theta {theta}: {} off by {:e}",
-                        c.text,
-                        r.value
+                        off <= 4e-15,
+                        "scale {scale:e}, theta {theta}: {text} off by {off:e} of the scale"
                     );
                 }
                 Some(s.points)
