@@ -33,8 +33,7 @@
 //! rescales by a power of two and solves circles at any finite scale (an infinite gap then
 //! means roots beyond `f64`). Nothing here panics or allocates.
 
-use crate::locus2d::{cross, perp, Circle, Conic, Focal, Line, Rational, Ray, P2, V2};
-use crate::num::is_finite;
+use crate::locus2d::{cross, finite_p, perp, Circle, Conic, Focal, Line, Rational, Ray, P2, V2};
 use crate::poly;
 use crate::roots::{Contact, Intersection, Roots};
 use crate::tol;
@@ -46,10 +45,6 @@ pub fn nearest<const N: usize>(roots: &Roots<P2, N>, reference: P2) -> Option<us
 
 fn overflow<T: Copy + Default, const N: usize>() -> Intersection<T, N> {
     Intersection::none(Contact::Disjoint { gap: f64::INFINITY })
-}
-
-fn finite(p: P2) -> bool {
-    is_finite(p.x) && is_finite(p.y)
 }
 
 #[inline]
@@ -83,7 +78,7 @@ pub fn line_line(a: &Line, b: &Line) -> Intersection<P2, 1> {
     }
     let t = cross(b.point() - a.point(), b.dir()) / sin;
     let x = a.at(t);
-    if !finite(x) {
+    if !finite_p(x) {
         return overflow();
     }
     Intersection {
@@ -352,8 +347,7 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     // Within `CHORD_SCALES` every value here is finite and Heron's product normal, so the
     // roots need no test of their own. Out of it, the values above may be garbage: they are
     // not used.
-    let plain = s >= *CHORD_SCALES.start()
-        && s <= *CHORD_SCALES.end()
+    let plain = CHORD_SCALES.contains(&s)
         && r1 > tol::LENGTH_REL * s
         && r2 > tol::LENGTH_REL * s
         && outer < 0.0
@@ -419,7 +413,7 @@ pub const CHORD_SCALES: std::ops::RangeInclusive<f64> = {
 fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Contact> {
     let (c1, c2) = (P2::new(x1, y1), P2::new(x2, y2));
     let s = chord_scale(c1, r1, c2, r2);
-    if !(s >= *CHORD_SCALES.start() && s <= *CHORD_SCALES.end()) {
+    if !CHORD_SCALES.contains(&s) {
         return rescaled([x1, y1, r1, x2, y2, r2], s);
     }
     if r1 <= tol::LENGTH_REL * s || r2 <= tol::LENGTH_REL * s {
@@ -470,36 +464,39 @@ fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Con
 fn rescaled([x1, y1, r1, x2, y2, r2]: [f64; 6], s: f64) -> Result<Chord, Contact> {
     // `s` is at least 1e-300, a normal number: its exponent field is its binary exponent.
     let exponent = ((s.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    // Two factors, each a normal power of two, for exponents up to 1023 either way.
-    let (down, up) = (pow2(-(exponent / 2)), pow2(-(exponent - exponent / 2)));
-    let shrink = |x: f64, y: f64, r: f64| Circle::new(P2::new(x, y) * down * up, r * down * up);
+    let shrink = |x: f64, y: f64, r: f64| {
+        let [x, y, r] = [x, y, r].map(|v| times_pow2(v, -exponent));
+        Circle::new(P2::new(x, y), r)
+    };
     let (Some(a), Some(b)) = (shrink(x1, y1, r1), shrink(x2, y2, r2)) else {
         // Unreachable: scaling finite values down by a power of two keeps them finite.
         return Err(Contact::Disjoint { gap: f64::INFINITY });
     };
-    let (back_down, back_up) = (pow2(exponent / 2), pow2(exponent - exponent / 2));
+    let grow = |v: V2| V2::new(times_pow2(v.x, exponent), times_pow2(v.y, exponent));
     match circle_circle_chord(&a, &b) {
         Ok(chord) => {
             let chord = Chord {
-                mid: chord.mid * back_down * back_up,
-                half: chord.half * back_down * back_up,
+                mid: P2::from(grow(chord.mid.coords)),
+                half: grow(chord.half),
             };
-            if finite(chord.left()) && finite(chord.right()) {
+            if finite_p(chord.left()) && finite_p(chord.right()) {
                 Ok(chord)
             } else {
                 Err(Contact::Disjoint { gap: f64::INFINITY })
             }
         }
         Err(Contact::Disjoint { gap }) => Err(Contact::Disjoint {
-            gap: gap * back_down * back_up,
+            gap: times_pow2(gap, exponent),
         }),
         Err(contact) => Err(contact),
     }
 }
 
-/// `2^e` for `e` in `-1022..=1023`.
-fn pow2(e: i32) -> f64 {
-    f64::from_bits(((e + 1023) as u64) << 52)
+/// `x * 2^e`, exact when the result is normal, for `e` in `-2044..=2046`: two factors, each a
+/// normal power of two.
+fn times_pow2(x: f64, e: i32) -> f64 {
+    let pow2 = |e: i32| f64::from_bits(((e + 1023) as u64) << 52);
+    x * pow2(e / 2) * pow2(e - e / 2)
 }
 
 /// The implicit function of a curve, its gradient, and its residual; for 2d Newton polishing.
@@ -643,7 +640,7 @@ fn line_conic_t(l: &Line, c: &Conic) -> (Roots<f64, 2>, Contact, Option<P2>) {
         };
         // The cheap test first: only a close pair of roots can be a tangency.
         if split <= 1e-4 * sx
-            && finite(x0)
+            && finite_p(x0)
             && f.h(x0) >= -eps_h
             && curve.residual(x0) <= tol::TANGENT_REL * sx
         {
@@ -669,7 +666,7 @@ fn line_conic_t(l: &Line, c: &Conic) -> (Roots<f64, 2>, Contact, Option<P2>) {
     };
     for &t in poly::quadratic(qa, qb, qc).as_slice() {
         let x = l.at(t);
-        if finite(x) && f.h(x) >= -eps_h {
+        if finite_p(x) && f.h(x) >= -eps_h {
             // Polish along the line by Newton's method on the unsquared focal equation (whose
             // root the squaring may have moved), keeping a step only if it reduces |g|.
             let (mut best, (mut g, mut dg)) = (t, focal_eq(t));

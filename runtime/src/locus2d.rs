@@ -49,7 +49,7 @@ pub fn cross(a: V2, b: V2) -> f64 {
 }
 
 #[inline]
-fn finite_p(p: P2) -> bool {
+pub(crate) fn finite_p(p: P2) -> bool {
     is_finite(p.x) && is_finite(p.y)
 }
 
