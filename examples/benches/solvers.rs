@@ -38,33 +38,24 @@ fn four_bar_by_hand(theta: f64) -> Option<(f64, f64)> {
     Some((bx + a * ex_ - h * ey, by + a * ey + h * ex_))
 }
 
-/// The generated four-bar doing the same work and giving the same answer as by hand: the
-/// coupler point, or none.
-#[inline]
-fn four_bar_generated(
-    params: &ex::fourbar::Params,
-    branches: &ex::fourbar::Branches,
-    defaults: &ex::fourbar::Defaults,
-) -> Option<(f64, f64)> {
-    let solution = ex::fourbar::solve(params, branches, defaults);
-    solution.ok().map(|s| {
-        let c = s.coupler_c();
-        (c.x, c.y)
-    })
-}
-
-/// [`four_bar_generated`] with the solver included in this crate.
-#[inline]
-fn four_bar_generated_here(
-    params: &fourbar_here::Params,
-    branches: &fourbar_here::Branches,
-    defaults: &fourbar_here::Defaults,
-) -> Option<(f64, f64)> {
-    let solution = fourbar_here::solve(params, branches, defaults);
-    solution.ok().map(|s| {
-        let c = s.coupler_c();
-        (c.x, c.y)
-    })
+/// The generated four-bar of solver module `$m` as a function of the crank angle, doing the
+/// same work and giving the same answer as by hand: the coupler point, or none.
+macro_rules! four_bar_generated {
+    ($($m:ident)::+) => {{
+        let (branches, defaults) = (
+            $($m)::+::Branches::default(),
+            $($m)::+::Defaults::default(),
+        );
+        let mut params = $($m)::+::Params::default();
+        move |theta: f64| {
+            params.theta = theta;
+            let solution = $($m)::+::solve(&params, &branches, &defaults);
+            solution.ok().map(|s| {
+                let c = s.coupler_c();
+                (c.x, c.y)
+            })
+        }
+    }};
 }
 
 fn interpreted(name: &str) -> (gcs_lang::Model, gcs_compiler::analysis::Analysis) {
@@ -87,14 +78,11 @@ fn bench_four_bar(c: &mut Criterion) {
         })
     });
     g.bench_function("generated", |b| {
-        let branches = ex::fourbar::Branches::default();
-        let defaults = ex::fourbar::Defaults::default();
-        let mut params = ex::fourbar::Params::default();
+        let mut solve = four_bar_generated!(ex::fourbar);
         let mut i = 0;
         b.iter(|| {
             i = (i + 1) & 63;
-            params.theta = black_box(thetas[i]);
-            black_box(four_bar_generated(&params, &branches, &defaults))
+            black_box(solve(black_box(thetas[i])))
         })
     });
     let (model, analysis) = interpreted("fourbar");
@@ -158,6 +146,20 @@ fn bench_examples(c: &mut Criterion) {
     );
 }
 
+/// The mean time per solve of `n` solves at the crank angles `thetas`, in turn. Generic, so
+/// that each side's solve is compiled into its own loop, as it would be in a caller's.
+fn time_solves(
+    n: usize,
+    thetas: &[f64; 64],
+    mut solve: impl FnMut(f64) -> Option<(f64, f64)>,
+) -> f64 {
+    let t = std::time::Instant::now();
+    for k in 0..n {
+        black_box(solve(black_box(thetas[k & 63])));
+    }
+    t.elapsed().as_secs_f64() / n as f64
+}
+
 /// The generated four-bar over the hand-written one, timed in alternating blocks so that all
 /// sides see the same machine: in each of 42 rounds, 100,000 solves by hand, 100,000 by the
 /// solver included in this crate and 100,000 by the one called across crates, the same crank
@@ -165,42 +167,11 @@ fn bench_examples(c: &mut Criterion) {
 /// side's median ratio to the hand-written one over the rounds, its quartiles, and the median
 /// time per solve of each side.
 fn four_bar_interleaved() {
-    use std::time::Instant;
-    let thetas: Vec<f64> = (0..64).map(|i| i as f64 * 0.098).collect();
+    let thetas: [f64; 64] = std::array::from_fn(|i| i as f64 * 0.098);
     let n = 100_000;
-    let by_hand = || {
-        let t = Instant::now();
-        for k in 0..n {
-            black_box(four_bar_by_hand(black_box(thetas[k & 63])));
-        }
-        t.elapsed().as_secs_f64() / n as f64
-    };
-    let here = || {
-        let (branches, defaults) = (
-            fourbar_here::Branches::default(),
-            fourbar_here::Defaults::default(),
-        );
-        let mut params = fourbar_here::Params::default();
-        let t = Instant::now();
-        for k in 0..n {
-            params.theta = black_box(thetas[k & 63]);
-            black_box(four_bar_generated_here(&params, &branches, &defaults));
-        }
-        t.elapsed().as_secs_f64() / n as f64
-    };
-    let across = || {
-        let (branches, defaults) = (
-            ex::fourbar::Branches::default(),
-            ex::fourbar::Defaults::default(),
-        );
-        let mut params = ex::fourbar::Params::default();
-        let t = Instant::now();
-        for k in 0..n {
-            params.theta = black_box(thetas[k & 63]);
-            black_box(four_bar_generated(&params, &branches, &defaults));
-        }
-        t.elapsed().as_secs_f64() / n as f64
-    };
+    let by_hand = || time_solves(n, &thetas, four_bar_by_hand);
+    let here = || time_solves(n, &thetas, four_bar_generated!(fourbar_here));
+    let across = || time_solves(n, &thetas, four_bar_generated!(ex::fourbar));
     let sides: [&dyn Fn() -> f64; 3] = [&by_hand, &here, &across];
     // Warm up every side, then measure.
     for side in sides {
