@@ -1103,6 +1103,10 @@ impl<'a> Gen<'a> {
         w.line("///");
         w.line("/// A [`SolveError`] naming the constraint that cannot be met (no intersection, inconsistent,");
         w.line("/// degenerate, or a branch with no assembly here) and by how much, or a non-finite param.");
+        // `#[inline]` lets a caller in another crate inline a small solve (a four-bar: its
+        // answer then stays in registers instead of a `Solution` in memory); LLVM still weighs
+        // its size, so a long solve stays a call.
+        w.line("#[inline]");
         w.open("pub fn solve(params: &Params, branches: &Branches, defaults: &Defaults) -> Result<Solution, SolveError> {");
         w.line("let _ = (params, branches, defaults);");
         // Params must be finite.

@@ -229,6 +229,7 @@ impl Solution {
 ///
 /// A [`SolveError`] naming the constraint that cannot be met (no intersection, inconsistent,
 /// degenerate, or a branch with no assembly here) and by how much, or a non-finite param.
+#[inline]
 pub fn solve(
     params: &Params,
     branches: &Branches,
