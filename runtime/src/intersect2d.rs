@@ -346,24 +346,22 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let (r1, r2) = (a.radius(), b.radius());
     let s = chord_scale(c1, r1, c2, r2);
     let dv = c2 - c1;
-    let d = dv.norm();
-    let outer = d - (r1 + r2);
-    let inner = (r1 - r2).abs() - d;
-    // One division, shared by the direction, the distance along it and the half chord.
-    let inv_d = 1.0 / d;
+    let d2 = dv.norm_squared();
+    let (overlap, apart) = heron_factors(d2, r1, r2);
+    let least = tol::LENGTH_REL * s;
     // Within `CHORD_SCALES` every value here is finite and Heron's product normal, so the
     // roots need no test of their own. Out of it, the values above may be garbage: they are
     // not used.
     let plain = CHORD_SCALES.contains(&s)
-        && r1 > tol::LENGTH_REL * s
-        && r2 > tol::LENGTH_REL * s
-        && outer < 0.0
-        && inner < 0.0
-        && d > tol::LENGTH_REL * s;
+        && r1 > least
+        && r2 > least
+        && overlap > 0.0
+        && apart > 0.0
+        && d2 > least * least;
     if !plain {
         return not_plainly_crossing([c1.x, c1.y, r1, c2.x, c2.y, r2]);
     }
-    Ok(crossing(c1, r1, r2, d, dv * inv_d, inv_d))
+    Ok(crossing(c1, dv, d2, r1, r2, overlap * apart))
 }
 
 /// The scale of two circles: their largest coordinate or radius. The radii first, then the
@@ -374,35 +372,50 @@ fn chord_scale(c1: P2, r1: f64, c2: P2, r2: f64) -> f64 {
     tol::scale(&[r1, r2, c2.x, c2.y, c1.x, c1.y])
 }
 
-/// The chord of two circles that plainly cross (radii above [`tol::LENGTH_REL`] of the scale,
-/// apart by `d` with `|r1 - r2| < d < r1 + r2`, at a scale in [`CHORD_SCALES`]), from the first
-/// centre, the radii, `d`, the unit vector `u` from the first centre to the second and `1/d`.
+/// Heron's product for circles of radii `r1`, `r2` whose centres are `sqrt(d2)` apart,
+/// `16 area² = ((r1 + r2)² - d²)(d² - (r1 - r2)²)`, as its two factors: the first is positive
+/// when the circles overlap, the second when neither holds the other. Both come from `d²`, so
+/// no square root stands between the centres and the half chord's.
 #[inline(always)]
-fn crossing(c1: P2, r1: f64, r2: f64, d: f64, u: V2, inv_d: f64) -> Chord {
-    // The distance along the line of centres from the first, and the half chord by Heron's
-    // formula, whose factors are each a sum or difference of inputs (no cancellation near
-    // tangency).
-    let along = 0.5 * (d + (r1 - r2) * (r1 + r2) * inv_d);
-    // `r1 - r2` is exact for close radii (Sterbenz), so add `d` last. Crossing makes each
-    // factor positive as computed (`x - y` rounds to a positive number when `x > y`), so the
-    // product is never negative and needs no clamp before the square root; it is taken as two
-    // pairs, which the processor multiplies side by side.
-    let area16 = ((d + (r1 + r2)) * ((r1 + r2) - d)) * ((d + (r2 - r1)) * (d + (r1 - r2)));
-    let h = area16.sqrt() * (0.5 * inv_d);
+fn heron_factors(d2: f64, r1: f64, r2: f64) -> (f64, f64) {
+    let (sum, diff) = (r1 + r2, r1 - r2);
+    (sum * sum - d2, d2 - diff * diff)
+}
+
+/// The chord of two circles that plainly cross (radii above [`tol::LENGTH_REL`] of the scale,
+/// both of [`heron_factors`] positive, at a scale in [`CHORD_SCALES`]), from the first centre,
+/// the vector `dv` to the second, `d2 = |dv|²`, the radii and Heron's product `area16`.
+///
+/// Everything is a multiple of `dv` and its perpendicular: the distance along the line of
+/// centres is `(d² + r1² - r2²) / 2d`, the half chord `sqrt(area16) / 2d`, each divided once
+/// more by `d` to scale `dv`. So one division, by `d²`, and one square root, of `area16`,
+/// which the processor runs side by side; the distance `d` itself is never needed.
+///
+/// Accuracy: near tangency a factor of Heron's product is a difference of nearly equal
+/// squares, off by a few ulps of `d²`; as `(r1 + r2 - d)(r1 + r2 + d)`, with `d` rounded from
+/// `d²`, it is off by as much. That is the problem's own conditioning: the roots stay on both
+/// circles to rounding.
+#[inline(always)]
+fn crossing(c1: P2, dv: V2, d2: f64, r1: f64, r2: f64, area16: f64) -> Chord {
+    let inv_d2 = 1.0 / d2;
+    let along = 0.5 * (d2 + (r1 - r2) * (r1 + r2)) * inv_d2;
+    let h = area16.sqrt() * (0.5 * inv_d2);
     Chord {
-        mid: c1 + u * along,
-        half: perp(u) * h,
+        mid: c1 + dv * along,
+        half: perp(dv) * h,
     }
 }
 
 /// The scales (largest coordinate or radius) at which [`circle_circle_chord`] computes
 /// directly, `2^-150` to `2^150` (about 7e-46 to 1.4e45). With `s` the scale, every centre and
-/// radius is at most `s` and the distance of the centres at most `3s`; for crossing circles
-/// `|along| < r1`, so each root lies within `3s` of the origin, finite. Heron's four factors
-/// are each at most `5s`, and for crossing circles whose radii exceed [`tol::LENGTH_REL`]` * s`
-/// at most one of the last three is below `2^-46 s` (each pair sums to twice a radius or the
-/// distance), and none below the rounding of such a length, about `2^-100 s`: the product
-/// lies between `2^-240 s^4` and `625 s^4`, a normal number.
+/// radius is at most `s`, so `d²` is at most `8s²`, both of [`heron_factors`] at most `8s²`,
+/// their product at most `64s⁴` and `1/d²` at most `2^92 / s²` (`d` exceeds
+/// [`tol::LENGTH_REL`]` * s = 2^-46 s`): all finite. For crossing circles the distance along
+/// the line of centres is below `r1` and the half chord at most `r1`, so each root lies within
+/// `3s` of the origin. Each factor is positive as computed, a difference of two floats of which
+/// the larger is at least `2^-92 s²` (the radii and `d` exceed `2^-46 s`), so at least
+/// `2^-146 s²`; the product is at least `2^-292 s⁴`, above `2^-900`: a normal number, whose
+/// square root keeps full precision.
 pub const CHORD_SCALES: std::ops::RangeInclusive<f64> = {
     // 2^-150 and 2^150, built from their exponents.
     let lo = f64::from_bits((1023 - 150) << 52);
@@ -427,23 +440,25 @@ fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Con
         return Err(Contact::ZeroRadius);
     }
     let dv = c2 - c1;
-    let d = dv.norm();
-    let u = dv / d;
-    let outer = d - (r1 + r2);
-    let inner = (r1 - r2).abs() - d;
-    if outer < 0.0 && inner < 0.0 && d > tol::LENGTH_REL * s {
+    let d2 = dv.norm_squared();
+    let (overlap, apart) = heron_factors(d2, r1, r2);
+    if overlap > 0.0 && apart > 0.0 && d2 > (tol::LENGTH_REL * s) * (tol::LENGTH_REL * s) {
         // Not reached: the caller computed the same values and found them crossing.
-        return Ok(crossing(c1, r1, r2, d, u, 1.0 / d));
+        return Ok(crossing(c1, dv, d2, r1, r2, overlap * apart));
     }
+    let d = d2.sqrt();
+    let u = dv / d;
+    let (outer, inner) = (d - (r1 + r2), (r1 - r2).abs() - d);
     if d <= tol::LENGTH_REL * s && (r1 - r2).abs() <= tol::LENGTH_REL * s {
         return Err(Contact::Coincident);
     }
     let tangent = tol::TANGENT_REL * s;
     let u = if d > 0.0 { u } else { V2::x() };
-    // Missing by rounding (at most `tangent`): the touching point. Overlapping loci, however
-    // little, cross, and their two roots are computed exactly.
-    let external = (0.0..=tangent).contains(&outer);
-    let internal = (0.0..=tangent).contains(&inner) && d > tol::LENGTH_REL * s;
+    // Missing by rounding (at most `tangent`): the touching point. Overlapping loci cross, and
+    // their two roots are computed exactly; an overlap within the rounding of `d²` (where `d`
+    // rounds below the sum of the radii, or above their difference, but `d²` does not) touches.
+    let external = (-tangent..=tangent).contains(&outer);
+    let internal = (-tangent..=tangent).contains(&inner) && d > tol::LENGTH_REL * s;
     if external || internal {
         // External: along u from the first centre; internal: towards the side of the larger.
         let along = if external {
