@@ -38,6 +38,30 @@ fn four_bar_by_hand(theta: f64) -> Option<(f64, f64)> {
     Some((bx + a * ex_ - h * ey, by + a * ey + h * ex_))
 }
 
+/// The same four-bar by hand, with the formula of the runtime's circle-circle chord: the
+/// coupler's joint as multiples of the vector between the centres and its perpendicular, from
+/// that vector's squared length, with one square root and one division that run side by side
+/// (where the textbook form above takes a square root for the distance, then another for the
+/// half chord). A stricter yardstick than the textbook: what a person writes who knows the
+/// generated solver's formula.
+fn four_bar_by_hand_from_d2(theta: f64) -> Option<(f64, f64)> {
+    let (crank, coupler, rocker) = (1.5, 4.0, 3.0);
+    let (dx, dy) = (4.0, 0.0);
+    let (s, c) = theta.sin_cos();
+    let (bx, by) = (crank * c, crank * s);
+    let (ux, uy) = (dx - bx, dy - by);
+    let d2 = ux * ux + uy * uy;
+    let (sum, diff) = (coupler + rocker, coupler - rocker);
+    let area16 = (sum * sum - d2) * (d2 - diff * diff);
+    if area16 < 0.0 {
+        return None;
+    }
+    let inv = 0.5 / d2;
+    let along = (d2 + sum * diff) * inv;
+    let h = area16.sqrt() * inv;
+    Some((bx + along * ux - h * uy, by + along * uy + h * ux))
+}
+
 /// The generated four-bar of solver module `$m` as a function of the crank angle, doing the
 /// same work and giving the same answer as by hand: the coupler point, or none.
 macro_rules! four_bar_generated {
@@ -161,28 +185,55 @@ fn time_solves(
 }
 
 /// The generated four-bar over the hand-written one, timed in alternating blocks so that all
-/// sides see the same machine: in each of 42 rounds, 100,000 solves by hand, 100,000 by the
-/// solver included in this crate and 100,000 by the one called across crates, the same crank
-/// angles on every side, in an order that rotates from round to round. Prints each generated
-/// side's median ratio to the hand-written one over the rounds, its quartiles, and the median
-/// time per solve of each side.
+/// sides see the same machine: in each of 42 rounds, 100,000 solves by each side (the
+/// textbook by hand, the solver included in this crate, the one called across crates, and
+/// by hand with the generated solver's formula), the same crank angles on every side, in an
+/// order that rotates from round to round. Prints each side's median ratio to the textbook
+/// by hand over the rounds, its quartiles, and the median time per solve of each side.
 fn four_bar_interleaved() {
     let thetas: [f64; 64] = std::array::from_fn(|i| i as f64 * 0.098);
     let n = 100_000;
     let by_hand = || time_solves(n, &thetas, four_bar_by_hand);
     let here = || time_solves(n, &thetas, four_bar_generated!(fourbar_here));
     let across = || time_solves(n, &thetas, four_bar_generated!(ex::fourbar));
-    let sides: [&dyn Fn() -> f64; 3] = [&by_hand, &here, &across];
+    let from_d2 = || time_solves(n, &thetas, four_bar_by_hand_from_d2);
+    let sides: [(&str, &dyn Fn() -> f64); 4] = [
+        ("by hand (textbook)", &by_hand),
+        (
+            "generated, included in this crate (as the README embeds it)",
+            &here,
+        ),
+        (
+            "generated, called across crates (gcs_examples::fourbar)",
+            &across,
+        ),
+        ("by hand with the generated solver's formula", &from_d2),
+    ];
+    // Every side gives the same answer at every angle, so they do the same work.
+    let mut generated = four_bar_generated!(ex::fourbar);
+    for &theta in &thetas {
+        let want = four_bar_by_hand(theta).expect("the four-bar assembles at every angle");
+        for (x, y) in [generated(theta), four_bar_by_hand_from_d2(theta)]
+            .into_iter()
+            .flatten()
+        {
+            assert!(
+                (x - want.0).abs() + (y - want.1).abs() < 1e-12,
+                "{theta}: {x}, {y}"
+            );
+        }
+        assert!(generated(theta).is_some() && four_bar_by_hand_from_d2(theta).is_some());
+    }
     // Warm up every side, then measure.
-    for side in sides {
+    for (_, side) in sides {
         side();
     }
-    let mut times = [Vec::new(), Vec::new(), Vec::new()];
+    let mut times: [Vec<f64>; 4] = Default::default();
     for round in 0..42 {
-        let mut this_round = [0.0; 3];
-        for k in 0..3 {
-            let i = (round + k) % 3;
-            this_round[i] = sides[i]();
+        let mut this_round = [0.0; 4];
+        for k in 0..sides.len() {
+            let i = (round + k) % sides.len();
+            this_round[i] = sides[i].1();
         }
         for (all, t) in times.iter_mut().zip(this_round) {
             all.push(t);
@@ -196,23 +247,30 @@ fn four_bar_interleaved() {
     };
     let median_ns = |v: &[f64]| quantile(v, 0.5) * 1e9;
     println!(
-        "fourbar/interleaved     by hand {:.1} ns over 42 rounds",
+        "fourbar/interleaved     {} {:.1} ns over 42 rounds",
+        sides[0].0,
         median_ns(&times[0])
     );
-    for (i, what) in [
-        (1, "included in this crate (as the README embeds it)"),
-        (2, "called across crates (gcs_examples::fourbar)"),
-    ] {
+    for i in 1..sides.len() {
         let ratios: Vec<f64> = times[i].iter().zip(&times[0]).map(|(g, h)| g / h).collect();
         println!(
-            "fourbar/interleaved     generated, {what}: {:.1} ns, {:.2}x by hand (quartiles \
-             {:.2}x-{:.2}x)",
+            "fourbar/interleaved     {}: {:.1} ns, {:.2}x by hand (quartiles {:.2}x-{:.2}x)",
+            sides[i].0,
             median_ns(&times[i]),
             quantile(&ratios, 0.5),
             quantile(&ratios, 0.25),
             quantile(&ratios, 0.75),
         );
     }
+    // The generated solver against the stricter yardstick, round by round.
+    let strict: Vec<f64> = times[1].iter().zip(&times[3]).map(|(g, h)| g / h).collect();
+    println!(
+        "fourbar/interleaved     generated (this crate) over by hand with its formula: {:.2}x \
+         (quartiles {:.2}x-{:.2}x)",
+        quantile(&strict, 0.5),
+        quantile(&strict, 0.25),
+        quantile(&strict, 0.75),
+    );
 }
 
 criterion_group!(benches, bench_four_bar, bench_examples);
