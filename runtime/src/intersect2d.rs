@@ -351,7 +351,9 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let least = tol::LENGTH_REL * s;
     // Within `CHORD_SCALES` every value here is finite and Heron's product normal, so the
     // roots need no test of their own. Out of it, the values above may be garbage: they are
-    // not used.
+    // not used. Where these tests on `d²` find no crossing, tests on `d` would find none
+    // either (`sqrt(x * x)` is `|x|` in floating point, and `sqrt` is monotone); they may find
+    // an overlap that `d` would round away, and such circles cross.
     let plain = CHORD_SCALES.contains(&s)
         && r1 > least
         && r2 > least
@@ -447,18 +449,17 @@ fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Con
         return Ok(crossing(c1, dv, d2, r1, r2, overlap * apart));
     }
     let d = d2.sqrt();
-    let u = dv / d;
-    let (outer, inner) = (d - (r1 + r2), (r1 - r2).abs() - d);
     if d <= tol::LENGTH_REL * s && (r1 - r2).abs() <= tol::LENGTH_REL * s {
         return Err(Contact::Coincident);
     }
+    let (outer, inner) = (d - (r1 + r2), (r1 - r2).abs() - d);
     let tangent = tol::TANGENT_REL * s;
-    let u = if d > 0.0 { u } else { V2::x() };
-    // Missing by rounding (at most `tangent`): the touching point. Overlapping loci cross, and
-    // their two roots are computed exactly; an overlap within the rounding of `d²` (where `d`
-    // rounds below the sum of the radii, or above their difference, but `d²` does not) touches.
-    let external = (-tangent..=tangent).contains(&outer);
-    let internal = (-tangent..=tangent).contains(&inner) && d > tol::LENGTH_REL * s;
+    let u = if d > 0.0 { dv / d } else { V2::x() };
+    // Missing by rounding (at most `tangent`): the touching point. Overlapping loci, however
+    // little, cross, and their two roots are computed exactly. (`outer` and `inner` are not
+    // negative here: where the tests on `d²` above find no crossing, neither would `d`.)
+    let external = (0.0..=tangent).contains(&outer);
+    let internal = (0.0..=tangent).contains(&inner) && d > tol::LENGTH_REL * s;
     if external || internal {
         // External: along u from the first centre; internal: towards the side of the larger.
         let along = if external {
@@ -1207,6 +1208,40 @@ mod tests {
     /// direct computation inside `CHORD_SCALES` and the rescaled one outside give the same
     /// roots, scaled, to rounding. Heron's product overflows past about 1e76 and underflows
     /// below 1e-77, where an unscaled computation would miss or snap the roots.
+    /// Where the chord's tests on `d²` find circles apart or nested, tests on `d` would too:
+    /// `sqrt` is correctly rounded and monotone, and `sqrt(x * x) == |x|` in floating point.
+    /// So the cold path never sees circles that `d` says overlap. (The converse can fail by
+    /// one rounding: `d²` sees an overlap that `d` rounds away; those cross.) Checked on
+    /// circles that touch to rounding, where it matters.
+    #[test]
+    fn no_crossing_by_d2_is_no_crossing_by_d() {
+        let (mut near, mut finer) = (0, 0);
+        for k in 0..50_000 {
+            let (r1, r2) = (
+                1.0 + f64::from(k % 97) * 0.013,
+                0.7 + f64::from(k % 13) * 0.05,
+            );
+            let angle = f64::from(k) * 0.000_37;
+            for radius in [r1 + r2, r1 - r2] {
+                let c2 = P2::new(radius * angle.cos(), radius * angle.sin());
+                let d2 = c2.coords.norm_squared();
+                let d = d2.sqrt();
+                let r = radius.abs();
+                near += usize::from(d == r);
+                if radius * radius - d2 <= 0.0 {
+                    assert!(d >= r, "apart by d², not by d: {radius} {c2:?}");
+                } else {
+                    finer += usize::from(d >= r);
+                }
+                if d2 - radius * radius <= 0.0 {
+                    assert!(d <= r, "nested by d², not by d: {radius} {c2:?}");
+                }
+            }
+        }
+        // Touching to the last bit in many cases, so that the test is not vacuous.
+        assert!(near > 10_000 && finer > 0, "{near} {finer}");
+    }
+
     #[test]
     fn circle_circle_at_every_scale() {
         // Powers of two from 1e-300 to 1e300, across both edges of `CHORD_SCALES`, so that
