@@ -74,10 +74,11 @@ fn main() {
             branches.set(name, index);
         }
     }
+    // `gcs bench` passes its per-sample budget; without one, each sample is solved once.
     let budget: f64 = std::env::var("GCS_BENCH_BUDGET_NS")
         .ok()
         .and_then(|b| b.parse().ok())
-        .unwrap_or(200_000.0);
+        .unwrap_or(0.0);
     let out = std::io::stdout();
     let mut out = out.lock();
     for line in lines {
@@ -116,13 +117,15 @@ fn main() {
 "#;
 
 /// Builds the generated solver `code` of the model at `path` and runs it on `sweep`, with the
-/// given branch indices by name. `Err` says why it could not (the caller then interprets).
+/// given branch indices by name, repeating each sample's solve for `budget_ns` (see
+/// `gcs_compiler::bench::Settings`). `Err` says why it could not (the caller then interprets).
 pub fn run(
     path: &Path,
     code: &str,
     param_names: &[String],
     branches: &[(String, usize)],
     sweep: &Sweep,
+    budget_ns: f64,
 ) -> Result<Vec<Sample>, String> {
     let root = workspace().ok_or("the runtime's sources are not at hand")?;
     let stem = path
@@ -167,6 +170,7 @@ pub fn run(
         .join(format!("gcs-bench-{}", stem.replace('_', "-")));
     let mut child = Command::new(&exe)
         .args(branches.iter().map(|(n, i)| format!("{n}={i}")))
+        .env("GCS_BENCH_BUDGET_NS", budget_ns.to_string())
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .spawn()

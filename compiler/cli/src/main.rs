@@ -350,7 +350,7 @@ fn bench(
         let (plan, scope) = gcs_compiler::prune::prune(model, &analysis.plan);
         let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
         let sweep = bench::sweep(model, samples);
-        // `GCS_BENCH_BUDGET_NS` shortens the repeated solves of each sample (tests set 1).
+        // `GCS_BENCH_BUDGET_NS` sets the repeated solves of each sample, on both sides (tests set 1).
         let mut settings = bench::Settings {
             linear: if dense { Linear::Dense } else { Linear::Auto },
             ..bench::Settings::default()
@@ -371,7 +371,7 @@ fn bench(
                 .iter()
                 .map(|b| (b.name.clone(), b.default))
                 .collect();
-            match generated::run(path, &code, &names, &named, &sweep) {
+            match generated::run(path, &code, &names, &named, &sweep, settings.budget_ns) {
                 Ok(answers) => {
                     let mut run = bench::CompiledRun {
                         kind: "generated",
