@@ -16,16 +16,27 @@ mod fourbar_here {
     gcs_runtime::include_solver!("fourbar");
 }
 
+/// The lengths of examples/fourbar.gcs's crank, coupler and rocker.
+const CRANK: f64 = 1.5;
+const COUPLER: f64 = 4.0;
+const ROCKER: f64 = 3.0;
+
+/// The crank's end at angle `theta`, and the vector from it to the rocker's pivot `(4, 0)`:
+/// where both hand-written solves start.
+#[inline(always)]
+fn crank_end_and_reach(theta: f64) -> ([f64; 2], [f64; 2]) {
+    let (s, c) = theta.sin_cos();
+    let (bx, by) = (CRANK * c, CRANK * s);
+    ([bx, by], [4.0 - bx, 0.0 - by])
+}
+
 /// A four-bar solved by hand, in closed form: the crank's end, then the coupler's far joint as
 /// the intersection of two circles, on the side the model's `elbow` = 0 means (left of the line
 /// from the crank's end to the rocker's pivot). Same geometry as examples/fourbar.gcs, and the
 /// same answer as its output `coupler.c`.
 fn four_bar_by_hand(theta: f64) -> Option<(f64, f64)> {
-    let (crank, coupler, rocker) = (1.5, 4.0, 3.0);
-    let (dx, dy) = (4.0, 0.0);
-    let (s, c) = theta.sin_cos();
-    let (bx, by) = (crank * c, crank * s);
-    let (ux, uy) = (dx - bx, dy - by);
+    let (coupler, rocker) = (COUPLER, ROCKER);
+    let ([bx, by], [ux, uy]) = crank_end_and_reach(theta);
     let d2 = ux * ux + uy * uy;
     let d = d2.sqrt();
     let a = (coupler * coupler - rocker * rocker + d2) / (2.0 * d);
@@ -45,13 +56,9 @@ fn four_bar_by_hand(theta: f64) -> Option<(f64, f64)> {
 /// half chord). A stricter yardstick than the textbook: what a person writes who knows the
 /// generated solver's formula.
 fn four_bar_by_hand_from_d2(theta: f64) -> Option<(f64, f64)> {
-    let (crank, coupler, rocker) = (1.5, 4.0, 3.0);
-    let (dx, dy) = (4.0, 0.0);
-    let (s, c) = theta.sin_cos();
-    let (bx, by) = (crank * c, crank * s);
-    let (ux, uy) = (dx - bx, dy - by);
+    let ([bx, by], [ux, uy]) = crank_end_and_reach(theta);
     let d2 = ux * ux + uy * uy;
-    let (sum, diff) = (coupler + rocker, coupler - rocker);
+    let (sum, diff) = (COUPLER + ROCKER, COUPLER - ROCKER);
     let area16 = (sum * sum - d2) * (d2 - diff * diff);
     if area16 < 0.0 {
         return None;
