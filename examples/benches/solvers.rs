@@ -219,17 +219,16 @@ fn four_bar_interleaved() {
     // Every side gives the same answer at every angle, so they do the same work.
     let mut generated = four_bar_generated!(ex::fourbar);
     for &theta in &thetas {
-        let want = four_bar_by_hand(theta).expect("the four-bar assembles at every angle");
-        for (x, y) in [generated(theta), four_bar_by_hand_from_d2(theta)]
-            .into_iter()
-            .flatten()
+        let assembled = "the four-bar assembles at every angle";
+        let want = four_bar_by_hand(theta).expect(assembled);
+        for (x, y) in
+            [generated(theta), four_bar_by_hand_from_d2(theta)].map(|r| r.expect(assembled))
         {
             assert!(
                 (x - want.0).abs() + (y - want.1).abs() < 1e-12,
                 "{theta}: {x}, {y}"
             );
         }
-        assert!(generated(theta).is_some() && four_bar_by_hand_from_d2(theta).is_some());
     }
     // Warm up every side, then measure.
     for (_, side) in sides {
@@ -253,13 +252,17 @@ fn four_bar_interleaved() {
         v[((v.len() - 1) as f64 * at).round() as usize]
     };
     let median_ns = |v: &[f64]| quantile(v, 0.5) * 1e9;
+    // Round by round, the time of side `a` over that of side `b`.
+    let ratios = |a: usize, b: usize| -> Vec<f64> {
+        times[a].iter().zip(&times[b]).map(|(x, y)| x / y).collect()
+    };
     println!(
         "fourbar/interleaved     {} {:.1} ns over 42 rounds",
         sides[0].0,
         median_ns(&times[0])
     );
     for i in 1..sides.len() {
-        let ratios: Vec<f64> = times[i].iter().zip(&times[0]).map(|(g, h)| g / h).collect();
+        let ratios = ratios(i, 0);
         println!(
             "fourbar/interleaved     {}: {:.1} ns, {:.2}x by hand (quartiles {:.2}x-{:.2}x)",
             sides[i].0,
@@ -270,7 +273,7 @@ fn four_bar_interleaved() {
         );
     }
     // The generated solver against the stricter yardstick, round by round.
-    let strict: Vec<f64> = times[1].iter().zip(&times[3]).map(|(g, h)| g / h).collect();
+    let strict = ratios(1, 3);
     println!(
         "fourbar/interleaved     generated (this crate) over by hand with its formula: {:.2}x \
          (quartiles {:.2}x-{:.2}x)",

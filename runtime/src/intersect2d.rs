@@ -348,22 +348,30 @@ pub fn circle_circle_chord(a: &Circle, b: &Circle) -> Result<Chord, Contact> {
     let dv = c2 - c1;
     let d2 = dv.norm_squared();
     let (overlap, apart) = heron_factors(d2, r1, r2);
+    if !plainly_cross(s, r1, r2, d2, overlap, apart) {
+        return not_plainly_crossing([c1.x, c1.y, r1, c2.x, c2.y, r2]);
+    }
+    Ok(crossing(c1, dv, d2, r1, r2, overlap * apart))
+}
+
+/// Whether two circles at scale `s`, of radii `r1` and `r2`, with centres `sqrt(d2)` apart and
+/// [`heron_factors`] `overlap` and `apart`, plainly cross: the scale in [`CHORD_SCALES`], the
+/// radii and the distance above [`tol::LENGTH_REL`] of it, and both factors positive.
+///
+/// Within `CHORD_SCALES` every value of [`crossing`] is then finite and Heron's product
+/// normal, so the roots need no test of their own. Where these tests on `d²` find no
+/// crossing, tests on `d` would find none either (`sqrt(x * x)` is `|x|` in floating point,
+/// and `sqrt` is monotone); they may find an overlap that `d` would round away, and such
+/// circles cross.
+#[inline(always)]
+fn plainly_cross(s: f64, r1: f64, r2: f64, d2: f64, overlap: f64, apart: f64) -> bool {
     let least = tol::LENGTH_REL * s;
-    // Within `CHORD_SCALES` every value here is finite and Heron's product normal, so the
-    // roots need no test of their own. Out of it, the values above may be garbage: they are
-    // not used. Where these tests on `d²` find no crossing, tests on `d` would find none
-    // either (`sqrt(x * x)` is `|x|` in floating point, and `sqrt` is monotone); they may find
-    // an overlap that `d` would round away, and such circles cross.
-    let plain = CHORD_SCALES.contains(&s)
+    CHORD_SCALES.contains(&s)
         && r1 > least
         && r2 > least
         && overlap > 0.0
         && apart > 0.0
-        && d2 > least * least;
-    if !plain {
-        return not_plainly_crossing([c1.x, c1.y, r1, c2.x, c2.y, r2]);
-    }
-    Ok(crossing(c1, dv, d2, r1, r2, overlap * apart))
+        && d2 > least * least
 }
 
 /// The scale of two circles: their largest coordinate or radius. The radii first, then the
@@ -444,7 +452,7 @@ fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Con
     let dv = c2 - c1;
     let d2 = dv.norm_squared();
     let (overlap, apart) = heron_factors(d2, r1, r2);
-    if overlap > 0.0 && apart > 0.0 && d2 > (tol::LENGTH_REL * s) * (tol::LENGTH_REL * s) {
+    if plainly_cross(s, r1, r2, d2, overlap, apart) {
         // Not reached: the caller computed the same values and found them crossing.
         return Ok(crossing(c1, dv, d2, r1, r2, overlap * apart));
     }
