@@ -18,6 +18,9 @@ use gcs_lang::Model;
 use std::cell::RefCell;
 use std::collections::{BTreeSet, HashMap, HashSet};
 
+mod scopes;
+use scopes::Binding;
+
 /// The generated module for a model, pruned to its `output` statements.
 pub fn generate(model: &Model, analysis: &Analysis) -> String {
     let (plan, scope) = crate::prune::prune(model, &analysis.plan);
@@ -198,11 +201,11 @@ impl Origin {
     }
 }
 
-/// A line of the solve's sketch: a frame's declaration (without `let`), written once the
-/// steps show whether the frame is read or moved, or any other line.
+/// A binding of the solve's sketch: a frame's (its name and constructor), declared once the
+/// steps show whether the frame is read or moved, or any other.
 enum Decl {
-    Frame(GeomId, String),
-    Line(String),
+    Frame(GeomId, String, String),
+    Value(Binding),
 }
 
 /// Whether generated code is a plain identifier (a local), not a literal or an expression.
@@ -1210,7 +1213,7 @@ impl<'a> Gen<'a> {
                     ("Frame2::at(Point2::origin())".into(), facts)
                 }
             };
-            decls.push(Decl::Frame(g, format!("{name} = {ctor};")));
+            decls.push(Decl::Frame(g, name.clone(), ctor));
             self.facts.insert(g, facts);
             self.frames.insert(g, name);
             if matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
@@ -1239,8 +1242,11 @@ impl<'a> Gen<'a> {
                     // Set once by the plan before anything reads it: declared there.
                     self.deferred.insert(g);
                 } else {
-                    let mutable = if self.dim_set(g) { "mut " } else { "" };
-                    decls.push(Decl::Line(format!("let {mutable}{dname} = {value};")));
+                    decls.push(Decl::Value(Binding {
+                        mutable: self.dim_set(g),
+                        name: dname.clone(),
+                        value,
+                    }));
                 }
                 self.dims.insert(g, dname);
             }
@@ -1257,15 +1263,20 @@ impl<'a> Gen<'a> {
                 match &p.sketch {
                     Sketch::Point(c) | Sketch::Marker { origin: c, .. } if wanted(self, part) => {
                         let lname = self.names.fresh(&format!("{}_local", p.name));
-                        decls.push(Decl::Line(format!("let {lname} = {};", self.point_lit(c))));
+                        decls.push(Decl::Value(Binding {
+                            mutable: false,
+                            name: lname.clone(),
+                            value: self.point_lit(c),
+                        }));
                         self.locals.insert(part, lname);
                     }
                     Sketch::Vector(c) if wanted(self, part) => {
                         let lname = self.names.fresh(&format!("{}_local", p.name));
-                        decls.push(Decl::Line(format!(
-                            "let {lname} = {}.normalize();",
-                            self.vector_lit(c)
-                        )));
+                        decls.push(Decl::Value(Binding {
+                            mutable: false,
+                            name: lname.clone(),
+                            value: format!("{}.normalize()", self.vector_lit(c)),
+                        }));
                         self.locals.insert(part, lname);
                     }
                     _ => {}
@@ -1273,16 +1284,19 @@ impl<'a> Gen<'a> {
                 if let (Sketch::Marker { x, .. }, Some(ax)) = (&p.sketch, axis) {
                     if wanted(self, ax) {
                         let xname = self.names.fresh(&format!("{}_x_local", p.name));
-                        decls.push(Decl::Line(format!(
-                            "let {xname} = {}.normalize();",
-                            self.vector_lit(x)
-                        )));
+                        decls.push(Decl::Value(Binding {
+                            mutable: false,
+                            name: xname.clone(),
+                            value: format!("{}.normalize()", self.vector_lit(x)),
+                        }));
                         self.locals.insert(ax, xname);
                     }
                 }
             }
         }
-        // Tolerance of run-time checks: relative to the model's scale.
+        // Tolerance of run-time checks: relative to the model's scale. It reads the frames and
+        // dimensions, so it is declared after them.
+        let mut tol = None;
         if self
             .plan
             .steps
@@ -1306,10 +1320,10 @@ impl<'a> Gen<'a> {
                     }
                 }
             }
-            decls.push(Decl::Line(format!(
+            tol = Some(format!(
                 "let tol = gcs_runtime::tol::CHECK_REL * (1.0 + gcs_runtime::tol::scale(&[{}]));",
                 terms.join(", ")
-            )));
+            ));
         }
         // Each group of steps, up to the one that satisfies a constraint, opens with a comment
         // quoting that constraint and its place in the file.
@@ -1323,8 +1337,11 @@ impl<'a> Gen<'a> {
         // Where the current group's code starts: a group whose steps all turn out to move
         // nothing says so under its comment.
         let mut group_code = 0;
+        // Where each group starts, so that a long solve can be put in blocks.
+        let mut group_starts = Vec::new();
         for (i, step) in self.plan.steps.iter().enumerate() {
             if group_start {
+                group_starts.push(w.out.len());
                 if let Some(end) = self.plan.steps[i..]
                     .iter()
                     .find(|s| !s.satisfies.is_empty())
@@ -1355,6 +1372,12 @@ impl<'a> Gen<'a> {
                 group_start = true;
             }
         }
+        let steps = std::mem::take(&mut w.out);
+        let groups: Vec<String> = group_starts
+            .iter()
+            .zip(group_starts.iter().skip(1).chain([&steps.len()]))
+            .map(|(&from, &to)| steps[from..to].to_string())
+            .collect();
         // The solution.
         w.line("");
         w.open("Ok(Solution {");
@@ -1390,18 +1413,29 @@ impl<'a> Gen<'a> {
             }
         }
         w.close("})");
+        let mut bindings = Vec::new();
         for decl in decls {
             match decl {
-                Decl::Frame(g, rest) => {
-                    let moved = self.frame_writes.contains(&g);
-                    if moved || self.frame_reads.borrow().contains(&g) {
-                        let mutable = if moved { "mut " } else { "" };
-                        w_outer.line(&format!("let {mutable}{rest}"));
+                Decl::Frame(g, name, value) => {
+                    let mutable = self.frame_writes.contains(&g);
+                    if mutable || self.frame_reads.borrow().contains(&g) {
+                        bindings.push(Binding {
+                            mutable,
+                            name,
+                            value,
+                        });
                     }
                 }
-                Decl::Line(line) => w_outer.line(&line),
+                Decl::Value(binding) => bindings.push(binding),
             }
         }
+        scopes::declare(w_outer, &bindings);
+        if let Some(tol) = tol {
+            w_outer.line(&tol);
+        }
+        w_outer
+            .out
+            .push_str(&scopes::in_blocks(&groups, &body.out, body.indent));
         w_outer.out.push_str(&body.out);
         w_outer.close("}");
     }

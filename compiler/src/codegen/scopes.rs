@@ -1,0 +1,312 @@
+//! Keeps the lexical scopes of a long solve shallow.
+//!
+//! Every `let` opens a scope nested in the one before it, to the end of its block. A debug build
+//! describes that nesting to LLVM, whose DWARF writer recurses once per level, so a solve of
+//! some thousands of `let`s in a row overflows rustc's stack (a chain of 1,024 four-bars has
+//! about 8,000). A long solve is therefore written in blocks, each handing on the values later
+//! code reads, and a long list of declarations as tuple `let`s: the nesting then grows as the
+//! square root of the number of `let`s. Code short enough to nest safely is written as it is.
+
+use super::Writer;
+use std::collections::HashSet;
+
+/// Code with at most this many `let`s in a row is written flat: deep enough for any model a
+/// person writes by hand, and far from the depth that overflows (thousands).
+pub(super) const FLAT_LETS: usize = 512;
+
+/// The fewest `let`s a block, or bindings a tuple `let`, holds once code is split.
+const MIN_BLOCK: usize = 64;
+
+/// How many `let`s go in one block (or one tuple) when `total` are split: about the square
+/// root, so that the number of blocks and the depth inside each stay about equal.
+fn block_size(total: usize) -> usize {
+    MIN_BLOCK.max((total as f64).sqrt().ceil() as usize)
+}
+
+/// One binding of the solve's declarations: `let [mut] name = value;`.
+pub(super) struct Binding {
+    pub mutable: bool,
+    pub name: String,
+    pub value: String,
+}
+
+impl Binding {
+    fn pattern(&self) -> String {
+        match self.mutable {
+            true => format!("mut {}", self.name),
+            false => self.name.clone(),
+        }
+    }
+}
+
+/// Writes `bindings` in order: a `let` each, or, past [`FLAT_LETS`], tuple `let`s of
+/// [`block_size`] bindings. No binding's value may read another binding of the list.
+pub(super) fn declare(w: &mut Writer, bindings: &[Binding]) {
+    if bindings.len() <= FLAT_LETS {
+        for b in bindings {
+            w.line(&format!("let {} = {};", b.pattern(), b.value));
+        }
+        return;
+    }
+    w.line(&format!(
+        "// {} declarations, {} to a `let`: a `let` each would nest their scopes too deep for",
+        bindings.len(),
+        block_size(bindings.len())
+    ));
+    w.line("// a debug build.");
+    for chunk in bindings.chunks(block_size(bindings.len())) {
+        if let [b] = chunk {
+            w.line(&format!("let {} = {};", b.pattern(), b.value));
+            continue;
+        }
+        let patterns: Vec<String> = chunk.iter().map(Binding::pattern).collect();
+        w.open(&format!("let ({}) = (", patterns.join(", ")));
+        for b in chunk {
+            w.line(&format!("{},", b.value));
+        }
+        w.close(");");
+    }
+}
+
+/// The solve's step groups, in order, as one text at `indent`: the groups themselves, or, past
+/// [`FLAT_LETS`] `let`s at the top level, runs of groups each in a block of its own that ends
+/// with the locals it defines and `later` code (or a later block) reads.
+///
+/// A group's top-level `let`s are its lines at `indent` that start with `let`; what later code
+/// reads is judged by its identifiers, comments and string literals included, which can only
+/// hand on a value that is not needed.
+pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String {
+    let margin = "    ".repeat(indent);
+    let defined: Vec<Vec<&str>> = groups.iter().map(|g| top_level_lets(g, &margin)).collect();
+    let total: usize = defined.iter().map(Vec::len).sum();
+    if total <= FLAT_LETS {
+        return groups.concat();
+    }
+    // Runs of whole groups, each closed once it holds `size` lets.
+    let size = block_size(total);
+    let mut runs = Vec::new();
+    let (mut start, mut lets) = (0, 0);
+    for (i, d) in defined.iter().enumerate() {
+        lets += d.len();
+        if lets >= size || i + 1 == groups.len() {
+            runs.push(start..i + 1);
+            start = i + 1;
+            lets = 0;
+        }
+    }
+    // What each run hands on: its locals that code after it reads, found from the end back.
+    let mut read_after: HashSet<&str> = identifiers(later).into_iter().collect();
+    let mut handed_on = vec![Vec::new(); runs.len()];
+    for (k, run) in runs.iter().enumerate().rev() {
+        handed_on[k] = defined[run.clone()]
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|name| read_after.contains(name))
+            .collect::<Vec<_>>();
+        for g in &groups[run.clone()] {
+            read_after.extend(identifiers(g));
+        }
+    }
+    let mut w = Writer {
+        out: String::new(),
+        indent,
+    };
+    for (run, out) in runs.iter().zip(&handed_on) {
+        w.line("");
+        w.line(match out.len() {
+            0 => "// A block of steps, so that a debug build's scopes stay shallow.",
+            _ => "// A block of steps, so that a debug build's scopes stay shallow; it hands on what later steps read.",
+        });
+        let (open, close) = match out.as_slice() {
+            [] => ("{".to_string(), "}".to_string()),
+            [one] => (format!("let {one} = {{"), "};".to_string()),
+            many => (format!("let ({}) = {{", many.join(", ")), "};".to_string()),
+        };
+        w.open(&open);
+        for g in &groups[run.clone()] {
+            for line in g.lines() {
+                match line.is_empty() {
+                    true => w.out.push('\n'),
+                    false => {
+                        w.out.push_str("    ");
+                        w.out.push_str(line);
+                        w.out.push('\n');
+                    }
+                }
+            }
+        }
+        match out.as_slice() {
+            [] => {}
+            [one] => w.line(one),
+            many => w.line(&format!("({})", many.join(", "))),
+        }
+        w.close(&close);
+    }
+    w.out
+}
+
+/// The names a text's top-level `let`s (lines at `margin` starting with `let`) bind, in order.
+fn top_level_lets<'t>(text: &'t str, margin: &str) -> Vec<&'t str> {
+    text.lines()
+        .filter_map(|line| line.strip_prefix(margin)?.strip_prefix("let "))
+        .map(|rest| {
+            let rest = rest.strip_prefix("mut ").unwrap_or(rest);
+            let end = rest
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len());
+            &rest[..end]
+        })
+        .filter(|name| !name.is_empty() && *name != "_")
+        .collect()
+}
+
+/// The identifiers a text's code reads: its words outside comments and string literals (a
+/// value handed on that nothing reads would be an unused variable in the caller's crate).
+fn identifiers(text: &str) -> Vec<&str> {
+    let bytes = text.as_bytes();
+    let mut words = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'"' => {
+                i += 1;
+                while i < bytes.len() && bytes[i] != b'"' {
+                    i += if bytes[i] == b'\\' { 2 } else { 1 };
+                }
+                i += 1;
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'/') => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            c if c.is_ascii_alphanumeric() || c == b'_' => {
+                let start = i;
+                while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
+                    i += 1;
+                }
+                if !bytes[start].is_ascii_digit() {
+                    words.push(&text[start..i]);
+                }
+            }
+            _ => i += 1,
+        }
+    }
+    words
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A group of `n` lets at indent 1: `let {prefix}_i = {prefix}_{i-1} + 1.0;`, the first
+    /// reading `input`.
+    fn group(prefix: &str, n: usize, input: &str) -> String {
+        let mut out = format!("\n    // {prefix}\n");
+        for i in 0..n {
+            let from = match i {
+                0 => input.to_string(),
+                _ => format!("{prefix}_{}", i - 1),
+            };
+            out.push_str(&format!("    let {prefix}_{i} = {from} + 1.0;\n"));
+        }
+        out
+    }
+
+    #[test]
+    fn short_code_is_written_as_it_is() {
+        let groups = vec![group("a", 10, "x"), group("b", 10, "a_9")];
+        assert_eq!(in_blocks(&groups, "b_9", 1), groups.concat());
+        let mut w = Writer {
+            out: String::new(),
+            indent: 1,
+        };
+        let bindings = [Binding {
+            mutable: true,
+            name: "crank".into(),
+            value: "Frame2::at(Point2::origin())".into(),
+        }];
+        declare(&mut w, &bindings);
+        assert_eq!(w.out, "    let mut crank = Frame2::at(Point2::origin());\n");
+    }
+
+    #[test]
+    fn long_code_hands_on_exactly_what_later_code_reads() {
+        // 40 groups of 20 lets: 800 in all, so blocks of about 64 lets (4 groups), each reading
+        // the last local of the group before; the tail reads the very last one.
+        let groups: Vec<String> = (0..40)
+            .map(|k| {
+                let input = match k {
+                    0 => "x".to_string(),
+                    _ => format!("g{}_19", k - 1),
+                };
+                group(&format!("g{k}"), 20, &input)
+            })
+            .collect();
+        let text = in_blocks(&groups, "    Ok(g39_19)\n", 1);
+        // Ten blocks, each at the top level of the function.
+        assert_eq!(text.matches("\n    let g").count(), 10, "{text}");
+        assert_eq!(text.matches("\n    {\n").count(), 0);
+        // Each block hands on the one local the next block (or the tail) reads.
+        for k in 0..10 {
+            let last = 4 * k + 3;
+            assert!(
+                text.contains(&format!("    let g{last}_19 = {{\n")),
+                "block {k} hands on g{last}_19:\n{text}"
+            );
+            assert!(text.contains(&format!("        g{last}_19\n    }};\n")));
+        }
+        // Every original line is kept, one level deeper.
+        for g in &groups {
+            for line in g.lines().filter(|l| !l.is_empty()) {
+                assert!(text.contains(&format!("    {line}\n")), "{line}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_block_nothing_later_reads_from_hands_on_nothing() {
+        let groups: Vec<String> = (0..40).map(|k| group(&format!("g{k}"), 20, "x")).collect();
+        let text = in_blocks(&groups, "    Ok(())\n", 1);
+        assert_eq!(text.matches("\n    {\n").count(), 10, "{text}");
+        assert!(!text.contains("\n    let g"), "{text}");
+    }
+
+    #[test]
+    fn several_locals_are_handed_on_as_a_tuple() {
+        let mut groups: Vec<String> = (0..40).map(|k| group(&format!("g{k}"), 20, "x")).collect();
+        groups.push("\n    let y = g0_3 * g1_7;\n".to_string());
+        let text = in_blocks(&groups, "    Ok(y)\n", 1);
+        assert!(text.contains("    let (g0_3, g1_7) = {\n"), "{text}");
+        assert!(text.contains("        (g0_3, g1_7)\n    };\n"));
+    }
+
+    #[test]
+    fn comments_and_strings_are_not_reads() {
+        let code = "let a = b + c_2; // d e\nf(\"g \\\" h\", i2) // \"j\n1.5e3";
+        assert_eq!(identifiers(code), ["let", "a", "b", "c_2", "f", "i2"]);
+    }
+
+    #[test]
+    fn long_declarations_are_tuple_lets() {
+        let bindings: Vec<Binding> = (0..600)
+            .map(|i| Binding {
+                mutable: i % 2 == 0,
+                name: format!("f{i}"),
+                value: format!("Frame2::at(Point2::new({i}.0, 0.0))"),
+            })
+            .collect();
+        let mut w = Writer {
+            out: String::new(),
+            indent: 1,
+        };
+        declare(&mut w, &bindings);
+        // sqrt(600) rounds up to 25, below the least block: 64 a tuple, ten tuples.
+        assert_eq!(w.out.matches("let (").count(), 10, "{}", w.out);
+        assert!(w.out.contains("    let (mut f0, f1, mut f2,"));
+        assert!(w
+            .out
+            .contains("        Frame2::at(Point2::new(599.0, 0.0)),\n    );\n"));
+    }
+}
