@@ -602,7 +602,7 @@ impl<'a> Gen<'a> {
     fn params_struct(&self, w: &mut Writer) {
         let m = self.model;
         w.line("/// The run-time inputs: one field per `param` of the model.");
-        w.line("#[derive(Clone, Copy, Debug, PartialEq)]");
+        w.line(&scopes::derives(m.params.len(), &[], false));
         if m.params.is_empty() {
             w.line("pub struct Params {}");
         } else {
@@ -619,6 +619,12 @@ impl<'a> Gen<'a> {
             w.close("}");
         }
         w.line("");
+        let fields: Vec<String> = m
+            .params
+            .iter()
+            .map(|(id, _)| self.params[&id].clone())
+            .collect();
+        scopes::field_by_field_eq(w, "Params", &fields, false);
         w.line("#[allow(dead_code)]");
         w.open("impl Params {");
         w.line("/// Sets the param called `name` (as in the model); `false` when there is none.");
@@ -662,7 +668,7 @@ impl<'a> Gen<'a> {
 
     fn branches_struct(&self, w: &mut Writer) {
         w.line("/// Which assembly: one field per branch variable, each an index with a geometric meaning.");
-        w.line("#[derive(Clone, Copy, Debug, PartialEq, Eq)]");
+        w.line(&scopes::derives(self.branches.len(), &[], true));
         if self.plan.branches.is_empty() {
             w.line("pub struct Branches {}");
         } else {
@@ -677,6 +683,7 @@ impl<'a> Gen<'a> {
             w.close("}");
         }
         w.line("");
+        scopes::field_by_field_eq(w, "Branches", &self.branches, true);
         w.line("#[allow(dead_code)]");
         w.open("impl Branches {");
         w.line("/// Sets the branch variable called `name` (as in the model); `false` when there is none.");
@@ -787,7 +794,7 @@ impl<'a> Gen<'a> {
         }
         w.line("/// The solved configuration of every geom the outputs need: frames and dimensions, read");
         w.line("/// through accessors named after the model.");
-        w.line("#[derive(Clone, Copy, Debug, PartialEq)]");
+        w.line(&scopes::derives(fields.len(), &[], false));
         if fields.is_empty() {
             w.line("pub struct Solution {}");
         } else {
@@ -798,6 +805,8 @@ impl<'a> Gen<'a> {
             w.close("}");
         }
         w.line("");
+        let names: Vec<String> = fields.iter().map(|(f, _)| f.clone()).collect();
+        scopes::field_by_field_eq(w, "Solution", &names, false);
         w.line("#[allow(dead_code)]");
         w.open("impl Solution {");
         let mut accessors = Namer::default();

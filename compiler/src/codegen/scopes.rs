@@ -1,4 +1,4 @@
-//! Keeps the lexical scopes of a long solve shallow.
+//! Keeps the lexical scopes of a long solve shallow, and the comparisons of large structs flat.
 //!
 //! Every `let` opens a scope nested in the one before it, to the end of its block. A debug build
 //! describes that nesting to LLVM, whose DWARF writer recurses once per level, so a solve of
@@ -6,6 +6,10 @@
 //! about 8,000). A long solve is therefore written in blocks, each handing on the values later
 //! code reads, and a long list of declarations as tuple `let`s: the nesting then grows as the
 //! square root of the number of `let`s. Code short enough to nest safely is written as it is.
+//!
+//! A derived `PartialEq` compares all of a struct's fields in one `&&` chain, which rustc
+//! recurses through: the `Branches` and `Solution` of a chain of 10,000 four-bars (10,000 and
+//! 20,001 fields) overflow its stack. Past [`FLAT_LETS`] fields, it is written field by field.
 
 use super::Writer;
 use std::collections::HashSet;
@@ -66,6 +70,48 @@ pub(super) fn declare(w: &mut Writer, bindings: &[Binding]) {
         }
         w.close(");");
     }
+}
+
+/// The `derive` attribute of a generated struct of `fields` fields: `Clone, Copy, Debug`, then
+/// `extra` (such as `Default`), and `PartialEq` (with `Eq` when `eq`) unless the struct is too
+/// large to derive it (see [`field_by_field_eq`]).
+pub(super) fn derives(fields: usize, extra: &[&str], eq: bool) -> String {
+    let mut traits = vec!["Clone", "Copy", "Debug"];
+    traits.extend(extra);
+    if fields <= FLAT_LETS {
+        traits.push("PartialEq");
+        if eq {
+            traits.push("Eq");
+        }
+    }
+    format!("#[derive({})]", traits.join(", "))
+}
+
+/// For a struct too large for [`derives`] to derive `PartialEq`, the impl written field by
+/// field: a statement each, where the derive nests one `&&` per field. Nothing otherwise.
+pub(super) fn field_by_field_eq(w: &mut Writer, name: &str, fields: &[String], eq: bool) {
+    if fields.len() <= FLAT_LETS {
+        return;
+    }
+    w.line(&format!(
+        "// Compared field by field: a derive's one `&&` chain over {} fields is too deep for rustc.",
+        fields.len()
+    ));
+    w.open(&format!("impl PartialEq for {name} {{"));
+    w.open("fn eq(&self, other: &Self) -> bool {");
+    for f in fields {
+        w.open(&format!("if self.{f} != other.{f} {{"));
+        w.line("return false;");
+        w.close("}");
+    }
+    w.line("true");
+    w.close("}");
+    w.close("}");
+    if eq {
+        w.line("");
+        w.line(&format!("impl Eq for {name} {{}}"));
+    }
+    w.line("");
 }
 
 /// The solve's step groups, in order, as one text at `indent`: the groups themselves, or, past
@@ -286,6 +332,26 @@ mod tests {
     fn comments_and_strings_are_not_reads() {
         let code = "let a = b + c_2; // d e\nf(\"g \\\" h\", i2) // \"j\n1.5e3";
         assert_eq!(identifiers(code), ["let", "a", "b", "c_2", "f", "i2"]);
+    }
+
+    #[test]
+    fn large_structs_are_compared_field_by_field() {
+        assert_eq!(
+            derives(3, &["Default"], true),
+            "#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]"
+        );
+        assert_eq!(derives(600, &[], true), "#[derive(Clone, Copy, Debug)]");
+        let fields: Vec<String> = (0..600).map(|i| format!("elbow{i}")).collect();
+        let mut w = Writer::default();
+        field_by_field_eq(&mut w, "Branches", &fields[..3], true);
+        assert_eq!(w.out, "");
+        field_by_field_eq(&mut w, "Branches", &fields, true);
+        assert!(w.out.contains("impl PartialEq for Branches {\n"));
+        assert!(w
+            .out
+            .contains("        if self.elbow599 != other.elbow599 {\n"));
+        assert_eq!(w.out.matches("return false;").count(), 600);
+        assert!(w.out.contains("impl Eq for Branches {}\n"));
     }
 
     #[test]
