@@ -3,7 +3,9 @@
 //!
 //! After criterion's groups, the four-bar's two solves are also timed interleaved (see
 //! [`four_bar_interleaved`]): criterion times one after the other, and on a shared machine a
-//! slow spell that falls on one of them moves their ratio by half.
+//! slow spell that falls on one of them moves their ratio by half. So is the chain of 128
+//! four-bars against the same chain by hand ([`chain_interleaved`]); a filter naming `chain`
+//! runs only that.
 
 use criterion::{criterion_group, Criterion};
 use gcs_examples as ex;
@@ -283,6 +285,95 @@ fn four_bar_interleaved() {
     );
 }
 
+/// The chain of 128 four-bars (families/fourbar_chain_128.gcs) solved by hand, in closed form:
+/// stage `k` has its rocker's pivot at `(4k, 0)`, its coupler (4 long) from the last stage's
+/// rocker end `b` (the crank's end for the first) to the rocker's joint `c` (3 from the pivot,
+/// on the side `elbow` = 0 means), and its rocker end `b` 1.5 beyond the pivot, opposite `c`.
+/// Each stage is the four-bar's chord from `d²`, and then `b = pivot - (c - pivot) / 2`: no
+/// rotation, where the generated solver places every rocker's frame. Returns the last `b`, the
+/// model's output.
+fn chain_by_hand(theta: f64, stages: usize) -> Option<(f64, f64)> {
+    let (s, c) = theta.sin_cos();
+    let (mut bx, mut by) = (CRANK * c, CRANK * s);
+    let (sum, diff) = (COUPLER + ROCKER, COUPLER - ROCKER);
+    for k in 1..=stages {
+        let px = 4.0 * k as f64;
+        let (ux, uy) = (px - bx, 0.0 - by);
+        let d2 = ux * ux + uy * uy;
+        let area16 = (sum * sum - d2) * (d2 - diff * diff);
+        if area16 < 0.0 {
+            return None;
+        }
+        let inv = 0.5 / d2;
+        let along = (d2 + sum * diff) * inv;
+        let h = area16.sqrt() * inv;
+        let (cx, cy) = (bx + along * ux - h * uy, by + along * uy + h * ux);
+        (bx, by) = (px - 0.5 * (cx - px), -0.5 * cy);
+    }
+    Some((bx, by))
+}
+
+/// The generated chain of 128 as a function of the crank angle: its output `rocker128.b`.
+fn chain_generated() -> impl FnMut(f64) -> Option<(f64, f64)> {
+    use ex::fourbar_chain_128 as m;
+    let (branches, defaults) = (m::Branches::default(), m::Defaults::default());
+    let mut params = m::Params::default();
+    move |theta: f64| {
+        params.theta = theta;
+        m::solve(&params, &branches, &defaults).ok().map(|s| {
+            let b = s.rocker128_b();
+            (b.x, b.y)
+        })
+    }
+}
+
+/// The generated chain of 128 over the same chain by hand ([`chain_by_hand`]), interleaved as
+/// for the four-bar: 42 rounds of 2,000 solves by each side. The hand-written chain is about
+/// the least time any closed-form solve of the chain can take on this machine: each stage needs
+/// the one before (its square root and division on the critical path), so its time bounds
+/// the ratio any compiled plan can reach against a baseline.
+fn chain_interleaved() {
+    let thetas: [f64; 64] = std::array::from_fn(|i| i as f64 * 0.098);
+    let n = 2_000;
+    let by_hand = || {
+        time_solves(n, &thetas, |theta| {
+            chain_by_hand(black_box(theta), black_box(128))
+        })
+    };
+    // Both sides give the same answer at every angle.
+    let mut generated = chain_generated();
+    for &theta in &thetas {
+        let (want, got) = (chain_by_hand(theta, 128), generated(theta));
+        let ((x, y), (gx, gy)) = (want.expect("assembles"), got.expect("assembles"));
+        assert!(
+            (x - gx).abs() + (y - gy).abs() < 1e-9,
+            "{theta}: {x}, {y} vs {gx}, {gy}"
+        );
+    }
+    let generated = || time_solves(n, &thetas, chain_generated());
+    let sides: [&dyn Fn() -> f64; 2] = [&by_hand, &generated];
+    let mut times: [Vec<f64>; 2] = Default::default();
+    for round in 0..42 {
+        for k in 0..2 {
+            let i = (round + k) % 2;
+            times[i].push(sides[i]());
+        }
+    }
+    let median = |v: &[f64]| {
+        let mut v = v.to_vec();
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let ratios: Vec<f64> = times[1].iter().zip(&times[0]).map(|(g, h)| g / h).collect();
+    println!(
+        "chain128/interleaved    by hand {:.2} µs ({:.1} ns a stage), generated {:.2} µs: {:.2}x by hand",
+        median(&times[0]) * 1e6,
+        median(&times[0]) * 1e9 / 128.0,
+        median(&times[1]) * 1e6,
+        median(&ratios),
+    );
+}
+
 criterion_group!(benches, bench_four_bar, bench_examples);
 
 fn main() {
@@ -296,5 +387,8 @@ fn main() {
         .collect();
     if words.is_empty() || words.iter().any(|w| w.contains("fourbar")) {
         four_bar_interleaved();
+    }
+    if words.is_empty() || words.iter().any(|w| w.contains("chain")) {
+        chain_interleaved();
     }
 }
