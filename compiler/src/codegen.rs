@@ -329,6 +329,22 @@ struct Gen<'a> {
     /// Names for registers that are a literal rather than a local (to name what is derived
     /// from them).
     reg_names: HashMap<Reg, String>,
+    /// The code of each circle register's centre.
+    circle_centers: HashMap<Reg, String>,
+    /// Points some rotation turns a rigid point onto (`RotatePoint`'s `to`).
+    rotated_onto: HashSet<Reg>,
+    /// Circle-circle roots kept with their chord, so that a rotation about either centre onto
+    /// the root reads it from that centre (`root_from_a`, `root_from_b`).
+    chord_roots: HashMap<Reg, ChordRoot>,
+}
+
+/// A circle-circle root whose chord is a local: the chord, the branch index's code, and the
+/// code of each circle's centre.
+#[derive(Clone, Debug)]
+struct ChordRoot {
+    chord: String,
+    index: String,
+    centers: [String; 2],
 }
 
 /// Per-geom facts about a plan, each from one pass over its steps, so that asking them of every
@@ -440,7 +456,18 @@ impl<'a> Gen<'a> {
             }
         }
         let index = PlanIndex::new(model, plan, &used);
+        let rotated_onto = plan
+            .steps
+            .iter()
+            .filter_map(|s| match &s.op {
+                Op::RotatePoint { to, .. } => Some(*to),
+                _ => None,
+            })
+            .collect();
         Gen {
+            circle_centers: HashMap::new(),
+            rotated_onto,
+            chord_roots: HashMap::new(),
             index,
             deferred: HashSet::new(),
             constant: HashSet::new(),
@@ -1890,6 +1917,7 @@ impl<'a> Gen<'a> {
                     );
                     let n = self.prefixed("circle", *center);
                     self.define(w, r, &n, &code);
+                    self.circle_centers.insert(r, self.r(*center));
                 }
             }
             Op::CircleThrough {
@@ -1919,6 +1947,7 @@ impl<'a> Gen<'a> {
                         (true, _) => "circle".into(),
                     };
                     self.define(w, r, &n, &code);
+                    self.circle_centers.insert(r, c);
                 }
             }
             Op::Line { point, dir, offset } => {
@@ -2111,6 +2140,33 @@ impl<'a> Gen<'a> {
                         }
                         _ => "0".into(),
                     };
+                    if *meet == Meet::CircleCircle && self.rotated_onto.contains(&r) {
+                        // A rotation turns a point onto this root: the chord is kept, so that
+                        // the rotation reads the root from its centre, to the last bits.
+                        let (label, text) = (lit(&con.name), lit(&con.text));
+                        let chord = self.names.fresh(&format!("{}_chord", con.name));
+                        w.line(&format!(
+                            "let {chord} = intersect2d::circle_circle_chord(&{}, &{}).map_err(|miss| SolveError::from_miss({label}, {text}, miss))?;",
+                            self.r(*a),
+                            self.r(*b),
+                        ));
+                        let code = format!(
+                            "{chord}.root({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 2.0))?"
+                        );
+                        self.define(w, r, &con.name, &code);
+                        let center =
+                            |c: &Reg| self.circle_centers.get(c).cloned().unwrap_or_default();
+                        let centers = [center(a), center(b)];
+                        self.chord_roots.insert(
+                            r,
+                            ChordRoot {
+                                chord,
+                                index,
+                                centers,
+                            },
+                        );
+                        return;
+                    }
                     if *meet == Meet::CircleCircle {
                         // Only the chosen root is computed.
                         let (label, text) = (lit(&con.name), lit(&con.text));
@@ -2176,6 +2232,21 @@ impl<'a> Gen<'a> {
                 to,
             } => {
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
+                // From the pivot to the target: read from the chord when the target is a root
+                // of a circle about the pivot (the same vector, without the cancellation of a
+                // difference of points far from the origin).
+                let from_chord = self.chord_roots.get(to).and_then(|root| {
+                    let side = root.centers.iter().position(|c| *c == p)?;
+                    let f = ["root_from_a", "root_from_b"][side];
+                    Some(format!(
+                        "{}.{f}({}).unwrap_or({t} - {p})",
+                        root.chord, root.index
+                    ))
+                });
+                let to_target = match &from_chord {
+                    Some(code) => format!("&{code}"),
+                    None => format!("&({t} - {p})"),
+                };
                 let radius = self.circle_radius.get(&(*pivot, *from)).copied();
                 let code = match (radius, self.constant_arm(*pivot, *from)) {
                     // A point of a rigid geom turned onto its circle about the pivot, from where
@@ -2184,7 +2255,8 @@ impl<'a> Gen<'a> {
                     // with constant coefficients.
                     (Some(radius), Some((ax, ay))) if radius > 0.0 => {
                         let reach = self.names.fresh(&self.derived_name(*to, "_reach", "reach"));
-                        w.line(&format!("let {reach} = {t} - {p};"));
+                        let code = from_chord.unwrap_or_else(|| format!("{t} - {p}"));
+                        w.line(&format!("let {reach} = {code};"));
                         let k = 1.0 / (radius * radius);
                         let (kx, ky) = (ax * k, ay * k);
                         let c = linear(&[(kx, format!("{reach}.x")), (ky, format!("{reach}.y"))]);
@@ -2196,10 +2268,10 @@ impl<'a> Gen<'a> {
                     // A point of a rigid geom turned onto its circle about the pivot: the
                     // circle's radius is known, and with it the rotation's scale.
                     (Some(radius), _) => format!(
-                        "rotation_on_circle(&({f} - {p}), &({t} - {p}), {})",
+                        "rotation_on_circle(&({f} - {p}), {to_target}, {})",
                         float(radius)
                     ),
-                    (None, _) => format!("rotation_between2(&({f} - {p}), &({t} - {p}))"),
+                    (None, _) => format!("rotation_between2(&({f} - {p}), {to_target})"),
                 };
                 self.rotate(w, geoms, &p, &code);
             }

@@ -303,6 +303,11 @@ pub struct Chord {
     pub mid: P2,
     /// From the midpoint to the left root.
     pub half: V2,
+    /// From the first circle's centre to the midpoint: computed from the centres' offset, where
+    /// `mid - c1` would cancel the digits a centre far from the origin takes.
+    pub mid_from_a: V2,
+    /// From the second circle's centre to the midpoint, likewise.
+    pub mid_from_b: V2,
 }
 
 impl Chord {
@@ -324,6 +329,29 @@ impl Chord {
         match branch {
             0 => Some(self.left()),
             1 => Some(self.right()),
+            _ => None,
+        }
+    }
+
+    /// The root of `branch` from the first circle's centre: a radius of that circle, to
+    /// rounding relative to the radius however far the centre is from the origin (the
+    /// difference `root - c1` loses the digits the centre's coordinates take). A rotation
+    /// about the centre onto the root reads it, and finds it on its circle to the last bits.
+    #[inline]
+    pub fn root_from_a(&self, branch: usize) -> Option<V2> {
+        match branch {
+            0 => Some(self.mid_from_a + self.half),
+            1 => Some(self.mid_from_a - self.half),
+            _ => None,
+        }
+    }
+
+    /// The root of `branch` from the second circle's centre, as [`Chord::root_from_a`].
+    #[inline]
+    pub fn root_from_b(&self, branch: usize) -> Option<V2> {
+        match branch {
+            0 => Some(self.mid_from_b + self.half),
+            1 => Some(self.mid_from_b - self.half),
             _ => None,
         }
     }
@@ -409,10 +437,14 @@ fn heron_factors(d2: f64, r1: f64, r2: f64) -> (f64, f64) {
 fn crossing(c1: P2, dv: V2, d2: f64, r1: f64, r2: f64, area16: f64) -> Chord {
     let inv_d2 = 1.0 / d2;
     let along = 0.5 * (d2 + (r1 - r2) * (r1 + r2)) * inv_d2;
+    let back = 0.5 * (d2 + (r2 - r1) * (r2 + r1)) * inv_d2;
     let h = area16.sqrt() * (0.5 * inv_d2);
+    let mid_from_a = dv * along;
     Chord {
-        mid: c1 + dv * along,
+        mid: c1 + mid_from_a,
         half: perp(dv) * h,
+        mid_from_a,
+        mid_from_b: dv * -back,
     }
 }
 
@@ -481,6 +513,8 @@ fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Con
         return Ok(Chord {
             mid: c1 + u * along,
             half: V2::zeros(),
+            mid_from_a: u * along,
+            mid_from_b: u * (along - d),
         });
     }
     Err(Contact::Disjoint {
@@ -509,6 +543,8 @@ fn rescaled([x1, y1, r1, x2, y2, r2]: [f64; 6], s: f64) -> Result<Chord, Contact
             let chord = Chord {
                 mid: P2::from(grow(chord.mid.coords)),
                 half: grow(chord.half),
+                mid_from_a: grow(chord.mid_from_a),
+                mid_from_b: grow(chord.mid_from_b),
             };
             if finite_p(chord.left()) && finite_p(chord.right()) {
                 Ok(chord)

@@ -188,6 +188,36 @@ proptest! {
         }
     }
 
+    /// A root from either centre is that circle's radius to a few roundings of the sizes
+    /// involved (the radii and the distance, relative to this radius), however far the circles
+    /// are from the origin (up to 10^4 times their size), where the root minus the centre
+    /// loses the digits the coordinates take; and it is that difference to their rounding.
+    #[test]
+    fn chord_roots_from_each_centre(s in scale(), x1 in u(), y1 in u(), r1 in 0.05f64..1.0,
+                                    angle in -3.2f64..3.2, r2 in 0.05f64..1.0,
+                                    along in 0.05f64..0.95, far in 0f64..1e4) {
+        let (lo, hi) = ((r1 - r2).abs(), r1 + r2);
+        let d = lo + (hi - lo) * along;
+        let a = circle_at(s, x1 + far, y1, r1);
+        let b = circle_at(s, x1 + far + d * angle.cos(), y1 + d * angle.sin(), r2);
+        let chord = circle_circle_chord(&a, &b);
+        prop_assume!(chord.is_ok());
+        let chord = chord.unwrap();
+        for k in 0..2 {
+            let root = chord.root(k).unwrap();
+            for (c, from_c) in [(&a, chord.root_from_a(k)), (&b, chord.root_from_b(k))] {
+                let v = from_c.unwrap();
+                let sizes = (r1 + r2 + d) * s / c.radius();
+                prop_assert!((v.norm() / c.radius() - 1.0).abs() <= 4.0 * f64::EPSILON * sizes,
+                    "|{v:?}| = {} against {}", v.norm(), c.radius());
+                let coordinates = c.center().coords.norm() + c.radius();
+                prop_assert!((v - (root - c.center())).norm() <= 4.0 * f64::EPSILON * coordinates);
+            }
+        }
+        prop_assert_eq!(chord.root_from_a(2), None);
+        prop_assert_eq!(chord.root_from_b(2), None);
+    }
+
     #[test]
     fn line_circle_roots_and_branches(s in scale(), px in u(), py in u(), angle in -3.2f64..3.2,
                                       cx in u(), cy in u(), r in 0.05f64..1.0, e in u()) {

@@ -230,8 +230,9 @@ pub fn solve(
             0.0,
         )
     })?;
-    let elbow = intersect2d::circle_circle_chord(&circle_crank_b, &circle_d)
-        .map_err(|miss| SolveError::from_miss("elbow", "coincident(coupler.c, rocker.c)", miss))?
+    let elbow_chord = intersect2d::circle_circle_chord(&circle_crank_b, &circle_d)
+        .map_err(|miss| SolveError::from_miss("elbow", "coincident(coupler.c, rocker.c)", miss))?;
+    let elbow = elbow_chord
         .root(usize::from(branches.elbow))
         .ok_or_else(|| {
             SolveError::new(
@@ -241,7 +242,13 @@ pub fn solve(
                 2.0,
             )
         })?;
-    let turn_2 = rotation_on_circle(&(coupler_c - crank_b), &(elbow - crank_b), 4.0);
+    let turn_2 = rotation_on_circle(
+        &(coupler_c - crank_b),
+        &elbow_chord
+            .root_from_a(usize::from(branches.elbow))
+            .unwrap_or(elbow - crank_b),
+        4.0,
+    );
     coupler.rotate_about_by(&crank_b, &turn_2);
 
     Ok(Solution { crank, coupler })

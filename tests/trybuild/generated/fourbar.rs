@@ -233,8 +233,9 @@ pub fn solve(
             0.0,
         )
     })?;
-    let elbow = intersect2d::circle_circle_chord(&circle_crank_b, &circle_d)
-        .map_err(|miss| SolveError::from_miss("elbow", "coincident(coupler.c, rocker.c)", miss))?
+    let elbow_chord = intersect2d::circle_circle_chord(&circle_crank_b, &circle_d)
+        .map_err(|miss| SolveError::from_miss("elbow", "coincident(coupler.c, rocker.c)", miss))?;
+    let elbow = elbow_chord
         .root(usize::from(branches.elbow))
         .ok_or_else(|| {
             SolveError::new(
@@ -244,7 +245,9 @@ pub fn solve(
                 2.0,
             )
         })?;
-    let elbow_reach = elbow - crank_b;
+    let elbow_reach = elbow_chord
+        .root_from_a(usize::from(branches.elbow))
+        .unwrap_or(elbow - crank_b);
     let turn_2 = rotation_on_circle_from(
         elbow_reach.x * 0.25,
         elbow_reach.y * 0.25,

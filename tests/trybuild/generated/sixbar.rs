@@ -284,8 +284,9 @@ pub fn solve(
             0.0,
         )
     })?;
-    let first = intersect2d::circle_circle_chord(&circle_crank_b, &circle_d)
-        .map_err(|miss| SolveError::from_miss("first", "coincident(coupler.c, rocker.c)", miss))?
+    let first_chord = intersect2d::circle_circle_chord(&circle_crank_b, &circle_d)
+        .map_err(|miss| SolveError::from_miss("first", "coincident(coupler.c, rocker.c)", miss))?;
+    let first = first_chord
         .root(usize::from(branches.first))
         .ok_or_else(|| {
             SolveError::new(
@@ -297,7 +298,9 @@ pub fn solve(
         })?;
     let turn_2 = rotation_on_circle(
         &(Point2::new(3.5, 2.5) - Point2::new(4.0, 0.0)),
-        &(first - Point2::new(4.0, 0.0)),
+        &first_chord
+            .root_from_b(usize::from(branches.first))
+            .unwrap_or(first - Point2::new(4.0, 0.0)),
         2.5495097567963922,
     );
     rocker.rotate_about_by(&Point2::new(4.0, 0.0), &turn_2);
@@ -324,8 +327,9 @@ pub fn solve(
             0.0,
         )
     })?;
-    let second = intersect2d::circle_circle_chord(&circle_rocker_e, &circle_f)
-        .map_err(|miss| SolveError::from_miss("second", "coincident(link.g, follower.g)", miss))?
+    let second_chord = intersect2d::circle_circle_chord(&circle_rocker_e, &circle_f)
+        .map_err(|miss| SolveError::from_miss("second", "coincident(link.g, follower.g)", miss))?;
+    let second = second_chord
         .root(usize::from(branches.second))
         .ok_or_else(|| {
             SolveError::new(
@@ -337,7 +341,9 @@ pub fn solve(
         })?;
     let turn_3 = rotation_on_circle(
         &(Point2::new(7.5, 3.8) - Point2::new(7.0, 1.0)),
-        &(second - Point2::new(7.0, 1.0)),
+        &second_chord
+            .root_from_b(usize::from(branches.second))
+            .unwrap_or(second - Point2::new(7.0, 1.0)),
         2.8442925306655784,
     );
     follower.rotate_about_by(&Point2::new(7.0, 1.0), &turn_3);

@@ -518,25 +518,27 @@ pub fn solve(
             0.0,
         )
     })?;
-    let coincident_link8_b_link9_a =
-        intersect2d::circle_circle_chord(&circle_link10_c, &circle_link7_a)
-            .map_err(|miss| {
-                SolveError::from_miss(
-                    "coincident_link8_b_link9_a",
-                    "coincident(link8.b, link9.a)",
-                    miss,
-                )
-            })?
-            .root(usize::from(branches.coincident_link8_b_link9_a))
-            .ok_or_else(|| {
-                SolveError::new(
-                    "coincident_link8_b_link9_a",
-                    "coincident(link8.b, link9.a)",
-                    ErrorKind::NoSuchBranch,
-                    2.0,
-                )
-            })?;
-    let coincident_link8_b_link9_a_reach = coincident_link8_b_link9_a - Point2::new(7.0, 3.8);
+    let coincident_link8_b_link9_a_chord =
+        intersect2d::circle_circle_chord(&circle_link10_c, &circle_link7_a).map_err(|miss| {
+            SolveError::from_miss(
+                "coincident_link8_b_link9_a",
+                "coincident(link8.b, link9.a)",
+                miss,
+            )
+        })?;
+    let coincident_link8_b_link9_a = coincident_link8_b_link9_a_chord
+        .root(usize::from(branches.coincident_link8_b_link9_a))
+        .ok_or_else(|| {
+            SolveError::new(
+                "coincident_link8_b_link9_a",
+                "coincident(link8.b, link9.a)",
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let coincident_link8_b_link9_a_reach = coincident_link8_b_link9_a_chord
+        .root_from_a(usize::from(branches.coincident_link8_b_link9_a))
+        .unwrap_or(coincident_link8_b_link9_a - Point2::new(7.0, 3.8));
     let turn_4 = rotation_on_circle_from(
         coincident_link8_b_link9_a_reach.x * -0.22624434389140263
             + coincident_link8_b_link9_a_reach.y * 0.6334841628959276,
@@ -548,7 +550,9 @@ pub fn solve(
     link8.rotate_about_by(&Point2::new(7.0, 3.8), &turn_4);
     let turn_5 = rotation_on_circle(
         &(link9_a - link7_a),
-        &(coincident_link8_b_link9_a - link7_a),
+        &coincident_link8_b_link9_a_chord
+            .root_from_b(usize::from(branches.coincident_link8_b_link9_a))
+            .unwrap_or(coincident_link8_b_link9_a - link7_a),
         3.269556544854363,
     );
     link9.rotate_about_by(&link7_a, &turn_5);
@@ -586,33 +590,39 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let coincident_link5_b_link8_a =
-        intersect2d::circle_circle_chord(&circle_link4_p, &circle_link4_q_link8_a)
-            .map_err(|miss| {
+    let coincident_link5_b_link8_a_chord =
+        intersect2d::circle_circle_chord(&circle_link4_p, &circle_link4_q_link8_a).map_err(
+            |miss| {
                 SolveError::from_miss(
                     "coincident_link5_b_link8_a",
                     "coincident(link5.b, link8.a)",
                     miss,
                 )
-            })?
-            .root(usize::from(branches.coincident_link5_b_link8_a))
-            .ok_or_else(|| {
-                SolveError::new(
-                    "coincident_link5_b_link8_a",
-                    "coincident(link5.b, link8.a)",
-                    ErrorKind::NoSuchBranch,
-                    2.0,
-                )
-            })?;
+            },
+        )?;
+    let coincident_link5_b_link8_a = coincident_link5_b_link8_a_chord
+        .root(usize::from(branches.coincident_link5_b_link8_a))
+        .ok_or_else(|| {
+            SolveError::new(
+                "coincident_link5_b_link8_a",
+                "coincident(link5.b, link8.a)",
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
     let turn_6 = rotation_on_circle(
         &(link5_b - link4_p),
-        &(coincident_link5_b_link8_a - link4_p),
+        &coincident_link5_b_link8_a_chord
+            .root_from_a(usize::from(branches.coincident_link5_b_link8_a))
+            .unwrap_or(coincident_link5_b_link8_a - link4_p),
         1.6278820596099706,
     );
     link5.rotate_about_by(&link4_p, &turn_6);
     let turn_7 = rotation_between2(
         &(link8_a - link4_q),
-        &(coincident_link5_b_link8_a - link4_q),
+        &coincident_link5_b_link8_a_chord
+            .root_from_b(usize::from(branches.coincident_link5_b_link8_a))
+            .unwrap_or(coincident_link5_b_link8_a - link4_q),
     );
     link10.rotate_about_by(&link4_q, &turn_7);
     link7.rotate_about_by(&link4_q, &turn_7);
@@ -639,8 +649,10 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let close = intersect2d::circle_circle_chord(&circle_crank_tip_link5_c, &circle_ground_o6)
-        .map_err(|miss| SolveError::from_miss("close", "coincident(link5.c, link6.b)", miss))?
+    let close_chord =
+        intersect2d::circle_circle_chord(&circle_crank_tip_link5_c, &circle_ground_o6)
+            .map_err(|miss| SolveError::from_miss("close", "coincident(link5.c, link6.b)", miss))?;
+    let close = close_chord
         .root(usize::from(branches.close))
         .ok_or_else(|| {
             SolveError::new(
@@ -650,7 +662,12 @@ pub fn solve(
                 2.0,
             )
         })?;
-    let turn_8 = rotation_between2(&(link5_c - crank_tip), &(close - crank_tip));
+    let turn_8 = rotation_between2(
+        &(link5_c - crank_tip),
+        &close_chord
+            .root_from_a(usize::from(branches.close))
+            .unwrap_or(close - crank_tip),
+    );
     link3.rotate_about_by(&crank_tip, &turn_8);
     link4.rotate_about_by(&crank_tip, &turn_8);
     link10.rotate_about_by(&crank_tip, &turn_8);
@@ -658,7 +675,9 @@ pub fn solve(
     link8.rotate_about_by(&crank_tip, &turn_8);
     link9.rotate_about_by(&crank_tip, &turn_8);
     link5.rotate_about_by(&crank_tip, &turn_8);
-    let close_reach = close - Point2::new(6.0, 0.0);
+    let close_reach = close_chord
+        .root_from_b(usize::from(branches.close))
+        .unwrap_or(close - Point2::new(6.0, 0.0));
     let turn_9 = rotation_on_circle_from(
         close_reach.x * 0.10810810810810809 + close_reach.y * 0.35135135135135137,
         close_reach.y * 0.10810810810810809 + close_reach.x * -0.35135135135135137,
