@@ -58,7 +58,15 @@ fn four_bar_by_hand(theta: f64) -> Option<(f64, f64)> {
 /// half chord). A stricter yardstick than the textbook: what a person writes who knows the
 /// generated solver's formula.
 fn four_bar_by_hand_from_d2(theta: f64) -> Option<(f64, f64)> {
-    let ([bx, by], [ux, uy]) = crank_end_and_reach(theta);
+    let (b, reach) = crank_end_and_reach(theta);
+    coupler_joint_from_d2(b, reach)
+}
+
+/// The coupler's joint of a four-bar by hand, from the coupler's end `b` and the vector from
+/// it to the rocker's pivot, with the runtime chord's formula (see above); on the side
+/// `elbow` = 0 means.
+#[inline(always)]
+fn coupler_joint_from_d2([bx, by]: [f64; 2], [ux, uy]: [f64; 2]) -> Option<(f64, f64)> {
     let d2 = ux * ux + uy * uy;
     let (sum, diff) = (COUPLER + ROCKER, COUPLER - ROCKER);
     let area16 = (sum * sum - d2) * (d2 - diff * diff);
@@ -295,19 +303,9 @@ fn four_bar_interleaved() {
 fn chain_by_hand(theta: f64, stages: usize) -> Option<(f64, f64)> {
     let (s, c) = theta.sin_cos();
     let (mut bx, mut by) = (CRANK * c, CRANK * s);
-    let (sum, diff) = (COUPLER + ROCKER, COUPLER - ROCKER);
     for k in 1..=stages {
         let px = 4.0 * k as f64;
-        let (ux, uy) = (px - bx, 0.0 - by);
-        let d2 = ux * ux + uy * uy;
-        let area16 = (sum * sum - d2) * (d2 - diff * diff);
-        if area16 < 0.0 {
-            return None;
-        }
-        let inv = 0.5 / d2;
-        let along = (d2 + sum * diff) * inv;
-        let h = area16.sqrt() * inv;
-        let (cx, cy) = (bx + along * ux - h * uy, by + along * uy + h * ux);
+        let (cx, cy) = coupler_joint_from_d2([bx, by], [px - bx, 0.0 - by])?;
         (bx, by) = (px - 0.5 * (cx - px), -0.5 * cy);
     }
     Some((bx, by))
