@@ -201,10 +201,10 @@ impl Origin {
     }
 }
 
-/// A binding of the solve's sketch: a frame's (its name and constructor), declared once the
-/// steps show whether the frame is read or moved, or any other.
+/// A binding of the solve's sketch: a frame's, declared (and `mut`) once the steps show
+/// whether the frame is read or moved, or any other.
 enum Decl {
-    Frame(GeomId, String, String),
+    Frame(GeomId, Binding),
     Value(Binding),
 }
 
@@ -629,7 +629,7 @@ impl<'a> Gen<'a> {
     fn params_struct(&self, w: &mut Writer) {
         let m = self.model;
         w.line("/// The run-time inputs: one field per `param` of the model.");
-        w.line(&scopes::derives(m.params.len(), &[], false));
+        w.line(&scopes::derives(m.params.len(), false));
         if m.params.is_empty() {
             w.line("pub struct Params {}");
         } else {
@@ -695,7 +695,7 @@ impl<'a> Gen<'a> {
 
     fn branches_struct(&self, w: &mut Writer) {
         w.line("/// Which assembly: one field per branch variable, each an index with a geometric meaning.");
-        w.line(&scopes::derives(self.branches.len(), &[], true));
+        w.line(&scopes::derives(self.branches.len(), true));
         if self.plan.branches.is_empty() {
             w.line("pub struct Branches {}");
         } else {
@@ -821,7 +821,7 @@ impl<'a> Gen<'a> {
         }
         w.line("/// The solved configuration of every geom the outputs need: frames and dimensions, read");
         w.line("/// through accessors named after the model.");
-        w.line(&scopes::derives(fields.len(), &[], false));
+        w.line(&scopes::derives(fields.len(), false));
         if fields.is_empty() {
             w.line("pub struct Solution {}");
         } else {
@@ -1249,7 +1249,14 @@ impl<'a> Gen<'a> {
                     ("Frame2::at(Point2::origin())".into(), facts)
                 }
             };
-            decls.push(Decl::Frame(g, name.clone(), ctor));
+            decls.push(Decl::Frame(
+                g,
+                Binding {
+                    mutable: false,
+                    name: name.clone(),
+                    value: ctor,
+                },
+            ));
             self.facts.insert(g, facts);
             self.frames.insert(g, name);
             if matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
@@ -1452,14 +1459,10 @@ impl<'a> Gen<'a> {
         let mut bindings = Vec::new();
         for decl in decls {
             match decl {
-                Decl::Frame(g, name, value) => {
+                Decl::Frame(g, frame) => {
                     let mutable = self.frame_writes.contains(&g);
                     if mutable || self.frame_reads.borrow().contains(&g) {
-                        bindings.push(Binding {
-                            mutable,
-                            name,
-                            value,
-                        });
+                        bindings.push(Binding { mutable, ..frame });
                     }
                 }
                 Decl::Value(binding) => bindings.push(binding),
@@ -2140,42 +2143,35 @@ impl<'a> Gen<'a> {
                         }
                         _ => "0".into(),
                     };
-                    if *meet == Meet::CircleCircle && self.rotated_onto.contains(&r) {
-                        // A rotation turns a point onto this root: the chord is kept, so that
-                        // the rotation reads the root from its centre, to the last bits.
-                        let (label, text) = (lit(&con.name), lit(&con.text));
-                        let chord = self.names.fresh(&format!("{}_chord", con.name));
-                        w.line(&format!(
-                            "let {chord} = intersect2d::circle_circle_chord(&{}, &{}).map_err(|miss| SolveError::from_miss({label}, {text}, miss))?;",
-                            self.r(*a),
-                            self.r(*b),
-                        ));
-                        let code = format!(
-                            "{chord}.root({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 2.0))?"
-                        );
-                        self.define(w, r, &con.name, &code);
-                        let center =
-                            |c: &Reg| self.circle_centers.get(c).cloned().unwrap_or_default();
-                        let centers = [center(a), center(b)];
-                        self.chord_roots.insert(
-                            r,
-                            ChordRoot {
-                                chord,
-                                index,
-                                centers,
-                            },
-                        );
-                        return;
-                    }
                     if *meet == Meet::CircleCircle {
                         // Only the chosen root is computed.
                         let (label, text) = (lit(&con.name), lit(&con.text));
-                        let code = format!(
-                            "intersect2d::circle_circle_chord(&{}, &{}).map_err(|miss| SolveError::from_miss({label}, {text}, miss))?.root({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 2.0))?",
+                        let chord = format!(
+                            "intersect2d::circle_circle_chord(&{}, &{}).map_err(|miss| SolveError::from_miss({label}, {text}, miss))?",
                             self.r(*a),
                             self.r(*b),
                         );
-                        self.define(w, r, &con.name, &code);
+                        let root = format!(
+                            ".root({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 2.0))?"
+                        );
+                        if !self.rotated_onto.contains(&r) {
+                            self.define(w, r, &con.name, &format!("{chord}{root}"));
+                            return;
+                        }
+                        // A rotation turns a point onto this root: the chord is kept, so that
+                        // the rotation reads the root from its centre, to the last bits.
+                        let local = self.names.fresh(&format!("{}_chord", con.name));
+                        w.line(&format!("let {local} = {chord};"));
+                        self.define(w, r, &con.name, &format!("{local}{root}"));
+                        let center =
+                            |c: &Reg| self.circle_centers.get(c).cloned().unwrap_or_default();
+                        let centers = [center(a), center(b)];
+                        let kept = ChordRoot {
+                            chord: local,
+                            index,
+                            centers,
+                        };
+                        self.chord_roots.insert(r, kept);
                         return;
                     }
                     let meeting = self.names.fresh(&format!("{}_meeting", con.name));

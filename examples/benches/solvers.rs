@@ -187,6 +187,13 @@ fn bench_examples(c: &mut Criterion) {
     );
 }
 
+/// The value at `at` (0 to 1) of the sorted times or ratios `v`.
+fn quantile(v: &[f64], at: f64) -> f64 {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    v[((v.len() - 1) as f64 * at).round() as usize]
+}
+
 /// The mean time per solve of `n` solves at the crank angles `thetas`, in turn. Generic, so
 /// that each side's solve is compiled into its own loop, as it would be in a caller's.
 fn time_solves(
@@ -255,12 +262,6 @@ fn four_bar_interleaved() {
             all.push(t);
         }
     }
-    // The value at `at` (0 to 1) of the sorted times or ratios.
-    let quantile = |v: &[f64], at: f64| {
-        let mut v = v.to_vec();
-        v.sort_by(f64::total_cmp);
-        v[((v.len() - 1) as f64 * at).round() as usize]
-    };
     let median_ns = |v: &[f64]| quantile(v, 0.5) * 1e9;
     // Round by round, the time of side `a` over that of side `b`.
     let ratios = |a: usize, b: usize| -> Vec<f64> {
@@ -357,11 +358,7 @@ fn chain_interleaved() {
             times[i].push(sides[i]());
         }
     }
-    let median = |v: &[f64]| {
-        let mut v = v.to_vec();
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
+    let median = |v: &[f64]| quantile(v, 0.5);
     let ratios: Vec<f64> = times[1].iter().zip(&times[0]).map(|(g, h)| g / h).collect();
     println!(
         "chain128/interleaved    by hand {:.2} µs ({:.1} ns a stage), generated {:.2} µs: {:.2}x by hand",

@@ -339,19 +339,21 @@ impl Chord {
     /// about the centre onto the root reads it, and finds it on its circle to the last bits.
     #[inline]
     pub fn root_from_a(&self, branch: usize) -> Option<V2> {
-        match branch {
-            0 => Some(self.mid_from_a + self.half),
-            1 => Some(self.mid_from_a - self.half),
-            _ => None,
-        }
+        self.root_from(self.mid_from_a, branch)
     }
 
     /// The root of `branch` from the second circle's centre, as [`Chord::root_from_a`].
     #[inline]
     pub fn root_from_b(&self, branch: usize) -> Option<V2> {
+        self.root_from(self.mid_from_b, branch)
+    }
+
+    /// The root of `branch` from a centre, given the midpoint from that centre.
+    #[inline]
+    fn root_from(&self, mid: V2, branch: usize) -> Option<V2> {
         match branch {
-            0 => Some(self.mid_from_b + self.half),
-            1 => Some(self.mid_from_b - self.half),
+            0 => Some(mid + self.half),
+            1 => Some(mid - self.half),
             _ => None,
         }
     }

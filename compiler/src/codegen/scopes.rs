@@ -72,12 +72,11 @@ pub(super) fn declare(w: &mut Writer, bindings: &[Binding]) {
     }
 }
 
-/// The `derive` attribute of a generated struct of `fields` fields: `Clone, Copy, Debug`, then
-/// `extra` (such as `Default`), and `PartialEq` (with `Eq` when `eq`) unless the struct is too
-/// large to derive it (see [`field_by_field_eq`]).
-pub(super) fn derives(fields: usize, extra: &[&str], eq: bool) -> String {
+/// The `derive` attribute of a generated struct of `fields` fields: `Clone, Copy, Debug`, and
+/// `PartialEq` (with `Eq` when `eq`) unless the struct is too large to derive it (see
+/// [`field_by_field_eq`]).
+pub(super) fn derives(fields: usize, eq: bool) -> String {
     let mut traits = vec!["Clone", "Copy", "Debug"];
-    traits.extend(extra);
     if fields <= FLAT_LETS {
         traits.push("PartialEq");
         if eq {
@@ -119,8 +118,7 @@ pub(super) fn field_by_field_eq(w: &mut Writer, name: &str, fields: &[String], e
 /// with the locals it defines and `later` code (or a later block) reads.
 ///
 /// A group's top-level `let`s are its lines at `indent` that start with `let`; what later code
-/// reads is judged by its identifiers, comments and string literals included, which can only
-/// hand on a value that is not needed.
+/// reads is judged by its identifiers outside comments and string literals.
 pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String {
     let margin = "    ".repeat(indent);
     let defined: Vec<Vec<&str>> = groups.iter().map(|g| top_level_lets(g, &margin)).collect();
@@ -164,12 +162,16 @@ pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String
             0 => "// A block of steps, so that a debug build's scopes stay shallow.",
             _ => "// A block of steps, so that a debug build's scopes stay shallow; it hands on what later steps read.",
         });
-        let (open, close) = match out.as_slice() {
-            [] => ("{".to_string(), "}".to_string()),
-            [one] => (format!("let {one} = {{"), "};".to_string()),
-            many => (format!("let ({}) = {{", many.join(", ")), "};".to_string()),
+        // The block's value: the one local it hands on, or a tuple of them.
+        let value = match out.as_slice() {
+            [] => None,
+            [one] => Some(one.to_string()),
+            many => Some(format!("({})", many.join(", "))),
         };
-        w.open(&open);
+        match &value {
+            None => w.open("{"),
+            Some(v) => w.open(&format!("let {v} = {{")),
+        }
         for g in &groups[run.clone()] {
             for line in g.lines() {
                 match line.is_empty() {
@@ -182,12 +184,13 @@ pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String
                 }
             }
         }
-        match out.as_slice() {
-            [] => {}
-            [one] => w.line(one),
-            many => w.line(&format!("({})", many.join(", "))),
+        match &value {
+            None => w.close("}"),
+            Some(v) => {
+                w.line(v);
+                w.close("};");
+            }
         }
-        w.close(&close);
     }
     w.out
 }
@@ -337,10 +340,10 @@ mod tests {
     #[test]
     fn large_structs_are_compared_field_by_field() {
         assert_eq!(
-            derives(3, &["Default"], true),
-            "#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]"
+            derives(3, true),
+            "#[derive(Clone, Copy, Debug, PartialEq, Eq)]"
         );
-        assert_eq!(derives(600, &[], true), "#[derive(Clone, Copy, Debug)]");
+        assert_eq!(derives(600, true), "#[derive(Clone, Copy, Debug)]");
         let fields: Vec<String> = (0..600).map(|i| format!("elbow{i}")).collect();
         let mut w = Writer::default();
         field_by_field_eq(&mut w, "Branches", &fields[..3], true);
