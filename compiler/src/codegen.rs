@@ -2333,7 +2333,7 @@ impl<'a> Gen<'a> {
         let con = &m.constraints[c];
         let value = con.value.map_or("0.0".to_string(), |e| self.wrap(e, 2));
         let kind = |g: GeomId| m.geoms[g].kind;
-        let part = |g, p| crate::analysis::relation::part(m, g, p).unwrap_or(g);
+        let part = |g, p| m.part(g, p).unwrap_or(g);
         let pt = |g: GeomId| {
             let g = if kind(g) == GeomKind::Circle {
                 part(g, Part::Center)

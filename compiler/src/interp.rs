@@ -451,7 +451,7 @@ fn residual(model: &Model, cfg: &Config, c: ConstraintId, params: &[f64]) -> f64
     let kind = |g: GeomId| model.geoms[g].kind;
     let pt = |g| cfg.point(model, center_of(model, g));
     let dir = |g| cfg.dir(model, dir_of(model, g));
-    let part = |g, p| crate::analysis::relation::part(model, g, p).unwrap_or(g);
+    let part = |g, p| model.part(g, p).unwrap_or(g);
     // A line-like argument: a point on it and its direction (a marker: its x axis).
     let line = |g: GeomId| match kind(g) {
         GeomKind::Segment => (cfg.point(model, part(g, Part::Start)), dir(g)),
@@ -509,7 +509,7 @@ fn cross(a: V2, b: V2) -> f64 {
 
 fn center_of(model: &Model, g: gcs_lang::model::GeomId) -> gcs_lang::model::GeomId {
     if model.geoms[g].kind == GeomKind::Circle {
-        crate::analysis::relation::part(model, g, Part::Center).unwrap_or(g)
+        model.part(g, Part::Center).unwrap_or(g)
     } else {
         g
     }
@@ -517,9 +517,7 @@ fn center_of(model: &Model, g: gcs_lang::model::GeomId) -> gcs_lang::model::Geom
 
 fn dir_of(model: &Model, g: gcs_lang::model::GeomId) -> gcs_lang::model::GeomId {
     match model.geoms[g].kind {
-        GeomKind::Line | GeomKind::Segment => {
-            crate::analysis::relation::part(model, g, Part::Dir).unwrap_or(g)
-        }
+        GeomKind::Line | GeomKind::Segment => model.part(g, Part::Dir).unwrap_or(g),
         _ => g,
     }
 }

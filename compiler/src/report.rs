@@ -2,9 +2,9 @@
 //! diagnostics (constraints without a plan, geoms left free, constraints that conflict at the
 //! default params), the DOF summary, and a solution as text.
 
-use crate::analysis::{Analysis, Pos, Rot};
+use crate::analysis::Analysis;
 use crate::solution::Solution;
-use gcs_lang::model::{GeomId, GeomKind};
+use gcs_lang::model::GeomId;
 use gcs_lang::{Diagnostic, Model};
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -20,41 +20,10 @@ fn cluster_of(a: &Analysis) -> HashMap<GeomId, usize> {
     of
 }
 
-/// What freedom a cluster's record leaves, in words.
-fn freedom(model: &Model, a: &Analysis, of: &HashMap<GeomId, usize>, g: GeomId) -> String {
-    let Some(c) = of.get(&g).map(|&k| &a.clusters[k]) else {
-        return String::new();
-    };
-    let r = &c.record;
-    let mut parts = Vec::new();
-    match (r.rot, r.pos) {
-        (Rot::Free, Pos::Pivot { feature, .. }) => parts.push(format!(
-            "it may still rotate about {}",
-            model.geoms[feature].name
-        )),
-        (Rot::Free, Pos::Free) => parts.push("it may still translate and rotate".into()),
-        (Rot::Free, Pos::On { feature, .. }) => parts.push(format!(
-            "it may still slide {} along its locus and rotate about it",
-            model.geoms[feature].name
-        )),
-        (Rot::Free, _) => parts.push("it may still rotate".into()),
-        (_, Pos::Free) if r.line => parts.push("it may still move sideways".into()),
-        (_, Pos::Free) => parts.push("it may still translate".into()),
-        (_, Pos::On { feature, .. }) => parts.push(format!(
-            "it may still slide {} along its locus",
-            model.geoms[feature].name
-        )),
-        _ => {}
-    }
-    if r.free_dim.is_some() {
-        let what = if model.geoms[g].kind == GeomKind::Circle {
-            "radius"
-        } else {
-            "length"
-        };
-        parts.push(format!("its {what} is free"));
-    }
-    parts.join(", and ")
+/// What freedom the cluster of `g` leaves, in words.
+fn freedom(a: &Analysis, of: &HashMap<GeomId, usize>, g: GeomId) -> String {
+    of.get(&g)
+        .map_or_else(String::new, |&k| a.clusters[k].freedom.clone())
 }
 
 /// The problems of an analysed model: constraints no fragment covers yet, geoms left free
@@ -77,7 +46,7 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
         for (g, dof) in &free {
             let geom = &model.geoms[*g];
             let mut d = Diagnostic::error(geom.span, format!("`{}` is under-constrained: {dof} DOF left", geom.name))
-                .with_label(freedom(model, a, &of, *g))
+                .with_label(freedom(a, &of, *g))
                 .with_note(format!(
                     "the model has {} DOF and its constraints remove {} (nominally): add constraints, or declare geoms `fixed`",
                     nominal.total_dof, nominal.total_removed
@@ -155,7 +124,7 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
         plural(nominal.constraints.len(), "constraint"),
     );
     let of = cluster_of(a);
-    let left = |g: GeomId| -> usize { of.get(&g).map_or(0, |&k| a.clusters[k].record.dof()) };
+    let left = |g: GeomId| -> usize { of.get(&g).map_or(0, |&k| a.clusters[k].dof) };
     let name_w = crate::nominal::column_width(&nominal.geoms, |g| &g.name);
     let kind_w = crate::nominal::column_width(&nominal.geoms, |g| &g.kind);
     let _ = writeln!(out, "\ngeoms{:>w$}  left", "DOF", w = name_w + kind_w + 4);

@@ -1202,7 +1202,7 @@ fn label(model: &Model, l: &str) -> Option<ConstraintId> {
 fn record_of(model: &Model, a: &Analysis) -> String {
     let p = model.geom_named("P").expect("P");
     match a.clusters.iter().find(|c| c.geoms.contains(&p)) {
-        Some(c) => format!("{} ({} DOF)", c.record.signature(), c.record.dof()),
+        Some(c) => format!("{} ({} DOF)", c.signature(), c.dof),
         None => "?".into(),
     }
 }

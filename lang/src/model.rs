@@ -378,6 +378,47 @@ impl Model {
         self.source.line(span.start)
     }
 
+    /// The part `p` of geom `g` (`S.start`, `L.dir`, `C.center`, `k.x`), if it has one.
+    pub fn part(&self, g: GeomId, p: Part) -> Option<GeomId> {
+        self.geoms[g]
+            .parts
+            .iter()
+            .copied()
+            .find(|&c| self.geoms[c].owner == Owner::Part(g, p))
+    }
+
+    /// The point a geom stands for where a constraint takes a point: a circle's centre, and
+    /// any other geom itself (a point, a marker's point).
+    pub fn point_feature(&self, g: GeomId) -> GeomId {
+        match self.geoms[g].kind {
+            GeomKind::Circle => self.part(g, Part::Center).unwrap_or(g),
+            _ => g,
+        }
+    }
+
+    /// The direction a geom stands for where a constraint takes a direction: a vector itself,
+    /// the `dir` of a line or segment, the normal of a plane.
+    pub fn dir_feature(&self, g: GeomId) -> Option<GeomId> {
+        match self.geoms[g].kind {
+            GeomKind::Vector => Some(g),
+            GeomKind::Line | GeomKind::Segment => self.part(g, Part::Dir),
+            GeomKind::Plane => self.part(g, Part::Normal),
+            _ => None,
+        }
+    }
+
+    /// The (point on it, direction) features of something line-like where a constraint takes
+    /// a line: a line's base point or a segment's start, and its `dir`; a marker's point and
+    /// its x axis.
+    pub fn line_features(&self, g: GeomId) -> Option<(GeomId, GeomId)> {
+        match self.geoms[g].kind {
+            GeomKind::Line => Some((g, self.part(g, Part::Dir)?)),
+            GeomKind::Segment => Some((self.part(g, Part::Start)?, self.part(g, Part::Dir)?)),
+            GeomKind::Marker => Some((g, self.part(g, Part::AxisX)?)),
+            _ => None,
+        }
+    }
+
     /// The nominal DOF of a constraint: what it removes if independent of the others, with
     /// its value at the default params (a zero distance removes more than a non-zero one).
     pub fn nominal_dof_removed(&self, c: ConstraintId) -> usize {

@@ -8,8 +8,10 @@
 //! radius is fixed it becomes a locus of the centre; once the centre is fixed it gives the
 //! radius.
 
-use super::relation::{Nesting, Rel, Relation};
-use super::{Builder, Locus, Pos, Target};
+use super::relation::{Nesting, Relation};
+use super::{Locus, Planar, Pos, Rel, Target};
+use crate::analysis::driver::Builder;
+use crate::analysis::geometry::Invariants;
 use crate::plan::{Op, Reg, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, Part};
 
@@ -60,7 +62,7 @@ impl Fd {
     }
 }
 
-impl Builder<'_> {
+impl Builder<'_, Planar> {
     /// The relations that involve a circle's radius. Returns whether the relation was
     /// satisfied, recorded or turned into a check.
     pub(super) fn circle_relation(&mut self, r: &Rel) -> bool {
@@ -235,7 +237,7 @@ impl Builder<'_> {
 
     /// The centre feature of a circle.
     fn centre(&self, circle: GeomId) -> GeomId {
-        super::relation::part(self.model, circle, Part::Center).unwrap_or(circle)
+        self.model.part(circle, Part::Center).unwrap_or(circle)
     }
 
     fn dim_of(&mut self, g: GeomId) -> Reg {

@@ -6,9 +6,11 @@
 //! dimensions), and action analysis works on relations only. A constraint is satisfied when its
 //! last relation is.
 
+use super::Rel;
+use crate::analysis::Unsupported;
 use gcs_lang::constraints::ConstraintKind as K;
 use gcs_lang::expr::ExprId;
-use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part};
+use gcs_lang::model::{GeomId, GeomKind, Part};
 use gcs_lang::Model;
 
 /// A direction: a vector feature of some geom, or a fixed axis of the plane.
@@ -109,6 +111,29 @@ pub enum Relation {
     },
 }
 
+impl Relation {
+    /// The features (and geoms with a dimension) the relation involves.
+    pub fn features(&self) -> Vec<GeomId> {
+        match self {
+            Relation::PointPoint { a, b, .. } => vec![*a, *b],
+            Relation::PointLine { p, base, dir, .. } => vec![*p, *base, *dir],
+            Relation::Angle { u, v, .. } => [u, v]
+                .into_iter()
+                .filter_map(|d| match d {
+                    Dir::Feature(g) => Some(*g),
+                    Dir::World(..) => None,
+                })
+                .collect(),
+            Relation::Dim { geom, .. } => vec![*geom],
+            Relation::CircleLine {
+                circle, base, dir, ..
+            } => vec![*circle, *base, *dir],
+            Relation::PointCircle { p, circle, .. } => vec![*p, *circle],
+            Relation::CircleCircle { a, b, .. } => vec![*a, *b],
+        }
+    }
+}
+
 /// How two circles sit, from the sketch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Nesting {
@@ -118,64 +143,6 @@ pub enum Nesting {
     FirstInside,
     /// The second inside the first: `|c1 - c2| = r1 - r2 - gap`.
     SecondInside,
-}
-
-/// One relation with the constraint it comes from.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Rel {
-    /// The relation.
-    pub relation: Relation,
-    /// The constraint.
-    pub constraint: ConstraintId,
-    /// Whether it is the constraint's last relation (its step satisfies the constraint).
-    pub last: bool,
-}
-
-/// Why a constraint has no relations yet.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Unsupported {
-    /// The constraint.
-    pub constraint: ConstraintId,
-    /// What is missing.
-    pub reason: String,
-}
-
-/// The point feature of a geom used as a point: itself for points and markers, the centre of a
-/// circle.
-fn point_feature(model: &Model, g: GeomId) -> GeomId {
-    match model.geoms[g].kind {
-        GeomKind::Circle => part(model, g, Part::Center).unwrap_or(g),
-        _ => g,
-    }
-}
-
-/// The part `p` of geom `g`.
-pub fn part(model: &Model, g: GeomId, p: Part) -> Option<GeomId> {
-    model.geoms[g]
-        .parts
-        .iter()
-        .copied()
-        .find(|&c| model.geoms[c].owner == Owner::Part(g, p))
-}
-
-/// The (base point, direction) features of something line-like: a line, a segment, a marker's
-/// x axis line.
-fn line_features(model: &Model, g: GeomId) -> Option<(GeomId, GeomId)> {
-    match model.geoms[g].kind {
-        GeomKind::Line => Some((g, part(model, g, Part::Dir)?)),
-        GeomKind::Segment => Some((part(model, g, Part::Start)?, part(model, g, Part::Dir)?)),
-        GeomKind::Marker => Some((g, part(model, g, Part::AxisX)?)),
-        _ => None,
-    }
-}
-
-/// The direction feature of something with a direction.
-fn dir_feature(model: &Model, g: GeomId) -> Option<GeomId> {
-    match model.geoms[g].kind {
-        GeomKind::Vector => Some(g),
-        GeomKind::Line | GeomKind::Segment => part(model, g, Part::Dir),
-        _ => None,
-    }
 }
 
 /// What the decomposition asks of the sketch: angles between directions, and positions and
@@ -226,8 +193,8 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
         match (c.kind, a, b) {
             (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => {
                 out.push(Relation::PointPoint {
-                    a: point_feature(model, a),
-                    b: point_feature(model, b),
+                    a: model.point_feature(a),
+                    b: model.point_feature(b),
                     d: None,
                 });
             }
@@ -236,7 +203,7 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                     out.push(Relation::PointPoint { a, b, d: c.value });
                 }
                 (Some(ka), Some(GeomKind::Line | GeomKind::Segment)) if ka.is_pointlike() => {
-                    match line_features(model, b) {
+                    match model.line_features(b) {
                         Some((base, dir)) => out.push(Relation::PointLine {
                             p: a,
                             base,
@@ -261,7 +228,7 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                 _ => missing("not a distance of the language"),
             },
             (K::On, Some(a), Some(b)) => match kinds.1 {
-                Some(GeomKind::Line | GeomKind::Segment) => match line_features(model, b) {
+                Some(GeomKind::Line | GeomKind::Segment) => match model.line_features(b) {
                     Some((base, dir)) => out.push(Relation::PointLine {
                         p: a,
                         base,
@@ -273,16 +240,16 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                 Some(GeomKind::Circle) => out.push(point_circle(model, sketch, a, b, None)),
                 _ => missing("not an incidence of 2d"),
             },
-            (K::InLine | K::Prismatic, Some(a), Some(b)) => match line_features(model, b) {
+            (K::InLine | K::Prismatic, Some(a), Some(b)) => match model.line_features(b) {
                 Some((base, dir)) => {
                     out.push(Relation::PointLine {
-                        p: point_feature(model, a),
+                        p: model.point_feature(a),
                         base,
                         dir,
                         d: None,
                     });
                     if c.kind == K::Prismatic {
-                        match part(model, a, Part::AxisX) {
+                        match model.part(a, Part::AxisX) {
                             Some(ax) => out.push(Relation::Angle {
                                 u: Dir::Feature(ax),
                                 v: Dir::Feature(dir),
@@ -295,7 +262,7 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                 None => missing("the second argument has no line"),
             },
             (K::Angle | K::Parallel | K::Perpendicular, Some(a), Some(b)) => {
-                match (dir_feature(model, a), dir_feature(model, b)) {
+                match (model.dir_feature(a), model.dir_feature(b)) {
                     (Some(u), Some(v)) => {
                         let (u, v) = (Dir::Feature(u), Dir::Feature(v));
                         let angle = match c.kind {
@@ -311,7 +278,7 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                     _ => missing("angles need directions"),
                 }
             }
-            (K::Horizontal | K::Vertical, Some(a), None) => match dir_feature(model, a) {
+            (K::Horizontal | K::Vertical, Some(a), None) => match model.dir_feature(a) {
                 Some(v) => {
                     let axis = if c.kind == K::Horizontal {
                         Dir::World(1.0, 0.0)
@@ -328,7 +295,7 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                 None => missing("needs a direction"),
             },
             (K::OffsetX, Some(a), Some(b)) => {
-                match (part(model, a, Part::AxisX), part(model, b, Part::AxisX)) {
+                match (model.part(a, Part::AxisX), model.part(b, Part::AxisX)) {
                     (Some(u), Some(v)) => match c.value {
                         Some(e) => out.push(Relation::Angle {
                             u: Dir::Feature(u),
@@ -378,8 +345,8 @@ fn circle_line(
     line: GeomId,
     gap: Option<ExprId>,
 ) -> Option<Relation> {
-    let (base, dir) = line_features(model, line)?;
-    let centre = point_feature(model, circle);
+    let (base, dir) = model.line_features(line)?;
+    let centre = model.point_feature(circle);
     let d = sketch.dir(dir);
     let v = sub(sketch.point(centre), sketch.point(base));
     let sd = d[0] * v[1] - d[1] * v[0];
@@ -400,7 +367,7 @@ fn point_circle(
     circle: GeomId,
     gap: Option<ExprId>,
 ) -> Relation {
-    let c = sketch.point(point_feature(model, circle));
+    let c = sketch.point(model.point_feature(circle));
     let q = sketch.point(p);
     let dist = sub(q, c);
     let outside = dist[0].hypot(dist[1]) >= sketch.radius(circle);
@@ -420,8 +387,8 @@ fn circle_circle(
     gap: Option<ExprId>,
 ) -> Relation {
     let (ca, cb) = (
-        sketch.point(point_feature(model, a)),
-        sketch.point(point_feature(model, b)),
+        sketch.point(model.point_feature(a)),
+        sketch.point(model.point_feature(b)),
     );
     let d = sub(ca, cb);
     let d = d[0].hypot(d[1]);

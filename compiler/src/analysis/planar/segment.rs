@@ -2,12 +2,12 @@
 //! signatures include its length). While the length is free, a segment's end moves with it;
 //! these fragments pin the end, or place it along the segment's line and set the length.
 
-use super::relation::{part, Rel};
-use super::{Builder, Dir, Pos, Rot, Target};
+use super::{Dir, Planar, Pos, Rel, Rot, Target};
+use crate::analysis::driver::Builder;
 use crate::plan::{Op, Ty};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part};
 
-impl Builder<'_> {
+impl Builder<'_, Planar> {
     /// The fragments of a lone segment whose length is free, for a target on its start or end.
     /// `None` when they do not concern `f`; `Some(false)` when no fragment applies yet.
     pub(super) fn segment_fragment(&mut self, f: GeomId, target: Target, r: &Rel) -> Option<bool> {
@@ -18,9 +18,9 @@ impl Builder<'_> {
             return None;
         }
         let (start, end, dir) = (
-            part(self.model, seg, Part::Start)?,
-            part(self.model, seg, Part::End)?,
-            part(self.model, seg, Part::Dir)?,
+            self.model.part(seg, Part::Start)?,
+            self.model.part(seg, Part::End)?,
+            self.model.part(seg, Part::Dir)?,
         );
         let is_end = matches!(self.model.geoms[f].owner, Owner::Part(_, Part::End));
         let geoms = vec![seg];

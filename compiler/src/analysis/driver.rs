@@ -1,0 +1,652 @@
+//! The shared driver of the analysis: POSITION-ANALYSIS over clusters (000, Appendix A),
+//! whatever the space.
+//!
+//! Every top-level geom starts as a *cluster*: a set of geoms that move together, with an
+//! invariants record. The driver tries the pending relations in canonical order, first by
+//! action analysis, then by locus analysis (both given by the [`Geometry`]), retrying a
+//! relation only when a cluster it involves has changed; when both stop, it assembles the
+//! smallest rigid chain or loop on a temporary ground and rewrites it as a macro-geom
+//! (SOLVE-RIGID-CHAINS, SOLVE-LOOP), then goes on. Attempts that fail are rolled back, so the
+//! plan holds only what was used. It also owns the plan being written: registers, their
+//! words for explanations, and the caches of what has been measured.
+
+use super::geometry::{Geometry, Invariants, Rel};
+use super::{Analysis, Cluster, Unsupported};
+use crate::plan::{BranchId, BranchVar, Op, Plan, Reg, Step, Ty};
+use gcs_lang::model::{ConstraintId, GeomId};
+use gcs_lang::Model;
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+
+/// Analyses a model with the geometry of its space.
+pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
+    let (mut rels, unsupported) = G::decompose(model)?;
+    // Canonical order: by constraint name, then relation order within the constraint, so that
+    // the plan does not depend on the order of statements.
+    rels.sort_by(|a, b| {
+        model.constraints[a.constraint]
+            .name
+            .cmp(&model.constraints[b.constraint].name)
+    });
+    let mut b = Builder::<G>::new(model);
+    b.run(rels);
+    let mut unsolved = unsupported;
+    let mut listed: BTreeSet<ConstraintId> = unsolved.iter().map(|u| u.constraint).collect();
+    for r in b.pending.drain(..) {
+        if listed.insert(r.constraint) {
+            unsolved.push(Unsupported {
+                constraint: r.constraint,
+                reason: "no plan fragment applies: its geoms keep too much freedom".into(),
+            });
+        }
+    }
+    let clusters = b
+        .clusters
+        .iter()
+        .map(|c| Cluster {
+            geoms: c.geoms.clone(),
+            dof: c.record.dof(),
+            table2: c.record.table2(),
+            freedom: c
+                .geoms
+                .first()
+                .map_or_else(String::new, |&g| c.record.freedom(model, g)),
+        })
+        .collect();
+    Ok(Analysis {
+        plan: b.plan,
+        clusters,
+        unsolved,
+        redundant: b.redundant,
+    })
+}
+
+/// A cluster while the analysis runs: its top-level geoms and its record.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ClusterState<R> {
+    /// The top-level geoms (empty once merged into a macro-geom).
+    pub(crate) geoms: Vec<GeomId>,
+    /// The invariants record.
+    pub(crate) record: R,
+}
+
+/// A key of one of the builder's register caches.
+#[derive(Clone, Copy, Debug)]
+enum Key {
+    Known(GeomId),
+    Measured((GeomId, bool)),
+    Expr(gcs_lang::expr::ExprId),
+}
+
+/// Where a rollback returns to: the plan's steps, registers and branches.
+type Checkpoint = (usize, u32, usize);
+
+/// The analysis in progress: clusters and their records, the relations still pending, and
+/// the plan written so far.
+#[derive(Clone)]
+pub(crate) struct Builder<'m, G: Geometry> {
+    pub(crate) model: &'m Model,
+    pub(crate) plan: Plan,
+    pub(crate) clusters: Vec<ClusterState<G::Record>>,
+    cluster_of: HashMap<GeomId, usize>,
+    /// Registers holding invariant positions, reused once measured.
+    known_points: HashMap<GeomId, Reg>,
+    /// Registers holding current positions and directions, valid until their cluster moves.
+    measured: HashMap<(GeomId, bool), Reg>,
+    /// The keys of `measured` by top-level geom (a superset: keys may have gone since), so
+    /// that an action forgets what it invalidates without scanning every measurement.
+    measured_by_top: HashMap<GeomId, Vec<(GeomId, bool)>>,
+    /// The centre of each locus register that has one, in words, for branch meanings.
+    pub(crate) centers: BTreeMap<Reg, String>,
+    exprs: HashMap<gcs_lang::expr::ExprId, Reg>,
+    /// Words for registers, to write explanations and branch meanings.
+    words: BTreeMap<Reg, String>,
+    /// The keys inserted into `known_points`, `measured` and `exprs` since the last
+    /// checkpoint, so that a rollback forgets them without scanning the maps.
+    inserted: Vec<Key>,
+    /// The step defining each register, by register number.
+    def_step: Vec<usize>,
+    pub(crate) pending: Vec<Rel<G::Relation>>,
+    redundant: Vec<ConstraintId>,
+}
+
+impl<'m, G: Geometry> Builder<'m, G> {
+    fn new(model: &'m Model) -> Self {
+        let mut clusters = Vec::new();
+        let mut cluster_of = HashMap::new();
+        for (id, _) in model.top_level() {
+            cluster_of.insert(id, clusters.len());
+            clusters.push(ClusterState {
+                geoms: vec![id],
+                record: G::record(model, id),
+            });
+        }
+        Builder {
+            model,
+            plan: Plan::default(),
+            clusters,
+            cluster_of,
+            known_points: HashMap::new(),
+            measured: HashMap::new(),
+            measured_by_top: HashMap::new(),
+            centers: BTreeMap::new(),
+            exprs: HashMap::new(),
+            words: BTreeMap::new(),
+            inserted: Vec::new(),
+            def_step: Vec::new(),
+            pending: Vec::new(),
+            redundant: Vec::new(),
+        }
+    }
+
+    // ------------------------------------------------------------ emitting
+
+    /// Appends a step; returns the register it defines (meaningless when `ty` is `None`).
+    pub(crate) fn emit(
+        &mut self,
+        op: Op,
+        ty: Option<Ty>,
+        satisfies: Vec<ConstraintId>,
+        explain: String,
+    ) -> Reg {
+        // An action invalidates what was measured on the geoms it moves.
+        if let Op::Translate { geoms, .. }
+        | Op::RotatePoint { geoms, .. }
+        | Op::RotateDir { geoms, .. } = &op
+        {
+            let moved: Vec<GeomId> = geoms.clone();
+            for g in moved {
+                self.forget_measured(g);
+            }
+        }
+        if let Op::SetDim { geom, .. } = &op {
+            let g = *geom;
+            self.forget_measured(g);
+        }
+        let reg = Reg(self.plan.regs);
+        let out = ty.map(|t| {
+            self.plan.regs += 1;
+            (reg, t)
+        });
+        if out.is_some() {
+            self.def_step.push(self.plan.steps.len());
+        }
+        self.plan.steps.push(Step {
+            op,
+            out,
+            satisfies,
+            explain,
+        });
+        reg
+    }
+
+    /// Forgets the measurements of the features of top-level geom `top` (it moves).
+    fn forget_measured(&mut self, top: GeomId) {
+        if let Some(keys) = self.measured_by_top.remove(&top) {
+            for k in keys {
+                self.measured.remove(&k);
+            }
+        }
+    }
+
+    fn insert_measured(&mut self, key: (GeomId, bool), r: Reg) {
+        self.measured.insert(key, r);
+        self.measured_by_top
+            .entry(self.model.top_level_of(key.0))
+            .or_default()
+            .push(key);
+        self.inserted.push(Key::Measured(key));
+    }
+
+    /// Notes that register `r` holds the invariant position of point feature `f`.
+    pub(crate) fn insert_known(&mut self, f: GeomId, r: Reg) {
+        self.known_points.insert(f, r);
+        self.inserted.push(Key::Known(f));
+    }
+
+    /// The step that defines register `r`.
+    pub(crate) fn def(&self, r: Reg) -> Option<&Step> {
+        self.def_step
+            .get(r.0 as usize)
+            .and_then(|&i| self.plan.steps.get(i))
+    }
+
+    /// The type of register `r`.
+    pub(crate) fn ty(&self, r: Reg) -> Ty {
+        self.def(r)
+            .and_then(|s| s.out.filter(|o| o.0 == r).map(|o| o.1))
+            .unwrap_or(Ty::Scalar)
+    }
+
+    /// A step computing a value, described by `words` where explanations name it.
+    pub(crate) fn value(&mut self, op: Op, ty: Ty, words: String) -> Reg {
+        let r = self.emit(op, Some(ty), Vec::new(), String::new());
+        self.words.insert(r, words);
+        r
+    }
+
+    /// How explanations name register `r`.
+    pub(crate) fn word(&self, r: Reg) -> String {
+        self.words
+            .get(&r)
+            .cloned()
+            .unwrap_or_else(|| format!("r{}", r.0))
+    }
+
+    /// A cluster's geoms as the subject of a sentence: `crank`, or `link10 (with link7, link8)`.
+    pub(crate) fn group_name(&self, geoms: &[GeomId]) -> String {
+        match geoms {
+            [] => String::new(),
+            [one] => self.name(*one),
+            [first, rest @ ..] => format!(
+                "{} (with {})",
+                self.name(*first),
+                rest.iter()
+                    .map(|&g| self.name(g))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        }
+    }
+
+    pub(crate) fn name(&self, g: GeomId) -> String {
+        self.model.geoms[g].name.clone()
+    }
+
+    /// A constraint as explanations quote it: `label: text`, or the text.
+    pub(crate) fn cname(&self, c: ConstraintId) -> String {
+        let c = &self.model.constraints[c];
+        match &c.label {
+            Some(l) => format!("{l}: {}", c.text),
+            None => c.text.clone(),
+        }
+    }
+
+    /// The register of a model expression, evaluated once.
+    pub(crate) fn expr(&mut self, e: gcs_lang::expr::ExprId) -> Reg {
+        if let Some(r) = self.exprs.get(&e) {
+            return *r;
+        }
+        let text = crate::plan::expr_text(self.model, e);
+        let r = self.value(Op::Expr(e), Ty::Scalar, text);
+        self.exprs.insert(e, r);
+        self.inserted.push(Key::Expr(e));
+        r
+    }
+
+    /// The current position of a point feature (re-measured unless invariant).
+    pub(crate) fn point(&mut self, f: GeomId) -> Reg {
+        if let Some(r) = self
+            .known_points
+            .get(&f)
+            .or_else(|| self.measured.get(&(f, true)))
+        {
+            return *r;
+        }
+        let r = self.value(Op::PointOf(f), Ty::Point, self.name(f));
+        if self.point_known(f) {
+            self.insert_known(f, r);
+        } else {
+            self.insert_measured((f, true), r);
+        }
+        r
+    }
+
+    /// The current direction of a vector feature (re-measured after its cluster moves).
+    pub(crate) fn direction(&mut self, g: GeomId) -> Reg {
+        if let Some(r) = self.measured.get(&(g, false)) {
+            return *r;
+        }
+        let words = self.name(g);
+        let r = self.value(Op::DirOf(g), Ty::Vector, words);
+        self.insert_measured((g, false), r);
+        r
+    }
+
+    /// Declares a branch variable for an intersection that satisfies `constraint`: named
+    /// after it, with the meaning of each of its `meanings.len()` roots. A single root still
+    /// declares its (trivial) branch, so that every intersection is named.
+    pub(crate) fn branch(&mut self, constraint: ConstraintId, meanings: Vec<String>) -> BranchId {
+        let id = BranchId(self.plan.branches.len() as u32);
+        self.plan.branches.push(BranchVar {
+            name: self.model.constraints[constraint].name.clone(),
+            constraint,
+            count: meanings.len(),
+            meanings,
+            default: 0,
+        });
+        id
+    }
+
+    // ------------------------------------------------------------ knowledge
+
+    /// The cluster that moves feature or geom `g`.
+    pub(crate) fn cluster(&self, g: GeomId) -> usize {
+        let top = self.model.top_level_of(g);
+        self.cluster_of.get(&top).copied().unwrap_or(0)
+    }
+
+    /// The record of the cluster that moves `g`.
+    pub(crate) fn record(&self, g: GeomId) -> &G::Record {
+        &self.clusters[self.cluster(g)].record
+    }
+
+    /// Whether point feature `f` is invariant.
+    pub(crate) fn point_known(&self, f: GeomId) -> bool {
+        self.record(f).point_known(self.model, f)
+    }
+
+    /// The constraints a step satisfying `r` satisfies: its constraint, on its last relation.
+    pub(crate) fn satisfies(&self, r: &Rel<G::Relation>) -> Vec<ConstraintId> {
+        if r.last {
+            vec![r.constraint]
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// A relation already implied: a run-time check of its constraint (once, on its last
+    /// relation).
+    pub(crate) fn check(&mut self, r: &Rel<G::Relation>) {
+        if r.last {
+            let explain = format!(
+                "Check that {} holds: it is implied by the steps before.",
+                self.cname(r.constraint)
+            );
+            self.emit(
+                Op::Check {
+                    constraint: r.constraint,
+                },
+                None,
+                vec![r.constraint],
+                explain,
+            );
+            self.redundant.push(r.constraint);
+        }
+    }
+
+    // ------------------------------------------------------------ the driver
+
+    fn run(&mut self, rels: Vec<Rel<G::Relation>>) {
+        // Unary constraints first (Appendix A.3): dimensions.
+        let (dims, others): (Vec<_>, Vec<_>) =
+            rels.into_iter().partition(|r| G::is_dimension(&r.relation));
+        for r in &dims {
+            G::action(self, r);
+        }
+        self.pending = others;
+        if !self.model.top_level().any(|(_, g)| g.fixed) && !self.clusters.is_empty() {
+            G::ground(self);
+        }
+        // POSITION-ANALYSIS (000, Appendix A.3): action and locus analysis until stuck; then
+        // the smallest rigid chain or loop is assembled on a temporary ground and rewritten as
+        // a macro-geom; repeat.
+        loop {
+            self.fixpoint(None);
+            if self.pending.is_empty() || !self.group() {
+                break;
+            }
+        }
+        self.calibrate_branches();
+    }
+
+    /// Action analysis, then locus analysis, until neither applies to any pending relation
+    /// (restricted to relations among the clusters `within`, when given).
+    fn fixpoint(&mut self, within: Option<&[usize]>) {
+        // In effect: repeatedly take the first pending relation (in canonical order) that
+        // action analysis satisfies, else the first that locus analysis satisfies. An attempt
+        // depends only on the records of the clusters its relation involves, so one that
+        // failed without side effects fails again until one of those records changes: it is
+        // tried again only then. (A failed attempt that forgot measurements is tried every
+        // round, as every attempt used to be, so that it forgets them again.)
+        let n = self.pending.len();
+        let mut involved: Vec<Vec<usize>> = Vec::with_capacity(n);
+        let mut by_cluster: HashMap<usize, Vec<usize>> = HashMap::new();
+        // Relations to try, by mode (action, locus).
+        let mut dirty: [BTreeSet<usize>; 2] = Default::default();
+        for i in 0..n {
+            let ks = self.clusters_of(&self.pending[i]);
+            let inside = within.is_none_or(|set| ks.iter().all(|k| set.contains(k)));
+            if inside {
+                for &k in &ks {
+                    by_cluster.entry(k).or_default().push(i);
+                }
+                dirty[0].insert(i);
+                dirty[1].insert(i);
+            }
+            involved.push(ks);
+        }
+        let mut alive = vec![true; n];
+        loop {
+            let mut done = None;
+            for (mode, locus) in [false, true].into_iter().enumerate() {
+                let mut next = 0;
+                while let Some(&i) = dirty[mode].range(next..).next() {
+                    next = i + 1;
+                    let r = self.pending[i].clone();
+                    let before: Vec<G::Record> = involved[i]
+                        .iter()
+                        .map(|&k| self.clusters[k].record.clone())
+                        .collect();
+                    let measured = self.measured.len();
+                    let cp = self.checkpoint();
+                    let ok = if locus {
+                        G::locus(self, &r)
+                    } else {
+                        G::action(self, &r)
+                    };
+                    if ok {
+                        done = Some((i, before));
+                        break;
+                    }
+                    self.rollback(cp);
+                    if self.measured.len() == measured {
+                        dirty[mode].remove(&i);
+                    }
+                }
+                if done.is_some() {
+                    break;
+                }
+            }
+            let Some((i, before)) = done else { break };
+            alive[i] = false;
+            dirty[0].remove(&i);
+            dirty[1].remove(&i);
+            for (&k, old) in involved[i].iter().zip(&before) {
+                if self.clusters[k].record != *old {
+                    for &j in by_cluster.get(&k).into_iter().flatten() {
+                        if alive[j] {
+                            dirty[0].insert(j);
+                            dirty[1].insert(j);
+                        }
+                    }
+                }
+            }
+        }
+        let mut keep = alive.into_iter();
+        self.pending.retain(|_| keep.next().unwrap_or(false));
+    }
+
+    /// The clusters a relation involves.
+    fn clusters_of(&self, r: &Rel<G::Relation>) -> Vec<usize> {
+        let mut ks: Vec<usize> = G::features(&r.relation)
+            .into_iter()
+            .map(|g| self.cluster(g))
+            .collect();
+        ks.sort_unstable();
+        ks.dedup();
+        ks
+    }
+
+    fn checkpoint(&mut self) -> Checkpoint {
+        self.inserted.clear();
+        (
+            self.plan.steps.len(),
+            self.plan.regs,
+            self.plan.branches.len(),
+        )
+    }
+
+    /// Undoes the steps of a failed attempt, and forgets the registers they defined.
+    fn rollback(&mut self, (steps, regs, branches): Checkpoint) {
+        if self.plan.steps.len() == steps {
+            return;
+        }
+        self.plan.steps.truncate(steps);
+        self.plan.regs = regs;
+        self.plan.branches.truncate(branches);
+        self.def_step.truncate(regs as usize);
+        // Every cache entry naming a register defined since the checkpoint was inserted since
+        // the checkpoint (checkpoints do not nest).
+        let live = |r: Option<&Reg>| r.is_some_and(|r| r.0 < regs);
+        for key in std::mem::take(&mut self.inserted) {
+            match key {
+                Key::Known(f) => {
+                    if !live(self.known_points.get(&f)) {
+                        self.known_points.remove(&f);
+                    }
+                }
+                Key::Measured(k) => {
+                    if !live(self.measured.get(&k)) {
+                        self.measured.remove(&k);
+                    }
+                }
+                Key::Expr(e) => {
+                    if !live(self.exprs.get(&e)) {
+                        self.exprs.remove(&e);
+                    }
+                }
+            }
+        }
+        self.words.split_off(&Reg(regs));
+        self.centers.split_off(&Reg(regs));
+    }
+
+    /// SOLVE-RIGID-CHAINS and SOLVE-LOOP (000, Appendix A.1-A.2): among clusters that are
+    /// rigid and still move, find the smallest chain (2 clusters) or loop (up to
+    /// [`Geometry::MAX_LOOP`]) whose relations make it rigid, assemble it on one of its
+    /// clusters as a temporary ground, and rewrite it as one macro-geom that keeps the
+    /// ground's freedom. Candidates are tried in name order, so the choice does not depend on
+    /// statement order.
+    fn group(&mut self) -> bool {
+        // Rigid clusters that still move; a group holds at most one that is partially fixed,
+        // and then that one is its temporary ground and gives the macro-geom its record.
+        let free: Vec<usize> = (0..self.clusters.len())
+            .filter(|&k| {
+                let c = &self.clusters[k];
+                !c.geoms.is_empty() && !c.record.grounded() && c.record.rigid()
+            })
+            .collect();
+        let mut edges: BTreeSet<(usize, usize)> = Default::default();
+        for r in &self.pending {
+            if let [x, y] = self.clusters_of(r).as_slice() {
+                if free.contains(x) && free.contains(y) {
+                    edges.insert((*x, *y));
+                }
+            }
+        }
+        let linked = |x: usize, y: usize| edges.contains(&(x.min(y), x.max(y)));
+        let key = |s: &Self, set: &[usize]| {
+            let mut names: Vec<String> = set
+                .iter()
+                .map(|&k| s.name(s.clusters[k].geoms[0]))
+                .collect();
+            names.sort();
+            names
+        };
+        // Chains first (SOLVE-RIGID-CHAINS), then loops up to the space's limit
+        // (IDENTIFY-LOOPS over the free clusters numbered in name order).
+        let mut sets: Vec<Vec<usize>> = edges.iter().map(|&(x, y)| vec![x, y]).collect();
+        let mut order: Vec<usize> = free.clone();
+        order.sort_by_key(|&k| self.name(self.clusters[k].geoms[0]));
+        let adj: Vec<Vec<usize>> = order
+            .iter()
+            .map(|&x| (0..order.len()).filter(|&j| linked(x, order[j])).collect())
+            .collect();
+        for l in super::loops::identify_loops(&adj, G::MAX_LOOP) {
+            sets.push(l.into_iter().map(|i| order[i]).collect());
+        }
+        sets.sort_by_key(|s| (s.len(), key(self, s)));
+        for set in sets {
+            let held: Vec<usize> = set
+                .iter()
+                .copied()
+                .filter(|&k| !self.clusters[k].record.loose())
+                .collect();
+            let mut grounds = match held.as_slice() {
+                [] => set.clone(),
+                [one] => vec![*one],
+                _ => continue,
+            };
+            grounds.sort_by_key(|&k| self.name(self.clusters[k].geoms[0]));
+            for ground in grounds {
+                let mut trial = self.clone();
+                if trial.solve_group(&set, ground) {
+                    *self = trial;
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    fn solve_group(&mut self, set: &[usize], ground: usize) -> bool {
+        let saved = self.clusters[ground].record.clone();
+        let first_step = self.plan.steps.len();
+        self.clusters[ground].record.hold();
+        self.fixpoint(Some(set));
+        if !set.iter().all(|&k| self.clusters[k].record.grounded()) {
+            return false;
+        }
+        // Rewrite the group as one macro-geom with the ground's record.
+        let mut geoms = self.clusters[ground].geoms.clone();
+        for &k in set {
+            if k != ground {
+                geoms.extend(std::mem::take(&mut self.clusters[k].geoms));
+            }
+        }
+        for &g in &geoms {
+            self.cluster_of.insert(g, ground);
+        }
+        let names: Vec<String> = geoms.iter().map(|&g| self.name(g)).collect();
+        if let Some(step) = self.plan.steps[first_step..]
+            .iter_mut()
+            .find(|s| !s.explain.is_empty())
+        {
+            step.explain = format!(
+                "{} form a rigid {}: hold {} where it is, assemble the others on it, and move \
+                 them from now on as one body (a macro-geom).\n   {}",
+                names.join(", "),
+                if set.len() == 2 { "chain" } else { "loop" },
+                names[0],
+                step.explain
+            );
+        }
+        self.clusters[ground].geoms = geoms.clone();
+        self.clusters[ground].record = saved;
+        // Positions measured relative to the temporary ground are not invariant in the world.
+        let model = self.model;
+        self.known_points
+            .retain(|f, _| !geoms.contains(&model.top_level_of(*f)));
+        true
+    }
+
+    // ------------------------------------------------------------ branch defaults
+
+    /// Runs the plan on the sketch, taking at each intersection the root nearest to where the
+    /// moving feature is: that index is the sketch's branch, the default.
+    fn calibrate_branches(&mut self) {
+        let params = self.model.default_params();
+        if let Ok(run) = crate::interp::run(
+            self.model,
+            &self.plan,
+            &params,
+            &crate::interp::Choice::Nearest,
+        ) {
+            for (b, idx) in self.plan.branches.iter_mut().zip(run.chosen) {
+                if let Some(i) = idx {
+                    b.default = i;
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,100 @@
+//! What a space gives the shared driver: the trait a geometry module implements.
+//!
+//! The driver ([`super::driver`]) knows clusters, relations in canonical order, retries,
+//! rollback, chains and loops, and plan emission; it knows nothing of the plane or of space.
+//! A geometry module knows the rest: how constraints decompose into relations between
+//! features, what a cluster's invariants record is, the plan fragments that move a cluster
+//! (action analysis), the loci of partially fixed clusters and their intersections (locus
+//! analysis), and how to hold a cluster in place. [`super::planar`] is the plane's module; a
+//! spatial one implements the same trait with 3d records (TLA's translational and rotational
+//! DOF with their invariant points and axes), relations (point-plane, marker axes) and
+//! loops of up to six clusters.
+
+use super::driver::Builder;
+use super::Unsupported;
+use gcs_lang::model::{ConstraintId, GeomId};
+use gcs_lang::Model;
+
+/// One relation of a constraint's decomposition, with the constraint it comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rel<R> {
+    /// The relation between features.
+    pub relation: R,
+    /// The constraint.
+    pub constraint: ConstraintId,
+    /// Whether it is the constraint's last relation: the step that satisfies it satisfies the
+    /// constraint.
+    pub last: bool,
+}
+
+/// A cluster's invariants record (000, Table 2): what constraints have fixed of it so far.
+pub trait Invariants: Clone + PartialEq + std::fmt::Debug {
+    /// The degrees of freedom the record leaves.
+    fn dof(&self) -> usize;
+
+    /// Whether nothing about the cluster can move any more.
+    fn grounded(&self) -> bool {
+        self.dof() == 0
+    }
+
+    /// Whether the cluster is rigid (no free dimension, nothing pending on one), so that it
+    /// may join a rigid chain or loop.
+    fn rigid(&self) -> bool;
+
+    /// Whether the cluster is entirely free to move: then any cluster of a group may be its
+    /// temporary ground; otherwise only this one.
+    fn loose(&self) -> bool;
+
+    /// Holds the cluster where it is: it becomes a temporary ground (SOLVE-RIGID-CHAINS,
+    /// SOLVE-LOOP) or the ground of a model with nothing fixed.
+    fn hold(&mut self);
+
+    /// Whether point feature `f` of this cluster is invariant (its position is known).
+    fn point_known(&self, model: &Model, f: GeomId) -> bool;
+
+    /// The cardinalities of Kramer's Table 2 slots: invariant points, 1D- and 2D-constrained
+    /// points, invariant and 1D-constrained vectors, invariant dimensions, fixed-distance
+    /// points, lines and planes.
+    fn table2(&self) -> [usize; 9];
+
+    /// What freedom the record leaves `geom`, in words (empty when none).
+    fn freedom(&self, model: &Model, geom: GeomId) -> String;
+}
+
+/// A space's vocabulary for the analysis.
+pub(crate) trait Geometry: Sized + Clone {
+    /// A cluster's invariants record.
+    type Record: Invariants;
+    /// A relation between features.
+    type Relation: Clone + std::fmt::Debug + PartialEq;
+
+    /// The most clusters IDENTIFY-LOOPS looks at in a loop: 3 in the plane, 6 in space (000).
+    const MAX_LOOP: usize;
+
+    /// Every constraint of the model as relations between features, and those the module does
+    /// not cover yet (never dropped); reads the sketch where the language leaves a choice to
+    /// it. Fails for a model the module cannot read at all (an invalid sketch).
+    #[allow(clippy::type_complexity)]
+    fn decompose(model: &Model) -> Result<(Vec<Rel<Self::Relation>>, Vec<Unsupported>), String>;
+
+    /// The features (points, directions, geoms with a dimension) a relation involves.
+    fn features(relation: &Self::Relation) -> Vec<GeomId>;
+
+    /// Whether a relation is unary (a dimension), satisfied before anything moves (000,
+    /// Appendix A.3).
+    fn is_dimension(relation: &Self::Relation) -> bool;
+
+    /// The record of top-level geom `g` before any constraint.
+    fn record(model: &Model, g: GeomId) -> Self::Record;
+
+    /// Action analysis: satisfies `r` by moving the cluster of the side that is not known, with
+    /// the freedom its record leaves, or makes it a check when it is already implied. Returns
+    /// whether it did; a failed attempt is rolled back by the driver.
+    fn action(b: &mut Builder<'_, Self>, r: &Rel<Self::Relation>) -> bool;
+
+    /// Locus analysis: satisfies `r` by intersecting the loci of two partially fixed clusters.
+    fn locus(b: &mut Builder<'_, Self>, r: &Rel<Self::Relation>) -> bool;
+
+    /// Grounds a model in which nothing is fixed, so that it is solved up to a rigid motion.
+    fn ground(b: &mut Builder<'_, Self>);
+}
