@@ -25,9 +25,8 @@
 //! This module is the one exception to "library crates do no I/O": a build script's interface
 //! to cargo *is* its files, stdout and stderr.
 
-use crate::analysis;
 use crate::codegen;
-use crate::report;
+use crate::pipeline::{self, CompileError};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -139,41 +138,36 @@ impl Builder {
         let name = path.display().to_string();
         let bytes =
             std::fs::read(path).map_err(|e| failure(format!("cannot read: {e}"), "".into()))?;
-        let (source, model, mut diags) = gcs_lang::load(&name, &bytes);
-        let analysed = model.map(|m| {
-            let a = analysis::analyse(&m);
-            (m, a)
-        });
-        let (model, analysis) = match analysed {
-            None => {
+        let compiled = match pipeline::compile(&name, &bytes) {
+            Ok(c) => c,
+            Err(CompileError::Load(r)) => {
                 return Err(failure(
-                    error_count(&diags),
-                    gcs_lang::diagnostic::render_plain(&source, &diags),
+                    error_count(&r.diagnostics),
+                    gcs_lang::diagnostic::render_plain(&r.source, &r.diagnostics),
                 ))
             }
-            Some((_, Err(e))) => {
+            Err(CompileError::Analysis(u)) => {
                 return Err(failure(
-                    format!("cannot be analysed: {e}"),
-                    gcs_lang::diagnostic::render_plain(&source, &diags),
+                    format!("cannot be analysed: {}", u.error),
+                    gcs_lang::diagnostic::render_plain(&u.source, &u.diagnostics),
                 ))
             }
-            Some((m, Ok(a))) => (m, a),
         };
-        diags.extend(report::problems(&model, &analysis));
-        let rendered = gcs_lang::diagnostic::render_plain(&source, &diags);
-        if gcs_lang::diagnostic::has_errors(&diags) {
-            return Err(failure(error_count(&diags), rendered));
+        let diags = &compiled.diagnostics;
+        let rendered = gcs_lang::diagnostic::render_plain(&compiled.source, diags);
+        if compiled.has_errors() {
+            return Err(failure(error_count(diags), rendered));
         }
         if !self.quiet {
-            for d in &diags {
-                let line = source.line(d.primary.span.start);
+            for d in diags {
+                let line = compiled.source.line(d.primary.span.start);
                 println!("cargo:warning={name}:{line}: {}", d.message);
             }
             if !diags.is_empty() {
                 eprint!("{rendered}");
             }
         }
-        Ok(codegen::generate(&model, &analysis))
+        Ok(codegen::generate(&compiled.model, &compiled.analysis.plan))
     }
 }
 

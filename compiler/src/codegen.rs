@@ -8,9 +8,7 @@
 //! deterministic and rustfmt-clean. `solve` never panics and allocates nothing: every failure is
 //! a `SolveError` built from string literals.
 
-use crate::analysis::Analysis;
 use crate::plan::{Meet, Op, Plan, Reg};
-use gcs_lang::constraints::ConstraintKind as K;
 use gcs_lang::expr::{ExprId, ExprNode, Func};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::syntax::{AngleUnit, BinaryOp};
@@ -21,9 +19,10 @@ use std::collections::{BTreeSet, HashMap, HashSet};
 mod scopes;
 use scopes::Binding;
 
-/// The generated module for a model, pruned to its `output` statements.
-pub fn generate(model: &Model, analysis: &Analysis) -> String {
-    let (plan, scope) = crate::prune::prune(model, &analysis.plan);
+/// The generated module for a model's plan, pruned to its `output` statements. The plan must
+/// be valid (the pipeline's are).
+pub fn generate(model: &Model, plan: &Plan) -> String {
+    let (plan, scope) = crate::prune::prune(model, plan);
     Gen::new(model, &plan, &scope).module()
 }
 
@@ -294,6 +293,8 @@ struct Gen<'a> {
     params: HashMap<gcs_lang::expr::ParamId, String>,
     /// Branch field names by branch index.
     branches: Vec<String>,
+    /// Default field names by default index.
+    defaults: Vec<String>,
     file: String,
     /// Dimensions declared where the plan sets them (nothing reads their sketch value).
     deferred: HashSet<GeomId>,
@@ -395,12 +396,6 @@ impl PlanIndex {
                 Op::DirOf(f) => {
                     ix.read.insert(*f);
                 }
-                Op::Check { constraint } => {
-                    for &a in &model.constraints[*constraint].args {
-                        ix.checked.insert(a);
-                        ix.dim_first.entry(model.top_level_of(a)).or_insert(false);
-                    }
-                }
                 _ => {}
             }
         }
@@ -426,6 +421,12 @@ impl<'a> Gen<'a> {
             .iter()
             .map(|b| branch_names.fresh(&b.name))
             .collect();
+        let mut default_names = Namer::default();
+        let defaults = plan
+            .defaults
+            .iter()
+            .map(|d| default_names.fresh(&d.name))
+            .collect();
         let file = std::path::Path::new(model.source.name())
             .file_name()
             .map_or_else(
@@ -442,17 +443,14 @@ impl<'a> Gen<'a> {
                 Op::CircleThrough {
                     center,
                     through,
-                    rigid,
+                    radius,
                 } => {
                     used.insert(*center);
-                    if rigid
-                        .and_then(|(a, b)| crate::plan::constant_distance(model, a, b))
-                        .is_none()
-                    {
+                    if radius.is_none() {
                         used.insert(*through);
                     }
                 }
-                op => used.extend(Plan::reads(op)),
+                op => used.extend(op.reads()),
             }
         }
         let index = PlanIndex::new(model, plan, &used);
@@ -482,6 +480,7 @@ impl<'a> Gen<'a> {
             locals: HashMap::new(),
             params,
             branches,
+            defaults,
             file,
             facts: HashMap::new(),
             frame_reads: RefCell::new(HashSet::new()),
@@ -616,10 +615,7 @@ impl<'a> Gen<'a> {
         w.line("");
         self.params_struct(&mut w);
         self.branches_struct(&mut w);
-        w.line("/// Values of the degrees of freedom the analysis had to default (none for this model).");
-        w.line("#[derive(Clone, Copy, Debug, Default, PartialEq)]");
-        w.line("pub struct Defaults {}");
-        w.line("");
+        self.defaults_struct(&mut w);
         let solution_fields = self.solution_struct(&mut w);
         self.solve_fn(&mut w, &solution_fields);
         let _ = m;
@@ -688,6 +684,52 @@ impl<'a> Gen<'a> {
             }
             w.close("}");
         }
+        w.close("}");
+        w.close("}");
+        w.line("");
+    }
+
+    fn defaults_struct(&self, w: &mut Writer) {
+        if self.plan.defaults.is_empty() {
+            w.line("/// Values of the degrees of freedom the analysis had to default (none for this model).");
+            w.line("#[derive(Clone, Copy, Debug, Default, PartialEq)]");
+            w.line("pub struct Defaults {}");
+            w.line("");
+            return;
+        }
+        w.line("/// Values of the degrees of freedom the analysis had to default: where a solve starts,");
+        w.line("/// or the value of a motion the constraints leave free. `Default` is the sketch.");
+        w.line(&scopes::derives(self.defaults.len(), false));
+        w.open("pub struct Defaults {");
+        for (d, name) in self.plan.defaults.iter().zip(&self.defaults) {
+            w.line(&format!("/// `{}`: {}.", d.name, d.meaning));
+            w.line(&format!("pub {name}: f64,"));
+        }
+        w.close("}");
+        w.line("");
+        scopes::field_by_field_eq(w, "Defaults", &self.defaults, false);
+        w.line("#[allow(dead_code)]");
+        w.open("impl Defaults {");
+        w.line("/// Sets the default called `name` (as in the plan); `false` when there is none.");
+        w.open("pub fn set(&mut self, name: &str, value: f64) -> bool {");
+        w.open("match name {");
+        for (d, field) in self.plan.defaults.iter().zip(&self.defaults) {
+            w.line(&format!("{} => self.{field} = value,", lit(&d.name)));
+        }
+        w.line("_ => return false,");
+        w.close("}");
+        w.line("true");
+        w.close("}");
+        w.close("}");
+        w.line("");
+        w.open("impl Default for Defaults {");
+        w.line("/// The sketch's values.");
+        w.open("fn default() -> Self {");
+        w.open("Defaults {");
+        for (d, name) in self.plan.defaults.iter().zip(&self.defaults) {
+            w.line(&format!("{name}: {},", float(d.sketch)));
+        }
+        w.close("}");
         w.close("}");
         w.close("}");
         w.line("");
@@ -1926,13 +1968,13 @@ impl<'a> Gen<'a> {
             Op::CircleThrough {
                 center,
                 through,
-                rigid,
+                radius,
             } => {
                 if let Some(r) = out {
                     let (c, t) = (self.r(*center), self.r(*through));
                     // Two features of one rigid geom with constant local coordinates: their
                     // distance is known now.
-                    let known = rigid.and_then(|(a, b)| crate::plan::constant_distance(m, a, b));
+                    let known = *radius;
                     if let Some(k) = known {
                         self.circle_radius.insert((*center, *through), k);
                     }
@@ -2136,6 +2178,9 @@ impl<'a> Gen<'a> {
                         Meet::LineLine => "line_line",
                         Meet::CircleConic => "circle_conic",
                         Meet::LineConic => "line_conic",
+                        spatial => panic!(
+                            "bug in gcs: the spatial intersection {spatial:?} reached the planar code generator"
+                        ),
                     };
                     let index = match self.branches.get(branch.0 as usize) {
                         Some(field) if self.plan.branches[branch.0 as usize].count > 1 => {
@@ -2226,6 +2271,7 @@ impl<'a> Gen<'a> {
                 pivot,
                 from,
                 to,
+                ..
             } => {
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
                 // From the pivot to the target: read from the chord when the target is a root
@@ -2276,6 +2322,7 @@ impl<'a> Gen<'a> {
                 pivot,
                 from,
                 to,
+                ..
             } => {
                 let (p, f, t) = (self.r(*pivot), self.r(*from), self.r(*to));
                 let code = if self.unit_x.contains(from) && self.unit_dirs.contains(to) {
@@ -2311,8 +2358,11 @@ impl<'a> Gen<'a> {
                     w.line(&format!("{d} = {v};"));
                 }
             }
-            Op::Check { constraint } => {
-                let residual = self.residual_code(*constraint);
+            Op::Check {
+                constraint,
+                residual,
+            } => {
+                let residual = self.residual_code(residual);
                 let name = self.names.fresh("residual");
                 w.line(&format!("let {name} = {residual};"));
                 w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
@@ -2324,117 +2374,95 @@ impl<'a> Gen<'a> {
                 ));
                 w.close("}");
             }
+            Op::Default(d) => {
+                if let Some(r) = out {
+                    let field = self.defaults.get(d.0 as usize).cloned().unwrap_or_default();
+                    self.finite.insert(r);
+                    self.regs.insert(r, format!("defaults.{field}"));
+                }
+            }
+            Op::Close {
+                constraint,
+                residual,
+            } => {
+                let name = self.names.fresh("closing");
+                w.line(&format!("let {name} = {}.abs();", self.r(*residual)));
+                w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
+                let con = &m.constraints[*constraint];
+                w.line(&format!(
+                    "return Err(SolveError::new({}, {}, ErrorKind::NoConvergence, {name}));",
+                    lit(&con.name),
+                    lit(&con.text)
+                ));
+                w.close("}");
+            }
         }
     }
 
-    /// The residual of a constraint, measured on the frames now (run-time checks).
-    fn residual_code(&self, c: ConstraintId) -> String {
-        let m = self.model;
-        let con = &m.constraints[c];
-        let value = con.value.map_or("0.0".to_string(), |e| self.wrap(e, 2));
-        let kind = |g: GeomId| m.geoms[g].kind;
-        let part = |g, p| m.part(g, p).unwrap_or(g);
-        let pt = |g: GeomId| {
-            let g = if kind(g) == GeomKind::Circle {
-                part(g, Part::Center)
-            } else {
-                g
-            };
-            self.point_code(g)
-        };
-        let dir = |g: GeomId| {
-            let g = if matches!(kind(g), GeomKind::Line | GeomKind::Segment) {
-                part(g, Part::Dir)
-            } else {
-                g
-            };
-            self.dir_code(g)
-        };
-        let line = |g: GeomId| -> (String, String) {
-            match kind(g) {
-                GeomKind::Segment => (self.point_code(part(g, Part::Start)), dir(g)),
-                GeomKind::Marker => (self.point_code(g), self.dir_code(part(g, Part::AxisX))),
-                _ => (self.point_code(g), dir(g)),
+    /// The call of the runtime's residual of a check's relation, on its registers.
+    fn residual_code(&self, residual: &crate::plan::Residual) -> String {
+        use crate::plan::Residual as R;
+        let r = |x: &Reg| self.r(*x);
+        let opt = |x: &Option<Reg>| x.as_ref().map_or_else(|| "0.0".to_string(), r);
+        match residual {
+            R::PointPoint { a, b, d } => {
+                format!("check::point_point({}, {}, {})", r(a), r(b), opt(d))
             }
-        };
-        let radius = |g: GeomId| self.dims.get(&g).cloned().unwrap_or_else(|| "0.0".into());
-        let sd =
-            |(p, d): (String, String), q: String| format!("check::signed_distance({p}, {d}, {q})");
-        let angle = |u: String, v: String| format!("check::angle({u}, {v})");
-        let circles = |x: GeomId, y: GeomId, gap: &str| {
-            format!(
-                "check::circles({}, {}, {}, {}, {gap})",
-                pt(x),
-                radius(x),
-                pt(y),
-                radius(y)
-            )
-        };
-        let (a, b) = (con.args.first().copied(), con.args.get(1).copied());
-        match (con.kind, a, b) {
-            (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => {
-                format!("({} - ({})).norm()", pt(a), pt(b))
+            R::PointLine { p, base, dir, d } => format!(
+                "check::point_line({}, {}, {}, {})",
+                r(p),
+                r(base),
+                r(dir),
+                opt(d)
+            ),
+            R::Angle { u, v, angle } => {
+                format!("check::angle({}, {}, {})", r(u), r(v), r(angle))
             }
-            (K::Distance, Some(a), Some(b)) => match (kind(a), kind(b)) {
-                (GeomKind::Line | GeomKind::Segment, GeomKind::Circle) => format!(
-                    "({}.abs() - {} - {value}).abs()",
-                    sd(line(a), pt(b)),
-                    radius(b)
-                ),
-                (GeomKind::Circle, GeomKind::Circle) => circles(a, b, &value),
-                (_, GeomKind::Line | GeomKind::Segment) => {
-                    format!("({} - {value}).abs()", sd(line(b), pt(a)))
-                }
-                (_, GeomKind::Circle) => format!(
-                    "((({} - ({})).norm() - {}).abs() - {value}).abs()",
-                    pt(a),
-                    pt(b),
-                    radius(b)
-                ),
-                _ => format!(
-                    "(({} - ({})).norm() - f64::abs({value})).abs()",
-                    pt(a),
-                    pt(b)
-                ),
-            },
-            (K::On, Some(a), Some(b)) => match kind(b) {
-                GeomKind::Circle => {
-                    format!("(({} - ({})).norm() - {}).abs()", pt(a), pt(b), radius(b))
-                }
-                _ => format!("{}.abs()", sd(line(b), pt(a))),
-            },
-            (K::Tangent, Some(a), Some(b)) => match kind(a) {
-                GeomKind::Circle => circles(a, b, "0.0"),
-                _ => format!("({}.abs() - {}).abs()", sd(line(a), pt(b)), radius(b)),
-            },
-            (K::Angle, Some(a), Some(b)) => {
-                format!("check::angle_gap({}, {value})", angle(dir(a), dir(b)))
-            }
-            (K::Horizontal, Some(a), _) => format!("{}.y.abs()", dir(a)),
-            (K::Vertical, Some(a), _) => format!("{}.x.abs()", dir(a)),
-            (K::Parallel, Some(a), Some(b)) => {
-                format!("check::angle({}, {}).sin().abs()", dir(a), dir(b))
-            }
-            (K::Perpendicular, Some(a), Some(b)) => format!("{}.dot(&{}).abs()", dir(a), dir(b)),
-            (K::Length | K::Radius, Some(a), _) => format!("({} - {value}).abs()", radius(a)),
-            (K::InLine, Some(a), Some(b)) => format!("{}.abs()", sd(line(b), pt(a))),
-            (K::OffsetX | K::Prismatic, Some(a), Some(b)) => {
-                let target = if con.kind == K::OffsetX {
-                    value.clone()
-                } else {
-                    "0.0".into()
-                };
-                let turn = format!(
-                    "check::angle_gap({}, {target})",
-                    angle(line(a).1, line(b).1)
-                );
-                if con.kind == K::Prismatic {
-                    format!("{turn}.max({}.abs())", sd(line(b), pt(a)))
-                } else {
-                    turn
-                }
-            }
-            _ => "f64::INFINITY".into(),
+            R::CircleLine {
+                centre,
+                radius,
+                base,
+                dir,
+                gap,
+                side,
+            } => format!(
+                "check::circle_line({}, {}, {}, {}, {}, {})",
+                r(centre),
+                r(radius),
+                r(base),
+                r(dir),
+                opt(gap),
+                float(*side)
+            ),
+            R::PointCircle {
+                p,
+                centre,
+                radius,
+                gap,
+                outside,
+            } => format!(
+                "check::point_circle({}, {}, {}, {}, {outside})",
+                r(p),
+                r(centre),
+                r(radius),
+                opt(gap)
+            ),
+            R::CircleCircle {
+                c1,
+                r1,
+                c2,
+                r2,
+                gap,
+                nesting,
+            } => format!(
+                "check::circle_circle({}, {}, {}, {}, {}, check::Nesting::{nesting:?})",
+                r(c1),
+                r(r1),
+                r(c2),
+                r(r2),
+                opt(gap)
+            ),
+            R::Dim { value, target } => format!("check::dimension({}, {})", r(value), r(target)),
         }
     }
 }

@@ -1,23 +1,22 @@
 //! `gcs explain`: the plan as a construction a person can follow, in the words of the papers'
 //! plan fragments, with the model's names bound.
 
-use crate::analysis::Analysis;
-use crate::plan::Op;
+use crate::plan::{Op, Plan};
 use gcs_lang::Model;
 use std::fmt::Write as _;
 
-/// The explanation of an analysed model's plan.
-pub fn explain(model: &Model, a: &Analysis) -> String {
+/// The explanation of a model's plan.
+pub fn explain(model: &Model, plan: &Plan) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "Assembly plan for {}", model.source.name());
-    if let Some(g) = a.plan.grounded {
+    if let Some(g) = plan.grounded {
         let _ = writeln!(
             out,
             "\nNothing is fixed: {} is held at its sketch placement.",
             model.geoms[g].name
         );
     }
-    if let Some((x, y)) = a.plan.grounded_direction {
+    if let Some((x, y)) = plan.grounded_direction {
         let _ = writeln!(
             out,
             "The direction from {} to {} is held as sketched: {} keeps to that line.",
@@ -25,17 +24,14 @@ pub fn explain(model: &Model, a: &Analysis) -> String {
         );
     }
     let mut n = 0;
-    for step in &a.plan.steps {
+    for step in &plan.steps {
         if step.explain.is_empty() {
             continue;
         }
         n += 1;
         let _ = writeln!(out, "\n{n}. {}", step.explain);
-        if let Op::Intersect { .. } = step.op {
-            continue;
-        }
     }
-    let branches: Vec<_> = a.plan.branches.iter().filter(|b| b.count > 1).collect();
+    let branches: Vec<_> = plan.branches.iter().filter(|b| b.count > 1).collect();
     if !branches.is_empty() {
         let _ = writeln!(out, "\nBranch variables:");
         for b in branches {
@@ -44,6 +40,39 @@ pub fn explain(model: &Model, a: &Analysis) -> String {
                 let _ = writeln!(out, "    {i}: {m}");
             }
         }
+    }
+    if !plan.defaults.is_empty() {
+        let _ = writeln!(out, "\nDefaults:");
+        for d in &plan.defaults {
+            let _ = writeln!(
+                out,
+                "- {} (the sketch's {}): {}",
+                d.name,
+                crate::plan::fmt_f64(d.sketch),
+                d.meaning
+            );
+        }
+    }
+    for it in &plan.iterations {
+        let names: Vec<&str> = it
+            .defaults
+            .iter()
+            .filter_map(|d| plan.defaults.get(d.0 as usize).map(|d| d.name.as_str()))
+            .collect();
+        let closes: Vec<String> = plan.steps[it.start..it.end.min(plan.steps.len())]
+            .iter()
+            .filter_map(|s| match s.op {
+                Op::Close { constraint, .. } => Some(model.constraints[constraint].name.clone()),
+                _ => None,
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "Vary {} until {} close{}.",
+            names.join(", "),
+            closes.join(", "),
+            if closes.len() == 1 { "s" } else { "" }
+        );
     }
     out
 }

@@ -1,14 +1,16 @@
-//! The interpreter: runs a [`Plan`] on a model's sketch with given params and branches.
+//! The interpreter: runs a [`Plan`] on a model's sketch with given params, branches and
+//! defaults.
 //!
 //! It is the reference the generated solvers are compared with, and what `gcs solve` uses.
 //! Every failure is a [`SolveError`] naming the user's constraint: a locus intersection that
 //! does not exist (with the gap), a check that does not hold (with the residual), a degenerate
-//! configuration, or a non-finite param.
+//! configuration, or a non-finite param. The plan must be valid ([`Plan::validate`]; the
+//! pipeline validates every plan it makes): a register read as another type than it holds is
+//! a bug in gcs, and panics saying so, rather than going on with a made-up value.
 
 use crate::config::{Config, P2, V2};
-use crate::plan::{Meet, Op, Plan};
-use gcs_lang::constraints::ConstraintKind as K;
-use gcs_lang::model::{ConstraintId, GeomKind, Part};
+use crate::plan::{Meet, Op, Plan, Reg, Residual, RotationAxis, Step};
+use gcs_lang::model::ConstraintId;
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};
@@ -35,6 +37,7 @@ pub struct Run {
     pub chosen: Vec<Option<usize>>,
 }
 
+/// The value of a register.
 #[derive(Clone, Copy, Debug)]
 enum Val {
     S(f64),
@@ -45,13 +48,21 @@ enum Val {
     Q(Conic),
 }
 
-fn err(model: &Model, c: ConstraintId, kind: ErrorKind, magnitude: f64) -> SolveError {
-    let con = &model.constraints[c];
-    SolveError::new(con.name.clone(), con.text.clone(), kind, magnitude)
+/// Runs `plan` with `params` (indexed like the model's params) and each default at its
+/// sketch value.
+pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Result<Run, SolveError> {
+    run_with(model, plan, params, &plan.sketch_defaults(), choice)
 }
 
-/// Runs `plan` with `params` (indexed like the model's params).
-pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Result<Run, SolveError> {
+/// Runs `plan` with `params` and `defaults` (indexed like the plan's defaults). An iterated
+/// region runs once, with the defaults given: each constraint it closes must then hold.
+pub fn run_with(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    choice: &Choice,
+) -> Result<Run, SolveError> {
     for ((_, p), v) in model.params.iter().zip(params) {
         if !v.is_finite() {
             return Err(SolveError::new(
@@ -62,7 +73,17 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
             ));
         }
     }
-    let mut config = Config::from_sketch(model, params).map_err(|b| {
+    for (d, v) in plan.defaults.iter().zip(defaults) {
+        if !v.is_finite() {
+            return Err(SolveError::new(
+                d.name.clone(),
+                d.meaning.clone(),
+                ErrorKind::InvalidInput,
+                *v,
+            ));
+        }
+    }
+    let config = Config::from_sketch(model, params).map_err(|b| {
         SolveError::new(
             model.geoms[b.geom].name.clone(),
             b.what,
@@ -71,82 +92,187 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
         )
     })?;
     let scale = config_scale(&config, &plan.touched(model));
-    let tol = gcs_runtime::tol::CHECK_REL * (1.0 + scale);
-    let mut regs: Vec<Val> = vec![Val::S(0.0); plan.regs as usize];
-    let mut chosen = vec![None; plan.branches.len()];
-    let get = |regs: &[Val], r: crate::plan::Reg| {
-        regs.get(r.0 as usize).copied().unwrap_or(Val::S(f64::NAN))
+    let mut machine = Machine {
+        model,
+        plan,
+        params,
+        defaults,
+        choice,
+        config,
+        tol: gcs_runtime::tol::CHECK_REL * (1.0 + scale),
+        regs: vec![None; plan.regs as usize],
+        chosen: vec![None; plan.branches.len()],
     };
-    for step in &plan.steps {
-        let s = |r| match get(&regs, r) {
-            Val::S(x) => x,
-            _ => f64::NAN,
-        };
-        let p = |r| match get(&regs, r) {
-            Val::P(x) => x,
-            _ => P2::new(f64::NAN, f64::NAN),
-        };
-        let v = |r| match get(&regs, r) {
-            Val::V(x) => x,
-            _ => V2::new(f64::NAN, f64::NAN),
-        };
-        let out: Option<Val> = match &step.op {
-            // A value the params give, finite one by one, can still overflow (`theta * 1e300`):
-            // the constraint it belongs to cannot be met, rather than met by garbage.
-            Op::Expr(e) => Some(Val::S(finite_value(
-                model,
-                plan,
-                step,
-                model.exprs.eval(*e, params),
-            )?)),
-            Op::Const(c) => Some(Val::S(*c)),
-            Op::Neg(x) => Some(Val::S(-s(*x))),
-            Op::DimOf(g) => Some(Val::S(config.dim(*g))),
-            Op::Along { from, dir, to } => Some(Val::S((p(*to) - p(*from)).dot(&v(*dir)))),
+    for (i, step) in plan.steps.iter().enumerate() {
+        let value = machine.step(i, step)?;
+        if let (Some(val), Some((r, _))) = (value, step.out) {
+            if let Some(slot) = machine.regs.get_mut(r.0 as usize) {
+                *slot = Some(val);
+            }
+        }
+    }
+    Ok(Run {
+        config: machine.config,
+        chosen: machine.chosen,
+    })
+}
+
+/// The index of the root nearest to the sketch's position of the moving feature, at each
+/// intersection of the plan run on the sketch with the default params: each branch
+/// variable's default. `None` where the run did not reach an intersection.
+pub fn sketch_branches(model: &Model, plan: &Plan) -> Vec<Option<usize>> {
+    match run(model, plan, &model.default_params(), &Choice::Nearest) {
+        Ok(run) => run.chosen,
+        Err(_) => vec![None; plan.branches.len()],
+    }
+}
+
+/// A run in progress.
+struct Machine<'a> {
+    model: &'a Model,
+    plan: &'a Plan,
+    params: &'a [f64],
+    defaults: &'a [f64],
+    choice: &'a Choice,
+    config: Config,
+    /// The tolerance of checks, relative to the configuration's scale.
+    tol: f64,
+    regs: Vec<Option<Val>>,
+    chosen: Vec<Option<usize>>,
+}
+
+/// The panic of a malformed plan: a bug in gcs, never an input's fault.
+#[cold]
+fn malformed(r: Reg, want: &str, got: Option<Val>) -> ! {
+    panic!(
+        "bug in gcs: the plan reads r{} as {want}, but it holds {got:?}; \
+         the pipeline validates every plan, so please report this",
+        r.0
+    )
+}
+
+impl Machine<'_> {
+    fn get(&self, r: Reg) -> Option<Val> {
+        self.regs.get(r.0 as usize).copied().flatten()
+    }
+    fn s(&self, r: Reg) -> f64 {
+        match self.get(r) {
+            Some(Val::S(x)) => x,
+            v => malformed(r, "a scalar", v),
+        }
+    }
+    fn p(&self, r: Reg) -> P2 {
+        match self.get(r) {
+            Some(Val::P(x)) => x,
+            v => malformed(r, "a point", v),
+        }
+    }
+    fn v(&self, r: Reg) -> V2 {
+        match self.get(r) {
+            Some(Val::V(x)) => x,
+            v => malformed(r, "a direction", v),
+        }
+    }
+    fn line(&self, r: Reg) -> Line {
+        match self.get(r) {
+            Some(Val::L(x)) => x,
+            v => malformed(r, "a line", v),
+        }
+    }
+    fn circle(&self, r: Reg) -> Circle {
+        match self.get(r) {
+            Some(Val::C(x)) => x,
+            v => malformed(r, "a circle", v),
+        }
+    }
+    fn conic(&self, r: Reg) -> Conic {
+        match self.get(r) {
+            Some(Val::Q(x)) => x,
+            v => malformed(r, "a conic", v),
+        }
+    }
+    /// An optional scalar, zero when absent.
+    fn s_or_zero(&self, r: Option<Reg>) -> f64 {
+        r.map_or(0.0, |r| self.s(r))
+    }
+
+    /// The error of step `i`'s constraint, or of the plan when the step works for none.
+    fn error(&self, i: usize, kind: ErrorKind, magnitude: f64) -> SolveError {
+        match self.plan.constraint_of(i) {
+            Some(c) => err(self.model, c, kind, magnitude),
+            None => SolveError::new("plan", String::new(), kind, magnitude),
+        }
+    }
+
+    /// Step `i` cannot be done: its loci or directions are degenerate here.
+    fn degenerate(&self, i: usize) -> SolveError {
+        self.error(i, ErrorKind::Degenerate, 0.0)
+    }
+
+    /// `x` when it is finite; otherwise step `i`'s constraint cannot be met: a value the
+    /// params give, finite one by one, can still overflow (`theta * 1e300`).
+    fn finite(&self, i: usize, x: f64) -> Result<f64, SolveError> {
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.error(i, ErrorKind::InvalidValue, x))
+        }
+    }
+
+    /// Runs one step; returns the value it defines.
+    fn step(&mut self, i: usize, step: &Step) -> Result<Option<Val>, SolveError> {
+        let model = self.model;
+        let value = match &step.op {
+            Op::Expr(e) => Val::S(self.finite(i, model.exprs.eval(*e, self.params))?),
+            Op::Const(c) => Val::S(*c),
+            Op::Default(d) => {
+                Val::S(self.defaults.get(d.0 as usize).copied().unwrap_or_else(|| {
+                    panic!("bug in gcs: no value for default {} of the plan", d.0)
+                }))
+            }
+            Op::Neg(x) => Val::S(-self.s(*x)),
+            Op::DimOf(g) => Val::S(self.config.dim(*g)),
+            Op::Along { from, dir, to } => Val::S((self.p(*to) - self.p(*from)).dot(&self.v(*dir))),
             Op::DirectionTo { from, to } => {
-                let d = p(*to) - p(*from);
+                let d = self.p(*to) - self.p(*from);
                 let n = d.norm();
                 if n.is_nan() || n <= 0.0 {
-                    return Err(bad_step(model, plan, step));
+                    return Err(self.degenerate(i));
                 }
-                Some(Val::V(d / n))
+                Val::V(d / n)
             }
-            Op::Sum(terms) => Some(Val::S(finite_value(
-                model,
-                plan,
-                step,
-                terms.iter().map(|(k, r)| k * s(*r)).sum(),
-            )?)),
-            Op::Reversed(x) => match get(&regs, *x) {
-                Val::L(l) => Some(Val::L(l.reversed())),
-                _ => return Err(bad_step(model, plan, step)),
-            },
-            Op::OffsetLine { line, by } => match get(&regs, *line) {
-                Val::L(l) => Some(Val::L(l.offset(s(*by)))),
-                _ => return Err(bad_step(model, plan, step)),
-            },
-            Op::CentresLineLine { l1, a1, l2, a2 } => match (get(&regs, *l1), get(&regs, *l2)) {
-                (Val::L(x), Val::L(y)) => {
-                    let l = locus2d::centres_line_line(&x, s(*a1), &y, s(*a2))
-                        .ok_or_else(|| bad_step(model, plan, step))?;
-                    Some(Val::L(l))
-                }
-                _ => return Err(bad_step(model, plan, step)),
-            },
+            Op::Sum(terms) => {
+                let sum = terms.iter().map(|(k, r)| k * self.s(*r)).sum();
+                Val::S(self.finite(i, sum)?)
+            }
+            Op::Reversed(x) => Val::L(self.line(*x).reversed()),
+            Op::OffsetLine { line, by } => Val::L(self.line(*line).offset(self.s(*by))),
+            Op::CentresLineLine { l1, a1, l2, a2 } => Val::L(
+                locus2d::centres_line_line(
+                    &self.line(*l1),
+                    self.s(*a1),
+                    &self.line(*l2),
+                    self.s(*a2),
+                )
+                .ok_or_else(|| self.degenerate(i))?,
+            ),
             Op::CentresLinePoint {
                 line,
                 a,
                 at,
                 b,
                 plus,
-            } => match get(&regs, *line) {
-                Val::L(l) => {
-                    let q = locus2d::centres_line_circle(&l, s(*a), p(*at), sense(*plus), s(*b))
-                        .ok_or_else(|| bad_step(model, plan, step))?;
-                    Some(Val::Q(Conic::Parabola(q)))
-                }
-                _ => return Err(bad_step(model, plan, step)),
-            },
+            } => {
+                let q = locus2d::centres_line_circle(
+                    &self.line(*line),
+                    self.s(*a),
+                    self.p(*at),
+                    sense(*plus),
+                    self.s(*b),
+                )
+                .ok_or_else(|| self.degenerate(i))?;
+                Val::Q(Conic::Parabola(q))
+            }
             Op::CentresPointPoint {
                 c1,
                 b1,
@@ -154,102 +280,95 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 c2,
                 b2,
                 p2,
-            } => {
-                let q = locus2d::centres_circle_circle(
-                    p(*c1),
+            } => Val::Q(
+                locus2d::centres_circle_circle(
+                    self.p(*c1),
                     sense(*p1),
-                    s(*b1),
-                    p(*c2),
+                    self.s(*b1),
+                    self.p(*c2),
                     sense(*p2),
-                    s(*b2),
+                    self.s(*b2),
                 )
-                .ok_or_else(|| bad_step(model, plan, step))?;
-                Some(Val::Q(q))
+                .ok_or_else(|| self.degenerate(i))?,
+            ),
+            Op::RadiusFromLine { line, a, centre } => {
+                Val::S(self.line(*line).signed_distance(self.p(*centre)) - self.s(*a))
             }
-            Op::RadiusFromLine { line, a, centre } => match get(&regs, *line) {
-                Val::L(l) => Some(Val::S(l.signed_distance(p(*centre)) - s(*a))),
-                _ => return Err(bad_step(model, plan, step)),
-            },
             Op::RadiusFromPoint {
                 at,
                 b,
                 plus,
                 centre,
             } => {
-                let d = (p(*centre) - p(*at)).norm();
-                Some(Val::S(if *plus { d - s(*b) } else { s(*b) - d }))
+                let d = (self.p(*centre) - self.p(*at)).norm();
+                Val::S(if *plus {
+                    d - self.s(*b)
+                } else {
+                    self.s(*b) - d
+                })
             }
-            Op::PointOf(g) => Some(Val::P(config.point(model, *g))),
-            Op::DirOf(g) => Some(Val::V(config.dir(model, *g))),
-            Op::Axis(x, y) => Some(Val::V(V2::new(*x, *y))),
-            Op::Rotated { dir, angle } => Some(Val::V(UnitComplex::new(s(*angle)) * v(*dir))),
+            Op::PointOf(g) => Val::P(self.config.point(model, *g)),
+            Op::DirOf(g) => Val::V(self.config.dir(model, *g)),
+            Op::Axis(x, y) => Val::V(V2::new(*x, *y)),
+            Op::Rotated { dir, angle } => Val::V(UnitComplex::new(self.s(*angle)) * self.v(*dir)),
             Op::Circle { center, radius } => {
-                let rr = s(*radius);
+                let rr = self.s(*radius);
                 if rr < 0.0 {
                     // A locus circle of negative radius: the distance cannot be met.
-                    return Err(match constraint_of(plan, step) {
-                        Some(c) => err(model, c, ErrorKind::NoIntersection, -rr),
-                        None => bad_step(model, plan, step),
-                    });
+                    return Err(self.error(i, ErrorKind::NoIntersection, -rr));
                 }
-                let c = Circle::new(p(*center), rr).ok_or_else(|| bad_step(model, plan, step))?;
-                Some(Val::C(c))
+                Val::C(Circle::new(self.p(*center), rr).ok_or_else(|| self.degenerate(i))?)
             }
             Op::CircleThrough {
                 center,
                 through,
-                rigid,
+                radius,
             } => {
-                let c = p(*center);
-                let known = rigid.and_then(|(a, b)| crate::plan::constant_distance(model, a, b));
-                let circle = Circle::new(c, known.unwrap_or_else(|| (p(*through) - c).norm()))
-                    .ok_or_else(|| bad_step(model, plan, step))?;
-                Some(Val::C(circle))
+                let c = self.p(*center);
+                let r = radius.unwrap_or_else(|| (self.p(*through) - c).norm());
+                Val::C(Circle::new(c, r).ok_or_else(|| self.degenerate(i))?)
             }
             Op::Line { point, dir, offset } => {
-                let l = Line::new(p(*point), v(*dir)).ok_or_else(|| bad_step(model, plan, step))?;
-                Some(Val::L(match offset {
-                    Some(o) => l.offset(s(*o)),
+                let l =
+                    Line::new(self.p(*point), self.v(*dir)).ok_or_else(|| self.degenerate(i))?;
+                Val::L(match offset {
+                    Some(o) => l.offset(self.s(*o)),
                     None => l,
-                }))
+                })
             }
-            Op::ParallelLine { line, through } => match get(&regs, *line) {
-                Val::L(l) => Some(Val::L(
-                    Line::new(p(*through), l.dir()).ok_or_else(|| bad_step(model, plan, step))?,
-                )),
-                _ => return Err(bad_step(model, plan, step)),
-            },
-            Op::ShiftedCircle { circle, from, to } => match get(&regs, *circle) {
-                Val::C(c) => {
-                    let moved = Circle::new(c.center() + (p(*to) - p(*from)), c.radius());
-                    Some(Val::C(moved.ok_or_else(|| bad_step(model, plan, step))?))
-                }
-                _ => return Err(bad_step(model, plan, step)),
-            },
+            Op::ParallelLine { line, through } => Val::L(
+                Line::new(self.p(*through), self.line(*line).dir())
+                    .ok_or_else(|| self.degenerate(i))?,
+            ),
+            Op::ShiftedCircle { circle, from, to } => {
+                let c = self.circle(*circle);
+                let moved = Circle::new(c.center() + (self.p(*to) - self.p(*from)), c.radius());
+                Val::C(moved.ok_or_else(|| self.degenerate(i))?)
+            }
             Op::Nearest { locus, point } => {
-                let q = p(*point);
-                Some(Val::P(match get(&regs, *locus) {
-                    Val::L(l) => l.nearest(q),
-                    Val::C(c) => c.nearest(q),
-                    _ => return Err(bad_step(model, plan, step)),
-                }))
+                let q = self.p(*point);
+                Val::P(match self.get(*locus) {
+                    Some(Val::L(l)) => l.nearest(q),
+                    Some(Val::C(c)) => c.nearest(q),
+                    v => malformed(*locus, "a line or a circle", v),
+                })
             }
             Op::Onto {
                 locus,
                 point,
                 constraint,
             } => {
-                let q = p(*point);
-                let gap = match get(&regs, *locus) {
-                    Val::L(l) => l.residual(q),
-                    Val::C(c) => c.residual(q),
-                    Val::Q(k) => k.residual(q),
-                    _ => f64::NAN,
+                let q = self.p(*point);
+                let gap = match self.get(*locus) {
+                    Some(Val::L(l)) => l.residual(q),
+                    Some(Val::C(c)) => c.residual(q),
+                    Some(Val::Q(k)) => k.residual(q),
+                    v => malformed(*locus, "a locus", v),
                 };
-                if gap.is_nan() || gap > tol {
+                if gap.is_nan() || gap > self.tol {
                     return Err(err(model, *constraint, ErrorKind::Inconsistent, gap));
                 }
-                Some(Val::P(q))
+                Val::P(q)
             }
             Op::Intersect {
                 meet,
@@ -258,119 +377,211 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
                 branch,
                 constraint,
                 near,
-            } => {
-                let (roots, contact): (Roots<P2, 4>, Contact) =
-                    match (meet, get(&regs, *a), get(&regs, *b)) {
-                        (Meet::CircleCircle, Val::C(x), Val::C(y)) => {
-                            let i = intersect2d::circle_circle(&x, &y);
-                            (Roots::from_slice(i.roots.as_slice()), i.contact)
-                        }
-                        (Meet::LineCircle, Val::L(x), Val::C(y)) => {
-                            let i = intersect2d::line_circle(&x, &y);
-                            (Roots::from_slice(i.roots.as_slice()), i.contact)
-                        }
-                        (Meet::CircleConic, Val::C(x), Val::Q(y)) => {
-                            let i = intersect2d::circle_conic(&x, &y);
-                            (i.roots, i.contact)
-                        }
-                        (Meet::LineConic, Val::L(x), Val::Q(y)) => {
-                            let i = intersect2d::line_conic(&x, &y);
-                            (Roots::from_slice(i.roots.as_slice()), i.contact)
-                        }
-                        (Meet::LineLine, Val::L(x), Val::L(y)) => {
-                            let i = intersect2d::line_line(&x, &y);
-                            (Roots::from_slice(i.roots.as_slice()), i.contact)
-                        }
-                        _ => return Err(bad_step(model, plan, step)),
-                    };
-                match contact {
-                    Contact::Crossing | Contact::Tangent => {}
-                    Contact::Disjoint { gap } | Contact::Parallel { gap } => {
-                        return Err(err(model, *constraint, ErrorKind::NoIntersection, gap));
-                    }
-                    Contact::Coincident | Contact::ZeroRadius => {
-                        return Err(err(model, *constraint, ErrorKind::Degenerate, 0.0));
-                    }
-                }
-                let index = match choice {
-                    Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
-                    Choice::Nearest => {
-                        let n = p(*near);
-                        roots.nearest_to(n, |x, y| (x - y).norm()).unwrap_or(0)
-                    }
-                };
-                if let Some(slot) = chosen.get_mut(branch.0 as usize) {
-                    *slot = Some(index);
-                }
-                match roots.get(index) {
-                    Some(x) => Some(Val::P(x)),
-                    None => {
-                        // The chosen branch has no root here: say so, never take another.
-                        return Err(err(
-                            model,
-                            *constraint,
-                            ErrorKind::NoSuchBranch,
-                            roots.len() as f64,
-                        ));
-                    }
-                }
-            }
+            } => Val::P(self.intersect(*meet, (*a, *b), *branch, *constraint, *near)?),
             Op::Translate { geoms, from, to } => {
-                let d = p(*to) - p(*from);
+                let d = self.p(*to) - self.p(*from);
                 for g in geoms {
-                    config.translate(*g, d);
+                    self.config.translate(*g, d);
                 }
-                None
+                return Ok(None);
             }
             Op::RotatePoint {
                 geoms,
                 pivot,
+                axis,
                 from,
                 to,
             } => {
-                let c = p(*pivot);
-                let rot = gcs_runtime::frame::rotation_between2(&(p(*from) - c), &(p(*to) - c));
+                planar_axis(*axis);
+                let c = self.p(*pivot);
+                let rot =
+                    gcs_runtime::frame::rotation_between2(&(self.p(*from) - c), &(self.p(*to) - c));
                 for g in geoms {
-                    config.rotate(*g, c, rot);
+                    self.config.rotate(*g, c, rot);
                 }
-                None
+                return Ok(None);
             }
             Op::RotateDir {
                 geoms,
                 pivot,
+                axis,
                 from,
                 to,
             } => {
-                let c = p(*pivot);
-                let rot = gcs_runtime::frame::rotation_between_units(&v(*from), &v(*to));
+                planar_axis(*axis);
+                let c = self.p(*pivot);
+                let rot = gcs_runtime::frame::rotation_between_units(&self.v(*from), &self.v(*to));
                 for g in geoms {
-                    config.rotate(*g, c, rot);
+                    self.config.rotate(*g, c, rot);
                 }
-                None
+                return Ok(None);
             }
             Op::SetDim { geom, value } => {
-                let x = s(*value);
+                let x = self.s(*value);
                 if !x.is_finite() || x < 0.0 {
-                    return Err(step_error(model, plan, step, ErrorKind::InvalidValue, x));
+                    return Err(self.error(i, ErrorKind::InvalidValue, x));
                 }
-                config.dims.insert(*geom, x);
-                None
+                self.config.dims.insert(*geom, x);
+                return Ok(None);
             }
-            Op::Check { constraint } => {
-                let r = residual(model, &config, *constraint, params);
-                if r.is_nan() || r > tol {
+            Op::Check {
+                constraint,
+                residual,
+            } => {
+                let r = self.residual(residual);
+                if r.is_nan() || r > self.tol {
                     return Err(err(model, *constraint, ErrorKind::Inconsistent, r));
                 }
-                None
+                return Ok(None);
+            }
+            Op::Close {
+                constraint,
+                residual,
+            } => {
+                // Without an outer iteration the defaults given must close the region.
+                let r = self.s(*residual).abs();
+                if r.is_nan() || r > self.tol {
+                    return Err(err(model, *constraint, ErrorKind::NoConvergence, r));
+                }
+                return Ok(None);
             }
         };
-        if let (Some(val), Some((r, _))) = (out, step.out) {
-            if let Some(slot) = regs.get_mut(r.0 as usize) {
-                *slot = val;
+        Ok(Some(value))
+    }
+
+    /// The root of the intersection of loci `a` and `b` that `branch` (or the choice) takes.
+    fn intersect(
+        &mut self,
+        meet: Meet,
+        (a, b): (Reg, Reg),
+        branch: crate::plan::BranchId,
+        constraint: ConstraintId,
+        near: Reg,
+    ) -> Result<P2, SolveError> {
+        let (roots, contact): (Roots<P2, 4>, Contact) = match meet {
+            Meet::CircleCircle => {
+                let i = intersect2d::circle_circle(&self.circle(a), &self.circle(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::LineCircle => {
+                let i = intersect2d::line_circle(&self.line(a), &self.circle(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::CircleConic => {
+                let i = intersect2d::circle_conic(&self.circle(a), &self.conic(b));
+                (i.roots, i.contact)
+            }
+            Meet::LineConic => {
+                let i = intersect2d::line_conic(&self.line(a), &self.conic(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::LineLine => {
+                let i = intersect2d::line_line(&self.line(a), &self.line(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            spatial => panic!(
+                "bug in gcs: the spatial intersection {spatial:?} reached the planar interpreter"
+            ),
+        };
+        let model = self.model;
+        match contact {
+            Contact::Crossing | Contact::Tangent => {}
+            Contact::Disjoint { gap } | Contact::Parallel { gap } => {
+                return Err(err(model, constraint, ErrorKind::NoIntersection, gap));
+            }
+            Contact::Coincident | Contact::ZeroRadius => {
+                return Err(err(model, constraint, ErrorKind::Degenerate, 0.0));
             }
         }
+        let index = match self.choice {
+            Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
+            Choice::Nearest => {
+                let n = self.p(near);
+                roots.nearest_to(n, |x, y| (x - y).norm()).unwrap_or(0)
+            }
+        };
+        if let Some(slot) = self.chosen.get_mut(branch.0 as usize) {
+            *slot = Some(index);
+        }
+        // The chosen branch has no root here: say so, never take another.
+        roots.get(index).ok_or_else(|| {
+            err(
+                model,
+                constraint,
+                ErrorKind::NoSuchBranch,
+                roots.len() as f64,
+            )
+        })
     }
-    Ok(Run { config, chosen })
+
+    /// How far a check's relation is from holding: the runtime's residual of its kind.
+    fn residual(&self, residual: &Residual) -> f64 {
+        match *residual {
+            Residual::PointPoint { a, b, d } => {
+                check::point_point(self.p(a), self.p(b), self.s_or_zero(d))
+            }
+            Residual::PointLine { p, base, dir, d } => {
+                check::point_line(self.p(p), self.p(base), self.v(dir), self.s_or_zero(d))
+            }
+            Residual::Angle { u, v, angle } => check::angle(self.v(u), self.v(v), self.s(angle)),
+            Residual::CircleLine {
+                centre,
+                radius,
+                base,
+                dir,
+                gap,
+                side,
+            } => check::circle_line(
+                self.p(centre),
+                self.s(radius),
+                self.p(base),
+                self.v(dir),
+                self.s_or_zero(gap),
+                side,
+            ),
+            Residual::PointCircle {
+                p,
+                centre,
+                radius,
+                gap,
+                outside,
+            } => check::point_circle(
+                self.p(p),
+                self.p(centre),
+                self.s(radius),
+                self.s_or_zero(gap),
+                outside,
+            ),
+            Residual::CircleCircle {
+                c1,
+                r1,
+                c2,
+                r2,
+                gap,
+                nesting,
+            } => check::circle_circle(
+                self.p(c1),
+                self.s(r1),
+                self.p(c2),
+                self.s(r2),
+                self.s_or_zero(gap),
+                nesting,
+            ),
+            Residual::Dim { value, target } => check::dimension(self.s(value), self.s(target)),
+        }
+    }
+}
+
+/// A rotation of the plane turns about its normal; any other axis is a spatial plan's.
+fn planar_axis(axis: RotationAxis) {
+    if axis != RotationAxis::Normal {
+        panic!("bug in gcs: a rotation about {axis:?} reached the planar interpreter");
+    }
+}
+
+fn err(model: &Model, c: ConstraintId, kind: ErrorKind, magnitude: f64) -> SolveError {
+    let con = &model.constraints[c];
+    SolveError::new(con.name.clone(), con.text.clone(), kind, magnitude)
 }
 
 fn sense(plus: bool) -> Sense {
@@ -379,44 +590,6 @@ fn sense(plus: bool) -> Sense {
     } else {
         Sense::Minus
     }
-}
-
-/// The constraint a step works for (see [`Plan::constraint_of`]).
-fn constraint_of(plan: &Plan, step: &crate::plan::Step) -> Option<ConstraintId> {
-    let i = plan.steps.iter().position(|s| std::ptr::eq(s, step))?;
-    plan.constraint_of(i)
-}
-
-/// `x` when it is finite, otherwise the [`ErrorKind::InvalidValue`] error of the step's
-/// constraint.
-fn finite_value(
-    model: &Model,
-    plan: &Plan,
-    step: &crate::plan::Step,
-    x: f64,
-) -> Result<f64, SolveError> {
-    if x.is_finite() {
-        return Ok(x);
-    }
-    Err(step_error(model, plan, step, ErrorKind::InvalidValue, x))
-}
-
-/// The error of the step's constraint, or of the plan when the step has none.
-fn step_error(
-    model: &Model,
-    plan: &Plan,
-    step: &crate::plan::Step,
-    kind: ErrorKind,
-    magnitude: f64,
-) -> SolveError {
-    match constraint_of(plan, step) {
-        Some(c) => err(model, c, kind, magnitude),
-        None => SolveError::new("plan", String::new(), kind, magnitude),
-    }
-}
-
-fn bad_step(model: &Model, plan: &Plan, step: &crate::plan::Step) -> SolveError {
-    step_error(model, plan, step, ErrorKind::Degenerate, 0.0)
 }
 
 /// The largest coordinate or dimension of the given geoms in a configuration: what tolerances
@@ -437,87 +610,4 @@ pub fn config_scale(
         }
     }
     s
-}
-
-/// The residual of a constraint on a configuration, for run-time checks of implied
-/// constraints: every constraint of the 2d language, measured through the configuration. (The
-/// independent verifier is [`crate::verify`], which shares none of this.)
-fn residual(model: &Model, cfg: &Config, c: ConstraintId, params: &[f64]) -> f64 {
-    use gcs_lang::model::GeomId;
-    let con = &model.constraints[c];
-    let value = con.value.map_or(0.0, |e| model.exprs.eval(e, params));
-    let a = con.args.first().copied();
-    let b = con.args.get(1).copied();
-    let kind = |g: GeomId| model.geoms[g].kind;
-    let pt = |g| cfg.point(model, center_of(model, g));
-    let dir = |g| cfg.dir(model, dir_of(model, g));
-    let part = |g, p| model.part(g, p).unwrap_or(g);
-    // A line-like argument: a point on it and its direction (a marker: its x axis).
-    let line = |g: GeomId| match kind(g) {
-        GeomKind::Segment => (cfg.point(model, part(g, Part::Start)), dir(g)),
-        GeomKind::Marker => (cfg.point(model, g), cfg.dir(model, part(g, Part::AxisX))),
-        _ => (cfg.point(model, g), dir(g)),
-    };
-    let radius = |g| cfg.dim(g);
-    let sd = |(p, d): (P2, V2), q: P2| check::signed_distance(p, d, q);
-    let circles =
-        |x: GeomId, y: GeomId, gap: f64| check::circles(pt(x), radius(x), pt(y), radius(y), gap);
-    match (con.kind, a, b) {
-        (K::Coincident | K::Spherical | K::Revolute, Some(a), Some(b)) => (pt(a) - pt(b)).norm(),
-        (K::Distance, Some(a), Some(b)) => match (kind(a), kind(b)) {
-            (GeomKind::Line | GeomKind::Segment, GeomKind::Circle) => {
-                (sd(line(a), pt(b)).abs() - radius(b) - value).abs()
-            }
-            (GeomKind::Circle, GeomKind::Circle) => circles(a, b, value),
-            (_, GeomKind::Line | GeomKind::Segment) => (sd(line(b), pt(a)) - value).abs(),
-            (_, GeomKind::Circle) => (((pt(a) - pt(b)).norm() - radius(b)).abs() - value).abs(),
-            _ => ((pt(a) - pt(b)).norm() - value.abs()).abs(),
-        },
-        (K::On, Some(a), Some(b)) => match kind(b) {
-            GeomKind::Circle => ((pt(a) - pt(b)).norm() - radius(b)).abs(),
-            _ => sd(line(b), pt(a)).abs(),
-        },
-        (K::Tangent, Some(a), Some(b)) => match kind(a) {
-            GeomKind::Circle => circles(a, b, 0.0),
-            _ => (sd(line(a), pt(b)).abs() - radius(b)).abs(),
-        },
-        (K::Angle, Some(a), Some(b)) => check::angle_gap(check::angle(dir(a), dir(b)), value),
-        (K::Horizontal, Some(a), _) => dir(a).y.abs(),
-        (K::Vertical, Some(a), _) => dir(a).x.abs(),
-        (K::Parallel, Some(a), Some(b)) => cross(dir(a), dir(b)).abs(),
-        (K::Perpendicular, Some(a), Some(b)) => dir(a).dot(&dir(b)).abs(),
-        (K::Length | K::Radius, Some(a), _) => (cfg.dim(a) - value).abs(),
-        (K::InLine, Some(a), Some(b)) => sd(line(b), pt(a)).abs(),
-        (K::OffsetX | K::Prismatic, Some(a), Some(b)) => {
-            let (u, v) = (line(a).1, line(b).1);
-            let target = if con.kind == K::OffsetX { value } else { 0.0 };
-            let turn = check::angle_gap(check::angle(u, v), target);
-            if con.kind == K::Prismatic {
-                turn.max(sd(line(b), pt(a)).abs())
-            } else {
-                turn
-            }
-        }
-        // Every 2d constraint is above; anything else cannot be checked, so it fails.
-        _ => f64::INFINITY,
-    }
-}
-
-fn cross(a: V2, b: V2) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
-fn center_of(model: &Model, g: gcs_lang::model::GeomId) -> gcs_lang::model::GeomId {
-    if model.geoms[g].kind == GeomKind::Circle {
-        model.part(g, Part::Center).unwrap_or(g)
-    } else {
-        g
-    }
-}
-
-fn dir_of(model: &Model, g: gcs_lang::model::GeomId) -> gcs_lang::model::GeomId {
-    match model.geoms[g].kind {
-        GeomKind::Line | GeomKind::Segment => model.part(g, Part::Dir).unwrap_or(g),
-        _ => g,
-    }
 }

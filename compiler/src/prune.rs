@@ -7,7 +7,7 @@
 //! coupler has been placed from it). Only geoms the pruned plan places completely are reported;
 //! branch variables of pruned intersections disappear.
 
-use crate::plan::{BranchId, Op, Plan, Reg};
+use crate::plan::{BranchId, DefaultId, Iteration, Op, Plan, Reg};
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use std::collections::{BTreeSet, HashMap};
@@ -48,14 +48,16 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             }
             Op::SetDim { geom, .. } => live.contains(geom),
             // A check is kept when everything it measures is computed anyway.
-            Op::Check { constraint } => tops(constraint).iter().all(|g| live.contains(g)),
+            Op::Check { constraint, .. } => tops(constraint).iter().all(|g| live.contains(g)),
+            // What an iteration closes decides every answer of its region: always kept.
+            Op::Close { .. } => true,
             _ => step.out.is_some_and(|(r, _)| regs.contains(&r)),
         };
         if !needed {
             continue;
         }
         keep[i] = true;
-        regs.extend(Plan::reads(&step.op));
+        regs.extend(step.op.reads());
         if let Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) = &step.op {
             live.insert(model.top_level_of(*f));
             touched.insert(model.top_level_of(*f));
@@ -81,13 +83,15 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             _ => {}
         }
     }
-    // Rebuild: the kept steps, actions on the geoms that need them, branches renumbered.
+    // Rebuild: the kept steps, actions on the geoms that need them, branches and defaults
+    // renumbered, iterated regions moved to the kept steps' positions.
     let mut branch_map: HashMap<BranchId, BranchId> = HashMap::new();
+    let mut default_map: HashMap<DefaultId, DefaultId> = HashMap::new();
     let mut out = Plan {
         regs: plan.regs,
         grounded: plan.grounded,
         grounded_direction: plan.grounded_direction,
-        ..Plan::default()
+        ..Plan::new(plan.space)
     };
     for (i, step) in plan.steps.iter().enumerate() {
         if !keep[i] {
@@ -108,9 +112,39 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
                 }
                 *branch = new;
             }
+            Op::Default(d) => {
+                let next = DefaultId(default_map.len() as u32);
+                let new = *default_map.entry(*d).or_insert(next);
+                if new == next {
+                    out.defaults.push(plan.defaults[d.0 as usize].clone());
+                }
+                *d = new;
+            }
             _ => {}
         }
         out.steps.push(s);
+    }
+    // The kept steps before each step of the whole plan: where it would be in the pruned one.
+    let mut position = Vec::with_capacity(keep.len() + 1);
+    let mut kept = 0;
+    for k in &keep {
+        position.push(kept);
+        kept += usize::from(*k);
+    }
+    position.push(kept);
+    for it in &plan.iterations {
+        let (start, end) = (position[it.start], position[it.end]);
+        if start < end {
+            out.iterations.push(Iteration {
+                defaults: it
+                    .defaults
+                    .iter()
+                    .filter_map(|d| default_map.get(d).copied())
+                    .collect(),
+                start,
+                end,
+            });
+        }
     }
     (out, geoms)
 }

@@ -3,7 +3,7 @@
 //! its sketch, a warm-started four-bar sweep on the plan's `elbow = 0` branch, and a chain of
 //! 200 four-bars on the sparse path.
 
-use gcs_compiler::analysis::analyse;
+use gcs_compiler::analyse;
 use gcs_compiler::baseline::{Baseline, Linear, Method, Options, Stop};
 use gcs_compiler::solution::Solution;
 use gcs_compiler::verify;

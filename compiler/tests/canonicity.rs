@@ -5,7 +5,7 @@
 //! stripped first), the `space` header stays first, and the rest is permuted by a small
 //! xorshift generator with fixed seeds, so every run tests the same permutations.
 
-use gcs_compiler::analysis::analyse;
+use gcs_compiler::analyse;
 use gcs_compiler::solution::Solution;
 use gcs_lang::Model;
 

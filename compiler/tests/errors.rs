@@ -6,7 +6,8 @@
 //! conflict of a known size); (d) non-finite params; (e) a branch index with no real root.
 //! The CLI side of (a) is in `compiler/cli/tests/solve_errors.rs`.
 
-use gcs_compiler::analysis::{analyse, Analysis};
+use gcs_compiler::analyse;
+use gcs_compiler::analysis::Analysis;
 use gcs_compiler::report::problems;
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
@@ -427,7 +428,7 @@ fn generated_code_checks_a_value_the_params_give_and_trusts_a_param() {
     // direction then needs no test of its own. A plain param needs neither.
     let model = load(SCALED_DRIVE);
     let a = analyse(&model).expect("analyse");
-    let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&model, &a));
+    let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&model, &a.plan));
     let start = code.find("    // drive:").expect("the drive's step");
     let end = start + code[start..].find("\n\n").expect("the step's end");
     expect_test::expect![[r#"
@@ -447,7 +448,7 @@ fn generated_code_checks_a_value_the_params_give_and_trusts_a_param() {
     .assert_eq(&dedent(&code[start..end]));
     let plain = load(&SCALED_DRIVE.replace("theta * 1e300", "theta"));
     let a = analyse(&plain).expect("analyse");
-    let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&plain, &a));
+    let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&plain, &a.plan));
     assert!(
         code.contains("rotation_from_x_unit(&x_dir_turned)"),
         "{code}"

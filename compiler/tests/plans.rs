@@ -1,7 +1,7 @@
 //! Every example's plan: the 2d examples analyse completely, validate, solve at their defaults
 //! to 1e-12 and report no problem; the 3d ones are outside the analysis for now.
 
-use gcs_compiler::analysis::analyse;
+use gcs_compiler::analyse;
 use gcs_lang::Model;
 
 include!("../../examples/examples_2d.rs");
@@ -61,12 +61,9 @@ fn every_2d_example_has_a_complete_valid_plan_that_solves() {
             .collect();
         assert!(unsolved.is_empty(), "{name}: unsolved {unsolved:?}");
         if let Err(errs) = a.plan.validate(&model) {
-            panic!(
-                "{name}: invalid plan:\n{}\n{}",
-                errs.join("\n"),
-                a.plan.dump(&model)
-            );
+            panic!("{name}: {errs}\n{}", a.plan.dump(&model));
         }
+        assert_eq!(a.plan.unsatisfied(&model), [], "{name}");
         for b in &a.plan.branches {
             assert!(
                 b.default < b.count,

@@ -12,7 +12,7 @@ fn analysed(n: usize) -> (usize, usize, f64) {
     let text = Family::FourBarChain.model(n);
     let (_, model, diags) = gcs_lang::load(&format!("fourbar_chain_{n}.gcs"), text.as_bytes());
     let model = model.unwrap_or_else(|| panic!("the chain of {n} does not load: {diags:?}"));
-    let a = gcs_compiler::analysis::analyse(&model).expect("a 2d model is analysed");
+    let a = gcs_compiler::analyse(&model).expect("a 2d model is analysed");
     assert!(
         a.unsolved.is_empty(),
         "the chain of {n} has unsolved constraints"

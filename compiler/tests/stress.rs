@@ -191,7 +191,7 @@ fn stress_sweeps_end_exact_or_in_a_measured_error() {
         let scale = case.scale;
         let (diags, model, _) = gcs_lang::load(case.name, case.text.as_bytes());
         let model = model.unwrap_or_else(|| panic!("{}: {diags:?}", case.name));
-        let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
+        let analysis = gcs_compiler::analyse(&model).expect("analysis");
         assert!(analysis.unsolved.is_empty(), "{}", case.name);
         let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
         let index = model
@@ -284,7 +284,7 @@ fn four_bar_at_extreme_scales_is_the_unit_four_bar_scaled() {
         let text = fourbar(1.5 * scale, 4.0 * scale, 3.0 * scale, 4.0 * scale);
         let (diags, model, _) = gcs_lang::load("scaled", text.as_bytes());
         let model = model.unwrap_or_else(|| panic!("{diags:?}"));
-        let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
+        let analysis = gcs_compiler::analyse(&model).expect("analysis");
         let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
         let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
         turn()

@@ -11,7 +11,8 @@
 //! The closed form reads only the model's sketch (member coordinates in their body's frame,
 //! fixed points, params), never the compiler's configuration or plan.
 
-use gcs_compiler::analysis::{analyse, Analysis};
+use gcs_compiler::analyse;
+use gcs_compiler::analysis::Analysis;
 use gcs_lang::model::Sketch;
 use gcs_lang::Model;
 use gcs_runtime::error::ErrorKind;

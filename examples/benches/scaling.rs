@@ -61,14 +61,14 @@ fn measure(family: Family, n: usize) -> Row {
     let (_, model, diags) = gcs_lang::load(&name, text.as_bytes());
     let model = model.unwrap_or_else(|| panic!("{name} does not load: {diags:?}"));
     let analyse = median(runs, || {
-        black_box(gcs_compiler::analysis::analyse(&model).ok());
+        black_box(gcs_compiler::analyse(&model).ok());
     });
-    let analysis = gcs_compiler::analysis::analyse(&model)
-        .unwrap_or_else(|e| panic!("{name} is not analysed: {e}"));
+    let analysis =
+        gcs_compiler::analyse(&model).unwrap_or_else(|e| panic!("{name} is not analysed: {e}"));
     let codegen = median(runs, || {
         let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
         black_box((&plan, &scope));
-        black_box(gcs_compiler::codegen::generate(&model, &analysis));
+        black_box(gcs_compiler::codegen::generate(&model, &analysis.plan));
     });
     let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
     let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();

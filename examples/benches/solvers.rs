@@ -104,7 +104,7 @@ fn interpreted(name: &str) -> (gcs_lang::Model, gcs_compiler::analysis::Analysis
     let bytes = std::fs::read(&path).expect("example");
     let (_, model, _) = gcs_lang::load(&path, &bytes);
     let model = model.expect("model");
-    let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
+    let analysis = gcs_compiler::analyse(&model).expect("analysis");
     (model, analysis)
 }
 

@@ -29,7 +29,7 @@ fn agree(
     let text = std::fs::read(&path).expect("family file");
     let (_, model, diags) = gcs_lang::load(file, &text);
     let model = model.unwrap_or_else(|| panic!("{file}: {diags:?}"));
-    let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
+    let analysis = gcs_compiler::analyse(&model).expect("analysis");
     let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
     let names: Vec<String> = model.params.iter().map(|(_, p)| p.name.clone()).collect();
     let base = model.default_params();
@@ -156,8 +156,8 @@ fn code_of(file: &str) -> String {
     let path = format!("{}/families/{file}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read(&path).expect("family file");
     let model = gcs_lang::load(file, &text).1.expect("loads");
-    let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
-    gcs_compiler::codegen::generate(&model, &analysis)
+    let analysis = gcs_compiler::analyse(&model).expect("analysis");
+    gcs_compiler::codegen::generate(&model, &analysis.plan)
 }
 
 #[test]

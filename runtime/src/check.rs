@@ -1,7 +1,27 @@
-//! Residuals of constraints for a plan's run-time checks: how far an implied constraint is
-//! from holding, in the constraint's units. The interpreter and generated solvers share them.
+//! Residuals of a plan's run-time checks: one function per kind of relation a check holds,
+//! shared by the interpreter and every generated solver, so that both measure a check with
+//! the same arithmetic and agree to the bit.
+//!
+//! A check re-measures a relation that earlier steps already imply. Each function returns how
+//! far the relation is from holding, as a non-negative magnitude in the relation's units
+//! (a length, or radians); a check fails when it exceeds the plan's tolerance, with that
+//! magnitude in its error. A relation holds the reading the sketch gave it where the language
+//! leaves a choice to the sketch (the sense of a parallel, the side of a tangency, internal or
+//! external tangency): the plan relies on that reading, so the check measures that reading and
+//! no other.
 
 use crate::locus2d::{P2, V2};
+
+/// How two circles sit, as the sketch has them: what a circle-circle distance measures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Nesting {
+    /// Each outside the other: `|c1 - c2| = r1 + r2 + gap`.
+    Apart,
+    /// The first inside the second: `|c1 - c2| = r2 - r1 - gap`.
+    FirstInside,
+    /// The second inside the first: `|c1 - c2| = r1 - r2 - gap`.
+    SecondInside,
+}
 
 /// The signed distance of `p` from the line through `base` along unit `dir`, positive to its
 /// left.
@@ -11,40 +31,108 @@ pub fn signed_distance(base: P2, dir: V2, p: P2) -> f64 {
     dir.x * v.y - dir.y * v.x
 }
 
-/// The counter-clockwise angle from `u` to `v`, in (-pi, pi].
+/// `|a - b| = d` (a coincidence when `d` is 0): how far the distance is from `d`.
 #[inline]
-pub fn angle(u: V2, v: V2) -> f64 {
-    (u.x * v.y - u.y * v.x).atan2(u.dot(&v))
+pub fn point_point(a: P2, b: P2, d: f64) -> f64 {
+    ((a - b).norm() - d).abs()
 }
 
-/// `|a - b|` modulo a full turn, in [0, pi].
+/// The signed distance of `p` from the line through `base` along unit `dir` is `d`
+/// (positive to the left; 0 for incidence).
 #[inline]
-pub fn angle_gap(a: f64, b: f64) -> f64 {
-    let t = (a - b).rem_euclid(std::f64::consts::TAU);
-    t.min(std::f64::consts::TAU - t)
+pub fn point_line(p: P2, base: P2, dir: V2, d: f64) -> f64 {
+    (signed_distance(base, dir, p) - d).abs()
 }
 
-/// How far two circles are from being `gap` apart at their perimeters, reading them as apart
-/// or nested, whichever is nearer.
+/// The counter-clockwise angle from unit `u` to unit `v` is `angle`: how far `v` is from `u`
+/// turned by `angle`, in radians (at most pi). Turning `u` by the target's cosine and sine,
+/// rather than subtracting the target from a measured angle, keeps the residual exact for any
+/// finite target (`1e300 - a` is `1e300` whatever `a` is).
 #[inline]
-pub fn circles(c1: P2, r1: f64, c2: P2, r2: f64, gap: f64) -> f64 {
-    let d = (c1 - c2).norm();
-    (d - r1 - r2 - gap)
-        .abs()
-        .min(((r1 - r2).abs() - d - gap).abs())
+pub fn angle(u: V2, v: V2, angle: f64) -> f64 {
+    let (s, c) = angle.sin_cos();
+    let w = V2::new(u.x * c - u.y * s, u.x * s + u.y * c);
+    (w.x * v.y - w.y * v.x).atan2(w.dot(&v)).abs()
+}
+
+/// A circle (`centre`, `radius`) on side `side` (+1 left, -1 right) of the line through `base`
+/// along unit `dir`, its perimeter `gap` from the line (0: tangent):
+/// `side * sd(centre) = radius + gap`.
+#[inline]
+pub fn circle_line(centre: P2, radius: f64, base: P2, dir: V2, gap: f64, side: f64) -> f64 {
+    (side * signed_distance(base, dir, centre) - radius - gap).abs()
+}
+
+/// Point `p` at distance `gap` from the perimeter of the circle (`centre`, `radius`), outside
+/// it or inside it (0: on it): `|p - centre| = radius ± gap`.
+#[inline]
+pub fn point_circle(p: P2, centre: P2, radius: f64, gap: f64, outside: bool) -> f64 {
+    let reach = if outside { radius + gap } else { radius - gap };
+    ((p - centre).norm() - reach).abs()
+}
+
+/// Two circles whose perimeters are `gap` apart (0: tangent), sitting as `nesting` says.
+#[inline]
+pub fn circle_circle(c1: P2, r1: f64, c2: P2, r2: f64, gap: f64, nesting: Nesting) -> f64 {
+    let apart = match nesting {
+        Nesting::Apart => r1 + r2 + gap,
+        Nesting::FirstInside => r2 - r1 - gap,
+        Nesting::SecondInside => r1 - r2 - gap,
+    };
+    ((c1 - c2).norm() - apart).abs()
+}
+
+/// A dimension (a segment's length, a circle's radius) `value` is `target`.
+#[inline]
+pub fn dimension(value: f64, target: f64) -> f64 {
+    (value - target).abs()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::{FRAC_PI_2, PI};
 
     #[test]
     fn residuals_measure_what_they_say() {
         let (o, x) = (P2::new(0.0, 0.0), V2::new(1.0, 0.0));
+        let y = V2::new(0.0, 1.0);
         assert_eq!(signed_distance(o, x, P2::new(3.0, 2.0)), 2.0);
-        assert!((angle(x, V2::new(0.0, 1.0)) - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
-        assert!(angle_gap(3.1, -3.1) < 0.1);
-        assert_eq!(circles(o, 1.0, P2::new(3.0, 0.0), 1.0, 1.0), 0.0);
-        assert_eq!(circles(o, 3.0, P2::new(1.0, 0.0), 1.0, 0.0), 1.0);
+        assert_eq!(point_point(o, P2::new(3.0, 4.0), 5.0), 0.0);
+        assert_eq!(point_point(o, P2::new(3.0, 4.0), 0.0), 5.0);
+        assert_eq!(point_line(P2::new(3.0, 2.0), o, x, 2.0), 0.0);
+        assert_eq!(point_line(P2::new(3.0, -2.0), o, x, 2.0), 4.0);
+        assert!(angle(x, y, FRAC_PI_2) < 1e-15);
+        assert!((angle(x, y, -FRAC_PI_2) - PI).abs() < 1e-15);
+        // The sense the relation holds: anti-parallel is pi away from parallel.
+        assert!((angle(x, -x, 0.0) - PI).abs() < 1e-15);
+        assert!(angle(x, -x, PI) < 1e-15);
+        assert_eq!(circle_line(P2::new(0.0, 2.0), 1.0, o, x, 1.0, 1.0), 0.0);
+        assert_eq!(circle_line(P2::new(0.0, -2.0), 1.0, o, x, 1.0, 1.0), 4.0);
+        assert_eq!(circle_line(P2::new(0.0, -2.0), 1.0, o, x, 1.0, -1.0), 0.0);
+        assert_eq!(point_circle(P2::new(3.0, 0.0), o, 2.0, 1.0, true), 0.0);
+        assert_eq!(point_circle(P2::new(1.0, 0.0), o, 2.0, 1.0, false), 0.0);
+        assert_eq!(point_circle(P2::new(1.0, 0.0), o, 2.0, 1.0, true), 2.0);
+        let c = P2::new(3.0, 0.0);
+        assert_eq!(circle_circle(o, 1.0, c, 1.0, 1.0, Nesting::Apart), 0.0);
+        assert_eq!(
+            circle_circle(o, 1.0, c, 5.0, 1.0, Nesting::FirstInside),
+            0.0
+        );
+        assert_eq!(
+            circle_circle(o, 5.0, c, 1.0, 1.0, Nesting::SecondInside),
+            0.0
+        );
+        assert_eq!(circle_circle(o, 5.0, c, 1.0, 1.0, Nesting::Apart), 4.0);
+        assert_eq!(dimension(2.5, 2.0), 0.5);
+    }
+
+    #[test]
+    fn a_huge_angle_is_measured_exactly() {
+        let t = 1e300_f64;
+        let (s, c) = t.sin_cos();
+        let u = V2::new(0.6, 0.8);
+        let v = V2::new(u.x * c - u.y * s, u.x * s + u.y * c);
+        assert!(angle(u, v, t) < 1e-15);
     }
 }

@@ -21,9 +21,9 @@ fn generated_solvers_are_golden() {
         let bytes = std::fs::read(&path).expect("example");
         let (_, model, diags) = gcs_lang::load(&format!("{m}.gcs"), &bytes);
         let model = model.unwrap_or_else(|| panic!("{m}: {diags:?}"));
-        let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
+        let analysis = gcs_compiler::analyse(&model).expect("analysis");
         let code =
-            gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&model, &analysis));
+            gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&model, &analysis.plan));
         assert!(
             code.starts_with("// @generated"),
             "{m}: no @generated header"

@@ -16,7 +16,7 @@ fn close(what: &str, a: f64, b: f64) {
 fn main() {
     let (_, model, diags) = gcs_lang::load(NAME, MODEL.as_bytes());
     let model = model.unwrap_or_else(|| panic!("{NAME} does not load: {diags:?}"));
-    let analysis = gcs_compiler::analysis::analyse(&model).expect("analysis");
+    let analysis = gcs_compiler::analyse(&model).expect("analysis");
     let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
     // Params: the defaults, each one moved a little and a lot, and each one at values no
     // model means (huge, or not a number), where both must give the same error or answer.

@@ -3,8 +3,9 @@
 
 use clap::{Parser, Subcommand};
 use codespan_reporting::term::{self, termcolor};
+use gcs_compiler::pipeline::{AnalysisError, CompileError, Compiled, Unanalysed};
 use gcs_lang::{Diagnostic, SourceFile};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 mod generated;
@@ -107,8 +108,11 @@ fn main() -> ExitCode {
             json,
             all,
         } => solve(&file, &set, &branch, json, all, color),
-        Command::Compile { file, output } => with_analysis(&file, color, |model, a| {
-            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(model, a));
+        Command::Compile { file, output } => with_analysis(&file, color, |c| {
+            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(
+                &c.model,
+                &c.analysis.plan,
+            ));
             match output {
                 Some(path) => match std::fs::write(&path, code) {
                     Ok(()) => ExitCode::SUCCESS,
@@ -139,96 +143,108 @@ fn main() -> ExitCode {
             dense,
             color,
         ),
-        Command::Explain { file } => with_analysis(&file, color, |model, a| {
-            print!("{}", gcs_compiler::explain::explain(model, a));
+        Command::Explain { file } => with_analysis(&file, color, |c| {
+            print!(
+                "{}",
+                gcs_compiler::explain::explain(&c.model, &c.analysis.plan)
+            );
             ExitCode::SUCCESS
         }),
-        Command::Plan { file } => {
-            let model = match load(&file, color) {
-                Ok(m) => m,
-                Err(code) => return code,
-            };
-            match gcs_compiler::analysis::analyse(&model) {
-                Ok(a) => {
-                    // The dump is printed even when the plan is incomplete: it shows how far
-                    // the analysis got.
-                    let problems = gcs_compiler::report::problems(&model, &a);
-                    emit(&model.source, &problems, color);
-                    print!("{}", a.plan.dump(&model));
-                    if problems.iter().any(|d| d.is_error()) {
-                        ExitCode::FAILURE
-                    } else {
-                        ExitCode::SUCCESS
-                    }
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
+        Command::Plan { file } => match compile(&file, color) {
+            // The dump is printed even when the plan is incomplete: it shows how far the
+            // analysis got.
+            Ok(c) => {
+                print!("{}", c.analysis.plan.dump(&c.model));
+                if c.has_errors() {
                     ExitCode::FAILURE
+                } else {
+                    ExitCode::SUCCESS
                 }
+            }
+            Err(stop) => stop.exit(),
+        },
+    }
+}
+
+/// Why a command stops before the model has a plan.
+enum Stop {
+    /// The model did not load (its diagnostics are printed), or could not be read.
+    Exit(ExitCode),
+    /// The model loaded but has no plan (its warnings are printed).
+    Unanalysed(Box<Unanalysed>),
+}
+
+impl Stop {
+    /// The exit code, saying why there is no plan.
+    fn exit(self) -> ExitCode {
+        match self {
+            Stop::Exit(code) => code,
+            Stop::Unanalysed(u) => {
+                eprintln!("error: {}", u.error);
+                ExitCode::FAILURE
             }
         }
     }
 }
 
-/// Loads and analyses a model, reporting problems; runs `then` on a model that can be solved.
-fn with_analysis(
-    path: &PathBuf,
-    color: termcolor::ColorChoice,
-    then: impl FnOnce(&gcs_lang::Model, &gcs_compiler::analysis::Analysis) -> ExitCode,
-) -> ExitCode {
-    let model = match load(path, color) {
-        Ok(m) => m,
-        Err(code) => return code,
-    };
-    let analysis = match gcs_compiler::analysis::analyse(&model) {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    let problems = gcs_compiler::report::problems(&model, &analysis);
-    if !problems.is_empty() {
-        emit(&model.source, &problems, color);
-        if problems.iter().any(|d| d.is_error()) {
-            eprintln!("error: could not solve `{}`", path.display());
-            return ExitCode::FAILURE;
-        }
-    }
-    then(&model, &analysis)
-}
-
-/// Reads and resolves a model, printing its diagnostics; `None` when it has errors.
-fn load(path: &PathBuf, color: termcolor::ColorChoice) -> Result<gcs_lang::Model, ExitCode> {
+/// Reads a model and takes it through the pipeline (load, analyse, validate, report),
+/// printing its diagnostics.
+fn compile(path: &Path, color: termcolor::ColorChoice) -> Result<Compiled, Stop> {
     let name = path.display().to_string();
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) => {
             eprintln!("error: cannot read `{name}`: {e}");
-            return Err(ExitCode::from(2));
+            return Err(Stop::Exit(ExitCode::from(2)));
         }
     };
-    let (source, model, diags) = gcs_lang::load(&name, &bytes);
-    emit(&source, &diags, color);
-    if model.is_none() {
-        let errors = diags.iter().filter(|d| d.is_error()).count();
-        eprintln!(
-            "error: could not load `{name}` due to {errors} previous error{}",
-            if errors == 1 { "" } else { "s" }
-        );
+    match gcs_compiler::compile(&name, &bytes) {
+        Ok(c) => {
+            emit(&c.source, &c.diagnostics, color);
+            Ok(c)
+        }
+        Err(CompileError::Load(r)) => {
+            emit(&r.source, &r.diagnostics, color);
+            let errors = r.diagnostics.iter().filter(|d| d.is_error()).count();
+            eprintln!(
+                "error: could not load `{name}` due to {errors} previous error{}",
+                if errors == 1 { "" } else { "s" }
+            );
+            Err(Stop::Exit(ExitCode::FAILURE))
+        }
+        Err(CompileError::Analysis(u)) => {
+            emit(&u.source, &u.diagnostics, color);
+            Err(Stop::Unanalysed(u))
+        }
     }
-    model.ok_or(ExitCode::FAILURE)
+}
+
+/// Takes a model through the pipeline; runs `then` on a model that can be solved.
+fn with_analysis(
+    path: &Path,
+    color: termcolor::ColorChoice,
+    then: impl FnOnce(&Compiled) -> ExitCode,
+) -> ExitCode {
+    match compile(path, color) {
+        Ok(c) if c.has_errors() => {
+            eprintln!("error: could not solve `{}`", path.display());
+            ExitCode::FAILURE
+        }
+        Ok(c) => then(&c),
+        Err(stop) => stop.exit(),
+    }
 }
 
 fn solve(
-    path: &PathBuf,
+    path: &Path,
     set: &[String],
     branch: &[String],
     json: bool,
     all: bool,
     color: termcolor::ColorChoice,
 ) -> ExitCode {
-    with_analysis(path, color, |model, analysis| {
+    with_analysis(path, color, |c| {
+        let (model, analysis) = (&c.model, &c.analysis);
         let mut params = model.default_params();
         for s in set {
             let Some((name, value)) = s.split_once('=') else {
@@ -336,7 +352,7 @@ fn solve(
 }
 
 fn bench(
-    path: &PathBuf,
+    path: &Path,
     samples: usize,
     json: bool,
     plot: Option<&std::path::Path>,
@@ -346,7 +362,8 @@ fn bench(
 ) -> ExitCode {
     use gcs_compiler::baseline::Linear;
     use gcs_compiler::bench;
-    with_analysis(path, color, |model, analysis| {
+    with_analysis(path, color, |c| {
+        let (model, analysis) = (&c.model, &c.analysis);
         let (plan, scope) = gcs_compiler::prune::prune(model, &analysis.plan);
         let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
         let sweep = bench::sweep(model, samples);
@@ -363,8 +380,10 @@ fn bench(
         }
         let mut compiled = None;
         if !interpreted {
-            let code =
-                gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(model, analysis));
+            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(
+                model,
+                &analysis.plan,
+            ));
             let names: Vec<String> = model.params.iter().map(|(_, p)| p.name.clone()).collect();
             let named: Vec<(String, usize)> = plan
                 .branches
@@ -433,32 +452,32 @@ fn bench(
     })
 }
 
-fn check(path: &PathBuf, color: termcolor::ColorChoice) -> ExitCode {
-    let model = match load(path, color) {
-        Ok(m) => m,
-        Err(code) => return code,
-    };
-    match gcs_compiler::analysis::analyse(&model) {
-        Ok(analysis) => {
-            let problems = gcs_compiler::report::problems(&model, &analysis);
-            emit(&model.source, &problems, color);
-            if problems.iter().any(|d| d.is_error()) {
-                let n = problems.iter().filter(|d| d.is_error()).count();
-                eprintln!(
-                    "error: `{}` has {n} analysis error{}",
-                    path.display(),
-                    if n == 1 { "" } else { "s" }
-                );
-                return ExitCode::FAILURE;
-            }
-            print!("{}", gcs_compiler::report::check_report(&model, &analysis));
+fn check(path: &Path, color: termcolor::ColorChoice) -> ExitCode {
+    match compile(path, color) {
+        Ok(c) if c.has_errors() => {
+            let n = c.diagnostics.iter().filter(|d| d.is_error()).count();
+            eprintln!(
+                "error: `{}` has {n} analysis error{}",
+                path.display(),
+                if n == 1 { "" } else { "s" }
+            );
+            ExitCode::FAILURE
         }
-        Err(why) => {
-            print!("{}", gcs_compiler::nominal::report(&model));
-            println!("analysis: not run: {why}");
+        Ok(c) => {
+            print!(
+                "{}",
+                gcs_compiler::report::check_report(&c.model, &c.analysis)
+            );
+            ExitCode::SUCCESS
         }
+        // A model the analysis does not cover yet still gets its nominal count.
+        Err(Stop::Unanalysed(u)) if matches!(u.error, AnalysisError::Uncovered(_)) => {
+            print!("{}", gcs_compiler::nominal::report(&u.model));
+            println!("analysis: not run: {}", u.error);
+            ExitCode::SUCCESS
+        }
+        Err(stop) => stop.exit(),
     }
-    ExitCode::SUCCESS
 }
 
 /// Renders diagnostics to stderr, with colour when the terminal has it.

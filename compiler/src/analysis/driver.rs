@@ -39,6 +39,12 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
             });
         }
     }
+    let recorded = b
+        .clusters
+        .iter()
+        .flat_map(|c| c.record.recorded())
+        .filter(|c| !listed.contains(c))
+        .collect();
     let clusters = b
         .clusters
         .iter()
@@ -56,6 +62,7 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
         plan: b.plan,
         clusters,
         unsolved,
+        recorded,
         redundant: b.redundant,
     })
 }
@@ -122,7 +129,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
         }
         Builder {
             model,
-            plan: Plan::default(),
+            plan: Plan::new(model.space),
             clusters,
             cluster_of,
             known_points: HashMap::new(),
@@ -344,22 +351,32 @@ impl<'m, G: Geometry> Builder<'m, G> {
         }
     }
 
-    /// A relation already implied: a run-time check of its constraint (once, on its last
-    /// relation).
+    /// A relation already implied: a run-time check that measures it. The check of a
+    /// constraint's last relation satisfies the constraint, which is then redundant; an earlier
+    /// relation is checked too, so that no relation the plan relies on goes unmeasured.
     pub(crate) fn check(&mut self, r: &Rel<G::Relation>) {
-        if r.last {
-            let explain = format!(
+        let residual = G::residual(self, &r.relation);
+        let explain = if r.last {
+            format!(
                 "Check that {} holds: it is implied by the steps before.",
                 self.cname(r.constraint)
-            );
-            self.emit(
-                Op::Check {
-                    constraint: r.constraint,
-                },
-                None,
-                vec![r.constraint],
-                explain,
-            );
+            )
+        } else {
+            format!(
+                "Check that part of {} holds: it is implied by the steps before.",
+                self.cname(r.constraint)
+            )
+        };
+        self.emit(
+            Op::Check {
+                constraint: r.constraint,
+                residual,
+            },
+            None,
+            self.satisfies(r),
+            explain,
+        );
+        if r.last {
             self.redundant.push(r.constraint);
         }
     }
@@ -386,7 +403,6 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 break;
             }
         }
-        self.calibrate_branches();
     }
 
     /// Action analysis, then locus analysis, until neither applies to any pending relation
@@ -628,25 +644,5 @@ impl<'m, G: Geometry> Builder<'m, G> {
         self.known_points
             .retain(|f, _| !geoms.contains(&model.top_level_of(*f)));
         true
-    }
-
-    // ------------------------------------------------------------ branch defaults
-
-    /// Runs the plan on the sketch, taking at each intersection the root nearest to where the
-    /// moving feature is: that index is the sketch's branch, the default.
-    fn calibrate_branches(&mut self) {
-        let params = self.model.default_params();
-        if let Ok(run) = crate::interp::run(
-            self.model,
-            &self.plan,
-            &params,
-            &crate::interp::Choice::Nearest,
-        ) {
-            for (b, idx) in self.plan.branches.iter_mut().zip(run.chosen) {
-                if let Some(i) = idx {
-                    b.default = i;
-                }
-            }
-        }
     }
 }

@@ -12,6 +12,7 @@
 
 use super::driver::Builder;
 use super::Unsupported;
+use crate::plan::Residual;
 use gcs_lang::model::{ConstraintId, GeomId};
 use gcs_lang::Model;
 
@@ -57,6 +58,11 @@ pub trait Invariants: Clone + PartialEq + std::fmt::Debug {
     /// points, lines and planes.
     fn table2(&self) -> [usize; 9];
 
+    /// The constraints the record holds without a step having satisfied them yet (a fixed
+    /// distance of a circle whose radius is still free is satisfied when the circle is
+    /// placed).
+    fn recorded(&self) -> Vec<ConstraintId>;
+
     /// What freedom the record leaves `geom`, in words (empty when none).
     fn freedom(&self, model: &Model, geom: GeomId) -> String;
 }
@@ -94,6 +100,10 @@ pub(crate) trait Geometry: Sized + Clone {
 
     /// Locus analysis: satisfies `r` by intersecting the loci of two partially fixed clusters.
     fn locus(b: &mut Builder<'_, Self>, r: &Rel<Self::Relation>) -> bool;
+
+    /// How a relation already implied is measured at run time: the registers of its
+    /// features and values (measured now, or reused), and the residual that checks it.
+    fn residual(b: &mut Builder<'_, Self>, relation: &Self::Relation) -> Residual;
 
     /// Grounds a model in which nothing is fixed, so that it is solved up to a rigid motion.
     fn ground(b: &mut Builder<'_, Self>);

@@ -61,6 +61,10 @@ pub struct Analysis {
     pub clusters: Vec<Cluster>,
     /// Relations no fragment could satisfy, by constraint, with the reason.
     pub unsolved: Vec<Unsupported>,
+    /// Constraints held in an invariants record and satisfied once their geom is placed,
+    /// which the model's freedom does not allow (a fixed distance of a circle of free radius
+    /// that nothing places).
+    pub recorded: Vec<ConstraintId>,
     /// Constraints that are implied by others (kept as run-time checks).
     pub redundant: Vec<ConstraintId>,
 }
@@ -79,8 +83,10 @@ impl Analysis {
 }
 
 /// Analyses a model. Fails only for models outside the analysis (3d for now): every 2d model
-/// gets a plan, with whatever it cannot solve reported in [`Analysis::unsolved`].
-pub fn analyse(model: &Model) -> Result<Analysis, String> {
+/// gets a plan, with whatever it cannot solve reported in [`Analysis::unsolved`]. Its branch
+/// variables' defaults are not chosen yet: [`crate::pipeline::analyse`] does that, and
+/// validates the plan.
+pub(crate) fn analyse(model: &Model) -> Result<Analysis, String> {
     match model.space {
         Space::D2 => driver::analyse::<planar::Planar>(model),
         Space::D3 => Err(

@@ -50,7 +50,9 @@ impl Fd {
         matches!(self, Fd::Line { .. })
     }
 
-    fn satisfies(&self) -> Option<ConstraintId> {
+    /// The constraint this fixed distance satisfies once the circle is placed, if it is the
+    /// constraint's last relation.
+    pub fn satisfies(&self) -> Option<ConstraintId> {
         match *self {
             Fd::Line {
                 constraint, last, ..
@@ -240,7 +242,7 @@ impl Builder<'_, Planar> {
         self.model.part(circle, Part::Center).unwrap_or(circle)
     }
 
-    fn dim_of(&mut self, g: GeomId) -> Reg {
+    pub(super) fn dim_of(&mut self, g: GeomId) -> Reg {
         let what = if self.model.geoms[g].kind == gcs_lang::model::GeomKind::Circle {
             "radius"
         } else {

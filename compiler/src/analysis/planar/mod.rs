@@ -19,7 +19,7 @@ use super::driver::Builder;
 use super::geometry::{self, Geometry, Invariants};
 use super::Unsupported;
 use crate::config::{Config, V2};
-use crate::plan::{Meet, Op, Reg, Ty};
+use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part};
 use gcs_lang::Model;
 use relation::{AngleValue, Dir, Relation};
@@ -71,6 +71,10 @@ impl Geometry for Planar {
 
     fn locus(b: &mut Builder<'_, Self>, r: &Rel) -> bool {
         b.locus(r)
+    }
+
+    fn residual(b: &mut Builder<'_, Self>, relation: &Relation) -> Residual {
+        b.residual(relation)
     }
 
     fn ground(b: &mut Builder<'_, Self>) {
@@ -243,6 +247,10 @@ impl Invariants for Record {
         ]
     }
 
+    fn recorded(&self) -> Vec<ConstraintId> {
+        self.fd.iter().filter_map(circle::Fd::satisfies).collect()
+    }
+
     fn freedom(&self, model: &Model, g: GeomId) -> String {
         let name = |f: GeomId| model.geoms[f].name.clone();
         let mut parts = Vec::new();
@@ -320,6 +328,75 @@ impl Builder<'_, Planar> {
                 let words = if x != 0.0 { "the X axis" } else { "the Y axis" }.to_string();
                 self.value(Op::Axis(x, y), Ty::Vector, words)
             }
+        }
+    }
+
+    /// The registers and residual of a relation's run-time check.
+    fn residual(&mut self, relation: &Relation) -> Residual {
+        let model = self.model;
+        match *relation {
+            Relation::PointPoint { a, b, d } => Residual::PointPoint {
+                a: self.point(a),
+                b: self.point(b),
+                d: d.map(|d| self.expr(d)),
+            },
+            Relation::PointLine { p, base, dir, d } => Residual::PointLine {
+                p: self.point(p),
+                base: self.point(base),
+                dir: self.direction(dir),
+                d: d.map(|d| self.expr(d)),
+            },
+            Relation::Angle { u, v, angle } => Residual::Angle {
+                u: self.dir(u),
+                v: self.dir(v),
+                angle: self.angle(angle),
+            },
+            Relation::CircleLine {
+                circle,
+                base,
+                dir,
+                gap,
+                side,
+            } => Residual::CircleLine {
+                centre: self.point(model.point_feature(circle)),
+                radius: self.dim_of(circle),
+                base: self.point(base),
+                dir: self.direction(dir),
+                gap: gap.map(|g| self.expr(g)),
+                side,
+            },
+            Relation::PointCircle {
+                p,
+                circle,
+                gap,
+                outside,
+            } => Residual::PointCircle {
+                p: self.point(p),
+                centre: self.point(model.point_feature(circle)),
+                radius: self.dim_of(circle),
+                gap: gap.map(|g| self.expr(g)),
+                outside,
+            },
+            Relation::CircleCircle { a, b, gap, mode } => Residual::CircleCircle {
+                c1: self.point(model.point_feature(a)),
+                r1: self.dim_of(a),
+                c2: self.point(model.point_feature(b)),
+                r2: self.dim_of(b),
+                gap: gap.map(|g| self.expr(g)),
+                nesting: mode,
+            },
+            Relation::Dim { geom, value } => Residual::Dim {
+                value: self.dim_of(geom),
+                target: self.expr(value),
+            },
+        }
+    }
+
+    /// The register of an angle a relation asks for.
+    fn angle(&mut self, angle: AngleValue) -> Reg {
+        match angle {
+            AngleValue::Expr(e) => self.expr(e),
+            AngleValue::Const(c) => self.value(Op::Const(c), Ty::Scalar, angle_words(c)),
         }
     }
 
@@ -590,10 +667,7 @@ impl Builder<'_, Planar> {
                     self.check(r);
                     return true;
                 }
-                let a = match angle {
-                    AngleValue::Expr(e) => self.expr(e),
-                    AngleValue::Const(c) => self.value(Op::Const(c), Ty::Scalar, angle_words(c)),
-                };
+                let a = self.angle(angle);
                 match (ku, kv, u, v) {
                     (true, false, _, Dir::Feature(fv)) if angle == AngleValue::Const(0.0) => {
                         let base = self.dir(u);
@@ -812,6 +886,7 @@ impl Builder<'_, Planar> {
                     Op::RotatePoint {
                         geoms,
                         pivot: at,
+                        axis: RotationAxis::Normal,
                         from,
                         to,
                     },
@@ -830,9 +905,9 @@ impl Builder<'_, Planar> {
 
     /// The circle about `at` through the current position `from` of feature `f`.
     fn circle_through(&mut self, at: Reg, from: Reg, f: GeomId, pivot: GeomId) -> Reg {
-        // Both on one rigid geom: the radius is their distance in it.
-        let rigid =
-            (self.model.top_level_of(pivot) == self.model.top_level_of(f)).then_some((pivot, f));
+        // Both on one rigid geom with a constant sketch of them: the radius is their distance
+        // in it, known now.
+        let radius = crate::plan::constant_distance(self.model, pivot, f);
         let words = format!(
             "the circle about {} through {}",
             self.word(at),
@@ -842,7 +917,7 @@ impl Builder<'_, Planar> {
             Op::CircleThrough {
                 center: at,
                 through: from,
-                rigid,
+                radius,
             },
             Ty::Circle,
             words,
@@ -951,6 +1026,7 @@ impl Builder<'_, Planar> {
             Meet::CircleConic => (0..4)
                 .map(|i| format!("root {i} in increasing parameter along {wb}"))
                 .collect(),
+            spatial => unreachable!("the plane's fragments never meet {spatial:?}"),
         };
         let branch = self.branch(constraint, meanings);
         let words = format!("the meeting point of {wa} and {wb}");
@@ -999,6 +1075,7 @@ impl Builder<'_, Planar> {
             Op::RotateDir {
                 geoms,
                 pivot,
+                axis: RotationAxis::Normal,
                 from,
                 to: target,
             },
@@ -1155,6 +1232,7 @@ impl Builder<'_, Planar> {
                     Op::RotatePoint {
                         geoms,
                         pivot: at,
+                        axis: RotationAxis::Normal,
                         from,
                         to: x,
                     },

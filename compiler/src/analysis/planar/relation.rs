@@ -134,16 +134,9 @@ impl Relation {
     }
 }
 
-/// How two circles sit, from the sketch.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Nesting {
-    /// Each outside the other: `|c1 - c2| = r1 + r2 + gap`.
-    Apart,
-    /// The first inside the second: `|c1 - c2| = r2 - r1 - gap`.
-    FirstInside,
-    /// The second inside the first: `|c1 - c2| = r1 - r2 - gap`.
-    SecondInside,
-}
+/// How two circles sit, read from the sketch: the runtime's reading, which a check of the
+/// relation measures.
+pub use gcs_runtime::check::Nesting;
 
 /// What the decomposition asks of the sketch: angles between directions, and positions and
 /// radii, to choose the sense of parallelism, the side of a tangency, and nesting.

@@ -4,7 +4,7 @@
 
 use super::{Dir, Planar, Pos, Rel, Rot, Target};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Ty};
+use crate::plan::{Op, RotationAxis, Ty};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part};
 
 impl Builder<'_, Planar> {
@@ -108,6 +108,7 @@ impl Builder<'_, Planar> {
                     Op::RotateDir {
                         geoms: geoms.clone(),
                         pivot: at,
+                        axis: RotationAxis::Normal,
                         from: d,
                         to,
                     },

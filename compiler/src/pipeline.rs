@@ -1,0 +1,214 @@
+//! The pipeline every caller uses: load a model, analyse it into a plan, choose each branch's
+//! default, validate the plan, and report the model's problems. The build-script API, the
+//! command line, the benchmark driver and the tests all go through here, so that every back
+//! end (interpreter, code generator, explainer) receives a validated [`Plan`].
+//!
+//! ```text
+//! bytes ─load─▶ Model ─analyse─▶ Analysis { plan, .. } ─▶ interp / codegen / explain
+//!                       (degrees of freedom, branch defaults, validation)
+//! ```
+
+use crate::analysis::{self, Analysis};
+use crate::plan::{Malformed, Plan};
+use gcs_lang::{Diagnostic, Model, SourceFile};
+use std::fmt;
+
+/// A model that loaded, with its warnings.
+#[derive(Debug)]
+pub struct Loaded {
+    /// The file.
+    pub source: SourceFile,
+    /// The model.
+    pub model: Model,
+    /// Its warnings (a model with errors does not load).
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// A model that did not load: its diagnostics, errors among them.
+#[derive(Debug)]
+pub struct Rejected {
+    /// The file.
+    pub source: SourceFile,
+    /// Every diagnostic.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Parses and resolves a model.
+pub fn load(name: &str, bytes: &[u8]) -> Result<Loaded, Rejected> {
+    let (source, model, diagnostics) = gcs_lang::load(name, bytes);
+    match model {
+        Some(model) => Ok(Loaded {
+            source,
+            model,
+            diagnostics,
+        }),
+        None => Err(Rejected {
+            source,
+            diagnostics,
+        }),
+    }
+}
+
+/// Why a loaded model has no plan.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnalysisError {
+    /// The analysis does not cover it yet (a 3d model), or its sketch cannot be read.
+    Uncovered(String),
+    /// The analysis produced a plan that breaks the plan's invariants: a bug in gcs.
+    Malformed(Malformed),
+}
+
+impl fmt::Display for AnalysisError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AnalysisError::Uncovered(why) => f.write_str(why),
+            AnalysisError::Malformed(m) => {
+                write!(f, "internal error: {m} (a bug in gcs: please report it)")
+            }
+        }
+    }
+}
+
+impl std::error::Error for AnalysisError {}
+
+/// Analyses a model into a validated plan: degrees-of-freedom analysis, then each branch
+/// variable's default from the sketch (the plan run on the sketch, taking at each
+/// intersection the root nearest to where the sketch has the moving feature), then the plan's
+/// invariants, and that only the constraints the analysis reports unsolved (or recorded) are
+/// left without a step.
+pub fn analyse(model: &Model) -> Result<Analysis, AnalysisError> {
+    let mut analysis = analysis::analyse(model).map_err(AnalysisError::Uncovered)?;
+    choose_branch_defaults(model, &mut analysis.plan);
+    validate(model, &analysis).map_err(AnalysisError::Malformed)?;
+    Ok(analysis)
+}
+
+/// Sets each branch variable's default to the sketch's branch.
+fn choose_branch_defaults(model: &Model, plan: &mut Plan) {
+    let chosen = crate::interp::sketch_branches(model, plan);
+    for (b, index) in plan.branches.iter_mut().zip(chosen) {
+        if let Some(i) = index {
+            b.default = i;
+        }
+    }
+}
+
+/// The plan's invariants, and its coverage against the analysis's report.
+fn validate(model: &Model, analysis: &Analysis) -> Result<(), Malformed> {
+    let plan = &analysis.plan;
+    let mut errors = match plan.validate(model) {
+        Ok(()) => Vec::new(),
+        Err(Malformed(errors)) => errors,
+    };
+    let waiting: Vec<_> = (analysis.unsolved.iter().map(|u| u.constraint))
+        .chain(analysis.recorded.iter().copied())
+        .collect();
+    for c in plan.unsatisfied(model) {
+        if !waiting.contains(&c) {
+            let name = &model.constraints[c].name;
+            errors.push(format!(
+                "constraint {name} is neither satisfied nor checked"
+            ));
+        }
+    }
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(Malformed(errors))
+    }
+}
+
+/// A model through the whole pipeline.
+#[derive(Debug)]
+pub struct Compiled {
+    /// The file.
+    pub source: SourceFile,
+    /// The model.
+    pub model: Model,
+    /// Its analysis, with the validated plan.
+    pub analysis: Analysis,
+    /// The model's warnings, then the analysis's problems (constraints without a plan, geoms
+    /// left free, constraints that conflict at the default params).
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Compiled {
+    /// Whether a diagnostic is an error: then the model cannot be solved.
+    pub fn has_errors(&self) -> bool {
+        gcs_lang::diagnostic::has_errors(&self.diagnostics)
+    }
+}
+
+/// Why a model did not get through the pipeline.
+#[derive(Debug)]
+pub enum CompileError {
+    /// It did not load.
+    Load(Rejected),
+    /// It loaded, but has no plan.
+    Analysis(Box<Unanalysed>),
+}
+
+/// A model that loaded but has no plan.
+#[derive(Debug)]
+pub struct Unanalysed {
+    /// The file.
+    pub source: SourceFile,
+    /// The model.
+    pub model: Model,
+    /// Its warnings.
+    pub diagnostics: Vec<Diagnostic>,
+    /// Why it has no plan.
+    pub error: AnalysisError,
+}
+
+/// Loads and analyses a model, and reports its problems.
+pub fn compile(name: &str, bytes: &[u8]) -> Result<Compiled, CompileError> {
+    let loaded = load(name, bytes).map_err(CompileError::Load)?;
+    match analyse(&loaded.model) {
+        Ok(analysis) => {
+            let mut diagnostics = loaded.diagnostics;
+            diagnostics.extend(crate::report::problems(&loaded.model, &analysis));
+            Ok(Compiled {
+                source: loaded.source,
+                model: loaded.model,
+                analysis,
+                diagnostics,
+            })
+        }
+        Err(error) => Err(CompileError::Analysis(Box::new(Unanalysed {
+            source: loaded.source,
+            model: loaded.model,
+            diagnostics: loaded.diagnostics,
+            error,
+        }))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn compiles_a_model_into_a_validated_plan_with_the_sketch_branches() {
+        let text = include_str!("../../examples/fourbar.gcs");
+        let c = compile("fourbar.gcs", text.as_bytes()).expect("compiles");
+        assert!(!c.has_errors(), "{:?}", c.diagnostics);
+        assert_eq!(c.analysis.plan.validate(&c.model), Ok(()));
+        let elbow = &c.analysis.plan.branches[0];
+        assert_eq!((elbow.name.as_str(), elbow.default), ("elbow", 0));
+    }
+
+    #[test]
+    fn a_model_that_does_not_load_or_is_not_covered_says_why() {
+        let Err(CompileError::Load(r)) = compile("bad.gcs", b"space 2d;\ncoincident(A, B);\n")
+        else {
+            panic!("loads")
+        };
+        assert!(gcs_lang::diagnostic::has_errors(&r.diagnostics));
+        let text = include_str!("../../examples/brick.gcs");
+        let Err(CompileError::Analysis(u)) = compile("brick.gcs", text.as_bytes()) else {
+            panic!("analysed")
+        };
+        assert!(matches!(u.error, AnalysisError::Uncovered(_)));
+    }
+}

@@ -1,0 +1,302 @@
+//! The plan's stable text dump (`gcs plan`): one step a line, with the model's names.
+
+use super::{expr_text, fmt_f64, Op, Plan, Reg, Residual, RotationAxis};
+use gcs_lang::model::{ConstraintId, GeomId};
+use gcs_lang::Model;
+use std::fmt::Write as _;
+
+impl Plan {
+    /// The stable text dump of the plan, one step a line, with names from the model.
+    pub fn dump(&self, model: &Model) -> String {
+        let name = |g: &GeomId| model.geoms[*g].name.clone();
+        let names = |gs: &[GeomId]| gs.iter().map(name).collect::<Vec<_>>().join(" ");
+        let cname = |c: &ConstraintId| model.constraints[*c].name.clone();
+        let mut out = String::new();
+        if let Some(g) = self.grounded {
+            let _ = writeln!(out, "ground {} at its sketch", name(&g));
+        }
+        if let Some((a, b)) = self.grounded_direction {
+            let _ = writeln!(
+                out,
+                "hold the sketch direction from {} to {}",
+                name(&a),
+                name(&b)
+            );
+        }
+        for b in &self.branches {
+            let _ = writeln!(
+                out,
+                "branch {} ({} roots, default {}): {}",
+                b.name,
+                b.count,
+                b.default,
+                b.meanings.join("; ")
+            );
+        }
+        for d in &self.defaults {
+            let _ = writeln!(
+                out,
+                "default {} (sketch {}): {}",
+                d.name,
+                fmt_f64(d.sketch),
+                d.meaning
+            );
+        }
+        for it in &self.iterations {
+            let names: Vec<&str> = it
+                .defaults
+                .iter()
+                .filter_map(|d| self.defaults.get(d.0 as usize).map(|d| d.name.as_str()))
+                .collect();
+            let _ = writeln!(
+                out,
+                "iterate steps {}..{} over {}",
+                it.start,
+                it.end,
+                names.join(" ")
+            );
+        }
+        for s in &self.steps {
+            let lhs = match s.out {
+                Some((r, ty)) => format!("r{} : {:?} = ", r.0, ty),
+                None => String::new(),
+            };
+            let r = |r: &Reg| format!("r{}", r.0);
+            let op = match &s.op {
+                Op::Expr(e) => format!("expr {}", expr_text(model, *e)),
+                Op::Const(c) => format!("const {}", fmt_f64(*c)),
+                Op::Neg(x) => format!("neg {}", r(x)),
+                Op::DimOf(g) => format!("dim_of {}", name(g)),
+                Op::Sum(terms) => format!(
+                    "sum {}",
+                    terms
+                        .iter()
+                        .map(|(s, x)| format!("{}*{}", fmt_f64(*s), r(x)))
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                ),
+                Op::Reversed(x) => format!("reversed {}", r(x)),
+                Op::Along { from, dir, to } => format!("along {} {} {}", r(from), r(dir), r(to)),
+                Op::DirectionTo { from, to } => format!("direction_to {} {}", r(from), r(to)),
+                Op::OffsetLine { line, by } => format!("offset_line {} by {}", r(line), r(by)),
+                Op::CentresLineLine { l1, a1, l2, a2 } => {
+                    format!("centres_line_line {} {} {} {}", r(l1), r(a1), r(l2), r(a2))
+                }
+                Op::CentresLinePoint {
+                    line,
+                    a,
+                    at,
+                    b,
+                    plus,
+                } => format!(
+                    "centres_line_point {} {} {} {} {}",
+                    r(line),
+                    r(a),
+                    r(at),
+                    r(b),
+                    if *plus { "plus" } else { "minus" }
+                ),
+                Op::CentresPointPoint {
+                    c1,
+                    b1,
+                    p1,
+                    c2,
+                    b2,
+                    p2,
+                } => format!(
+                    "centres_point_point {} {} {} {} {} {}",
+                    r(c1),
+                    r(b1),
+                    if *p1 { "plus" } else { "minus" },
+                    r(c2),
+                    r(b2),
+                    if *p2 { "plus" } else { "minus" }
+                ),
+                Op::RadiusFromLine { line, a, centre } => {
+                    format!("radius_from_line {} {} {}", r(line), r(a), r(centre))
+                }
+                Op::RadiusFromPoint {
+                    at,
+                    b,
+                    plus,
+                    centre,
+                } => format!(
+                    "radius_from_point {} {} {} {}",
+                    r(at),
+                    r(b),
+                    if *plus { "plus" } else { "minus" },
+                    r(centre)
+                ),
+                Op::PointOf(g) => format!("point_of {}", name(g)),
+                Op::DirOf(g) => format!("dir_of {}", name(g)),
+                Op::Axis(x, y) => format!("axis ({x}, {y})"),
+                Op::Rotated { dir, angle } => format!("rotated {} by {}", r(dir), r(angle)),
+                Op::Circle { center, radius } => format!("circle {} {}", r(center), r(radius)),
+                Op::CircleThrough {
+                    center, through, ..
+                } => {
+                    format!("circle_through {} {}", r(center), r(through))
+                }
+                Op::Line { point, dir, offset } => match offset {
+                    Some(o) => format!("line {} {} offset {}", r(point), r(dir), r(o)),
+                    None => format!("line {} {}", r(point), r(dir)),
+                },
+                Op::ParallelLine { line, through } => {
+                    format!("parallel_line {} through {}", r(line), r(through))
+                }
+                Op::ShiftedCircle { circle, from, to } => {
+                    format!("shifted_circle {} {} -> {}", r(circle), r(from), r(to))
+                }
+                Op::Nearest { locus, point } => format!("nearest {} {}", r(locus), r(point)),
+                Op::Onto {
+                    locus,
+                    point,
+                    constraint,
+                } => {
+                    format!("onto {} {} for {}", r(locus), r(point), cname(constraint))
+                }
+                Op::Intersect {
+                    meet,
+                    a,
+                    b,
+                    branch,
+                    constraint,
+                    ..
+                } => format!(
+                    "intersect {:?} {} {} branch {} for {}",
+                    meet,
+                    r(a),
+                    r(b),
+                    self.branches
+                        .get(branch.0 as usize)
+                        .map_or("?", |b| b.name.as_str()),
+                    cname(constraint)
+                ),
+                Op::Translate { geoms, from, to } => {
+                    format!("translate [{}] {} -> {}", names(geoms), r(from), r(to))
+                }
+                Op::RotatePoint {
+                    geoms,
+                    pivot,
+                    axis,
+                    from,
+                    to,
+                } => format!(
+                    "rotate [{}] about {}{} {} -> {}",
+                    names(geoms),
+                    r(pivot),
+                    around(axis),
+                    r(from),
+                    r(to)
+                ),
+                Op::RotateDir {
+                    geoms,
+                    pivot,
+                    axis,
+                    from,
+                    to,
+                } => format!(
+                    "rotate [{}] about {}{} dir {} -> {}",
+                    names(geoms),
+                    r(pivot),
+                    around(axis),
+                    r(from),
+                    r(to)
+                ),
+                Op::SetDim { geom, value } => format!("set_dim {} {}", name(geom), r(value)),
+                Op::Check {
+                    constraint,
+                    residual,
+                } => format!("check {} {}", cname(constraint), residual_text(residual)),
+                Op::Default(id) => format!(
+                    "default {}",
+                    self.defaults
+                        .get(id.0 as usize)
+                        .map_or("?", |d| d.name.as_str())
+                ),
+                Op::Close {
+                    constraint,
+                    residual,
+                } => format!("close {} by {}", cname(constraint), r(residual)),
+            };
+            let sat = if s.satisfies.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "   ; {}",
+                    s.satisfies.iter().map(cname).collect::<Vec<_>>().join(", ")
+                )
+            };
+            let _ = writeln!(out, "{lhs}{op}{sat}");
+        }
+        out
+    }
+}
+
+/// How a rotation's axis reads in the dump: nothing for the plane's normal.
+fn around(axis: &RotationAxis) -> String {
+    match axis {
+        RotationAxis::Normal => String::new(),
+        RotationAxis::Along(a) => format!(" around r{}", a.0),
+        RotationAxis::Shortest => " around the shortest axis".into(),
+    }
+}
+
+/// A check's relation and registers.
+fn residual_text(residual: &Residual) -> String {
+    let r = |r: &Reg| format!("r{}", r.0);
+    let opt = |x: &Option<Reg>| x.as_ref().map_or_else(|| "0".to_string(), r);
+    match residual {
+        Residual::PointPoint { a, b, d } => format!("point_point {} {} {}", r(a), r(b), opt(d)),
+        Residual::PointLine { p, base, dir, d } => {
+            format!("point_line {} {} {} {}", r(p), r(base), r(dir), opt(d))
+        }
+        Residual::Angle { u, v, angle } => format!("angle {} {} {}", r(u), r(v), r(angle)),
+        Residual::CircleLine {
+            centre,
+            radius,
+            base,
+            dir,
+            gap,
+            side,
+        } => format!(
+            "circle_line {} {} {} {} {} side {}",
+            r(centre),
+            r(radius),
+            r(base),
+            r(dir),
+            opt(gap),
+            fmt_f64(*side)
+        ),
+        Residual::PointCircle {
+            p,
+            centre,
+            radius,
+            gap,
+            outside,
+        } => format!(
+            "point_circle {} {} {} {} {}",
+            r(p),
+            r(centre),
+            r(radius),
+            opt(gap),
+            if *outside { "outside" } else { "inside" }
+        ),
+        Residual::CircleCircle {
+            c1,
+            r1,
+            c2,
+            r2,
+            gap,
+            nesting,
+        } => format!(
+            "circle_circle {} {} {} {} {} {nesting:?}",
+            r(c1),
+            r(r1),
+            r(c2),
+            r(r2),
+            opt(gap)
+        ),
+        Residual::Dim { value, target } => format!("dim {} {}", r(value), r(target)),
+    }
+}

@@ -1,0 +1,555 @@
+//! The Plan: Kramer's metaphorical assembly plan as one straight-line program, and the one
+//! boundary between the analysis and its consumers.
+//!
+//! A plan is a list of steps over typed registers. Measurements read the current configuration
+//! (the global position of a member point, the direction of a member vector), constructions
+//! build loci, intersections pick a root by branch variable, actions move geoms (translate,
+//! rotate, scale) and checks re-measure relations that earlier steps already imply. Every step
+//! names the constraints it satisfies and carries its explanation, with the model's names bound.
+//!
+//! The three consumers (interpreter, code generator, explainer) read the same plan, and only
+//! the plan: what they need of the analysis is in it. [`Plan::validate`] states and checks its
+//! invariants; a consumer given a plan that fails them has a bug to report, not an answer.
+//!
+//! The IR has room for what the analysis does not emit yet: rotations about an axis in space
+//! and spatial locus intersections (for 3d models), and default parameters with the iterated
+//! regions that close them (for models with no closed form).
+
+mod dump;
+mod validate;
+
+pub use validate::Malformed;
+
+use gcs_lang::expr::ExprId;
+use gcs_lang::model::{ConstraintId, GeomId, Space};
+use gcs_lang::Model;
+use gcs_runtime::check::Nesting;
+
+/// A register: the result of one step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Reg(pub u32);
+
+/// A branch variable: which root of a finite intersection to take.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BranchId(pub u32);
+
+/// A default parameter: a degree of freedom the analysis fixed by a redundant constraint,
+/// whose value is an input (000, section 5.2.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct DefaultId(pub u32);
+
+/// The type of a register's value. Points, vectors, lines and circles are those of the plan's
+/// space; conics exist only in the plane, planes, spheres and cylinders only in space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ty {
+    /// A real number.
+    Scalar,
+    /// A point.
+    Point,
+    /// A unit direction.
+    Vector,
+    /// A directed line.
+    Line,
+    /// A circle (in space, with its axis).
+    Circle,
+    /// A conic of the plane (parabola, ellipse, hyperbola branch).
+    Conic,
+    /// A plane of space.
+    Plane,
+    /// A sphere.
+    Sphere,
+    /// A cylinder.
+    Cylinder,
+}
+
+impl Ty {
+    /// Whether a value of this type exists in `space`.
+    pub fn in_space(self, space: Space) -> bool {
+        match self {
+            Ty::Conic => space == Space::D2,
+            Ty::Plane | Ty::Sphere | Ty::Cylinder => space == Space::D3,
+            _ => true,
+        }
+    }
+}
+
+/// How an intersection's branch index reads, for explanations and generated comments.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BranchVar {
+    /// The variable's name: the constraint's label or derived name.
+    pub name: String,
+    /// The constraint whose intersection it chooses.
+    pub constraint: ConstraintId,
+    /// How many roots the intersection may have.
+    pub count: usize,
+    /// The geometric meaning of each index, in index order.
+    pub meanings: Vec<String>,
+    /// The index the sketch has.
+    pub default: usize,
+}
+
+/// A default parameter of the plan: its name and meaning, and the value the sketch gives it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DefaultVar {
+    /// Its name, after what it fixes (`crank_angle`).
+    pub name: String,
+    /// What it fixes, in words.
+    pub meaning: String,
+    /// Its value in the sketch: where a solve starts when the caller gives none.
+    pub sketch: f64,
+}
+
+/// A region of steps run again for each trial of its defaults: an outer iteration varies
+/// `defaults` until every `Close` step of the region measures zero.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Iteration {
+    /// The defaults the iteration varies.
+    pub defaults: Vec<DefaultId>,
+    /// The first step of the region.
+    pub start: usize,
+    /// One past the last step of the region.
+    pub end: usize,
+}
+
+/// Which locus intersection: the pair of loci, in the order of the intersection table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Meet {
+    /// Two circles: in the plane, branch 0 left of the directed line between centres.
+    CircleCircle,
+    /// A line and a circle of the plane: order along the line.
+    LineCircle,
+    /// Two lines of the plane: one root.
+    LineLine,
+    /// A circle and a conic: order along the conic.
+    CircleConic,
+    /// A line and a conic: order along the line.
+    LineConic,
+    /// A line and a plane: one root.
+    LinePlane,
+    /// A line and a sphere: order along the line.
+    LineSphere,
+    /// A line and a cylinder: order along the line.
+    LineCylinder,
+    /// A circle and a plane of space.
+    CirclePlane,
+    /// A circle and a sphere.
+    CircleSphere,
+    /// Two spheres: their circle.
+    SphereSphere,
+    /// A sphere and a plane: their circle.
+    SpherePlane,
+    /// Two planes: their line.
+    PlanePlane,
+}
+
+impl Meet {
+    /// The types of its two loci, in order.
+    pub fn operands(self) -> (Ty, Ty) {
+        use Ty::*;
+        match self {
+            Meet::CircleCircle => (Circle, Circle),
+            Meet::LineCircle => (Line, Circle),
+            Meet::LineLine => (Line, Line),
+            Meet::CircleConic => (Circle, Conic),
+            Meet::LineConic => (Line, Conic),
+            Meet::LinePlane => (Line, Plane),
+            Meet::LineSphere => (Line, Sphere),
+            Meet::LineCylinder => (Line, Cylinder),
+            Meet::CirclePlane => (Circle, Plane),
+            Meet::CircleSphere => (Circle, Sphere),
+            Meet::SphereSphere => (Sphere, Sphere),
+            Meet::SpherePlane => (Sphere, Plane),
+            Meet::PlanePlane => (Plane, Plane),
+        }
+    }
+
+    /// What it yields: a point of a finite set of roots, or (in space) a locus.
+    pub fn result(self) -> Ty {
+        match self {
+            Meet::SphereSphere | Meet::SpherePlane => Ty::Circle,
+            Meet::PlanePlane => Ty::Line,
+            _ => Ty::Point,
+        }
+    }
+
+    /// Which space it belongs to.
+    pub fn space(self) -> Space {
+        match self {
+            Meet::CircleCircle
+            | Meet::LineCircle
+            | Meet::LineLine
+            | Meet::CircleConic
+            | Meet::LineConic => Space::D2,
+            _ => Space::D3,
+        }
+    }
+}
+
+/// The axis of a rotation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RotationAxis {
+    /// The plane's normal: the one axis a rotation of the plane has.
+    Normal,
+    /// In space, the unit direction in a register.
+    Along(Reg),
+    /// In space, the axis perpendicular to the vectors turned from and to: the shortest
+    /// rotation between them.
+    Shortest,
+}
+
+/// The relation a run-time check holds, over registers. Each kind has one residual function
+/// in `gcs_runtime::check`, which the interpreter and generated code both call.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Residual {
+    /// `|a - b| = d` (absent: a coincidence).
+    PointPoint { a: Reg, b: Reg, d: Option<Reg> },
+    /// The signed distance of `p` from the line through `base` along `dir` is `d` (positive
+    /// to the left; absent: zero).
+    PointLine {
+        p: Reg,
+        base: Reg,
+        dir: Reg,
+        d: Option<Reg>,
+    },
+    /// The counter-clockwise angle from `u` to `v` is `angle`.
+    Angle { u: Reg, v: Reg, angle: Reg },
+    /// The circle (`centre`, `radius`) on side `side` (+1 left, -1 right) of the line through
+    /// `base` along `dir`, its perimeter `gap` from it (absent: tangent).
+    CircleLine {
+        centre: Reg,
+        radius: Reg,
+        base: Reg,
+        dir: Reg,
+        gap: Option<Reg>,
+        side: f64,
+    },
+    /// `p` at `gap` from the perimeter of the circle (`centre`, `radius`) (absent: on it),
+    /// outside or inside.
+    PointCircle {
+        p: Reg,
+        centre: Reg,
+        radius: Reg,
+        gap: Option<Reg>,
+        outside: bool,
+    },
+    /// Two circles `gap` apart at their perimeters (absent: tangent), sitting as `nesting`.
+    CircleCircle {
+        c1: Reg,
+        r1: Reg,
+        c2: Reg,
+        r2: Reg,
+        gap: Option<Reg>,
+        nesting: Nesting,
+    },
+    /// A dimension `value` is `target`.
+    Dim { value: Reg, target: Reg },
+}
+
+/// One operation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Op {
+    /// Evaluates an expression of the model (params are inputs).
+    Expr(ExprId),
+    /// A constant chosen at analysis (0 or pi for parallel, from the sketch).
+    Const(f64),
+    /// The value of a default parameter (an input, like a param).
+    Default(DefaultId),
+    /// `-x`.
+    Neg(Reg),
+    /// The current dimension of a geom (a segment's length, a circle's radius).
+    DimOf(GeomId),
+    /// A linear combination of scalars.
+    Sum(Vec<(f64, Reg)>),
+    /// The signed distance from point `from` to point `to` along direction `dir`.
+    Along { from: Reg, dir: Reg, to: Reg },
+    /// The unit direction from point `from` to point `to`.
+    DirectionTo { from: Reg, to: Reg },
+    /// A line with its direction reversed (left and right swap).
+    Reversed(Reg),
+    /// Line `line` moved `by` to its left.
+    OffsetLine { line: Reg, by: Reg },
+    /// The centres `X` of circles of any radius `r` with `sd_l1(X) = r + a1` and
+    /// `sd_l2(X) = r + a2`: an angular bisector (002, RR-1).
+    CentresLineLine { l1: Reg, a1: Reg, l2: Reg, a2: Reg },
+    /// The centres with `sd_line(X) = r + a` and `|X - at| = r + b` (`plus`) or `b - r`: a
+    /// parabola.
+    CentresLinePoint {
+        line: Reg,
+        a: Reg,
+        at: Reg,
+        b: Reg,
+        plus: bool,
+    },
+    /// The centres with `|X - c1| = ±r + b1` and `|X - c2| = ±r + b2`: a hyperbola branch or an
+    /// ellipse.
+    CentresPointPoint {
+        c1: Reg,
+        b1: Reg,
+        p1: bool,
+        c2: Reg,
+        b2: Reg,
+        p2: bool,
+    },
+    /// The radius `sd_line(centre) - a`.
+    RadiusFromLine { line: Reg, a: Reg, centre: Reg },
+    /// The radius `|centre - at| - b` (`plus`) or `b - |centre - at|`.
+    RadiusFromPoint {
+        at: Reg,
+        b: Reg,
+        plus: bool,
+        centre: Reg,
+    },
+    /// The global position of a point feature (a point geom, member, marker or part).
+    PointOf(GeomId),
+    /// The global direction of a vector feature (a vector geom, member, axis or `dir`).
+    DirOf(GeomId),
+    /// A constant direction (the X or Y axis).
+    Axis(f64, f64),
+    /// `dir` rotated counter-clockwise by `angle`.
+    Rotated { dir: Reg, angle: Reg },
+    /// The circle about `center` with `radius`.
+    Circle { center: Reg, radius: Reg },
+    /// The circle about `center` through `through`. `radius` is its radius when the analysis
+    /// knows it (the two points belong to one rigid geom whose sketch of them is constant):
+    /// the consumers then use that number, and agree to the bit.
+    CircleThrough {
+        center: Reg,
+        through: Reg,
+        radius: Option<f64>,
+    },
+    /// The line through `point` along `dir`, moved `offset` to its left.
+    Line {
+        point: Reg,
+        dir: Reg,
+        offset: Option<Reg>,
+    },
+    /// The line parallel to line `line` through `through`.
+    ParallelLine { line: Reg, through: Reg },
+    /// Circle `circle` moved by the vector from `from` to `to`.
+    ShiftedCircle { circle: Reg, from: Reg, to: Reg },
+    /// The point of `locus` nearest to `point` (least motion).
+    Nearest { locus: Reg, point: Reg },
+    /// `point`, which must lie on `locus` (a 1-DOF motion can reach it only then); otherwise
+    /// an error naming `constraint` with the distance.
+    Onto {
+        locus: Reg,
+        point: Reg,
+        constraint: ConstraintId,
+    },
+    /// The intersection of two loci; the root of `branch`, or an error naming `constraint`.
+    /// `near` is the moving feature's position before the move: the sketch's branch is the
+    /// root nearest to it.
+    Intersect {
+        meet: Meet,
+        a: Reg,
+        b: Reg,
+        branch: BranchId,
+        constraint: ConstraintId,
+        near: Reg,
+    },
+    /// Translates `geoms` rigidly by the vector from `from` to `to`.
+    Translate {
+        geoms: Vec<GeomId>,
+        from: Reg,
+        to: Reg,
+    },
+    /// Rotates `geoms` rigidly about `pivot` around `axis` by the angle from `from - pivot` to
+    /// `to - pivot` (points), so that `from` lands on `to`.
+    RotatePoint {
+        geoms: Vec<GeomId>,
+        pivot: Reg,
+        axis: RotationAxis,
+        from: Reg,
+        to: Reg,
+    },
+    /// Rotates `geoms` rigidly about `pivot` around `axis` by the angle from direction `from`
+    /// to `to`.
+    RotateDir {
+        geoms: Vec<GeomId>,
+        pivot: Reg,
+        axis: RotationAxis,
+        from: Reg,
+        to: Reg,
+    },
+    /// Sets a geom's dimension (a segment's length, a circle's radius), keeping its origin.
+    SetDim { geom: GeomId, value: Reg },
+    /// Re-measures a relation of `constraint` already implied by earlier steps: it must hold
+    /// within tolerance, or the model is inconsistent by the residual's size.
+    Check {
+        constraint: ConstraintId,
+        residual: Residual,
+    },
+    /// An error function of an iteration: `residual`, which the iteration drives to zero,
+    /// closes `constraint` (the constraint a default displaced).
+    Close {
+        constraint: ConstraintId,
+        residual: Reg,
+    },
+}
+
+/// One step: an operation, the register it defines (if any), what it satisfies, and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    /// What it does.
+    pub op: Op,
+    /// The register it defines.
+    pub out: Option<(Reg, Ty)>,
+    /// The constraints this step satisfies (for actions) or verifies (for checks).
+    pub satisfies: Vec<ConstraintId>,
+    /// The explanation, with the model's names bound.
+    pub explain: String,
+}
+
+/// A complete plan.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// The space its values live in.
+    pub space: Space,
+    /// The steps, in execution order.
+    pub steps: Vec<Step>,
+    /// The branch variables, indexed by [`BranchId`].
+    pub branches: Vec<BranchVar>,
+    /// The default parameters, indexed by [`DefaultId`].
+    pub defaults: Vec<DefaultVar>,
+    /// The iterated regions, in step order, disjoint.
+    pub iterations: Vec<Iteration>,
+    /// The geom grounded at its sketch because nothing was fixed, if any.
+    pub grounded: Option<GeomId>,
+    /// When the grounded geom has no orientation: the two points whose sketch direction is
+    /// held too, so that only a rigid motion is factored out.
+    pub grounded_direction: Option<(GeomId, GeomId)>,
+    /// The number of registers.
+    pub regs: u32,
+}
+
+impl Plan {
+    /// An empty plan of `space`.
+    pub fn new(space: Space) -> Plan {
+        Plan {
+            space,
+            steps: Vec::new(),
+            branches: Vec::new(),
+            defaults: Vec::new(),
+            iterations: Vec::new(),
+            grounded: None,
+            grounded_direction: None,
+            regs: 0,
+        }
+    }
+
+    /// The top-level geoms the plan reads or moves.
+    pub fn touched(&self, model: &Model) -> std::collections::BTreeSet<GeomId> {
+        let mut out = std::collections::BTreeSet::new();
+        for s in &self.steps {
+            match &s.op {
+                Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) => {
+                    out.insert(model.top_level_of(*f));
+                }
+                Op::Translate { geoms, .. }
+                | Op::RotatePoint { geoms, .. }
+                | Op::RotateDir { geoms, .. } => {
+                    out.extend(geoms.iter().copied());
+                }
+                Op::SetDim { geom, .. } => {
+                    out.insert(*geom);
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// The constraint step `i` works for, to name it in errors: the one it satisfies, else the
+    /// next step's that satisfies or intersects for one, else the previous such step's.
+    pub fn constraint_of(&self, i: usize) -> Option<ConstraintId> {
+        let of = |s: &Step| {
+            s.satisfies.first().copied().or(match &s.op {
+                Op::Intersect { constraint, .. }
+                | Op::Onto { constraint, .. }
+                | Op::Check { constraint, .. }
+                | Op::Close { constraint, .. } => Some(*constraint),
+                _ => None,
+            })
+        };
+        let later = self.steps.get(i..).unwrap_or(&[]).iter().find_map(of);
+        later.or_else(|| self.steps.get(..i).unwrap_or(&[]).iter().rev().find_map(of))
+    }
+
+    /// The value of every default in the sketch, indexed by [`DefaultId`].
+    pub fn sketch_defaults(&self) -> Vec<f64> {
+        self.defaults.iter().map(|d| d.sketch).collect()
+    }
+}
+
+impl Residual {
+    /// The registers it reads.
+    pub fn reads(&self) -> Vec<Reg> {
+        self.operands().into_iter().map(|(r, _)| r).collect()
+    }
+}
+
+/// The distance between two point features of one body whose local coordinates do not depend
+/// on params: known when the plan is built. A circle through one about the other has this
+/// radius.
+pub fn constant_distance(model: &Model, a: GeomId, b: GeomId) -> Option<f64> {
+    use gcs_lang::model::{Owner, Sketch};
+    let local = |f: GeomId| -> Option<(f64, f64)> {
+        match (&model.geoms[f].sketch, model.geoms[f].owner) {
+            (Sketch::Point(c) | Sketch::Marker { origin: c, .. }, Owner::Member(_))
+                if c.iter().all(|&e| model.exprs.is_constant(e)) =>
+            {
+                let v = |i: usize| c.get(i).map_or(0.0, |&e| model.exprs.eval(e, &[]));
+                Some((v(0), v(1)))
+            }
+            _ => None,
+        }
+    };
+    let ((ax, ay), (bx, by)) = (local(a)?, local(b)?);
+    if model.top_level_of(a) != model.top_level_of(b) {
+        return None;
+    }
+    Some(nalgebra::Vector2::new(ax - bx, ay - by).norm())
+}
+
+/// An expression as text, for dumps and explanations.
+pub fn expr_text(model: &Model, e: ExprId) -> String {
+    use gcs_lang::expr::ExprNode as N;
+    use gcs_lang::syntax::{AngleUnit, BinaryOp};
+    match model.exprs.node(e) {
+        N::Const(v) => fmt_f64(*v),
+        N::Param(p) => model.params[*p].name.clone(),
+        N::Neg(a) => format!("-{}", expr_text(model, *a)),
+        N::Binary(op, a, b) => {
+            let o = match op {
+                BinaryOp::Add => "+",
+                BinaryOp::Sub => "-",
+                BinaryOp::Mul => "*",
+                BinaryOp::Div => "/",
+                BinaryOp::Pow => "^",
+            };
+            format!("({} {o} {})", expr_text(model, *a), expr_text(model, *b))
+        }
+        N::Call(f, a, b) => match b {
+            Some(b) => format!(
+                "{}({}, {})",
+                f.name(),
+                expr_text(model, *a),
+                expr_text(model, *b)
+            ),
+            None => format!("{}({})", f.name(), expr_text(model, *a)),
+        },
+        N::Unit(u, a) => {
+            let unit = if *u == AngleUnit::Deg { "deg" } else { "rad" };
+            format!("{} {unit}", expr_text(model, *a))
+        }
+    }
+}
+
+/// A float for dumps: shortest round-trip form.
+pub fn fmt_f64(v: f64) -> String {
+    if v == v.trunc() && v.abs() < 1e15 {
+        format!("{v:.0}")
+    } else {
+        format!("{v}")
+    }
+}
