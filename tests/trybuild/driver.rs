@@ -1,8 +1,9 @@
 // The driver of a generated solver: included after `mod solver { include!(...) }`, `MODEL` (the
 // model's text) and `NAME`. It solves the model with the interpreter and with the generated
 // solver on the same params and branches, asks for equal results (1e-14 relative) or equal
-// errors, re-checks every constraint of the generated solution with `verify`, and counts the
-// generated solve's allocations (none, errors included).
+// errors (the same constraint, kind and magnitude), re-checks every constraint of the
+// generated solution with `verify`, and counts the generated solve's allocations (none,
+// errors included).
 
 // Counts allocations, to show that a generated solve allocates nothing.
 #[global_allocator]
@@ -14,10 +15,10 @@ fn close(what: &str, a: f64, b: f64) {
 }
 
 fn main() {
-    let (_, model, diags) = gcs_lang::load(NAME, MODEL.as_bytes());
-    let model = model.unwrap_or_else(|| panic!("{NAME} does not load: {diags:?}"));
-    let analysis = gcs_compiler::analyse(&model).expect("analysis");
-    let (plan, scope) = gcs_compiler::prune::prune(&model, &analysis.plan);
+    let compiled = gcs_compiler::compile(NAME, MODEL.as_bytes())
+        .unwrap_or_else(|e| panic!("{NAME} does not compile: {e:?}"));
+    let (model, analysis) = (&compiled.model, &compiled.analysis);
+    let (plan, scope) = gcs_compiler::prune::prune(model, &analysis.plan);
     // Params: the defaults, each one moved a little and a lot, and each one at values no
     // model means (huge, or not a number), where both must give the same error or answer.
     let base = model.default_params();
@@ -58,7 +59,7 @@ fn main() {
             for (b, i) in plan.branches.iter().zip(branches) {
                 assert!(gb.set(&b.name, *i as u8), "no branch {}", b.name);
             }
-            let interpreted = gcs_compiler::solve_plan(&model, &plan, &scope, params, branches);
+            let interpreted = gcs_compiler::solve_plan(model, &plan, &scope, params, branches);
             let region = stats_alloc::Region::new(ALLOCATOR);
             let generated = solver::solve(&gp, &gb, &solver::Defaults::default());
             let change = region.change();
@@ -91,7 +92,7 @@ fn main() {
                         solution.scalars.push((name.to_string(), x));
                     }
                     // Every constraint among the solved geoms, re-measured independently.
-                    for r in gcs_compiler::verify::residuals(&model, &solution, params) {
+                    for r in gcs_compiler::verify::residuals(model, &solution, params) {
                         let c = &model.constraints[r.constraint];
                         let solved = c.args.iter().all(|a| scope.contains(&model.top_level_of(*a)));
                         if solved {
@@ -107,6 +108,11 @@ fn main() {
                 }
                 (Err(a), Err(b)) => {
                     assert_eq!((&a.label, a.kind), (&b.label, b.kind), "{NAME}: different errors");
+                    let same = a.magnitude == b.magnitude
+                        || (a.magnitude.is_nan() && b.magnitude.is_nan());
+                    if !same {
+                        close(&format!("{} magnitude", a.label), b.magnitude, a.magnitude);
+                    }
                     errors += 1;
                 }
                 (a, b) => panic!("{NAME}: interpreter {a:?} but generated {b:?}"),
