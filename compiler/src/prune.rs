@@ -146,5 +146,7 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             });
         }
     }
+    // A pruned plan is a plan like any other: a back end may rely on its invariants.
+    debug_assert_eq!(out.validate(model), Ok(()), "the pruned plan is malformed");
     (out, geoms)
 }
