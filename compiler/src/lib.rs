@@ -9,13 +9,10 @@
 //! it never prints or exits.
 
 pub mod analysis;
-pub mod baseline;
-pub mod bench;
 pub mod build;
 pub mod codegen;
 pub mod config;
 pub mod explain;
-pub mod families;
 pub mod interp;
 pub mod nominal;
 pub mod plan;

@@ -1,14 +1,14 @@
 //! The family models kept under `examples/families/` are exactly what the generators write.
-//! Rewrite them with `GCS_WRITE_FAMILIES=1 cargo test -p gcs-compiler --test family_files`.
+//! Rewrite them with `GCS_WRITE_FAMILIES=1 cargo test -p gcs-bench --test family_files`.
 
-use gcs_compiler::families::Family;
+use gcs_bench::families::Family;
 use std::path::PathBuf;
 
-include!("../../examples/examples_families.rs");
+include!("../../../examples/examples_families.rs");
 
 #[test]
 fn family_files_match_their_generators() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/families");
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/families");
     for &(name, n) in EXAMPLES_FAMILIES {
         let family = Family::named(name).unwrap_or_else(|| panic!("no family {name}"));
         let path = dir.join(format!("{name}_{n}.gcs"));

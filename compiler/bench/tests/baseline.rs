@@ -3,8 +3,8 @@
 //! its sketch, a warm-started four-bar sweep on the plan's `elbow = 0` branch, and a chain of
 //! 200 four-bars on the sparse path.
 
+use gcs_bench::baseline::{Baseline, Linear, Method, Options, Stop};
 use gcs_compiler::analysis::analyse;
-use gcs_compiler::baseline::{Baseline, Linear, Method, Options, Stop};
 use gcs_compiler::solution::Solution;
 use gcs_compiler::verify;
 use gcs_lang::Model;
@@ -18,7 +18,7 @@ fn load_text(name: &str, text: &str) -> Model {
 }
 
 fn load(name: &str) -> Model {
-    let path = format!("{}/../examples/{name}.gcs", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/../../examples/{name}.gcs", env!("CARGO_MANIFEST_DIR"));
     let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("read {path}: {e}"));
     load_text(&path, &String::from_utf8(bytes).expect("utf-8"))
 }
