@@ -284,59 +284,6 @@ fn the_trace_records_every_iteration_and_errors_name_what_is_missing() {
     assert!(Baseline::new(&three).is_err());
 }
 
-/// Not a test of speed (those live in the benches): prints per-solve times for the report.
-#[test]
-fn timing_report() {
-    let model = load("fourbar");
-    let theta = param(&model, "theta");
-    let mut params = model.default_params();
-    let mut b = Baseline::new(&model).expect("baseline");
-    let cold = b.start_from_sketch(&params);
-    let mut x = cold.clone();
-    let opts = Options::default();
-    let reps = 2000;
-    let t = std::time::Instant::now();
-    let mut its = 0;
-    for _ in 0..reps {
-        x.copy_from_slice(&cold);
-        its += b.solve(&params, &mut x, &opts).iterations;
-    }
-    let cold_ns = t.elapsed().as_nanos() as f64 / reps as f64;
-    let cold_its = its as f64 / reps as f64;
-    let t = std::time::Instant::now();
-    let mut its = 0;
-    for i in 0..reps {
-        params[theta] = (i % 360) as f64 * 1f64.to_radians();
-        its += b.solve(&params, &mut x, &opts).iterations;
-    }
-    let warm_ns = t.elapsed().as_nanos() as f64 / reps as f64;
-    let warm_its = its as f64 / reps as f64;
-    println!(
-        "fourbar: cold {cold_ns:.0} ns/solve ({cold_its:.1} it), warm 1-degree steps {warm_ns:.0} ns/solve ({warm_its:.1} it)"
-    );
-    for n in [200, 1000] {
-        let model = load_text("chain", &chain(n, 0.5));
-        let mut params = model.default_params();
-        let mut b = Baseline::new(&model).expect("baseline");
-        let mut x = b.start_from_sketch(&params);
-        let t = std::time::Instant::now();
-        let out = b.solve(&params, &mut x, &opts);
-        let cold = t.elapsed();
-        params[0] += 1f64.to_radians();
-        let t = std::time::Instant::now();
-        let warm = b.solve(&params, &mut x, &opts);
-        println!(
-            "chain of {n} four-bars ({} unknowns): cold {:?} ({} it, {:?}), warm {:?} ({} it)",
-            b.unknowns(),
-            cold,
-            out.iterations,
-            out.stop,
-            t.elapsed(),
-            warm.iterations
-        );
-    }
-}
-
 /// The four-bar of `/examples/fourbar.gcs` with every length multiplied by `s` (ground 4,
 /// crank 1.5, coupler 4, rocker 3: a Grashof crank-rocker, so the crank turns a full turn).
 fn scaled_fourbar(s: f64) -> String {
