@@ -1,7 +1,7 @@
 //! The numeric baseline (Newton-Raphson and Levenberg-Marquardt on the raw equations) against
-//! the independent verifier and against the compiled plans: every 2d example solved cold from
-//! its sketch, a warm-started four-bar sweep on the plan's `elbow = 0` branch, and a chain of
-//! 200 four-bars on the sparse path.
+//! the independent verifier and against the compiled plans: every example the analysis covers
+//! (found by `examples/discover.rs`) solved cold from its sketch, a warm-started four-bar sweep
+//! on the plan's `elbow = 0` branch, and a chain of 200 four-bars on the sparse path.
 
 use gcs_bench::baseline::{Baseline, Linear, Method, Options, Stop};
 use gcs_compiler::analysis::analyse;
@@ -64,22 +64,17 @@ fn difference(a: &Solution, b: &Solution) -> f64 {
     }
 }
 
-const EXAMPLES: &[&str] = &[
-    "fourbar",
-    "circle",
-    "tenbar",
-    "slider_crank_2d",
-    "crank_rocker",
-    "sixbar",
-    "jansen_leg",
-    "sketch_profile",
-];
+mod discover {
+    include!("../../../examples/discover.rs");
+}
 
 #[test]
 fn every_example_solves_cold_from_its_sketch_and_verifies() {
     let mut report = String::new();
-    for name in EXAMPLES {
-        let model = load(name);
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for example in discover::analysed(&root, discover::Folder::Examples) {
+        let name = example.stem.as_str();
+        let model = load_text(&example.relative(), &example.text);
         let analysis = analyse(&model).expect("analysis");
         let params = model.default_params();
         let branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
@@ -116,7 +111,7 @@ fn every_example_solves_cold_from_its_sketch_and_verifies() {
                     out.iterations,
                     out.max_residual,
                 );
-                if *name == "fourbar" {
+                if name == "fourbar" {
                     assert!(
                         diff <= 1e-9,
                         "fourbar: baseline and plan differ by {diff:e}"
