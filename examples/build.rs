@@ -16,6 +16,19 @@ use discover::Folder;
 /// name is a Rust identifier.
 const LIST: &str = "gcs-examples-modules.rs";
 
+/// The macro that ends the list, `EXAMPLES` standing for the examples' modules.
+const FOR_EACH_EXAMPLE: &str = r#"
+/// Calls the macro `callback` with the modules of the example models (not the families), in
+/// name order, after the tokens given: `for_each_example!(m!(c;))` is
+/// `m!(c; circle, crank_rocker, ...)`. For programs that do the same with every example.
+#[macro_export]
+macro_rules! for_each_example {
+    ($callback:ident!($($before:tt)*)) => {
+        $callback!($($before)* EXAMPLES)
+    };
+}
+"#;
+
 fn main() -> Result<(), gcs_compiler::build::BuildError> {
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     // A model added, removed or changed anywhere under this folder reruns the discovery.
@@ -49,13 +62,13 @@ fn main() -> Result<(), gcs_compiler::build::BuildError> {
         );
         list.push('\n');
         for line in m.description() {
-            let _ = writeln!(list, "/// {line}");
+            let _ = writeln!(list, "///{}{line}", if line.is_empty() { "" } else { " " });
         }
+        let _ = writeln!(list, "///\n/// The solver of `{}`.", m.relative());
+        let _ = writeln!(list, "pub mod {} {{", m.stem);
         let _ = writeln!(
             list,
-            "///\n/// The solver of `{}`.\npub mod {} {{\n    gcs_runtime::include_solver!(\"{}\");\n}}",
-            m.relative(),
-            m.stem,
+            "    gcs_runtime::include_solver!(\"{}\");\n}}",
             m.stem
         );
     }
@@ -64,19 +77,7 @@ fn main() -> Result<(), gcs_compiler::build::BuildError> {
         .filter(|m| m.folder == Folder::Examples)
         .map(|m| m.stem.as_str())
         .collect();
-    let _ = write!(
-        list,
-        "\n/// Calls the macro `callback` with the modules of the example models (not the families),\n\
-         /// in name order, after the tokens given: `for_each_example!(m!(c;))` is\n\
-         /// `m!(c; circle, crank_rocker, ...)`. For programs that do the same with every example.\n\
-         #[macro_export]\n\
-         macro_rules! for_each_example {{\n    \
-         ($callback:ident!($($before:tt)*)) => {{\n        \
-         $callback!($($before)* {})\n    \
-         }};\n\
-         }}\n",
-        examples.join(", ")
-    );
+    list.push_str(&FOR_EACH_EXAMPLE.replace("EXAMPLES", &examples.join(", ")));
     let out = Path::new(&std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR")).join(LIST);
     if std::fs::read_to_string(&out).ok().as_deref() != Some(list.as_str()) {
         std::fs::write(&out, list)

@@ -63,7 +63,7 @@ fn every_golden_belongs_to_a_model() {
         let stem = name.strip_suffix(".rs").unwrap_or(&name);
         assert!(
             models.iter().any(|m| m.stem == stem),
-            "trybuild/generated/{name} has no model in examples/ or tests/models/ the analysis covers"
+            "trybuild/generated/{name} has no model the analysis covers in examples/ or tests/models/"
         );
     }
 }

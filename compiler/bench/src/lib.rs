@@ -5,8 +5,8 @@
 //! - [`baseline`]: the numeric baseline, Newton-Raphson and Levenberg-Marquardt on the raw
 //!   constraint equations (dense LU, or faer's sparse LU and Cholesky on large models): the
 //!   speed baseline and an independent cross-check of the plan.
-//! - [`bench`](mod@bench): a sweep of a model's params, the compiled side against the baseline on it,
-//!   and the report as text, JSON and an SVG plot.
+//! - [`bench`](mod@bench): a sweep of a model's params, the compiled side against the
+//!   baseline on it, and the report as text, JSON and an SVG plot.
 //! - [`families`]: generators of model families of any size (a chain of four-bars, a sketch
 //!   profile, a Warren truss), the workloads of the scaling, stress and peer benchmarks.
 //!
