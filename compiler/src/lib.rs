@@ -11,13 +11,10 @@
 //! Like every library crate here, it never prints or exits (but for the build-script API).
 
 pub mod analysis;
-pub mod baseline;
-pub mod bench;
 pub mod build;
 pub mod codegen;
 pub mod config;
 pub mod explain;
-pub mod families;
 pub mod interp;
 pub mod nominal;
 pub mod pipeline;

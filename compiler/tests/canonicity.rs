@@ -1,5 +1,5 @@
-//! Canonicity: shuffling the statements of every 2d example gives the same solution and the
-//! same plan, up to the numbering of registers.
+//! Canonicity: shuffling the statements of every example the analysis covers gives the same
+//! solution and the same plan, up to the numbering of registers.
 //!
 //! Statements are split at `;` at brace depth 0 and at the `}` closing a body (comments
 //! stripped first), the `space` header stays first, and the rest is permuted by a small
@@ -9,7 +9,9 @@ use gcs_compiler::analyse;
 use gcs_compiler::solution::Solution;
 use gcs_lang::Model;
 
-include!("../../examples/examples_2d.rs");
+mod discover {
+    include!("../../examples/discover.rs");
+}
 
 const PERMUTATIONS: u64 = 20;
 
@@ -261,8 +263,13 @@ fn splitter_and_normaliser_work() {
 fn shuffled_examples_solve_and_plan_the_same() {
     let mut failures = Vec::new();
     let mut checked = 0;
-    for name in EXAMPLES_2D {
-        let text = example_text(name);
+    let examples = discover::analysed(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(".."),
+        discover::Folder::Examples,
+    );
+    for example in &examples {
+        let name = &example.stem;
+        let text = example.text.clone();
         let (dump, solution) = run(name, &text);
         let stmts = statements(&text).len();
         for seed in 0..PERMUTATIONS {
@@ -290,7 +297,7 @@ fn shuffled_examples_solve_and_plan_the_same() {
     }
     eprintln!(
         "canonicity: {checked} permutations of {} examples, {} failures",
-        EXAMPLES_2D.len(),
+        examples.len(),
         failures.len()
     );
     assert!(

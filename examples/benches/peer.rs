@@ -404,7 +404,7 @@ impl EzSketch {
         q
     }
 
-    /// The model's sketch, as `gcs_compiler::families::sketch_profile` draws it: segments of
+    /// The model's sketch, as `gcs_bench::families::sketch_profile` draws it: segments of
     /// length 10 a unit apart, fillet centres 2 from each segment's end, radius 2.
     fn sketch(&self) -> Vec<f64> {
         let mut v = vec![0.0; self.vars];

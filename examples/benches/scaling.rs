@@ -1,8 +1,8 @@
 //! How analysis, code generation and solving scale with the size of a model (issue 7).
 //!
-//! For each generated family ([`gcs_compiler::families::Family`]) and N in 10, 30, 100, 300,
+//! For each generated family ([`gcs_bench::families::Family`]) and N in 10, 30, 100, 300,
 //! 1000, 3000, 10000, times parse + resolve (`gcs_lang::load`), analysis
-//! (`analysis::analyse`), pruning + code generation (`prune::prune` and `codegen::generate`,
+//! (`gcs_compiler::analyse`), pruning + code generation (`prune::prune` and `codegen::generate`,
 //! without rustfmt) and one solve of the pruned plan by the interpreter (`interp::run` with the
 //! default branches, median of several runs), and checks the solve's max residual once per N
 //! with `solve_plan`. Fits the exponent b of t = a·N^b by least squares on log-log for each
@@ -11,7 +11,7 @@
 //! `cargo bench -p gcs-examples --bench scaling`; `GCS_SCALING_MAX=1000` (or a first argument
 //! that is a number) limits the sizes for a quick run.
 
-use gcs_compiler::families::Family;
+use gcs_bench::families::Family;
 use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::{Duration, Instant};

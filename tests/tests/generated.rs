@@ -1,42 +1,111 @@
-//! The generated solvers: `gcs compile`'s output for every 2d example is golden
-//! (`tests/trybuild/generated/`), and trybuild compiles each one and runs a driver that compares
-//! it with the interpreter and re-checks every constraint (`tests/trybuild/driver.rs`). A
-//! compile-fail case shows that misuse reads well. Regenerate the goldens with
-//! `UPDATE_EXPECT=1 cargo test -p gcs-tests --test generated`, and the expected compiler
-//! output with `TRYBUILD=overwrite`.
+//! The generated solvers: `gcs compile`'s output for every model the analysis covers, of the
+//! examples (`examples/`) and of the test models (`tests/models/`), is golden
+//! (`tests/trybuild/generated/<stem>.rs`), and trybuild compiles each one and runs a driver
+//! that compares it with the interpreter and re-checks every constraint
+//! (`tests/trybuild/driver.rs`). A compile-fail case shows that misuse reads well. Regenerate
+//! the goldens (or create a new model's) with
+//! `UPDATE_EXPECT=1 cargo test -p gcs-tests --test generated`, and the expected compiler output
+//! with `TRYBUILD=overwrite`.
 
 use expect_test::expect_file;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-include!("../../examples/examples_2d.rs");
+mod discover {
+    include!("../../examples/discover.rs");
+}
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The models whose generated solvers are golden and run.
+fn models() -> Vec<discover::Found> {
+    discover::models(root().parent().expect("the workspace"))
+        .into_iter()
+        .filter(|m| {
+            matches!(
+                m.folder,
+                discover::Folder::Examples | discover::Folder::TestModels
+            ) && m.is_analysed()
+        })
+        .collect()
+}
+
+fn golden(stem: &str) -> PathBuf {
+    root().join(format!("trybuild/generated/{stem}.rs"))
+}
+
 #[test]
 fn generated_solvers_are_golden() {
-    for m in EXAMPLES_2D {
-        let path = root().join(format!("../examples/{m}.gcs"));
-        let bytes = std::fs::read(&path).expect("example");
-        let (_, model, diags) = gcs_lang::load(&format!("{m}.gcs"), &bytes);
-        let model = model.unwrap_or_else(|| panic!("{m}: {diags:?}"));
-        let analysis = gcs_compiler::analyse(&model).expect("analysis");
-        let code =
-            gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(&model, &analysis.plan));
+    for m in models() {
+        let c = gcs_compiler::compile(&m.file_name(), m.text.as_bytes())
+            .unwrap_or_else(|e| panic!("{}: {e:?}", m.relative()));
+        let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(
+            &c.model,
+            &c.analysis.plan,
+        ));
         assert!(
             code.starts_with("// @generated"),
-            "{m}: no @generated header"
+            "{}: no @generated header",
+            m.relative()
         );
-        expect_file![root().join(format!("trybuild/generated/{m}.rs"))].assert_eq(&code);
+        expect_file![golden(&m.stem)].assert_eq(&code);
     }
+}
+
+/// A golden whose model is gone (or no longer analysed) is stale: remove it with its model.
+#[test]
+fn every_golden_belongs_to_a_model() {
+    let models = models();
+    for entry in std::fs::read_dir(root().join("trybuild/generated")).expect("the goldens") {
+        let name = entry.expect("a golden").file_name();
+        let name = name.to_string_lossy();
+        let stem = name.strip_suffix(".rs").unwrap_or(&name);
+        assert!(
+            models.iter().any(|m| m.stem == stem),
+            "trybuild/generated/{name} has no model the analysis covers in examples/ or tests/models/"
+        );
+    }
+}
+
+/// The trybuild case that runs one model's golden solver against the interpreter.
+fn run_case(m: &discover::Found) -> String {
+    let path = |p: &Path| format!("{:?}", p.display().to_string());
+    format!(
+        "// Runs the generated solver of `{relative}` against the interpreter.\n\
+         #![deny(warnings)]\n\
+         \n\
+         mod solver {{\n    \
+         include!({golden});\n\
+         }}\n\
+         \n\
+         const NAME: &str = \"{file}\";\n\
+         const MODEL: &str = include_str!({model});\n\
+         \n\
+         include!({driver});\n",
+        relative = m.relative(),
+        golden = path(&golden(&m.stem)),
+        file = m.file_name(),
+        model = path(&m.path),
+        driver = path(&root().join("trybuild/driver.rs")),
+    )
 }
 
 #[test]
 fn generated_solvers_agree_with_the_interpreter() {
+    // The cases, written from one template; the directory outlives `t`, which runs them when
+    // it is dropped. A case is rewritten only when it changes, so trybuild's build of it stays
+    // fresh.
+    let cases = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gcs-trybuild-run");
+    std::fs::create_dir_all(&cases).expect("create the cases' directory");
     let t = trybuild::TestCases::new();
-    for m in EXAMPLES_2D {
-        t.pass(format!("trybuild/run_{m}.rs"));
+    for m in models() {
+        let case = cases.join(format!("run_{}.rs", m.stem));
+        let text = run_case(&m);
+        if std::fs::read_to_string(&case).ok().as_deref() != Some(text.as_str()) {
+            std::fs::write(&case, text).expect("write a trybuild case");
+        }
+        t.pass(case);
     }
     t.compile_fail("trybuild/ui/*.rs");
 }

@@ -6,7 +6,7 @@
 //! bench compiles the runtime. Without cargo or the runtime's sources (an installed `gcs`), the
 //! caller falls back to the interpreter.
 
-use gcs_compiler::bench::Sweep;
+use gcs_bench::bench::Sweep;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -38,7 +38,7 @@ fn workspace() -> Option<PathBuf> {
     dir.join("runtime/Cargo.toml").is_file().then_some(dir)
 }
 
-/// The driver's main (its `time_per_call` repeats `gcs_compiler::bench::time_per_call`: the
+/// The driver's main (its `time_per_call` repeats `gcs_bench::bench::time_per_call`: the
 /// driver depends on the runtime alone, as generated code does): reads param names, then one line of values per sample, on stdin; prints
 /// one line per sample: `ok NS` then `p NAME X Y`, `v NAME X Y`, `s NAME X` lines and `end`,
 /// or `err NS TEXT`.
@@ -118,7 +118,7 @@ fn main() {
 
 /// Builds the generated solver `code` of the model at `path` and runs it on `sweep`, with the
 /// given branch indices by name, repeating each sample's solve for `budget_ns` (see
-/// `gcs_compiler::bench::Settings`). `Err` says why it could not (the caller then interprets).
+/// `gcs_bench::bench::Settings`). `Err` says why it could not (the caller then interprets).
 pub fn run(
     path: &Path,
     code: &str,

@@ -360,8 +360,8 @@ fn bench(
     dense: bool,
     color: termcolor::ColorChoice,
 ) -> ExitCode {
-    use gcs_compiler::baseline::Linear;
-    use gcs_compiler::bench;
+    use gcs_bench::baseline::Linear;
+    use gcs_bench::bench;
     with_analysis(path, color, |c| {
         let (model, analysis) = (&c.model, &c.analysis);
         let (plan, scope) = gcs_compiler::prune::prune(model, &analysis.plan);

@@ -1,9 +1,14 @@
-//! Golden outputs of every example model, for every view: `check`, `explain`, `plan` and
-//! `solve --json`. Regenerate with `UPDATE_EXPECT=1 cargo test -p gcs-cli --test examples`.
+//! Golden outputs of every example model the analysis covers, for every view: `check`,
+//! `explain`, `plan` and `solve --json` (`tests/goldens/<example>.<view>`). Regenerate them, or
+//! create a new example's, with `UPDATE_EXPECT=1 cargo test -p gcs-cli --test examples`.
 
 use expect_test::expect_file;
 use std::path::Path;
 use std::process::Command;
+
+mod discover {
+    include!("../../../examples/discover.rs");
+}
 
 fn gcs(args: &[&str]) -> (i32, String, String) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
@@ -63,7 +68,7 @@ fn fixed_precision(text: &str) -> String {
     out
 }
 
-/// Every view of a 2d example: all succeed, print nothing on stderr, and match their goldens.
+/// Every view of an example: all succeed, print nothing on stderr, and match their goldens.
 fn views(name: &str) {
     let file = format!("examples/{name}.gcs");
     for (view, args) in [
@@ -89,44 +94,56 @@ fn views(name: &str) {
     }
 }
 
+/// Every view of every example the analysis covers, one thread an example; every example is
+/// checked, and the failures are reported together, each naming its example.
 #[test]
-fn fourbar() {
-    views("fourbar");
+fn every_example_matches_its_goldens_in_every_view() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let examples = discover::analysed(&root, discover::Folder::Examples);
+    let failures: Vec<String> = std::thread::scope(|s| {
+        let runs: Vec<_> = examples
+            .iter()
+            .map(|m| (m, s.spawn(move || views(&m.stem))))
+            .collect();
+        runs.into_iter()
+            .filter_map(|(m, run)| {
+                run.join().err().map(|e| {
+                    let why = e
+                        .downcast_ref::<String>()
+                        .cloned()
+                        .or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string()))
+                        // expect-test prints its diff, naming the golden, and panics
+                        // without a message.
+                        .unwrap_or_else(|| "differs from a golden (the diff is above)".into());
+                    format!("{}: {why}", m.relative())
+                })
+            })
+            .collect()
+    });
+    assert!(
+        failures.is_empty(),
+        "{} of {} examples differ from their goldens:\n{}",
+        failures.len(),
+        examples.len(),
+        failures.join("\n\n")
+    );
 }
 
+/// A golden whose example is gone (or no longer analysed) is stale: remove it with its example.
 #[test]
-fn circle() {
-    views("circle");
-}
-
-#[test]
-fn tenbar() {
-    views("tenbar");
-}
-
-#[test]
-fn slider_crank_2d() {
-    views("slider_crank_2d");
-}
-
-#[test]
-fn crank_rocker() {
-    views("crank_rocker");
-}
-
-#[test]
-fn sixbar() {
-    views("sixbar");
-}
-
-#[test]
-fn jansen_leg() {
-    views("jansen_leg");
-}
-
-#[test]
-fn sketch_profile() {
-    views("sketch_profile");
+fn every_golden_belongs_to_an_example() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let examples = discover::analysed(&root, discover::Folder::Examples);
+    let goldens = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/goldens");
+    for entry in std::fs::read_dir(&goldens).expect("the goldens' folder") {
+        let name = entry.expect("a golden").file_name();
+        let name = name.to_string_lossy();
+        let stem = name.split('.').next().unwrap_or_default();
+        assert!(
+            examples.iter().any(|m| m.stem == stem),
+            "tests/goldens/{name} has no example examples/{stem}.gcs the analysis covers"
+        );
+    }
 }
 
 #[test]

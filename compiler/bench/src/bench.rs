@@ -4,13 +4,13 @@
 //! could build one (it hands in its timings and answers as a [`CompiledRun`]) and the
 //! interpreter otherwise; the baseline is [`crate::baseline`]'s Newton solver, warm-started
 //! from its previous answer as a numeric solver in a sweep is. Every answer of both is re-checked
-//! by [`crate::verify`], so the residuals compare like with like. Branch flips are counted
+//! by [`gcs_compiler::verify`], so the residuals compare like with like. Branch flips are counted
 //! against a continuation: the baseline started from the compiled plan's previous answer and
 //! run to convergence on the next sample lands on the assembly continuous with it.
 
 use crate::baseline::{Baseline, Linear, Method, Options as NewtonOptions};
-use crate::plan::Plan;
-use crate::solution::Solution;
+use gcs_compiler::plan::Plan;
+use gcs_compiler::solution::Solution;
 use gcs_lang::expr::Dim;
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
@@ -104,7 +104,7 @@ pub struct CompiledRun {
     pub kind: &'static str,
     /// Nanoseconds per solve, by sample.
     pub ns: Vec<f64>,
-    /// The solution of each sample, with its residual measured by [`crate::verify`].
+    /// The solution of each sample, with its residual measured by [`gcs_compiler::verify`].
     pub solutions: Vec<Result<Solution, String>>,
 }
 
@@ -152,15 +152,16 @@ pub fn interpreted(
     sweep: &Sweep,
     budget_ns: f64,
 ) -> CompiledRun {
-    let choice = crate::interp::Choice::Given(branches.to_vec());
+    let choice = gcs_compiler::interp::Choice::Given(branches.to_vec());
     let mut ns = Vec::new();
     let mut solutions = Vec::new();
     for params in &sweep.params {
         ns.push(time_per_call(budget_ns, || {
-            std::hint::black_box(crate::interp::run(model, plan, params, &choice).is_ok());
+            std::hint::black_box(gcs_compiler::interp::run(model, plan, params, &choice).is_ok());
         }));
         solutions.push(
-            crate::solve_plan(model, plan, scope, params, branches).map_err(|e| e.to_string()),
+            gcs_compiler::solve_plan(model, plan, scope, params, branches)
+                .map_err(|e| e.to_string()),
         );
     }
     CompiledRun {
@@ -175,7 +176,7 @@ pub fn interpreted(
 pub struct BaselineSide {
     /// Per-solve times, warm-started along the sweep.
     pub timing: Timing,
-    /// The largest residual of its answers, by [`crate::verify`].
+    /// The largest residual of its answers, by [`gcs_compiler::verify`].
     pub max_residual: f64,
     /// Samples where it did not converge.
     pub failures: usize,
@@ -199,7 +200,7 @@ pub struct ErrorPoint {
     pub iterations: usize,
     /// Time of the run, in nanoseconds.
     pub ns: f64,
-    /// Its largest residual, by [`crate::verify`].
+    /// Its largest residual, by [`gcs_compiler::verify`].
     pub residual: f64,
 }
 
@@ -271,11 +272,11 @@ pub fn run(
     compiled: CompiledRun,
     settings: &Settings,
 ) -> Result<Report, String> {
-    let choice = crate::interp::Choice::Given(branches.to_vec());
+    let choice = gcs_compiler::interp::Choice::Given(branches.to_vec());
     // The whole plan's configuration at a sample, to start the baseline's continuation from
     // (the generated solver equals it to 1e-14 on what it computes, as its tests show).
     let plan_config = |params: &[f64]| {
-        crate::interp::run(model, plan, params, &choice)
+        gcs_compiler::interp::run(model, plan, params, &choice)
             .ok()
             .map(|r| r.config)
     };
@@ -301,7 +302,8 @@ pub fn run(
             };
         };
         let mut s = Solution::read(model, &cfg, &all);
-        s.max_residual = crate::verify::max_residual(&crate::verify::residuals(model, &s, params));
+        s.max_residual =
+            gcs_compiler::verify::max_residual(&gcs_compiler::verify::residuals(model, &s, params));
         s
     };
     let compiled_ok: Vec<Option<&Solution>> =

@@ -1,10 +1,10 @@
 //! The numeric baseline (Newton-Raphson and Levenberg-Marquardt on the raw equations) against
-//! the independent verifier and against the compiled plans: every 2d example solved cold from
-//! its sketch, a warm-started four-bar sweep on the plan's `elbow = 0` branch, and a chain of
-//! 200 four-bars on the sparse path.
+//! the independent verifier and against the compiled plans: every example the analysis covers
+//! (found by `examples/discover.rs`) solved cold from its sketch, a warm-started four-bar sweep
+//! on the plan's `elbow = 0` branch, and a chain of 200 four-bars on the sparse path.
 
+use gcs_bench::baseline::{Baseline, Linear, Method, Options, Stop};
 use gcs_compiler::analyse;
-use gcs_compiler::baseline::{Baseline, Linear, Method, Options, Stop};
 use gcs_compiler::solution::Solution;
 use gcs_compiler::verify;
 use gcs_lang::Model;
@@ -18,7 +18,7 @@ fn load_text(name: &str, text: &str) -> Model {
 }
 
 fn load(name: &str) -> Model {
-    let path = format!("{}/../examples/{name}.gcs", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/../../examples/{name}.gcs", env!("CARGO_MANIFEST_DIR"));
     let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("read {path}: {e}"));
     load_text(&path, &String::from_utf8(bytes).expect("utf-8"))
 }
@@ -64,22 +64,17 @@ fn difference(a: &Solution, b: &Solution) -> f64 {
     }
 }
 
-const EXAMPLES: &[&str] = &[
-    "fourbar",
-    "circle",
-    "tenbar",
-    "slider_crank_2d",
-    "crank_rocker",
-    "sixbar",
-    "jansen_leg",
-    "sketch_profile",
-];
+mod discover {
+    include!("../../../examples/discover.rs");
+}
 
 #[test]
 fn every_example_solves_cold_from_its_sketch_and_verifies() {
     let mut report = String::new();
-    for name in EXAMPLES {
-        let model = load(name);
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for example in discover::analysed(&root, discover::Folder::Examples) {
+        let name = example.stem.as_str();
+        let model = load_text(&example.relative(), &example.text);
         let analysis = analyse(&model).expect("analysis");
         let params = model.default_params();
         let branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
@@ -116,7 +111,7 @@ fn every_example_solves_cold_from_its_sketch_and_verifies() {
                     out.iterations,
                     out.max_residual,
                 );
-                if *name == "fourbar" {
+                if name == "fourbar" {
                     assert!(
                         diff <= 1e-9,
                         "fourbar: baseline and plan differ by {diff:e}"
@@ -282,59 +277,6 @@ fn the_trace_records_every_iteration_and_errors_name_what_is_missing() {
     assert!(out.trace.windows(2).all(|w| w[0].0 <= w[1].0));
     let three = load("brick");
     assert!(Baseline::new(&three).is_err());
-}
-
-/// Not a test of speed (those live in the benches): prints per-solve times for the report.
-#[test]
-fn timing_report() {
-    let model = load("fourbar");
-    let theta = param(&model, "theta");
-    let mut params = model.default_params();
-    let mut b = Baseline::new(&model).expect("baseline");
-    let cold = b.start_from_sketch(&params);
-    let mut x = cold.clone();
-    let opts = Options::default();
-    let reps = 2000;
-    let t = std::time::Instant::now();
-    let mut its = 0;
-    for _ in 0..reps {
-        x.copy_from_slice(&cold);
-        its += b.solve(&params, &mut x, &opts).iterations;
-    }
-    let cold_ns = t.elapsed().as_nanos() as f64 / reps as f64;
-    let cold_its = its as f64 / reps as f64;
-    let t = std::time::Instant::now();
-    let mut its = 0;
-    for i in 0..reps {
-        params[theta] = (i % 360) as f64 * 1f64.to_radians();
-        its += b.solve(&params, &mut x, &opts).iterations;
-    }
-    let warm_ns = t.elapsed().as_nanos() as f64 / reps as f64;
-    let warm_its = its as f64 / reps as f64;
-    println!(
-        "fourbar: cold {cold_ns:.0} ns/solve ({cold_its:.1} it), warm 1-degree steps {warm_ns:.0} ns/solve ({warm_its:.1} it)"
-    );
-    for n in [200, 1000] {
-        let model = load_text("chain", &chain(n, 0.5));
-        let mut params = model.default_params();
-        let mut b = Baseline::new(&model).expect("baseline");
-        let mut x = b.start_from_sketch(&params);
-        let t = std::time::Instant::now();
-        let out = b.solve(&params, &mut x, &opts);
-        let cold = t.elapsed();
-        params[0] += 1f64.to_radians();
-        let t = std::time::Instant::now();
-        let warm = b.solve(&params, &mut x, &opts);
-        println!(
-            "chain of {n} four-bars ({} unknowns): cold {:?} ({} it, {:?}), warm {:?} ({} it)",
-            b.unknowns(),
-            cold,
-            out.iterations,
-            out.stop,
-            t.elapsed(),
-            warm.iterations
-        );
-    }
 }
 
 /// The four-bar of `/examples/fourbar.gcs` with every length multiplied by `s` (ground 4,

@@ -7,10 +7,10 @@
 //! magnitude; no panic. On each fixed branch the plan's answers must stay continuous (no flip;
 //! counted against a Newton continuation from the previous answer). The baseline's flips on
 //! the same sweeps are counted and printed, not asserted: they are what the plan avoids.
-//! `cargo test -p gcs-compiler --release --test stress -- --nocapture` prints the table that
+//! `cargo test -p gcs-bench --release --test stress -- --nocapture` prints the table that
 //! docs/BENCHMARKS.md records.
 
-use gcs_compiler::bench::{self, Sweep};
+use gcs_bench::bench::{self, Sweep};
 
 struct Case {
     name: &'static str,

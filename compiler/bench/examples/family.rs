@@ -1,12 +1,12 @@
-//! Prints a member of a generated model family (`gcs_compiler::families`) as `.gcs` source,
+//! Prints a member of a generated model family (`gcs_bench::families`) as `.gcs` source,
 //! for measuring sizes the examples crate does not keep:
 //!
 //! ```sh
-//! cargo run -p gcs-compiler --example family -- fourbar_chain 1024 > fourbar_chain_1024.gcs
+//! cargo run -p gcs-bench --example family -- fourbar_chain 1024 > fourbar_chain_1024.gcs
 //! gcs bench fourbar_chain_1024.gcs --samples 10
 //! ```
 
-use gcs_compiler::families::Family;
+use gcs_bench::families::Family;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {

@@ -4,7 +4,7 @@
 //! analysis would take minutes here in a debug build (it used to scan every pending relation
 //! after each step); this test takes seconds.
 
-use gcs_compiler::families::Family;
+use gcs_bench::families::Family;
 
 /// The model of `n` stages, analysed: (plan steps, branch variables, max residual of a solve
 /// with the sketch's branches).

@@ -14,7 +14,7 @@
 //! the top-level geom with the most DOF (then the first by name) is held at its sketch — the
 //! param-free rule; a model left free to turn about it is solved in the least-squares sense.
 //!
-//! **Equations** are the signed, smooth forms of what [`crate::verify`] measures, one or two
+//! **Equations** are the signed, smooth forms of what [`gcs_compiler::verify`] measures, one or two
 //! per constraint. Choices the language leaves to the geometry (the side of a line or circle a
 //! tangency or a distance is on, internal or external circle tangency) are read from the start
 //! configuration of each solve, as a numeric CAD solver does. Angles are differences of frame
@@ -45,12 +45,12 @@
 //! steering: from a warm start Newton stays on the nearby assembly, from a cold start it lands
 //! where it lands.
 
-use crate::config::{BadSketch, Config};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, SymbolicCholesky};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
+use gcs_compiler::config::{BadSketch, Config};
 use gcs_lang::constraints::ConstraintKind as K;
 use gcs_lang::expr::{ExprId, Exprs};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch, Space};
@@ -1035,7 +1035,7 @@ impl Baseline {
     }
 
     /// The configuration the unknowns `x` describe, to read a
-    /// [`crate::solution::Solution`] and re-check it with [`crate::verify`].
+    /// [`gcs_compiler::solution::Solution`] and re-check it with [`gcs_compiler::verify`].
     pub fn config(&self, params: &[f64], x: &[f64]) -> Result<Config, BadSketch> {
         let mut cfg = Config::from_sketch(&self.model, params)?;
         let mut z = self.z.clone();
