@@ -7,9 +7,10 @@ use super::context::Context;
 use super::facts::{direction_in, point_in};
 use super::names::Namer;
 use super::scopes;
+use super::sketch::dimension_name;
 use super::writer::{float, lit, Writer};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 pub(super) fn params(w: &mut Writer, cx: &Context<'_>) {
     let m = cx.model;
@@ -144,80 +145,158 @@ pub(super) fn defaults(w: &mut Writer) {
     w.line("");
 }
 
-/// The fields of `Solution`, and the reported geoms it returns as literals instead.
-pub(super) struct SolutionFields {
-    /// (name, type), in order.
-    pub(super) fields: Vec<(String, String)>,
-    /// Reported points and vectors the plan never moves and whose sketch is constant.
-    pub(super) constant: HashSet<GeomId>,
+/// The Rust type of a value the solution holds or gives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Ty {
+    Frame,
+    Scalar,
+    Point,
+    Vector,
 }
 
-/// The solution struct and its accessors.
-pub(super) fn solution(w: &mut Writer, cx: &Context<'_>) -> SolutionFields {
-    let m = cx.model;
-    let mut constant = HashSet::new();
-    let mut fields: Vec<(String, String)> = Vec::new(); // (field, type)
-    let mut field_names = Namer::default();
-    let mut frame_field: HashMap<GeomId, String> = HashMap::new();
-    let mut dim_field: HashMap<GeomId, String> = HashMap::new();
-    let mut local_field: HashMap<GeomId, String> = HashMap::new();
-    for g in cx.solved() {
-        let geom = &m.geoms[g];
-        if let Some(value) = cx.constant_value(g) {
-            constant.insert(g);
-            frame_field.insert(g, value);
-            continue;
+impl Ty {
+    fn rust(self) -> &'static str {
+        match self {
+            Ty::Frame => "Frame2",
+            Ty::Scalar => "f64",
+            Ty::Point => "Point2<f64>",
+            Ty::Vector => "Vector2<f64>",
         }
-        let f = field_names.fresh(&geom.name);
-        fields.push((f.clone(), "Frame2".into()));
-        frame_field.insert(g, f);
-        if matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
-            let what = if geom.kind == GeomKind::Circle {
-                "radius"
-            } else {
-                "length"
-            };
-            let f = field_names.fresh(&format!("{}_{what}", geom.name));
-            fields.push((f.clone(), "f64".into()));
-            dim_field.insert(g, f);
-        }
-        for &part in &geom.parts {
-            let p = &m.geoms[part];
-            if matches!(p.owner, Owner::Member(_)) && cx.local_is_param(part) {
-                let f = field_names.fresh(&format!("{}_local", p.name));
-                let ty = if p.kind == GeomKind::Vector {
-                    "Vector2<f64>"
-                } else {
-                    "Point2<f64>"
+    }
+}
+
+/// What a field of `Solution` holds; `solve` initialises it from its local of that.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Holds {
+    /// The frame of top-level geom `g`.
+    Frame(GeomId),
+    /// The dimension of top-level geom `g`: a segment's length, a circle's radius.
+    Dim(GeomId),
+    /// The local coordinates of member `g`, or of marker axis `g`, which params set.
+    Local(GeomId),
+}
+
+/// One field of `Solution`.
+#[derive(Debug)]
+pub(super) struct Field {
+    pub(super) name: String,
+    ty: Ty,
+    pub(super) holds: Holds,
+}
+
+/// The fields of `Solution`, made once and read by the struct, its accessors and the
+/// initialiser at the end of `solve`, so that these agree by construction.
+#[derive(Debug)]
+pub(super) struct Layout {
+    /// In order: for each reported geom, its frame, its dimension, its members' local
+    /// coordinates that params set.
+    pub(super) fields: Vec<Field>,
+    /// Each field's place in `fields`, by what it holds.
+    index: HashMap<Holds, usize>,
+    /// Reported points and vectors the plan never moves and whose sketch is constant: no
+    /// field holds them, their accessor returns this literal.
+    constants: HashMap<GeomId, String>,
+}
+
+impl Layout {
+    pub(super) fn new(cx: &Context<'_>) -> Layout {
+        let m = cx.model;
+        let mut layout = Layout {
+            fields: Vec::new(),
+            index: HashMap::new(),
+            constants: HashMap::new(),
+        };
+        let mut names = Namer::default();
+        let mut add = |layout: &mut Layout, name: &str, ty: Ty, holds: Holds| {
+            layout.index.insert(holds, layout.fields.len());
+            let name = names.fresh(name);
+            layout.fields.push(Field { name, ty, holds });
+        };
+        for g in cx.solved() {
+            let geom = &m.geoms[g];
+            if let Some(value) = cx.constant_value(g) {
+                layout.constants.insert(g, value);
+                continue;
+            }
+            add(&mut layout, &geom.name, Ty::Frame, Holds::Frame(g));
+            if let Some(what) = dimension_name(geom.kind) {
+                let name = format!("{}_{what}", geom.name);
+                add(&mut layout, &name, Ty::Scalar, Holds::Dim(g));
+            }
+            for &part in &geom.parts {
+                let p = &m.geoms[part];
+                if !matches!(p.owner, Owner::Member(_)) || !cx.local_is_param(part) {
+                    continue;
+                }
+                let ty = match p.kind {
+                    GeomKind::Vector => Ty::Vector,
+                    _ => Ty::Point,
                 };
-                fields.push((f.clone(), ty.into()));
-                local_field.insert(part, f.clone());
-                if p.kind == GeomKind::Marker {
-                    if let Some(&ax) = p.parts.first() {
-                        let f = field_names.fresh(&format!("{}_x_local", p.name));
-                        fields.push((f.clone(), "Vector2<f64>".into()));
-                        local_field.insert(ax, f);
-                    }
+                add(
+                    &mut layout,
+                    &format!("{}_local", p.name),
+                    ty,
+                    Holds::Local(part),
+                );
+                if let (GeomKind::Marker, Some(&ax)) = (p.kind, p.parts.first()) {
+                    let name = format!("{}_x_local", p.name);
+                    add(&mut layout, &name, Ty::Vector, Holds::Local(ax));
                 }
             }
         }
+        layout
     }
+
+    /// Whether reported geom `g` is a constant, which no field holds.
+    pub(super) fn is_constant(&self, g: GeomId) -> bool {
+        self.constants.contains_key(&g)
+    }
+
+    /// `self.{field}` of the field that holds `holds`, if one does.
+    fn read(&self, holds: Holds) -> Option<String> {
+        let field = &self.fields[*self.index.get(&holds)?];
+        Some(format!("self.{}", field.name))
+    }
+}
+
+/// An accessor of `Solution`: one value by its dotted name in the model.
+struct Accessor {
+    /// The dotted name.
+    name: String,
+    doc: String,
+    ty: Ty,
+    body: String,
+}
+
+impl Accessor {
+    fn new(name: &str, doc: String, ty: Ty, body: String) -> Accessor {
+        Accessor {
+            name: name.to_string(),
+            doc,
+            ty,
+            body,
+        }
+    }
+}
+
+/// The solution struct and its accessors.
+pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     w.line(
         "/// The solved configuration of every geom the outputs need: frames and dimensions, read",
     );
     w.line("/// through accessors named after the model.");
-    w.line(&scopes::derives(fields.len(), false));
-    if fields.is_empty() {
+    w.line(&scopes::derives(layout.fields.len(), false));
+    if layout.fields.is_empty() {
         w.line("pub struct Solution {}");
     } else {
         w.open("pub struct Solution {");
-        for (f, ty) in &fields {
-            w.line(&format!("{f}: {ty},"));
+        for f in &layout.fields {
+            w.line(&format!("{}: {},", f.name, f.ty.rust()));
         }
         w.close("}");
     }
     w.line("");
-    let names: Vec<String> = fields.iter().map(|(f, _)| f.clone()).collect();
+    let names: Vec<String> = layout.fields.iter().map(|f| f.name.clone()).collect();
     scopes::field_by_field_eq(w, "Solution", &names, false);
     w.line("#[allow(dead_code)]");
     w.open("impl Solution {");
@@ -225,168 +304,36 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>) -> SolutionFields {
     for reserved in ["points", "vectors", "scalars"] {
         accessors.reserve(reserved);
     }
-    let mut all_points: Vec<(String, String)> = Vec::new();
-    let mut all_vectors: Vec<(String, String)> = Vec::new();
-    let mut all_scalars: Vec<(String, String)> = Vec::new();
+    let mut by_ty: HashMap<Ty, Vec<(String, String)>> = HashMap::new();
     for g in cx.solved() {
-        let geom = &m.geoms[g];
-        let frame = format!("self.{}", frame_field[&g]);
-        let mut items: Vec<(String, String, String, String)> = Vec::new(); // (name, doc, type, body)
-        match geom.kind {
-            GeomKind::Point if constant.contains(&g) => items.push((
-                geom.name.clone(),
-                format!("Point `{}`, which the solve never moves.", geom.name),
-                "Point2<f64>".into(),
-                frame_field[&g].clone(),
-            )),
-            GeomKind::Vector if constant.contains(&g) => items.push((
-                geom.name.clone(),
-                format!("Vector `{}`, which the solve never moves.", geom.name),
-                "Vector2<f64>".into(),
-                frame_field[&g].clone(),
-            )),
-            GeomKind::Body => {
-                items.push((
-                    geom.name.clone(),
-                    format!("The frame of body `{}`.", geom.name),
-                    "Frame2".into(),
-                    frame.clone(),
-                ));
-            }
-            GeomKind::Point => items.push((
-                geom.name.clone(),
-                format!("Point `{}`.", geom.name),
-                "Point2<f64>".into(),
-                format!("{frame}.origin"),
-            )),
-            GeomKind::Vector => items.push((
-                geom.name.clone(),
-                format!("Vector `{}`.", geom.name),
-                "Vector2<f64>".into(),
-                format!("{frame}.x_axis()"),
-            )),
-            GeomKind::Circle => {
-                items.push((
-                    format!("{}.radius", geom.name),
-                    format!("The radius of `{}`.", geom.name),
-                    "f64".into(),
-                    format!("self.{}", dim_field[&g]),
-                ));
-            }
-            GeomKind::Segment => {
-                items.push((
-                    format!("{}.length", geom.name),
-                    format!("The length of `{}`.", geom.name),
-                    "f64".into(),
-                    format!("self.{}", dim_field[&g]),
-                ));
-            }
-            _ => {}
-        }
-        for &part in &geom.parts {
-            let p = &m.geoms[part];
-            match (p.owner, p.kind) {
-                (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
-                    items.push((
-                        p.name.clone(),
-                        format!("Point `{}`.", p.name),
-                        "Point2<f64>".into(),
-                        match local_field.get(&part) {
-                            Some(f) => format!("{frame}.point_to_global(&self.{f})"),
-                            None => {
-                                let at = cx.literal_coords(part, true);
-                                point_in(&frame, &format!("{frame}.origin"), at)
-                            }
-                        },
-                    ));
-                    if p.kind == GeomKind::Marker {
-                        if let Some(&ax) = p.parts.first() {
-                            let n = &m.geoms[ax].name;
-                            items.push((
-                                n.clone(),
-                                format!("Axis `{n}`."),
-                                "Vector2<f64>".into(),
-                                match local_field.get(&ax) {
-                                    Some(f) => format!("{frame}.vector_to_global(&self.{f})"),
-                                    None => direction_in(&frame, cx.literal_coords(ax, false)),
-                                },
-                            ));
-                        }
-                    }
-                }
-                (Owner::Member(_), GeomKind::Vector) => {
-                    items.push((
-                        p.name.clone(),
-                        format!("Vector `{}`.", p.name),
-                        "Vector2<f64>".into(),
-                        match local_field.get(&part) {
-                            Some(f) => format!("{frame}.vector_to_global(&self.{f})"),
-                            None => direction_in(&frame, cx.literal_coords(part, false)),
-                        },
-                    ));
-                }
-                (Owner::Part(_, Part::Start | Part::Center), _) => items.push((
-                    p.name.clone(),
-                    format!("Point `{}`.", p.name),
-                    "Point2<f64>".into(),
-                    format!("{frame}.origin"),
-                )),
-                (Owner::Part(_, Part::End), _) => items.push((
-                    p.name.clone(),
-                    format!("Point `{}`.", p.name),
-                    "Point2<f64>".into(),
-                    format!("{frame}.origin + {frame}.x_axis() * self.{}", dim_field[&g]),
-                )),
-                (Owner::Part(_, Part::Dir), _) => items.push((
-                    p.name.clone(),
-                    format!("Direction `{}`.", p.name),
-                    "Vector2<f64>".into(),
-                    format!("{frame}.x_axis()"),
-                )),
-                (Owner::Part(_, Part::BasePoint), _) => {
-                    // The foot of the perpendicular from the first sketch point.
-                    if let Sketch::Line { from, .. } = &geom.sketch {
-                        if from.iter().all(|&e| m.exprs.is_constant(e)) {
-                            let s = cx.point_lit(from);
-                            items.push((p.name.clone(), format!("Point `{}`: the foot of the perpendicular from the line's first sketch point.", p.name), "Point2<f64>".into(),
-                                format!("{frame}.origin + {frame}.x_axis() * ({s} - {frame}.origin).dot(&{frame}.x_axis())")));
-                        }
-                    }
-                }
-                _ => {}
-            }
-        }
-        for (name, doc, ty, body) in items {
-            let accessor = accessors.fresh(&name);
-            w.line(&format!("/// {doc}"));
+        for a in geom_accessors(cx, layout, g) {
+            let accessor = accessors.fresh(&a.name);
+            w.line(&format!("/// {}", a.doc));
             w.line("#[inline]");
-            w.open(&format!("pub fn {accessor}(&self) -> {ty} {{"));
-            w.line(&body);
+            w.open(&format!("pub fn {accessor}(&self) -> {} {{", a.ty.rust()));
+            w.line(&a.body);
             w.close("}");
             w.line("");
-            match ty.as_str() {
-                "Point2<f64>" => all_points.push((name, accessor)),
-                "Vector2<f64>" => all_vectors.push((name, accessor)),
-                "f64" => all_scalars.push((name, accessor)),
-                _ => {}
-            }
+            by_ty.entry(a.ty).or_default().push((a.name, accessor));
         }
     }
     // Every value by its dotted name, for callers that iterate (and for the test driver).
-    for (what, ty, list) in [
-        ("point", "Point2<f64>", &all_points),
-        ("vector", "Vector2<f64>", &all_vectors),
-        ("scalar", "f64", &all_scalars),
+    for (what, ty) in [
+        ("point", Ty::Point),
+        ("vector", Ty::Vector),
+        ("scalar", Ty::Scalar),
     ] {
+        let list = by_ty.get(&ty).map_or(&[][..], Vec::as_slice);
         w.line(&format!(
             "/// Every {what} of the solution, by its dotted name in the model."
         ));
         w.open(&format!(
-            "pub fn {what}s(&self) -> [(&'static str, {ty}); {}] {{",
+            "pub fn {what}s(&self) -> [(&'static str, {}); {}] {{",
+            ty.rust(),
             list.len()
         ));
         w.open("[");
-        for (name, accessor) in list.iter() {
+        for (name, accessor) in list {
             w.line(&format!("({}, self.{accessor}()),", lit(name)));
         }
         w.close("]");
@@ -398,5 +345,116 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>) -> SolutionFields {
     }
     w.close("}");
     w.line("");
-    SolutionFields { fields, constant }
+}
+
+/// The accessors of reported top-level geom `g` and of its members and parts, in model order.
+fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor> {
+    let m = cx.model;
+    let geom = &m.geoms[g];
+    let name = &geom.name;
+    if let Some(value) = layout.constants.get(&g) {
+        let (what, ty) = match geom.kind {
+            GeomKind::Vector => ("Vector", Ty::Vector),
+            _ => ("Point", Ty::Point),
+        };
+        let doc = format!("{what} `{name}`, which the solve never moves.");
+        return vec![Accessor::new(name, doc, ty, value.clone())];
+    }
+    let Some(frame) = layout.read(Holds::Frame(g)) else {
+        return Vec::new();
+    };
+    let dim = layout.read(Holds::Dim(g)).unwrap_or_default();
+    let mut items = Vec::new();
+    match geom.kind {
+        GeomKind::Body => items.push(Accessor::new(
+            name,
+            format!("The frame of body `{name}`."),
+            Ty::Frame,
+            frame.clone(),
+        )),
+        GeomKind::Point => items.push(Accessor::new(
+            name,
+            format!("Point `{name}`."),
+            Ty::Point,
+            format!("{frame}.origin"),
+        )),
+        GeomKind::Vector => items.push(Accessor::new(
+            name,
+            format!("Vector `{name}`."),
+            Ty::Vector,
+            format!("{frame}.x_axis()"),
+        )),
+        GeomKind::Circle => items.push(Accessor::new(
+            &format!("{name}.radius"),
+            format!("The radius of `{name}`."),
+            Ty::Scalar,
+            dim.clone(),
+        )),
+        GeomKind::Segment => items.push(Accessor::new(
+            &format!("{name}.length"),
+            format!("The length of `{name}`."),
+            Ty::Scalar,
+            dim.clone(),
+        )),
+        _ => {}
+    }
+    // A member's position or direction from its local coordinates: a field's when params set
+    // them, else the literal.
+    let point = |f: GeomId| match layout.read(Holds::Local(f)) {
+        Some(local) => format!("{frame}.point_to_global(&{local})"),
+        None => point_in(
+            &frame,
+            &format!("{frame}.origin"),
+            cx.literal_coords(f, true),
+        ),
+    };
+    let direction = |f: GeomId| match layout.read(Holds::Local(f)) {
+        Some(local) => format!("{frame}.vector_to_global(&{local})"),
+        None => direction_in(&frame, cx.literal_coords(f, false)),
+    };
+    for &part in &geom.parts {
+        let p = &m.geoms[part];
+        let pname = &p.name;
+        let point_doc = format!("Point `{pname}`.");
+        match (p.owner, p.kind) {
+            (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
+                items.push(Accessor::new(pname, point_doc, Ty::Point, point(part)));
+                if let (GeomKind::Marker, Some(&ax)) = (p.kind, p.parts.first()) {
+                    let n = &m.geoms[ax].name;
+                    let doc = format!("Axis `{n}`.");
+                    items.push(Accessor::new(n, doc, Ty::Vector, direction(ax)));
+                }
+            }
+            (Owner::Member(_), GeomKind::Vector) => {
+                let doc = format!("Vector `{pname}`.");
+                items.push(Accessor::new(pname, doc, Ty::Vector, direction(part)));
+            }
+            (Owner::Part(_, Part::Start | Part::Center), _) => {
+                let body = format!("{frame}.origin");
+                items.push(Accessor::new(pname, point_doc, Ty::Point, body));
+            }
+            (Owner::Part(_, Part::End), _) => {
+                let body = format!("{frame}.origin + {frame}.x_axis() * {dim}");
+                items.push(Accessor::new(pname, point_doc, Ty::Point, body));
+            }
+            (Owner::Part(_, Part::Dir), _) => {
+                let doc = format!("Direction `{pname}`.");
+                let body = format!("{frame}.x_axis()");
+                items.push(Accessor::new(pname, doc, Ty::Vector, body));
+            }
+            (Owner::Part(_, Part::BasePoint), _) => {
+                // The foot of the perpendicular from the first sketch point.
+                if let Sketch::Line { from, .. } = &geom.sketch {
+                    if from.iter().all(|&e| m.exprs.is_constant(e)) {
+                        let s = cx.point_lit(from);
+                        let doc = format!("Point `{pname}`: the foot of the perpendicular from the line's first sketch point.");
+                        let body = format!("{frame}.origin + {frame}.x_axis() * ({s} - {frame}.origin).dot(&{frame}.x_axis())");
+                        items.push(Accessor::new(pname, doc, Ty::Point, body));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    items
 }

@@ -45,8 +45,9 @@ pub fn generate(model: &Model, analysis: &Analysis) -> String {
     api::params(&mut w, &cx);
     api::branches(&mut w, &cx);
     api::defaults(&mut w);
-    let solution = api::solution(&mut w, &cx);
-    solve::solve(&mut w, &cx, &solution);
+    let layout = api::Layout::new(&cx);
+    api::solution(&mut w, &cx, &layout);
+    solve::solve(&mut w, &cx, &layout);
     w.out
 }
 

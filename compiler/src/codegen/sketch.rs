@@ -8,6 +8,16 @@ use super::writer::float;
 use gcs_lang::expr::ExprId;
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
 
+/// The word for a geom kind's dimension (`length`, `radius`), which its locals and fields are
+/// named after; `None` for a kind without one.
+pub(super) fn dimension_name(kind: GeomKind) -> Option<&'static str> {
+    match kind {
+        GeomKind::Segment => Some("length"),
+        GeomKind::Circle => Some("radius"),
+        _ => None,
+    }
+}
+
 impl Context<'_> {
     /// Whether a member's local coordinates depend on params (then the solution stores them).
     pub(super) fn local_is_param(&self, g: GeomId) -> bool {

@@ -3,14 +3,15 @@
 //! it satisfies, put in blocks when long (see `scopes`), and the `Ok(Solution { .. })`. What
 //! each step writes is in `steps`.
 
-use super::api::SolutionFields;
+use super::api::{Holds, Layout};
 use super::context::Context;
 use super::facts::Facts;
 use super::names::Namer;
 use super::scopes::{self, Binding};
+use super::sketch::dimension_name;
 use super::writer::{field_init, lit, Writer};
 use crate::plan::{Op, Reg};
-use gcs_lang::model::{GeomId, GeomKind, Owner, Sketch};
+use gcs_lang::model::{GeomId, Owner, Sketch};
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 
@@ -42,7 +43,7 @@ pub(super) struct Solve<'a> {
 }
 
 /// Writes `solve`.
-pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, solution: &SolutionFields) {
+pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     let mut names = Namer::default();
     for reserved in ["params", "branches", "defaults", "tol", "solution"] {
         names.reserve(reserved);
@@ -58,12 +59,12 @@ pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, solution: &SolutionFields)
         frame_reads: RefCell::new(HashSet::new()),
         frame_writes: HashSet::new(),
     };
-    s.write(w, solution);
+    s.write(w, layout);
 }
 
 impl Solve<'_> {
     /// `solve`: entry checks, the sketch, the tolerance, the steps and the solution.
-    fn write(&mut self, w: &mut Writer, solution: &SolutionFields) {
+    fn write(&mut self, w: &mut Writer, layout: &Layout) {
         w.line("/// Solves the model: the assembly plan's steps, in order. Never panics, allocates nothing.");
         w.line("///");
         w.line("/// # Errors");
@@ -85,9 +86,7 @@ impl Solve<'_> {
             .model
             .top_level()
             .map(|(id, _)| id)
-            .filter(|id| {
-                (solved.contains(id) && !solution.constant.contains(id)) || self.cx.touched(*id)
-            })
+            .filter(|id| (solved.contains(id) && !layout.is_constant(*id)) || self.cx.touched(*id))
             .collect();
         let mut decls = Vec::new();
         for &g in &worked {
@@ -99,7 +98,7 @@ impl Solve<'_> {
             indent: w.indent,
         };
         let groups = self.steps_in_groups(&mut body);
-        self.solution_init(&mut body, &solved, solution);
+        self.solution_init(&mut body, layout);
         // Declarations waited for the steps: a frame the code never reads or moves is left
         // out, and only a moved one is `mut`.
         let bindings: Vec<Binding> = decls
@@ -158,12 +157,7 @@ impl Solve<'_> {
         ));
         self.facts.frames.insert(g, facts);
         self.frames.insert(g, name);
-        if matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
-            let what = if geom.kind == GeomKind::Circle {
-                "radius"
-            } else {
-                "length"
-            };
+        if let Some(what) = dimension_name(geom.kind) {
             let dname = self.names.fresh(&format!("{}_{what}", geom.name));
             if self.cx.dim_set_before_read(g) {
                 // Set once by the plan before anything reads it: declared there.
@@ -292,38 +286,20 @@ impl Solve<'_> {
             .collect()
     }
 
-    /// `Ok(Solution { .. })`.
-    fn solution_init(&mut self, w: &mut Writer, solved: &[GeomId], solution: &SolutionFields) {
-        let m = self.cx.model;
+    /// `Ok(Solution { .. })`: each field from the local of what it holds.
+    fn solution_init(&mut self, w: &mut Writer, layout: &Layout) {
         w.line("");
         w.open("Ok(Solution {");
-        let mut field_iter = solution.fields.iter();
-        for &g in solved {
-            if solution.constant.contains(&g) {
-                continue;
-            }
-            if let Some((f, _)) = field_iter.next() {
-                self.frame_reads.borrow_mut().insert(g);
-                w.line(&field_init(f, &self.frames[&g]));
-            }
-            if self.dims.contains_key(&g) {
-                if let Some((f, _)) = field_iter.next() {
-                    w.line(&field_init(f, &self.dims[&g]));
+        for field in &layout.fields {
+            let local = match field.holds {
+                Holds::Frame(g) => {
+                    self.frame_reads.borrow_mut().insert(g);
+                    &self.frames[&g]
                 }
-            }
-            for &part in &m.geoms[g].parts {
-                let p = &m.geoms[part];
-                if matches!(p.owner, Owner::Member(_)) && self.cx.local_is_param(part) {
-                    if let Some((f, _)) = field_iter.next() {
-                        w.line(&field_init(f, &self.locals[&part]));
-                    }
-                    if p.kind == GeomKind::Marker {
-                        if let (Some(&ax), Some((f, _))) = (p.parts.first(), field_iter.next()) {
-                            w.line(&field_init(f, &self.locals[&ax]));
-                        }
-                    }
-                }
-            }
+                Holds::Dim(g) => &self.dims[&g],
+                Holds::Local(f) => &self.locals[&f],
+            };
+            w.line(&field_init(&field.name, local));
         }
         w.close("})");
     }
