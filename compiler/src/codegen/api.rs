@@ -4,7 +4,7 @@
 //! a caller touches is here; how `solve` computes it is not.
 
 use super::context::Context;
-use super::facts::{direction_in, point_in};
+use super::facts::{direction_in, point_in, Value};
 use super::names::Namer;
 use super::scopes;
 use super::sketch::dimension_name;
@@ -195,7 +195,7 @@ pub(super) struct Layout {
     index: HashMap<Holds, usize>,
     /// Reported points and vectors the plan never moves and whose sketch is constant: no
     /// field holds them, their accessor returns this literal.
-    constants: HashMap<GeomId, String>,
+    constants: HashMap<GeomId, Value>,
 }
 
 impl Layout {
@@ -340,9 +340,7 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         w.close("}");
         w.line("");
     }
-    if w.out.ends_with("\n\n") {
-        w.out.pop();
-    }
+    w.unblank();
     w.close("}");
     w.line("");
 }
@@ -358,7 +356,7 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
             _ => ("Point", Ty::Point),
         };
         let doc = format!("{what} `{name}`, which the solve never moves.");
-        return vec![Accessor::new(name, doc, ty, value.clone())];
+        return vec![Accessor::new(name, doc, ty, value.code())];
     }
     let Some(frame) = layout.read(Holds::Frame(g)) else {
         return Vec::new();
@@ -402,11 +400,10 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
     // them, else the literal.
     let point = |f: GeomId| match layout.read(Holds::Local(f)) {
         Some(local) => format!("{frame}.point_to_global(&{local})"),
-        None => point_in(
-            &frame,
-            &format!("{frame}.origin"),
-            cx.literal_coords(f, true),
-        ),
+        None => {
+            let origin = Value::Expr(format!("{frame}.origin"));
+            point_in(&frame, &origin, cx.literal_coords(f, true)).code()
+        }
     };
     let direction = |f: GeomId| match layout.read(Holds::Local(f)) {
         Some(local) => format!("{frame}.vector_to_global(&{local})"),

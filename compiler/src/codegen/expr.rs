@@ -3,7 +3,8 @@
 //! precedence needs; a constant one is written as its value.
 
 use super::context::Context;
-use super::writer::float;
+use super::facts::same_bits;
+use super::writer::{float, typed_float};
 use gcs_lang::expr::{ExprId, ExprNode, Func};
 use gcs_lang::syntax::{AngleUnit, BinaryOp};
 
@@ -82,14 +83,10 @@ impl Context<'_> {
 
     /// The expression as the receiver of a method call: an atom, and a typed literal.
     fn receiver(&self, e: ExprId) -> String {
-        let (code, prec) = self.expr_prec(e);
-        if prec < Prec::Atom {
-            return format!("({code})");
+        if let Some(v) = self.constant(e).filter(|v| v.is_nan() || *v >= 0.0) {
+            return typed_float(v);
         }
-        if code.starts_with(|c: char| c.is_ascii_digit()) {
-            return format!("{code}_f64");
-        }
-        code
+        self.wrap(e, Prec::Atom)
     }
 
     /// `Point2::new(x, y)` of a sketch's coordinates (a missing one is zero).
@@ -107,6 +104,56 @@ impl Context<'_> {
     fn coords_code(&self, c: &[ExprId]) -> (String, String) {
         let at = |i: usize| c.get(i).map_or("0.0".into(), |&e| self.expr(e));
         (at(0), at(1))
+    }
+
+    /// Whether two sketch coordinates (a missing one is zero) are one value for any params:
+    /// equal constants, bit for bit, or the same expression of params.
+    pub(super) fn same_coordinate(&self, a: Option<ExprId>, b: Option<ExprId>) -> bool {
+        match (a, b) {
+            (Some(a), Some(b)) => self.same_expr(a, b),
+            (Some(e), None) | (None, Some(e)) => {
+                self.constant(e).is_some_and(|v| same_bits(v, 0.0))
+            }
+            (None, None) => true,
+        }
+    }
+
+    /// Whether two expressions are one value for any params: equal constants (bit for bit),
+    /// or the same operations on the same params and such expressions.
+    fn same_expr(&self, a: ExprId, b: ExprId) -> bool {
+        let m = self.model;
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => return same_bits(x, y),
+            (None, None) => {}
+            _ => return false,
+        }
+        let same = |a: &ExprId, b: &ExprId| self.same_expr(*a, *b);
+        match (m.exprs.node(a), m.exprs.node(b)) {
+            (ExprNode::Unit(AngleUnit::Rad, x), _) => self.same_expr(*x, b),
+            (_, ExprNode::Unit(AngleUnit::Rad, y)) => self.same_expr(a, *y),
+            (ExprNode::Param(p), ExprNode::Param(q)) => p == q,
+            (ExprNode::Neg(x), ExprNode::Neg(y))
+            | (ExprNode::Unit(AngleUnit::Deg, x), ExprNode::Unit(AngleUnit::Deg, y)) => same(x, y),
+            (ExprNode::Binary(o, x1, x2), ExprNode::Binary(p, y1, y2)) => {
+                o == p && same(x1, y1) && same(x2, y2)
+            }
+            (ExprNode::Call(f, x1, x2), ExprNode::Call(g, y1, y2)) => {
+                f == g
+                    && same(x1, y1)
+                    && match (x2, y2) {
+                        (Some(x), Some(y)) => same(x, y),
+                        (None, None) => true,
+                        _ => false,
+                    }
+            }
+            _ => false,
+        }
+    }
+
+    /// The value of an expression without params.
+    fn constant(&self, e: ExprId) -> Option<f64> {
+        let exprs = &self.model.exprs;
+        exprs.is_constant(e).then(|| exprs.eval(e, &[]))
     }
 }
 

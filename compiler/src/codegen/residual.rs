@@ -15,6 +15,8 @@ impl Solve<'_> {
             .value
             .map_or("0.0".to_string(), |e| self.cx.wrap(e, Prec::Product));
         let kind = |g: GeomId| m.geoms[g].kind;
+        let point_code = |g: GeomId| self.point_value(g).code();
+        let dir_code = |g: GeomId| self.dir_value(g).code();
         let part = |g, p| crate::analysis::relation::part(m, g, p).unwrap_or(g);
         let pt = |g: GeomId| {
             let g = if kind(g) == GeomKind::Circle {
@@ -22,7 +24,7 @@ impl Solve<'_> {
             } else {
                 g
             };
-            self.point_code(g)
+            point_code(g)
         };
         let dir = |g: GeomId| {
             let g = if matches!(kind(g), GeomKind::Line | GeomKind::Segment) {
@@ -30,13 +32,13 @@ impl Solve<'_> {
             } else {
                 g
             };
-            self.dir_code(g)
+            dir_code(g)
         };
         let line = |g: GeomId| -> (String, String) {
             match kind(g) {
-                GeomKind::Segment => (self.point_code(part(g, Part::Start)), dir(g)),
-                GeomKind::Marker => (self.point_code(g), self.dir_code(part(g, Part::AxisX))),
-                _ => (self.point_code(g), dir(g)),
+                GeomKind::Segment => (point_code(part(g, Part::Start)), dir(g)),
+                GeomKind::Marker => (point_code(g), dir_code(part(g, Part::AxisX))),
+                _ => (point_code(g), dir(g)),
             }
         };
         let radius = |g: GeomId| self.dims.get(&g).cloned().unwrap_or_else(|| "0.0".into());

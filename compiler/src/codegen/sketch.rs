@@ -3,7 +3,7 @@
 //! computed here the way the interpreter's configuration computes them, to the bit.
 
 use super::context::Context;
-use super::facts::{FrameFacts, Origin};
+use super::facts::{FrameFacts, Value};
 use super::writer::float;
 use gcs_lang::expr::ExprId;
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
@@ -46,7 +46,7 @@ impl Context<'_> {
 
     /// The literal value of a reported point or vector that stays where its constant sketch
     /// puts it (a fixed reference, typically), computed as the solve's sketch frame would be.
-    pub(super) fn constant_value(&self, g: GeomId) -> Option<String> {
+    pub(super) fn constant_value(&self, g: GeomId) -> Option<Value> {
         let m = self.model;
         let geom = &m.geoms[g];
         if self.moved(g) {
@@ -55,25 +55,24 @@ impl Context<'_> {
         let value = |c: &[ExprId], i: usize| c.get(i).map(|&e| m.exprs.eval(e, &[]));
         match (&geom.kind, &geom.sketch) {
             (GeomKind::Point, Sketch::Point(c)) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
-                Some(format!(
-                    "Point2::new({}, {})",
-                    float(value(c, 0)?),
-                    float(value(c, 1)?)
-                ))
+                Some(Value::Point(value(c, 0)?, value(c, 1)?))
             }
             (GeomKind::Vector, Sketch::Vector(c)) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
                 let (cos, sin) = self.constant_direction(c);
-                Some(format!("Vector2::new({}, {})", float(cos), float(sin)))
+                Some(Value::Vector(cos, sin))
             }
             _ => None,
         }
     }
 
     /// A member's local coordinates as a literal (constant sketch).
-    pub(super) fn local_literal(&self, g: GeomId, point: bool) -> String {
+    pub(super) fn local_literal(&self, g: GeomId, point: bool) -> Value {
         let (x, y) = self.literal_coords(g, point);
-        let kind = if point { "Point2" } else { "Vector2" };
-        format!("{kind}::new({}, {})", float(x), float(y))
+        if point {
+            Value::Point(x, y)
+        } else {
+            Value::Vector(x, y)
+        }
     }
 
     /// The constant sketch of a member's local coordinates; a vector normalised exactly as the
@@ -121,14 +120,15 @@ impl Context<'_> {
         (0..2).find(|&i| zero(i))
     }
 
-    /// A point's constant coordinates, when every one is a constant.
-    pub(super) fn point_value(&self, c: &[ExprId]) -> Option<(f64, f64)> {
+    /// A point of the sketch: a literal when every coordinate is a constant (a missing one is
+    /// zero), else the expressions params give it.
+    fn sketch_point(&self, c: &[ExprId]) -> Value {
         let m = self.model;
-        if !c.iter().all(|&e| m.exprs.is_constant(e)) {
-            return None;
+        if c.iter().all(|&e| m.exprs.is_constant(e)) {
+            let v = |i: usize| c.get(i).map_or(0.0, |&e| m.exprs.eval(e, &[]));
+            return Value::Point(v(0), v(1));
         }
-        let v = |i: usize| c.get(i).map_or(0.0, |&e| m.exprs.eval(e, &[]));
-        Some((v(0), v(1)))
+        Value::Sketched([c.first().copied(), c.get(1).copied()], self.point_lit(c))
     }
 
     /// The sketch value of a segment's length or a circle's radius, as code.
@@ -149,76 +149,75 @@ impl Context<'_> {
     /// that both agree to the last bits: no rotation, a direction, or an angle.
     pub(super) fn sketch_frame(&self, g: GeomId) -> (String, FrameFacts) {
         let m = self.model;
-        let at = |origin: String, identity: bool, value: Option<(f64, f64)>| {
-            let facts = FrameFacts {
-                identity,
-                origin: Some(
-                    value.map_or(Origin::Code(origin.clone()), |(x, y)| Origin::Literal(x, y)),
-                ),
-            };
-            (origin, facts)
+        let facts = |identity: bool, origin: Value| FrameFacts {
+            identity,
+            origin: Some(origin),
         };
+        let zero = || Value::Point(0.0, 0.0);
         match &m.geoms[g].sketch {
             Sketch::Point(c) | Sketch::Circle { center: c, .. } => {
-                let (o, facts) = at(self.point_lit(c), true, self.point_value(c));
-                (format!("Frame2::at({o})"), facts)
+                let origin = self.sketch_point(c);
+                (
+                    format!("Frame2::at({})", origin.code()),
+                    facts(true, origin),
+                )
             }
             Sketch::Vector(c) if c.iter().all(|&e| m.exprs.is_constant(e)) => {
                 let (cos, sin) = self.constant_direction(c);
                 let identity = (cos, sin) == (1.0, 0.0);
-                let (_, facts) = at("Point2::origin()".into(), identity, Some((0.0, 0.0)));
-                if identity {
-                    ("Frame2::at(Point2::origin())".to_string(), facts)
+                let ctor = if identity {
+                    "Frame2::at(Point2::origin())".to_string()
                 } else {
-                    let ctor = format!(
+                    format!(
                         "Frame2::from_cos_sin(Point2::origin(), {}, {})",
                         float(cos),
                         float(sin)
-                    );
-                    (ctor, facts)
-                }
+                    )
+                };
+                (ctor, facts(identity, zero()))
             }
             Sketch::Vector(c) => {
-                let (_, facts) = at("Point2::origin()".into(), false, Some((0.0, 0.0)));
                 let ctor = format!("Frame2::along(Point2::origin(), {})", self.vector_lit(c));
-                (ctor, facts)
+                (ctor, facts(false, zero()))
             }
             Sketch::Line { from, to } | Sketch::Segment { from, to } => {
-                let (a, facts) = at(self.point_lit(from), false, self.point_value(from));
-                let b = self.point_lit(to);
-                (format!("Frame2::along({a}, {b} - {a})"), facts)
+                let origin = self.sketch_point(from);
+                let (a, b) = (origin.code(), self.point_lit(to));
+                (
+                    format!("Frame2::along({a}, {b} - {a})"),
+                    facts(false, origin),
+                )
             }
             Sketch::Body {
                 at: place, angle, ..
             } => {
-                let (origin, value) = match place {
-                    Some(c) => (self.point_lit(c), self.point_value(c)),
-                    None => ("Point2::origin()".into(), Some((0.0, 0.0))),
+                let (code, origin) = match place {
+                    Some(c) => {
+                        let origin = self.sketch_point(c);
+                        (origin.code(), origin)
+                    }
+                    None => ("Point2::origin()".to_string(), zero()),
                 };
                 let angle = angle.map(|e| match m.exprs.is_constant(e) {
                     true => Ok(m.exprs.eval(e, &[])),
                     false => Err(e),
                 });
-                let identity = matches!(angle, None | Some(Ok(0.0)));
-                let (origin, facts) = at(origin, identity, value);
-                let ctor = match angle {
-                    None | Some(Ok(0.0)) => format!("Frame2::at({origin})"),
+                let (ctor, identity) = match angle {
+                    None | Some(Ok(0.0)) => (format!("Frame2::at({code})"), true),
                     Some(Ok(a)) => {
                         let (sin, cos) = a.sin_cos();
-                        format!(
-                            "Frame2::from_cos_sin({origin}, {}, {})",
+                        let ctor = format!(
+                            "Frame2::from_cos_sin({code}, {}, {})",
                             float(cos),
                             float(sin)
-                        )
+                        );
+                        (ctor, false)
                     }
-                    Some(Err(e)) => format!("Frame2::new({origin}, {})", self.expr(e)),
+                    Some(Err(e)) => (format!("Frame2::new({code}, {})", self.expr(e)), false),
                 };
-                (ctor, facts)
+                (ctor, facts(identity, origin))
             }
-            _ => {
-                let (_, facts) = at("Point2::origin()".into(), true, Some((0.0, 0.0)));
-                ("Frame2::at(Point2::origin())".into(), facts)
-            }
+            _ => ("Frame2::at(Point2::origin())".into(), facts(true, zero())),
         }
     }
 

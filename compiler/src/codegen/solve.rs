@@ -306,10 +306,6 @@ impl Solve<'_> {
 
     /// The code of register `r`.
     pub(super) fn r(&self, r: Reg) -> String {
-        self.facts
-            .regs
-            .get(&r)
-            .cloned()
-            .unwrap_or_else(|| "f64::NAN".into())
+        self.facts.value(r).code()
     }
 }

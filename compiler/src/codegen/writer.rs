@@ -28,6 +28,12 @@ impl Writer {
         self.indent = self.indent.saturating_sub(1);
         self.line(text);
     }
+    /// Takes back the last blank line, if the text ends with one.
+    pub(super) fn unblank(&mut self) {
+        if self.out.ends_with("\n\n") {
+            self.out.pop();
+        }
+    }
 }
 
 /// A struct field initialiser, in shorthand when the names agree.
@@ -46,15 +52,26 @@ pub(super) fn lit(s: &str) -> String {
 
 /// A float literal: shortest round-trip form, always with a decimal point or exponent.
 pub(super) fn float(v: f64) -> String {
+    named_float(v).unwrap_or_else(|| numeric_float(v))
+}
+
+/// A float literal typed `f64`, as the receiver of a method must be: `2.0_f64.sqrt()`.
+pub(super) fn typed_float(v: f64) -> String {
+    named_float(v).unwrap_or_else(|| format!("{}_f64", numeric_float(v)))
+}
+
+/// The float as a constant of `f64` or `std::f64::consts`, when it is one.
+fn named_float(v: f64) -> Option<String> {
     if v.is_nan() {
-        return "f64::NAN".into();
+        return Some("f64::NAN".into());
     }
     if v.is_infinite() {
-        return if v > 0.0 {
-            "f64::INFINITY".into()
+        let name = if v > 0.0 {
+            "f64::INFINITY"
         } else {
-            "f64::NEG_INFINITY".into()
+            "f64::NEG_INFINITY"
         };
+        return Some(name.into());
     }
     for (c, name) in [
         (std::f64::consts::PI, "std::f64::consts::PI"),
@@ -65,14 +82,19 @@ pub(super) fn float(v: f64) -> String {
         (std::f64::consts::TAU, "std::f64::consts::TAU"),
     ] {
         if v == c {
-            return name.into();
+            return Some(name.into());
         }
         if v == -c {
-            return format!("-{name}");
+            return Some(format!("-{name}"));
         }
     }
+    None
+}
+
+/// A finite float in digits.
+fn numeric_float(v: f64) -> String {
     let s = format!("{v:?}");
-    if s.contains('.') || s.contains('e') || s.contains("inf") {
+    if s.contains('.') || s.contains('e') {
         s
     } else {
         format!("{s}.0")
@@ -80,22 +102,21 @@ pub(super) fn float(v: f64) -> String {
 }
 
 /// Code for the sum of `coefficient * value` terms, leaving out the zero coefficients (the
-/// compiler may not fold them: a NaN times zero is NaN) and writing a unit one as the value.
+/// compiler may not fold them: a NaN times zero is NaN) and writing a unit one as its sign.
 pub(super) fn linear(terms: &[(f64, String)]) -> String {
     let mut code = String::new();
     for (k, v) in terms.iter().filter(|(k, _)| *k != 0.0) {
-        let term = match *k {
-            1.0 => v.clone(),
-            -1.0 => format!("-{v}"),
-            k => format!("{v} * {}", float(k)),
+        let (minus, term) = match *k {
+            1.0 => (false, v.clone()),
+            -1.0 => (true, v.clone()),
+            k => (false, format!("{v} * {}", float(k))),
         };
-        if code.is_empty() {
-            code = term;
-        } else if let Some(minus) = term.strip_prefix('-') {
-            code = format!("{code} - {minus}");
-        } else {
-            code = format!("{code} + {term}");
-        }
+        code = match (code.is_empty(), minus) {
+            (true, false) => term,
+            (true, true) => format!("-{term}"),
+            (false, false) => format!("{code} + {term}"),
+            (false, true) => format!("{code} - {term}"),
+        };
     }
     if code.is_empty() {
         "0.0".into()
