@@ -402,7 +402,7 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
         Some(local) => format!("{frame}.point_to_global(&{local})"),
         None => {
             let origin = Value::Expr(format!("{frame}.origin"));
-            point_in(&frame, &origin, cx.literal_coords(f, true)).code()
+            point_in(|| frame.clone(), &origin, cx.literal_coords(f, true)).code()
         }
     };
     let direction = |f: GeomId| match layout.read(Holds::Local(f)) {

@@ -189,12 +189,16 @@ pub(super) struct ChordRoot {
     pub(super) centers: [Option<Value>; 2],
 }
 
-/// The point at local coordinates `local` of frame `f`, with origin `origin`: the rotation's
+/// The point at local coordinates `local` of a frame with origin `origin`: the rotation's
 /// products by a zero coordinate left out (the compiler may not fold them, as a NaN times zero
-/// is NaN), and nothing at all for the origin itself.
-pub(super) fn point_in(f: &str, origin: &Value, local: (f64, f64)) -> Value {
+/// is NaN), and nothing at all for the origin itself. `frame` gives the frame's code, asked
+/// for only when the point reads the frame (see [`Solve::frame`]).
+pub(super) fn point_in(frame: impl FnOnce() -> String, origin: &Value, local: (f64, f64)) -> Value {
+    if let (0.0, 0.0) = local {
+        return origin.clone();
+    }
+    let f = frame();
     match local {
-        (0.0, 0.0) => origin.clone(),
         (x, 0.0) => offset(origin, &format!("{f}.x_axis() * {}", float(x))),
         (0.0, y) => offset(origin, &format!("{f}.y_axis() * {}", float(y))),
         (x, y) => Value::Expr(format!(
@@ -228,7 +232,8 @@ pub(super) fn direction_in(f: &str, local: (f64, f64)) -> String {
 }
 
 impl Solve<'_> {
-    /// The local of top-level geom `g`'s frame, noted as read.
+    /// The local of top-level geom `g`'s frame, noted as read: a frame is declared only when
+    /// noted, so ask for it only for code that is written.
     pub(super) fn frame(&self, g: GeomId) -> String {
         self.frame_reads.borrow_mut().insert(g);
         self.frames.get(&g).cloned().unwrap_or_default()
@@ -282,10 +287,7 @@ impl Solve<'_> {
                     self.origin(top).code(),
                     self.local_code(g, true)
                 )),
-                (false, Some(local)) => {
-                    let origin = self.origin(top);
-                    point_in(&self.frame(top), &origin, local)
-                }
+                (false, Some(local)) => point_in(|| self.frame(top), &self.origin(top), local),
                 (false, None) => {
                     // Set by params, but one coordinate may still be a literal zero.
                     let (f, l) = (self.frame(top), self.local_code(g, true));

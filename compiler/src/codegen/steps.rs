@@ -29,11 +29,13 @@ impl Solve<'_> {
             } => self.rotate_dir(w, geoms, *pivot, *from, *to),
             Op::SetDim { geom, value } => self.set_dim(w, i, *geom, *value),
             Op::Check { constraint } => self.check(w, *constraint),
-            op => {
-                if let Some((r, _)) = step.out {
-                    self.value(w, i, r, op);
-                }
-            }
+            op => match step.out {
+                // A value no generated step reads (an intersection's `near`, the point a
+                // circle of constant radius goes through) is not written: its code would read
+                // frames for nothing, and declare them.
+                Some((r, _)) if self.cx.used.contains(&r) => self.value(w, i, r, op),
+                _ => {}
+            },
         }
     }
 
@@ -243,11 +245,8 @@ impl Solve<'_> {
         }
     }
 
-    /// `let {name} = {code};` for register `reg`, when some step reads it.
+    /// `let {name} = {code};` for register `reg`.
     fn define(&mut self, w: &mut Writer, reg: Reg, name: &str, code: &str) {
-        if !self.cx.used.contains(&reg) {
-            return;
-        }
         let local = self.names.fresh(name);
         w.line(&format!("let {local} = {code};"));
         self.facts.regs.insert(reg, Value::Local(local));
@@ -258,9 +257,6 @@ impl Solve<'_> {
     /// not finite, so the solve says so rather than going on with garbage.
     fn define_finite(&mut self, w: &mut Writer, i: usize, reg: Reg, name: &str, code: &str) {
         self.define(w, reg, name, code);
-        if !self.cx.used.contains(&reg) {
-            return;
-        }
         let v = self.r(reg);
         w.open(&format!("if !gcs_runtime::num::is_finite({v}) {{"));
         w.line(&format!(
