@@ -12,47 +12,142 @@ use super::writer::{float, lit, Writer};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
 use std::collections::HashMap;
 
+/// A struct of run-time inputs (`Params`, `Branches`): a field per input, set by the input's
+/// name in the model, and `Default` with the model's values.
+struct Inputs {
+    name: &'static str,
+    doc: &'static str,
+    /// The fields' type, and the setter's argument.
+    ty: &'static str,
+    argument: &'static str,
+    /// What an input is called in the setter's doc.
+    what: &'static str,
+    /// The doc of `default`.
+    defaults: &'static str,
+    /// Whether the struct is `Eq` too.
+    eq: bool,
+    fields: Vec<Input>,
+}
+
+/// One field of [`Inputs`].
+struct Input {
+    docs: Vec<String>,
+    field: String,
+    /// The input's name in the model.
+    name: String,
+    /// The default value's code.
+    default: String,
+}
+
+/// `Params`: the run-time inputs.
 pub(super) fn params(w: &mut Writer, cx: &Context<'_>) {
     let m = cx.model;
-    w.line("/// The run-time inputs: one field per `param` of the model.");
-    w.line(&scopes::derives(m.params.len(), false));
-    if m.params.is_empty() {
-        w.line("pub struct Params {}");
-    } else {
-        w.open("pub struct Params {");
-        for (id, p) in m.params.iter() {
-            let unit = if p.dim == gcs_lang::expr::Dim::Angle {
-                " (radians)"
-            } else {
-                ""
+    let fields = m
+        .params
+        .iter()
+        .map(|(id, p)| {
+            let unit = match p.dim {
+                gcs_lang::expr::Dim::Angle => " (radians)",
+                _ => "",
             };
-            w.line(&format!("/// `{}`{unit}, line {}.", p.name, m.line(p.span)));
-            w.line(&format!("pub {}: f64,", cx.params[&id]));
+            Input {
+                docs: vec![format!("`{}`{unit}, line {}.", p.name, m.line(p.span))],
+                field: cx.params[&id].clone(),
+                name: p.name.clone(),
+                default: float(p.default),
+            }
+        })
+        .collect();
+    write_inputs(
+        w,
+        &Inputs {
+            name: "Params",
+            doc: "The run-time inputs: one field per `param` of the model.",
+            ty: "f64",
+            argument: "value",
+            what: "param",
+            defaults: "The values the model gives.",
+            eq: false,
+            fields,
+        },
+    );
+}
+
+/// `Branches`: which assembly.
+pub(super) fn branches(w: &mut Writer, cx: &Context<'_>) {
+    let fields = cx
+        .plan
+        .branches
+        .iter()
+        .zip(&cx.branches)
+        .map(|(b, field)| {
+            let meanings = b.meanings.iter().enumerate();
+            Input {
+                docs: std::iter::once(format!("`{}`:", b.name))
+                    .chain(meanings.map(|(i, meaning)| format!("- {i}: {meaning}")))
+                    .collect(),
+                field: field.clone(),
+                name: b.name.clone(),
+                default: b.default.to_string(),
+            }
+        })
+        .collect();
+    write_inputs(
+        w,
+        &Inputs {
+            name: "Branches",
+            doc: "Which assembly: one field per branch variable, each an index with a geometric meaning.",
+            ty: "u8",
+            argument: "index",
+            what: "branch variable",
+            defaults: "The sketch's assembly.",
+            eq: true,
+            fields,
+        },
+    );
+}
+
+/// An inputs struct, its setter by name and its `Default`.
+fn write_inputs(w: &mut Writer, s: &Inputs) {
+    let name = s.name;
+    w.line(&format!("/// {}", s.doc));
+    w.line(&scopes::derives(s.fields.len(), s.eq));
+    if s.fields.is_empty() {
+        w.line(&format!("pub struct {name} {{}}"));
+    } else {
+        w.open(&format!("pub struct {name} {{"));
+        for f in &s.fields {
+            for doc in &f.docs {
+                w.line(&format!("/// {doc}"));
+            }
+            w.line(&format!("pub {}: {},", f.field, s.ty));
         }
         w.close("}");
     }
     w.line("");
-    let fields: Vec<String> = m
-        .params
-        .iter()
-        .map(|(id, _)| cx.params[&id].clone())
-        .collect();
-    scopes::field_by_field_eq(w, "Params", &fields, false);
+    let fields: Vec<String> = s.fields.iter().map(|f| f.field.clone()).collect();
+    scopes::field_by_field_eq(w, name, &fields, s.eq);
     w.line("#[allow(dead_code)]");
-    w.open("impl Params {");
-    w.line("/// Sets the param called `name` (as in the model); `false` when there is none.");
-    if m.params.is_empty() {
-        w.open("pub fn set(&mut self, name: &str, value: f64) -> bool {");
-        w.line("let _ = (name, value);");
+    w.open(&format!("impl {name} {{"));
+    w.line(&format!(
+        "/// Sets the {} called `name` (as in the model); `false` when there is none.",
+        s.what
+    ));
+    let argument = s.argument;
+    w.open(&format!(
+        "pub fn set(&mut self, name: &str, {argument}: {}) -> bool {{",
+        s.ty
+    ));
+    if s.fields.is_empty() {
+        w.line(&format!("let _ = (name, {argument});"));
         w.line("false");
     } else {
-        w.open("pub fn set(&mut self, name: &str, value: f64) -> bool {");
         w.open("match name {");
-        for (id, p) in m.params.iter() {
+        for f in &s.fields {
             w.line(&format!(
-                "{} => self.{} = value,",
-                lit(&p.name),
-                cx.params[&id]
+                "{} => self.{} = {argument},",
+                lit(&f.name),
+                f.field
             ));
         }
         w.line("_ => return false,");
@@ -62,71 +157,15 @@ pub(super) fn params(w: &mut Writer, cx: &Context<'_>) {
     w.close("}");
     w.close("}");
     w.line("");
-    w.open("impl Default for Params {");
-    w.line("/// The values the model gives.");
+    w.open(&format!("impl Default for {name} {{"));
+    w.line(&format!("/// {}", s.defaults));
     w.open("fn default() -> Self {");
-    if m.params.is_empty() {
-        w.line("Params {}");
+    if s.fields.is_empty() {
+        w.line(&format!("{name} {{}}"));
     } else {
-        w.open("Params {");
-        for (id, p) in m.params.iter() {
-            w.line(&format!("{}: {},", cx.params[&id], float(p.default)));
-        }
-        w.close("}");
-    }
-    w.close("}");
-    w.close("}");
-    w.line("");
-}
-
-pub(super) fn branches(w: &mut Writer, cx: &Context<'_>) {
-    w.line("/// Which assembly: one field per branch variable, each an index with a geometric meaning.");
-    w.line(&scopes::derives(cx.branches.len(), true));
-    if cx.plan.branches.is_empty() {
-        w.line("pub struct Branches {}");
-    } else {
-        w.open("pub struct Branches {");
-        for (b, name) in cx.plan.branches.iter().zip(&cx.branches) {
-            w.line(&format!("/// `{}`:", b.name));
-            for (i, meaning) in b.meanings.iter().enumerate() {
-                w.line(&format!("/// - {i}: {meaning}"));
-            }
-            w.line(&format!("pub {name}: u8,"));
-        }
-        w.close("}");
-    }
-    w.line("");
-    scopes::field_by_field_eq(w, "Branches", &cx.branches, true);
-    w.line("#[allow(dead_code)]");
-    w.open("impl Branches {");
-    w.line(
-        "/// Sets the branch variable called `name` (as in the model); `false` when there is none.",
-    );
-    w.open("pub fn set(&mut self, name: &str, index: u8) -> bool {");
-    if cx.plan.branches.is_empty() {
-        w.line("let _ = (name, index);");
-        w.line("false");
-    } else {
-        w.open("match name {");
-        for (b, field) in cx.plan.branches.iter().zip(&cx.branches) {
-            w.line(&format!("{} => self.{field} = index,", lit(&b.name)));
-        }
-        w.line("_ => return false,");
-        w.close("}");
-        w.line("true");
-    }
-    w.close("}");
-    w.close("}");
-    w.line("");
-    w.open("impl Default for Branches {");
-    w.line("/// The sketch's assembly.");
-    w.open("fn default() -> Self {");
-    if cx.plan.branches.is_empty() {
-        w.line("Branches {}");
-    } else {
-        w.open("Branches {");
-        for (b, name) in cx.plan.branches.iter().zip(&cx.branches) {
-            w.line(&format!("{name}: {},", b.default));
+        w.open(&format!("{name} {{"));
+        for f in &s.fields {
+            w.line(&format!("{}: {},", f.field, f.default));
         }
         w.close("}");
     }
@@ -223,25 +262,9 @@ impl Layout {
                 let name = format!("{}_{what}", geom.name);
                 add(&mut layout, &name, Ty::Scalar, Holds::Dim(g));
             }
-            for &part in &geom.parts {
-                let p = &m.geoms[part];
-                if !matches!(p.owner, Owner::Member(_)) || !cx.local_is_param(part) {
-                    continue;
-                }
-                let ty = match p.kind {
-                    GeomKind::Vector => Ty::Vector,
-                    _ => Ty::Point,
-                };
-                add(
-                    &mut layout,
-                    &format!("{}_local", p.name),
-                    ty,
-                    Holds::Local(part),
-                );
-                if let (GeomKind::Marker, Some(&ax)) = (p.kind, p.parts.first()) {
-                    let name = format!("{}_x_local", p.name);
-                    add(&mut layout, &name, Ty::Vector, Holds::Local(ax));
-                }
+            for local in cx.param_locals(g) {
+                let ty = if local.vector { Ty::Vector } else { Ty::Point };
+                add(&mut layout, &local.name, ty, Holds::Local(local.feature));
             }
         }
         layout

@@ -18,9 +18,56 @@ pub(super) fn dimension_name(kind: GeomKind) -> Option<&'static str> {
     }
 }
 
+/// Local coordinates of a member that params set: the solution stores them for a geom it
+/// reports, and the solve declares them where it needs them.
+pub(super) struct ParamLocal {
+    /// The member, or a marker's x axis.
+    pub(super) feature: GeomId,
+    /// What the local and the field are called after.
+    pub(super) name: String,
+    /// A direction (normalised), not a point.
+    pub(super) vector: bool,
+    /// The code of their sketch value.
+    pub(super) value: String,
+}
+
 impl Context<'_> {
+    /// The local coordinates params set among the members of top-level geom `g`: a member's,
+    /// and after a marker's its x axis's.
+    pub(super) fn param_locals(&self, g: GeomId) -> Vec<ParamLocal> {
+        let m = self.model;
+        let mut out = Vec::new();
+        for &part in &m.geoms[g].parts {
+            let p = &m.geoms[part];
+            if !matches!(p.owner, Owner::Member(_)) || !self.local_is_param(part) {
+                continue;
+            }
+            let local = |feature, suffix: &str, vector, value| ParamLocal {
+                feature,
+                name: format!("{}_{suffix}", p.name),
+                vector,
+                value,
+            };
+            match &p.sketch {
+                Sketch::Point(c) | Sketch::Marker { origin: c, .. } => {
+                    out.push(local(part, "local", false, self.point_lit(c)));
+                }
+                Sketch::Vector(c) => {
+                    let value = format!("{}.normalize()", self.vector_lit(c));
+                    out.push(local(part, "local", true, value));
+                }
+                _ => {}
+            }
+            if let (Sketch::Marker { x, .. }, Some(&ax)) = (&p.sketch, p.parts.first()) {
+                let value = format!("{}.normalize()", self.vector_lit(x));
+                out.push(local(ax, "x_local", true, value));
+            }
+        }
+        out
+    }
+
     /// Whether a member's local coordinates depend on params (then the solution stores them).
-    pub(super) fn local_is_param(&self, g: GeomId) -> bool {
+    fn local_is_param(&self, g: GeomId) -> bool {
         match &self.model.geoms[g].sketch {
             Sketch::Point(c) | Sketch::Vector(c) => {
                 c.iter().any(|&e| !self.model.exprs.is_constant(e))
@@ -35,7 +82,7 @@ impl Context<'_> {
 
     /// The unit direction (cosine, sine) of a vector with a constant sketch: the frame the
     /// runtime would build, computed once here, so the solve and the `Solution` agree to the bit.
-    pub(super) fn constant_direction(&self, c: &[ExprId]) -> (f64, f64) {
+    fn constant_direction(&self, c: &[ExprId]) -> (f64, f64) {
         let v = |i: usize| c.get(i).map_or(0.0, |&e| self.model.exprs.eval(e, &[]));
         let f = gcs_runtime::frame::Frame2::along(
             nalgebra::Point2::origin(),

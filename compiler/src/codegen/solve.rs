@@ -10,8 +10,8 @@ use super::names::Namer;
 use super::scopes::{self, Binding};
 use super::sketch::dimension_name;
 use super::writer::{field_init, lit, Writer};
-use crate::plan::{Op, Reg};
-use gcs_lang::model::{GeomId, Owner, Sketch};
+use crate::plan::{Op, Reg, Step};
+use gcs_lang::model::GeomId;
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 
@@ -79,19 +79,7 @@ impl Solve<'_> {
         w.line("let _ = (params, branches, defaults);");
         self.check_params(w);
         w.line("// The sketch: where every geom starts.");
-        // Every geom the plan reads or moves gets a frame; the solution reports `solved` ones.
-        let solved = self.cx.solved();
-        let worked: Vec<GeomId> = self
-            .cx
-            .model
-            .top_level()
-            .map(|(id, _)| id)
-            .filter(|id| (solved.contains(id) && !layout.is_constant(*id)) || self.cx.touched(*id))
-            .collect();
-        let mut decls = Vec::new();
-        for &g in &worked {
-            self.declare_sketch(g, solved.contains(&g), &mut decls);
-        }
+        let (worked, decls) = self.sketch(layout);
         let tol = self.tolerance(&worked);
         let mut body = Writer {
             out: String::new(),
@@ -99,9 +87,38 @@ impl Solve<'_> {
         };
         let groups = self.steps_in_groups(&mut body);
         self.solution_init(&mut body, layout);
-        // Declarations waited for the steps: a frame the code never reads or moves is left
-        // out, and only a moved one is `mut`.
-        let bindings: Vec<Binding> = decls
+        let bindings = self.bindings(decls);
+        scopes::declare(w, &bindings);
+        if let Some(tol) = tol {
+            w.line(&tol);
+        }
+        w.out
+            .push_str(&scopes::in_blocks(&groups, &body.out, body.indent));
+        w.out.push_str(&body.out);
+        w.close("}");
+    }
+
+    /// The geoms the solve works on (every geom the plan reads or moves, and those the
+    /// solution reports but for constants), and their sketch's declarations.
+    fn sketch(&mut self, layout: &Layout) -> (Vec<GeomId>, Vec<Decl>) {
+        let (cx, reported) = (self.cx, self.cx.scope);
+        let worked: Vec<GeomId> = cx
+            .model
+            .top_level()
+            .map(|(id, _)| id)
+            .filter(|g| (reported.contains(g) && !layout.is_constant(*g)) || cx.touched(*g))
+            .collect();
+        let mut decls = Vec::new();
+        for &g in &worked {
+            self.declare_sketch(g, reported.contains(&g), &mut decls);
+        }
+        (worked, decls)
+    }
+
+    /// The declarations, now that the steps are written: a frame the code never reads or
+    /// moves is left out, and only a moved one is `mut`.
+    fn bindings(&self, decls: Vec<Decl>) -> Vec<Binding> {
+        decls
             .into_iter()
             .filter_map(|decl| match decl {
                 Decl::Frame(g, frame) => {
@@ -111,15 +128,7 @@ impl Solve<'_> {
                 }
                 Decl::Value(binding) => Some(binding),
             })
-            .collect();
-        scopes::declare(w, &bindings);
-        if let Some(tol) = tol {
-            w.line(&tol);
-        }
-        w.out
-            .push_str(&scopes::in_blocks(&groups, &body.out, body.indent));
-        w.out.push_str(&body.out);
-        w.close("}");
+            .collect()
     }
 
     /// Params must be finite.
@@ -140,11 +149,9 @@ impl Solve<'_> {
     }
 
     /// The sketch of top-level geom `g`: its frame, its dimension (unless the plan sets it
-    /// before anything reads it) and its members' local coordinates that params set (those of a
-    /// `reported` geom, which the solution stores, and those a step reads).
+    /// before anything reads it) and its members' local coordinates that params set.
     fn declare_sketch(&mut self, g: GeomId, reported: bool, decls: &mut Vec<Decl>) {
-        let m = self.cx.model;
-        let geom = &m.geoms[g];
+        let geom = &self.cx.model.geoms[g];
         let name = self.names.fresh(&geom.name);
         let (ctor, facts) = self.cx.sketch_frame(g);
         decls.push(Decl::Frame(
@@ -158,44 +165,31 @@ impl Solve<'_> {
         self.facts.frames.insert(g, facts);
         self.frames.insert(g, name);
         if let Some(what) = dimension_name(geom.kind) {
-            let dname = self.names.fresh(&format!("{}_{what}", geom.name));
-            if self.cx.dim_set_before_read(g) {
-                // Set once by the plan before anything reads it: declared there.
-                self.deferred.insert(g);
-            } else {
-                decls.push(Decl::Value(Binding {
-                    mutable: self.cx.dim_set(g),
-                    name: dname.clone(),
-                    value: self.cx.sketch_dim_declared(g),
-                }));
-            }
-            self.dims.insert(g, dname);
+            self.declare_dimension(g, &format!("{}_{what}", geom.name), decls);
         }
-        for &part in &geom.parts {
-            let p = &m.geoms[part];
-            if !matches!(p.owner, Owner::Member(_)) || !self.cx.local_is_param(part) {
-                continue;
-            }
-            let wanted = |f: GeomId| reported || self.cx.reads_feature(f);
-            let value = match &p.sketch {
-                Sketch::Point(c) | Sketch::Marker { origin: c, .. } if wanted(part) => {
-                    Some(self.cx.point_lit(c))
-                }
-                Sketch::Vector(c) if wanted(part) => {
-                    Some(format!("{}.normalize()", self.cx.vector_lit(c)))
-                }
-                _ => None,
-            };
-            if let Some(value) = value {
-                self.declare_local(part, &format!("{}_local", p.name), value, decls);
-            }
-            if let (Sketch::Marker { x, .. }, Some(&ax)) = (&p.sketch, p.parts.first()) {
-                if wanted(ax) {
-                    let value = format!("{}.normalize()", self.cx.vector_lit(x));
-                    self.declare_local(ax, &format!("{}_x_local", p.name), value, decls);
-                }
+        // The solution stores the local coordinates of the geoms it reports; other geoms need
+        // them only where a step reads them.
+        for local in self.cx.param_locals(g) {
+            if reported || self.cx.reads_feature(local.feature) {
+                self.declare_local(local.feature, &local.name, local.value, decls);
             }
         }
+    }
+
+    /// The dimension of geom `g`, in a local called after `name`: declared here unless the
+    /// plan sets it before anything reads it, where it is declared then.
+    fn declare_dimension(&mut self, g: GeomId, name: &str, decls: &mut Vec<Decl>) {
+        let name = self.names.fresh(name);
+        if self.cx.dim_set_before_read(g) {
+            self.deferred.insert(g);
+        } else {
+            decls.push(Decl::Value(Binding {
+                mutable: self.cx.dim_set(g),
+                name: name.clone(),
+                value: self.cx.sketch_dim_declared(g),
+            }));
+        }
+        self.dims.insert(g, name);
     }
 
     /// Declares the local holding feature `f`'s local coordinates.
@@ -213,7 +207,7 @@ impl Solve<'_> {
     /// as the interpreter measures it; none when nothing is checked. It reads the frames and
     /// dimensions, so it is declared after them.
     fn tolerance(&self, worked: &[GeomId]) -> Option<String> {
-        let checked = |s: &crate::plan::Step| matches!(s.op, Op::Check { .. } | Op::Onto { .. });
+        let checked = |s: &Step| matches!(s.op, Op::Check { .. } | Op::Onto { .. });
         if !self.cx.plan.steps.iter().any(checked) {
             return None;
         }
@@ -241,7 +235,6 @@ impl Solve<'_> {
     /// with a comment quoting that constraint and its place in the file; returns each group's
     /// text (so that a long solve can be put in blocks), taken out of `w`.
     fn steps_in_groups(&mut self, w: &mut Writer) -> Vec<String> {
-        let m = self.cx.model;
         let steps = &self.cx.plan.steps;
         let mut group_start = true;
         // Where the current group's code starts: a group whose steps all turn out to move
@@ -252,20 +245,7 @@ impl Solve<'_> {
             if group_start {
                 group_starts.push(w.out.len());
                 if let Some(end) = steps[i..].iter().find(|s| !s.satisfies.is_empty()) {
-                    w.line("");
-                    for c in &end.satisfies {
-                        let con = &m.constraints[*c];
-                        let label = con
-                            .label
-                            .as_ref()
-                            .map_or(String::new(), |l| format!("{l}: "));
-                        w.line(&format!(
-                            "// {label}{} ({}:{})",
-                            con.text,
-                            self.cx.file,
-                            m.line(con.span)
-                        ));
-                    }
+                    self.constraint_comments(w, end);
                 }
                 group_start = false;
                 group_code = w.out.len();
@@ -286,20 +266,37 @@ impl Solve<'_> {
             .collect()
     }
 
+    /// The comment that opens a group of steps: the constraints its last step satisfies, each
+    /// with its place in the file.
+    fn constraint_comments(&self, w: &mut Writer, end: &Step) {
+        let m = self.cx.model;
+        w.line("");
+        for c in &end.satisfies {
+            let con = &m.constraints[*c];
+            let label = con
+                .label
+                .as_ref()
+                .map_or(String::new(), |l| format!("{l}: "));
+            w.line(&format!(
+                "// {label}{} ({}:{})",
+                con.text,
+                self.cx.file,
+                m.line(con.span)
+            ));
+        }
+    }
+
     /// `Ok(Solution { .. })`: each field from the local of what it holds.
-    fn solution_init(&mut self, w: &mut Writer, layout: &Layout) {
+    fn solution_init(&self, w: &mut Writer, layout: &Layout) {
         w.line("");
         w.open("Ok(Solution {");
         for field in &layout.fields {
             let local = match field.holds {
-                Holds::Frame(g) => {
-                    self.frame_reads.borrow_mut().insert(g);
-                    &self.frames[&g]
-                }
-                Holds::Dim(g) => &self.dims[&g],
-                Holds::Local(f) => &self.locals[&f],
+                Holds::Frame(g) => self.frame(g),
+                Holds::Dim(g) => self.dims[&g].clone(),
+                Holds::Local(f) => self.locals[&f].clone(),
             };
-            w.line(&field_init(&field.name, local));
+            w.line(&field_init(&field.name, &local));
         }
         w.close("})");
     }
