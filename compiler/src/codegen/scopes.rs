@@ -11,7 +11,7 @@
 //! recurses through: the `Branches` and `Solution` of a chain of 10,000 four-bars (10,000 and
 //! 20,001 fields) overflow its stack. Past [`FLAT_LETS`] fields, it is written field by field.
 
-use super::Writer;
+use super::writer::Writer;
 use std::collections::HashSet;
 
 /// Code with at most this many `let`s in a row is written flat: deep enough for any model a

@@ -121,6 +121,7 @@ pub struct Solution {
     b: Frame2,
     q: Frame2,
     top: Frame2,
+    top_sketch: Point2<f64>,
     r: Frame2,
     r_radius: f64,
     s: Frame2,
@@ -155,6 +156,13 @@ impl Solution {
     #[inline]
     pub fn top_dir(&self) -> Vector2<f64> {
         self.top.x_axis()
+    }
+
+    /// Point `top.point`: the foot of the perpendicular from the line's first sketch point.
+    #[inline]
+    pub fn top_point(&self) -> Point2<f64> {
+        self.top.origin
+            + self.top.x_axis() * (self.top_sketch - self.top.origin).dot(&self.top.x_axis())
     }
 
     /// The radius of `R`.
@@ -218,11 +226,12 @@ impl Solution {
     }
 
     /// Every point of the solution, by its dotted name in the model.
-    pub fn points(&self) -> [(&'static str, Point2<f64>); 8] {
+    pub fn points(&self) -> [(&'static str, Point2<f64>); 9] {
         [
             ("A", self.a()),
             ("B", self.b()),
             ("Q", self.q()),
+            ("top.point", self.top_point()),
             ("R.center", self.r_center()),
             ("s.start", self.s_start()),
             ("s.end", self.s_end()),
@@ -283,7 +292,7 @@ pub fn solve(
         Point2::new(params.w, params.h) - Point2::new(0.0, params.h),
     );
     let r = Frame2::at(Point2::new(params.w, params.h));
-    let r_radius = ((params.w - 2.0).powf(2.0) + 1.0).sqrt() - 1.0;
+    let r_radius = 1.2360679774997898;
     let mut s = Frame2::along(
         Point2::new(0.0, 0.2),
         Point2::new(3.8, 0.1) - Point2::new(0.0, 0.2),
@@ -554,6 +563,7 @@ pub fn solve(
         b,
         q,
         top,
+        top_sketch: Point2::new(0.0, params.h),
         r,
         r_radius,
         s,

@@ -1,0 +1,532 @@
+//! The public API of the generated module: `Params`, `Branches` and `Defaults` (each `Default`
+//! from the file, with setters by the model's names), and `Solution` with accessors named after
+//! the model and every value by dotted name (`points()`, `vectors()`, `scalars()`). Everything
+//! a caller touches is here; how `solve` computes it is not.
+
+use super::context::Context;
+use super::facts::{direction_in, point_in, Value};
+use super::names::Namer;
+use super::scopes;
+use super::sketch::dimension_name;
+use super::writer::{float, lit, Writer};
+use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
+use std::collections::HashMap;
+
+/// A struct of run-time inputs (`Params`, `Branches`): a field per input, set by the input's
+/// name in the model, and `Default` with the model's values.
+struct Inputs {
+    name: &'static str,
+    doc: &'static str,
+    /// The fields' type, and the setter's argument.
+    ty: &'static str,
+    argument: &'static str,
+    /// What an input is called in the setter's doc.
+    what: &'static str,
+    /// The doc of `default`.
+    defaults: &'static str,
+    /// Whether the struct is `Eq` too.
+    eq: bool,
+    fields: Vec<Input>,
+}
+
+/// One field of [`Inputs`].
+struct Input {
+    docs: Vec<String>,
+    field: String,
+    /// The input's name in the model.
+    name: String,
+    /// The default value's code.
+    default: String,
+}
+
+/// `Params`: the run-time inputs.
+pub(super) fn params(w: &mut Writer, cx: &Context<'_>) {
+    let m = cx.model;
+    let fields = m
+        .params
+        .iter()
+        .map(|(id, p)| {
+            let unit = match p.dim {
+                gcs_lang::expr::Dim::Angle => " (radians)",
+                _ => "",
+            };
+            Input {
+                docs: vec![format!("`{}`{unit}, line {}.", p.name, m.line(p.span))],
+                field: cx.params[&id].clone(),
+                name: p.name.clone(),
+                default: float(p.default),
+            }
+        })
+        .collect();
+    write_inputs(
+        w,
+        &Inputs {
+            name: "Params",
+            doc: "The run-time inputs: one field per `param` of the model.",
+            ty: "f64",
+            argument: "value",
+            what: "param",
+            defaults: "The values the model gives.",
+            eq: false,
+            fields,
+        },
+    );
+}
+
+/// `Branches`: which assembly.
+pub(super) fn branches(w: &mut Writer, cx: &Context<'_>) {
+    let fields = cx
+        .plan
+        .branches
+        .iter()
+        .zip(&cx.branches)
+        .map(|(b, field)| {
+            let meanings = b.meanings.iter().enumerate();
+            Input {
+                docs: std::iter::once(format!("`{}`:", b.name))
+                    .chain(meanings.map(|(i, meaning)| format!("- {i}: {meaning}")))
+                    .collect(),
+                field: field.clone(),
+                name: b.name.clone(),
+                default: b.default.to_string(),
+            }
+        })
+        .collect();
+    write_inputs(
+        w,
+        &Inputs {
+            name: "Branches",
+            doc: "Which assembly: one field per branch variable, each an index with a geometric meaning.",
+            ty: "u8",
+            argument: "index",
+            what: "branch variable",
+            defaults: "The sketch's assembly.",
+            eq: true,
+            fields,
+        },
+    );
+}
+
+/// An inputs struct, its setter by name and its `Default`.
+fn write_inputs(w: &mut Writer, s: &Inputs) {
+    let name = s.name;
+    w.line(&format!("/// {}", s.doc));
+    w.line(&scopes::derives(s.fields.len(), s.eq));
+    if s.fields.is_empty() {
+        w.line(&format!("pub struct {name} {{}}"));
+    } else {
+        w.open(&format!("pub struct {name} {{"));
+        for f in &s.fields {
+            for doc in &f.docs {
+                w.line(&format!("/// {doc}"));
+            }
+            w.line(&format!("pub {}: {},", f.field, s.ty));
+        }
+        w.close("}");
+    }
+    w.line("");
+    let fields: Vec<String> = s.fields.iter().map(|f| f.field.clone()).collect();
+    scopes::field_by_field_eq(w, name, &fields, s.eq);
+    w.line("#[allow(dead_code)]");
+    w.open(&format!("impl {name} {{"));
+    w.line(&format!(
+        "/// Sets the {} called `name` (as in the model); `false` when there is none.",
+        s.what
+    ));
+    let argument = s.argument;
+    w.open(&format!(
+        "pub fn set(&mut self, name: &str, {argument}: {}) -> bool {{",
+        s.ty
+    ));
+    if s.fields.is_empty() {
+        w.line(&format!("let _ = (name, {argument});"));
+        w.line("false");
+    } else {
+        w.open("match name {");
+        for f in &s.fields {
+            w.line(&format!(
+                "{} => self.{} = {argument},",
+                lit(&f.name),
+                f.field
+            ));
+        }
+        w.line("_ => return false,");
+        w.close("}");
+        w.line("true");
+    }
+    w.close("}");
+    w.close("}");
+    w.line("");
+    w.open(&format!("impl Default for {name} {{"));
+    w.line(&format!("/// {}", s.defaults));
+    w.open("fn default() -> Self {");
+    if s.fields.is_empty() {
+        w.line(&format!("{name} {{}}"));
+    } else {
+        w.open(&format!("{name} {{"));
+        for f in &s.fields {
+            w.line(&format!("{}: {},", f.field, f.default));
+        }
+        w.close("}");
+    }
+    w.close("}");
+    w.close("}");
+    w.line("");
+}
+
+/// `Defaults`: the degrees of freedom the analysis had to default, each with its meaning and
+/// its sketch value.
+pub(super) fn defaults(w: &mut Writer, cx: &Context<'_>) {
+    if cx.plan.defaults.is_empty() {
+        w.line(
+            "/// Values of the degrees of freedom the analysis had to default (none for this model).",
+        );
+        w.line("#[derive(Clone, Copy, Debug, Default, PartialEq)]");
+        w.line("pub struct Defaults {}");
+        w.line("");
+        return;
+    }
+    let fields = cx
+        .plan
+        .defaults
+        .iter()
+        .zip(&cx.defaults)
+        .map(|(d, field)| Input {
+            docs: vec![format!(
+                "`{}`: {}; the sketch's value is {}.",
+                d.name,
+                d.meaning,
+                float(d.sketch)
+            )],
+            field: field.clone(),
+            name: d.name.clone(),
+            default: float(d.sketch),
+        })
+        .collect();
+    write_inputs(
+        w,
+        &Inputs {
+            name: "Defaults",
+            doc: "The degrees of freedom the analysis had to default: where an iteration starts, or the value of a motion the constraints leave free.",
+            ty: "f64",
+            argument: "value",
+            what: "default",
+            defaults: "The sketch's values.",
+            eq: false,
+            fields,
+        },
+    );
+}
+
+/// The Rust type of a value the solution holds or gives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Ty {
+    Frame,
+    Scalar,
+    Point,
+    Vector,
+}
+
+impl Ty {
+    fn rust(self) -> &'static str {
+        match self {
+            Ty::Frame => "Frame2",
+            Ty::Scalar => "f64",
+            Ty::Point => "Point2<f64>",
+            Ty::Vector => "Vector2<f64>",
+        }
+    }
+}
+
+/// What a field of `Solution` holds; `solve` initialises it from its local of that.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Holds {
+    /// The frame of top-level geom `g`.
+    Frame(GeomId),
+    /// The dimension of top-level geom `g`: a segment's length, a circle's radius.
+    Dim(GeomId),
+    /// The local coordinates of member `g`, or of marker axis `g`, which params set.
+    Local(GeomId),
+    /// The first sketch point of line `g`, which params set: `L.point` is the foot of the
+    /// perpendicular from it.
+    LineSketch(GeomId),
+}
+
+/// One field of `Solution`.
+#[derive(Debug)]
+pub(super) struct Field {
+    pub(super) name: String,
+    ty: Ty,
+    pub(super) holds: Holds,
+}
+
+/// The fields of `Solution`, made once and read by the struct, its accessors and the
+/// initialiser at the end of `solve`, so that these agree by construction.
+#[derive(Debug)]
+pub(super) struct Layout {
+    /// In order: for each reported geom, its frame, its dimension, its members' local
+    /// coordinates that params set.
+    pub(super) fields: Vec<Field>,
+    /// Each field's place in `fields`, by what it holds.
+    index: HashMap<Holds, usize>,
+    /// Reported points and vectors the plan never moves and whose sketch is constant: no
+    /// field holds them, their accessor returns this literal.
+    constants: HashMap<GeomId, Value>,
+}
+
+impl Layout {
+    pub(super) fn new(cx: &Context<'_>) -> Layout {
+        let m = cx.model;
+        let mut layout = Layout {
+            fields: Vec::new(),
+            index: HashMap::new(),
+            constants: HashMap::new(),
+        };
+        let mut names = Namer::default();
+        let mut add = |layout: &mut Layout, name: &str, ty: Ty, holds: Holds| {
+            layout.index.insert(holds, layout.fields.len());
+            let name = names.fresh(name);
+            layout.fields.push(Field { name, ty, holds });
+        };
+        for g in cx.solved() {
+            let geom = &m.geoms[g];
+            if let Some(value) = cx.constant_value(g) {
+                layout.constants.insert(g, value);
+                continue;
+            }
+            add(&mut layout, &geom.name, Ty::Frame, Holds::Frame(g));
+            if let Some(what) = dimension_name(geom.kind) {
+                let name = format!("{}_{what}", geom.name);
+                add(&mut layout, &name, Ty::Scalar, Holds::Dim(g));
+            }
+            for local in cx.param_locals(g) {
+                let ty = if local.vector { Ty::Vector } else { Ty::Point };
+                add(&mut layout, &local.name, ty, Holds::Local(local.feature));
+            }
+            if line_sketch(cx, g)
+                .is_some_and(|from| !matches!(cx.sketch_point(from), Value::Point(..)))
+            {
+                let name = format!("{}_sketch", geom.name);
+                add(&mut layout, &name, Ty::Point, Holds::LineSketch(g));
+            }
+        }
+        layout
+    }
+
+    /// Whether reported geom `g` is a constant, which no field holds.
+    pub(super) fn is_constant(&self, g: GeomId) -> bool {
+        self.constants.contains_key(&g)
+    }
+
+    /// `self.{field}` of the field that holds `holds`, if one does.
+    fn read(&self, holds: Holds) -> Option<String> {
+        let field = &self.fields[*self.index.get(&holds)?];
+        Some(format!("self.{}", field.name))
+    }
+}
+
+/// An accessor of `Solution`: one value by its dotted name in the model.
+struct Accessor {
+    /// The dotted name.
+    name: String,
+    doc: String,
+    ty: Ty,
+    body: String,
+}
+
+impl Accessor {
+    fn new(name: &str, doc: String, ty: Ty, body: String) -> Accessor {
+        Accessor {
+            name: name.to_string(),
+            doc,
+            ty,
+            body,
+        }
+    }
+}
+
+/// The solution struct and its accessors.
+pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
+    w.line(
+        "/// The solved configuration of every geom the outputs need: frames and dimensions, read",
+    );
+    w.line("/// through accessors named after the model.");
+    w.line(&scopes::derives(layout.fields.len(), false));
+    if layout.fields.is_empty() {
+        w.line("pub struct Solution {}");
+    } else {
+        w.open("pub struct Solution {");
+        for f in &layout.fields {
+            w.line(&format!("{}: {},", f.name, f.ty.rust()));
+        }
+        w.close("}");
+    }
+    w.line("");
+    let names: Vec<String> = layout.fields.iter().map(|f| f.name.clone()).collect();
+    scopes::field_by_field_eq(w, "Solution", &names, false);
+    w.line("#[allow(dead_code)]");
+    w.open("impl Solution {");
+    let mut accessors = Namer::default();
+    for reserved in ["points", "vectors", "scalars"] {
+        accessors.reserve(reserved);
+    }
+    let mut by_ty: HashMap<Ty, Vec<(String, String)>> = HashMap::new();
+    for g in cx.solved() {
+        for a in geom_accessors(cx, layout, g) {
+            let accessor = accessors.fresh(&a.name);
+            w.line(&format!("/// {}", a.doc));
+            w.line("#[inline]");
+            w.open(&format!("pub fn {accessor}(&self) -> {} {{", a.ty.rust()));
+            w.line(&a.body);
+            w.close("}");
+            w.line("");
+            by_ty.entry(a.ty).or_default().push((a.name, accessor));
+        }
+    }
+    // Every value by its dotted name, for callers that iterate (and for the test driver).
+    for (what, ty) in [
+        ("point", Ty::Point),
+        ("vector", Ty::Vector),
+        ("scalar", Ty::Scalar),
+    ] {
+        let list = by_ty.get(&ty).map_or(&[][..], Vec::as_slice);
+        w.line(&format!(
+            "/// Every {what} of the solution, by its dotted name in the model."
+        ));
+        w.open(&format!(
+            "pub fn {what}s(&self) -> [(&'static str, {}); {}] {{",
+            ty.rust(),
+            list.len()
+        ));
+        w.open("[");
+        for (name, accessor) in list {
+            w.line(&format!("({}, self.{accessor}()),", lit(name)));
+        }
+        w.close("]");
+        w.close("}");
+        w.line("");
+    }
+    w.unblank();
+    w.close("}");
+    w.line("");
+}
+
+/// The accessors of reported top-level geom `g` and of its members and parts, in model order.
+fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor> {
+    let m = cx.model;
+    let geom = &m.geoms[g];
+    let name = &geom.name;
+    if let Some(value) = layout.constants.get(&g) {
+        let (what, ty) = match geom.kind {
+            GeomKind::Vector => ("Vector", Ty::Vector),
+            _ => ("Point", Ty::Point),
+        };
+        let doc = format!("{what} `{name}`, which the solve never moves.");
+        return vec![Accessor::new(name, doc, ty, value.code())];
+    }
+    let Some(frame) = layout.read(Holds::Frame(g)) else {
+        return Vec::new();
+    };
+    let dim = layout.read(Holds::Dim(g)).unwrap_or_default();
+    let mut items = Vec::new();
+    match geom.kind {
+        GeomKind::Body => items.push(Accessor::new(
+            name,
+            format!("The frame of body `{name}`."),
+            Ty::Frame,
+            frame.clone(),
+        )),
+        GeomKind::Point => items.push(Accessor::new(
+            name,
+            format!("Point `{name}`."),
+            Ty::Point,
+            format!("{frame}.origin"),
+        )),
+        GeomKind::Vector => items.push(Accessor::new(
+            name,
+            format!("Vector `{name}`."),
+            Ty::Vector,
+            format!("{frame}.x_axis()"),
+        )),
+        GeomKind::Circle => items.push(Accessor::new(
+            &format!("{name}.radius"),
+            format!("The radius of `{name}`."),
+            Ty::Scalar,
+            dim.clone(),
+        )),
+        GeomKind::Segment => items.push(Accessor::new(
+            &format!("{name}.length"),
+            format!("The length of `{name}`."),
+            Ty::Scalar,
+            dim.clone(),
+        )),
+        _ => {}
+    }
+    // A member's position or direction from its local coordinates: a field's when params set
+    // them, else the literal.
+    let point = |f: GeomId| match layout.read(Holds::Local(f)) {
+        Some(local) => format!("{frame}.point_to_global(&{local})"),
+        None => {
+            let origin = Value::Expr(format!("{frame}.origin"));
+            point_in(|| frame.clone(), &origin, cx.literal_coords(f, true)).code()
+        }
+    };
+    let direction = |f: GeomId| match layout.read(Holds::Local(f)) {
+        Some(local) => format!("{frame}.vector_to_global(&{local})"),
+        None => direction_in(&frame, cx.literal_coords(f, false)),
+    };
+    for &part in &geom.parts {
+        let p = &m.geoms[part];
+        let pname = &p.name;
+        let point_doc = format!("Point `{pname}`.");
+        match (p.owner, p.kind) {
+            (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
+                items.push(Accessor::new(pname, point_doc, Ty::Point, point(part)));
+                if let (GeomKind::Marker, Some(&ax)) = (p.kind, p.parts.first()) {
+                    let n = &m.geoms[ax].name;
+                    let doc = format!("Axis `{n}`.");
+                    items.push(Accessor::new(n, doc, Ty::Vector, direction(ax)));
+                }
+            }
+            (Owner::Member(_), GeomKind::Vector) => {
+                let doc = format!("Vector `{pname}`.");
+                items.push(Accessor::new(pname, doc, Ty::Vector, direction(part)));
+            }
+            (Owner::Part(_, Part::Start | Part::Center), _) => {
+                let body = format!("{frame}.origin");
+                items.push(Accessor::new(pname, point_doc, Ty::Point, body));
+            }
+            (Owner::Part(_, Part::End), _) => {
+                let body = format!("{frame}.origin + {frame}.x_axis() * {dim}");
+                items.push(Accessor::new(pname, point_doc, Ty::Point, body));
+            }
+            (Owner::Part(_, Part::Dir), _) => {
+                let doc = format!("Direction `{pname}`.");
+                let body = format!("{frame}.x_axis()");
+                items.push(Accessor::new(pname, doc, Ty::Vector, body));
+            }
+            (Owner::Part(_, Part::BasePoint), _) => {
+                // The foot of the perpendicular from the first sketch point: a literal, or the
+                // field that holds it when params set it.
+                if let Some(from) = line_sketch(cx, g) {
+                    let s = layout
+                        .read(Holds::LineSketch(g))
+                        .unwrap_or_else(|| cx.point_lit(from));
+                    let doc = format!("Point `{pname}`: the foot of the perpendicular from the line's first sketch point.");
+                    let body = format!("{frame}.origin + {frame}.x_axis() * ({s} - {frame}.origin).dot(&{frame}.x_axis())");
+                    items.push(Accessor::new(pname, doc, Ty::Point, body));
+                }
+            }
+            _ => {}
+        }
+    }
+    items
+}
+
+/// The first sketch point of line `g` (where its `L.point` is measured from), if it is a line.
+pub(super) fn line_sketch<'m>(cx: &Context<'m>, g: GeomId) -> Option<&'m [gcs_lang::expr::ExprId]> {
+    match &cx.model.geoms[g].sketch {
+        Sketch::Line { from, .. } => Some(from),
+        _ => None,
+    }
+}

@@ -1,0 +1,215 @@
+//! What every part of codegen reads and none changes: the model, the pruned plan, the names of
+//! the generated structs' fields, and facts about the plan indexed once, so that asking them of
+//! every geom or register costs no scan of the plan.
+
+use super::names::Namer;
+use super::writer::lit;
+use crate::plan::{Op, Plan, Reg};
+use gcs_lang::expr::ParamId;
+use gcs_lang::model::{GeomId, Owner, Part};
+use gcs_lang::Model;
+use std::collections::{BTreeSet, HashMap, HashSet};
+
+/// The read-only input of codegen.
+pub(super) struct Context<'a> {
+    pub(super) model: &'a Model,
+    pub(super) plan: &'a Plan,
+    /// The top-level geoms the solution reports.
+    pub(super) scope: &'a BTreeSet<GeomId>,
+    /// Param field names.
+    pub(super) params: HashMap<ParamId, String>,
+    /// Branch field names by branch index.
+    pub(super) branches: Vec<String>,
+    /// Default field names by default index.
+    pub(super) defaults: Vec<String>,
+    /// The model's file name, for comments.
+    pub(super) file: String,
+    /// Registers some generated step reads (an intersection's `near` is for the sketch's
+    /// branch only, so it is not among them).
+    pub(super) used: HashSet<Reg>,
+    /// What the plan does to each geom.
+    pub(super) index: PlanIndex,
+    /// Points some rotation turns a rigid point onto (`RotatePoint`'s `to`).
+    pub(super) rotated_onto: HashSet<Reg>,
+}
+
+impl<'a> Context<'a> {
+    pub(super) fn new(model: &'a Model, plan: &'a Plan, scope: &'a BTreeSet<GeomId>) -> Self {
+        let mut field_names = Namer::default();
+        let params = model
+            .params
+            .iter()
+            .map(|(id, p)| (id, field_names.fresh(&p.name)))
+            .collect();
+        let mut branch_names = Namer::default();
+        let branches = plan
+            .branches
+            .iter()
+            .map(|b| branch_names.fresh(&b.name))
+            .collect();
+        let mut default_names = Namer::default();
+        let defaults = plan
+            .defaults
+            .iter()
+            .map(|d| default_names.fresh(&d.name))
+            .collect();
+        let file = std::path::Path::new(model.source.name())
+            .file_name()
+            .map_or_else(
+                || model.source.name().to_string(),
+                |f| f.to_string_lossy().into_owned(),
+            );
+        let used = used_registers(plan);
+        let index = PlanIndex::new(model, plan, &used);
+        let rotated_onto = plan
+            .steps
+            .iter()
+            .filter_map(|s| match &s.op {
+                Op::RotatePoint { to, .. } => Some(*to),
+                _ => None,
+            })
+            .collect();
+        Context {
+            model,
+            plan,
+            scope,
+            params,
+            branches,
+            defaults,
+            file,
+            used,
+            index,
+            rotated_onto,
+        }
+    }
+
+    /// The top-level geoms the solver computes, in model order.
+    pub(super) fn solved(&self) -> Vec<GeomId> {
+        self.model
+            .top_level()
+            .map(|(id, _)| id)
+            .filter(|id| self.scope.contains(id))
+            .collect()
+    }
+
+    /// Whether any step reads or moves geom `g`.
+    pub(super) fn touched(&self, g: GeomId) -> bool {
+        self.index.touched.contains(&g)
+    }
+
+    /// Whether any step moves geom `g`.
+    pub(super) fn moved(&self, g: GeomId) -> bool {
+        self.index.moved.contains(&g)
+    }
+
+    /// Whether the plan sets geom `g`'s dimension before any step reads it.
+    pub(super) fn dim_set_before_read(&self, g: GeomId) -> bool {
+        self.index.dim_first.get(&g).copied().unwrap_or(false)
+    }
+
+    /// Whether some step sets geom `g`'s dimension.
+    pub(super) fn dim_set(&self, g: GeomId) -> bool {
+        self.index.dim_set.contains(&g)
+    }
+
+    /// Whether a step reads feature `f` (a member point, vector, marker or marker axis).
+    pub(super) fn reads_feature(&self, f: GeomId) -> bool {
+        self.index.read.contains(&f)
+    }
+
+    /// `SolveError::new(label, text, kind, magnitude)` for the constraint step `i` works for.
+    pub(super) fn error(&self, i: usize, kind: &str, magnitude: &str) -> String {
+        let (label, text) = match self.plan.constraint_of(i) {
+            Some(c) => (
+                self.model.constraints[c].name.clone(),
+                self.model.constraints[c].text.clone(),
+            ),
+            None => ("plan".to_string(), String::new()),
+        };
+        format!(
+            "SolveError::new({}, {}, ErrorKind::{kind}, {magnitude})",
+            lit(&label),
+            lit(&text)
+        )
+    }
+}
+
+/// The registers some generated step reads: what the plan's steps read, but an intersection's
+/// `near` (the sketch's branch is chosen at analysis) and the point a circle goes through when
+/// its radius is a constant.
+fn used_registers(plan: &Plan) -> HashSet<Reg> {
+    let mut used = HashSet::new();
+    for step in &plan.steps {
+        match &step.op {
+            Op::Intersect { a, b, .. } => {
+                used.insert(*a);
+                used.insert(*b);
+            }
+            Op::CircleThrough {
+                center,
+                through,
+                radius,
+            } => {
+                used.insert(*center);
+                if radius.is_none() {
+                    used.insert(*through);
+                }
+            }
+            op => used.extend(op.reads()),
+        }
+    }
+    used
+}
+
+/// Per-geom facts about a plan, each from one pass over its steps, so that asking them of every
+/// geom costs no scan of the plan.
+#[derive(Default)]
+pub(super) struct PlanIndex {
+    /// [`Plan::touched`].
+    touched: BTreeSet<GeomId>,
+    /// Geoms some action moves.
+    moved: HashSet<GeomId>,
+    /// Geoms whose dimension some step sets.
+    dim_set: HashSet<GeomId>,
+    /// Features a `PointOf` or `DirOf` reads.
+    read: HashSet<GeomId>,
+    /// For a geom, whether the first step that decides it sets its dimension (see
+    /// [`Context::dim_set_before_read`]).
+    dim_first: HashMap<GeomId, bool>,
+}
+
+impl PlanIndex {
+    fn new(model: &Model, plan: &Plan, used: &HashSet<Reg>) -> PlanIndex {
+        let mut ix = PlanIndex {
+            touched: plan.touched(model),
+            ..PlanIndex::default()
+        };
+        for step in &plan.steps {
+            match &step.op {
+                Op::Translate { geoms, .. }
+                | Op::RotatePoint { geoms, .. }
+                | Op::RotateDir { geoms, .. } => ix.moved.extend(geoms.iter().copied()),
+                Op::SetDim { geom, .. } => {
+                    ix.dim_set.insert(*geom);
+                    ix.dim_first.entry(*geom).or_insert(true);
+                }
+                Op::DimOf(x) => {
+                    ix.dim_first.entry(*x).or_insert(false);
+                }
+                Op::PointOf(f) => {
+                    ix.read.insert(*f);
+                    if matches!(model.geoms[*f].owner, Owner::Part(_, Part::End))
+                        && step.out.is_some_and(|o| used.contains(&o.0))
+                    {
+                        ix.dim_first.entry(model.top_level_of(*f)).or_insert(false);
+                    }
+                }
+                Op::DirOf(f) => {
+                    ix.read.insert(*f);
+                }
+                _ => {}
+            }
+        }
+        ix
+    }
+}

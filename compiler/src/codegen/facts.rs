@@ -1,0 +1,403 @@
+//! What codegen knows at each step of the solve, so that it writes the same values with less
+//! work: of each frame (its rotation still the identity, the value of its origin), and of each
+//! register (its value, whether it is finite or a unit direction, a point at a constant offset
+//! from an origin, a circle's constant radius or centre, a root kept with its chord); and the
+//! value of a feature's global position or direction from what is known.
+//!
+//! Facts are typed values, never read back from generated code: a literal is a [`Value`]
+//! literal whatever its spelling, and two values are compared as values.
+
+use super::context::Context;
+use super::solve::Solve;
+use super::writer::float;
+use crate::plan::Reg;
+use gcs_lang::expr::ExprId;
+use gcs_lang::model::{GeomId, Owner, Part};
+use std::collections::{HashMap, HashSet};
+
+/// A value of the generated code as codegen knows it: what it is decides what can be done
+/// with it (fold a constant into a literal, skip a test, see that two values are one, name
+/// what derives from it), and [`Value::code`] spells it.
+#[derive(Clone, Debug)]
+pub(super) enum Value {
+    /// A local of the solve, by name.
+    Local(String),
+    /// A param, by its field of `Params`.
+    Param(String),
+    /// A default, by its field of `Defaults`.
+    Default(String),
+    /// A scalar literal.
+    Scalar(f64),
+    /// A point literal.
+    Point(f64, f64),
+    /// A vector literal.
+    Vector(f64, f64),
+    /// A point of the sketch that params give: its coordinates' expressions (a missing one is
+    /// zero), and its code.
+    Sketched([Option<ExprId>; 2], String),
+    /// Any other expression: nothing compares it, and a register does not stand for it
+    /// without a local of its own.
+    Expr(String),
+}
+
+impl Value {
+    /// The value's code.
+    pub(super) fn code(&self) -> String {
+        match self {
+            Value::Local(name) => name.clone(),
+            Value::Param(field) => format!("params.{field}"),
+            Value::Default(field) => format!("defaults.{field}"),
+            Value::Scalar(v) => float(*v),
+            Value::Point(x, y) => format!("Point2::new({}, {})", float(*x), float(*y)),
+            Value::Vector(x, y) => format!("Vector2::new({}, {})", float(*x), float(*y)),
+            Value::Sketched(_, code) | Value::Expr(code) => code.clone(),
+        }
+    }
+
+    /// Whether `self` and `other` are one value to the bit, as far as codegen can tell: the
+    /// same local or param, equal literals (bit for bit: a negative zero is not zero), or the
+    /// same sketch expressions.
+    pub(super) fn same(&self, other: &Value, cx: &Context<'_>) -> bool {
+        match (self, other) {
+            (Value::Local(a), Value::Local(b))
+            | (Value::Param(a), Value::Param(b))
+            | (Value::Default(a), Value::Default(b)) => a == b,
+            (Value::Scalar(a), Value::Scalar(b)) => same_bits(*a, *b),
+            (Value::Point(ax, ay), Value::Point(bx, by))
+            | (Value::Vector(ax, ay), Value::Vector(bx, by)) => {
+                same_bits(*ax, *bx) && same_bits(*ay, *by)
+            }
+            (Value::Sketched(a, _), Value::Sketched(b, _)) => {
+                a.iter().zip(b).all(|(&a, &b)| cx.same_coordinate(a, b))
+            }
+            _ => false,
+        }
+    }
+
+    /// A plain local or literal, which a register can stand for without a local of its own.
+    pub(super) fn is_atom(&self) -> bool {
+        matches!(
+            self,
+            Value::Local(_)
+                | Value::Param(_)
+                | Value::Default(_)
+                | Value::Scalar(_)
+                | Value::Point(..)
+                | Value::Vector(..)
+        )
+    }
+
+    /// A literal, which has no name of its own.
+    pub(super) fn is_literal(&self) -> bool {
+        matches!(
+            self,
+            Value::Scalar(_) | Value::Point(..) | Value::Vector(..)
+        )
+    }
+
+    /// The x axis `(1, 0)`, bit for bit.
+    pub(super) fn is_x_axis(&self) -> bool {
+        matches!(self, Value::Vector(x, y) if *x == 1.0 && is_plus_zero(*y))
+    }
+
+    /// The point `(0, 0)`, bit for bit.
+    fn is_zero_point(&self) -> bool {
+        matches!(self, Value::Point(x, y) if is_plus_zero(*x) && is_plus_zero(*y))
+    }
+
+    /// The name of the local the value is, if it is one.
+    pub(super) fn local(&self) -> Option<&str> {
+        match self {
+            Value::Local(name) => Some(name),
+            _ => None,
+        }
+    }
+}
+
+/// Whether two literals are one value bit for bit.
+pub(super) fn same_bits(a: f64, b: f64) -> bool {
+    a.to_bits() == b.to_bits()
+}
+
+/// Whether `v` is `0.0` bit for bit: facts compare literals by their bits, so a negative zero
+/// (which the runtime's arithmetic may keep) is never taken for zero.
+fn is_plus_zero(v: f64) -> bool {
+    same_bits(v, 0.0)
+}
+
+/// What codegen knows of a frame at the current step of the solve, so that it writes the same
+/// values with less work: a rotation still the identity needs no product, an origin whose
+/// value is known needs no reading, and an action that cannot move the frame is left out.
+#[derive(Clone, Debug, Default)]
+pub(super) struct FrameFacts {
+    /// The rotation is exactly the identity (nothing has turned the frame yet).
+    pub(super) identity: bool,
+    /// The frame's origin, to the bit.
+    pub(super) origin: Option<Value>,
+}
+
+/// What is known of the registers at the step being written.
+#[derive(Debug, Default)]
+pub(super) struct Facts {
+    /// What is known of each frame.
+    pub(super) frames: HashMap<GeomId, FrameFacts>,
+    /// The value of each register the solve has defined.
+    pub(super) regs: HashMap<Reg, Value>,
+    /// Scalar registers known to be finite beyond what their value shows: a value checked
+    /// where it is computed, or the negation of a finite one. Their uses need no test of
+    /// their own.
+    pub(super) known_finite: HashSet<Reg>,
+    /// Registers that hold a finite unit direction by construction (`direction_at` of a
+    /// finite angle): a rotation onto one needs no test.
+    pub(super) unit_dirs: HashSet<Reg>,
+    /// Point registers read while their frame was unturned, with the origin's value then and
+    /// the point's constant local coordinates. The vector between two such points of frames
+    /// with one origin is a constant, known here.
+    pub(super) at_offset: HashMap<Reg, (Value, (f64, f64))>,
+    /// The constant radius of the circle about a pivot through a point of the same rigid
+    /// geom, by its (centre, through) registers: a rotation onto that circle knows it.
+    pub(super) circle_radius: HashMap<(Reg, Reg), f64>,
+    /// Names for registers whose value is a literal (to name what is derived from them).
+    pub(super) literal_names: HashMap<Reg, String>,
+    /// The value of each circle register's centre.
+    pub(super) circle_centers: HashMap<Reg, Value>,
+    /// Circle-circle roots kept with their chord, so that a rotation about either centre onto
+    /// the root reads it from that centre (`root_from_a`, `root_from_b`).
+    pub(super) chord_roots: HashMap<Reg, ChordRoot>,
+}
+
+impl Facts {
+    /// The value of register `r`. A valid plan defines a register before any step reads it,
+    /// so one without a value is a bug in gcs, never written as a made-up value.
+    pub(super) fn value(&self, r: Reg) -> &Value {
+        self.regs.get(&r).unwrap_or_else(|| {
+            panic!(
+                "bug in gcs: codegen reads r{} before a step defines it (the plan is malformed)",
+                r.0
+            )
+        })
+    }
+
+    /// Whether scalar register `r` is known to be finite: a param (checked on entry), a finite
+    /// literal, or a value checked where it is computed.
+    pub(super) fn is_finite(&self, r: Reg) -> bool {
+        match self.value(r) {
+            // Inputs are checked finite on entry.
+            Value::Param(_) | Value::Default(_) => true,
+            Value::Scalar(v) => v.is_finite(),
+            _ => self.known_finite.contains(&r),
+        }
+    }
+}
+
+/// A circle-circle root whose chord is a local: the chord, the branch index's code, and the
+/// value of each circle's centre (when known).
+#[derive(Clone, Debug)]
+pub(super) struct ChordRoot {
+    pub(super) chord: String,
+    pub(super) index: String,
+    pub(super) centers: [Option<Value>; 2],
+}
+
+/// The point at local coordinates `local` of a frame with origin `origin`: the rotation's
+/// products by a zero coordinate left out (the compiler may not fold them, as a NaN times zero
+/// is NaN), and nothing at all for the origin itself. `frame` gives the frame's code, asked
+/// for only when the point reads the frame (see [`Solve::frame`]).
+pub(super) fn point_in(frame: impl FnOnce() -> String, origin: &Value, local: (f64, f64)) -> Value {
+    if let (0.0, 0.0) = local {
+        return origin.clone();
+    }
+    let f = frame();
+    match local {
+        (x, 0.0) => offset(origin, &format!("{f}.x_axis() * {}", float(x))),
+        (0.0, y) => offset(origin, &format!("{f}.y_axis() * {}", float(y))),
+        (x, y) => Value::Expr(format!(
+            "{f}.point_to_global(&Point2::new({}, {}))",
+            float(x),
+            float(y)
+        )),
+    }
+}
+
+/// The point `origin + v`; just `v` as a point when the origin is the literal zero.
+fn offset(origin: &Value, v: &str) -> Value {
+    Value::Expr(if origin.is_zero_point() {
+        format!("Point2::from({v})")
+    } else {
+        format!("{} + {v}", origin.code())
+    })
+}
+
+/// Code for the direction at local unit vector `local` of frame `f` (see [`point_in`]).
+pub(super) fn direction_in(f: &str, local: (f64, f64)) -> String {
+    match local {
+        (1.0, 0.0) => format!("{f}.x_axis()"),
+        (0.0, 1.0) => format!("{f}.y_axis()"),
+        (x, y) => format!(
+            "{f}.vector_to_global(&Vector2::new({}, {}))",
+            float(x),
+            float(y)
+        ),
+    }
+}
+
+impl Solve<'_> {
+    /// The local of top-level geom `g`'s frame, noted as read: a frame is declared only when
+    /// noted, so ask for it only for code that is written.
+    pub(super) fn frame(&self, g: GeomId) -> String {
+        self.frame_reads.borrow_mut().insert(g);
+        self.frame_local(g)
+    }
+
+    /// The local of top-level geom `g`'s frame, to move it (moves are noted apart).
+    pub(super) fn frame_local(&self, g: GeomId) -> String {
+        match self.frames.get(&g) {
+            Some(frame) => frame.clone(),
+            None => self.undeclared("frame", g),
+        }
+    }
+
+    /// The local of geom `g`'s dimension.
+    pub(super) fn dim(&self, g: GeomId) -> String {
+        match self.dims.get(&g) {
+            Some(dim) => dim.clone(),
+            None => self.undeclared("dimension", g),
+        }
+    }
+
+    /// The panic of a plan that reads what the sketch does not declare: a bug in gcs.
+    #[cold]
+    fn undeclared(&self, what: &str, g: GeomId) -> ! {
+        panic!(
+            "bug in gcs: codegen reads the {what} of `{}`, which the solve does not declare",
+            self.cx.model.geoms[g].name
+        )
+    }
+
+    /// The origin of top-level geom `g`'s frame now: its known value, or a read of it.
+    fn origin(&self, g: GeomId) -> Value {
+        match self.facts.frames.get(&g).and_then(|f| f.origin.as_ref()) {
+            Some(o) => o.clone(),
+            None => Value::Expr(format!("{}.origin", self.frame(g))),
+        }
+    }
+
+    /// For a point of a frame not yet turned whose origin's value is known: that value and the
+    /// point's constant offset from it (the local coordinates themselves).
+    pub(super) fn offset_from_origin(&self, g: GeomId) -> Option<(Value, (f64, f64))> {
+        let m = self.cx.model;
+        let top = m.top_level_of(g);
+        let facts = self.facts.frames.get(&top)?;
+        let origin = facts.origin.as_ref().filter(|_| facts.identity)?;
+        let local = match m.geoms[g].owner {
+            Owner::Member(_) => self.local_value(g, true)?,
+            Owner::TopLevel => (0.0, 0.0),
+            Owner::Part(..) => return None,
+        };
+        Some((origin.clone(), local))
+    }
+
+    /// The vector from register `pivot` to register `from` when it is a constant: two points
+    /// read from unturned frames with one origin, or a point of one and that origin.
+    pub(super) fn constant_arm(&self, pivot: Reg, from: Reg) -> Option<(f64, f64)> {
+        let (origin, (fx, fy)) = self.facts.at_offset.get(&from)?;
+        let (px, py) = match self.facts.at_offset.get(&pivot) {
+            Some((o, local)) if o.same(origin, self.cx) => *local,
+            _ if self.facts.value(pivot).same(origin, self.cx) => (0.0, 0.0),
+            _ => return None,
+        };
+        Some((fx - px, fy - py))
+    }
+
+    /// The global position of a point feature, read from the frames now.
+    pub(super) fn point_value(&self, g: GeomId) -> Value {
+        let m = self.cx.model;
+        let top = m.top_level_of(g);
+        let identity = self.facts.frames.get(&top).is_some_and(|f| f.identity);
+        match m.geoms[g].owner {
+            Owner::Member(_) => match (identity, self.local_value(g, true)) {
+                (true, Some(local)) => self.unturned_point(top, local),
+                (true, None) => Value::Expr(format!(
+                    "{} + {}.coords",
+                    self.origin(top).code(),
+                    self.local_code(g, true)
+                )),
+                (false, Some(local)) => point_in(|| self.frame(top), &self.origin(top), local),
+                (false, None) => {
+                    // Set by params, but one coordinate may still be a literal zero.
+                    let (f, l) = (self.frame(top), self.local_code(g, true));
+                    match self.cx.zero_coordinate(g) {
+                        Some(1) => offset(&self.origin(top), &format!("{f}.x_axis() * {l}.x")),
+                        Some(0) => offset(&self.origin(top), &format!("{f}.y_axis() * {l}.y")),
+                        _ => Value::Expr(format!("{f}.point_to_global(&{l})")),
+                    }
+                }
+            },
+            Owner::Part(owner, Part::End) => {
+                let dim = self.dim(owner);
+                let origin = self.origin(top).code();
+                Value::Expr(if identity {
+                    format!("{origin} + Vector2::new({dim}, 0.0)")
+                } else {
+                    format!("{origin} + {}.x_axis() * {dim}", self.frame(top))
+                })
+            }
+            Owner::TopLevel | Owner::Part(..) => self.origin(top),
+        }
+    }
+
+    /// The point at constant local coordinates `local` of frame `top`, not turned yet: the
+    /// origin plus the local coordinates, a literal when the origin is one.
+    fn unturned_point(&self, top: GeomId, local: (f64, f64)) -> Value {
+        match (self.origin(top), local) {
+            (Value::Point(ox, oy), (x, y)) => Value::Point(ox + x, oy + y),
+            (origin, (0.0, 0.0)) => origin,
+            (origin, (x, y)) => Value::Expr(format!(
+                "{} + Vector2::new({}, {})",
+                origin.code(),
+                float(x),
+                float(y)
+            )),
+        }
+    }
+
+    /// The code of a member's local coordinates: the local that holds them, or their literal.
+    fn local_code(&self, g: GeomId, point: bool) -> String {
+        match self.locals.get(&g) {
+            Some(l) => l.clone(),
+            None => self.cx.local_literal(g, point).code(),
+        }
+    }
+
+    /// The global direction of a vector feature, read from the frames now.
+    pub(super) fn dir_value(&self, g: GeomId) -> Value {
+        let m = self.cx.model;
+        let top = m.top_level_of(g);
+        let identity = self.facts.frames.get(&top).is_some_and(|f| f.identity);
+        match m.geoms[g].owner {
+            Owner::Member(_) | Owner::Part(_, Part::AxisX) => {
+                match (identity, self.local_value(g, false)) {
+                    (true, Some((x, y))) => Value::Vector(x, y),
+                    (true, None) => Value::Local(self.local_code(g, false)),
+                    (false, Some(local)) => Value::Expr(direction_in(&self.frame(top), local)),
+                    (false, None) => Value::Expr(format!(
+                        "{}.vector_to_global(&{})",
+                        self.frame(top),
+                        self.local_code(g, false)
+                    )),
+                }
+            }
+            _ if identity => Value::Vector(1.0, 0.0),
+            _ => Value::Expr(format!("{}.x_axis()", self.frame(top))),
+        }
+    }
+
+    /// A member's local coordinates when they are a literal, `None` when params set them (a
+    /// local of the solve then holds them).
+    pub(super) fn local_value(&self, g: GeomId, point: bool) -> Option<(f64, f64)> {
+        if self.locals.contains_key(&g) {
+            return None;
+        }
+        Some(self.cx.literal_coords(g, point))
+    }
+}

@@ -1,0 +1,77 @@
+//! The residual of a run-time check: the relation it holds, over the registers of its
+//! features, measured by the runtime's `check` function of that relation's kind, which the
+//! interpreter calls too.
+
+use super::solve::Solve;
+use super::writer::float;
+use crate::plan::{Reg, Residual};
+
+impl Solve<'_> {
+    /// The call of the runtime's residual of a check's relation.
+    pub(super) fn residual_code(&self, residual: &Residual) -> String {
+        let r = |x: &Reg| self.r(*x);
+        let or_zero = |x: &Option<Reg>| x.as_ref().map_or_else(|| "0.0".to_string(), r);
+        match residual {
+            Residual::PointPoint { a, b, d } => {
+                format!("check::point_point({}, {}, {})", r(a), r(b), or_zero(d))
+            }
+            Residual::PointLine { p, base, dir, d } => format!(
+                "check::point_line({}, {}, {}, {})",
+                r(p),
+                r(base),
+                r(dir),
+                or_zero(d)
+            ),
+            Residual::Angle { u, v, angle } => {
+                format!("check::angle({}, {}, {})", r(u), r(v), r(angle))
+            }
+            Residual::CircleLine {
+                centre,
+                radius,
+                base,
+                dir,
+                gap,
+                side,
+            } => format!(
+                "check::circle_line({}, {}, {}, {}, {}, {})",
+                r(centre),
+                r(radius),
+                r(base),
+                r(dir),
+                or_zero(gap),
+                float(*side)
+            ),
+            Residual::PointCircle {
+                p,
+                centre,
+                radius,
+                gap,
+                outside,
+            } => format!(
+                "check::point_circle({}, {}, {}, {}, {outside})",
+                r(p),
+                r(centre),
+                r(radius),
+                or_zero(gap)
+            ),
+            Residual::CircleCircle {
+                c1,
+                r1,
+                c2,
+                r2,
+                gap,
+                nesting,
+            } => format!(
+                "check::circle_circle({}, {}, {}, {}, {}, check::Nesting::{nesting:?})",
+                r(c1),
+                r(r1),
+                r(c2),
+                r(r2),
+                or_zero(gap)
+            ),
+            Residual::Dim { value, target } => {
+                format!("check::dimension({}, {})", r(value), r(target))
+            }
+        }
+    }
+}

@@ -1,0 +1,315 @@
+//! The skeleton of `solve`: the entry checks, the sketch's declarations, the tolerance of the
+//! run-time checks, the plan's steps in groups each opened by a comment quoting the constraint
+//! it satisfies, put in blocks when long (see `scopes`), and the `Ok(Solution { .. })`. What
+//! each step writes is in `steps`.
+
+use super::api::{Holds, Layout};
+use super::context::Context;
+use super::facts::Facts;
+use super::names::Namer;
+use super::scopes::{self, Binding};
+use super::sketch::dimension_name;
+use super::writer::{field_init, lit, Writer};
+use crate::plan::{Op, Reg, Step};
+use gcs_lang::model::GeomId;
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
+
+/// A binding of the solve's sketch: a frame's, declared (and `mut`) once the steps show
+/// whether the frame is read or moved, or any other.
+enum Decl {
+    Frame(GeomId, Binding),
+    Value(Binding),
+}
+
+/// The state of writing `solve`: the locals declared so far and what is known at the current
+/// step.
+pub(super) struct Solve<'a> {
+    pub(super) cx: &'a Context<'a>,
+    pub(super) names: Namer,
+    /// Locals of frames and dimensions by top-level geom.
+    pub(super) frames: HashMap<GeomId, String>,
+    pub(super) dims: HashMap<GeomId, String>,
+    /// Locals of members' local coordinates that params set.
+    pub(super) locals: HashMap<GeomId, String>,
+    /// Dimensions declared where the plan sets them (nothing reads their sketch value).
+    pub(super) deferred: HashSet<GeomId>,
+    /// What is known of frames and registers at the step being written.
+    pub(super) facts: Facts,
+    /// Frames the solve's code reads, and frames it moves: one that is neither is not
+    /// declared, and only a moved one is `mut`.
+    pub(super) frame_reads: RefCell<HashSet<GeomId>>,
+    pub(super) frame_writes: HashSet<GeomId>,
+}
+
+/// Writes `solve`.
+pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
+    let mut names = Namer::default();
+    for reserved in ["params", "branches", "defaults", "tol", "solution"] {
+        names.reserve(reserved);
+    }
+    let mut s = Solve {
+        cx,
+        names,
+        frames: HashMap::new(),
+        dims: HashMap::new(),
+        locals: HashMap::new(),
+        deferred: HashSet::new(),
+        facts: Facts::default(),
+        frame_reads: RefCell::new(HashSet::new()),
+        frame_writes: HashSet::new(),
+    };
+    s.write(w, layout);
+}
+
+impl Solve<'_> {
+    /// `solve`: entry checks, the sketch, the tolerance, the steps and the solution.
+    fn write(&mut self, w: &mut Writer, layout: &Layout) {
+        w.line("/// Solves the model: the assembly plan's steps, in order. Never panics, allocates nothing.");
+        w.line("///");
+        w.line("/// # Errors");
+        w.line("///");
+        w.line("/// A [`SolveError`] naming the constraint that cannot be met (no intersection, inconsistent,");
+        w.line("/// degenerate, or a branch with no assembly here) and by how much, or a non-finite param.");
+        // `#[inline]` lets a caller in another crate inline a small solve (a four-bar: its
+        // answer then stays in registers instead of a `Solution` in memory); LLVM still weighs
+        // its size, so a long solve stays a call.
+        w.line("#[inline]");
+        w.open("pub fn solve(params: &Params, branches: &Branches, defaults: &Defaults) -> Result<Solution, SolveError> {");
+        w.line("let _ = (params, branches, defaults);");
+        self.check_params(w);
+        w.line("// The sketch: where every geom starts.");
+        let (worked, decls) = self.sketch(layout);
+        let tol = self.tolerance(&worked);
+        let mut body = Writer {
+            out: String::new(),
+            indent: w.indent,
+        };
+        let groups = self.steps_in_groups(&mut body);
+        self.solution_init(&mut body, layout);
+        let bindings = self.bindings(decls);
+        scopes::declare(w, &bindings);
+        if let Some(tol) = tol {
+            w.line(&tol);
+        }
+        w.out
+            .push_str(&scopes::in_blocks(&groups, &body.out, body.indent));
+        w.out.push_str(&body.out);
+        w.close("}");
+    }
+
+    /// The geoms the solve works on (every geom the plan reads or moves, and those the
+    /// solution reports but for constants), and their sketch's declarations.
+    fn sketch(&mut self, layout: &Layout) -> (Vec<GeomId>, Vec<Decl>) {
+        let (cx, reported) = (self.cx, self.cx.scope);
+        let worked: Vec<GeomId> = cx
+            .model
+            .top_level()
+            .map(|(id, _)| id)
+            .filter(|g| (reported.contains(g) && !layout.is_constant(*g)) || cx.touched(*g))
+            .collect();
+        let mut decls = Vec::new();
+        for &g in &worked {
+            self.declare_sketch(g, reported.contains(&g), &mut decls);
+        }
+        (worked, decls)
+    }
+
+    /// The declarations, now that the steps are written: a frame the code never reads or
+    /// moves is left out, and only a moved one is `mut`.
+    fn bindings(&self, decls: Vec<Decl>) -> Vec<Binding> {
+        decls
+            .into_iter()
+            .filter_map(|decl| match decl {
+                Decl::Frame(g, frame) => {
+                    let mutable = self.frame_writes.contains(&g);
+                    let read = self.frame_reads.borrow().contains(&g);
+                    (mutable || read).then_some(Binding { mutable, ..frame })
+                }
+                Decl::Value(binding) => Some(binding),
+            })
+            .collect()
+    }
+
+    /// Params and defaults must be finite.
+    fn check_params(&self, w: &mut Writer) {
+        let m = self.cx.model;
+        let params = m
+            .params
+            .iter()
+            .map(|(id, p)| format!("({}, params.{})", lit(&p.name), self.cx.params[&id]));
+        let defaults = (self.cx.plan.defaults.iter().zip(&self.cx.defaults))
+            .map(|(d, field)| format!("({}, defaults.{field})", lit(&d.name)));
+        let list: Vec<String> = params.chain(defaults).collect();
+        if list.is_empty() {
+            return;
+        }
+        w.line(&format!(
+            "gcs_runtime::error::check_all_finite(&[{}])?;",
+            list.join(", ")
+        ));
+    }
+
+    /// The sketch of top-level geom `g`: its frame, its dimension (unless the plan sets it
+    /// before anything reads it) and its members' local coordinates that params set.
+    fn declare_sketch(&mut self, g: GeomId, reported: bool, decls: &mut Vec<Decl>) {
+        let geom = &self.cx.model.geoms[g];
+        let name = self.names.fresh(&geom.name);
+        let (ctor, facts) = self.cx.sketch_frame(g);
+        decls.push(Decl::Frame(
+            g,
+            Binding {
+                mutable: false,
+                name: name.clone(),
+                value: ctor,
+            },
+        ));
+        self.facts.frames.insert(g, facts);
+        self.frames.insert(g, name);
+        if let Some(what) = dimension_name(geom.kind) {
+            self.declare_dimension(g, &format!("{}_{what}", geom.name), decls);
+        }
+        // The solution stores the local coordinates of the geoms it reports; other geoms need
+        // them only where a step reads them.
+        for local in self.cx.param_locals(g) {
+            if reported || self.cx.reads_feature(local.feature) {
+                self.declare_local(local.feature, &local.name, local.value, decls);
+            }
+        }
+    }
+
+    /// The dimension of geom `g`, in a local called after `name`: declared here unless the
+    /// plan sets it before anything reads it, where it is declared then.
+    fn declare_dimension(&mut self, g: GeomId, name: &str, decls: &mut Vec<Decl>) {
+        let name = self.names.fresh(name);
+        if self.cx.dim_set_before_read(g) {
+            self.deferred.insert(g);
+        } else {
+            decls.push(Decl::Value(Binding {
+                mutable: self.cx.dim_set(g),
+                name: name.clone(),
+                value: self.cx.sketch_dim_declared(g),
+            }));
+        }
+        self.dims.insert(g, name);
+    }
+
+    /// Declares the local holding feature `f`'s local coordinates.
+    fn declare_local(&mut self, f: GeomId, name: &str, value: String, decls: &mut Vec<Decl>) {
+        let name = self.names.fresh(name);
+        decls.push(Decl::Value(Binding {
+            mutable: false,
+            name: name.clone(),
+            value,
+        }));
+        self.locals.insert(f, name);
+    }
+
+    /// The tolerance of run-time checks, relative to the scale of the geoms the plan works on
+    /// as the interpreter measures it; none when nothing is checked. It reads the frames and
+    /// dimensions, so it is declared after them.
+    fn tolerance(&self, worked: &[GeomId]) -> Option<String> {
+        let checked =
+            |s: &Step| matches!(s.op, Op::Check { .. } | Op::Onto { .. } | Op::Close { .. });
+        if !self.cx.plan.steps.iter().any(checked) {
+            return None;
+        }
+        let mut terms = Vec::new();
+        for &g in worked.iter().filter(|&&g| self.cx.touched(g)) {
+            let f = self.frame(g);
+            terms.push(format!("{f}.origin.x"));
+            terms.push(format!("{f}.origin.y"));
+            if let Some(d) = self.dims.get(&g) {
+                if self.deferred.contains(&g) {
+                    // Not declared yet: its sketch value, as the interpreter has it now.
+                    terms.extend(self.cx.sketch_dim(g));
+                } else {
+                    terms.push(d.clone());
+                }
+            }
+        }
+        Some(format!(
+            "let tol = gcs_runtime::tol::CHECK_REL * (1.0 + gcs_runtime::tol::scale(&[{}]));",
+            terms.join(", ")
+        ))
+    }
+
+    /// Writes the plan's steps, each group up to the step that satisfies a constraint opened
+    /// with a comment quoting that constraint and its place in the file; returns each group's
+    /// text (so that a long solve can be put in blocks), taken out of `w`.
+    fn steps_in_groups(&mut self, w: &mut Writer) -> Vec<String> {
+        let steps = &self.cx.plan.steps;
+        let mut group_start = true;
+        // Where the current group's code starts: a group whose steps all turn out to move
+        // nothing says so under its comment.
+        let mut group_code = 0;
+        let mut group_starts = Vec::new();
+        for (i, step) in steps.iter().enumerate() {
+            if group_start {
+                group_starts.push(w.out.len());
+                if let Some(end) = steps[i..].iter().find(|s| !s.satisfies.is_empty()) {
+                    self.constraint_comments(w, end);
+                }
+                group_start = false;
+                group_code = w.out.len();
+            }
+            self.step(w, i, step);
+            if !step.satisfies.is_empty() {
+                if w.out.len() == group_code {
+                    w.line("// Already true where the sketch puts the geoms: nothing moves.");
+                }
+                group_start = true;
+            }
+        }
+        let text = std::mem::take(&mut w.out);
+        group_starts
+            .iter()
+            .zip(group_starts.iter().skip(1).chain([&text.len()]))
+            .map(|(&from, &to)| text[from..to].to_string())
+            .collect()
+    }
+
+    /// The comment that opens a group of steps: the constraints its last step satisfies, each
+    /// with its place in the file.
+    fn constraint_comments(&self, w: &mut Writer, end: &Step) {
+        let m = self.cx.model;
+        w.line("");
+        for c in &end.satisfies {
+            let con = &m.constraints[*c];
+            let label = con
+                .label
+                .as_ref()
+                .map_or(String::new(), |l| format!("{l}: "));
+            w.line(&format!(
+                "// {label}{} ({}:{})",
+                con.text,
+                self.cx.file,
+                m.line(con.span)
+            ));
+        }
+    }
+
+    /// `Ok(Solution { .. })`: each field from the local of what it holds.
+    fn solution_init(&self, w: &mut Writer, layout: &Layout) {
+        w.line("");
+        w.open("Ok(Solution {");
+        for field in &layout.fields {
+            let local = match field.holds {
+                Holds::Frame(g) => self.frame(g),
+                Holds::Dim(g) => self.dims[&g].clone(),
+                Holds::Local(f) => self.locals[&f].clone(),
+                Holds::LineSketch(g) => match super::api::line_sketch(self.cx, g) {
+                    Some(from) => self.cx.point_lit(from),
+                    None => unreachable!("only a line's sketch point is held"),
+                },
+            };
+            w.line(&field_init(&field.name, &local));
+        }
+        w.close("})");
+    }
+
+    /// The code of register `r`.
+    pub(super) fn r(&self, r: Reg) -> String {
+        self.facts.value(r).code()
+    }
+}

@@ -1,0 +1,738 @@
+//! Each step of the plan as code: a measurement, locus, intersection, action or check lowered to
+//! the runtime's calls, with what is known at that step (see `facts`) deciding the cheapest
+//! code that gives the same value.
+
+use super::facts::{ChordRoot, Value};
+use super::names::Namer;
+use super::solve::Solve;
+use super::writer::{float, linear, lit, Writer};
+use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis, Step};
+use gcs_lang::expr::{ExprId, ExprNode};
+use gcs_lang::model::{ConstraintId, GeomId};
+
+impl Solve<'_> {
+    /// Writes step `i` of the plan.
+    pub(super) fn step(&mut self, w: &mut Writer, i: usize, step: &Step) {
+        match &step.op {
+            Op::Translate { geoms, from, to } => self.translate(w, geoms, *from, *to),
+            Op::RotatePoint {
+                geoms,
+                pivot,
+                axis,
+                from,
+                to,
+            } => {
+                planar(*axis);
+                self.rotate_point(w, geoms, *pivot, *from, *to)
+            }
+            Op::RotateDir {
+                geoms,
+                pivot,
+                axis,
+                from,
+                to,
+            } => {
+                planar(*axis);
+                self.rotate_dir(w, geoms, *pivot, *from, *to)
+            }
+            Op::SetDim { geom, value } => self.set_dim(w, i, *geom, *value),
+            Op::Check {
+                constraint,
+                residual,
+            } => self.check(w, *constraint, residual),
+            Op::Close {
+                constraint,
+                residual,
+            } => self.close(w, *constraint, *residual),
+            op => match step.out {
+                // A value no generated step reads (an intersection's `near`, the point a
+                // circle of constant radius goes through) is not written: its code would read
+                // frames for nothing, and declare them.
+                Some((r, _)) if self.cx.used.contains(&r) => self.value(w, i, r, op),
+                _ => {}
+            },
+        }
+    }
+
+    /// Writes the value of register `r`, which step `i` computes with `op`.
+    fn value(&mut self, w: &mut Writer, i: usize, r: Reg, op: &Op) {
+        let m = self.cx.model;
+        let degenerate = || self.cx.error(i, "Degenerate", "0.0");
+        match op {
+            Op::Expr(e) => self.expr_value(w, i, r, *e),
+            Op::Const(c) => {
+                self.facts.regs.insert(r, Value::Scalar(*c));
+            }
+            Op::Neg(x) => {
+                if self.facts.is_finite(*x) {
+                    self.facts.known_finite.insert(r);
+                }
+                let code = format!("-{}", self.r(*x));
+                self.define(w, r, "minus", &code);
+            }
+            Op::PointOf(g) => {
+                if let Some(at) = self.offset_from_origin(*g) {
+                    self.facts.at_offset.insert(r, at);
+                }
+                let value = self.point_value(*g);
+                self.define_or_alias(w, r, &m.geoms[*g].name, value);
+            }
+            Op::DirOf(g) => {
+                let value = self.dir_value(*g);
+                let n = &m.geoms[*g].name;
+                let n = if n.ends_with(".dir") {
+                    n.clone()
+                } else {
+                    format!("{n}_dir")
+                };
+                self.define_or_alias(w, r, &n, value);
+            }
+            Op::DimOf(g) => {
+                let d = self.dim(*g);
+                self.facts.regs.insert(r, Value::Local(d));
+            }
+            Op::Axis(x, y) => {
+                self.facts.regs.insert(r, Value::Vector(*x, *y));
+            }
+            Op::Rotated { dir, angle } => self.rotated(w, r, *dir, *angle),
+            Op::Sum(terms) => {
+                let code = self.sum(terms);
+                self.define_finite(w, i, r, "sum", &code);
+            }
+            Op::Along { from, dir, to } => {
+                let (f, d, t) = (self.r(*from), self.r(*dir), self.r(*to));
+                self.define(w, r, "length", &format!("({t} - {f}).dot(&{d})"));
+            }
+            Op::DirectionTo { from, to } => {
+                let (f, t) = (self.r(*from), self.r(*to));
+                let code = format!(
+                    "({t} - {f}).try_normalize(0.0).ok_or_else(|| {})?",
+                    degenerate()
+                );
+                self.define(w, r, "direction", &code);
+            }
+            Op::Circle { center, radius } => self.circle(w, i, r, *center, *radius),
+            Op::CircleThrough {
+                center,
+                through,
+                radius,
+            } => self.circle_through(w, i, r, *center, *through, *radius),
+            Op::Default(d) => {
+                // An input, like a param: `solve` checks it finite on entry.
+                let field = &self.cx.defaults[d.0 as usize];
+                self.facts.regs.insert(r, Value::Default(field.clone()));
+            }
+            Op::Line { point, dir, offset } => {
+                let mut code = format!(
+                    "Line::new({}, {}).ok_or_else(|| {})?",
+                    self.r(*point),
+                    self.r(*dir),
+                    degenerate()
+                );
+                if let Some(o) = offset {
+                    code = format!("{code}.offset({})", self.r(*o));
+                }
+                let n = self.prefixed("line", *point);
+                self.define(w, r, &n, &code);
+            }
+            Op::ParallelLine { line, through } => {
+                let code = format!(
+                    "Line::new({}, {}.dir()).ok_or_else(|| {})?",
+                    self.r(*through),
+                    self.r(*line),
+                    degenerate()
+                );
+                let n = self.prefixed("parallel", *through);
+                self.define(w, r, &n, &code);
+            }
+            Op::ShiftedCircle { circle, from, to } => {
+                let c = self.r(*circle);
+                let code = format!(
+                    "Circle::new({c}.center() + ({} - {}), {c}.radius()).ok_or_else(|| {})?",
+                    self.r(*to),
+                    self.r(*from),
+                    degenerate()
+                );
+                let n = self.derived_name(*circle, "_moved", "circle_moved");
+                self.define(w, r, &n, &code);
+            }
+            Op::Reversed(x) => {
+                let code = format!("{}.reversed()", self.r(*x));
+                let n = self.derived_name(*x, "_reversed", "reversed");
+                self.define(w, r, &n, &code);
+            }
+            Op::OffsetLine { line, by } => {
+                let code = format!("{}.offset({})", self.r(*line), self.r(*by));
+                let n = self.derived_name(*line, "_offset", "offset");
+                self.define(w, r, &n, &code);
+            }
+            Op::CentresLineLine { l1, a1, l2, a2 } => {
+                let code = format!(
+                    "locus2d::centres_line_line(&{}, {}, &{}, {}).ok_or_else(|| {})?",
+                    self.r(*l1),
+                    self.r(*a1),
+                    self.r(*l2),
+                    self.r(*a2),
+                    degenerate()
+                );
+                self.define(w, r, "bisector", &code);
+            }
+            Op::CentresLinePoint {
+                line,
+                a,
+                at,
+                b,
+                plus,
+            } => {
+                let code = format!(
+                    "Conic::Parabola(locus2d::centres_line_circle(&{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?)",
+                    self.r(*line),
+                    self.r(*a),
+                    self.r(*at),
+                    sense(*plus),
+                    self.r(*b),
+                    degenerate()
+                );
+                self.define(w, r, "parabola", &code);
+            }
+            Op::CentresPointPoint {
+                c1,
+                b1,
+                p1,
+                c2,
+                b2,
+                p2,
+            } => {
+                let code = format!(
+                    "locus2d::centres_circle_circle({}, Sense::{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?",
+                    self.r(*c1),
+                    sense(*p1),
+                    self.r(*b1),
+                    self.r(*c2),
+                    sense(*p2),
+                    self.r(*b2),
+                    degenerate()
+                );
+                self.define(w, r, "conic", &code);
+            }
+            Op::RadiusFromLine { line, a, centre } => {
+                let code = format!(
+                    "{}.signed_distance({}) - {}",
+                    self.r(*line),
+                    self.r(*centre),
+                    self.r(*a)
+                );
+                self.define(w, r, "radius", &code);
+            }
+            Op::RadiusFromPoint {
+                at,
+                b,
+                plus,
+                centre,
+            } => {
+                let d = format!("({} - {}).norm()", self.r(*centre), self.r(*at));
+                let code = if *plus {
+                    format!("{d} - {}", self.r(*b))
+                } else {
+                    format!("{} - {d}", self.r(*b))
+                };
+                self.define(w, r, "radius", &code);
+            }
+            Op::Nearest { locus, point } => {
+                let code = format!("{}.nearest({})", self.r(*locus), self.r(*point));
+                let n = self.prefixed("nearest", *point);
+                self.define(w, r, &n, &code);
+            }
+            Op::Onto {
+                locus,
+                point,
+                constraint,
+            } => self.onto(w, r, *locus, *point, *constraint),
+            Op::Intersect {
+                meet,
+                a,
+                b,
+                branch,
+                constraint,
+                ..
+            } => self.intersect(w, r, *meet, (*a, *b), *branch, *constraint),
+            // Actions and checks define no register: `step` writes them.
+            Op::Translate { .. }
+            | Op::RotatePoint { .. }
+            | Op::RotateDir { .. }
+            | Op::SetDim { .. }
+            | Op::Check { .. }
+            | Op::Close { .. } => {}
+        }
+    }
+
+    /// `let {name} = {code};` for register `reg`.
+    fn define(&mut self, w: &mut Writer, reg: Reg, name: &str, code: &str) {
+        let local = self.names.fresh(name);
+        w.line(&format!("let {local} = {code};"));
+        self.facts.regs.insert(reg, Value::Local(local));
+    }
+
+    /// Like [`Solve::define`] for a scalar the params give, which can overflow however finite
+    /// they are (`theta * 1e300`): the step's constraint cannot be met with a value that is
+    /// not finite, so the solve says so rather than going on with garbage.
+    fn define_finite(&mut self, w: &mut Writer, i: usize, reg: Reg, name: &str, code: &str) {
+        self.define(w, reg, name, code);
+        let v = self.r(reg);
+        w.open(&format!("if !gcs_runtime::num::is_finite({v}) {{"));
+        w.line(&format!(
+            "return Err({});",
+            self.cx.error(i, "InvalidValue", &v)
+        ));
+        w.close("}");
+        self.facts.known_finite.insert(reg);
+    }
+
+    /// Like [`Solve::define`], but a local or a literal needs no new local: the register is
+    /// that value (a literal named `name` for what derives from it).
+    fn define_or_alias(&mut self, w: &mut Writer, reg: Reg, name: &str, value: Value) {
+        if !value.is_atom() {
+            self.define(w, reg, name, &value.code());
+            return;
+        }
+        if value.is_literal() {
+            self.facts.literal_names.insert(reg, Namer::snake(name));
+        }
+        self.facts.regs.insert(reg, value);
+    }
+
+    /// A name derived from register `r`: `{name}{suffix}` after its local or the literal it
+    /// names, else `fallback`.
+    fn derived_name(&self, r: Reg, suffix: &str, fallback: &str) -> String {
+        let name = self.facts.literal_names.get(&r).map(String::as_str);
+        match name.or(self.facts.value(r).local()) {
+            Some(name) => format!("{name}{suffix}"),
+            None => fallback.to_string(),
+        }
+    }
+
+    /// `{prefix}_{name}` after register `r` (see [`Solve::derived_name`]), or just `prefix`.
+    fn prefixed(&self, prefix: &str, r: Reg) -> String {
+        let n = self.derived_name(r, "", "");
+        if n.is_empty() {
+            prefix.to_string()
+        } else {
+            format!("{prefix}_{n}")
+        }
+    }
+
+    /// The value of a model expression: a param or a constant as it is (a param is checked
+    /// finite on entry), anything else in a local checked finite.
+    fn expr_value(&mut self, w: &mut Writer, i: usize, r: Reg, e: ExprId) {
+        let m = self.cx.model;
+        if let ExprNode::Param(p) = m.exprs.node(e) {
+            let field = self.cx.params[p].clone();
+            self.facts.regs.insert(r, Value::Param(field));
+        } else if m.exprs.is_constant(e) {
+            let v = m.exprs.eval(e, &[]);
+            self.facts.regs.insert(r, Value::Scalar(v));
+        } else {
+            let code = self.cx.expr(e);
+            self.define_finite(w, i, r, "value", &code);
+        }
+    }
+
+    /// `dir` turned by `angle`: a direction at that angle when `dir` is the x axis (a finite
+    /// unit direction when the angle is finite).
+    fn rotated(&mut self, w: &mut Writer, r: Reg, dir: Reg, angle: Reg) {
+        let (d, a) = (self.r(dir), self.r(angle));
+        let code = if self.facts.value(dir).is_x_axis() {
+            if self.facts.is_finite(angle) {
+                self.facts.unit_dirs.insert(r);
+            }
+            format!("direction_at({a})")
+        } else {
+            format!("UnitComplex::new({a}) * {d}")
+        };
+        let n = self.derived_name(dir, "_turned", "direction");
+        self.define(w, r, &n, &code);
+    }
+
+    /// The code of a linear combination of scalar registers.
+    fn sum(&self, terms: &[(f64, Reg)]) -> String {
+        let mut code = String::new();
+        for (k, (s, x)) in terms.iter().enumerate() {
+            let v = self.r(*x);
+            let (first, unit, minus) = (k == 0, *s == 1.0, *s == -1.0);
+            let term = match (first, unit, minus) {
+                (true, true, _) => v,
+                (true, _, true) => format!("-{v}"),
+                (true, _, _) => format!("{} * {v}", float(*s)),
+                (false, true, _) => format!(" + {v}"),
+                (false, _, true) => format!(" - {v}"),
+                (false, _, _) => format!(" + {} * {v}", float(*s)),
+            };
+            code.push_str(&term);
+        }
+        code
+    }
+
+    /// The circle about `center` with `radius`; a radius not known to be non-negative is
+    /// tested first.
+    fn circle(&mut self, w: &mut Writer, i: usize, r: Reg, center: Reg, radius: Reg) {
+        let rad = self.r(radius);
+        if !matches!(self.facts.value(radius), Value::Scalar(v) if *v >= 0.0) {
+            w.open(&format!("if {rad} < 0.0 {{"));
+            w.line(&format!(
+                "return Err({});",
+                self.cx.error(i, "NoIntersection", &format!("-{rad}"))
+            ));
+            w.close("}");
+        }
+        let code = format!(
+            "Circle::new({}, {rad}).ok_or_else(|| {})?",
+            self.r(center),
+            self.cx.error(i, "Degenerate", "0.0")
+        );
+        let n = self.prefixed("circle", center);
+        self.define(w, r, &n, &code);
+        let center = self.facts.value(center).clone();
+        self.facts.circle_centers.insert(r, center);
+    }
+
+    /// The circle about `center` through `through`; when the plan knows its radius (both are
+    /// features of one rigid geom with constant local coordinates), that number.
+    fn circle_through(
+        &mut self,
+        w: &mut Writer,
+        i: usize,
+        r: Reg,
+        center: Reg,
+        through: Reg,
+        known: Option<f64>,
+    ) {
+        let c = self.r(center);
+        if let Some(k) = known {
+            self.facts.circle_radius.insert((center, through), k);
+        }
+        // A known radius needs no point: `through` is then never written.
+        let radius = known.map_or_else(|| format!("({} - {c}).norm()", self.r(through)), float);
+        let code = format!(
+            "Circle::new({c}, {radius}).ok_or_else(|| {})?",
+            self.cx.error(i, "Degenerate", "0.0")
+        );
+        // Named after its centre and the point it goes through, when these are locals (a
+        // constant radius needs no point).
+        let about = self.derived_name(center, "", "");
+        let point = match known {
+            None => self.facts.value(through).local(),
+            Some(_) => None,
+        };
+        let n = match (about.is_empty(), point) {
+            (false, Some(point)) => format!("circle_{about}_{point}"),
+            (false, None) => format!("circle_{about}"),
+            (true, _) => "circle".into(),
+        };
+        self.define(w, r, &n, &code);
+        let center = self.facts.value(center).clone();
+        self.facts.circle_centers.insert(r, center);
+    }
+
+    /// `point`, which must lie on `locus` within the tolerance.
+    fn onto(&mut self, w: &mut Writer, r: Reg, locus: Reg, point: Reg, c: ConstraintId) {
+        let gap = self.names.fresh("gap");
+        w.line(&format!(
+            "let {gap} = {}.residual({});",
+            self.r(locus),
+            self.r(point)
+        ));
+        w.open(&format!("if {gap}.is_nan() || {gap} > tol {{"));
+        w.line(&format!("return Err({});", self.inconsistent(c, &gap)));
+        w.close("}");
+        let p = self.facts.value(point).clone();
+        self.facts.regs.insert(r, p);
+    }
+
+    /// `SolveError::new(..)` of constraint `c`, inconsistent by `magnitude`.
+    fn inconsistent(&self, c: ConstraintId, magnitude: &str) -> String {
+        let con = &self.cx.model.constraints[c];
+        format!(
+            "SolveError::new({}, {}, ErrorKind::Inconsistent, {magnitude})",
+            lit(&con.name),
+            lit(&con.text)
+        )
+    }
+
+    /// The root of `branch` of the intersection of loci `a` and `b`, for constraint `c`.
+    fn intersect(
+        &mut self,
+        w: &mut Writer,
+        r: Reg,
+        meet: Meet,
+        (a, b): (Reg, Reg),
+        branch: BranchId,
+        c: ConstraintId,
+    ) {
+        let con = &self.cx.model.constraints[c];
+        let (label, text) = (lit(&con.name), lit(&con.text));
+        let index = match self.cx.branches.get(branch.0 as usize) {
+            Some(field) if self.cx.plan.branches[branch.0 as usize].count > 1 => {
+                format!("usize::from(branches.{field})")
+            }
+            _ => "0".into(),
+        };
+        let f = match meet {
+            Meet::CircleCircle => return self.circle_circle(w, r, (a, b), index, c),
+            Meet::LineCircle => "line_circle",
+            Meet::LineLine => "line_line",
+            Meet::CircleConic => "circle_conic",
+            Meet::LineConic => "line_conic",
+            spatial => panic!(
+                "bug in gcs: the spatial intersection {spatial:?} reached the planar code generator"
+            ),
+        };
+        let meeting = self.names.fresh(&format!("{}_meeting", con.name));
+        w.line(&format!(
+            "let {meeting} = intersect2d::{f}(&{}, &{});",
+            self.r(a),
+            self.r(b)
+        ));
+        w.open(&format!(
+            "if let Some(e) = SolveError::from_contact({label}, {text}, {meeting}.contact) {{"
+        ));
+        w.line("return Err(e);");
+        w.close("}");
+        let code = format!(
+            "{meeting}.branch({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, {meeting}.roots.len() as f64))?"
+        );
+        self.define(w, r, &con.name, &code);
+    }
+
+    /// The root at `index` of two circles `a` and `b`, for constraint `c`: only that root is
+    /// computed. When a rotation turns a point onto it, the chord is kept, so that the
+    /// rotation reads the root from its centre, to the last bits.
+    fn circle_circle(
+        &mut self,
+        w: &mut Writer,
+        r: Reg,
+        (a, b): (Reg, Reg),
+        index: String,
+        c: ConstraintId,
+    ) {
+        let con = &self.cx.model.constraints[c];
+        let (label, text) = (lit(&con.name), lit(&con.text));
+        let chord = format!(
+            "intersect2d::circle_circle_chord(&{}, &{}).map_err(|miss| SolveError::from_miss({label}, {text}, miss))?",
+            self.r(a),
+            self.r(b),
+        );
+        let root = format!(
+            ".root({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 2.0))?"
+        );
+        if !self.cx.rotated_onto.contains(&r) {
+            self.define(w, r, &con.name, &format!("{chord}{root}"));
+            return;
+        }
+        let local = self.names.fresh(&format!("{}_chord", con.name));
+        w.line(&format!("let {local} = {chord};"));
+        self.define(w, r, &con.name, &format!("{local}{root}"));
+        let center = |c: Reg| self.facts.circle_centers.get(&c).cloned();
+        let kept = ChordRoot {
+            chord: local,
+            index,
+            centers: [center(a), center(b)],
+        };
+        self.facts.chord_roots.insert(r, kept);
+    }
+
+    /// Translates `geoms` so that point `from` lands on `to`: nothing when they are one value,
+    /// the origin placed when it is the point moved, else a shift.
+    fn translate(&mut self, w: &mut Writer, geoms: &[GeomId], from: Reg, to: Reg) {
+        let (from, to) = (self.facts.value(from).clone(), self.facts.value(to).clone());
+        if from.same(&to, self.cx) {
+            // From a point onto itself: nothing moves.
+            return;
+        }
+        let (f, t) = (from.code(), to.code());
+        let mut shift = None;
+        for &g in geoms {
+            let frame = self.frame_local(g);
+            let facts = self.facts.frames.entry(g).or_default();
+            if facts
+                .origin
+                .as_ref()
+                .is_some_and(|o| o.same(&from, self.cx))
+            {
+                // The point brought onto `to` is the origin: it lands there exactly.
+                facts.origin = Some(to.clone());
+                w.line(&format!("{frame}.place_origin(&{t});"));
+            } else {
+                facts.origin = None;
+                let shift = shift.get_or_insert_with(|| {
+                    let name = self.names.fresh("shift");
+                    w.line(&format!("let {name} = {t} - {f};"));
+                    name
+                });
+                w.line(&format!("{frame}.translate(&{shift});"));
+            }
+            self.frame_writes.insert(g);
+        }
+    }
+
+    /// Rotates `geoms` about `pivot` so that point `from` lands on `to`.
+    fn rotate_point(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, from: Reg, to: Reg) {
+        let (p, f, t) = (self.r(pivot), self.r(from), self.r(to));
+        // From the pivot to the target: read from the chord when the target is a root of a
+        // circle about the pivot (the same vector, without the cancellation of a difference of
+        // points far from the origin).
+        let pivot_value = self.facts.value(pivot);
+        let from_chord = self.facts.chord_roots.get(&to).and_then(|root| {
+            let side = root
+                .centers
+                .iter()
+                .position(|c| c.as_ref().is_some_and(|c| c.same(pivot_value, self.cx)))?;
+            let f = ["root_from_a", "root_from_b"][side];
+            Some(format!(
+                "{}.{f}({}).unwrap_or({t} - {p})",
+                root.chord, root.index
+            ))
+        });
+        let to_target = match &from_chord {
+            Some(code) => format!("&{code}"),
+            None => format!("&({t} - {p})"),
+        };
+        let radius = self.facts.circle_radius.get(&(pivot, from)).copied();
+        let code = match (radius, self.constant_arm(pivot, from)) {
+            // A point of a rigid geom turned onto its circle about the pivot, from where the
+            // sketch put it: the arm and the circle's radius are constants, so the rotation's
+            // cosine and sine are `(arm . reach, arm x reach) / radius²` with constant
+            // coefficients.
+            (Some(radius), Some((ax, ay))) if radius > 0.0 => {
+                let reach = self.names.fresh(&self.derived_name(to, "_reach", "reach"));
+                let code = from_chord.unwrap_or_else(|| format!("{t} - {p}"));
+                w.line(&format!("let {reach} = {code};"));
+                let k = 1.0 / (radius * radius);
+                let (kx, ky) = (ax * k, ay * k);
+                let c = linear(&[(kx, format!("{reach}.x")), (ky, format!("{reach}.y"))]);
+                let s = linear(&[(kx, format!("{reach}.y")), (-ky, format!("{reach}.x"))]);
+                // The arm itself is read only when the lengths disagree with the radius, off
+                // the fast path.
+                format!("rotation_on_circle_from({c}, {s}, &({f} - {p}), &{reach})")
+            }
+            // A point of a rigid geom turned onto its circle about the pivot: the circle's
+            // radius is known, and with it the rotation's scale.
+            (Some(radius), _) => format!(
+                "rotation_on_circle(&({f} - {p}), {to_target}, {})",
+                float(radius)
+            ),
+            (None, _) => format!("rotation_between2(&({f} - {p}), {to_target})"),
+        };
+        self.rotate(w, geoms, pivot, &code);
+    }
+
+    /// Rotates `geoms` about `pivot` so that direction `from` turns onto `to`.
+    fn rotate_dir(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, from: Reg, to: Reg) {
+        let (f, t) = (self.r(from), self.r(to));
+        let from_x = self.facts.value(from).is_x_axis();
+        let code = if from_x && self.facts.unit_dirs.contains(&to) {
+            // A finite unit direction: it is the rotation, with nothing to test.
+            format!("rotation_from_x_unit(&{t})")
+        } else if from_x {
+            format!("rotation_from_x(&{t})")
+        } else {
+            format!("rotation_between_units(&{f}, &{t})")
+        };
+        self.rotate(w, geoms, pivot, &code);
+    }
+
+    /// Rotates `geoms` about `pivot` by the rotation `code` computes: the frame's rotation
+    /// set outright while it is the identity, and its origin left alone when it is the pivot.
+    fn rotate(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, code: &str) {
+        let pivot = self.facts.value(pivot).clone();
+        let turn = self.names.fresh("turn");
+        w.line(&format!("let {turn} = {code};"));
+        for &g in geoms {
+            let frame = self.frame_local(g);
+            let facts = self.facts.frames.entry(g).or_default();
+            let about_origin = facts
+                .origin
+                .as_ref()
+                .is_some_and(|o| o.same(&pivot, self.cx));
+            match (about_origin, facts.identity) {
+                (true, true) => w.line(&format!("{frame}.set_rotation(&{turn});")),
+                (true, false) => w.line(&format!("{frame}.turn_by(&{turn});")),
+                (false, _) => {
+                    facts.origin = None;
+                    w.line(&format!(
+                        "{frame}.rotate_about_by(&{}, &{turn});",
+                        pivot.code()
+                    ));
+                }
+            }
+            facts.identity = false;
+            self.frame_writes.insert(g);
+        }
+    }
+
+    /// Sets geom `g`'s dimension to register `value`, tested first unless it is known to be
+    /// finite and non-negative; declared here when nothing read it before.
+    fn set_dim(&mut self, w: &mut Writer, i: usize, g: GeomId, value: Reg) {
+        let v = self.r(value);
+        let known_good =
+            matches!(self.facts.value(value), Value::Scalar(x) if x.is_finite() && *x >= 0.0);
+        if !known_good {
+            let test = if self.facts.is_finite(value) {
+                format!("if {v} < 0.0 {{")
+            } else {
+                format!("if !gcs_runtime::num::is_finite({v}) || {v} < 0.0 {{")
+            };
+            w.open(&test);
+            w.line(&format!(
+                "return Err({});",
+                self.cx.error(i, "InvalidValue", &v)
+            ));
+            w.close("}");
+        }
+        let d = self.dim(g);
+        if self.deferred.remove(&g) {
+            w.line(&format!("let {d} = {v};"));
+        } else {
+            w.line(&format!("{d} = {v};"));
+        }
+    }
+
+    /// A run-time check of a relation of constraint `c`: its residual within the tolerance.
+    fn check(&mut self, w: &mut Writer, c: ConstraintId, residual: &Residual) {
+        let residual = self.residual_code(residual);
+        let name = self.names.fresh("residual");
+        w.line(&format!("let {name} = {residual};"));
+        w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
+        w.line(&format!("return Err({});", self.inconsistent(c, &name)));
+        w.close("}");
+    }
+
+    /// An error function of an iteration: with the defaults given, constraint `c` must close.
+    fn close(&mut self, w: &mut Writer, c: ConstraintId, residual: Reg) {
+        let name = self.names.fresh("closing");
+        w.line(&format!("let {name} = {}.abs();", self.r(residual)));
+        w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
+        let con = &self.cx.model.constraints[c];
+        w.line(&format!(
+            "return Err(SolveError::new({}, {}, ErrorKind::NoConvergence, {name}));",
+            lit(&con.name),
+            lit(&con.text)
+        ));
+        w.close("}");
+    }
+}
+
+/// A rotation of the plane turns about its normal; any other axis is a spatial plan's.
+fn planar(axis: RotationAxis) {
+    if axis != RotationAxis::Normal {
+        panic!("bug in gcs: a rotation about {axis:?} reached the planar code generator");
+    }
+}
+
+/// The `Sense` of a circle's radius in a locus of centres.
+fn sense(plus: bool) -> &'static str {
+    if plus {
+        "Plus"
+    } else {
+        "Minus"
+    }
+}

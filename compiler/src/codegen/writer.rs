@@ -1,0 +1,126 @@
+//! The text of the generated module: an indenting writer that keeps comments (which a token
+//! printer would drop), and the spelling of Rust literals, so that every value is written one way.
+
+/// An indenting writer over a `String`: infallible, so no `unwrap` on every line.
+#[derive(Debug, Default)]
+pub(super) struct Writer {
+    pub(super) out: String,
+    pub(super) indent: usize,
+}
+
+impl Writer {
+    pub(super) fn line(&mut self, text: &str) {
+        if text.is_empty() {
+            self.out.push('\n');
+            return;
+        }
+        for _ in 0..self.indent {
+            self.out.push_str("    ");
+        }
+        self.out.push_str(text);
+        self.out.push('\n');
+    }
+    pub(super) fn open(&mut self, text: &str) {
+        self.line(text);
+        self.indent += 1;
+    }
+    pub(super) fn close(&mut self, text: &str) {
+        self.indent = self.indent.saturating_sub(1);
+        self.line(text);
+    }
+    /// Takes back the last blank line, if the text ends with one.
+    pub(super) fn unblank(&mut self) {
+        if self.out.ends_with("\n\n") {
+            self.out.pop();
+        }
+    }
+}
+
+/// A struct field initialiser, in shorthand when the names agree.
+pub(super) fn field_init(field: &str, value: &str) -> String {
+    if field == value {
+        format!("{field},")
+    } else {
+        format!("{field}: {value},")
+    }
+}
+
+/// A Rust string literal.
+pub(super) fn lit(s: &str) -> String {
+    format!("{s:?}")
+}
+
+/// A float literal: shortest round-trip form, always with a decimal point or exponent.
+pub(super) fn float(v: f64) -> String {
+    named_float(v).unwrap_or_else(|| numeric_float(v))
+}
+
+/// A float literal typed `f64`, as the receiver of a method must be: `2.0_f64.sqrt()`.
+pub(super) fn typed_float(v: f64) -> String {
+    named_float(v).unwrap_or_else(|| format!("{}_f64", numeric_float(v)))
+}
+
+/// The float as a constant of `f64` or `std::f64::consts`, when it is one.
+fn named_float(v: f64) -> Option<String> {
+    if v.is_nan() {
+        return Some("f64::NAN".into());
+    }
+    if v.is_infinite() {
+        let name = if v > 0.0 {
+            "f64::INFINITY"
+        } else {
+            "f64::NEG_INFINITY"
+        };
+        return Some(name.into());
+    }
+    for (c, name) in [
+        (std::f64::consts::PI, "std::f64::consts::PI"),
+        (std::f64::consts::FRAC_PI_2, "std::f64::consts::FRAC_PI_2"),
+        (std::f64::consts::FRAC_PI_3, "std::f64::consts::FRAC_PI_3"),
+        (std::f64::consts::FRAC_PI_4, "std::f64::consts::FRAC_PI_4"),
+        (std::f64::consts::FRAC_PI_6, "std::f64::consts::FRAC_PI_6"),
+        (std::f64::consts::TAU, "std::f64::consts::TAU"),
+    ] {
+        if v == c {
+            return Some(name.into());
+        }
+        if v == -c {
+            return Some(format!("-{name}"));
+        }
+    }
+    None
+}
+
+/// A finite float in digits.
+fn numeric_float(v: f64) -> String {
+    let s = format!("{v:?}");
+    if s.contains('.') || s.contains('e') {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+/// Code for the sum of `coefficient * value` terms, leaving out the zero coefficients (the
+/// compiler may not fold them: a NaN times zero is NaN) and writing a unit one as its sign.
+pub(super) fn linear(terms: &[(f64, String)]) -> String {
+    let mut code = String::new();
+    for (k, v) in terms.iter().filter(|(k, _)| *k != 0.0) {
+        let (minus, term) = match *k {
+            1.0 => (false, v.clone()),
+            -1.0 => (true, v.clone()),
+            k => (false, format!("{v} * {}", float(k))),
+        };
+        code = match (code.is_empty(), minus) {
+            (true, false) => term,
+            (true, true) => format!("-{term}"),
+            (false, false) => format!("{code} + {term}"),
+            (false, true) => format!("{code} - {term}"),
+        };
+    }
+    if code.is_empty() {
+        "0.0".into()
+    } else {
+        code
+    }
+}
