@@ -1,7 +1,7 @@
 //! `gcs explain`: the plan as a construction a person can follow, in the words of the papers'
 //! plan fragments, with the model's names bound.
 
-use crate::plan::{Op, Plan};
+use crate::plan::Plan;
 use gcs_lang::Model;
 use std::fmt::Write as _;
 
@@ -54,22 +54,13 @@ pub fn explain(model: &Model, plan: &Plan) -> String {
         }
     }
     for it in &plan.iterations {
-        let names: Vec<&str> = it
-            .defaults
-            .iter()
-            .filter_map(|d| plan.defaults.get(d.0 as usize).map(|d| d.name.as_str()))
-            .collect();
-        let closes: Vec<String> = plan.steps[it.start..it.end.min(plan.steps.len())]
-            .iter()
-            .filter_map(|s| match s.op {
-                Op::Close { constraint, .. } => Some(model.constraints[constraint].name.clone()),
-                _ => None,
-            })
+        let closes: Vec<&str> = (plan.closes(it).into_iter())
+            .map(|c| model.constraints[c].name.as_str())
             .collect();
         let _ = writeln!(
             out,
             "Vary {} until {} close{}.",
-            names.join(", "),
+            plan.varied(it).join(", "),
             closes.join(", "),
             if closes.len() == 1 { "s" } else { "" }
         );

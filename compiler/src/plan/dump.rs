@@ -43,17 +43,12 @@ impl Plan {
             );
         }
         for it in &self.iterations {
-            let names: Vec<&str> = it
-                .defaults
-                .iter()
-                .filter_map(|d| self.defaults.get(d.0 as usize).map(|d| d.name.as_str()))
-                .collect();
             let _ = writeln!(
                 out,
                 "iterate steps {}..{} over {}",
                 it.start,
                 it.end,
-                names.join(" ")
+                self.varied(it).join(" ")
             );
         }
         for s in &self.steps {

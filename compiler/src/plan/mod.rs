@@ -475,6 +475,24 @@ impl Plan {
         later.or_else(|| self.steps.get(..i).unwrap_or(&[]).iter().rev().find_map(of))
     }
 
+    /// The names of the defaults iteration `it` varies.
+    pub fn varied(&self, it: &Iteration) -> Vec<&str> {
+        (it.defaults.iter())
+            .filter_map(|d| self.defaults.get(d.0 as usize).map(|d| d.name.as_str()))
+            .collect()
+    }
+
+    /// The constraints iteration `it` closes: those of the `Close` steps of its region.
+    pub fn closes(&self, it: &Iteration) -> Vec<ConstraintId> {
+        let region = self.steps.get(it.start..it.end.min(self.steps.len()));
+        (region.unwrap_or(&[]).iter())
+            .filter_map(|s| match s.op {
+                Op::Close { constraint, .. } => Some(constraint),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The value of every default in the sketch, indexed by [`DefaultId`].
     pub fn sketch_defaults(&self) -> Vec<f64> {
         self.defaults.iter().map(|d| d.sketch).collect()

@@ -398,14 +398,7 @@ impl Plan {
             {
                 errors.push(format!("iteration {k} varies no declared default"));
             }
-            let closes = self
-                .steps
-                .get(it.start..it.end.min(self.steps.len()))
-                .unwrap_or(&[])
-                .iter()
-                .filter(|s| matches!(s.op, Op::Close { .. }))
-                .count();
-            if closes == 0 {
+            if self.closes(it).is_empty() {
                 errors.push(format!("iteration {k} closes nothing"));
             }
         }
