@@ -104,12 +104,7 @@ pub fn run_with(
         chosen: vec![None; plan.branches.len()],
     };
     for (i, step) in plan.steps.iter().enumerate() {
-        let value = machine.step(i, step)?;
-        if let (Some(val), Some((r, _))) = (value, step.out) {
-            if let Some(slot) = machine.regs.get_mut(r.0 as usize) {
-                *slot = Some(val);
-            }
-        }
+        machine.step(i, step)?;
     }
     Ok(Run {
         config: machine.config,
@@ -143,7 +138,7 @@ struct Machine<'a> {
 
 /// The panic of a malformed plan: a bug in gcs, never an input's fault.
 #[cold]
-fn malformed(r: Reg, want: &str, got: Option<Val>) -> ! {
+fn malformed(r: Reg, want: &str, got: Option<&Val>) -> ! {
     panic!(
         "bug in gcs: the plan reads r{} as {want}, but it holds {got:?}; \
          the pipeline validates every plan, so please report this",
@@ -152,42 +147,42 @@ fn malformed(r: Reg, want: &str, got: Option<Val>) -> ! {
 }
 
 impl Machine<'_> {
-    fn get(&self, r: Reg) -> Option<Val> {
-        self.regs.get(r.0 as usize).copied().flatten()
+    fn get(&self, r: Reg) -> Option<&Val> {
+        self.regs.get(r.0 as usize)?.as_ref()
     }
     fn s(&self, r: Reg) -> f64 {
         match self.get(r) {
-            Some(Val::S(x)) => x,
+            Some(&Val::S(x)) => x,
             v => malformed(r, "a scalar", v),
         }
     }
     fn p(&self, r: Reg) -> P2 {
         match self.get(r) {
-            Some(Val::P(x)) => x,
+            Some(&Val::P(x)) => x,
             v => malformed(r, "a point", v),
         }
     }
     fn v(&self, r: Reg) -> V2 {
         match self.get(r) {
-            Some(Val::V(x)) => x,
+            Some(&Val::V(x)) => x,
             v => malformed(r, "a direction", v),
         }
     }
     fn line(&self, r: Reg) -> Line {
         match self.get(r) {
-            Some(Val::L(x)) => x,
+            Some(&Val::L(x)) => x,
             v => malformed(r, "a line", v),
         }
     }
     fn circle(&self, r: Reg) -> Circle {
         match self.get(r) {
-            Some(Val::C(x)) => x,
+            Some(&Val::C(x)) => x,
             v => malformed(r, "a circle", v),
         }
     }
     fn conic(&self, r: Reg) -> Conic {
         match self.get(r) {
-            Some(Val::Q(x)) => x,
+            Some(&Val::Q(x)) => x,
             v => malformed(r, "a conic", v),
         }
     }
@@ -219,8 +214,8 @@ impl Machine<'_> {
         }
     }
 
-    /// Runs one step; returns the value it defines.
-    fn step(&mut self, i: usize, step: &Step) -> Result<Option<Val>, SolveError> {
+    /// Runs one step, keeping the value it defines in its register.
+    fn step(&mut self, i: usize, step: &Step) -> Result<(), SolveError> {
         let model = self.model;
         let value = match &step.op {
             Op::Expr(e) => Val::S(self.finite(i, model.exprs.eval(*e, self.params))?),
@@ -348,8 +343,8 @@ impl Machine<'_> {
             Op::Nearest { locus, point } => {
                 let q = self.p(*point);
                 Val::P(match self.get(*locus) {
-                    Some(Val::L(l)) => l.nearest(q),
-                    Some(Val::C(c)) => c.nearest(q),
+                    Some(&Val::L(l)) => l.nearest(q),
+                    Some(&Val::C(c)) => c.nearest(q),
                     v => malformed(*locus, "a line or a circle", v),
                 })
             }
@@ -360,9 +355,9 @@ impl Machine<'_> {
             } => {
                 let q = self.p(*point);
                 let gap = match self.get(*locus) {
-                    Some(Val::L(l)) => l.residual(q),
-                    Some(Val::C(c)) => c.residual(q),
-                    Some(Val::Q(k)) => k.residual(q),
+                    Some(&Val::L(l)) => l.residual(q),
+                    Some(&Val::C(c)) => c.residual(q),
+                    Some(&Val::Q(k)) => k.residual(q),
                     v => malformed(*locus, "a locus", v),
                 };
                 if gap.is_nan() || gap > self.tol {
@@ -383,7 +378,7 @@ impl Machine<'_> {
                 for g in geoms {
                     self.config.translate(*g, d);
                 }
-                return Ok(None);
+                return Ok(());
             }
             Op::RotatePoint {
                 geoms,
@@ -399,7 +394,7 @@ impl Machine<'_> {
                 for g in geoms {
                     self.config.rotate(*g, c, rot);
                 }
-                return Ok(None);
+                return Ok(());
             }
             Op::RotateDir {
                 geoms,
@@ -414,7 +409,7 @@ impl Machine<'_> {
                 for g in geoms {
                     self.config.rotate(*g, c, rot);
                 }
-                return Ok(None);
+                return Ok(());
             }
             Op::SetDim { geom, value } => {
                 let x = self.s(*value);
@@ -422,7 +417,7 @@ impl Machine<'_> {
                     return Err(self.error(i, ErrorKind::InvalidValue, x));
                 }
                 self.config.dims.insert(*geom, x);
-                return Ok(None);
+                return Ok(());
             }
             Op::Check {
                 constraint,
@@ -432,7 +427,7 @@ impl Machine<'_> {
                 if r.is_nan() || r > self.tol {
                     return Err(err(model, *constraint, ErrorKind::Inconsistent, r));
                 }
-                return Ok(None);
+                return Ok(());
             }
             Op::Close {
                 constraint,
@@ -443,10 +438,15 @@ impl Machine<'_> {
                 if r.is_nan() || r > self.tol {
                     return Err(err(model, *constraint, ErrorKind::NoConvergence, r));
                 }
-                return Ok(None);
+                return Ok(());
             }
         };
-        Ok(Some(value))
+        if let Some((r, _)) = step.out {
+            if let Some(slot) = self.regs.get_mut(r.0 as usize) {
+                *slot = Some(value);
+            }
+        }
+        Ok(())
     }
 
     /// The root of the intersection of loci `a` and `b` that `branch` (or the choice) takes.
