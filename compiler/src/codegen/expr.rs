@@ -81,10 +81,16 @@ impl Context<'_> {
         }
     }
 
-    /// The expression as the receiver of a method call: an atom, and a typed literal.
+    /// The expression as the receiver of a method call: an atom, and a typed literal (a
+    /// negative one in parentheses, as `-2.0_f64.powf(p)` is `-(2.0_f64.powf(p))`).
     fn receiver(&self, e: ExprId) -> String {
-        if let Some(v) = self.constant(e).filter(|v| v.is_nan() || *v >= 0.0) {
-            return typed_float(v);
+        if let Some(v) = self.constant(e) {
+            let literal = typed_float(v);
+            return if literal.starts_with('-') {
+                format!("({literal})")
+            } else {
+                literal
+            };
         }
         self.wrap(e, Prec::Atom)
     }
