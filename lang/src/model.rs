@@ -419,6 +419,29 @@ impl Model {
         }
     }
 
+    /// The distance between two point members (points or markers) of one body whose local
+    /// coordinates are constants: known without params. Computed as `sqrt(dx² + dy²)`, the
+    /// arithmetic of a vector's norm, so that every consumer gets the same bits.
+    pub fn constant_distance(&self, a: GeomId, b: GeomId) -> Option<f64> {
+        let local = |f: GeomId| -> Option<(f64, f64)> {
+            match (&self.geoms[f].sketch, self.geoms[f].owner) {
+                (Sketch::Point(c) | Sketch::Marker { origin: c, .. }, Owner::Member(_))
+                    if c.iter().all(|&e| self.exprs.is_constant(e)) =>
+                {
+                    let v = |i: usize| c.get(i).map_or(0.0, |&e| self.exprs.eval(e, &[]));
+                    Some((v(0), v(1)))
+                }
+                _ => None,
+            }
+        };
+        if self.top_level_of(a) != self.top_level_of(b) {
+            return None;
+        }
+        let ((ax, ay), (bx, by)) = (local(a)?, local(b)?);
+        let (dx, dy) = (ax - bx, ay - by);
+        Some((dx * dx + dy * dy).sqrt())
+    }
+
     /// The nominal DOF of a constraint: what it removes if independent of the others, with
     /// its value at the default params (a zero distance removes more than a non-zero one).
     pub fn nominal_dof_removed(&self, c: ConstraintId) -> usize {

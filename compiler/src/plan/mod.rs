@@ -506,29 +506,6 @@ impl Residual {
     }
 }
 
-/// The distance between two point features of one body whose local coordinates do not depend
-/// on params: known when the plan is built. A circle through one about the other has this
-/// radius.
-pub fn constant_distance(model: &Model, a: GeomId, b: GeomId) -> Option<f64> {
-    use gcs_lang::model::{Owner, Sketch};
-    let local = |f: GeomId| -> Option<(f64, f64)> {
-        match (&model.geoms[f].sketch, model.geoms[f].owner) {
-            (Sketch::Point(c) | Sketch::Marker { origin: c, .. }, Owner::Member(_))
-                if c.iter().all(|&e| model.exprs.is_constant(e)) =>
-            {
-                let v = |i: usize| c.get(i).map_or(0.0, |&e| model.exprs.eval(e, &[]));
-                Some((v(0), v(1)))
-            }
-            _ => None,
-        }
-    };
-    let ((ax, ay), (bx, by)) = (local(a)?, local(b)?);
-    if model.top_level_of(a) != model.top_level_of(b) {
-        return None;
-    }
-    Some(nalgebra::Vector2::new(ax - bx, ay - by).norm())
-}
-
 /// An expression as text, for dumps and explanations.
 pub fn expr_text(model: &Model, e: ExprId) -> String {
     use gcs_lang::expr::ExprNode as N;

@@ -907,7 +907,7 @@ impl Builder<'_, Planar> {
     fn circle_through(&mut self, at: Reg, from: Reg, f: GeomId, pivot: GeomId) -> Reg {
         // Both on one rigid geom with a constant sketch of them: the radius is their distance
         // in it, known now.
-        let radius = crate::plan::constant_distance(self.model, pivot, f);
+        let radius = self.model.constant_distance(pivot, f);
         let words = format!(
             "the circle about {} through {}",
             self.word(at),
