@@ -27,6 +27,7 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
             .name
             .cmp(&model.constraints[b.constraint].name)
     });
+    mark_duplicates::<G>(&mut rels);
     let mut b = Builder::<G>::new(model);
     b.run(rels);
     let mut unsolved = unsupported;
@@ -65,6 +66,25 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
         recorded,
         redundant: b.redundant,
     })
+}
+
+/// What makes two relations duplicates: the same kind over the same features.
+type RelKey<R> = (std::mem::Discriminant<R>, Vec<GeomId>);
+
+/// The key of a relation.
+fn key<G: Geometry>(r: &G::Relation) -> RelKey<G::Relation> {
+    let mut features = G::features(r);
+    features.sort_unstable();
+    features.dedup();
+    (std::mem::discriminant(r), features)
+}
+
+/// Marks every relation whose key an earlier one (in canonical order) has.
+fn mark_duplicates<G: Geometry>(rels: &mut [Rel<G::Relation>]) {
+    let mut seen = std::collections::HashSet::new();
+    for r in rels {
+        r.duplicate = !seen.insert(key::<G>(&r.relation));
+    }
 }
 
 /// A cluster while the analysis runs: its top-level geoms and its record.
@@ -114,6 +134,8 @@ pub(crate) struct Builder<'m, G: Geometry> {
     def_step: Vec<usize>,
     pub(crate) pending: Vec<Rel<G::Relation>>,
     redundant: Vec<ConstraintId>,
+    /// The keys of the relations done so far: a duplicate waits for its key here.
+    done: std::collections::HashSet<RelKey<G::Relation>>,
 }
 
 impl<'m, G: Geometry> Builder<'m, G> {
@@ -142,6 +164,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             def_step: Vec::new(),
             pending: Vec::new(),
             redundant: Vec::new(),
+            done: std::collections::HashSet::new(),
         }
     }
 
@@ -439,13 +462,27 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 while let Some(&i) = dirty[mode].range(next..).next() {
                     next = i + 1;
                     let r = self.pending[i].clone();
+                    if r.duplicate {
+                        // A duplicate never constructs: it is checked once the relation it
+                        // repeats is done and its sides are known, and waits until then.
+                        if locus || !self.done.contains(&key::<G>(&r.relation)) {
+                            continue;
+                        }
+                        if !G::implied(self, &r.relation) {
+                            dirty[mode].remove(&i);
+                            continue;
+                        }
+                    }
                     let before: Vec<G::Record> = involved[i]
                         .iter()
                         .map(|&k| self.clusters[k].record.clone())
                         .collect();
                     let measured = self.measured.len();
                     let cp = self.checkpoint();
-                    let ok = if locus {
+                    let ok = if r.duplicate {
+                        self.check(&r);
+                        true
+                    } else if locus {
                         G::locus(self, &r)
                     } else {
                         G::action(self, &r)
@@ -465,6 +502,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             }
             let Some((i, before)) = done else { break };
             alive[i] = false;
+            self.done.insert(key::<G>(&self.pending[i].relation));
             dirty[0].remove(&i);
             dirty[1].remove(&i);
             for (&k, old) in involved[i].iter().zip(&before) {

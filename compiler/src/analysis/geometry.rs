@@ -26,6 +26,11 @@ pub struct Rel<R> {
     /// Whether it is the constraint's last relation: the step that satisfies it satisfies the
     /// constraint.
     pub last: bool,
+    /// Whether an earlier relation (in canonical order) has the same kind and features: then
+    /// this one never constructs. It waits until that one is done and both its sides are known,
+    /// and is checked (a duplicate holds, a duplicate with another value is a conflict of that
+    /// size), whatever the two constraints are called.
+    pub duplicate: bool,
 }
 
 /// A cluster's invariants record (000, Table 2): what constraints have fixed of it so far.
@@ -97,6 +102,10 @@ pub(crate) trait Geometry: Sized + Clone {
     /// the freedom its record leaves, or makes it a check when it is already implied. Returns
     /// whether it did; a failed attempt is rolled back by the driver.
     fn action(b: &mut Builder<'_, Self>, r: &Rel<Self::Relation>) -> bool;
+
+    /// Whether relation `r` is implied by what is known (both its sides, or one rigid cluster
+    /// holding both): then a run-time check is all it needs.
+    fn implied(b: &Builder<'_, Self>, r: &Self::Relation) -> bool;
 
     /// Locus analysis: satisfies `r` by intersecting the loci of two partially fixed clusters.
     fn locus(b: &mut Builder<'_, Self>, r: &Rel<Self::Relation>) -> bool;

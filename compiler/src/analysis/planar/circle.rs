@@ -65,8 +65,8 @@ impl Fd {
 }
 
 impl Builder<'_, Planar> {
-    /// The relations that involve a circle's radius. Returns whether the relation was
-    /// satisfied, recorded or turned into a check.
+    /// The relations that involve a circle's radius, when not implied (`action` checks
+    /// those). Returns whether the relation was satisfied or recorded.
     pub(super) fn circle_relation(&mut self, r: &Rel) -> bool {
         match r.relation.clone() {
             Relation::PointCircle {
@@ -78,10 +78,6 @@ impl Builder<'_, Planar> {
                 let centre = self.centre(circle);
                 let circle_known = self.record(circle).grounded();
                 let p_known = self.point_known(p);
-                if circle_known && p_known {
-                    self.check(r);
-                    return true;
-                }
                 let sign = if outside { 1.0 } else { -1.0 };
                 if circle_known {
                     let at = self.point(centre);
@@ -139,10 +135,6 @@ impl Builder<'_, Planar> {
                 let on_line = self.line_point(base);
                 let line_known = on_line.is_some() && self.dir_known(super::Dir::Feature(dir));
                 let base = on_line.unwrap_or(base);
-                if circle_known && line_known {
-                    self.check(r);
-                    return true;
-                }
                 let a = match gap {
                     Some(g) => self.expr(g),
                     None => self.value(Op::Const(0.0), Ty::Scalar, "0".into()),
@@ -186,10 +178,6 @@ impl Builder<'_, Planar> {
             }
             Relation::CircleCircle { a, b, gap, mode } => {
                 let (ka, kb) = (self.record(a).grounded(), self.record(b).grounded());
-                if ka && kb {
-                    self.check(r);
-                    return true;
-                }
                 let (known, free, known_first) = match (ka, kb) {
                     (true, false) => (a, b, true),
                     (false, true) => (b, a, false),

@@ -69,6 +69,10 @@ impl Geometry for Planar {
         b.action(r)
     }
 
+    fn implied(b: &Builder<'_, Self>, r: &Relation) -> bool {
+        b.implied(r)
+    }
+
     fn locus(b: &mut Builder<'_, Self>, r: &Rel) -> bool {
         b.locus(r)
     }
@@ -400,6 +404,37 @@ impl Builder<'_, Planar> {
         }
     }
 
+    /// Whether a relation is implied by what is known (both its sides, or one rigid cluster
+    /// holding both): then it only needs a run-time check.
+    fn implied(&self, relation: &Relation) -> bool {
+        let rigid_together = |a: GeomId, b: GeomId| {
+            self.cluster(a) == self.cluster(b)
+                && self.clusters[self.cluster(a)].record.free_dim.is_none()
+        };
+        let line_known = |base: GeomId, dir: GeomId| {
+            self.line_point(base).is_some() && self.dir_known(Dir::Feature(dir))
+        };
+        let placed = |circle: GeomId| self.record(circle).grounded();
+        match *relation {
+            Relation::PointPoint { a, b, .. } => {
+                (self.point_known(a) && self.point_known(b)) || rigid_together(a, b)
+            }
+            Relation::PointLine { p, base, dir, .. } => {
+                (line_known(base, dir) && self.point_known(p)) || rigid_together(p, base)
+            }
+            Relation::Angle { u, v, .. } => {
+                (self.dir_known(u) && self.dir_known(v))
+                    || matches!((u, v), (Dir::Feature(x), Dir::Feature(y)) if self.cluster(x) == self.cluster(y))
+            }
+            Relation::Dim { geom, .. } => self.record(geom).free_dim != Some(geom),
+            Relation::PointCircle { p, circle, .. } => placed(circle) && self.point_known(p),
+            Relation::CircleLine {
+                circle, base, dir, ..
+            } => placed(circle) && line_known(base, dir),
+            Relation::CircleCircle { a, b, .. } => placed(a) && placed(b),
+        }
+    }
+
     /// A known point on the line of (`base`, its direction): `base` itself, or the other end
     /// of the same segment.
     fn line_point(&self, base: GeomId) -> Option<GeomId> {
@@ -538,37 +573,34 @@ impl Builder<'_, Planar> {
         self.plan.grounded_direction = Some((at, other));
     }
 
-    /// A dimension constraint: scales the geom while its dimension is free, else a check.
+    /// A dimension constraint on a geom whose dimension is free (`action` checks a fixed one):
+    /// scale the geom.
     fn dimension(&mut self, r: &Rel) {
         let Relation::Dim { geom, value } = r.relation else {
             return;
         };
         let k = self.cluster(geom);
-        if self.clusters[k].record.free_dim == Some(geom) {
-            let v = self.expr(value);
-            let what = if self.model.geoms[geom].kind == GeomKind::Circle {
-                "radius"
-            } else {
-                "length"
-            };
-            let explain = format!(
-                "Scale {} so that its {what} is {} ({}). This fixes its dimension.",
-                self.name(geom),
-                self.word(v),
-                self.cname(r.constraint)
-            );
-            self.emit(
-                Op::SetDim { geom, value: v },
-                None,
-                self.satisfies(r),
-                explain,
-            );
-            let rec = &mut self.clusters[k].record;
-            rec.free_dim = None;
-            rec.fixed_dims.push(geom);
+        let v = self.expr(value);
+        let what = if self.model.geoms[geom].kind == GeomKind::Circle {
+            "radius"
         } else {
-            self.check(r);
-        }
+            "length"
+        };
+        let explain = format!(
+            "Scale {} so that its {what} is {} ({}). This fixes its dimension.",
+            self.name(geom),
+            self.word(v),
+            self.cname(r.constraint)
+        );
+        self.emit(
+            Op::SetDim { geom, value: v },
+            None,
+            self.satisfies(r),
+            explain,
+        );
+        let rec = &mut self.clusters[k].record;
+        rec.free_dim = None;
+        rec.fixed_dims.push(geom);
     }
 
     // ------------------------------------------------------------ action analysis
@@ -576,16 +608,13 @@ impl Builder<'_, Planar> {
     /// Action analysis: one side known enough, the other side moved. Returns whether the
     /// relation was satisfied (or became a check).
     fn action(&mut self, r: &Rel) -> bool {
+        if self.implied(&r.relation) {
+            self.check(r);
+            return true;
+        }
         match r.relation.clone() {
             Relation::PointPoint { a, b, d } => {
                 let (ka, kb) = (self.point_known(a), self.point_known(b));
-                if ka && kb
-                    || (self.cluster(a) == self.cluster(b)
-                        && self.clusters[self.cluster(a)].record.free_dim.is_none())
-                {
-                    self.check(r);
-                    return true;
-                }
                 let (known, free) = match (ka, kb) {
                     (true, false) => (a, b),
                     (false, true) => (b, a),
@@ -613,16 +642,8 @@ impl Builder<'_, Planar> {
                 let line_known = on_line.is_some() && self.dir_known(Dir::Feature(dir));
                 let base = on_line.unwrap_or(base);
                 let p_known = self.point_known(p);
-                if line_known && p_known {
-                    self.check(r);
-                    return true;
-                }
                 if self.cluster(p) == self.cluster(base) {
-                    // Within one rigid cluster the relation is fixed: implied (a check).
-                    if self.clusters[self.cluster(p)].record.free_dim.is_none() {
-                        self.check(r);
-                        return true;
-                    }
+                    // Within one cluster whose free dimension still moves the point: wait.
                     return false;
                 }
                 if line_known {
@@ -661,12 +682,6 @@ impl Builder<'_, Planar> {
             }
             Relation::Angle { u, v, angle } => {
                 let (ku, kv) = (self.dir_known(u), self.dir_known(v));
-                if ku && kv
-                    || matches!((u, v), (Dir::Feature(x), Dir::Feature(y)) if self.cluster(x) == self.cluster(y))
-                {
-                    self.check(r);
-                    return true;
-                }
                 let a = self.angle(angle);
                 match (ku, kv, u, v) {
                     (true, false, _, Dir::Feature(fv)) if angle == AngleValue::Const(0.0) => {

@@ -321,6 +321,7 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                 relation,
                 constraint: id,
                 last: i + 1 == n,
+                duplicate: false,
             });
         }
     }
