@@ -27,6 +27,16 @@
 //! distance from the second locus of the first locus's point where the intersection polynomial
 //! comes closest to zero, which is exact for circle-parabola and a close estimate otherwise).
 //!
+//! Zero-size loci: a circle of radius within [`tol::LENGTH_REL`] of the scale is a point (a
+//! zero distance, a circle of zero radius), and its intersection with another locus is unique
+//! when the point lies on it: [`Contact::Tangent`], the point in the two slots it merges, as for
+//! any touching loci; otherwise [`Contact::Disjoint`] with the point's distance from the locus.
+//! Two zero-size circles meet where they are one point. Such a meeting is no degenerate
+//! configuration: the answer is determined, and the plan solves it (`on(B, base)` with
+//! `distance(A, B) = 0` and `A` on `base` puts `B` at `A`). What stays degenerate is a locus
+//! that determines nothing: two coincident circles of the same non-zero radius
+//! ([`Contact::Coincident`]), a conic that is the circle.
+//!
 //! Non-finite input cannot be built (constructors of [`crate::locus2d`] refuse it); inputs so
 //! large that intermediate squares overflow (|coordinates| beyond about 1e150) give
 //! `Disjoint { gap: f64::INFINITY }` rather than NaN roots, except in [`circle_circle`], which
@@ -158,9 +168,8 @@ fn line_circle_t(l: &Line, c: &Circle) -> (Roots<f64, 2>, Contact) {
     let [px, py] = line_scale(l);
     let [cx, cy, r] = circle_scale(c);
     let s = tol::scale(&[px, py, cx, cy, r]);
-    if r <= tol::LENGTH_REL * s {
-        return (Roots::new(), Contact::ZeroRadius);
-    }
+    // A circle of zero radius is a point: the tests below find it on the line (tangent, one
+    // root) or off it (disjoint, by its distance).
     let sd = l.signed_distance(c.center());
     let t0 = l.param_of(c.center());
     let gap = sd.abs() - r;
@@ -176,13 +185,25 @@ fn line_circle_t(l: &Line, c: &Circle) -> (Roots<f64, 2>, Contact) {
     if gap > 0.0 {
         return (Roots::new(), Contact::Disjoint { gap });
     }
-    let h = ((r - sd.abs()) * (r + sd.abs())).sqrt();
+    let (inside, outside) = (r - sd.abs(), r + sd.abs());
+    let product = inside * outside;
+    // Past about 1e154 the product overflows, where each factor's root does not.
+    let h = if product.is_finite() {
+        product.sqrt()
+    } else {
+        inside.sqrt() * outside.sqrt()
+    };
+    let (first, second) = (t0 - h, t0 + h);
+    if !first.is_finite() || !second.is_finite() {
+        // Roots beyond `f64`.
+        return (Roots::new(), Contact::Disjoint { gap: f64::INFINITY });
+    }
     let contact = if h > 0.0 {
         Contact::Crossing
     } else {
         Contact::Tangent
     };
-    (Roots::from_slice(&[t0 - h, t0 + h]), contact)
+    (Roots::from_slice(&[first, second]), contact)
 }
 
 /// The tangent point of a line and a circle: midway between the foot of the centre on the line
@@ -199,8 +220,8 @@ fn line_circle_tangent_point(l: &Line, c: &Circle) -> P2 {
 /// A line and a circle.
 ///
 /// Branch 0 is the first crossing along the line's direction, branch 1 the second.
-/// Degenerate cases: [`Contact::ZeroRadius`] (no roots) for a radius within
-/// [`tol::LENGTH_REL`] of the scale; [`Contact::Tangent`] when the distance of the centre from
+/// Degenerate cases: a circle of zero radius is its centre (see the module's zero-size loci);
+/// [`Contact::Tangent`] when the distance of the centre from
 /// the line is the radius within [`tol::TANGENT_REL`] of the scale, the touching point (midway
 /// between the line's and the circle's closest points) in both slots; [`Contact::Disjoint`] with
 /// gap `|sd| - r` when the line misses.
@@ -270,8 +291,12 @@ pub fn ray_circle(r: &Ray, c: &Circle) -> Intersection<Option<P2>, 2> {
 /// Branch 0 is the root to the **left** of the directed line from the first centre to the
 /// second, branch 1 the root to its right. Degenerate cases, with `d` the distance of the
 /// centres and the scale the largest coordinate or radius:
-/// - a radius within [`tol::LENGTH_REL`] of the scale: [`Contact::ZeroRadius`], no roots;
-/// - `d` and `r1 - r2` both within [`tol::LENGTH_REL`] of the scale: [`Contact::Coincident`];
+/// - a radius within [`tol::LENGTH_REL`] of the scale: that circle is its centre, on the other
+///   circle (touching, below) or off it (disjoint); two such circles touch where they are one
+///   point, within [`tol::TANGENT_REL`] of the scale, and are disjoint by their distance
+///   otherwise;
+/// - `d` and `r1 - r2` both within [`tol::LENGTH_REL`] of the scale, the radii not zero:
+///   [`Contact::Coincident`];
 /// - `d - (r1 + r2)` or `|r1 - r2| - d` within [`tol::TANGENT_REL`] of the scale (externally
 ///   or internally touching): [`Contact::Tangent`], the touching point on the line of centres
 ///   in both slots;
@@ -480,17 +505,29 @@ fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Con
     if !CHORD_SCALES.contains(&s) {
         return rescaled([x1, y1, r1, x2, y2, r2], s);
     }
-    if r1 <= tol::LENGTH_REL * s || r2 <= tol::LENGTH_REL * s {
-        return Err(Contact::ZeroRadius);
-    }
     let dv = c2 - c1;
     let d2 = dv.norm_squared();
+    if r1 <= tol::LENGTH_REL * s && r2 <= tol::LENGTH_REL * s {
+        // Two points: one where they coincide (midway, within rounding), else apart.
+        let d = d2.sqrt();
+        if d > tol::TANGENT_REL * s {
+            return Err(Contact::Disjoint { gap: d });
+        }
+        let mid_from_a = dv * 0.5;
+        return Ok(Chord {
+            mid: c1 + mid_from_a,
+            half: V2::zeros(),
+            mid_from_a,
+            mid_from_b: dv * -0.5,
+        });
+    }
     let (overlap, apart) = heron_factors(d2, r1, r2);
     if plainly_cross(s, r1, r2, d2, overlap, apart) {
         // Not reached: the caller computed the same values and found them crossing.
         return Ok(crossing(c1, dv, d2, r1, r2, overlap * apart));
     }
     let d = d2.sqrt();
+    // Coincident circles determine no point (a zero radius is at most one, handled above).
     if d <= tol::LENGTH_REL * s && (r1 - r2).abs() <= tol::LENGTH_REL * s {
         return Err(Contact::Coincident);
     }
@@ -1072,7 +1109,9 @@ fn param_implicit(a: &Conic, b: Curve<'_>, scale: f64) -> Intersection<P2, 4> {
 /// from the vertex; ellipse: eccentric angle in `(-π, π]`, which wraps at `π`; hyperbola: `t`
 /// of `cosh t, sinh t`), found as roots of a quartic in that parameter and polished by Newton's
 /// method on both curves. Use [`nearest`] to follow a branch through a sweep. Degenerate cases:
-/// [`Contact::ZeroRadius`] for a radius within [`tol::LENGTH_REL`] of the scale;
+/// a circle of zero radius is its centre: on the conic within [`tol::TANGENT_REL`] of the scale
+/// it is the one root ([`Contact::Tangent`], in slots 0 and 1), off it [`Contact::Disjoint`]
+/// with the conic's residual there;
 /// [`Contact::Coincident`] when the conic is this circle (an ellipse with equal foci);
 /// [`Contact::Tangent`] when they touch within [`tol::TANGENT_REL`] of the scale, the touching
 /// point in two consecutive slots (other crossings, if any, keep their own slots);
@@ -1081,7 +1120,14 @@ pub fn circle_conic(c: &Circle, k: &Conic) -> Intersection<P2, 4> {
     let [cx, cy, r] = circle_scale(c);
     let s = k.scale().max(tol::scale(&[cx, cy, r]));
     if r <= tol::LENGTH_REL * s {
-        return Intersection::none(Contact::ZeroRadius);
+        let (at, gap) = (c.center(), k.residual(c.center()));
+        if gap <= tol::TANGENT_REL * s {
+            return Intersection {
+                roots: Roots::from_slice(&[at, at]),
+                contact: Contact::Tangent,
+            };
+        }
+        return Intersection::none(Contact::Disjoint { gap });
     }
     param_implicit(k, Curve::Circle(c), s)
 }
@@ -1196,8 +1242,12 @@ mod tests {
         assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 1e-12).abs() < 1e-15));
         let i = line_circle(&line(0.0, 3.0, 1.0, 0.0), &c);
         assert_eq!(i.contact, Contact::Disjoint { gap: 2.0 });
-        let i = line_circle(&line(0.0, 0.0, 1.0, 0.0), &circle(0.0, 0.0, 0.0));
-        assert_eq!(i.contact, Contact::ZeroRadius);
+        // A circle of zero radius is a point: one root on the line, else the gap.
+        let i = line_circle(&line(0.0, 0.0, 1.0, 0.0), &circle(2.0, 0.0, 0.0));
+        assert_eq!(i.contact, Contact::Tangent);
+        assert_eq!(i.roots.as_slice(), &[p(2.0, 0.0), p(2.0, 0.0)]);
+        let i = line_circle(&line(0.0, 0.0, 1.0, 0.0), &circle(2.0, 0.5, 0.0));
+        assert_eq!(i.contact, Contact::Disjoint { gap: 0.5 });
         // Rays keep the line's branch slots.
         let r = Ray::new(p(0.0, 0.0), V2::x()).unwrap();
         let i = ray_circle(&r, &c);
@@ -1240,9 +1290,26 @@ mod tests {
             Contact::Disjoint { gap: 4.0 }
         );
         assert_eq!(circle_circle(&a, &a).contact, Contact::Coincident);
+        // Zero radii: a point on the other circle, off it, and two points.
+        let on = circle_circle(&a, &circle(0.0, 5.0, 0.0));
+        assert_eq!(on.contact, Contact::Tangent);
+        assert!(on
+            .roots
+            .as_slice()
+            .iter()
+            .all(|&x| close(x, p(0.0, 5.0), 1e-15)));
         assert_eq!(
             circle_circle(&a, &circle(1.0, 0.0, 0.0)).contact,
-            Contact::ZeroRadius
+            Contact::Disjoint { gap: 4.0 }
+        );
+        let z = circle(1.0, 1.0, 0.0);
+        assert_eq!(
+            circle_circle(&z, &z).roots.as_slice(),
+            &[p(1.0, 1.0), p(1.0, 1.0)]
+        );
+        assert_eq!(
+            circle_circle(&z, &circle(1.0, 4.0, 0.0)).contact,
+            Contact::Disjoint { gap: 3.0 }
         );
     }
 
@@ -1443,10 +1510,17 @@ mod tests {
         assert!(
             matches!(circle_conic(&circle(0.0, -3.0, 1.0), &par).contact, Contact::Disjoint { gap } if (gap - 2.0).abs() < 1e-12)
         );
+        // A circle of zero radius: a point on the parabola is its one root; off it, the gap.
+        let at = p(2.0, 1.0);
+        let on = circle_conic(&Circle::new(at, 0.0).unwrap(), &par);
         assert_eq!(
-            circle_conic(&circle(0.0, 3.0, 0.0), &par).contact,
-            Contact::ZeroRadius
+            (on.contact, on.roots.as_slice()),
+            (Contact::Tangent, &[at, at][..])
         );
+        assert!(matches!(
+            circle_conic(&circle(0.0, -3.0, 0.0), &par).contact,
+            Contact::Disjoint { .. }
+        ));
         // An ellipse with equal foci is a circle: coincident.
         let e: Conic = Ellipse::new(p(1.0, 1.0), p(1.0, 1.0), 4.0).unwrap().into();
         assert_eq!(
