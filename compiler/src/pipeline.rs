@@ -128,7 +128,8 @@ pub struct Compiled {
     /// Its analysis, with the validated plan.
     pub analysis: Analysis,
     /// The model's warnings, then the analysis's problems (constraints without a plan, geoms
-    /// left free, constraints that conflict at the default params).
+    /// left free, constraints that conflict at the default params), then names that would
+    /// become one identifier of the generated solver.
     pub diagnostics: Vec<Diagnostic>,
 }
 
@@ -168,6 +169,7 @@ pub fn compile(name: &str, bytes: &[u8]) -> Result<Compiled, CompileError> {
         Ok(analysis) => {
             let mut diagnostics = loaded.diagnostics;
             diagnostics.extend(crate::report::problems(&loaded.model, &analysis));
+            diagnostics.extend(crate::codegen::name_clashes(&loaded.model, &analysis.plan));
             Ok(Compiled {
                 source: loaded.source,
                 model: loaded.model,

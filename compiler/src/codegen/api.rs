@@ -5,7 +5,7 @@
 
 use super::context::Context;
 use super::facts::{direction_in, point_in, Value};
-use super::names::Namer;
+use super::names::{Clash, Namer};
 use super::scopes;
 use super::sketch::dimension_name;
 use super::writer::{float, lit, Writer};
@@ -326,7 +326,7 @@ impl Layout {
 }
 
 /// An accessor of `Solution`: one value by its dotted name in the model.
-struct Accessor {
+pub(super) struct Accessor {
     /// The dotted name.
     name: String,
     doc: String,
@@ -366,22 +366,15 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     scopes::field_by_field_eq(w, "Solution", &names, false);
     w.line("#[allow(dead_code)]");
     w.open("impl Solution {");
-    let mut accessors = Namer::default();
-    for reserved in ["points", "vectors", "scalars"] {
-        accessors.reserve(reserved);
-    }
     let mut by_ty: HashMap<Ty, Vec<(String, String)>> = HashMap::new();
-    for g in cx.solved() {
-        for a in geom_accessors(cx, layout, g) {
-            let accessor = accessors.fresh(&a.name);
-            w.line(&format!("/// {}", a.doc));
-            w.line("#[inline]");
-            w.open(&format!("pub fn {accessor}(&self) -> {} {{", a.ty.rust()));
-            w.line(&a.body);
-            w.close("}");
-            w.line("");
-            by_ty.entry(a.ty).or_default().push((a.name, accessor));
-        }
+    for (a, accessor) in accessors(cx, layout).0 {
+        w.line(&format!("/// {}", a.doc));
+        w.line("#[inline]");
+        w.open(&format!("pub fn {accessor}(&self) -> {} {{", a.ty.rust()));
+        w.line(&a.body);
+        w.close("}");
+        w.line("");
+        by_ty.entry(a.ty).or_default().push((a.name, accessor));
     }
     // Every value by its dotted name, for callers that iterate (and for the test driver).
     for (what, ty) in [
@@ -409,6 +402,26 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     w.unblank();
     w.close("}");
     w.line("");
+}
+
+/// Every accessor of `Solution` with its identifier, in model order, and the model's names
+/// that became one identifier (`points`, `vectors` and `scalars` are the API's own).
+pub(super) fn accessors(
+    cx: &Context<'_>,
+    layout: &Layout,
+) -> (Vec<(Accessor, String)>, Vec<Clash>) {
+    let mut names = Namer::default();
+    for reserved in ["points", "vectors", "scalars"] {
+        names.reserve(reserved);
+    }
+    let mut out = Vec::new();
+    for g in cx.solved() {
+        for a in geom_accessors(cx, layout, g) {
+            let identifier = names.fresh(&a.name);
+            out.push((a, identifier));
+        }
+    }
+    (out, names.clashes().to_vec())
 }
 
 /// The accessors of reported top-level geom `g` and of its members and parts, in model order.

@@ -2,7 +2,7 @@
 //! the generated structs' fields, and facts about the plan indexed once, so that asking them of
 //! every geom or register costs no scan of the plan.
 
-use super::names::Namer;
+use super::names::{Clash, Namer};
 use super::writer::lit;
 use crate::plan::{Op, Plan, Reg};
 use gcs_lang::expr::ParamId;
@@ -31,6 +31,21 @@ pub(super) struct Context<'a> {
     pub(super) index: PlanIndex,
     /// Points some rotation turns a rigid point onto (`RotatePoint`'s `to`).
     pub(super) rotated_onto: HashSet<Reg>,
+    /// Names of params, branch variables and defaults that became one field.
+    pub(super) clashes: Vec<(Public, Clash)>,
+}
+
+/// The public names of the generated module that come from the model's names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Public {
+    /// A field of `Params`.
+    Param,
+    /// A field of `Branches`.
+    Branch,
+    /// A field of `Defaults`.
+    Default,
+    /// An accessor of `Solution`.
+    Accessor,
 }
 
 impl<'a> Context<'a> {
@@ -53,6 +68,14 @@ impl<'a> Context<'a> {
             .iter()
             .map(|d| default_names.fresh(&d.name))
             .collect();
+        let clashes = [
+            (Public::Param, &field_names),
+            (Public::Branch, &branch_names),
+            (Public::Default, &default_names),
+        ]
+        .into_iter()
+        .flat_map(|(public, namer)| namer.clashes().iter().map(move |c| (public, c.clone())))
+        .collect();
         let file = std::path::Path::new(model.source.name())
             .file_name()
             .map_or_else(
@@ -77,6 +100,7 @@ impl<'a> Context<'a> {
             branches,
             defaults,
             file,
+            clashes,
             used,
             index,
             rotated_onto,

@@ -29,7 +29,7 @@ mod steps;
 mod writer;
 
 pub use format::format;
-pub use names::Namer;
+pub use names::{Clash, Namer};
 
 use crate::plan::Plan;
 use context::Context;
@@ -51,6 +51,73 @@ pub fn generate(model: &Model, plan: &Plan) -> String {
     api::solution(&mut w, &cx, &layout);
     solve::solve(&mut w, &cx, &layout);
     w.out
+}
+
+/// The names of the model that become one identifier of the generated module's public API
+/// (params, branch variables, defaults, accessors): each an error naming both, with their
+/// spans. Without it the second would take a `_2` suffix, and a caller setting one field
+/// could be setting the other constraint's branch.
+pub fn name_clashes(model: &Model, plan: &Plan) -> Vec<gcs_lang::Diagnostic> {
+    let (plan, scope) = crate::prune::prune(model, plan);
+    let cx = Context::new(model, &plan, &scope);
+    let layout = api::Layout::new(&cx);
+    let accessors = api::accessors(&cx, &layout).1;
+    let clashes = cx.clashes.iter().cloned().chain(
+        accessors
+            .into_iter()
+            .map(|c| (context::Public::Accessor, c)),
+    );
+    clashes
+        .map(|(public, c)| clash_diagnostic(model, public, &c))
+        .collect()
+}
+
+/// The diagnostic of one clash.
+fn clash_diagnostic(model: &Model, public: context::Public, c: &Clash) -> gcs_lang::Diagnostic {
+    use context::Public;
+    let span = |name: &str| -> gcs_lang::Span {
+        let geom = |n: &str| model.geom_named(n).map(|g| model.geoms[g].span);
+        let found = match public {
+            Public::Param => model.param_named(name).map(|p| model.params[p].span),
+            Public::Branch => (model.constraints.iter())
+                .find(|(_, k)| k.name == name)
+                .map(|(_, k)| k.span),
+            // `G.radius` and `S.length` name their geom's dimension.
+            Public::Accessor => geom(name).or_else(|| geom(name.rsplit_once('.')?.0)),
+            Public::Default => None,
+        };
+        found.unwrap_or_default()
+    };
+    let (what, place) = match public {
+        Public::Param => ("param", "a field of `Params`"),
+        Public::Branch => ("branch variable", "a field of `Branches`"),
+        Public::Default => ("default", "a field of `Defaults`"),
+        Public::Accessor => ("value", "an accessor of `Solution`"),
+    };
+    let id = &c.identifier;
+    let d = match &c.first {
+        Some(first) => gcs_lang::Diagnostic::error(
+            span(&c.second),
+            format!(
+                "the {what}s `{first}` and `{}` both become `{id}`, {place}, in the generated solver",
+                c.second
+            ),
+        )
+        .with_label(format!("`{}` becomes `{id}`", c.second))
+        .with_secondary(span(first), format!("`{first}` becomes `{id}` too")),
+        None => gcs_lang::Diagnostic::error(
+            span(&c.second),
+            format!(
+                "the {what} `{}` becomes `{id}`, which the generated solver's API already has",
+                c.second
+            ),
+        )
+        .with_label(format!("`{}` becomes `{id}`", c.second)),
+    };
+    d.with_note(
+        "a name becomes its snake case in generated code (lower case, `_` for anything else): \
+         rename one so that each is its own identifier",
+    )
 }
 
 /// The module's header comments and imports. No inner attributes or `//!` docs: the module must
