@@ -141,9 +141,19 @@ pub fn report(model: &Model) -> String {
     out
 }
 
-/// The width of a table column: its widest entry, and never under four characters.
+/// The widest a table column grows. A longer entry (a name of a thousand characters) overflows
+/// its column on its own row, and the table stays readable; `format!` could not pad to an
+/// unbounded width anyway (widths past 65,535 panic).
+pub const MAX_COLUMN_WIDTH: usize = 64;
+
+/// The width of a table column: its widest entry in characters, never under four characters
+/// and never over [`MAX_COLUMN_WIDTH`].
 pub fn column_width<T>(rows: &[T], text: impl Fn(&T) -> &str) -> usize {
-    rows.iter().map(|r| text(r).len()).max().unwrap_or(0).max(4)
+    rows.iter()
+        .map(|r| text(r).chars().count())
+        .max()
+        .unwrap_or(0)
+        .clamp(4, MAX_COLUMN_WIDTH)
 }
 
 /// The constraints table (each constraint with the DOF it nominally removes) and the nominal

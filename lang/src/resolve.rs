@@ -1930,42 +1930,51 @@ fn constraint_text(source: &SourceFile, start: usize, end: usize) -> String {
     out
 }
 
+/// Words longer than this get no suggestion: a typo in a name of a hundred characters is not
+/// what a "did you mean" is for, and the edit distance costs the product of the lengths.
+pub const MAX_SUGGESTED_LEN: usize = 64;
+
 /// The candidate closest to `word` by edit distance, if it is close enough to be a typo.
 pub fn suggest<'c>(word: &str, candidates: impl Iterator<Item = &'c str>) -> Option<&'c str> {
+    let len = word.chars().count();
+    if len > MAX_SUGGESTED_LEN {
+        return None;
+    }
     // One edit in three characters; short names only match up to case.
-    let limit = word.chars().count() / 3;
+    let limit = len / 3;
     let lower = word.to_lowercase();
     candidates
+        // A difference of lengths is a lower bound of the distance (and a character is at
+        // most four bytes, so a candidate that long is out without counting its characters).
+        .filter(|c| c.len() <= 4 * (len + limit) && c.chars().count().abs_diff(len) <= limit)
         .map(|c| (edit_distance(&lower, &c.to_lowercase()), c))
         .filter(|&(d, c)| d <= limit && c != word)
         .min_by_key(|&(d, c)| (d, c))
         .map(|(_, c)| c)
 }
 
-/// Levenshtein distance, with a swap of two neighbours counting as one edit.
+/// Levenshtein distance, with a swap of two neighbours counting as one edit (three rows of
+/// the table at a time).
 fn edit_distance(a: &str, b: &str) -> usize {
     let a: Vec<char> = a.chars().collect();
     let b: Vec<char> = b.chars().collect();
-    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
-    for (i, row) in d.iter_mut().enumerate() {
-        row[0] = i;
-    }
-    for (j, cell) in d[0].iter_mut().enumerate() {
-        *cell = j;
-    }
+    let mut before: Vec<usize> = vec![0; b.len() + 1];
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    let mut row: Vec<usize> = vec![0; b.len() + 1];
     for i in 1..=a.len() {
+        row[0] = i;
         for j in 1..=b.len() {
             let cost = usize::from(a[i - 1] != b[j - 1]);
-            let mut v = (d[i - 1][j] + 1)
-                .min(d[i][j - 1] + 1)
-                .min(d[i - 1][j - 1] + cost);
+            let mut v = (prev[j] + 1).min(row[j - 1] + 1).min(prev[j - 1] + cost);
             if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
-                v = v.min(d[i - 2][j - 2] + 1);
+                v = v.min(before[j - 2] + 1);
             }
-            d[i][j] = v;
+            row[j] = v;
         }
+        std::mem::swap(&mut before, &mut prev);
+        std::mem::swap(&mut prev, &mut row);
     }
-    d[a.len()][b.len()]
+    prev[b.len()]
 }
 
 #[cfg(test)]
@@ -1984,6 +1993,11 @@ mod tests {
         assert_eq!(edit_distance("ab", "ba"), 1);
         assert_eq!(suggest("Q", ["P"].iter().copied()), None);
         assert_eq!(suggest("a", ["A"].iter().copied()), Some("A"));
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("abcd", "acbd"), 1);
+        let long = "x".repeat(70_000);
+        assert_eq!(suggest(&long, [long.as_str(), "x"].iter().copied()), None);
     }
 
     #[test]

@@ -251,6 +251,10 @@ enum Mutation {
     DeleteStatement(Index),
     /// Replace a number (or insert at a point when there is none) with a deep expression.
     Nest(Index, Deep),
+    /// Make a word or number (a name, a label, a keyword, a literal) `n` characters longer by
+    /// repeating its last character; everywhere it occurs when the flag is set, so that a long
+    /// name stays declared and used.
+    Lengthen(Index, usize, bool),
 }
 
 fn byte_mutation() -> impl Strategy<Value = Mutation> {
@@ -274,6 +278,19 @@ fn token_mutation() -> impl Strategy<Value = Mutation> {
     ]
 }
 
+/// A length around the one that once panicked `gcs check` (65,536 characters, past the widths
+/// `format!` takes), or anything up to it.
+fn long() -> impl Strategy<Value = usize> {
+    prop_oneof![
+        1 => 1usize..70_000,
+        1 => prop::sample::select(vec![65_534usize, 65_535, 65_536, 70_000]),
+    ]
+}
+
+fn lengthen() -> impl Strategy<Value = Mutation> {
+    (any::<Index>(), long(), any::<bool>()).prop_map(|(i, n, all)| Mutation::Lengthen(i, n, all))
+}
+
 fn any_mutation() -> impl Strategy<Value = Mutation> {
     prop_oneof![
         10 => byte_mutation(),
@@ -293,6 +310,26 @@ fn tokens(s: &[u8]) -> Vec<(usize, usize)> {
         }
         let start = i;
         while i < s.len() && !s[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        out.push((start, i));
+    }
+    out
+}
+
+/// The byte ranges of the maximal runs of word bytes (letters, digits, `_`, `.`): names,
+/// dotted paths, labels, keywords and numbers.
+fn words(s: &[u8]) -> Vec<(usize, usize)> {
+    let is_word = |b: u8| b.is_ascii_alphanumeric() || b == b'_' || b == b'.';
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < s.len() {
+        if !is_word(s[i]) {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < s.len() && is_word(s[i]) {
             i += 1;
         }
         out.push((start, i));
@@ -419,6 +456,35 @@ fn apply(m: &Mutation, s: &mut Vec<u8>) {
                 s.splice(from..to, text.into_bytes());
             }
         }
+        Mutation::Lengthen(i, n, all) => {
+            let count = words(s).len();
+            if count > 0 {
+                lengthen_word(s, i.index(count), *n, *all);
+            }
+        }
+    }
+}
+
+/// Makes the `k`-th word of `s` `n` characters longer by repeating its last character; every
+/// occurrence of it when `all` is set.
+fn lengthen_word(s: &mut Vec<u8>, k: usize, n: usize, all: bool) {
+    let ws = words(s);
+    let Some(&(from, to)) = ws.get(k) else {
+        return;
+    };
+    let word = s[from..to].to_vec();
+    let mut long = word.clone();
+    long.extend(std::iter::repeat_n(word[word.len() - 1], n));
+    let targets: Vec<(usize, usize)> = if all {
+        ws.into_iter()
+            .filter(|&(a, b)| s[a..b] == word[..])
+            .collect()
+    } else {
+        vec![(from, to)]
+    };
+    // From the end, so that earlier ranges stay valid.
+    for &(a, b) in targets.iter().rev() {
+        s.splice(a..b, long.iter().copied());
     }
 }
 
@@ -533,6 +599,51 @@ proptest! {
         apply(&Mutation::Nest(at, d), &mut s);
         for m in &ms {
             apply(m, &mut s);
+        }
+        check(&s);
+    }
+}
+
+proptest! {
+    #![proptest_config(config(120))]
+
+    /// Names, labels, keywords and numbers made up to 70,000 characters long, then lightly
+    /// mutated.
+    #[test]
+    fn long_tokens(
+        base in example(),
+        l in prop::collection::vec(lengthen(), 1..3),
+        ms in prop::collection::vec(token_mutation(), 0..3),
+    ) {
+        let mut s = base.as_bytes().to_vec();
+        for m in l.iter().chain(&ms) {
+            apply(m, &mut s);
+        }
+        check(&s);
+    }
+}
+
+/// Every distinct name, label, keyword and number of every example made 70,000 characters
+/// longer, one at a time (each occurrence of it, so that a name stays declared), and the first
+/// twenty words all at once.
+#[test]
+fn long_tokens_everywhere() {
+    for (_, text) in EXAMPLES {
+        let ws = words(text.as_bytes());
+        let count = ws.len();
+        let mut seen = std::collections::HashSet::new();
+        for (k, &(a, b)) in ws.iter().enumerate() {
+            // Each distinct word once: its every occurrence is lengthened.
+            if !seen.insert(&text[a..b]) {
+                continue;
+            }
+            let mut s = text.as_bytes().to_vec();
+            lengthen_word(&mut s, k, 70_000, true);
+            check(&s);
+        }
+        let mut s = text.as_bytes().to_vec();
+        for k in (0..count.min(20)).rev() {
+            lengthen_word(&mut s, k, 70_000, false);
         }
         check(&s);
     }

@@ -211,3 +211,60 @@ fn missing_file_is_a_clear_error() {
     "#]]
     .assert_eq(&stderr);
 }
+
+/// Models with one token of 70,000 characters: a name, a label, a number literal (finite, and
+/// one that overflows), in 2d (the analysis report) and in 3d (the nominal summary).
+fn very_long_token_models() -> Vec<(&'static str, String)> {
+    let name = format!("P{}", "x".repeat(70_000));
+    let label = format!("L{}", "y".repeat(70_000));
+    let one = format!("1.{}", "0".repeat(70_000));
+    let huge = "9".repeat(70_000);
+    vec![
+        (
+            "name",
+            format!("space 2d;\nfixed point A = (0, 0);\npoint {name} = (1, 0);\ncoincident({name}, A);\n"),
+        ),
+        (
+            "label",
+            format!("space 2d;\nfixed point A = (0, 0);\npoint P = (1, 0);\n{label}: coincident(P, A);\n"),
+        ),
+        (
+            "number",
+            format!("space 2d;\nfixed point A = (0, 0);\npoint P = (1, 0);\nfixed vector X = (1, 0);\nsegment S = (0, 0) -> (1, 0);\ncoincident(S.start, A);\ncoincident(S.end, P);\nangle(X, S) = 0;\nlength(S) = {one};\n"),
+        ),
+        (
+            "overflowing number",
+            format!("space 2d;\nfixed point A = (0, 0);\npoint P = (1, 0);\ndistance(A, P) = {huge};\n"),
+        ),
+        (
+            "name in 3d",
+            format!("space 3d;\nfixed point A = (0, 0, 0);\npoint {name} = (1, 0, 0);\n{label}: coincident({name}, A);\n"),
+        ),
+        (
+            "unknown names",
+            format!("space 2d;\npoint {name} = (1, 0);\ncoincident({name}y, {name}z);\nparam {label} = {label}x;\n"),
+        ),
+    ]
+}
+
+#[test]
+fn very_long_tokens_are_reported_never_a_panic() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (what, text) in very_long_token_models() {
+        let file = dir.path().join("long.gcs");
+        std::fs::write(&file, &text).expect("write");
+        let (code, stdout, stderr) = gcs_check(file.to_str().expect("utf-8 path"));
+        assert!(
+            code == 0 || code == 1,
+            "{what}: exit {code}\nstderr: {}",
+            &stderr[..stderr.len().min(2000)]
+        );
+        assert!(!stderr.contains("panicked"), "{what}");
+        if code == 0 {
+            // The table is there, and its other rows stay narrow.
+            assert!(stdout.contains("nominal DOF"), "{what}");
+            let short = stdout.lines().filter(|l| l.len() < 200).count();
+            assert!(short >= 5, "{what}: {}", &stdout[..stdout.len().min(2000)]);
+        }
+    }
+}
