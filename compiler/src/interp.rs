@@ -219,6 +219,13 @@ impl Machine<'_> {
         let model = self.model;
         let value = match &step.op {
             Op::Expr(e) => Val::S(self.finite(i, model.exprs.eval(*e, self.params))?),
+            Op::Size { expr, constraint } => {
+                let x = model.exprs.eval(*expr, self.params);
+                if !x.is_finite() || x < 0.0 {
+                    return Err(err(model, *constraint, ErrorKind::InvalidValue, x));
+                }
+                Val::S(x)
+            }
             Op::Const(c) => Val::S(*c),
             Op::Default(d) => {
                 Val::S(self.defaults.get(d.0 as usize).copied().unwrap_or_else(|| {

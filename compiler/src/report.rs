@@ -6,6 +6,7 @@ use crate::analysis::Analysis;
 use crate::solution::Solution;
 use gcs_lang::model::GeomId;
 use gcs_lang::{Diagnostic, Model};
+use gcs_runtime::num::Shown;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
@@ -86,10 +87,16 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
             if let Some((_, c)) = model.constraints.iter().find(|(_, c)| c.name == e.label) {
                 let what = match e.kind {
                     gcs_runtime::error::ErrorKind::Inconsistent => {
-                        format!("conflicting constraint: it is off by {:.6e}", e.magnitude)
+                        format!(
+                            "conflicting constraint: it is off by {}",
+                            Shown(e.magnitude)
+                        )
                     }
                     gcs_runtime::error::ErrorKind::NoIntersection => {
-                        format!("no assembly: the loci miss by {:.6e}", e.magnitude)
+                        format!("no assembly: the loci miss by {}", Shown(e.magnitude))
+                    }
+                    gcs_runtime::error::ErrorKind::InvalidValue => {
+                        format!("an invalid value: {}", Shown(e.magnitude))
                     }
                     _ => "a degenerate configuration".to_string(),
                 };
@@ -187,15 +194,20 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
     out
 }
 
+/// `x` with 12 decimals, and no sign on a value that rounds to zero (`-1e-17` is `0.000000000000`,
+/// not `-0.000000000000`).
+fn fixed12(x: f64) -> String {
+    let text = format!("{x:.12}");
+    match text.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+        _ => text,
+    }
+}
+
 /// A solution as text: one line a value.
 pub fn solution_text(s: &Solution) -> String {
     let mut out = String::new();
-    let f = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x:.12}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let f = |v: &[f64]| v.iter().map(|&x| fixed12(x)).collect::<Vec<_>>().join(", ");
     for (n, v) in &s.points {
         let _ = writeln!(out, "point  {n} = ({})", f(v));
     }
@@ -203,7 +215,7 @@ pub fn solution_text(s: &Solution) -> String {
         let _ = writeln!(out, "vector {n} = ({})", f(v));
     }
     for (n, v) in &s.scalars {
-        let _ = writeln!(out, "scalar {n} = {v:.12}");
+        let _ = writeln!(out, "scalar {n} = {}", fixed12(*v));
     }
     for (n, b) in &s.branches {
         let _ = writeln!(out, "branch {n} = {b}");

@@ -139,6 +139,49 @@ impl Dim {
             Dim::Angle => "an angle",
         }
     }
+
+    /// What `a op b` measures when `a` measures `self` and `b` measures `other`. The one
+    /// place for these rules: the resolver checks the file with them, and a value given on
+    /// the command line is checked with them too.
+    pub fn of_binary(self, op: crate::syntax::BinaryOp, other: Dim) -> Dim {
+        use crate::syntax::BinaryOp::*;
+        match op {
+            Add | Sub => self.sum(other),
+            Mul => match (self, other) {
+                (Dim::Number, d) | (d, Dim::Number) => d,
+                (Dim::Length, _) | (_, Dim::Length) => Dim::Length,
+                _ => Dim::Angle,
+            },
+            Div => match (self, other) {
+                (d, Dim::Number) => d,
+                (a, b) if a == b => Dim::Number,
+                (d, _) => d,
+            },
+            Pow => self,
+        }
+    }
+
+    /// What a sum (or a min, a max) of the two measures: a plain number takes the other's
+    /// dimension; a length and an angle make a plain number (reported elsewhere).
+    pub fn sum(self, other: Dim) -> Dim {
+        match (self, other) {
+            (a, b) if a == b => a,
+            (Dim::Number, d) | (d, Dim::Number) => d,
+            _ => Dim::Number,
+        }
+    }
+}
+
+impl Func {
+    /// What the function's value measures, given its arguments'.
+    pub fn dim(self, a: Dim, b: Option<Dim>) -> Dim {
+        match self {
+            Func::Sin | Func::Cos | Func::Tan => Dim::Number,
+            Func::Asin | Func::Acos | Func::Atan | Func::Atan2 => Dim::Angle,
+            Func::Sqrt | Func::Abs => a,
+            Func::Min | Func::Max => a.sum(b.unwrap_or(Dim::Number)),
+        }
+    }
 }
 
 /// The expression arena of a model.

@@ -18,6 +18,37 @@ pub use diagnostic::{Diagnostic, Severity};
 pub use model::Model;
 pub use source::{SourceFile, Span};
 
+/// The diagnostic for bytes that are not text at all (a NUL byte, or an invalid byte on a line
+/// too long to show), given the offset of the first invalid UTF-8 byte; `None` for text with
+/// a stray byte, whose line is worth showing.
+fn binary(bytes: &[u8], bad: usize) -> Option<Diagnostic> {
+    const LONGEST_SHOWN_LINE: usize = 400;
+    let line_start = bytes[..bad]
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    let line_end = bytes[bad..]
+        .iter()
+        .position(|&b| b == b'\n')
+        .map_or(bytes.len(), |i| bad + i);
+    let nul = bytes.iter().position(|&b| b == 0);
+    let label = match nul {
+        Some(at) => format!("a NUL byte at offset {at}"),
+        None if line_end - line_start > LONGEST_SHOWN_LINE => {
+            format!(
+                "an invalid UTF-8 byte at offset {bad}, on a line of {} bytes",
+                line_end - line_start
+            )
+        }
+        None => return None,
+    };
+    Some(
+        Diagnostic::error(Span::empty(0), "this is a binary file, not a gcs model")
+            .with_label(label)
+            .with_note("gcs reads models as UTF-8 text"),
+    )
+}
+
 /// Parses and resolves a file given as bytes. Returns the model (when there is no error) and
 /// every diagnostic, warnings included. A file that is not UTF-8 or holds no statement is an
 /// error with a span, like any other.
@@ -26,6 +57,10 @@ pub fn load(name: &str, bytes: &[u8]) -> (SourceFile, Option<Model>, Vec<Diagnos
         Ok(t) => t.to_string(),
         Err(e) => {
             let at = e.valid_up_to();
+            if let Some(d) = binary(bytes, at) {
+                // Echo none of it: the diagnostic stands on an empty text.
+                return (SourceFile::new(name, String::new()), None, vec![d]);
+            }
             let source = SourceFile::new(name, String::from_utf8_lossy(bytes).into_owned());
             let bad_len = e.error_len().unwrap_or(1);
             let d = Diagnostic::error(Span::new(at, at + bad_len), "file is not valid UTF-8")

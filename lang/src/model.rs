@@ -51,7 +51,8 @@ pub struct Param {
     pub default_expr: ExprId,
     /// The default's value.
     pub default: f64,
-    /// Whether it holds an angle (radians) or a plain number.
+    /// What it holds: an angle (radians, its default has a unit), a length (a length uses
+    /// it) or a plain number.
     pub dim: Dim,
     /// The name's span in its declaration.
     pub span: Span,
@@ -416,6 +417,24 @@ impl Model {
             GeomKind::Segment => Some((self.part(g, Part::Start)?, self.part(g, Part::Dir)?)),
             GeomKind::Marker => Some((g, self.part(g, Part::AxisX)?)),
             _ => None,
+        }
+    }
+
+    /// Whether constraint `c`'s value is a size, zero or more: a length, a radius or an
+    /// unsigned distance (point-point, point-circle, line-circle, circle-circle, and
+    /// point-line in 3d). A negative value of it is invalid, not a miss. Signed distances
+    /// (point-line in 2d, point-plane) and the other values are not sizes.
+    pub fn value_is_size(&self, c: ConstraintId) -> bool {
+        let c = &self.constraints[c];
+        let kind = |i: usize| c.args.get(i).map(|&g| self.geoms[g].kind);
+        match c.kind {
+            ConstraintKind::Length | ConstraintKind::Radius => true,
+            ConstraintKind::Distance => match kind(1) {
+                Some(GeomKind::Plane) => false,
+                Some(GeomKind::Line | GeomKind::Segment) => self.space == Space::D3,
+                _ => true,
+            },
+            _ => false,
         }
     }
 

@@ -5,6 +5,7 @@
 //! block comment, an unbalanced brace, nesting too deep for a bounded parser.
 
 use crate::diagnostic::Diagnostic;
+use crate::expr::Dim;
 use crate::source::Span;
 use crate::syntax::*;
 use pest::iterators::{Pair, Pairs};
@@ -58,6 +59,10 @@ fn parse_chunk(text: &str, mut span: Span, file: &mut File, diags: &mut Vec<Diag
                 return;
             }
             Err(err) => {
+                if let Some(d) = non_ascii(text, span).or_else(|| misspelled_keyword(text, span)) {
+                    diags.push(d);
+                    return;
+                }
                 let (diag, resume) = syntax_error(text, span, &err);
                 diags.push(diag);
                 match resume {
@@ -91,6 +96,9 @@ fn syntax_error(
         // Point just after the previous token, as rustc does.
         let before = text[chunk.start..pos].trim_end_matches(is_space_or_comment_char);
         let at = chunk.start + before.len();
+        if let Some(d) = unknown_unit(text, before, found_span, chunk.end) {
+            return (d, None);
+        }
         let mut d = Diagnostic::error(Span::empty(at), format!("expected `;`, found {found}"))
             .with_label("add `;` here");
         if found_span.end > found_span.start {
@@ -146,6 +154,102 @@ fn syntax_error(
         }
     }
     (d, None)
+}
+
+/// A word right after a number where the statement could end (`param w = 25 mm;`): a unit the
+/// language does not have.
+fn unknown_unit(text: &str, before: &str, word: Span, end: usize) -> Option<Diagnostic> {
+    let w = text.get(word.range())?;
+    let after = text.get(word.end..end)?.trim_start();
+    let is_word = w.starts_with(|c: char| c.is_ascii_alphabetic());
+    let after_number = before.ends_with(|c: char| c.is_ascii_digit() || c == '.');
+    let ends_value = after.is_empty() || after.starts_with([';', ',', ')']);
+    (is_word && after_number && ends_value).then(|| {
+        Diagnostic::error(word, format!("unknown unit `{w}`"))
+            .with_label("not a unit of the language")
+            .with_note(
+                "the units are `deg` and `rad`, on angles; a length is a plain number, in the \
+                 model's own unit",
+            )
+    })
+}
+
+/// The first character of the statement in `chunk`, outside comments, that is not ASCII: names,
+/// numbers and the language's symbols are all ASCII, so pest's "expected ..." would only puzzle.
+fn non_ascii(text: &str, chunk: Span) -> Option<Diagnostic> {
+    let s = &text[chunk.range()];
+    let mut rest = s.char_indices().peekable();
+    while let Some((i, c)) = rest.next() {
+        if c == '/' && s[i..].starts_with("//") {
+            let line_end = s[i..].find('\n').map_or(s.len(), |k| i + k);
+            while rest.peek().is_some_and(|&(j, _)| j < line_end) {
+                rest.next();
+            }
+        } else if c == '/' && s[i..].starts_with("/*") {
+            let close = s[i + 2..].find("*/").map_or(s.len(), |k| i + 2 + k + 2);
+            while rest.peek().is_some_and(|&(j, _)| j < close) {
+                rest.next();
+            }
+        } else if !c.is_ascii() {
+            let at = chunk.start + i;
+            let in_name = s[..i].ends_with(|b: char| b.is_ascii_alphanumeric() || b == '_');
+            let message = if in_name {
+                format!("`{c}` cannot be part of a name: names are ASCII")
+            } else {
+                format!("unexpected character `{c}`: gcs models are ASCII outside comments")
+            };
+            let note = if in_name {
+                "names are ASCII letters, digits and `_`, starting with a letter or `_`"
+            } else {
+                "other characters may stand only in comments"
+            };
+            return Some(
+                Diagnostic::error(Span::new(at, at + c.len_utf8()), message)
+                    .with_label(format!("U+{:04X}", u32::from(c)))
+                    .with_note(note),
+            );
+        }
+    }
+    None
+}
+
+/// Words that start a statement.
+const STATEMENT_KEYWORDS: &[&str] = &[
+    "space", "param", "fixed", "point", "vector", "line", "segment", "circle", "plane", "body",
+    "marker", "output",
+];
+
+/// A statement that starts with two words, the first a misspelt keyword (`pointt B = ...`).
+fn misspelled_keyword(text: &str, chunk: Span) -> Option<Diagnostic> {
+    let s = &text[chunk.range()];
+    let word_len = |t: &str| {
+        t.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(t.len())
+    };
+    let first = &s[..word_len(s)];
+    let rest = s[first.len()..].trim_start();
+    let second = &rest[..word_len(rest)];
+    let starts_name = |w: &str| w.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
+    if !starts_name(first)
+        || !starts_name(second)
+        || rest.len() == s.len() - first.len()
+        || STATEMENT_KEYWORDS.contains(&first)
+    {
+        return None;
+    }
+    let keyword = crate::resolve::suggest(first, STATEMENT_KEYWORDS.iter().copied())?;
+    Some(
+        Diagnostic::error(
+            Span::new(chunk.start, chunk.start + first.len()),
+            format!("unknown keyword `{first}`"),
+        )
+        .with_label(format!("did you mean `{keyword}`?"))
+        .with_note(
+            "a statement starts with `space`, `param`, a geom kind (`point`, `vector`, `line`, \
+             `segment`, `circle`, `plane`, `marker`), `body`, `fixed`, `output`, a label, or a \
+             constraint",
+        ),
+    )
 }
 
 fn is_space_or_comment_char(c: char) -> bool {
@@ -246,7 +350,8 @@ fn split(text: &str, diags: &mut Vec<Diagnostic>) -> Vec<Span> {
     // Operators in the current declaration or member, and the most in any of this statement's.
     let mut ops = 0usize;
     let mut max_ops = 0usize;
-    let mut i = 0;
+    // A UTF-8 byte-order mark, which some editors write, is not part of the text.
+    let mut i = if text.starts_with('\u{FEFF}') { 3 } else { 0 };
 
     let mut finish = |start: &mut Option<usize>,
                       end: usize,
@@ -731,8 +836,8 @@ pub fn depth(e: &Expr) -> usize {
 
 /// Evaluates one expression of the language given as text, such as a `--set` value, with the
 /// model's params at their defaults. A unit makes it an angle (radians); a bare number is
-/// itself.
-pub fn eval_expression(model: &crate::Model, text: &str) -> Result<f64, String> {
+/// itself. Returns the value and what it measures.
+pub fn eval_expression(model: &crate::Model, text: &str) -> Result<(f64, Dim), String> {
     if text.len() > 4096 {
         return Err("expression too long".into());
     }
@@ -756,44 +861,90 @@ pub fn eval_expression(model: &crate::Model, text: &str) -> Result<f64, String> 
     if let Some(d) = diags.first() {
         return Err(d.message.clone());
     }
-    let v = eval_syntax(model, &e)?;
+    let (v, dim) = eval_syntax(model, &e)?;
     if v.is_finite() {
-        Ok(v)
+        Ok((v, dim))
     } else {
-        Err(format!("`{text}` is not a finite number"))
+        Err(format!("`{}` is {v}, not a finite number", text.trim()))
     }
 }
 
-fn eval_syntax(model: &crate::Model, e: &Expr) -> Result<f64, String> {
+/// The value of `param` given as text (`--set NAME=VALUE`), checked as the file checks a
+/// default: a finite number, an angle only for an angle param, a length only for a param that
+/// holds lengths or plain numbers.
+pub fn param_value(
+    model: &crate::Model,
+    param: crate::expr::ParamId,
+    text: &str,
+) -> Result<f64, String> {
+    let (v, dim) = eval_expression(model, text)?;
+    let p = &model.params[param];
+    let fits = dim == Dim::Number || p.dim == Dim::Number || dim == p.dim;
+    if fits {
+        Ok(v)
+    } else {
+        let hint = match dim {
+            Dim::Angle => "give a length, without `deg` or `rad`",
+            _ => "give an angle, in radians or with `deg`",
+        };
+        Err(format!(
+            "`{}` is {}, but `{}` holds {}; {hint}",
+            text.trim(),
+            dim.noun(),
+            p.name,
+            p.dim.noun()
+        ))
+    }
+}
+
+/// The names of numbers that are not finite, which a user might write for one.
+fn not_finite_word(name: &str) -> bool {
+    matches!(
+        name.to_ascii_lowercase().as_str(),
+        "nan" | "inf" | "infinity" | "infty"
+    )
+}
+
+fn eval_syntax(model: &crate::Model, e: &Expr) -> Result<(f64, Dim), String> {
     Ok(match &e.kind {
-        ExprKind::Number(v) => *v,
+        ExprKind::Number(v) => (*v, Dim::Number),
         ExprKind::BadNumber(t) => return Err(format!("malformed number `{t}`")),
-        ExprKind::Pi => std::f64::consts::PI,
+        ExprKind::Pi => (std::f64::consts::PI, Dim::Number),
         ExprKind::Path(p) => {
             let name = p.dotted();
-            let id = model
-                .param_named(&name)
-                .ok_or_else(|| format!("unknown param `{name}`"))?;
-            model.params[id].default
-        }
-        ExprKind::Neg(a) => -eval_syntax(model, a)?,
-        ExprKind::Paren(a) => eval_syntax(model, a)?,
-        ExprKind::Unit(a, u, _) => {
-            let v = eval_syntax(model, a)?;
-            match u {
-                AngleUnit::Deg => v.to_radians(),
-                AngleUnit::Rad => v,
+            match model.param_named(&name) {
+                Some(id) => (model.params[id].default, model.params[id].dim),
+                None if not_finite_word(&name) => {
+                    return Err(format!(
+                        "`{name}` is not a finite number; a value must be finite"
+                    ))
+                }
+                None => return Err(format!("unknown param `{name}`")),
             }
         }
+        ExprKind::Neg(a) => {
+            let (v, d) = eval_syntax(model, a)?;
+            (-v, d)
+        }
+        ExprKind::Paren(a) => eval_syntax(model, a)?,
+        ExprKind::Unit(a, u, _) => {
+            let (v, _) = eval_syntax(model, a)?;
+            let v = match u {
+                AngleUnit::Deg => v.to_radians(),
+                AngleUnit::Rad => v,
+            };
+            (v, Dim::Angle)
+        }
         ExprKind::Binary(op, a, b) => {
-            let (x, y) = (eval_syntax(model, a)?, eval_syntax(model, b)?);
-            match op {
+            let ((x, dx), (y, dy)) = (eval_syntax(model, a)?, eval_syntax(model, b)?);
+            let v = match op {
                 BinaryOp::Add => x + y,
                 BinaryOp::Sub => x - y,
                 BinaryOp::Mul => x * y,
                 BinaryOp::Div => x / y,
                 BinaryOp::Pow => x.powf(y),
-            }
+            };
+            (v, dx.of_binary(*op, dy))
         }
         ExprKind::Call(name, args) => {
             let f = crate::expr::Func::from_name(&name.text)
@@ -801,12 +952,15 @@ fn eval_syntax(model: &crate::Model, e: &Expr) -> Result<f64, String> {
             if args.len() != f.arity() {
                 return Err(format!("`{}` takes {} arguments", f.name(), f.arity()));
             }
-            let a = eval_syntax(model, &args[0])?;
-            let b = match args.get(1) {
-                Some(b) => eval_syntax(model, b)?,
-                None => 0.0,
+            let (a, da) = eval_syntax(model, &args[0])?;
+            let (b, db) = match args.get(1) {
+                Some(b) => {
+                    let (b, db) = eval_syntax(model, b)?;
+                    (b, Some(db))
+                }
+                None => (0.0, None),
             };
-            f.apply(a, b)
+            (f.apply(a, b), f.dim(da, db))
         }
     })
 }

@@ -533,9 +533,24 @@ impl<'a> Resolver<'a> {
         let node = match &e.kind {
             ExprKind::Number(v) => ExprNode::Const(*v),
             ExprKind::BadNumber(text) => {
-                let d = Diagnostic::error(e.span, format!("malformed number `{text}`"))
-                    .with_label("not a number")
-                    .with_note("numbers are written `12`, `1.5`, `1e-3` or `.5`");
+                let d = match unit_after_number(text) {
+                    // `1.5in`, `25mm`: a number, then a word.
+                    Some((number, unit)) => {
+                        let at = e.span.start + number.len();
+                        Diagnostic::error(
+                            Span::new(at, e.span.end),
+                            format!("unknown unit `{unit}`"),
+                        )
+                        .with_label("not a unit of the language")
+                        .with_note(
+                            "the units are `deg` and `rad`, on angles; a length is a plain \
+                             number, in the model's own unit",
+                        )
+                    }
+                    None => Diagnostic::error(e.span, format!("malformed number `{text}`"))
+                        .with_label("not a number")
+                        .with_note("numbers are written `12`, `1.5`, `1e-3` or `.5`"),
+                };
                 self.push(d);
                 return None;
             }
@@ -1674,7 +1689,6 @@ impl<'a> Resolver<'a> {
 
     /// The dimension of an expression; `roles` gives params used as lengths elsewhere.
     fn dim(&self, e: ExprId, roles: &HashMap<ParamId, Span>) -> Dim {
-        use crate::syntax::BinaryOp::*;
         match self.exprs.node(e) {
             ExprNode::Const(_) => Dim::Number,
             ExprNode::Param(p) => {
@@ -1687,32 +1701,8 @@ impl<'a> Resolver<'a> {
             }
             ExprNode::Neg(a) => self.dim(*a, roles),
             ExprNode::Unit(..) => Dim::Angle,
-            ExprNode::Binary(op, a, b) => {
-                let (x, y) = (self.dim(*a, roles), self.dim(*b, roles));
-                match op {
-                    Add | Sub => combine(x, y),
-                    Mul => match (x, y) {
-                        (Dim::Number, d) | (d, Dim::Number) => d,
-                        (Dim::Length, _) | (_, Dim::Length) => Dim::Length,
-                        _ => Dim::Angle,
-                    },
-                    Div => match (x, y) {
-                        (d, Dim::Number) => d,
-                        (a, b) if a == b => Dim::Number,
-                        (d, _) => d,
-                    },
-                    Pow => x,
-                }
-            }
-            ExprNode::Call(f, a, b) => match f {
-                Func::Sin | Func::Cos | Func::Tan => Dim::Number,
-                Func::Asin | Func::Acos | Func::Atan | Func::Atan2 => Dim::Angle,
-                Func::Sqrt | Func::Abs => self.dim(*a, roles),
-                Func::Min | Func::Max => combine(
-                    self.dim(*a, roles),
-                    b.map_or(Dim::Number, |b| self.dim(b, roles)),
-                ),
-            },
+            ExprNode::Binary(op, a, b) => self.dim(*a, roles).of_binary(*op, self.dim(*b, roles)),
+            ExprNode::Call(f, a, b) => f.dim(self.dim(*a, roles), b.map(|b| self.dim(b, roles))),
         }
     }
 
@@ -1833,6 +1823,11 @@ impl<'a> Resolver<'a> {
                 self.push(d);
             }
         }
+        // A plain-number param that a length uses holds a length: a value given later (`--set`)
+        // is checked against that.
+        for (pid, _) in roles {
+            self.params[pid].dim = Dim::Length;
+        }
     }
 
     fn check_unused_params(&mut self) {
@@ -1871,12 +1866,15 @@ impl<'a> Resolver<'a> {
     }
 }
 
-fn combine(x: Dim, y: Dim) -> Dim {
-    match (x, y) {
-        (a, b) if a == b => a,
-        (Dim::Number, d) | (d, Dim::Number) => d,
-        _ => Dim::Number,
-    }
+/// `text` split into a well-formed number and the word of letters after it (`1.5in`), if it is
+/// that.
+fn unit_after_number(text: &str) -> Option<(&str, &str)> {
+    let at = text.find(|c: char| c.is_ascii_alphabetic())?;
+    let (number, word) = text.split_at(at);
+    let is_word = word.chars().all(|c| c.is_ascii_alphabetic());
+    // `1e5x` is no unit: `e` would be read as the exponent.
+    let plain = !number.is_empty() && number.chars().all(|c| c.is_ascii_digit() || c == '.');
+    (is_word && plain && number.parse::<f64>().is_ok()).then_some((number, word))
 }
 
 fn norm(v: &[f64]) -> f64 {

@@ -115,13 +115,13 @@ fn malformed_exponent() {
     check(
         "space 2d;\nparam r = 1e;\n",
         expect![[r#"
-            error: malformed number `1e`
-              ┌─ model.gcs:2:11
+            error: unknown unit `e`
+              ┌─ model.gcs:2:12
               │
             2 │ param r = 1e;
-              │           ^^ not a number
+              │            ^ not a unit of the language
               │
-              = numbers are written `12`, `1.5`, `1e-3` or `.5`
+              = the units are `deg` and `rad`, on angles; a length is a plain number, in the model's own unit
 
         "#]],
     );
@@ -1360,4 +1360,163 @@ fn not_utf8() {
 
     "#]]
     .assert_eq(&gcs_lang::diagnostic::render_plain(&source, &diags));
+}
+
+/// Loads bytes (not text) and renders every diagnostic.
+fn check_bytes(src: &[u8], expected: Expect) {
+    let (source, model, diags) = gcs_lang::load("model.gcs", src);
+    assert_eq!(model.is_none(), gcs_lang::diagnostic::has_errors(&diags));
+    expected.assert_eq(&gcs_lang::diagnostic::render_plain(&source, &diags));
+}
+
+#[test]
+fn misspelt_keyword_gets_a_suggestion() {
+    check(
+        "space 2d;\npointt B = (0, 0);\nfixedd point C = (1, 0);\n",
+        expect![[r#"
+            error: unknown keyword `pointt`
+              ┌─ model.gcs:2:1
+              │
+            2 │ pointt B = (0, 0);
+              │ ^^^^^^ did you mean `point`?
+              │
+              = a statement starts with `space`, `param`, a geom kind (`point`, `vector`, `line`, `segment`, `circle`, `plane`, `marker`), `body`, `fixed`, `output`, a label, or a constraint
+
+            error: unknown keyword `fixedd`
+              ┌─ model.gcs:3:1
+              │
+            3 │ fixedd point C = (1, 0);
+              │ ^^^^^^ did you mean `fixed`?
+              │
+              = a statement starts with `space`, `param`, a geom kind (`point`, `vector`, `line`, `segment`, `circle`, `plane`, `marker`), `body`, `fixed`, `output`, a label, or a constraint
+
+        "#]],
+    );
+}
+
+#[test]
+fn non_ascii_name_points_at_the_character() {
+    check(
+        "space 2d;\npoint Bé = (0, 0);\nparam w = 2; // café is fine in a comment\npoint C = (w, 0) ; /* ß */\n",
+        expect![[r#"
+            error: `é` cannot be part of a name: names are ASCII
+              ┌─ model.gcs:2:8
+              │
+            2 │ point Bé = (0, 0);
+              │        ^ U+00E9
+              │
+              = names are ASCII letters, digits and `_`, starting with a letter or `_`
+
+        "#]],
+    );
+    check(
+        "space 2d;\npoint B = (0, 0) ± 1;\n",
+        expect![[r#"
+        error: unexpected character `±`: gcs models are ASCII outside comments
+          ┌─ model.gcs:2:18
+          │
+        2 │ point B = (0, 0) ± 1;
+          │                  ^ U+00B1
+          │
+          = other characters may stand only in comments
+
+    "#]],
+    );
+}
+
+#[test]
+fn unknown_unit_lists_the_units() {
+    check(
+        "space 2d;\nparam w = 25 mm;\nparam t = 1.5in;\npoint B = (w, t);\n",
+        expect![[r#"
+            error: unknown unit `mm`
+              ┌─ model.gcs:2:14
+              │
+            2 │ param w = 25 mm;
+              │              ^^ not a unit of the language
+              │
+              = the units are `deg` and `rad`, on angles; a length is a plain number, in the model's own unit
+
+            error: unknown unit `in`
+              ┌─ model.gcs:3:14
+              │
+            3 │ param t = 1.5in;
+              │              ^^ not a unit of the language
+              │
+              = the units are `deg` and `rad`, on angles; a length is a plain number, in the model's own unit
+
+        "#]],
+    );
+}
+
+#[test]
+fn a_byte_order_mark_is_skipped() {
+    check_bytes(
+        b"\xef\xbb\xbfspace 2d;\nfixed point B = (0, 0);\n",
+        expect![[r#""#]],
+    );
+    // Only at the start: elsewhere it is a character like any other.
+    check_bytes(
+        b"space 2d;\n\xef\xbb\xbffixed point B = (0, 0);\n",
+        expect![[r#"
+            error: unexpected character `﻿`: gcs models are ASCII outside comments
+              ┌─ model.gcs:2:1
+              │
+            2 │ ﻿fixed point B = (0, 0);
+              │  U+FEFF
+              │
+              = other characters may stand only in comments
+
+        "#]],
+    );
+}
+
+#[test]
+fn a_binary_file_is_not_echoed() {
+    let mut bytes = b"\x7fELF\x02\x01\x01\x00\x00\x00".to_vec();
+    bytes.extend((0..4000u32).map(|i| (i * 7919 % 251) as u8));
+    check_bytes(
+        &bytes,
+        expect![[r#"
+        error: this is a binary file, not a gcs model
+          ┌─ model.gcs:1:1
+          │
+        1 │ 
+          │ ^ a NUL byte at offset 7
+          │
+          = gcs reads models as UTF-8 text
+
+    "#]],
+    );
+    // A long line with a stray byte, no NUL: not shown either.
+    let mut long = b"space 2d; // ".to_vec();
+    long.extend(std::iter::repeat_n(b'x', 1000));
+    long.push(0xff);
+    check_bytes(
+        &long,
+        expect![[r#"
+        error: this is a binary file, not a gcs model
+          ┌─ model.gcs:1:1
+          │
+        1 │ 
+          │ ^ an invalid UTF-8 byte at offset 1013, on a line of 1014 bytes
+          │
+          = gcs reads models as UTF-8 text
+
+    "#]],
+    );
+    // A short line with a stray byte (Latin-1 in a comment) is shown.
+    check_bytes(
+        b"space 2d;\n// caf\xe9\n",
+        expect![[r#"
+        error: file is not valid UTF-8
+          ┌─ model.gcs:2:7
+          │
+        2 │ // caf�
+          │       ^ invalid byte at offset 16
+          │
+          = gcs reads models as UTF-8 text
+
+    "#]],
+    );
 }

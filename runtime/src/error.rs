@@ -100,7 +100,7 @@ impl SolveError {
 
 impl fmt::Display for SolveError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let m = self.magnitude;
+        let m = crate::num::Shown(self.magnitude);
         if self.kind == ErrorKind::InvalidInput {
             // A parameter has no text; a geom's sketch says what is wrong with it.
             return if self.text.is_empty() {
@@ -135,8 +135,8 @@ impl fmt::Display for SolveError {
             ErrorKind::NoConvergence => {
                 write!(f, " cannot be met: the iteration did not converge, residual {m}")
             }
-                        ErrorKind::InvalidValue if m.is_finite() => {
-                write!(f, " cannot be met: its value, {m}, is a negative size")
+                        ErrorKind::InvalidValue if self.magnitude.is_finite() => {
+                write!(f, " cannot be met: its value, {m}, is negative; a distance, a length or a radius is zero or more")
             }
             ErrorKind::InvalidValue => {
                 write!(f, " cannot be met: its value, {m}, is not a finite number")
@@ -329,7 +329,7 @@ mod tests {
         let size = SolveError::new("height", "length(left) = h", ErrorKind::InvalidValue, -1.0);
         assert_eq!(
             size.to_string(),
-            "constraint `height` (length(left) = h) cannot be met: its value, -1, is a negative size"
+            "constraint `height` (length(left) = h) cannot be met: its value, -1, is negative; a distance, a length or a radius is zero or more"
         );
         let sketch = SolveError::new(
             "crank",

@@ -1,4 +1,7 @@
-//! The finiteness test of the kernel's solve paths, in one place.
+//! The finiteness test of the kernel's solve paths, in one place; and the one way a number
+//! is written in a message.
+
+use std::fmt;
 
 /// Whether `x` is finite (neither infinite nor NaN): the answer of [`f64::is_finite`], written
 /// as `|x| <= f64::MAX`, one mask and one compare in the floating-point unit.
@@ -10,6 +13,35 @@
 #[inline(always)]
 pub fn is_finite(x: f64) -> bool {
     x.abs() <= f64::MAX
+}
+
+/// A number as messages write it (errors, diagnostics, reports): the shortest form that reads
+/// back to the same `f64`, in exponent form past `1e15` or under `1e-4` (so that `1e308` is not
+/// 309 digits), and zero without a sign.
+///
+/// ```
+/// use gcs_runtime::num::Shown;
+/// assert_eq!(Shown(3.0).to_string(), "3");
+/// assert_eq!(Shown(-0.0).to_string(), "0");
+/// assert_eq!(Shown(0.1 + 0.2).to_string(), "0.30000000000000004");
+/// assert_eq!(Shown(1e308).to_string(), "1e308");
+/// assert_eq!(Shown(-2.5e-7).to_string(), "-2.5e-7");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shown(pub f64);
+
+impl fmt::Display for Shown {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        let a = x.abs();
+        if x == 0.0 {
+            f.write_str("0")
+        } else if !x.is_finite() || (1e-4..1e15).contains(&a) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
 }
 
 #[cfg(test)]
@@ -39,5 +71,30 @@ mod tests {
         for x in cases {
             assert_eq!(is_finite(x), x.is_finite(), "{x:e} ({:#x})", x.to_bits());
         }
+    }
+
+    #[test]
+    fn shown_reads_back_and_stays_short() {
+        for x in [
+            1.0,
+            -3.5,
+            1e-4,
+            9.99e14,
+            1e15,
+            1e-5,
+            1e308,
+            -1e-300,
+            5e-324,
+            f64::MAX,
+            0.1,
+        ] {
+            let text = Shown(x).to_string();
+            assert_eq!(text.parse::<f64>().ok(), Some(x), "{text}");
+            assert!(text.len() <= 24, "{text}");
+        }
+        assert_eq!(Shown(f64::INFINITY).to_string(), "inf");
+        assert_eq!(Shown(f64::NAN).to_string(), "NaN");
+        assert_eq!(Shown(1e15).to_string(), "1e15");
+        assert_eq!(Shown(123456.0).to_string(), "123456");
     }
 }

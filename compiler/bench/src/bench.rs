@@ -31,9 +31,13 @@ pub struct Sweep {
 
 /// A sweep of `samples` points: the first angle param through a full turn from its default
 /// (a crank's revolution), else the first param from 90% to 110% of its default.
+///
+/// # Panics
+///
+/// When `samples` is under 2 (`gcs bench` refuses it on the command line).
 pub fn sweep(model: &Model, samples: usize) -> Sweep {
     let base = model.default_params();
-    let samples = samples.max(2);
+    assert!(samples >= 2, "a sweep has two samples or more, its ends");
     let driver = model
         .params
         .iter()

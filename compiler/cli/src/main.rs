@@ -71,8 +71,8 @@ enum Command {
     Bench {
         /// The .gcs file.
         file: PathBuf,
-        /// Points of the sweep.
-        #[arg(long, default_value_t = 100)]
+        /// Points of the sweep (two or more: its two ends at least).
+        #[arg(long, default_value_t = 100, value_parser = sweep_samples)]
         samples: usize,
         /// Print one JSON object.
         #[arg(long)]
@@ -260,7 +260,7 @@ fn solve(
                 );
                 return ExitCode::from(2);
             };
-            match gcs_lang::parse::eval_expression(model, value) {
+            match gcs_lang::parse::param_value(model, id, value) {
                 Ok(v) => params[id.into_raw().into_u32() as usize] = v,
                 Err(e) => {
                     eprintln!("error: `--set {s}`: {e}");
@@ -349,6 +349,17 @@ fn solve(
             }
         }
     })
+}
+
+/// `--samples`: a sweep has its two ends at least.
+fn sweep_samples(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(n) if n >= 2 => Ok(n),
+        Ok(n) => Err(format!(
+            "a sweep has two samples or more (its two ends), not {n}"
+        )),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 fn bench(

@@ -125,6 +125,9 @@ pub(crate) struct Builder<'m, G: Geometry> {
     /// The centre of each locus register that has one, in words, for branch meanings.
     pub(crate) centers: BTreeMap<Reg, String>,
     exprs: HashMap<gcs_lang::expr::ExprId, Reg>,
+    /// The constraint whose value each size expression is ([`Model::value_is_size`]): its
+    /// register checks that it is not negative.
+    size_of: HashMap<gcs_lang::expr::ExprId, gcs_lang::model::ConstraintId>,
     /// Words for registers, to write explanations and branch meanings.
     words: BTreeMap<Reg, String>,
     /// The keys inserted into `known_points`, `measured` and `exprs` since the last
@@ -159,6 +162,12 @@ impl<'m, G: Geometry> Builder<'m, G> {
             measured_by_top: HashMap::new(),
             centers: BTreeMap::new(),
             exprs: HashMap::new(),
+            size_of: model
+                .constraints
+                .iter()
+                .filter(|&(id, _)| model.value_is_size(id))
+                .filter_map(|(id, c)| Some((c.value?, id)))
+                .collect(),
             words: BTreeMap::new(),
             inserted: Vec::new(),
             def_step: Vec::new(),
@@ -297,7 +306,14 @@ impl<'m, G: Geometry> Builder<'m, G> {
             return *r;
         }
         let text = crate::plan::expr_text(self.model, e);
-        let r = self.value(Op::Expr(e), Ty::Scalar, text);
+        let op = match self.size_of.get(&e) {
+            Some(&constraint) => Op::Size {
+                expr: e,
+                constraint,
+            },
+            None => Op::Expr(e),
+        };
+        let r = self.value(op, Ty::Scalar, text);
         self.exprs.insert(e, r);
         self.inserted.push(Key::Expr(e));
         r

@@ -90,7 +90,7 @@ pub(crate) fn analyse(model: &Model) -> Result<Analysis, String> {
     match model.space {
         Space::D2 => driver::analyse::<planar::Planar>(model),
         Space::D3 => Err(
-            "the degrees-of-freedom analysis covers 2d models; 3d lands with the 3d issue".into(),
+            "3d models are checked but not yet solved (the degrees-of-freedom analysis covers 2d models)".into(),
         ),
     }
 }

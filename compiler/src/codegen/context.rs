@@ -6,7 +6,7 @@ use super::names::{Clash, Namer};
 use super::writer::lit;
 use crate::plan::{Op, Plan, Reg};
 use gcs_lang::expr::ParamId;
-use gcs_lang::model::{GeomId, Owner, Part};
+use gcs_lang::model::{ConstraintId, GeomId, Owner, Part};
 use gcs_lang::Model;
 use std::collections::{BTreeSet, HashMap, HashSet};
 
@@ -143,17 +143,23 @@ impl<'a> Context<'a> {
 
     /// `SolveError::new(label, text, kind, magnitude)` for the constraint step `i` works for.
     pub(super) fn error(&self, i: usize, kind: &str, magnitude: &str) -> String {
-        let (label, text) = match self.plan.constraint_of(i) {
-            Some(c) => (
-                self.model.constraints[c].name.clone(),
-                self.model.constraints[c].text.clone(),
-            ),
-            None => ("plan".to_string(), String::new()),
-        };
+        match self.plan.constraint_of(i) {
+            Some(c) => self.error_of(c, kind, magnitude),
+            None => self.error_with("plan", "", kind, magnitude),
+        }
+    }
+
+    /// The code of a `SolveError` of `kind` naming constraint `c`.
+    pub(super) fn error_of(&self, c: ConstraintId, kind: &str, magnitude: &str) -> String {
+        let con = &self.model.constraints[c];
+        self.error_with(&con.name, &con.text, kind, magnitude)
+    }
+
+    fn error_with(&self, label: &str, text: &str, kind: &str, magnitude: &str) -> String {
         format!(
             "SolveError::new({}, {}, ErrorKind::{kind}, {magnitude})",
-            lit(&label),
-            lit(&text)
+            lit(label),
+            lit(text)
         )
     }
 }

@@ -60,6 +60,7 @@ impl Solve<'_> {
         let degenerate = || self.cx.error(i, "Degenerate", "0.0");
         match op {
             Op::Expr(e) => self.expr_value(w, i, r, *e),
+            Op::Size { expr, constraint } => self.size_value(w, r, *expr, *constraint),
             Op::Const(c) => {
                 self.facts.regs.insert(r, Value::Scalar(*c));
             }
@@ -335,6 +336,43 @@ impl Solve<'_> {
             let code = self.cx.expr(e);
             self.define_finite(w, i, r, "value", &code);
         }
+    }
+
+    /// The value of `constraint`, a size: a param or an expression, and an invalid value error
+    /// when it is negative (or, for an expression, not finite). A constant is known valid: a
+    /// negative one fails the analysis' run on the sketch.
+    fn size_value(&mut self, w: &mut Writer, r: Reg, e: ExprId, constraint: ConstraintId) {
+        let m = self.cx.model;
+        let test = if let ExprNode::Param(p) = m.exprs.node(e) {
+            // Params are checked finite on entry.
+            let field = self.cx.params[p].clone();
+            self.facts.regs.insert(r, Value::Param(field));
+            format!("{} < 0.0", self.r(r))
+        } else if m.exprs.is_constant(e) && m.exprs.eval(e, &[]) >= 0.0 {
+            self.facts
+                .regs
+                .insert(r, Value::Scalar(m.exprs.eval(e, &[])));
+            return;
+        } else {
+            let code = self.cx.expr(e);
+            self.define(w, r, "value", &code);
+            self.facts.known_finite.insert(r);
+            let v = self.r(r);
+            format!("!gcs_runtime::num::is_finite({v}) || {v} < 0.0")
+        };
+        let con = &m.constraints[constraint];
+        w.line(&format!(
+            "// {}: {} is zero or more.",
+            con.name,
+            size_noun(m, constraint)
+        ));
+        w.open(&format!("if {test} {{"));
+        w.line(&format!(
+            "return Err({});",
+            self.cx.error_of(constraint, "InvalidValue", &self.r(r))
+        ));
+        w.close("}");
+        self.facts.known_sizes.insert(r);
     }
 
     /// `dir` turned by `angle`: a direction at that angle when `dir` is the x axis (a finite
@@ -673,8 +711,8 @@ impl Solve<'_> {
     /// finite and non-negative; declared here when nothing read it before.
     fn set_dim(&mut self, w: &mut Writer, i: usize, g: GeomId, value: Reg) {
         let v = self.r(value);
-        let known_good =
-            matches!(self.facts.value(value), Value::Scalar(x) if x.is_finite() && *x >= 0.0);
+        let known_good = self.facts.known_sizes.contains(&value)
+            || matches!(self.facts.value(value), Value::Scalar(x) if x.is_finite() && *x >= 0.0);
         if !known_good {
             let test = if self.facts.is_finite(value) {
                 format!("if {v} < 0.0 {{")
@@ -734,5 +772,14 @@ fn sense(plus: bool) -> &'static str {
         "Plus"
     } else {
         "Minus"
+    }
+}
+
+/// What a size constraint's value is, for comments: `a distance`, `a length`, `a radius`.
+fn size_noun(model: &gcs_lang::Model, c: ConstraintId) -> &'static str {
+    match model.constraints[c].kind {
+        gcs_lang::constraints::ConstraintKind::Length => "a length",
+        gcs_lang::constraints::ConstraintKind::Radius => "a radius",
+        _ => "a distance",
     }
 }

@@ -59,6 +59,11 @@ impl Plan {
             let r = |r: &Reg| format!("r{}", r.0);
             let op = match &s.op {
                 Op::Expr(e) => format!("expr {}", expr_text(model, *e)),
+                Op::Size { expr, constraint } => format!(
+                    "size {} of {}",
+                    expr_text(model, *expr),
+                    model.constraints[*constraint].name
+                ),
                 Op::Const(c) => format!("const {}", fmt_f64(*c)),
                 Op::Neg(x) => format!("neg {}", r(x)),
                 Op::DimOf(g) => format!("dim_of {}", name(g)),

@@ -250,6 +250,14 @@ pub enum Residual {
 pub enum Op {
     /// Evaluates an expression of the model (params are inputs).
     Expr(ExprId),
+    /// Evaluates `constraint`'s value, a size (a length, a radius, an unsigned distance):
+    /// a negative one is an invalid value of that constraint, not a pair of loci that miss.
+    Size {
+        /// The value.
+        expr: ExprId,
+        /// The constraint it is the value of, which an error names.
+        constraint: ConstraintId,
+    },
     /// A constant chosen at analysis (0 or pi for parallel, from the sketch).
     Const(f64),
     /// The value of a default parameter (an input, like a param).

@@ -116,6 +116,7 @@ impl Op {
     pub fn operands(&self) -> Vec<(Reg, Accepts)> {
         match self {
             Op::Expr(_)
+            | Op::Size { .. }
             | Op::Const(_)
             | Op::Default(_)
             | Op::PointOf(_)
@@ -195,6 +196,7 @@ impl Op {
     pub fn output(&self) -> Option<Ty> {
         Some(match self {
             Op::Expr(_)
+            | Op::Size { .. }
             | Op::Const(_)
             | Op::Default(_)
             | Op::Neg(_)

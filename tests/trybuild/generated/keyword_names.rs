@@ -164,7 +164,8 @@ pub fn solve(
 
     // match: distance(A, P) = Self + type (keyword_names.gcs:13)
     let value = params.self_ + params.type_;
-    if !gcs_runtime::num::is_finite(value) {
+    // match: a distance is zero or more.
+    if !gcs_runtime::num::is_finite(value) || value < 0.0 {
         return Err(SolveError::new(
             "match",
             "distance(A, P) = Self + type",

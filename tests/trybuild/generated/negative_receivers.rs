@@ -145,7 +145,8 @@ pub fn solve(
 
     // lift: distance(C, B) = 5 + min(-1, q) + 1 (negative_receivers.gcs:14)
     let value = 5.0 + (-1.0_f64).min(params.q) + 1.0;
-    if !gcs_runtime::num::is_finite(value) {
+    // lift: a distance is zero or more.
+    if !gcs_runtime::num::is_finite(value) || value < 0.0 {
         return Err(SolveError::new(
             "lift",
             "distance(C, B) = 5 + min(-1, q) + 1",
@@ -174,7 +175,8 @@ pub fn solve(
 
     // reach: distance(A, B) = (-2)^p (negative_receivers.gcs:13)
     let value_2 = (-2.0_f64).powf(params.p);
-    if !gcs_runtime::num::is_finite(value_2) {
+    // reach: a distance is zero or more.
+    if !gcs_runtime::num::is_finite(value_2) || value_2 < 0.0 {
         return Err(SolveError::new(
             "reach",
             "distance(A, B) = (-2)^p",

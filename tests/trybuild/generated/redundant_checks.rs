@@ -327,6 +327,7 @@ pub fn solve(
             ]));
 
     // d_long: length(s) = len (redundant_checks.gcs:32)
+    // d_long: a length is zero or more.
     if params.len < 0.0 {
         return Err(SolveError::new(
             "d_long",
@@ -338,6 +339,7 @@ pub fn solve(
     let s_length = params.len;
 
     // k_radius: radius(K) = k (redundant_checks.gcs:39)
+    // k_radius: a radius is zero or more.
     if params.k < 0.0 {
         return Err(SolveError::new(
             "k_radius",
@@ -349,6 +351,15 @@ pub fn solve(
     let k_radius = params.k;
 
     // q_r: radius(R) = rr (redundant_checks.gcs:45)
+    // q_r: a radius is zero or more.
+    if params.rr < 0.0 {
+        return Err(SolveError::new(
+            "q_r",
+            "radius(R) = rr",
+            ErrorKind::InvalidValue,
+            params.rr,
+        ));
+    }
     let residual = check::dimension(r_radius, params.rr);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
@@ -435,7 +446,8 @@ pub fn solve(
 
     // i_p: distance(P, B) = sqrt(4 + (h - 1)^2) (redundant_checks.gcs:37)
     let value_2 = (4.0 + (params.h - 1.0).powf(2.0)).sqrt();
-    if !gcs_runtime::num::is_finite(value_2) {
+    // i_p: a distance is zero or more.
+    if !gcs_runtime::num::is_finite(value_2) || value_2 < 0.0 {
         return Err(SolveError::new(
             "i_p",
             "distance(P, B) = sqrt(4 + (h - 1)^2)",
@@ -497,6 +509,15 @@ pub fn solve(
 
     // l_off: distance(P, R) = gap (redundant_checks.gcs:40)
     let r_center = Point2::new(params.w, params.h);
+    // l_off: a distance is zero or more.
+    if params.gap < 0.0 {
+        return Err(SolveError::new(
+            "l_off",
+            "distance(P, R) = gap",
+            ErrorKind::InvalidValue,
+            params.gap,
+        ));
+    }
     let residual_5 = check::point_circle(i_p, r_center, r_radius, params.gap, true);
     if residual_5.is_nan() || residual_5 > tol {
         return Err(SolveError::new(
@@ -526,6 +547,15 @@ pub fn solve(
     }
 
     // n_ap: distance(P, A) = ap (redundant_checks.gcs:42)
+    // n_ap: a distance is zero or more.
+    if params.ap < 0.0 {
+        return Err(SolveError::new(
+            "n_ap",
+            "distance(P, A) = ap",
+            ErrorKind::InvalidValue,
+            params.ap,
+        ));
+    }
     let residual_7 = check::point_point(i_p, Point2::new(0.0, 0.0), params.ap);
     if residual_7.is_nan() || residual_7 > tol {
         return Err(SolveError::new(

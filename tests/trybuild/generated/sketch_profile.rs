@@ -308,6 +308,7 @@ pub fn solve(
     );
 
     // height: length(left) = h (sketch_profile.gcs:29)
+    // height: a length is zero or more.
     if params.h < 0.0 {
         return Err(SolveError::new(
             "height",
@@ -319,6 +320,7 @@ pub fn solve(
     let left_length = params.h;
 
     // radius(fillet) = r (sketch_profile.gcs:30)
+    // radius_fillet: a radius is zero or more.
     if params.r < 0.0 {
         return Err(SolveError::new(
             "radius_fillet",
@@ -330,6 +332,7 @@ pub fn solve(
     let fillet_radius = params.r;
 
     // width: length(bottom) = w (sketch_profile.gcs:28)
+    // width: a length is zero or more.
     if params.w < 0.0 {
         return Err(SolveError::new(
             "width",

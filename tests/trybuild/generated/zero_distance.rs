@@ -192,6 +192,15 @@ pub fn solve(
     let mut f = Frame2::at(Point2::new(2.5, 0.5));
 
     // distance(A, B) = c (zero_distance.gcs:18)
+    // distance_A_B: a distance is zero or more.
+    if params.c < 0.0 {
+        return Err(SolveError::new(
+            "distance_A_B",
+            "distance(A, B) = c",
+            ErrorKind::InvalidValue,
+            params.c,
+        ));
+    }
     if params.c < 0.0 {
         return Err(SolveError::new(
             "distance_A_B",
@@ -224,6 +233,15 @@ pub fn solve(
     f.place_origin(&nearest_f);
 
     // distance(D, F) = e (zero_distance.gcs:19)
+    // distance_D_F: a distance is zero or more.
+    if params.e < 0.0 {
+        return Err(SolveError::new(
+            "distance_D_F",
+            "distance(D, F) = e",
+            ErrorKind::InvalidValue,
+            params.e,
+        ));
+    }
     if params.e < 0.0 {
         return Err(SolveError::new(
             "distance_D_F",

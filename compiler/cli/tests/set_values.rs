@@ -1,0 +1,136 @@
+//! Values given on the command line are checked as the file checks its own: units, finiteness,
+//! the sign of a size; and `gcs bench` refuses a sweep of fewer than two samples.
+
+use expect_test::{expect, Expect};
+use std::process::Command;
+
+/// A point `B` on a fixed line at distance `d` from `A`, and a segment at angle `a`.
+const MODEL: &str = "space 2d;
+param d = 5;
+param a = 30deg;
+fixed point A = (0, 0);
+fixed vector X = (1, 0);
+fixed line L = (0, 0) -> (1, 0);
+point B = (5, 0);
+segment S = (0, 0) -> (4, 3);
+coincident(S.start, A);
+angle(X, S) = a;
+length(S) = 5;
+reach: distance(A, B) = d;
+on(B, L);
+";
+
+/// Runs `gcs` with `args`, the model's path after the first argument; exit code, stdout and
+/// stderr.
+fn gcs(args: &[&str]) -> (i32, String, String) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("set.gcs");
+    std::fs::write(&path, MODEL).expect("write model");
+    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
+        .arg(args[0])
+        .arg(&path)
+        .args(&args[1..])
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("run gcs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).replace(&path.display().to_string(), "set.gcs"),
+    )
+}
+
+fn refused(args: &[&str], code: i32, want: Expect) {
+    let (got, stdout, stderr) = gcs(args);
+    assert_eq!(got, code, "{args:?}: {stderr}");
+    assert!(stdout.is_empty(), "{args:?}: {stdout}");
+    want.assert_eq(&stderr);
+}
+
+#[test]
+fn a_value_in_the_wrong_unit_is_refused() {
+    refused(
+        &["solve", "--set", "d=3deg"],
+        2,
+        expect![[r#"
+            error: `--set d=3deg`: `3deg` is an angle, but `d` holds a length; give a length, without `deg` or `rad`
+        "#]],
+    );
+    refused(
+        &["solve", "--set", "a=d"],
+        2,
+        expect![[r#"
+            error: `--set a=d`: `d` is a length, but `a` holds an angle; give an angle, in radians or with `deg`
+        "#]],
+    );
+}
+
+#[test]
+fn plain_numbers_fit_lengths_and_angles() {
+    for set in ["d=3", "d=d*2", "a=0.5", "a=45deg", "a=a/2", "d=sin(30deg)"] {
+        let (code, _, stderr) = gcs(&["solve", "--set", set]);
+        assert_eq!(code, 0, "{set}: {stderr}");
+    }
+}
+
+#[test]
+fn a_value_that_is_not_finite_says_so() {
+    for word in ["NaN", "nan", "inf", "-inf", "Infinity"] {
+        let (code, _, stderr) = gcs(&["solve", "--set", &format!("d={word}")]);
+        assert_eq!(code, 2, "{word}");
+        assert!(
+            stderr.contains("is not a finite number"),
+            "{word}: {stderr}"
+        );
+        assert!(!stderr.contains("unknown param"), "{word}: {stderr}");
+    }
+    refused(
+        &["solve", "--set", "d=1/0"],
+        2,
+        expect![[r#"
+            error: `--set d=1/0`: `1/0` is inf, not a finite number
+        "#]],
+    );
+}
+
+#[test]
+fn a_negative_size_says_it_is_negative() {
+    refused(
+        &["solve", "--set", "d=-5"],
+        1,
+        expect![[r#"
+            error: constraint `reach` (distance(A, B) = d) cannot be met: its value, -5, is negative; a distance, a length or a radius is zero or more
+        "#]],
+    );
+    // Zero is a size: B at A.
+    let (code, stdout, stderr) = gcs(&["solve", "--set", "d=-0.0", "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains(r#""B": [0.0, 0.0]"#) || stdout.contains(r#""B":[0.0,0.0]"#),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn a_huge_value_is_written_short() {
+    let (code, _, stderr) = gcs(&["solve", "--set", "d=-1e300"]);
+    assert_eq!(code, 1);
+    assert!(
+        stderr.contains("its value, -1e300, is negative"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn a_sweep_has_two_samples_or_more() {
+    for n in ["0", "1"] {
+        let (code, stdout, stderr) = gcs(&["bench", "--samples", n]);
+        assert_eq!(code, 2, "{n}: {stdout}");
+        assert!(
+            stderr.contains(&format!(
+                "a sweep has two samples or more (its two ends), not {n}"
+            )),
+            "{stderr}"
+        );
+    }
+}
