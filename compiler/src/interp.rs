@@ -63,8 +63,9 @@ pub fn run_with(
     defaults: &[f64],
     choice: &Choice,
 ) -> Result<Run, SolveError> {
+    // As the generated solve checks them (`check_all_finite`): finite, and within range.
     for ((_, p), v) in model.params.iter().zip(params) {
-        if !v.is_finite() {
+        if !gcs_runtime::num::in_range(*v) {
             return Err(SolveError::new(
                 p.name.clone(),
                 String::new(),
@@ -74,10 +75,11 @@ pub fn run_with(
         }
     }
     for (d, v) in plan.defaults.iter().zip(defaults) {
-        if !v.is_finite() {
+        if !gcs_runtime::num::in_range(*v) {
+            // No text, as the generated solve's `check_all_finite` reports it.
             return Err(SolveError::new(
                 d.name.clone(),
-                d.meaning.clone(),
+                String::new(),
                 ErrorKind::InvalidInput,
                 *v,
             ));

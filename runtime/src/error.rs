@@ -103,7 +103,15 @@ impl fmt::Display for SolveError {
         let m = crate::num::Shown(self.magnitude);
         if self.kind == ErrorKind::InvalidInput {
             // A parameter has no text; a geom's sketch says what is wrong with it.
-            return if self.text.is_empty() {
+            return if self.text.is_empty() && self.magnitude.is_finite() {
+                write!(
+                    f,
+                    "parameter `{}` is invalid: {m} is past {}, the largest magnitude a solve \
+                     takes (squares of lengths past it overflow)",
+                    self.label,
+                    crate::num::Shown(crate::num::MAX_MAGNITUDE)
+                )
+            } else if self.text.is_empty() {
                 write!(
                     f,
                     "parameter `{}` is invalid: {m} is not a finite number",
@@ -152,11 +160,12 @@ impl fmt::Display for SolveError {
 
 impl std::error::Error for SolveError {}
 
-/// `Ok(value)` when `value` is finite, otherwise an [`ErrorKind::InvalidInput`] error naming
-/// the parameter `name`, whose magnitude is the offending value (NaN or infinite).
+/// `Ok(value)` when `value` is finite and within [`crate::num::MAX_MAGNITUDE`], otherwise an
+/// [`ErrorKind::InvalidInput`] error naming the parameter `name`, whose magnitude is the
+/// offending value (NaN, infinite, or past the range).
 #[inline]
 pub fn check_finite(name: &'static str, value: f64) -> Result<f64, SolveError> {
-    if crate::num::is_finite(value) {
+    if crate::num::in_range(value) {
         Ok(value)
     } else {
         Err(SolveError::new(name, "", ErrorKind::InvalidInput, value))
@@ -361,6 +370,15 @@ mod tests {
         let e = check_all_finite(&[("a", 1.0), ("b", f64::INFINITY), ("c", f64::NAN)]).err();
         assert_eq!(e.map(|e| e.label), Some(Cow::Borrowed("b")));
         assert_eq!(check_all_finite(&[("a", 1.0)]), Ok(()));
+        // Past the range: refused, and said so.
+        assert_eq!(check_finite("len", -1e150), Ok(-1e150));
+        let e = check_finite("len", 1e151).err();
+        assert_eq!(e.as_ref().map(|e| e.kind), Some(ErrorKind::InvalidInput));
+        assert_eq!(
+            e.map(|e| e.to_string()).unwrap_or_default(),
+            "parameter `len` is invalid: 1e151 is past 1e150, the largest magnitude a solve \
+             takes (squares of lengths past it overflow)"
+        );
     }
 
     #[test]

@@ -15,6 +15,19 @@ pub fn is_finite(x: f64) -> bool {
     x.abs() <= f64::MAX
 }
 
+/// The largest magnitude a solve takes as an input (a param, a default): the kernel's
+/// intersections square lengths and coordinates and add a few squares, which stays far below
+/// `f64::MAX` (about 1.8e308) for values up to this, and overflows past about 1e154. A larger
+/// input is refused as such, rather than surfacing as an infinite or degenerate intersection.
+pub const MAX_MAGNITUDE: f64 = 1e150;
+
+/// Whether `x` is finite and at most [`MAX_MAGNITUDE`] in magnitude: the same one compare as
+/// [`is_finite`], with a smaller bound.
+#[inline(always)]
+pub fn in_range(x: f64) -> bool {
+    x.abs() <= MAX_MAGNITUDE
+}
+
 /// A number as messages write it (errors, diagnostics, reports): the shortest form that reads
 /// back to the same `f64`, in exponent form past `1e15` or under `1e-4` (so that `1e308` is not
 /// 309 digits), and zero without a sign.

@@ -113,10 +113,10 @@ fn a_negative_size_says_it_is_negative() {
 
 #[test]
 fn a_huge_value_is_written_short() {
-    let (code, _, stderr) = gcs(&["solve", "--set", "d=-1e300"]);
+    let (code, _, stderr) = gcs(&["solve", "--set", "d=-1e100"]);
     assert_eq!(code, 1);
     assert!(
-        stderr.contains("its value, -1e300, is negative"),
+        stderr.contains("its value, -1e100, is negative"),
         "{stderr}"
     );
 }
@@ -133,4 +133,19 @@ fn a_sweep_has_two_samples_or_more() {
             "{stderr}"
         );
     }
+}
+
+#[test]
+fn a_value_past_the_range_says_what_would_overflow() {
+    refused(
+        &["solve", "--set", "d=1e308"],
+        1,
+        expect![[r#"
+            error: parameter `d` is invalid: 1e308 is past 1e150, the largest magnitude a solve takes (squares of lengths past it overflow)
+        "#]],
+    );
+    // The edge of the range solves.
+    let (code, stdout, stderr) = gcs(&["solve", "--set", "d=1e150", "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("1e150"), "{stdout}");
 }

@@ -131,7 +131,7 @@ impl Solve<'_> {
             .collect()
     }
 
-    /// Params and defaults must be finite.
+    /// Params and defaults must be finite and within `gcs_runtime::num::MAX_MAGNITUDE`.
     fn check_params(&self, w: &mut Writer) {
         let m = self.cx.model;
         let params = m
