@@ -605,7 +605,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(config(120))]
+    #![proptest_config(config(48))]
 
     /// Names, labels, keywords and numbers made up to 70,000 characters long, then lightly
     /// mutated.
