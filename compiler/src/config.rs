@@ -30,6 +30,39 @@ pub struct Config {
     line_sketch: HashMap<GeomId, P2>,
 }
 
+/// What makes a sketch that params give unusable, by the kind of sketch: one wording for the
+/// interpreter (which reads the whole sketch before the first step) and the generated solve
+/// (which checks the sketches that depend on params, in the same order).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SketchFault {
+    /// A point's position is not finite.
+    Position,
+    /// A direction is zero or not finite.
+    Direction,
+    /// A line's or segment's two points coincide or are not finite.
+    Points,
+    /// A circle's centre or radius is not finite, or its radius is negative.
+    Circle,
+    /// A body's placement is not finite.
+    Placement,
+    /// A marker's point or axis is not finite or zero.
+    Marker,
+}
+
+impl SketchFault {
+    /// The error's words, after the geom's name.
+    pub fn what(self) -> &'static str {
+        match self {
+            SketchFault::Position => "its position is not finite",
+            SketchFault::Direction => "its direction is zero or not finite",
+            SketchFault::Points => "its two points coincide or are not finite",
+            SketchFault::Circle => "its centre or radius is not finite, or the radius is negative",
+            SketchFault::Placement => "its placement is not finite",
+            SketchFault::Marker => "its point or axis is not finite or zero",
+        }
+    }
+}
+
 /// A sketch value that is not finite, or a zero direction, found while evaluating.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BadSketch {
@@ -56,23 +89,23 @@ impl Config {
             line_sketch: HashMap::new(),
         };
         for (id, g) in model.geoms.iter() {
-            let bad = |what: &str| BadSketch {
+            let bad = |fault: SketchFault| BadSketch {
                 geom: id,
-                what: what.to_string(),
+                what: fault.what().to_string(),
             };
             let finite = |v: &V2| v.x.is_finite() && v.y.is_finite();
             match (&g.sketch, g.owner) {
                 (Sketch::Point(c), Owner::TopLevel) => {
                     let p = coords(model, c, params);
                     if !finite(&p) {
-                        return Err(bad("its position is not finite"));
+                        return Err(bad(SketchFault::Position));
                     }
                     cfg.frames.insert(id, Frame2::at(Point2::from(p)));
                 }
                 (Sketch::Vector(c), Owner::TopLevel) => {
                     let v = coords(model, c, params);
                     if !finite(&v) || v.norm() == 0.0 {
-                        return Err(bad("its direction is zero or not finite"));
+                        return Err(bad(SketchFault::Direction));
                     }
                     cfg.frames.insert(id, Frame2::along(P2::origin(), v));
                 }
@@ -81,7 +114,7 @@ impl Config {
                     let b = coords(model, to, params);
                     let d = b - a;
                     if !finite(&a) || !finite(&b) || d.norm() == 0.0 {
-                        return Err(bad("its two points coincide or are not finite"));
+                        return Err(bad(SketchFault::Points));
                     }
                     cfg.frames.insert(id, Frame2::along(Point2::from(a), d));
                     if g.kind == GeomKind::Segment {
@@ -94,9 +127,7 @@ impl Config {
                     let c = coords(model, center, params);
                     let r = model.exprs.eval(*radius, params);
                     if !finite(&c) || !r.is_finite() || r < 0.0 {
-                        return Err(bad(
-                            "its centre or radius is not finite, or the radius is negative",
-                        ));
+                        return Err(bad(SketchFault::Circle));
                     }
                     cfg.frames.insert(id, Frame2::at(Point2::from(c)));
                     cfg.dims.insert(id, r);
@@ -107,21 +138,21 @@ impl Config {
                         .map_or(V2::zeros(), |c| coords(model, c, params));
                     let a = angle.map_or(0.0, |e| model.exprs.eval(e, params));
                     if !finite(&o) || !a.is_finite() {
-                        return Err(bad("its placement is not finite"));
+                        return Err(bad(SketchFault::Placement));
                     }
                     cfg.frames.insert(id, Frame2::new(Point2::from(o), a));
                 }
                 (Sketch::Point(c), Owner::Member(_)) => {
                     let p = coords(model, c, params);
                     if !finite(&p) {
-                        return Err(bad("its position is not finite"));
+                        return Err(bad(SketchFault::Position));
                     }
                     cfg.local_points.insert(id, Point2::from(p));
                 }
                 (Sketch::Vector(c), Owner::Member(_)) => {
                     let v = coords(model, c, params);
                     if !finite(&v) || v.norm() == 0.0 {
-                        return Err(bad("its direction is zero or not finite"));
+                        return Err(bad(SketchFault::Direction));
                     }
                     cfg.local_dirs.insert(id, v.normalize());
                 }
@@ -129,7 +160,7 @@ impl Config {
                     let p = coords(model, origin, params);
                     let v = coords(model, x, params);
                     if !finite(&p) || !finite(&v) || v.norm() == 0.0 {
-                        return Err(bad("its point or axis is not finite or zero"));
+                        return Err(bad(SketchFault::Marker));
                     }
                     cfg.local_points.insert(id, Point2::from(p));
                     if let Some(ax) = g.parts.first() {

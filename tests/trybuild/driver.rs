@@ -30,7 +30,9 @@ fn main() {
             p[i] = if p[i] == 0.0 { 0.1 * k } else { p[i] * k };
             cases.push(p);
         }
-        for extreme in [1e300, -1e300, f64::NAN] {
+        // Zero (a sketch or a size that vanishes), the edges of the range a solve takes, past
+        // it, and NaN.
+        for extreme in [0.0, 1e150, -1e150, 1e300, -1e300, f64::NAN] {
             let mut p = base.clone();
             p[i] = extreme;
             cases.push(p);

@@ -5,6 +5,7 @@
 use super::context::Context;
 use super::facts::{FrameFacts, Value};
 use super::writer::float;
+use crate::config::SketchFault;
 use gcs_lang::expr::ExprId;
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
 
@@ -32,6 +33,82 @@ pub(super) struct ParamLocal {
 }
 
 impl Context<'_> {
+    /// The sketches that some params make unusable, in the model's order (the order the
+    /// interpreter reads them in): each geom with the code of the test that its sketch is
+    /// unusable, and how. A constant sketch was checked when the model was; a coordinate that
+    /// is a param (or its negation) is finite, params being checked on entry.
+    pub(super) fn sketch_checks(&self) -> Vec<(GeomId, String, SketchFault)> {
+        let m = self.model;
+        if m.space != gcs_lang::model::Space::D2 {
+            return Vec::new();
+        }
+        let constant = |e: &ExprId| m.exprs.is_constant(*e);
+        let surely_finite = |e: &ExprId| {
+            let mut e = *e;
+            while let gcs_lang::expr::ExprNode::Neg(a) = m.exprs.node(e) {
+                e = *a;
+            }
+            constant(&e) || matches!(m.exprs.node(e), gcs_lang::expr::ExprNode::Param(_))
+        };
+        // `!is_finite(x) || ...` over the coordinates that may not be finite.
+        let not_finite = |es: &[&ExprId]| -> Vec<String> {
+            es.iter()
+                .filter(|e| !surely_finite(e))
+                .map(|&&e| format!("!gcs_runtime::num::is_finite({})", self.expr(e)))
+                .collect()
+        };
+        let mut out = Vec::new();
+        for (id, g) in m.geoms.iter() {
+            let member = matches!(g.owner, Owner::Member(_));
+            let (mut tests, fault) = match &g.sketch {
+                Sketch::Point(c) => (
+                    not_finite(&c.iter().collect::<Vec<_>>()),
+                    SketchFault::Position,
+                ),
+                Sketch::Vector(c) if !c.iter().all(constant) => {
+                    let mut t = not_finite(&c.iter().collect::<Vec<_>>());
+                    t.push(format!("{}.norm() == 0.0", self.vector_lit(c)));
+                    (t, SketchFault::Direction)
+                }
+                Sketch::Line { from, to } | Sketch::Segment { from, to }
+                    if !member && !from.iter().chain(to).all(constant) =>
+                {
+                    let mut t = not_finite(&from.iter().chain(to).collect::<Vec<_>>());
+                    t.push(format!(
+                        "({} - {}).norm() == 0.0",
+                        self.point_lit(to),
+                        self.point_lit(from)
+                    ));
+                    (t, SketchFault::Points)
+                }
+                Sketch::Circle { center, radius, .. } if !member => {
+                    let mut t = not_finite(&center.iter().chain([radius]).collect::<Vec<_>>());
+                    if !constant(radius) {
+                        t.push(format!("{} < 0.0", self.expr(*radius)));
+                    }
+                    (t, SketchFault::Circle)
+                }
+                Sketch::Body { at, angle, .. } if !member => {
+                    let coords: Vec<&ExprId> = at.iter().flatten().chain(angle.iter()).collect();
+                    (not_finite(&coords), SketchFault::Placement)
+                }
+                Sketch::Marker { origin, x, .. } if member => {
+                    let mut t = not_finite(&origin.iter().chain(x).collect::<Vec<_>>());
+                    if !x.iter().all(constant) {
+                        t.push(format!("{}.norm() == 0.0", self.vector_lit(x)));
+                    }
+                    (t, SketchFault::Marker)
+                }
+                _ => (Vec::new(), SketchFault::Position),
+            };
+            if !tests.is_empty() {
+                tests.dedup();
+                out.push((id, tests.join(" || "), fault));
+            }
+        }
+        out
+    }
+
     /// The local coordinates params set among the members of top-level geom `g`: a member's,
     /// and after a marker's its x axis's.
     pub(super) fn param_locals(&self, g: GeomId) -> Vec<ParamLocal> {

@@ -78,6 +78,7 @@ impl Solve<'_> {
         w.open("pub fn solve(params: &Params, branches: &Branches, defaults: &Defaults) -> Result<Solution, SolveError> {");
         w.line("let _ = (params, branches, defaults);");
         self.check_params(w);
+        self.check_sketches(w);
         w.line("// The sketch: where every geom starts.");
         let (worked, decls) = self.sketch(layout);
         let tol = self.tolerance(&worked);
@@ -148,6 +149,24 @@ impl Solve<'_> {
             "gcs_runtime::error::check_all_finite(&[{}])?;",
             list.join(", ")
         ));
+    }
+
+    /// The sketches that params can make unusable (a zero direction, a negative radius, an
+    /// overflow), tested before any is read, as the interpreter tests them.
+    fn check_sketches(&self, w: &mut Writer) {
+        for (g, test, fault) in self.cx.sketch_checks() {
+            let name = &self.cx.model.geoms[g].name;
+            w.line(&format!(
+                "// The sketch of `{name}` depends on params: is it usable?"
+            ));
+            w.open(&format!("if {test} {{"));
+            w.line(&format!(
+                "return Err(SolveError::new({}, {}, ErrorKind::InvalidInput, f64::NAN));",
+                lit(name),
+                lit(fault.what())
+            ));
+            w.close("}");
+        }
     }
 
     /// The sketch of top-level geom `g`: its frame, its dimension (unless the plan sets it

@@ -283,6 +283,15 @@ pub fn solve(
         ("rr", params.rr),
         ("gap", params.gap),
     ])?;
+    // The sketch of `top` depends on params: is it usable?
+    if (Point2::new(params.w, params.h) - Point2::new(0.0, params.h)).norm() == 0.0 {
+        return Err(SolveError::new(
+            "top",
+            "its two points coincide or are not finite",
+            ErrorKind::InvalidInput,
+            f64::NAN,
+        ));
+    }
     // The sketch: where every geom starts.
     let a = Frame2::at(Point2::new(0.0, 0.0));
     let b = Frame2::at(Point2::new(params.w, 0.0));
