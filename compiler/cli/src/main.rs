@@ -313,14 +313,15 @@ fn solve(
         } else {
             gcs_compiler::prune::prune(model, &analysis.plan)
         };
+        // Each branch's index in the whole plan (the first, by name), looked up once a kept
+        // branch: a scan each made a solve quadratic in its branches.
+        let mut whole: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        for (i, b) in analysis.plan.branches.iter().enumerate() {
+            whole.entry(b.name.as_str()).or_insert(i);
+        }
         let mut chosen = Vec::new();
         for b in &plan.branches {
-            let i = analysis
-                .plan
-                .branches
-                .iter()
-                .position(|x| x.name == b.name)
-                .unwrap_or(0);
+            let i = whole.get(b.name.as_str()).copied().unwrap_or(0);
             chosen.push(branches.get(i).copied().unwrap_or(b.default));
         }
         for (b, i) in analysis.plan.branches.iter().zip(&branches) {
