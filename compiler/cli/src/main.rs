@@ -481,15 +481,25 @@ fn check(path: &Path, color: termcolor::ColorChoice) -> ExitCode {
     }
 }
 
-/// Renders diagnostics to stderr, with colour when the terminal has it.
+/// Renders diagnostics to stderr, with colour when the terminal has it, as
+/// [`gcs_lang::diagnostic::render_plain`] does in plain text: every error, the first warnings of
+/// each kind, and a line counting the warnings left out. Buffered, as codespan writes a
+/// diagnostic in many small pieces.
 fn emit(source: &SourceFile, diags: &[Diagnostic], color: termcolor::ColorChoice) {
+    use std::io::Write as _;
     let file = gcs_lang::diagnostic::codespan_file(source);
-    let writer = termcolor::StandardStream::stderr(color);
-    let mut lock = writer.lock();
+    let mut out = termcolor::BufferedStandardStream::stderr(color);
     let config = term::Config::default();
-    for d in diags {
-        if term::emit_to_write_style(&mut lock, &config, &file, &d.to_codespan()).is_err() {
-            eprintln!("error: {}", d.message);
+    let shown = gcs_lang::diagnostic::shown(diags);
+    for d in shown.diagnostics {
+        if term::emit_to_write_style(&mut out, &config, &file, &d.to_codespan()).is_err() {
+            let _ = writeln!(out, "error: {}", d.message);
         }
     }
+    for e in &shown.elided {
+        if term::emit_to_write_style(&mut out, &config, &file, &e.to_codespan()).is_err() {
+            let _ = writeln!(out, "warning: {}", e.message());
+        }
+    }
+    let _ = out.flush();
 }
