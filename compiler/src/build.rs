@@ -159,9 +159,14 @@ impl Builder {
             return Err(failure(error_count(diags), rendered));
         }
         if !self.quiet {
-            for d in diags {
+            // As the command line shows them: repeated warnings counted in one line.
+            let shown = gcs_lang::diagnostic::shown(diags);
+            for d in shown.diagnostics {
                 let line = compiled.source.line(d.primary.span.start);
                 println!("cargo:warning={name}:{line}: {}", d.message);
+            }
+            for e in &shown.elided {
+                println!("cargo:warning={name}: {}", e.message());
             }
             if !diags.is_empty() {
                 eprint!("{rendered}");

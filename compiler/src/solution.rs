@@ -4,6 +4,7 @@
 use crate::config::Config;
 use gcs_lang::model::{GeomKind, Owner, Part};
 use gcs_lang::Model;
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
 /// A solution: global values by dotted name, in model order.
@@ -76,28 +77,22 @@ impl Solution {
         s
     }
 
-    /// The point called `name`.
-    pub fn point(&self, name: &str) -> Option<&[f64]> {
-        self.points
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, v)| v.as_slice())
-    }
-
-    /// The vector called `name`.
-    pub fn vector(&self, name: &str) -> Option<&[f64]> {
-        self.vectors
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, v)| v.as_slice())
-    }
-
-    /// The scalar called `name`.
-    pub fn scalar(&self, name: &str) -> Option<f64> {
-        self.scalars
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, v)| *v)
+    /// The solution's values indexed by name, for looking them up: built in one pass, so that
+    /// reading every constraint's arguments (as [`crate::verify`] does) stays linear.
+    pub fn by_name(&self) -> ByName<'_> {
+        fn index<'a, T>(items: impl Iterator<Item = (&'a String, T)>) -> HashMap<&'a str, T> {
+            let mut map = HashMap::new();
+            for (name, value) in items {
+                // Of two values with one name, the first, as a scan would find.
+                map.entry(name.as_str()).or_insert(value);
+            }
+            map
+        }
+        ByName {
+            points: index(self.points.iter().map(|(n, v)| (n, v.as_slice()))),
+            vectors: index(self.vectors.iter().map(|(n, v)| (n, v.as_slice()))),
+            scalars: index(self.scalars.iter().map(|(n, v)| (n, *v))),
+        }
     }
 
     /// The JSON object of DESIGN.md, with numbers in shortest round-trip form.
@@ -198,5 +193,30 @@ impl Solution {
         let _ = writeln!(o, "  \"max_residual\": {}", num(self.max_residual));
         o.push('}');
         o
+    }
+}
+
+/// A [`Solution`]'s points, vectors and scalars by dotted name ([`Solution::by_name`]).
+#[derive(Clone, Debug)]
+pub struct ByName<'a> {
+    points: HashMap<&'a str, &'a [f64]>,
+    vectors: HashMap<&'a str, &'a [f64]>,
+    scalars: HashMap<&'a str, f64>,
+}
+
+impl<'a> ByName<'a> {
+    /// The point called `name`.
+    pub fn point(&self, name: &str) -> Option<&'a [f64]> {
+        self.points.get(name).copied()
+    }
+
+    /// The vector called `name`.
+    pub fn vector(&self, name: &str) -> Option<&'a [f64]> {
+        self.vectors.get(name).copied()
+    }
+
+    /// The scalar called `name`.
+    pub fn scalar(&self, name: &str) -> Option<f64> {
+        self.scalars.get(name).copied()
     }
 }

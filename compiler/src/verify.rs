@@ -6,7 +6,7 @@
 //! constraint's violation from its definition in LANGUAGE.md. A plan bug therefore cannot hide
 //! itself here.
 
-use crate::solution::Solution;
+use crate::solution::{ByName, Solution};
 use gcs_lang::constraints::ConstraintKind as K;
 use gcs_lang::model::{ConstraintId, GeomKind};
 use gcs_lang::Model;
@@ -52,7 +52,7 @@ fn angle_off(u: V, v: V, target: f64) -> f64 {
 /// pass.
 struct Look<'a> {
     model: &'a Model,
-    s: &'a Solution,
+    s: ByName<'a>,
 }
 
 impl Look<'_> {
@@ -108,7 +108,10 @@ impl Look<'_> {
 
 /// The residual of every constraint of the model on `solution`, with `params` for values.
 pub fn residuals(model: &Model, solution: &Solution, params: &[f64]) -> Vec<Residual> {
-    let look = Look { model, s: solution };
+    let look = Look {
+        model,
+        s: solution.by_name(),
+    };
     model
         .constraints
         .iter()

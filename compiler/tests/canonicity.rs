@@ -195,14 +195,15 @@ fn assert_same_solution(what: &str, want: &Solution, got: &Solution) {
         names(&got_points),
         "{what}: named features differ"
     );
+    let (want_named, got_named) = (want.by_name(), got.by_name());
     for (name, w) in &want_points {
-        let g = got
+        let g = got_named
             .point(name)
-            .or_else(|| got.vector(name))
+            .or_else(|| got_named.vector(name))
             .expect("same names");
-        let w2 = want
+        let w2 = want_named
             .point(name)
-            .or_else(|| want.vector(name))
+            .or_else(|| want_named.vector(name))
             .expect("name");
         assert_eq!(w2, w.as_slice());
         let off = w

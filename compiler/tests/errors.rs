@@ -286,8 +286,9 @@ fn a_duplicate_coincidence_is_redundant_and_solves() {
     let plain = load(&fourbar("(4, 0)", "(0, 3)", "", true));
     let pa = analyse(&plain).expect("analyse");
     let ps = solve_defaults(&plain, &pa).expect("solves");
+    let named = s.by_name();
     for (name, v) in &ps.points {
-        let w = s.point(name).expect("same points");
+        let w = named.point(name).expect("same points");
         assert!(
             (v[0] - w[0]).abs() <= 1e-12 && (v[1] - w[1]).abs() <= 1e-12,
             "{name}"
@@ -480,7 +481,8 @@ fn circle_problem_has_two_real_branches_of_four() {
                     "meet = {i}: {}",
                     s.max_residual
                 );
-                centres.push(s.point("G.center").expect("G.center").to_vec());
+                let centre = s.by_name().point("G.center").expect("G.center").to_vec();
+                centres.push(centre);
             }
             Err(e) => {
                 assert!(i >= 2, "meet = {i}: {e}");

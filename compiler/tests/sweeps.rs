@@ -168,6 +168,7 @@ fn model_size(model: &Model, params: &[f64]) -> f64 {
 
 fn get(s: &gcs_compiler::solution::Solution, name: &str) -> P {
     let p = s
+        .by_name()
         .point(name)
         .unwrap_or_else(|| panic!("solution has no point {name}"));
     [p[0], p[1]]

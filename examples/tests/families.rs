@@ -62,6 +62,7 @@ fn agree(
             let interpreted = gcs_compiler::solve_plan(&model, &plan, &scope, params, branches);
             match (interpreted, generated(&named_params, &named_branches)) {
                 (Ok(s), Ok(g)) => {
+                    let s = s.by_name();
                     let mut size: f64 = 1.0;
                     for (name, p) in &g.points {
                         let q = s.point(name).unwrap_or_else(|| panic!("{file}: no {name}"));

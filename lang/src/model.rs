@@ -6,7 +6,7 @@ use crate::constraints::{ConstraintKind, ConstraintSpec};
 use crate::expr::{Dim, ExprId, Exprs, ParamId};
 use crate::source::{SourceFile, Span};
 use la_arena::{Arena, Idx};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt;
 
 /// A geom, member or sub-geom, in the model's geom arena.
@@ -331,6 +331,31 @@ pub struct Model {
     /// Output references, in source order; empty means everything.
     pub outputs: Vec<Output>,
     pub(crate) names: BTreeMap<String, GeomId>,
+    pub(crate) param_index: ParamIndex,
+}
+
+/// The params indexed once, when the model is built: looking one up by name and evaluating at
+/// the defaults then cost the name or the expression, not the number of params (a report
+/// evaluates every constraint's value, and a scan there made `gcs check` quadratic).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ParamIndex {
+    by_name: HashMap<String, ParamId>,
+    /// Every param's default, indexed like the arena: the slice [`Exprs::eval`] reads.
+    defaults: Vec<f64>,
+}
+
+impl ParamIndex {
+    /// The index of `params`; of two params with one name (a model with errors), the first.
+    pub(crate) fn new(params: &Arena<Param>) -> ParamIndex {
+        let mut by_name = HashMap::with_capacity(params.len());
+        for (id, p) in params.iter() {
+            by_name.entry(p.name.clone()).or_insert(id);
+        }
+        ParamIndex {
+            by_name,
+            defaults: params.iter().map(|(_, p)| p.default).collect(),
+        }
+    }
 }
 
 impl Model {
@@ -341,10 +366,7 @@ impl Model {
 
     /// The param called `name`.
     pub fn param_named(&self, name: &str) -> Option<ParamId> {
-        self.params
-            .iter()
-            .find(|(_, p)| p.name == name)
-            .map(|(id, _)| id)
+        self.param_index.by_name.get(name).copied()
     }
 
     /// Top-level geoms, in declaration order.
@@ -366,12 +388,12 @@ impl Model {
 
     /// The default value of every param, indexed like the param arena.
     pub fn default_params(&self) -> Vec<f64> {
-        self.params.iter().map(|(_, p)| p.default).collect()
+        self.param_index.defaults.clone()
     }
 
     /// The value of an expression with the default params.
     pub fn eval_default(&self, e: ExprId) -> f64 {
-        self.exprs.eval(e, &self.default_params())
+        self.exprs.eval(e, &self.param_index.defaults)
     }
 
     /// The 1-based source line of a span's start.

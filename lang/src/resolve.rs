@@ -12,7 +12,7 @@ use crate::model::*;
 use crate::source::{SourceFile, Span};
 use crate::syntax::{self, AngleUnit, ExprKind, GeomDecl, SpecPart, SpecValue, StatementKind};
 use la_arena::Arena;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 /// Words that can never name anything.
 pub const RESERVED: &[&str] = &[
@@ -47,8 +47,7 @@ pub fn resolve(
         slots: Vec::new(),
         param_syntax: Vec::new(),
         vector_checks: Vec::new(),
-        used_params: Vec::new(),
-        poisoned: Vec::new(),
+        poisoned: HashSet::new(),
     };
     r.header(file);
     r.declare(file);
@@ -63,6 +62,7 @@ pub fn resolve(
         return (None, diags);
     }
     let model = Model {
+        param_index: ParamIndex::new(&r.params),
         source: source.clone(),
         space: r.space,
         params: r.params,
@@ -135,10 +135,9 @@ struct Resolver<'a> {
     /// Each param's default as written, by param id order.
     param_syntax: Vec<(ParamId, Option<&'a syntax::Expr>)>,
     vector_checks: Vec<VectorCheck>,
-    used_params: Vec<ParamId>,
     /// Params whose default is already reported as wrong: expressions that read them are
     /// not reported again.
-    poisoned: Vec<ParamId>,
+    poisoned: HashSet<ParamId>,
 }
 
 impl<'a> Resolver<'a> {
@@ -434,7 +433,9 @@ impl<'a> Resolver<'a> {
         for (id, e) in syntaxes {
             match e.and_then(|e| self.expr(e)) {
                 Some(x) => self.params[id].default_expr = x,
-                None => self.poisoned.push(id),
+                None => {
+                    self.poisoned.insert(id);
+                }
             }
         }
         for stmt in &file.statements {
@@ -612,11 +613,7 @@ impl<'a> Resolver<'a> {
         if p.parts.len() == 1 {
             match self.top.get(&dotted) {
                 Some((TopName::Param(id), _)) => {
-                    let id = *id;
-                    if !self.used_params.contains(&id) {
-                        self.used_params.push(id);
-                    }
-                    let e = self.exprs.alloc(ExprNode::Param(id));
+                    let e = self.exprs.alloc(ExprNode::Param(*id));
                     self.spans.insert(e, p.span);
                     return Some(e);
                 }
@@ -1443,9 +1440,12 @@ impl<'a> Resolver<'a> {
     fn check_params(&mut self) {
         let ids: Vec<ParamId> = self.params.iter().map(|(id, _)| id).collect();
         let mut state: HashMap<ParamId, u8> = HashMap::new(); // 1 = visiting, 2 = done
-        let mut in_cycle: Vec<ParamId> = Vec::new();
+        let mut in_cycle: HashSet<ParamId> = HashSet::new();
+        // The defaults evaluated so far, by param index (NaN until evaluated), kept up to date
+        // here rather than collected for each param, which made this quadratic.
+        let mut values = vec![f64::NAN; ids.len()];
         for &id in &ids {
-            self.visit_param(id, &mut state, &mut Vec::new(), &mut in_cycle);
+            self.visit_param(id, &mut state, &mut Vec::new(), &mut in_cycle, &mut values);
         }
     }
 
@@ -1454,7 +1454,8 @@ impl<'a> Resolver<'a> {
         id: ParamId,
         state: &mut HashMap<ParamId, u8>,
         stack: &mut Vec<ParamId>,
-        in_cycle: &mut Vec<ParamId>,
+        in_cycle: &mut HashSet<ParamId>,
+        values: &mut Vec<f64>,
     ) {
         match state.get(&id) {
             Some(2) => return,
@@ -1501,20 +1502,20 @@ impl<'a> Resolver<'a> {
         let mut deps = Vec::new();
         self.exprs.params(self.params[id].default_expr, &mut deps);
         for d in deps {
-            self.visit_param(d, state, stack, in_cycle);
+            self.visit_param(d, state, stack, in_cycle, values);
         }
         stack.pop();
         state.insert(id, 2);
         if in_cycle.contains(&id) || self.poisoned.contains(&id) {
             return;
         }
-        let values: Vec<f64> = self.params.iter().map(|(_, p)| p.default).collect();
         let e = self.params[id].default_expr;
-        let v = self.checked_eval(e, &values);
+        let v = self.checked_eval(e, values);
         if !v.is_finite() {
-            self.poisoned.push(id);
+            self.poisoned.insert(id);
         }
         self.params[id].default = v;
+        values[id.into_raw().into_u32() as usize] = v;
         let dim = self.dim(e, &HashMap::new());
         self.params[id].dim = if dim == Dim::Angle {
             Dim::Angle
@@ -1836,18 +1837,17 @@ impl<'a> Resolver<'a> {
             return;
         }
         // A param used only by other params' defaults is still used.
-        let mut used = self.used_params.clone();
         let ids: Vec<ParamId> = self.params.iter().map(|(id, _)| id).collect();
-        let mut by_param_only: Vec<ParamId> = Vec::new();
+        let mut by_param_only: HashSet<ParamId> = HashSet::new();
         for &id in &ids {
             let mut deps = Vec::new();
             self.exprs.params(self.params[id].default_expr, &mut deps);
             by_param_only.extend(deps);
         }
-        used.retain(|_| true);
+        let in_slots = self.params_in_slots();
         for id in ids {
             let p = &self.params[id];
-            let direct = self.slot_uses(id);
+            let direct = in_slots.contains(&id);
             if !direct && !by_param_only.contains(&id) && self.complete {
                 let d = Diagnostic::warning(p.span, format!("param `{}` is never used", p.name))
                     .with_label("unused")
@@ -1857,12 +1857,16 @@ impl<'a> Resolver<'a> {
         }
     }
 
-    fn slot_uses(&self, id: ParamId) -> bool {
-        self.slots.iter().any(|&(e, _)| {
-            let mut ps = Vec::new();
+    /// Every param some slot's expression reads: collected once, not once a param.
+    fn params_in_slots(&self) -> HashSet<ParamId> {
+        let mut all = HashSet::new();
+        let mut ps = Vec::new();
+        for &(e, _) in &self.slots {
+            ps.clear();
             self.exprs.params(e, &mut ps);
-            ps.contains(&id)
-        })
+            all.extend(ps.iter().copied());
+        }
+        all
     }
 }
 

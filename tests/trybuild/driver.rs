@@ -72,6 +72,7 @@ fn main() {
             );
             match (interpreted, generated) {
                 (Ok(s), Ok(g)) => {
+                    let s = s.by_name();
                     let mut solution = gcs_compiler::solution::Solution::default();
                     let mut size: f64 = 1.0;
                     for (name, p) in g.points() {

@@ -11,12 +11,14 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    let names: Vec<&str> = Family::ALL.iter().map(|f| f.name()).collect();
+    let names = names.join(", ");
     let (Some(name), Some(size)) = (args.first(), args.get(1)) else {
-        eprintln!("usage: family NAME N   (NAME: fourbar_chain, sketch_profile or truss)");
+        eprintln!("usage: family NAME N   (NAME: {names})");
         return ExitCode::from(2);
     };
     let Some(family) = Family::named(name) else {
-        eprintln!("no family `{name}` (fourbar_chain, sketch_profile or truss)");
+        eprintln!("no family `{name}` ({names})");
         return ExitCode::from(2);
     };
     match size.parse::<usize>() {

@@ -4,6 +4,10 @@
 //! Each generator returns a well-constrained 2d model whose sketch is close to an assembly, so
 //! that the sketch's branches are the natural ones. Every family is a chain of the same local
 //! problem repeated `n` times, so analysis and solve time should grow linearly in `n`.
+//!
+//! [`params`] and [`points`] stress the front end rather than the analysis (issue 17, item 7):
+//! many params, half of them warned about, for `gcs check`; many points in one JSON answer
+//! verified by name, for `gcs solve --json`.
 
 use std::fmt::Write as _;
 
@@ -16,11 +20,21 @@ pub enum Family {
     SketchProfile,
     /// [`truss`]: a planar truss of triangles.
     Truss,
+    /// [`params`]: many params, half of them never used.
+    Params,
+    /// [`points`]: a row of points along a fixed line.
+    Points,
 }
 
 impl Family {
     /// Every family, in a fixed order.
-    pub const ALL: [Family; 3] = [Family::FourBarChain, Family::SketchProfile, Family::Truss];
+    pub const ALL: [Family; 5] = [
+        Family::FourBarChain,
+        Family::SketchProfile,
+        Family::Truss,
+        Family::Params,
+        Family::Points,
+    ];
 
     /// The family's short name, as the command line and the reports spell it.
     pub fn name(self) -> &'static str {
@@ -28,6 +42,8 @@ impl Family {
             Family::FourBarChain => "fourbar_chain",
             Family::SketchProfile => "sketch_profile",
             Family::Truss => "truss",
+            Family::Params => "params",
+            Family::Points => "points",
         }
     }
 
@@ -42,6 +58,8 @@ impl Family {
             Family::FourBarChain => four_bar_chain(n),
             Family::SketchProfile => sketch_profile(n),
             Family::Truss => truss(n),
+            Family::Params => params(n),
+            Family::Points => points(n),
         }
     }
 
@@ -51,6 +69,8 @@ impl Family {
             Family::FourBarChain => ("theta", 0.0, std::f64::consts::TAU),
             Family::SketchProfile => ("len", 8.0, 12.0),
             Family::Truss => ("bar", 1.5, 2.5),
+            Family::Params => ("p0", 0.5, 1.5),
+            Family::Points => ("gap", 0.5, 1.5),
         }
     }
 }
@@ -168,6 +188,52 @@ pub fn truss(n: usize) -> String {
         let _ = writeln!(s, "distance(p{}, p{k}) = bar;", k - 1);
     }
     let _ = writeln!(s, "\noutput p{};", n + 1);
+    s
+}
+
+/// `n` params in groups of four, as a large model's table of inputs is (`n` rounded up to a
+/// multiple of four): `p{4j}` sets the distance from point `q{j}` to `q{j+1}` along a fixed line,
+/// `p{4j+1}` is read by the default of `p{4j+2}`, and `p{4j+2}` and `p{4j+3}` are never used,
+/// so `gcs check` warns about half of them.
+pub fn params(n: usize) -> String {
+    let groups = n.max(1).div_ceil(4);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// {} params: a quarter set distances, a quarter feed other params, half are unused.",
+        4 * groups
+    );
+    s.push_str("space 2d;\n\nfixed line axis = (0, 0) -> (1, 0);\nfixed point q0 = (0, 0);\n");
+    for j in 0..groups {
+        let k = 4 * j;
+        let _ = writeln!(s, "\nparam p{k} = 1;");
+        let _ = writeln!(s, "param p{} = 2;", k + 1);
+        let _ = writeln!(s, "param p{} = p{} * 2;", k + 2, k + 1);
+        let _ = writeln!(s, "param p{} = 3;", k + 3);
+        let _ = writeln!(s, "point q{} = ({}.1, 0.1);", j + 1, j + 1);
+        let _ = writeln!(s, "on(q{}, axis);", j + 1);
+        let _ = writeln!(s, "distance(q{j}, q{}) = p{k};", j + 1);
+    }
+    s
+}
+
+/// `n` points in a row: `q0` fixed at the origin and each later point on a fixed line at
+/// distance `gap` from the one before (the sketch a little off, on the far side). No `output`
+/// statement, so `gcs solve --json` prints every point and verifies every constraint.
+pub fn points(n: usize) -> String {
+    let n = n.max(2);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// {n} points in a row along a fixed line, each `gap` from the one before."
+    );
+    s.push_str("space 2d;\n\nparam gap = 1;\n\nfixed line axis = (0, 0) -> (1, 0);\n");
+    s.push_str("fixed point q0 = (0, 0);\n");
+    for k in 1..n {
+        let _ = writeln!(s, "\npoint q{k} = ({k}.1, 0.1);");
+        let _ = writeln!(s, "on(q{k}, axis);");
+        let _ = writeln!(s, "distance(q{}, q{k}) = gap;", k - 1);
+    }
     s
 }
 

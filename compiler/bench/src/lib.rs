@@ -8,7 +8,8 @@
 //! - [`bench`](mod@bench): a sweep of a model's params, the compiled side against the
 //!   baseline on it, and the report as text, JSON and an SVG plot.
 //! - [`families`]: generators of model families of any size (a chain of four-bars, a sketch
-//!   profile, a Warren truss), the workloads of the scaling, stress and peer benchmarks.
+//!   profile, a Warren truss; many params, many points), the workloads of the scaling, stress
+//!   and peer benchmarks.
 //!
 //! Like every library crate here, it never prints or exits.
 

@@ -313,14 +313,15 @@ fn solve(
         } else {
             gcs_compiler::prune::prune(model, &analysis.plan)
         };
+        // Each branch's index in the whole plan (the first, by name), looked up once a kept
+        // branch: a scan each made a solve quadratic in its branches.
+        let mut whole: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        for (i, b) in analysis.plan.branches.iter().enumerate() {
+            whole.entry(b.name.as_str()).or_insert(i);
+        }
         let mut chosen = Vec::new();
         for b in &plan.branches {
-            let i = analysis
-                .plan
-                .branches
-                .iter()
-                .position(|x| x.name == b.name)
-                .unwrap_or(0);
+            let i = whole.get(b.name.as_str()).copied().unwrap_or(0);
             chosen.push(branches.get(i).copied().unwrap_or(b.default));
         }
         for (b, i) in analysis.plan.branches.iter().zip(&branches) {
@@ -491,15 +492,25 @@ fn check(path: &Path, color: termcolor::ColorChoice) -> ExitCode {
     }
 }
 
-/// Renders diagnostics to stderr, with colour when the terminal has it.
+/// Renders diagnostics to stderr, with colour when the terminal has it, as
+/// [`gcs_lang::diagnostic::render_plain`] does in plain text: every error, the first warnings of
+/// each kind, and a line counting the warnings left out. Buffered, as codespan writes a
+/// diagnostic in many small pieces.
 fn emit(source: &SourceFile, diags: &[Diagnostic], color: termcolor::ColorChoice) {
+    use std::io::Write as _;
     let file = gcs_lang::diagnostic::codespan_file(source);
-    let writer = termcolor::StandardStream::stderr(color);
-    let mut lock = writer.lock();
+    let mut out = termcolor::BufferedStandardStream::stderr(color);
     let config = term::Config::default();
-    for d in diags {
-        if term::emit_to_write_style(&mut lock, &config, &file, &d.to_codespan()).is_err() {
-            eprintln!("error: {}", d.message);
+    let shown = gcs_lang::diagnostic::shown(diags);
+    for d in shown.diagnostics {
+        if term::emit_to_write_style(&mut out, &config, &file, &d.to_codespan()).is_err() {
+            let _ = writeln!(out, "error: {}", d.message);
         }
     }
+    for e in &shown.elided {
+        if term::emit_to_write_style(&mut out, &config, &file, &e.to_codespan()).is_err() {
+            let _ = writeln!(out, "warning: {}", e.message());
+        }
+    }
+    let _ = out.flush();
 }
