@@ -3,7 +3,8 @@
 //!
 //! The workspace forbids `unsafe_code`, and a `GlobalAlloc` impl is unsafe, so the counting
 //! wrapper around `System` is `stats_alloc`'s (a dev-dependency). Its counters are global: this
-//! file holds one test, so no other test thread allocates meanwhile.
+//! file holds one test, so no other test thread allocates meanwhile; the harness's own thread
+//! still may, which the test allows for by counting the fewest of three runs.
 
 #![allow(clippy::unwrap_used)]
 
@@ -44,36 +45,43 @@ fn intersections_and_roots_allocate_nothing() {
     let end = Circle::new(p(6.0, 3.0), 3.0).unwrap();
     let conics = [par, ell, hyp];
 
-    let region = Region::new(GLOBAL);
-    let mut sink = 0usize;
-    for _ in 0..3 {
-        sink += line_line(&l1, &l2).roots.len();
-        sink += line_ray(&l1, &r2).roots.len();
-        sink += ray_ray(&r1, &r2).roots.len();
-        sink += line_circle(&l1, &c1).roots.len();
-        sink += ray_circle(&r1, &c1).roots.len();
-        sink += circle_circle(&c1, &c2).roots.len();
-        for k in &conics {
-            sink += line_conic(&l1, k).roots.len();
-            sink += ray_conic(&r1, k).roots.len();
-            sink += circle_conic(&end, k).roots.len();
-            for k2 in &conics {
-                sink += conic_conic(k, k2).roots.len();
+    let run = || {
+        let mut sink = 0usize;
+        for _ in 0..3 {
+            sink += line_line(&l1, &l2).roots.len();
+            sink += line_ray(&l1, &r2).roots.len();
+            sink += ray_ray(&r1, &r2).roots.len();
+            sink += line_circle(&l1, &c1).roots.len();
+            sink += ray_circle(&r1, &c1).roots.len();
+            sink += circle_circle(&c1, &c2).roots.len();
+            for k in &conics {
+                sink += line_conic(&l1, k).roots.len();
+                sink += ray_conic(&r1, k).roots.len();
+                sink += circle_conic(&end, k).roots.len();
+                for k2 in &conics {
+                    sink += conic_conic(k, k2).roots.len();
+                }
+                sink += usize::from(k.residual(p(1.0, 1.0)) > 0.0);
             }
-            sink += usize::from(k.residual(p(1.0, 1.0)) > 0.0);
+            sink += centres_line_line(&l1, 0.5, &l2, 0.25).map_or(0, |_| 1);
+            sink += poly::quadratic(1.0, -3.0, 2.0).len();
+            sink += poly::cubic(1.0, -6.0, 11.0, -6.0).len();
+            sink += poly::quartic(1.0, -10.0, 35.0, -50.0, 24.0).len();
+            sink += poly::real_roots(&[1.0, 0.0, -2.0, 0.0, 1.0]).len();
+            sink += nearest(&circle_circle(&c1, &c2).roots, p(2.0, 2.0)).unwrap_or(0);
         }
-        sink += centres_line_line(&l1, 0.5, &l2, 0.25).map_or(0, |_| 1);
-        sink += poly::quadratic(1.0, -3.0, 2.0).len();
-        sink += poly::cubic(1.0, -6.0, 11.0, -6.0).len();
-        sink += poly::quartic(1.0, -10.0, 35.0, -50.0, 24.0).len();
-        sink += poly::real_roots(&[1.0, 0.0, -2.0, 0.0, 1.0]).len();
-        sink += nearest(&circle_circle(&c1, &c2).roots, p(2.0, 2.0)).unwrap_or(0);
+        sink
+    };
+    // The counters are process-wide, and the test harness's own thread may allocate while
+    // this one runs (seen once, on a loaded machine). The kernel is deterministic: what it
+    // allocates shows in every run, so the fewest of three runs is its count.
+    let mut fewest = usize::MAX;
+    for _ in 0..3 {
+        let region = Region::new(GLOBAL);
+        let sink = run();
+        let stats = region.change();
+        assert!(sink > 0);
+        fewest = fewest.min(stats.allocations + stats.reallocations);
     }
-    let stats = region.change();
-    assert!(sink > 0);
-    assert_eq!(
-        stats.allocations + stats.reallocations,
-        0,
-        "the 2d kernel allocated: {stats:?}"
-    );
+    assert_eq!(fewest, 0, "the 2d kernel allocated in every run");
 }

@@ -3,7 +3,8 @@
 //!
 //! The workspace forbids `unsafe_code`, and a `GlobalAlloc` impl is unsafe, so the counting
 //! wrapper around `System` is `stats_alloc`'s (a dev-dependency). Its counters are global: this
-//! file holds one test, so no other test thread allocates meanwhile.
+//! file holds one test, so no other test thread allocates meanwhile; the harness's own thread
+//! still may, which the test allows for by counting the fewest of three runs.
 
 use std::alloc::System;
 use std::hint::black_box;
@@ -135,10 +136,17 @@ fn run_all() -> f64 {
 fn actions_frames_intersections_and_errors_allocate_nothing() {
     // A warm-up run, so that any lazy one-time initialisation is not counted.
     let warm = run_all();
-    let region = Region::new(GLOBAL);
-    let sum = run_all();
-    let stats = region.change();
-    assert!(warm.is_finite() && sum.is_finite());
-    assert_eq!(stats.allocations, 0, "{stats:?}");
-    assert_eq!(stats.reallocations, 0, "{stats:?}");
+    assert!(warm.is_finite());
+    // The counters are process-wide, and the test harness's own thread may allocate while
+    // this one runs. What the kernel allocates shows in every run: the fewest of three runs
+    // is its count.
+    let mut fewest = usize::MAX;
+    for _ in 0..3 {
+        let region = Region::new(GLOBAL);
+        let sum = run_all();
+        let stats = region.change();
+        assert!(sum.is_finite());
+        fewest = fewest.min(stats.allocations + stats.reallocations);
+    }
+    assert_eq!(fewest, 0, "the 3d kernel allocated in every run");
 }
