@@ -431,16 +431,17 @@ fn bench(
         let compiled = compiled.unwrap_or_else(|| {
             bench::interpreted(model, &plan, &scope, &branches, &sweep, settings.budget_ns)
         });
+        // Each whole-plan branch at its kept branch's index (the first, by name), else at its
+        // default: through a map, as in `solve`.
+        let mut kept: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        for (i, b) in plan.branches.iter().enumerate() {
+            kept.entry(b.name.as_str()).or_insert(i);
+        }
         let whole: Vec<usize> = analysis
             .plan
             .branches
             .iter()
-            .map(|b| {
-                plan.branches
-                    .iter()
-                    .position(|x| x.name == b.name)
-                    .map_or(b.default, |i| branches[i])
-            })
+            .map(|b| kept.get(b.name.as_str()).map_or(b.default, |&i| branches[i]))
             .collect();
         let report = match bench::run(model, &analysis.plan, &whole, sweep, compiled, &settings) {
             Ok(r) => r,
