@@ -441,7 +441,10 @@ fn bench(
             .plan
             .branches
             .iter()
-            .map(|b| kept.get(b.name.as_str()).map_or(b.default, |&i| branches[i]))
+            .map(|b| {
+                kept.get(b.name.as_str())
+                    .map_or(b.default, |&i| branches[i])
+            })
             .collect();
         let report = match bench::run(model, &analysis.plan, &whole, sweep, compiled, &settings) {
             Ok(r) => r,
