@@ -45,6 +45,17 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
+    /// A word where a unit would stand (`25 mm`, `1.5in`) that is not one: the language's
+    /// units, said once for the parser and the resolver.
+    pub fn unknown_unit(span: Span, word: &str) -> Self {
+        Diagnostic::error(span, format!("unknown unit `{word}`"))
+            .with_label("not a unit of the language")
+            .with_note(
+                "the units are `deg` and `rad`, on angles; a length is a plain number, in the \
+                 model's own unit",
+            )
+    }
+
     /// An error at `span`.
     pub fn error(span: Span, message: impl Into<String>) -> Diagnostic {
         Diagnostic {

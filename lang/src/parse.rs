@@ -164,14 +164,7 @@ fn unknown_unit(text: &str, before: &str, word: Span, end: usize) -> Option<Diag
     let is_word = w.starts_with(|c: char| c.is_ascii_alphabetic());
     let after_number = before.ends_with(|c: char| c.is_ascii_digit() || c == '.');
     let ends_value = after.is_empty() || after.starts_with([';', ',', ')']);
-    (is_word && after_number && ends_value).then(|| {
-        Diagnostic::error(word, format!("unknown unit `{w}`"))
-            .with_label("not a unit of the language")
-            .with_note(
-                "the units are `deg` and `rad`, on angles; a length is a plain number, in the \
-                 model's own unit",
-            )
-    })
+    (is_word && after_number && ends_value).then(|| Diagnostic::unknown_unit(word, w))
 }
 
 /// The first character of the statement in `chunk`, outside comments, that is not ASCII: names,

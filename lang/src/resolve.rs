@@ -538,15 +538,7 @@ impl<'a> Resolver<'a> {
                     // `1.5in`, `25mm`: a number, then a word.
                     Some((number, unit)) => {
                         let at = e.span.start + number.len();
-                        Diagnostic::error(
-                            Span::new(at, e.span.end),
-                            format!("unknown unit `{unit}`"),
-                        )
-                        .with_label("not a unit of the language")
-                        .with_note(
-                            "the units are `deg` and `rad`, on angles; a length is a plain \
-                             number, in the model's own unit",
-                        )
+                        Diagnostic::unknown_unit(Span::new(at, e.span.end), unit)
                     }
                     None => Diagnostic::error(e.span, format!("malformed number `{text}`"))
                         .with_label("not a number")

@@ -155,7 +155,14 @@ impl<'a> Context<'a> {
         self.error_with(&con.name, &con.text, kind, magnitude)
     }
 
-    fn error_with(&self, label: &str, text: &str, kind: &str, magnitude: &str) -> String {
+    /// The code of a `SolveError` of `kind` with the given label and text.
+    pub(super) fn error_with(
+        &self,
+        label: &str,
+        text: &str,
+        kind: &str,
+        magnitude: &str,
+    ) -> String {
         format!(
             "SolveError::new({}, {}, ErrorKind::{kind}, {magnitude})",
             lit(label),

@@ -161,9 +161,9 @@ impl Solve<'_> {
             ));
             w.open(&format!("if {test} {{"));
             w.line(&format!(
-                "return Err(SolveError::new({}, {}, ErrorKind::InvalidInput, f64::NAN));",
-                lit(name),
-                lit(fault.what())
+                "return Err({});",
+                self.cx
+                    .error_with(name, fault.what(), "InvalidInput", "f64::NAN")
             ));
             w.close("}");
         }
