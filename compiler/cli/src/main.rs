@@ -10,6 +10,11 @@ use std::process::ExitCode;
 
 mod generated;
 
+/// A front end that reads a 100,000-statement model makes millions of small strings and nodes;
+/// mimalloc's thread-local free lists serve them several times faster than the system's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Compiles geometric constraint models (.gcs) into specialised solvers.
 #[derive(Debug, Parser)]
 #[command(name = "gcs", version, about)]

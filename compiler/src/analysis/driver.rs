@@ -15,7 +15,8 @@ use super::{Analysis, Cluster, Unsupported};
 use crate::plan::{BranchId, BranchVar, Op, Plan, Reg, Step, Ty};
 use gcs_lang::model::{ConstraintId, GeomId};
 use gcs_lang::Model;
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use std::collections::{BTreeMap, BTreeSet};
 
 /// Analyses a model with the geometry of its space.
 pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
@@ -81,7 +82,7 @@ fn key<G: Geometry>(r: &G::Relation) -> RelKey<G::Relation> {
 
 /// Marks every relation whose key an earlier one (in canonical order) has.
 fn mark_duplicates<G: Geometry>(rels: &mut [Rel<G::Relation>]) {
-    let mut seen = std::collections::HashSet::new();
+    let mut seen = HashSet::default();
     for r in rels {
         r.duplicate = !seen.insert(key::<G>(&r.relation));
     }
@@ -138,13 +139,13 @@ pub(crate) struct Builder<'m, G: Geometry> {
     pub(crate) pending: Vec<Rel<G::Relation>>,
     redundant: Vec<ConstraintId>,
     /// The keys of the relations done so far: a duplicate waits for its key here.
-    done: std::collections::HashSet<RelKey<G::Relation>>,
+    done: HashSet<RelKey<G::Relation>>,
 }
 
 impl<'m, G: Geometry> Builder<'m, G> {
     fn new(model: &'m Model) -> Self {
         let mut clusters = Vec::new();
-        let mut cluster_of = HashMap::new();
+        let mut cluster_of = HashMap::default();
         for (id, _) in model.top_level() {
             cluster_of.insert(id, clusters.len());
             clusters.push(ClusterState {
@@ -157,11 +158,11 @@ impl<'m, G: Geometry> Builder<'m, G> {
             plan: Plan::new(model.space),
             clusters,
             cluster_of,
-            known_points: HashMap::new(),
-            measured: HashMap::new(),
-            measured_by_top: HashMap::new(),
+            known_points: HashMap::default(),
+            measured: HashMap::default(),
+            measured_by_top: HashMap::default(),
             centers: BTreeMap::new(),
-            exprs: HashMap::new(),
+            exprs: HashMap::default(),
             size_of: model
                 .constraints
                 .iter()
@@ -173,7 +174,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             def_step: Vec::new(),
             pending: Vec::new(),
             redundant: Vec::new(),
-            done: std::collections::HashSet::new(),
+            done: HashSet::default(),
         }
     }
 
@@ -455,7 +456,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
         // round, as every attempt used to be, so that it forgets them again.)
         let n = self.pending.len();
         let mut involved: Vec<Vec<usize>> = Vec::with_capacity(n);
-        let mut by_cluster: HashMap<usize, Vec<usize>> = HashMap::new();
+        let mut by_cluster: HashMap<usize, Vec<usize>> = HashMap::default();
         // Relations to try, by mode (action, locus).
         let mut dirty: [BTreeSet<usize>; 2] = Default::default();
         for i in 0..n {

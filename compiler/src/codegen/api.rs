@@ -411,7 +411,7 @@ pub(super) fn accessors(
     layout: &Layout,
 ) -> (Vec<(Accessor, String)>, Vec<Clash>) {
     let mut names = Namer::default();
-    for reserved in ["points", "vectors", "scalars"] {
+    for reserved in RESERVED_ACCESSORS {
         names.reserve(reserved);
     }
     let mut out = Vec::new();
@@ -461,18 +461,12 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
             Ty::Vector,
             format!("{frame}.x_axis()"),
         )),
-        GeomKind::Circle => items.push(Accessor::new(
-            &format!("{name}.radius"),
-            format!("The radius of `{name}`."),
-            Ty::Scalar,
-            dim.clone(),
-        )),
-        GeomKind::Segment => items.push(Accessor::new(
-            &format!("{name}.length"),
-            format!("The length of `{name}`."),
-            Ty::Scalar,
-            dim.clone(),
-        )),
+        GeomKind::Circle | GeomKind::Segment => {
+            if let Some((accessor, what)) = dimension_accessor(name, geom.kind) {
+                let doc = format!("The {what} of `{name}`.");
+                items.push(Accessor::new(&accessor, doc, Ty::Scalar, dim.clone()));
+            }
+        }
         _ => {}
     }
     // A member's position or direction from its local coordinates: a field's when params set
@@ -535,6 +529,30 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
     }
     items
 }
+
+/// The accessor of a circle's radius (`G.radius`) or a segment's length (`S.length`), with
+/// the word for it.
+fn dimension_accessor(name: &str, kind: GeomKind) -> Option<(String, &'static str)> {
+    let what = match kind {
+        GeomKind::Circle => "radius",
+        GeomKind::Segment => "length",
+        _ => return None,
+    };
+    Some((format!("{name}.{what}"), what))
+}
+
+/// Every text an accessor could be named from, whatever the pruning keeps: each geom's name
+/// (members and parts have their own, `B.m`, `S.start`, `k.z`) and each dimension's accessor.
+/// The API's own names (`points`, ...) are in [`RESERVED_ACCESSORS`].
+pub(super) fn accessor_texts(model: &gcs_lang::Model) -> impl Iterator<Item = String> + '_ {
+    model.geoms.iter().flat_map(|(_, geom)| {
+        let dimension = dimension_accessor(&geom.name, geom.kind).map(|(name, _)| name);
+        std::iter::once(geom.name.clone()).chain(dimension)
+    })
+}
+
+/// The accessors of `Solution` that the API itself has.
+pub(super) const RESERVED_ACCESSORS: [&str; 3] = ["points", "vectors", "scalars"];
 
 /// The first sketch point of line `g` (where its `L.point` is measured from), if it is a line.
 pub(super) fn line_sketch<'m>(cx: &Context<'m>, g: GeomId) -> Option<&'m [gcs_lang::expr::ExprId]> {

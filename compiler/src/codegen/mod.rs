@@ -58,6 +58,9 @@ pub fn generate(model: &Model, plan: &Plan) -> String {
 /// spans. Without it the second would take a `_2` suffix, and a caller setting one field
 /// could be setting the other constraint's branch.
 pub fn name_clashes(model: &Model, plan: &Plan) -> Vec<gcs_lang::Diagnostic> {
+    if !may_clash(model, plan) {
+        return Vec::new();
+    }
     let (plan, scope) = crate::prune::prune(model, plan);
     let cx = Context::new(model, &plan, &scope);
     let layout = api::Layout::new(&cx);
@@ -70,6 +73,36 @@ pub fn name_clashes(model: &Model, plan: &Plan) -> Vec<gcs_lang::Diagnostic> {
     clashes
         .map(|(public, c)| clash_diagnostic(model, public, &c))
         .collect()
+}
+
+/// Whether any two names of the model could become one public identifier: a cheap test over a
+/// superset of the names each public namer sees (all params, all branches and defaults before
+/// pruning, every geom's accessor texts), so that the exact check, which builds the pruned
+/// module's layout, runs only when it may find something. Sound because a namer whose texts
+/// all have distinct identifiers, none of them reserved, never suffixes and never clashes, and
+/// neither does any subset of its texts.
+fn may_clash(model: &Model, plan: &Plan) -> bool {
+    fn distinct<'t>(texts: impl Iterator<Item = &'t str>, reserved: &[&str]) -> bool {
+        let mut seen: std::collections::HashSet<String> =
+            reserved.iter().map(|r| r.to_string()).collect();
+        let mut texts_seen = std::collections::HashSet::new();
+        texts.into_iter().all(|t| {
+            // The same text twice is one name (a repeat takes `_2` and may then meet a text
+            // that snakes to that suffix): let the exact check decide.
+            texts_seen.insert(t) && seen.insert(Namer::snake(t))
+        })
+    }
+    let params = model.params.iter().map(|(_, p)| p.name.as_str());
+    let branches = plan.branches.iter().map(|b| b.name.as_str());
+    let defaults = plan.defaults.iter().map(|d| d.name.as_str());
+    let accessors: Vec<String> = api::accessor_texts(model).collect();
+    !(distinct(params, &[])
+        && distinct(branches, &[])
+        && distinct(defaults, &[])
+        && distinct(
+            accessors.iter().map(String::as_str),
+            &api::RESERVED_ACCESSORS,
+        ))
 }
 
 /// The diagnostic of one clash.
@@ -154,4 +187,59 @@ fn header(w: &mut Writer, file: &str) {
     w.line("#[allow(unused_imports)]");
     w.line("use gcs_runtime::nalgebra::{Point2, UnitComplex, Vector2};");
     w.line("");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The pre-check is sound (every model with a clash may clash) and useful (no model of the
+    /// examples, which have none, pays for the exact check).
+    #[test]
+    fn the_clash_pre_check_passes_exactly_the_models_without_clashes() {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        let mut models = Vec::new();
+        for dir in ["examples", "tests/models"] {
+            for entry in std::fs::read_dir(format!("{root}/{dir}")).expect("directory") {
+                let path = entry.expect("entry").path();
+                if path.extension().is_some_and(|e| e == "gcs") {
+                    models.push((path.display().to_string(), std::fs::read(&path).unwrap()));
+                }
+            }
+        }
+        let clashing = [
+            "space 2d;\nparam k = 1;\nparam K = 2;\nfixed point A = (0, 0);\n",
+            "space 2d;\nfixed point A = (0, 0);\nfixed point a = (1, 0);\n",
+            "space 2d;\nfixed point points = (0, 0);\n",
+            "space 2d;\nfixed circle c = center (0, 0) radius 1;\nfixed point c_radius = (0, 0);\n",
+            "space 2d;\nparam Self = 1;\nparam self_ = 2;\n",
+        ];
+        models.extend(
+            clashing
+                .iter()
+                .map(|t| ("inline".to_string(), t.as_bytes().to_vec())),
+        );
+        let mut exact_runs = 0;
+        for (name, bytes) in &models {
+            let Ok(loaded) = crate::pipeline::load(name, bytes) else {
+                continue;
+            };
+            let Ok(analysis) = crate::pipeline::analyse(&loaded.model) else {
+                continue;
+            };
+            let (model, plan) = (&loaded.model, &analysis.plan);
+            let may = may_clash(model, plan);
+            let (pruned, scope) = crate::prune::prune(model, plan);
+            let cx = Context::new(model, &pruned, &scope);
+            let layout = api::Layout::new(&cx);
+            let exact = !cx.clashes.is_empty() || !api::accessors(&cx, &layout).1.is_empty();
+            assert!(may || !exact, "{name}: a clash the pre-check missed");
+            assert_eq!(
+                may, exact,
+                "{name}: the pre-check says {may}, the exact check {exact}"
+            );
+            exact_runs += usize::from(may);
+        }
+        assert_eq!(exact_runs, clashing.len());
+    }
 }
