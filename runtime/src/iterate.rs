@@ -141,9 +141,10 @@ const SQRT_EPS: f64 = 1.490_116_119_384_765_6e-8;
 /// bound keeps the iteration on the assembly (branch) it started on.
 const MAX_STEP: f64 = 0.5;
 
-/// Newton steps taken after the residuals are within the tolerance, while each at least
-/// halves the residual ([`POLISH_GAIN`]): with a derivative accurate to `sqrt(eps)`, one step
-/// takes a residual of 1e-10 to rounding level, so two or three are plenty.
+/// Steps taken after the residuals are within the tolerance (secant steps for one default,
+/// Newton steps with the last Jacobian for several), while each at least halves the residual
+/// ([`POLISH_GAIN`]): with a derivative accurate to `sqrt(eps)` or better, one step takes a
+/// residual of 1e-10 to rounding level, so two or three are plenty.
 const POLISH_STEPS: u32 = 3;
 
 /// The factor by which a polishing step must reduce the residual for the next to be tried.
@@ -1314,15 +1315,16 @@ struct Sweep<'a, F, const CAP: usize> {
 }
 
 impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
-    /// `f` at `x` (mapped into `[lo, hi)` when periodic), `None` where it fails or is not
-    /// finite.
+    /// `f` at `x` (mapped into `[lo, hi]` when periodic: a turn on, or back, and clamped
+    /// against the rounding of that), `None` where it fails or is not finite, and outside
+    /// `[lo, hi]`.
     fn eval(&mut self, x: f64) -> Option<f64> {
         let t = if !self.periodic {
             x
         } else if x >= self.hi {
-            x - self.span
+            (x - self.span).clamp(self.lo, self.hi)
         } else if x < self.lo {
-            x + self.span
+            (x + self.span).clamp(self.lo, self.hi)
         } else {
             x
         };

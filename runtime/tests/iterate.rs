@@ -213,17 +213,19 @@ proptest! {
         prop_assert!(done.evaluations <= 40, "{done:?}");
     }
 
-    /// Non-finite or extreme starts and scales never panic and stay within the budget; a
-    /// non-finite start is a NaN residual without a call.
+    /// Non-finite or extreme starts, scales, intervals and tolerances never panic and stay
+    /// within the budget; a non-finite start is a NaN residual without a call.
     #[test]
     fn arbitrary_starts_and_scales_do_not_panic(
         x0 in any::<f64>(),
         y0 in any::<f64>(),
         s0 in any::<f64>(),
         s1 in any::<f64>(),
+        tolerance in prop_oneof![Just(1e-10), any::<f64>()],
+        samples in 0u32..40,
     ) {
         let calls = Cell::new(0u32);
-        let settings = Settings { tolerance: 1e-10, max_evaluations: 60 };
+        let settings = Settings { tolerance, max_evaluations: 60 };
         let mut x = [x0];
         let out = solve(&mut x, &[s0], &settings, |p, r| {
             calls.set(calls.get() + 1);
@@ -254,7 +256,9 @@ proptest! {
         });
         let lo = x0.min(y0);
         let hi = x0.max(y0);
-        let scan = all_roots::<4, ()>(lo, hi, s0 > 0.0, 16, &settings, |t| Ok((t * s1).sin()));
+        let scan = all_roots::<4, ()>(lo, hi, s0 > 0.0, samples, &settings, |t| {
+            Ok((t * s1).sin())
+        });
         prop_assert!(scan.roots().iter().all(|r| *r >= lo && *r <= hi));
     }
 }
@@ -519,6 +523,22 @@ fn failing_start_is_reported_with_its_error() {
 }
 
 #[test]
+fn no_defaults_is_one_evaluation() {
+    let mut x: [f64; 0] = [];
+    let done = solve(&mut x, &[], &Settings::default(), |_, _| Ok::<(), ()>(()));
+    assert_eq!(
+        done,
+        Ok(Converged {
+            iterations: 0,
+            evaluations: 1,
+            residual: 0.0
+        })
+    );
+    let failed = solve(&mut x, &[], &Settings::default(), |_, _| Err("no assembly"));
+    assert_eq!(failed, Err(Failure::Start("no assembly")));
+}
+
+#[test]
 fn converged_start_is_polished() {
     // Within the tolerance at the start: a slope and a step take it to rounding level.
     let (x, out) = solve1(0.25 + 3e-11, 1.0, |x| Ok(x - 0.25));
@@ -711,6 +731,18 @@ fn a_root_at_the_wrap_is_found_once() {
             "{shift}: {scan:?}"
         );
     }
+    // An interval that does not start at 0, where lo + (hi - lo) rounds: roots at pi and
+    // 2 pi, and one exactly at lo.
+    let scan: RootScan<4> = all_roots(0.1, 0.1 + TAU, true, 16, &settings, |t| {
+        Ok::<f64, ()>(t.sin())
+    });
+    assert_eq!(scan.roots().len(), 2, "{scan:?}");
+    assert!((scan.roots()[0] - PI).abs() <= 1e-15 && (scan.roots()[1] - TAU).abs() <= 1e-15);
+    let scan: RootScan<4> = all_roots(0.1, 0.1 + TAU, true, 16, &settings, |t| {
+        Ok::<f64, ()>((t - 0.1).sin())
+    });
+    assert_eq!(scan.roots().len(), 2, "{scan:?}");
+    assert!(scan.roots()[0] == 0.1 && (scan.roots()[1] - 0.1 - PI).abs() <= 1e-15);
     // A double root at the wrap, on a sample and between the last sample and the first.
     for shift in [0.0, 0.5 * h, 0.3 * h] {
         let scan: RootScan<4> = all_roots(0.0, TAU, true, 16, &settings, |t| {
@@ -721,6 +753,23 @@ fn a_root_at_the_wrap_is_found_once() {
         let distance = (r - (TAU - shift)).abs().min((r + shift).abs());
         assert!(distance <= 1e-6 && scan.is_double(0), "{shift}: {scan:?}");
     }
+}
+
+#[test]
+fn poles_are_not_roots() {
+    // tan changes sign across its poles, where the bracket collapses with |f| huge.
+    let scan: RootScan<8> = all_roots(0.0, TAU, true, 20, &Settings::default(), |t| {
+        Ok::<f64, ()>(t.tan())
+    });
+    assert_eq!(scan.roots().len(), 2, "{scan:?}");
+    assert!(
+        scan.roots()[0] == 0.0 && (scan.roots()[1] - PI).abs() <= 1e-15,
+        "{scan:?}"
+    );
+    let scan: RootScan<8> = all_roots(-1.0, 1.0, false, 20, &Settings::default(), |x| {
+        Ok::<f64, ()>(1.0 / (x - 0.123))
+    });
+    assert!(scan.is_empty(), "{scan:?}");
 }
 
 #[test]
@@ -787,19 +836,38 @@ fn evaluation_counts() {
     let poly: RootScan<8> = all_roots(-1.5, 1.5, false, 64, &settings, |x| {
         Ok::<f64, ()>(product(1.0, &[-1.1, 0.2, 1.3], &[-0.5], x))
     });
+    let stretch: RootScan<8> = all_roots(-1.0, 1.5, false, 24, &settings, |x| {
+        if x > 0.2 && x < 0.7 {
+            Err(())
+        } else {
+            Ok((x + 0.8) * (x - 0.7) * (x - 1.2))
+        }
+    });
+    let calls = Cell::new(0);
+    let no_root = solve(&mut [0.7], &[1.0], &settings, |p, r| {
+        calls.set(calls.get() + 1);
+        r[0] = p[0] * p[0] + 1.0;
+        Ok::<(), ()>(())
+    });
+    assert!(no_root.is_err());
     eprintln!(
-        "evaluations: cubic {cubic}, sqrt {sqrt}, cos 3t {cos}, circles {} ({} steps), \
-         3x3 {} ({} steps), scan cos 3t {} (32 samples), scan quintic {} (64 samples)",
+        "evaluations: solve, one default: cubic {cubic}, sqrt with failures {sqrt}, cos 3t \
+         {cos}, x^2 + 1 (no root) {}; two circles {} ({} steps), 3x3 {} ({} steps); \
+         all_roots: cos 3t {} (32 samples), quintic with a double root {} (64 samples), cubic \
+         with a failing stretch {} (24 samples)",
+        calls.get(),
         circles.evaluations,
         circles.iterations,
         three.evaluations,
         three.iterations,
         scan.evaluations(),
-        poly.evaluations()
+        poly.evaluations(),
+        stretch.evaluations(),
     );
     assert!(
-        cubic <= 14 && sqrt <= 20 && cos <= 14,
-        "{cubic} {sqrt} {cos}"
+        cubic <= 14 && sqrt <= 20 && cos <= 14 && calls.get() <= 60,
+        "{cubic} {sqrt} {cos} {}",
+        calls.get()
     );
     assert!(circles.evaluations <= 25 && three.evaluations <= 30);
     assert!(scan.evaluations() <= 32 + 6 * 12, "{}", scan.evaluations());
@@ -807,5 +875,10 @@ fn evaluation_counts() {
         poly.evaluations() <= 64 + 3 * 12 + 40,
         "{}",
         poly.evaluations()
+    );
+    assert!(
+        stretch.evaluations() <= 24 + 2 * 60 + 2 * 12,
+        "{}",
+        stretch.evaluations()
     );
 }
