@@ -1,6 +1,7 @@
 //! The numeric kernel that generated gcs solvers call, and that the interpreter shares:
 //! frames and Kramer's actions, loci, the locus intersection table with branch selection,
-//! polynomial roots, error accounting and named tolerances.
+//! polynomial roots, error accounting, named tolerances, and the outer iterations that solve for
+//! a plan's defaults (Newton with brackets, a trust region, and a scan for every root).
 //!
 //! Architecture invariants: this crate depends on nalgebra only; nothing in it panics on finite
 //! or non-finite input; nothing on a solve path allocates.
@@ -11,6 +12,7 @@ pub mod error;
 pub mod frame;
 pub mod intersect2d;
 pub mod intersect3d;
+pub mod iterate;
 pub mod locus2d;
 pub mod locus3d;
 pub mod num;

@@ -1,0 +1,1843 @@
+//! Outer iterations: the values of a plan's defaults at which its closing residuals vanish.
+//!
+//! A plan with defaults assembles its region for given values of a few redundant coordinates
+//! (an angle about a pivot, a position along a line) and measures the constraints those values
+//! displace (see [`crate::error::ErrorAccumulator`]). This module varies the defaults until the
+//! residuals vanish. The assembly may fail for some values (two circles that no longer meet):
+//! the residual function then returns `Err`, and the iteration treats the point as unusable
+//! rather than as a root. A NaN or infinite residual counts the same.
+//!
+//! # [`solve`]: one answer near the start
+//!
+//! - **One default** (`N = 1`): Newton's method with a forward-difference derivative, each step
+//!   at most half the default's scale. Once two values of opposite sign have been seen, their
+//!   bracket is kept and every later point stays inside it: a Newton step that would leave the
+//!   bracket, or that failed to halve the residual, is replaced by an Illinois step (false
+//!   position with halving of the retained end's value), and three steps that do not halve the
+//!   bracket force a bisection. So the convergence is Newton's where Newton works, and that of
+//!   bracketing (guaranteed, superlinear) where it does not. Before any sign change, a step
+//!   that fails or does not reduce the residual is halved; and when the derivative changes
+//!   sign between two successive points while `f` keeps its sign, the iteration has passed a
+//!   local minimum of `|f|`, which damped Newton cannot leave: Brent's minimization between
+//!   the two points finds its bottom, a (double) root if `|f|` is within the tolerance there, a
+//!   bracket if `f` crosses zero, and otherwise the end of the iteration: no root near here.
+//! - **Several defaults**: Powell's dogleg trust-region method (as MINPACK's `hybrd`) on the
+//!   fixed-size system, in variables divided by their scales. The Jacobian comes from forward
+//!   differences with steps `sqrt(eps) max(|x_i|, scale_i)`; the Newton step from nalgebra's LU
+//!   inversion of the statically sized Jacobian (`SMatrix`, no allocation). When the Newton step
+//!   is longer than the trust radius, the step follows the dogleg path through the Cauchy point
+//!   (steepest descent of the squared residual norm), which also replaces a singular Jacobian.
+//!   The radius starts at, and never exceeds, half a scale: a step moves no default by more than
+//!   half its scale, so the iteration stays on the assembly it starts on. A step whose
+//!   residual norm does not fall, or where the assembly fails, is retried with half the radius;
+//!   a radius shrunk to rounding level ends the iteration (a minimum of the residual norm that
+//!   is not a root).
+//! - **Full precision**: once every residual is within [`Settings::tolerance`], up to
+//!   three more steps (one evaluation each: secant steps for one default, Newton steps with
+//!   the last Jacobian for several) are taken while each at least halves the largest residual,
+//!   so answers end at rounding level, as closed forms do, rather than just inside the
+//!   tolerance.
+//! - **Failures**: a start where the assembly fails is [`Failure::Start`] with its error. A
+//!   non-finite start, or a non-finite residual at the start, is [`Failure::NoConvergence`]
+//!   with a NaN (or that infinite) residual, without a call (resp. after one call). A failing
+//!   trial point halves the step back toward the last good point; the budget of evaluations
+//!   ([`Settings::max_evaluations`]) bounds every loop, so nothing runs forever.
+//!
+//! # [`all_roots`]: every root of one default over an interval
+//!
+//! The function is sampled on a uniform grid of `n = max(samples, 8)` points, spacing
+//! `h = (hi - lo) / (n - 1)` (periodic: `(hi - lo) / n`, the last interval wrapping to the first
+//! sample). Then, between adjacent samples where the function is defined:
+//!
+//! 1. **Sign changes** are bracketed and refined by Brent's method (inverse quadratic
+//!    interpolation and secant steps, safeguarded by bisection) to rounding level; the root is
+//!    kept when its residual is within the tolerance (a pole or a jump through zero is not a
+//!    root).
+//! 2. **Local minima of |f|** among the samples, with no sign change next to them (the left
+//!    neighbour strictly larger in magnitude, the right one at least as large, so a tie is
+//!    refined once), are refined by Brent's minimization of `sign * f` over the two spacings
+//!    around the sample, to about `sqrt(eps) |x|`. A minimum with `|f| <= tolerance` is a
+//!    **double root**. If the minimization finds a point where `f` has crossed zero by more than
+//!    the tolerance, the dip holds two simple roots, and both are refined.
+//! 3. **Shallow dips**: a sample with `|f| <= tolerance` whose two neighbours have the opposite
+//!    sign is refined the same way (the deepest point of the dip): if the dip stays within the
+//!    tolerance of zero, its two crossings are one double root there, not two roots.
+//!    Consequently, two simple roots whose dip between them is at most the tolerance deep are
+//!    reported as **one double root** at the bottom of the dip (two roots `1e-6` apart of a
+//!    function with curvature about 1 dip by `2.5e-13`: one double root), and deeper pairs as
+//!    two roots; this is the kernel's rule for tangencies ([`crate::tol::TANGENT_REL`]) applied
+//!    to the residual.
+//! 4. **Where the assembly fails**: between a defined sample and a failing one, bisection
+//!    finds the last defined point to rounding level. That point joins the samples (so sign
+//!    changes and minima next to it are refined too) and is itself a root, flagged
+//!    [`RootScan::is_boundary`], when its `|f|` is within the tolerance: the assembly became
+//!    tangent there. This relies on the residual at the last defined point being within the
+//!    tolerance of its limit, which holds for the kernel's intersections (a tangency within
+//!    [`crate::tol::TANGENT_REL`] meets in one double root) but not for a function with a
+//!    square-root singularity computed without such a snap. The ends of a non-periodic
+//!    interval are treated alike. A failing stretch between two defined samples, met by a
+//!    refinement of a sign change, is split off the same way: its edges are found from both
+//!    sides, and each side is refined on its own (up to four nested splits).
+//!
+//! Roots closer than `1e-9 (hi - lo)` (across the wrap when periodic) are one root, the one
+//! with the smaller residual. Each refinement uses at most [`Settings::max_evaluations`]
+//! evaluations; `f` is only called at points of `[lo, hi]`.
+//!
+//! ## Completeness: what the samples guarantee and what they do not
+//!
+//! In exact arithmetic, for `f` continuous where it is defined, and counting two roots between
+//! which `|f|` never exceeds the tolerance as the one double root that rules 2 and 3 make of
+//! them:
+//!
+//! - Every interval between adjacent defined samples whose values have opposite signs yields
+//!   a root (or, if the refinement meets a failing stretch in it, what rule 4 finds on either
+//!   side of the stretch). Hence if `f` is defined on the whole interval and its roots are of
+//!   odd multiplicity and pairwise more than `h` apart, **every root is found**: each grid
+//!   interval then holds at most one root, and a root inside it shows as a sign change (a
+//!   root at a sample is its zero value). An interval holding three roots yields only one.
+//! - A root `r` of even multiplicity (no sign change) is found when, within `2h` of `r` (and
+//!   `[lo, hi]`), `f` is defined and `|f|` strictly decreases up to `r` and strictly increases
+//!   after it, and `|f| <= tolerance` within the minimizer's resolution of `r` (about
+//!   `sqrt(eps) (|r| + 1e-3 (hi - lo))`): then one of the two samples around `r` is a local
+//!   minimum of the sampled `|f|`, and Brent's minimization over the two spacings around it
+//!   converges to `r`.
+//! - **Missed**: a pair of roots closer than `h` with no sample between them and next to no
+//!   sample that is a local minimum of the sampled `|f|` (for instance a dip on a steep
+//!   slope, or next to a third root's sign change); more generally, any dip of `f` through
+//!   zero between two samples of the same sign neither of which is such a minimum; a defined
+//!   stretch lying strictly between two failing samples; roots a refinement would reach only
+//!   through more than four nested failing stretches. With rounding, also a root where `f` is
+//!   so steep that no double near it has `|f| <= tolerance` (it is then no root at this
+//!   tolerance).
+//!
+//! The sample count sets `h`, so it guarantees only what the statements above say for that
+//! `h`. For a trigonometric polynomial of degree `d` in the angle (`f(lo + t) = sum over
+//! k <= d of a_k cos(2 pi k t / P) + b_k sin(2 pi k t / P)`, period `P = hi - lo`) with
+//! `M = max |f|`, Bernstein's inequality gives `|f''| <= (2 pi d / P)^2 M`, so `f` differs from
+//! the chord between two samples by at most `pi^2 d^2 M / (2 n^2)`: a root can hide in an
+//! interval without a sign change only if one of its two samples is at most that small in
+//! magnitude. And it has at most `2d` roots per period counted with multiplicity, so a scan
+//! that reports `2d` (a double root counting twice) has found them all, up to the tolerance.
+//! `n >= 2d + 1` samples determine such an `f`, but do not by themselves make its roots show:
+//! `cos(t - h/2) - cos(e)` on `[0, 2 pi)` has two roots `2e` apart between the first two
+//! samples for every `n` (this one is found, through the minimum of `|f|` at the samples: as
+//! two roots when `1 - cos(e)` exceeds the tolerance, else as one double root). Measured on
+//! random trigonometric polynomials of degree up to 4 with 32 samples, and with 12 samples and
+//! a random failing stretch: every root missed was one of two roots in one grid interval.
+//!
+//! Nothing here allocates or panics, for any input.
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::num::is_finite;
+
+/// `sqrt(f64::EPSILON)`: the relative size of a forward-difference step (it balances the
+/// truncation error of the difference against the rounding of the two values), and the
+/// relative precision to which a minimum's location can be found from function values.
+const SQRT_EPS: f64 = 1.490_116_119_384_765_6e-8;
+
+/// The longest step, in units of each default's scale: half an angle's radian, half a model's
+/// size. Newton steps longer than this usually mean the start is far from the root, and the
+/// bound keeps the iteration on the assembly (branch) it started on.
+const MAX_STEP: f64 = 0.5;
+
+/// Steps taken after the residuals are within the tolerance (secant steps for one default,
+/// Newton steps with the last Jacobian for several), while each at least halves the residual
+/// ([`POLISH_GAIN`]): with a derivative accurate to `sqrt(eps)` or better, one step takes a
+/// residual of 1e-10 to rounding level, so two or three are plenty.
+const POLISH_STEPS: u32 = 3;
+
+/// The factor by which a polishing step must reduce the residual for the next to be tried.
+const POLISH_GAIN: f64 = 0.5;
+
+/// The fewest samples [`all_roots`] takes: fewer could not tell a minimum from a slope.
+const MIN_SAMPLES: u32 = 8;
+
+/// How many times a refinement in [`all_roots`] splits off a failing stretch (each split
+/// refines the sides, which may split again): a bound on the work spent in a bracket that
+/// failing stretches riddle.
+const MAX_SPLITS: u32 = 4;
+
+/// Roots of [`all_roots`] closer than this times `hi - lo` are the same root.
+const SAME_ROOT_REL: f64 = 1e-9;
+
+/// How an outer iteration stops.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Converged when every residual's magnitude is at most this (absolute, in the model's
+    /// units).
+    pub tolerance: f64,
+    /// At most this many evaluations of the residual function (each is one assembly of the
+    /// plan's region).
+    pub max_evaluations: u32,
+}
+
+impl Default for Settings {
+    /// Tolerance `1e-10`: far above the rounding of an assembly of a model of size up to about
+    /// 1e3 (whose residuals end near 1e-13), far below any error a drawing shows; the answer is
+    /// polished to rounding level past it anyway. Budget `200`: a converging Newton iteration
+    /// needs under ten steps of `N + 1` evaluations, bracketing about sixty halvings of a whole
+    /// turn to reach rounding level, so 200 is ample for both and still bounds a failing
+    /// iteration to a fraction of a millisecond of assemblies.
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-10,
+            max_evaluations: 200,
+        }
+    }
+}
+
+/// A converged iteration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Converged {
+    /// Newton (or bracketing) steps taken.
+    pub iterations: u32,
+    /// Evaluations of the residual function, including finite differences.
+    pub evaluations: u32,
+    /// The largest residual magnitude at the answer.
+    pub residual: f64,
+}
+
+/// Why an iteration failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Failure<E> {
+    /// The assembly fails at the starting defaults: its error.
+    Start(E),
+    /// No convergence within the budget: the smallest largest-residual reached, and steps
+    /// taken.
+    NoConvergence {
+        /// The smallest largest-residual magnitude reached (NaN when the start was not finite).
+        residual: f64,
+        /// Steps taken.
+        iterations: u32,
+    },
+}
+
+/// Solves f(x) = 0 for x in R^N starting from `x` (overwritten with the answer, or with the best
+/// point reached on failure).
+///
+/// `scale[i]` is the natural size of default i (1 for an angle in radians, the model's size for
+/// a length): it sets finite-difference steps and bounds each step (a trust region), so the
+/// iteration stays on the assembly it starts on and does not jump to another. A scale that is
+/// not finite and positive is replaced by `max(|x_i|, 1)`.
+///
+/// `f(x, r)` writes the N residuals into r, or returns Err when the plan cannot assemble at x
+/// (then the iteration backs off: shorter steps toward the last good point). See the module
+/// documentation for the methods.
+pub fn solve<const N: usize, E>(
+    x: &mut [f64; N],
+    scale: &[f64; N],
+    settings: &Settings,
+    mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
+) -> Result<Converged, Failure<E>> {
+    if N == 1 {
+        let mut point = [0.0; N];
+        let mut residual = [0.0; N];
+        let mut root = x[0];
+        let outcome = solve_scalar(&mut root, scale[0], settings, |t| {
+            point[0] = t;
+            f(&point, &mut residual).map(|()| residual[0])
+        });
+        x[0] = root;
+        outcome
+    } else {
+        solve_system(x, scale, settings, f)
+    }
+}
+
+/// A count of evaluations against a limit.
+#[derive(Clone, Copy, Debug)]
+struct Budget {
+    used: u32,
+    limit: u32,
+}
+
+impl Budget {
+    fn new(limit: u32) -> Self {
+        Self { used: 0, limit }
+    }
+
+    /// Spends one evaluation; `false` when none is left.
+    fn take(&mut self) -> bool {
+        if self.used < self.limit {
+            self.used += 1;
+            true
+        } else {
+            false
+        }
+    }
+}
+
+/// The outcome of one evaluation inside an iteration.
+#[derive(Clone, Copy, Debug)]
+enum Probe<T> {
+    /// Finite residuals.
+    Good(T),
+    /// The assembly failed, or a residual or the point is not finite.
+    Bad,
+    /// The budget is spent: nothing was evaluated.
+    Exhausted,
+}
+
+/// The natural size of a default: `scale` when finite and positive, else `max(|x|, 1)`.
+fn sane_scale(scale: f64, x: f64) -> f64 {
+    if is_finite(scale) && scale > 0.0 {
+        scale
+    } else {
+        x.abs().max(1.0)
+    }
+}
+
+/// The largest magnitude among `values`, NaN if any is NaN (so a NaN never looks small).
+fn largest(values: &[f64]) -> f64 {
+    let mut m: f64 = 0.0;
+    for &v in values {
+        if v.is_nan() {
+            return f64::NAN;
+        }
+        m = m.max(v.abs());
+    }
+    m
+}
+
+// ---------------------------------------------------------------------------------------------
+// Brackets of the scalar iteration.
+
+/// Which end of a bracket moved.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum End {
+    Lo,
+    Hi,
+}
+
+/// An interval whose ends have residuals of opposite signs, so that it holds a root (when `f`
+/// is continuous there). Narrowed by the points evaluated inside it.
+#[derive(Clone, Copy, Debug)]
+struct Bracket {
+    lo: f64,
+    f_lo: f64,
+    hi: f64,
+    f_hi: f64,
+    /// The values the false-position step uses: the residuals, except that the Illinois rule
+    /// halves the value of an end that stayed put twice, so that both ends converge.
+    weight_lo: f64,
+    weight_hi: f64,
+    last_moved: Option<End>,
+    /// The width three narrowings ago; when three narrowings have not halved it, the next
+    /// proposal bisects (the guard against slow one-sided convergence).
+    width_mark: f64,
+    narrowings: u8,
+    bisect_next: bool,
+}
+
+impl Bracket {
+    /// The bracket of `a` and `b`, if their finite residuals have strictly opposite signs.
+    fn new(a: f64, fa: f64, b: f64, fb: f64) -> Option<Self> {
+        let opposite = fa * fb < 0.0;
+        if !opposite || !is_finite(a) || !is_finite(b) || a == b {
+            return None;
+        }
+        let ((lo, f_lo), (hi, f_hi)) = if a < b {
+            ((a, fa), (b, fb))
+        } else {
+            ((b, fb), (a, fa))
+        };
+        Some(Self {
+            lo,
+            f_lo,
+            hi,
+            f_hi,
+            weight_lo: f_lo,
+            weight_hi: f_hi,
+            last_moved: None,
+            width_mark: hi - lo,
+            narrowings: 0,
+            bisect_next: false,
+        })
+    }
+
+    /// Whether `t` lies strictly inside.
+    fn contains(&self, t: f64) -> bool {
+        self.lo < t && t < self.hi
+    }
+
+    /// The midpoint, without overflow.
+    fn midpoint(&self) -> f64 {
+        0.5 * self.lo + 0.5 * self.hi
+    }
+
+    /// Whether no double lies strictly inside: the root is found to the last bit.
+    fn is_collapsed(&self) -> bool {
+        !self.contains(self.midpoint())
+    }
+
+    /// The end with the smaller residual, and its residual.
+    fn best(&self) -> (f64, f64) {
+        if self.f_lo.abs() <= self.f_hi.abs() {
+            (self.lo, self.f_lo)
+        } else {
+            (self.hi, self.f_hi)
+        }
+    }
+
+    /// The next point to evaluate: the Illinois false-position point, or the midpoint when that
+    /// falls outside or the bracket has been shrinking slowly.
+    fn propose(&self) -> f64 {
+        let mid = self.midpoint();
+        if self.bisect_next {
+            return mid;
+        }
+        let t =
+            self.lo - self.weight_lo * ((self.hi - self.lo) / (self.weight_hi - self.weight_lo));
+        if self.contains(t) {
+            t
+        } else {
+            mid
+        }
+    }
+
+    /// Narrows to the side of `t` where the sign changes (`ft` finite); a zero makes the
+    /// bracket the single point `t`. Points outside are ignored.
+    fn narrow(&mut self, t: f64, ft: f64) {
+        if !self.contains(t) || !is_finite(ft) {
+            return;
+        }
+        if ft == 0.0 {
+            (self.lo, self.hi, self.f_lo, self.f_hi) = (t, t, 0.0, 0.0);
+            return;
+        }
+        let end = if (ft < 0.0) == (self.f_lo < 0.0) {
+            End::Lo
+        } else {
+            End::Hi
+        };
+        match end {
+            End::Lo => {
+                (self.lo, self.f_lo, self.weight_lo) = (t, ft, ft);
+                if self.last_moved == Some(End::Lo) {
+                    self.weight_hi *= 0.5;
+                }
+            }
+            End::Hi => {
+                (self.hi, self.f_hi, self.weight_hi) = (t, ft, ft);
+                if self.last_moved == Some(End::Hi) {
+                    self.weight_lo *= 0.5;
+                }
+            }
+        }
+        self.last_moved = Some(end);
+        self.bisect_next = false;
+        self.narrowings += 1;
+        if self.narrowings >= 3 {
+            let width = self.hi - self.lo;
+            self.bisect_next = width > 0.5 * self.width_mark;
+            self.width_mark = width;
+            self.narrowings = 0;
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// One default.
+
+/// Solves a scalar equation: the `N = 1` case of [`solve`].
+fn solve_scalar<E>(
+    x: &mut f64,
+    scale: f64,
+    settings: &Settings,
+    mut f: impl FnMut(f64) -> Result<f64, E>,
+) -> Result<Converged, Failure<E>> {
+    let mut budget = Budget::new(settings.max_evaluations);
+    if !is_finite(*x) || !budget.take() {
+        return Err(Failure::NoConvergence {
+            residual: f64::NAN,
+            iterations: 0,
+        });
+    }
+    let fx = match f(*x) {
+        Ok(v) => v,
+        Err(e) => return Err(Failure::Start(e)),
+    };
+    if !is_finite(fx) {
+        return Err(Failure::NoConvergence {
+            residual: fx.abs(),
+            iterations: 0,
+        });
+    }
+    let mut search = Scalar {
+        f: |t: f64| f(t).ok(),
+        budget,
+        scale: sane_scale(scale, *x),
+        best_x: *x,
+        best_f: fx,
+        bracket: None,
+        slope: None,
+        previous_best: None,
+        previous: None,
+        iterations: 0,
+    };
+    let converged = search.run(settings.tolerance);
+    if converged {
+        search.polish();
+    }
+    *x = search.best_x;
+    let residual = search.best_f.abs();
+    if converged {
+        Ok(Converged {
+            iterations: search.iterations,
+            evaluations: search.budget.used,
+            residual,
+        })
+    } else {
+        Err(Failure::NoConvergence {
+            residual,
+            iterations: search.iterations,
+        })
+    }
+}
+
+/// The state of a scalar iteration.
+struct Scalar<F> {
+    /// The residual function, `None` where the assembly fails.
+    f: F,
+    budget: Budget,
+    scale: f64,
+    /// The point with the smallest residual magnitude so far, and its residual.
+    best_x: f64,
+    best_f: f64,
+    /// A sign change, once one has been seen.
+    bracket: Option<Bracket>,
+    /// The last finite-difference derivative.
+    slope: Option<f64>,
+    /// The best point before the current one, for the secant slope of the polishing steps.
+    previous_best: Option<(f64, f64)>,
+    /// Before any sign change: the last base point and the derivative there, to see the
+    /// derivative change sign (a local minimum of `|f|` passed).
+    previous: Option<(f64, f64)>,
+    iterations: u32,
+}
+
+impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
+    fn probe(&mut self, t: f64) -> Probe<f64> {
+        if !self.budget.take() {
+            return Probe::Exhausted;
+        }
+        if !is_finite(t) {
+            return Probe::Bad;
+        }
+        match (self.f)(t) {
+            Some(v) if is_finite(v) => Probe::Good(v),
+            _ => Probe::Bad,
+        }
+    }
+
+    /// The point steps start from: the better end of the bracket once there is one.
+    fn base(&self) -> (f64, f64) {
+        match self.bracket {
+            Some(b) => b.best(),
+            None => (self.best_x, self.best_f),
+        }
+    }
+
+    /// The shortest step worth taking from `x`: below the finite-difference step the
+    /// derivative says nothing.
+    fn min_step(&self, x: f64) -> f64 {
+        SQRT_EPS * x.abs().max(self.scale)
+    }
+
+    /// Records a good point: the bracket, and the best point.
+    fn record(&mut self, t: f64, ft: f64) {
+        match &mut self.bracket {
+            Some(b) => b.narrow(t, ft),
+            None => self.bracket = Bracket::new(self.best_x, self.best_f, t, ft),
+        }
+        if ft.abs() < self.best_f.abs() {
+            self.previous_best = Some((self.best_x, self.best_f));
+            (self.best_x, self.best_f) = (t, ft);
+        }
+    }
+
+    /// Steps until the best residual is within `tolerance` (`true`), or the iteration cannot go
+    /// on (`false`: budget spent, stalled, or a collapsed bracket above the tolerance).
+    fn run(&mut self, tolerance: f64) -> bool {
+        let mut stalled = false;
+        loop {
+            if self.best_f.abs() <= tolerance {
+                return true;
+            }
+            if self.bracket.is_some_and(|b| b.is_collapsed()) || !self.measure_slope() {
+                return false;
+            }
+            if self.best_f.abs() <= tolerance {
+                return true;
+            }
+            if self.bracket.is_none() {
+                let here = self.slope.map(|s| (self.best_x, s));
+                if let (Some((x0, s0)), Some((_, s1))) = (self.previous, here) {
+                    if s0 * s1 < 0.0 {
+                        self.iterations += 1;
+                        if !self.settle(x0, tolerance) {
+                            return false;
+                        }
+                        continue;
+                    }
+                }
+                self.previous = here;
+            }
+            let progress = match self.bracket {
+                Some(b) => self.bracketed_step(b, stalled),
+                None => self.search_step(),
+            };
+            match progress {
+                Some(halved) => stalled = !halved,
+                None => return false,
+            }
+            self.iterations += 1;
+        }
+    }
+
+    /// The derivative changed sign between `x0` and the best point without `f` changing sign:
+    /// a minimum of `|f|` lies between, which damped Newton cannot leave. Brent's minimization
+    /// finds its bottom: `true` when that is within the tolerance (a double root), or when the
+    /// valley crosses zero (a bracket, to go on with); `false` otherwise: no root here.
+    fn settle(&mut self, x0: f64, tolerance: f64) -> bool {
+        let (x1, f1) = (self.best_x, self.best_f);
+        let sign = f1.signum();
+        let abs_tol = 1e-3 * SQRT_EPS * self.scale;
+        let found = valley(
+            x0.min(x1),
+            x0.max(x1),
+            (x1, f1),
+            sign,
+            tolerance,
+            abs_tol,
+            |u| self.probe(u),
+        );
+        match found {
+            Valley::Crossing { x, f } => {
+                self.record(x, f);
+                true
+            }
+            Valley::Bottom { x, g } => {
+                self.record(x, sign * g);
+                g <= tolerance
+            }
+        }
+    }
+
+    /// A forward difference at the base point (backward when forward fails, inward when
+    /// bracketed); its point is recorded too. `false` when the budget is spent.
+    fn measure_slope(&mut self) -> bool {
+        let (x, fx) = self.base();
+        let mut h = self.min_step(x);
+        if let Some(b) = self.bracket {
+            h = h.min(0.5 * (b.hi - b.lo));
+            if x >= b.hi {
+                h = -h;
+            }
+        }
+        self.slope = None;
+        if h == 0.0 {
+            return true;
+        }
+        for dx in [h, -h] {
+            match self.probe(x + dx) {
+                Probe::Good(ft) => {
+                    self.slope = Some((ft - fx) / dx);
+                    self.record(x + dx, ft);
+                    return true;
+                }
+                Probe::Bad => {}
+                Probe::Exhausted => return false,
+            }
+        }
+        true
+    }
+
+    /// The Newton step from `(x, fx)`, bounded by the trust region; `None` without a usable
+    /// derivative.
+    fn newton_step(&self, fx: f64) -> Option<f64> {
+        let radius = MAX_STEP * self.scale;
+        let slope = self.slope?;
+        let step = -fx / slope;
+        if is_finite(step) && step != 0.0 {
+            Some(step.clamp(-radius, radius))
+        } else if slope * fx > 0.0 {
+            // A derivative so large the step underflows, or infinite: go downhill by the radius.
+            Some(-radius)
+        } else {
+            Some(radius)
+        }
+    }
+
+    /// A damped Newton step before any sign change: a step that fails or does not reduce the
+    /// residual (without crossing zero) is halved. `Some(halved the residual)`, or `None` when
+    /// the step shrank below use or the budget is spent.
+    fn search_step(&mut self) -> Option<bool> {
+        let (x, fx) = (self.best_x, self.best_f);
+        let mut step = self.newton_step(fx)?;
+        let min_step = self.min_step(x);
+        loop {
+            match self.probe(x + step) {
+                Probe::Good(ft) => {
+                    let crossed = (ft < 0.0) != (fx < 0.0) || ft == 0.0;
+                    if crossed || ft.abs() < fx.abs() {
+                        self.record(x + step, ft);
+                        return Some(self.best_f.abs() <= 0.5 * fx.abs());
+                    }
+                }
+                Probe::Bad => {}
+                Probe::Exhausted => return None,
+            }
+            step *= 0.5;
+            if step.abs() < min_step {
+                return None;
+            }
+        }
+    }
+
+    /// A step inside the bracket: Newton's when it stays inside and the last step made
+    /// progress, else the bracket's (Illinois or bisection). A failing point backs off toward
+    /// the base. `Some(halved the residual)`, or `None` when the budget is spent or backing off
+    /// found no good point.
+    fn bracketed_step(&mut self, bracket: Bracket, stalled: bool) -> Option<bool> {
+        let (x, fx) = bracket.best();
+        let mut t = match self.newton_step(fx) {
+            Some(step) if !stalled && bracket.contains(x + step) => x + step,
+            _ => bracket.propose(),
+        };
+        let min_step = self.min_step(x);
+        loop {
+            match self.probe(t) {
+                Probe::Good(ft) => {
+                    self.record(t, ft);
+                    break;
+                }
+                Probe::Bad => {
+                    t = x + 0.5 * (t - x);
+                    if (t - x).abs() < min_step {
+                        return None;
+                    }
+                }
+                Probe::Exhausted => return None,
+            }
+        }
+        Some(self.base().1.abs() <= 0.5 * fx.abs())
+    }
+
+    /// Up to [`POLISH_STEPS`] secant steps from the best point, while each at least halves the
+    /// residual; only improvements are kept. The first slope is the secant through the best
+    /// point and the one before it (the last step, so it is as local as the answer), else the
+    /// last difference, else a new one.
+    fn polish(&mut self) {
+        let usable = |d: f64| is_finite(d) && d != 0.0;
+        let secant = |(x0, f0): (f64, f64), (x1, f1): (f64, f64)| (f1 - f0) / (x1 - x0);
+        let mut slope = self
+            .previous_best
+            .map(|p| secant(p, (self.best_x, self.best_f)))
+            .filter(|d| usable(*d))
+            .or(self.slope.filter(|d| usable(*d)));
+        for _ in 0..POLISH_STEPS {
+            let (x, fx) = (self.best_x, self.best_f);
+            if fx == 0.0 {
+                return;
+            }
+            let d = match slope {
+                Some(d) => d,
+                None => {
+                    let h = self.min_step(x);
+                    match self.probe(x + h) {
+                        Probe::Good(fh) if usable((fh - fx) / h) => (fh - fx) / h,
+                        _ => return,
+                    }
+                }
+            };
+            let t = x - fx / d;
+            if !is_finite(t) || t == x {
+                return;
+            }
+            match self.probe(t) {
+                Probe::Good(ft) => {
+                    self.iterations += 1;
+                    slope = Some(secant((x, fx), (t, ft))).filter(|d| usable(*d));
+                    if ft.abs() < fx.abs() {
+                        (self.best_x, self.best_f) = (t, ft);
+                    }
+                    if ft.abs() > POLISH_GAIN * fx.abs() {
+                        return;
+                    }
+                }
+                _ => return,
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Several defaults.
+
+/// Solves a square system: the `N != 1` case of [`solve`].
+fn solve_system<const N: usize, E>(
+    x: &mut [f64; N],
+    scale: &[f64; N],
+    settings: &Settings,
+    mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
+) -> Result<Converged, Failure<E>> {
+    let mut budget = Budget::new(settings.max_evaluations);
+    if x.iter().any(|v| !is_finite(*v)) || !budget.take() {
+        return Err(Failure::NoConvergence {
+            residual: f64::NAN,
+            iterations: 0,
+        });
+    }
+    let mut r = [0.0; N];
+    if let Err(e) = f(x, &mut r) {
+        return Err(Failure::Start(e));
+    }
+    let residual = largest(&r);
+    if !is_finite(residual) {
+        return Err(Failure::NoConvergence {
+            residual,
+            iterations: 0,
+        });
+    }
+    let mut sane = [1.0; N];
+    for i in 0..N {
+        sane[i] = sane_scale(scale[i], x[i]);
+    }
+    let start = SVector::from(*x);
+    let r = SVector::from(r);
+    let mut system = System {
+        f: |p: &[f64; N], out: &mut [f64; N]| f(p, out).is_ok(),
+        budget,
+        scale: SVector::from(sane),
+        x: start,
+        r,
+        best_x: start,
+        best_r: r,
+        best_max: residual,
+        radius: MAX_STEP,
+        inverse: None,
+        iterations: 0,
+    };
+    let converged = system.run(settings.tolerance);
+    if converged {
+        system.polish();
+    }
+    *x = system.best_x.into();
+    if converged {
+        Ok(Converged {
+            iterations: system.iterations,
+            evaluations: system.budget.used,
+            residual: system.best_max,
+        })
+    } else {
+        Err(Failure::NoConvergence {
+            residual: system.best_max,
+            iterations: system.iterations,
+        })
+    }
+}
+
+/// The state of a trust-region iteration on `N` defaults. Steps and the Jacobian are in
+/// scaled variables (each default divided by its scale), residuals in the model's units.
+struct System<F, const N: usize> {
+    /// The residual function: `false` where the assembly fails.
+    f: F,
+    budget: Budget,
+    scale: SVector<f64, N>,
+    /// The current point (each accepted step reduces the residual norm) and its residuals.
+    x: SVector<f64, N>,
+    r: SVector<f64, N>,
+    /// The point with the smallest largest residual so far.
+    best_x: SVector<f64, N>,
+    best_r: SVector<f64, N>,
+    best_max: f64,
+    /// The trust radius, in scaled units, at most [`MAX_STEP`].
+    radius: f64,
+    /// The inverse of the last scaled Jacobian, for the polishing steps.
+    inverse: Option<SMatrix<f64, N, N>>,
+    iterations: u32,
+}
+
+impl<F: FnMut(&[f64; N], &mut [f64; N]) -> bool, const N: usize> System<F, N> {
+    fn probe(&mut self, point: &SVector<f64, N>) -> Probe<SVector<f64, N>> {
+        if !self.budget.take() {
+            return Probe::Exhausted;
+        }
+        if point.iter().any(|v| !is_finite(*v)) {
+            return Probe::Bad;
+        }
+        let p: [f64; N] = (*point).into();
+        let mut out = [0.0; N];
+        if (self.f)(&p, &mut out) && out.iter().all(|v| is_finite(*v)) {
+            Probe::Good(SVector::from(out))
+        } else {
+            Probe::Bad
+        }
+    }
+
+    /// The Jacobian at the current point, by forward differences (backward where forward
+    /// fails; a zero column where both fail), times the scales. `None` when the budget is
+    /// spent.
+    fn jacobian(&mut self) -> Option<SMatrix<f64, N, N>> {
+        let mut jacobian = SMatrix::<f64, N, N>::zeros();
+        for j in 0..N {
+            let h = SQRT_EPS * self.x[j].abs().max(self.scale[j]);
+            for dx in [h, -h] {
+                let mut p = self.x;
+                p[j] += dx;
+                match self.probe(&p) {
+                    Probe::Good(rp) => {
+                        jacobian.set_column(j, &((rp - self.r) * (self.scale[j] / dx)));
+                        break;
+                    }
+                    Probe::Bad => {}
+                    Probe::Exhausted => return None,
+                }
+            }
+        }
+        Some(jacobian)
+    }
+
+    /// The smallest trust radius worth trying: a step below it does not change the point.
+    fn min_radius(&self) -> f64 {
+        let mut size: f64 = 1.0;
+        for i in 0..N {
+            size = size.max((self.x[i] / self.scale[i]).abs());
+        }
+        4.0 * f64::EPSILON * size
+    }
+
+    fn accept(&mut self, x: SVector<f64, N>, r: SVector<f64, N>) {
+        self.x = x;
+        self.r = r;
+        let m = largest(r.as_slice());
+        if m < self.best_max {
+            (self.best_x, self.best_r, self.best_max) = (x, r, m);
+        }
+    }
+
+    /// Iterates until the largest residual is within `tolerance` (`true`) or the iteration
+    /// cannot go on (`false`).
+    fn run(&mut self, tolerance: f64) -> bool {
+        loop {
+            if self.best_max <= tolerance {
+                return true;
+            }
+            let Some(jacobian) = self.jacobian() else {
+                return false;
+            };
+            let mut inverse = SMatrix::<f64, N, N>::zeros();
+            let newton = if nalgebra::linalg::try_invert_to(jacobian, &mut inverse) {
+                Some(-(inverse * self.r)).filter(|n| n.iter().all(|v| is_finite(*v)))
+            } else {
+                None
+            };
+            self.inverse = newton.map(|_| inverse);
+            let gradient = jacobian.transpose() * self.r;
+            let cauchy_length = gradient.norm_squared() / (jacobian * gradient).norm_squared();
+            let norm2 = self.r.norm_squared();
+            // Retry with smaller radii until a step reduces the residual norm.
+            loop {
+                let Some(step) = dogleg(newton, &gradient, cauchy_length, self.radius) else {
+                    return false;
+                };
+                let length = step.norm();
+                let trial = self.x + step.component_mul(&self.scale);
+                let predicted = norm2 - (self.r + jacobian * step).norm_squared();
+                match self.probe(&trial) {
+                    Probe::Good(rt) => {
+                        let actual = norm2 - rt.norm_squared();
+                        let ratio = actual / predicted;
+                        if actual > 0.0 && (predicted <= 0.0 || ratio >= 1e-4) {
+                            if ratio < 0.25 {
+                                self.radius = 0.25 * length;
+                            } else if ratio > 0.75 && length >= 0.99 * self.radius {
+                                self.radius = (2.0 * self.radius).min(MAX_STEP);
+                            }
+                            self.accept(trial, rt);
+                            self.iterations += 1;
+                            break;
+                        }
+                        self.radius = 0.5 * length;
+                    }
+                    Probe::Bad => self.radius = 0.5 * length,
+                    Probe::Exhausted => return false,
+                }
+                if self.radius.is_nan() || self.radius < self.min_radius() {
+                    return false;
+                }
+            }
+        }
+    }
+
+    /// Up to [`POLISH_STEPS`] Newton steps from the best point with the last Jacobian (one
+    /// evaluation each), while each at least halves the largest residual.
+    fn polish(&mut self) {
+        if self.best_max == 0.0 {
+            return;
+        }
+        let inverse = match self.inverse {
+            Some(inverse) => inverse,
+            None => {
+                // Converged at the start: one Jacobian, there.
+                (self.x, self.r) = (self.best_x, self.best_r);
+                let Some(jacobian) = self.jacobian() else {
+                    return;
+                };
+                let mut inverse = SMatrix::<f64, N, N>::zeros();
+                if !nalgebra::linalg::try_invert_to(jacobian, &mut inverse) {
+                    return;
+                }
+                inverse
+            }
+        };
+        for _ in 0..POLISH_STEPS {
+            let before = self.best_max;
+            if before == 0.0 {
+                return;
+            }
+            let trial = self.best_x - (inverse * self.best_r).component_mul(&self.scale);
+            if trial == self.best_x {
+                return;
+            }
+            match self.probe(&trial) {
+                Probe::Good(rt) => {
+                    self.iterations += 1;
+                    self.accept(trial, rt);
+                    if largest(rt.as_slice()) > POLISH_GAIN * before {
+                        return;
+                    }
+                }
+                _ => return,
+            }
+        }
+    }
+}
+
+/// Powell's dogleg step for trust radius `radius`: the Newton step when it fits, else the
+/// point at distance `radius` on the path from the origin through the Cauchy point (the
+/// minimum of the linear model along steepest descent, `-cauchy_length * gradient`) to the
+/// Newton step. Without a Newton step, the Cauchy point cut to the radius. `None` when there is
+/// no direction at all (zero gradient and no Newton step).
+fn dogleg<const N: usize>(
+    newton: Option<SVector<f64, N>>,
+    gradient: &SVector<f64, N>,
+    cauchy_length: f64,
+    radius: f64,
+) -> Option<SVector<f64, N>> {
+    if let Some(n) = newton {
+        if n.norm() <= radius {
+            return Some(n);
+        }
+    }
+    let g = gradient.norm();
+    if !(g > 0.0 && is_finite(g)) {
+        return newton.map(|n| n * (radius / n.norm()));
+    }
+    let cauchy = gradient * -cauchy_length;
+    if !is_finite(cauchy_length) || cauchy.norm() >= radius {
+        return Some(gradient * (-radius / g));
+    }
+    let Some(n) = newton else {
+        return Some(cauchy);
+    };
+    // |cauchy + t (n - cauchy)| = radius for t in [0, 1]: a quadratic a t² + b t + c with
+    // c < 0 (the Cauchy point is inside) and a > 0, so exactly one root is positive.
+    let d = n - cauchy;
+    let a = d.norm_squared();
+    let b = 2.0 * cauchy.dot(&d);
+    let c = cauchy.norm_squared() - radius * radius;
+    let q = -0.5 * (b + b.signum() * (b * b - 4.0 * a * c).max(0.0).sqrt());
+    let t = (q / a).max(c / q);
+    let t = if is_finite(t) { t.clamp(0.0, 1.0) } else { 1.0 };
+    Some(cauchy + d * t)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every root over an interval.
+
+/// The roots [`all_roots`] found, ascending, in fixed arrays (no allocation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RootScan<const CAP: usize> {
+    roots: [f64; CAP],
+    residuals: [f64; CAP],
+    doubles: [bool; CAP],
+    boundaries: [bool; CAP],
+    len: usize,
+    truncated: bool,
+    evaluations: u32,
+}
+
+impl<const CAP: usize> Default for RootScan<CAP> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const CAP: usize> RootScan<CAP> {
+    /// No roots.
+    pub const fn new() -> Self {
+        Self {
+            roots: [0.0; CAP],
+            residuals: [0.0; CAP],
+            doubles: [false; CAP],
+            boundaries: [false; CAP],
+            len: 0,
+            truncated: false,
+            evaluations: 0,
+        }
+    }
+
+    /// The roots, ascending (periodic: in `[lo, hi)`).
+    pub fn roots(&self) -> &[f64] {
+        &self.roots[..self.len]
+    }
+
+    /// The number of roots kept.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether no root was found.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Whether more than `CAP` roots were found: the largest ones were dropped.
+    pub fn truncated(&self) -> bool {
+        self.truncated
+    }
+
+    /// Whether root `i` is a double (tangent) root: a minimum of `|f|` within the tolerance of
+    /// zero, with no sign change (or a dip across zero no deeper than the tolerance). `false`
+    /// for an index past the end.
+    pub fn is_double(&self, i: usize) -> bool {
+        i < self.len && self.doubles[i]
+    }
+
+    /// Whether root `i` is the last point where the function is defined next to a point where
+    /// it fails (or an end of a non-periodic interval), accepted because `|f|` is within the
+    /// tolerance there. `false` for an index past the end.
+    pub fn is_boundary(&self, i: usize) -> bool {
+        i < self.len && self.boundaries[i]
+    }
+
+    /// `|f|` at root `i` (NaN for an index past the end).
+    pub fn residual(&self, i: usize) -> f64 {
+        if i < self.len {
+            self.residuals[i]
+        } else {
+            f64::NAN
+        }
+    }
+
+    /// The evaluations of the function the scan made.
+    pub fn evaluations(&self) -> u32 {
+        self.evaluations
+    }
+
+    /// Adds a root, merging it with one closer than `same` (measured around the circle of
+    /// length `period` when periodic): the one with the smaller residual stays.
+    fn insert(&mut self, root: Found, same: f64, period: Option<f64>) {
+        for i in 0..self.len {
+            let mut d = (self.roots[i] - root.x).abs();
+            if let Some(p) = period {
+                d = d.min(p - d);
+            }
+            if d <= same {
+                if root.residual < self.residuals[i] {
+                    self.remove(i);
+                    self.place(root);
+                }
+                return;
+            }
+        }
+        self.place(root);
+    }
+
+    fn remove(&mut self, i: usize) {
+        for j in i..self.len.saturating_sub(1) {
+            self.roots[j] = self.roots[j + 1];
+            self.residuals[j] = self.residuals[j + 1];
+            self.doubles[j] = self.doubles[j + 1];
+            self.boundaries[j] = self.boundaries[j + 1];
+        }
+        self.len -= 1;
+    }
+
+    /// Inserts in order; when full, the largest root is dropped and the scan marked truncated.
+    fn place(&mut self, root: Found) {
+        let at = self.roots[..self.len].partition_point(|&r| r < root.x);
+        if self.len == CAP {
+            self.truncated = true;
+            if at == CAP {
+                return;
+            }
+            self.len -= 1;
+        }
+        let mut j = self.len;
+        while j > at {
+            self.roots[j] = self.roots[j - 1];
+            self.residuals[j] = self.residuals[j - 1];
+            self.doubles[j] = self.doubles[j - 1];
+            self.boundaries[j] = self.boundaries[j - 1];
+            j -= 1;
+        }
+        self.roots[at] = root.x;
+        self.residuals[at] = root.residual;
+        self.doubles[at] = root.double;
+        self.boundaries[at] = root.boundary;
+        self.len += 1;
+    }
+}
+
+/// A root as the scan finds it.
+#[derive(Clone, Copy, Debug)]
+struct Found {
+    x: f64,
+    residual: f64,
+    double: bool,
+    boundary: bool,
+}
+
+/// Every root of a scalar function of one default over [lo, hi] (periodic: the function has
+/// period hi - lo, e.g. an angle over a turn), into a fixed-capacity list sorted ascending (at
+/// most CAP kept; [`RootScan::truncated`] says if more were found).
+///
+/// `samples` evaluations on a uniform grid first (at least 8). An interval that is not finite
+/// or not increasing (`hi <= lo`) has no roots. The method, and exactly which roots it finds,
+/// are in the module documentation.
+pub fn all_roots<const CAP: usize, E>(
+    lo: f64,
+    hi: f64,
+    periodic: bool,
+    samples: u32,
+    settings: &Settings,
+    mut f: impl FnMut(f64) -> Result<f64, E>,
+) -> RootScan<CAP> {
+    let mut scan = RootScan::new();
+    let span = hi - lo;
+    if !(is_finite(lo) && is_finite(hi) && is_finite(span) && span > 0.0) {
+        return scan;
+    }
+    let n = samples.max(MIN_SAMPLES);
+    let mut sweep = Sweep {
+        f: |t: f64| f(t).ok(),
+        lo,
+        hi,
+        span,
+        periodic,
+        tolerance: settings.tolerance,
+        limit: settings.max_evaluations,
+        scan: &mut scan,
+        before: None,
+        centre: None,
+        pushed: 0,
+        first: None,
+        second: None,
+    };
+    let intervals = if periodic { n } else { n - 1 };
+    for i in 0..n {
+        let x = if !periodic && i == n - 1 {
+            hi
+        } else {
+            lo + span * (f64::from(i) / f64::from(intervals))
+        };
+        let value = sweep.eval(x);
+        sweep.push_sample(Node::sample(x, value));
+    }
+    if periodic {
+        sweep.close_the_circle();
+    } else {
+        sweep.finish();
+    }
+    scan
+}
+
+/// A point of the scan: a grid sample, or the last defined point next to a failing one.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    x: f64,
+    /// `None` where the function fails.
+    f: Option<f64>,
+    /// The last defined point before a failing stretch.
+    boundary: bool,
+    /// A dip across zero within the tolerance, reported as one double root: the sign changes
+    /// on either side are not roots of their own.
+    shallow_dip: bool,
+}
+
+impl Node {
+    fn sample(x: f64, f: Option<f64>) -> Self {
+        Self {
+            x,
+            f,
+            boundary: false,
+            shallow_dip: false,
+        }
+    }
+}
+
+/// What a minimization of `sign * f` found.
+#[derive(Clone, Copy, Debug)]
+enum Valley {
+    /// A point where `sign * f < -tolerance`: the valley crosses zero, with a root on each side.
+    Crossing { x: f64, f: f64 },
+    /// The lowest point found, and `sign * f` there.
+    Bottom { x: f64, g: f64 },
+}
+
+/// The state of [`all_roots`]: a window of three consecutive nodes slides over the grid (with
+/// boundary points inserted between defined and failing samples). The centre of the window is
+/// classified when its right neighbour arrives, and the interval to its left is bracketed then,
+/// once both its ends are classified.
+struct Sweep<'a, F, const CAP: usize> {
+    f: F,
+    lo: f64,
+    hi: f64,
+    span: f64,
+    periodic: bool,
+    tolerance: f64,
+    /// Evaluations allowed to each refinement.
+    limit: u32,
+    scan: &'a mut RootScan<CAP>,
+    before: Option<Node>,
+    centre: Option<Node>,
+    /// Nodes pushed so far.
+    pushed: u32,
+    /// Periodic: the first node, and the second once classified; they are classified (resp.
+    /// bracketed against the first) again after the last sample, when their left neighbour is
+    /// known.
+    first: Option<Node>,
+    second: Option<Node>,
+}
+
+impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
+    /// `f` at `x` (mapped into `[lo, hi]` when periodic: a turn on, or back, and clamped
+    /// against the rounding of that), `None` where it fails or is not finite, and outside
+    /// `[lo, hi]`.
+    fn eval(&mut self, x: f64) -> Option<f64> {
+        let t = if !self.periodic {
+            x
+        } else if x >= self.hi {
+            (x - self.span).clamp(self.lo, self.hi)
+        } else if x < self.lo {
+            (x + self.span).clamp(self.lo, self.hi)
+        } else {
+            x
+        };
+        self.scan.evaluations = self.scan.evaluations.saturating_add(1);
+        if !(t >= self.lo && t <= self.hi) {
+            return None;
+        }
+        (self.f)(t).filter(|v| is_finite(*v))
+    }
+
+    /// `f` at `x` within `budget`; `Exhausted` when it is spent.
+    fn probe(&mut self, budget: &mut Budget, x: f64) -> Probe<f64> {
+        if !budget.take() {
+            return Probe::Exhausted;
+        }
+        match self.eval(x) {
+            Some(v) => Probe::Good(v),
+            None => Probe::Bad,
+        }
+    }
+
+    fn record(&mut self, x: f64, residual: f64, double: bool, boundary: bool) {
+        let mut x = x;
+        if self.periodic {
+            if x >= self.hi {
+                x -= self.span;
+            }
+            if !(x >= self.lo && x < self.hi) {
+                x = self.lo;
+            }
+        } else {
+            x = x.clamp(self.lo, self.hi);
+        }
+        let found = Found {
+            x,
+            residual,
+            double,
+            boundary,
+        };
+        let period = self.periodic.then_some(self.span);
+        self.scan.insert(found, SAME_ROOT_REL * self.span, period);
+    }
+
+    /// Adds a grid sample, with a boundary point before it when exactly one of it and the
+    /// previous sample is defined.
+    fn push_sample(&mut self, node: Node) {
+        if let Some(previous) = self.centre {
+            match (previous.f, node.f) {
+                (Some(v), None) => {
+                    let b = self.boundary(previous.x, v, node.x);
+                    self.push_node(b);
+                }
+                (None, Some(v)) => {
+                    let b = self.boundary(node.x, v, previous.x);
+                    self.push_node(b);
+                }
+                _ => {}
+            }
+        }
+        self.push_node(node);
+    }
+
+    /// Slides the window: classifies the centre now that its right neighbour is known, and
+    /// brackets the interval to its left.
+    fn push_node(&mut self, node: Node) {
+        if let Some(centre) = self.centre {
+            let index = self.pushed - 1;
+            // Periodic: the first node's left neighbour is the last sample; it is classified,
+            // and its interval to the right bracketed, when the circle closes.
+            if !(self.periodic && index == 0) {
+                let centre = self.classify(self.before, centre, Some(node));
+                self.centre = Some(centre);
+                if self.periodic && index == 1 {
+                    self.second = Some(centre);
+                } else if let Some(left) = self.before {
+                    self.bracket(left, centre);
+                }
+            }
+        }
+        if self.pushed == 0 {
+            self.first = Some(node);
+        }
+        self.before = self.centre;
+        self.centre = Some(node);
+        self.pushed = self.pushed.saturating_add(1);
+    }
+
+    /// Non-periodic: classifies the last node, whose right is the end of the interval.
+    fn finish(&mut self) {
+        if let Some(centre) = self.centre {
+            let centre = self.classify(self.before, centre, None);
+            if let Some(left) = self.before {
+                self.bracket(left, centre);
+            }
+        }
+    }
+
+    /// Periodic: the first two nodes again, one period on, so that the first is classified
+    /// with its left neighbour (the last sample) and the intervals across the wrap are
+    /// bracketed, each once.
+    fn close_the_circle(&mut self) {
+        let (Some(first), Some(second)) = (self.first, self.second) else {
+            return;
+        };
+        let span = self.span;
+        self.push_sample(Node {
+            x: first.x + span,
+            ..first
+        });
+        let second = Node {
+            x: second.x + span,
+            ..second
+        };
+        self.push_node(second);
+        if let Some(first) = self.before {
+            self.bracket(first, second);
+        }
+    }
+
+    /// The last point where `f` is defined between `good` (where it is, value `value`) and
+    /// `bad` (where it fails), by bisection to rounding level.
+    fn boundary(&mut self, good: f64, value: f64, bad: f64) -> Node {
+        let mut budget = Budget::new(self.limit);
+        let (mut good, mut value, mut bad) = (good, value, bad);
+        loop {
+            let mid = 0.5 * good + 0.5 * bad;
+            if mid == good || mid == bad {
+                break;
+            }
+            match self.probe(&mut budget, mid) {
+                Probe::Good(v) => (good, value) = (mid, v),
+                Probe::Bad => bad = mid,
+                Probe::Exhausted => break,
+            }
+        }
+        Node {
+            x: good,
+            f: Some(value),
+            boundary: true,
+            shallow_dip: false,
+        }
+    }
+
+    /// Classifies `centre` given its neighbours (`None`: the end of the interval): a zero, a
+    /// root at a boundary or an end, a local minimum of `|f|` (refined), a shallow dip.
+    fn classify(&mut self, left: Option<Node>, centre: Node, right: Option<Node>) -> Node {
+        let Some(fc) = centre.f else {
+            return centre;
+        };
+        let left = left.and_then(|n| n.f.map(|v| (n.x, v)));
+        let right = right.and_then(|n| n.f.map(|v| (n.x, v)));
+        if fc == 0.0 {
+            let double = matches!((left, right), (Some((_, l)), Some((_, r))) if l * r > 0.0);
+            self.record(centre.x, 0.0, double, centre.boundary);
+            return centre;
+        }
+        let tolerance = self.tolerance;
+        let run_end = left.is_none() || right.is_none();
+        if run_end && fc.abs() <= tolerance {
+            self.record(centre.x, fc.abs(), false, centre.boundary);
+        }
+        let same_and_above = |v: f64, strict: bool| {
+            v * fc > 0.0
+                && if strict {
+                    v.abs() > fc.abs()
+                } else {
+                    v.abs() >= fc.abs()
+                }
+        };
+        let is_minimum = !(left.is_none() && right.is_none())
+            && left.is_none_or(|(_, v)| same_and_above(v, true))
+            && right.is_none_or(|(_, v)| same_and_above(v, false));
+        if is_minimum {
+            let (a, fa) = left.unwrap_or((centre.x, fc));
+            let (b, fb) = right.unwrap_or((centre.x, fc));
+            match self.minimize(a, b, centre.x, fc, fc.signum()) {
+                Valley::Crossing { x, f } => {
+                    for (u, fu, v, fv) in [(a, fa, x, f), (x, f, b, fb)] {
+                        self.refine(u, fu, v, fv, 0);
+                    }
+                }
+                Valley::Bottom { x, g } if g <= tolerance => {
+                    let at_end = run_end && x == centre.x;
+                    self.record(x, g.abs(), !at_end, at_end && centre.boundary);
+                }
+                Valley::Bottom { .. } => {}
+            }
+            return centre;
+        }
+        if let (Some((a, fa)), Some((b, fb))) = (left, right) {
+            if fa * fc < 0.0 && fb * fc < 0.0 && fc.abs() <= tolerance {
+                // A dip across zero within the tolerance: how deep does it go?
+                if let Valley::Bottom { x, g } = self.minimize(a, b, centre.x, fc, -fc.signum()) {
+                    self.record(x, g.abs(), true, false);
+                    return Node {
+                        shallow_dip: true,
+                        ..centre
+                    };
+                }
+            }
+        }
+        centre
+    }
+
+    /// Brackets the interval between two classified nodes when their values have opposite
+    /// signs (and neither is a shallow dip already reported).
+    fn bracket(&mut self, left: Node, right: Node) {
+        if let (Some(fl), Some(fr)) = (left.f, right.f) {
+            if fl * fr < 0.0 && !left.shallow_dip && !right.shallow_dip {
+                self.refine(left.x, fl, right.x, fr, 0);
+            }
+        }
+    }
+
+    /// Records the root in a sign change, refined by Brent's method (inverse quadratic
+    /// interpolation, secant and bisection steps) to rounding level, if its `|f|` is within the
+    /// tolerance. A point where the function fails splits the failing stretch off
+    /// ([`Self::split`]).
+    fn refine(&mut self, a: f64, fa: f64, b: f64, fb: f64, depth: u32) {
+        let opposite = fa * fb < 0.0;
+        if !opposite {
+            return;
+        }
+        let mut budget = Budget::new(self.limit);
+        let abs_tol = 1e-3 * f64::EPSILON * self.span;
+        // `b` is the best point, `c` the other end of the bracket, `a` the previous `b`.
+        let (mut a, mut fa, mut b, mut fb) = (a, fa, b, fb);
+        let (mut c, mut fc) = (a, fa);
+        let mut d = b - a;
+        let mut e = d;
+        loop {
+            if fc.abs() < fb.abs() {
+                (a, fa) = (b, fb);
+                (b, fb) = (c, fc);
+                (c, fc) = (a, fa);
+            }
+            let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * abs_tol;
+            let half = 0.5 * (c - b);
+            if half.abs() <= tol1 || fb == 0.0 {
+                break;
+            }
+            let mut step = half;
+            if e.abs() >= tol1 && fa.abs() > fb.abs() {
+                let s = fb / fa;
+                let (mut p, mut q) = if a == c {
+                    (2.0 * half * s, 1.0 - s)
+                } else {
+                    let q = fa / fc;
+                    let r = fb / fc;
+                    (
+                        s * (2.0 * half * q * (q - r) - (b - a) * (r - 1.0)),
+                        (q - 1.0) * (r - 1.0) * (s - 1.0),
+                    )
+                };
+                if p > 0.0 {
+                    q = -q;
+                } else {
+                    p = -p;
+                }
+                if 2.0 * p < (3.0 * half * q - (tol1 * q).abs()).min((e * q).abs()) {
+                    e = d;
+                    step = p / q;
+                } else {
+                    e = half;
+                }
+            } else {
+                e = half;
+            }
+            if step.abs() <= tol1 {
+                step = tol1.copysign(half);
+            }
+            // The trial point. Where the function fails, the failing stretch is split off
+            // (its edges found from both sides); past the depth of splits, the step backs off
+            // toward `b` instead.
+            let value = loop {
+                match self.probe(&mut budget, b + step) {
+                    Probe::Good(v) => break Some(v),
+                    Probe::Bad if depth < MAX_SPLITS => {
+                        return self.split((b, fb), b + step, (c, fc), depth);
+                    }
+                    Probe::Bad if step.abs() > tol1 => step *= 0.5,
+                    _ => break None,
+                }
+            };
+            let Some(value) = value else {
+                break;
+            };
+            d = step;
+            (a, fa) = (b, fb);
+            (b, fb) = (b + step, value);
+            if (fb > 0.0) == (fc > 0.0) {
+                (c, fc) = (a, fa);
+                d = b - a;
+                e = d;
+            }
+        }
+        if fb.abs() <= self.tolerance {
+            self.record(b, fb.abs(), false, false);
+        }
+    }
+
+    /// A sign change between `near` and `far` with a failing point `bad` between them: the
+    /// failing stretch's edges are found from both sides (by bisection, as between samples),
+    /// each is a boundary root if its `|f|` is within the tolerance, and each side with a sign
+    /// change of its own is refined. (The sign may also change across the stretch, where there
+    /// is no root.)
+    fn split(&mut self, near: (f64, f64), bad: f64, far: (f64, f64), depth: u32) {
+        for (x, fx) in [near, far] {
+            let edge = self.boundary(x, fx, bad);
+            if let Some(fe) = edge.f {
+                if fe.abs() <= self.tolerance {
+                    self.record(edge.x, fe.abs(), false, true);
+                }
+                self.refine(x, fx, edge.x, fe, depth + 1);
+            }
+        }
+    }
+
+    /// The bottom of the valley of `sign * f` over `[a, b]` from `x0` where `f = f0`: see
+    /// [`valley`].
+    fn minimize(&mut self, a: f64, b: f64, x0: f64, f0: f64, sign: f64) -> Valley {
+        let mut budget = Budget::new(self.limit);
+        let abs_tol = 1e-3 * SQRT_EPS * self.span;
+        let tolerance = self.tolerance;
+        valley(a, b, (x0, f0), sign, tolerance, abs_tol, |u| {
+            self.probe(&mut budget, u)
+        })
+    }
+}
+
+/// Brent's minimization (golden section and parabolic steps) of `g = sign * f` over `[a, b]`
+/// from the known point `start = (x0, f(x0))`, to about `sqrt(eps) |x| + abs_tol`: the bottom
+/// of the valley of `|f|` on the side of `sign`. A failing point counts as `g = +inf`. Stops
+/// early at a point where `g < -tolerance`: the valley crosses zero, with a root on each side.
+fn valley(
+    a: f64,
+    b: f64,
+    start: (f64, f64),
+    sign: f64,
+    tolerance: f64,
+    abs_tol: f64,
+    mut probe: impl FnMut(f64) -> Probe<f64>,
+) -> Valley {
+    // The golden section ratio (3 - sqrt 5) / 2.
+    const GOLDEN: f64 = 0.381_966_011_250_105_1;
+    let (x0, f0) = start;
+    let g0 = sign * f0;
+    let (mut a, mut b) = (a.min(b), a.max(b));
+    let (mut x, mut w, mut v) = (x0, x0, x0);
+    let (mut gx, mut gw, mut gv) = (g0, g0, g0);
+    let (mut d, mut e): (f64, f64) = (0.0, 0.0);
+    loop {
+        let mid = 0.5 * (a + b);
+        let tol1 = SQRT_EPS * x.abs() + abs_tol;
+        let tol2 = 2.0 * tol1;
+        if (x - mid).abs() <= tol2 - 0.5 * (b - a) {
+            break;
+        }
+        let mut golden = true;
+        if e.abs() > tol1 && is_finite(gw) && is_finite(gv) {
+            // A parabola through x, w, v.
+            let r = (x - w) * (gx - gv);
+            let mut q = (x - v) * (gx - gw);
+            let mut p = (x - v) * q - (x - w) * r;
+            q = 2.0 * (q - r);
+            if q > 0.0 {
+                p = -p;
+            } else {
+                q = -q;
+            }
+            let previous = e;
+            e = d;
+            if p.abs() < (0.5 * q * previous).abs() && p > q * (a - x) && p < q * (b - x) {
+                d = p / q;
+                let u = x + d;
+                if u - a < tol2 || b - u < tol2 {
+                    d = tol1.copysign(mid - x);
+                }
+                golden = false;
+            }
+        }
+        if golden {
+            e = if x >= mid { a - x } else { b - x };
+            d = GOLDEN * e;
+        }
+        let u = x + if d.abs() >= tol1 { d } else { tol1.copysign(d) };
+        let gu = match probe(u) {
+            Probe::Good(value) => sign * value,
+            Probe::Bad => f64::INFINITY,
+            Probe::Exhausted => break,
+        };
+        if gu < -tolerance {
+            return Valley::Crossing { x: u, f: sign * gu };
+        }
+        if gu <= gx {
+            if u >= x {
+                a = x;
+            } else {
+                b = x;
+            }
+            (v, gv, w, gw, x, gx) = (w, gw, x, gx, u, gu);
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if gu <= gw || w == x {
+                (v, gv, w, gw) = (w, gw, u, gu);
+            } else if gu <= gv || v == x || v == w {
+                (v, gv) = (u, gu);
+            }
+        }
+    }
+    Valley::Bottom { x, g: gx }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn found(x: f64, residual: f64) -> Found {
+        Found {
+            x,
+            residual,
+            double: false,
+            boundary: false,
+        }
+    }
+
+    #[test]
+    fn bracket_narrows_to_the_root_from_both_sides() {
+        // A strongly curved function, on which plain false position creeps from one side.
+        let f = |x: f64| x.exp() - 10.0;
+        let mut b = Bracket::new(0.0, f(0.0), 5.0, f(5.0)).unwrap_or_else(|| unreachable!());
+        let mut steps = 0;
+        while !b.is_collapsed() && b.best().1 != 0.0 && steps < 100 {
+            let t = b.propose();
+            assert!(b.contains(t));
+            b.narrow(t, f(t));
+            steps += 1;
+        }
+        assert!((b.best().0 - 10f64.ln()).abs() <= 1e-15, "{b:?}");
+        assert!(steps <= 16, "{steps}");
+        // No bracket without a strict sign change.
+        assert!(Bracket::new(0.0, 1.0, 1.0, 0.0).is_none());
+        assert!(Bracket::new(0.0, 1.0, 1.0, f64::NAN).is_none());
+        assert!(Bracket::new(1.0, -1.0, 1.0, 1.0).is_none());
+    }
+
+    #[test]
+    fn dogleg_stays_within_the_radius() {
+        let gradient = SVector::<f64, 2>::new(1.0, 0.0);
+        let newton = SVector::<f64, 2>::new(-3.0, 4.0);
+        // Newton inside: Newton.
+        assert_eq!(dogleg(Some(newton), &gradient, 0.5, 6.0), Some(newton));
+        // Cauchy point outside: steepest descent cut to the radius.
+        assert_eq!(
+            dogleg(Some(newton), &gradient, 0.5, 0.25),
+            Some(SVector::<f64, 2>::new(-0.25, 0.0))
+        );
+        // In between: on the segment from the Cauchy point to Newton, at the radius.
+        let step = dogleg(Some(newton), &gradient, 0.5, 2.0).unwrap_or_else(|| unreachable!());
+        assert!((step.norm() - 2.0).abs() <= 1e-15, "{step}");
+        assert!(step.y > 0.0 && step.x < -0.5);
+        // No Newton step: the Cauchy point; nothing at all: none.
+        assert_eq!(
+            dogleg(None, &gradient, 0.5, 2.0),
+            Some(SVector::<f64, 2>::new(-0.5, 0.0))
+        );
+        assert_eq!(
+            dogleg(None, &SVector::<f64, 2>::zeros(), f64::NAN, 2.0),
+            None
+        );
+    }
+
+    #[test]
+    fn scan_keeps_roots_sorted_merged_and_bounded() {
+        let mut scan = RootScan::<3>::new();
+        for x in [0.5, 0.1, 0.9] {
+            scan.insert(found(x, 1e-12), 1e-6, None);
+        }
+        assert_eq!(scan.roots(), &[0.1, 0.5, 0.9]);
+        // A near duplicate with a smaller residual replaces the root.
+        scan.insert(found(0.5 + 1e-7, 1e-15), 1e-6, None);
+        assert_eq!(scan.roots(), &[0.1, 0.5 + 1e-7, 0.9]);
+        assert_eq!(scan.residual(1), 1e-15);
+        // A worse one does not.
+        scan.insert(found(0.5, 1e-11), 1e-6, None);
+        assert_eq!(scan.roots(), &[0.1, 0.5 + 1e-7, 0.9]);
+        assert!(!scan.truncated());
+        // Full: a smaller root pushes out the largest; a larger one is dropped.
+        scan.insert(found(0.0, 0.0), 1e-6, None);
+        assert_eq!(scan.roots(), &[0.0, 0.1, 0.5 + 1e-7]);
+        assert!(scan.truncated());
+        scan.insert(found(2.0, 0.0), 1e-6, None);
+        assert_eq!(scan.roots(), &[0.0, 0.1, 0.5 + 1e-7]);
+        // Periodic: roots on either side of the wrap are one.
+        let mut wrap = RootScan::<2>::new();
+        wrap.insert(found(1e-9, 1e-14), 1e-8, Some(1.0));
+        wrap.insert(found(1.0 - 1e-9, 1e-13), 1e-8, Some(1.0));
+        assert_eq!(wrap.roots(), &[1e-9]);
+        // No capacity: everything is truncated, nothing panics.
+        let mut none = RootScan::<0>::new();
+        none.insert(found(1.0, 0.0), 1e-6, None);
+        assert!(none.is_empty() && none.truncated());
+    }
+
+    #[test]
+    fn largest_never_hides_a_nan() {
+        assert_eq!(largest(&[1.0, -3.0, 2.0]), 3.0);
+        assert!(largest(&[1.0, f64::NAN, 2.0]).is_nan());
+        assert_eq!(largest(&[1.0, f64::NEG_INFINITY]), f64::INFINITY);
+        assert_eq!(largest(&[]), 0.0);
+    }
+}
