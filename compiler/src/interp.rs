@@ -9,7 +9,7 @@
 //! a bug in gcs, and panics saying so, rather than going on with a made-up value.
 
 use crate::config::{Config, P2, V2};
-use crate::plan::{Meet, Op, Plan, Reg, Residual, RotationAxis, Step};
+use crate::plan::{Iteration, Meet, Op, Plan, Reg, Residual, RotationAxis, Step};
 use gcs_lang::model::ConstraintId;
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
@@ -35,6 +35,11 @@ pub struct Run {
     pub config: Config,
     /// The index taken at each branch variable, if its intersection ran.
     pub chosen: Vec<Option<usize>>,
+    /// The value of each default: as given, as an iteration converged to, or (on the sketch,
+    /// with [`Choice::Nearest`]) the one that moves nothing.
+    pub defaults: Vec<f64>,
+    /// The steps the outer iterations took, all regions together.
+    pub iterations: u32,
 }
 
 /// The value of a register.
@@ -63,6 +68,56 @@ pub fn run_with(
     defaults: &[f64],
     choice: &Choice,
 ) -> Result<Run, SolveError> {
+    run_machine(model, plan, params, defaults.to_vec(), choice, None)
+}
+
+/// Runs `plan` with `defaults` as given, without its outer iterations: returns the run and
+/// the errors its closes measure (in step order), which an iteration would drive to zero.
+/// What every real assembly is searched on ([`crate::all`]).
+pub fn run_open(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    choice: &Choice,
+) -> Result<(Run, Vec<f64>), SolveError> {
+    let mut errors = Vec::new();
+    let run = run_machine_with(
+        model,
+        plan,
+        params,
+        defaults.to_vec(),
+        choice,
+        None,
+        Some(&mut errors),
+    )?;
+    Ok((run, errors))
+}
+
+/// Runs `plan`; with `reached`, on the sketch: each default takes the value its measure
+/// register holds (least motion), recorded there, and closes are not enforced.
+fn run_machine(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: Vec<f64>,
+    choice: &Choice,
+    reached: Option<&mut Vec<Option<f64>>>,
+) -> Result<Run, SolveError> {
+    run_machine_with(model, plan, params, defaults, choice, reached, None)
+}
+
+/// [`run_machine`]; with `open`, the outer iterations are not run and their closes' errors
+/// are collected there.
+fn run_machine_with(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: Vec<f64>,
+    choice: &Choice,
+    reached: Option<&mut Vec<Option<f64>>>,
+    open: Option<&mut Vec<f64>>,
+) -> Result<Run, SolveError> {
     // As the generated solve checks them (`check_all_finite`): finite, and within range.
     for ((_, p), v) in model.params.iter().zip(params) {
         if !gcs_runtime::num::in_range(*v) {
@@ -74,7 +129,7 @@ pub fn run_with(
             ));
         }
     }
-    for (d, v) in plan.defaults.iter().zip(defaults) {
+    for (d, v) in plan.defaults.iter().zip(&defaults) {
         if !gcs_runtime::num::in_range(*v) {
             // No text, as the generated solve's `check_all_finite` reports it.
             return Err(SolveError::new(
@@ -102,15 +157,36 @@ pub fn run_with(
         choice,
         config,
         tol: gcs_runtime::tol::CHECK_REL * (1.0 + scale),
+        scale,
         regs: vec![None; plan.regs as usize],
         chosen: vec![None; plan.branches.len()],
+        reached,
+        errors: open.is_some().then(Vec::new),
+        evaluations: 0,
+        iterations: 0,
     };
-    for (i, step) in plan.steps.iter().enumerate() {
-        machine.step(i, step)?;
+    let iterate = machine.reached.is_none() && machine.errors.is_none();
+    let mut i = 0;
+    while i < plan.steps.len() {
+        match plan.iterations.iter().find(|it| it.start == i) {
+            Some(it) if iterate => {
+                machine.iterate(it)?;
+                i = it.end;
+            }
+            _ => {
+                machine.step(i, &plan.steps[i])?;
+                i += 1;
+            }
+        }
+    }
+    if let (Some(open), Some(errors)) = (open, machine.errors.take()) {
+        *open = errors;
     }
     Ok(Run {
         config: machine.config,
         chosen: machine.chosen,
+        defaults: machine.defaults,
+        iterations: machine.iterations,
     })
 }
 
@@ -118,24 +194,49 @@ pub fn run_with(
 /// intersection of the plan run on the sketch with the default params: each branch
 /// variable's default. `None` where the run did not reach an intersection.
 pub fn sketch_branches(model: &Model, plan: &Plan) -> Vec<Option<usize>> {
-    match run(model, plan, &model.default_params(), &Choice::Nearest) {
-        Ok(run) => run.chosen,
-        Err(_) => vec![None; plan.branches.len()],
+    sketch_choices(model, plan).0
+}
+
+/// Each branch variable's default (as [`sketch_branches`]) and each default's sketch value:
+/// what its measure register holds when the plan runs on the sketch, so that the default
+/// moves nothing there (least motion). `None` where the run did not reach it.
+pub fn sketch_choices(model: &Model, plan: &Plan) -> (Vec<Option<usize>>, Vec<Option<f64>>) {
+    let mut reached = vec![None; plan.defaults.len()];
+    match run_machine(
+        model,
+        plan,
+        &model.default_params(),
+        plan.sketch_defaults(),
+        &Choice::Nearest,
+        Some(&mut reached),
+    ) {
+        Ok(run) => (run.chosen, reached),
+        Err(_) => (vec![None; plan.branches.len()], reached),
     }
 }
 
 /// A run in progress.
-struct Machine<'a> {
+struct Machine<'a, 'r> {
     model: &'a Model,
     plan: &'a Plan,
     params: &'a [f64],
-    defaults: &'a [f64],
+    defaults: Vec<f64>,
     choice: &'a Choice,
     config: Config,
     /// The tolerance of checks, relative to the configuration's scale.
     tol: f64,
+    /// The configuration's size: the natural step of a default that is a length.
+    scale: f64,
     regs: Vec<Option<Val>>,
     chosen: Vec<Option<usize>>,
+    /// On the sketch: each default's least-motion value, as reached.
+    reached: Option<&'r mut Vec<Option<f64>>>,
+    /// Inside an iterated region: the errors its closes measure, in step order.
+    errors: Option<Vec<f64>>,
+    /// Evaluations of iterated regions so far.
+    evaluations: u32,
+    /// Steps of outer iterations so far.
+    iterations: u32,
 }
 
 /// The panic of a malformed plan: a bug in gcs, never an input's fault.
@@ -148,7 +249,89 @@ fn malformed(r: Reg, want: &str, got: Option<&Val>) -> ! {
     )
 }
 
-impl Machine<'_> {
+impl Machine<'_, '_> {
+    /// Runs iterated region `it`: varies its defaults, from their values given, until every
+    /// close in it measures zero (000, section 5.2.1), then keeps that assembly.
+    fn iterate(&mut self, it: &Iteration) -> Result<(), SolveError> {
+        match it.defaults.len() {
+            1 => self.iterate_n::<1>(it),
+            2 => self.iterate_n::<2>(it),
+            3 => self.iterate_n::<3>(it),
+            4 => self.iterate_n::<4>(it),
+            5 => self.iterate_n::<5>(it),
+            6 => self.iterate_n::<6>(it),
+            n => Err(self.error(it.start, ErrorKind::NoConvergence, n as f64)),
+        }
+    }
+
+    /// [`Machine::iterate`] over `N` defaults.
+    fn iterate_n<const N: usize>(&mut self, it: &Iteration) -> Result<(), SolveError> {
+        use gcs_runtime::iterate::{self, Failure, Settings};
+        let mut x = [0.0; N];
+        let mut scale = [0.0; N];
+        for (k, d) in it.defaults.iter().enumerate() {
+            x[k] = self.defaults[d.0 as usize];
+            // An angle's natural step is a radian; a length's, the configuration's size.
+            scale[k] = if self.plan.defaults[d.0 as usize].is_angle() {
+                1.0
+            } else {
+                1.0 + self.scale
+            };
+        }
+        let saved = (self.config.clone(), self.regs.clone(), self.chosen.clone());
+        let settings = Settings {
+            tolerance: gcs_runtime::tol::ITERATION_REL * (1.0 + self.scale),
+            ..Settings::default()
+        };
+        let outcome = iterate::solve(&mut x, &scale, &settings, |x: &[f64; N], r| {
+            self.assemble(it, &saved, x, r)
+        });
+        match outcome {
+            Ok(converged) => {
+                self.iterations += converged.iterations;
+                // Leave the machine in the assembly converged to.
+                let mut r = [0.0; N];
+                self.assemble(it, &saved, &x, &mut r)
+            }
+            Err(Failure::Start(e)) => Err(e),
+            Err(Failure::NoConvergence { residual, .. }) => {
+                let end = it.end.saturating_sub(1);
+                Err(self.error(end, ErrorKind::NoConvergence, residual))
+            }
+        }
+    }
+
+    /// Assembles iterated region `it` from the state `saved` at its start with its defaults
+    /// at `x`, and writes the errors its closes measure into `r`.
+    fn assemble(
+        &mut self,
+        it: &Iteration,
+        saved: &(Config, Vec<Option<Val>>, Vec<Option<usize>>),
+        x: &[f64],
+        r: &mut [f64],
+    ) -> Result<(), SolveError> {
+        (self.config, self.regs, self.chosen) = saved.clone();
+        for (d, &v) in it.defaults.iter().zip(x) {
+            self.defaults[d.0 as usize] = v;
+        }
+        self.errors = Some(Vec::with_capacity(r.len()));
+        self.evaluations += 1;
+        let plan = self.plan;
+        let mut outcome = Ok(());
+        for i in it.start..it.end {
+            outcome = self.step(i, &plan.steps[i]);
+            if outcome.is_err() {
+                break;
+            }
+        }
+        let errors = self.errors.take().unwrap_or_default();
+        outcome?;
+        for (slot, e) in r.iter_mut().zip(errors) {
+            *slot = e;
+        }
+        Ok(())
+    }
+
     fn get(&self, r: Reg) -> Option<&Val> {
         self.regs.get(r.0 as usize)?.as_ref()
     }
@@ -230,7 +413,20 @@ impl Machine<'_> {
             }
             Op::Const(c) => Val::S(*c),
             Op::Default(d) => {
-                Val::S(self.defaults.get(d.0 as usize).copied().unwrap_or_else(|| {
+                let k = d.0 as usize;
+                // On the sketch, the value that moves nothing: what its measure holds.
+                let measured = (self.plan.defaults.get(k))
+                    .and_then(|v| v.measure)
+                    .filter(|_| self.reached.is_some())
+                    .and_then(|m| match self.get(m) {
+                        Some(&Val::S(x)) => Some(x),
+                        _ => None,
+                    });
+                if let (Some(x), Some(reached)) = (measured, self.reached.as_deref_mut()) {
+                    reached[k] = Some(x);
+                    self.defaults[k] = x;
+                }
+                Val::S(self.defaults.get(k).copied().unwrap_or_else(|| {
                     panic!("bug in gcs: no value for default {} of the plan", d.0)
                 }))
             }
@@ -315,6 +511,39 @@ impl Machine<'_> {
             Op::DirOf(g) => Val::V(self.config.dir(model, *g)),
             Op::Axis(x, y) => Val::V(V2::new(*x, *y)),
             Op::Rotated { dir, angle } => Val::V(UnitComplex::new(self.s(*angle)) * self.v(*dir)),
+            Op::Error {
+                residual,
+                component,
+            } => Val::S(self.error_of(residual, *component)),
+            Op::AngleOf(dir) => {
+                let d = self.v(*dir);
+                Val::S(d.y.atan2(d.x))
+            }
+            Op::PointXY { x, y } => Val::P(P2::new(self.s(*x), self.s(*y))),
+            Op::LocusPoint { locus, at } => {
+                let t = self.s(*at);
+                Val::P(match self.get(*locus) {
+                    Some(&Val::L(l)) => l.at(t),
+                    Some(&Val::C(c)) => c.at(t),
+                    v => malformed(*locus, "a line or a circle", v),
+                })
+            }
+            Op::Implicit { locus, point } => {
+                let q = self.p(*point);
+                Val::S(match self.get(*locus) {
+                    Some(&Val::L(l)) => l.implicit(q),
+                    Some(&Val::C(c)) => c.implicit(q),
+                    v => malformed(*locus, "a line or a circle", v),
+                })
+            }
+            Op::LocusParam { locus, point } => {
+                let q = self.p(*point);
+                Val::S(match self.get(*locus) {
+                    Some(&Val::L(l)) => l.param_of(q),
+                    Some(&Val::C(c)) => c.param_of(q),
+                    v => malformed(*locus, "a line or a circle", v),
+                })
+            }
             Op::Circle { center, radius } => {
                 let rr = self.s(*radius);
                 if rr < 0.0 {
@@ -442,8 +671,18 @@ impl Machine<'_> {
                 constraint,
                 residual,
             } => {
+                let error = self.s(*residual);
+                if let Some(errors) = self.errors.as_mut() {
+                    // Inside an iteration: an error function, which it drives to zero.
+                    errors.push(error);
+                    return Ok(());
+                }
+                if self.reached.is_some() {
+                    // On the sketch: its defaults are where the iteration starts.
+                    return Ok(());
+                }
                 // Without an outer iteration the defaults given must close the region.
-                let r = self.s(*residual).abs();
+                let r = error.abs();
                 if r.is_nan() || r > self.tol {
                     return Err(err(model, *constraint, ErrorKind::NoConvergence, r));
                 }
@@ -524,6 +763,67 @@ impl Machine<'_> {
     }
 
     /// How far a check's relation is from holding: the runtime's residual of its kind.
+    /// The signed error of a relation (the residual is its magnitude).
+    fn error_of(&self, residual: &Residual, component: u8) -> f64 {
+        use check::error as e;
+        match *residual {
+            Residual::PointPoint { a, b, d: None } => {
+                e::coincidence(self.p(a), self.p(b), component)
+            }
+            Residual::PointPoint { a, b, d } => {
+                e::point_point(self.p(a), self.p(b), self.s_or_zero(d))
+            }
+            Residual::PointLine { p, base, dir, d } => {
+                e::point_line(self.p(p), self.p(base), self.v(dir), self.s_or_zero(d))
+            }
+            Residual::Angle { u, v, angle } => e::angle(self.v(u), self.v(v), self.s(angle)),
+            Residual::CircleLine {
+                centre,
+                radius,
+                base,
+                dir,
+                gap,
+                side,
+            } => e::circle_line(
+                self.p(centre),
+                self.s(radius),
+                self.p(base),
+                self.v(dir),
+                self.s_or_zero(gap),
+                side,
+            ),
+            Residual::PointCircle {
+                p,
+                centre,
+                radius,
+                gap,
+                outside,
+            } => e::point_circle(
+                self.p(p),
+                self.p(centre),
+                self.s(radius),
+                self.s_or_zero(gap),
+                outside,
+            ),
+            Residual::CircleCircle {
+                c1,
+                r1,
+                c2,
+                r2,
+                gap,
+                nesting,
+            } => e::circle_circle(
+                self.p(c1),
+                self.s(r1),
+                self.p(c2),
+                self.s(r2),
+                self.s_or_zero(gap),
+                nesting,
+            ),
+            Residual::Dim { value, target } => e::dimension(self.s(value), self.s(target)),
+        }
+    }
+
     fn residual(&self, residual: &Residual) -> f64 {
         match *residual {
             Residual::PointPoint { a, b, d } => {

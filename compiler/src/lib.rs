@@ -10,6 +10,7 @@
 //! [`verify`] re-checks every constraint on a solution without sharing code with the plan.
 //! Like every library crate here, it never prints or exits (but for the build-script API).
 
+pub mod all;
 pub mod analysis;
 pub mod build;
 pub mod codegen;
@@ -71,10 +72,31 @@ pub fn solve_plan(
     params: &[f64],
     branches: &[usize],
 ) -> Result<solution::Solution, SolveError> {
-    let run = interp::run(
+    solve_plan_with(
+        model,
+        plan,
+        scope,
+        params,
+        branches,
+        &plan.sketch_defaults(),
+    )
+}
+
+/// [`solve_plan`] with `defaults` (indexed like the plan's): the values of the defaults that
+/// parameterize free motions, and where the outer iterations start.
+pub fn solve_plan_with(
+    model: &gcs_lang::Model,
+    plan: &plan::Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    branches: &[usize],
+    defaults: &[f64],
+) -> Result<solution::Solution, SolveError> {
+    let run = interp::run_with(
         model,
         plan,
         params,
+        defaults,
         &interp::Choice::Given(branches.to_vec()),
     )?;
     let mut s = solution::Solution::read(model, &run.config, scope);
@@ -84,6 +106,11 @@ pub fn solve_plan(
         .zip(branches)
         .map(|(b, i)| (b.name.clone(), *i))
         .collect();
+    s.defaults = (plan.defaults.iter())
+        .zip(&run.defaults)
+        .map(|(d, v)| (d.name.clone(), *v))
+        .collect();
+    s.iterations = run.iterations;
     s.grounded = plan.grounded.map(|g| model.geoms[g].name.clone());
     s.max_residual = verify::max_residual_in(model, &s, params, scope);
     Ok(s)

@@ -83,12 +83,18 @@ pub fn analyse(model: &Model) -> Result<Analysis, AnalysisError> {
     Ok(analysis)
 }
 
-/// Sets each branch variable's default to the sketch's branch.
+/// Sets each branch variable's default to the sketch's branch, and each default's sketch
+/// value to the one that moves nothing on the sketch (least motion).
 fn choose_branch_defaults(model: &Model, plan: &mut Plan) {
-    let chosen = crate::interp::sketch_branches(model, plan);
+    let (chosen, reached) = crate::interp::sketch_choices(model, plan);
     for (b, index) in plan.branches.iter_mut().zip(chosen) {
         if let Some(i) = index {
             b.default = i;
+        }
+    }
+    for (d, value) in plan.defaults.iter_mut().zip(reached) {
+        if let Some(x) = value.filter(|x| x.is_finite()) {
+            d.sketch = x;
         }
     }
 }

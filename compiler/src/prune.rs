@@ -7,7 +7,7 @@
 //! coupler has been placed from it). Only geoms the pruned plan places completely are reported;
 //! branch variables of pruned intersections disappear.
 
-use crate::plan::{BranchId, DefaultId, Iteration, Op, Plan, Reg};
+use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan, Reg};
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use std::collections::{BTreeSet, HashMap};
@@ -116,7 +116,11 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
                 let next = DefaultId(default_map.len() as u32);
                 let new = *default_map.entry(*d).or_insert(next);
                 if new == next {
-                    out.defaults.push(plan.defaults[d.0 as usize].clone());
+                    let measure = None; // the pruned plan's registers are others
+                    (out.defaults).push(DefaultVar {
+                        measure,
+                        ..plan.defaults[d.0 as usize].clone()
+                    });
                 }
                 *d = new;
             }

@@ -34,9 +34,28 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     let free = a.free_geoms();
     let nominal = crate::nominal::count(model);
-    // More freedom than the constraints nominally remove: the model is under-constrained, and
-    // the constraints left unsolved wait on that freedom (defaults land with their issue).
-    let under = nominal.balance() > 0 || (a.unsolved.is_empty() && !free.is_empty());
+    // A motion the constraints leave free, parameterized by a default: the model solves
+    // with it where the sketch has it (least motion), which a user should know.
+    for d in a.free_defaults() {
+        let var = &a.plan.defaults[d.0 as usize];
+        let span = var.geom.map(|g| model.geoms[g].span).unwrap_or_default();
+        let subject = var
+            .geom
+            .map_or_else(String::new, |g| format!("`{}` ", model.geoms[g].name));
+        out.push(
+            Diagnostic::warning(
+                span,
+                format!("{subject}is under-constrained: default `{}` fixes {}", var.name, var.meaning),
+            )
+            .with_label(format!("free: `{}`, the sketch's {} unless given", var.name, Shown(var.sketch)))
+            .with_note(
+                "the solve keeps it where the sketch has it (least motion); add a constraint to fix it, or give the default (`--default NAME=VALUE`, the generated solver's `Defaults`)",
+            ),
+        );
+    }
+    // More freedom than the constraints nominally remove and no default for it: the model is
+    // under-constrained, and the constraints left unsolved wait on that freedom.
+    let under = !free.is_empty() && (nominal.balance() > 0 || a.unsolved.is_empty());
     if under {
         let waiting: Vec<String> = a
             .unsolved
@@ -75,15 +94,21 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
             );
         }
     }
-    if out.is_empty() {
+    if !out.iter().any(Diagnostic::is_error) {
         let params = model.default_params();
         let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-        if let Err(e) = crate::interp::run(
-            model,
-            &a.plan,
-            &params,
-            &crate::interp::Choice::Given(branches),
-        ) {
+        // An iterated plan fails here only if no assembly exists on these branches, wherever
+        // the iteration starts.
+        let solved = if a.plan.iterations.is_empty() {
+            let choice = crate::interp::Choice::Given(branches);
+            crate::interp::run(model, &a.plan, &params, &choice).map(|_| ())
+        } else {
+            let all = a.plan.touched(model);
+            let defaults = a.plan.sketch_defaults();
+            crate::all::least_motion(model, &a.plan, &all, &params, &branches, &defaults)
+                .map(|_| ())
+        };
+        if let Err(e) = solved {
             if let Some((_, c)) = model.constraints.iter().find(|(_, c)| c.name == e.label) {
                 let what = match e.kind {
                     gcs_runtime::error::ErrorKind::Inconsistent => {
@@ -161,14 +186,42 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
         );
     }
     let free = a.free_geoms();
+    let free_defaults = a.free_defaults();
     let status = if !free.is_empty() {
-        "under-constrained"
+        "under-constrained".to_string()
+    } else if !free_defaults.is_empty() {
+        format!(
+            "under-constrained: mobility {}, each free motion held by a default at its sketch value",
+            free_defaults.len()
+        )
     } else if !a.redundant.is_empty() {
-        "well-constrained, with redundant constraints"
+        "well-constrained, with redundant constraints".to_string()
     } else {
-        "well-constrained"
+        "well-constrained".to_string()
     };
     let _ = writeln!(out, "analysis: {status}");
+    for d in &free_defaults {
+        let var = &a.plan.defaults[d.0 as usize];
+        let _ = writeln!(
+            out,
+            "  default {} (sketch {}): {}",
+            var.name,
+            Shown(var.sketch),
+            var.meaning
+        );
+    }
+    for it in &a.plan.iterations {
+        let closes: Vec<&str> = (a.plan.closes(it).into_iter())
+            .map(|c| model.constraints[c].name.as_str())
+            .collect();
+        let _ = writeln!(
+            out,
+            "  no closed form: iterates on {} until {} close{}",
+            a.plan.varied(it).join(", "),
+            closes.join(", "),
+            if closes.len() == 1 { "s" } else { "" }
+        );
+    }
     for c in &a.redundant {
         let con = &model.constraints[*c];
         let _ = writeln!(
@@ -219,6 +272,12 @@ pub fn solution_text(s: &Solution) -> String {
     }
     for (n, b) in &s.branches {
         let _ = writeln!(out, "branch {n} = {b}");
+    }
+    for (n, d) in &s.defaults {
+        let _ = writeln!(out, "default {n} = {}", fixed12(*d));
+    }
+    if s.iterations > 0 {
+        let _ = writeln!(out, "iterations {}", s.iterations);
     }
     if let Some(g) = &s.grounded {
         let _ = writeln!(out, "grounded {g}");

@@ -20,8 +20,10 @@ pub struct Solution {
     pub frames: Vec<(String, Vec<f64>, Vec<Vec<f64>>)>,
     /// The index of every branch variable.
     pub branches: Vec<(String, usize)>,
-    /// The value of every default (none yet: defaults land with their issue).
+    /// The value of every default: as given, or as the outer iteration converged to.
     pub defaults: Vec<(String, f64)>,
+    /// The steps the outer iterations took (0 for a closed-form plan).
+    pub iterations: u32,
     /// The geom grounded at its sketch, if nothing was fixed.
     pub grounded: Option<String>,
     /// The largest constraint violation, measured by [`crate::verify`].
@@ -185,6 +187,7 @@ impl Solution {
                 .collect(),
             false,
         );
+        let _ = writeln!(o, "  \"iterations\": {},", self.iterations);
         let _ = writeln!(
             o,
             "  \"grounded\": {},",

@@ -1206,7 +1206,7 @@ fn label(model: &Model, l: &str) -> Option<ConstraintId> {
 /// The record of `P`'s cluster: signature and DOF.
 fn record_of(model: &Model, a: &Analysis) -> String {
     let p = model.geom_named("P").expect("P");
-    match a.clusters.iter().find(|c| c.geoms.contains(&p)) {
+    match a.undefaulted.iter().find(|c| c.geoms.contains(&p)) {
         Some(c) => format!("{} ({} DOF)", c.signature(), c.dof),
         None => "?".into(),
     }
@@ -1231,6 +1231,10 @@ fn op_name(op: &Op) -> Option<String> {
         Op::ShiftedCircle { .. } => "shifted circle".into(),
         Op::ParallelLine { .. } => "parallel line".into(),
         Op::OffsetLine { .. } => "offset line".into(),
+        Op::Default(_) => "default".into(),
+        Op::LocusPoint { .. } => "point on locus".into(),
+        Op::PointXY { .. } => "point".into(),
+        Op::Close { .. } => "close by iteration".into(),
         _ => return None,
     })
 }

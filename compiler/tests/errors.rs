@@ -160,79 +160,59 @@ fn the_example_four_bar_assembles() {
     assert!(problems(&model, &a).is_empty());
 }
 
-/// Asserts `problems` says `geom` is under-constrained with `dof` DOF left.
-fn assert_free(model: &Model, a: &Analysis, geoms: &[(&str, usize)]) {
-    let p: Vec<String> = problems(model, a)
-        .iter()
-        .filter(|d| d.is_error())
-        .map(diag_text)
-        .collect();
-    for (geom, dof) in geoms {
-        assert!(
-            p.iter().any(|d| d.contains(&format!("`{geom}`"))
-                && d.contains("under-constrained")
-                && d.contains(&format!("{dof} DOF"))),
-            "no error names `{geom}` as free with {dof} DOF: {p:#?}"
-        );
-    }
-    let free: Vec<(String, usize)> = a
-        .free_geoms()
-        .into_iter()
-        .map(|(g, d)| (model.geoms[g].name.clone(), d))
-        .collect();
-    for (geom, dof) in geoms {
-        assert!(
-            free.contains(&(geom.to_string(), *dof)),
-            "free_geoms {free:?} lacks ({geom}, {dof})"
-        );
-    }
-}
-
 #[test]
 fn a_pinned_crank_without_its_drive_is_free_to_rotate() {
+    // Its one free motion is a default at the sketch's angle: the solve leaves it there.
     let model = load(
         "space 2d;
 fixed point A = (0, 0);
-body crank { point a = (0, 0); point b = (1.5, 0); }
+body crank at (0.5, 0.5) rotated 30 deg { point a = (0, 0); point b = (1.5, 0); }
 coincident(crank.a, A);
 ",
     );
     let a = analyse(&model).expect("analyse");
     assert!(a.unsolved.is_empty());
-    assert_free(&model, &a, &[("crank", 1)]);
+    assert!(a.free_geoms().is_empty(), "the default holds it");
+    let free: Vec<&str> = (a.free_defaults().iter())
+        .map(|d| a.plan.defaults[d.0 as usize].name.as_str())
+        .collect();
+    assert_eq!(free, ["crank_angle"]);
+    let sketch = a.plan.defaults[0].sketch;
+    assert!((sketch - 30f64.to_radians()).abs() < 1e-15, "{sketch}");
+    let s = solve_defaults(&model, &a).expect("solves");
+    let b = &s.points.iter().find(|(n, _)| n == "crank.b").expect("b").1;
+    let want = [
+        1.5 * 30f64.to_radians().cos(),
+        1.5 * 30f64.to_radians().sin(),
+    ];
+    assert!(
+        (b[0] - want[0]).abs() < 1e-15 && (b[1] - want[1]).abs() < 1e-15,
+        "{b:?}"
+    );
 }
 
 #[test]
 fn a_four_bar_without_its_drive_is_under_constrained() {
-    // Without `drive` the four-bar keeps its one DOF: the report must say which geoms are left
-    // free and by how much (each of the three moving links turns with the mechanism's one DOF),
-    // not that some constraint has no plan.
+    // Without `drive` the four-bar keeps its one DOF: the report says so as a warning, with
+    // the true mobility (one default, on the crank, not a DOF on each link), and the solve
+    // keeps the crank where the sketch has it.
     let model = load(&fourbar("(4, 0)", "(0, 3)", "", false));
     let a = analyse(&model).expect("analyse");
-    let p: Vec<String> = problems(&model, &a)
-        .iter()
-        .filter(|d| d.is_error())
-        .map(diag_text)
-        .collect();
-    assert!(!p.is_empty(), "an under-constrained model has problems");
-    let free: Vec<(String, usize)> = a
-        .free_geoms()
-        .into_iter()
-        .map(|(g, d)| (model.geoms[g].name.clone(), d))
-        .collect();
+    let problems = problems(&model, &a);
+    assert!(problems.iter().all(|d| !d.is_error()), "{problems:#?}");
+    let warnings: Vec<String> = problems.iter().map(diag_text).collect();
+    assert_eq!(warnings.len(), 1, "{warnings:#?}");
     assert!(
-        p.iter().any(|d| d.contains("under-constrained")
-            && ["crank", "coupler", "rocker"]
-                .iter()
-                .any(|g| d.contains(&format!("`{g}`")))
-            && d.contains("DOF")),
-        "no error names the free links and their DOF: {p:#?}\nfree_geoms: {free:?}"
+        warnings[0].contains("`crank` is under-constrained")
+            && warnings[0].contains("default `crank_angle`"),
+        "{warnings:#?}"
     );
-    // Never a wrong answer: whatever the plan does, it does not claim a solution that breaks
-    // a constraint.
-    if let Ok(s) = solve_defaults(&model, &a) {
-        assert!(s.max_residual <= 1e-12 * 5.0, "{}", s.max_residual);
-    }
+    assert!(a.free_geoms().is_empty());
+    assert_eq!(a.free_defaults().len(), 1, "the mobility is one");
+    let s = solve_defaults(&model, &a).expect("solves at the sketch");
+    assert!(s.max_residual <= 1e-12 * 5.0, "{}", s.max_residual);
+    let b = &s.points.iter().find(|(n, _)| n == "crank.b").expect("b").1;
+    assert_eq!(b, &vec![1.5, 0.0], "the crank stays where it is sketched");
 }
 
 fn redundant_names(model: &Model, a: &Analysis) -> Vec<String> {

@@ -912,9 +912,16 @@ pub fn param_value(
     param: crate::expr::ParamId,
     text: &str,
 ) -> Result<f64, String> {
-    let (v, dim) = eval_expression(model, text)?;
     let p = &model.params[param];
-    let fits = dim == Dim::Number || p.dim == Dim::Number || dim == p.dim;
+    value_for(model, &p.name, p.dim, text)
+}
+
+/// The value of something named `name` that holds `want` (a param, a default), given as text
+/// on the command line, checked as [`param_value`] checks a param's.
+pub fn value_for(model: &crate::Model, name: &str, want: Dim, text: &str) -> Result<f64, String> {
+    let (v, dim) = eval_expression(model, text)?;
+    let p = (name, want);
+    let fits = dim == Dim::Number || p.1 == Dim::Number || dim == p.1;
     if fits {
         Ok(v)
     } else {
@@ -926,8 +933,8 @@ pub fn param_value(
             "`{}` is {}, but `{}` holds {}; {hint}",
             text.trim(),
             dim.noun(),
-            p.name,
-            p.dim.noun()
+            p.0,
+            p.1.noun()
         ))
     }
 }

@@ -88,6 +88,74 @@ pub fn dimension(value: f64, target: f64) -> f64 {
     (value - target).abs()
 }
 
+/// The signed errors of the residuals above, zero when the relation holds: the error
+/// functions an outer iteration drives to zero (its sign tells a root finder which side it
+/// is on). Each residual above is the magnitude of its error.
+pub mod error {
+    use super::{signed_distance, Nesting, P2, V2};
+
+    /// `|a - b| - d`.
+    #[inline]
+    pub fn point_point(a: P2, b: P2, d: f64) -> f64 {
+        (a - b).norm() - d
+    }
+
+    /// One coordinate (`axis` 0 for x, 1 for y) of `b - a`: a coincidence closes two errors.
+    #[inline]
+    pub fn coincidence(a: P2, b: P2, axis: u8) -> f64 {
+        let v = b - a;
+        if axis == 0 {
+            v.x
+        } else {
+            v.y
+        }
+    }
+
+    /// The signed distance of `p` from the line through `base` along unit `dir`, minus `d`.
+    #[inline]
+    pub fn point_line(p: P2, base: P2, dir: V2, d: f64) -> f64 {
+        signed_distance(base, dir, p) - d
+    }
+
+    /// The counter-clockwise angle from `u` turned by `angle` to `v`, in (-pi, pi].
+    #[inline]
+    pub fn angle(u: V2, v: V2, angle: f64) -> f64 {
+        let (s, c) = angle.sin_cos();
+        let w = V2::new(u.x * c - u.y * s, u.x * s + u.y * c);
+        (w.x * v.y - w.y * v.x).atan2(w.dot(&v))
+    }
+
+    /// `side * sd(centre) - radius - gap`.
+    #[inline]
+    pub fn circle_line(centre: P2, radius: f64, base: P2, dir: V2, gap: f64, side: f64) -> f64 {
+        side * signed_distance(base, dir, centre) - radius - gap
+    }
+
+    /// `|p - centre| - (radius ± gap)`.
+    #[inline]
+    pub fn point_circle(p: P2, centre: P2, radius: f64, gap: f64, outside: bool) -> f64 {
+        let reach = if outside { radius + gap } else { radius - gap };
+        (p - centre).norm() - reach
+    }
+
+    /// `|c1 - c2|` minus the distance of centres `nesting` and `gap` ask for.
+    #[inline]
+    pub fn circle_circle(c1: P2, r1: f64, c2: P2, r2: f64, gap: f64, nesting: Nesting) -> f64 {
+        let apart = match nesting {
+            Nesting::Apart => r1 + r2 + gap,
+            Nesting::FirstInside => r2 - r1 - gap,
+            Nesting::SecondInside => r1 - r2 - gap,
+        };
+        (c1 - c2).norm() - apart
+    }
+
+    /// `value - target`.
+    #[inline]
+    pub fn dimension(value: f64, target: f64) -> f64 {
+        value - target
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

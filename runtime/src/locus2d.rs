@@ -133,6 +133,12 @@ impl Line {
         cross(self.dir, p - self.point)
     }
 
+    /// The implicit function of the line, as every locus has one: [`Line::signed_distance`].
+    #[inline]
+    pub fn implicit(&self, p: P2) -> f64 {
+        self.signed_distance(p)
+    }
+
     /// The distance of `p` from the line (the residual).
     #[inline]
     pub fn residual(&self, p: P2) -> f64 {

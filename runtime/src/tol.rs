@@ -17,6 +17,11 @@ pub const ANGLE: f64 = 1e-12;
 /// any violation a user would call small.
 pub const CHECK_REL: f64 = 1e-9;
 
+/// Relative tolerance on the error functions of an outer iteration (times `1 + scale`): a
+/// thousandth of a check's, so that a plan that iterates meets its constraints as closely as
+/// one in closed form; `iterate::solve` then polishes to rounding level where it can.
+pub const ITERATION_REL: f64 = 1e-12;
+
 /// Relative tolerance of a tangency: loci whose gap or overlap is below this, relative to the
 /// scale, touch in one double root rather than missing each other or crossing twice. It is a
 /// few units of rounding: loci built by earlier steps of a plan carry that much, and a gap any

@@ -45,12 +45,19 @@ enum Command {
         /// Choose a branch: `NAME=INDEX` (see `gcs explain` for what each index means).
         #[arg(long = "branch", value_name = "NAME=INDEX")]
         branch: Vec<String>,
+        /// Set a default: `NAME=EXPR`, units allowed (`crank_angle=30deg`): the value of a
+        /// motion the constraints leave free, or where an outer iteration starts.
+        #[arg(long = "default", value_name = "NAME=VALUE")]
+        default: Vec<String>,
         /// Print one JSON object.
         #[arg(long)]
         json: bool,
         /// Solve every geom, not only what the `output` statements need.
         #[arg(long)]
         all: bool,
+        /// List every real assembly: each branch combination, and each root of an iteration.
+        #[arg(long)]
+        all_solutions: bool,
     },
     /// Print the assembly plan as steps a person can follow.
     Explain {
@@ -110,9 +117,18 @@ fn main() -> ExitCode {
             file,
             set,
             branch,
+            default,
             json,
             all,
-        } => solve(&file, &set, &branch, json, all, color),
+            all_solutions,
+        } => solve(
+            &file,
+            &set,
+            &branch,
+            &default,
+            (json, all, all_solutions),
+            color,
+        ),
         Command::Compile { file, output } => with_analysis(&file, color, |c| {
             let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(
                 &c.model,
@@ -240,12 +256,13 @@ fn with_analysis(
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn solve(
     path: &Path,
     set: &[String],
     branch: &[String],
-    json: bool,
-    all: bool,
+    default: &[String],
+    (json, all, all_solutions): (bool, bool, bool),
     color: termcolor::ColorChoice,
 ) -> ExitCode {
     with_analysis(path, color, |c| {
@@ -310,6 +327,46 @@ fn solve(
                 }
             }
         }
+        let mut defaults = analysis.plan.sketch_defaults();
+        for s in default {
+            let Some((name, value)) = s.split_once('=') else {
+                eprintln!("error: `--default {s}`: expected NAME=VALUE");
+                return ExitCode::from(2);
+            };
+            let Some(i) = analysis
+                .plan
+                .defaults
+                .iter()
+                .position(|d| d.name == name.trim())
+            else {
+                let names: Vec<&str> = (analysis.plan.defaults.iter())
+                    .map(|d| d.name.as_str())
+                    .collect();
+                eprintln!(
+                    "error: `--default {s}`: no default `{}`; the defaults are: {}",
+                    name.trim(),
+                    if names.is_empty() {
+                        "(none)".to_string()
+                    } else {
+                        names.join(", ")
+                    }
+                );
+                return ExitCode::from(2);
+            };
+            let var = &analysis.plan.defaults[i];
+            let dim = if var.is_angle() {
+                gcs_lang::expr::Dim::Angle
+            } else {
+                gcs_lang::expr::Dim::Length
+            };
+            match gcs_lang::parse::value_for(model, &var.name, dim, value) {
+                Ok(v) => defaults[i] = v,
+                Err(e) => {
+                    eprintln!("error: `--default {s}`: {e}");
+                    return ExitCode::from(2);
+                }
+            }
+        }
         // With `output` statements, only what they need is computed, as in a compiled solver.
         let all_geoms: std::collections::BTreeSet<_> =
             model.top_level().map(|(id, _)| id).collect();
@@ -340,7 +397,47 @@ fn solve(
                 );
             }
         }
-        match gcs_compiler::solve_plan(model, &plan, &scope, &params, &chosen) {
+        // Each kept default's value, by name (pruning renumbers them).
+        let kept_defaults: Vec<f64> = (plan.defaults.iter())
+            .map(|d| {
+                (analysis.plan.defaults.iter())
+                    .position(|w| w.name == d.name)
+                    .map_or(d.sketch, |i| defaults[i])
+            })
+            .collect();
+        if all_solutions {
+            let found = gcs_compiler::all::solve_all(model, &plan, &scope, &params, &kept_defaults);
+            if json {
+                println!("{}", found.to_json());
+            } else {
+                for (k, s) in found.solutions.iter().enumerate() {
+                    println!("solution {}:", k + 1);
+                    print!("{}", gcs_compiler::report::solution_text(s));
+                }
+                println!(
+                    "{} real assembl{}{}",
+                    found.solutions.len(),
+                    if found.solutions.len() == 1 {
+                        "y"
+                    } else {
+                        "ies"
+                    },
+                    if found.complete {
+                        ""
+                    } else {
+                        " found (the search is not exhaustive)"
+                    }
+                );
+            }
+            return ExitCode::SUCCESS;
+        }
+        // Given no defaults, an iterated plan returns the assembly that moves least.
+        let solved = if default.is_empty() {
+            gcs_compiler::all::least_motion(model, &plan, &scope, &params, &chosen, &kept_defaults)
+        } else {
+            gcs_compiler::solve_plan_with(model, &plan, &scope, &params, &chosen, &kept_defaults)
+        };
+        match solved {
             Ok(solution) => {
                 if json {
                     println!("{}", solution.to_json());

@@ -47,26 +47,31 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
         .flat_map(|c| c.record.recorded())
         .filter(|c| !listed.contains(c))
         .collect();
-    let clusters = b
-        .clusters
-        .iter()
-        .map(|c| Cluster {
-            geoms: c.geoms.clone(),
-            dof: c.record.dof(),
-            table2: c.record.table2(),
-            freedom: c
-                .geoms
-                .first()
-                .map_or_else(String::new, |&g| c.record.freedom(model, g)),
-        })
-        .collect();
+    let clusters = summary(model, &b.clusters);
+    let undefaulted = match &b.undefaulted {
+        Some(states) => summary(model, states),
+        None => clusters.clone(),
+    };
     Ok(Analysis {
         plan: b.plan,
         clusters,
+        undefaulted,
         unsolved,
         recorded,
         redundant: b.redundant,
     })
+}
+
+/// The clusters as the analysis reports them.
+fn summary<R: Invariants>(model: &Model, states: &[ClusterState<R>]) -> Vec<Cluster> {
+    (states.iter())
+        .map(|c| Cluster {
+            geoms: c.geoms.clone(),
+            dof: c.record.dof(),
+            table2: c.record.table2(),
+            freedom: (c.geoms.first()).map_or_else(String::new, |&g| c.record.freedom(model, g)),
+        })
+        .collect()
 }
 
 /// What makes two relations duplicates: the same kind over the same features.
@@ -140,6 +145,8 @@ pub(crate) struct Builder<'m, G: Geometry> {
     redundant: Vec<ConstraintId>,
     /// The keys of the relations done so far: a duplicate waits for its key here.
     done: HashSet<RelKey<G::Relation>>,
+    /// The clusters before the first default, once one is added.
+    undefaulted: Option<Vec<ClusterState<G::Record>>>,
 }
 
 impl<'m, G: Geometry> Builder<'m, G> {
@@ -175,6 +182,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             pending: Vec::new(),
             redundant: Vec::new(),
             done: HashSet::default(),
+            undefaulted: None,
         }
     }
 
@@ -437,12 +445,257 @@ impl<'m, G: Geometry> Builder<'m, G> {
         // POSITION-ANALYSIS (000, Appendix A.3): action and locus analysis until stuck; then
         // the smallest rigid chain or loop is assembled on a temporary ground and rewritten as
         // a macro-geom; repeat.
+        //
+        // When neither applies and clusters still move (000, section 5.2.1), a default fixes
+        // one freedom of the cluster with the fewest DOF, preferring those the pending
+        // relations involve; the constraints it displaces become the error functions of an
+        // outer iteration ([`Builder::close_iterations`]), and one that displaces none
+        // parameterizes a free motion.
         loop {
             self.fixpoint(None);
-            if self.pending.is_empty() || !self.group() {
+            if !self.pending.is_empty() && self.group() {
+                continue;
+            }
+            if self.undefaulted.is_none() {
+                self.undefaulted = Some(self.clusters.clone());
+            }
+            let candidates = self.default_candidates();
+            if candidates.is_empty() || !G::default(self, &candidates) {
                 break;
             }
         }
+        self.close_iterations();
+    }
+
+    /// Clusters that may take a default: not grounded, in the order Kramer picks a loop to
+    /// rigidify: those a pending relation involves first, then by fewest DOF, then by name.
+    fn default_candidates(&self) -> Vec<usize> {
+        let involved: BTreeSet<usize> = (self.pending.iter())
+            .flat_map(|r| self.clusters_of(r))
+            .collect();
+        let mut out: Vec<usize> = (0..self.clusters.len())
+            .filter(|&k| {
+                let c = &self.clusters[k];
+                !c.geoms.is_empty() && c.record.dof() > 0
+            })
+            .collect();
+        out.sort_by_cached_key(|&k| {
+            let c = &self.clusters[k];
+            (
+                !involved.contains(&k),
+                c.record.dof(),
+                self.name(c.geoms[0]),
+            )
+        });
+        out
+    }
+
+    /// Case (b) of 000, section 5.2.1: a run-time check that depends on a default is a
+    /// constraint that the default displaced. Taking the checks in plan order, each becomes the
+    /// error function of the latest default it depends on that no earlier one closes (a
+    /// coincidence closes two): `Op::Error` measures it signed, `Op::Close` drives it to zero.
+    /// The defaults so closed are varied by outer iterations, over the steps from the first
+    /// such default to its last close (overlapping regions merge); the others parameterize a
+    /// free motion (case (a)). A check no open default explains stays a check.
+    fn close_iterations(&mut self) {
+        use crate::plan::{DefaultId, Iteration, Residual};
+        if self.plan.defaults.is_empty() {
+            return;
+        }
+        let model = self.model;
+        // The defaults each register and each top-level geom's placement depend on.
+        let mut reg_deps: Vec<BTreeSet<u32>> = vec![BTreeSet::new(); self.plan.regs as usize];
+        let mut geom_deps: HashMap<GeomId, BTreeSet<u32>> = HashMap::default();
+        let mut closed: BTreeSet<u32> = BTreeSet::new();
+        let mut steps = Vec::with_capacity(self.plan.steps.len());
+        // For each closed default: the step that reads it and its last close, in new steps.
+        let mut spans: BTreeMap<u32, (usize, usize)> = BTreeMap::new();
+        let mut regs = self.plan.regs;
+        for step in std::mem::take(&mut self.plan.steps) {
+            let mut deps: BTreeSet<u32> = BTreeSet::new();
+            for r in step.op.reads() {
+                deps.extend(reg_deps[r.0 as usize].iter().copied());
+            }
+            match &step.op {
+                Op::Default(d) => {
+                    deps.insert(d.0);
+                }
+                Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) => {
+                    if let Some(g) = geom_deps.get(&model.top_level_of(*f)) {
+                        deps.extend(g.iter().copied());
+                    }
+                }
+                Op::Translate { geoms, .. }
+                | Op::RotatePoint { geoms, .. }
+                | Op::RotateDir { geoms, .. } => {
+                    for g in geoms {
+                        geom_deps
+                            .entry(*g)
+                            .or_default()
+                            .extend(deps.iter().copied());
+                    }
+                }
+                Op::SetDim { geom, .. } => {
+                    geom_deps
+                        .entry(*geom)
+                        .or_default()
+                        .extend(deps.iter().copied());
+                }
+                _ => {}
+            }
+            if let Some((r, _)) = step.out {
+                reg_deps[r.0 as usize] = deps.clone();
+            }
+            // A point that a 1-DOF motion must reach on its locus, displaced by a default: it
+            // goes to the locus' nearest point, and its distance closes the iteration.
+            if let (
+                Op::Onto {
+                    locus,
+                    point,
+                    constraint,
+                },
+                Some(&d),
+            ) = (&step.op, deps.difference(&closed).last())
+            {
+                closed.insert(d);
+                let (locus, point, constraint) = (*locus, *point, *constraint);
+                let error = Reg(regs);
+                regs += 1;
+                steps.push(Step {
+                    op: Op::Nearest { locus, point },
+                    ..step.clone()
+                });
+                steps.push(Step {
+                    op: Op::Implicit { locus, point },
+                    out: Some((error, Ty::Scalar)),
+                    satisfies: Vec::new(),
+                    explain: String::new(),
+                });
+                let (cname, name) = (self.cname(constraint), &self.plan.defaults[d as usize].name);
+                steps.push(Step {
+                    op: Op::Close {
+                        constraint,
+                        residual: error,
+                    },
+                    out: None,
+                    satisfies: Vec::new(),
+                    explain: format!(
+                        "{cname} is what `{name}` displaced: how far its point is from its locus closes the iteration on `{name}`."
+                    ),
+                });
+                spans.entry(d).or_insert((usize::MAX, 0)).1 = steps.len();
+                continue;
+            }
+            let Op::Check {
+                constraint,
+                residual,
+            } = &step.op
+            else {
+                steps.push(step);
+                continue;
+            };
+            let components: u8 = match residual {
+                Residual::PointPoint { d: None, .. } => 2,
+                _ => 1,
+            };
+            let open: Vec<u32> = deps.difference(&closed).copied().collect();
+            if open.len() < usize::from(components) {
+                steps.push(step);
+                continue;
+            }
+            let (constraint, residual) = (*constraint, residual.clone());
+            let cname = self.cname(constraint);
+            for (component, &d) in open.iter().rev().take(components.into()).enumerate() {
+                closed.insert(d);
+                let error = Reg(regs);
+                regs += 1;
+                let words = if components == 2 {
+                    [" along x", " along y"][component]
+                } else {
+                    ""
+                };
+                steps.push(Step {
+                    op: Op::Error {
+                        residual: residual.clone(),
+                        component: component as u8,
+                    },
+                    out: Some((error, Ty::Scalar)),
+                    satisfies: Vec::new(),
+                    explain: String::new(),
+                });
+                let last = component + 1 == usize::from(components);
+                let name = &self.plan.defaults[d as usize].name;
+                steps.push(Step {
+                    op: Op::Close {
+                        constraint,
+                        residual: error,
+                    },
+                    out: None,
+                    satisfies: if last { step.satisfies.clone() } else { Vec::new() },
+                    explain: format!(
+                        "{cname} is what `{name}` displaced: its error{words} closes the iteration on `{name}`."
+                    ),
+                });
+                spans.entry(d).or_insert((usize::MAX, 0)).1 = steps.len();
+            }
+            self.redundant.retain(|c| *c != constraint);
+        }
+        self.plan.steps = steps;
+        self.plan.regs = regs;
+        for (i, s) in self.plan.steps.iter().enumerate() {
+            if let Op::Default(d) = s.op {
+                if let Some(span) = spans.get_mut(&d.0) {
+                    span.0 = span.0.min(i);
+                }
+            }
+        }
+        // Regions in step order, overlapping ones merged.
+        let mut regions: Vec<(usize, usize, Vec<DefaultId>)> = spans
+            .iter()
+            .map(|(&d, &(start, end))| (start, end, vec![DefaultId(d)]))
+            .collect();
+        regions.sort_by_key(|r| r.0);
+        let mut merged: Vec<(usize, usize, Vec<DefaultId>)> = Vec::new();
+        for (start, end, ds) in regions {
+            match merged.last_mut() {
+                Some(last) if start < last.1 => {
+                    last.1 = last.1.max(end);
+                    last.2.extend(ds);
+                }
+                _ => merged.push((start, end, ds)),
+            }
+        }
+        self.plan.iterations = merged
+            .into_iter()
+            .map(|(start, end, mut defaults)| {
+                defaults.sort_by_key(|d| d.0);
+                Iteration {
+                    defaults,
+                    start,
+                    end,
+                }
+            })
+            .collect();
+    }
+
+    /// Declares a default named `name`, meaning `meaning`, whose least-motion value register
+    /// `measure` holds when the plan runs on the sketch; returns the register of its value.
+    pub(crate) fn default_value(
+        &mut self,
+        geom: GeomId,
+        name: String,
+        meaning: String,
+        measure: Reg,
+    ) -> Reg {
+        let id = crate::plan::DefaultId(self.plan.defaults.len() as u32);
+        self.plan.defaults.push(crate::plan::DefaultVar {
+            name: name.clone(),
+            meaning,
+            geom: Some(self.model.top_level_of(geom)),
+            sketch: 0.0,
+            measure: Some(measure),
+        });
+        self.value(Op::Default(id), Ty::Scalar, format!("default `{name}`"))
     }
 
     /// Action analysis, then locus analysis, until neither applies to any pending relation

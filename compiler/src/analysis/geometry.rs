@@ -116,4 +116,11 @@ pub(crate) trait Geometry: Sized + Clone {
 
     /// Grounds a model in which nothing is fixed, so that it is solved up to a rigid motion.
     fn ground(b: &mut Builder<'_, Self>);
+
+    /// Adds defaults (000, section 5.2.1) when nothing else applies: fixes one freedom of one
+    /// cluster of the `candidates` (non-grounded clusters, fewest DOF first, then by name) at
+    /// a default parameter with a geometric meaning (an angle about a pivot, a position along
+    /// a locus, a position, a dimension), whose sketch value moves nothing. Returns whether it
+    /// added one; the driver then goes back to action and locus analysis.
+    fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool;
 }

@@ -59,6 +59,9 @@ pub struct Analysis {
     pub plan: Plan,
     /// Every cluster at the end.
     pub clusters: Vec<Cluster>,
+    /// Every cluster as action, locus and loop analysis left it, before the first default
+    /// (the same as `clusters` when there is none): what the constraints alone fix.
+    pub undefaulted: Vec<Cluster>,
     /// Relations no fragment could satisfy, by constraint, with the reason.
     pub unsolved: Vec<Unsupported>,
     /// Constraints held in an invariants record and satisfied once their geom is placed,
@@ -70,6 +73,21 @@ pub struct Analysis {
 }
 
 impl Analysis {
+    /// The defaults no outer iteration varies: each parameterizes a motion the constraints
+    /// leave free (case (a) of 000, section 5.2.1), so their number is the model's mobility.
+    pub fn free_defaults(&self) -> Vec<crate::plan::DefaultId> {
+        (0..self.plan.defaults.len() as u32)
+            .map(crate::plan::DefaultId)
+            .filter(|d| {
+                !self
+                    .plan
+                    .iterations
+                    .iter()
+                    .any(|it| it.defaults.contains(d))
+            })
+            .collect()
+    }
+
     /// The DOF left on each top-level geom's cluster, for geoms not grounded.
     pub fn free_geoms(&self) -> Vec<(GeomId, usize)> {
         let mut out = Vec::new();

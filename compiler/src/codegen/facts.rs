@@ -137,7 +137,7 @@ pub(super) struct FrameFacts {
 }
 
 /// What is known of the registers at the step being written.
-#[derive(Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub(super) struct Facts {
     /// What is known of each frame.
     pub(super) frames: HashMap<GeomId, FrameFacts>,

@@ -203,7 +203,10 @@ mod tests {
             for entry in std::fs::read_dir(format!("{root}/{dir}")).expect("directory") {
                 let path = entry.expect("entry").path();
                 if path.extension().is_some_and(|e| e == "gcs") {
-                    models.push((path.display().to_string(), std::fs::read(&path).unwrap()));
+                    models.push((
+                        path.display().to_string(),
+                        std::fs::read(&path).expect("a model"),
+                    ));
                 }
             }
         }

@@ -7,6 +7,21 @@ use super::writer::float;
 use crate::plan::{Reg, Residual};
 
 impl Solve<'_> {
+    /// The call of the runtime's signed error of a relation (`component` of a coincidence).
+    pub(super) fn error_code(&self, residual: &Residual, component: u8) -> String {
+        match residual {
+            Residual::PointPoint { a, b, d: None } => format!(
+                "check::error::coincidence({}, {}, {component})",
+                self.r(*a),
+                self.r(*b)
+            ),
+            _ => {
+                let code = self.residual_code(residual);
+                format!("check::error::{}", code.trim_start_matches("check::"))
+            }
+        }
+    }
+
     /// The call of the runtime's residual of a check's relation.
     pub(super) fn residual_code(&self, residual: &Residual) -> String {
         let r = |x: &Reg| self.r(*x);

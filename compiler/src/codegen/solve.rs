@@ -10,7 +10,7 @@ use super::names::Namer;
 use super::scopes::{self, Binding};
 use super::sketch::dimension_name;
 use super::writer::{field_init, lit, Writer};
-use crate::plan::{Op, Reg, Step};
+use crate::plan::{DefaultId, Iteration, Op, Reg, Step};
 use gcs_lang::model::GeomId;
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
@@ -40,6 +40,36 @@ pub(super) struct Solve<'a> {
     /// declared, and only a moved one is `mut`.
     pub(super) frame_reads: RefCell<HashSet<GeomId>>,
     pub(super) frame_writes: HashSet<GeomId>,
+    /// The code of each default an iteration varies, while its region is written (an entry
+    /// of the trial's array).
+    pub(super) iterated: HashMap<DefaultId, String>,
+    /// Inside an iteration's trial: the array its closes write, and the next entry.
+    pub(super) closing: Option<(String, usize)>,
+    /// Writing an iterated region after it converged: its error functions are not written.
+    pub(super) converged: bool,
+    /// Registers only error functions read: not written once the iteration converged.
+    pub(super) error_only: HashSet<Reg>,
+}
+
+/// The locals `code` declares (`let name =`) and never reads.
+fn unread_locals(code: &str) -> Vec<String> {
+    let is_ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let words: Vec<&str> = code
+        .split(|c: char| !is_ident(c))
+        .filter(|w| !w.is_empty())
+        .collect();
+    let mut out = Vec::new();
+    for line in code.lines() {
+        let Some(rest) = line.trim_start().strip_prefix("let ") else {
+            continue;
+        };
+        let rest = rest.strip_prefix("mut ").unwrap_or(rest);
+        let name: String = rest.chars().take_while(|&c| is_ident(c)).collect();
+        if !name.is_empty() && words.iter().filter(|w| **w == name).count() == 1 {
+            out.push(name);
+        }
+    }
+    out
 }
 
 /// Writes `solve`.
@@ -58,6 +88,10 @@ pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         facts: Facts::default(),
         frame_reads: RefCell::new(HashSet::new()),
         frame_writes: HashSet::new(),
+        iterated: HashMap::new(),
+        closing: None,
+        converged: false,
+        error_only: HashSet::new(),
     };
     s.write(w, layout);
 }
@@ -264,6 +298,14 @@ impl Solve<'_> {
         let mut group_code = 0;
         let mut group_starts = Vec::new();
         for (i, step) in steps.iter().enumerate() {
+            if let Some(it) = self.cx.plan.iterations.iter().find(|it| it.start == i) {
+                self.iteration(w, it);
+            }
+            if let Some(it) = self.cx.plan.iterations.iter().find(|it| it.end == i) {
+                let _ = it;
+                self.iterated.clear();
+                self.converged = false;
+            }
             if group_start {
                 group_starts.push(w.out.len());
                 if let Some(end) = steps[i..].iter().find(|s| !s.satisfies.is_empty()) {
@@ -286,6 +328,125 @@ impl Solve<'_> {
             .zip(group_starts.iter().skip(1).chain([&text.len()]))
             .map(|(&from, &to)| text[from..to].to_string())
             .collect()
+    }
+
+    /// An outer iteration (000, section 5.2.1): a closure that assembles region `it` for a
+    /// trial of its defaults and writes the errors of its closes, driven to zero by the
+    /// runtime's `iterate::solve` from the `Defaults` given. The region's steps are then
+    /// written again, straight, with the defaults converged to: what they define is what the
+    /// rest of `solve` reads.
+    fn iteration(&mut self, w: &mut Writer, it: &Iteration) {
+        let (cx, plan) = (self.cx, self.cx.plan);
+        let varied: Vec<String> = plan.varied(it).iter().map(|n| format!("`{n}`")).collect();
+        let closes = plan.closes(it);
+        let closed: Vec<String> = (closes.iter())
+            .map(|c| format!("`{}`", cx.model.constraints[*c].name))
+            .collect();
+        let trial = self.names.fresh("trial");
+        let errors = self.names.fresh("errors");
+        let start: Vec<String> = (it.defaults.iter())
+            .map(|d| format!("defaults.{}", cx.defaults[d.0 as usize]))
+            .collect();
+        // An angle's natural step is a radian; a length's, the geoms' size (`tol` is
+        // `CHECK_REL * (1 + size)`), as the interpreter takes them.
+        let scale: Vec<String> = (it.defaults.iter())
+            .map(|d| {
+                if plan.defaults[d.0 as usize].is_angle() {
+                    "1.0".to_string()
+                } else {
+                    "tol / gcs_runtime::tol::CHECK_REL".to_string()
+                }
+            })
+            .collect();
+        w.line("");
+        w.line(&format!(
+            "// No loop is rigid here: vary {} until {} close{} (an outer iteration).",
+            varied.join(", "),
+            closed.join(", "),
+            if closed.len() == 1 { "s" } else { "" }
+        ));
+        w.line(&format!("let mut {trial} = [{}];", start.join(", ")));
+        w.open(&format!(
+            "gcs_runtime::iterate::solve(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings {{ tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL, ..gcs_runtime::iterate::Settings::default() }}, |{trial}, {errors}| {{",
+            scale.join(", ")
+        ));
+        // The trial works on copies of the frames and dimensions the region moves: those its
+        // code writes, declared once the body is written.
+        let facts = self.facts.clone();
+        let deferred = self.deferred.clone();
+        let written_before = std::mem::take(&mut self.frame_writes);
+        let shadows_at = w.out.len();
+        for s in &plan.steps[it.start..it.end] {
+            if let Op::SetDim { geom, .. } = s.op {
+                if !self.deferred.contains(&geom) {
+                    let d = self.dim(geom);
+                    w.line(&format!("let mut {d} = {d};"));
+                }
+            }
+        }
+        for (k, d) in it.defaults.iter().enumerate() {
+            self.iterated.insert(*d, format!("{trial}[{k}]"));
+        }
+        self.closing = Some((errors.clone(), 0));
+        let body_at = w.out.len();
+        for i in it.start..it.end {
+            self.step(w, i, &plan.steps[i]);
+        }
+        self.closing = None;
+        // What the trial computes for the steps after the region only: not read here.
+        let unread = unread_locals(&w.out[body_at..]);
+        if !unread.is_empty() {
+            let refs: Vec<String> = unread.iter().map(|n| format!("&{n}")).collect();
+            w.line(&format!("let _ = ({});", refs.join(", ")));
+        }
+        let written = std::mem::replace(&mut self.frame_writes, written_before);
+        let mut shadows = Writer {
+            out: String::new(),
+            indent: w.indent,
+        };
+        let mut written: Vec<GeomId> = written.into_iter().collect();
+        written.sort();
+        for g in &written {
+            let f = self.frame(*g);
+            self.frame_reads.borrow_mut().insert(*g);
+            shadows.line(&format!("let mut {f} = {f};"));
+        }
+        self.frame_writes.extend(written);
+        w.out.insert_str(shadows_at, &shadows.out);
+        w.line("Ok(())");
+        w.close("})");
+        let first = &cx.model.constraints[closes[0]];
+        w.open(".map_err(|failure| match failure {");
+        w.line("gcs_runtime::iterate::Failure::Start(error) => error,");
+        w.line(&format!(
+            "gcs_runtime::iterate::Failure::NoConvergence {{ residual, .. }} => SolveError::new({}, {}, ErrorKind::NoConvergence, residual),",
+            lit(&first.name),
+            lit(&first.text)
+        ));
+        w.close("})?;");
+        // The region again, at the defaults converged to, without what only its error
+        // functions read.
+        let is_error = |op: &Op| {
+            matches!(
+                op,
+                Op::Error { .. } | Op::Implicit { .. } | Op::Close { .. }
+            )
+        };
+        let read_elsewhere: HashSet<Reg> = (plan.steps.iter())
+            .filter(|s| !is_error(&s.op))
+            .flat_map(|s| s.op.reads())
+            .collect();
+        self.error_only = (plan.steps[it.start..it.end].iter())
+            .filter(|s| is_error(&s.op))
+            .flat_map(|s| s.op.reads())
+            .filter(|r| !read_elsewhere.contains(r))
+            .collect();
+        self.facts = facts;
+        self.deferred = deferred;
+        for (k, d) in it.defaults.iter().enumerate() {
+            self.iterated.insert(*d, format!("{trial}[{k}]"));
+        }
+        self.converged = true;
     }
 
     /// The comment that opens a group of steps: the constraints its last step satisfies, each

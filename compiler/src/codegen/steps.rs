@@ -48,7 +48,12 @@ impl Solve<'_> {
                 // A value no generated step reads (an intersection's `near`, the point a
                 // circle of constant radius goes through) is not written: its code would read
                 // frames for nothing, and declare them.
-                Some((r, _)) if self.cx.used.contains(&r) => self.value(w, i, r, op),
+                Some((r, _))
+                    if self.cx.used.contains(&r)
+                        && !(self.converged && self.error_only.contains(&r)) =>
+                {
+                    self.value(w, i, r, op)
+                }
                 _ => {}
             },
         }
@@ -96,6 +101,38 @@ impl Solve<'_> {
                 self.facts.regs.insert(r, Value::Vector(*x, *y));
             }
             Op::Rotated { dir, angle } => self.rotated(w, r, *dir, *angle),
+            Op::Error {
+                residual,
+                component,
+            } => {
+                if !self.converged {
+                    let code = self.error_code(residual, *component);
+                    self.define(w, r, "error", &code);
+                }
+            }
+            Op::AngleOf(dir) => {
+                let d = self.r(*dir);
+                self.define(w, r, "angle", &format!("{d}.y.atan2({d}.x)"));
+            }
+            Op::PointXY { x, y } => {
+                let code = format!("Point2::new({}, {})", self.r(*x), self.r(*y));
+                self.define(w, r, "point", &code);
+            }
+            Op::LocusPoint { locus, at } => {
+                let code = format!("{}.at({})", self.r(*locus), self.r(*at));
+                let n = self.prefixed("on", *locus);
+                self.define(w, r, &n, &code);
+            }
+            Op::Implicit { locus, point } => {
+                if !self.converged {
+                    let code = format!("{}.implicit({})", self.r(*locus), self.r(*point));
+                    self.define(w, r, "error", &code);
+                }
+            }
+            Op::LocusParam { locus, point } => {
+                let code = format!("{}.param_of({})", self.r(*locus), self.r(*point));
+                self.define(w, r, "param", &code);
+            }
             Op::Sum(terms) => {
                 let code = self.sum(terms);
                 self.define_finite(w, i, r, "sum", &code);
@@ -119,9 +156,13 @@ impl Solve<'_> {
                 radius,
             } => self.circle_through(w, i, r, *center, *through, *radius),
             Op::Default(d) => {
-                // An input, like a param: `solve` checks it finite on entry.
-                let field = &self.cx.defaults[d.0 as usize];
-                self.facts.regs.insert(r, Value::Default(field.clone()));
+                // An input, like a param: `solve` checks it finite on entry. One an iteration
+                // varies is its trial's entry.
+                let value = match self.iterated.get(d) {
+                    Some(code) => Value::Local(code.clone()),
+                    None => Value::Default(self.cx.defaults[d.0 as usize].clone()),
+                };
+                self.facts.regs.insert(r, value);
             }
             Op::Line { point, dir, offset } => {
                 let mut code = format!(
@@ -746,6 +787,17 @@ impl Solve<'_> {
 
     /// An error function of an iteration: with the defaults given, constraint `c` must close.
     fn close(&mut self, w: &mut Writer, c: ConstraintId, residual: Reg) {
+        if let Some((errors, k)) = self.closing.as_mut() {
+            // Inside an iteration's trial: an error function it drives to zero.
+            let line = format!("{errors}[{k}] = {};", self.facts.value(residual).code());
+            *k += 1;
+            w.line(&line);
+            return;
+        }
+        if self.converged {
+            // Converged: the iteration met the tolerance.
+            return;
+        }
         let name = self.names.fresh("closing");
         w.line(&format!("let {name} = {}.abs();", self.r(residual)));
         w.open(&format!("if {name}.is_nan() || {name} > tol {{"));

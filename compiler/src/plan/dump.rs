@@ -131,6 +131,13 @@ impl Plan {
                 Op::DirOf(g) => format!("dir_of {}", name(g)),
                 Op::Axis(x, y) => format!("axis ({x}, {y})"),
                 Op::Rotated { dir, angle } => format!("rotated {} by {}", r(dir), r(angle)),
+                Op::AngleOf(dir) => format!("angle_of {}", r(dir)),
+                Op::PointXY { x, y } => format!("point ({}, {})", r(x), r(y)),
+                Op::LocusPoint { locus, at } => format!("locus_point {} at {}", r(locus), r(at)),
+                Op::Implicit { locus, point } => format!("implicit {} at {}", r(locus), r(point)),
+                Op::LocusParam { locus, point } => {
+                    format!("locus_param {} of {}", r(locus), r(point))
+                }
                 Op::Circle { center, radius } => format!("circle {} {}", r(center), r(radius)),
                 Op::CircleThrough {
                     center, through, ..
@@ -218,6 +225,10 @@ impl Plan {
                     constraint,
                     residual,
                 } => format!("close {} by {}", cname(constraint), r(residual)),
+                Op::Error {
+                    residual,
+                    component,
+                } => format!("error {} #{component}", residual_text(residual)),
             };
             let sat = if s.satisfies.is_empty() {
                 String::new()

@@ -95,8 +95,21 @@ pub struct DefaultVar {
     pub name: String,
     /// What it fixes, in words.
     pub meaning: String,
+    /// The top-level geom whose freedom it fixes, if one.
+    pub geom: Option<GeomId>,
     /// Its value in the sketch: where a solve starts when the caller gives none.
     pub sketch: f64,
+    /// The register that holds, when the plan runs on the sketch, the value with which the
+    /// default moves nothing (least motion): the sketch value is read from it. Analysis only:
+    /// pruning drops it.
+    pub measure: Option<Reg>,
+}
+
+impl DefaultVar {
+    /// Whether it is an angle (in radians), rather than a length or a coordinate.
+    pub fn is_angle(&self) -> bool {
+        self.name.ends_with("_angle")
+    }
 }
 
 /// A region of steps run again for each trial of its defaults: an outer iteration varies
@@ -315,6 +328,16 @@ pub enum Op {
     Axis(f64, f64),
     /// `dir` rotated counter-clockwise by `angle`.
     Rotated { dir: Reg, angle: Reg },
+    /// The counter-clockwise angle of direction `dir` from the x axis, in (-pi, pi].
+    AngleOf(Reg),
+    /// The point with coordinates `x` and `y`.
+    PointXY { x: Reg, y: Reg },
+    /// The point of a line or circle `locus` at parameter `at`: the signed distance along a
+    /// line from its base point, the angle about a circle's centre from the x axis.
+    LocusPoint { locus: Reg, at: Reg },
+    /// The parameter of `point`'s nearest point on a line or circle `locus` (the inverse of
+    /// [`Op::LocusPoint`]).
+    LocusParam { locus: Reg, point: Reg },
     /// The circle about `center` with `radius`.
     Circle { center: Reg, radius: Reg },
     /// The circle about `center` through `through`. `radius` is its radius when the analysis
@@ -387,6 +410,13 @@ pub enum Op {
         constraint: ConstraintId,
         residual: Residual,
     },
+    /// The signed error of a relation already implied (zero when it holds): what a `Close`
+    /// drives to zero. A coincidence has two, `component` 0 and 1 (x and y); others one.
+    Error { residual: Residual, component: u8 },
+    /// The implicit function of a line or circle `locus` at `point`, zero on it (a line's
+    /// signed distance, `|point - centre| - radius`): the error of an `Onto` a default
+    /// displaced.
+    Implicit { locus: Reg, point: Reg },
     /// An error function of an iteration: `residual`, which the iteration drives to zero,
     /// closes `constraint` (the constraint a default displaced).
     Close {

@@ -145,6 +145,12 @@ impl Op {
                 vec![(*at, POINT), (*b, SCALAR), (*centre, POINT)]
             }
             Op::Rotated { dir, angle } => vec![(*dir, VECTOR), (*angle, SCALAR)],
+            Op::AngleOf(dir) => vec![(*dir, VECTOR)],
+            Op::PointXY { x, y } => vec![(*x, SCALAR), (*y, SCALAR)],
+            Op::LocusPoint { locus, at } => vec![(*locus, NEAREST_LOCUS), (*at, SCALAR)],
+            Op::LocusParam { locus, point } | Op::Implicit { locus, point } => {
+                vec![(*locus, NEAREST_LOCUS), (*point, POINT)]
+            }
             Op::Circle { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
             Op::CircleThrough {
                 center, through, ..
@@ -182,7 +188,7 @@ impl Op {
                 ..
             } => rotation(*pivot, *axis, (*from, VECTOR), (*to, VECTOR)),
             Op::SetDim { value, .. } => vec![(*value, SCALAR)],
-            Op::Check { residual, .. } => residual.operands(),
+            Op::Check { residual, .. } | Op::Error { residual, .. } => residual.operands(),
             Op::Close { residual, .. } => vec![(*residual, SCALAR)],
         }
     }
@@ -203,6 +209,10 @@ impl Op {
             | Op::DimOf(_)
             | Op::Sum(_)
             | Op::Along { .. }
+            | Op::AngleOf(_)
+            | Op::LocusParam { .. }
+            | Op::Error { .. }
+            | Op::Implicit { .. }
             | Op::RadiusFromLine { .. }
             | Op::RadiusFromPoint { .. } => Ty::Scalar,
             Op::DirectionTo { .. } | Op::DirOf(_) | Op::Axis(..) | Op::Rotated { .. } => Ty::Vector,
@@ -212,7 +222,11 @@ impl Op {
             | Op::Line { .. }
             | Op::ParallelLine { .. } => Ty::Line,
             Op::CentresLinePoint { .. } | Op::CentresPointPoint { .. } => Ty::Conic,
-            Op::PointOf(_) | Op::Nearest { .. } | Op::Onto { .. } => Ty::Point,
+            Op::PointOf(_)
+            | Op::Nearest { .. }
+            | Op::Onto { .. }
+            | Op::PointXY { .. }
+            | Op::LocusPoint { .. } => Ty::Point,
             Op::Circle { .. } | Op::CircleThrough { .. } | Op::ShiftedCircle { .. } => Ty::Circle,
             Op::Intersect { meet, .. } => meet.result(),
             Op::Translate { .. }
@@ -556,11 +570,15 @@ mod tests {
                 name: "a".into(),
                 meaning: "the angle of a".into(),
                 sketch: 0.5,
+                measure: None,
+                geom: None,
             },
             DefaultVar {
                 name: "b".into(),
                 meaning: "never read".into(),
                 sketch: 0.0,
+                measure: None,
+                geom: None,
             },
         ];
         assert_eq!(

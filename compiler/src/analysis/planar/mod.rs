@@ -12,6 +12,7 @@
 //! free length ([`segment`]) have fragments of their own.
 
 pub mod circle;
+mod defaults;
 pub mod relation;
 pub mod segment;
 
@@ -83,6 +84,10 @@ impl Geometry for Planar {
 
     fn ground(b: &mut Builder<'_, Self>) {
         b.ground_if_nothing_fixed();
+    }
+
+    fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {
+        b.add_default(candidates)
     }
 }
 

@@ -1,0 +1,272 @@
+//! Every real assembly of a model at given params (`gcs solve --all-solutions`).
+//!
+//! A plan's assemblies differ by its branch variables and, where it iterates, by the roots of
+//! its error functions. Every combination of branch indices is tried (up to
+//! [`MAX_COMBINATIONS`]). For each:
+//! - a plan without outer iterations has at most one assembly: the plan run;
+//! - a plan with one outer iteration over one default has one assembly per root of the
+//!   error function of that default. An angle's error function is periodic, and every root on
+//!   the turn is found by the runtime's `iterate::all_roots` on a grid of [`ANGLE_SAMPLES`]
+//!   samples, refined by bracketing, with double (tangent) roots found as minima of `|error|`
+//!   and roots where the assembly stops existing found at that edge. Its module documentation
+//!   says exactly which roots a grid can miss: two roots closer than a grid step with
+//!   `|error|` above the tolerance between them. Each root is then assembled with the
+//!   iteration started on it, and verified like any solution;
+//! - a plan whose iteration varies a length, or several defaults, or that has several
+//!   iterations, is started from a grid of its defaults ([`GRID`] values of each) and each
+//!   converged assembly kept: such a list is not known to be complete, and says so.
+//!
+//! Assemblies are listed once: one reached from two combinations (a branch the assembly never
+//! reaches) or two roots is kept the first time.
+
+use crate::interp::{self, Choice};
+use crate::plan::Plan;
+use crate::solution::Solution;
+use gcs_lang::model::GeomId;
+use gcs_lang::Model;
+use std::collections::BTreeSet;
+
+/// The most branch combinations tried.
+pub const MAX_COMBINATIONS: usize = 4096;
+
+/// Samples of an angle's turn: half a degree apart.
+pub const ANGLE_SAMPLES: u32 = 720;
+
+/// Starting values of each default when the search cannot be exhaustive.
+pub const GRID: usize = 12;
+
+/// Every real assembly found, and whether the list is known to be complete.
+#[derive(Clone, Debug, Default)]
+pub struct AllSolutions {
+    /// The assemblies, each once.
+    pub solutions: Vec<Solution>,
+    /// Whether every real assembly is listed (see the module documentation).
+    pub complete: bool,
+}
+
+impl AllSolutions {
+    /// `{"solutions": [...]}`: each object as a plain solve prints it, with `"complete": false`
+    /// in each when the list is not known to be complete.
+    pub fn to_json(&self) -> String {
+        let objects: Vec<String> = (self.solutions.iter())
+            .map(|s| {
+                let json = s.to_json();
+                let body = if self.complete {
+                    json
+                } else {
+                    json.replacen("{\n", "{\n  \"complete\": false,\n", 1)
+                };
+                body.lines()
+                    .map(|l| format!("    {l}"))
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            })
+            .collect();
+        if objects.is_empty() {
+            "{\"solutions\": []}".to_string()
+        } else {
+            format!("{{\"solutions\": [\n{}\n]}}", objects.join(",\n"))
+        }
+    }
+}
+
+/// Every real assembly of `plan` (pruned to `scope`) at `params`; `defaults` gives the values
+/// of the defaults no iteration varies (the free motions), which every assembly shares.
+pub fn solve_all(
+    model: &Model,
+    plan: &Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    defaults: &[f64],
+) -> AllSolutions {
+    solve_all_of(model, plan, scope, params, defaults, None)
+}
+
+/// The assembly an iterated plan returns when no defaults are given (DESIGN, "Which assembly
+/// an iterated plan returns"): among the real assemblies on `branches`, the one that moves the
+/// points least from the sketch (the smallest sum of squared displacements), so that the
+/// answer does not depend on which default the analysis chose. A plan without iterations has
+/// one assembly on given branches: the plan run.
+pub fn least_motion(
+    model: &Model,
+    plan: &Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    branches: &[usize],
+    defaults: &[f64],
+) -> Result<Solution, gcs_runtime::error::SolveError> {
+    let from_sketch = crate::solve_plan_with(model, plan, scope, params, branches, defaults);
+    if plan.iterations.is_empty() {
+        return from_sketch;
+    }
+    let Ok(sketch) = crate::config::Config::from_sketch(model, params) else {
+        return from_sketch;
+    };
+    let sketch = Solution::read(model, &sketch, scope);
+    let motion = |s: &Solution| -> f64 {
+        (s.points.iter())
+            .filter_map(|(n, p)| {
+                let q = &sketch.points.iter().find(|(m, _)| m == n)?.1;
+                Some(p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum::<f64>())
+            })
+            .sum()
+    };
+    let found = solve_all_of(model, plan, scope, params, defaults, Some(branches));
+    let least = (found.solutions.into_iter())
+        .map(|s| (motion(&s), s))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, s)| s);
+    match least {
+        Some(s) => Ok(s),
+        None => from_sketch,
+    }
+}
+
+/// [`solve_all`], on the branch combination `only` when given.
+fn solve_all_of(
+    model: &Model,
+    plan: &Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    defaults: &[f64],
+    only: Option<&[usize]>,
+) -> AllSolutions {
+    let counts: Vec<usize> = plan.branches.iter().map(|b| b.count.max(1)).collect();
+    let combinations = counts
+        .iter()
+        .try_fold(1usize, |n, &c| n.checked_mul(c))
+        .filter(|&n| n <= MAX_COMBINATIONS);
+    let mut out = AllSolutions {
+        solutions: Vec::new(),
+        complete: combinations.is_some(),
+    };
+    let total = if only.is_some() {
+        1
+    } else {
+        combinations.unwrap_or(MAX_COMBINATIONS)
+    };
+    let varied: Vec<usize> = (plan.iterations.iter())
+        .flat_map(|it| it.defaults.iter().map(|d| d.0 as usize))
+        .collect();
+    let one_angle =
+        plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
+    if !varied.is_empty() && !one_angle {
+        out.complete = false;
+    }
+    for k in 0..total {
+        // Combination `k` in mixed radix, the first branch varying fastest.
+        let mut rest = k;
+        let branches: Vec<usize> = match only {
+            Some(given) => given.to_vec(),
+            None => (counts.iter())
+                .map(|&c| {
+                    let i = rest % c;
+                    rest /= c;
+                    i
+                })
+                .collect(),
+        };
+        for start in starts(model, plan, params, defaults, &branches, &varied, one_angle) {
+            let solved = crate::solve_plan_with(model, plan, scope, params, &branches, &start);
+            if let Ok(s) = solved {
+                if !out.solutions.iter().any(|t| same_assembly(t, &s)) {
+                    out.solutions.push(s);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Where to start the solves of one branch combination: the defaults given when nothing
+/// iterates; each root of the error function when one angle does; a grid otherwise.
+fn starts(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    branches: &[usize],
+    varied: &[usize],
+    one_angle: bool,
+) -> Vec<Vec<f64>> {
+    if varied.is_empty() {
+        return vec![defaults.to_vec()];
+    }
+    let choice = Choice::Given(branches.to_vec());
+    if one_angle {
+        let d = varied[0];
+        let pi = std::f64::consts::PI;
+        let error = |x: f64| {
+            let mut trial = defaults.to_vec();
+            trial[d] = x;
+            match interp::run_open(model, plan, params, &trial, &choice) {
+                Ok((_, errors)) => errors.first().copied().ok_or(()),
+                Err(_) => Err(()),
+            }
+        };
+        let settings = gcs_runtime::iterate::Settings::default();
+        let scan = gcs_runtime::iterate::all_roots::<64, ()>(
+            -pi,
+            pi,
+            true,
+            ANGLE_SAMPLES,
+            &settings,
+            error,
+        );
+        return (scan.roots().iter())
+            .map(|&x| {
+                let mut start = defaults.to_vec();
+                start[d] = x;
+                start
+            })
+            .collect();
+    }
+    // A grid over each varied default: a turn for an angle, the sketch's value give or take
+    // the model's size for a length.
+    let size = 1.0
+        + model
+            .default_params()
+            .iter()
+            .chain(plan.defaults.iter().map(|d| &d.sketch))
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut grid = vec![defaults.to_vec()];
+    for &d in varied {
+        let var = &plan.defaults[d];
+        let values: Vec<f64> = (0..GRID)
+            .map(|i| {
+                let t = i as f64 / GRID as f64;
+                if var.is_angle() {
+                    -std::f64::consts::PI + 2.0 * std::f64::consts::PI * t
+                } else {
+                    defaults[d] + size * (2.0 * t - 1.0)
+                }
+            })
+            .collect();
+        grid = (grid.iter())
+            .flat_map(|g| {
+                values.iter().map(move |&v| {
+                    let mut next = g.clone();
+                    next[d] = v;
+                    next
+                })
+            })
+            .take(MAX_COMBINATIONS)
+            .collect();
+    }
+    grid
+}
+
+/// Whether two solutions are one assembly: every point and vector within a relative 1e-9.
+fn same_assembly(a: &Solution, b: &Solution) -> bool {
+    let scale = 1.0
+        + (a.points.iter())
+            .flat_map(|(_, v)| v.iter())
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    let close = |u: &[(String, Vec<f64>)], v: &[(String, Vec<f64>)], tol: f64| {
+        u.len() == v.len()
+            && u.iter().zip(v).all(|((n, x), (m, y))| {
+                n == m && x.iter().zip(y).all(|(p, q)| (p - q).abs() <= tol)
+            })
+    };
+    close(&a.points, &b.points, 1e-9 * scale) && close(&a.vectors, &b.vectors, 1e-9)
+}

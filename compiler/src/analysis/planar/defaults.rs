@@ -1,0 +1,329 @@
+//! Defaults in the plane (000, section 5.2.1): when neither action nor locus analysis nor a
+//! rigid chain or loop applies, one freedom of one cluster is fixed at a default parameter.
+//!
+//! Each default has a geometric meaning, read from the cluster's invariants record: the
+//! position of a feature along the line or circle it is on, the angle of a body about its
+//! pivot, the coordinates of a free point, the angle of a free direction, a free dimension.
+//! Its sketch value is what the plan measures there when it runs on the sketch, so that a
+//! default at its sketch value moves nothing (002's least motion): an under-constrained
+//! model solves to its sketch as far as the constraints allow. The driver then goes back to
+//! action and locus analysis; a constraint that the default makes redundant becomes an error
+//! function that an outer iteration drives to zero (`Builder::close_iterations`).
+
+use super::{locus_reg, Locus, Planar, Pos, Rot};
+use crate::analysis::driver::Builder;
+use crate::plan::{Op, Reg, RotationAxis, Ty};
+use gcs_lang::model::{GeomId, GeomKind, Owner, Part};
+
+impl Builder<'_, Planar> {
+    /// Fixes one freedom of the first of `candidates` that has one a default can name.
+    pub(super) fn add_default(&mut self, candidates: &[usize]) -> bool {
+        candidates.iter().any(|&k| self.default_on(k))
+    }
+
+    /// One default on cluster `k`: its position along its locus first, then its rotation
+    /// about its pivot, then its position, then its direction, then its dimension.
+    fn default_on(&mut self, k: usize) -> bool {
+        let rec = self.clusters[k].record.clone();
+        // A segment held by its end while its length is free: turning it about that end or
+        // sizing it (which keeps its start) would let the end go. Its fragments are the
+        // segment's own (`segment.rs`), not a default's.
+        let held_by_its_dimension = match rec.pos {
+            Pos::Pivot { feature, .. } | Pos::On { feature, .. } => {
+                rec.free_dim.is_some() && super::depends_on_dim(self.model, feature)
+            }
+            _ => false,
+        };
+        if held_by_its_dimension {
+            return false;
+        }
+        match (rec.pos, rec.rot) {
+            (
+                Pos::On {
+                    feature,
+                    locus: locus @ (Locus::Line(_) | Locus::Circle(_)),
+                },
+                _,
+            ) => {
+                self.slide(k, feature, locus);
+                true
+            }
+            (Pos::Pivot { at, feature }, Rot::Free) => self.turn_about(k, at, feature),
+            (Pos::Free, _) if !rec.line => self.place(k),
+            (Pos::None, Rot::Free) => self.turn_direction(k),
+            _ if rec.free_dim.is_some() && rec.fd.is_empty() => self.size(k),
+            _ => false,
+        }
+    }
+
+    /// The explanation's opening: why a default is needed, and what it assumes.
+    fn assume(&self, meaning: &str, name: &str) -> String {
+        format!(
+            "No constraint, chain or loop fixes this yet: assume {meaning} is the default \
+             `{name}` (the sketch's value unless given)"
+        )
+    }
+
+    /// Feature `f` of cluster `k` slides along `locus`: default its place on it.
+    fn slide(&mut self, k: usize, f: GeomId, locus: Locus) {
+        let geoms = self.clusters[k].geoms.clone();
+        let lreg = locus_reg(locus);
+        let fname = self.name(f);
+        let from = self.point(f);
+        let measure = self.value(
+            Op::LocusParam {
+                locus: lreg,
+                point: from,
+            },
+            Ty::Scalar,
+            format!("where {fname} is on {}", self.word(lreg)),
+        );
+        let (name, meaning) = match locus {
+            Locus::Circle(_) => (
+                format!("{fname}_angle"),
+                format!(
+                    "the angle of {fname} about the centre of {}, from the x axis",
+                    self.word(lreg)
+                ),
+            ),
+            _ => (
+                format!("{fname}_position"),
+                format!(
+                    "the position of {fname} along {}, from its base point",
+                    self.word(lreg)
+                ),
+            ),
+        };
+        let explain = format!(
+            "{}: move {} so that {fname} is there.",
+            self.assume(&meaning, &name),
+            self.group_name(&geoms)
+        );
+        let t = self.default_value(f, name, meaning, measure);
+        let to = self.value(
+            Op::LocusPoint { locus: lreg, at: t },
+            Ty::Point,
+            format!("{fname}'s default place"),
+        );
+        self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        let rec = &mut self.clusters[k].record;
+        if rec.rot == Rot::Free {
+            rec.pos = Pos::Pivot { at: to, feature: f };
+            self.insert_known(f, to);
+        } else {
+            rec.pos = Pos::Fixed;
+        }
+    }
+
+    /// Cluster `k` may only turn about `feature` at `at`: default its angle, the direction
+    /// from the pivot to another of its points (or of one of its directions).
+    fn turn_about(&mut self, k: usize, at: Reg, feature: GeomId) -> bool {
+        let Some((reference, is_point)) = self.reference(k, feature) else {
+            return false;
+        };
+        let geoms = self.clusters[k].geoms.clone();
+        let (gname, pname, rname) = (
+            self.name(geoms[0]),
+            self.name(feature),
+            self.name(reference),
+        );
+        let from = if is_point {
+            let p = self.point(reference);
+            self.value(
+                Op::DirectionTo { from: at, to: p },
+                Ty::Vector,
+                format!("the direction from {pname} to {rname}"),
+            )
+        } else {
+            self.direction(reference)
+        };
+        let meaning = if is_point {
+            format!(
+                "the angle of {gname} about {pname} (of the direction from {pname} to {rname}, from the x axis)"
+            )
+        } else {
+            format!("the angle of {gname} about {pname} (of {rname}, from the x axis)")
+        };
+        let name = format!("{gname}_angle");
+        let explain = format!(
+            "{}: turn {} about {pname} to it.",
+            self.assume(&meaning, &name),
+            self.group_name(&geoms)
+        );
+        self.turn_to(geoms, at, from, name, meaning, explain);
+        let rec = &mut self.clusters[k].record;
+        rec.pos = Pos::Fixed;
+        rec.rot = Rot::Known;
+        true
+    }
+
+    /// A free direction (a vector geom): default its angle.
+    fn turn_direction(&mut self, k: usize) -> bool {
+        let geoms = self.clusters[k].geoms.clone();
+        let v = geoms[0];
+        if self.model.geoms[v].kind != GeomKind::Vector {
+            return false;
+        }
+        let vname = self.name(v);
+        let from = self.direction(v);
+        let origin = self.origin();
+        let meaning = format!("the angle of {vname} from the x axis");
+        let name = format!("{vname}_angle");
+        let explain = format!("{}: turn {vname} to it.", self.assume(&meaning, &name));
+        self.turn_to(geoms, origin, from, name, meaning, explain);
+        self.clusters[k].record.rot = Rot::Known;
+        true
+    }
+
+    /// Turns `geoms` about `pivot` so that direction `from` makes a default angle with the x
+    /// axis, measured on the sketch from `from` itself.
+    fn turn_to(
+        &mut self,
+        geoms: Vec<GeomId>,
+        pivot: Reg,
+        from: Reg,
+        name: String,
+        meaning: String,
+        explain: String,
+    ) {
+        let measure = self.value(
+            Op::AngleOf(from),
+            Ty::Scalar,
+            format!("the angle of {}", self.word(from)),
+        );
+        let angle = self.default_value(geoms[0], name.clone(), meaning, measure);
+        let x = self.value(Op::Axis(1.0, 0.0), Ty::Vector, "the X axis".into());
+        let to = self.value(
+            Op::Rotated { dir: x, angle },
+            Ty::Vector,
+            format!("the direction at `{name}`"),
+        );
+        self.emit(
+            Op::RotateDir {
+                geoms,
+                pivot,
+                axis: RotationAxis::Normal,
+                from,
+                to,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+    }
+
+    /// Cluster `k` is free to translate: default the coordinates of its first point.
+    fn place(&mut self, k: usize) -> bool {
+        let Some(f) = self.first_point_feature(k) else {
+            return false;
+        };
+        let geoms = self.clusters[k].geoms.clone();
+        let fname = self.name(f);
+        let from = self.point(f);
+        let origin = self.origin();
+        let mut coords = [Reg(0); 2];
+        for (i, (axis, (x, y))) in [("x", (1.0, 0.0)), ("y", (0.0, 1.0))]
+            .into_iter()
+            .enumerate()
+        {
+            let words = format!("the {} axis", axis.to_uppercase());
+            let dir = self.value(Op::Axis(x, y), Ty::Vector, words);
+            let measure = self.value(
+                Op::Along {
+                    from: origin,
+                    dir,
+                    to: from,
+                },
+                Ty::Scalar,
+                format!("the {axis} coordinate of {fname}"),
+            );
+            let meaning = format!("the {axis} coordinate of {fname}");
+            coords[i] = self.default_value(f, format!("{fname}_{axis}"), meaning, measure);
+        }
+        let to = self.value(
+            Op::PointXY {
+                x: coords[0],
+                y: coords[1],
+            },
+            Ty::Point,
+            format!("{fname}'s default position"),
+        );
+        let explain = format!(
+            "{}: translate {} so that {fname} is there.",
+            self.assume(
+                &format!("the position of {fname}"),
+                &format!("{fname}_x, {fname}_y")
+            ),
+            self.group_name(&geoms)
+        );
+        self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        let rec = &mut self.clusters[k].record;
+        if rec.rot == Rot::Free {
+            rec.pos = Pos::Pivot { at: to, feature: f };
+            self.insert_known(f, to);
+        } else {
+            rec.pos = Pos::Fixed;
+        }
+        true
+    }
+
+    /// A free dimension (a circle's radius, a segment's length): default it.
+    fn size(&mut self, k: usize) -> bool {
+        let Some(g) = self.clusters[k].record.free_dim else {
+            return false;
+        };
+        let gname = self.name(g);
+        let what = if self.model.geoms[g].kind == GeomKind::Circle {
+            "radius"
+        } else {
+            "length"
+        };
+        let measure = self.value(Op::DimOf(g), Ty::Scalar, format!("the {what} of {gname}"));
+        let meaning = format!("the {what} of {gname}");
+        let name = format!("{gname}_{what}");
+        let explain = format!("{}: size {gname} to it.", self.assume(&meaning, &name));
+        let value = self.default_value(g, name, meaning, measure);
+        self.emit(Op::SetDim { geom: g, value }, None, Vec::new(), explain);
+        let rec = &mut self.clusters[k].record;
+        rec.free_dim = None;
+        rec.fixed_dims.push(g);
+        true
+    }
+
+    /// The world's origin, for coordinates and turns of free directions.
+    fn origin(&mut self) -> Reg {
+        let zero = self.value(Op::Const(0.0), Ty::Scalar, "0".into());
+        self.value(
+            Op::PointXY { x: zero, y: zero },
+            Ty::Point,
+            "the origin".into(),
+        )
+    }
+
+    /// A feature of cluster `k` other than `pivot` whose direction from the pivot (a point) or
+    /// whose own direction (a vector) tells the cluster's angle: the first in model order.
+    fn reference(&self, k: usize, pivot: GeomId) -> Option<(GeomId, bool)> {
+        let model = self.model;
+        let mut features = Vec::new();
+        for &g in &self.clusters[k].geoms {
+            features.push(g);
+            features.extend(model.geoms[g].parts.iter().copied());
+        }
+        // A line's `L.point` is its base point again: its direction tells the angle.
+        let base_point =
+            |f: GeomId| matches!(model.geoms[f].owner, Owner::Part(_, Part::BasePoint));
+        let distinct_point = |f: GeomId| {
+            model.geoms[f].kind.is_pointlike()
+                && f != pivot
+                && !base_point(f)
+                && model.constant_distance(pivot, f).is_none_or(|d| d > 0.0)
+        };
+        if let Some(&p) = features.iter().find(|&&f| distinct_point(f)) {
+            return Some((p, true));
+        }
+        features
+            .into_iter()
+            .find(|&f| model.geoms[f].kind == GeomKind::Vector)
+            .map(|v| (v, false))
+    }
+}
