@@ -104,7 +104,8 @@
 //! - **Missed**: a pair of roots closer than `h` with no sample between them and next to no
 //!   sample that is a local minimum of the sampled `|f|` (for instance a dip on a steep
 //!   slope, or next to a third root's sign change); more generally, any dip of `f` through
-//!   zero between two samples of the same sign neither of which is such a minimum; a defined
+//!   zero between two samples of the same sign neither of which is such a minimum (also when
+//!   one of the two sign changes lies inside a failing stretch that no sample hits); a defined
 //!   stretch lying strictly between two failing samples; roots a refinement would reach only
 //!   through more than four nested failing stretches. With rounding, also a root where `f` is
 //!   so steep that no double near it has `|f| <= tolerance` (it is then no root at this
@@ -122,8 +123,10 @@
 //! `cos(t - h/2) - cos(e)` on `[0, 2 pi)` has two roots `2e` apart between the first two
 //! samples for every `n` (this one is found, through the minimum of `|f|` at the samples: as
 //! two roots when `1 - cos(e)` exceeds the tolerance, else as one double root). Measured on
-//! random trigonometric polynomials of degree up to 4 with 32 samples, and with 12 samples and
-//! a random failing stretch: every root missed was one of two roots in one grid interval.
+//! random trigonometric polynomials of degree up to 4 with 24 samples, with and without
+//! a random failing stretch (test `scan_misses_only_roots_sharing_a_grid_interval`, 100,000
+//! cases): every root missed shared its grid interval with another sign change of `f`, the
+//! other one sometimes inside the failing stretch.
 //!
 //! Nothing here allocates or panics, for any input.
 

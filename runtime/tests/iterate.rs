@@ -10,7 +10,10 @@
 use std::cell::Cell;
 use std::f64::consts::{PI, TAU};
 
+use gcs_runtime::error::{ErrorKind, SolveError};
+use gcs_runtime::intersect2d::circle_circle;
 use gcs_runtime::iterate::{all_roots, solve, Converged, Failure, RootScan, Settings};
+use gcs_runtime::locus2d::{Circle, P2};
 use proptest::prelude::*;
 
 /// `cases` cases (`PROPTEST_CASES` overrides them); the bound on rejections (a failing stretch
@@ -269,8 +272,9 @@ proptest! {
 
     /// Random trigonometric polynomials of degree up to 4 over a turn, sampled 24 times, with
     /// or without a failing stretch: every sign change a dense grid (20,000 points) sees
-    /// outside the stretch is found, unless another one shares its grid interval (the
-    /// documented miss), and every root found is one (|f| within the tolerance).
+    /// outside the stretch is found, unless another one (possibly inside the stretch) shares
+    /// its grid interval (the documented miss), and every root found is one (|f| within the
+    /// tolerance).
     #[test]
     fn scan_misses_only_roots_sharing_a_grid_interval(
         coefficients in prop::collection::vec(-1.0f64..1.0, 10),
@@ -301,11 +305,17 @@ proptest! {
         }
         let dense = 20_000;
         let step = TAU / f64::from(dense);
+        // Sign changes where the function is defined, and all of them (those inside the
+        // stretch can pair with one outside in a grid interval, hiding both).
         let mut changes = vec![];
+        let mut all_changes = vec![];
         for i in 0..dense {
             let (a, b) = (step * f64::from(i), step * f64::from(i + 1));
-            if !fails(a) && !fails(b) && f(a) * f(b) < 0.0 {
-                changes.push(0.5 * (a + b));
+            if f(a) * f(b) < 0.0 {
+                all_changes.push(0.5 * (a + b));
+                if !fails(a) && !fails(b) {
+                    changes.push(0.5 * (a + b));
+                }
             }
         }
         let cell = |t: f64| (t / (TAU / f64::from(samples))).floor();
@@ -314,7 +324,7 @@ proptest! {
                 let d = (x - r).abs();
                 d.min(TAU - d) <= step
             });
-            let shares = changes.iter().filter(|&&q| cell(q) == cell(r)).count() > 1;
+            let shares = all_changes.iter().filter(|&&q| cell(q) == cell(r)).count() > 1;
             prop_assert!(found || shares, "{r} in {changes:?}: {:?}", scan.roots());
         }
     }
@@ -647,6 +657,78 @@ fn scan_finds_roots_on_both_sides_of_a_failing_stretch_and_at_its_edge() {
     let gap = |x: f64| if x > 0.55 { Err(()) } else { Ok(x + 1.0) };
     let scan: RootScan<4> = all_roots(0.0, 1.0, false, 16, &Settings::default(), gap);
     assert!(scan.is_empty(), "{scan:?}");
+}
+
+/// A crank of length 1 about the origin at angle `theta`, a coupler of length 1.5 from its tip,
+/// a rocker of length 1 about (3, 0): the joint `b` of coupler and rocker (branch 0), and the
+/// closing residual `b.y - target`. The assembly fails where the crank tip is more than 2.5
+/// from the rocker's pivot (`cos theta < 0.625`), as a plan's would.
+fn four_bar(theta: f64, target: f64) -> Result<f64, SolveError> {
+    let tip = P2::new(theta.cos(), theta.sin());
+    let coupler = Circle::new(tip, 1.5)
+        .ok_or_else(|| SolveError::new("c", "", ErrorKind::InvalidValue, 0.0))?;
+    let rocker = Circle::new(P2::new(3.0, 0.0), 1.0)
+        .ok_or_else(|| SolveError::new("r", "", ErrorKind::InvalidValue, 0.0))?;
+    let meeting = circle_circle(&coupler, &rocker);
+    if let Some(e) = SolveError::from_contact("joint", "", meeting.contact) {
+        return Err(e);
+    }
+    match meeting.roots.get(0) {
+        Some(b) => Ok(b.y - target),
+        None => Err(SolveError::new("joint", "", ErrorKind::NoIntersection, 0.0)),
+    }
+}
+
+#[test]
+fn four_bar_closures_through_the_kernel() {
+    let settings = Settings::default();
+    // The tangent configuration, where the assembly stops: the crank at acos(0.625), the joint
+    // on the line of the crank tip and the pivot.
+    let edge = 0.625f64.acos();
+    let tangent_y = 0.4 * edge.sin();
+    for target in [0.2, -0.1, tangent_y] {
+        let scan: RootScan<8> = all_roots(-PI, PI, true, 32, &settings, |t| four_bar(t, target));
+        assert!(!scan.is_empty(), "{target}: {scan:?}");
+        for (i, &r) in scan.roots().iter().enumerate() {
+            let residual = four_bar(r, target).map(f64::abs);
+            assert!(
+                residual.as_ref().is_ok_and(|v| *v <= 1e-13),
+                "{target}: {r}: {residual:?}"
+            );
+            // solve from a nearby start converges to the same root, not the other.
+            if !scan.is_boundary(i) && !scan.is_double(i) {
+                let mut x = [r + 0.02];
+                let done = solve(&mut x, &[1.0], &settings, |p, out| {
+                    out[0] = four_bar(p[0], target)?;
+                    Ok::<(), SolveError>(())
+                });
+                assert!(
+                    done.is_ok() && (x[0] - r).abs() <= 1e-13,
+                    "{r}: {x:?} {done:?}"
+                );
+            }
+        }
+        // Against a dense grid: every sign change where the assembly holds is found.
+        let dense = 20_000;
+        for k in 0..dense {
+            let a = -PI + TAU * f64::from(k) / f64::from(dense);
+            let b = a + TAU / f64::from(dense);
+            if let (Ok(fa), Ok(fb)) = (four_bar(a, target), four_bar(b, target)) {
+                if fa * fb < 0.0 {
+                    let found = scan
+                        .roots()
+                        .iter()
+                        .any(|&r| r >= a - 1e-12 && r <= b + 1e-12);
+                    assert!(found, "{target}: a sign change in [{a}, {b}]: {scan:?}");
+                }
+            }
+        }
+    }
+    // The target met exactly at the tangency: a root at the edge of the failing stretch,
+    // where the kernel's snap to tangency keeps the residual within the tolerance.
+    let scan: RootScan<8> = all_roots(-PI, PI, true, 32, &settings, |t| four_bar(t, tangent_y));
+    let at_edge = (0..scan.len()).find(|&i| (scan.roots()[i] - edge).abs() <= 1e-6);
+    assert!(at_edge.is_some_and(|i| scan.is_boundary(i)), "{scan:?}");
 }
 
 #[test]
