@@ -33,6 +33,10 @@ enum Command {
     Check {
         /// The .gcs file.
         file: PathBuf,
+        /// Make a warning an error: `under-constrained` (a motion the constraints leave free,
+        /// held by a default).
+        #[arg(long, value_name = "WARNING")]
+        deny: Vec<String>,
     },
     /// Solve a model with the interpreter and print every geom's configuration.
     Solve {
@@ -112,7 +116,7 @@ fn main() -> ExitCode {
         _ => termcolor::ColorChoice::Auto,
     };
     match cli.command {
-        Command::Check { file } => check(&file, color),
+        Command::Check { file, deny } => check(&file, &deny, color),
         Command::Solve {
             file,
             set,
@@ -570,7 +574,13 @@ fn bench(
     })
 }
 
-fn check(path: &Path, color: termcolor::ColorChoice) -> ExitCode {
+fn check(path: &Path, deny: &[String], color: termcolor::ColorChoice) -> ExitCode {
+    if let Some(other) = deny.iter().find(|d| d.as_str() != "under-constrained") {
+        eprintln!(
+            "error: `--deny {other}`: the warnings that can be denied are: under-constrained"
+        );
+        return ExitCode::from(2);
+    }
     match compile(path, color) {
         Ok(c) if c.has_errors() => {
             let n = c.diagnostics.iter().filter(|d| d.is_error()).count();
@@ -586,6 +596,14 @@ fn check(path: &Path, color: termcolor::ColorChoice) -> ExitCode {
                 "{}",
                 gcs_compiler::report::check_report(&c.model, &c.analysis)
             );
+            let mobility = c.analysis.free_defaults().len();
+            if mobility > 0 && !deny.is_empty() {
+                eprintln!(
+                    "error: `{}` is under-constrained (mobility {mobility}), and `--deny under-constrained` makes that an error",
+                    path.display()
+                );
+                return ExitCode::FAILURE;
+            }
             ExitCode::SUCCESS
         }
         // A model the analysis does not cover yet still gets its nominal count.

@@ -268,3 +268,49 @@ fn very_long_tokens_are_reported_never_a_panic() {
         }
     }
 }
+
+/// An under-constrained model checks with a warning and exit 0; `--deny under-constrained`
+/// makes it an error (exit 1); a well-constrained one passes either way; an unknown warning
+/// name is a usage error (exit 2).
+#[test]
+fn deny_under_constrained_makes_a_free_motion_an_error() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
+            .current_dir(&root)
+            .args(args)
+            .env("NO_COLOR", "1")
+            .output()
+            .expect("run gcs");
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let (code, stderr) = run(&["check", "examples/fourbar_free.gcs"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("warning: `crank` is under-constrained: default `crank_angle`"),
+        "{stderr}"
+    );
+    let (code, stderr) = run(&[
+        "check",
+        "--deny",
+        "under-constrained",
+        "examples/fourbar_free.gcs",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("is under-constrained (mobility 1)"),
+        "{stderr}"
+    );
+    let (code, stderr) = run(&[
+        "check",
+        "--deny",
+        "under-constrained",
+        "examples/fourbar.gcs",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let (code, stderr) = run(&["check", "--deny", "everything", "examples/fourbar.gcs"]);
+    assert_eq!(code, 2, "{stderr}");
+}

@@ -149,3 +149,46 @@ fn a_value_past_the_range_says_what_would_overflow() {
     assert_eq!(code, 0, "{stderr}");
     assert!(stdout.contains("1e150"), "{stdout}");
 }
+
+/// `--default` sets a free motion's value (units as `--set`), is refused for a name the plan
+/// has not and for a length where an angle is meant; `--all-solutions --json` lists each
+/// real assembly once.
+#[test]
+fn defaults_and_all_solutions_on_the_command_line() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
+            .current_dir(&root)
+            .args(args)
+            .output()
+            .expect("run gcs");
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let model = "examples/fourbar_free.gcs";
+    let (code, stdout, stderr) = run(&["solve", "--json", "--default", "crank_angle=90deg", model]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains("\"crank_angle\": 1.5707963267948966"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("\"crank.b\": [9.18"), "{stdout}");
+    let (code, _, stderr) = run(&["solve", "--default", "crank=1", model]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("no default `crank`; the defaults are: crank_angle"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = run(&["solve", "--default", "crank_angle=2 * crank_len", model]);
+    assert_eq!(code, 2, "{stderr}");
+    let (code, stdout, stderr) = run(&["solve", "--all-solutions", "--json", "examples/rpr3.gcs"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(stdout.matches("\"max_residual\"").count(), 6, "{stdout}");
+    assert!(
+        !stdout.contains("\"complete\": false"),
+        "one angle: exhaustive"
+    );
+}
