@@ -37,7 +37,10 @@
 //!   the last Jacobian for several) are taken while each at least halves the largest residual,
 //!   so answers end at rounding level, as closed forms do, rather than just inside the
 //!   tolerance.
-//! - **Failures**: a start where the assembly fails is [`Failure::Start`] with its error. A
+//! - **Failures**: a start where the assembly fails is first moved (one default) to the
+//!   nearest point where it does not, probed at `scale * 2^-12` up to half a scale on either
+//!   side (a sweep's last answer can lie just past the edge of the stretch where its assembly
+//!   exists, one step on); with none, it is [`Failure::Start`] with its error. A
 //!   non-finite start, or a non-finite residual at the start, is [`Failure::NoConvergence`]
 //!   with a NaN (or that infinite) residual, without a call (resp. after one call). A failing
 //!   trial point halves the step back toward the last good point; the budget of evaluations
@@ -459,7 +462,34 @@ fn solve_scalar<E>(
     }
     let fx = match f(*x) {
         Ok(v) => v,
-        Err(e) => return Err(Failure::Start(e)),
+        Err(e) => {
+            // A start just outside the stretch where the assembly exists (a sweep's last
+            // answer, one step on): the nearest point where it does, at most half a scale
+            // away on either side, so that the iteration stays on that assembly.
+            let s = sane_scale(scale, *x);
+            let mut found = None;
+            'probe: for j in 0..12 {
+                let d = s * 0.5f64.powi(12 - j);
+                for t in [*x + d, *x - d] {
+                    if !budget.take() {
+                        break 'probe;
+                    }
+                    if let Ok(v) = f(t) {
+                        if is_finite(v) {
+                            found = Some((t, v));
+                            break 'probe;
+                        }
+                    }
+                }
+            }
+            match found {
+                Some((t, v)) => {
+                    *x = t;
+                    v
+                }
+                None => return Err(Failure::Start(e)),
+            }
+        }
     };
     if !is_finite(fx) {
         return Err(Failure::NoConvergence {

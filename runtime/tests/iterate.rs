@@ -517,7 +517,8 @@ fn failing_start_is_reported_with_its_error() {
         Err("circles miss")
     });
     assert_eq!(out, Err(Failure::Start("circles miss")));
-    assert_eq!(calls.get(), 1);
+    // One default: the start, then 24 probes out to half a scale on either side.
+    assert_eq!(calls.get(), 25);
     assert_eq!(x, [2.0]);
     let mut x = [2.0, 1.0, 0.0];
     let out = solve(&mut x, &[1.0; 3], &Settings::default(), |_, _| Err(7));
@@ -529,6 +530,30 @@ fn failing_start_is_reported_with_its_error() {
     });
     assert!(
         matches!(out, Err(Failure::NoConvergence { residual, iterations: 0 }) if residual.is_nan())
+    );
+}
+
+/// A start just outside the stretch where the assembly exists (a sweep's last answer, one
+/// step on) moves to the nearest point where it does, and converges there, on the root of
+/// that stretch; a stretch more than half a scale away is still a failed start.
+#[test]
+fn a_start_just_outside_the_assembly_steps_back_in() {
+    // Defined on [0, 1] only, root at 0.999: the start 1.0001 fails.
+    let f = |x: &[f64; 1], r: &mut [f64; 1]| {
+        if (0.0..=1.0).contains(&x[0]) {
+            r[0] = x[0] - 0.999;
+            Ok(())
+        } else {
+            Err("the circles miss")
+        }
+    };
+    let mut x = [1.0001];
+    let done = solve(&mut x, &[1.0], &Settings::default(), f).expect("steps back in");
+    assert!((x[0] - 0.999).abs() < 1e-13, "{x:?} {done:?}");
+    let mut x = [1.7];
+    assert_eq!(
+        solve(&mut x, &[1.0], &Settings::default(), f),
+        Err(Failure::Start("the circles miss"))
     );
 }
 
