@@ -143,7 +143,23 @@ pub fn run(
         stem.replace('_', "-"),
         root.join("runtime").display().to_string()
     );
-    let main = format!("mod solver {{\n{code}\n}}\n{DRIVER}");
+    // A solver with defaults reports those it converged to: each sample starts from the last
+    // answer's, as the baseline's Newton does (warm), and as a sweep that follows one assembly.
+    let driver = if code.contains("pub fn defaults(&self) -> Defaults") {
+        DRIVER
+            .replace(
+                "let defaults = solver::Defaults::default();",
+                "let defaults = warm;",
+            )
+            .replace("Ok(s) => {", "Ok(s) => {\n                warm = s.defaults();")
+            .replace(
+                "let mut branches = solver::Branches::default();",
+                "let mut branches = solver::Branches::default();\n    let mut warm = solver::Defaults::default();",
+            )
+    } else {
+        DRIVER.to_string()
+    };
+    let main = format!("mod solver {{\n{code}\n}}\n{driver}");
     write_if_changed(&dir.join("Cargo.toml"), &manifest)?;
     write_if_changed(&dir.join("src/main.rs"), &main)?;
     if let Ok(lock) = std::fs::read_to_string(root.join("Cargo.lock")) {

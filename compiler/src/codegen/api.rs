@@ -283,6 +283,8 @@ impl Layout {
             constants: HashMap::new(),
         };
         let mut names = Namer::default();
+        // `Solution::defaults`, when the plan has defaults.
+        names.reserve("defaults");
         let mut add = |layout: &mut Layout, name: &str, ty: Ty, holds: Holds| {
             layout.index.insert(holds, layout.fields.len());
             let name = names.fresh(name);
@@ -351,21 +353,39 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         "/// The solved configuration of every geom the outputs need: frames and dimensions, read",
     );
     w.line("/// through accessors named after the model.");
-    w.line(&scopes::derives(layout.fields.len(), false));
-    if layout.fields.is_empty() {
+    let has_defaults = !cx.plan.defaults.is_empty();
+    let mut names: Vec<String> = layout.fields.iter().map(|f| f.name.clone()).collect();
+    if has_defaults {
+        names.push("defaults".to_string());
+    }
+    w.line(&scopes::derives(names.len(), false));
+    if names.is_empty() {
         w.line("pub struct Solution {}");
     } else {
         w.open("pub struct Solution {");
         for f in &layout.fields {
             w.line(&format!("{}: {},", f.name, f.ty.rust()));
         }
+        if has_defaults {
+            w.line("defaults: Defaults,");
+        }
         w.close("}");
     }
     w.line("");
-    let names: Vec<String> = layout.fields.iter().map(|f| f.name.clone()).collect();
     scopes::field_by_field_eq(w, "Solution", &names, false);
     w.line("#[allow(dead_code)]");
     w.open("impl Solution {");
+    if has_defaults {
+        w.line(
+            "/// The defaults this assembly has: as given, or as the outer iteration converged to.",
+        );
+        w.line("/// Pass them to the next solve of a sweep to follow this assembly.");
+        w.line("#[inline]");
+        w.open("pub fn defaults(&self) -> Defaults {");
+        w.line("self.defaults");
+        w.close("}");
+        w.line("");
+    }
     let mut by_ty: HashMap<Ty, Vec<(String, String)>> = HashMap::new();
     for (a, accessor) in accessors(cx, layout).0 {
         w.line(&format!("/// {}", a.doc));
@@ -552,7 +572,7 @@ pub(super) fn accessor_texts(model: &gcs_lang::Model) -> impl Iterator<Item = St
 }
 
 /// The accessors of `Solution` that the API itself has.
-pub(super) const RESERVED_ACCESSORS: [&str; 3] = ["points", "vectors", "scalars"];
+pub(super) const RESERVED_ACCESSORS: [&str; 4] = ["points", "vectors", "scalars", "defaults"];
 
 /// The first sketch point of line `g` (where its `L.point` is measured from), if it is a line.
 pub(super) fn line_sketch<'m>(cx: &Context<'m>, g: GeomId) -> Option<&'m [gcs_lang::expr::ExprId]> {

@@ -49,6 +49,9 @@ pub(super) struct Solve<'a> {
     pub(super) converged: bool,
     /// Registers only error functions read: not written once the iteration converged.
     pub(super) error_only: HashSet<Reg>,
+    /// The code of each default an iteration converged on (its trial's entry), for
+    /// `Solution::defaults`.
+    pub(super) converged_defaults: HashMap<DefaultId, String>,
 }
 
 /// The locals `code` declares (`let name =`) and never reads.
@@ -92,6 +95,7 @@ pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         closing: None,
         converged: false,
         error_only: HashSet::new(),
+        converged_defaults: HashMap::new(),
     };
     s.write(w, layout);
 }
@@ -445,6 +449,7 @@ impl Solve<'_> {
         self.deferred = deferred;
         for (k, d) in it.defaults.iter().enumerate() {
             self.iterated.insert(*d, format!("{trial}[{k}]"));
+            self.converged_defaults.insert(*d, format!("{trial}[{k}]"));
         }
         self.converged = true;
     }
@@ -484,6 +489,17 @@ impl Solve<'_> {
                 },
             };
             w.line(&field_init(&field.name, &local));
+        }
+        if !self.cx.plan.defaults.is_empty() {
+            let fields: Vec<String> = (self.cx.defaults.iter().enumerate())
+                .map(|(k, field)| {
+                    let value = (self.converged_defaults.get(&DefaultId(k as u32)))
+                        .cloned()
+                        .unwrap_or_else(|| format!("defaults.{field}"));
+                    field_init(field, &value).trim_end_matches(',').to_string()
+                })
+                .collect();
+            w.line(&format!("defaults: Defaults {{ {} }},", fields.join(", ")));
         }
         w.close("})");
     }

@@ -112,10 +112,18 @@ pub struct Solution {
     crank2: Frame2,
     link1: Frame2,
     link2: Frame2,
+    defaults: Defaults,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The defaults this assembly has: as given, or as the outer iteration converged to.
+    /// Pass them to the next solve of a sweep to follow this assembly.
+    #[inline]
+    pub fn defaults(&self) -> Defaults {
+        self.defaults
+    }
+
     /// Point `A`, which the solve never moves.
     #[inline]
     pub fn a(&self) -> Point2<f64> {
@@ -349,5 +357,8 @@ pub fn solve(
         crank2,
         link1,
         link2,
+        defaults: Defaults {
+            crank2_angle: defaults.crank2_angle,
+        },
     })
 }

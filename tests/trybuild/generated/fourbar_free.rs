@@ -110,10 +110,18 @@ pub struct Solution {
     crank_b_local: Point2<f64>,
     coupler: Frame2,
     rocker: Frame2,
+    defaults: Defaults,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The defaults this assembly has: as given, or as the outer iteration converged to.
+    /// Pass them to the next solve of a sweep to follow this assembly.
+    #[inline]
+    pub fn defaults(&self) -> Defaults {
+        self.defaults
+    }
+
     /// Point `A`, which the solve never moves.
     #[inline]
     pub fn a(&self) -> Point2<f64> {
@@ -308,5 +316,8 @@ pub fn solve(
         crank_b_local,
         coupler,
         rocker,
+        defaults: Defaults {
+            crank_angle: defaults.crank_angle,
+        },
     })
 }

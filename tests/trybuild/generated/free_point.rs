@@ -111,10 +111,18 @@ pub struct Solution {
     base: Frame2,
     b: Frame2,
     c: Frame2,
+    defaults: Defaults,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The defaults this assembly has: as given, or as the outer iteration converged to.
+    /// Pass them to the next solve of a sweep to follow this assembly.
+    #[inline]
+    pub fn defaults(&self) -> Defaults {
+        self.defaults
+    }
+
     /// Point `A`, which the solve never moves.
     #[inline]
     pub fn a(&self) -> Point2<f64> {
@@ -252,5 +260,12 @@ pub fn solve(
     let on_circle_width = circle_width.at(defaults.c_angle);
     c.place_origin(&on_circle_width);
 
-    Ok(Solution { base, b, c })
+    Ok(Solution {
+        base,
+        b,
+        c,
+        defaults: Defaults {
+            c_angle: defaults.c_angle,
+        },
+    })
 }

@@ -119,10 +119,18 @@ impl Default for Defaults {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Solution {
     platform: Frame2,
+    defaults: Defaults,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The defaults this assembly has: as given, or as the outer iteration converged to.
+    /// Pass them to the next solve of a sweep to follow this assembly.
+    #[inline]
+    pub fn defaults(&self) -> Defaults {
+        self.defaults
+    }
+
     /// Point `B1`, which the solve never moves.
     #[inline]
     pub fn b1(&self) -> Point2<f64> {
@@ -411,5 +419,10 @@ pub fn solve(
     // l3: distance(B3, platform.p3) = leg3 (rpr3.gcs:23)
     // Already true where the sketch puts the geoms: nothing moves.
 
-    Ok(Solution { platform })
+    Ok(Solution {
+        platform,
+        defaults: Defaults {
+            platform_p1_angle: trial[0],
+        },
+    })
 }

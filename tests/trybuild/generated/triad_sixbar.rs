@@ -113,10 +113,18 @@ pub struct Solution {
     link2: Frame2,
     link3: Frame2,
     platform: Frame2,
+    defaults: Defaults,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The defaults this assembly has: as given, or as the outer iteration converged to.
+    /// Pass them to the next solve of a sweep to follow this assembly.
+    #[inline]
+    pub fn defaults(&self) -> Defaults {
+        self.defaults
+    }
+
     /// Point `O1`, which the solve never moves.
     #[inline]
     pub fn o1(&self) -> Point2<f64> {
@@ -529,5 +537,8 @@ pub fn solve(
         link2,
         link3,
         platform,
+        defaults: Defaults {
+            link1_angle: trial[0],
+        },
     })
 }
