@@ -184,6 +184,16 @@ pub(super) fn defaults(w: &mut Writer, cx: &Context<'_>) {
         w.line("#[derive(Clone, Copy, Debug, Default, PartialEq)]");
         w.line("pub struct Defaults {}");
         w.line("");
+        // The same shape as a model's with defaults, as `Branches` has with none.
+        w.line("#[allow(dead_code)]");
+        w.open("impl Defaults {");
+        w.line("/// Sets the default called `name` (as in the model); `false` when there is none.");
+        w.open("pub fn set(&mut self, name: &str, value: f64) -> bool {");
+        w.line("let _ = (name, value);");
+        w.line("false");
+        w.close("}");
+        w.close("}");
+        w.line("");
         return;
     }
     let fields = cx

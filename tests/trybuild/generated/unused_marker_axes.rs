@@ -82,6 +82,15 @@ impl Default for Branches {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Defaults {}
 
+#[allow(dead_code)]
+impl Defaults {
+    /// Sets the default called `name` (as in the model); `false` when there is none.
+    pub fn set(&mut self, name: &str, value: f64) -> bool {
+        let _ = (name, value);
+        false
+    }
+}
+
 /// The solved configuration of every geom the outputs need: frames and dimensions, read
 /// through accessors named after the model.
 #[derive(Clone, Copy, Debug, PartialEq)]
