@@ -401,7 +401,11 @@ impl Solve<'_> {
         let unread = unread_locals(&w.out[body_at..]);
         if !unread.is_empty() {
             let refs: Vec<String> = unread.iter().map(|n| format!("&{n}")).collect();
-            w.line(&format!("let _ = ({});", refs.join(", ")));
+            let refs = match refs.as_slice() {
+                [one] => one.clone(),
+                _ => format!("({})", refs.join(", ")),
+            };
+            w.line(&format!("let _ = {refs};"));
         }
         let written = std::mem::replace(&mut self.frame_writes, written_before);
         let mut shadows = Writer {
