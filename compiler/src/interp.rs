@@ -824,59 +824,12 @@ impl Machine<'_, '_> {
         }
     }
 
+    /// The residual of a check: the magnitude of its relation's error (a coincidence's is
+    /// the distance, of which its two errors are the components).
     fn residual(&self, residual: &Residual) -> f64 {
         match *residual {
-            Residual::PointPoint { a, b, d } => {
-                check::point_point(self.p(a), self.p(b), self.s_or_zero(d))
-            }
-            Residual::PointLine { p, base, dir, d } => {
-                check::point_line(self.p(p), self.p(base), self.v(dir), self.s_or_zero(d))
-            }
-            Residual::Angle { u, v, angle } => check::angle(self.v(u), self.v(v), self.s(angle)),
-            Residual::CircleLine {
-                centre,
-                radius,
-                base,
-                dir,
-                gap,
-                side,
-            } => check::circle_line(
-                self.p(centre),
-                self.s(radius),
-                self.p(base),
-                self.v(dir),
-                self.s_or_zero(gap),
-                side,
-            ),
-            Residual::PointCircle {
-                p,
-                centre,
-                radius,
-                gap,
-                outside,
-            } => check::point_circle(
-                self.p(p),
-                self.p(centre),
-                self.s(radius),
-                self.s_or_zero(gap),
-                outside,
-            ),
-            Residual::CircleCircle {
-                c1,
-                r1,
-                c2,
-                r2,
-                gap,
-                nesting,
-            } => check::circle_circle(
-                self.p(c1),
-                self.s(r1),
-                self.p(c2),
-                self.s(r2),
-                self.s_or_zero(gap),
-                nesting,
-            ),
-            Residual::Dim { value, target } => check::dimension(self.s(value), self.s(target)),
+            Residual::PointPoint { a, b, d: None } => check::point_point(self.p(a), self.p(b), 0.0),
+            _ => self.error_of(residual, 0).abs(),
         }
     }
 }

@@ -34,14 +34,14 @@ pub fn signed_distance(base: P2, dir: V2, p: P2) -> f64 {
 /// `|a - b| = d` (a coincidence when `d` is 0): how far the distance is from `d`.
 #[inline]
 pub fn point_point(a: P2, b: P2, d: f64) -> f64 {
-    ((a - b).norm() - d).abs()
+    error::point_point(a, b, d).abs()
 }
 
 /// The signed distance of `p` from the line through `base` along unit `dir` is `d`
 /// (positive to the left; 0 for incidence).
 #[inline]
 pub fn point_line(p: P2, base: P2, dir: V2, d: f64) -> f64 {
-    (signed_distance(base, dir, p) - d).abs()
+    error::point_line(p, base, dir, d).abs()
 }
 
 /// The counter-clockwise angle from unit `u` to unit `v` is `angle`: how far `v` is from `u`
@@ -50,9 +50,7 @@ pub fn point_line(p: P2, base: P2, dir: V2, d: f64) -> f64 {
 /// finite target (`1e300 - a` is `1e300` whatever `a` is).
 #[inline]
 pub fn angle(u: V2, v: V2, angle: f64) -> f64 {
-    let (s, c) = angle.sin_cos();
-    let w = V2::new(u.x * c - u.y * s, u.x * s + u.y * c);
-    (w.x * v.y - w.y * v.x).atan2(w.dot(&v)).abs()
+    error::angle(u, v, angle).abs()
 }
 
 /// A circle (`centre`, `radius`) on side `side` (+1 left, -1 right) of the line through `base`
@@ -60,37 +58,31 @@ pub fn angle(u: V2, v: V2, angle: f64) -> f64 {
 /// `side * sd(centre) = radius + gap`.
 #[inline]
 pub fn circle_line(centre: P2, radius: f64, base: P2, dir: V2, gap: f64, side: f64) -> f64 {
-    (side * signed_distance(base, dir, centre) - radius - gap).abs()
+    error::circle_line(centre, radius, base, dir, gap, side).abs()
 }
 
 /// Point `p` at distance `gap` from the perimeter of the circle (`centre`, `radius`), outside
 /// it or inside it (0: on it): `|p - centre| = radius ± gap`.
 #[inline]
 pub fn point_circle(p: P2, centre: P2, radius: f64, gap: f64, outside: bool) -> f64 {
-    let reach = if outside { radius + gap } else { radius - gap };
-    ((p - centre).norm() - reach).abs()
+    error::point_circle(p, centre, radius, gap, outside).abs()
 }
 
 /// Two circles whose perimeters are `gap` apart (0: tangent), sitting as `nesting` says.
 #[inline]
 pub fn circle_circle(c1: P2, r1: f64, c2: P2, r2: f64, gap: f64, nesting: Nesting) -> f64 {
-    let apart = match nesting {
-        Nesting::Apart => r1 + r2 + gap,
-        Nesting::FirstInside => r2 - r1 - gap,
-        Nesting::SecondInside => r1 - r2 - gap,
-    };
-    ((c1 - c2).norm() - apart).abs()
+    error::circle_circle(c1, r1, c2, r2, gap, nesting).abs()
 }
 
 /// A dimension (a segment's length, a circle's radius) `value` is `target`.
 #[inline]
 pub fn dimension(value: f64, target: f64) -> f64 {
-    (value - target).abs()
+    error::dimension(value, target).abs()
 }
 
 /// The signed errors of the residuals above, zero when the relation holds: the error
 /// functions an outer iteration drives to zero (its sign tells a root finder which side it
-/// is on). Each residual above is the magnitude of its error.
+/// is on). Each residual above is the magnitude of its error, computed by it.
 pub mod error {
     use super::{signed_distance, Nesting, P2, V2};
 
