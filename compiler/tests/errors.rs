@@ -476,3 +476,34 @@ fn circle_problem_has_two_real_branches_of_four() {
     let d = (centres[0][0] - centres[1][0]).hypot(centres[0][1] - centres[1][1]);
     assert!(d > 1e-6, "the two real branches are distinct: {centres:?}");
 }
+
+/// A triad whose third link cannot reach the platform: the outer iteration cannot close it,
+/// and the solve says so, naming a constraint of the triad with how far it is off, at every
+/// crank angle, and never returns an answer that breaks a constraint.
+#[test]
+fn a_triad_that_cannot_close_names_its_constraint_and_the_residual() {
+    let text = include_str!("../../examples/triad_sixbar.gcs").replace(
+        "body link3 at (0.3, 0) { point o = (0, 0); point p = (0, 3); }",
+        "body link3 at (0.3, 0) { point o = (0, 0); point p = (0, 30); }",
+    );
+    assert!(
+        text.contains("(0, 30)"),
+        "the model changed: update this test"
+    );
+    let model = load(&text);
+    let a = analyse(&model).expect("analyse");
+    assert_eq!(a.plan.iterations.len(), 1);
+    let triad = ["j1", "j2", "j3"];
+    for degrees in [0.0, 90.0, 200.0] {
+        let params = vec![f64::to_radians(degrees)];
+        let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
+        let e = gcs_compiler::solve(&model, &a, &params, &branches)
+            .expect_err("the third link is ten times too long");
+        assert!(triad.contains(&e.label.as_ref()), "{e}");
+        assert!(
+            matches!(e.kind, ErrorKind::NoConvergence | ErrorKind::NoIntersection),
+            "{e}"
+        );
+        assert!(e.magnitude > 1.0, "off by {}: {e}", e.magnitude);
+    }
+}
