@@ -62,6 +62,35 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
     })
 }
 
+/// Appends an error function (`Op::Error` or `Op::Implicit`) in a new register, and the
+/// `Op::Close` of `constraint` that an outer iteration drives it to zero with.
+fn error_and_close(
+    steps: &mut Vec<Step>,
+    regs: &mut u32,
+    error: Op,
+    constraint: ConstraintId,
+    satisfies: Vec<ConstraintId>,
+    explain: String,
+) {
+    let residual = Reg(*regs);
+    *regs += 1;
+    steps.push(Step {
+        op: error,
+        out: Some((residual, Ty::Scalar)),
+        satisfies: Vec::new(),
+        explain: String::new(),
+    });
+    steps.push(Step {
+        op: Op::Close {
+            constraint,
+            residual,
+        },
+        out: None,
+        satisfies,
+        explain,
+    });
+}
+
 /// The clusters as the analysis reports them.
 fn summary<R: Invariants>(model: &Model, states: &[ClusterState<R>]) -> Vec<Cluster> {
     (states.iter())
@@ -559,30 +588,23 @@ impl<'m, G: Geometry> Builder<'m, G> {
             {
                 closed.insert(d);
                 let (locus, point, constraint) = (*locus, *point, *constraint);
-                let error = Reg(regs);
-                regs += 1;
                 steps.push(Step {
                     op: Op::Nearest { locus, point },
                     ..step.clone()
                 });
-                steps.push(Step {
-                    op: Op::Implicit { locus, point },
-                    out: Some((error, Ty::Scalar)),
-                    satisfies: Vec::new(),
-                    explain: String::new(),
-                });
                 let (cname, name) = (self.cname(constraint), &self.plan.defaults[d as usize].name);
-                steps.push(Step {
-                    op: Op::Close {
-                        constraint,
-                        residual: error,
-                    },
-                    out: None,
-                    satisfies: Vec::new(),
-                    explain: format!(
-                        "{cname} is what `{name}` displaced: how far its point is from its locus closes the iteration on `{name}`."
-                    ),
-                });
+                let explain = format!(
+                    "{cname} is what `{name}` displaced: how far its point is from its locus closes the iteration on `{name}`."
+                );
+                let error = Op::Implicit { locus, point };
+                error_and_close(
+                    &mut steps,
+                    &mut regs,
+                    error,
+                    constraint,
+                    Vec::new(),
+                    explain,
+                );
                 spans.entry(d).or_insert((usize::MAX, 0)).1 = steps.len();
                 continue;
             }
@@ -607,35 +629,26 @@ impl<'m, G: Geometry> Builder<'m, G> {
             let cname = self.cname(constraint);
             for (component, &d) in open.iter().rev().take(components.into()).enumerate() {
                 closed.insert(d);
-                let error = Reg(regs);
-                regs += 1;
                 let words = if components == 2 {
                     [" along x", " along y"][component]
                 } else {
                     ""
                 };
-                steps.push(Step {
-                    op: Op::Error {
-                        residual: residual.clone(),
-                        component: component as u8,
-                    },
-                    out: Some((error, Ty::Scalar)),
-                    satisfies: Vec::new(),
-                    explain: String::new(),
-                });
                 let last = component + 1 == usize::from(components);
                 let name = &self.plan.defaults[d as usize].name;
-                steps.push(Step {
-                    op: Op::Close {
-                        constraint,
-                        residual: error,
-                    },
-                    out: None,
-                    satisfies: if last { step.satisfies.clone() } else { Vec::new() },
-                    explain: format!(
-                        "{cname} is what `{name}` displaced: its error{words} closes the iteration on `{name}`."
-                    ),
-                });
+                let explain = format!(
+                    "{cname} is what `{name}` displaced: its error{words} closes the iteration on `{name}`."
+                );
+                let error = Op::Error {
+                    residual: residual.clone(),
+                    component: component as u8,
+                };
+                let satisfies = if last {
+                    step.satisfies.clone()
+                } else {
+                    Vec::new()
+                };
+                error_and_close(&mut steps, &mut regs, error, constraint, satisfies, explain);
                 spans.entry(d).or_insert((usize::MAX, 0)).1 = steps.len();
             }
             self.redundant.retain(|c| *c != constraint);

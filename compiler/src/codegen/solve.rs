@@ -305,8 +305,7 @@ impl Solve<'_> {
             if let Some(it) = self.cx.plan.iterations.iter().find(|it| it.start == i) {
                 self.iteration(w, it);
             }
-            if let Some(it) = self.cx.plan.iterations.iter().find(|it| it.end == i) {
-                let _ = it;
+            if self.cx.plan.iterations.iter().any(|it| it.end == i) {
                 self.iterated.clear();
                 self.converged = false;
             }

@@ -106,6 +106,12 @@ impl Builder<'_, Planar> {
             format!("{fname}'s default place"),
         );
         self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        self.placed(k, f, to);
+    }
+
+    /// Feature `f` of cluster `k` is now at `to`: the cluster may still turn about it, if it
+    /// turns at all.
+    fn placed(&mut self, k: usize, f: GeomId, to: Reg) {
         let rec = &mut self.clusters[k].record;
         if rec.rot == Rot::Free {
             rec.pos = Pos::Pivot { at: to, feature: f };
@@ -257,13 +263,7 @@ impl Builder<'_, Planar> {
             self.group_name(&geoms)
         );
         self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
-        let rec = &mut self.clusters[k].record;
-        if rec.rot == Rot::Free {
-            rec.pos = Pos::Pivot { at: to, feature: f };
-            self.insert_known(f, to);
-        } else {
-            rec.pos = Pos::Fixed;
-        }
+        self.placed(k, f, to);
         true
     }
 
