@@ -29,8 +29,9 @@ use std::collections::BTreeSet;
 /// The most branch combinations tried.
 pub const MAX_COMBINATIONS: usize = 4096;
 
-/// Samples of an angle's turn: half a degree apart.
-pub const ANGLE_SAMPLES: u32 = 720;
+/// Samples of an angle's turn (half a degree apart): the runtime's, which generated
+/// `solve_all` uses too.
+pub use gcs_runtime::outer::ANGLE_SAMPLES;
 
 /// Starting values of each default when the search cannot be exhaustive.
 pub const GRID: usize = 12;
@@ -166,7 +167,12 @@ fn solve_all_of(
                 })
                 .collect(),
         };
-        for start in starts(model, plan, params, defaults, &branches, &varied, one_angle) {
+        let (starts, truncated) =
+            starts(model, plan, params, defaults, &branches, &varied, one_angle);
+        if truncated {
+            out.complete = false;
+        }
+        for start in starts {
             let solved = crate::solve_plan_with(model, plan, scope, params, &branches, &start);
             if let Ok(s) = solved {
                 if !out.solutions.iter().any(|t| same_assembly(t, &s)) {
@@ -179,7 +185,8 @@ fn solve_all_of(
 }
 
 /// Where to start the solves of one branch combination: the defaults given when nothing
-/// iterates; each root of the error function when one angle does; a grid otherwise.
+/// iterates; each root of the error function when one angle does; a grid otherwise. And
+/// whether the scan found more roots than it keeps.
 fn starts(
     model: &Model,
     plan: &Plan,
@@ -188,38 +195,22 @@ fn starts(
     branches: &[usize],
     varied: &[usize],
     one_angle: bool,
-) -> Vec<Vec<f64>> {
+) -> (Vec<Vec<f64>>, bool) {
     if varied.is_empty() {
-        return vec![defaults.to_vec()];
+        return (vec![defaults.to_vec()], false);
     }
     let choice = Choice::Given(branches.to_vec());
     if one_angle {
         let d = varied[0];
-        let pi = std::f64::consts::PI;
-        let error = |x: f64| {
-            let mut trial = defaults.to_vec();
-            trial[d] = x;
-            match interp::run_open(model, plan, params, &trial, &choice) {
-                Ok((_, errors)) => errors.first().copied().ok_or(()),
-                Err(_) => Err(()),
-            }
-        };
-        let settings = gcs_runtime::iterate::Settings::default();
-        let scan = gcs_runtime::iterate::all_roots::<64, ()>(
-            -pi,
-            pi,
-            true,
-            ANGLE_SAMPLES,
-            &settings,
-            error,
-        );
-        return (scan.roots().iter())
+        let scan = interp::scan(model, plan, params, defaults, &choice);
+        let starts = (scan.roots().iter())
             .map(|&x| {
                 let mut start = defaults.to_vec();
                 start[d] = x;
                 start
             })
             .collect();
+        return (starts, scan.truncated());
     }
     // A grid over each varied default: a turn for an angle, the sketch's value give or take
     // the model's size for a length.
@@ -253,7 +244,7 @@ fn starts(
             .take(MAX_COMBINATIONS)
             .collect();
     }
-    grid
+    (grid, false)
 }
 
 /// Whether two solutions are one assembly: every point and vector within a relative 1e-9.

@@ -14,6 +14,7 @@ use gcs_lang::model::ConstraintId;
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};
+use gcs_runtime::outer::Outer;
 use gcs_runtime::{check, intersect2d};
 use gcs_runtime::{Contact, Roots};
 use nalgebra::UnitComplex;
@@ -59,8 +60,8 @@ pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Resul
     run_with(model, plan, params, &plan.sketch_defaults(), choice)
 }
 
-/// Runs `plan` with `params` and `defaults` (indexed like the plan's defaults). An iterated
-/// region runs once, with the defaults given: each constraint it closes must then hold.
+/// Runs `plan` with `params` and `defaults` (indexed like the plan's defaults): each outer
+/// iteration starts from the defaults given and ends where its closes hold.
 pub fn run_with(
     model: &Model,
     plan: &Plan,
@@ -71,27 +72,30 @@ pub fn run_with(
     run_machine(model, plan, params, defaults.to_vec(), choice, None)
 }
 
-/// Runs `plan` with `defaults` as given, without its outer iterations: returns the run and
-/// the errors its closes measure (in step order), which an iteration would drive to zero.
-/// What every real assembly is searched on ([`crate::all`]).
-pub fn run_open(
+/// Runs `plan` with `defaults` as given up to its first outer iteration, and lists every
+/// root of that iteration's error over a turn of its default with the runtime's
+/// [`Scan`](gcs_runtime::outer::Scan), as a generated `solve_all` does: what every real
+/// assembly is searched on ([`crate::all`]). The scan says whether it reached such an
+/// iteration (an iteration over one default, on an assembly that exists up to there).
+pub fn scan(
     model: &Model,
     plan: &Plan,
     params: &[f64],
     defaults: &[f64],
     choice: &Choice,
-) -> Result<(Run, Vec<f64>), SolveError> {
-    let mut errors = Vec::new();
-    let run = run_machine_with(
+) -> gcs_runtime::outer::Scan {
+    let mut scan = gcs_runtime::outer::Scan::default();
+    // The run ends at the iteration scanned, with the scan's stop as its error.
+    let _ = run_machine_with(
         model,
         plan,
         params,
         defaults.to_vec(),
         choice,
         None,
-        Some(&mut errors),
-    )?;
-    Ok((run, errors))
+        Some(&mut scan),
+    );
+    scan
 }
 
 /// Runs `plan`; with `reached`, on the sketch: each default takes the value its measure
@@ -107,8 +111,8 @@ fn run_machine(
     run_machine_with(model, plan, params, defaults, choice, reached, None)
 }
 
-/// [`run_machine`]; with `open`, the outer iterations are not run and their closes' errors
-/// are collected there.
+/// [`run_machine`]; with `scan`, the first outer iteration is scanned for every root there
+/// instead of solved, which ends the run.
 fn run_machine_with(
     model: &Model,
     plan: &Plan,
@@ -116,7 +120,7 @@ fn run_machine_with(
     defaults: Vec<f64>,
     choice: &Choice,
     reached: Option<&mut Vec<Option<f64>>>,
-    open: Option<&mut Vec<f64>>,
+    mut scan: Option<&mut gcs_runtime::outer::Scan>,
 ) -> Result<Run, SolveError> {
     // As the generated solve checks them (`check_all_finite`): finite, and within range.
     for ((_, p), v) in model.params.iter().zip(params) {
@@ -161,16 +165,19 @@ fn run_machine_with(
         regs: vec![None; plan.regs as usize],
         chosen: vec![None; plan.branches.len()],
         reached,
-        errors: open.is_some().then(Vec::new),
+        errors: None,
         evaluations: 0,
         iterations: 0,
     };
-    let iterate = machine.reached.is_none() && machine.errors.is_none();
+    let iterate = machine.reached.is_none();
     let mut i = 0;
     while i < plan.steps.len() {
         match plan.iterations.iter().find(|it| it.start == i) {
             Some(it) if iterate => {
-                machine.iterate(it)?;
+                match scan.as_deref_mut() {
+                    Some(scan) => machine.iterate(it, scan)?,
+                    None => machine.iterate(it, &mut gcs_runtime::outer::Newton)?,
+                }
                 i = it.end;
             }
             _ => {
@@ -178,9 +185,6 @@ fn run_machine_with(
                 i += 1;
             }
         }
-    }
-    if let (Some(open), Some(errors)) = (open, machine.errors.take()) {
-        *open = errors;
     }
     Ok(Run {
         config: machine.config,
@@ -251,22 +255,27 @@ fn malformed(r: Reg, want: &str, got: Option<&Val>) -> ! {
 
 impl Machine<'_, '_> {
     /// Runs iterated region `it`: varies its defaults, from their values given, until every
-    /// close in it measures zero (000, section 5.2.1), then keeps that assembly.
-    fn iterate(&mut self, it: &Iteration) -> Result<(), SolveError> {
+    /// close in it measures zero (000, section 5.2.1), then keeps that assembly. `outer`
+    /// drives the iteration, as in a generated solver: it solves it, or scans it.
+    fn iterate<O: Outer>(&mut self, it: &Iteration, outer: &mut O) -> Result<(), SolveError> {
         match it.defaults.len() {
-            1 => self.iterate_n::<1>(it),
-            2 => self.iterate_n::<2>(it),
-            3 => self.iterate_n::<3>(it),
-            4 => self.iterate_n::<4>(it),
-            5 => self.iterate_n::<5>(it),
-            6 => self.iterate_n::<6>(it),
+            1 => self.iterate_n::<1, O>(it, outer),
+            2 => self.iterate_n::<2, O>(it, outer),
+            3 => self.iterate_n::<3, O>(it, outer),
+            4 => self.iterate_n::<4, O>(it, outer),
+            5 => self.iterate_n::<5, O>(it, outer),
+            6 => self.iterate_n::<6, O>(it, outer),
             n => Err(self.error(it.start, ErrorKind::NoConvergence, n as f64)),
         }
     }
 
     /// [`Machine::iterate`] over `N` defaults.
-    fn iterate_n<const N: usize>(&mut self, it: &Iteration) -> Result<(), SolveError> {
-        use gcs_runtime::iterate::{self, Failure, Settings};
+    fn iterate_n<const N: usize, O: Outer>(
+        &mut self,
+        it: &Iteration,
+        outer: &mut O,
+    ) -> Result<(), SolveError> {
+        use gcs_runtime::iterate::{Failure, Settings};
         let mut x = [0.0; N];
         let mut scale = [0.0; N];
         for (k, d) in it.defaults.iter().enumerate() {
@@ -283,7 +292,7 @@ impl Machine<'_, '_> {
             tolerance: gcs_runtime::tol::ITERATION_REL * (1.0 + self.scale),
             ..Settings::default()
         };
-        let outcome = iterate::solve(&mut x, &scale, &settings, |x: &[f64; N], r| {
+        let outcome = outer.iterate(&mut x, &scale, &settings, |x: &[f64; N], r| {
             self.assemble(it, &saved, x, r)
         });
         match outcome {

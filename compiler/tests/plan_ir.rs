@@ -171,10 +171,21 @@ fn a_default_and_an_iterated_region_are_valid_and_read_by_every_back_end() {
         .point(&model, model.geom_named("P").expect("P"));
     assert!((p - nalgebra::Point2::new(29.0 / 7.0, 384f64.sqrt() / 7.0)).norm() < 1e-14);
     // The sketch's angle does not close it: the outer iteration varies it until it does.
-    let (_, errors) =
-        gcs_compiler::interp::run_open(&model, &plan, &params, &plan.sketch_defaults(), &choice)
-            .expect("the region assembles at the sketch's angle");
-    assert!(errors[0].abs() > 0.1, "{errors:?}");
+    assert!((plan.sketch_defaults()[0] - closing).abs() > 0.1);
+    // A scan of the turn finds the closing angle and its mirror image in A B, and only them.
+    let scan = gcs_compiler::interp::scan(&model, &plan, &params, &plan.sketch_defaults(), &choice);
+    assert!(scan.scanned());
+    assert_eq!(scan.roots().len(), 2, "{:?}", scan.roots());
+    assert!(
+        (scan.roots()[0] + closing).abs() < 1e-12,
+        "{:?}",
+        scan.roots()
+    );
+    assert!(
+        (scan.roots()[1] - closing).abs() < 1e-12,
+        "{:?}",
+        scan.roots()
+    );
     let iterated = gcs_compiler::interp::run(&model, &plan, &params, &choice).expect("closes");
     assert!(
         (iterated.defaults[0] - closing).abs() < 1e-12,

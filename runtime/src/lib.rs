@@ -16,6 +16,7 @@ pub mod iterate;
 pub mod locus2d;
 pub mod locus3d;
 pub mod num;
+pub mod outer;
 pub mod poly;
 pub mod roots;
 pub mod tol;

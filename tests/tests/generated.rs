@@ -68,9 +68,22 @@ fn every_golden_belongs_to_a_model() {
     }
 }
 
-/// The trybuild case that runs one model's golden solver against the interpreter.
+/// The trybuild case that runs one model's golden solver against the interpreter; its
+/// `solve_all` too, where it has one (a model with too many branch combinations has none).
 fn run_case(m: &discover::Found) -> String {
     let path = |p: &Path| format!("{:?}", p.display().to_string());
+    let has_solve_all = std::fs::read_to_string(golden(&m.stem))
+        .is_ok_and(|text| text.contains("pub fn solve_all("));
+    let all = if has_solve_all {
+        format!(
+            "include!({});\n",
+            path(&root().join("trybuild/driver_all.rs"))
+        )
+    } else {
+        "// No `solve_all`: too many branch combinations to list.\n\
+         fn all_assemblies<M, P, S>(_: &M, _: &P, _: &S, _: &[String]) -> usize {\n    0\n}\n"
+            .to_string()
+    };
     format!(
         "// Runs the generated solver of `{relative}` against the interpreter.\n\
          #![deny(warnings)]\n\
@@ -82,7 +95,8 @@ fn run_case(m: &discover::Found) -> String {
          const NAME: &str = \"{file}\";\n\
          const MODEL: &str = include_str!({model});\n\
          \n\
-         include!({driver});\n",
+         include!({driver});\n\
+         {all}",
         relative = m.relative(),
         golden = path(&golden(&m.stem)),
         file = m.file_name(),

@@ -4,7 +4,8 @@
 // an outer iteration converges, each side to its own rounding) or equal
 // errors (the same constraint, kind and magnitude), re-checks every constraint of the
 // generated solution with `verify`, and counts the generated solve's allocations (none,
-// errors included).
+// errors included). Then `all_assemblies` (`driver_all.rs`, or a stand-in where the model has
+// no `solve_all`) compares the lists of every assembly.
 
 // Counts allocations, to show that a generated solve allocates nothing.
 #[global_allocator]
@@ -157,5 +158,6 @@ fn main() {
         }
     }
     assert!(equal > 0, "{NAME}: nothing solved");
-    println!("{NAME}: {equal} equal solutions, {errors} equal errors");
+    let listed = all_assemblies(model, &plan, &scope, &names);
+    println!("{NAME}: {equal} equal solutions, {errors} equal errors, {listed} assemblies listed alike");
 }

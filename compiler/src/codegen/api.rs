@@ -293,7 +293,8 @@ impl Layout {
             constants: HashMap::new(),
         };
         let mut names = Namer::default();
-        // `Solution::defaults`, when the plan has defaults.
+        // `Solution::branches` and `Solution::defaults`, when the plan has them.
+        names.reserve("branches");
         names.reserve("defaults");
         let mut add = |layout: &mut Layout, name: &str, ty: Ty, holds: Holds| {
             layout.index.insert(holds, layout.fields.len());
@@ -364,7 +365,11 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     );
     w.line("/// through accessors named after the model.");
     let has_defaults = !cx.plan.defaults.is_empty();
+    let has_branches = !cx.plan.branches.is_empty();
     let mut names: Vec<String> = layout.fields.iter().map(|f| f.name.clone()).collect();
+    if has_branches {
+        names.push("branches".to_string());
+    }
     if has_defaults {
         names.push("defaults".to_string());
     }
@@ -376,6 +381,9 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         for f in &layout.fields {
             w.line(&format!("{}: {},", f.name, f.ty.rust()));
         }
+        if has_branches {
+            w.line("branches: Branches,");
+        }
         if has_defaults {
             w.line("defaults: Defaults,");
         }
@@ -385,6 +393,14 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     scopes::field_by_field_eq(w, "Solution", &names, false);
     w.line("#[allow(dead_code)]");
     w.open("impl Solution {");
+    if has_branches {
+        w.line("/// The branch variables this assembly is on: those given to `solve`.");
+        w.line("#[inline]");
+        w.open("pub fn branches(&self) -> Branches {");
+        w.line("self.branches");
+        w.close("}");
+        w.line("");
+    }
     if has_defaults {
         w.line(
             "/// The defaults this assembly has: as given, or as the outer iteration converged to.",
@@ -582,7 +598,8 @@ pub(super) fn accessor_texts(model: &gcs_lang::Model) -> impl Iterator<Item = St
 }
 
 /// The accessors of `Solution` that the API itself has.
-pub(super) const RESERVED_ACCESSORS: [&str; 4] = ["points", "vectors", "scalars", "defaults"];
+pub(super) const RESERVED_ACCESSORS: [&str; 5] =
+    ["points", "vectors", "scalars", "branches", "defaults"];
 
 /// The first sketch point of line `g` (where its `L.point` is measured from), if it is a line.
 pub(super) fn line_sketch<'m>(cx: &Context<'m>, g: GeomId) -> Option<&'m [gcs_lang::expr::ExprId]> {

@@ -148,7 +148,7 @@ pub(super) struct Facts {
     /// their own.
     pub(super) known_finite: HashSet<Reg>,
     /// Scalar registers checked to be finite and not negative: a size ([`crate::plan::Op::Size`]).
-    /// Setting a dimension from one needs no test of its own.
+    /// Setting a dimension from one, or a circle of that radius, needs no test of its own.
     pub(super) known_sizes: HashSet<Reg>,
     /// Registers that hold a finite unit direction by construction (`direction_at` of a
     /// finite angle): a rotation onto one needs no test.

@@ -15,6 +15,7 @@
 //! (`sketch`, `expr`); `scopes` keeps a long solve's scopes shallow; `writer` and
 //! `names` spell the text; `format` runs rustfmt on it.
 
+mod all;
 mod api;
 mod context;
 mod expr;
@@ -50,6 +51,8 @@ pub fn generate(model: &Model, plan: &Plan) -> String {
     let layout = api::Layout::new(&cx);
     api::solution(&mut w, &cx, &layout);
     solve::solve(&mut w, &cx, &layout);
+    w.line("");
+    all::solve_all(&mut w, &cx);
     w.out
 }
 

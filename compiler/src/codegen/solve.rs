@@ -78,7 +78,7 @@ fn unread_locals(code: &str) -> Vec<String> {
 /// Writes `solve`.
 pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     let mut names = Namer::default();
-    for reserved in ["params", "branches", "defaults", "tol", "solution"] {
+    for reserved in ["params", "branches", "defaults", "outer", "tol", "solution"] {
         names.reserve(reserved);
     }
     let mut s = Solve {
@@ -114,6 +114,17 @@ impl Solve<'_> {
         // its size, so a long solve stays a call.
         w.line("#[inline]");
         w.open("pub fn solve(params: &Params, branches: &Branches, defaults: &Defaults) -> Result<Solution, SolveError> {");
+        if !self.cx.plan.iterations.is_empty() {
+            // One text of the plan, generic over what its outer iterations do: solve them
+            // here, scan them for every root in `solve_all`.
+            w.line("assemble(params, branches, defaults, &mut gcs_runtime::outer::Newton)");
+            w.close("}");
+            w.line("");
+            w.line("/// The plan's steps, each outer iteration driven by `outer`: solved to the assembly");
+            w.line("/// nearest its start (`solve`), or scanned for every root (`solve_all`).");
+            w.line("#[inline]");
+            w.open("fn assemble<O: gcs_runtime::outer::Outer>(params: &Params, branches: &Branches, defaults: &Defaults, outer: &mut O) -> Result<Solution, SolveError> {");
+        }
         w.line("let _ = (params, branches, defaults);");
         self.check_params(w);
         self.check_sketches(w);
@@ -334,8 +345,8 @@ impl Solve<'_> {
     }
 
     /// An outer iteration (000, section 5.2.1): a closure that assembles region `it` for a
-    /// trial of its defaults and writes the errors of its closes, driven to zero by the
-    /// runtime's `iterate::solve` from the `Defaults` given. The region's steps are then
+    /// trial of its defaults and writes the errors of its closes, driven to zero by `outer`
+    /// (the runtime's `iterate::solve` in `solve`) from the `Defaults` given. The region's steps are then
     /// written again, straight, with the defaults converged to: what they define is what the
     /// rest of `solve` reads.
     fn iteration(&mut self, w: &mut Writer, it: &Iteration) {
@@ -370,7 +381,7 @@ impl Solve<'_> {
         ));
         w.line(&format!("let mut {trial} = [{}];", start.join(", ")));
         w.open(&format!(
-            "gcs_runtime::iterate::solve(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings {{ tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL, ..gcs_runtime::iterate::Settings::default() }}, |{trial}, {errors}| {{",
+            "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings {{ tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL, ..gcs_runtime::iterate::Settings::default() }}, |{trial}, {errors}| {{",
             scale.join(", ")
         ));
         // The trial works on copies of the frames and dimensions the region moves: those its
@@ -492,6 +503,9 @@ impl Solve<'_> {
                 },
             };
             w.line(&field_init(&field.name, &local));
+        }
+        if !self.cx.plan.branches.is_empty() {
+            w.line("branches: *branches,");
         }
         if !self.cx.plan.defaults.is_empty() {
             let fields: Vec<String> = (self.cx.defaults.iter().enumerate())

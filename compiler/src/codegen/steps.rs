@@ -451,11 +451,13 @@ impl Solve<'_> {
         code
     }
 
-    /// The circle about `center` with `radius`; a radius not known to be non-negative is
-    /// tested first.
+    /// The circle about `center` with `radius`; a radius not known to be non-negative (a
+    /// constant, or a size its constraint has already tested) is tested first.
     fn circle(&mut self, w: &mut Writer, i: usize, r: Reg, center: Reg, radius: Reg) {
         let rad = self.r(radius);
-        if !matches!(self.facts.value(radius), Value::Scalar(v) if *v >= 0.0) {
+        let non_negative = matches!(self.facts.value(radius), Value::Scalar(v) if *v >= 0.0)
+            || self.facts.known_sizes.contains(&radius);
+        if !non_negative {
             w.open(&format!("if {rad} < 0.0 {{"));
             w.line(&format!(
                 "return Err({});",

@@ -119,11 +119,18 @@ impl Default for Defaults {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Solution {
     platform: Frame2,
+    branches: Branches,
     defaults: Defaults,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The branch variables this assembly is on: those given to `solve`.
+    #[inline]
+    pub fn branches(&self) -> Branches {
+        self.branches
+    }
+
     /// The defaults this assembly has: as given, or as the outer iteration converged to.
     /// Pass them to the next solve of a sweep to follow this assembly.
     #[inline]
@@ -209,6 +216,18 @@ pub fn solve(
     branches: &Branches,
     defaults: &Defaults,
 ) -> Result<Solution, SolveError> {
+    assemble(params, branches, defaults, &mut gcs_runtime::outer::Newton)
+}
+
+/// The plan's steps, each outer iteration driven by `outer`: solved to the assembly
+/// nearest its start (`solve`), or scanned for every root (`solve_all`).
+#[inline]
+fn assemble<O: gcs_runtime::outer::Outer>(
+    params: &Params,
+    branches: &Branches,
+    defaults: &Defaults,
+    outer: &mut O,
+) -> Result<Solution, SolveError> {
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[
         ("leg1", params.leg1),
@@ -248,14 +267,6 @@ pub fn solve(
             params.leg1,
         ));
     }
-    if params.leg1 < 0.0 {
-        return Err(SolveError::new(
-            "l1",
-            "distance(B1, platform.p1) = leg1",
-            ErrorKind::NoIntersection,
-            -params.leg1,
-        ));
-    }
     let circle_b1 = Circle::new(Point2::new(0.0, 0.0), params.leg1).ok_or_else(|| {
         SolveError::new(
             "l1",
@@ -271,96 +282,91 @@ pub fn solve(
 
     // No loop is rigid here: vary `platform.p1_angle` until `l3` closes (an outer iteration).
     let mut trial = [defaults.platform_p1_angle];
-    gcs_runtime::iterate::solve(
-        &mut trial,
-        &[1.0],
-        &gcs_runtime::iterate::Settings {
-            tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL,
-            ..gcs_runtime::iterate::Settings::default()
-        },
-        |trial, errors| {
-            let mut platform = platform;
-            let on_circle_b1 = circle_b1.at(trial[0]);
-            platform.place_origin(&on_circle_b1);
-            // l2: a distance is zero or more.
-            if params.leg2 < 0.0 {
-                return Err(SolveError::new(
-                    "l2",
-                    "distance(B2, platform.p2) = leg2",
-                    ErrorKind::InvalidValue,
-                    params.leg2,
-                ));
-            }
-            if params.leg2 < 0.0 {
-                return Err(SolveError::new(
-                    "l2",
-                    "distance(B2, platform.p2) = leg2",
-                    ErrorKind::NoIntersection,
-                    -params.leg2,
-                ));
-            }
-            let circle_b2 = Circle::new(Point2::new(15.91, 0.0), params.leg2).ok_or_else(|| {
-                SolveError::new(
-                    "l2",
-                    "distance(B2, platform.p2) = leg2",
-                    ErrorKind::Degenerate,
-                    0.0,
-                )
-            })?;
-            let platform_p2 = on_circle_b1 + platform.x_axis() * 17.04;
-            let circle_on_circle_b1 = Circle::new(on_circle_b1, 17.04).ok_or_else(|| {
-                SolveError::new(
-                    "l2",
-                    "distance(B2, platform.p2) = leg2",
-                    ErrorKind::Degenerate,
-                    0.0,
-                )
-            })?;
-            let l2_chord = intersect2d::circle_circle_chord(&circle_on_circle_b1, &circle_b2)
-                .map_err(|miss| {
+    outer
+        .iterate(
+            &mut trial,
+            &[1.0],
+            &gcs_runtime::iterate::Settings {
+                tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL,
+                ..gcs_runtime::iterate::Settings::default()
+            },
+            |trial, errors| {
+                let mut platform = platform;
+                let on_circle_b1 = circle_b1.at(trial[0]);
+                platform.place_origin(&on_circle_b1);
+                // l2: a distance is zero or more.
+                if params.leg2 < 0.0 {
+                    return Err(SolveError::new(
+                        "l2",
+                        "distance(B2, platform.p2) = leg2",
+                        ErrorKind::InvalidValue,
+                        params.leg2,
+                    ));
+                }
+                let circle_b2 =
+                    Circle::new(Point2::new(15.91, 0.0), params.leg2).ok_or_else(|| {
+                        SolveError::new(
+                            "l2",
+                            "distance(B2, platform.p2) = leg2",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let platform_p2 = on_circle_b1 + platform.x_axis() * 17.04;
+                let circle_on_circle_b1 = Circle::new(on_circle_b1, 17.04).ok_or_else(|| {
+                    SolveError::new(
+                        "l2",
+                        "distance(B2, platform.p2) = leg2",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let l2_chord = intersect2d::circle_circle_chord(&circle_on_circle_b1, &circle_b2)
+                    .map_err(|miss| {
                     SolveError::from_miss("l2", "distance(B2, platform.p2) = leg2", miss)
                 })?;
-            let l2 = l2_chord.root(usize::from(branches.l2)).ok_or_else(|| {
-                SolveError::new(
-                    "l2",
-                    "distance(B2, platform.p2) = leg2",
-                    ErrorKind::NoSuchBranch,
-                    2.0,
-                )
-            })?;
-            let turn = rotation_on_circle(
-                &(platform_p2 - on_circle_b1),
-                &l2_chord
-                    .root_from_a(usize::from(branches.l2))
-                    .unwrap_or(l2 - on_circle_b1),
-                17.04,
-            );
-            platform.turn_by(&turn);
-            let platform_p3 =
-                platform.point_to_global(&Point2::new(15.940021741400596, 13.425362538233477));
-            // l3: a distance is zero or more.
-            if params.leg3 < 0.0 {
-                return Err(SolveError::new(
-                    "l3",
-                    "distance(B3, platform.p3) = leg3",
-                    ErrorKind::InvalidValue,
-                    params.leg3,
-                ));
-            }
-            let error = check::error::point_point(Point2::new(0.0, 10.0), platform_p3, params.leg3);
-            errors[0] = error;
-            Ok(())
-        },
-    )
-    .map_err(|failure| match failure {
-        gcs_runtime::iterate::Failure::Start(error) => error,
-        gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-            "l3",
-            "distance(B3, platform.p3) = leg3",
-            ErrorKind::NoConvergence,
-            residual,
-        ),
-    })?;
+                let l2 = l2_chord.root(usize::from(branches.l2)).ok_or_else(|| {
+                    SolveError::new(
+                        "l2",
+                        "distance(B2, platform.p2) = leg2",
+                        ErrorKind::NoSuchBranch,
+                        2.0,
+                    )
+                })?;
+                let turn = rotation_on_circle(
+                    &(platform_p2 - on_circle_b1),
+                    &l2_chord
+                        .root_from_a(usize::from(branches.l2))
+                        .unwrap_or(l2 - on_circle_b1),
+                    17.04,
+                );
+                platform.turn_by(&turn);
+                let platform_p3 =
+                    platform.point_to_global(&Point2::new(15.940021741400596, 13.425362538233477));
+                // l3: a distance is zero or more.
+                if params.leg3 < 0.0 {
+                    return Err(SolveError::new(
+                        "l3",
+                        "distance(B3, platform.p3) = leg3",
+                        ErrorKind::InvalidValue,
+                        params.leg3,
+                    ));
+                }
+                let error =
+                    check::error::point_point(Point2::new(0.0, 10.0), platform_p3, params.leg3);
+                errors[0] = error;
+                Ok(())
+            },
+        )
+        .map_err(|failure| match failure {
+            gcs_runtime::iterate::Failure::Start(error) => error,
+            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
+                "l3",
+                "distance(B3, platform.p3) = leg3",
+                ErrorKind::NoConvergence,
+                residual,
+            ),
+        })?;
     let on_circle_b1_2 = circle_b1.at(trial[0]);
     platform.place_origin(&on_circle_b1_2);
     // l2: a distance is zero or more.
@@ -370,14 +376,6 @@ pub fn solve(
             "distance(B2, platform.p2) = leg2",
             ErrorKind::InvalidValue,
             params.leg2,
-        ));
-    }
-    if params.leg2 < 0.0 {
-        return Err(SolveError::new(
-            "l2",
-            "distance(B2, platform.p2) = leg2",
-            ErrorKind::NoIntersection,
-            -params.leg2,
         ));
     }
     let circle_b2_2 = Circle::new(Point2::new(15.91, 0.0), params.leg2).ok_or_else(|| {
@@ -421,8 +419,116 @@ pub fn solve(
 
     Ok(Solution {
         platform,
+        branches: *branches,
         defaults: Defaults {
             platform_p1_angle: trial[0],
         },
     })
+}
+
+/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
+pub const MAX_ASSEMBLIES: usize = 64;
+
+/// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity
+/// list, so that listing them allocates nothing.
+#[derive(Clone, Copy, Debug)]
+pub struct Assemblies {
+    solutions: [Option<Solution>; MAX_ASSEMBLIES],
+    len: usize,
+    complete: bool,
+}
+
+#[allow(dead_code)]
+impl Assemblies {
+    /// How many assemblies were found.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether none was: no real assembly exists at these params (on any branches).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The `i`th assembly found.
+    pub fn get(&self, i: usize) -> Option<&Solution> {
+        self.solutions.get(i)?.as_ref()
+    }
+
+    /// The assemblies, in the order found.
+    pub fn iter(&self) -> impl Iterator<Item = &Solution> {
+        self.solutions.iter().flatten()
+    }
+
+    /// Whether every real assembly is listed. True when the search is exhaustive
+    /// (every branch combination, its iteration's error scanned over a turn) and neither
+    /// the scan nor the list overflowed.
+    pub fn is_complete(&self) -> bool {
+        self.complete
+    }
+
+    /// Adds `s` unless the list has its assembly already (every point within 1e-9 of the
+    /// model's size, every vector within 1e-9); past the capacity, marks the list incomplete.
+    fn push(&mut self, s: Solution) {
+        let (points, vectors) = (s.points(), s.vectors());
+        for t in self.iter() {
+            let scale = 1.0
+                + t.points()
+                    .iter()
+                    .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+            let same_points = t
+                .points()
+                .iter()
+                .zip(&points)
+                .all(|((_, p), (_, q))| (p - q).amax() <= 1e-9 * scale);
+            let same_vectors = t
+                .vectors()
+                .iter()
+                .zip(&vectors)
+                .all(|((_, u), (_, v))| (u - v).amax() <= 1e-9);
+            if same_points && same_vectors {
+                return;
+            }
+        }
+        match self.solutions.get_mut(self.len) {
+            Some(slot) => {
+                *slot = Some(s);
+                self.len += 1;
+            }
+            None => self.complete = false,
+        }
+    }
+}
+
+/// Every real assembly at `params`, each with its branches (`Solution::branches`) and
+/// defaults (`Solution::defaults`).
+/// Never panics, allocates nothing.
+///
+/// Each combination of the branch variables is solved.
+/// The outer iteration's error is scanned over a whole turn of `platform.p1_angle`,
+/// and the plan solved from each root; the runtime's `outer::Scan` says which roots a scan
+/// finds. The other defaults (free motions) keep the values given, which every assembly shares.
+pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
+    let mut found = Assemblies {
+        solutions: [None; MAX_ASSEMBLIES],
+        len: 0,
+        complete: true,
+    };
+    for combination in 0..2usize {
+        let mut branches = Branches::default();
+        branches.l2 = (combination % 2) as u8;
+        let mut scan = gcs_runtime::outer::Scan::default();
+        // The scan ends this solve at the iteration, with the roots listed.
+        let _ = assemble(params, &branches, defaults, &mut scan);
+        found.complete &= !scan.truncated();
+        for &root in scan.roots() {
+            let start = Defaults {
+                platform_p1_angle: root,
+            };
+            if let Ok(s) = solve(params, &branches, &start) {
+                found.push(s);
+            }
+        }
+    }
+    found
 }

@@ -104,10 +104,17 @@ pub struct Solution {
     crank: Frame2,
     rocker: Frame2,
     follower: Frame2,
+    branches: Branches,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The branch variables this assembly is on: those given to `solve`.
+    #[inline]
+    pub fn branches(&self) -> Branches {
+        self.branches
+    }
+
     /// Point `A`, which the solve never moves.
     #[inline]
     pub fn a(&self) -> Point2<f64> {
@@ -361,5 +368,104 @@ pub fn solve(
         crank,
         rocker,
         follower,
+        branches: *branches,
     })
+}
+
+/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
+pub const MAX_ASSEMBLIES: usize = 4;
+
+/// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity
+/// list, so that listing them allocates nothing.
+#[derive(Clone, Copy, Debug)]
+pub struct Assemblies {
+    solutions: [Option<Solution>; MAX_ASSEMBLIES],
+    len: usize,
+    complete: bool,
+}
+
+#[allow(dead_code)]
+impl Assemblies {
+    /// How many assemblies were found.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether none was: no real assembly exists at these params (on any branches).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The `i`th assembly found.
+    pub fn get(&self, i: usize) -> Option<&Solution> {
+        self.solutions.get(i)?.as_ref()
+    }
+
+    /// The assemblies, in the order found.
+    pub fn iter(&self) -> impl Iterator<Item = &Solution> {
+        self.solutions.iter().flatten()
+    }
+
+    /// Whether every real assembly is listed. True when the search is exhaustive
+    /// (every branch combination solved in closed form) and the list did not overflow.
+    pub fn is_complete(&self) -> bool {
+        self.complete
+    }
+
+    /// Adds `s` unless the list has its assembly already (every point within 1e-9 of the
+    /// model's size, every vector within 1e-9); past the capacity, marks the list incomplete.
+    fn push(&mut self, s: Solution) {
+        let (points, vectors) = (s.points(), s.vectors());
+        for t in self.iter() {
+            let scale = 1.0
+                + t.points()
+                    .iter()
+                    .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+            let same_points = t
+                .points()
+                .iter()
+                .zip(&points)
+                .all(|((_, p), (_, q))| (p - q).amax() <= 1e-9 * scale);
+            let same_vectors = t
+                .vectors()
+                .iter()
+                .zip(&vectors)
+                .all(|((_, u), (_, v))| (u - v).amax() <= 1e-9);
+            if same_points && same_vectors {
+                return;
+            }
+        }
+        match self.solutions.get_mut(self.len) {
+            Some(slot) => {
+                *slot = Some(s);
+                self.len += 1;
+            }
+            None => self.complete = false,
+        }
+    }
+}
+
+/// Every real assembly at `params`, each with its branches (`Solution::branches`).
+/// Never panics, allocates nothing.
+///
+/// Each combination of the branch variables is solved.
+/// The plan has no outer iteration: each combination has at most one assembly.
+pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
+    let mut found = Assemblies {
+        solutions: [None; MAX_ASSEMBLIES],
+        len: 0,
+        complete: true,
+    };
+    for combination in 0..4usize {
+        // `combination` in mixed radix, the first branch variable varying fastest.
+        let mut rest = combination;
+        let mut branches = Branches::default();
+        branches.first = (rest % 2) as u8;
+        rest /= 2;
+        branches.second = (rest % 2) as u8;
+        if let Ok(s) = solve(params, &branches, defaults) {
+            found.push(s);
+        }
+    }
+    found
 }

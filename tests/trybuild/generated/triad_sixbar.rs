@@ -113,11 +113,18 @@ pub struct Solution {
     link2: Frame2,
     link3: Frame2,
     platform: Frame2,
+    branches: Branches,
     defaults: Defaults,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The branch variables this assembly is on: those given to `solve`.
+    #[inline]
+    pub fn branches(&self) -> Branches {
+        self.branches
+    }
+
     /// The defaults this assembly has: as given, or as the outer iteration converged to.
     /// Pass them to the next solve of a sweep to follow this assembly.
     #[inline]
@@ -294,6 +301,18 @@ pub fn solve(
     branches: &Branches,
     defaults: &Defaults,
 ) -> Result<Solution, SolveError> {
+    assemble(params, branches, defaults, &mut gcs_runtime::outer::Newton)
+}
+
+/// The plan's steps, each outer iteration driven by `outer`: solved to the assembly
+/// nearest its start (`solve`), or scanned for every root (`solve_all`).
+#[inline]
+fn assemble<O: gcs_runtime::outer::Outer>(
+    params: &Params,
+    branches: &Branches,
+    defaults: &Defaults,
+    outer: &mut O,
+) -> Result<Solution, SolveError> {
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[
         ("theta", params.theta),
@@ -364,97 +383,98 @@ pub fn solve(
 
     // No loop is rigid here: vary `link1_angle` until `j3` closes (an outer iteration).
     let mut trial = [defaults.link1_angle];
-    gcs_runtime::iterate::solve(
-        &mut trial,
-        &[1.0],
-        &gcs_runtime::iterate::Settings {
-            tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL,
-            ..gcs_runtime::iterate::Settings::default()
-        },
-        |trial, errors| {
-            let mut link1 = link1;
-            let mut link2 = link2;
-            let mut platform = platform;
-            let direction_2 = direction_at(trial[0]);
-            let turn_2 = rotation_between_units(&direction, &direction_2);
-            link1.set_rotation(&turn_2);
-            let link1_p = Point2::new(6.0, 4.0) + link1.x_axis() * -3.0;
-            platform.place_origin(&link1_p);
-            let circle_o3 = Circle::new(Point2::new(2.0, -1.0), 3.5).ok_or_else(|| {
-                SolveError::new(
-                    "j2",
-                    "coincident(link2.p, platform.p2)",
-                    ErrorKind::Degenerate,
-                    0.0,
-                )
-            })?;
-            let platform_p2 = link1_p + Vector2::new(-1.0, -1.5);
-            let circle_link1_p = Circle::new(link1_p, 1.8027756377319946).ok_or_else(|| {
-                SolveError::new(
-                    "j2",
-                    "coincident(link2.p, platform.p2)",
-                    ErrorKind::Degenerate,
-                    0.0,
-                )
-            })?;
-            let j2_chord =
-                intersect2d::circle_circle_chord(&circle_o3, &circle_link1_p).map_err(|miss| {
-                    SolveError::from_miss("j2", "coincident(link2.p, platform.p2)", miss)
+    outer
+        .iterate(
+            &mut trial,
+            &[1.0],
+            &gcs_runtime::iterate::Settings {
+                tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL,
+                ..gcs_runtime::iterate::Settings::default()
+            },
+            |trial, errors| {
+                let mut link1 = link1;
+                let mut link2 = link2;
+                let mut platform = platform;
+                let direction_2 = direction_at(trial[0]);
+                let turn_2 = rotation_between_units(&direction, &direction_2);
+                link1.set_rotation(&turn_2);
+                let link1_p = Point2::new(6.0, 4.0) + link1.x_axis() * -3.0;
+                platform.place_origin(&link1_p);
+                let circle_o3 = Circle::new(Point2::new(2.0, -1.0), 3.5).ok_or_else(|| {
+                    SolveError::new(
+                        "j2",
+                        "coincident(link2.p, platform.p2)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
                 })?;
-            let j2 = j2_chord.root(usize::from(branches.j2)).ok_or_else(|| {
-                SolveError::new(
-                    "j2",
-                    "coincident(link2.p, platform.p2)",
-                    ErrorKind::NoSuchBranch,
-                    2.0,
-                )
-            })?;
-            let j2_reach = j2_chord
-                .root_from_a(usize::from(branches.j2))
-                .unwrap_or(j2 - Point2::new(2.0, -1.0));
-            let turn_3 = rotation_on_circle_from(
-                j2_reach.y * 0.2857142857142857,
-                j2_reach.x * -0.2857142857142857,
-                &(Point2::new(2.0, 2.5) - Point2::new(2.0, -1.0)),
-                &j2_reach,
-            );
-            link2.set_rotation(&turn_3);
-            let j2_reach_2 = j2_chord
-                .root_from_b(usize::from(branches.j2))
-                .unwrap_or(j2 - link1_p);
-            let turn_4 = rotation_on_circle_from(
-                j2_reach_2.x * -0.3076923076923077 + j2_reach_2.y * -0.46153846153846156,
-                j2_reach_2.y * -0.3076923076923077 + j2_reach_2.x * 0.46153846153846156,
-                &(platform_p2 - link1_p),
-                &j2_reach_2,
-            );
-            platform.set_rotation(&turn_4);
-            let platform_p3 = platform.point_to_global(&Point2::new(-2.7, -1.0));
-            let link3_p = crank_t + Vector2::new(0.0, 3.0);
-            let circle_crank_t = Circle::new(crank_t, 3.0).ok_or_else(|| {
-                SolveError::new(
-                    "j3",
-                    "coincident(link3.p, platform.p3)",
-                    ErrorKind::Degenerate,
-                    0.0,
-                )
-            })?;
-            let nearest_platform_p3 = circle_crank_t.nearest(platform_p3);
-            let error = circle_crank_t.implicit(platform_p3);
-            errors[0] = error;
-            let _ = (&link3_p, &nearest_platform_p3);
-            Ok(())
-        },
-    )
-    .map_err(|failure| match failure {
-        gcs_runtime::iterate::Failure::Start(error) => error,
-        gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-            "j3",
-            "coincident(link3.p, platform.p3)",
-            ErrorKind::NoConvergence,
-            residual,
-        ),
-    })?;
+                let platform_p2 = link1_p + Vector2::new(-1.0, -1.5);
+                let circle_link1_p = Circle::new(link1_p, 1.8027756377319946).ok_or_else(|| {
+                    SolveError::new(
+                        "j2",
+                        "coincident(link2.p, platform.p2)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let j2_chord = intersect2d::circle_circle_chord(&circle_o3, &circle_link1_p)
+                    .map_err(|miss| {
+                        SolveError::from_miss("j2", "coincident(link2.p, platform.p2)", miss)
+                    })?;
+                let j2 = j2_chord.root(usize::from(branches.j2)).ok_or_else(|| {
+                    SolveError::new(
+                        "j2",
+                        "coincident(link2.p, platform.p2)",
+                        ErrorKind::NoSuchBranch,
+                        2.0,
+                    )
+                })?;
+                let j2_reach = j2_chord
+                    .root_from_a(usize::from(branches.j2))
+                    .unwrap_or(j2 - Point2::new(2.0, -1.0));
+                let turn_3 = rotation_on_circle_from(
+                    j2_reach.y * 0.2857142857142857,
+                    j2_reach.x * -0.2857142857142857,
+                    &(Point2::new(2.0, 2.5) - Point2::new(2.0, -1.0)),
+                    &j2_reach,
+                );
+                link2.set_rotation(&turn_3);
+                let j2_reach_2 = j2_chord
+                    .root_from_b(usize::from(branches.j2))
+                    .unwrap_or(j2 - link1_p);
+                let turn_4 = rotation_on_circle_from(
+                    j2_reach_2.x * -0.3076923076923077 + j2_reach_2.y * -0.46153846153846156,
+                    j2_reach_2.y * -0.3076923076923077 + j2_reach_2.x * 0.46153846153846156,
+                    &(platform_p2 - link1_p),
+                    &j2_reach_2,
+                );
+                platform.set_rotation(&turn_4);
+                let platform_p3 = platform.point_to_global(&Point2::new(-2.7, -1.0));
+                let link3_p = crank_t + Vector2::new(0.0, 3.0);
+                let circle_crank_t = Circle::new(crank_t, 3.0).ok_or_else(|| {
+                    SolveError::new(
+                        "j3",
+                        "coincident(link3.p, platform.p3)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let nearest_platform_p3 = circle_crank_t.nearest(platform_p3);
+                let error = circle_crank_t.implicit(platform_p3);
+                errors[0] = error;
+                let _ = (&link3_p, &nearest_platform_p3);
+                Ok(())
+            },
+        )
+        .map_err(|failure| match failure {
+            gcs_runtime::iterate::Failure::Start(error) => error,
+            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
+                "j3",
+                "coincident(link3.p, platform.p3)",
+                ErrorKind::NoConvergence,
+                residual,
+            ),
+        })?;
     let direction_3 = direction_at(trial[0]);
     let turn_5 = rotation_between_units(&direction, &direction_3);
     link1.set_rotation(&turn_5);
@@ -537,8 +557,114 @@ pub fn solve(
         link2,
         link3,
         platform,
+        branches: *branches,
         defaults: Defaults {
             link1_angle: trial[0],
         },
     })
+}
+
+/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
+pub const MAX_ASSEMBLIES: usize = 64;
+
+/// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity
+/// list, so that listing them allocates nothing.
+#[derive(Clone, Copy, Debug)]
+pub struct Assemblies {
+    solutions: [Option<Solution>; MAX_ASSEMBLIES],
+    len: usize,
+    complete: bool,
+}
+
+#[allow(dead_code)]
+impl Assemblies {
+    /// How many assemblies were found.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether none was: no real assembly exists at these params (on any branches).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The `i`th assembly found.
+    pub fn get(&self, i: usize) -> Option<&Solution> {
+        self.solutions.get(i)?.as_ref()
+    }
+
+    /// The assemblies, in the order found.
+    pub fn iter(&self) -> impl Iterator<Item = &Solution> {
+        self.solutions.iter().flatten()
+    }
+
+    /// Whether every real assembly is listed. True when the search is exhaustive
+    /// (every branch combination, its iteration's error scanned over a turn) and neither
+    /// the scan nor the list overflowed.
+    pub fn is_complete(&self) -> bool {
+        self.complete
+    }
+
+    /// Adds `s` unless the list has its assembly already (every point within 1e-9 of the
+    /// model's size, every vector within 1e-9); past the capacity, marks the list incomplete.
+    fn push(&mut self, s: Solution) {
+        let (points, vectors) = (s.points(), s.vectors());
+        for t in self.iter() {
+            let scale = 1.0
+                + t.points()
+                    .iter()
+                    .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+            let same_points = t
+                .points()
+                .iter()
+                .zip(&points)
+                .all(|((_, p), (_, q))| (p - q).amax() <= 1e-9 * scale);
+            let same_vectors = t
+                .vectors()
+                .iter()
+                .zip(&vectors)
+                .all(|((_, u), (_, v))| (u - v).amax() <= 1e-9);
+            if same_points && same_vectors {
+                return;
+            }
+        }
+        match self.solutions.get_mut(self.len) {
+            Some(slot) => {
+                *slot = Some(s);
+                self.len += 1;
+            }
+            None => self.complete = false,
+        }
+    }
+}
+
+/// Every real assembly at `params`, each with its branches (`Solution::branches`) and
+/// defaults (`Solution::defaults`).
+/// Never panics, allocates nothing.
+///
+/// Each combination of the branch variables is solved.
+/// The outer iteration's error is scanned over a whole turn of `link1_angle`,
+/// and the plan solved from each root; the runtime's `outer::Scan` says which roots a scan
+/// finds. The other defaults (free motions) keep the values given, which every assembly shares.
+pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
+    let mut found = Assemblies {
+        solutions: [None; MAX_ASSEMBLIES],
+        len: 0,
+        complete: true,
+    };
+    for combination in 0..2usize {
+        let mut branches = Branches::default();
+        branches.j2 = (combination % 2) as u8;
+        let mut scan = gcs_runtime::outer::Scan::default();
+        // The scan ends this solve at the iteration, with the roots listed.
+        let _ = assemble(params, &branches, defaults, &mut scan);
+        found.complete &= !scan.truncated();
+        for &root in scan.roots() {
+            let start = Defaults { link1_angle: root };
+            if let Ok(s) = solve(params, &branches, &start) {
+                found.push(s);
+            }
+        }
+    }
+    found
 }

@@ -1,0 +1,256 @@
+//! `solve_all` and its fixed-capacity list `Assemblies`: every real assembly of the model at
+//! given params, found as the interpreter's [`crate::all`] finds them (the same combinations
+//! of branches, the same scan or grid of starts, the same rule for when two solutions are one
+//! assembly), so that the two lists agree.
+//!
+//! A model with more branch combinations than [`crate::all::MAX_COMBINATIONS`] gets no
+//! `solve_all`: the interpreter would only list the assemblies of its first combinations, and
+//! a module of a large model is no place for a loop that cannot finish its search.
+
+use super::context::Context;
+use super::writer::{float, Writer};
+use crate::all::{GRID, MAX_COMBINATIONS};
+
+/// The most assemblies a generated list holds: a scan's roots, or one per branch combination.
+const CAPACITY: usize = gcs_runtime::outer::MAX_ROOTS;
+
+/// Writes `MAX_ASSEMBLIES`, `Assemblies` and `solve_all`, when the model's branch combinations
+/// can all be tried.
+pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
+    let plan = cx.plan;
+    let counts: Vec<usize> = plan.branches.iter().map(|b| b.count.max(1)).collect();
+    let Some(combinations) = (counts.iter())
+        .try_fold(1usize, |n, &c| n.checked_mul(c))
+        .filter(|&n| n <= MAX_COMBINATIONS)
+    else {
+        return;
+    };
+    let varied: Vec<usize> = (plan.iterations.iter())
+        .flat_map(|it| it.defaults.iter().map(|d| d.0 as usize))
+        .collect();
+    let one_angle =
+        plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
+    let complete = varied.is_empty() || one_angle;
+    let capacity = if varied.is_empty() {
+        combinations.min(CAPACITY)
+    } else {
+        CAPACITY
+    };
+    assemblies(w, capacity, one_angle, varied.is_empty());
+    let carries = match (plan.branches.is_empty(), plan.defaults.is_empty()) {
+        (false, false) => {
+            ", each with its branches (`Solution::branches`) and\n/// defaults (`Solution::defaults`)"
+        }
+        (false, true) => ", each with its branches (`Solution::branches`)",
+        (true, false) => ", each with its defaults (`Solution::defaults`)",
+        (true, true) => "",
+    };
+    for line in format!("/// Every real assembly at `params`{carries}.").lines() {
+        w.line(line);
+    }
+    w.line("/// Never panics, allocates nothing.");
+    w.line("///");
+    if !plan.branches.is_empty() {
+        w.line("/// Each combination of the branch variables is solved.");
+    }
+    if one_angle {
+        let d = &plan.defaults[varied[0]];
+        w.line(&format!(
+            "/// The outer iteration's error is scanned over a whole turn of `{}`,",
+            d.name
+        ));
+        w.line("/// and the plan solved from each root; the runtime's `outer::Scan` says which roots a scan");
+        w.line("/// finds. The other defaults (free motions) keep the values given, which every assembly shares.");
+    } else if !varied.is_empty() {
+        w.line(&format!(
+            "/// Where the plan iterates, it is solved from a grid of {GRID} values of each default it"
+        ));
+        w.line("/// varies (a turn for an angle, the given value give or take the model's size for a length):");
+        w.line("/// a search that is not known to find every assembly, as `Assemblies::is_complete` says.");
+    } else {
+        w.line("/// The plan has no outer iteration: each combination has at most one assembly.");
+    }
+    w.open("pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {");
+    w.open("let mut found = Assemblies {");
+    w.line("solutions: [None; MAX_ASSEMBLIES],");
+    w.line("len: 0,");
+    w.line(&format!("complete: {complete},"));
+    w.close("};");
+    let each = |w: &mut Writer| combination_body(w, cx, &varied, one_angle);
+    if combinations == 1 {
+        w.line("let branches = Branches::default();");
+        each(w);
+    } else {
+        w.open(&format!("for combination in 0..{combinations}usize {{"));
+        let fields: Vec<(usize, &String)> = counts.iter().copied().zip(&cx.branches).collect();
+        let varying = fields.iter().filter(|(c, _)| *c > 1).count();
+        if varying > 1 {
+            w.line("// `combination` in mixed radix, the first branch variable varying fastest.");
+        }
+        let mut seen = 0;
+        let rest = if varying > 1 {
+            w.line("let mut rest = combination;");
+            "rest"
+        } else {
+            "combination"
+        };
+        w.line("let mut branches = Branches::default();");
+        for (count, field) in fields {
+            if count == 1 {
+                continue;
+            }
+            seen += 1;
+            w.line(&format!("branches.{field} = ({rest} % {count}) as u8;"));
+            if seen < varying {
+                w.line(&format!("rest /= {count};"));
+            }
+        }
+        each(w);
+        w.close("}");
+    }
+    w.line("found");
+    w.close("}");
+}
+
+/// The solves of one combination `branches`, each kept in `found`.
+fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angle: bool) {
+    let plan = cx.plan;
+    if varied.is_empty() {
+        w.open("if let Ok(s) = solve(params, &branches, defaults) {");
+        w.line("found.push(s);");
+        w.close("}");
+        return;
+    }
+    if one_angle {
+        let field = &cx.defaults[varied[0]];
+        w.line("let mut scan = gcs_runtime::outer::Scan::default();");
+        w.line("// The scan ends this solve at the iteration, with the roots listed.");
+        w.line("let _ = assemble(params, &branches, defaults, &mut scan);");
+        w.line("found.complete &= !scan.truncated();");
+        w.open("for &root in scan.roots() {");
+        if plan.defaults.len() == 1 {
+            w.line(&format!("let start = Defaults {{ {field}: root }};"));
+        } else {
+            w.line(&format!(
+                "let start = Defaults {{ {field}: root, ..*defaults }};"
+            ));
+        }
+        w.open("if let Ok(s) = solve(params, &branches, &start) {");
+        w.line("found.push(s);");
+        w.close("}");
+        w.close("}");
+        return;
+    }
+    // The interpreter's grid, in its order: the first default varied slowest, at most
+    // `MAX_COMBINATIONS` cells.
+    let cells = (varied.iter())
+        .try_fold(1usize, |n, _| n.checked_mul(GRID))
+        .map_or(MAX_COMBINATIONS, |n| n.min(MAX_COMBINATIONS));
+    let size = 1.0
+        + (cx.model.default_params().iter())
+            .chain(plan.defaults.iter().map(|d| &d.sketch))
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    w.open(&format!("for cell in 0..{cells}usize {{"));
+    w.line("let mut start = *defaults;");
+    for (k, &d) in varied.iter().enumerate() {
+        let field = &cx.defaults[d];
+        let stride = GRID.pow((varied.len() - 1 - k) as u32);
+        let t = format!(
+            "((cell / {stride}) % {GRID}) as f64 / {}",
+            float(GRID as f64)
+        );
+        if plan.defaults[d].is_angle() {
+            w.line(&format!(
+                "start.{field} = -std::f64::consts::PI + 2.0 * std::f64::consts::PI * ({t});"
+            ));
+        } else {
+            w.line(&format!(
+                "start.{field} = defaults.{field} + {} * (2.0 * ({t}) - 1.0);",
+                float(size)
+            ));
+        }
+    }
+    w.open("if let Ok(s) = solve(params, &branches, &start) {");
+    w.line("found.push(s);");
+    w.close("}");
+    w.close("}");
+}
+
+/// `MAX_ASSEMBLIES` and `Assemblies`.
+fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
+    w.line(
+        "/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.",
+    );
+    w.line(&format!("pub const MAX_ASSEMBLIES: usize = {capacity};"));
+    w.line("");
+    w.line("/// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity");
+    w.line("/// list, so that listing them allocates nothing.");
+    w.line("#[derive(Clone, Copy, Debug)]");
+    w.open("pub struct Assemblies {");
+    w.line("solutions: [Option<Solution>; MAX_ASSEMBLIES],");
+    w.line("len: usize,");
+    w.line("complete: bool,");
+    w.close("}");
+    w.line("");
+    w.line("#[allow(dead_code)]");
+    w.open("impl Assemblies {");
+    w.line("/// How many assemblies were found.");
+    w.open("pub fn len(&self) -> usize {");
+    w.line("self.len");
+    w.close("}");
+    w.line("");
+    w.line("/// Whether none was: no real assembly exists at these params (on any branches).");
+    w.open("pub fn is_empty(&self) -> bool {");
+    w.line("self.len == 0");
+    w.close("}");
+    w.line("");
+    w.line("/// The `i`th assembly found.");
+    w.open("pub fn get(&self, i: usize) -> Option<&Solution> {");
+    w.line("self.solutions.get(i)?.as_ref()");
+    w.close("}");
+    w.line("");
+    w.line("/// The assemblies, in the order found.");
+    w.open("pub fn iter(&self) -> impl Iterator<Item = &Solution> {");
+    w.line("self.solutions.iter().flatten()");
+    w.close("}");
+    w.line("");
+    w.line("/// Whether every real assembly is listed. True when the search is exhaustive");
+    if closed {
+        w.line(
+            "/// (every branch combination solved in closed form) and the list did not overflow.",
+        );
+    } else if one_angle {
+        w.line(
+            "/// (every branch combination, its iteration's error scanned over a turn) and neither",
+        );
+        w.line("/// the scan nor the list overflowed.");
+    } else {
+        w.line("/// and the list did not overflow; this model's search starts from a grid, which is not.");
+    }
+    w.open("pub fn is_complete(&self) -> bool {");
+    w.line("self.complete");
+    w.close("}");
+    w.line("");
+    w.line("/// Adds `s` unless the list has its assembly already (every point within 1e-9 of the");
+    w.line("/// model's size, every vector within 1e-9); past the capacity, marks the list incomplete.");
+    w.open("fn push(&mut self, s: Solution) {");
+    w.line("let (points, vectors) = (s.points(), s.vectors());");
+    w.open("for t in self.iter() {");
+    w.line("let scale = 1.0 + t.points().iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
+    w.line("let same_points = t.points().iter().zip(&points).all(|((_, p), (_, q))| (p - q).amax() <= 1e-9 * scale);");
+    w.line("let same_vectors = t.vectors().iter().zip(&vectors).all(|((_, u), (_, v))| (u - v).amax() <= 1e-9);");
+    w.open("if same_points && same_vectors {");
+    w.line("return;");
+    w.close("}");
+    w.close("}");
+    w.open("match self.solutions.get_mut(self.len) {");
+    w.open("Some(slot) => {");
+    w.line("*slot = Some(s);");
+    w.line("self.len += 1;");
+    w.close("}");
+    w.line("None => self.complete = false,");
+    w.close("}");
+    w.close("}");
+    w.close("}");
+    w.line("");
+}
