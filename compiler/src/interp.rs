@@ -303,10 +303,14 @@ impl Machine<'_, '_> {
                 self.assemble(it, &saved, &x, &mut r)
             }
             Err(Failure::Start(e)) => Err(e),
-            Err(Failure::NoConvergence { residual, .. }) => {
-                let end = it.end.saturating_sub(1);
-                Err(self.error(end, ErrorKind::NoConvergence, residual))
-            }
+            // Named after the iteration's first close, as generated code names it.
+            Err(Failure::NoConvergence { residual, .. }) => match self.plan.closes(it).first() {
+                Some(&c) => Err(err(self.model, c, ErrorKind::NoConvergence, residual)),
+                None => {
+                    let end = it.end.saturating_sub(1);
+                    Err(self.error(end, ErrorKind::NoConvergence, residual))
+                }
+            },
         }
     }
 
