@@ -72,6 +72,59 @@ pub fn run_with(
     run_machine(model, plan, params, defaults.to_vec(), choice, None)
 }
 
+/// The errors the closes of `plan`'s first outer iteration measure with `defaults` as given
+/// (no iteration): what an iteration drives to zero. An error where the plan cannot assemble
+/// up to there, or the iteration's region at these defaults.
+pub fn errors_at(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    choice: &Choice,
+) -> Result<Vec<f64>, SolveError> {
+    let mut measure = Measure::default();
+    let run = run_machine_with(
+        model,
+        plan,
+        params,
+        defaults.to_vec(),
+        choice,
+        None,
+        Some(&mut measure),
+    );
+    match (measure.errors, run) {
+        (Some(errors), _) => Ok(errors),
+        (None, Err(e)) => Err(e),
+        // A plan without outer iterations: nothing to close.
+        (None, Ok(_)) => Ok(Vec::new()),
+    }
+}
+
+/// An outer iteration measured once, at its start: the errors kept, the run ended there.
+#[derive(Default)]
+struct Measure {
+    errors: Option<Vec<f64>>,
+}
+
+impl Outer for Measure {
+    fn iterate<const N: usize, E>(
+        &mut self,
+        trial: &mut [f64; N],
+        _scale: &[f64; N],
+        _settings: &gcs_runtime::iterate::Settings,
+        mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
+    ) -> Result<gcs_runtime::iterate::Converged, gcs_runtime::iterate::Failure<E>> {
+        use gcs_runtime::iterate::Failure;
+        let mut errors = [0.0; N];
+        f(trial, &mut errors).map_err(Failure::Start)?;
+        self.errors = Some(errors.to_vec());
+        Err(Failure::NoConvergence {
+            residual: f64::NAN,
+            iterations: 0,
+        })
+    }
+}
+
 /// Runs `plan` with `defaults` as given up to its first outer iteration, and lists every
 /// root of that iteration's error over a turn of its default with the runtime's
 /// [`Scan`](gcs_runtime::outer::Scan), as a generated `solve_all` does: what every real
@@ -108,11 +161,19 @@ fn run_machine(
     choice: &Choice,
     reached: Option<&mut Vec<Option<f64>>>,
 ) -> Result<Run, SolveError> {
-    run_machine_with(model, plan, params, defaults, choice, reached, None)
+    run_machine_with(
+        model,
+        plan,
+        params,
+        defaults,
+        choice,
+        reached,
+        None::<&mut gcs_runtime::outer::Newton>,
+    )
 }
 
-/// [`run_machine`]; with `scan`, the first outer iteration is scanned for every root there
-/// instead of solved, which ends the run.
+/// [`run_machine`]; with `first`, the outer iterations are driven by it instead of solved
+/// (a [`Scan`](gcs_runtime::outer::Scan), or a [`Measure`]: each ends the run at the first).
 fn run_machine_with(
     model: &Model,
     plan: &Plan,
@@ -120,7 +181,7 @@ fn run_machine_with(
     defaults: Vec<f64>,
     choice: &Choice,
     reached: Option<&mut Vec<Option<f64>>>,
-    mut scan: Option<&mut gcs_runtime::outer::Scan>,
+    mut first: Option<&mut impl Outer>,
 ) -> Result<Run, SolveError> {
     // As the generated solve checks them (`check_all_finite`): finite, and within range.
     for ((_, p), v) in model.params.iter().zip(params) {
@@ -174,8 +235,8 @@ fn run_machine_with(
     while i < plan.steps.len() {
         match plan.iterations.iter().find(|it| it.start == i) {
             Some(it) if iterate => {
-                match scan.as_deref_mut() {
-                    Some(scan) => machine.iterate(it, scan)?,
+                match first.as_deref_mut() {
+                    Some(outer) => machine.iterate(it, outer)?,
                     None => machine.iterate(it, &mut gcs_runtime::outer::Newton)?,
                 }
                 i = it.end;

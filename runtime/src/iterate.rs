@@ -153,6 +153,9 @@ const MAX_STEP: f64 = 0.5;
 /// residual of 1e-10 to rounding level, so two or three are plenty.
 const POLISH_STEPS: u32 = 3;
 
+/// The longest last step, in scales, after which a secant replaces a finite difference.
+const SECANT_REACH: f64 = 0.05;
+
 /// The factor by which a polishing step must reduce the residual for the next to be tried.
 const POLISH_GAIN: f64 = 0.5;
 
@@ -506,6 +509,7 @@ fn solve_scalar<E>(
         bracket: None,
         slope: None,
         previous_best: None,
+        earlier_best: None,
         previous: None,
         iterations: 0,
     };
@@ -544,6 +548,8 @@ struct Scalar<F> {
     slope: Option<f64>,
     /// The best point before the current one, for the secant slope of the polishing steps.
     previous_best: Option<(f64, f64)>,
+    /// The best point before that, for the parabola's slope.
+    earlier_best: Option<(f64, f64)>,
     /// Before any sign change: the last base point and the derivative there, to see the
     /// derivative change sign (a local minimum of `|f|` passed).
     previous: Option<(f64, f64)>,
@@ -585,6 +591,7 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
             None => self.bracket = Bracket::new(self.best_x, self.best_f, t, ft),
         }
         if ft.abs() < self.best_f.abs() {
+            self.earlier_best = self.previous_best;
             self.previous_best = Some((self.best_x, self.best_f));
             (self.best_x, self.best_f) = (t, ft);
         }
@@ -658,9 +665,15 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
         }
     }
 
-    /// A forward difference at the base point (backward when forward fails, inward when
-    /// bracketed); its point is recorded too. `false` when the budget is spent.
+    /// The derivative at the base point: the secant through it and the best point before it
+    /// once the iteration converges fast (see [`Scalar::secant_slope`]), else a forward
+    /// difference (backward when forward fails, inward when bracketed), whose point is
+    /// recorded too. `false` when the budget is spent.
     fn measure_slope(&mut self) -> bool {
+        if let Some(d) = self.secant_slope() {
+            self.slope = Some(d);
+            return true;
+        }
         let (x, fx) = self.base();
         let mut h = self.min_step(x);
         if let Some(b) = self.bracket {
@@ -685,6 +698,36 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
             }
         }
         true
+    }
+
+    /// The secant slope through the best point and the best before it, when the last step
+    /// at least quartered the residual and was short (at most [`SECANT_REACH`] of the scale):
+    /// then the two points are close to the root, the secant is as good a derivative as a
+    /// forward difference there, and it costs no evaluation (the secant method's order, 1.6,
+    /// for one evaluation a step, against Newton's 2 for two). Elsewhere `None`.
+    fn secant_slope(&self) -> Option<f64> {
+        let (x0, f0) = self.previous_best?;
+        let (x1, f1) = self.base();
+        let dx = x1 - x0;
+        if f1.abs() > 0.25 * f0.abs() || dx.abs() > SECANT_REACH * self.scale {
+            return None;
+        }
+        let secant = (f1 - f0) / dx;
+        // With a third point near, the slope at x1 of the parabola through the three: exact
+        // to second order, so the step's order is about 1.8.
+        let d = match self.earlier_best {
+            Some((xm, fm)) if (x1 - xm).abs() <= SECANT_REACH * self.scale && xm != x0 => {
+                let curvature = (secant - (f0 - fm) / (x0 - xm)) / (x1 - xm);
+                secant + curvature * dx
+            }
+            _ => secant,
+        };
+        let usable = |d: f64| is_finite(d) && d != 0.0;
+        if usable(d) {
+            Some(d)
+        } else {
+            usable(secant).then_some(secant)
+        }
     }
 
     /// The Newton step from `(x, fx)`, bounded by the trust region; `None` without a usable

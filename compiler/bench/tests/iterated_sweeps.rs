@@ -398,7 +398,7 @@ fn side(s: &Solution) -> f64 {
 /// branch `l2` of the second leg's circles, or `None` where they do not meet.
 fn error_at(ex: &Example, params: &[f64], angle: f64, l2: usize) -> Option<f64> {
     let choice = Choice::Given(vec![l2]);
-    let (_, errors) = interp::run_open(&ex.model, &ex.plan, params, &[angle], &choice).ok()?;
+    let errors = interp::errors_at(&ex.model, &ex.plan, params, &[angle], &choice).ok()?;
     errors.first().copied()
 }
 
