@@ -118,76 +118,65 @@ fn run_machine_with(
     reached: Option<&mut Vec<Option<f64>>>,
     open: Option<&mut Vec<f64>>,
 ) -> Result<Run, SolveError> {
-    // As the generated solve checks them (`check_all_finite`): finite, and within range.
-    for ((_, p), v) in model.params.iter().zip(params) {
-        if !gcs_runtime::num::in_range(*v) {
-            return Err(SolveError::new(
-                p.name.clone(),
-                String::new(),
-                ErrorKind::InvalidInput,
-                *v,
-            ));
-        }
+    let mut machine = Machine::start(model, plan, params, defaults, choice, reached)?;
+    if open.is_some() {
+        machine.errors = Some(Vec::new());
     }
-    for (d, v) in plan.defaults.iter().zip(&defaults) {
-        if !gcs_runtime::num::in_range(*v) {
-            // No text, as the generated solve's `check_all_finite` reports it.
-            return Err(SolveError::new(
-                d.name.clone(),
-                String::new(),
-                ErrorKind::InvalidInput,
-                *v,
-            ));
-        }
-    }
-    let config = Config::from_sketch(model, params).map_err(|b| {
-        SolveError::new(
-            model.geoms[b.geom].name.clone(),
-            b.what,
-            ErrorKind::InvalidInput,
-            f64::NAN,
-        )
-    })?;
-    let scale = config_scale(&config, &plan.touched(model));
-    let mut machine = Machine {
-        model,
-        plan,
-        params,
-        defaults,
-        choice,
-        config,
-        tol: gcs_runtime::tol::CHECK_REL * (1.0 + scale),
-        scale,
-        regs: vec![None; plan.regs as usize],
-        chosen: vec![None; plan.branches.len()],
-        reached,
-        errors: open.is_some().then(Vec::new),
-        evaluations: 0,
-        iterations: 0,
-    };
-    let iterate = machine.reached.is_none() && machine.errors.is_none();
-    let mut i = 0;
-    while i < plan.steps.len() {
-        match plan.iterations.iter().find(|it| it.start == i) {
-            Some(it) if iterate => {
-                machine.iterate(it)?;
-                i = it.end;
-            }
-            _ => {
-                machine.step(i, &plan.steps[i])?;
-                i += 1;
-            }
-        }
-    }
+    machine.execute().map_err(|f| f.error)?;
     if let (Some(open), Some(errors)) = (open, machine.errors.take()) {
         *open = errors;
     }
-    Ok(Run {
-        config: machine.config,
-        chosen: machine.chosen,
-        defaults: machine.defaults,
-        iterations: machine.iterations,
-    })
+    Ok(machine.finish())
+}
+
+/// A check that did not hold, or the error that stopped a run: the step it happened at (none
+/// when the run stopped before its first step, or inside an outer iteration) and the error.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Failure {
+    /// The step, an index into the plan's steps.
+    pub step: Option<usize>,
+    /// The error, naming the constraint with its magnitude.
+    pub error: SolveError,
+}
+
+/// A run that went on past the checks that failed ([`audit`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Audit {
+    /// Every check that did not hold, in step order.
+    pub failed: Vec<Failure>,
+    /// What stopped the run, if something did: a step that cannot be done (loci that miss, a
+    /// degenerate configuration, an invalid value, an iteration that does not converge).
+    pub stopped: Option<Failure>,
+}
+
+/// Runs `plan` as [`run_with`] does, except that a check that fails does not stop it: a check
+/// places nothing, so every later step runs as it would have, and every failed check is
+/// reported, each an inconsistent redundant constraint. What cannot be done still stops the
+/// run (a check inside an outer iteration's trials is that iteration's business, and fails
+/// it as in [`run_with`]). [`run_with`] itself pays nothing for this: the difference is only
+/// on a check's failing path.
+pub fn audit(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    choice: &Choice,
+) -> Audit {
+    let mut machine = match Machine::start(model, plan, params, defaults.to_vec(), choice, None) {
+        Ok(m) => m,
+        Err(error) => {
+            return Audit {
+                failed: Vec::new(),
+                stopped: Some(Failure { step: None, error }),
+            }
+        }
+    };
+    machine.failed = Some(Vec::new());
+    let stopped = machine.execute().err();
+    Audit {
+        failed: machine.failed.take().unwrap_or_default(),
+        stopped,
+    }
 }
 
 /// The index of the root nearest to the sketch's position of the moving feature, at each
@@ -199,7 +188,10 @@ pub fn sketch_branches(model: &Model, plan: &Plan) -> Vec<Option<usize>> {
 
 /// Each branch variable's default (as [`sketch_branches`]) and each default's sketch value:
 /// what its measure register holds when the plan runs on the sketch, so that the default
-/// moves nothing there (least motion). `None` where the run did not reach it.
+/// moves nothing there (least motion). `None` where the run did not reach it. A check that
+/// fails does not stop this run: it places nothing, and an inconsistent redundant constraint
+/// early in the plan must not leave every later branch and default without its sketch value
+/// (the model is reported inconsistent, and only that).
 pub fn sketch_choices(model: &Model, plan: &Plan) -> (Vec<Option<usize>>, Vec<Option<f64>>) {
     let mut reached = vec![None; plan.defaults.len()];
     match run_machine(
@@ -237,6 +229,8 @@ struct Machine<'a, 'r> {
     evaluations: u32,
     /// Steps of outer iterations so far.
     iterations: u32,
+    /// When auditing ([`audit`]): the checks that failed, the run going on past them.
+    failed: Option<Vec<Failure>>,
 }
 
 /// The panic of a malformed plan: a bug in gcs, never an input's fault.
@@ -249,7 +243,102 @@ fn malformed(r: Reg, want: &str, got: Option<&Val>) -> ! {
     )
 }
 
-impl Machine<'_, '_> {
+impl<'a, 'r> Machine<'a, 'r> {
+    /// A machine at the start of `plan`: params and defaults checked finite and within range,
+    /// the configuration read from the sketch.
+    fn start(
+        model: &'a Model,
+        plan: &'a Plan,
+        params: &'a [f64],
+        defaults: Vec<f64>,
+        choice: &'a Choice,
+        reached: Option<&'r mut Vec<Option<f64>>>,
+    ) -> Result<Self, SolveError> {
+        // As the generated solve checks them (`check_all_finite`): finite, and within range.
+        for ((_, p), v) in model.params.iter().zip(params) {
+            if !gcs_runtime::num::in_range(*v) {
+                return Err(SolveError::new(
+                    p.name.clone(),
+                    String::new(),
+                    ErrorKind::InvalidInput,
+                    *v,
+                ));
+            }
+        }
+        for (d, v) in plan.defaults.iter().zip(&defaults) {
+            if !gcs_runtime::num::in_range(*v) {
+                // No text, as the generated solve's `check_all_finite` reports it.
+                return Err(SolveError::new(
+                    d.name.clone(),
+                    String::new(),
+                    ErrorKind::InvalidInput,
+                    *v,
+                ));
+            }
+        }
+        let config = Config::from_sketch(model, params).map_err(|b| {
+            SolveError::new(
+                model.geoms[b.geom].name.clone(),
+                b.what,
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            )
+        })?;
+        let scale = config_scale(&config, &plan.touched(model));
+        Ok(Machine {
+            model,
+            plan,
+            params,
+            defaults,
+            choice,
+            config,
+            tol: gcs_runtime::tol::CHECK_REL * (1.0 + scale),
+            scale,
+            regs: vec![None; plan.regs as usize],
+            chosen: vec![None; plan.branches.len()],
+            reached,
+            errors: None,
+            evaluations: 0,
+            iterations: 0,
+            failed: None,
+        })
+    }
+
+    /// Runs every step, each iterated region by its outer iteration unless the run is on the
+    /// sketch or open (collecting its closes' errors).
+    fn execute(&mut self) -> Result<(), Failure> {
+        let plan = self.plan;
+        let iterate = self.reached.is_none() && self.errors.is_none();
+        let mut i = 0;
+        while i < plan.steps.len() {
+            match plan.iterations.iter().find(|it| it.start == i) {
+                Some(it) if iterate => {
+                    self.iterate(it)
+                        .map_err(|error| Failure { step: None, error })?;
+                    i = it.end;
+                }
+                _ => {
+                    self.step(i, &plan.steps[i]).map_err(|error| Failure {
+                        step: Some(i),
+                        error,
+                    })?;
+                    i += 1;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The run's result.
+    fn finish(self) -> Run {
+        Run {
+            config: self.config,
+            chosen: self.chosen,
+            defaults: self.defaults,
+            iterations: self.iterations,
+        }
+    }
+
     /// Runs iterated region `it`: varies its defaults, from their values given, until every
     /// close in it measures zero (000, section 5.2.1), then keeps that assembly.
     fn iterate(&mut self, it: &Iteration) -> Result<(), SolveError> {
@@ -266,7 +355,7 @@ impl Machine<'_, '_> {
 
     /// [`Machine::iterate`] over `N` defaults.
     fn iterate_n<const N: usize>(&mut self, it: &Iteration) -> Result<(), SolveError> {
-        use gcs_runtime::iterate::{self, Failure, Settings};
+        use gcs_runtime::iterate::{self, Settings};
         let mut x = [0.0; N];
         let mut scale = [0.0; N];
         for (k, d) in it.defaults.iter().enumerate() {
@@ -293,8 +382,8 @@ impl Machine<'_, '_> {
                 let mut r = [0.0; N];
                 self.assemble(it, &saved, &x, &mut r)
             }
-            Err(Failure::Start(e)) => Err(e),
-            Err(Failure::NoConvergence { residual, .. }) => {
+            Err(iterate::Failure::Start(e)) => Err(e),
+            Err(iterate::Failure::NoConvergence { residual, .. }) => {
                 let end = it.end.saturating_sub(1);
                 Err(self.error(end, ErrorKind::NoConvergence, residual))
             }
@@ -663,7 +752,21 @@ impl Machine<'_, '_> {
             } => {
                 let r = self.residual(residual);
                 if r.is_nan() || r > self.tol {
-                    return Err(err(model, *constraint, ErrorKind::Inconsistent, r));
+                    // On the sketch, a check that fails decides nothing the run is for (the
+                    // branches and the defaults' sketch values): it places nothing.
+                    if self.reached.is_some() {
+                        return Ok(());
+                    }
+                    let error = err(model, *constraint, ErrorKind::Inconsistent, r);
+                    // Auditing, outside an iteration's trials: the run goes on.
+                    if let (Some(failed), None) = (self.failed.as_mut(), &self.errors) {
+                        failed.push(Failure {
+                            step: Some(i),
+                            error,
+                        });
+                        return Ok(());
+                    }
+                    return Err(error);
                 }
                 return Ok(());
             }
