@@ -10,7 +10,7 @@
 
 use crate::analysis::Analysis;
 use crate::interp::Failure;
-use crate::plan::{Op, Plan, Support};
+use crate::plan::{Op, Plan, Residual, Support};
 use crate::solution::Solution;
 use gcs_lang::model::GeomId;
 use gcs_lang::{Diagnostic, Model};
@@ -231,8 +231,23 @@ fn failure(model: &Model, plan: &Plan, f: &Failure) -> Diagnostic {
         .step
         .and_then(|i| plan.steps.get(i))
         .is_some_and(|s| matches!(s.op, Op::Check { .. }));
+    // An angle's residual is in radians; its degrees say it better.
+    let angle = f.step.and_then(|i| plan.steps.get(i)).is_some_and(|s| {
+        matches!(
+            s.op,
+            Op::Check {
+                residual: Residual::Angle { .. },
+                ..
+            }
+        )
+    });
+    let m_words = if angle {
+        format!("{m} rad ({} deg)", rounded(e.magnitude.to_degrees()))
+    } else {
+        m.to_string()
+    };
     let what = match e.kind {
-        ErrorKind::Inconsistent => format!("conflicting constraint: it is off by {m}"),
+        ErrorKind::Inconsistent => format!("conflicting constraint: it is off by {m_words}"),
         ErrorKind::NoIntersection => format!("no assembly: the loci miss by {m}"),
         ErrorKind::InvalidValue => format!("an invalid value: {}", Shown(e.magnitude)),
         _ => "a degenerate configuration".to_string(),
@@ -267,7 +282,7 @@ fn failure(model: &Model, plan: &Plan, f: &Failure) -> Diagnostic {
         if let Some(words) = support_words(model, &support) {
             d = d.with_note(if check {
                 format!(
-                    "`{}` is implied by {words}, and disagrees with them by {m}: change or remove one of them",
+                    "`{}` is implied by {words}, and disagrees with them by {m_words}: change or remove one of them",
                     c.name
                 )
             } else {
