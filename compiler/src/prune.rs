@@ -19,9 +19,8 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
     if model.outputs.is_empty() {
         return (plan.clone(), all);
     }
-    // One backward slice over the straight line, from the outputs' final state: a geom is
-    // live while its state after the current step is still read (by an output, or by a later
-    // kept measurement or check).
+    // One backward slice, from the outputs' final state: a geom is live while its state
+    // after the current step is still read (by an output, or by a kept measurement or check).
     let outputs: BTreeSet<GeomId> = model
         .outputs
         .iter()
@@ -34,21 +33,42 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             .map(|a| model.top_level_of(*a))
             .collect()
     };
-    let slice = plan.slice(
-        model,
-        plan.steps.len(),
-        [],
-        outputs.clone(),
-        |step, live| match &step.op {
-            // A check is kept when everything it measures is computed anyway.
-            Op::Check { constraint, .. } => tops(constraint).iter().all(|g| live.contains(g)),
-            // What an iteration closes decides every answer of its region: always kept.
-            Op::Close { .. } => true,
-            _ => false,
-        },
-        |_, _| {},
-    );
-    let (keep, moved) = (slice.keep, slice.moved);
+    let n = plan.steps.len();
+    let deps = plan.deps(model);
+    let mut walk = deps.walk();
+    for &g in &outputs {
+        walk.live(g, n);
+    }
+    // What an iteration closes decides every answer of its region: always kept.
+    for (i, step) in plan.steps.iter().enumerate() {
+        if let Op::Close { .. } = step.op {
+            walk.take(i);
+        }
+    }
+    walk.run(|_, _| {});
+    // A check is kept when everything it measures is computed anyway: live after it. What a
+    // check takes in lies before it, so the checks are decided last to first, each once.
+    for (i, step) in plan.steps.iter().enumerate().rev() {
+        if let Op::Check { constraint, .. } = &step.op {
+            if tops(constraint).iter().all(|&g| walk.is_live_after(g, i)) {
+                walk.take(i);
+                walk.run(|_, _| {});
+            }
+        }
+    }
+    let slice = walk.finish();
+    let mut keep = vec![false; n];
+    for &i in &slice.steps {
+        keep[i] = true;
+    }
+    // Each action moves, in the pruned plan, the geoms whose state is read after it.
+    let moved: Vec<Vec<GeomId>> = (plan.steps.iter().enumerate())
+        .map(|(i, s)| {
+            (s.op.moves().iter().copied())
+                .filter(|g| slice.live.get(g).is_some_and(|&before| before > i))
+                .collect()
+        })
+        .collect();
     let mut touched: BTreeSet<GeomId> = outputs;
     touched.extend(slice.read);
     // The geoms the pruned plan places completely: read somewhere, and never left behind by a

@@ -137,22 +137,25 @@ fn conflicts(
 ) -> Vec<Diagnostic> {
     let choice = crate::interp::Choice::Given(branches);
     let audit = crate::interp::audit(model, plan, params, &plan.sketch_defaults(), &choice);
-    let mut out: Vec<Diagnostic> = (audit.failed.iter())
-        .map(|f| failure(model, plan, f))
-        .collect();
+    let mut failures = audit.failed;
     match audit.stopped {
-        Some(f) => out.push(failure(model, plan, &f)),
+        Some(f) => failures.push(f),
         // An iterated plan whose assemblies all fail somewhere the run from the sketch does not.
-        None if out.is_empty() => out.push(failure(
-            model,
-            plan,
-            &Failure {
-                step: None,
-                error: first,
-            },
-        )),
+        None if failures.is_empty() => failures.push(Failure {
+            step: None,
+            error: first,
+        }),
         None => {}
     }
+    let steps: Vec<usize> = failures.iter().filter_map(|f| f.step).collect();
+    let supports: HashMap<usize, Support> = steps
+        .iter()
+        .copied()
+        .zip(plan.supports(model, &steps))
+        .collect();
+    let mut out: Vec<Diagnostic> = (failures.iter())
+        .map(|f| failure(model, plan, f, f.step.and_then(|i| supports.get(&i))))
+        .collect();
     out.sort_by_key(|d| d.primary.span.start);
     out
 }
@@ -217,13 +220,19 @@ fn by_position(model: &Model, support: &Support) -> Vec<(gcs_lang::Span, Support
 }
 
 /// The diagnostic of a failed check (an inconsistent redundant set) or of the error that
-/// stopped the plan: on the constraint it names, with its size; then, where the step is
-/// known, the constraints and fixed geoms its step builds on as secondary labels and in a
-/// note.
-fn failure(model: &Model, plan: &Plan, f: &Failure) -> Diagnostic {
+/// stopped the plan: on the constraint it names, with its size; then, with `support` (that of
+/// its step, when known), the constraints and fixed geoms its step builds on as secondary
+/// labels and in a note.
+fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -> Diagnostic {
     use gcs_runtime::error::ErrorKind;
     let e = &f.error;
-    let Some((id, c)) = model.constraints.iter().find(|(_, c)| c.name == e.label) else {
+    // The constraint its step names (a check's), else the one the error is labelled with.
+    let named = (f.step.and_then(|i| plan.steps.get(i)))
+        .and_then(|s| s.op.constraint())
+        .filter(|&k| model.constraints[k].name == e.label)
+        .map(|k| (k, &model.constraints[k]));
+    let found = named.or_else(|| model.constraints.iter().find(|(_, c)| c.name == e.label));
+    let Some((id, c)) = found else {
         return Diagnostic::error(gcs_lang::Span::default(), e.to_string());
     };
     let m = rounded(e.magnitude);
@@ -258,17 +267,15 @@ fn failure(model: &Model, plan: &Plan, f: &Failure) -> Diagnostic {
         format!("`{}` cannot be met with the default params", c.name)
     };
     let mut d = Diagnostic::error(c.span, message).with_label(what);
-    let support = match (f.step, e.kind) {
-        (_, ErrorKind::InvalidValue | ErrorKind::InvalidInput) | (None, _) => None,
-        (Some(i), _) => Some(plan.support(model, i)),
-    };
+    let support =
+        support.filter(|_| !matches!(e.kind, ErrorKind::InvalidValue | ErrorKind::InvalidInput));
     if let Some(support) = support {
         let secondary = if check {
             format!("part of what implies `{}`", c.name)
         } else {
             format!("part of what `{}` builds on", c.name)
         };
-        for (span, who) in by_position(model, &support) {
+        for (span, who) in by_position(model, support) {
             // A constraint's own statement is its primary label already.
             if matches!(who, Supporter::Constraint(x) if x == id) {
                 continue;
@@ -279,7 +286,7 @@ fn failure(model: &Model, plan: &Plan, f: &Failure) -> Diagnostic {
             };
             d = d.with_secondary(span, label);
         }
-        if let Some(words) = support_words(model, &support) {
+        if let Some(words) = support_words(model, support) {
             d = d.with_note(if check {
                 format!(
                     "`{}` is implied by {words}, and disagrees with them by {m_words}: change or remove one of them",
@@ -392,10 +399,19 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
             _ => None,
         })
         .collect();
+    let checks: Vec<usize> = (a.redundant.iter())
+        .filter_map(|c| check_of.get(c).copied())
+        .collect();
+    let supports: HashMap<usize, Support> = checks
+        .iter()
+        .copied()
+        .zip(a.plan.supports(model, &checks))
+        .collect();
     for c in &a.redundant {
         let con = &model.constraints[*c];
         let by = (check_of.get(c))
-            .and_then(|&i| support_words(model, &a.plan.support(model, i)))
+            .and_then(|i| supports.get(i))
+            .and_then(|s| support_words(model, s))
             .unwrap_or_else(|| "the others".to_string());
         let _ = writeln!(
             out,

@@ -112,7 +112,11 @@ fn two_independent_conflicts_are_both_reported_with_their_supports_and_sizes() {
     assert!((g_off - 0.274_591_973_880_774_3).abs() < 1e-12);
 
     let f = c.analysis.plan.branches.iter().find(|b| b.name == "f");
-    assert_eq!(f.map(|b| b.default), Some(1), "E's sketch branch, failed checks or not");
+    assert_eq!(
+        f.map(|b| b.default),
+        Some(1),
+        "E's sketch branch, failed checks or not"
+    );
 
     let audit = audit(&c);
     assert_eq!(audit.stopped, None);
@@ -149,7 +153,13 @@ fn two_independent_conflicts_are_both_reported_with_their_supports_and_sizes() {
     );
     assert_eq!(
         secondary_texts(&c, errs[0]),
-        ["A", "B", "L", "b: distance(A, C) = 2;", "c: distance(B, C) = 2.5;"]
+        [
+            "A",
+            "B",
+            "L",
+            "b: distance(A, C) = 2;",
+            "c: distance(B, C) = 2.5;"
+        ]
     );
     assert_eq!(text(errs[1]), "g: distance(E, A) = 11.5;");
     assert_eq!(
@@ -251,7 +261,10 @@ fn the_three_sides_of_a_triangle_miss_the_triangle_inequality_by_its_size() {
     );
     let errs = errors(&c);
     assert_eq!(errs.len(), 1, "{errs:#?}");
-    assert_eq!(errs[0].message, "`a` conflicts with the constraints that imply it");
+    assert_eq!(
+        errs[0].message,
+        "`a` conflicts with the constraints that imply it"
+    );
     assert_eq!(
         errs[0].primary.message,
         "conflicting constraint: it is off by 0.3"
@@ -307,7 +320,10 @@ fn a_redundant_angle_sum_is_implied_by_its_two_terms() {
     let failed = audit_failed(&c);
     assert_eq!(failed.len(), 1, "{failed:?}");
     assert_eq!(failed[0].0, "xv");
-    assert!((failed[0].1 - 5f64.to_radians()).abs() < 1e-12, "{failed:?}");
+    assert!(
+        (failed[0].1 - 5f64.to_radians()).abs() < 1e-12,
+        "{failed:?}"
+    );
     let errs = errors(&c);
     assert_eq!(errs.len(), 1, "{errs:#?}");
     assert_eq!(
@@ -387,7 +403,10 @@ fn an_iterated_model_reports_every_conflict_and_nothing_else() {
     // The triad six-bar iterates on a default; two distances between its fixed pivots
     // conflict with where they are. A failed check used to stop the sketch run that chooses
     // the default's start, and the iteration then failed from the wrong start as well.
-    let path = format!("{}/../examples/triad_sixbar.gcs", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../examples/triad_sixbar.gcs",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let text = std::fs::read_to_string(&path).expect("the example");
     let c = compiled(&format!(
         "{text}\nbad: distance(O1, O3) = 3;\nzz: distance(O1, O2) = 7;\n"
@@ -405,8 +424,14 @@ fn an_iterated_model_reports_every_conflict_and_nothing_else() {
     let mut failed = audit_failed(&c);
     failed.sort_by(|a, b| a.0.cmp(&b.0));
     assert_eq!(failed.len(), 2, "{failed:?}");
-    assert!((failed[0].1 - (3.0 - 5f64.sqrt())).abs() < 1e-12, "{failed:?}");
-    assert!((failed[1].1 - (52f64.sqrt() - 7.0)).abs() < 1e-12, "{failed:?}");
+    assert!(
+        (failed[0].1 - (3.0 - 5f64.sqrt())).abs() < 1e-12,
+        "{failed:?}"
+    );
+    assert!(
+        (failed[1].1 - (52f64.sqrt() - 7.0)).abs() < 1e-12,
+        "{failed:?}"
+    );
     assert_eq!(support(&c, "bad"), (names(&[]), names(&["O1", "O3"])));
 }
 
