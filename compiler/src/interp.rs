@@ -129,8 +129,9 @@ fn run_machine_with(
     Ok(machine.finish())
 }
 
-/// A check that did not hold, or the error that stopped a run: the step it happened at (none
-/// when the run stopped before its first step, or inside an outer iteration) and the error.
+/// A check that did not hold, or the error that stopped a run: the step it happened at (an
+/// outer iteration that does not converge: its last close; none when the run stopped before
+/// its first step, or inside an iteration's trial) and the error.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Failure {
     /// The step, an index into the plan's steps.
@@ -313,8 +314,12 @@ impl<'a, 'r> Machine<'a, 'r> {
         while i < plan.steps.len() {
             match plan.iterations.iter().find(|it| it.start == i) {
                 Some(it) if iterate => {
-                    self.iterate(it)
-                        .map_err(|error| Failure { step: None, error })?;
+                    self.iterate(it).map_err(|error| Failure {
+                        // An iteration that does not converge names its last close.
+                        step: (error.kind == ErrorKind::NoConvergence)
+                            .then(|| it.end.saturating_sub(1)),
+                        error,
+                    })?;
                     i = it.end;
                 }
                 _ => {

@@ -259,6 +259,8 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
         ErrorKind::Inconsistent => format!("conflicting constraint: it is off by {m_words}"),
         ErrorKind::NoIntersection => format!("no assembly: the loci miss by {m}"),
         ErrorKind::InvalidValue => format!("an invalid value: {}", Shown(e.magnitude)),
+        ErrorKind::NoConvergence => format!("no assembly: the iteration stays {m} from closing it"),
+        ErrorKind::NoSuchBranch => "no root on the branch chosen".to_string(),
         _ => "a degenerate configuration".to_string(),
     };
     let message = if check {
@@ -296,6 +298,7 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
                 let how = match e.kind {
                     ErrorKind::NoIntersection => format!("its loci miss by {m}"),
                     ErrorKind::Inconsistent => format!("it is off by {m}"),
+                    ErrorKind::NoConvergence => format!("it stays {m} from closing"),
                     _ => "it cannot be met".to_string(),
                 };
                 format!(

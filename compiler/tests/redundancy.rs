@@ -476,3 +476,51 @@ fn every_redundant_check_of_the_test_model_names_its_support() {
     let report = gcs_compiler::report::check_report(&c.model, &c.analysis);
     assert!(!report.contains("implied by the others"), "{report}");
 }
+
+#[test]
+fn a_closure_that_cannot_close_names_what_it_builds_on() {
+    // The triad six-bar with a third link too short to reach the platform: its iteration
+    // cannot close `j3`, and the error names the loop that `j3` closes.
+    let path = format!(
+        "{}/../examples/triad_sixbar.gcs",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).expect("the example");
+    let short = "point p = (0, 0.3); }";
+    let text = text.replacen("point p = (0, 3); }", short, 1);
+    assert!(text.contains(short), "the model changed");
+    let c = compiled(&text);
+    let audit = audit(&c);
+    assert!(audit.failed.is_empty(), "{:?}", audit.failed);
+    let stop = audit.stopped.expect("it does not close");
+    assert_eq!(
+        (&*stop.error.label, stop.error.kind),
+        ("j3", ErrorKind::NoConvergence)
+    );
+    let step = stop.step.expect("its last close");
+    assert!(matches!(c.analysis.plan.steps[step].op, Op::Close { .. }));
+    let support = c.analysis.plan.support(&c.model, step);
+    let mut named: Vec<&str> = (support.constraints.iter())
+        .map(|&k| c.model.constraints[k].name.as_str())
+        .collect();
+    named.sort();
+    assert_eq!(
+        named,
+        [
+            "coincident_crank_o_O1",
+            "coincident_link1_o_O2",
+            "coincident_link2_o_O3",
+            "coincident_link3_o_crank_t",
+            "drive",
+            "j1",
+            "j2"
+        ]
+    );
+    let errs = errors(&c);
+    assert_eq!(errs.len(), 1, "{errs:#?}");
+    assert!(
+        (errs[0].primary.message).starts_with("no assembly: the iteration stays "),
+        "{errs:#?}"
+    );
+    assert_eq!(errs[0].secondary.len(), 7 + 4, "{errs:#?}");
+}
