@@ -19,7 +19,7 @@ mod deps;
 mod dump;
 mod validate;
 
-pub use deps::{Slice, Support};
+pub use deps::{Deps, Slice, Support, Walk};
 pub use validate::Malformed;
 
 use gcs_lang::expr::ExprId;
