@@ -41,8 +41,8 @@ impl Op {
         }
     }
 
-    /// The constraint the op names itself (an intersection, an `Onto`, a check or a close is
-    /// for one), if any.
+    /// The constraint the op names itself, if any: the one an intersection, an `Onto`, a
+    /// check or a close is for, or whose value a size is.
     pub fn constraint(&self) -> Option<ConstraintId> {
         match self {
             Op::Intersect { constraint, .. }
@@ -166,11 +166,6 @@ impl Walk<'_, '_> {
         self.live.get(&g).is_some_and(|&before| before > i)
     }
 
-    /// Whether step `i` is in the slice.
-    pub fn has(&self, i: usize) -> bool {
-        self.taken.contains(&i)
-    }
-
     /// Follows what the steps taken read, until nothing is left: the registers they read,
     /// the state of the geom a measurement reads, and what `grow` says a step needs beyond
     /// its registers (geoms live before it).
@@ -216,13 +211,6 @@ pub struct Support {
     pub fixed: BTreeSet<GeomId>,
     /// The geom grounded at its sketch (nothing being fixed), if the step reads it.
     pub grounded: Option<GeomId>,
-}
-
-impl Support {
-    /// Whether it names nothing.
-    pub fn is_empty(&self) -> bool {
-        self.constraints.is_empty() && self.fixed.is_empty()
-    }
 }
 
 impl Plan {
