@@ -181,78 +181,62 @@ fn run_machine_with(
     defaults: Vec<f64>,
     choice: &Choice,
     reached: Option<&mut Vec<Option<f64>>>,
-    mut first: Option<&mut impl Outer>,
+    first: Option<&mut impl Outer>,
 ) -> Result<Run, SolveError> {
-    // As the generated solve checks them (`check_all_finite`): finite, and within range.
-    for ((_, p), v) in model.params.iter().zip(params) {
-        if !gcs_runtime::num::in_range(*v) {
-            return Err(SolveError::new(
-                p.name.clone(),
-                String::new(),
-                ErrorKind::InvalidInput,
-                *v,
-            ));
+    let mut machine = Machine::start(model, plan, params, defaults, choice, reached)?;
+    machine.execute(first).map_err(|f| f.error)?;
+    Ok(machine.finish())
+}
+
+/// A check that did not hold, or the error that stopped a run: the step it happened at (an
+/// outer iteration that does not converge: its last close; none when the run stopped before
+/// its first step, or inside an iteration's trial) and the error.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Failure {
+    /// The step, an index into the plan's steps.
+    pub step: Option<usize>,
+    /// The error, naming the constraint with its magnitude.
+    pub error: SolveError,
+}
+
+/// A run that went on past the checks that failed ([`audit`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Audit {
+    /// Every check that did not hold, in step order.
+    pub failed: Vec<Failure>,
+    /// What stopped the run, if something did: a step that cannot be done (loci that miss, a
+    /// degenerate configuration, an invalid value, an iteration that does not converge).
+    pub stopped: Option<Failure>,
+}
+
+/// Runs `plan` as [`run_with`] does, except that a check that fails does not stop it: a check
+/// places nothing, so every later step runs as it would have, and every failed check is
+/// reported, each an inconsistent redundant constraint. What cannot be done still stops the
+/// run (a check inside an outer iteration's trials is that iteration's business, and fails
+/// it as in [`run_with`]). [`run_with`] itself pays nothing for this: the difference is only
+/// on a check's failing path.
+pub fn audit(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    choice: &Choice,
+) -> Audit {
+    let mut machine = match Machine::start(model, plan, params, defaults.to_vec(), choice, None) {
+        Ok(m) => m,
+        Err(error) => {
+            return Audit {
+                failed: Vec::new(),
+                stopped: Some(Failure { step: None, error }),
+            }
         }
-    }
-    for (d, v) in plan.defaults.iter().zip(&defaults) {
-        if !gcs_runtime::num::in_range(*v) {
-            // No text, as the generated solve's `check_all_finite` reports it.
-            return Err(SolveError::new(
-                d.name.clone(),
-                String::new(),
-                ErrorKind::InvalidInput,
-                *v,
-            ));
-        }
-    }
-    let config = Config::from_sketch(model, params).map_err(|b| {
-        SolveError::new(
-            model.geoms[b.geom].name.clone(),
-            b.what,
-            ErrorKind::InvalidInput,
-            f64::NAN,
-        )
-    })?;
-    let scale = config_scale(&config, &plan.touched(model));
-    let mut machine = Machine {
-        model,
-        plan,
-        params,
-        defaults,
-        choice,
-        config,
-        tol: gcs_runtime::tol::CHECK_REL * (1.0 + scale),
-        scale,
-        regs: vec![None; plan.regs as usize],
-        chosen: vec![None; plan.branches.len()],
-        reached,
-        errors: None,
-        evaluations: 0,
-        iterations: 0,
     };
-    let iterate = machine.reached.is_none();
-    let mut i = 0;
-    while i < plan.steps.len() {
-        match plan.iterations.iter().find(|it| it.start == i) {
-            Some(it) if iterate => {
-                match first.as_deref_mut() {
-                    Some(outer) => machine.iterate(it, outer)?,
-                    None => machine.iterate(it, &mut gcs_runtime::outer::Newton)?,
-                }
-                i = it.end;
-            }
-            _ => {
-                machine.step(i, &plan.steps[i])?;
-                i += 1;
-            }
-        }
+    machine.failed = Some(Vec::new());
+    let stopped = machine.execute(None::<&mut gcs_runtime::outer::Newton>).err();
+    Audit {
+        failed: machine.failed.take().unwrap_or_default(),
+        stopped,
     }
-    Ok(Run {
-        config: machine.config,
-        chosen: machine.chosen,
-        defaults: machine.defaults,
-        iterations: machine.iterations,
-    })
 }
 
 /// The index of the root nearest to the sketch's position of the moving feature, at each
@@ -264,7 +248,10 @@ pub fn sketch_branches(model: &Model, plan: &Plan) -> Vec<Option<usize>> {
 
 /// Each branch variable's default (as [`sketch_branches`]) and each default's sketch value:
 /// what its measure register holds when the plan runs on the sketch, so that the default
-/// moves nothing there (least motion). `None` where the run did not reach it.
+/// moves nothing there (least motion). `None` where the run did not reach it. A check that
+/// fails does not stop this run: it places nothing, and an inconsistent redundant constraint
+/// early in the plan must not leave every later branch and default without its sketch value
+/// (the model is reported inconsistent, and only that).
 pub fn sketch_choices(model: &Model, plan: &Plan) -> (Vec<Option<usize>>, Vec<Option<f64>>) {
     let mut reached = vec![None; plan.defaults.len()];
     match run_machine(
@@ -302,6 +289,8 @@ struct Machine<'a, 'r> {
     evaluations: u32,
     /// Steps of outer iterations so far.
     iterations: u32,
+    /// When auditing ([`audit`]): the checks that failed, the run going on past them.
+    failed: Option<Vec<Failure>>,
 }
 
 /// The panic of a malformed plan: a bug in gcs, never an input's fault.
@@ -314,7 +303,119 @@ fn malformed(r: Reg, want: &str, got: Option<&Val>) -> ! {
     )
 }
 
-impl Machine<'_, '_> {
+impl<'a, 'r> Machine<'a, 'r> {
+    /// A machine at the start of `plan`: params and defaults checked finite and within range,
+    /// the configuration read from the sketch.
+    fn start(
+        model: &'a Model,
+        plan: &'a Plan,
+        params: &'a [f64],
+        defaults: Vec<f64>,
+        choice: &'a Choice,
+        reached: Option<&'r mut Vec<Option<f64>>>,
+    ) -> Result<Self, SolveError> {
+        // As the generated solve checks them (`check_all_finite`): finite, and within range.
+        for ((_, p), v) in model.params.iter().zip(params) {
+            if !gcs_runtime::num::in_range(*v) {
+                return Err(SolveError::new(
+                    p.name.clone(),
+                    String::new(),
+                    ErrorKind::InvalidInput,
+                    *v,
+                ));
+            }
+        }
+        for (d, v) in plan.defaults.iter().zip(&defaults) {
+            if !gcs_runtime::num::in_range(*v) {
+                // No text, as the generated solve's `check_all_finite` reports it.
+                return Err(SolveError::new(
+                    d.name.clone(),
+                    String::new(),
+                    ErrorKind::InvalidInput,
+                    *v,
+                ));
+            }
+        }
+        let config = Config::from_sketch(model, params).map_err(|b| {
+            SolveError::new(
+                model.geoms[b.geom].name.clone(),
+                b.what,
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            )
+        })?;
+        let scale = config_scale(&config, &plan.touched(model));
+        Ok(Machine {
+            model,
+            plan,
+            params,
+            defaults,
+            choice,
+            config,
+            tol: gcs_runtime::tol::CHECK_REL * (1.0 + scale),
+            scale,
+            regs: vec![None; plan.regs as usize],
+            chosen: vec![None; plan.branches.len()],
+            reached,
+            errors: None,
+            evaluations: 0,
+            iterations: 0,
+            failed: None,
+        })
+    }
+
+    /// Runs every step, each iterated region by its outer iteration unless the run is on the
+    /// sketch; the iterations driven by `first` when given (which ends the run at the first),
+    /// else solved.
+    fn execute<O: Outer>(&mut self, mut first: Option<&mut O>) -> Result<(), Failure> {
+        let plan = self.plan;
+        let iterate = self.reached.is_none();
+        let mut i = 0;
+        while i < plan.steps.len() {
+            match plan.iterations.iter().find(|it| it.start == i) {
+                Some(it) if iterate => {
+                    let outcome = match first.as_deref_mut() {
+                        Some(outer) => self.iterate(it, outer),
+                        None => self.iterate(it, &mut gcs_runtime::outer::Newton),
+                    };
+                    outcome.map_err(|error| Failure {
+                        // An iteration that does not converge names its first close.
+                        step: (error.kind == ErrorKind::NoConvergence)
+                            .then(|| self.first_close(it)),
+                        error,
+                    })?;
+                    i = it.end;
+                }
+                _ => {
+                    self.step(i, &plan.steps[i]).map_err(|error| Failure {
+                        step: Some(i),
+                        error,
+                    })?;
+                    i += 1;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The step of iterated region `it`'s first close (its last step if it has none): the
+    /// constraint an iteration that does not converge is named after.
+    fn first_close(&self, it: &Iteration) -> usize {
+        (it.start..it.end)
+            .find(|&i| matches!(self.plan.steps[i].op, Op::Close { .. }))
+            .unwrap_or(it.end.saturating_sub(1))
+    }
+
+    /// The run's result.
+    fn finish(self) -> Run {
+        Run {
+            config: self.config,
+            chosen: self.chosen,
+            defaults: self.defaults,
+            iterations: self.iterations,
+        }
+    }
+
     /// Runs iterated region `it`: varies its defaults, from their values given, until every
     /// close in it measures zero (000, section 5.2.1), then keeps that assembly. `outer`
     /// drives the iteration, as in a generated solver: it solves it, or scans it.
@@ -336,7 +437,7 @@ impl Machine<'_, '_> {
         it: &Iteration,
         outer: &mut O,
     ) -> Result<(), SolveError> {
-        use gcs_runtime::iterate::{Failure, Settings};
+        use gcs_runtime::iterate::{self, Settings};
         let mut x = [0.0; N];
         let mut scale = [0.0; N];
         for (k, d) in it.defaults.iter().enumerate() {
@@ -363,15 +464,12 @@ impl Machine<'_, '_> {
                 let mut r = [0.0; N];
                 self.assemble(it, &saved, &x, &mut r)
             }
-            Err(Failure::Start(e)) => Err(e),
+            Err(iterate::Failure::Start(e)) => Err(e),
             // Named after the iteration's first close, as generated code names it.
-            Err(Failure::NoConvergence { residual, .. }) => match self.plan.closes(it).first() {
-                Some(&c) => Err(err(self.model, c, ErrorKind::NoConvergence, residual)),
-                None => {
-                    let end = it.end.saturating_sub(1);
-                    Err(self.error(end, ErrorKind::NoConvergence, residual))
-                }
-            },
+            Err(iterate::Failure::NoConvergence { residual, .. }) => {
+                let step = self.first_close(it);
+                Err(self.error(step, ErrorKind::NoConvergence, residual))
+            }
         }
     }
 
@@ -737,7 +835,21 @@ impl Machine<'_, '_> {
             } => {
                 let r = self.residual(residual);
                 if r.is_nan() || r > self.tol {
-                    return Err(err(model, *constraint, ErrorKind::Inconsistent, r));
+                    // On the sketch, a check that fails decides nothing the run is for (the
+                    // branches and the defaults' sketch values): it places nothing.
+                    if self.reached.is_some() {
+                        return Ok(());
+                    }
+                    let error = err(model, *constraint, ErrorKind::Inconsistent, r);
+                    // Auditing, outside an iteration's trials: the run goes on.
+                    if let (Some(failed), None) = (self.failed.as_mut(), &self.errors) {
+                        failed.push(Failure {
+                            step: Some(i),
+                            error,
+                        });
+                        return Ok(());
+                    }
+                    return Err(error);
                 }
                 return Ok(());
             }

@@ -7,7 +7,7 @@
 //! coupler has been placed from it). Only geoms the pruned plan places completely are reported;
 //! branch variables of pruned intersections disappear.
 
-use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan, Reg};
+use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan};
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use std::collections::{BTreeSet, HashMap};
@@ -19,18 +19,13 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
     if model.outputs.is_empty() {
         return (plan.clone(), all);
     }
-    // One backward pass over the straight line: `live` holds the geoms whose state after the
-    // current step is still read (by an output, or by a later kept measurement or check).
+    // One backward slice, from the outputs' final state: a geom is live while its state
+    // after the current step is still read (by an output, or by a kept measurement or check).
     let outputs: BTreeSet<GeomId> = model
         .outputs
         .iter()
         .map(|o| model.top_level_of(o.geom))
         .collect();
-    let mut live: BTreeSet<GeomId> = outputs.clone();
-    let mut touched: BTreeSet<GeomId> = outputs;
-    let mut regs: BTreeSet<Reg> = BTreeSet::new();
-    let mut keep = vec![false; plan.steps.len()];
-    let mut moved: Vec<Vec<GeomId>> = vec![Vec::new(); plan.steps.len()];
     let tops = |c: &gcs_lang::model::ConstraintId| -> Vec<GeomId> {
         model.constraints[*c]
             .args
@@ -38,31 +33,44 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             .map(|a| model.top_level_of(*a))
             .collect()
     };
-    for (i, step) in plan.steps.iter().enumerate().rev() {
-        let needed = match &step.op {
-            Op::Translate { geoms: gs, .. }
-            | Op::RotatePoint { geoms: gs, .. }
-            | Op::RotateDir { geoms: gs, .. } => {
-                moved[i] = gs.iter().copied().filter(|g| live.contains(g)).collect();
-                !moved[i].is_empty()
-            }
-            Op::SetDim { geom, .. } => live.contains(geom),
-            // A check is kept when everything it measures is computed anyway.
-            Op::Check { constraint, .. } => tops(constraint).iter().all(|g| live.contains(g)),
-            // What an iteration closes decides every answer of its region: always kept.
-            Op::Close { .. } => true,
-            _ => step.out.is_some_and(|(r, _)| regs.contains(&r)),
-        };
-        if !needed {
-            continue;
-        }
-        keep[i] = true;
-        regs.extend(step.op.reads());
-        if let Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) = &step.op {
-            live.insert(model.top_level_of(*f));
-            touched.insert(model.top_level_of(*f));
+    let n = plan.steps.len();
+    let deps = plan.deps(model);
+    let mut walk = deps.walk();
+    for &g in &outputs {
+        walk.live(g, n);
+    }
+    // What an iteration closes decides every answer of its region: always kept.
+    for (i, step) in plan.steps.iter().enumerate() {
+        if let Op::Close { .. } = step.op {
+            walk.take(i);
         }
     }
+    walk.run(|_, _| {});
+    // A check is kept when everything it measures is computed anyway: live after it. What a
+    // check takes in lies before it, so the checks are decided last to first, each once.
+    for (i, step) in plan.steps.iter().enumerate().rev() {
+        if let Op::Check { constraint, .. } = &step.op {
+            if tops(constraint).iter().all(|&g| walk.is_live_after(g, i)) {
+                walk.take(i);
+                walk.run(|_, _| {});
+            }
+        }
+    }
+    let slice = walk.finish();
+    let mut keep = vec![false; n];
+    for &i in &slice.steps {
+        keep[i] = true;
+    }
+    // Each action moves, in the pruned plan, the geoms whose state is read after it.
+    let moved: Vec<Vec<GeomId>> = (plan.steps.iter().enumerate())
+        .map(|(i, s)| {
+            (s.op.moves().iter().copied())
+                .filter(|g| slice.live.get(g).is_some_and(|&before| before > i))
+                .collect()
+        })
+        .collect();
+    let mut touched: BTreeSet<GeomId> = outputs;
+    touched.extend(slice.read);
     // The geoms the pruned plan places completely: read somewhere, and never left behind by a
     // move or a scaling the whole plan makes. Only these are reported.
     let mut geoms = touched;

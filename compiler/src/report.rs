@@ -1,11 +1,20 @@
 //! What `gcs check` and `gcs solve` tell a user about an analysed model: its problems as
 //! diagnostics (constraints without a plan, geoms left free, constraints that conflict at the
 //! default params), the DOF summary, and a solution as text.
+//!
+//! Redundancy is reported completely: each redundant constraint with what implies it (the
+//! support of its run-time check, [`Plan::support`]: the constraints whose steps placed what
+//! the check reads, and the fixed geoms it reads), and, at the default params, every
+//! inconsistent redundant set (every check that fails, the plan run past them by
+//! [`crate::interp::audit`]) as one diagnostic with its magnitude and a label on each member.
 
 use crate::analysis::Analysis;
+use crate::interp::Failure;
+use crate::plan::{Op, Plan, Residual, Support};
 use crate::solution::Solution;
 use gcs_lang::model::GeomId;
 use gcs_lang::{Diagnostic, Model};
+use gcs_runtime::error::SolveError;
 use gcs_runtime::num::Shown;
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -100,7 +109,7 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
         // An iterated plan fails here only if no assembly exists on these branches, wherever
         // the iteration starts.
         let solved = if a.plan.iterations.is_empty() {
-            let choice = crate::interp::Choice::Given(branches);
+            let choice = crate::interp::Choice::Given(branches.clone());
             crate::interp::run(model, &a.plan, &params, &choice).map(|_| ())
         } else {
             let all = a.plan.touched(model);
@@ -109,36 +118,197 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
                 .map(|_| ())
         };
         if let Err(e) = solved {
-            if let Some((_, c)) = model.constraints.iter().find(|(_, c)| c.name == e.label) {
-                let what = match e.kind {
-                    gcs_runtime::error::ErrorKind::Inconsistent => {
-                        format!(
-                            "conflicting constraint: it is off by {}",
-                            Shown(e.magnitude)
-                        )
-                    }
-                    gcs_runtime::error::ErrorKind::NoIntersection => {
-                        format!("no assembly: the loci miss by {}", Shown(e.magnitude))
-                    }
-                    gcs_runtime::error::ErrorKind::InvalidValue => {
-                        format!("an invalid value: {}", Shown(e.magnitude))
-                    }
-                    _ => "a degenerate configuration".to_string(),
-                };
-                out.push(
-                    Diagnostic::error(
-                        c.span,
-                        format!("`{}` cannot be met with the default params", c.name),
-                    )
-                    .with_label(what)
-                    .with_note(e.to_string()),
-                );
-            } else {
-                out.push(Diagnostic::error(gcs_lang::Span::default(), e.to_string()));
-            }
+            out.extend(conflicts(model, &a.plan, &params, branches, e));
         }
     }
     out
+}
+
+/// What a model that does not solve at the default params is told, after `first`, the error
+/// its solve stopped with: every inconsistent redundant set (each failed check, one
+/// diagnostic each, with the constraints and fixed geoms that imply the one it holds), and
+/// what stopped the plan, if something did, with what its step builds on. In source order.
+fn conflicts(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    branches: Vec<usize>,
+    first: SolveError,
+) -> Vec<Diagnostic> {
+    let choice = crate::interp::Choice::Given(branches);
+    let audit = crate::interp::audit(model, plan, params, &plan.sketch_defaults(), &choice);
+    let mut failures = audit.failed;
+    match audit.stopped {
+        Some(f) => failures.push(f),
+        // An iterated plan whose assemblies all fail somewhere the run from the sketch does not.
+        None if failures.is_empty() => failures.push(Failure {
+            step: None,
+            error: first,
+        }),
+        None => {}
+    }
+    let steps: Vec<usize> = failures.iter().filter_map(|f| f.step).collect();
+    let supports: HashMap<usize, Support> = steps
+        .iter()
+        .copied()
+        .zip(plan.supports(model, &steps))
+        .collect();
+    let mut out: Vec<Diagnostic> = (failures.iter())
+        .map(|f| failure(model, plan, f, f.step.and_then(|i| supports.get(&i))))
+        .collect();
+    out.sort_by_key(|d| d.primary.span.start);
+    out
+}
+
+/// A magnitude as a diagnostic's label says it: six significant digits (`0.3`, not
+/// `0.2999999999999998`); its note has the exact value.
+fn rounded(x: f64) -> Shown {
+    if !x.is_finite() || x == 0.0 {
+        return Shown(x);
+    }
+    Shown(format!("{x:.5e}").parse::<f64>().unwrap_or(x))
+}
+
+/// `a`, `a and b`, `a, b and c`.
+fn listed(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    }
+}
+
+/// A support in words: `a, b and c (with fixed A and fixed B)`, `fixed A and fixed B`, or
+/// the grounded geom's placement when nothing else; `None` when it names nothing.
+pub fn support_words(model: &Model, support: &Support) -> Option<String> {
+    let (mut constraints, mut fixed) = (Vec::new(), Vec::new());
+    for (_, who) in by_position(model, support) {
+        match who {
+            Supporter::Constraint(c) => constraints.push(model.constraints[c].name.clone()),
+            Supporter::Fixed(g) => fixed.push(format!("fixed {}", model.geoms[g].name)),
+        }
+    }
+    match (constraints.is_empty(), fixed.is_empty()) {
+        (false, false) => Some(format!(
+            "{} (with {})",
+            listed(&constraints),
+            listed(&fixed)
+        )),
+        (false, true) => Some(listed(&constraints)),
+        (true, false) => Some(listed(&fixed)),
+        (true, true) => support
+            .grounded
+            .map(|g| format!("where the sketch places {}, grounded", model.geoms[g].name)),
+    }
+}
+
+/// One member of a support.
+#[derive(Clone, Copy, Debug)]
+enum Supporter {
+    Constraint(gcs_lang::model::ConstraintId),
+    Fixed(GeomId),
+}
+
+/// The members of a support with their spans, in source order.
+fn by_position(model: &Model, support: &Support) -> Vec<(gcs_lang::Span, Supporter)> {
+    let mut out: Vec<(gcs_lang::Span, Supporter)> = (support.constraints.iter())
+        .map(|&c| (model.constraints[c].span, Supporter::Constraint(c)))
+        .chain((support.fixed.iter()).map(|&g| (model.geoms[g].span, Supporter::Fixed(g))))
+        .collect();
+    out.sort_by_key(|(span, _)| (span.start, span.end));
+    out
+}
+
+/// The diagnostic of a failed check (an inconsistent redundant set) or of the error that
+/// stopped the plan: on the constraint it names, with its size; then, with `support` (that of
+/// its step, when known), the constraints and fixed geoms its step builds on as secondary
+/// labels and in a note.
+fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -> Diagnostic {
+    use gcs_runtime::error::ErrorKind;
+    let e = &f.error;
+    // The constraint its step names (a check's), else the one the error is labelled with.
+    let named = (f.step.and_then(|i| plan.steps.get(i)))
+        .and_then(|s| s.op.constraint())
+        .filter(|&k| model.constraints[k].name == e.label)
+        .map(|k| (k, &model.constraints[k]));
+    let found = named.or_else(|| model.constraints.iter().find(|(_, c)| c.name == e.label));
+    let Some((id, c)) = found else {
+        return Diagnostic::error(gcs_lang::Span::default(), e.to_string());
+    };
+    let m = rounded(e.magnitude);
+    let check = f
+        .step
+        .and_then(|i| plan.steps.get(i))
+        .is_some_and(|s| matches!(s.op, Op::Check { .. }));
+    // An angle's residual is in radians; its degrees say it better.
+    let angle = f.step.and_then(|i| plan.steps.get(i)).is_some_and(|s| {
+        matches!(
+            s.op,
+            Op::Check {
+                residual: Residual::Angle { .. },
+                ..
+            }
+        )
+    });
+    let m_words = if angle {
+        format!("{m} rad ({} deg)", rounded(e.magnitude.to_degrees()))
+    } else {
+        m.to_string()
+    };
+    let what = match e.kind {
+        ErrorKind::Inconsistent => format!("conflicting constraint: it is off by {m_words}"),
+        ErrorKind::NoIntersection => format!("no assembly: the loci miss by {m}"),
+        ErrorKind::InvalidValue => format!("an invalid value: {}", Shown(e.magnitude)),
+        ErrorKind::NoConvergence => format!("no assembly: the iteration stays {m} from closing it"),
+        ErrorKind::NoSuchBranch => "no root on the branch chosen".to_string(),
+        _ => "a degenerate configuration".to_string(),
+    };
+    let message = if check {
+        format!("`{}` conflicts with the constraints that imply it", c.name)
+    } else {
+        format!("`{}` cannot be met with the default params", c.name)
+    };
+    let mut d = Diagnostic::error(c.span, message).with_label(what);
+    let support =
+        support.filter(|_| !matches!(e.kind, ErrorKind::InvalidValue | ErrorKind::InvalidInput));
+    if let Some(support) = support {
+        let secondary = if check {
+            format!("part of what implies `{}`", c.name)
+        } else {
+            format!("part of what `{}` builds on", c.name)
+        };
+        for (span, who) in by_position(model, support) {
+            // A constraint's own statement is its primary label already.
+            if matches!(who, Supporter::Constraint(x) if x == id) {
+                continue;
+            }
+            let label = match who {
+                Supporter::Fixed(_) => format!("fixed: {secondary}"),
+                Supporter::Constraint(_) => secondary.clone(),
+            };
+            d = d.with_secondary(span, label);
+        }
+        if let Some(words) = support_words(model, support) {
+            d = d.with_note(if check {
+                format!(
+                    "`{}` is implied by {words}, and disagrees with them by {m_words}: change or remove one of them",
+                    c.name
+                )
+            } else {
+                let how = match e.kind {
+                    ErrorKind::NoIntersection => format!("its loci miss by {m}"),
+                    ErrorKind::Inconsistent => format!("it is off by {m}"),
+                    ErrorKind::NoConvergence => format!("it stays {m} from closing"),
+                    _ => "it cannot be met".to_string(),
+                };
+                format!(
+                    "`{}` builds on {words}: with them {how}; change one of them",
+                    c.name
+                )
+            });
+        }
+    }
+    d.with_note(e.to_string())
 }
 
 /// The summary `gcs check` prints after a successful analysis.
@@ -222,11 +392,33 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
             if closes.len() == 1 { "s" } else { "" }
         );
     }
+    // Each redundant constraint's check: the step that checks its last relation.
+    let check_of: HashMap<gcs_lang::model::ConstraintId, usize> = (a.plan.steps.iter())
+        .enumerate()
+        .filter_map(|(i, s)| match s.op {
+            Op::Check { constraint, .. } if s.satisfies.contains(&constraint) => {
+                Some((constraint, i))
+            }
+            _ => None,
+        })
+        .collect();
+    let checks: Vec<usize> = (a.redundant.iter())
+        .filter_map(|c| check_of.get(c).copied())
+        .collect();
+    let supports: HashMap<usize, Support> = checks
+        .iter()
+        .copied()
+        .zip(a.plan.supports(model, &checks))
+        .collect();
     for c in &a.redundant {
         let con = &model.constraints[*c];
+        let by = (check_of.get(c))
+            .and_then(|i| supports.get(i))
+            .and_then(|s| support_words(model, s))
+            .unwrap_or_else(|| "the others".to_string());
         let _ = writeln!(
             out,
-            "  redundant: {} ({}, line {}) is implied by the others; it is kept as a run-time check",
+            "  redundant: {} ({}, line {}) is implied by {by}; it is kept as a run-time check",
             con.name,
             con.text,
             model.line(con.span)

@@ -47,6 +47,7 @@ fn plan(model: &Model) -> Plan {
             op,
             out: Some((Reg(steps.len() as u32), ty)),
             satisfies: vec![],
+            works_for: None,
             explain: String::new(),
         });
     };
@@ -98,12 +99,14 @@ fn plan(model: &Model) -> Plan {
         },
         out: None,
         satisfies: vec![reach],
+        works_for: None,
         explain: "Put P on the circle about A, at the default angle.".into(),
     });
     steps.push(Step {
         op: Op::PointOf(p),
         out: Some((Reg(11), Ty::Point)),
         satisfies: vec![],
+        works_for: None,
         explain: String::new(),
     });
     steps.push(Step {
@@ -115,6 +118,7 @@ fn plan(model: &Model) -> Plan {
         },
         out: Some((Reg(12), Ty::Scalar)),
         satisfies: vec![],
+        works_for: None,
         explain: String::new(),
     });
     steps.push(Step {
@@ -124,6 +128,7 @@ fn plan(model: &Model) -> Plan {
         },
         out: None,
         satisfies: vec![close],
+        works_for: None,
         explain: "Close: P is 4 from B.".into(),
     });
     let mut plan = Plan::new(model.space);

@@ -451,7 +451,22 @@ fn solve(
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                eprintln!("error: {e}");
+                // A check that fails does not hide the others: with the plan run past them,
+                // every inconsistent redundant constraint is reported, then what stopped it.
+                let audit = gcs_compiler::interp::audit(
+                    model,
+                    &plan,
+                    &params,
+                    &kept_defaults,
+                    &gcs_compiler::interp::Choice::Given(chosen),
+                );
+                if audit.failed.iter().any(|f| f.error == e) {
+                    for f in audit.failed.iter().chain(&audit.stopped) {
+                        eprintln!("error: {}", f.error);
+                    }
+                } else {
+                    eprintln!("error: {e}");
+                }
                 ExitCode::FAILURE
             }
         }

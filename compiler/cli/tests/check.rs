@@ -175,6 +175,82 @@ fn points_planes() {
 }
 
 #[test]
+fn redundant_constraints_name_what_implies_them() {
+    let (code, stdout, stderr) = gcs_check("tests/models/redundant_checks.gcs");
+    assert_eq!(code, 0, "stderr: {stderr}");
+    assert_eq!(stderr, "");
+    let redundant: Vec<&str> = (stdout.lines())
+        .filter(|l| l.contains("redundant"))
+        .collect();
+    expect![[r#"
+        tests/models/redundant_checks.gcs: space 2d, 9 params, 9 geoms, 17 constraints
+        analysis: well-constrained, with redundant constraints
+          redundant: q_r (radius(R) = rr, line 45) is implied by fixed R; it is kept as a run-time check
+          redundant: c_flat (horizontal(s), line 31) is implied by a_start, b_end and d_long (with fixed A and fixed B); it is kept as a run-time check
+          redundant: f_up (vertical(u), line 34) is implied by a_start, b_end, d_long and e_up (with fixed A and fixed B); it is kept as a run-time check
+          redundant: j_top (tangent(top, K), line 38) is implied by a_start, b_end, d_long, g_centre, h_p, i_p and k_radius (with fixed A, fixed B and fixed top); it is kept as a run-time check
+          redundant: l_off (distance(P, R) = gap, line 40) is implied by a_start, b_end, d_long, h_p and i_p (with fixed A, fixed B and fixed R); it is kept as a run-time check
+          redundant: m_r (tangent(R, K), line 41) is implied by a_start, b_end, d_long, g_centre, h_p, i_p and k_radius (with fixed A, fixed B and fixed R); it is kept as a run-time check
+          redundant: n_ap (distance(P, A) = ap, line 42) is implied by a_start, b_end, d_long, h_p and i_p (with fixed A and fixed B); it is kept as a run-time check
+          redundant: o_q (coincident(P, Q), line 43) is implied by a_start, b_end, d_long, h_p and i_p (with fixed A, fixed B and fixed Q); it is kept as a run-time check
+          redundant: p_below (distance(P, top) = below, line 44) is implied by a_start, b_end, d_long, h_p and i_p (with fixed A, fixed B and fixed top); it is kept as a run-time check"#]]
+    .assert_eq(&redundant.join("\n"));
+}
+
+#[test]
+fn every_inconsistent_redundant_set_is_an_error_with_its_members() {
+    // `a` conflicts with fixed A and B by 0.3; `d` asks C 2.25 from A where `b` put it 2 away.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("tri.gcs");
+    std::fs::write(
+        &file,
+        "space 2d;\nfixed point A = (0, 0);\nfixed point B = (3, 0);\npoint C = (1, 2);\n\
+         a: distance(A, B) = 3.3;\nb: distance(A, C) = 2;\nc: distance(B, C) = 2.5;\n\
+         d: distance(C, A) = 2.25;\n",
+    )
+    .expect("write");
+    let (code, stdout, stderr) = gcs_check(file.to_str().expect("utf-8 path"));
+    assert_eq!(code, 1);
+    assert_eq!(stdout, "");
+    let stderr = stderr.replace(file.to_str().expect("path"), "tri.gcs");
+    expect![[r#"
+        error: `a` conflicts with the constraints that imply it
+          ┌─ tri.gcs:5:1
+          │
+        2 │ fixed point A = (0, 0);
+          │             - fixed: part of what implies `a`
+        3 │ fixed point B = (3, 0);
+          │             - fixed: part of what implies `a`
+        4 │ point C = (1, 2);
+        5 │ a: distance(A, B) = 3.3;
+          │ ^^^^^^^^^^^^^^^^^^^^^^^^ conflicting constraint: it is off by 0.3
+          │
+          = `a` is implied by fixed A and fixed B, and disagrees with them by 0.3: change or remove one of them
+          = constraint `a` (distance(A, B) = 3.3) cannot be met: it is inconsistent with the constraints already met, by 0.2999999999999998
+
+        error: `d` conflicts with the constraints that imply it
+          ┌─ tri.gcs:8:1
+          │
+        2 │ fixed point A = (0, 0);
+          │             - fixed: part of what implies `d`
+        3 │ fixed point B = (3, 0);
+          │             - fixed: part of what implies `d`
+          ·
+        6 │ b: distance(A, C) = 2;
+          │ ---------------------- part of what implies `d`
+        7 │ c: distance(B, C) = 2.5;
+          │ ------------------------ part of what implies `d`
+        8 │ d: distance(C, A) = 2.25;
+          │ ^^^^^^^^^^^^^^^^^^^^^^^^^ conflicting constraint: it is off by 0.25
+          │
+          = `d` is implied by b and c (with fixed A and fixed B), and disagrees with them by 0.25: change or remove one of them
+          = constraint `d` (distance(C, A) = 2.25) cannot be met: it is inconsistent with the constraints already met, by 0.25
+
+        error: `tri.gcs` has 2 analysis errors
+    "#]].assert_eq(&stderr);
+}
+
+#[test]
 fn errors_go_to_stderr_with_exit_code_1() {
     let dir = tempfile::tempdir().expect("tempdir");
     let file = dir.path().join("bad.gcs");

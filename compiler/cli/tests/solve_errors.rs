@@ -1,5 +1,6 @@
 //! `gcs solve` on an impossible assembly exits non-zero, and its stderr names the constraint
-//! (`elbow`) and the gap by which the loop misses, equal to the true gap computed here.
+//! (`elbow`) and the gap by which the loop misses, equal to the true gap computed here; params
+//! that break two redundant constraints get both named, each with its size.
 
 use std::path::Path;
 use std::process::Command;
@@ -128,4 +129,50 @@ fn the_example_four_bar_in_a_dead_zone_fails_naming_elbow_and_the_gap() {
     let (code, stdout, stderr) = gcs_solve(&path, &[]);
     assert_eq!(code, 0, "stderr: {stderr}");
     assert!(stdout.contains("coupler.c"), "{stdout}");
+}
+
+#[test]
+fn params_that_break_two_redundant_constraints_name_both_with_their_sizes() {
+    // At its defaults `x` and `g` hold (as checks); moved, each is off by its own amount,
+    // and a failed check does not hide the other.
+    let text = "space 2d;
+param xv = 2.6535945694153691;
+param gv = 11.774591973880774;
+fixed point A = (0, 0);
+fixed point B = (3, 0);
+point C = (1, 2);
+fixed point D = (10, 0);
+fixed line L = (0, -1) -> (1, -1);
+point E = (11, 2);
+b: distance(A, C) = 2;
+c: distance(B, C) = 2.5;
+x: distance(C, L) = xv;
+e: distance(D, E) = 2;
+f: on(E, L);
+g: distance(E, A) = gv;
+";
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("two.gcs");
+    std::fs::write(&path, text).expect("write model");
+    let (code, stdout, stderr) = gcs_solve(&path, &[]);
+    assert_eq!(code, 0, "stderr: {stderr}");
+    assert!(stdout.contains("point  E"), "{stdout}");
+    let (code, stdout, stderr) = gcs_solve(&path, &["--set", "xv=3", "--set", "gv=11.5"]);
+    assert_eq!(code, 1, "stdout: {stdout}");
+    let cy = (4.0f64 - (6.75f64 / 6.0).powi(2)).sqrt();
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(lines.len(), 2, "{stderr}");
+    for (line, (name, off)) in lines
+        .iter()
+        .zip([("g", 11.774591973880774 - 11.5), ("x", 3.0 - (cy + 1.0))])
+    {
+        assert!(
+            line.starts_with(&format!("error: constraint `{name}` ")),
+            "{stderr}"
+        );
+        let m: f64 = (line.rsplit(' ').next())
+            .and_then(|m| m.parse().ok())
+            .unwrap_or(f64::NAN);
+        assert!((m - off).abs() < 1e-9, "{name}: {m}, not {off}: {stderr}");
+    }
 }

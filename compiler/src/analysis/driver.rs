@@ -78,6 +78,7 @@ fn error_and_close(
         op: error,
         out: Some((residual, Ty::Scalar)),
         satisfies: Vec::new(),
+        works_for: Some(constraint),
         explain: String::new(),
     });
     steps.push(Step {
@@ -87,6 +88,7 @@ fn error_and_close(
         },
         out: None,
         satisfies,
+        works_for: Some(constraint),
         explain,
     });
 }
@@ -176,6 +178,8 @@ pub(crate) struct Builder<'m, G: Geometry> {
     done: HashSet<RelKey<G::Relation>>,
     /// The clusters before the first default, once one is added.
     undefaulted: Option<Vec<ClusterState<G::Record>>>,
+    /// The constraint of the relation being tried, which each step written records.
+    working: Option<ConstraintId>,
 }
 
 impl<'m, G: Geometry> Builder<'m, G> {
@@ -212,6 +216,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             redundant: Vec::new(),
             done: HashSet::default(),
             undefaulted: None,
+            working: None,
         }
     }
 
@@ -251,6 +256,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             op,
             out,
             satisfies,
+            works_for: self.working,
             explain,
         });
         reg
@@ -465,8 +471,10 @@ impl<'m, G: Geometry> Builder<'m, G> {
         let (dims, others): (Vec<_>, Vec<_>) =
             rels.into_iter().partition(|r| G::is_dimension(&r.relation));
         for r in &dims {
+            self.working = Some(r.constraint);
             G::action(self, r);
         }
+        self.working = None;
         self.pending = others;
         if !self.model.top_level().any(|(_, g)| g.fixed) && !self.clusters.is_empty() {
             G::ground(self);
@@ -545,32 +553,20 @@ impl<'m, G: Geometry> Builder<'m, G> {
             for r in step.op.reads() {
                 deps.extend(reg_deps[r.0 as usize].iter().copied());
             }
-            match &step.op {
-                Op::Default(d) => {
-                    deps.insert(d.0);
-                }
-                Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) => {
-                    if let Some(g) = geom_deps.get(&model.top_level_of(*f)) {
-                        deps.extend(g.iter().copied());
-                    }
-                }
-                Op::Translate { geoms, .. }
-                | Op::RotatePoint { geoms, .. }
-                | Op::RotateDir { geoms, .. } => {
-                    for g in geoms {
-                        geom_deps
-                            .entry(*g)
-                            .or_default()
-                            .extend(deps.iter().copied());
-                    }
-                }
-                Op::SetDim { geom, .. } => {
-                    geom_deps
-                        .entry(*geom)
-                        .or_default()
-                        .extend(deps.iter().copied());
-                }
-                _ => {}
+            if let Op::Default(d) = step.op {
+                deps.insert(d.0);
+            }
+            // What depends on what, as the plan says it (`plan/deps.rs`).
+            if let Some(g) =
+                (step.op.measures()).and_then(|f| geom_deps.get(&model.top_level_of(f)))
+            {
+                deps.extend(g.iter().copied());
+            }
+            for g in step.op.moves() {
+                geom_deps
+                    .entry(*g)
+                    .or_default()
+                    .extend(deps.iter().copied());
             }
             if let Some((r, _)) = step.out {
                 reg_deps[r.0 as usize] = deps.clone();
@@ -762,6 +758,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                         .collect();
                     let measured = self.measured.len();
                     let cp = self.checkpoint();
+                    self.working = Some(r.constraint);
                     let ok = if r.duplicate {
                         self.check(&r);
                         true
@@ -770,6 +767,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                     } else {
                         G::action(self, &r)
                     };
+                    self.working = None;
                     if ok {
                         done = Some((i, before));
                         break;

@@ -15,9 +15,11 @@
 //! and spatial locus intersections (for 3d models), and default parameters with the iterated
 //! regions that close them (for models with no closed form).
 
+mod deps;
 mod dump;
 mod validate;
 
+pub use deps::{Deps, Slice, Support, Walk};
 pub use validate::Malformed;
 
 use gcs_lang::expr::ExprId;
@@ -434,6 +436,11 @@ pub struct Step {
     pub out: Option<(Reg, Ty)>,
     /// The constraints this step satisfies (for actions) or verifies (for checks).
     pub satisfies: Vec<ConstraintId>,
+    /// The constraint whose relation the analysis was working on when it wrote the step, if
+    /// any (none for a default's or grounding's steps). An action on a constraint's earlier
+    /// relation satisfies nothing yet, but still moves its geoms for that constraint:
+    /// [`Plan::support`] reads it.
+    pub works_for: Option<ConstraintId>,
     /// The explanation, with the model's names bound.
     pub explain: String,
 }
@@ -479,20 +486,8 @@ impl Plan {
     pub fn touched(&self, model: &Model) -> std::collections::BTreeSet<GeomId> {
         let mut out = std::collections::BTreeSet::new();
         for s in &self.steps {
-            match &s.op {
-                Op::PointOf(f) | Op::DirOf(f) | Op::DimOf(f) => {
-                    out.insert(model.top_level_of(*f));
-                }
-                Op::Translate { geoms, .. }
-                | Op::RotatePoint { geoms, .. }
-                | Op::RotateDir { geoms, .. } => {
-                    out.extend(geoms.iter().copied());
-                }
-                Op::SetDim { geom, .. } => {
-                    out.insert(*geom);
-                }
-                _ => {}
-            }
+            out.extend(s.op.measures().map(|f| model.top_level_of(f)));
+            out.extend(s.op.moves().iter().copied());
         }
         out
     }

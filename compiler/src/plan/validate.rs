@@ -456,6 +456,7 @@ mod tests {
             op,
             out: out.map(|(r, t)| (Reg(r), t)),
             satisfies: vec![],
+            works_for: None,
             explain: String::new(),
         }
     }
