@@ -232,7 +232,9 @@ pub fn audit(
         }
     };
     machine.failed = Some(Vec::new());
-    let stopped = machine.execute(None::<&mut gcs_runtime::outer::Newton>).err();
+    let stopped = machine
+        .execute(None::<&mut gcs_runtime::outer::Newton>)
+        .err();
     Audit {
         failed: machine.failed.take().unwrap_or_default(),
         stopped,

@@ -70,6 +70,7 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
     } else {
         w.line("/// The plan has no outer iteration: each combination has at most one assembly.");
     }
+    w.line("#[allow(dead_code)]");
     w.open("pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {");
     w.open("let mut found = Assemblies {");
     w.line("solutions: [None; MAX_ASSEMBLIES],");
@@ -181,10 +182,12 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
     w.line(
         "/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.",
     );
+    w.line("#[allow(dead_code)]");
     w.line(&format!("pub const MAX_ASSEMBLIES: usize = {capacity};"));
     w.line("");
     w.line("/// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity");
     w.line("/// list, so that listing them allocates nothing.");
+    w.line("#[allow(dead_code)]");
     w.line("#[derive(Clone, Copy, Debug)]");
     w.open("pub struct Assemblies {");
     w.line("solutions: [Option<Solution>; MAX_ASSEMBLIES],");

@@ -616,10 +616,12 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 }
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
+#[allow(dead_code)]
 pub const MAX_ASSEMBLIES: usize = 64;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity
 /// list, so that listing them allocates nothing.
+#[allow(dead_code)]
 #[derive(Clone, Copy, Debug)]
 pub struct Assemblies {
     solutions: [Option<Solution>; MAX_ASSEMBLIES],
@@ -696,6 +698,7 @@ impl Assemblies {
 /// Where the plan iterates, it is solved from a grid of 12 values of each default it
 /// varies (a turn for an angle, the given value give or take the model's size for a length):
 /// a search that is not known to find every assembly, as `Assemblies::is_complete` says.
+#[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies {
         solutions: [None; MAX_ASSEMBLIES],

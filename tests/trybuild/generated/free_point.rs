@@ -271,10 +271,12 @@ pub fn solve(
 }
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
+#[allow(dead_code)]
 pub const MAX_ASSEMBLIES: usize = 2;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity
 /// list, so that listing them allocates nothing.
+#[allow(dead_code)]
 #[derive(Clone, Copy, Debug)]
 pub struct Assemblies {
     solutions: [Option<Solution>; MAX_ASSEMBLIES],
@@ -349,6 +351,7 @@ impl Assemblies {
 ///
 /// Each combination of the branch variables is solved.
 /// The plan has no outer iteration: each combination has at most one assembly.
+#[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies {
         solutions: [None; MAX_ASSEMBLIES],

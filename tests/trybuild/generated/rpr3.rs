@@ -427,10 +427,12 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 }
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
+#[allow(dead_code)]
 pub const MAX_ASSEMBLIES: usize = 64;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity
 /// list, so that listing them allocates nothing.
+#[allow(dead_code)]
 #[derive(Clone, Copy, Debug)]
 pub struct Assemblies {
     solutions: [Option<Solution>; MAX_ASSEMBLIES],
@@ -508,6 +510,7 @@ impl Assemblies {
 /// The outer iteration's error is scanned over a whole turn of `platform.p1_angle`,
 /// and the plan solved from each root; the runtime's `outer::Scan` says which roots a scan
 /// finds. The other defaults (free motions) keep the values given, which every assembly shares.
+#[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies {
         solutions: [None; MAX_ASSEMBLIES],
