@@ -16,7 +16,12 @@ fn the_rectangle_missing_its_height_keeps_the_sketch_height_until_given_one() {
             s.left_start(),
         ]
     };
-    for (width, height) in [(4.0, None), (7.5, None), (4.0, Some(5.0)), (0.5, Some(0.25))] {
+    for (width, height) in [
+        (4.0, None),
+        (7.5, None),
+        (4.0, Some(5.0)),
+        (0.5, Some(0.25)),
+    ] {
         let params = rectangle_free::Params { width };
         let mut defaults = rectangle_free::Defaults::default();
         if let Some(h) = height {

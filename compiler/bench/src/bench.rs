@@ -233,6 +233,24 @@ pub struct Report {
     pub cold_curve: Vec<ErrorPoint>,
     /// The same, warm from the answer of the sample before (the second sample).
     pub warm_curve: Vec<ErrorPoint>,
+    /// The baseline run again to the compiled plan's accuracy, when its own stopping
+    /// tolerance left it less accurate: what "as fast at the same accuracy" compares with.
+    pub equal_accuracy: Option<EqualAccuracy>,
+}
+
+/// The baseline's sweep with its tolerance at the compiled plan's largest residual.
+#[derive(Clone, Debug, Default)]
+pub struct EqualAccuracy {
+    /// The tolerance it ran to.
+    pub tolerance: f64,
+    /// Per-solve times, warm-started along the sweep as in [`BaselineSide`].
+    pub timing: Timing,
+    /// The largest residual of its answers, by [`gcs_compiler::verify`].
+    pub max_residual: f64,
+    /// Samples where it did not reach the tolerance.
+    pub failures: usize,
+    /// Its median over the compiled plan's.
+    pub ratio: f64,
 }
 
 /// The thresholds of the run-time-against-error table.
@@ -351,6 +369,48 @@ pub fn run(
     }
     side.timing = Timing::of(&ns);
 
+    // The same sweep to the compiled plan's accuracy, when the baseline stopped short of it:
+    // its tolerance at the plan's largest residual (never below a few ulps of the size, which
+    // rounding does not let Newton reach).
+    let compiled_max_residual = compiled_ok
+        .iter()
+        .flatten()
+        .map(|s| s.max_residual)
+        .fold(0.0, f64::max);
+    let equal_accuracy =
+        (side.max_residual > compiled_max_residual && side.failures == 0).then(|| {
+            let tolerance = compiled_max_residual.max(4.0 * f64::EPSILON * size.max(1.0));
+            let tight = NewtonOptions {
+                tolerance,
+                ..newton.clone()
+            };
+            let mut equal = EqualAccuracy {
+                tolerance,
+                ..EqualAccuracy::default()
+            };
+            let mut ns = Vec::new();
+            let mut previous = baseline.start_from_sketch(&sweep.params[0]);
+            let mut x = previous.clone();
+            for params in &sweep.params {
+                ns.push(time_per_call(settings.budget_ns, || {
+                    x.copy_from_slice(&previous);
+                    std::hint::black_box(baseline.solve(params, &mut x, &tight).converged);
+                }));
+                x.copy_from_slice(&previous);
+                if !baseline.solve(params, &mut x, &tight).converged {
+                    equal.failures += 1;
+                }
+                equal.max_residual = equal
+                    .max_residual
+                    .max(read(&baseline, params, &x).max_residual);
+                if side.warm {
+                    previous.copy_from_slice(&x);
+                }
+            }
+            equal.timing = Timing::of(&ns);
+            equal
+        });
+
     // Cold starts from the sketch: where a numeric solver lands without a previous answer.
     for (k, params) in sweep.params.iter().enumerate() {
         let mut x = baseline.start_from_sketch(params);
@@ -433,12 +493,11 @@ pub fn run(
     };
 
     let compiled_timing = Timing::of(&compiled.ns);
-    let compiled_max_residual = compiled_ok
-        .iter()
-        .flatten()
-        .map(|s| s.max_residual)
-        .fold(0.0, f64::max);
     let ratio = side.timing.median_ns / compiled_timing.median_ns;
+    let equal_accuracy = equal_accuracy.map(|e| EqualAccuracy {
+        ratio: e.timing.median_ns / compiled_timing.median_ns,
+        ..e
+    });
     Ok(Report {
         model: model.source.name().to_string(),
         sweep,
@@ -451,6 +510,7 @@ pub fn run(
         ratio,
         cold_curve,
         warm_curve,
+        equal_accuracy,
     })
 }
 
@@ -522,7 +582,7 @@ impl Report {
                 "\"equations\": {}, \"median_ns\": {}, \"p90_ns\": {}, \"max_residual\": {}, ",
                 "\"failures\": {}, \"branch_flips\": {}, \"cold_branch_flips\": {}}}, ",
                 "\"time_to_error\": {{\"cold\": {}, \"warm\": {}, ",
-                "\"cold_curve\": {}, \"warm_curve\": {}}}}}"
+                "\"cold_curve\": {}, \"warm_curve\": {}}}, \"equal_accuracy\": {}}}"
             ),
             escape(&self.model),
             self.sweep.params.len(),
@@ -553,6 +613,15 @@ impl Report {
             levels(&self.warm_curve),
             curve(&self.cold_curve),
             curve(&self.warm_curve),
+            self.equal_accuracy.as_ref().map_or("null".to_string(), |e| format!(
+                "{{\"tolerance\": {}, \"median_ns\": {}, \"p90_ns\": {}, \"max_residual\": {}, \"failures\": {}, \"ratio\": {}}}",
+                json_num(e.tolerance),
+                json_num(e.timing.median_ns),
+                json_num(e.timing.p90_ns),
+                json_num(e.max_residual),
+                e.failures,
+                json_num(e.ratio)
+            )),
         )
     }
 
@@ -611,11 +680,23 @@ impl Report {
             b.failures,
             b.branch_flips,
         );
+        if let Some(e) = &self.equal_accuracy {
+            row(
+                format!("baseline to the plan's accuracy ({:.1e})", e.tolerance),
+                &e.timing,
+                e.max_residual,
+                e.failures,
+                0,
+            );
+        }
         let _ = writeln!(
             s,
             "\n  ratio (baseline median / compiled median): {:.1}x",
             self.ratio
         );
+        if let Some(e) = &self.equal_accuracy {
+            let _ = writeln!(s, "  ratio at the plan's accuracy: {:.1}x", e.ratio);
+        }
         let _ = writeln!(
             s,
             "  baseline cold from the sketch: {} of {} samples on another assembly",
