@@ -52,6 +52,16 @@
 //! that only the constraints reported unsolved or recorded have no step): a malformed plan
 //! panics there, and a panic is a wrong run.
 //!
+//! # Default fragments
+//!
+//! For every state, its prefix alone leaves `P` some freedom, which the analysis parameterizes
+//! with defaults (000, section 5.2.1). The table's last section lists them per state, and
+//! checks them: as many defaults as `P` has DOF left (or the freedom refused and reported);
+//! on instances whose sketch satisfies the prefix, the sketch's defaults move nothing (least
+//! motion); on random instances, every constraint holds at the sketch's defaults and with each
+//! default moved, and each default moves `P`. A fragment entry whose step satisfying `z`
+//! comes after a default says so ("after a default").
+//!
 //! `GCS_WRITE_FRAGMENTS=1` writes `docs/FRAGMENTS.md`; without it the test checks that the
 //! committed file is current. The file holds no timing (the test prints its run time).
 
@@ -1307,6 +1317,11 @@ fn classify(e: &Entry, inst: &Instance) -> Class {
         );
     }
     let steps = &a.plan.steps;
+    // The first default the analysis adds for the freedom left: a step satisfying z after it
+    // is a fragment that needs the default (the defaults alone are probed below).
+    let defaulted = (steps.iter())
+        .position(|s| matches!(s.op, Op::Default(_)))
+        .unwrap_or(steps.len());
     let Some(j) = steps.iter().position(|s| s.satisfies.contains(&z)) else {
         assert!(
             a.recorded.contains(&z),
@@ -1383,6 +1398,12 @@ fn classify(e: &Entry, inst: &Instance) -> Class {
             }
         }
         _ => {}
+    }
+    if j > defaulted {
+        if !note.is_empty() {
+            note.push_str("; ");
+        }
+        note.push_str("after a default");
     }
     Class {
         outcome: Outcome::Fragment(ops.join(" + ")),
@@ -1688,8 +1709,9 @@ fn construction_checker() {
             stats,
         });
     }
+    let defaults = default_rows();
     let elapsed = t0.elapsed().as_secs_f64();
-    let report = report(&rows);
+    let report = report(&rows) + &defaults_report(&defaults);
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/FRAGMENTS.md");
     let wrong: usize = rows
         .iter()
@@ -1708,6 +1730,24 @@ fn construction_checker() {
         }
     }
     assert_eq!(wrong, 0, "wrong fragments: see the WRONG lines above");
+    for r in &defaults {
+        for w in &r.wrong {
+            println!("WRONG DEFAULT {} {}: {w}", r.kind.name(), r.state);
+        }
+        assert!(
+            r.refused || r.defaults.len() == r.dof,
+            "{} {}: {} defaults for {} DOF",
+            r.kind.name(),
+            r.state,
+            r.defaults.len(),
+            r.dof
+        );
+    }
+    let wrong_defaults: usize = defaults.iter().map(|r| r.wrong.len()).sum();
+    assert_eq!(
+        wrong_defaults, 0,
+        "wrong default fragments: see the WRONG DEFAULT lines above"
+    );
     let committed = std::fs::read_to_string(&path).unwrap_or_default();
     assert!(
         committed == report,
@@ -2029,4 +2069,255 @@ fn instance() {
             Err(e) => println!("{combo:?}: {e:?}"),
         }
     }
+}
+
+// ---------------------------------------------------------------- default fragments
+
+/// What the analysis does with the freedom a state leaves (000, section 5.2.1): the defaults it
+/// adds for `P`, probed on the prefix alone.
+struct DefaultRow {
+    kind: Kind,
+    state: &'static str,
+    /// `P`'s record before any default, with its DOF.
+    before: String,
+    dof: usize,
+    /// The defaults' names, in plan order.
+    defaults: Vec<String>,
+    /// Whether the analysis refused to default the freedom (it stays free and is reported).
+    refused: bool,
+    /// Exact instances (the sketch satisfies the prefix) solved at the sketch's defaults with
+    /// nothing moved, of those run.
+    still: (usize, usize),
+    /// Random instances solved at the sketch's defaults, and with each default moved, with
+    /// every constraint verified and the moved default moving `P`, of those run.
+    moved: (usize, usize),
+    /// Wrong runs.
+    wrong: Vec<String>,
+}
+
+/// Every point, vector and scalar of `P` in a solution, by name.
+fn values_of_p(s: &gcs_compiler::solution::Solution) -> Vec<(String, Vec<f64>)> {
+    let of_p = |n: &str| n == "P" || n.starts_with("P.");
+    (s.points.iter().chain(&s.vectors))
+        .filter(|(n, _)| of_p(n))
+        .cloned()
+        .chain(
+            (s.scalars.iter())
+                .filter(|(n, _)| of_p(n))
+                .map(|(n, x)| (n.clone(), vec![*x])),
+        )
+        .collect()
+}
+
+/// The largest difference between same-named values.
+fn largest_difference(a: &[(String, Vec<f64>)], b: &[(String, Vec<f64>)]) -> f64 {
+    let mut d: f64 = 0.0;
+    for (n, u) in a {
+        if let Some((_, v)) = b.iter().find(|(m, _)| m == n) {
+            for (x, y) in u.iter().zip(v) {
+                d = d.max((x - y).abs());
+            }
+        }
+    }
+    d
+}
+
+/// The largest residual of every constraint of `model` in `s`, relative to `scale` for
+/// lengths (angles absolute).
+fn worst_residual(model: &Model, s: &gcs_compiler::solution::Solution, scale: f64) -> f64 {
+    let params = model.default_params();
+    (gcs_compiler::verify::residuals(model, s, &params).iter())
+        .map(|r| {
+            if angular(model.constraints[r.constraint].kind) {
+                r.value
+            } else {
+                r.value / scale.max(1.0)
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The checker of the defaults of one state: the sketch's defaults move nothing the
+/// constraints do not move, every default keeps the state's constraints, and each moves `P`.
+fn default_row(kind: Kind, state: &State, last: Form, n: usize) -> DefaultRow {
+    let entry = Entry {
+        kind,
+        state: state.name,
+        prefix: state.prefix.clone(),
+        motion: state.motion,
+        last,
+    };
+    let canonical = make(&entry, (n as u64) << 40, Mode::Random);
+    let model = load(&canonical.prefix_text);
+    let a = analyse(&model).expect("2d");
+    let p = model.geom_named("P").expect("P");
+    let dof = (a.undefaulted.iter())
+        .find(|c| c.geoms.contains(&p))
+        .map_or(0, |c| c.dof);
+    let mut row = DefaultRow {
+        kind,
+        state: state.name,
+        before: record_of(&model, &a),
+        dof,
+        defaults: a.plan.defaults.iter().map(|d| d.name.clone()).collect(),
+        refused: !a.free_geoms().is_empty(),
+        still: (0, 0),
+        moved: (0, 0),
+        wrong: Vec::new(),
+    };
+    if row.refused || row.defaults.is_empty() {
+        return row;
+    }
+    for i in 0..N_DEFAULT_INSTANCES {
+        for mode in [Mode::Exact, Mode::Random] {
+            let seed = ((n as u64) << 40) | (i as u64 + 1);
+            let inst = make(&entry, seed, mode);
+            let model = load(&inst.prefix_text);
+            let a = analyse(&model).expect("2d");
+            let params = model.default_params();
+            let scope: std::collections::BTreeSet<_> =
+                model.top_level().map(|(id, _)| id).collect();
+            let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
+            let sketch_defaults = a.plan.sketch_defaults();
+            let solve = |defaults: &[f64]| {
+                gcs_compiler::solve_plan_with(&model, &a.plan, &scope, &params, &branches, defaults)
+            };
+            let scale = inst.scale.max(1.0);
+            let at_sketch = match solve(&sketch_defaults) {
+                Ok(s) => s,
+                Err(_) if mode == Mode::Random => continue,
+                Err(e) => {
+                    row.wrong
+                        .push(format!("seed {seed} ({}): {e}", mode.name()));
+                    continue;
+                }
+            };
+            let worst = worst_residual(&model, &at_sketch, scale);
+            if worst > REL {
+                row.wrong.push(format!(
+                    "seed {seed} ({}): a constraint off by {worst:e} at the sketch's defaults",
+                    mode.name()
+                ));
+                continue;
+            }
+            if mode == Mode::Exact {
+                row.still.1 += 1;
+                let config = gcs_compiler::config::Config::from_sketch(&model, &params)
+                    .expect("a finite sketch");
+                let sketch = gcs_compiler::solution::Solution::read(&model, &config, &scope);
+                let moved = largest_difference(&values_of_p(&at_sketch), &values_of_p(&sketch));
+                if moved <= REL * scale {
+                    row.still.0 += 1;
+                } else {
+                    row.wrong.push(format!(
+                        "seed {seed} (exact): P moved {moved:e} at the sketch's defaults\n```gcs\n{}```",
+                        inst.prefix_text
+                    ));
+                }
+                continue;
+            }
+            row.moved.1 += 1;
+            let mut ok = true;
+            for (k, d) in a.plan.defaults.iter().enumerate() {
+                let mut given = sketch_defaults.clone();
+                given[k] += if d.is_angle() { 0.25 } else { 0.25 * scale };
+                let Ok(s) = solve(&given) else {
+                    // A default past where the state lets P go (a length below zero) is an
+                    // error, never a wrong answer.
+                    continue;
+                };
+                let worst = worst_residual(&model, &s, scale);
+                let moved = largest_difference(&values_of_p(&s), &values_of_p(&at_sketch));
+                if worst > REL || moved <= 1e-6 * scale {
+                    ok = false;
+                    row.wrong.push(format!(
+                        "seed {seed}: default {} moved: constraints off by {worst:e}, P moved {moved:e}\n```gcs\n{}```",
+                        d.name, inst.prefix_text
+                    ));
+                }
+            }
+            row.moved.0 += usize::from(ok);
+        }
+    }
+    row
+}
+
+/// Instances of each mode per state.
+const N_DEFAULT_INSTANCES: usize = 6;
+
+/// The default fragments of every state of every kind.
+fn default_rows() -> Vec<DefaultRow> {
+    let mut rows = Vec::new();
+    for kind in [
+        Kind::Point,
+        Kind::Vector,
+        Kind::Line,
+        Kind::Segment,
+        Kind::Circle,
+        Kind::Body,
+    ] {
+        let (states, forms) = catalogue(kind);
+        for s in &states {
+            let n = rows.len() + 1;
+            rows.push(default_row(kind, s, forms[0], n));
+        }
+    }
+    rows
+}
+
+/// The section of `docs/FRAGMENTS.md` on defaults.
+fn defaults_report(rows: &[DefaultRow]) -> String {
+    let mut o = String::new();
+    let _ = writeln!(o, "\n## Defaults\n");
+    let _ = writeln!(
+        o,
+        "Each state's prefix alone, with the freedom it leaves `P`: the defaults the analysis adds \
+         (000, section 5.2.1; `compiler/src/analysis/planar/defaults.rs`). Checked on instances \
+         whose sketch already satisfies the prefix (*still*: solved at the sketch's defaults, \
+         `P` must not move: least motion) and on random ones (*moved*: at the sketch's defaults \
+         and with each default moved by 0.25 rad or 0.25 of the size, every constraint must hold \
+         to 1e-12 relative and the moved default must move `P`). *Refused*: the analysis leaves \
+         the freedom unparameterized (a segment held by its end with its length free), and \
+         `gcs check` reports it.\n"
+    );
+    let total = rows.len();
+    let with = rows.iter().filter(|r| !r.defaults.is_empty()).count();
+    let refused = rows.iter().filter(|r| r.refused).count();
+    let overstated = (rows.iter())
+        .filter(|r| !r.refused && r.defaults.len() != r.dof)
+        .count();
+    let wrong: usize = rows.iter().map(|r| r.wrong.len()).sum();
+    let _ = writeln!(o, "- states: {total}; with defaults: {with}; fully fixed by their prefix: {}; refused: {refused}", total - with - refused);
+    let _ = writeln!(
+        o,
+        "- states whose defaults are not as many as `P`'s DOF left: {overstated}"
+    );
+    let _ = writeln!(o, "- wrong runs: {wrong}\n");
+    let _ = writeln!(o, "| kind | state | before | defaults | still | moved |");
+    let _ = writeln!(o, "|---|---|---|---|---:|---:|");
+    for r in rows {
+        let defaults = if r.refused {
+            "refused".to_string()
+        } else if r.defaults.is_empty() {
+            "none".to_string()
+        } else {
+            r.defaults
+                .iter()
+                .map(|d| format!("`{d}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let _ = writeln!(
+            o,
+            "| {} | {} | {} | {defaults} | {} / {} | {} / {} |",
+            r.kind.name(),
+            r.state,
+            r.before,
+            r.still.0,
+            r.still.1,
+            r.moved.0,
+            r.moved.1
+        );
+    }
+    o
 }

@@ -110,7 +110,9 @@ impl Builder<'_, Planar> {
     }
 
     /// Feature `f` of cluster `k` is now at `to`: the cluster may still turn about it, if it
-    /// turns at all.
+    /// turns at all. A circle whose centre is now fixed takes the radius its recorded fixed
+    /// distances give (the default placed the centre on their common locus), as when an
+    /// action places it.
     fn placed(&mut self, k: usize, f: GeomId, to: Reg) {
         let rec = &mut self.clusters[k].record;
         if rec.rot == Rot::Free {
@@ -118,6 +120,7 @@ impl Builder<'_, Planar> {
             self.insert_known(f, to);
         } else {
             rec.pos = Pos::Fixed;
+            self.settle(k);
         }
     }
 
