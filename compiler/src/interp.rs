@@ -699,7 +699,8 @@ impl<'a, 'r> Machine<'a, 'r> {
                 Val::P(match self.get(*locus) {
                     Some(&Val::L(l)) => l.at(t),
                     Some(&Val::C(c)) => c.at(t),
-                    v => malformed(*locus, "a line or a circle", v),
+                    Some(&Val::Q(q)) => q.at(t),
+                    v => malformed(*locus, "a line, a circle or a conic", v),
                 })
             }
             Op::Implicit { locus, point } => {
@@ -707,7 +708,8 @@ impl<'a, 'r> Machine<'a, 'r> {
                 Val::S(match self.get(*locus) {
                     Some(&Val::L(l)) => l.implicit(q),
                     Some(&Val::C(c)) => c.implicit(q),
-                    v => malformed(*locus, "a line or a circle", v),
+                    Some(&Val::Q(k)) => k.implicit(q),
+                    v => malformed(*locus, "a line, a circle or a conic", v),
                 })
             }
             Op::LocusParam { locus, point } => {
@@ -715,7 +717,8 @@ impl<'a, 'r> Machine<'a, 'r> {
                 Val::S(match self.get(*locus) {
                     Some(&Val::L(l)) => l.param_of(q),
                     Some(&Val::C(c)) => c.param_of(q),
-                    v => malformed(*locus, "a line or a circle", v),
+                    Some(&Val::Q(k)) => k.param_of(q),
+                    v => malformed(*locus, "a line, a circle or a conic", v),
                 })
             }
             Op::Circle { center, radius } => {

@@ -384,20 +384,13 @@ impl Solve<'_> {
             "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings {{ tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL, ..gcs_runtime::iterate::Settings::default() }}, |{trial}, {errors}| {{",
             scale.join(", ")
         ));
-        // The trial works on copies of the frames and dimensions the region moves: those its
-        // code writes, declared once the body is written.
+        // The trial works on copies of the frames the region moves: those its code writes,
+        // declared once the body is written.
         let facts = self.facts.clone();
         let deferred = self.deferred.clone();
         let written_before = std::mem::take(&mut self.frame_writes);
+        // A dimension the region sets is bound anew where it is set (`set_dim`).
         let shadows_at = w.out.len();
-        for s in &plan.steps[it.start..it.end] {
-            if let Op::SetDim { geom, .. } = s.op {
-                if !self.deferred.contains(&geom) {
-                    let d = self.dim(geom);
-                    w.line(&format!("let mut {d} = {d};"));
-                }
-            }
-        }
         for (k, d) in it.defaults.iter().enumerate() {
             self.iterated.insert(*d, format!("{trial}[{k}]"));
         }

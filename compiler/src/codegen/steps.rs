@@ -770,7 +770,8 @@ impl Solve<'_> {
             w.close("}");
         }
         let d = self.dim(g);
-        if self.deferred.remove(&g) {
+        // Inside an iteration's trial, a binding of its own: the trial works on a copy.
+        if self.deferred.remove(&g) || self.closing.is_some() {
             w.line(&format!("let {d} = {v};"));
         } else {
             w.line(&format!("{d} = {v};"));

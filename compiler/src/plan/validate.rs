@@ -24,6 +24,8 @@ const LINE: Accepts = &[Ty::Line];
 const CIRCLE: Accepts = &[Ty::Circle];
 /// What the nearest point of a locus is taken on.
 const NEAREST_LOCUS: Accepts = &[Ty::Line, Ty::Circle];
+/// What has a parameter along it (a place, or an implicit error): the loci a default slides on.
+const PARAM_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic];
 /// What a point can be tested to lie on.
 const ANY_LOCUS: Accepts = &[
     Ty::Line,
@@ -147,9 +149,9 @@ impl Op {
             Op::Rotated { dir, angle } => vec![(*dir, VECTOR), (*angle, SCALAR)],
             Op::AngleOf(dir) => vec![(*dir, VECTOR)],
             Op::PointXY { x, y } => vec![(*x, SCALAR), (*y, SCALAR)],
-            Op::LocusPoint { locus, at } => vec![(*locus, NEAREST_LOCUS), (*at, SCALAR)],
+            Op::LocusPoint { locus, at } => vec![(*locus, PARAM_LOCUS), (*at, SCALAR)],
             Op::LocusParam { locus, point } | Op::Implicit { locus, point } => {
-                vec![(*locus, NEAREST_LOCUS), (*point, POINT)]
+                vec![(*locus, PARAM_LOCUS), (*point, POINT)]
             }
             Op::Circle { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
             Op::CircleThrough {

@@ -427,7 +427,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 ..gcs_runtime::iterate::Settings::default()
             },
             |trial, errors| {
-                let mut top_length = top_length;
                 if !gcs_runtime::num::is_finite(trial[0]) || trial[0] < 0.0 {
                     return Err(SolveError::new(
                         "coincident_top_end_left_start",
@@ -436,7 +435,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         trial[0],
                     ));
                 }
-                top_length = trial[0];
+                let top_length = trial[0];
                 let top_end = right_end + top.x_axis() * top_length;
                 let left_dir_2 = left.x_axis();
                 let line_o = Line::new(Point2::new(0.0, 0.0), left_dir_2).ok_or_else(|| {

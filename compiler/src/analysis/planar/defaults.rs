@@ -41,7 +41,7 @@ impl Builder<'_, Planar> {
             (
                 Pos::On {
                     feature,
-                    locus: locus @ (Locus::Line(_) | Locus::Circle(_)),
+                    locus: locus @ (Locus::Line(_) | Locus::Circle(_) | Locus::Conic(_)),
                 },
                 _,
             ) => {
@@ -86,7 +86,14 @@ impl Builder<'_, Planar> {
                     self.word(lreg)
                 ),
             ),
-            _ => (
+            Locus::Conic(_) => (
+                format!("{fname}_position"),
+                format!(
+                    "where {fname} is along {}, by its parameter",
+                    self.word(lreg)
+                ),
+            ),
+            Locus::Line(_) => (
                 format!("{fname}_position"),
                 format!(
                     "the position of {fname} along {}, from its base point",
