@@ -50,6 +50,8 @@ impl Builder<'_, Planar> {
             }
             (Pos::Pivot { at, feature }, Rot::Free) => self.turn_about(k, at, feature),
             (Pos::Free, _) if !rec.line => self.place(k),
+            (Pos::Free, Rot::Free) if rec.line => self.turn_line(k),
+            (Pos::Free, Rot::Known) if rec.line => self.shift_line(k),
             (Pos::None, Rot::Free) => self.turn_direction(k),
             _ if rec.free_dim.is_some() && rec.fd.is_empty() => self.size(k),
             _ => false,
@@ -170,6 +172,80 @@ impl Builder<'_, Planar> {
         let rec = &mut self.clusters[k].record;
         rec.pos = Pos::Fixed;
         rec.rot = Rot::Known;
+        true
+    }
+
+    /// A lone line's base point and direction features.
+    fn line_features(&self, k: usize) -> Option<(GeomId, GeomId)> {
+        let line = *self.clusters[k].geoms.first()?;
+        let part = |want: Part| {
+            (self.model.geoms[line].parts.iter().copied())
+                .find(|&f| matches!(self.model.geoms[f].owner, Owner::Part(_, p) if p == want))
+        };
+        Some((part(Part::BasePoint)?, part(Part::Dir)?))
+    }
+
+    /// A lone line free to turn: default its direction's angle, turning it about its base
+    /// point (its place across itself stays free).
+    fn turn_line(&mut self, k: usize) -> bool {
+        let Some((base, dir)) = self.line_features(k) else {
+            return false;
+        };
+        let geoms = self.clusters[k].geoms.clone();
+        let lname = self.name(geoms[0]);
+        let pivot = self.point(base);
+        let from = self.direction(dir);
+        let meaning = format!("the angle of {lname}'s direction from the x axis");
+        let name = format!("{lname}_angle");
+        let explain = format!(
+            "{}: turn {lname} about {} to it.",
+            self.assume(&meaning, &name),
+            self.name(base)
+        );
+        self.turn_to(geoms, pivot, from, name, meaning, explain);
+        self.clusters[k].record.rot = Rot::Known;
+        true
+    }
+
+    /// A lone line whose direction is known, free to move across itself: default how far it
+    /// moves to the left of its direction from where it is (zero on the sketch: least motion).
+    fn shift_line(&mut self, k: usize) -> bool {
+        let Some((base, dir)) = self.line_features(k) else {
+            return false;
+        };
+        let geoms = self.clusters[k].geoms.clone();
+        let lname = self.name(geoms[0]);
+        let from = self.point(base);
+        let d = self.direction(dir);
+        let measure = self.value(Op::Const(0.0), Ty::Scalar, "0".into());
+        let meaning = format!(
+            "how far {lname} moves across itself, to the left of its direction, from its sketch place"
+        );
+        let name = format!("{lname}_offset");
+        let explain = format!(
+            "{}: move {lname} across itself by it.",
+            self.assume(&meaning, &name)
+        );
+        let by = self.default_value(geoms[0], name, meaning, measure);
+        let moved = self.value(
+            Op::Line {
+                point: from,
+                dir: d,
+                offset: Some(by),
+            },
+            Ty::Line,
+            format!("{lname} moved across itself"),
+        );
+        let to = self.value(
+            Op::Nearest {
+                locus: moved,
+                point: from,
+            },
+            Ty::Point,
+            format!("{}'s default place", self.name(base)),
+        );
+        self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        self.clusters[k].record.pos = Pos::Fixed;
         true
     }
 
