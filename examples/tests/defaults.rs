@@ -7,7 +7,7 @@ use gcs_examples::rectangle_free;
 /// rectangle whatever the width, and takes the height a caller gives.
 #[test]
 fn the_rectangle_missing_its_height_keeps_the_sketch_height_until_given_one() {
-    let sketch_height = (4.1f64 - 4.2).hypot(2.9 - 0.1);
+    let sketch_height = (0.1f64 - 0.0).hypot(3.1 - 0.0);
     let corners = |s: &rectangle_free::Solution| {
         [
             s.bottom_start(),
@@ -25,7 +25,7 @@ fn the_rectangle_missing_its_height_keeps_the_sketch_height_until_given_one() {
         let params = rectangle_free::Params { width };
         let mut defaults = rectangle_free::Defaults::default();
         if let Some(h) = height {
-            defaults.right_length = h;
+            defaults.left_length = h;
         }
         let s = rectangle_free::solve(&params, &rectangle_free::Branches::default(), &defaults)
             .unwrap_or_else(|e| panic!("width {width}: {e}"));
@@ -41,6 +41,6 @@ fn the_rectangle_missing_its_height_keeps_the_sketch_height_until_given_one() {
         assert!((s.left_end() - s.bottom_start()).norm() < 1e-12);
         assert!((s.right_end() - s.top_start()).norm() < 1e-12);
         assert!((s.top_end() - s.left_start()).norm() < 1e-12);
-        assert!((s.defaults().right_length - h).abs() < 1e-12);
+        assert!((s.defaults().left_length - h).abs() < 1e-12);
     }
 }

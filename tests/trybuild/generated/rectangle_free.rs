@@ -71,10 +71,10 @@ impl Default for Branches {
 /// The degrees of freedom the analysis had to default: where an iteration starts, or the value of a motion the constraints leave free.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Defaults {
+    /// `left_length`: the length of left; the sketch's value is 3.1016124838541645.
+    pub left_length: f64,
     /// `right_length`: the length of right; the sketch's value is 2.80178514522438.
     pub right_length: f64,
-    /// `top_length`: the length of top; the sketch's value is 4.004996878900156.
-    pub top_length: f64,
 }
 
 #[allow(dead_code)]
@@ -82,8 +82,8 @@ impl Defaults {
     /// Sets the default called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
         match name {
+            "left_length" => self.left_length = value,
             "right_length" => self.right_length = value,
-            "top_length" => self.top_length = value,
             _ => return false,
         }
         true
@@ -94,8 +94,8 @@ impl Default for Defaults {
     /// The sketch's values.
     fn default() -> Self {
         Defaults {
+            left_length: 3.1016124838541645,
             right_length: 2.80178514522438,
-            top_length: 4.004996878900156,
         }
     }
 }
@@ -303,8 +303,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[
         ("width", params.width),
+        ("left_length", defaults.left_length),
         ("right_length", defaults.right_length),
-        ("top_length", defaults.top_length),
     ])?;
     // The sketch: where every geom starts.
     let o = Frame2::at(Point2::new(0.0, 0.0));
@@ -401,23 +401,39 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let turn_4 = rotation_between_units(&top_dir, &x_dir_turned);
     top.turn_by(&turn_4);
 
-    // coincident(right.end, top.start) (rectangle_free.gcs:20)
-    if defaults.right_length < 0.0 {
+    // coincident(top.end, left.start) (rectangle_free.gcs:21)
+    let left_dir_2 = left.x_axis();
+    let line_o = Line::new(Point2::new(0.0, 0.0), left_dir_2).ok_or_else(|| {
+        SolveError::new(
+            "coincident_top_end_left_start",
+            "coincident(top.end, left.start)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let minus_3 = -defaults.left_length;
+    let on_line_o = line_o.at(minus_3);
+    let left_start = left.origin;
+    let shift_2 = on_line_o - left_start;
+    left.translate(&shift_2);
+    if defaults.left_length < 0.0 {
         return Err(SolveError::new(
-            "coincident_right_end_top_start",
-            "coincident(right.end, top.start)",
+            "coincident_top_end_left_start",
+            "coincident(top.end, left.start)",
             ErrorKind::InvalidValue,
-            defaults.right_length,
+            defaults.left_length,
         ));
     }
-    right_length = defaults.right_length;
-    let right_end = bottom_end + right.x_axis() * right_length;
-    top.place_origin(&right_end);
+    left_length = defaults.left_length;
+    let left_start_2 = left.origin;
+    let top_end = Point2::new(4.1, 2.9) + top.x_axis() * top_length;
+    let shift_3 = left_start_2 - top_end;
+    top.translate(&shift_3);
 
-    // coincident(top.end, left.start) (rectangle_free.gcs:21)
+    // coincident(right.end, top.start) (rectangle_free.gcs:20)
 
-    // No loop is rigid here: vary `top_length` until `coincident_top_end_left_start` closes (an outer iteration).
-    let mut trial = [defaults.top_length];
+    // No loop is rigid here: vary `right_length` until `coincident_right_end_top_start` closes (an outer iteration).
+    let mut trial = [defaults.right_length];
     outer
         .iterate(
             &mut trial,
@@ -429,73 +445,73 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             |trial, errors| {
                 if !gcs_runtime::num::is_finite(trial[0]) || trial[0] < 0.0 {
                     return Err(SolveError::new(
-                        "coincident_top_end_left_start",
-                        "coincident(top.end, left.start)",
+                        "coincident_right_end_top_start",
+                        "coincident(right.end, top.start)",
                         ErrorKind::InvalidValue,
                         trial[0],
                     ));
                 }
-                let top_length = trial[0];
-                let top_end = right_end + top.x_axis() * top_length;
-                let left_dir_2 = left.x_axis();
-                let line_o = Line::new(Point2::new(0.0, 0.0), left_dir_2).ok_or_else(|| {
+                let right_length = trial[0];
+                let right_end = bottom_end + right.x_axis() * right_length;
+                let top_dir_2 = top.x_axis();
+                let line_left_start_2 = Line::new(left_start_2, top_dir_2).ok_or_else(|| {
                     SolveError::new(
-                        "coincident_top_end_left_start",
-                        "coincident(top.end, left.start)",
+                        "coincident_right_end_top_start",
+                        "coincident(right.end, top.start)",
                         ErrorKind::Degenerate,
                         0.0,
                     )
                 })?;
-                let left_start = left.origin;
-                let nearest_top_end = line_o.nearest(top_end);
-                let error = line_o.implicit(top_end);
+                let top_start = top.origin;
+                let nearest_right_end = line_left_start_2.nearest(right_end);
+                let error = line_left_start_2.implicit(right_end);
                 errors[0] = error;
-                let _ = (&left_start, &nearest_top_end);
+                let _ = (&top_start, &nearest_right_end);
                 Ok(())
             },
         )
         .map_err(|failure| match failure {
             gcs_runtime::iterate::Failure::Start(error) => error,
             gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "coincident_top_end_left_start",
-                "coincident(top.end, left.start)",
+                "coincident_right_end_top_start",
+                "coincident(right.end, top.start)",
                 ErrorKind::NoConvergence,
                 residual,
             ),
         })?;
     if !gcs_runtime::num::is_finite(trial[0]) || trial[0] < 0.0 {
         return Err(SolveError::new(
-            "coincident_top_end_left_start",
-            "coincident(top.end, left.start)",
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
             ErrorKind::InvalidValue,
             trial[0],
         ));
     }
-    top_length = trial[0];
-    let top_end_2 = right_end + top.x_axis() * top_length;
-    let left_dir_3 = left.x_axis();
-    let line_o_2 = Line::new(Point2::new(0.0, 0.0), left_dir_3).ok_or_else(|| {
+    right_length = trial[0];
+    let right_end_2 = bottom_end + right.x_axis() * right_length;
+    let top_dir_3 = top.x_axis();
+    let line_left_start_2_2 = Line::new(left_start_2, top_dir_3).ok_or_else(|| {
         SolveError::new(
-            "coincident_top_end_left_start",
-            "coincident(top.end, left.start)",
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
             ErrorKind::Degenerate,
             0.0,
         )
     })?;
-    let left_start_2 = left.origin;
-    let nearest_top_end_2 = line_o_2.nearest(top_end_2);
-    let shift_2 = nearest_top_end_2 - left_start_2;
-    left.translate(&shift_2);
-    let length = (Point2::new(0.0, 0.0) - nearest_top_end_2).dot(&left_dir_3);
+    let top_start_2 = top.origin;
+    let nearest_right_end_2 = line_left_start_2_2.nearest(right_end_2);
+    let shift_4 = nearest_right_end_2 - top_start_2;
+    top.translate(&shift_4);
+    let length = (left_start_2 - nearest_right_end_2).dot(&top_dir_3);
     if !gcs_runtime::num::is_finite(length) || length < 0.0 {
         return Err(SolveError::new(
-            "coincident_top_end_left_start",
-            "coincident(top.end, left.start)",
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
             ErrorKind::InvalidValue,
             length,
         ));
     }
-    left_length = length;
+    top_length = length;
 
     Ok(Solution {
         bottom,
@@ -507,8 +523,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         left,
         left_length,
         defaults: Defaults {
-            right_length: defaults.right_length,
-            top_length: trial[0],
+            left_length: defaults.left_length,
+            right_length: trial[0],
         },
     })
 }
@@ -604,8 +620,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let branches = Branches::default();
     for cell in 0..12usize {
         let mut start = *defaults;
-        start.top_length = defaults.top_length
-            + 5.004996878900156 * (2.0 * (((cell / 1) % 12) as f64 / 12.0) - 1.0);
+        start.right_length =
+            defaults.right_length + 5.0 * (2.0 * (((cell / 1) % 12) as f64 / 12.0) - 1.0);
         if let Ok(s) = solve(params, &branches, &start) {
             found.push(s);
         }

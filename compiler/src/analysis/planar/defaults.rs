@@ -35,7 +35,19 @@ impl Builder<'_, Planar> {
             _ => false,
         };
         if held_by_its_dimension {
-            return false;
+            // Pinned at its end: turn it about the end, then size it from the end (its start
+            // moves). Its end on a locus with its length free: not yet.
+            return match (rec.pos, rec.rot) {
+                (Pos::Pivot { at, feature }, Rot::Free) => {
+                    let turned = self.turn_about(k, at, feature);
+                    if turned {
+                        self.clusters[k].record.pos = Pos::Pivot { at, feature };
+                    }
+                    turned
+                }
+                (Pos::Pivot { at, .. }, Rot::Known) => self.size_from_end(k, at),
+                _ => false,
+            };
         }
         match (rec.pos, rec.rot) {
             (
@@ -373,6 +385,70 @@ impl Builder<'_, Planar> {
         let rec = &mut self.clusters[k].record;
         rec.free_dim = None;
         rec.fixed_dims.push(g);
+        true
+    }
+
+    /// A segment pinned at its end (at `at`) with its direction known and its length free:
+    /// default the length, keeping the end: the start goes to the end less the length along
+    /// the direction, then the length is set.
+    fn size_from_end(&mut self, k: usize, at: Reg) -> bool {
+        let Some(seg) = self.clusters[k].record.free_dim else {
+            return false;
+        };
+        let (Some(start), Some(dir)) = (
+            self.model.part(seg, Part::Start),
+            self.model.part(seg, Part::Dir),
+        ) else {
+            return false;
+        };
+        let geoms = self.clusters[k].geoms.clone();
+        let sname = self.name(seg);
+        let d = self.direction(dir);
+        let line = self.value(
+            Op::Line {
+                point: at,
+                dir: d,
+                offset: None,
+            },
+            Ty::Line,
+            format!("the line of {sname} through its end"),
+        );
+        let measure = self.value(Op::DimOf(seg), Ty::Scalar, format!("the length of {sname}"));
+        let meaning = format!("the length of {sname}");
+        let name = format!("{sname}_length");
+        let explain = format!(
+            "{}: move {sname}'s start back from its end by it, and size {sname} to it.",
+            self.assume(&meaning, &name)
+        );
+        let len = self.default_value(seg, name, meaning, measure);
+        let back = self.value(
+            Op::Neg(len),
+            Ty::Scalar,
+            format!("minus the length of {sname}"),
+        );
+        let to = self.value(
+            Op::LocusPoint {
+                locus: line,
+                at: back,
+            },
+            Ty::Point,
+            format!("{}'s default place", self.name(start)),
+        );
+        let from = self.point(start);
+        self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        self.emit(
+            Op::SetDim {
+                geom: seg,
+                value: len,
+            },
+            None,
+            Vec::new(),
+            format!("Size {sname} to `{sname}_length`: its end is back where it is pinned."),
+        );
+        let rec = &mut self.clusters[k].record;
+        rec.pos = Pos::Fixed;
+        rec.free_dim = None;
+        rec.fixed_dims.push(seg);
         true
     }
 
