@@ -1,8 +1,9 @@
 //! `gcs explain`: the plan as a construction a person can follow, in the words of the papers'
 //! plan fragments, with the model's names bound.
 
-use crate::plan::Plan;
+use crate::plan::{Op, Plan};
 use gcs_lang::Model;
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
 /// The explanation of a model's plan.
@@ -23,13 +24,29 @@ pub fn explain(model: &Model, plan: &Plan) -> String {
             model.geoms[x].name, model.geoms[y].name, model.geoms[y].name
         );
     }
+    // A run-time check says what implies it: the constraints (and fixed geoms) its step
+    // rests on, traced through the plan.
+    let checks: Vec<usize> = (plan.steps.iter().enumerate())
+        .filter(|(_, s)| matches!(s.op, Op::Check { .. }))
+        .map(|(i, _)| i)
+        .collect();
+    let implied_by: HashMap<usize, String> = (checks.iter().copied())
+        .zip(plan.supports(model, &checks))
+        .filter_map(|(i, s)| Some((i, crate::report::support_words(model, &s)?)))
+        .collect();
     let mut n = 0;
-    for step in &plan.steps {
+    for (i, step) in plan.steps.iter().enumerate() {
         if step.explain.is_empty() {
             continue;
         }
         n += 1;
-        let _ = writeln!(out, "\n{n}. {}", step.explain);
+        let text = match implied_by.get(&i) {
+            Some(by) => step
+                .explain
+                .replace("implied by the steps before", &format!("implied by {by}")),
+            None => step.explain.clone(),
+        };
+        let _ = writeln!(out, "\n{n}. {text}");
     }
     let branches: Vec<_> = plan.branches.iter().filter(|b| b.count > 1).collect();
     if !branches.is_empty() {

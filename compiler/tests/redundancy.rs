@@ -524,3 +524,22 @@ fn a_closure_that_cannot_close_names_what_it_builds_on() {
     );
     assert_eq!(errs[0].secondary.len(), 7 + 4, "{errs:#?}");
 }
+
+/// `gcs explain` says what implies each run-time check, as `gcs check` does.
+#[test]
+fn explain_names_what_implies_each_check() {
+    let text = std::fs::read_to_string(format!(
+        "{}/../tests/models/redundant_checks.gcs",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .expect("the test model");
+    let c = compiled(&text);
+    let words = gcs_compiler::explain::explain(&c.model, &c.analysis.plan);
+    for line in [
+        "Check that q_r: radius(R) = rr holds: it is implied by fixed R.",
+        "Check that c_flat: horizontal(s) holds: it is implied by a_start, b_end and d_long (with fixed A and fixed B).",
+    ] {
+        assert!(words.contains(line), "no `{line}` in:\n{words}");
+    }
+    assert!(!words.contains("the steps before"), "{words}");
+}
