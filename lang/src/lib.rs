@@ -8,6 +8,7 @@
 pub mod constraints;
 pub mod diagnostic;
 pub mod expr;
+mod fast;
 pub mod model;
 pub mod parse;
 pub mod resolve;
