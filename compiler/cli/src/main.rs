@@ -394,7 +394,8 @@ fn solve(
         let plan = pruned.as_ref().unwrap_or(&analysis.plan);
         // Each branch's index in the whole plan (the first, by name), looked up once a kept
         // branch: a scan each made a solve quadratic in its branches.
-        let mut whole: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        let mut whole: rustc_hash::FxHashMap<&str, usize> = rustc_hash::FxHashMap::default();
+        whole.reserve(analysis.plan.branches.len());
         for (i, b) in analysis.plan.branches.iter().enumerate() {
             whole.entry(b.name.as_str()).or_insert(i);
         }
