@@ -1,4 +1,5 @@
-//! Source text to syntax tree: split into statements, parse each with pest, build the tree.
+//! Source text to syntax tree: split into statements, parse each (a plain one by `fast.rs`,
+//! any other with pest), build the tree.
 //!
 //! Splitting first (at `;` and at the `}` that closes a body) lets one syntax error be reported
 //! without hiding the next, and lets the splitter catch what pest reports badly: an unterminated
