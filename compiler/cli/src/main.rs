@@ -424,7 +424,7 @@ fn solve(
             })
             .collect();
         if all_solutions {
-            let found = gcs_compiler::all::solve_all(model, &plan, &scope, &params, &kept_defaults);
+            let found = gcs_compiler::all::solve_all(model, plan, &scope, &params, &kept_defaults);
             if json {
                 println!("{}", found.to_json());
             } else {
@@ -451,9 +451,9 @@ fn solve(
         }
         // Given no defaults, an iterated plan returns the assembly that moves least.
         let solved = if default.is_empty() {
-            gcs_compiler::all::least_motion(model, &plan, &scope, &params, &chosen, &kept_defaults)
+            gcs_compiler::all::least_motion(model, plan, &scope, &params, &chosen, &kept_defaults)
         } else {
-            gcs_compiler::solve_plan_with(model, &plan, &scope, &params, &chosen, &kept_defaults)
+            gcs_compiler::solve_plan_with(model, plan, &scope, &params, &chosen, &kept_defaults)
         };
         match solved {
             Ok(solution) => {
@@ -469,7 +469,7 @@ fn solve(
                 // every inconsistent redundant constraint is reported, then what stopped it.
                 let audit = gcs_compiler::interp::audit(
                     model,
-                    &plan,
+                    plan,
                     &params,
                     &kept_defaults,
                     &gcs_compiler::interp::Choice::Given(chosen),
