@@ -168,14 +168,35 @@ pub struct Unanalysed {
     pub error: AnalysisError,
 }
 
+/// How many constraints make it worth checking names on a thread of their own while the
+/// problems are reported (each takes about a microsecond a constraint).
+const PARALLEL_REPORTS: usize = 10_000;
+
 /// Loads and analyses a model, and reports its problems.
 pub fn compile(name: &str, bytes: &[u8]) -> Result<Compiled, CompileError> {
     let loaded = load(name, bytes).map_err(CompileError::Load)?;
     match analyse(&loaded.model) {
         Ok(analysis) => {
             let mut diagnostics = loaded.diagnostics;
-            diagnostics.extend(crate::report::problems(&loaded.model, &analysis));
-            diagnostics.extend(crate::codegen::name_clashes(&loaded.model, &analysis.plan));
+            let (model, plan) = (&loaded.model, &analysis.plan);
+            // Both only read the model and the plan: a large model has them on two threads.
+            let (problems, clashes) = if model.constraints.len() < PARALLEL_REPORTS {
+                (
+                    crate::report::problems(model, &analysis),
+                    crate::codegen::name_clashes(model, plan),
+                )
+            } else {
+                std::thread::scope(|scope| {
+                    let clashes = scope.spawn(|| crate::codegen::name_clashes(model, plan));
+                    let problems = crate::report::problems(model, &analysis);
+                    let clashes = clashes
+                        .join()
+                        .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                    (problems, clashes)
+                })
+            };
+            diagnostics.extend(problems);
+            diagnostics.extend(clashes);
             Ok(Compiled {
                 source: loaded.source,
                 model: loaded.model,

@@ -1,4 +1,5 @@
-//! Source text to syntax tree: split into statements, parse each with pest, build the tree.
+//! Source text to syntax tree: split into statements, parse each (a plain one by `fast.rs`,
+//! any other with pest), build the tree.
 //!
 //! Splitting first (at `;` and at the `}` that closes a body) lets one syntax error be reported
 //! without hiding the next, and lets the splitter catch what pest reports badly: an unterminated
@@ -30,6 +31,11 @@ pub const MAX_EXPR_DEPTH: usize = 200;
 
 /// Parses a whole file. Statements with syntax errors are reported and left out of the tree.
 pub fn parse(text: &str) -> (File, Vec<Diagnostic>) {
+    parse_with(text, true)
+}
+
+/// [`parse`], with or without the fast path for plain statements (the tests compare both).
+pub(crate) fn parse_with(text: &str, fast: bool) -> (File, Vec<Diagnostic>) {
     let mut diags = Vec::new();
     let chunks = split(text, &mut diags);
     let threads = std::thread::available_parallelism()
@@ -38,7 +44,7 @@ pub fn parse(text: &str) -> (File, Vec<Diagnostic>) {
         .max(1);
     let mut file = File::default();
     if threads == 1 {
-        parse_chunks(text, &chunks, &mut file, &mut diags);
+        parse_chunks(text, &chunks, fast, &mut file, &mut diags);
         return (file, diags);
     }
     // Statements parse independently (the splitter made them so), and each thread takes a
@@ -51,7 +57,7 @@ pub fn parse(text: &str) -> (File, Vec<Diagnostic>) {
             .map(|run| {
                 scope.spawn(move || {
                     let mut part = (File::default(), Vec::new());
-                    parse_chunks(text, run, &mut part.0, &mut part.1);
+                    parse_chunks(text, run, fast, &mut part.0, &mut part.1);
                     part
                 })
             })
@@ -75,9 +81,18 @@ pub fn parse(text: &str) -> (File, Vec<Diagnostic>) {
 const STATEMENTS_PER_THREAD: usize = 2048;
 
 /// Parses the statements in `chunks`, in order.
-fn parse_chunks(text: &str, chunks: &[Span], file: &mut File, diags: &mut Vec<Diagnostic>) {
+fn parse_chunks(
+    text: &str,
+    chunks: &[Span],
+    fast: bool,
+    file: &mut File,
+    diags: &mut Vec<Diagnostic>,
+) {
     for &chunk in chunks {
-        parse_chunk(text, chunk, file, diags);
+        match fast.then(|| crate::fast::statement(text, chunk)).flatten() {
+            Some(s) => file.statements.push(s),
+            None => parse_chunk(text, chunk, file, diags),
+        }
     }
 }
 

@@ -1251,6 +1251,12 @@ impl<'a> Resolver<'a> {
     }
 
     fn geom_path(&mut self, p: &syntax::Path, what: &str) -> Option<GeomId> {
+        // A plain name, the common case, is looked up as written.
+        if let [one] = p.parts.as_slice() {
+            if let Some(&g) = self.names.get(one.text.as_str()) {
+                return Some(g);
+            }
+        }
         let dotted = p.dotted();
         if let Some(&g) = self.names.get(&dotted) {
             return Some(g);

@@ -165,8 +165,8 @@ pub(crate) struct Builder<'m, G: Geometry> {
     /// The constraint whose value each size expression is ([`Model::value_is_size`]): its
     /// register checks that it is not negative.
     size_of: HashMap<gcs_lang::expr::ExprId, gcs_lang::model::ConstraintId>,
-    /// Words for registers, to write explanations and branch meanings.
-    words: BTreeMap<Reg, String>,
+    /// Words for registers (indexed by register), to write explanations and branch meanings.
+    words: Vec<Option<String>>,
     /// The keys inserted into `known_points`, `measured` and `exprs` since the last
     /// checkpoint, so that a rollback forgets them without scanning the maps.
     inserted: Vec<Key>,
@@ -209,7 +209,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 .filter(|&(id, _)| model.value_is_size(id))
                 .filter_map(|(id, c)| Some((c.value?, id)))
                 .collect(),
-            words: BTreeMap::new(),
+            words: Vec::new(),
             inserted: Vec::new(),
             def_step: Vec::new(),
             pending: Vec::new(),
@@ -303,16 +303,20 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// A step computing a value, described by `words` where explanations name it.
     pub(crate) fn value(&mut self, op: Op, ty: Ty, words: String) -> Reg {
         let r = self.emit(op, Some(ty), Vec::new(), String::new());
-        self.words.insert(r, words);
+        let i = r.0 as usize;
+        if self.words.len() <= i {
+            self.words.resize(i + 1, None);
+        }
+        self.words[i] = Some(words);
         r
     }
 
     /// How explanations name register `r`.
     pub(crate) fn word(&self, r: Reg) -> String {
-        self.words
-            .get(&r)
-            .cloned()
-            .unwrap_or_else(|| format!("r{}", r.0))
+        match self.words.get(r.0 as usize) {
+            Some(Some(w)) => w.clone(),
+            _ => format!("r{}", r.0),
+        }
     }
 
     /// A cluster's geoms as the subject of a sentence: `crank`, or `link10 (with link7, link8)`.
@@ -852,7 +856,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 }
             }
         }
-        self.words.split_off(&Reg(regs));
+        self.words.truncate(regs as usize);
         self.centers.split_off(&Reg(regs));
     }
 
