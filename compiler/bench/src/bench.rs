@@ -382,7 +382,7 @@ pub fn run(
             let tolerance = compiled_max_residual.max(4.0 * f64::EPSILON * size.max(1.0));
             let tight = NewtonOptions {
                 tolerance,
-                ..newton.clone()
+                ..newton
             };
             let mut equal = EqualAccuracy {
                 tolerance,

@@ -83,29 +83,30 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
         each(w);
     } else {
         w.open(&format!("for combination in 0..{combinations}usize {{"));
-        let fields: Vec<(usize, &String)> = counts.iter().copied().zip(&cx.branches).collect();
-        let varying = fields.iter().filter(|(c, _)| *c > 1).count();
-        if varying > 1 {
-            w.line("// `combination` in mixed radix, the first branch variable varying fastest.");
-        }
-        let mut seen = 0;
-        let rest = if varying > 1 {
-            w.line("let mut rest = combination;");
-            "rest"
-        } else {
-            "combination"
-        };
-        w.line("let mut branches = Branches::default();");
-        for (count, field) in fields {
+        // `combination` in mixed radix, the first branch variable varying fastest.
+        let mut stride = 1;
+        let mut fields = Vec::new();
+        for (&count, field) in counts.iter().zip(&cx.branches) {
             if count == 1 {
                 continue;
             }
-            seen += 1;
-            w.line(&format!("branches.{field} = ({rest} % {count}) as u8;"));
-            if seen < varying {
-                w.line(&format!("rest /= {count};"));
-            }
+            let digit = if stride == 1 {
+                format!("combination % {count}")
+            } else {
+                format!("combination / {stride} % {count}")
+            };
+            fields.push(format!("{field}: ({digit}) as u8"));
+            stride *= count;
         }
+        let rest = if fields.len() < counts.len() {
+            ", ..Branches::default()"
+        } else {
+            ""
+        };
+        w.line(&format!(
+            "let branches = Branches {{ {}{rest} }};",
+            fields.join(", ")
+        ));
         each(w);
         w.close("}");
     }
@@ -156,10 +157,12 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
     for (k, &d) in varied.iter().enumerate() {
         let field = &cx.defaults[d];
         let stride = GRID.pow((varied.len() - 1 - k) as u32);
-        let t = format!(
-            "((cell / {stride}) % {GRID}) as f64 / {}",
-            float(GRID as f64)
-        );
+        let digit = if stride == 1 {
+            format!("cell % {GRID}")
+        } else {
+            format!("cell / {stride} % {GRID}")
+        };
+        let t = format!("({digit}) as f64 / {}", float(GRID as f64));
         if plan.defaults[d].is_angle() {
             w.line(&format!(
                 "start.{field} = -std::f64::consts::PI + 2.0 * std::f64::consts::PI * ({t});"

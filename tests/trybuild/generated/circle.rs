@@ -403,8 +403,9 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..4usize {
-        let mut branches = Branches::default();
-        branches.meet = (combination % 4) as u8;
+        let branches = Branches {
+            meet: (combination % 4) as u8,
+        };
         if let Ok(s) = solve(params, &branches, defaults) {
             found.push(s);
         }

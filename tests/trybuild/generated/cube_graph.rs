@@ -706,24 +706,19 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: false,
     };
     for combination in 0..32usize {
-        // `combination` in mixed radix, the first branch variable varying fastest.
-        let mut rest = combination;
-        let mut branches = Branches::default();
-        branches.on_b_ground = (rest % 2) as u8;
-        rest /= 2;
-        branches.cd = (rest % 2) as u8;
-        rest /= 2;
-        branches.ef = (rest % 2) as u8;
-        rest /= 2;
-        branches.eg = (rest % 2) as u8;
-        rest /= 2;
-        branches.eh = (rest % 2) as u8;
+        let branches = Branches {
+            on_b_ground: (combination % 2) as u8,
+            cd: (combination / 2 % 2) as u8,
+            ef: (combination / 4 % 2) as u8,
+            eg: (combination / 8 % 2) as u8,
+            eh: (combination / 16 % 2) as u8,
+        };
         for cell in 0..144usize {
             let mut start = *defaults;
             start.c_angle = -std::f64::consts::PI
-                + 2.0 * std::f64::consts::PI * (((cell / 12) % 12) as f64 / 12.0);
-            start.e_angle = -std::f64::consts::PI
-                + 2.0 * std::f64::consts::PI * (((cell / 1) % 12) as f64 / 12.0);
+                + 2.0 * std::f64::consts::PI * ((cell / 12 % 12) as f64 / 12.0);
+            start.e_angle =
+                -std::f64::consts::PI + 2.0 * std::f64::consts::PI * ((cell % 12) as f64 / 12.0);
             if let Ok(s) = solve(params, &branches, &start) {
                 found.push(s);
             }

@@ -798,12 +798,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..4usize {
-        // `combination` in mixed radix, the first branch variable varying fastest.
-        let mut rest = combination;
-        let mut branches = Branches::default();
-        branches.j2 = (rest % 2) as u8;
-        rest /= 2;
-        branches.j3 = (rest % 2) as u8;
+        let branches = Branches {
+            j2: (combination % 2) as u8,
+            j3: (combination / 2 % 2) as u8,
+        };
         let mut scan = gcs_runtime::outer::Scan::default();
         // The scan ends this solve at the iteration, with the roots listed.
         let _ = assemble(params, &branches, defaults, &mut scan);

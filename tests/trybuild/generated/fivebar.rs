@@ -438,8 +438,9 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..2usize {
-        let mut branches = Branches::default();
-        branches.tip = (combination % 2) as u8;
+        let branches = Branches {
+            tip: (combination % 2) as u8,
+        };
         if let Ok(s) = solve(params, &branches, defaults) {
             found.push(s);
         }

@@ -548,18 +548,13 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..32usize {
-        // `combination` in mixed radix, the first branch variable varying fastest.
-        let mut rest = combination;
-        let mut branches = Branches::default();
-        branches.distance_crank_tip_lower = (rest % 2) as u8;
-        rest /= 2;
-        branches.up = (rest % 2) as u8;
-        rest /= 2;
-        branches.apex = (rest % 2) as u8;
-        rest /= 2;
-        branches.distance_top_knee = (rest % 2) as u8;
-        rest /= 2;
-        branches.stride = (rest % 2) as u8;
+        let branches = Branches {
+            distance_crank_tip_lower: (combination % 2) as u8,
+            up: (combination / 2 % 2) as u8,
+            apex: (combination / 4 % 2) as u8,
+            distance_top_knee: (combination / 8 % 2) as u8,
+            stride: (combination / 16 % 2) as u8,
+        };
         if let Ok(s) = solve(params, &branches, defaults) {
             found.push(s);
         }

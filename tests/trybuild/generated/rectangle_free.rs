@@ -621,7 +621,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     for cell in 0..12usize {
         let mut start = *defaults;
         start.right_length =
-            defaults.right_length + 5.0 * (2.0 * (((cell / 1) % 12) as f64 / 12.0) - 1.0);
+            defaults.right_length + 5.0 * (2.0 * ((cell % 12) as f64 / 12.0) - 1.0);
         if let Ok(s) = solve(params, &branches, &start) {
             found.push(s);
         }

@@ -460,12 +460,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..4usize {
-        // `combination` in mixed radix, the first branch variable varying fastest.
-        let mut rest = combination;
-        let mut branches = Branches::default();
-        branches.first = (rest % 2) as u8;
-        rest /= 2;
-        branches.second = (rest % 2) as u8;
+        let branches = Branches {
+            first: (combination % 2) as u8,
+            second: (combination / 2 % 2) as u8,
+        };
         if let Ok(s) = solve(params, &branches, defaults) {
             found.push(s);
         }

@@ -661,12 +661,11 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..4usize {
-        // `combination` in mixed radix, the first branch variable varying fastest.
-        let mut rest = combination;
-        let mut branches = Branches::default();
-        branches.on_right_end_fillet = (rest % 2) as u8;
-        rest /= 2;
-        branches.on_top_start_fillet = (rest % 2) as u8;
+        let branches = Branches {
+            on_right_end_fillet: (combination % 2) as u8,
+            on_top_start_fillet: (combination / 2 % 2) as u8,
+            ..Branches::default()
+        };
         if let Ok(s) = solve(params, &branches, defaults) {
             found.push(s);
         }

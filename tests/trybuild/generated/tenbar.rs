@@ -805,14 +805,11 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..8usize {
-        // `combination` in mixed radix, the first branch variable varying fastest.
-        let mut rest = combination;
-        let mut branches = Branches::default();
-        branches.coincident_link8_b_link9_a = (rest % 2) as u8;
-        rest /= 2;
-        branches.coincident_link5_b_link8_a = (rest % 2) as u8;
-        rest /= 2;
-        branches.close = (rest % 2) as u8;
+        let branches = Branches {
+            coincident_link8_b_link9_a: (combination % 2) as u8,
+            coincident_link5_b_link8_a: (combination / 2 % 2) as u8,
+            close: (combination / 4 % 2) as u8,
+        };
         if let Ok(s) = solve(params, &branches, defaults) {
             found.push(s);
         }

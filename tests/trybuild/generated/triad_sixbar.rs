@@ -656,8 +656,9 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..2usize {
-        let mut branches = Branches::default();
-        branches.j2 = (combination % 2) as u8;
+        let branches = Branches {
+            j2: (combination % 2) as u8,
+        };
         let mut scan = gcs_runtime::outer::Scan::default();
         // The scan ends this solve at the iteration, with the roots listed.
         let _ = assemble(params, &branches, defaults, &mut scan);

@@ -388,12 +388,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         complete: true,
     };
     for combination in 0..4usize {
-        // `combination` in mixed radix, the first branch variable varying fastest.
-        let mut rest = combination;
-        let mut branches = Branches::default();
-        branches.distance_d_f = (rest % 2) as u8;
-        rest /= 2;
-        branches.on_b_base = (rest % 2) as u8;
+        let branches = Branches {
+            distance_d_f: (combination % 2) as u8,
+            on_b_base: (combination / 2 % 2) as u8,
+        };
         if let Ok(s) = solve(params, &branches, defaults) {
             found.push(s);
         }
