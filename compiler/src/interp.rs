@@ -462,6 +462,12 @@ impl<'a, 'r> Machine<'a, 'r> {
         match outcome {
             Ok(converged) => {
                 self.iterations += converged.iterations;
+                // An angle reported in (-pi, pi], as generated code reports it.
+                for (k, d) in it.defaults.iter().enumerate() {
+                    if self.plan.defaults[d.0 as usize].is_angle() {
+                        x[k] = gcs_runtime::num::wrap_angle(x[k]);
+                    }
+                }
                 // Leave the machine in the assembly converged to.
                 let mut r = [0.0; N];
                 self.assemble(it, &saved, &x, &mut r)

@@ -28,6 +28,25 @@ pub fn in_range(x: f64) -> bool {
     x.abs() <= MAX_MAGNITUDE
 }
 
+/// An angle brought into `(-π, π]`: how an outer iteration reports an angle default it
+/// converged to (a turn more or less is the same assembly). An angle already in that range,
+/// or not finite, is returned as it is, to the bit.
+#[inline]
+pub fn wrap_angle(t: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    if !t.is_finite() || (-PI < t && t <= PI) {
+        return t;
+    }
+    let w = t - TAU * (t / TAU).round();
+    if w <= -PI {
+        w + TAU
+    } else if w > PI {
+        w - TAU
+    } else {
+        w
+    }
+}
+
 /// A number as messages write it (errors, diagnostics, reports): the shortest form that reads
 /// back to the same `f64`, in exponent form past `1e15` or under `1e-4` (so that `1e308` is not
 /// 309 digits), and zero without a sign.
@@ -59,6 +78,22 @@ impl fmt::Display for Shown {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn wrap_angle_keeps_the_range_and_the_direction() {
+        use std::f64::consts::PI;
+        for t in [0.0, 1.0, -1.0, PI, -3.0, 3.1] {
+            assert_eq!(super::wrap_angle(t).to_bits(), t.to_bits());
+        }
+        assert_eq!(super::wrap_angle(-PI), PI);
+        for t in [-4.854430208822, 7.0, -20.0, 1e6, 4.0 * PI] {
+            let w = super::wrap_angle(t);
+            assert!(-PI < w && w <= PI, "{t} -> {w}");
+            assert!((w.sin() - t.sin()).abs() < 1e-9 && (w.cos() - t.cos()).abs() < 1e-9);
+        }
+        assert!(super::wrap_angle(f64::NAN).is_nan());
+    }
+
     use super::*;
 
     #[test]

@@ -435,6 +435,14 @@ impl Solve<'_> {
             lit(&first.text)
         ));
         w.close("})?;");
+        // An angle converged to is reported in (-pi, pi]: a turn more is the same assembly.
+        for (k, d) in it.defaults.iter().enumerate() {
+            if plan.defaults[d.0 as usize].is_angle() {
+                w.line(&format!(
+                    "{trial}[{k}] = gcs_runtime::num::wrap_angle({trial}[{k}]);"
+                ));
+            }
+        }
         // The region again, at the defaults converged to, without what only its error
         // functions read.
         let is_error = |op: &Op| {

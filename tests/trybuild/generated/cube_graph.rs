@@ -506,6 +506,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 residual,
             ),
         })?;
+    trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
+    trial[1] = gcs_runtime::num::wrap_angle(trial[1]);
     let on_circle_a_2_2 = circle_a_2.at(trial[0]);
     c.place_origin(&on_circle_a_2_2);
     let circle_on_circle_a_2_2_2 = Circle::new(on_circle_a_2_2, 4.031).ok_or_else(|| {

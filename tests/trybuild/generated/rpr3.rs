@@ -367,6 +367,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 residual,
             ),
         })?;
+    trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     let on_circle_b1_2 = circle_b1.at(trial[0]);
     platform.place_origin(&on_circle_b1_2);
     // l2: a distance is zero or more.

@@ -475,6 +475,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 residual,
             ),
         })?;
+    trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     let direction_3 = direction_at(trial[0]);
     let turn_5 = rotation_between_units(&direction, &direction_3);
     link1.set_rotation(&turn_5);
