@@ -108,8 +108,91 @@ impl Outer for Scan {
     }
 }
 
+/// Every real assembly a generated `solve_all` found, each once, in the order found: a
+/// fixed-capacity list of at most `N`, so that listing them allocates nothing. Each generated
+/// module names it `Assemblies` for its own `Solution`.
+#[derive(Clone, Copy, Debug)]
+pub struct Assemblies<S, const N: usize> {
+    solutions: [Option<S>; N],
+    len: usize,
+    complete: bool,
+}
+
+impl<S: Copy, const N: usize> Assemblies<S, N> {
+    /// No assembly yet; `complete` when the search that fills it is exhaustive.
+    pub fn new(complete: bool) -> Self {
+        Self {
+            solutions: [None; N],
+            len: 0,
+            complete,
+        }
+    }
+
+    /// How many assemblies were found.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether none was: no real assembly exists at these params (on any branches).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The `i`th assembly found.
+    pub fn get(&self, i: usize) -> Option<&S> {
+        self.solutions.get(i)?.as_ref()
+    }
+
+    /// The assemblies, in the order found.
+    pub fn iter(&self) -> impl Iterator<Item = &S> {
+        self.solutions.iter().flatten()
+    }
+
+    /// Whether every real assembly is listed: the search was exhaustive, and neither it nor
+    /// the list overflowed.
+    pub fn is_complete(&self) -> bool {
+        self.complete
+    }
+
+    /// Says the list is not known to hold every assembly (a scan that kept only its first
+    /// roots).
+    pub fn mark_incomplete(&mut self) {
+        self.complete = false;
+    }
+
+    /// Adds `s` unless `same` says the list has its assembly already; past the capacity,
+    /// marks the list incomplete.
+    pub fn push(&mut self, s: S, same: impl Fn(&S, &S) -> bool) {
+        if self.iter().any(|t| same(t, &s)) {
+            return;
+        }
+        match self.solutions.get_mut(self.len) {
+            Some(slot) => {
+                *slot = Some(s);
+                self.len += 1;
+            }
+            None => self.complete = false,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn assemblies_keep_each_once_and_say_when_they_overflow() {
+        let same = |a: &f64, b: &f64| (a - b).abs() < 1e-9;
+        let mut list = Assemblies::<f64, 2>::new(true);
+        list.push(1.0, same);
+        list.push(1.0 + 1e-12, same);
+        assert_eq!((list.len(), list.is_complete()), (1, true));
+        list.push(2.0, same);
+        list.push(3.0, same);
+        assert_eq!(list.iter().copied().collect::<Vec<_>>(), [1.0, 2.0]);
+        assert!(!list.is_complete());
+        assert_eq!(list.get(1), Some(&2.0));
+        assert_eq!(list.get(2), None);
+    }
+
     use super::*;
 
     /// The error of a one-default iteration with three roots on the turn, and a stretch where

@@ -72,11 +72,7 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
     }
     w.line("#[allow(dead_code)]");
     w.open("pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {");
-    w.open("let mut found = Assemblies {");
-    w.line("solutions: [None; MAX_ASSEMBLIES],");
-    w.line("len: 0,");
-    w.line(&format!("complete: {complete},"));
-    w.close("};");
+    w.line(&format!("let mut found = Assemblies::new({complete});"));
     let each = |w: &mut Writer| combination_body(w, cx, &varied, one_angle);
     if combinations == 1 {
         w.line("let branches = Branches::default();");
@@ -119,7 +115,7 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
     let plan = cx.plan;
     if varied.is_empty() {
         w.open("if let Ok(s) = solve(params, &branches, defaults) {");
-        w.line("found.push(s);");
+        w.line("found.push(s, same_assembly);");
         w.close("}");
         return;
     }
@@ -128,7 +124,9 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
         w.line("let mut scan = gcs_runtime::outer::Scan::default();");
         w.line("// The scan ends this solve at the iteration, with the roots listed.");
         w.line("let _ = assemble(params, &branches, defaults, &mut scan);");
-        w.line("found.complete &= !scan.truncated();");
+        w.open("if scan.truncated() {");
+        w.line("found.mark_incomplete();");
+        w.close("}");
         w.open("for &root in scan.roots() {");
         if plan.defaults.len() == 1 {
             w.line(&format!("let start = Defaults {{ {field}: root }};"));
@@ -138,7 +136,7 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
             ));
         }
         w.open("if let Ok(s) = solve(params, &branches, &start) {");
-        w.line("found.push(s);");
+        w.line("found.push(s, same_assembly);");
         w.close("}");
         w.close("}");
         return;
@@ -175,12 +173,13 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
         }
     }
     w.open("if let Ok(s) = solve(params, &branches, &start) {");
-    w.line("found.push(s);");
+    w.line("found.push(s, same_assembly);");
     w.close("}");
     w.close("}");
 }
 
-/// `MAX_ASSEMBLIES` and `Assemblies`.
+/// `MAX_ASSEMBLIES`, `Assemblies` (the runtime's list of this module's `Solution`) and
+/// `same_assembly`, the rule the list keeps each assembly once by.
 fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
     w.line(
         "/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.",
@@ -188,75 +187,28 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
     w.line("#[allow(dead_code)]");
     w.line(&format!("pub const MAX_ASSEMBLIES: usize = {capacity};"));
     w.line("");
-    w.line("/// Every real assembly [`solve_all`] found, each once, in the order found: a fixed-capacity");
-    w.line("/// list, so that listing them allocates nothing.");
-    w.line("#[allow(dead_code)]");
-    w.line("#[derive(Clone, Copy, Debug)]");
-    w.open("pub struct Assemblies {");
-    w.line("solutions: [Option<Solution>; MAX_ASSEMBLIES],");
-    w.line("len: usize,");
-    w.line("complete: bool,");
-    w.close("}");
-    w.line("");
-    w.line("#[allow(dead_code)]");
-    w.open("impl Assemblies {");
-    w.line("/// How many assemblies were found.");
-    w.open("pub fn len(&self) -> usize {");
-    w.line("self.len");
-    w.close("}");
-    w.line("");
-    w.line("/// Whether none was: no real assembly exists at these params (on any branches).");
-    w.open("pub fn is_empty(&self) -> bool {");
-    w.line("self.len == 0");
-    w.close("}");
-    w.line("");
-    w.line("/// The `i`th assembly found.");
-    w.open("pub fn get(&self, i: usize) -> Option<&Solution> {");
-    w.line("self.solutions.get(i)?.as_ref()");
-    w.close("}");
-    w.line("");
-    w.line("/// The assemblies, in the order found.");
-    w.open("pub fn iter(&self) -> impl Iterator<Item = &Solution> {");
-    w.line("self.solutions.iter().flatten()");
-    w.close("}");
-    w.line("");
-    w.line("/// Whether every real assembly is listed. True when the search is exhaustive");
+    w.line("/// Every real assembly [`solve_all`] found, each once, in the order found. It is complete");
     if closed {
-        w.line(
-            "/// (every branch combination solved in closed form) and the list did not overflow.",
-        );
+        w.line("/// when every branch combination was solved in closed form and the list did not overflow.");
     } else if one_angle {
-        w.line(
-            "/// (every branch combination, its iteration's error scanned over a turn) and neither",
-        );
-        w.line("/// the scan nor the list overflowed.");
+        w.line("/// when every branch combination was solved, its iteration's error scanned over a turn,");
+        w.line("/// and neither the scan nor the list overflowed.");
     } else {
-        w.line("/// and the list did not overflow; this model's search starts from a grid, which is not.");
+        w.line("/// only if the search were exhaustive: this model's starts from a grid, which is not.");
     }
-    w.open("pub fn is_complete(&self) -> bool {");
-    w.line("self.complete");
-    w.close("}");
+    w.line("#[allow(dead_code)]");
+    w.line("pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;");
     w.line("");
-    w.line("/// Adds `s` unless the list has its assembly already (every point within 1e-9 of the");
-    w.line("/// model's size, every vector within 1e-9); past the capacity, marks the list incomplete.");
-    w.open("fn push(&mut self, s: Solution) {");
-    w.line("let (points, vectors) = (s.points(), s.vectors());");
-    w.open("for t in self.iter() {");
-    w.line("let scale = 1.0 + t.points().iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
-    w.line("let same_points = t.points().iter().zip(&points).all(|((_, p), (_, q))| (p - q).amax() <= 1e-9 * scale);");
-    w.line("let same_vectors = t.vectors().iter().zip(&vectors).all(|((_, u), (_, v))| (u - v).amax() <= 1e-9);");
-    w.open("if same_points && same_vectors {");
-    w.line("return;");
-    w.close("}");
-    w.close("}");
-    w.open("match self.solutions.get_mut(self.len) {");
-    w.open("Some(slot) => {");
-    w.line("*slot = Some(s);");
-    w.line("self.len += 1;");
-    w.close("}");
-    w.line("None => self.complete = false,");
-    w.close("}");
-    w.close("}");
+    w.line(
+        "/// Whether two solutions are one assembly: every point within 1e-9 of the model's size,",
+    );
+    w.line("/// every vector within 1e-9.");
+    w.line("#[allow(dead_code)]");
+    w.open("fn same_assembly(a: &Solution, b: &Solution) -> bool {");
+    w.line("let scale = 1.0 + a.points().iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
+    w.line("let same_points = a.points().iter().zip(&b.points()).all(|((_, p), (_, q))| (p - q).amax() <= 1e-9 * scale);");
+    w.line("let same_vectors = a.vectors().iter().zip(&b.vectors()).all(|((_, u), (_, v))| (u - v).amax() <= 1e-9);");
+    w.line("same_points && same_vectors");
     w.close("}");
     w.line("");
 }
