@@ -15,9 +15,8 @@ use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};
 use gcs_runtime::outer::Outer;
-use gcs_runtime::{check, intersect2d};
+use gcs_runtime::{check, frame, intersect2d};
 use gcs_runtime::{Contact, Roots};
-use nalgebra::UnitComplex;
 
 /// How to choose the root of each intersection.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -452,10 +451,7 @@ impl<'a, 'r> Machine<'a, 'r> {
             };
         }
         let saved = (self.config.clone(), self.regs.clone(), self.chosen.clone());
-        let settings = Settings {
-            tolerance: gcs_runtime::tol::ITERATION_REL * (1.0 + self.scale),
-            ..Settings::default()
-        };
+        let settings = Settings::for_size(self.scale);
         let outcome = outer.iterate(&mut x, &scale, &settings, |x: &[f64; N], r| {
             self.assemble(it, &saved, x, r)
         });
@@ -690,7 +686,11 @@ impl<'a, 'r> Machine<'a, 'r> {
             Op::PointOf(g) => Val::P(self.config.point(model, *g)),
             Op::DirOf(g) => Val::V(self.config.dir(model, *g)),
             Op::Axis(x, y) => Val::V(V2::new(*x, *y)),
-            Op::Rotated { dir, angle } => Val::V(UnitComplex::new(self.s(*angle)) * self.v(*dir)),
+            Op::Rotated { dir, angle } => {
+                // The turn generated code makes, to the bit: `direction_at`'s sine and cosine.
+                let turn = frame::rotation_from_x_unit(&frame::direction_at(self.s(*angle)));
+                Val::V(turn * self.v(*dir))
+            }
             Op::Error {
                 residual,
                 component,

@@ -782,7 +782,7 @@ pub fn rotation_from_x_unit(b: &Vector2<f64>) -> UnitComplex<f64> {
 /// by `angle`, `(cos, sin)`.
 #[inline]
 pub fn direction_at(angle: f64) -> Vector2<f64> {
-    let (sin, cos) = angle.sin_cos();
+    let (sin, cos) = crate::num::sin_cos(angle);
     Vector2::new(cos, sin)
 }
 

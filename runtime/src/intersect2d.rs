@@ -244,6 +244,56 @@ pub fn line_circle(l: &Line, c: &Circle) -> Intersection<P2, 2> {
     Intersection { roots, contact }
 }
 
+/// The directions of the lines through `pivot` that pass `point` at signed distance `offset`
+/// (positive with `point` to the left of the directed line): each unit `u` with
+/// `cross(u, point - pivot) = offset`. These are the lines through `pivot` tangent to the circle
+/// about `point` of radius `|offset|`, on the side its sign says; with `offset` zero, the two
+/// senses of the line through both points. A line turning about a pivot until it passes a
+/// point, or touches a circle, is turned onto one of them.
+///
+/// Branch 0 has `point` ahead of `pivot` along `u` (`u . (point - pivot) >= 0`), branch 1
+/// behind it. Degenerate cases, with `rho = |point - pivot|`:
+/// - `|offset| - rho` within [`tol::TANGENT_REL`] of the scale (the pivot on that circle):
+///   [`Contact::Tangent`], the one direction, perpendicular to `point - pivot`, in both slots;
+///   it is built as such, so the tangency holds to rounding rather than to its square root;
+/// - `|offset| > rho` beyond it (the pivot inside the circle): [`Contact::Disjoint`] with gap
+///   `|offset| - rho`;
+/// - `pivot` and `point` the same within [`tol::LENGTH_REL`] of the scale, and `offset` zero
+///   within it: every line through `pivot` passes `point`, [`Contact::Coincident`].
+#[inline]
+pub fn passing_directions(pivot: P2, point: P2, offset: f64) -> Intersection<V2, 2> {
+    let v = point - pivot;
+    let s = tol::scale(&[pivot.x, pivot.y, point.x, point.y, offset]);
+    let rho = v.norm();
+    if !rho.is_finite() || !offset.is_finite() {
+        return Intersection::none(Contact::Disjoint { gap: f64::INFINITY });
+    }
+    if rho <= tol::LENGTH_REL * s && offset.abs() <= tol::LENGTH_REL * s {
+        return Intersection::none(Contact::Coincident);
+    }
+    let gap = offset.abs() - rho;
+    if gap > tol::TANGENT_REL * s {
+        return Intersection::none(Contact::Disjoint { gap });
+    }
+    let along = v / rho;
+    // To the right of `along`: `cross(right, along) = 1`.
+    let right = -perp(along);
+    if gap >= 0.0 {
+        let u = right * offset.signum();
+        return Intersection {
+            roots: Roots::from_slice(&[u, u]),
+            contact: Contact::Tangent,
+        };
+    }
+    let sin = offset / rho;
+    let cos = ((1.0 - sin) * (1.0 + sin)).sqrt();
+    let side = right * sin;
+    Intersection {
+        roots: Roots::from_slice(&[along * cos + side, along * -cos + side]),
+        contact: Contact::Crossing,
+    }
+}
+
 /// Maps the line's roots to the ray's `Option` slots; all behind the origin gives `Disjoint`
 /// with `gap`.
 fn onto_ray(

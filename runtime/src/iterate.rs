@@ -36,7 +36,8 @@
 //!   three more steps (one evaluation each: secant steps for one default, Newton steps with
 //!   the last Jacobian for several) are taken while each at least halves the largest residual,
 //!   so answers end at rounding level, as closed forms do, rather than just inside the
-//!   tolerance.
+//!   tolerance. An answer already within [`Settings::rounding`] is left as it is: a step from
+//!   there changes less than the noise of evaluating the residual, and costs an evaluation.
 //! - **Failures**: a start where the assembly fails is first moved (one default) to the
 //!   nearest point where it does not, probed at `scale * 2^-12` up to half a scale on either
 //!   side (a sweep's last answer can lie just past the edge of the stretch where its assembly
@@ -136,6 +137,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use crate::num::is_finite;
+use crate::tol;
 
 /// `sqrt(f64::EPSILON)`: the relative size of a forward-difference step (it balances the
 /// truncation error of the difference against the rounding of the two values), and the
@@ -176,6 +178,9 @@ pub struct Settings {
     /// Converged when every residual's magnitude is at most this (absolute, in the model's
     /// units).
     pub tolerance: f64,
+    /// A residual at most this (absolute) is at rounding level: once there, no polishing step
+    /// is taken. Zero polishes every answer.
+    pub rounding: f64,
     /// At most this many evaluations of the residual function (each is one assembly of the
     /// plan's region).
     pub max_evaluations: u32,
@@ -191,7 +196,21 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             tolerance: 1e-10,
+            rounding: 0.0,
             max_evaluations: 200,
+        }
+    }
+}
+
+impl Settings {
+    /// The settings of a plan's iteration on a model whose geoms have size `size` (its
+    /// largest coordinate or dimension): converged at [`tol::ITERATION_REL`] and at rounding
+    /// level at [`tol::ROUNDING_REL`], each times `1 + size`; the default budget.
+    pub fn for_size(size: f64) -> Self {
+        Self {
+            tolerance: tol::ITERATION_REL * (1.0 + size),
+            rounding: tol::ROUNDING_REL * (1.0 + size),
+            ..Self::default()
         }
     }
 }
@@ -514,7 +533,7 @@ fn solve_scalar<E>(
         iterations: 0,
     };
     let converged = search.run(settings.tolerance);
-    if converged {
+    if converged && search.best_f.abs() > settings.rounding {
         search.polish();
     }
     *x = search.best_x;
@@ -897,7 +916,7 @@ fn solve_system<const N: usize, E>(
         iterations: 0,
     };
     let converged = system.run(settings.tolerance);
-    if converged {
+    if converged && system.best_max > settings.rounding {
         system.polish();
     }
     *x = system.best_x.into();

@@ -22,6 +22,11 @@ pub const CHECK_REL: f64 = 1e-9;
 /// one in closed form; `iterate::solve` then polishes to rounding level where it can.
 pub const ITERATION_REL: f64 = 1e-12;
 
+/// Relative size (times `1 + scale`) of a residual that is rounding: two units in the last
+/// place of the model's size. An outer iteration that reaches it takes no polishing step, as
+/// the next step's change would be as small as the noise of evaluating the residual.
+pub const ROUNDING_REL: f64 = 2.0 * f64::EPSILON;
+
 /// Relative tolerance of a tangency: loci whose gap or overlap is below this, relative to the
 /// scale, touch in one double root rather than missing each other or crossing twice. It is a
 /// few units of rounding: loci built by earlier steps of a plan carry that much, and a gap any

@@ -69,6 +69,7 @@ fn solve1(
 fn default_settings() {
     let s = Settings::default();
     assert_eq!(s.tolerance, 1e-10);
+    assert_eq!(s.rounding, 0.0);
     assert_eq!(s.max_evaluations, 200);
 }
 
@@ -228,7 +229,7 @@ proptest! {
         samples in 0u32..40,
     ) {
         let calls = Cell::new(0u32);
-        let settings = Settings { tolerance, max_evaluations: 60 };
+        let settings = Settings { tolerance, max_evaluations: 60, ..Settings::default() };
         let mut x = [x0];
         let out = solve(&mut x, &[s0], &settings, |p, r| {
             calls.set(calls.get() + 1);
@@ -498,6 +499,7 @@ fn no_root_is_no_convergence_within_the_budget() {
     let settings = Settings {
         tolerance: 1e-10,
         max_evaluations: 7,
+        ..Settings::default()
     };
     let out = solve(&mut x, &[1.0], &settings, |p, r| {
         calls.set(calls.get() + 1);
@@ -581,6 +583,33 @@ fn converged_start_is_polished() {
     assert!((x - 0.25).abs() <= 1e-16, "{x}");
     assert!(done.evaluations <= 4, "{done:?}");
     assert_eq!(done.residual, 0.0);
+}
+
+#[test]
+fn an_answer_at_rounding_level_is_not_polished() {
+    // A start within rounding of the root: converged at once, with no step; one a little
+    // further (within the tolerance, above rounding) is still polished.
+    let settings = Settings::for_size(10.0);
+    assert_eq!(settings.tolerance, 1e-12 * 11.0);
+    assert_eq!(settings.rounding, 2.0 * f64::EPSILON * 11.0);
+    let run = |x0: f64| {
+        let mut x = [x0];
+        let out = solve(&mut x, &[1.0], &settings, |p, r| {
+            r[0] = 3.0 * (p[0] - 0.25);
+            Ok::<(), ()>(())
+        });
+        (x[0], out.unwrap())
+    };
+    let (x, done) = run(0.25 + 1e-15);
+    assert_eq!((x, done.evaluations, done.iterations), (0.25 + 1e-15, 1, 0));
+    let (x, done) = run(0.25 + 1e-12);
+    assert!(
+        (x - 0.25).abs() <= 1e-16 && done.evaluations >= 2,
+        "{x} {done:?}"
+    );
+    // With `rounding` zero (the default), the first start is polished too.
+    let (x, done) = solve1(0.25 + 1e-15, 1.0, |x| Ok(3.0 * (x - 0.25)));
+    assert!((x - 0.25).abs() <= 1e-16 && done.unwrap().evaluations >= 2);
 }
 
 #[test]

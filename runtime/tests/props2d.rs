@@ -293,6 +293,93 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(config(2048))]
+
+    /// Each direction is unit, passes the point at the offset asked (to 1e-13 of the scale),
+    /// and sits on its branch's side; the two are the line's two senses when the offset is 0.
+    #[test]
+    fn passing_directions_pass_at_the_offset(s in scale(), px in u(), py in u(), qx in u(),
+                                             qy in u(), k in -1.0f64..1.0) {
+        let (pivot, point) = (p(px * s, py * s), p(qx * s, qy * s));
+        let rho = (point - pivot).norm();
+        prop_assume!(rho > 1e-3 * s);
+        let offset = k * rho;
+        let i = passing_directions(pivot, point, offset);
+        prop_assert!(matches!(i.contact, Contact::Crossing | Contact::Tangent), "{i:?}");
+        for (b, u) in i.roots.as_slice().iter().enumerate() {
+            prop_assert!((u.norm() - 1.0).abs() <= 1e-15 * 4.0, "{u}");
+            let passes = cross(*u, point - pivot) - offset;
+            prop_assert!(passes.abs() <= 1e-13 * s, "branch {b}: {passes:e}");
+            let ahead = u.dot(&(point - pivot));
+            let on_its_side = if b == 0 { ahead >= -1e-13 * s } else { ahead <= 1e-13 * s };
+            prop_assert!(on_its_side, "branch {b}: {ahead:e}");
+        }
+        if offset == 0.0 {
+            prop_assert!((i.roots.as_slice()[0] + i.roots.as_slice()[1]).norm() <= 1e-15 * 4.0);
+        }
+    }
+
+    /// Near the tangency (the pivot on the circle about the point, to within `delta`): a
+    /// miss within the tolerance is one tangent direction, exactly perpendicular; an overlap
+    /// crosses, with both directions passing at the offset; beyond, the gap is reported.
+    #[test]
+    fn passing_directions_near_tangency(s in scale(), px in u(), py in u(), angle in -3.2f64..3.2,
+                                        r in 0.05f64..1.0, delta in tiny(), left in any::<bool>()) {
+        let pivot = p(px * s, py * s);
+        let point = pivot + V2::new(angle.cos(), angle.sin()) * (r * s);
+        let offset = (r + delta) * s * if left { 1.0 } else { -1.0 };
+        let i = passing_directions(pivot, point, offset);
+        let t = tol::TANGENT_REL * tol::scale(&[pivot.x, pivot.y, point.x, point.y, offset]);
+        let noise = 1e-14 * s;
+        match i.contact {
+            Contact::Tangent => {
+                prop_assert!(delta * s >= -noise && delta * s <= 2.0 * t);
+                let u = i.roots.as_slice()[0];
+                prop_assert!(u.dot(&(point - pivot)) == 0.0 || (u.dot(&(point - pivot)) / s).abs() <= 1e-15);
+                prop_assert!(cross(u, point - pivot) * offset > 0.0);
+            }
+            Contact::Crossing => {
+                prop_assert!(delta * s < noise);
+                for u in i.roots.as_slice() {
+                    prop_assert!((cross(*u, point - pivot) - offset).abs() <= 1e-13 * s);
+                }
+            }
+            Contact::Disjoint { gap } => {
+                prop_assert!(delta * s > 0.5 * t);
+                prop_assert!((gap - delta * s).abs() <= 1e-13 * s, "{gap:e} {:e}", delta * s);
+            }
+            other => prop_assert!(false, "{other:?}"),
+        }
+    }
+}
+
+#[test]
+fn passing_directions_degenerate_cases() {
+    let o = p(1.0, 2.0);
+    // The pivot is the point: every line passes it.
+    assert_eq!(passing_directions(o, o, 0.0).contact, Contact::Coincident);
+    // ... but none at a distance.
+    assert_eq!(
+        passing_directions(o, o, 0.5).contact,
+        Contact::Disjoint { gap: 0.5 }
+    );
+    // The pivot inside the circle about the point: no tangent line.
+    let i = passing_directions(o, p(2.0, 2.0), -3.0);
+    assert_eq!(i.contact, Contact::Disjoint { gap: 2.0 });
+    assert!(i.roots.is_empty());
+    // Through two points: ahead is towards the point, behind is away.
+    let i = passing_directions(o, p(4.0, 6.0), 0.0);
+    assert_eq!(i.roots.as_slice(), &[V2::new(0.6, 0.8), V2::new(-0.6, -0.8)]);
+    // A line at distance 1 from a point 2 away, with the point to its left.
+    let i = passing_directions(p(0.0, 0.0), p(2.0, 0.0), 1.0);
+    let half = 3f64.sqrt() / 2.0;
+    let [a, b] = [i.roots.as_slice()[0], i.roots.as_slice()[1]];
+    assert!((a - V2::new(half, -0.5)).norm() < 1e-15 && (b - V2::new(-half, -0.5)).norm() < 1e-15);
+    // Non-finite offsets never give roots.
+    assert!(passing_directions(o, p(2.0, 2.0), f64::NAN).roots.is_empty());
+}
+
 /// A random conic of each kind at scale `s`.
 fn conic(kind: u8, s: f64, a: f64, b: f64, c: f64, d: f64, e: f64) -> Option<Conic> {
     let f1 = p(a * s, b * s);
@@ -444,8 +531,9 @@ proptest! {
         let want = b / b.norm();
         prop_assert!((turned - want).norm() <= 6.0 * f64::EPSILON, "{} vs {}", turned, want);
         // The x axis turned by `angle`, and the rotation that does it.
+        // (`direction_at`'s sine and cosine are within 2 ulps of the system library's.)
         let d = direction_at(angle);
-        prop_assert_eq!(d, UnitComplex::new(angle) * V2::x());
+        prop_assert!((d - UnitComplex::new(angle) * V2::x()).norm() <= 4.0 * f64::EPSILON);
         prop_assert_eq!(rotation_from_x(&d) * V2::x(), d);
     }
 }

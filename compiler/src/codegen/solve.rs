@@ -381,7 +381,7 @@ impl Solve<'_> {
         ));
         w.line(&format!("let mut {trial} = [{}];", start.join(", ")));
         w.open(&format!(
-            "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings {{ tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL, ..gcs_runtime::iterate::Settings::default() }}, |{trial}, {errors}| {{",
+            "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0), |{trial}, {errors}| {{",
             scale.join(", ")
         ));
         // The trial works on copies of the frames the region moves: those its code writes,

@@ -426,7 +426,7 @@ impl Solve<'_> {
             }
             format!("direction_at({a})")
         } else {
-            format!("UnitComplex::new({a}) * {d}")
+            format!("rotation_from_x_unit(&direction_at({a})) * {d}")
         };
         let n = self.derived_name(dir, "_turned", "direction");
         self.define(w, r, &n, &code);

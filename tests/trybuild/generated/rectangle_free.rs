@@ -384,7 +384,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // parallel(left, Y) (rectangle_free.gcs:25)
     let y_dir = y.x_axis();
     let minus = -std::f64::consts::PI;
-    let y_dir_turned = UnitComplex::new(minus) * y_dir;
+    let y_dir_turned = rotation_from_x_unit(&direction_at(minus)) * y_dir;
     let left_dir = left.x_axis();
     let turn_2 = rotation_between_units(&left_dir, &y_dir_turned);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_2);
@@ -438,10 +438,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         .iterate(
             &mut trial,
             &[tol / gcs_runtime::tol::CHECK_REL],
-            &gcs_runtime::iterate::Settings {
-                tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL,
-                ..gcs_runtime::iterate::Settings::default()
-            },
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
             |trial, errors| {
                 if !gcs_runtime::num::is_finite(trial[0]) || trial[0] < 0.0 {
                     return Err(SolveError::new(

@@ -434,7 +434,7 @@ pub fn solve(
     }
 
     // e_up: perpendicular(s, u) (redundant_checks.gcs:33)
-    let s_dir_turned = UnitComplex::new(std::f64::consts::FRAC_PI_2) * s_dir;
+    let s_dir_turned = rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * s_dir;
     let u_dir = u.x_axis();
     let turn_2 = rotation_between_units(&u_dir, &s_dir_turned);
     u.turn_by(&turn_2);

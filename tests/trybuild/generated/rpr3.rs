@@ -286,10 +286,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         .iterate(
             &mut trial,
             &[1.0],
-            &gcs_runtime::iterate::Settings {
-                tolerance: tol / gcs_runtime::tol::CHECK_REL * gcs_runtime::tol::ITERATION_REL,
-                ..gcs_runtime::iterate::Settings::default()
-            },
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
             |trial, errors| {
                 let mut platform = platform;
                 let on_circle_b1 = circle_b1.at(trial[0]);

@@ -383,7 +383,8 @@ pub fn solve(
     top.turn_by(&turn_2);
 
     // vertical(left) (sketch_profile.gcs:23)
-    let direction_2 = UnitComplex::new(std::f64::consts::PI) * Vector2::new(0.0, 1.0);
+    let direction_2 =
+        rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * Vector2::new(0.0, 1.0);
     let left_dir = left.x_axis();
     let turn_3 = rotation_between_units(&left_dir, &direction_2);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_3);

@@ -485,8 +485,8 @@ pub fn solve(
 
     // drive3: angle(link7.u, link10.u) = theta3 (tenbar.gcs:28)
     let minus = -params.theta3;
-    let link10_u_dir_turned =
-        UnitComplex::new(minus) * Vector2::new(-0.9191450300180579, -0.3939192985791677);
+    let link10_u_dir_turned = rotation_from_x_unit(&direction_at(minus))
+        * Vector2::new(-0.9191450300180579, -0.3939192985791677);
     let turn_2 = rotation_between_units(
         &Vector2::new(-0.9701425001453318, -0.24253562503633294),
         &link10_u_dir_turned,
@@ -499,8 +499,8 @@ pub fn solve(
     link4.translate(&shift_2);
 
     // drive2: angle(link3.u, link4.u) = theta2 (tenbar.gcs:26)
-    let link3_u_dir_turned =
-        UnitComplex::new(params.theta2) * Vector2::new(0.9848077908426045, 0.17364796311995495);
+    let link3_u_dir_turned = rotation_from_x_unit(&direction_at(params.theta2))
+        * Vector2::new(0.9848077908426045, 0.17364796311995495);
     let turn_3 = rotation_between_units(
         &Vector2::new(0.7129333647431632, 0.7012317858140715),
         &link3_u_dir_turned,
