@@ -794,6 +794,39 @@ impl<'a, 'r> Machine<'a, 'r> {
                 constraint,
                 near,
             } => Val::P(self.intersect(*meet, (*a, *b), *branch, *constraint, *near)?),
+            Op::PassingDir {
+                pivot,
+                base,
+                dir,
+                point,
+                offset,
+                branch,
+                constraint,
+            } => {
+                let (o, u) = (self.p(*pivot), self.v(*dir));
+                // The base's own offset from the pivot turns with the line: the line through
+                // the pivot must pass the point that much further.
+                let e = self.s_or_zero(*offset) + locus2d::cross(u, self.p(*base) - o);
+                let i = intersect2d::passing_directions(o, self.p(*point), e);
+                if let Some(e) = SolveError::from_contact("", "", i.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                let index = match self.choice {
+                    Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
+                    Choice::Nearest => (i.roots).nearest_to(u, |x, y| (x - y).norm()).unwrap_or(0),
+                };
+                if let Some(slot) = self.chosen.get_mut(branch.0 as usize) {
+                    *slot = Some(index);
+                }
+                Val::V(i.roots.get(index).ok_or_else(|| {
+                    err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoSuchBranch,
+                        i.roots.len() as f64,
+                    )
+                })?)
+            }
             Op::Translate { geoms, from, to } => {
                 let d = self.p(*to) - self.p(*from);
                 for g in geoms {
@@ -919,6 +952,10 @@ impl<'a, 'r> Machine<'a, 'r> {
             Meet::LineConic => {
                 let i = intersect2d::line_conic(&self.line(a), &self.conic(b));
                 (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::ConicConic => {
+                let i = intersect2d::conic_conic(&self.conic(a), &self.conic(b));
+                (i.roots, i.contact)
             }
             Meet::LineLine => {
                 let i = intersect2d::line_line(&self.line(a), &self.line(b));

@@ -112,7 +112,7 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             | Op::RotateDir { geoms: gs, .. } => {
                 gs.retain(|g| moved[i].contains(g));
             }
-            Op::Intersect { branch, .. } => {
+            Op::Intersect { branch, .. } | Op::PassingDir { branch, .. } => {
                 let next = BranchId(branch_map.len() as u32);
                 let new = *branch_map.entry(*branch).or_insert(next);
                 if new == next {

@@ -44,7 +44,9 @@
 //! 1e-3 and 1e3. Each instance is solved on the default branches and on every other branch
 //! combination. A run that returns a solution must satisfy every constraint its plan claims
 //! (every step's `satisfies`: the new constraint and every earlier invariant), measured by
-//! `verify`, to 1e-12 relative to the instance's scale (1e-12 rad for angles); anything else is
+//! `verify`, to 1e-12 relative to the model's size (the instance's scale, or the solved
+//! configuration's largest coordinate or dimension where a root lies farther out; 1e-12 rad for
+//! angles); anything else is
 //! a *wrong fragment* and fails the test. A `SolveError` is never wrong, but an instance that no
 //! branch solves is reported as *not solved*.
 //!
@@ -1496,7 +1498,6 @@ fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &
         let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
         let params = model.default_params();
         let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
-        let tol_len = REL * inst.scale.max(f64::MIN_POSITIVE);
         let mut results = Vec::new();
         for combo in combos(&counts, &defaults) {
             // The plan as it is, even when it leaves geoms free (`solve` refuses those): the
@@ -1504,6 +1505,12 @@ fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &
             let r = gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo);
             let verdict = match r {
                 Ok(sol) => {
+                    // Relative to the model's size: the instance's, or the solved
+                    // configuration's where a root lies far out (a nearly parallel crossing).
+                    let size = (sol.points.iter().flat_map(|(_, p)| p.iter()))
+                        .chain(sol.scalars.iter().map(|(_, v)| v))
+                        .fold(inst.scale, |m, v| m.max(v.abs()));
+                    let tol_len = REL * size.max(f64::MIN_POSITIVE);
                     let res = gcs_compiler::verify::residuals(&model, &sol, &params);
                     let mut worst: f64 = 0.0;
                     let bad: Vec<String> = res
@@ -1521,13 +1528,13 @@ fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &
                             r.value.is_nan() || r.value > tol
                         })
                         .map(|r| {
-                            worst = worst.max(r.value / inst.scale.max(1.0));
+                            worst = worst.max(r.value / size.max(1.0));
                             format!(
                                 "{} residual {:.3e} (scale {:.3e}, relative {:.3e})",
                                 model.constraints[r.constraint].text,
                                 r.value,
-                                inst.scale,
-                                r.value / inst.scale
+                                size,
+                                r.value / size
                             )
                         })
                         .collect();

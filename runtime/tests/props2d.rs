@@ -370,14 +370,19 @@ fn passing_directions_degenerate_cases() {
     assert!(i.roots.is_empty());
     // Through two points: ahead is towards the point, behind is away.
     let i = passing_directions(o, p(4.0, 6.0), 0.0);
-    assert_eq!(i.roots.as_slice(), &[V2::new(0.6, 0.8), V2::new(-0.6, -0.8)]);
+    assert_eq!(
+        i.roots.as_slice(),
+        &[V2::new(0.6, 0.8), V2::new(-0.6, -0.8)]
+    );
     // A line at distance 1 from a point 2 away, with the point to its left.
     let i = passing_directions(p(0.0, 0.0), p(2.0, 0.0), 1.0);
     let half = 3f64.sqrt() / 2.0;
     let [a, b] = [i.roots.as_slice()[0], i.roots.as_slice()[1]];
     assert!((a - V2::new(half, -0.5)).norm() < 1e-15 && (b - V2::new(-half, -0.5)).norm() < 1e-15);
     // Non-finite offsets never give roots.
-    assert!(passing_directions(o, p(2.0, 2.0), f64::NAN).roots.is_empty());
+    assert!(passing_directions(o, p(2.0, 2.0), f64::NAN)
+        .roots
+        .is_empty());
 }
 
 /// A random conic of each kind at scale `s`.

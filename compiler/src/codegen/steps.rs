@@ -298,6 +298,18 @@ impl Solve<'_> {
                 constraint,
                 ..
             } => self.intersect(w, r, *meet, (*a, *b), *branch, *constraint),
+            Op::PassingDir {
+                pivot,
+                base,
+                dir,
+                point,
+                offset,
+                branch,
+                constraint,
+            } => {
+                let line = (*pivot, *base, *dir);
+                self.passing_dir(w, r, line, *point, *offset, *branch, *constraint)
+            }
             // Actions and checks define no register: `step` writes them.
             Op::Translate { .. }
             | Op::RotatePoint { .. }
@@ -563,6 +575,7 @@ impl Solve<'_> {
             Meet::LineLine => "line_line",
             Meet::CircleConic => "circle_conic",
             Meet::LineConic => "line_conic",
+            Meet::ConicConic => "conic_conic",
             spatial => panic!(
                 "bug in gcs: the spatial intersection {spatial:?} reached the planar code generator"
             ),
@@ -582,6 +595,58 @@ impl Solve<'_> {
             "{meeting}.branch({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, {meeting}.roots.len() as f64))?"
         );
         self.define(w, r, &con.name, &code);
+    }
+
+    /// The direction of line (`base`, `dir`) turned about `pivot` until it passes `point` at
+    /// `offset`: the runtime's `passing_directions`, the root of `branch`.
+    #[allow(clippy::too_many_arguments)]
+    fn passing_dir(
+        &mut self,
+        w: &mut Writer,
+        r: Reg,
+        (pivot, base, dir): (Reg, Reg, Reg),
+        point: Reg,
+        offset: Option<Reg>,
+        branch: BranchId,
+        c: ConstraintId,
+    ) {
+        let con = &self.cx.model.constraints[c];
+        let (label, text) = (lit(&con.name), lit(&con.text));
+        let index = match self.cx.branches.get(branch.0 as usize) {
+            Some(field) if self.cx.plan.branches[branch.0 as usize].count > 1 => {
+                format!("usize::from(branches.{field})")
+            }
+            _ => "0".into(),
+        };
+        let (o, b) = (self.r(pivot), self.r(base));
+        let mut terms: Vec<String> = offset.map(|d| self.r(d)).into_iter().collect();
+        if b != o {
+            // The base's offset from the pivot turns with the line.
+            terms.push(format!(
+                "gcs_runtime::locus2d::cross({}, {b} - {o})",
+                self.r(dir)
+            ));
+        }
+        let e = if terms.is_empty() {
+            "0.0".to_string()
+        } else {
+            terms.join(" + ")
+        };
+        let lines = self.names.fresh(&format!("{}_lines", con.name));
+        w.line(&format!(
+            "let {lines} = intersect2d::passing_directions({o}, {}, {e});",
+            self.r(point)
+        ));
+        w.open(&format!(
+            "if let Some(e) = SolveError::from_contact({label}, {text}, {lines}.contact) {{"
+        ));
+        w.line("return Err(e);");
+        w.close("}");
+        let code = format!(
+            "{lines}.branch({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, {lines}.roots.len() as f64))?"
+        );
+        self.facts.unit_dirs.insert(r);
+        self.define(w, r, &format!("{}_dir", con.name), &code);
     }
 
     /// The root at `index` of two circles `a` and `b`, for constraint `c`: only that root is

@@ -46,6 +46,7 @@ impl Op {
     pub fn constraint(&self) -> Option<ConstraintId> {
         match self {
             Op::Intersect { constraint, .. }
+            | Op::PassingDir { constraint, .. }
             | Op::Onto { constraint, .. }
             | Op::Check { constraint, .. }
             | Op::Close { constraint, .. }

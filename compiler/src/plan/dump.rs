@@ -162,6 +162,26 @@ impl Plan {
                 } => {
                     format!("onto {} {} for {}", r(locus), r(point), cname(constraint))
                 }
+                Op::PassingDir {
+                    pivot,
+                    base,
+                    dir,
+                    point,
+                    offset,
+                    branch,
+                    constraint,
+                } => format!(
+                    "passing_dir about {} of {} {} past {}{} branch {} for {}",
+                    r(pivot),
+                    r(base),
+                    r(dir),
+                    r(point),
+                    offset.map_or(String::new(), |o| format!(" at {}", r(&o))),
+                    self.branches
+                        .get(branch.0 as usize)
+                        .map_or("?", |b| b.name.as_str()),
+                    cname(constraint)
+                ),
                 Op::Intersect {
                     meet,
                     a,

@@ -139,6 +139,8 @@ pub enum Meet {
     CircleConic,
     /// A line and a conic: order along the line.
     LineConic,
+    /// Two conics: order along the first.
+    ConicConic,
     /// A line and a plane: one root.
     LinePlane,
     /// A line and a sphere: order along the line.
@@ -167,6 +169,7 @@ impl Meet {
             Meet::LineLine => (Line, Line),
             Meet::CircleConic => (Circle, Conic),
             Meet::LineConic => (Line, Conic),
+            Meet::ConicConic => (Conic, Conic),
             Meet::LinePlane => (Line, Plane),
             Meet::LineSphere => (Line, Sphere),
             Meet::LineCylinder => (Line, Cylinder),
@@ -194,7 +197,8 @@ impl Meet {
             | Meet::LineCircle
             | Meet::LineLine
             | Meet::CircleConic
-            | Meet::LineConic => Space::D2,
+            | Meet::LineConic
+            | Meet::ConicConic => Space::D2,
             _ => Space::D3,
         }
     }
@@ -380,6 +384,20 @@ pub enum Op {
         constraint: ConstraintId,
         near: Reg,
     },
+    /// The direction of line (`base`, `dir`) once its cluster has turned about `pivot` until the
+    /// line passes `point` at signed distance `offset` (absent: through it; positive: `point`
+    /// to the line's left): the root of `branch` (0: `point` ahead of the pivot along the
+    /// line, 1: behind), or an error naming `constraint`. The sketch's branch is the root
+    /// nearest `dir`. A line through a point tangent to a circle; a crank's slot through a pin.
+    PassingDir {
+        pivot: Reg,
+        base: Reg,
+        dir: Reg,
+        point: Reg,
+        offset: Option<Reg>,
+        branch: BranchId,
+        constraint: ConstraintId,
+    },
     /// Translates `geoms` rigidly by the vector from `from` to `to`.
     Translate {
         geoms: Vec<GeomId>,
@@ -498,6 +516,7 @@ impl Plan {
         let of = |s: &Step| {
             s.satisfies.first().copied().or(match &s.op {
                 Op::Intersect { constraint, .. }
+                | Op::PassingDir { constraint, .. }
                 | Op::Onto { constraint, .. }
                 | Op::Check { constraint, .. }
                 | Op::Close { constraint, .. } => Some(*constraint),

@@ -174,6 +174,23 @@ impl Op {
                 let (ta, tb) = meet.operands();
                 vec![(*a, accepts(ta)), (*b, accepts(tb)), (*near, POINT)]
             }
+            Op::PassingDir {
+                pivot,
+                base,
+                dir,
+                point,
+                offset,
+                ..
+            } => {
+                let mut v = vec![
+                    (*pivot, POINT),
+                    (*base, POINT),
+                    (*dir, VECTOR),
+                    (*point, POINT),
+                ];
+                v.extend(offset.map(|o| (o, SCALAR)));
+                v
+            }
             Op::Translate { from, to, .. } => vec![(*from, POINT), (*to, POINT)],
             Op::RotatePoint {
                 pivot,
@@ -217,7 +234,11 @@ impl Op {
             | Op::Implicit { .. }
             | Op::RadiusFromLine { .. }
             | Op::RadiusFromPoint { .. } => Ty::Scalar,
-            Op::DirectionTo { .. } | Op::DirOf(_) | Op::Axis(..) | Op::Rotated { .. } => Ty::Vector,
+            Op::DirectionTo { .. }
+            | Op::DirOf(_)
+            | Op::Axis(..)
+            | Op::Rotated { .. }
+            | Op::PassingDir { .. } => Ty::Vector,
             Op::Reversed(_)
             | Op::OffsetLine { .. }
             | Op::CentresLineLine { .. }
@@ -358,6 +379,18 @@ impl Plan {
             Op::Intersect { meet, branch, .. } => {
                 if meet.space() != self.space {
                     errors.push(format!("step {i} intersects {meet:?} in {}", self.space));
+                }
+                match branch_uses.get_mut(branch.0 as usize) {
+                    Some(n) => *n += 1,
+                    None => errors.push(format!("step {i} uses an undeclared branch")),
+                }
+            }
+            Op::PassingDir { branch, .. } => {
+                if self.space != Space::D2 {
+                    errors.push(format!(
+                        "step {i} turns a line onto a point in {}",
+                        self.space
+                    ));
                 }
                 match branch_uses.get_mut(branch.0 as usize) {
                     Some(n) => *n += 1,

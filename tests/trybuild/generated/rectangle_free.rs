@@ -50,21 +50,30 @@ impl Default for Params {
 
 /// Which assembly: one field per branch variable, each an index with a geometric meaning.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Branches {}
+pub struct Branches {
+    /// `coincident_right_end_top_start`:
+    /// - 0: the crossing of the line of right through right.start and the line of top through top.end
+    pub coincident_right_end_top_start: u8,
+}
 
 #[allow(dead_code)]
 impl Branches {
     /// Sets the branch variable called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, index: u8) -> bool {
-        let _ = (name, index);
-        false
+        match name {
+            "coincident_right_end_top_start" => self.coincident_right_end_top_start = index,
+            _ => return false,
+        }
+        true
     }
 }
 
 impl Default for Branches {
     /// The sketch's assembly.
     fn default() -> Self {
-        Branches {}
+        Branches {
+            coincident_right_end_top_start: 0,
+        }
     }
 }
 
@@ -73,8 +82,6 @@ impl Default for Branches {
 pub struct Defaults {
     /// `left_length`: the length of left; the sketch's value is 3.1016124838541645.
     pub left_length: f64,
-    /// `right_length`: the length of right; the sketch's value is 2.80178514522438.
-    pub right_length: f64,
 }
 
 #[allow(dead_code)]
@@ -83,7 +90,6 @@ impl Defaults {
     pub fn set(&mut self, name: &str, value: f64) -> bool {
         match name {
             "left_length" => self.left_length = value,
-            "right_length" => self.right_length = value,
             _ => return false,
         }
         true
@@ -95,7 +101,6 @@ impl Default for Defaults {
     fn default() -> Self {
         Defaults {
             left_length: 3.1016124838541645,
-            right_length: 2.80178514522438,
         }
     }
 }
@@ -112,11 +117,18 @@ pub struct Solution {
     top_length: f64,
     left: Frame2,
     left_length: f64,
+    branches: Branches,
     defaults: Defaults,
 }
 
 #[allow(dead_code)]
 impl Solution {
+    /// The branch variables this assembly is on: those given to `solve`.
+    #[inline]
+    pub fn branches(&self) -> Branches {
+        self.branches
+    }
+
     /// The defaults this assembly has: as given, or as the outer iteration converged to.
     /// Pass them to the next solve of a sweep to follow this assembly.
     #[inline]
@@ -288,27 +300,12 @@ pub fn solve(
     branches: &Branches,
     defaults: &Defaults,
 ) -> Result<Solution, SolveError> {
-    assemble(params, branches, defaults, &mut gcs_runtime::outer::Newton)
-}
-
-/// The plan's steps, each outer iteration driven by `outer`: solved to the assembly
-/// nearest its start (`solve`), or scanned for every root (`solve_all`).
-#[inline]
-fn assemble<O: gcs_runtime::outer::Outer>(
-    params: &Params,
-    branches: &Branches,
-    defaults: &Defaults,
-    outer: &mut O,
-) -> Result<Solution, SolveError> {
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[
         ("width", params.width),
         ("left_length", defaults.left_length),
-        ("right_length", defaults.right_length),
     ])?;
     // The sketch: where every geom starts.
-    let o = Frame2::at(Point2::new(0.0, 0.0));
-    let x = Frame2::at(Point2::origin());
     let y = Frame2::from_cos_sin(Point2::origin(), 0.0, 1.0);
     let mut bottom = Frame2::along(
         Point2::new(0.0, 0.0),
@@ -318,7 +315,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         Point2::new(4.2, 0.1),
         Point2::new(4.1, 2.9) - Point2::new(4.2, 0.1),
     );
-    let mut right_length = 2.80178514522438;
     let mut top = Frame2::along(
         Point2::new(4.1, 2.9),
         Point2::new(0.1, 3.1) - Point2::new(4.1, 2.9),
@@ -329,28 +325,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         Point2::new(0.0, 0.0) - Point2::new(0.1, 3.1),
     );
     let mut left_length = 3.1016124838541645;
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                o.origin.x,
-                o.origin.y,
-                x.origin.x,
-                x.origin.y,
-                y.origin.x,
-                y.origin.y,
-                bottom.origin.x,
-                bottom.origin.y,
-                (Point2::new(4.2, 0.1) - Point2::new(0.0, 0.0)).norm(),
-                right.origin.x,
-                right.origin.y,
-                right_length,
-                top.origin.x,
-                top.origin.y,
-                top_length,
-                left.origin.x,
-                left.origin.y,
-                left_length,
-            ]));
 
     // w: length(bottom) = width (rectangle_free.gcs:27)
     // w: a length is zero or more.
@@ -431,63 +405,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     top.translate(&shift_3);
 
     // coincident(right.end, top.start) (rectangle_free.gcs:20)
-
-    // No loop is rigid here: vary `right_length` until `coincident_right_end_top_start` closes (an outer iteration).
-    let mut trial = [defaults.right_length];
-    outer
-        .iterate(
-            &mut trial,
-            &[tol / gcs_runtime::tol::CHECK_REL],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
-            |trial, errors| {
-                if !gcs_runtime::num::is_finite(trial[0]) || trial[0] < 0.0 {
-                    return Err(SolveError::new(
-                        "coincident_right_end_top_start",
-                        "coincident(right.end, top.start)",
-                        ErrorKind::InvalidValue,
-                        trial[0],
-                    ));
-                }
-                let right_length = trial[0];
-                let right_end = bottom_end + right.x_axis() * right_length;
-                let top_dir_2 = top.x_axis();
-                let line_left_start_2 = Line::new(left_start_2, top_dir_2).ok_or_else(|| {
-                    SolveError::new(
-                        "coincident_right_end_top_start",
-                        "coincident(right.end, top.start)",
-                        ErrorKind::Degenerate,
-                        0.0,
-                    )
-                })?;
-                let top_start = top.origin;
-                let nearest_right_end = line_left_start_2.nearest(right_end);
-                let error = line_left_start_2.implicit(right_end);
-                errors[0] = error;
-                let _ = (&top_start, &nearest_right_end);
-                Ok(())
-            },
-        )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "coincident_right_end_top_start",
-                "coincident(right.end, top.start)",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
-    if !gcs_runtime::num::is_finite(trial[0]) || trial[0] < 0.0 {
-        return Err(SolveError::new(
-            "coincident_right_end_top_start",
-            "coincident(right.end, top.start)",
-            ErrorKind::InvalidValue,
-            trial[0],
-        ));
-    }
-    right_length = trial[0];
-    let right_end_2 = bottom_end + right.x_axis() * right_length;
-    let top_dir_3 = top.x_axis();
-    let line_left_start_2_2 = Line::new(left_start_2, top_dir_3).ok_or_else(|| {
+    let right_dir_2 = right.x_axis();
+    let line_bottom_end = Line::new(bottom_end, right_dir_2).ok_or_else(|| {
         SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -495,11 +414,36 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let top_start_2 = top.origin;
-    let nearest_right_end_2 = line_left_start_2_2.nearest(right_end_2);
-    let shift_4 = nearest_right_end_2 - top_start_2;
-    top.translate(&shift_4);
-    let length = (left_start_2 - nearest_right_end_2).dot(&top_dir_3);
+    let top_dir_2 = top.x_axis();
+    let line_left_start_2 = Line::new(left_start_2, top_dir_2).ok_or_else(|| {
+        SolveError::new(
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let top_start = top.origin;
+    let coincident_right_end_top_start_meeting =
+        intersect2d::line_line(&line_bottom_end, &line_left_start_2);
+    if let Some(e) = SolveError::from_contact(
+        "coincident_right_end_top_start",
+        "coincident(right.end, top.start)",
+        coincident_right_end_top_start_meeting.contact,
+    ) {
+        return Err(e);
+    }
+    let coincident_right_end_top_start = coincident_right_end_top_start_meeting
+        .branch(0)
+        .ok_or_else(|| {
+            SolveError::new(
+                "coincident_right_end_top_start",
+                "coincident(right.end, top.start)",
+                ErrorKind::NoSuchBranch,
+                coincident_right_end_top_start_meeting.roots.len() as f64,
+            )
+        })?;
+    let length = (coincident_right_end_top_start - bottom_end).dot(&right_dir_2);
     if !gcs_runtime::num::is_finite(length) || length < 0.0 {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
@@ -508,7 +452,19 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             length,
         ));
     }
-    top_length = length;
+    let right_length = length;
+    let shift_4 = coincident_right_end_top_start - top_start;
+    top.translate(&shift_4);
+    let length_2 = (left_start_2 - coincident_right_end_top_start).dot(&top_dir_2);
+    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
+            ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    top_length = length_2;
 
     Ok(Solution {
         bottom,
@@ -519,19 +475,19 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         top_length,
         left,
         left_length,
+        branches: *branches,
         defaults: Defaults {
             left_length: defaults.left_length,
-            right_length: trial[0],
         },
     })
 }
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
 #[allow(dead_code)]
-pub const MAX_ASSEMBLIES: usize = 64;
+pub const MAX_ASSEMBLIES: usize = 1;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found. It is complete
-/// only if the search were exhaustive: this model's starts from a grid, which is not.
+/// when every branch combination was solved in closed form and the list did not overflow.
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
@@ -556,23 +512,18 @@ fn same_assembly(a: &Solution, b: &Solution) -> bool {
     same_points && same_vectors
 }
 
-/// Every real assembly at `params`, each with its defaults (`Solution::defaults`).
+/// Every real assembly at `params`, each with its branches (`Solution::branches`) and
+/// defaults (`Solution::defaults`).
 /// Never panics, allocates nothing.
 ///
-/// Where the plan iterates, it is solved from a grid of 12 values of each default it
-/// varies (a turn for an angle, the given value give or take the model's size for a length):
-/// a search that is not known to find every assembly, as `Assemblies::is_complete` says.
+/// Each combination of the branch variables is solved.
+/// The plan has no outer iteration: each combination has at most one assembly.
 #[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
-    let mut found = Assemblies::new(false);
+    let mut found = Assemblies::new(true);
     let branches = Branches::default();
-    for cell in 0..12usize {
-        let mut start = *defaults;
-        start.right_length =
-            defaults.right_length + 5.0 * (2.0 * ((cell % 12) as f64 / 12.0) - 1.0);
-        if let Ok(s) = solve(params, &branches, &start) {
-            found.push(s, same_assembly);
-        }
+    if let Ok(s) = solve(params, &branches, defaults) {
+        found.push(s, same_assembly);
     }
     found
 }

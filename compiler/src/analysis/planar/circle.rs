@@ -319,6 +319,43 @@ impl Builder<'_, Planar> {
                 self.clusters[k].record.fd.push(fd);
                 true
             }
+            ([first, second], Pos::On { feature, locus }) if rec.fd_locus && feature == centre => {
+                // A third fixed distance: the centre is where the locus of the first two meets
+                // that of this one with one of them (Apollonius' problems: a circle through
+                // three points, tangent to three lines, through two points and tangent to a
+                // line...). Of the two, a straight locus if there is one; else not a parabola
+                // with the same directrix as the first locus (two such meet in two points, and
+                // their quartic has two more at infinity).
+                let (first, second) = (*first, *second);
+                // Both parabolas about the first locus's directrix: the record's pair is a
+                // line and a point, and so would be this one, with the same line.
+                let same_directrix =
+                    |x: Fd| x.is_line() && !fd.is_line() && first.is_line() != second.is_line();
+                let rank = |s: &Self, x: Fd| {
+                    if s.straight(x, fd) {
+                        0
+                    } else if same_directrix(x) {
+                        2
+                    } else {
+                        1
+                    }
+                };
+                let with = if rank(self, second) < rank(self, first) {
+                    second
+                } else {
+                    first
+                };
+                let other = self.centre_locus(with, fd, circle);
+                self.centre_where_loci_meet(k, circle, super::locus_reg(locus), other, fd, r);
+                true
+            }
+            // The centre already on a locus of its own (a distance to a known point, a point
+            // on a line), and two fixed distances: on their locus too.
+            ([first], Pos::On { feature, locus }) if !rec.fd_locus && feature == centre => {
+                let other = self.centre_locus(*first, fd, circle);
+                self.centre_where_loci_meet(k, circle, super::locus_reg(locus), other, fd, r);
+                true
+            }
             ([first], Pos::Free) => {
                 let locus = self.centre_locus(*first, fd, circle);
                 let rec = &mut self.clusters[k].record;
@@ -334,9 +371,120 @@ impl Builder<'_, Planar> {
         }
     }
 
+    /// Places the centre of `circle` (cluster `k`) where the locus `own` it is on meets `other`,
+    /// records `fd`, and sets the radius (which satisfies every fixed distance recorded).
+    fn centre_where_loci_meet(
+        &mut self,
+        k: usize,
+        circle: GeomId,
+        own: Reg,
+        other: Locus,
+        fd: Fd,
+        r: &Rel,
+    ) {
+        let centre = self.centre(circle);
+        let from = self.point(centre);
+        let to = self.meet(own, Target::On(other), from, r);
+        let geoms = self.clusters[k].geoms.clone();
+        let explain = format!(
+            "The centre of {} must be on {} and on {}: translate {} to where they meet ({}).",
+            self.name(circle),
+            self.word(own),
+            self.word(super::locus_reg(other)),
+            self.name(circle),
+            self.cname(r.constraint)
+        );
+        self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        let rec = &mut self.clusters[k].record;
+        rec.fd.push(fd);
+        rec.pos = Pos::Fixed;
+        self.settle(k);
+    }
+
+    /// Whether the locus of the centre under fixed distances `f1` and `f2` is straight: an
+    /// angular bisector, or the perpendicular bisector of two points at the same offset
+    /// (the same register, or equal constants: a circle through both).
+    fn straight(&self, f1: Fd, f2: Fd) -> bool {
+        match (f1, f2) {
+            (Fd::Line { .. }, Fd::Line { .. }) => true,
+            (
+                Fd::Point {
+                    b: b1, plus: p1, ..
+                },
+                Fd::Point {
+                    b: b2, plus: p2, ..
+                },
+            ) => p1 == p2 && self.same_value(b1, b2),
+            _ => false,
+        }
+    }
+
+    /// Whether registers `a` and `b` hold the same value whatever the params: the same
+    /// register, or the same constant.
+    fn same_value(&self, a: Reg, b: Reg) -> bool {
+        let constant = |r: Reg| {
+            (self.plan.steps.iter().rev())
+                .find(|s| s.out.map(|(o, _)| o) == Some(r))
+                .and_then(|s| match s.op {
+                    Op::Const(c) => Some(c),
+                    _ => None,
+                })
+        };
+        a == b || matches!((constant(a), constant(b)), (Some(x), Some(y)) if x == y)
+    }
+
+    /// The perpendicular bisector of `c1` and `c2`: the centres equally far from both.
+    fn perpendicular_bisector(&mut self, c1: Reg, c2: Reg, name: &str) -> Locus {
+        let towards = self.value(
+            Op::DirectionTo { from: c1, to: c2 },
+            Ty::Vector,
+            format!("the direction from {} to {}", self.word(c1), self.word(c2)),
+        );
+        let quarter = self.value(
+            Op::Const(std::f64::consts::FRAC_PI_2),
+            Ty::Scalar,
+            "pi/2".into(),
+        );
+        let across = self.value(
+            Op::Rotated {
+                dir: towards,
+                angle: quarter,
+            },
+            Ty::Vector,
+            format!("{} turned by pi/2", self.word(towards)),
+        );
+        let apart = self.value(
+            Op::Along {
+                from: c1,
+                dir: towards,
+                to: c2,
+            },
+            Ty::Scalar,
+            format!("the distance from {} to {}", self.word(c1), self.word(c2)),
+        );
+        // The line through c1 across the segment, moved half the distance towards c2 (to the
+        // right of its direction).
+        let back = self.sum(vec![(-0.5, apart)]);
+        let words = format!("the perpendicular bisector of centres of {name}");
+        Locus::Line(self.value(
+            Op::Line {
+                point: c1,
+                dir: across,
+                offset: Some(back),
+            },
+            Ty::Line,
+            words,
+        ))
+    }
+
     /// The locus of the centre of a circle of free radius under two fixed distances.
     fn centre_locus(&mut self, f1: Fd, f2: Fd, circle: GeomId) -> Locus {
         let name = self.name(circle);
+        if let (Fd::Point { at: c1, .. }, Fd::Point { at: c2, .. }) = (f1, f2) {
+            if self.straight(f1, f2) {
+                return self.perpendicular_bisector(c1, c2, &name);
+            }
+        }
         match (f1, f2) {
             (
                 Fd::Line {

@@ -226,7 +226,8 @@ impl Invariants for Record {
 
     fn point_known(&self, model: &Model, f: GeomId) -> bool {
         self.grounded()
-            || matches!(self.pos, Pos::Pivot { feature, .. } if feature == f)
+            || matches!(self.pos, Pos::Pivot { feature, .. }
+                if feature == f || model.constant_distance(feature, f) == Some(0.0))
             || (self.pos == Pos::Fixed && self.rot != Rot::Free && !depends_on_dim(model, f))
     }
 
@@ -892,6 +893,76 @@ impl Builder<'_, Planar> {
                 self.insert_known(f, to);
                 true
             }
+            (
+                Pos::On {
+                    feature: g,
+                    locus: lg,
+                },
+                Target::Point(x),
+            ) if g != f => {
+                // Free to turn while g slides on its locus, f to reach a point: g must be where
+                // its locus meets the circle about x of radius |f - g|. Slide g there, then
+                // turn about it (the pivot fragment) so that f lands on x.
+                let (pg, pf) = (self.point(g), self.point(f));
+                let about_g = self.circle_through(pg, pf, f, g);
+                let words = format!(
+                    "the circle about {} through where {fname} must be",
+                    self.word(x)
+                );
+                let about_x = self.value(
+                    Op::ShiftedCircle {
+                        circle: about_g,
+                        from: pg,
+                        to: x,
+                    },
+                    Ty::Circle,
+                    words,
+                );
+                self.centers.insert(about_x, self.word(x));
+                let to = self.meet(locus_reg(lg), Target::On(Locus::Circle(about_x)), pg, r);
+                let explain = format!(
+                    "{names} can slide {} along {} and turn about it; {fname} must reach {}: slide it so that {} is at {} ({c}).",
+                    self.name(g),
+                    self.word(locus_reg(lg)),
+                    self.word(x),
+                    self.name(g),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::Translate {
+                        geoms: geoms.clone(),
+                        from: pg,
+                        to,
+                    },
+                    None,
+                    Vec::new(),
+                    explain,
+                );
+                // f is now on the circle about g that reaches x: turn it there (no check that x
+                // is on that circle: it is, by construction).
+                let from = self.point(f);
+                let explain = format!(
+                    "{names} may only rotate about {}: rotate it so that {fname} reaches {} ({c}).",
+                    self.name(g),
+                    self.word(x)
+                );
+                self.emit(
+                    Op::RotatePoint {
+                        geoms,
+                        pivot: to,
+                        axis: RotationAxis::Normal,
+                        from,
+                        to: x,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                rec.pos = Pos::Fixed;
+                rec.rot = Rot::Known;
+                true
+            }
             (Pos::Pivot { at, feature: g }, target) if g != f => {
                 let from = self.point(f);
                 let own = self.circle_through(at, from, f, g);
@@ -1008,6 +1079,7 @@ impl Builder<'_, Planar> {
                     (Ty::Line, Locus::Conic(q)) => (Meet::LineConic, own, q),
                     (Ty::Conic, Locus::Circle(c)) => (Meet::CircleConic, c, own),
                     (Ty::Conic, Locus::Line(l)) => (Meet::LineConic, l, own),
+                    (Ty::Conic, Locus::Conic(q)) => (Meet::ConicConic, own, q),
                     _ => (Meet::LineLine, own, other),
                 };
                 self.intersect(meet, a, b, near, r.constraint)
@@ -1045,6 +1117,9 @@ impl Builder<'_, Planar> {
             Meet::LineLine => vec![format!("the crossing of {wa} and {wb}")],
             Meet::CircleConic => (0..4)
                 .map(|i| format!("root {i} in increasing parameter along {wb}"))
+                .collect(),
+            Meet::ConicConic => (0..4)
+                .map(|i| format!("root {i} in increasing parameter along {wa}"))
                 .collect(),
             spatial => unreachable!("the plane's fragments never meet {spatial:?}"),
         };
@@ -1125,7 +1200,13 @@ impl Builder<'_, Planar> {
     ) -> bool {
         let k = self.cluster(base);
         let rec = self.clusters[k].record.clone();
-        if rec.free_dim.is_some() {
+        if let (Pos::Pivot { at: pivot, feature }, Rot::Free) = (rec.pos, rec.rot) {
+            // Turning about a known point: the line's direction is one of the two that pass
+            // `p` at the distance (a free length, which slides an end along the line, moves
+            // neither the line nor the pivot).
+            return self.turn_line_past(pivot, feature, p, base, dir, d, r);
+        }
+        if rec.free_dim.is_some() && (rec.rot != Rot::Known || depends_on_dim(self.model, base)) {
             return false;
         }
         let at = self.point(p);
@@ -1154,6 +1235,59 @@ impl Builder<'_, Planar> {
             return self.move_feature(base, Target::Point(at), r);
         }
         false
+    }
+
+    /// Turns the cluster of line (`base`, `dir`), which may only rotate about `pivot` (at
+    /// feature `about`), until the line passes known point `p` at signed distance `d` (none:
+    /// through it): a line through a point tangent to a circle, a slotted link through a pin.
+    /// Two directions do; a branch variable says which, `p` ahead of the pivot along the line
+    /// or behind it, as in the sketch.
+    #[allow(clippy::too_many_arguments)]
+    fn turn_line_past(
+        &mut self,
+        pivot: Reg,
+        about: GeomId,
+        p: GeomId,
+        base: GeomId,
+        dir: GeomId,
+        d: Option<Reg>,
+        r: &Rel,
+    ) -> bool {
+        let point = self.point(p);
+        let bp = self.point(base);
+        let dv = self.dir(Dir::Feature(dir));
+        // The pivot as the plan knows it (a line's own point is named after the line).
+        let an = if self.model.geoms[about].kind == GeomKind::Line {
+            self.word(pivot)
+        } else {
+            self.name(about)
+        };
+        let (pn, dn) = (self.name(p), self.name(dir));
+        let branch = self.branch(
+            r.constraint,
+            vec![
+                format!("{pn} ahead of {an} along {dn}"),
+                format!("{pn} behind {an} along {dn}"),
+            ],
+        );
+        let words = match d {
+            Some(o) => format!("the direction of {dn} that passes {pn} at {}", self.word(o)),
+            None => format!("the direction of {dn} that passes through {pn}"),
+        };
+        let to = self.value(
+            Op::PassingDir {
+                pivot,
+                base: bp,
+                dir: dv,
+                point,
+                offset: d,
+                branch,
+                constraint: r.constraint,
+            },
+            Ty::Vector,
+            words,
+        );
+        self.turn(dir, to, r)
     }
 
     // ------------------------------------------------------------ locus analysis
@@ -1197,10 +1331,17 @@ impl Builder<'_, Planar> {
                     _ => false,
                 }
         };
-        if !ready(self, a) || !ready(self, b) {
+        // A segment end its free length slides along a line is on that line; the length
+        // then takes it to the meeting point.
+        let (slide_a, slide_b) = (self.sliding_end(a), self.sliding_end(b));
+        if !(ready(self, a) || slide_a.is_some()) || !(ready(self, b) || slide_b.is_some()) {
             return false;
         }
-        let (Some(la), Some(lb)) = (self.locus_of(a), self.locus_of(b)) else {
+        let locus = |s: &mut Self, f: GeomId, slide: Option<GeomId>| match slide {
+            Some(anchor) => Some(s.sliding_line(f, anchor)),
+            None => s.locus_of(f),
+        };
+        let (Some(la), Some(lb)) = (locus(self, a, slide_a), locus(self, b, slide_b)) else {
             return false;
         };
         let near = self.point(b);
@@ -1226,9 +1367,17 @@ impl Builder<'_, Planar> {
         let pseudo = self.intersect(meet, x, y, near, r.constraint);
         // The pseudo-point lies on both loci: move a's cluster there, then b's (which
         // satisfies the constraint), each with its one remaining motion.
-        self.reach(a, pseudo, &[]);
-        let sat = self.satisfies(r);
-        self.reach(b, pseudo, &sat);
+        if let Some(anchor) = slide_a {
+            self.slide_end_to(a, anchor, pseudo, r, false);
+        } else {
+            self.reach(a, pseudo, &[]);
+        }
+        if let Some(anchor) = slide_b {
+            self.slide_end_to(b, anchor, pseudo, r, true);
+        } else {
+            let sat = self.satisfies(r);
+            self.reach(b, pseudo, &sat);
+        }
         true
     }
 

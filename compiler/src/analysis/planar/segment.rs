@@ -4,7 +4,7 @@
 
 use super::{Dir, Planar, Pos, Rel, Rot, Target};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, RotationAxis, Ty};
+use crate::plan::{Op, Reg, RotationAxis, Ty};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part};
 
 impl Builder<'_, Planar> {
@@ -145,6 +145,34 @@ impl Builder<'_, Planar> {
                 self.finish_length(k, seg);
                 Some(true)
             }
+            // End pinned, direction free: turn about the end so that the line runs from the
+            // target point to it; the start then reaches the target as below.
+            (false, Rot::Free, Pos::Pivot { at, feature }, Target::Point(x))
+                if feature == end && f == start =>
+            {
+                let d = self.dir(Dir::Feature(dir));
+                let words = format!("the direction from {} to {}", self.word(x), self.name(end));
+                let to = self.value(Op::DirectionTo { from: x, to: at }, Ty::Vector, words);
+                let explain = format!(
+                    "Rotate {name} about {} so that it points from {} to it.",
+                    self.name(end),
+                    self.word(x)
+                );
+                self.emit(
+                    Op::RotateDir {
+                        geoms,
+                        pivot: at,
+                        axis: RotationAxis::Normal,
+                        from: d,
+                        to,
+                    },
+                    None,
+                    Vec::new(),
+                    explain,
+                );
+                self.clusters[k].record.rot = Rot::Known;
+                self.segment_fragment(f, target, r)
+            }
             // End pinned and direction known: the start runs along the line through the end;
             // the target fixes where, the length follows.
             (false, Rot::Known, Pos::Pivot { at, feature }, target)
@@ -211,6 +239,121 @@ impl Builder<'_, Planar> {
             }
             _ => None,
         }
+    }
+
+    /// The end of a lone segment of free length that the length slides along a known line
+    /// (its other end and its direction known), with that other end: `f` and where the line
+    /// is anchored. `None` for any other feature.
+    pub(super) fn sliding_end(&self, f: GeomId) -> Option<GeomId> {
+        let k = self.cluster(f);
+        let rec = &self.clusters[k].record;
+        let seg = rec.free_dim?;
+        if self.model.geoms[seg].kind != GeomKind::Segment
+            || self.clusters[k].geoms.len() != 1
+            || rec.rot != Rot::Known
+        {
+            return None;
+        }
+        let (start, end) = (
+            self.model.part(seg, Part::Start)?,
+            self.model.part(seg, Part::End)?,
+        );
+        if f == end && self.point_known(start) {
+            Some(start)
+        } else if f == start && matches!(rec.pos, Pos::Pivot { feature, .. } if feature == end) {
+            Some(end)
+        } else {
+            None
+        }
+    }
+
+    /// The line a [`Self::sliding_end`] runs along: through the known end along the segment.
+    pub(super) fn sliding_line(&mut self, f: GeomId, anchor: GeomId) -> Reg {
+        let seg = self.model.top_level_of(f);
+        let dir = self.model.part(seg, Part::Dir).unwrap_or(seg);
+        let at = self.point(anchor);
+        let d = self.dir(Dir::Feature(dir));
+        let words = format!(
+            "the line of {} through {}",
+            self.name(seg),
+            self.name(anchor)
+        );
+        self.value(
+            Op::Line {
+                point: at,
+                dir: d,
+                offset: None,
+            },
+            Ty::Line,
+            words,
+        )
+    }
+
+    /// Moves [`Self::sliding_end`] `f` (anchored at `anchor`) to `x`, a point of its line: the
+    /// length follows (and, for a start, the segment slides so that its end stays put).
+    pub(super) fn slide_end_to(&mut self, f: GeomId, anchor: GeomId, x: Reg, r: &Rel, last: bool) {
+        let c = self.cname(r.constraint);
+        let satisfies = if last { self.satisfies(r) } else { Vec::new() };
+        let k = self.cluster(f);
+        let seg = self.model.top_level_of(f);
+        let dir = self.model.part(seg, Part::Dir).unwrap_or(seg);
+        let name = self.name(seg);
+        let d = self.dir(Dir::Feature(dir));
+        let at = self.point(anchor);
+        let (fname, aname, to) = (self.name(f), self.name(anchor), self.word(x));
+        let len = if matches!(self.model.geoms[f].owner, Owner::Part(_, Part::End)) {
+            let words = format!("the distance from {aname} to {to}");
+            self.value(
+                Op::Along {
+                    from: at,
+                    dir: d,
+                    to: x,
+                },
+                Ty::Scalar,
+                words,
+            )
+        } else {
+            let from = self.point(f);
+            let explain = format!(
+                "{name}'s end is pinned: translate it so that {fname} reaches {to} ({c}) ..."
+            );
+            self.emit(
+                Op::Translate {
+                    geoms: vec![seg],
+                    from,
+                    to: x,
+                },
+                None,
+                Vec::new(),
+                explain,
+            );
+            let words = format!("the distance from {to} to {aname}");
+            self.value(
+                Op::Along {
+                    from: x,
+                    dir: d,
+                    to: at,
+                },
+                Ty::Scalar,
+                words,
+            )
+        };
+        let explain = if matches!(self.model.geoms[f].owner, Owner::Part(_, Part::End)) {
+            format!("Scale {name} about {aname} so that {fname} reaches {to} ({c}).")
+        } else {
+            format!("... and scale it so that its end is back on {aname} ({c}).")
+        };
+        self.emit(
+            Op::SetDim {
+                geom: seg,
+                value: len,
+            },
+            None,
+            satisfies,
+            explain,
+        );
+        self.clusters[k].record.pos = Pos::Fixed;
+        self.finish_length(k, seg);
     }
 
     fn finish_length(&mut self, k: usize, seg: GeomId) {
