@@ -341,7 +341,10 @@ pub static TABLE: &[ConstraintSpec] = &[
     ConstraintSpec {
         kind: ConstraintKind::Symmetric,
         name: "symmetric",
-        forms: &[&[A::Point, A::Point, A::Line], &[A::Point, A::Point, A::Plane]],
+        forms: &[
+            &[A::Point, A::Point, A::Line],
+            &[A::Point, A::Point, A::Plane],
+        ],
         form_spaces: &[Spaces::Only2d, Spaces::Only3d],
         symmetric: false,
         value: ValueKind::None,
@@ -624,12 +627,24 @@ mod tests {
         let ss = [K::Segment, K::Segment];
         assert_eq!(ConstraintKind::Equal.nominal_dof(Space::D2, &ss, None), 1);
         let ps = [K::Point, K::Segment];
-        assert_eq!(ConstraintKind::Midpoint.nominal_dof(Space::D2, &ps, None), 2);
-        assert_eq!(ConstraintKind::Midpoint.nominal_dof(Space::D3, &ps, None), 3);
+        assert_eq!(
+            ConstraintKind::Midpoint.nominal_dof(Space::D2, &ps, None),
+            2
+        );
+        assert_eq!(
+            ConstraintKind::Midpoint.nominal_dof(Space::D3, &ps, None),
+            3
+        );
         let ppl = [K::Point, K::Point, K::Line];
-        assert_eq!(ConstraintKind::Symmetric.nominal_dof(Space::D2, &ppl, None), 2);
+        assert_eq!(
+            ConstraintKind::Symmetric.nominal_dof(Space::D2, &ppl, None),
+            2
+        );
         let ppq = [K::Point, K::Point, K::Plane];
-        assert_eq!(ConstraintKind::Symmetric.nominal_dof(Space::D3, &ppq, None), 3);
+        assert_eq!(
+            ConstraintKind::Symmetric.nominal_dof(Space::D3, &ppq, None),
+            3
+        );
     }
 
     #[test]

@@ -1309,7 +1309,10 @@ impl<'a> Resolver<'a> {
             // The name may be declared by a statement dropped for a syntax error.
             return None;
         }
-        if p.parts.first().is_some_and(|f| self.refused.contains(&f.text)) {
+        if p.parts
+            .first()
+            .is_some_and(|f| self.refused.contains(&f.text))
+        {
             // Its declaration is reported already.
             return None;
         }
@@ -1949,11 +1952,7 @@ fn forms_in(spec: &constraints::ConstraintSpec, space: Space) -> Vec<&'static [A
 
 /// The note on a constraint's forms: `` `equal` accepts a segment and a segment; ... ``, with
 /// the space when its forms differ by space.
-fn accepts_text(
-    spec: &constraints::ConstraintSpec,
-    forms: &[&[ArgClass]],
-    space: Space,
-) -> String {
+fn accepts_text(spec: &constraints::ConstraintSpec, forms: &[&[ArgClass]], space: Space) -> String {
     let text: Vec<String> = forms.iter().map(|f| form_text(f)).collect();
     let within = if spec.form_spaces.is_empty() {
         String::new()

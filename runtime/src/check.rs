@@ -218,8 +218,14 @@ mod tests {
         assert_eq!(error::midpoint(P2::new(2.0, 6.0), a, b, 1), 3.0);
         assert_eq!(mirror(P2::new(3.0, 2.0), P2::new(3.0, -2.0), o, x), 0.0);
         assert_eq!(mirror(P2::new(3.0, 2.0), P2::new(3.0, 2.0), o, x), 4.0);
-        assert_eq!(error::mirror(P2::new(3.0, 2.0), P2::new(3.0, 2.0), o, x, 1), 4.0);
-        assert_eq!(error::mirror(P2::new(3.0, 2.0), P2::new(3.0, 2.0), o, x, 0), 0.0);
+        assert_eq!(
+            error::mirror(P2::new(3.0, 2.0), P2::new(3.0, 2.0), o, x, 1),
+            4.0
+        );
+        assert_eq!(
+            error::mirror(P2::new(3.0, 2.0), P2::new(3.0, 2.0), o, x, 0),
+            0.0
+        );
         // Across the y axis, the x coordinate changes sign.
         assert_eq!(mirror(P2::new(3.0, 2.0), P2::new(-3.0, 2.0), o, y), 0.0);
     }
