@@ -411,7 +411,8 @@ impl Builder<'_, Planar> {
 
     /// Both points known, the mirror line not: put the line on their perpendicular bisector,
     /// directed as the sketch has it. A direction or a point of the line that its record
-    /// fixed already is checked instead, right after.
+    /// fixed already is checked instead, right after (a known direction is not turned: the
+    /// line is moved through the points' midpoint along it, and the check measures the rest).
     fn bisector(&mut self, r: &Rel) -> bool {
         let Relation::Mirror {
             p,
@@ -424,63 +425,76 @@ impl Builder<'_, Planar> {
             return false;
         };
         let (pname, qname) = (self.name(p), self.name(q));
+        let lname = self.name(self.model.top_level_of(dir));
         let (pp, pq) = (self.point(p), self.point(q));
-        let mid = self.value(
-            Op::Midpoint { a: pp, b: pq },
-            Ty::Point,
-            format!("the midpoint of {pname} and {qname}"),
-        );
-        let across = self.value(
-            Op::DirectionTo { from: pp, to: pq },
-            Ty::Vector,
-            format!("the direction from {pname} to {qname}"),
-        );
-        let quarter = self.value(
-            Op::Const(sense * std::f64::consts::FRAC_PI_2),
-            Ty::Scalar,
-            if sense > 0.0 { "pi/2" } else { "-pi/2" }.into(),
-        );
-        let along = self.value(
-            Op::Rotated {
-                dir: across,
-                angle: quarter,
-            },
-            Ty::Vector,
-            format!("the direction of the perpendicular bisector of {pname} and {qname}"),
-        );
-        let bisector = self.value(
-            Op::Line {
-                point: mid,
-                dir: along,
-                offset: None,
-            },
-            Ty::Line,
-            format!("the perpendicular bisector of {pname} and {qname}"),
-        );
         // Each step satisfies the constraint only if it completes the construction: a part
         // the record fixed already is checked after.
         let partial = Rel {
             last: false,
             ..r.clone()
         };
+        // The line's direction: turned along the bisector's, directed as sketched (from p to q
+        // turned a quarter turn the sketch's way), or known already.
         let turned = self.record(dir).rot == Rot::Free;
-        if turned && !self.turn(dir, along, &partial) {
-            return false;
-        }
-        let lname = self.name(self.model.top_level_of(dir));
+        let along = if turned {
+            let across = self.value(
+                Op::DirectionTo { from: pp, to: pq },
+                Ty::Vector,
+                format!("the direction from {pname} to {qname}"),
+            );
+            let quarter = self.value(
+                Op::Const(sense * std::f64::consts::FRAC_PI_2),
+                Ty::Scalar,
+                if sense > 0.0 { "pi/2" } else { "-pi/2" }.into(),
+            );
+            let along = self.value(
+                Op::Rotated {
+                    dir: across,
+                    angle: quarter,
+                },
+                Ty::Vector,
+                format!("the direction of the perpendicular bisector of {pname} and {qname}"),
+            );
+            if !self.turn(dir, along, &partial) {
+                return false;
+            }
+            along
+        } else {
+            self.dir(Dir::Feature(dir))
+        };
+        // Its place: through the midpoint of p and q, or through a point it went through already.
         let through = self.line_point(base).is_some();
         let given = match (turned, through) {
             (true, false) => None,
             (false, _) => Some(format!(
-                "{lname}'s direction was known before it was moved onto the bisector"
+                "{lname}'s direction was known before it was moved through the midpoint of {pname} and {qname}"
             )),
             (true, true) => Some(format!(
                 "{lname} went through a known point before it was turned along the bisector"
             )),
         };
         if !through {
+            let mid = self.value(
+                Op::Midpoint { a: pp, b: pq },
+                Ty::Point,
+                format!("the midpoint of {pname} and {qname}"),
+            );
+            let words = if turned {
+                format!("the perpendicular bisector of {pname} and {qname}")
+            } else {
+                format!("the line along {lname} through the midpoint of {pname} and {qname}")
+            };
+            let line = self.value(
+                Op::Line {
+                    point: mid,
+                    dir: along,
+                    offset: None,
+                },
+                Ty::Line,
+                words,
+            );
             let step = if given.is_none() { r } else { &partial };
-            if !self.move_feature(base, Target::On(Locus::Line(bisector)), step) {
+            if !self.move_feature(base, Target::On(Locus::Line(line)), step) {
                 return false;
             }
         }
