@@ -278,7 +278,7 @@ enum Eq {
         v: usize,
     },
     /// Two frames' dimensions are equal.
-    DimEq {
+    SameDim {
         a: usize,
         b: usize,
     },
@@ -311,7 +311,7 @@ impl Eq {
             Eq::Angle { u, v, .. } | Eq::Cross { u, v } | Eq::Dot { u, v } => [u.g, v.g, NONE],
             Eq::Comp { u, .. } => [u.g, NONE, NONE],
             Eq::Dim { g, .. } => [g, NONE, NONE],
-            Eq::DimEq { a, b } => [a, b, NONE],
+            Eq::SameDim { a, b } => [a, b, NONE],
             Eq::MirrorMid { p, q, base, .. } => [p.g, q.g, base.g],
             Eq::MirrorPerp { p, q, dir } => [p.g, q.g, dir.g],
         }
@@ -775,7 +775,7 @@ impl Baseline {
                     y: false,
                 }),
                 (K::Length | K::Radius, Some(x), _) => eqs.push(Eq::Dim { g: b.top(x)?, v: d }),
-                (K::Equal, Some(x), Some(y)) => eqs.push(Eq::DimEq {
+                (K::Equal, Some(x), Some(y)) => eqs.push(Eq::SameDim {
                     a: b.top(x)?,
                     b: b.top(y)?,
                 }),
@@ -1506,7 +1506,7 @@ impl Baseline {
                 }
                 fr[g].dim - z[v]
             }
-            Eq::DimEq { a, b } => {
+            Eq::SameDim { a, b } => {
                 if grad {
                     gr[0][3] = 1.0;
                     gr[1][3] = -1.0;
@@ -1583,7 +1583,7 @@ impl Baseline {
                 Eq::PointCircle { p, c, d } => (off(&p), off(&c), z[d]),
                 Eq::LineCircle { base, c, d, .. } => (off(&base), off(&c), z[d]),
                 Eq::Dim { v, .. } => (0.0, 0.0, z[v]),
-                Eq::DimEq { .. } => (0.0, 0.0, 0.0),
+                Eq::SameDim { .. } => (0.0, 0.0, 0.0),
                 Eq::MirrorMid { p, q, base, .. } => (off(&p).max(off(&q)), off(&base), 0.0),
                 Eq::MirrorPerp { p, q, .. } => (off(&p), off(&q), 0.0),
                 Eq::Angle { .. } | Eq::Cross { .. } | Eq::Dot { .. } | Eq::Comp { .. } => {
