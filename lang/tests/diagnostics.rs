@@ -652,7 +652,7 @@ fn symmetric_across_a_circle() {
             5 │ symmetric(P, Q, C);
               │                 ^ `C` is a circle
               │
-              = `symmetric` accepts in 2d a point, a point and a line
+              = in 2d, `symmetric` accepts a point, a point and a line
 
         "#]],
     );
@@ -701,7 +701,7 @@ fn symmetric_across_a_line_in_3d() {
             5 │ symmetric(P, Q, L);
               │                 ^ `L` is a line
               │
-              = `symmetric` accepts in 3d a point, a point and a plane
+              = in 3d, `symmetric` accepts a point, a point and a plane
 
         "#]],
     );

@@ -55,7 +55,7 @@ impl Default for Params {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
     /// `c4`:
-    /// - 0: the crossing of the line through floor along floor.dir moved the radius of c4 to its left and the line through wall along wall.dir
+    /// - 0: the crossing of the line through floor along floor.dir moved the radius of k4 to its left and the line through wall along wall.dir
     pub c4: u8,
 }
 
@@ -107,9 +107,9 @@ pub struct Solution {
     s2_length: f64,
     s3: Frame2,
     s3_length: f64,
-    c4: Frame2,
-    c4_radius: f64,
-    m_2: Frame2,
+    k4: Frame2,
+    k4_radius: f64,
+    ml: Frame2,
     branches: Branches,
 }
 
@@ -287,29 +287,29 @@ impl Solution {
         self.s3.x_axis()
     }
 
-    /// The radius of `c4`.
+    /// The radius of `k4`.
     #[inline]
-    pub fn c4_radius(&self) -> f64 {
-        self.c4_radius
+    pub fn k4_radius(&self) -> f64 {
+        self.k4_radius
     }
 
-    /// Point `c4.center`.
+    /// Point `k4.center`.
     #[inline]
-    pub fn c4_center(&self) -> Point2<f64> {
-        self.c4.origin
+    pub fn k4_center(&self) -> Point2<f64> {
+        self.k4.origin
     }
 
-    /// Direction `m.dir`.
+    /// Direction `ml.dir`.
     #[inline]
-    pub fn m_dir(&self) -> Vector2<f64> {
-        self.m_2.x_axis()
+    pub fn ml_dir(&self) -> Vector2<f64> {
+        self.ml.x_axis()
     }
 
-    /// Point `m.point`: the foot of the perpendicular from the line's first sketch point.
+    /// Point `ml.point`: the foot of the perpendicular from the line's first sketch point.
     #[inline]
-    pub fn m_point(&self) -> Point2<f64> {
-        self.m_2.origin
-            + self.m_2.x_axis() * (Point2::new(8.3, -1.0) - self.m_2.origin).dot(&self.m_2.x_axis())
+    pub fn ml_point(&self) -> Point2<f64> {
+        self.ml.origin
+            + self.ml.x_axis() * (Point2::new(8.3, -1.0) - self.ml.origin).dot(&self.ml.x_axis())
     }
 
     /// Every point of the solution, by its dotted name in the model.
@@ -332,8 +332,8 @@ impl Solution {
             ("s2.end", self.s2_end()),
             ("s3.start", self.s3_start()),
             ("s3.end", self.s3_end()),
-            ("c4.center", self.c4_center()),
-            ("m.point", self.m_point()),
+            ("k4.center", self.k4_center()),
+            ("ml.point", self.ml_point()),
         ]
     }
 
@@ -346,7 +346,7 @@ impl Solution {
             ("s1.dir", self.s1_dir()),
             ("s2.dir", self.s2_dir()),
             ("s3.dir", self.s3_dir()),
-            ("m.dir", self.m_dir()),
+            ("ml.dir", self.ml_dir()),
         ]
     }
 
@@ -357,7 +357,7 @@ impl Solution {
             ("s1.length", self.s1_length()),
             ("s2.length", self.s2_length()),
             ("s3.length", self.s3_length()),
-            ("c4.radius", self.c4_radius()),
+            ("k4.radius", self.k4_radius()),
         ]
     }
 }
@@ -411,8 +411,8 @@ pub fn solve(
         Point2::new(5.2, -2.9) - Point2::new(3.1, -5.2),
     );
     let mut s3_length = 3.1144823004794877;
-    let mut c4 = Frame2::at(Point2::new(2.5, -2.2));
-    let mut m_2 = Frame2::along(
+    let mut k4 = Frame2::at(Point2::new(2.5, -2.2));
+    let mut ml = Frame2::along(
         Point2::new(8.3, -1.0),
         Point2::new(8.1, 3.0) - Point2::new(8.3, -1.0),
     );
@@ -453,11 +453,11 @@ pub fn solve(
                 s3.origin.x,
                 s3.origin.y,
                 s3_length,
-                c4.origin.x,
-                c4.origin.y,
+                k4.origin.x,
+                k4.origin.y,
                 1.2,
-                m_2.origin.x,
-                m_2.origin.y,
+                ml.origin.x,
+                ml.origin.y,
             ]));
 
     // a1: coincident(s1.end, O) (sketcher_fragments.gcs:34)
@@ -476,16 +476,16 @@ pub fn solve(
     let shift_3 = Point2::new(5.0, -3.0) - s3_end;
     s3.translate(&shift_3);
 
-    // a5: on(H, m) (sketcher_fragments.gcs:44)
+    // a5: on(H, ml) (sketcher_fragments.gcs:44)
     let floor_dir = floor.x_axis();
     let line_floor = Line::new(Point2::new(-10.0, -4.0), floor_dir)
-        .ok_or_else(|| SolveError::new("a5", "on(H, m)", ErrorKind::Degenerate, 0.0))?;
+        .ok_or_else(|| SolveError::new("a5", "on(H, ml)", ErrorKind::Degenerate, 0.0))?;
     let h_2 = Point2::new(params.hx, 0.0);
-    m_2.place_origin(&h_2);
+    ml.place_origin(&h_2);
 
     // b1: midpoint(M, s1) (sketcher_fragments.gcs:35)
-    let m_3 = Point2::new(params.mx, 1.0);
-    let reflected_o = locus2d::reflect_through(Point2::new(0.0, 0.0), m_3);
+    let m_2 = Point2::new(params.mx, 1.0);
+    let reflected_o = locus2d::reflect_through(Point2::new(0.0, 0.0), m_2);
     let s1_dir = s1.x_axis();
     let s1_start = s1.origin;
     let direction = (Point2::new(0.0, 0.0) - reflected_o)
@@ -544,36 +544,36 @@ pub fn solve(
     let shift_6 = Point2::new(5.0, -3.0) - s3_end_2;
     s3.translate(&shift_6);
 
-    // b4: equal(c4, K) (sketcher_fragments.gcs:42)
+    // b4: equal(k4, K) (sketcher_fragments.gcs:42)
     if !gcs_runtime::num::is_finite(k_radius) || k_radius < 0.0 {
         return Err(SolveError::new(
             "b4",
-            "equal(c4, K)",
+            "equal(k4, K)",
             ErrorKind::InvalidValue,
             k_radius,
         ));
     }
-    let c4_radius = k_radius;
+    let k4_radius = k_radius;
 
-    // a4: tangent(floor, c4) (sketcher_fragments.gcs:41)
-    let line_floor_offset = line_floor.offset(c4_radius);
-    let nearest_c4_center = line_floor_offset.nearest(Point2::new(2.5, -2.2));
-    c4.place_origin(&nearest_c4_center);
+    // a4: tangent(floor, k4) (sketcher_fragments.gcs:41)
+    let line_floor_offset = line_floor.offset(k4_radius);
+    let nearest_k4_center = line_floor_offset.nearest(Point2::new(2.5, -2.2));
+    k4.place_origin(&nearest_k4_center);
 
-    // b5: symmetric(P, Q, m) (sketcher_fragments.gcs:45)
+    // b5: symmetric(P, Q, ml) (sketcher_fragments.gcs:45)
     let direction_3 = (Point2::new(10.0, 4.0) - Point2::new(6.0, 4.0))
         .try_normalize(0.0)
-        .ok_or_else(|| SolveError::new("b5", "symmetric(P, Q, m)", ErrorKind::Degenerate, 0.0))?;
+        .ok_or_else(|| SolveError::new("b5", "symmetric(P, Q, ml)", ErrorKind::Degenerate, 0.0))?;
     let direction_3_turned = UnitComplex::new(std::f64::consts::FRAC_PI_2) * direction_3;
-    let m_dir = m_2.x_axis();
-    let turn_3 = rotation_between_units(&m_dir, &direction_3_turned);
-    m_2.turn_by(&turn_3);
-    let m_dir_2 = m_2.x_axis();
-    let residual = check::mirror(Point2::new(6.0, 4.0), Point2::new(10.0, 4.0), h_2, m_dir_2);
+    let ml_dir = ml.x_axis();
+    let turn_3 = rotation_between_units(&ml_dir, &direction_3_turned);
+    ml.turn_by(&turn_3);
+    let ml_dir_2 = ml.x_axis();
+    let residual = check::mirror(Point2::new(6.0, 4.0), Point2::new(10.0, 4.0), h_2, ml_dir_2);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "b5",
-            "symmetric(P, Q, m)",
+            "symmetric(P, Q, ml)",
             ErrorKind::Inconsistent,
             residual,
         ));
@@ -585,23 +585,23 @@ pub fn solve(
     let turn_4 = rotation_between_units(&s3_dir, &x_dir_turned);
     s3.rotate_about_by(&Point2::new(5.0, -3.0), &turn_4);
 
-    // c4: on(c4.center, wall) (sketcher_fragments.gcs:43)
+    // c4: on(k4.center, wall) (sketcher_fragments.gcs:43)
     let wall_dir = wall.x_axis();
     let line_wall = Line::new(Point2::new(3.0, -10.0), wall_dir)
-        .ok_or_else(|| SolveError::new("c4", "on(c4.center, wall)", ErrorKind::Degenerate, 0.0))?;
+        .ok_or_else(|| SolveError::new("c4", "on(k4.center, wall)", ErrorKind::Degenerate, 0.0))?;
     let c4_meeting = intersect2d::line_line(&line_floor_offset, &line_wall);
-    if let Some(e) = SolveError::from_contact("c4", "on(c4.center, wall)", c4_meeting.contact) {
+    if let Some(e) = SolveError::from_contact("c4", "on(k4.center, wall)", c4_meeting.contact) {
         return Err(e);
     }
-    let c4_2 = c4_meeting.branch(0).ok_or_else(|| {
+    let c4 = c4_meeting.branch(0).ok_or_else(|| {
         SolveError::new(
             "c4",
-            "on(c4.center, wall)",
+            "on(k4.center, wall)",
             ErrorKind::NoSuchBranch,
             c4_meeting.roots.len() as f64,
         )
     })?;
-    c4.place_origin(&c4_2);
+    k4.place_origin(&c4);
 
     Ok(Solution {
         m,
@@ -616,9 +616,9 @@ pub fn solve(
         s2_length,
         s3,
         s3_length,
-        c4,
-        c4_radius,
-        m_2,
+        k4,
+        k4_radius,
+        ml,
         branches: *branches,
     })
 }
