@@ -700,6 +700,11 @@ impl<'a, 'r> Machine<'a, 'r> {
                 Val::S(d.y.atan2(d.x))
             }
             Op::PointXY { x, y } => Val::P(P2::new(self.s(*x), self.s(*y))),
+            Op::Midpoint { a, b } => Val::P(locus2d::midpoint(self.p(*a), self.p(*b))),
+            Op::Reflect { point, through } => {
+                Val::P(locus2d::reflect_through(self.p(*point), self.p(*through)))
+            }
+            Op::Mirror { point, line } => Val::P(self.line(*line).mirror(self.p(*point))),
             Op::LocusPoint { locus, at } => {
                 let t = self.s(*at);
                 Val::P(match self.get(*locus) {
@@ -1055,14 +1060,25 @@ impl<'a, 'r> Machine<'a, 'r> {
                 nesting,
             ),
             Residual::Dim { value, target } => e::dimension(self.s(value), self.s(target)),
+            Residual::Midpoint { p, a, b } => {
+                e::midpoint(self.p(p), self.p(a), self.p(b), component)
+            }
+            Residual::Mirror { p, q, base, dir } => {
+                e::mirror(self.p(p), self.p(q), self.p(base), self.v(dir), component)
+            }
         }
     }
 
-    /// The residual of a check: the magnitude of its relation's error (a coincidence's is
-    /// the distance, of which its two errors are the components).
+    /// The residual of a check: the magnitude of its relation's error (a coincidence's, a
+    /// midpoint's or a mirror image's is the distance, of which its two errors are the
+    /// components).
     fn residual(&self, residual: &Residual) -> f64 {
         match *residual {
             Residual::PointPoint { a, b, d: None } => check::point_point(self.p(a), self.p(b), 0.0),
+            Residual::Midpoint { p, a, b } => check::midpoint(self.p(p), self.p(a), self.p(b)),
+            Residual::Mirror { p, q, base, dir } => {
+                check::mirror(self.p(p), self.p(q), self.p(base), self.v(dir))
+            }
             _ => self.error_of(residual, 0).abs(),
         }
     }

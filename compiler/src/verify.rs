@@ -97,6 +97,18 @@ impl Look<'_> {
             _ => self.v(n),
         }
     }
+    /// A dimension: a segment's length (from its ends), a circle's radius.
+    fn dim(&self, g: gcs_lang::model::GeomId) -> f64 {
+        let n = &self.model.geoms[g].name;
+        match self.model.geoms[g].kind {
+            GeomKind::Segment => norm(sub(
+                self.p(&format!("{n}.end")),
+                self.p(&format!("{n}.start")),
+            )),
+            GeomKind::Circle => self.x(&format!("{n}.radius")),
+            _ => f64::NAN,
+        }
+    }
     fn circle_arg(&self, g: gcs_lang::model::GeomId) -> (V, f64) {
         let n = &self.model.geoms[g].name;
         (
@@ -193,6 +205,26 @@ pub fn residuals(model: &Model, solution: &Solution, params: &[f64]) -> Vec<Resi
                     (len - value).abs()
                 }
                 (K::Radius, Some(a), _) => (look.circle_arg(a).1 - value).abs(),
+                (K::Equal, Some(a), Some(b)) => (look.dim(a) - look.dim(b)).abs(),
+                (K::Midpoint, Some(p), Some(s)) => {
+                    let n = &model.geoms[s].name;
+                    let (a, b) = (look.p(&format!("{n}.start")), look.p(&format!("{n}.end")));
+                    let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+                    norm(sub(look.point_arg(p), m))
+                }
+                // Mirror images: the midpoint of the two on the line, and the segment between
+                // them perpendicular to it.
+                (K::Symmetric, Some(p), Some(q)) => {
+                    let (base, dir) = c
+                        .args
+                        .get(2)
+                        .map_or(([f64::NAN; 2], [f64::NAN; 2]), |&l| look.line_arg(l));
+                    let (x, y) = (look.point_arg(p), look.point_arg(q));
+                    let m = [(x[0] + y[0]) / 2.0, (x[1] + y[1]) / 2.0];
+                    let off = cross(dir, sub(m, base)).abs();
+                    let slant = dot(dir, sub(y, x)).abs();
+                    off.max(slant)
+                }
                 (K::InLine, Some(a), Some(b)) => {
                     let (base, dir) = look.line_arg(b);
                     cross(dir, sub(look.point_arg(a), base)).abs()

@@ -1,5 +1,5 @@
-//! Canonicity: shuffling the statements of every example the analysis covers gives the same
-//! solution and the same plan, up to the numbering of registers.
+//! Canonicity: shuffling the statements of every example and test model the analysis covers
+//! gives the same solution and the same plan, up to the numbering of registers.
 //!
 //! Statements are split at `;` at brace depth 0 and at the `}` closing a body (comments
 //! stripped first), the `space` header stays first, and the rest is permuted by a small
@@ -264,10 +264,9 @@ fn splitter_and_normaliser_work() {
 fn shuffled_examples_solve_and_plan_the_same() {
     let mut failures = Vec::new();
     let mut checked = 0;
-    let examples = discover::analysed(
-        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(".."),
-        discover::Folder::Examples,
-    );
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut examples = discover::analysed(&root, discover::Folder::Examples);
+    examples.extend(discover::analysed(&root, discover::Folder::TestModels));
     for example in &examples {
         let name = &example.stem;
         let text = example.text.clone();

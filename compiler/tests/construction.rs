@@ -9,12 +9,15 @@
 //! constraints between `P` and fixed geoms that brings `P` into a given invariants record:
 //! free; a point or an end pinned; a rotation known; a point on a line or on a circle; a free
 //! length or radius; fixed-distance lines and points of a circle and the centre loci they make
-//! (bisector, parabola, conics); a dimension fixed; combinations of those; fully fixed. Then,
+//! (bisector, parabola, conics); a dimension fixed, or equal to a fixed one; a segment pinned
+//! at its midpoint; combinations of those; fully fixed. Then,
 //! for every constraint form of the language in 2d that applies to the kind (coincident,
 //! distance point-point / point-line / point-circle / line-circle / circle-circle, on, tangent,
-//! angle, parallel, perpendicular, horizontal, vertical, length, radius, in_line, offset_x,
-//! revolute, prismatic, spherical), one last constraint `z` is added between a feature of `P`
-//! and a new fixed geom. Constraints are labelled `p0`, `p1`, ... and `z`, so that the
+//! angle, parallel, perpendicular, horizontal, vertical, length, radius, equal, midpoint (a
+//! feature of `P` at a fixed segment's midpoint, or a fixed point at `P`'s), symmetric (a
+//! feature of `P` the mirror image of a fixed point, or `P` the mirror line of two), in_line,
+//! offset_x, revolute, prismatic, spherical), one last constraint `z` is added between a
+//! feature of `P` and new fixed geoms. Constraints are labelled `p0`, `p1`, ... and `z`, so that the
 //! analysis, which takes constraints in name order, meets the prefix first. Dimensions
 //! (`length`, `radius`) are solved before everything else, so they are probed as the last
 //! constraint only in states made of dimensions.
@@ -44,10 +47,9 @@
 //! 1e-3 and 1e3. Each instance is solved on the default branches and on every other branch
 //! combination. A run that returns a solution must satisfy every constraint its plan claims
 //! (every step's `satisfies`: the new constraint and every earlier invariant), measured by
-//! `verify`, to 1e-12 relative to the model's size (the instance's scale, or the solved
-//! configuration's largest coordinate or dimension where a root lies farther out; 1e-12 rad for
-//! angles); anything else is
-//! a *wrong fragment* and fails the test. A `SolveError` is never wrong, but an instance that no
+//! `verify`, to 1e-12 relative to the instance's scale, or to the answer's own magnitude when
+//! it lies farther out (a root far along a parabola's arm), and 1e-12 rad for angles; anything
+//! else is a *wrong fragment* and fails the test. A `SolveError` is never wrong, but an instance that no
 //! branch solves is reported as *not solved*.
 //!
 //! Every plan comes from the pipeline's `analyse`, which validates it (`Plan::validate`, and
@@ -311,6 +313,18 @@ enum Form {
     CircleDistCircle,
     Length,
     Radius,
+    /// `midpoint(P.x, segment)`: a feature of `P` at the midpoint of a fixed segment.
+    Midpoint(Pt),
+    /// `symmetric(P.x, point, line)`: a feature of `P` the mirror image of a fixed point.
+    Mirror(Pt),
+    /// `midpoint(point, P)`: a fixed point at the midpoint of `P`.
+    SegMidpoint,
+    /// `equal(P, segment)`: `P`'s length that of a fixed segment.
+    EqualSegment,
+    /// `equal(P, circle)`: `P`'s radius that of a fixed circle.
+    EqualCircle,
+    /// `symmetric(point, point, P)`: `P` the mirror line of two fixed points.
+    MirrorLine,
 }
 
 impl Form {
@@ -346,6 +360,12 @@ impl Form {
             Form::CircleDistCircle => "distance(circle, P) = d".into(),
             Form::Length => "length(P) = l".into(),
             Form::Radius => "radius(P) = r".into(),
+            Form::Midpoint(p) => format!("midpoint({}, segment)", p.text()),
+            Form::Mirror(p) => format!("symmetric({}, point, line)", p.text()),
+            Form::SegMidpoint => "midpoint(point, P)".into(),
+            Form::EqualSegment => "equal(P, segment)".into(),
+            Form::EqualCircle => "equal(P, circle)".into(),
+            Form::MirrorLine => "symmetric(point, point, P)".into(),
         }
     }
 
@@ -359,7 +379,9 @@ impl Form {
             | Form::OnPC(p)
             | Form::DistPC(p)
             | Form::Spherical(p)
-            | Form::InLine(p) => Some(p),
+            | Form::InLine(p)
+            | Form::Midpoint(p)
+            | Form::Mirror(p) => Some(p),
             Form::Revolute | Form::Prismatic => Some(Pt::K),
             _ => None,
         }
@@ -425,6 +447,8 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
             OnPL(p),
             OnPC(p),
             DistPC(p),
+            Midpoint(p),
+            Mirror(p),
         ]
     };
     let dir_forms = |d: Di| {
@@ -436,7 +460,7 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
             Vertical(d),
         ]
     };
-    let line_forms = vec![LineOn, LineDist, LineTangent, LineCircleDist];
+    let line_forms = vec![LineOn, LineDist, LineTangent, LineCircleDist, MirrorLine];
     match kind {
         Kind::Point => {
             let mut forms = point_forms(Pt::Own);
@@ -476,7 +500,7 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
             forms.extend(point_forms(Pt::End));
             forms.extend(dir_forms(Di::Own));
             forms.extend(line_forms);
-            forms.push(Length);
+            forms.extend([Length, SegMidpoint, EqualSegment]);
             (
                 vec![
                     st("free", vec![], Free),
@@ -525,6 +549,18 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
                         vec![Length, Angle(Di::Own), DistPP(Pt::Start)],
                         Slide(2, Pt::Start),
                     ),
+                    st("midpoint pinned", vec![SegMidpoint], Free),
+                    st(
+                        "direction known, midpoint pinned",
+                        vec![Angle(Di::Own), SegMidpoint],
+                        Free,
+                    ),
+                    st(
+                        "length fixed, midpoint pinned",
+                        vec![Length, SegMidpoint],
+                        Rotate(1),
+                    ),
+                    st("length equal to a fixed one", vec![EqualSegment], Free),
                     st(
                         "fixed",
                         vec![Length, Coincident(Pt::Start), Angle(Di::Own)],
@@ -544,6 +580,7 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
                 CircleTangentCircle,
                 CircleDistCircle,
                 Radius,
+                EqualCircle,
             ]);
             (
                 vec![
@@ -603,6 +640,7 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
                         vec![Radius, Coincident(Pt::Center)],
                         Free,
                     ),
+                    st("radius equal to a fixed one", vec![EqualCircle], Free),
                 ],
                 forms,
             )
@@ -1043,6 +1081,72 @@ fn derive(
         }
         Form::Length => (format!("length(P) = {}", o.l(t.dim)), Loc::None),
         Form::Radius => (format!("radius(P) = {}", o.l(t.dim)), Loc::None),
+        Form::Midpoint(p) => {
+            let x = pt(t, m, p);
+            let e = rng.unit();
+            let h = s * rng.range(0.3, 1.5);
+            decls.push(format!(
+                "fixed segment S{i} = {} -> {};",
+                o.p(sub(x, mul(e, h))),
+                o.p(add(x, mul(e, h)))
+            ));
+            (format!("midpoint({}, S{i})", p.text()), Loc::Point(x))
+        }
+        Form::Mirror(p) => {
+            let x = pt(t, m, p);
+            let e = rng.unit();
+            let h = rng.sign() * s * rng.range(0.2, 1.5);
+            let base = add(add(x, mul(perp(e), h)), mul(e, s * rng.range(-1.0, 1.0)));
+            decls.push(line_decl(
+                o,
+                format!("L{i}"),
+                base,
+                e,
+                s * rng.range(0.5, 2.0),
+            ));
+            // `x` is `h` to the right of the line: its image is `h` to the left.
+            decls.push(format!(
+                "fixed point A{i} = {};",
+                o.p(add(x, mul(perp(e), 2.0 * h)))
+            ));
+            (
+                format!("symmetric({}, A{i}, L{i})", p.text()),
+                Loc::Point(x),
+            )
+        }
+        Form::SegMidpoint => {
+            let x = add(t.pos, mul(dir(t.ang), 0.5 * t.dim));
+            decls.push(format!("fixed point A{i} = {};", o.p(x)));
+            (format!("midpoint(A{i}, P)"), Loc::Point(x))
+        }
+        Form::EqualSegment => {
+            let a = add(t.pos, rng.point(s));
+            let e = rng.unit();
+            decls.push(format!(
+                "fixed segment T{i} = {} -> {};",
+                o.p(a),
+                o.p(add(a, mul(e, t.dim)))
+            ));
+            (format!("equal(P, T{i})"), Loc::None)
+        }
+        Form::EqualCircle => {
+            decls.push(format!(
+                "fixed circle K{i} = center {} radius {};",
+                o.p(add(t.pos, rng.point(3.0 * s))),
+                o.l(t.dim)
+            ));
+            (format!("equal(P, K{i})"), Loc::None)
+        }
+        Form::MirrorLine => {
+            let e = dir(t.ang);
+            let along = mul(e, s * rng.range(-1.0, 2.0));
+            let h = rng.sign() * s * rng.range(0.2, 1.5);
+            let a = add(add(t.pos, along), mul(perp(e), h));
+            let b = sub(add(t.pos, along), mul(perp(e), h));
+            decls.push(format!("fixed point A{i} = {};", o.p(a)));
+            decls.push(format!("fixed point B{i} = {};", o.p(b)));
+            (format!("symmetric(A{i}, B{i}, P)"), Loc::None)
+        }
     };
     (decls, text, loc)
 }
@@ -1247,6 +1351,9 @@ fn op_name(op: &Op) -> Option<String> {
         Op::LocusPoint { .. } => "point on locus".into(),
         Op::PointXY { .. } => "point".into(),
         Op::Close { .. } => "close by iteration".into(),
+        Op::Midpoint { .. } => "midpoint".into(),
+        Op::Reflect { .. } => "reflect through a point".into(),
+        Op::Mirror { .. } => "mirror across a line".into(),
         _ => return None,
     })
 }
@@ -1482,6 +1589,13 @@ fn combos(counts: &[usize], defaults: &[usize]) -> Vec<Vec<usize>> {
     out
 }
 
+/// The largest coordinate or dimension of a solution.
+fn magnitude_of(s: &gcs_compiler::solution::Solution) -> f64 {
+    (s.points.iter().flat_map(|(_, x)| x.iter()))
+        .chain(s.scalars.iter().map(|(_, x)| x))
+        .fold(0.0, |m: f64, x| m.max(x.abs()))
+}
+
 fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &mut Stats) {
     stats.instances += 1;
     let model = load(&inst.text);
@@ -1498,6 +1612,7 @@ fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &
         let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
         let params = model.default_params();
         let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+        let tol_len = REL * inst.scale.max(f64::MIN_POSITIVE);
         let mut results = Vec::new();
         for combo in combos(&counts, &defaults) {
             // The plan as it is, even when it leaves geoms free (`solve` refuses those): the
@@ -1505,12 +1620,10 @@ fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &
             let r = gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo);
             let verdict = match r {
                 Ok(sol) => {
-                    // Relative to the model's size: the instance's, or the solved
-                    // configuration's where a root lies far out (a nearly parallel crossing).
-                    let size = (sol.points.iter().flat_map(|(_, p)| p.iter()))
-                        .chain(sol.scalars.iter().map(|(_, v)| v))
-                        .fold(inst.scale, |m, v| m.max(v.abs()));
-                    let tol_len = REL * size.max(f64::MIN_POSITIVE);
+                    // Relative to the inputs' scale, or to the answer's own magnitude when it
+                    // lies farther out (a root far along a parabola's arm, met by a line
+                    // nearly tangent to it): its coordinates carry rounding relative to that.
+                    let tol_len = tol_len.max(REL * magnitude_of(&sol));
                     let res = gcs_compiler::verify::residuals(&model, &sol, &params);
                     let mut worst: f64 = 0.0;
                     let bad: Vec<String> = res
@@ -1528,13 +1641,13 @@ fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &
                             r.value.is_nan() || r.value > tol
                         })
                         .map(|r| {
-                            worst = worst.max(r.value / size.max(1.0));
+                            worst = worst.max(r.value / inst.scale.max(1.0));
                             format!(
                                 "{} residual {:.3e} (scale {:.3e}, relative {:.3e})",
                                 model.constraints[r.constraint].text,
                                 r.value,
-                                size,
-                                r.value / size
+                                inst.scale,
+                                r.value / inst.scale
                             )
                         })
                         .collect();

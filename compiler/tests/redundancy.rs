@@ -543,3 +543,40 @@ fn explain_names_what_implies_each_check() {
     }
     assert!(!words.contains("the steps before"), "{words}");
 }
+
+#[test]
+fn redundant_sketcher_constraints_name_their_support() {
+    let path = format!(
+        "{}/../tests/models/redundant_sketcher.gcs",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let c = compiled(&std::fs::read_to_string(&path).expect("the model"));
+    assert!(errors(&c).is_empty(), "{:#?}", c.diagnostics);
+    let mut redundant: Vec<String> = (c.analysis.redundant.iter())
+        .map(|&k| c.model.constraints[k].name.clone())
+        .collect();
+    redundant.sort();
+    assert_eq!(redundant, names(&["c_mid", "d_mirror", "e_equal"]));
+    let ends = names(&["a_start", "b_end"]);
+    assert_eq!(
+        support(&c, "c_mid"),
+        (ends.clone(), names(&["A", "B", "M"]))
+    );
+    assert_eq!(
+        support(&c, "d_mirror"),
+        (ends.clone(), names(&["A", "B", "axis"]))
+    );
+    assert_eq!(support(&c, "e_equal"), (ends, names(&["A", "B", "T"])));
+    // Moved off, each is a conflict of its own size.
+    for (param, value, name, size) in [("gap", 0.25, "c_mid", 0.25), ("other", 4.5, "e_equal", 0.5)]
+    {
+        let text = std::fs::read_to_string(&path).expect("the model").replace(
+            &format!("param {param} = "),
+            &format!("param {param} = {value} + 0 * "),
+        );
+        let failed = audit_failed(&compiled(&text));
+        assert_eq!(failed.len(), 1, "{failed:?}");
+        assert_eq!(failed[0].0, name);
+        assert!((failed[0].1 - size).abs() < 1e-12, "{failed:?}");
+    }
+}

@@ -30,6 +30,12 @@ pub enum ConstraintKind {
     Length,
     /// `radius(c) = r`
     Radius,
+    /// `equal(a, b)`
+    Equal,
+    /// `midpoint(p, s)`
+    Midpoint,
+    /// `symmetric(p, q, l)`
+    Symmetric,
     /// `in_line(m1, m2)`
     InLine,
     /// `in_plane(m1, m2)`
@@ -162,6 +168,9 @@ pub struct ConstraintSpec {
     pub name: &'static str,
     /// The argument forms it accepts, in canonical order.
     pub forms: &'static [&'static [ArgClass]],
+    /// Where each form is valid, when forms differ (`symmetric` mirrors across a line in 2d
+    /// and across a plane in 3d); empty when every form is valid wherever the constraint is.
+    pub form_spaces: &'static [Spaces],
     /// Whether a two-argument form may also be written the other way round (the arguments are
     /// then normalised to the canonical order).
     pub symmetric: bool,
@@ -171,6 +180,13 @@ pub struct ConstraintSpec {
     pub spaces: Spaces,
     /// One line for `gcs check` and the docs.
     pub meaning: &'static str,
+}
+
+impl ConstraintSpec {
+    /// Whether form `i` (an index into `forms`) is valid in `space`.
+    pub fn form_allows(&self, i: usize, space: Space) -> bool {
+        self.spaces.allows(space) && self.form_spaces.get(i).is_none_or(|s| s.allows(space))
+    }
 }
 
 use ArgClass as A;
@@ -185,6 +201,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Coincident,
         name: "coincident",
         forms: &[&[A::Point, A::Point]],
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -201,6 +218,7 @@ pub static TABLE: &[ConstraintSpec] = &[
             &[A::Line, A::Circle],
             &[A::Circle, A::Circle],
         ],
+        form_spaces: &[],
         symmetric: true,
         value: ValueKind::Length,
         spaces: Spaces::Both,
@@ -214,6 +232,7 @@ pub static TABLE: &[ConstraintSpec] = &[
             &[A::Point, A::Plane],
             &[A::Point, A::Circle],
         ],
+        form_spaces: &[],
         symmetric: true,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -223,6 +242,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Tangent,
         name: "tangent",
         forms: &[&[A::Line, A::Circle], &[A::Circle, A::Circle]],
+        form_spaces: &[],
         symmetric: true,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -232,6 +252,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Angle,
         name: "angle",
         forms: DIRECTIONS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::Angle,
         spaces: Spaces::Both,
@@ -241,6 +262,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Parallel,
         name: "parallel",
         forms: DIRECTIONS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -250,6 +272,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Perpendicular,
         name: "perpendicular",
         forms: DIRECTIONS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -259,6 +282,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Horizontal,
         name: "horizontal",
         forms: &[&[A::Heading]],
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Only2d,
@@ -268,6 +292,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Vertical,
         name: "vertical",
         forms: &[&[A::Heading]],
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Only2d,
@@ -277,6 +302,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Length,
         name: "length",
         forms: &[&[A::Segment]],
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::Length,
         spaces: Spaces::Both,
@@ -286,15 +312,50 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Radius,
         name: "radius",
         forms: &[&[A::Circle]],
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::Length,
         spaces: Spaces::Both,
         meaning: "a circle's radius",
     },
     ConstraintSpec {
+        kind: ConstraintKind::Equal,
+        name: "equal",
+        forms: &[&[A::Segment, A::Segment], &[A::Circle, A::Circle]],
+        form_spaces: &[],
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "equal lengths or equal radii, whatever they are",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Midpoint,
+        name: "midpoint",
+        forms: &[&[A::Point, A::Segment]],
+        form_spaces: &[],
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "p is the midpoint of s",
+    },
+    ConstraintSpec {
+        kind: ConstraintKind::Symmetric,
+        name: "symmetric",
+        forms: &[
+            &[A::Point, A::Point, A::Line],
+            &[A::Point, A::Point, A::Plane],
+        ],
+        form_spaces: &[Spaces::Only2d, Spaces::Only3d],
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "p and q mirror images across a line (2d) or a plane (3d)",
+    },
+    ConstraintSpec {
         kind: ConstraintKind::InLine,
         name: "in_line",
         forms: POINT_MARKER,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -304,6 +365,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::InPlane,
         name: "in_plane",
         forms: POINT_MARKER,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Only3d,
@@ -313,6 +375,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::ParallelZ,
         name: "parallel_z",
         forms: MARKERS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Only3d,
@@ -322,6 +385,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::OffsetZ,
         name: "offset_z",
         forms: MARKERS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::Angle,
         spaces: Spaces::Only3d,
@@ -331,6 +395,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::OffsetX,
         name: "offset_x",
         forms: MARKERS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::Angle,
         spaces: Spaces::Both,
@@ -340,6 +405,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Helical,
         name: "helical",
         forms: MARKERS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::Pitch,
         spaces: Spaces::Only3d,
@@ -349,6 +415,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Revolute,
         name: "revolute",
         forms: MARKERS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -358,6 +425,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Prismatic,
         name: "prismatic",
         forms: MARKERS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -367,6 +435,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Cylindrical,
         name: "cylindrical",
         forms: MARKERS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Only3d,
@@ -376,6 +445,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Spherical,
         name: "spherical",
         forms: &[&[A::Point, A::Point]],
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Both,
@@ -385,6 +455,7 @@ pub static TABLE: &[ConstraintSpec] = &[
         kind: ConstraintKind::Planar,
         name: "planar",
         forms: MARKERS,
+        form_spaces: &[],
         symmetric: false,
         value: ValueKind::None,
         spaces: Spaces::Only3d,
@@ -450,6 +521,10 @@ impl ConstraintKind {
                 }
             }
             C::Perpendicular | C::Horizontal | C::Vertical | C::Length | C::Radius => 1,
+            // One dimension follows the other.
+            C::Equal => 1,
+            // A point's position either way: p from s, or one end of s from p and the other.
+            C::Midpoint | C::Symmetric => n,
             C::InLine => {
                 if d3 {
                     2
@@ -506,6 +581,9 @@ mod tests {
             C::Vertical,
             C::Length,
             C::Radius,
+            C::Equal,
+            C::Midpoint,
+            C::Symmetric,
             C::InLine,
             C::InPlane,
             C::ParallelZ,
@@ -546,5 +624,44 @@ mod tests {
             ConstraintKind::Revolute.nominal_dof(Space::D2, &[K::Marker, K::Marker], None),
             2
         );
+        let ss = [K::Segment, K::Segment];
+        assert_eq!(ConstraintKind::Equal.nominal_dof(Space::D2, &ss, None), 1);
+        let ps = [K::Point, K::Segment];
+        assert_eq!(
+            ConstraintKind::Midpoint.nominal_dof(Space::D2, &ps, None),
+            2
+        );
+        assert_eq!(
+            ConstraintKind::Midpoint.nominal_dof(Space::D3, &ps, None),
+            3
+        );
+        let ppl = [K::Point, K::Point, K::Line];
+        assert_eq!(
+            ConstraintKind::Symmetric.nominal_dof(Space::D2, &ppl, None),
+            2
+        );
+        let ppq = [K::Point, K::Point, K::Plane];
+        assert_eq!(
+            ConstraintKind::Symmetric.nominal_dof(Space::D3, &ppq, None),
+            3
+        );
+    }
+
+    #[test]
+    fn symmetric_mirrors_across_a_line_in_2d_and_a_plane_in_3d() {
+        let s = ConstraintKind::Symmetric.spec();
+        assert_eq!(s.form_spaces.len(), s.forms.len());
+        assert!(s.form_allows(0, Space::D2) && !s.form_allows(0, Space::D3));
+        assert!(s.form_allows(1, Space::D3) && !s.form_allows(1, Space::D2));
+        // A table without per-form spaces allows each form wherever the constraint is.
+        let h = ConstraintKind::Horizontal.spec();
+        assert!(h.form_allows(0, Space::D2) && !h.form_allows(0, Space::D3));
+        for spec in TABLE {
+            assert!(
+                spec.form_spaces.is_empty() || spec.form_spaces.len() == spec.forms.len(),
+                "{}: one space per form, or none",
+                spec.name
+            );
+        }
     }
 }

@@ -48,6 +48,7 @@ pub fn resolve(
         param_syntax: Vec::new(),
         vector_checks: Vec::new(),
         poisoned: HashSet::new(),
+        refused: HashSet::new(),
     };
     r.header(file);
     r.declare(file);
@@ -138,6 +139,9 @@ struct Resolver<'a> {
     /// Params whose default is already reported as wrong: expressions that read them are
     /// not reported again.
     poisoned: HashSet<ParamId>,
+    /// Names of top-level declarations refused for their kind (a plane in 2d, a marker
+    /// outside a body): uses of them are not reported again.
+    refused: HashSet<String>,
 }
 
 impl<'a> Resolver<'a> {
@@ -256,6 +260,8 @@ impl<'a> Resolver<'a> {
                         continue;
                     }
                     let Some(kind) = self.geom_kind(decl, false) else {
+                        // Reported: its uses are not reported again.
+                        self.refused.insert(decl.name.text.clone());
                         continue;
                     };
                     let fixed = decl.fixed.is_some();
@@ -1099,21 +1105,20 @@ impl<'a> Resolver<'a> {
         let fits = |form: &[ArgClass], kinds: &[GeomKind]| {
             form.iter().zip(kinds).all(|(c, k)| c.accepts(*k))
         };
+        // Only the forms valid in this space (`symmetric` mirrors across a line in 2d, a
+        // plane in 3d).
+        let forms = forms_in(spec, self.space);
         let mut order: Option<Vec<usize>> = None;
-        for form in spec.forms {
-            if fits(form, &kinds) {
-                order = Some((0..kinds.len()).collect());
-                break;
-            }
-        }
-        if order.is_none() && spec.symmetric && kinds.len() == 2 {
+        if forms.iter().any(|f| fits(f, &kinds)) {
+            order = Some((0..kinds.len()).collect());
+        } else if spec.symmetric && kinds.len() == 2 {
             let swapped = [kinds[1], kinds[0]];
-            if spec.forms.iter().any(|f| fits(f, &swapped)) {
+            if forms.iter().any(|f| fits(f, &swapped)) {
                 order = Some(vec![1, 0]);
             }
         }
         let Some(order) = order else {
-            self.kind_error(spec, &resolved, &kinds);
+            self.kind_error(spec, &forms, &resolved, &kinds);
             return;
         };
         let args: Vec<GeomId> = order.iter().map(|&i| resolved[i].0).collect();
@@ -1133,6 +1138,35 @@ impl<'a> Resolver<'a> {
             .with_note(format!(
                 "to put a point on the line, write `on(P, {line});`"
             ));
+            self.push(d);
+            return;
+        }
+        if spec.kind == ConstraintKind::Symmetric && args[0] == args[1] {
+            let (p, l) = (&self.geoms[args[0]].name, &self.geoms[args[2]].name);
+            let d = Diagnostic::error(
+                args_span,
+                format!("`symmetric` mirrors `{p}` onto itself"),
+            )
+            .with_label("the two points are the same geom")
+            .with_note(format!(
+                "a point is its own mirror image only on the mirror: to put it there, write `on({p}, {l});`"
+            ));
+            self.push(d);
+            return;
+        }
+        if spec.kind == ConstraintKind::Midpoint
+            && matches!(
+                self.geoms[args[0]].owner,
+                Owner::Part(s, Part::Start | Part::End) if s == args[1]
+            )
+        {
+            let (p, s) = (&self.geoms[args[0]].name, &self.geoms[args[1]].name);
+            let d = Diagnostic::error(
+                resolved[order[0]].1,
+                format!("`{p}` is an end of `{s}`, not its midpoint"),
+            )
+            .with_label(format!("an end of `{s}`"))
+            .with_note("a segment's end is its midpoint only when its length is zero");
             self.push(d);
             return;
         }
@@ -1172,14 +1206,14 @@ impl<'a> Resolver<'a> {
     fn kind_error(
         &mut self,
         spec: &constraints::ConstraintSpec,
+        valid: &[&'static [ArgClass]],
         args: &[(GeomId, Span)],
         kinds: &[GeomKind],
     ) {
-        // Narrow the forms position by position; report at the first position that empties them.
-        let mut forms: Vec<&[ArgClass]> = spec.forms.to_vec();
-        if spec.symmetric {
-            // Position 0 may hold either class of a symmetric pair.
-        }
+        let accepts = accepts_text(spec, valid, self.space);
+        // Narrow the forms position by position; report at the first position that empties
+        // them (position 0 of a symmetric pair may hold either class).
+        let mut forms: Vec<&[ArgClass]> = valid.to_vec();
         for (i, (&kind, (g, span))) in kinds.iter().zip(args).enumerate() {
             let candidates: Vec<&[ArgClass]> = forms
                 .iter()
@@ -1212,7 +1246,7 @@ impl<'a> Resolver<'a> {
                     format!("expected {wanted}, found {}", geom.kind.noun()),
                 )
                 .with_label(format!("`{}` is {}", geom.name, geom.kind.noun()))
-                .with_note(format!("`{}` accepts {}", spec.name, forms_text(spec)));
+                .with_note(accepts.clone());
                 if geom.kind == GeomKind::Body {
                     d = d.with_note(format!("a body is not itself a point or a line: name one of its members, such as `{}.…`", geom.name));
                 }
@@ -1235,7 +1269,7 @@ impl<'a> Resolver<'a> {
             span,
             format!("`{}` does not relate {}", spec.name, names.join(" and ")),
         )
-        .with_note(format!("`{}` accepts {}", spec.name, forms_text(spec)));
+        .with_note(accepts);
         self.push(d);
     }
 
@@ -1273,6 +1307,13 @@ impl<'a> Resolver<'a> {
             .is_some_and(|f| self.top.contains_key(&f.text));
         if !self.complete && !first_known {
             // The name may be declared by a statement dropped for a syntax error.
+            return None;
+        }
+        if p.parts
+            .first()
+            .is_some_and(|f| self.refused.contains(&f.text))
+        {
+            // Its declaration is reported already.
             return None;
         }
         // Where did the path stop resolving? Suggest among the names in that scope.
@@ -1901,13 +1942,33 @@ fn join_or(items: &[&str]) -> String {
     }
 }
 
-fn forms_text(spec: &constraints::ConstraintSpec) -> String {
-    let forms: Vec<String> = spec
-        .forms
-        .iter()
-        .map(|f| f.iter().map(|c| c.noun()).collect::<Vec<_>>().join(" and "))
-        .collect();
-    forms.join("; ")
+/// The forms of a constraint valid in `space`.
+fn forms_in(spec: &constraints::ConstraintSpec, space: Space) -> Vec<&'static [ArgClass]> {
+    (spec.forms.iter().enumerate())
+        .filter(|&(i, _)| spec.form_allows(i, space))
+        .map(|(_, f)| *f)
+        .collect()
+}
+
+/// The note on a constraint's forms: `` `equal` accepts a segment and a segment; ... ``, with
+/// the space when its forms differ by space.
+fn accepts_text(spec: &constraints::ConstraintSpec, forms: &[&[ArgClass]], space: Space) -> String {
+    let text: Vec<String> = forms.iter().map(|f| form_text(f)).collect();
+    let within = if spec.form_spaces.is_empty() {
+        String::new()
+    } else {
+        format!("in {space}, ")
+    };
+    format!("{within}`{}` accepts {}", spec.name, text.join("; "))
+}
+
+/// One form in words: `a point and a segment`, `a point, a point and a line`.
+fn form_text(form: &[ArgClass]) -> String {
+    match form.iter().map(|c| c.noun()).collect::<Vec<_>>().as_slice() {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
 }
 
 /// The constraint's text as written (from its name to before `;`), whitespace collapsed.

@@ -497,6 +497,234 @@ fn constrained_to_itself() {
 }
 
 #[test]
+fn equal_segment_and_circle() {
+    check(
+        "space 2d;\nsegment S = (0, 0) -> (1, 0);\ncircle C = center (3, 0) radius 1;\nequal(S, C);\n",
+        expect![[r#"
+            error: expected a segment, found a circle
+              ┌─ model.gcs:4:10
+              │
+            4 │ equal(S, C);
+              │          ^ `C` is a circle
+              │
+              = `equal` accepts a segment and a segment; a circle and a circle
+
+        "#]],
+    );
+}
+
+#[test]
+fn equal_of_points() {
+    check(
+        "space 2d;\npoint P = (0, 0);\npoint Q = (1, 0);\nequal(P, Q);\n",
+        expect![[r#"
+            error: expected a segment or a circle, found a point
+              ┌─ model.gcs:4:7
+              │
+            4 │ equal(P, Q);
+              │       ^ `P` is a point
+              │
+              = `equal` accepts a segment and a segment; a circle and a circle
+
+        "#]],
+    );
+}
+
+#[test]
+fn equal_with_a_value() {
+    check(
+        "space 2d;\nsegment S = (0, 0) -> (1, 0);\nsegment T = (0, 1) -> (1, 1);\nequal(S, T) = 2;\n",
+        expect![[r#"
+            error: `equal` takes no value
+              ┌─ model.gcs:4:15
+              │
+            4 │ equal(S, T) = 2;
+              │               ^ remove `= ...`
+
+        "#]],
+    );
+}
+
+#[test]
+fn equal_to_itself() {
+    check(
+        "space 2d;\ncircle C = center (0, 0) radius 1;\nequal(C, C);\n",
+        expect![[r#"
+            error: `C` is constrained to itself
+              ┌─ model.gcs:3:6
+              │
+            3 │ equal(C, C);
+              │      ^^^^^^ both arguments name the same geom
+
+        "#]],
+    );
+}
+
+#[test]
+fn midpoint_of_a_line() {
+    check(
+        "space 2d;\npoint M = (0, 0);\nline L = (0, 0) -> (1, 0);\nmidpoint(M, L);\n",
+        expect![[r#"
+            error: expected a segment, found a line
+              ┌─ model.gcs:4:13
+              │
+            4 │ midpoint(M, L);
+              │             ^ `L` is a line
+              │
+              = `midpoint` accepts a point and a segment
+
+        "#]],
+    );
+}
+
+#[test]
+fn midpoint_arguments_swapped() {
+    check(
+        "space 2d;\npoint M = (0, 0);\nsegment S = (-1, 0) -> (1, 0);\nmidpoint(S, M);\n",
+        expect![[r#"
+            error: expected a point, found a segment
+              ┌─ model.gcs:4:10
+              │
+            4 │ midpoint(S, M);
+              │          ^ `S` is a segment
+              │
+              = `midpoint` accepts a point and a segment
+
+        "#]],
+    );
+}
+
+#[test]
+fn midpoint_arity() {
+    check(
+        "space 2d;\npoint M = (0, 0);\nmidpoint(M);\n",
+        expect![[r#"
+            error: `midpoint` takes 2 arguments, found 1
+              ┌─ model.gcs:3:9
+              │
+            3 │ midpoint(M);
+              │         ^^^ wrong number of arguments
+
+        "#]],
+    );
+}
+
+#[test]
+fn midpoint_at_an_end() {
+    check(
+        "space 2d;\nsegment S = (-1, 0) -> (1, 0);\nmidpoint(S.end, S);\n",
+        expect![[r#"
+            error: `S.end` is an end of `S`, not its midpoint
+              ┌─ model.gcs:3:10
+              │
+            3 │ midpoint(S.end, S);
+              │          ^^^^^ an end of `S`
+              │
+              = a segment's end is its midpoint only when its length is zero
+
+        "#]],
+    );
+}
+
+#[test]
+fn symmetric_arity() {
+    check(
+        "space 2d;\npoint P = (0, 1);\npoint Q = (0, -1);\nsymmetric(P, Q);\n",
+        expect![[r#"
+            error: `symmetric` takes 3 arguments, found 2
+              ┌─ model.gcs:4:10
+              │
+            4 │ symmetric(P, Q);
+              │          ^^^^^^ wrong number of arguments
+
+        "#]],
+    );
+}
+
+#[test]
+fn symmetric_across_a_circle() {
+    check(
+        "space 2d;\npoint P = (0, 1);\npoint Q = (0, -1);\ncircle C = center (0, 0) radius 1;\nsymmetric(P, Q, C);\n",
+        expect![[r#"
+            error: expected a line, found a circle
+              ┌─ model.gcs:5:17
+              │
+            5 │ symmetric(P, Q, C);
+              │                 ^ `C` is a circle
+              │
+              = in 2d, `symmetric` accepts a point, a point and a line
+
+        "#]],
+    );
+}
+
+#[test]
+fn symmetric_with_a_value() {
+    check(
+        "space 2d;\npoint P = (0, 1);\npoint Q = (0, -1);\nline L = (-1, 0) -> (1, 0);\nsymmetric(P, Q, L) = 0;\n",
+        expect![[r#"
+            error: `symmetric` takes no value
+              ┌─ model.gcs:5:22
+              │
+            5 │ symmetric(P, Q, L) = 0;
+              │                      ^ remove `= ...`
+
+        "#]],
+    );
+}
+
+#[test]
+fn symmetric_onto_itself() {
+    check(
+        "space 2d;\npoint P = (0, 1);\nline L = (-1, 0) -> (1, 0);\nsymmetric(P, P, L);\n",
+        expect![[r#"
+            error: `symmetric` mirrors `P` onto itself
+              ┌─ model.gcs:4:10
+              │
+            4 │ symmetric(P, P, L);
+              │          ^^^^^^^^^ the two points are the same geom
+              │
+              = a point is its own mirror image only on the mirror: to put it there, write `on(P, L);`
+
+        "#]],
+    );
+}
+
+#[test]
+fn symmetric_across_a_line_in_3d() {
+    check(
+        "space 3d;\npoint P = (0, 1, 0);\npoint Q = (0, -1, 0);\nline L = (-1, 0, 0) -> (1, 0, 0);\nsymmetric(P, Q, L);\n",
+        expect![[r#"
+            error: expected a plane, found a line
+              ┌─ model.gcs:5:17
+              │
+            5 │ symmetric(P, Q, L);
+              │                 ^ `L` is a line
+              │
+              = in 3d, `symmetric` accepts a point, a point and a plane
+
+        "#]],
+    );
+}
+
+#[test]
+fn symmetric_across_a_plane_in_2d() {
+    check(
+        "space 2d;\npoint P = (0, 1);\npoint Q = (0, -1);\nplane M = normal (0, 1, 0) offset 0;\nsymmetric(P, Q, M);\n",
+        expect![[r#"
+            error: a plane is not valid in 2d
+              ┌─ model.gcs:4:1
+              │
+            4 │ plane M = normal (0, 1, 0) offset 0;
+              │ ^^^^^ planes exist only in 3d
+              │
+              = in 2d every geom lies in the XY plane; use a line
+
+        "#]],
+    );
+}
+
+#[test]
 fn horizontal_in_3d() {
     check(
         "space 3d;\nline L = (0, 0, 0) -> (1, 0, 0);\nhorizontal(L);\n",

@@ -80,6 +80,19 @@ pub fn dimension(value: f64, target: f64) -> f64 {
     error::dimension(value, target).abs()
 }
 
+/// `p` is the midpoint of `a` and `b`: how far it is from it.
+#[inline]
+pub fn midpoint(p: P2, a: P2, b: P2) -> f64 {
+    (crate::locus2d::midpoint(a, b) - p).norm()
+}
+
+/// `q` is the mirror image of `p` across the line through `base` along unit `dir`: how far it
+/// is from that image.
+#[inline]
+pub fn mirror(p: P2, q: P2, base: P2, dir: V2) -> f64 {
+    (q - crate::locus2d::mirror(base, dir, p)).norm()
+}
+
 /// The signed errors of the residuals above, zero when the relation holds: the error
 /// functions an outer iteration drives to zero (its sign tells a root finder which side it
 /// is on). Each residual above is the magnitude of its error, computed by it.
@@ -146,6 +159,20 @@ pub mod error {
     pub fn dimension(value: f64, target: f64) -> f64 {
         value - target
     }
+
+    /// One coordinate (`axis` 0 for x, 1 for y) of `p` less the midpoint of `a` and `b`: a
+    /// midpoint closes two errors, as a coincidence does.
+    #[inline]
+    pub fn midpoint(p: P2, a: P2, b: P2, axis: u8) -> f64 {
+        coincidence(crate::locus2d::midpoint(a, b), p, axis)
+    }
+
+    /// One coordinate (`axis` 0 for x, 1 for y) of `q` less the mirror image of `p` across the
+    /// line through `base` along unit `dir`.
+    #[inline]
+    pub fn mirror(p: P2, q: P2, base: P2, dir: V2, axis: u8) -> f64 {
+        coincidence(crate::locus2d::mirror(base, dir, p), q, axis)
+    }
 }
 
 #[cfg(test)]
@@ -185,6 +212,22 @@ mod tests {
         );
         assert_eq!(circle_circle(o, 5.0, c, 1.0, 1.0, Nesting::Apart), 4.0);
         assert_eq!(dimension(2.5, 2.0), 0.5);
+        let (a, b) = (P2::new(1.0, 1.0), P2::new(3.0, 5.0));
+        assert_eq!(midpoint(P2::new(2.0, 3.0), a, b), 0.0);
+        assert_eq!(midpoint(P2::new(2.0, 6.0), a, b), 3.0);
+        assert_eq!(error::midpoint(P2::new(2.0, 6.0), a, b, 1), 3.0);
+        assert_eq!(mirror(P2::new(3.0, 2.0), P2::new(3.0, -2.0), o, x), 0.0);
+        assert_eq!(mirror(P2::new(3.0, 2.0), P2::new(3.0, 2.0), o, x), 4.0);
+        assert_eq!(
+            error::mirror(P2::new(3.0, 2.0), P2::new(3.0, 2.0), o, x, 1),
+            4.0
+        );
+        assert_eq!(
+            error::mirror(P2::new(3.0, 2.0), P2::new(3.0, 2.0), o, x, 0),
+            0.0
+        );
+        // Across the y axis, the x coordinate changes sign.
+        assert_eq!(mirror(P2::new(3.0, 2.0), P2::new(-3.0, 2.0), o, y), 0.0);
     }
 
     #[test]

@@ -48,6 +48,34 @@ pub fn cross(a: V2, b: V2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// The midpoint of `a` and `b`: `(a + b) / 2`, the same bits whichever comes first. Exact
+/// when `a` and `b` coincide; finite for every pair of points up to `f64::MAX / 2` in
+/// magnitude (the solve paths keep coordinates far below: [`crate::num::MAX_MAGNITUDE`]).
+#[inline]
+pub fn midpoint(a: P2, b: P2) -> P2 {
+    P2::from((a.coords + b.coords) * 0.5)
+}
+
+/// The point reflection of `p` through `centre`: `2 centre - p`, the point whose midpoint
+/// with `p` is `centre` (a segment's other end, from one end and its midpoint). Exact when
+/// `p` is `centre`.
+#[inline]
+pub fn reflect_through(p: P2, centre: P2) -> P2 {
+    centre + (centre - p)
+}
+
+/// The mirror image of `p` across the line through `base` along unit `dir`: `p` moved twice
+/// its signed distance from the line against the line's left normal. A point on the line is
+/// its own image (to rounding: its signed distance is then a few ulps of the scale); the
+/// image is as far from the line and from `base` as `p` is, and the segment from `p` to it is
+/// perpendicular to the line with its midpoint on the line. `dir` must be a unit vector (a
+/// [`Line`]'s is): no degenerate case remains.
+#[inline]
+pub fn mirror(base: P2, dir: V2, p: P2) -> P2 {
+    let sd = cross(dir, p - base);
+    p - perp(dir) * (2.0 * sd)
+}
+
 #[inline]
 pub(crate) fn finite_p(p: P2) -> bool {
     is_finite(p.x) && is_finite(p.y)
@@ -154,6 +182,12 @@ impl Line {
             point: self.point + self.normal() * d,
             dir: self.dir,
         }
+    }
+
+    /// The mirror image of `p` across the line ([`mirror`]).
+    #[inline]
+    pub fn mirror(&self, p: P2) -> P2 {
+        mirror(self.point, self.dir, p)
     }
 
     /// The same line with the opposite direction (left and right swap).

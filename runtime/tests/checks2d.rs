@@ -129,3 +129,40 @@ proptest! {
         prop_assert!(close(m, e.abs() * s, s));
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn midpoint_measures_the_offset(
+        s in scale(), (ax, ay) in (u(), u()), (bx, by) in (u(), u()), t in heading(), e in off()
+    ) {
+        let (a, b) = (P2::new(ax * s, ay * s), P2::new(bx * s, by * s));
+        let p = gcs_runtime::locus2d::midpoint(a, b) + dir(t) * (e * s);
+        prop_assert!(close(check::midpoint(p, a, b), e.abs() * s, s));
+        // The signed errors are the offset's coordinates.
+        let v = dir(t) * (e * s);
+        prop_assert!(close(check::error::midpoint(p, a, b, 0), v.x, s));
+        prop_assert!(close(check::error::midpoint(p, a, b, 1), v.y, s));
+    }
+
+    #[test]
+    fn mirror_measures_the_offset(
+        s in scale(), (x, y) in (u(), u()), t in heading(), along in u(), d in u(),
+        w in heading(), e in off()
+    ) {
+        let base = P2::new(x * s, y * s);
+        let l = dir(t);
+        let p = base + l * (along * s) + left(l) * (d * s);
+        // The image is as far along and as far on the other side.
+        let image = base + l * (along * s) - left(l) * (d * s);
+        let q = image + dir(w) * (e * s);
+        prop_assert!(close(check::mirror(p, q, base, l), e.abs() * s, s));
+        let v = dir(w) * (e * s);
+        prop_assert!(close(check::error::mirror(p, q, base, l, 0), v.x, s));
+        prop_assert!(close(check::error::mirror(p, q, base, l, 1), v.y, s));
+        // p on the mirror is its own image.
+        let on = base + l * (along * s);
+        prop_assert!(close(check::mirror(on, on, base, l), 0.0, s));
+    }
+}

@@ -542,3 +542,62 @@ proptest! {
         prop_assert_eq!(rotation_from_x(&d) * V2::x(), d);
     }
 }
+
+/// A point's distance from the origin, at least the scale: what its coordinates round
+/// relative to.
+fn magnitude(s: f64, points: &[P2]) -> f64 {
+    points.iter().fold(s, |m, x| m.max(x.coords.norm()))
+}
+
+proptest! {
+    #![proptest_config(config(512))]
+
+    /// The mirror image across a line: an involution that keeps the distance from the line
+    /// (on the other side) and from any point of it, whose segment with the point is
+    /// perpendicular to the line and bisected by it, for points anywhere, near the line, on
+    /// it, and far out along it.
+    #[test]
+    fn mirror_across_a_line(s in scale(), bx in u(), by in u(), angle in -3.2f64..3.2,
+                            along in prop_oneof![u(), -1e6f64..1e6],
+                            off in prop_oneof![Just(0.0), tiny(), u()]) {
+        let line = Line::new(p(bx * s, by * s), V2::new(angle.cos(), angle.sin())).unwrap();
+        let x = line.at(along * s) + line.normal() * (off * s);
+        let q = line.mirror(x);
+        let m = magnitude(s, &[x, q]);
+        let eps = 1e-13 * m;
+        prop_assert!((line.signed_distance(q) + line.signed_distance(x)).abs() <= eps,
+            "{:e} {:e}", line.signed_distance(q), line.signed_distance(x));
+        prop_assert!((line.mirror(q) - x).norm() <= eps);
+        prop_assert!(line.signed_distance(midpoint(x, q)).abs() <= eps);
+        prop_assert!((q - x).dot(&line.dir()).abs() <= eps);
+        let base = line.point();
+        prop_assert!(((q - base).norm() - (x - base).norm()).abs() <= eps);
+        // Twice the offset apart, across the line.
+        prop_assert!(((q - x).norm() - 2.0 * (off * s).abs()).abs() <= eps);
+        // The base point is its own image, exactly; the free function is the method.
+        prop_assert_eq!(line.mirror(base), base);
+        prop_assert_eq!(mirror(base, line.dir(), x), q);
+    }
+
+    /// The midpoint and the reflection through a point: the midpoint is the same whichever
+    /// point comes first, as far from each, and a point reflected through the midpoint is the
+    /// other one; a point reflected through a centre has that centre as its midpoint with it.
+    #[test]
+    fn midpoint_and_reflection_through_a_point(s in scale(), ax in u(), ay in u(),
+                                               bx in u(), by in u(),
+                                               near in prop_oneof![Just(0.0), tiny(), u()]) {
+        let a = p(ax * s, ay * s);
+        // `b` anywhere, close to `a`, or at `a`.
+        let b = a + (p(bx * s, by * s) - a) * near;
+        let mid = midpoint(a, b);
+        let m = magnitude(s, &[a, b]);
+        let eps = 4.0 * f64::EPSILON * m;
+        prop_assert_eq!(mid, midpoint(b, a));
+        prop_assert!(((mid - a).norm() - (mid - b).norm()).abs() <= eps);
+        prop_assert!((reflect_through(a, mid) - b).norm() <= eps);
+        prop_assert!((midpoint(a, reflect_through(a, b)) - b).norm() <= eps);
+        prop_assert!((reflect_through(reflect_through(a, b), b) - a).norm() <= eps);
+        prop_assert_eq!(midpoint(a, a), a);
+        prop_assert_eq!(reflect_through(a, a), a);
+    }
+}

@@ -224,31 +224,96 @@ struct Dir {
 
 #[derive(Clone, Copy, Debug)]
 enum Eq {
-    Diff { a: Pt, b: Pt, y: bool },
-    Dist { a: Pt, b: Pt, d: usize },
-    PointLine { p: Pt, base: Pt, dir: Dir, d: usize },
-    PointCircle { p: Pt, c: Pt, d: usize },
-    LineCircle { base: Pt, dir: Dir, c: Pt, d: usize },
-    CircleCircle { a: Pt, b: Pt, d: usize },
-    Angle { u: Dir, v: Dir, a: usize },
-    Cross { u: Dir, v: Dir },
-    Dot { u: Dir, v: Dir },
-    Comp { u: Dir, y: bool },
-    Dim { g: usize, v: usize },
+    Diff {
+        a: Pt,
+        b: Pt,
+        y: bool,
+    },
+    Dist {
+        a: Pt,
+        b: Pt,
+        d: usize,
+    },
+    PointLine {
+        p: Pt,
+        base: Pt,
+        dir: Dir,
+        d: usize,
+    },
+    PointCircle {
+        p: Pt,
+        c: Pt,
+        d: usize,
+    },
+    LineCircle {
+        base: Pt,
+        dir: Dir,
+        c: Pt,
+        d: usize,
+    },
+    CircleCircle {
+        a: Pt,
+        b: Pt,
+        d: usize,
+    },
+    Angle {
+        u: Dir,
+        v: Dir,
+        a: usize,
+    },
+    Cross {
+        u: Dir,
+        v: Dir,
+    },
+    Dot {
+        u: Dir,
+        v: Dir,
+    },
+    Comp {
+        u: Dir,
+        y: bool,
+    },
+    Dim {
+        g: usize,
+        v: usize,
+    },
+    /// Two frames' dimensions are equal.
+    SameDim {
+        a: usize,
+        b: usize,
+    },
+    /// The midpoint of `p` and `q` on the line through `base` along `dir` (signed distance).
+    MirrorMid {
+        p: Pt,
+        q: Pt,
+        base: Pt,
+        dir: Dir,
+    },
+    /// `q - p` perpendicular to `dir` (its component along it).
+    MirrorPerp {
+        p: Pt,
+        q: Pt,
+        dir: Dir,
+    },
 }
 
 impl Eq {
-    fn geoms(&self) -> [usize; 2] {
+    /// The frames it reads, by side (`usize::MAX`: none); most read two, a mirror three.
+    fn geoms(&self) -> [usize; 3] {
+        const NONE: usize = usize::MAX;
         match *self {
             Eq::Diff { a, b, .. } | Eq::Dist { a, b, .. } | Eq::CircleCircle { a, b, .. } => {
-                [a.g, b.g]
+                [a.g, b.g, NONE]
             }
-            Eq::PointLine { p, base, .. } => [p.g, base.g],
-            Eq::PointCircle { p, c, .. } => [p.g, c.g],
-            Eq::LineCircle { base, c, .. } => [base.g, c.g],
-            Eq::Angle { u, v, .. } | Eq::Cross { u, v } | Eq::Dot { u, v } => [u.g, v.g],
-            Eq::Comp { u, .. } => [u.g, usize::MAX],
-            Eq::Dim { g, .. } => [g, usize::MAX],
+            Eq::PointLine { p, base, .. } => [p.g, base.g, NONE],
+            Eq::PointCircle { p, c, .. } => [p.g, c.g, NONE],
+            Eq::LineCircle { base, c, .. } => [base.g, c.g, NONE],
+            Eq::Angle { u, v, .. } | Eq::Cross { u, v } | Eq::Dot { u, v } => [u.g, v.g, NONE],
+            Eq::Comp { u, .. } => [u.g, NONE, NONE],
+            Eq::Dim { g, .. } => [g, NONE, NONE],
+            Eq::SameDim { a, b } => [a, b, NONE],
+            Eq::MirrorMid { p, q, base, .. } => [p.g, q.g, base.g],
+            Eq::MirrorPerp { p, q, dir } => [p.g, q.g, dir.g],
         }
     }
 }
@@ -710,6 +775,37 @@ impl Baseline {
                     y: false,
                 }),
                 (K::Length | K::Radius, Some(x), _) => eqs.push(Eq::Dim { g: b.top(x)?, v: d }),
+                (K::Equal, Some(x), Some(y)) => eqs.push(Eq::SameDim {
+                    a: b.top(x)?,
+                    b: b.top(y)?,
+                }),
+                // The point and the segment's own point at half its length.
+                (K::Midpoint, Some(x), Some(y)) => {
+                    let (p, zero) = (b.pt(x)?, b.zero());
+                    let m = Pt {
+                        g: b.top(y)?,
+                        lx: zero,
+                        ly: zero,
+                        m: 0.5,
+                    };
+                    eqs.push(Eq::Diff {
+                        a: p,
+                        b: m,
+                        y: false,
+                    });
+                    eqs.push(Eq::Diff {
+                        a: p,
+                        b: m,
+                        y: true,
+                    });
+                }
+                (K::Symmetric, Some(x), Some(y)) => {
+                    let l = c.args.get(2).copied().ok_or_else(bad)?;
+                    let (p, q) = (b.pt(x)?, b.pt(y)?);
+                    let (base, dir) = b.line(l)?;
+                    eqs.push(Eq::MirrorMid { p, q, base, dir });
+                    eqs.push(Eq::MirrorPerp { p, q, dir });
+                }
                 (K::InLine, Some(x), Some(y)) => {
                     let p = b.pt(x)?;
                     let (base, dir) = b.line(y)?;
@@ -1260,13 +1356,13 @@ impl Baseline {
         }
     }
 
-    /// One equation's value and its gradient with respect to its two frames' (ox, oy, th,
-    /// dim).
+    /// One equation's value and its gradient with respect to its frames' (ox, oy, th, dim),
+    /// by side ([`Eq::geoms`]).
     #[inline]
-    fn eval(&self, e: usize, grad: bool) -> (f64, [G4; 2]) {
+    fn eval(&self, e: usize, grad: bool) -> (f64, [G4; 3]) {
         let z = &self.z;
         let fr = &self.frames;
-        let mut gr = [[0.0; 4]; 2];
+        let mut gr = [[0.0; 4]; 3];
         let side = self.side[e];
         let v = match self.eqs[e] {
             Eq::Diff { a, b, y } => {
@@ -1410,6 +1506,48 @@ impl Baseline {
                 }
                 fr[g].dim - z[v]
             }
+            Eq::SameDim { a, b } => {
+                if grad {
+                    gr[0][3] = 1.0;
+                    gr[1][3] = -1.0;
+                }
+                fr[a].dim - fr[b].dim
+            }
+            Eq::MirrorMid {
+                p,
+                q,
+                base,
+                dir: dd,
+            } => {
+                let (fp, fq, fl) = (&fr[p.g], &fr[q.g], &fr[base.g]);
+                let (pp, qp) = point(fp, z, &p);
+                let (pq, qq) = point(fq, z, &q);
+                let (pb, qb) = point(fl, z, &base);
+                let u = dir(fl, z, &dd);
+                let w = [0.5 * (pp[0] + pq[0]) - pb[0], 0.5 * (pp[1] + pq[1]) - pb[1]];
+                if grad {
+                    let gm = [-u[1], u[0]];
+                    let half = [0.5 * gm[0], 0.5 * gm[1]];
+                    push_point(&mut gr[0], fp, qp, p.m, half);
+                    push_point(&mut gr[1], fq, qq, q.m, half);
+                    push_point(&mut gr[2], fl, qb, base.m, [-gm[0], -gm[1]]);
+                    push_dir(&mut gr[2], u, [w[1], -w[0]]);
+                }
+                u[0] * w[1] - u[1] * w[0]
+            }
+            Eq::MirrorPerp { p, q, dir: dd } => {
+                let (fp, fq, fl) = (&fr[p.g], &fr[q.g], &fr[dd.g]);
+                let (pp, qp) = point(fp, z, &p);
+                let (pq, qq) = point(fq, z, &q);
+                let u = dir(fl, z, &dd);
+                let w = [pq[0] - pp[0], pq[1] - pp[1]];
+                if grad {
+                    push_point(&mut gr[0], fp, qp, p.m, [-u[0], -u[1]]);
+                    push_point(&mut gr[1], fq, qq, q.m, u);
+                    push_dir(&mut gr[2], u, w);
+                }
+                u[0] * w[0] + u[1] * w[1]
+            }
         };
         (v, gr)
     }
@@ -1445,6 +1583,9 @@ impl Baseline {
                 Eq::PointCircle { p, c, d } => (off(&p), off(&c), z[d]),
                 Eq::LineCircle { base, c, d, .. } => (off(&base), off(&c), z[d]),
                 Eq::Dim { v, .. } => (0.0, 0.0, z[v]),
+                Eq::SameDim { .. } => (0.0, 0.0, 0.0),
+                Eq::MirrorMid { p, q, base, .. } => (off(&p).max(off(&q)), off(&base), 0.0),
+                Eq::MirrorPerp { p, q, .. } => (off(&p), off(&q), 0.0),
                 Eq::Angle { .. } | Eq::Cross { .. } | Eq::Dot { .. } | Eq::Comp { .. } => {
                     (0.0, 0.0, 0.0)
                 }
@@ -1731,5 +1872,69 @@ fn dense_cholesky_solve(u: &[f64], n: usize, b: &mut [f64]) {
             s -= u[i * n + k] * b[k];
         }
         b[i] = s / u[i * n + i];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The analytic Jacobian of the equations of `equal`, `midpoint` and `symmetric` (three
+    /// frames each, a free line's offset among them) is their derivative: central differences
+    /// of the equilibrated residual agree with it column by column.
+    #[test]
+    fn the_jacobian_of_the_sketcher_constraints_is_their_derivative() {
+        let text = "space 2d;
+            fixed point O = (0, 0);
+            body B at (1, 2) rotated 0.3 { point p = (0.5, -0.2); point q = (2, 1); }
+            line L = (0.2, 0.1) -> (1.1, 1.5);
+            segment S = (-1, 0.5) -> (2, 1.2);
+            segment T = (0, -1) -> (1, -2);
+            circle C = center (3, 3) radius 1;
+            circle D = center (-3, 3) radius 0.5;
+            point P = (1.5, 0.9);
+            symmetric(B.p, P, L);
+            symmetric(S.start, S.end, L);
+            midpoint(B.q, S);
+            midpoint(P, T);
+            equal(S, T);
+            equal(C, D);";
+        let (_, model, diags) = gcs_lang::load("jacobian.gcs", text.as_bytes());
+        let model = model.unwrap_or_else(|| panic!("{diags:?}"));
+        let mut b = Baseline::with_linear(&model, Linear::Dense).expect("baseline");
+        let params = model.default_params();
+        let (n, m) = (b.n, b.m);
+        assert_eq!(m, 2 + 2 + 2 + 2 + 1 + 1);
+        for (k, r) in b.consts.iter().enumerate() {
+            b.z[n + k] = r.eval(&b.model.exprs, &params);
+        }
+        let start = b.start_from_sketch(&params);
+        for (i, x) in start.iter().enumerate() {
+            // Off the sketch, so that nothing sits at a special point.
+            b.z[i] = x + 0.05 * (i as f64 + 1.0).sin();
+        }
+        b.choose_sides();
+        b.equilibrate();
+        b.jacobian();
+        let analytic = b.jv.clone();
+        for c in 0..n {
+            let (x, h) = (b.z[c], 1e-6);
+            b.z[c] = x + h;
+            b.residual();
+            let plus = b.f_trial.clone();
+            b.z[c] = x - h;
+            b.residual();
+            let minus = b.f_trial.clone();
+            b.z[c] = x;
+            for e in 0..m {
+                let numeric = (plus[e] - minus[e]) / (2.0 * h) * b.cs[c];
+                let exact = analytic[e * n + c];
+                assert!(
+                    (numeric - exact).abs() <= 1e-6 * (1.0 + exact.abs()),
+                    "equation {e} ({:?}), unknown {c}: {exact} analytic, {numeric} numeric",
+                    b.eqs[e]
+                );
+            }
+        }
     }
 }

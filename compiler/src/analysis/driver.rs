@@ -617,7 +617,9 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 continue;
             };
             let components: u8 = match residual {
-                Residual::PointPoint { d: None, .. } => 2,
+                Residual::PointPoint { d: None, .. }
+                | Residual::Midpoint { .. }
+                | Residual::Mirror { .. } => 2,
                 _ => 1,
             };
             let open: Vec<u32> = deps.difference(&closed).copied().collect();

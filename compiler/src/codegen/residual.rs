@@ -7,13 +7,27 @@ use super::writer::float;
 use crate::plan::{Reg, Residual};
 
 impl Solve<'_> {
-    /// The call of the runtime's signed error of a relation (`component` of a coincidence).
+    /// The call of the runtime's signed error of a relation (`component` of a coincidence, a
+    /// midpoint or a mirror image).
     pub(super) fn error_code(&self, residual: &Residual, component: u8) -> String {
         match residual {
             Residual::PointPoint { a, b, d: None } => format!(
                 "check::error::coincidence({}, {}, {component})",
                 self.r(*a),
                 self.r(*b)
+            ),
+            Residual::Midpoint { p, a, b } => format!(
+                "check::error::midpoint({}, {}, {}, {component})",
+                self.r(*p),
+                self.r(*a),
+                self.r(*b)
+            ),
+            Residual::Mirror { p, q, base, dir } => format!(
+                "check::error::mirror({}, {}, {}, {}, {component})",
+                self.r(*p),
+                self.r(*q),
+                self.r(*base),
+                self.r(*dir)
             ),
             _ => {
                 let code = self.residual_code(residual);
@@ -86,6 +100,12 @@ impl Solve<'_> {
             ),
             Residual::Dim { value, target } => {
                 format!("check::dimension({}, {})", r(value), r(target))
+            }
+            Residual::Midpoint { p, a, b } => {
+                format!("check::midpoint({}, {}, {})", r(p), r(a), r(b))
+            }
+            Residual::Mirror { p, q, base, dir } => {
+                format!("check::mirror({}, {}, {}, {})", r(p), r(q), r(base), r(dir))
             }
         }
     }

@@ -118,6 +118,24 @@ impl Solve<'_> {
                 let code = format!("Point2::new({}, {})", self.r(*x), self.r(*y));
                 self.define(w, r, "point", &code);
             }
+            Op::Midpoint { a, b } => {
+                let code = format!("locus2d::midpoint({}, {})", self.r(*a), self.r(*b));
+                self.define(w, r, "midpoint", &code);
+            }
+            Op::Reflect { point, through } => {
+                let code = format!(
+                    "locus2d::reflect_through({}, {})",
+                    self.r(*point),
+                    self.r(*through)
+                );
+                let n = self.prefixed("reflected", *point);
+                self.define(w, r, &n, &code);
+            }
+            Op::Mirror { point, line } => {
+                let code = format!("{}.mirror({})", self.r(*line), self.r(*point));
+                let n = self.prefixed("mirrored", *point);
+                self.define(w, r, &n, &code);
+            }
             Op::LocusPoint { locus, at } => {
                 let code = format!("{}.at({})", self.r(*locus), self.r(*at));
                 let n = self.prefixed("on", *locus);

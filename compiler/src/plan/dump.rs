@@ -133,6 +133,11 @@ impl Plan {
                 Op::Rotated { dir, angle } => format!("rotated {} by {}", r(dir), r(angle)),
                 Op::AngleOf(dir) => format!("angle_of {}", r(dir)),
                 Op::PointXY { x, y } => format!("point ({}, {})", r(x), r(y)),
+                Op::Midpoint { a, b } => format!("midpoint {} {}", r(a), r(b)),
+                Op::Reflect { point, through } => {
+                    format!("reflect {} through {}", r(point), r(through))
+                }
+                Op::Mirror { point, line } => format!("mirror {} across {}", r(point), r(line)),
                 Op::LocusPoint { locus, at } => format!("locus_point {} at {}", r(locus), r(at)),
                 Op::Implicit { locus, point } => format!("implicit {} at {}", r(locus), r(point)),
                 Op::LocusParam { locus, point } => {
@@ -329,5 +334,9 @@ fn residual_text(residual: &Residual) -> String {
             opt(gap)
         ),
         Residual::Dim { value, target } => format!("dim {} {}", r(value), r(target)),
+        Residual::Midpoint { p, a, b } => format!("midpoint {} {} {}", r(p), r(a), r(b)),
+        Residual::Mirror { p, q, base, dir } => {
+            format!("mirror {} {} {} {}", r(p), r(q), r(base), r(dir))
+        }
     }
 }

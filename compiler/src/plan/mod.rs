@@ -262,6 +262,10 @@ pub enum Residual {
     },
     /// A dimension `value` is `target`.
     Dim { value: Reg, target: Reg },
+    /// `p` is the midpoint of `a` and `b`.
+    Midpoint { p: Reg, a: Reg, b: Reg },
+    /// `q` is the mirror image of `p` across the line through `base` along `dir`.
+    Mirror { p: Reg, q: Reg, base: Reg, dir: Reg },
 }
 
 /// One operation.
@@ -338,6 +342,13 @@ pub enum Op {
     AngleOf(Reg),
     /// The point with coordinates `x` and `y`.
     PointXY { x: Reg, y: Reg },
+    /// The midpoint of points `a` and `b`.
+    Midpoint { a: Reg, b: Reg },
+    /// The reflection of `point` through `through`: `2 through - point` (a segment's other
+    /// end, from one end and its midpoint).
+    Reflect { point: Reg, through: Reg },
+    /// The mirror image of `point` across line `line`.
+    Mirror { point: Reg, line: Reg },
     /// The point of a line or circle `locus` at parameter `at`: the signed distance along a
     /// line from its base point, the angle about a circle's centre from the x axis.
     LocusPoint { locus: Reg, at: Reg },

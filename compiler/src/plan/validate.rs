@@ -108,6 +108,10 @@ impl Residual {
                 opt(gap, &mut out);
             }
             Residual::Dim { value, target } => out.extend([(*value, SCALAR), (*target, SCALAR)]),
+            Residual::Midpoint { p, a, b } => out.extend([(*p, POINT), (*a, POINT), (*b, POINT)]),
+            Residual::Mirror { p, q, base, dir } => {
+                out.extend([(*p, POINT), (*q, POINT), (*base, POINT), (*dir, VECTOR)])
+            }
         }
         out
     }
@@ -149,6 +153,9 @@ impl Op {
             Op::Rotated { dir, angle } => vec![(*dir, VECTOR), (*angle, SCALAR)],
             Op::AngleOf(dir) => vec![(*dir, VECTOR)],
             Op::PointXY { x, y } => vec![(*x, SCALAR), (*y, SCALAR)],
+            Op::Midpoint { a, b } => vec![(*a, POINT), (*b, POINT)],
+            Op::Reflect { point, through } => vec![(*point, POINT), (*through, POINT)],
+            Op::Mirror { point, line } => vec![(*point, POINT), (*line, LINE)],
             Op::LocusPoint { locus, at } => vec![(*locus, PARAM_LOCUS), (*at, SCALAR)],
             Op::LocusParam { locus, point } | Op::Implicit { locus, point } => {
                 vec![(*locus, PARAM_LOCUS), (*point, POINT)]
@@ -249,6 +256,9 @@ impl Op {
             | Op::Nearest { .. }
             | Op::Onto { .. }
             | Op::PointXY { .. }
+            | Op::Midpoint { .. }
+            | Op::Reflect { .. }
+            | Op::Mirror { .. }
             | Op::LocusPoint { .. } => Ty::Point,
             Op::Circle { .. } | Op::CircleThrough { .. } | Op::ShiftedCircle { .. } => Ty::Circle,
             Op::Intersect { meet, .. } => meet.result(),

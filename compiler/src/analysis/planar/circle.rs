@@ -50,6 +50,18 @@ impl Fd {
         matches!(self, Fd::Line { .. })
     }
 
+    /// The constraint it records, and whether that is the constraint's last relation.
+    pub fn constraint(&self) -> (ConstraintId, bool) {
+        match *self {
+            Fd::Line {
+                constraint, last, ..
+            }
+            | Fd::Point {
+                constraint, last, ..
+            } => (constraint, last),
+        }
+    }
+
     /// The constraint this fixed distance satisfies once the circle is placed, if it is the
     /// constraint's last relation.
     pub fn satisfies(&self) -> Option<ConstraintId> {
@@ -277,36 +289,7 @@ impl Builder<'_, Planar> {
         let centre = self.centre(circle);
         if rec.free_dim.is_none() {
             // Radius fixed: the centre lies on a curve.
-            let radius = self.dim_of(circle);
-            let locus = match fd {
-                Fd::Line { line, a, .. } => {
-                    let by = self.sum(vec![(1.0, radius), (1.0, a)]);
-                    let words = format!("{} moved {} to its left", self.word(line), self.word(by));
-                    Locus::Line(self.value(Op::OffsetLine { line, by }, Ty::Line, words))
-                }
-                Fd::Point { at, b, plus, .. } => {
-                    let rr = if plus {
-                        self.sum(vec![(1.0, radius), (1.0, b)])
-                    } else {
-                        self.sum(vec![(1.0, b), (-1.0, radius)])
-                    };
-                    let words = format!(
-                        "the circle of radius {} about {}",
-                        self.word(rr),
-                        self.word(at)
-                    );
-                    let c = self.value(
-                        Op::Circle {
-                            center: at,
-                            radius: rr,
-                        },
-                        Ty::Circle,
-                        words,
-                    );
-                    self.centers.insert(c, self.word(at));
-                    Locus::Circle(c)
-                }
-            };
+            let locus = self.fd_locus(circle, fd);
             return self.move_feature(centre, Target::On(locus), r);
         }
         if rec.pos == Pos::Fixed {
@@ -475,6 +458,41 @@ impl Builder<'_, Planar> {
             Ty::Line,
             words,
         ))
+    }
+
+    /// The locus of the centre of `circle`, whose radius is known, that fixed distance `fd`
+    /// makes: a line moved off the fixed-distance line, or a circle about the fixed point.
+    pub(super) fn fd_locus(&mut self, circle: GeomId, fd: Fd) -> Locus {
+        let radius = self.dim_of(circle);
+        match fd {
+            Fd::Line { line, a, .. } => {
+                let by = self.sum(vec![(1.0, radius), (1.0, a)]);
+                let words = format!("{} moved {} to its left", self.word(line), self.word(by));
+                Locus::Line(self.value(Op::OffsetLine { line, by }, Ty::Line, words))
+            }
+            Fd::Point { at, b, plus, .. } => {
+                let rr = if plus {
+                    self.sum(vec![(1.0, radius), (1.0, b)])
+                } else {
+                    self.sum(vec![(1.0, b), (-1.0, radius)])
+                };
+                let words = format!(
+                    "the circle of radius {} about {}",
+                    self.word(rr),
+                    self.word(at)
+                );
+                let c = self.value(
+                    Op::Circle {
+                        center: at,
+                        radius: rr,
+                    },
+                    Ty::Circle,
+                    words,
+                );
+                self.centers.insert(c, self.word(at));
+                Locus::Circle(c)
+            }
+        }
     }
 
     /// The locus of the centre of a circle of free radius under two fixed distances.

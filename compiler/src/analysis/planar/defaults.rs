@@ -157,7 +157,7 @@ impl Builder<'_, Planar> {
         let geoms = self.clusters[k].geoms.clone();
         let (gname, pname, rname) = (
             self.name(geoms[0]),
-            self.name(feature),
+            super::pivot_name(self.model, feature),
             self.name(reference),
         );
         let from = if is_point {
@@ -184,8 +184,12 @@ impl Builder<'_, Planar> {
             self.group_name(&geoms)
         );
         self.turn_to(geoms, at, from, name, meaning, explain);
+        let model = self.model;
         let rec = &mut self.clusters[k].record;
-        rec.pos = Pos::Fixed;
+        // A segment pinned at its midpoint with its length free still sizes about it.
+        if super::pinned_at_midpoint(model, rec).is_none() {
+            rec.pos = Pos::Fixed;
+        }
         rec.rot = Rot::Known;
         true
     }
@@ -384,7 +388,13 @@ impl Builder<'_, Planar> {
         let name = format!("{gname}_{what}");
         let explain = format!("{}: size {gname} to it.", self.assume(&meaning, &name));
         let value = self.default_value(g, name, meaning, measure);
+        let midpoint = super::pinned_at_midpoint(self.model, &self.clusters[k].record);
         self.emit(Op::SetDim { geom: g, value }, None, Vec::new(), explain);
+        if let Some((at, seg)) = midpoint {
+            // Sizing keeps the start: move the segment back so that its midpoint is where it
+            // is pinned.
+            self.back_to_midpoint(k, seg, at, Vec::new(), "");
+        }
         let rec = &mut self.clusters[k].record;
         rec.free_dim = None;
         rec.fixed_dims.push(g);
@@ -469,6 +479,10 @@ impl Builder<'_, Planar> {
     /// whose own direction (a vector) tells the cluster's angle: the first in model order.
     fn reference(&self, k: usize, pivot: GeomId) -> Option<(GeomId, bool)> {
         let model = self.model;
+        // A segment pinned at its midpoint turns about it: its own direction tells its angle.
+        if model.geoms[pivot].kind == GeomKind::Segment {
+            return model.part(pivot, Part::Dir).map(|d| (d, false));
+        }
         let mut features = Vec::new();
         for &g in &self.clusters[k].geoms {
             features.push(g);

@@ -15,6 +15,7 @@ pub mod circle;
 mod defaults;
 pub mod relation;
 pub mod segment;
+mod sketcher;
 
 use super::driver::Builder;
 use super::geometry::{self, Geometry, Invariants};
@@ -129,7 +130,8 @@ pub enum Pos {
     Pivot {
         /// The pivot's position.
         at: Reg,
-        /// The feature at the pivot.
+        /// The feature at the pivot: a point feature, or a segment of known length pinned at
+        /// its midpoint (which is no feature of it: the segment stands for it).
         feature: GeomId,
     },
     /// Position invariant.
@@ -265,9 +267,10 @@ impl Invariants for Record {
         let name = |f: GeomId| model.geoms[f].name.clone();
         let mut parts = Vec::new();
         match (self.rot, self.pos) {
-            (Rot::Free, Pos::Pivot { feature, .. }) => {
-                parts.push(format!("it may still rotate about {}", name(feature)))
-            }
+            (Rot::Free, Pos::Pivot { feature, .. }) => parts.push(format!(
+                "it may still rotate about {}",
+                pivot_name(model, feature)
+            )),
             (Rot::Free, Pos::Free) => parts.push("it may still translate and rotate".into()),
             (Rot::Free, Pos::On { feature, .. }) => parts.push(format!(
                 "it may still slide {} along its locus and rotate about it",
@@ -399,6 +402,23 @@ impl Builder<'_, Planar> {
                 value: self.dim_of(geom),
                 target: self.expr(value),
             },
+            Relation::Equal { a, b } => Residual::Dim {
+                value: self.dim_of(b),
+                target: self.dim_of(a),
+            },
+            Relation::Midpoint { p, a, b } => Residual::Midpoint {
+                p: self.point(p),
+                a: self.point(a),
+                b: self.point(b),
+            },
+            Relation::Mirror {
+                p, q, base, dir, ..
+            } => Residual::Mirror {
+                p: self.point(p),
+                q: self.point(q),
+                base: self.point(base),
+                dir: self.direction(dir),
+            },
         }
     }
 
@@ -438,14 +458,33 @@ impl Builder<'_, Planar> {
                 circle, base, dir, ..
             } => placed(circle) && line_known(base, dir),
             Relation::CircleCircle { a, b, .. } => placed(a) && placed(b),
+            Relation::Equal { a, b } => self.dim_known(a) && self.dim_known(b),
+            Relation::Midpoint { p, a, b } => {
+                (self.point_known(p) && self.point_known(a) && self.point_known(b))
+                    || (rigid_together(p, a) && rigid_together(a, b))
+            }
+            Relation::Mirror {
+                p, q, base, dir, ..
+            } => {
+                (line_known(base, dir) && self.point_known(p) && self.point_known(q))
+                    || (rigid_together(p, q) && rigid_together(p, base))
+            }
         }
     }
 
-    /// A known point on the line of (`base`, its direction): `base` itself, or the other end
-    /// of the same segment.
+    /// A point on the line of (`base`, its direction) whose place on it is known, or that
+    /// is on it wherever the line's freedom takes it: `base` itself, or the other end of the
+    /// same segment, or the start of a segment pinned at its midpoint.
     fn line_point(&self, base: GeomId) -> Option<GeomId> {
         if self.point_known(base) {
             return Some(base);
+        }
+        // A segment pinned at its midpoint, its length free: its line goes through the
+        // midpoint whatever its length, so wherever its start is now is on it.
+        if let Some((_, seg)) = pinned_at_midpoint(self.model, self.record(base)) {
+            if self.model.part(seg, Part::Start) == Some(base) {
+                return Some(base);
+            }
         }
         match self.model.geoms[base].owner {
             Owner::Part(s, Part::Start) => self
@@ -735,6 +774,9 @@ impl Builder<'_, Planar> {
             Relation::PointCircle { .. }
             | Relation::CircleLine { .. }
             | Relation::CircleCircle { .. } => self.circle_relation(r),
+            Relation::Equal { .. } => self.equal(r),
+            Relation::Midpoint { .. } => self.midpoint(r),
+            Relation::Mirror { .. } => self.mirror(r),
         }
     }
 
@@ -969,7 +1011,7 @@ impl Builder<'_, Planar> {
                 let to = self.meet(own, target, from, r);
                 let explain = format!(
                     "{names} may only rotate about {} ({}): rotate it so that {fname} reaches {} ({c}).",
-                    self.name(g),
+                    pivot_name(self.model, g),
                     self.word(at),
                     self.word(to)
                 );
@@ -1150,7 +1192,7 @@ impl Builder<'_, Planar> {
         let names = self.group_name(&geoms);
         let c = self.cname(r.constraint);
         let (pivot, about) = match rec.pos {
-            Pos::Pivot { at, feature } => (at, self.name(feature)),
+            Pos::Pivot { at, feature } => (at, pivot_name(self.model, feature)),
             Pos::On { feature, .. } => (self.point(feature), self.name(feature)),
             _ => {
                 let origin = geoms[0];
@@ -1178,11 +1220,16 @@ impl Builder<'_, Planar> {
             self.satisfies(r),
             explain,
         );
+        let model = self.model;
         let rec = &mut self.clusters[k].record;
         rec.rot = Rot::Known;
         // Rotation known about a pivot: fixed, unless the pivot is a segment's end that its
-        // free length still slides (the start then moves along the line).
-        if matches!(rec.pos, Pos::Pivot { feature, .. } if !depends_on_dim(self.model, feature)) {
+        // free length still slides (the start then moves along the line), or the midpoint of
+        // a segment of free length (both ends then move along the line).
+        let sized_about_pivot = pinned_at_midpoint(model, rec).is_some();
+        if matches!(rec.pos, Pos::Pivot { feature, .. } if !depends_on_dim(model, feature))
+            && !sized_about_pivot
+        {
             rec.pos = Pos::Fixed;
         }
         true
@@ -1295,7 +1342,9 @@ impl Builder<'_, Planar> {
     /// The locus table: where feature `f` of a partially fixed cluster can lie, if on a curve.
     fn locus_of(&mut self, f: GeomId) -> Option<Reg> {
         let rec = self.record(f).clone();
-        if rec.free_dim.is_some() && depends_on_dim(self.model, f) {
+        if rec.free_dim.is_some() && depends_on_dim(self.model, f)
+            || pinned_at_midpoint(self.model, &rec).is_some()
+        {
             return None;
         }
         match rec.pos {
@@ -1325,6 +1374,7 @@ impl Builder<'_, Planar> {
         let ready = |s: &Self, f: GeomId| {
             let rec = s.record(f);
             (rec.free_dim.is_none() || !depends_on_dim(s.model, f))
+                && pinned_at_midpoint(s.model, rec).is_none()
                 && match rec.pos {
                     Pos::On { .. } => rec.rot != Rot::Free,
                     Pos::Pivot { feature, .. } => feature != f,
@@ -1395,7 +1445,7 @@ impl Builder<'_, Planar> {
             Pos::Pivot { at, feature } => {
                 let explain = format!(
                     "{names} may only rotate about {}: rotate it so that {fname} reaches {to}.",
-                    self.name(feature)
+                    pivot_name(self.model, feature)
                 );
                 self.emit(
                     Op::RotatePoint {
@@ -1432,6 +1482,32 @@ impl Builder<'_, Planar> {
 fn locus_reg(l: Locus) -> Reg {
     match l {
         Locus::Line(r) | Locus::Circle(r) | Locus::Conic(r) => r,
+    }
+}
+
+/// How a sentence names the feature a cluster is pinned at ([`Pos::Pivot`]): a point feature
+/// by its name; a segment pinned at its midpoint (by `midpoint`), which is no feature of it,
+/// is its own pivot feature, named for its midpoint.
+fn pivot_name(model: &Model, f: GeomId) -> String {
+    let g = &model.geoms[f];
+    if g.kind == GeomKind::Segment {
+        format!("the midpoint of {}", g.name)
+    } else {
+        g.name.clone()
+    }
+}
+
+/// The segment a record holds pinned at its midpoint (by `midpoint`, at the register given)
+/// while its length is still free: it then turns about that midpoint and is sized about it,
+/// so neither end is on a circle about it, and its line is known once its direction is.
+fn pinned_at_midpoint(model: &Model, rec: &Record) -> Option<(Reg, GeomId)> {
+    match rec.pos {
+        Pos::Pivot { at, feature }
+            if rec.free_dim == Some(feature) && model.geoms[feature].kind == GeomKind::Segment =>
+        {
+            Some((at, feature))
+        }
+        _ => None,
     }
 }
 

@@ -109,6 +109,38 @@ pub enum Relation {
         /// Its value.
         value: ExprId,
     },
+    /// Two geoms' dimensions (segment lengths, circle radii) are equal, whatever they are:
+    /// once one is known, the other follows it; neither is known from it alone.
+    Equal {
+        /// First geom.
+        a: GeomId,
+        /// Second geom.
+        b: GeomId,
+    },
+    /// Point `p` is the midpoint of a segment's ends `a` (its start) and `b` (its end).
+    Midpoint {
+        /// The point feature.
+        p: GeomId,
+        /// The segment's start.
+        a: GeomId,
+        /// The segment's end.
+        b: GeomId,
+    },
+    /// Points `p` and `q` are mirror images across the line through `base` along `dir`.
+    Mirror {
+        /// One point feature.
+        p: GeomId,
+        /// The other.
+        q: GeomId,
+        /// A point feature on the mirror line.
+        base: GeomId,
+        /// The mirror line's direction.
+        dir: GeomId,
+        /// Which way the line's direction turns from the direction from `p` to `q`, as the
+        /// sketch has it (+1 counter-clockwise, -1 clockwise): the line built as the
+        /// perpendicular bisector of `p` and `q` points that way.
+        sense: f64,
+    },
 }
 
 impl Relation {
@@ -129,7 +161,11 @@ impl Relation {
                 circle, base, dir, ..
             } => vec![*circle, *base, *dir],
             Relation::PointCircle { p, circle, .. } => vec![*p, *circle],
-            Relation::CircleCircle { a, b, .. } => vec![*a, *b],
+            Relation::CircleCircle { a, b, .. } | Relation::Equal { a, b } => vec![*a, *b],
+            Relation::Midpoint { p, a, b } => vec![*p, *a, *b],
+            Relation::Mirror {
+                p, q, base, dir, ..
+            } => vec![*p, *q, *base, *dir],
         }
     }
 }
@@ -313,6 +349,39 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                 }
                 _ => out.push(circle_circle(model, sketch, a, b, None)),
             },
+            (K::Equal, Some(a), Some(b)) => out.push(Relation::Equal { a, b }),
+            (K::Midpoint, Some(p), Some(s)) => {
+                match (model.part(s, Part::Start), model.part(s, Part::End)) {
+                    (Some(a), Some(b)) => out.push(Relation::Midpoint {
+                        p: model.point_feature(p),
+                        a,
+                        b,
+                    }),
+                    _ => missing("a midpoint needs a segment"),
+                }
+            }
+            (K::Symmetric, Some(p), Some(q)) => {
+                match c.args.get(2).and_then(|&l| model.line_features(l)) {
+                    Some((base, dir)) => {
+                        let (p, q) = (model.point_feature(p), model.point_feature(q));
+                        let pq = sub(sketch.point(q), sketch.point(p));
+                        let d = sketch.dir(dir);
+                        let sense = if pq[0] * d[1] - pq[1] * d[0] < 0.0 {
+                            -1.0
+                        } else {
+                            1.0
+                        };
+                        out.push(Relation::Mirror {
+                            p,
+                            q,
+                            base,
+                            dir,
+                            sense,
+                        });
+                    }
+                    None => missing("a mirror needs a line"),
+                }
+            }
             _ => missing("not valid in 2d"),
         }
         let n = out.len();

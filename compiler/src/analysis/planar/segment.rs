@@ -23,6 +23,9 @@ impl Builder<'_, Planar> {
             self.model.part(seg, Part::Dir)?,
         );
         let is_end = matches!(self.model.geoms[f].owner, Owner::Part(_, Part::End));
+        if let Some((at, _)) = super::pinned_at_midpoint(self.model, &rec) {
+            return Some(self.span_about_midpoint(seg, at, f, target, r));
+        }
         let geoms = vec![seg];
         let name = self.name(seg);
         let c = self.cname(r.constraint);
@@ -145,34 +148,6 @@ impl Builder<'_, Planar> {
                 self.finish_length(k, seg);
                 Some(true)
             }
-            // End pinned, direction free: turn about the end so that the line runs from the
-            // target point to it; the start then reaches the target as below.
-            (false, Rot::Free, Pos::Pivot { at, feature }, Target::Point(x))
-                if feature == end && f == start =>
-            {
-                let d = self.dir(Dir::Feature(dir));
-                let words = format!("the direction from {} to {}", self.word(x), self.name(end));
-                let to = self.value(Op::DirectionTo { from: x, to: at }, Ty::Vector, words);
-                let explain = format!(
-                    "Rotate {name} about {} so that it points from {} to it.",
-                    self.name(end),
-                    self.word(x)
-                );
-                self.emit(
-                    Op::RotateDir {
-                        geoms,
-                        pivot: at,
-                        axis: RotationAxis::Normal,
-                        from: d,
-                        to,
-                    },
-                    None,
-                    Vec::new(),
-                    explain,
-                );
-                self.clusters[k].record.rot = Rot::Known;
-                self.segment_fragment(f, target, r)
-            }
             // End pinned and direction known: the start runs along the line through the end;
             // the target fixes where, the length follows.
             (false, Rot::Known, Pos::Pivot { at, feature }, target)
@@ -234,11 +209,205 @@ impl Builder<'_, Planar> {
                 self.finish_length(k, seg);
                 Some(true)
             }
+            // End pinned, direction free: the start reaches the target point, the segment
+            // turns towards the end from there, and its length is what is left.
+            (false, Rot::Free, Pos::Pivot { at, feature }, Target::Point(x))
+                if feature == end && f == start =>
+            {
+                let d = self.dir(Dir::Feature(dir));
+                let from = self.point(start);
+                let words = format!("the direction from {} to {}", self.word(x), self.name(end));
+                let to = self.value(Op::DirectionTo { from: x, to: at }, Ty::Vector, words);
+                let explain = format!(
+                    "{name}'s end is pinned at {}: translate it so that {} lands on {} ...",
+                    self.word(at),
+                    self.name(start),
+                    self.word(x)
+                );
+                self.emit(
+                    Op::Translate {
+                        geoms: geoms.clone(),
+                        from,
+                        to: x,
+                    },
+                    None,
+                    Vec::new(),
+                    explain,
+                );
+                let explain = format!(
+                    "... rotate it about {} towards {} ...",
+                    self.name(start),
+                    self.word(at)
+                );
+                self.emit(
+                    Op::RotateDir {
+                        geoms,
+                        pivot: x,
+                        axis: RotationAxis::Normal,
+                        from: d,
+                        to,
+                    },
+                    None,
+                    Vec::new(),
+                    explain,
+                );
+                let words = format!("the distance from {} to {}", self.word(x), self.name(end));
+                let len = self.value(
+                    Op::Along {
+                        from: x,
+                        dir: to,
+                        to: at,
+                    },
+                    Ty::Scalar,
+                    words,
+                );
+                let explain = format!(
+                    "... and scale it so that its end is back on {} ({c}).",
+                    self.word(at)
+                );
+                self.emit(
+                    Op::SetDim {
+                        geom: seg,
+                        value: len,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                rec.rot = Rot::Known;
+                rec.pos = Pos::Fixed;
+                self.finish_length(k, seg);
+                Some(true)
+            }
             _ if is_end || matches!(rec.pos, Pos::Pivot { feature, .. } if feature == end) => {
                 Some(false)
             }
             _ => None,
         }
+    }
+
+    /// A segment pinned at its midpoint `at` with its length free: its end `f` reaches the
+    /// target, the other end its reflection through the midpoint. With its direction free the
+    /// target must be a point (a locus leaves a freedom: not yet); with its direction known,
+    /// the end meets the target on the segment's line.
+    fn span_about_midpoint(
+        &mut self,
+        seg: GeomId,
+        at: Reg,
+        f: GeomId,
+        target: Target,
+        r: &Rel,
+    ) -> bool {
+        let k = self.cluster(seg);
+        let rot = self.clusters[k].record.rot;
+        let (Some(start), Some(dir)) = (
+            self.model.part(seg, Part::Start),
+            self.model.part(seg, Part::Dir),
+        ) else {
+            return false;
+        };
+        let name = self.name(seg);
+        let d = self.dir(Dir::Feature(dir));
+        let x = match (rot, target) {
+            (Rot::Free, Target::Point(x)) => x,
+            (Rot::Known, target) => {
+                let words = format!("the line of {name} through its midpoint");
+                let line = self.value(
+                    Op::Line {
+                        point: at,
+                        dir: d,
+                        offset: None,
+                    },
+                    Ty::Line,
+                    words,
+                );
+                let near = self.point(f);
+                self.meet(line, target, near, r)
+            }
+            _ => return false,
+        };
+        let words = format!("{} reflected through the midpoint of {name}", self.word(x));
+        let other = self.value(
+            Op::Reflect {
+                point: x,
+                through: at,
+            },
+            Ty::Point,
+            words,
+        );
+        let (a, b) = if f == start { (x, other) } else { (other, x) };
+        let c = self.cname(r.constraint);
+        let geoms = vec![seg];
+        let from = self.point(start);
+        let explain = format!(
+            "{name} is pinned at its midpoint {}, its length free: translate it so that {} lands on {} ...",
+            self.word(at),
+            self.name(start),
+            self.word(a)
+        );
+        self.emit(
+            Op::Translate {
+                geoms: geoms.clone(),
+                from,
+                to: a,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+        let along = if rot == Rot::Free {
+            let words = format!("the direction from {} to {}", self.word(a), self.word(b));
+            let to = self.value(Op::DirectionTo { from: a, to: b }, Ty::Vector, words);
+            let explain = format!(
+                "... rotate it about {} towards {} ...",
+                self.name(start),
+                self.word(b)
+            );
+            self.emit(
+                Op::RotateDir {
+                    geoms,
+                    pivot: a,
+                    axis: RotationAxis::Normal,
+                    from: d,
+                    to,
+                },
+                None,
+                Vec::new(),
+                explain,
+            );
+            to
+        } else {
+            d
+        };
+        let words = format!("the distance from {} to {}", self.word(a), self.word(b));
+        let len = self.value(
+            Op::Along {
+                from: a,
+                dir: along,
+                to: b,
+            },
+            Ty::Scalar,
+            words,
+        );
+        let explain = format!(
+            "... and size it so that its end lands on {} ({c}).",
+            self.word(b)
+        );
+        self.emit(
+            Op::SetDim {
+                geom: seg,
+                value: len,
+            },
+            None,
+            self.satisfies(r),
+            explain,
+        );
+        let rec = &mut self.clusters[k].record;
+        rec.rot = Rot::Known;
+        rec.pos = Pos::Fixed;
+        self.finish_length(k, seg);
+        true
     }
 
     /// The end of a lone segment of free length that the length slides along a known line
