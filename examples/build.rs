@@ -35,7 +35,7 @@ fn main() -> Result<(), gcs_compiler::build::BuildError> {
     println!("cargo:rerun-if-changed={}", here.display());
     let models: Vec<_> = discover::models(&here.join(".."))
         .into_iter()
-        .filter(|m| matches!(m.folder, Folder::Examples | Folder::Families) && m.is_analysed())
+        .filter(|m| (m.folder.is_example() || m.folder == Folder::Families) && m.is_analysed())
         .collect();
     // Relative to this folder (a build script runs in it), as the generated code names them.
     let paths: Vec<String> = models
@@ -74,7 +74,7 @@ fn main() -> Result<(), gcs_compiler::build::BuildError> {
     }
     let examples: Vec<&str> = models
         .iter()
-        .filter(|m| m.folder == Folder::Examples)
+        .filter(|m| m.folder.is_example())
         .map(|m| m.stem.as_str())
         .collect();
     list.push_str(&FOR_EACH_EXAMPLE.replace("EXAMPLES", &examples.join(", ")));

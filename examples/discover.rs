@@ -11,6 +11,8 @@
 //
 // The folders, under the workspace root:
 // - `examples/`: the example models;
+// - `examples/sketches/`: everyday CAD sketches, examples in every respect (kept apart so that
+//   the mechanisms stay easy to find);
 // - `examples/families/`: members of the generated model families at the sizes the benches
 //   use, named `<family>_<n>.gcs`;
 // - `tests/models/`: models that only tests use (golden generated solvers, run against the
@@ -27,6 +29,8 @@ use std::path::{Path, PathBuf};
 pub enum Folder {
     /// `examples/`: the example models.
     Examples,
+    /// `examples/sketches/`: everyday sketches, examples in every respect.
+    Sketches,
     /// `examples/families/`: members of the generated model families, `<family>_<n>.gcs`.
     Families,
     /// `tests/models/`: models that only tests use.
@@ -36,12 +40,23 @@ pub enum Folder {
 #[allow(dead_code)]
 impl Folder {
     /// Every folder, in the order their models are listed.
-    pub const ALL: [Folder; 3] = [Folder::Examples, Folder::Families, Folder::TestModels];
+    pub const ALL: [Folder; 4] = [
+        Folder::Examples,
+        Folder::Sketches,
+        Folder::Families,
+        Folder::TestModels,
+    ];
+
+    /// Whether its models are examples: `examples/` and `examples/sketches/`.
+    pub fn is_example(self) -> bool {
+        matches!(self, Folder::Examples | Folder::Sketches)
+    }
 
     /// The folder, relative to the workspace root.
     pub fn dir(self) -> &'static str {
         match self {
             Folder::Examples => "examples",
+            Folder::Sketches => "examples/sketches",
             Folder::Families => "examples/families",
             Folder::TestModels => "tests/models",
         }
@@ -159,11 +174,15 @@ pub fn models(root: &Path) -> Vec<Found> {
     found
 }
 
-/// The models of `folder` the analysis covers ([`Found::is_analysed`]), in name order.
+/// The models of `folder` the analysis covers ([`Found::is_analysed`]), in name order; for
+/// [`Folder::Examples`], every example, the sketches' included.
 #[allow(dead_code)]
 pub fn analysed(root: &Path, folder: Folder) -> Vec<Found> {
     models(root)
         .into_iter()
-        .filter(|m| m.folder == folder && m.is_analysed())
+        .filter(|m| {
+            let wanted = m.folder == folder || (folder.is_example() && m.folder.is_example());
+            wanted && m.is_analysed()
+        })
         .collect()
 }

@@ -43,7 +43,7 @@ fn every_model_loads_without_a_diagnostic_and_says_what_it_is() {
         assert!(
             models
                 .iter()
-                .any(|m| m.stem == stem && m.folder == discover::Folder::Examples),
+                .any(|m| m.stem == stem && m.folder.is_example()),
             "examples/{stem}.gcs was not found"
         );
     }

@@ -616,6 +616,16 @@ fn not_plainly_crossing([x1, y1, r1, x2, y2, r2]: [f64; 6]) -> Result<Chord, Con
 /// solved, and the chord scaled back. A chord too large for `f64` on the way back is
 /// [`Contact::Disjoint`] with an infinite gap.
 fn rescaled([x1, y1, r1, x2, y2, r2]: [f64; 6], s: f64) -> Result<Chord, Contact> {
+    if [x1, y1, r1, x2, y2, r2].iter().all(|v| *v == 0.0) {
+        // Two circles of no size at the origin: one point, where they meet (no scale to
+        // bring them to, and no recursion).
+        return Ok(Chord {
+            mid: P2::origin(),
+            half: V2::zeros(),
+            mid_from_a: V2::zeros(),
+            mid_from_b: V2::zeros(),
+        });
+    }
     // `s` is at least 1e-300, a normal number: its exponent field is its binary exponent.
     let exponent = ((s.to_bits() >> 52) & 0x7ff) as i32 - 1023;
     let shrink = |x: f64, y: f64, r: f64| {
@@ -1212,6 +1222,18 @@ mod tests {
     }
     fn close(a: P2, b: P2, tol: f64) -> bool {
         (a - b).norm() <= tol
+    }
+
+    #[test]
+    fn two_points_at_the_origin_meet_there() {
+        // Every input zero: no scale to rescale to (this once recursed without end).
+        let o = circle(0.0, 0.0, 0.0);
+        let chord = circle_circle_chord(&o, &o).unwrap();
+        assert_eq!((chord.left(), chord.right()), (P2::origin(), P2::origin()));
+        assert_eq!(circle_circle(&o, &o).contact, Contact::Tangent);
+        // Elsewhere, or tiny, the same point still meets itself.
+        let q = circle(1e-310, 0.0, 0.0);
+        assert!(circle_circle_chord(&q, &q).is_ok());
     }
     /// Whether `a` is within 4e-16 of `b` relative to `scale`, at any scale: the difference
     /// is scaled before it is squared, which neither overflows nor underflows.

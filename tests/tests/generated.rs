@@ -23,10 +23,7 @@ fn models() -> Vec<discover::Found> {
     discover::models(root().parent().expect("the workspace"))
         .into_iter()
         .filter(|m| {
-            matches!(
-                m.folder,
-                discover::Folder::Examples | discover::Folder::TestModels
-            ) && m.is_analysed()
+            (m.folder.is_example() || m.folder == discover::Folder::TestModels) && m.is_analysed()
         })
         .collect()
 }

@@ -153,6 +153,17 @@ fn main() {
                     }
                     errors += 1;
                 }
+                // A size computed as zero to rounding (a segment of no length, a radius at
+                // an ill-conditioned extreme of the params) may fall on either side of zero:
+                // one side refuses it as negative, the other solves with it. Both are right
+                // to rounding, and that is all an extreme param can ask.
+                (Ok(_), Err(e)) | (Err(e), Ok(_))
+                    if e.kind == gcs_runtime::error::ErrorKind::InvalidValue
+                        && e.magnitude.abs()
+                            <= 1e-12 * params.iter().fold(1.0f64, |m, p| m.max(p.abs())) =>
+                {
+                    errors += 1;
+                }
                 (a, b) => panic!("{NAME}: interpreter {a:?} but generated {b:?}"),
             }
         }

@@ -70,8 +70,8 @@ fn fixed_precision(text: &str) -> String {
 
 /// Every view of an example: all succeed, print nothing on stderr but golden warnings, and
 /// match their goldens.
-fn views(name: &str) {
-    let file = format!("examples/{name}.gcs");
+fn views(name: &str, file: &str) {
+    let file = file.to_string();
     for (view, args) in [
         ("check", vec!["check", file.as_str()]),
         ("explain", vec!["explain", file.as_str()]),
@@ -115,7 +115,7 @@ fn every_example_matches_its_goldens_in_every_view() {
     let failures: Vec<String> = std::thread::scope(|s| {
         let runs: Vec<_> = examples
             .iter()
-            .map(|m| (m, s.spawn(move || views(&m.stem))))
+            .map(|m| (m, s.spawn(move || views(&m.stem, &m.relative()))))
             .collect();
         runs.into_iter()
             .filter_map(|(m, run)| {

@@ -333,7 +333,8 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let direction_turned = UnitComplex::new(std::f64::consts::FRAC_PI_2) * direction;
+    let direction_turned =
+        rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * direction;
     let normal_dir = normal.x_axis();
     let turn_2 = rotation_between_units(&normal_dir, &direction_turned);
     normal.turn_by(&turn_2);

@@ -219,10 +219,6 @@ pub fn solve(
     rail.turn_by(&turn);
 
     // tangent(guide, hub) (free_lines.gcs:11)
-    let guide_dir = guide.x_axis();
-    let direction = direction_at(defaults.guide_angle);
-    let turn_2 = rotation_between_units(&guide_dir, &direction);
-    guide.turn_by(&turn_2);
     let sum = -hub_radius;
     if !gcs_runtime::num::is_finite(sum) {
         return Err(SolveError::new(
@@ -232,6 +228,10 @@ pub fn solve(
             sum,
         ));
     }
+    let guide_dir = guide.x_axis();
+    let direction = direction_at(defaults.guide_angle);
+    let turn_2 = rotation_between_units(&guide_dir, &direction);
+    guide.turn_by(&turn_2);
     let guide_dir_2 = guide.x_axis();
     let minus = -sum;
     let line_hub_center = Line::new(Point2::new(0.0, 0.0), guide_dir_2)
@@ -244,8 +244,8 @@ pub fn solve(
             )
         })?
         .offset(minus);
-    let nearest_guide = line_hub_center.nearest(Point2::new(-3.0, 2.1));
-    guide.place_origin(&nearest_guide);
+    let nearest_guide_point = line_hub_center.nearest(Point2::new(-3.0, 2.1));
+    guide.place_origin(&nearest_guide_point);
     let rail_dir_2 = rail.x_axis();
     let line_rail_point = Line::new(Point2::new(0.0, -3.0), rail_dir_2)
         .ok_or_else(|| {

@@ -64,14 +64,6 @@ pub struct Branches {
     /// `tangent_right_fillet`:
     /// - 0: the crossing of the line through top.end along top.dir moved the radius of fillet to its left and the line through right.start along right.dir moved the radius of fillet to its left
     pub tangent_right_fillet: u8,
-    /// `on_right_end_fillet`:
-    /// - 0: the first crossing of the line of right with the circle of radius the radius of fillet about fillet.center, along the line
-    /// - 1: the second crossing, along the line
-    pub on_right_end_fillet: u8,
-    /// `on_top_start_fillet`:
-    /// - 0: the first crossing of the line of top through top.end with the circle of radius the radius of fillet about fillet.center, along the line
-    /// - 1: the second crossing, along the line
-    pub on_top_start_fillet: u8,
 }
 
 #[allow(dead_code)]
@@ -80,8 +72,6 @@ impl Branches {
     pub fn set(&mut self, name: &str, index: u8) -> bool {
         match name {
             "tangent_right_fillet" => self.tangent_right_fillet = index,
-            "on_right_end_fillet" => self.on_right_end_fillet = index,
-            "on_top_start_fillet" => self.on_top_start_fillet = index,
             _ => return false,
         }
         true
@@ -93,8 +83,6 @@ impl Default for Branches {
     fn default() -> Self {
         Branches {
             tangent_right_fillet: 0,
-            on_right_end_fillet: 0,
-            on_top_start_fillet: 0,
         }
     }
 }
@@ -304,6 +292,7 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("w", params.w), ("h", params.h), ("r", params.r)])?;
     // The sketch: where every geom starts.
+    let origin = Frame2::at(Point2::new(0.0, 0.0));
     let mut bottom = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(10.0, 0.0) - Point2::new(0.0, 0.0),
@@ -322,6 +311,27 @@ pub fn solve(
         Point2::new(0.0, 6.0),
         Point2::new(0.0, 0.0) - Point2::new(0.0, 6.0),
     );
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                origin.origin.x,
+                origin.origin.y,
+                bottom.origin.x,
+                bottom.origin.y,
+                (Point2::new(10.0, 0.0) - Point2::new(0.0, 0.0)).norm(),
+                right.origin.x,
+                right.origin.y,
+                (Point2::new(10.0, 4.0) - Point2::new(10.0, 0.0)).norm(),
+                fillet.origin.x,
+                fillet.origin.y,
+                2.0,
+                top.origin.x,
+                top.origin.y,
+                top_length,
+                left.origin.x,
+                left.origin.y,
+                (Point2::new(0.0, 0.0) - Point2::new(0.0, 6.0)).norm(),
+            ]));
 
     // height: length(left) = h (sketch_profile.gcs:29)
     // height: a length is zero or more.
@@ -445,23 +455,6 @@ pub fn solve(
     fillet.place_origin(&tangent_right_fillet);
 
     // on(right.end, fillet) (sketch_profile.gcs:26)
-    if fillet_radius < 0.0 {
-        return Err(SolveError::new(
-            "on_right_end_fillet",
-            "on(right.end, fillet)",
-            ErrorKind::NoIntersection,
-            -fillet_radius,
-        ));
-    }
-    let circle_tangent_right_fillet =
-        Circle::new(tangent_right_fillet, fillet_radius).ok_or_else(|| {
-            SolveError::new(
-                "on_right_end_fillet",
-                "on(right.end, fillet)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
     let line_bottom_end_2 = Line::new(bottom_end, right_dir_2).ok_or_else(|| {
         SolveError::new(
             "on_right_end_fillet",
@@ -470,26 +463,25 @@ pub fn solve(
             0.0,
         )
     })?;
-    let on_right_end_fillet_meeting =
-        intersect2d::line_circle(&line_bottom_end_2, &circle_tangent_right_fillet);
-    if let Some(e) = SolveError::from_contact(
-        "on_right_end_fillet",
-        "on(right.end, fillet)",
-        on_right_end_fillet_meeting.contact,
-    ) {
-        return Err(e);
+    let nearest_tangent_right_fillet = line_bottom_end_2.nearest(tangent_right_fillet);
+    let line_bottom_end_3 = Line::new(bottom_end, right_dir_2).ok_or_else(|| {
+        SolveError::new(
+            "on_right_end_fillet",
+            "on(right.end, fillet)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let gap = line_bottom_end_3.residual(nearest_tangent_right_fillet);
+    if gap.is_nan() || gap > tol {
+        return Err(SolveError::new(
+            "on_right_end_fillet",
+            "on(right.end, fillet)",
+            ErrorKind::Inconsistent,
+            gap,
+        ));
     }
-    let on_right_end_fillet = on_right_end_fillet_meeting
-        .branch(usize::from(branches.on_right_end_fillet))
-        .ok_or_else(|| {
-            SolveError::new(
-                "on_right_end_fillet",
-                "on(right.end, fillet)",
-                ErrorKind::NoSuchBranch,
-                on_right_end_fillet_meeting.roots.len() as f64,
-            )
-        })?;
-    let length = (on_right_end_fillet - bottom_end).dot(&right_dir_2);
+    let length = (nearest_tangent_right_fillet - bottom_end).dot(&right_dir_2);
     if !gcs_runtime::num::is_finite(length) || length < 0.0 {
         return Err(SolveError::new(
             "on_right_end_fillet",
@@ -501,23 +493,6 @@ pub fn solve(
     let right_length = length;
 
     // on(top.start, fillet) (sketch_profile.gcs:27)
-    if fillet_radius < 0.0 {
-        return Err(SolveError::new(
-            "on_top_start_fillet",
-            "on(top.start, fillet)",
-            ErrorKind::NoIntersection,
-            -fillet_radius,
-        ));
-    }
-    let circle_tangent_right_fillet_2 = Circle::new(tangent_right_fillet, fillet_radius)
-        .ok_or_else(|| {
-            SolveError::new(
-                "on_top_start_fillet",
-                "on(top.start, fillet)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
     let line_left_start_2 = Line::new(left_start, top_dir_2).ok_or_else(|| {
         SolveError::new(
             "on_top_start_fillet",
@@ -526,29 +501,28 @@ pub fn solve(
             0.0,
         )
     })?;
+    let nearest_tangent_right_fillet_2 = line_left_start_2.nearest(tangent_right_fillet);
+    let line_left_start_3 = Line::new(left_start, top_dir_2).ok_or_else(|| {
+        SolveError::new(
+            "on_top_start_fillet",
+            "on(top.start, fillet)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let top_start = top.origin;
-    let on_top_start_fillet_meeting =
-        intersect2d::line_circle(&line_left_start_2, &circle_tangent_right_fillet_2);
-    if let Some(e) = SolveError::from_contact(
-        "on_top_start_fillet",
-        "on(top.start, fillet)",
-        on_top_start_fillet_meeting.contact,
-    ) {
-        return Err(e);
+    let gap_2 = line_left_start_3.residual(nearest_tangent_right_fillet_2);
+    if gap_2.is_nan() || gap_2 > tol {
+        return Err(SolveError::new(
+            "on_top_start_fillet",
+            "on(top.start, fillet)",
+            ErrorKind::Inconsistent,
+            gap_2,
+        ));
     }
-    let on_top_start_fillet = on_top_start_fillet_meeting
-        .branch(usize::from(branches.on_top_start_fillet))
-        .ok_or_else(|| {
-            SolveError::new(
-                "on_top_start_fillet",
-                "on(top.start, fillet)",
-                ErrorKind::NoSuchBranch,
-                on_top_start_fillet_meeting.roots.len() as f64,
-            )
-        })?;
-    let shift_3 = on_top_start_fillet - top_start;
+    let shift_3 = nearest_tangent_right_fillet_2 - top_start;
     top.translate(&shift_3);
-    let length_2 = (left_start - on_top_start_fillet).dot(&top_dir_2);
+    let length_2 = (left_start - nearest_tangent_right_fillet_2).dot(&top_dir_2);
     if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
         return Err(SolveError::new(
             "on_top_start_fillet",
@@ -576,7 +550,7 @@ pub fn solve(
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
 #[allow(dead_code)]
-pub const MAX_ASSEMBLIES: usize = 4;
+pub const MAX_ASSEMBLIES: usize = 1;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found. It is complete
 /// when every branch combination was solved in closed form and the list did not overflow.
@@ -612,15 +586,9 @@ fn same_assembly(a: &Solution, b: &Solution) -> bool {
 #[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
-    for combination in 0..4usize {
-        let branches = Branches {
-            on_right_end_fillet: (combination % 2) as u8,
-            on_top_start_fillet: (combination / 2 % 2) as u8,
-            ..Branches::default()
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            found.push(s, same_assembly);
-        }
+    let branches = Branches::default();
+    if let Ok(s) = solve(params, &branches, defaults) {
+        found.push(s, same_assembly);
     }
     found
 }

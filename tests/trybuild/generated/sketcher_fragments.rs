@@ -564,7 +564,8 @@ pub fn solve(
     let direction_3 = (Point2::new(10.0, 4.0) - Point2::new(6.0, 4.0))
         .try_normalize(0.0)
         .ok_or_else(|| SolveError::new("b5", "symmetric(P, Q, ml)", ErrorKind::Degenerate, 0.0))?;
-    let direction_3_turned = UnitComplex::new(std::f64::consts::FRAC_PI_2) * direction_3;
+    let direction_3_turned =
+        rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * direction_3;
     let ml_dir = ml.x_axis();
     let turn_3 = rotation_between_units(&ml_dir, &direction_3_turned);
     ml.turn_by(&turn_3);

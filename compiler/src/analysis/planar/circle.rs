@@ -91,6 +91,11 @@ impl Builder<'_, Planar> {
                 let circle_known = self.record(circle).grounded();
                 let p_known = self.point_known(p);
                 let sign = if outside { 1.0 } else { -1.0 };
+                if circle_known && gap.is_none() {
+                    if let Some(foot) = self.touching_point(p, circle) {
+                        return self.move_feature(p, Target::Point(foot), r);
+                    }
+                }
                 if circle_known {
                     let at = self.point(centre);
                     let radius = self.dim_of(circle);
@@ -142,52 +147,119 @@ impl Builder<'_, Planar> {
                 gap,
                 side,
             } => {
-                let centre = self.centre(circle);
-                let circle_known = self.record(circle).grounded();
-                let on_line = self.line_point(base);
-                let line_known = on_line.is_some() && self.dir_known(super::Dir::Feature(dir));
-                let base = on_line.unwrap_or(base);
-                let a = match gap {
-                    Some(g) => self.expr(g),
-                    None => self.value(Op::Const(0.0), Ty::Scalar, "0".into()),
-                };
-                if line_known {
-                    let bp = self.point(base);
-                    let dv = self.dir(super::Dir::Feature(dir));
-                    let words = format!(
-                        "the line through {} along {}",
-                        self.name(base),
-                        self.name(dir)
-                    );
-                    let mut line = self.value(
-                        Op::Line {
-                            point: bp,
-                            dir: dv,
-                            offset: None,
-                        },
-                        Ty::Line,
-                        words,
-                    );
-                    if side < 0.0 {
-                        let words = format!("{} reversed", self.word(line));
-                        line = self.value(Op::Reversed(line), Ty::Line, words);
-                    }
-                    let fd = Fd::Line {
-                        line,
-                        a,
-                        constraint: r.constraint,
-                        last: r.last,
-                    };
-                    return self.add_fd(circle, fd, r);
+                let done = self.circle_line(r, circle, base, dir, gap, side);
+                if done && gap.is_none() {
+                    let k = self.cluster(circle);
+                    self.clusters[k].record.tangent.push(dir);
                 }
-                if circle_known {
-                    // The line must pass at signed distance side * (r + gap) from the centre.
-                    let radius = self.dim_of(circle);
-                    let d = self.sum(vec![(side, radius), (side, a)]);
-                    return self.move_line_to_point(centre, base, dir, Some(d), r);
-                }
-                false
+                done
             }
+            _ => self.circle_pair(r),
+        }
+    }
+
+    /// A segment's end `p` to be put on `circle`, when the segment's line is known and was
+    /// made tangent to the circle: the touching point, the foot of the centre on the line.
+    fn touching_point(&mut self, p: GeomId, circle: GeomId) -> Option<Reg> {
+        let gcs_lang::model::Owner::Part(seg, Part::Start | Part::End) = self.model.geoms[p].owner
+        else {
+            return None;
+        };
+        let dir = self.model.part(seg, Part::Dir)?;
+        let start = self.model.part(seg, Part::Start)?;
+        if !self.record(circle).tangent.contains(&dir) || !self.line_fixed(start, dir) {
+            return None;
+        }
+        let anchor = self.line_point(start).unwrap_or(start);
+        let (at, d) = (self.point(anchor), self.dir(super::Dir::Feature(dir)));
+        let line = self.value(
+            Op::Line {
+                point: at,
+                dir: d,
+                offset: None,
+            },
+            Ty::Line,
+            format!("the line of {}", self.name(seg)),
+        );
+        let centre = self.centre(circle);
+        let c = self.point(centre);
+        Some(self.value(
+            Op::Nearest {
+                locus: line,
+                point: c,
+            },
+            Ty::Point,
+            format!(
+                "where {} touches {} (the foot of {} on it)",
+                self.name(seg),
+                self.name(circle),
+                self.name(centre)
+            ),
+        ))
+    }
+
+    /// The circle-line relation (see [`Self::circle_relation`]).
+    fn circle_line(
+        &mut self,
+        r: &Rel,
+        circle: GeomId,
+        base: GeomId,
+        dir: GeomId,
+        gap: Option<gcs_lang::expr::ExprId>,
+        side: f64,
+    ) -> bool {
+        {
+            let centre = self.centre(circle);
+            let circle_known = self.record(circle).grounded();
+            let on_line = self.line_point(base);
+            let line_known = self.line_fixed(base, dir);
+            let base = on_line.unwrap_or(base);
+            let a = match gap {
+                Some(g) => self.expr(g),
+                None => self.value(Op::Const(0.0), Ty::Scalar, "0".into()),
+            };
+            if line_known {
+                let bp = self.point(base);
+                let dv = self.dir(super::Dir::Feature(dir));
+                let words = format!(
+                    "the line through {} along {}",
+                    self.name(base),
+                    self.name(dir)
+                );
+                let mut line = self.value(
+                    Op::Line {
+                        point: bp,
+                        dir: dv,
+                        offset: None,
+                    },
+                    Ty::Line,
+                    words,
+                );
+                if side < 0.0 {
+                    let words = format!("{} reversed", self.word(line));
+                    line = self.value(Op::Reversed(line), Ty::Line, words);
+                }
+                let fd = Fd::Line {
+                    line,
+                    a,
+                    constraint: r.constraint,
+                    last: r.last,
+                };
+                return self.add_fd(circle, fd, r);
+            }
+            if circle_known {
+                // The line must pass at signed distance side * (r + gap) from the centre.
+                let radius = self.dim_of(circle);
+                let d = self.sum(vec![(side, radius), (side, a)]);
+                return self.move_line_to_point(centre, base, dir, Some(d), r);
+            }
+            false
+        }
+    }
+
+    /// The relations between two circles (see [`Self::circle_relation`]).
+    fn circle_pair(&mut self, r: &Rel) -> bool {
+        match r.relation.clone() {
             Relation::CircleCircle { a, b, gap, mode } => {
                 let (ka, kb) = (self.record(a).grounded(), self.record(b).grounded());
                 let (known, free, known_first) = match (ka, kb) {
@@ -252,7 +324,7 @@ impl Builder<'_, Planar> {
         self.value(Op::DimOf(g), Ty::Scalar, words)
     }
 
-    fn sum(&mut self, terms: Vec<(f64, Reg)>) -> Reg {
+    pub(super) fn sum(&mut self, terms: Vec<(f64, Reg)>) -> Reg {
         // Zero constants (a tangency's gap) add nothing.
         let zero = |s: &Self, r: Reg| s.def(r).is_some_and(|st| st.op == Op::Const(0.0));
         let mut terms: Vec<(f64, Reg)> = terms.into_iter().filter(|t| !zero(self, t.1)).collect();

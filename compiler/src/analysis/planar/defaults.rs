@@ -223,6 +223,7 @@ impl Builder<'_, Planar> {
         );
         self.turn_to(geoms, pivot, from, name, meaning, explain);
         self.clusters[k].record.rot = Rot::Known;
+        self.place_by_passes(k, dir);
         true
     }
 

@@ -159,6 +159,32 @@ pub struct Record {
     pub fixed_dims: Vec<GeomId>,
     /// Whether the cluster is a lone line (its slide along itself is a symmetry).
     pub line: bool,
+    /// The direction feature whose own line the cluster can only slide along, once it has
+    /// been put on it: that line is known while the cluster is not (a segment's side of a
+    /// profile, placed before its ends are).
+    pub along: Option<GeomId>,
+    /// Known points a lone line of free direction and place must pass at a distance, recorded
+    /// until a second one (or its direction) fixes it: each removes one DOF.
+    pub passes: Vec<Pass>,
+    /// For a circle: the direction features of the lines made tangent to it. A point of such
+    /// a line put on the circle is their touching point, built as the foot of the centre on
+    /// the line rather than as the double root of an intersection (whose rounding would grow
+    /// to its square root).
+    pub tangent: Vec<GeomId>,
+}
+
+/// A known point `at` that a lone line must pass at signed distance `d` (positive: `at` to
+/// its left), recorded with its constraint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pass {
+    /// The point.
+    pub at: Reg,
+    /// The signed distance.
+    pub d: Reg,
+    /// The constraint it records.
+    pub constraint: ConstraintId,
+    /// Whether that is the constraint's last relation.
+    pub last: bool,
 }
 
 impl Record {
@@ -179,6 +205,9 @@ impl Record {
             fd_locus: false,
             fixed_dims: Vec::new(),
             line: geom.kind == GeomKind::Line,
+            along: None,
+            passes: Vec::new(),
+            tangent: Vec::new(),
         };
         if geom.fixed {
             record.hold();
@@ -206,7 +235,7 @@ impl Invariants for Record {
         } else {
             self.fd.len()
         };
-        (rot + pos + usize::from(self.free_dim.is_some())).saturating_sub(tied)
+        (rot + pos + usize::from(self.free_dim.is_some())).saturating_sub(tied + self.passes.len())
     }
 
     fn rigid(&self) -> bool {
@@ -244,8 +273,9 @@ impl Invariants for Record {
             _ => (0, 0),
         };
         let inv_vec = usize::from(self.rot == Rot::Known);
-        let fd_pts = self.fd.iter().filter(|f| !f.is_line()).count();
-        let fd_lines = self.fd.len() - fd_pts;
+        let circle_fd_pts = self.fd.iter().filter(|f| !f.is_line()).count();
+        let fd_lines = self.fd.len() - circle_fd_pts;
+        let fd_pts = circle_fd_pts + self.passes.len();
         [
             inv_pts,
             pts_1d,
@@ -260,7 +290,9 @@ impl Invariants for Record {
     }
 
     fn recorded(&self) -> Vec<ConstraintId> {
-        self.fd.iter().filter_map(circle::Fd::satisfies).collect()
+        (self.fd.iter().filter_map(circle::Fd::satisfies))
+            .chain(self.passes.iter().filter(|p| p.last).map(|p| p.constraint))
+            .collect()
     }
 
     fn freedom(&self, model: &Model, g: GeomId) -> String {
@@ -437,9 +469,7 @@ impl Builder<'_, Planar> {
             self.cluster(a) == self.cluster(b)
                 && self.clusters[self.cluster(a)].record.free_dim.is_none()
         };
-        let line_known = |base: GeomId, dir: GeomId| {
-            self.line_point(base).is_some() && self.dir_known(Dir::Feature(dir))
-        };
+        let line_known = |base: GeomId, dir: GeomId| self.line_fixed(base, dir);
         let placed = |circle: GeomId| self.record(circle).grounded();
         match *relation {
             Relation::PointPoint { a, b, .. } => {
@@ -475,6 +505,13 @@ impl Builder<'_, Planar> {
     /// A point on the line of (`base`, its direction) whose place on it is known, or that
     /// is on it wherever the line's freedom takes it: `base` itself, or the other end of the
     /// same segment, or the start of a segment pinned at its midpoint.
+    /// Whether the line through `base` along `dir` is known: a known point on it and its
+    /// direction, or a cluster that can only slide along it.
+    fn line_fixed(&self, base: GeomId, dir: GeomId) -> bool {
+        self.dir_known(Dir::Feature(dir))
+            && (self.line_point(base).is_some() || self.record(base).along == Some(dir))
+    }
+
     fn line_point(&self, base: GeomId) -> Option<GeomId> {
         if self.point_known(base) {
             return Some(base);
@@ -684,7 +721,7 @@ impl Builder<'_, Planar> {
             }
             Relation::PointLine { p, base, dir, d } => {
                 let on_line = self.line_point(base);
-                let line_known = on_line.is_some() && self.dir_known(Dir::Feature(dir));
+                let line_known = self.line_fixed(base, dir);
                 let base = on_line.unwrap_or(base);
                 let p_known = self.point_known(p);
                 if self.cluster(p) == self.cluster(base) {
@@ -1232,7 +1269,55 @@ impl Builder<'_, Planar> {
         {
             rec.pos = Pos::Fixed;
         }
+        self.place_by_passes(k, v);
         true
+    }
+
+    /// A lone line whose direction has just become known, with a recorded [`Pass`]: moved
+    /// across itself until it passes that point at its distance, which satisfies the
+    /// recorded constraint.
+    pub(super) fn place_by_passes(&mut self, k: usize, dir: GeomId) {
+        let rec = &mut self.clusters[k].record;
+        if rec.rot != Rot::Known || rec.pos != Pos::Free {
+            return;
+        }
+        let Some(first) = rec.passes.first().copied() else {
+            return;
+        };
+        rec.passes.clear();
+        let Some(&base) = (self.clusters[k].geoms.first())
+            .and_then(|&g| self.model.part(g, Part::BasePoint))
+            .as_ref()
+        else {
+            return;
+        };
+        let dv = self.dir(Dir::Feature(dir));
+        let offset = self.neg(first.d);
+        let line = self.value(
+            Op::Line {
+                point: first.at,
+                dir: dv,
+                offset: Some(offset),
+            },
+            Ty::Line,
+            format!(
+                "the line along {} passing {} at its distance",
+                self.name(dir),
+                self.word(first.at)
+            ),
+        );
+        let held = Rel {
+            relation: Relation::PointLine {
+                p: base,
+                base,
+                dir,
+                d: None,
+            },
+            constraint: first.constraint,
+            last: first.last,
+            duplicate: false,
+        };
+        self.move_feature(base, Target::On(Locus::Line(line)), &held);
     }
 
     /// A point feature `p` is known; the line (`base`, `dir`) of another cluster must pass at
@@ -1275,7 +1360,60 @@ impl Builder<'_, Planar> {
                 Ty::Line,
                 words,
             );
-            return self.move_feature(base, Target::On(Locus::Line(line)), r);
+            let moved = self.move_feature(base, Target::On(Locus::Line(line)), r);
+            let rec = &mut self.clusters[k].record;
+            if moved && matches!(rec.pos, Pos::On { feature, .. } if feature == base) {
+                rec.along = Some(dir);
+            }
+            return moved;
+        }
+        if rec.line
+            && rec.pos == Pos::Free
+            && rec.rot == Rot::Free
+            && (d.is_some() || !rec.passes.is_empty())
+        {
+            // A lone line free to turn and move, passing a known point at a distance: record
+            // it; with a second, the line's direction is the one that passes the second point
+            // at the difference of the distances from the first.
+            let d = match d {
+                Some(d) => d,
+                None => self.value(Op::Const(0.0), Ty::Scalar, "0".into()),
+            };
+            let pass = Pass {
+                at,
+                d,
+                constraint: r.constraint,
+                last: r.last,
+            };
+            let Some(&first) = rec.passes.first() else {
+                self.clusters[k].record.passes.push(pass);
+                return true;
+            };
+            let offset = self.sum(vec![(1.0, d), (-1.0, first.d)]);
+            let dv = self.dir(Dir::Feature(dir));
+            let (pn, dn) = (self.name(p), self.name(dir));
+            let from = self.word(first.at);
+            let branch = self.branch(
+                r.constraint,
+                vec![
+                    format!("{pn} ahead of {from} along {dn}"),
+                    format!("{pn} behind {from} along {dn}"),
+                ],
+            );
+            let to = self.value(
+                Op::PassingDir {
+                    pivot: first.at,
+                    base: first.at,
+                    dir: dv,
+                    point: at,
+                    offset: Some(offset),
+                    branch,
+                    constraint: r.constraint,
+                },
+                Ty::Vector,
+                format!("the direction of {dn} that passes {pn} and {from} at their distances"),
+            );
+            return self.turn(dir, to, r);
         }
         if rec.line && d.is_none() && rec.pos == Pos::Free {
             // A lone line with free direction through a known point: slide its base there.
