@@ -63,12 +63,12 @@ pub fn wrap_angle(t: f64) -> f64 {
 /// provided that this notice is preserved."
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    // 2/pi, and pi/2 split in three: the first two parts 33 bits each, so their products with
-    // a quotient below 2^20 are exact; each with its tail.
-    const TWO_OVER_PI: f64 = 6.366_197_723_675_813_824_33e-1;
-    const PIO2_1: f64 = 1.570_796_326_734_125_614_17;
-    const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
-    const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
+    // 2/pi, and pi/2 split in two parts of 33 bits each (so their products with a quotient
+    // below 2^20 are exact) and a tail; msun's constants, by their bits.
+    const TWO_OVER_PI: f64 = std::f64::consts::FRAC_2_PI;
+    const PIO2_1: f64 = f64::from_bits(0x3FF921FB54400000);
+    const PIO2_2: f64 = f64::from_bits(0x3DD0B4611A600000);
+    const PIO2_2T: f64 = f64::from_bits(0x3BA3198A2E037073);
     // Adding and subtracting 1.5 * 2^52 rounds to the nearest integer (for |v| < 2^51).
     const TO_INT: f64 = 1.5 / f64::EPSILON;
     // Beyond this the quotient reaches 2^19 and the two-part products stop being exact.
@@ -97,12 +97,12 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// `__kernel_sin` with its tail).
 #[inline(always)]
 fn kernel_sin(y: f64, dy: f64) -> f64 {
-    const S1: f64 = -1.666_666_666_666_663_243_48e-1;
-    const S2: f64 = 8.333_333_333_322_489_461_24e-3;
-    const S3: f64 = -1.984_126_982_985_794_931_34e-4;
-    const S4: f64 = 2.755_731_370_707_006_767_89e-6;
-    const S5: f64 = -2.505_076_025_340_686_341_95e-8;
-    const S6: f64 = 1.589_690_995_211_550_102_21e-10;
+    const S1: f64 = f64::from_bits(0xBFC5555555555549);
+    const S2: f64 = f64::from_bits(0x3F8111111110F8A6);
+    const S3: f64 = f64::from_bits(0xBF2A01A019C161D5);
+    const S4: f64 = f64::from_bits(0x3EC71DE357B1FE7D);
+    const S5: f64 = f64::from_bits(0xBE5AE5E68A2B9CEB);
+    const S6: f64 = f64::from_bits(0x3DE5D93A5ACFD57C);
     let z = y * y;
     let w = z * z;
     let r = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6);
@@ -114,12 +114,12 @@ fn kernel_sin(y: f64, dy: f64) -> f64 {
 /// `__kernel_cos`).
 #[inline(always)]
 fn kernel_cos(y: f64, dy: f64) -> f64 {
-    const C1: f64 = 4.166_666_666_666_660_190_37e-2;
-    const C2: f64 = -1.388_888_888_887_410_957_49e-3;
-    const C3: f64 = 2.480_158_728_947_672_941_78e-5;
-    const C4: f64 = -2.755_731_435_139_066_330_35e-7;
-    const C5: f64 = 2.087_572_321_298_174_827_90e-9;
-    const C6: f64 = -1.135_964_755_778_819_482_65e-11;
+    const C1: f64 = f64::from_bits(0x3FA555555555554C);
+    const C2: f64 = f64::from_bits(0xBF56C16C16C15177);
+    const C3: f64 = f64::from_bits(0x3EFA01A019CB1590);
+    const C4: f64 = f64::from_bits(0xBE927E4F809C52AD);
+    const C5: f64 = f64::from_bits(0x3E21EE9EBDB4B1C4);
+    const C6: f64 = f64::from_bits(0xBDA8FAE9BE8838D4);
     let z = y * y;
     let w = z * z;
     let r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
