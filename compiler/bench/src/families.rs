@@ -18,6 +18,8 @@ pub enum Family {
     FourBarChain,
     /// [`sketch_profile`]: segments joined by tangent arcs, as in a CAD sketch.
     SketchProfile,
+    /// [`closed_profile`]: a closed profile of segments and tangent fillet arcs.
+    ClosedProfile,
     /// [`truss`]: a planar truss of triangles.
     Truss,
     /// [`params`]: many params, half of them never used.
@@ -28,9 +30,10 @@ pub enum Family {
 
 impl Family {
     /// Every family, in a fixed order.
-    pub const ALL: [Family; 5] = [
+    pub const ALL: [Family; 6] = [
         Family::FourBarChain,
         Family::SketchProfile,
+        Family::ClosedProfile,
         Family::Truss,
         Family::Params,
         Family::Points,
@@ -41,6 +44,7 @@ impl Family {
         match self {
             Family::FourBarChain => "fourbar_chain",
             Family::SketchProfile => "sketch_profile",
+            Family::ClosedProfile => "closed_profile",
             Family::Truss => "truss",
             Family::Params => "params",
             Family::Points => "points",
@@ -57,6 +61,7 @@ impl Family {
         match self {
             Family::FourBarChain => four_bar_chain(n),
             Family::SketchProfile => sketch_profile(n),
+            Family::ClosedProfile => closed_profile(n),
             Family::Truss => truss(n),
             Family::Params => params(n),
             Family::Points => points(n),
@@ -68,6 +73,7 @@ impl Family {
         match self {
             Family::FourBarChain => ("theta", 0.0, std::f64::consts::TAU),
             Family::SketchProfile => ("len", 8.0, 12.0),
+            Family::ClosedProfile => ("len", 8.0, 12.0),
             Family::Truss => ("bar", 1.5, 2.5),
             Family::Params => ("p0", 0.5, 1.5),
             Family::Points => ("gap", 0.5, 1.5),
@@ -158,6 +164,57 @@ pub fn sketch_profile(n: usize) -> String {
         y = ey;
     }
     let _ = writeln!(s, "\noutput f{};", n - 1);
+    s
+}
+
+/// A closed profile of `n` segments (at least 3), each turned `360 / n` degrees from the last,
+/// joined by `n` tangent fillet arcs of radius `r` (each with `on` and `tangent` at both of its
+/// segments), every edge of length `len` but the last two, which the loop closes: issue 19's
+/// closed sketch, solved in closed form (the two free lengths where the last sides' lines
+/// meet).
+pub fn closed_profile(n: usize) -> String {
+    let n = n.max(3);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// A closed profile: {n} segments turning by 360/{n} degrees, joined by {n} tangent fillet\n\
+         // arcs; the last two edge lengths are left free: the loop closes them."
+    );
+    s.push_str("space 2d;\n\nparam len = 10;\nparam r = 2;\n\n");
+    s.push_str("fixed point origin = (0, 0);\nfixed vector X = (1, 0);\n");
+    let turn = 360.0 / n as f64;
+    let (mut x, mut y) = (0.0f64, 0.0f64);
+    for k in 0..n {
+        let (dy, dx) = (k as f64 * turn).to_radians().sin_cos();
+        let (ex, ey) = (x + 10.0 * dx, y + 10.0 * dy);
+        let _ = writeln!(
+            s,
+            "\nsegment s{k} = ({x:.3}, {y:.3}) -> ({ex:.3}, {ey:.3});"
+        );
+        if k == 0 {
+            s.push_str("coincident(s0.start, origin);\n");
+        }
+        let _ = writeln!(s, "angle(X, s{k}) = {} deg;", k as f64 * turn);
+        if k + 2 < n {
+            let _ = writeln!(s, "length(s{k}) = len;");
+        }
+        // The fillet's centre: to the left of the segment's end (the profile turns left).
+        let (cx, cy) = (ex - 2.0 * dy, ey + 2.0 * dx);
+        let _ = writeln!(s, "circle f{k} = center ({cx:.3}, {cy:.3}) radius 2;");
+        let _ = writeln!(s, "radius(f{k}) = r;");
+        let _ = writeln!(s, "tangent(s{k}, f{k});");
+        let _ = writeln!(s, "on(s{k}.end, f{k});");
+        if k > 0 {
+            let _ = writeln!(s, "tangent(s{k}, f{});", k - 1);
+            let _ = writeln!(s, "on(s{k}.start, f{});", k - 1);
+        }
+        // The next segment starts where the arc ends.
+        let (ny, nx) = ((k + 1) as f64 * turn).to_radians().sin_cos();
+        x = cx + 2.0 * ny;
+        y = cy - 2.0 * nx;
+    }
+    let _ = writeln!(s, "tangent(s0, f{});", n - 1);
+    let _ = writeln!(s, "on(s0.start, f{});", n - 1);
     s
 }
 

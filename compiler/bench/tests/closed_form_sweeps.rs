@@ -135,3 +135,21 @@ fn sliders_on_moving_bodies_turn_a_whole_turn_in_closed_form_without_a_flip() {
         println!("{line}");
     }
 }
+
+/// The closed profile of `n` segments and `n` fillet arcs, its last two edge lengths free
+/// (`gcs_bench::families::closed_profile`): closed-form at every size, every tangency and
+/// incidence to `1e-12` of its size, and no flip as the edges' length moves.
+#[test]
+fn the_closed_fillet_profile_closes_in_closed_form_at_every_size() {
+    for n in [4, 16, 64] {
+        let text = gcs_bench::families::closed_profile(n);
+        let found = discover::Found {
+            stem: format!("closed_profile_{n}"),
+            folder: discover::Folder::Families,
+            path: std::path::PathBuf::from(format!("closed_profile_{n}.gcs")),
+            space: gcs_lang::model::Space::D2,
+            text,
+        };
+        println!("{}", check(&found, dimension_sweep));
+    }
+}
