@@ -587,5 +587,359 @@ fn bench_sketch(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_fourbar, bench_sketch);
+// ---------------------------------------------------------------------------------------------
+// The closed rectangle of examples/sketches/rectangle.gcs (issue 19).
+
+/// The rectangle in ezpz's terms: corners `p0` (fixed at the origin) to `p3`, the sides
+/// horizontal and vertical, the bottom `width` and the left `height` long.
+struct EzRectangle {
+    p: [DatumPoint; 4],
+}
+
+impl EzRectangle {
+    const VARS: usize = 8;
+    const STEPS: usize = 32;
+
+    fn new() -> Self {
+        let mut ids = IdGenerator::default();
+        EzRectangle {
+            p: std::array::from_fn(|_| DatumPoint::new(&mut ids)),
+        }
+    }
+
+    fn requests(&self, width: f64) -> Vec<ConstraintRequest> {
+        let [p0, p1, p2, p3] = self.p;
+        let side = DatumLineSegment::new;
+        let mut r = Vec::with_capacity(8);
+        r.extend(fix(p0, 0.0, 0.0));
+        r.push(req(Constraint::Horizontal(side(p0, p1))));
+        r.push(req(Constraint::Vertical(side(p1, p2))));
+        r.push(req(Constraint::Horizontal(side(p2, p3))));
+        r.push(req(Constraint::Vertical(side(p3, p0))));
+        r.push(req(Constraint::Distance(p0, p1, width)));
+        r.push(req(Constraint::Distance(p3, p0, 2.5)));
+        r
+    }
+
+    /// The model's sketch of the corners.
+    fn sketch() -> [f64; Self::VARS] {
+        [0.0, 0.0, 4.2, 0.1, 4.1, 2.9, 0.1, 3.1]
+    }
+
+    fn solve(&self, width: f64, guess: &mut [f64; Self::VARS]) -> Option<usize> {
+        ezpz_solve(&self.requests(width), guess, Config::default())
+    }
+
+    /// The corner opposite the origin.
+    fn far_corner(&self, v: &[f64]) -> [f64; 2] {
+        [v[self.p[2].id_x() as usize], v[self.p[2].id_y() as usize]]
+    }
+}
+
+fn gcs_rectangle(width: f64) -> Option<[f64; 2]> {
+    let params = ex::rectangle::Params {
+        width,
+        ..Default::default()
+    };
+    ex::rectangle::solve(
+        &params,
+        &ex::rectangle::Branches::default(),
+        &ex::rectangle::Defaults::default(),
+    )
+    .ok()
+    .map(|s| {
+        let c = s.right_end();
+        [c.x, c.y]
+    })
+}
+
+/// The rectangle's width from 3.6 to 4.4 and back: ezpz warm and cold against gcs, checked
+/// on the same assembly first, then timed.
+fn bench_rectangle(c: &mut Criterion) {
+    let n = EzRectangle::STEPS;
+    let widths: Vec<f64> = (0..n)
+        .map(|i| {
+            let t = i as f64 / (n / 2) as f64;
+            3.6 + 0.8 * if t <= 1.0 { t } else { 2.0 - t }
+        })
+        .collect();
+    let ez = EzRectangle::new();
+    let mut warm = EzRectangle::sketch();
+    let (mut worst, mut flips) = (0.0f64, 0);
+    for &w in &widths {
+        let g = gcs_rectangle(w).expect("gcs solves the rectangle");
+        ez.solve(w, &mut warm)
+            .unwrap_or_else(|| panic!("ezpz (warm) fails at width {w}"));
+        let d = dist(ez.far_corner(&warm), g);
+        if d > AGREE {
+            flips += 1;
+        } else {
+            worst = worst.max(d);
+        }
+    }
+    eprintln!(
+        "peer_rectangle check over {n} widths: ezpz_warm agrees with gcs's far corner to \
+         {worst:.1e} ({flips} on another assembly)"
+    );
+    let mut gcs_step = {
+        let widths = widths.clone();
+        let (branches, defaults) = (
+            ex::rectangle::Branches::default(),
+            ex::rectangle::Defaults::default(),
+        );
+        let mut params = ex::rectangle::Params::default();
+        let mut i = 0;
+        move || {
+            i = (i + 1) % n;
+            params.width = black_box(widths[i]);
+            black_box(ex::rectangle::solve(&params, &branches, &defaults).map(|s| s.right_end()))
+                .is_ok()
+        }
+    };
+    let mut warm_step = {
+        let widths = widths.clone();
+        let ez = EzRectangle::new();
+        let mut vals = EzRectangle::sketch();
+        let mut i = 0;
+        move || {
+            i = (i + 1) % n;
+            black_box(ez.solve(black_box(widths[i]), &mut vals))
+        }
+    };
+    let mut cold_step = {
+        let widths = widths.clone();
+        let ez = EzRectangle::new();
+        let mut i = 0;
+        move || {
+            i = (i + 1) % n;
+            let mut vals = EzRectangle::sketch();
+            black_box(ez.solve(black_box(widths[i]), &mut vals))
+        }
+    };
+    let gcs = median_ns(|| {
+        gcs_step();
+    });
+    let warm = median_ns(|| {
+        warm_step();
+    });
+    let cold = median_ns(|| {
+        cold_step();
+    });
+    eprintln!(
+        "peer_rectangle medians: gcs {}, ezpz_warm {} (ratio ezpz/gcs {:.0}), ezpz_cold {} (ratio {:.0})",
+        show_ns(gcs),
+        show_ns(warm),
+        warm / gcs,
+        show_ns(cold),
+        cold / gcs
+    );
+    let mut g = c.benchmark_group("peer_rectangle");
+    g.bench_function("gcs", |b| b.iter(&mut gcs_step));
+    g.bench_function("ezpz_warm", |b| b.iter(&mut warm_step));
+    g.bench_function("ezpz_cold", |b| b.iter(&mut cold_step));
+    g.finish();
+}
+
+// ---------------------------------------------------------------------------------------------
+// The slot of examples/sketches/slot.gcs (issue 19).
+
+/// The slot in ezpz's terms: circles `left` (centre fixed at the origin, radius `width / 2`)
+/// and `right` (centre 5 from it, radius free), a horizontal `top` from `left` to `right` and
+/// a horizontal `bottom` back. Each of the four joints is a point on a circle (`DistanceVar`
+/// to the radius) with the radius to it perpendicular to the segment, the well-posed form of
+/// tangent + on (see [`Form::Perpendicular`]).
+struct EzSlot {
+    left: DatumCircle,
+    right: DatumCircle,
+    top: DatumLineSegment,
+    bottom: DatumLineSegment,
+}
+
+impl EzSlot {
+    const VARS: usize = 14;
+    const STEPS: usize = 32;
+
+    fn new() -> Self {
+        let mut ids = IdGenerator::default();
+        let mut circle = |ids: &mut IdGenerator| {
+            let center = DatumPoint::new(ids);
+            let radius = DatumDistance::new(ids.next_id());
+            DatumCircle { center, radius }
+        };
+        let (left, right) = (circle(&mut ids), circle(&mut ids));
+        let mut segment = |ids: &mut IdGenerator| {
+            let (p0, p1) = (DatumPoint::new(ids), DatumPoint::new(ids));
+            DatumLineSegment::new(p0, p1)
+        };
+        let (top, bottom) = (segment(&mut ids), segment(&mut ids));
+        EzSlot {
+            left,
+            right,
+            top,
+            bottom,
+        }
+    }
+
+    fn requests(&self, width: f64) -> Vec<ConstraintRequest> {
+        let mut q = Vec::with_capacity(14);
+        q.extend(fix(self.left.center, 0.0, 0.0));
+        q.push(req(Constraint::CircleRadius(self.left, width / 2.0)));
+        q.push(req(Constraint::Horizontal(self.top)));
+        q.push(req(Constraint::Horizontal(self.bottom)));
+        q.push(req(Constraint::Distance(
+            self.left.center,
+            self.right.center,
+            5.0,
+        )));
+        for (s, f, p) in [
+            (self.top, self.left, self.top.p0),
+            (self.top, self.right, self.top.p1),
+            (self.bottom, self.right, self.bottom.p0),
+            (self.bottom, self.left, self.bottom.p1),
+        ] {
+            q.push(req(Constraint::lines_perpendicular([
+                s,
+                DatumLineSegment::new(f.center, p),
+            ])));
+            q.push(req(Constraint::DistanceVar(p, f.center, f.radius)));
+        }
+        q
+    }
+
+    /// The model's sketch.
+    fn sketch(&self) -> [f64; Self::VARS] {
+        let mut v = [0.0; Self::VARS];
+        let mut set = |p: DatumPoint, x: f64, y: f64| {
+            v[p.id_x() as usize] = x;
+            v[p.id_y() as usize] = y;
+        };
+        set(self.left.center, 0.0, 0.0);
+        set(self.right.center, 5.1, 0.1);
+        set(self.top.p0, 0.1, 1.0);
+        set(self.top.p1, 5.0, 1.1);
+        set(self.bottom.p0, 5.0, -0.9);
+        set(self.bottom.p1, 0.0, -1.1);
+        v[self.left.radius.id as usize] = 1.1;
+        v[self.right.radius.id as usize] = 0.9;
+        v
+    }
+
+    fn solve(&self, width: f64, guess: &mut [f64; Self::VARS]) -> Option<usize> {
+        ezpz_solve(&self.requests(width), guess, Config::default())
+    }
+
+    /// The top's end, on the right arc.
+    fn top_end(&self, v: &[f64]) -> [f64; 2] {
+        [
+            v[self.top.p1.id_x() as usize],
+            v[self.top.p1.id_y() as usize],
+        ]
+    }
+}
+
+fn gcs_slot(width: f64) -> Option<[f64; 2]> {
+    let params = ex::slot::Params { width };
+    ex::slot::solve(
+        &params,
+        &ex::slot::Branches::default(),
+        &ex::slot::Defaults::default(),
+    )
+    .ok()
+    .map(|s| {
+        let c = s.top_end();
+        [c.x, c.y]
+    })
+}
+
+/// The slot's width from 1.8 to 2.2 and back: ezpz warm and cold against gcs, checked on the
+/// same assembly first, then timed.
+fn bench_slot(c: &mut Criterion) {
+    let n = EzSlot::STEPS;
+    let widths: Vec<f64> = (0..n)
+        .map(|i| {
+            let t = i as f64 / (n / 2) as f64;
+            1.8 + 0.4 * if t <= 1.0 { t } else { 2.0 - t }
+        })
+        .collect();
+    let ez = EzSlot::new();
+    let mut warm = ez.sketch();
+    let (mut worst, mut flips) = (0.0f64, 0);
+    for &w in &widths {
+        let g = gcs_slot(w).expect("gcs solves the slot");
+        ez.solve(w, &mut warm)
+            .unwrap_or_else(|| panic!("ezpz (warm) fails at width {w}"));
+        let d = dist(ez.top_end(&warm), g);
+        if d > AGREE {
+            flips += 1;
+        } else {
+            worst = worst.max(d);
+        }
+    }
+    eprintln!(
+        "peer_slot check over {n} widths: ezpz_warm agrees with gcs's top end to {worst:.1e} \
+         ({flips} on another assembly)"
+    );
+    let mut gcs_step = {
+        let widths = widths.clone();
+        let (branches, defaults) = (ex::slot::Branches::default(), ex::slot::Defaults::default());
+        let mut i = 0;
+        move || {
+            i = (i + 1) % n;
+            let params = ex::slot::Params {
+                width: black_box(widths[i]),
+            };
+            black_box(ex::slot::solve(&params, &branches, &defaults).map(|s| s.top_end())).is_ok()
+        }
+    };
+    let mut warm_step = {
+        let widths = widths.clone();
+        let ez = EzSlot::new();
+        let mut vals = ez.sketch();
+        let mut i = 0;
+        move || {
+            i = (i + 1) % n;
+            black_box(ez.solve(black_box(widths[i]), &mut vals))
+        }
+    };
+    let mut cold_step = {
+        let widths = widths.clone();
+        let ez = EzSlot::new();
+        let mut i = 0;
+        move || {
+            i = (i + 1) % n;
+            let mut vals = ez.sketch();
+            black_box(ez.solve(black_box(widths[i]), &mut vals))
+        }
+    };
+    let gcs = median_ns(|| {
+        gcs_step();
+    });
+    let warm = median_ns(|| {
+        warm_step();
+    });
+    let cold = median_ns(|| {
+        cold_step();
+    });
+    eprintln!(
+        "peer_slot medians: gcs {}, ezpz_warm {} (ratio ezpz/gcs {:.0}), ezpz_cold {} (ratio {:.0})",
+        show_ns(gcs),
+        show_ns(warm),
+        warm / gcs,
+        show_ns(cold),
+        cold / gcs
+    );
+    let mut g = c.benchmark_group("peer_slot");
+    g.bench_function("gcs", |b| b.iter(&mut gcs_step));
+    g.bench_function("ezpz_warm", |b| b.iter(&mut warm_step));
+    g.bench_function("ezpz_cold", |b| b.iter(&mut cold_step));
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_fourbar,
+    bench_sketch,
+    bench_rectangle,
+    bench_slot
+);
 criterion_main!(benches);
