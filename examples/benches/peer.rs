@@ -761,13 +761,13 @@ impl EzSlot {
 
     fn new() -> Self {
         let mut ids = IdGenerator::default();
-        let mut circle = |ids: &mut IdGenerator| {
+        let circle = |ids: &mut IdGenerator| {
             let center = DatumPoint::new(ids);
             let radius = DatumDistance::new(ids.next_id());
             DatumCircle { center, radius }
         };
         let (left, right) = (circle(&mut ids), circle(&mut ids));
-        let mut segment = |ids: &mut IdGenerator| {
+        let segment = |ids: &mut IdGenerator| {
             let (p0, p1) = (DatumPoint::new(ids), DatumPoint::new(ids));
             DatumLineSegment::new(p0, p1)
         };
