@@ -120,6 +120,11 @@ impl Builder<'_, Planar> {
                     self.centers.insert(c, self.name(centre));
                     return self.move_feature(p, Target::On(Locus::Circle(c)), r);
                 }
+                if p_known && gap.is_none() {
+                    if let Some(foot) = self.centre_from_joint(p, circle) {
+                        return self.move_feature(centre, Target::Point(foot), r);
+                    }
+                }
                 if p_known {
                     let at = self.point(p);
                     let b = match gap {
@@ -136,7 +141,13 @@ impl Builder<'_, Planar> {
                         constraint: r.constraint,
                         last: r.last,
                     };
-                    return self.add_fd(circle, fd, r);
+                    let radius_known = self.record(circle).free_dim.is_none();
+                    let done = self.add_fd(circle, fd, r);
+                    if done && radius_known && gap.is_none() {
+                        let k = self.cluster(circle);
+                        self.clusters[k].record.joint = Some(p);
+                    }
+                    return done;
                 }
                 false
             }
@@ -198,6 +209,85 @@ impl Builder<'_, Planar> {
         ))
     }
 
+    /// The centre of `circle`, of known radius and already on the line its tangency to a
+    /// segment made, when known point `p`, an end of that segment, must be on it too: `p`'s
+    /// foot on that line (the point on the line of centres), where the circle about `p` and
+    /// the line only touch, a double root an intersection would find to the square root of
+    /// rounding.
+    fn centre_from_joint(&mut self, p: GeomId, circle: GeomId) -> Option<Reg> {
+        let gcs_lang::model::Owner::Part(seg, Part::Start | Part::End) = self.model.geoms[p].owner
+        else {
+            return None;
+        };
+        let dir = self.model.part(seg, Part::Dir)?;
+        let rec = self.record(circle);
+        let centre = self.centre(circle);
+        let (
+            true,
+            None,
+            Pos::On {
+                feature,
+                locus: Locus::Line(line),
+            },
+        ) = (rec.tangent.contains(&dir), rec.free_dim, rec.pos)
+        else {
+            return None;
+        };
+        if feature != centre {
+            return None;
+        }
+        let at = self.point(p);
+        Some(self.value(
+            Op::Nearest {
+                locus: line,
+                point: at,
+            },
+            Ty::Point,
+            format!(
+                "the centre across from {} (the foot of {} on {})",
+                self.name(p),
+                self.name(p),
+                self.word(line)
+            ),
+        ))
+    }
+
+    /// The centre of `circle`, of known radius and already on the circle about its joint (an
+    /// end of the segment along `dir`), when that segment's line must touch it: the joint's
+    /// foot on the line of centres `fd` makes, where the two loci only touch.
+    fn joint_foot(&mut self, circle: GeomId, dir: GeomId, fd: Fd) -> Option<Reg> {
+        let rec = self.record(circle).clone();
+        let centre = self.centre(circle);
+        let (Some(joint), None, Pos::On { feature, .. }) = (rec.joint, rec.free_dim, rec.pos)
+        else {
+            return None;
+        };
+        let gcs_lang::model::Owner::Part(seg, Part::Start | Part::End) =
+            self.model.geoms[joint].owner
+        else {
+            return None;
+        };
+        if feature != centre || self.model.part(seg, Part::Dir) != Some(dir) {
+            return None;
+        }
+        let Locus::Line(line) = self.fd_locus(circle, fd) else {
+            return None;
+        };
+        let at = self.point(joint);
+        Some(self.value(
+            Op::Nearest {
+                locus: line,
+                point: at,
+            },
+            Ty::Point,
+            format!(
+                "the centre across from {} (its foot on {})",
+                self.name(joint),
+                self.word(line)
+            ),
+        ))
+    }
+
     /// The circle-line relation (see [`Self::circle_relation`]).
     fn circle_line(
         &mut self,
@@ -245,6 +335,12 @@ impl Builder<'_, Planar> {
                     constraint: r.constraint,
                     last: r.last,
                 };
+                if gap.is_none() {
+                    if let Some(foot) = self.joint_foot(circle, dir, fd) {
+                        let centre = self.centre(circle);
+                        return self.move_feature(centre, Target::Point(foot), r);
+                    }
+                }
                 return self.add_fd(circle, fd, r);
             }
             if circle_known {

@@ -171,6 +171,9 @@ pub struct Record {
     /// the line rather than as the double root of an intersection (whose rounding would grow
     /// to its square root).
     pub tangent: Vec<GeomId>,
+    /// For a circle of known radius whose centre was put on the circle about a known point
+    /// it passes through: that point (a fillet's joint, before its tangency).
+    pub joint: Option<GeomId>,
 }
 
 /// A known point `at` that a lone line must pass at signed distance `d` (positive: `at` to
@@ -208,6 +211,7 @@ impl Record {
             along: None,
             passes: Vec::new(),
             tangent: Vec::new(),
+            joint: None,
         };
         if geom.fixed {
             record.hold();
