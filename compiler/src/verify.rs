@@ -179,7 +179,21 @@ pub fn residuals(model: &Model, solution: &Solution, params: &[f64]) -> Vec<Resi
                     Some(GeomKind::Line | GeomKind::Segment) => {
                         let (base, dir) = look.line_arg(a);
                         let (c, r) = look.circle_arg(b);
-                        (cross(dir, sub(c, base)).abs() - r).abs()
+                        let gap = (cross(dir, sub(c, base)).abs() - r).abs();
+                        // A segment's end on the circle (a fillet's joint) must be the touching
+                        // point: its distance along the line from the centre's foot. The gap
+                        // above is second order in that distance, and hides it.
+                        let joints = if model.geoms[a].kind == GeomKind::Segment {
+                            let n = &model.geoms[a].name;
+                            [look.p(&format!("{n}.start")), look.p(&format!("{n}.end"))]
+                                .into_iter()
+                                .filter(|e| (norm(sub(*e, c)) - r).abs() <= 1e-6 * (1.0 + r))
+                                .map(|e| dot(dir, sub(e, c)).abs())
+                                .fold(0.0f64, f64::max)
+                        } else {
+                            0.0
+                        };
+                        gap.max(joints)
                     }
                     _ => {
                         let (c1, r1) = look.circle_arg(a);

@@ -51,10 +51,6 @@ impl Default for Params {
 /// Which assembly: one field per branch variable, each an index with a geometric meaning.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
-    /// `tangent_top_left_end`:
-    /// - 0: the first crossing of the line along top.dir placing left_end.center at the right distance with the circle of radius the radius of left_end about left_end.center, along the line
-    /// - 1: the second crossing, along the line
-    pub tangent_top_left_end: u8,
     /// `tangent_top_right_end`:
     /// - 0: the first crossing of the bisector of centres of right_end with the circle of radius 5 about O, along the line
     /// - 1: the second crossing, along the line
@@ -66,7 +62,6 @@ impl Branches {
     /// Sets the branch variable called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, index: u8) -> bool {
         match name {
-            "tangent_top_left_end" => self.tangent_top_left_end = index,
             "tangent_top_right_end" => self.tangent_top_right_end = index,
             _ => return false,
         }
@@ -78,7 +73,6 @@ impl Default for Branches {
     /// The sketch's assembly.
     fn default() -> Self {
         Branches {
-            tangent_top_left_end: 0,
             tangent_top_right_end: 1,
         }
     }
@@ -392,43 +386,34 @@ pub fn solve(
             )
         })?
         .offset(minus_2);
-    let tangent_top_left_end_meeting = intersect2d::line_circle(&line_o_2, &circle_o);
-    if let Some(e) = SolveError::from_contact(
-        "tangent_top_left_end",
-        "tangent(top, left_end)",
-        tangent_top_left_end_meeting.contact,
-    ) {
-        return Err(e);
+    let nearest_o = line_o_2.nearest(Point2::new(0.0, 0.0));
+    let gap = circle_o.residual(nearest_o);
+    if gap.is_nan() || gap > tol {
+        return Err(SolveError::new(
+            "tangent_top_left_end",
+            "tangent(top, left_end)",
+            ErrorKind::Inconsistent,
+            gap,
+        ));
     }
-    let tangent_top_left_end = tangent_top_left_end_meeting
-        .branch(usize::from(branches.tangent_top_left_end))
-        .ok_or_else(|| {
-            SolveError::new(
-                "tangent_top_left_end",
-                "tangent(top, left_end)",
-                ErrorKind::NoSuchBranch,
-                tangent_top_left_end_meeting.roots.len() as f64,
-            )
-        })?;
-    top.place_origin(&tangent_top_left_end);
+    top.place_origin(&nearest_o);
 
     // tangent(bottom, right_end) (slot.gcs:21)
     // tangent(top, right_end) (slot.gcs:20)
     let top_dir_3 = top.x_axis();
-    let line_tangent_top_left_end =
-        Line::new(tangent_top_left_end, top_dir_3).ok_or_else(|| {
-            SolveError::new(
-                "tangent_top_right_end",
-                "tangent(top, right_end)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
-    let line_tangent_top_left_end_reversed = line_tangent_top_left_end.reversed();
+    let line_nearest_o = Line::new(nearest_o, top_dir_3).ok_or_else(|| {
+        SolveError::new(
+            "tangent_top_right_end",
+            "tangent(top, right_end)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let line_nearest_o_reversed = line_nearest_o.reversed();
     let bisector = locus2d::centres_line_line(
         &line_nearest_bottom_start_reversed,
         0.0,
-        &line_tangent_top_left_end_reversed,
+        &line_nearest_o_reversed,
         0.0,
     )
     .ok_or_else(|| {
@@ -480,13 +465,13 @@ pub fn solve(
             )
         })?;
     let nearest_tangent_top_right_end = line_nearest_bottom_start_2.nearest(tangent_top_right_end);
-    let gap = line_o.residual(nearest_tangent_top_right_end);
-    if gap.is_nan() || gap > tol {
+    let gap_2 = line_o.residual(nearest_tangent_top_right_end);
+    if gap_2.is_nan() || gap_2 > tol {
         return Err(SolveError::new(
             "on_bottom_start_right_end",
             "on(bottom.start, right_end)",
             ErrorKind::Inconsistent,
-            gap,
+            gap_2,
         ));
     }
     bottom.place_origin(&nearest_tangent_top_right_end);
@@ -502,7 +487,7 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let nearest_o = line_nearest_tangent_top_right_end.nearest(Point2::new(0.0, 0.0));
+    let nearest_o_2 = line_nearest_tangent_top_right_end.nearest(Point2::new(0.0, 0.0));
     let line_nearest_tangent_top_right_end_2 =
         Line::new(nearest_tangent_top_right_end, bottom_dir_4).ok_or_else(|| {
             SolveError::new(
@@ -512,16 +497,16 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let gap_2 = line_nearest_tangent_top_right_end_2.residual(nearest_o);
-    if gap_2.is_nan() || gap_2 > tol {
+    let gap_3 = line_nearest_tangent_top_right_end_2.residual(nearest_o_2);
+    if gap_3.is_nan() || gap_3 > tol {
         return Err(SolveError::new(
             "on_bottom_end_left_end",
             "on(bottom.end, left_end)",
             ErrorKind::Inconsistent,
-            gap_2,
+            gap_3,
         ));
     }
-    let length = (nearest_o - nearest_tangent_top_right_end).dot(&bottom_dir_4);
+    let length = (nearest_o_2 - nearest_tangent_top_right_end).dot(&bottom_dir_4);
     if !gcs_runtime::num::is_finite(length) || length < 0.0 {
         return Err(SolveError::new(
             "on_bottom_end_left_end",
@@ -533,36 +518,33 @@ pub fn solve(
     let bottom_length = length;
 
     // on(top.end, right_end) (slot.gcs:24)
-    let line_tangent_top_left_end_2 =
-        Line::new(tangent_top_left_end, top_dir_3).ok_or_else(|| {
-            SolveError::new(
-                "on_top_end_right_end",
-                "on(top.end, right_end)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
-    let nearest_tangent_top_right_end_2 =
-        line_tangent_top_left_end_2.nearest(tangent_top_right_end);
-    let line_tangent_top_left_end_3 =
-        Line::new(tangent_top_left_end, top_dir_3).ok_or_else(|| {
-            SolveError::new(
-                "on_top_end_right_end",
-                "on(top.end, right_end)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
-    let gap_3 = line_tangent_top_left_end_3.residual(nearest_tangent_top_right_end_2);
-    if gap_3.is_nan() || gap_3 > tol {
+    let line_nearest_o_2 = Line::new(nearest_o, top_dir_3).ok_or_else(|| {
+        SolveError::new(
+            "on_top_end_right_end",
+            "on(top.end, right_end)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let nearest_tangent_top_right_end_2 = line_nearest_o_2.nearest(tangent_top_right_end);
+    let line_nearest_o_3 = Line::new(nearest_o, top_dir_3).ok_or_else(|| {
+        SolveError::new(
+            "on_top_end_right_end",
+            "on(top.end, right_end)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let gap_4 = line_nearest_o_3.residual(nearest_tangent_top_right_end_2);
+    if gap_4.is_nan() || gap_4 > tol {
         return Err(SolveError::new(
             "on_top_end_right_end",
             "on(top.end, right_end)",
             ErrorKind::Inconsistent,
-            gap_3,
+            gap_4,
         ));
     }
-    let length_2 = (nearest_tangent_top_right_end_2 - tangent_top_left_end).dot(&top_dir_3);
+    let length_2 = (nearest_tangent_top_right_end_2 - nearest_o).dot(&top_dir_3);
     if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
         return Err(SolveError::new(
             "on_top_end_right_end",
@@ -588,7 +570,7 @@ pub fn solve(
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
 #[allow(dead_code)]
-pub const MAX_ASSEMBLIES: usize = 4;
+pub const MAX_ASSEMBLIES: usize = 2;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found. It is complete
 /// when every branch combination was solved in closed form and the list did not overflow.
@@ -624,10 +606,9 @@ fn same_assembly(a: &Solution, b: &Solution) -> bool {
 #[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
-    for combination in 0..4usize {
+    for combination in 0..2usize {
         let branches = Branches {
-            tangent_top_left_end: (combination % 2) as u8,
-            tangent_top_right_end: (combination / 2 % 2) as u8,
+            tangent_top_right_end: (combination % 2) as u8,
         };
         if let Ok(s) = solve(params, &branches, defaults) {
             found.push(s, same_assembly);

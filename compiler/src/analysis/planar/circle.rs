@@ -118,7 +118,16 @@ impl Builder<'_, Planar> {
                         words,
                     );
                     self.centers.insert(c, self.name(centre));
-                    return self.move_feature(p, Target::On(Locus::Circle(c)), r);
+                    let done = self.move_feature(p, Target::On(Locus::Circle(c)), r);
+                    let end = matches!(
+                        self.model.geoms[p].owner,
+                        gcs_lang::model::Owner::Part(_, Part::Start | Part::End)
+                    );
+                    if done && end && gap.is_none() {
+                        let k = self.cluster(p);
+                        self.clusters[k].record.on_circle = Some((p, circle));
+                    }
+                    return done;
                 }
                 if p_known && gap.is_none() {
                     if let Some(foot) = self.centre_from_joint(p, circle) {
@@ -288,6 +297,60 @@ impl Builder<'_, Planar> {
         ))
     }
 
+    /// A segment end already on known `circle` (and turning nowhere: the segment's direction
+    /// is known) whose line must now touch the circle at signed distance `d` from its centre:
+    /// the end and the touching point, the centre's foot on the tangent line.
+    fn end_touching(
+        &mut self,
+        circle: GeomId,
+        base: GeomId,
+        dir: GeomId,
+        d: Reg,
+    ) -> Option<(GeomId, Reg)> {
+        let rec = self.record(base).clone();
+        let (q, c) = rec.on_circle?;
+        let gcs_lang::model::Owner::Part(seg, _) = self.model.geoms[q].owner else {
+            return None;
+        };
+        if c != circle
+            || rec.rot != super::Rot::Known
+            || self.model.part(seg, Part::Dir) != Some(dir)
+            || !matches!(rec.pos, Pos::On { feature, .. } if feature == q)
+        {
+            return None;
+        }
+        let centre = self.centre(circle);
+        let at = self.point(centre);
+        let dv = self.dir(super::Dir::Feature(dir));
+        let back = self.neg(d);
+        let line = self.value(
+            Op::Line {
+                point: at,
+                dir: dv,
+                offset: Some(back),
+            },
+            Ty::Line,
+            format!(
+                "the tangent to {} along {}",
+                self.name(circle),
+                self.name(dir)
+            ),
+        );
+        let t = self.value(
+            Op::Nearest {
+                locus: line,
+                point: at,
+            },
+            Ty::Point,
+            format!(
+                "where {} touches {} (the foot of its centre)",
+                self.name(seg),
+                self.name(circle)
+            ),
+        );
+        Some((q, t))
+    }
+
     /// The circle-line relation (see [`Self::circle_relation`]).
     fn circle_line(
         &mut self,
@@ -347,6 +410,11 @@ impl Builder<'_, Planar> {
                 // The line must pass at signed distance side * (r + gap) from the centre.
                 let radius = self.dim_of(circle);
                 let d = self.sum(vec![(side, radius), (side, a)]);
+                if gap.is_none() {
+                    if let Some((q, t)) = self.end_touching(circle, base, dir, d) {
+                        return self.move_feature(q, Target::Point(t), r);
+                    }
+                }
                 return self.move_line_to_point(centre, base, dir, Some(d), r);
             }
             false

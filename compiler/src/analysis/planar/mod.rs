@@ -174,6 +174,9 @@ pub struct Record {
     /// For a circle of known radius whose centre was put on the circle about a known point
     /// it passes through: that point (a fillet's joint, before its tangency).
     pub joint: Option<GeomId>,
+    /// A segment end put on a known circle, with that circle: when the segment's line is then
+    /// made tangent to it, the end is their touching point.
+    pub on_circle: Option<(GeomId, GeomId)>,
 }
 
 /// A known point `at` that a lone line must pass at signed distance `d` (positive: `at` to
@@ -212,6 +215,7 @@ impl Record {
             passes: Vec::new(),
             tangent: Vec::new(),
             joint: None,
+            on_circle: None,
         };
         if geom.fixed {
             record.hold();
