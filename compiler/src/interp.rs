@@ -816,13 +816,7 @@ impl<'a, 'r> Machine<'a, 'r> {
                 if let Some(e) = SolveError::from_contact("", "", i.contact) {
                     return Err(err(model, *constraint, e.kind, e.magnitude));
                 }
-                let index = match self.choice {
-                    Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
-                    Choice::Nearest => (i.roots).nearest_to(u, |x, y| (x - y).norm()).unwrap_or(0),
-                };
-                if let Some(slot) = self.chosen.get_mut(branch.0 as usize) {
-                    *slot = Some(index);
-                }
+                let index = self.choose(*branch, |_| i.roots.nearest_to(u, |x, y| (x - y).norm()));
                 Val::V(i.roots.get(index).ok_or_else(|| {
                     err(
                         model,
@@ -932,6 +926,23 @@ impl<'a, 'r> Machine<'a, 'r> {
         Ok(())
     }
 
+    /// The root index of `branch`: the one given, or on the sketch the root `nearest` finds
+    /// (the one nearest the moving feature), recorded as the branch's default.
+    fn choose(
+        &mut self,
+        branch: crate::plan::BranchId,
+        nearest: impl FnOnce(&Self) -> Option<usize>,
+    ) -> usize {
+        let index = match self.choice {
+            Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
+            Choice::Nearest => nearest(self).unwrap_or(0),
+        };
+        if let Some(slot) = self.chosen.get_mut(branch.0 as usize) {
+            *slot = Some(index);
+        }
+        index
+    }
+
     /// The root of the intersection of loci `a` and `b` that `branch` (or the choice) takes.
     fn intersect(
         &mut self,
@@ -980,16 +991,9 @@ impl<'a, 'r> Machine<'a, 'r> {
                 return Err(err(model, constraint, ErrorKind::Degenerate, 0.0));
             }
         }
-        let index = match self.choice {
-            Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
-            Choice::Nearest => {
-                let n = self.p(near);
-                roots.nearest_to(n, |x, y| (x - y).norm()).unwrap_or(0)
-            }
-        };
-        if let Some(slot) = self.chosen.get_mut(branch.0 as usize) {
-            *slot = Some(index);
-        }
+        let index = self.choose(branch, |s| {
+            roots.nearest_to(s.p(near), |x, y| (x - y).norm())
+        });
         // The chosen branch has no root here: say so, never take another.
         roots.get(index).ok_or_else(|| {
             err(

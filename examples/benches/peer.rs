@@ -105,6 +105,39 @@ fn show_ns(ns: f64) -> String {
     }
 }
 
+/// Times gcs against ezpz warm and cold on one sweep: the medians printed with their
+/// ratios, then each as a criterion bench of `group`.
+fn time_three(
+    c: &mut Criterion,
+    group: &str,
+    mut gcs_step: impl FnMut() -> bool,
+    mut warm_step: impl FnMut() -> Option<usize>,
+    mut cold_step: impl FnMut() -> Option<usize>,
+) {
+    let gcs = median_ns(|| {
+        gcs_step();
+    });
+    let warm = median_ns(|| {
+        warm_step();
+    });
+    let cold = median_ns(|| {
+        cold_step();
+    });
+    eprintln!(
+        "{group} medians: gcs {}, ezpz_warm {} (ratio ezpz/gcs {:.0}), ezpz_cold {} (ratio {:.0})",
+        show_ns(gcs),
+        show_ns(warm),
+        warm / gcs,
+        show_ns(cold),
+        cold / gcs
+    );
+    let mut g = c.benchmark_group(group);
+    g.bench_function("gcs", |b| b.iter(&mut gcs_step));
+    g.bench_function("ezpz_warm", |b| b.iter(&mut warm_step));
+    g.bench_function("ezpz_cold", |b| b.iter(&mut cold_step));
+    g.finish();
+}
+
 // ---------------------------------------------------------------------------------------------
 // The four-bar of examples/fourbar.gcs.
 
@@ -229,7 +262,7 @@ fn bench_fourbar(c: &mut Criterion) {
 
     let branches = ex::fourbar::Branches::default();
     let defaults = ex::fourbar::Defaults::default();
-    let mut gcs_step = {
+    let gcs_step = {
         let thetas = thetas.clone();
         let mut params = ex::fourbar::Params::default();
         let mut i = 0;
@@ -240,7 +273,7 @@ fn bench_fourbar(c: &mut Criterion) {
                 .is_ok()
         }
     };
-    let mut warm_step = {
+    let warm_step = {
         let thetas = thetas.clone();
         let ez = EzFourBar::new();
         let mut vals = EzFourBar::sketch();
@@ -250,7 +283,7 @@ fn bench_fourbar(c: &mut Criterion) {
             black_box(ez.solve(black_box(thetas[i]), &mut vals))
         }
     };
-    let mut cold_step = {
+    let cold_step = {
         let thetas = thetas.clone();
         let ez = EzFourBar::new();
         let mut i = 0;
@@ -261,29 +294,7 @@ fn bench_fourbar(c: &mut Criterion) {
         }
     };
 
-    let gcs = median_ns(|| {
-        gcs_step();
-    });
-    let warm = median_ns(|| {
-        warm_step();
-    });
-    let cold = median_ns(|| {
-        cold_step();
-    });
-    eprintln!(
-        "peer_fourbar medians: gcs {}, ezpz_warm {} (ratio ezpz/gcs {:.0}), ezpz_cold {} (ratio {:.0})",
-        show_ns(gcs),
-        show_ns(warm),
-        warm / gcs,
-        show_ns(cold),
-        cold / gcs
-    );
-
-    let mut g = c.benchmark_group("peer_fourbar");
-    g.bench_function("gcs", |b| b.iter(&mut gcs_step));
-    g.bench_function("ezpz_warm", |b| b.iter(&mut warm_step));
-    g.bench_function("ezpz_cold", |b| b.iter(&mut cold_step));
-    g.finish();
+    time_three(c, "peer_fourbar", gcs_step, warm_step, cold_step);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -681,7 +692,7 @@ fn bench_rectangle(c: &mut Criterion) {
         "peer_rectangle check over {n} widths: ezpz_warm agrees with gcs's far corner to \
          {worst:.1e} ({flips} on another assembly)"
     );
-    let mut gcs_step = {
+    let gcs_step = {
         let widths = widths.clone();
         let (branches, defaults) = (
             ex::rectangle::Branches::default(),
@@ -696,7 +707,7 @@ fn bench_rectangle(c: &mut Criterion) {
                 .is_ok()
         }
     };
-    let mut warm_step = {
+    let warm_step = {
         let widths = widths.clone();
         let ez = EzRectangle::new();
         let mut vals = EzRectangle::sketch();
@@ -706,7 +717,7 @@ fn bench_rectangle(c: &mut Criterion) {
             black_box(ez.solve(black_box(widths[i]), &mut vals))
         }
     };
-    let mut cold_step = {
+    let cold_step = {
         let widths = widths.clone();
         let ez = EzRectangle::new();
         let mut i = 0;
@@ -716,28 +727,7 @@ fn bench_rectangle(c: &mut Criterion) {
             black_box(ez.solve(black_box(widths[i]), &mut vals))
         }
     };
-    let gcs = median_ns(|| {
-        gcs_step();
-    });
-    let warm = median_ns(|| {
-        warm_step();
-    });
-    let cold = median_ns(|| {
-        cold_step();
-    });
-    eprintln!(
-        "peer_rectangle medians: gcs {}, ezpz_warm {} (ratio ezpz/gcs {:.0}), ezpz_cold {} (ratio {:.0})",
-        show_ns(gcs),
-        show_ns(warm),
-        warm / gcs,
-        show_ns(cold),
-        cold / gcs
-    );
-    let mut g = c.benchmark_group("peer_rectangle");
-    g.bench_function("gcs", |b| b.iter(&mut gcs_step));
-    g.bench_function("ezpz_warm", |b| b.iter(&mut warm_step));
-    g.bench_function("ezpz_cold", |b| b.iter(&mut cold_step));
-    g.finish();
+    time_three(c, "peer_rectangle", gcs_step, warm_step, cold_step);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -879,7 +869,7 @@ fn bench_slot(c: &mut Criterion) {
         "peer_slot check over {n} widths: ezpz_warm agrees with gcs's top end to {worst:.1e} \
          ({flips} on another assembly)"
     );
-    let mut gcs_step = {
+    let gcs_step = {
         let widths = widths.clone();
         let (branches, defaults) = (ex::slot::Branches::default(), ex::slot::Defaults::default());
         let mut i = 0;
@@ -891,7 +881,7 @@ fn bench_slot(c: &mut Criterion) {
             black_box(ex::slot::solve(&params, &branches, &defaults).map(|s| s.top_end())).is_ok()
         }
     };
-    let mut warm_step = {
+    let warm_step = {
         let widths = widths.clone();
         let ez = EzSlot::new();
         let mut vals = ez.sketch();
@@ -901,7 +891,7 @@ fn bench_slot(c: &mut Criterion) {
             black_box(ez.solve(black_box(widths[i]), &mut vals))
         }
     };
-    let mut cold_step = {
+    let cold_step = {
         let widths = widths.clone();
         let ez = EzSlot::new();
         let mut i = 0;
@@ -911,28 +901,7 @@ fn bench_slot(c: &mut Criterion) {
             black_box(ez.solve(black_box(widths[i]), &mut vals))
         }
     };
-    let gcs = median_ns(|| {
-        gcs_step();
-    });
-    let warm = median_ns(|| {
-        warm_step();
-    });
-    let cold = median_ns(|| {
-        cold_step();
-    });
-    eprintln!(
-        "peer_slot medians: gcs {}, ezpz_warm {} (ratio ezpz/gcs {:.0}), ezpz_cold {} (ratio {:.0})",
-        show_ns(gcs),
-        show_ns(warm),
-        warm / gcs,
-        show_ns(cold),
-        cold / gcs
-    );
-    let mut g = c.benchmark_group("peer_slot");
-    g.bench_function("gcs", |b| b.iter(&mut gcs_step));
-    g.bench_function("ezpz_warm", |b| b.iter(&mut warm_step));
-    g.bench_function("ezpz_cold", |b| b.iter(&mut cold_step));
-    g.finish();
+    time_three(c, "peer_slot", gcs_step, warm_step, cold_step);
 }
 
 criterion_group!(

@@ -581,12 +581,7 @@ impl Solve<'_> {
     ) {
         let con = &self.cx.model.constraints[c];
         let (label, text) = (lit(&con.name), lit(&con.text));
-        let index = match self.cx.branches.get(branch.0 as usize) {
-            Some(field) if self.cx.plan.branches[branch.0 as usize].count > 1 => {
-                format!("usize::from(branches.{field})")
-            }
-            _ => "0".into(),
-        };
+        let index = self.branch_index(branch);
         let f = match meet {
             Meet::CircleCircle => return self.circle_circle(w, r, (a, b), index, c),
             Meet::LineCircle => "line_circle",
@@ -615,6 +610,17 @@ impl Solve<'_> {
         self.define(w, r, &con.name, &code);
     }
 
+    /// The root index branch variable `branch` selects: its field of `Branches`, or 0 for a
+    /// variable with one root.
+    fn branch_index(&self, branch: BranchId) -> String {
+        match self.cx.branches.get(branch.0 as usize) {
+            Some(field) if self.cx.plan.branches[branch.0 as usize].count > 1 => {
+                format!("usize::from(branches.{field})")
+            }
+            _ => "0".into(),
+        }
+    }
+
     /// The direction of line (`base`, `dir`) turned about `pivot` until it passes `point` at
     /// `offset`: the runtime's `passing_directions`, the root of `branch`.
     #[allow(clippy::too_many_arguments)]
@@ -630,12 +636,7 @@ impl Solve<'_> {
     ) {
         let con = &self.cx.model.constraints[c];
         let (label, text) = (lit(&con.name), lit(&con.text));
-        let index = match self.cx.branches.get(branch.0 as usize) {
-            Some(field) if self.cx.plan.branches[branch.0 as usize].count > 1 => {
-                format!("usize::from(branches.{field})")
-            }
-            _ => "0".into(),
-        };
+        let index = self.branch_index(branch);
         let (o, b) = (self.r(pivot), self.r(base));
         let mut terms: Vec<String> = offset.map(|d| self.r(d)).into_iter().collect();
         if b != o {

@@ -119,11 +119,7 @@ impl Builder<'_, Planar> {
                     );
                     self.centers.insert(c, self.name(centre));
                     let done = self.move_feature(p, Target::On(Locus::Circle(c)), r);
-                    let end = matches!(
-                        self.model.geoms[p].owner,
-                        gcs_lang::model::Owner::Part(_, Part::Start | Part::End)
-                    );
-                    if done && end && gap.is_none() {
+                    if done && gap.is_none() && self.end_of_segment(p).is_some() {
                         let k = self.cluster(p);
                         self.clusters[k].record.on_circle = Some((p, circle));
                     }
@@ -178,14 +174,20 @@ impl Builder<'_, Planar> {
         }
     }
 
+    /// The segment `p` is an end of, and its direction feature; `None` for any other point.
+    fn end_of_segment(&self, p: GeomId) -> Option<(GeomId, GeomId)> {
+        match self.model.geoms[p].owner {
+            gcs_lang::model::Owner::Part(seg, Part::Start | Part::End) => {
+                Some((seg, self.model.part(seg, Part::Dir)?))
+            }
+            _ => None,
+        }
+    }
+
     /// A segment's end `p` to be put on `circle`, when the segment's line is known and was
     /// made tangent to the circle: the touching point, the foot of the centre on the line.
     fn touching_point(&mut self, p: GeomId, circle: GeomId) -> Option<Reg> {
-        let gcs_lang::model::Owner::Part(seg, Part::Start | Part::End) = self.model.geoms[p].owner
-        else {
-            return None;
-        };
-        let dir = self.model.part(seg, Part::Dir)?;
+        let (seg, dir) = self.end_of_segment(p)?;
         let start = self.model.part(seg, Part::Start)?;
         if !self.record(circle).tangent.contains(&dir) || !self.line_fixed(start, dir) {
             return None;
@@ -224,11 +226,7 @@ impl Builder<'_, Planar> {
     /// the line only touch, a double root an intersection would find to the square root of
     /// rounding.
     fn centre_from_joint(&mut self, p: GeomId, circle: GeomId) -> Option<Reg> {
-        let gcs_lang::model::Owner::Part(seg, Part::Start | Part::End) = self.model.geoms[p].owner
-        else {
-            return None;
-        };
-        let dir = self.model.part(seg, Part::Dir)?;
+        let (_, dir) = self.end_of_segment(p)?;
         let rec = self.record(circle);
         let centre = self.centre(circle);
         let (
@@ -271,12 +269,8 @@ impl Builder<'_, Planar> {
         else {
             return None;
         };
-        let gcs_lang::model::Owner::Part(seg, Part::Start | Part::End) =
-            self.model.geoms[joint].owner
-        else {
-            return None;
-        };
-        if feature != centre || self.model.part(seg, Part::Dir) != Some(dir) {
+        let (_, joint_dir) = self.end_of_segment(joint)?;
+        if feature != centre || joint_dir != dir {
             return None;
         }
         let Locus::Line(line) = self.fd_locus(circle, fd) else {
@@ -309,12 +303,10 @@ impl Builder<'_, Planar> {
     ) -> Option<(GeomId, Reg)> {
         let rec = self.record(base).clone();
         let (q, c) = rec.on_circle?;
-        let gcs_lang::model::Owner::Part(seg, _) = self.model.geoms[q].owner else {
-            return None;
-        };
+        let (seg, end_dir) = self.end_of_segment(q)?;
         if c != circle
             || rec.rot != super::Rot::Known
-            || self.model.part(seg, Part::Dir) != Some(dir)
+            || end_dir != dir
             || !matches!(rec.pos, Pos::On { feature, .. } if feature == q)
         {
             return None;
