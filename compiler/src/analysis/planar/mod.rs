@@ -500,6 +500,11 @@ impl Builder<'_, Planar> {
             Relation::Midpoint { p, a, b } => {
                 (self.point_known(p) && self.point_known(a) && self.point_known(b))
                     || (rigid_together(p, a) && rigid_together(a, b))
+                    // Its segment already pinned at its midpoint: that midpoint is known.
+                    || (self.point_known(p)
+                        && matches!(self.record(a).pos,
+                            Pos::Pivot { feature, .. } if feature == self.model.top_level_of(a)
+                                && self.model.geoms[feature].kind == GeomKind::Segment))
             }
             Relation::Mirror {
                 p, q, base, dir, ..

@@ -362,6 +362,86 @@ impl Builder<'_, Planar> {
                 );
                 self.clusters[k].record.rot = Rot::Known;
             }
+            (Pos::On { feature: g, locus }, Rot::Free) if !matches!(locus, Locus::Conic(_)) => {
+                // Free to turn while g slides on its locus: g must be where the locus meets
+                // the circle about `at` of radius |mid - g|. Slide it there, then turn about
+                // it so that the midpoint lands on `at`.
+                let pg = self.point(g);
+                let about_g = self.value(
+                    Op::CircleThrough {
+                        center: pg,
+                        through: mid,
+                        radius: None,
+                    },
+                    Ty::Circle,
+                    format!(
+                        "the circle about {} through the midpoint of {sname}",
+                        self.name(g)
+                    ),
+                );
+                let about_at = self.value(
+                    Op::ShiftedCircle {
+                        circle: about_g,
+                        from: pg,
+                        to: at,
+                    },
+                    Ty::Circle,
+                    format!(
+                        "the circle about {} through where {} must be",
+                        self.word(at),
+                        self.name(g)
+                    ),
+                );
+                self.centers.insert(about_at, self.word(at));
+                let to = self.meet(
+                    super::locus_reg(locus),
+                    Target::On(Locus::Circle(about_at)),
+                    pg,
+                    r,
+                );
+                let explain = format!(
+                    "{names} can slide {} along {} and turn about it; the midpoint of {sname} must reach {}: slide it so that {} is at {} ({c}).",
+                    self.name(g),
+                    self.word(super::locus_reg(locus)),
+                    self.word(at),
+                    self.name(g),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::Translate {
+                        geoms: geoms.clone(),
+                        from: pg,
+                        to,
+                    },
+                    None,
+                    Vec::new(),
+                    explain,
+                );
+                let (pa, pb) = (self.point(a), self.point(b));
+                let mid = self.value(
+                    Op::Midpoint { a: pa, b: pb },
+                    Ty::Point,
+                    format!("the midpoint of {sname} as slid"),
+                );
+                let explain = format!(
+                    "{names} may only rotate about {}: rotate it so that the midpoint of {sname} reaches {} ({c}).",
+                    self.name(g),
+                    self.word(at)
+                );
+                self.emit(
+                    Op::RotatePoint {
+                        geoms,
+                        pivot: to,
+                        axis: crate::plan::RotationAxis::Normal,
+                        from: mid,
+                        to: at,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.rot = Rot::Known;
+            }
             _ => return false,
         }
         self.clusters[k].record.pos = Pos::Fixed;
