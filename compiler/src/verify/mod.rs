@@ -7,6 +7,7 @@
 //! itself here. The arithmetic is the space's: [`planar`] for 2d models, [`spatial`] for 3d.
 
 mod planar;
+mod spatial;
 
 use crate::solution::Solution;
 use gcs_lang::model::{ConstraintId, Space};
@@ -30,7 +31,8 @@ pub fn residuals(model: &Model, solution: &Solution, params: &[f64]) -> Vec<Resi
         .map(|(id, c)| {
             let value = c.value.map_or(0.0, |e| model.exprs.eval(e, params));
             let r = match model.space {
-                Space::D2 | Space::D3 => planar::residual(model, &s, c, value),
+                Space::D2 => planar::residual(model, &s, c, value),
+                Space::D3 => spatial::residual(model, &s, c, value),
             };
             Residual {
                 constraint: id,
