@@ -4,7 +4,7 @@
 //! It shares no code with the plan, the fragments, the configuration or the runtime's
 //! intersections: it reads points, vectors and dimensions by name and measures each
 //! constraint's violation from its definition in LANGUAGE.md. A plan bug therefore cannot hide
-//! itself here. The arithmetic is the space's: [`planar`] for 2d models, [`spatial`] for 3d.
+//! itself here. The arithmetic is the space's: `planar` for 2d models, `spatial` for 3d.
 
 mod planar;
 mod spatial;
