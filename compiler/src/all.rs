@@ -100,10 +100,9 @@ pub fn least_motion(
     if plan.iterations.is_empty() {
         return from_sketch;
     }
-    let Ok(sketch) = crate::config::Config::from_sketch(model, params) else {
+    let Some(sketch) = Solution::of_sketch(model, params, scope) else {
         return from_sketch;
     };
-    let sketch = Solution::read(model, &sketch, scope);
     let motion = |s: &Solution| -> f64 {
         (s.points.iter())
             .filter_map(|(n, p)| {

@@ -92,14 +92,19 @@ pub fn solve_plan_with(
     branches: &[usize],
     defaults: &[f64],
 ) -> Result<solution::Solution, SolveError> {
-    let run = interp::run_with(
-        model,
-        plan,
-        params,
-        defaults,
-        &interp::Choice::Given(branches.to_vec()),
-    )?;
-    let mut s = solution::Solution::read(model, &run.config, scope);
+    let choice = interp::Choice::Given(branches.to_vec());
+    let (mut s, run_defaults, iterations) = match model.space {
+        gcs_lang::model::Space::D2 => {
+            let run = interp::run_with(model, plan, params, defaults, &choice)?;
+            let s = solution::Solution::read(model, &run.config, scope);
+            (s, run.defaults, run.iterations)
+        }
+        gcs_lang::model::Space::D3 => {
+            let run = interp::run_in::<config::D3>(model, plan, params, defaults, &choice)?;
+            let s = solution::Solution::read_space(model, &run.config, scope);
+            (s, run.defaults, run.iterations)
+        }
+    };
     s.branches = plan
         .branches
         .iter()
@@ -107,10 +112,10 @@ pub fn solve_plan_with(
         .map(|(b, i)| (b.name.clone(), *i))
         .collect();
     s.defaults = (plan.defaults.iter())
-        .zip(&run.defaults)
+        .zip(&run_defaults)
         .map(|(d, v)| (d.name.clone(), *v))
         .collect();
-    s.iterations = run.iterations;
+    s.iterations = iterations;
     s.grounded = plan.grounded.map(|g| model.geoms[g].name.clone());
     s.max_residual = verify::max_residual_in(model, &s, params, scope);
     Ok(s)

@@ -110,7 +110,7 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
         // the iteration starts.
         let solved = if a.plan.iterations.is_empty() {
             let choice = crate::interp::Choice::Given(branches.clone());
-            crate::interp::run(model, &a.plan, &params, &choice).map(|_| ())
+            crate::interp::runs(model, &a.plan, &params, &choice)
         } else {
             let all = a.plan.touched(model);
             let defaults = a.plan.sketch_defaults();
@@ -357,6 +357,16 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
     }
     let free = a.free_geoms();
     let free_defaults = a.free_defaults();
+    // Constraints implied in part: a relation checked, another constructed (a revolute joint
+    // of a planar mechanism modelled in space: its parallel axes).
+    let mut partly: Vec<gcs_lang::model::ConstraintId> = Vec::new();
+    for s in &a.plan.steps {
+        if let Op::Check { constraint, .. } = s.op {
+            if !a.redundant.contains(&constraint) && !partly.contains(&constraint) {
+                partly.push(constraint);
+            }
+        }
+    }
     let status = if !free.is_empty() {
         "under-constrained".to_string()
     } else if !free_defaults.is_empty() {
@@ -364,7 +374,7 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
             "under-constrained: mobility {}, each free motion held by a default at its sketch value",
             free_defaults.len()
         )
-    } else if !a.redundant.is_empty() {
+    } else if !a.redundant.is_empty() || !partly.is_empty() {
         "well-constrained, with redundant constraints".to_string()
     } else {
         "well-constrained".to_string()
@@ -419,6 +429,16 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
         let _ = writeln!(
             out,
             "  redundant: {} ({}, line {}) is implied by {by}; it is kept as a run-time check",
+            con.name,
+            con.text,
+            model.line(con.span)
+        );
+    }
+    for c in &partly {
+        let con = &model.constraints[*c];
+        let _ = writeln!(
+            out,
+            "  implied in part: {} ({}, line {}) is partly implied by the others; that part is kept as a run-time check",
             con.name,
             con.text,
             model.line(con.span)

@@ -1,7 +1,7 @@
 //! A solved configuration read by the model's names: every point, vector and dimension of every
 //! geom, and the frame of every body, as `gcs solve --json` prints them (DESIGN.md's contract).
 
-use crate::config::Config;
+use crate::config::{Config, D3};
 use gcs_lang::model::{GeomKind, Owner, Part};
 use gcs_lang::Model;
 use std::collections::HashMap;
@@ -70,6 +70,70 @@ impl Solution {
                             g.name.clone(),
                             vec![f.origin.x, f.origin.y],
                             vec![vec![x.x, x.y], vec![y.x, y.y]],
+                        ));
+                    }
+                }
+                _ => {}
+            }
+        }
+        s
+    }
+
+    /// The sketch itself read as a solution (in the model's space), with `params`; `None`
+    /// when the sketch is unusable.
+    pub fn of_sketch(
+        model: &Model,
+        params: &[f64],
+        scope: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
+    ) -> Option<Solution> {
+        match model.space {
+            gcs_lang::model::Space::D2 => Config::from_sketch(model, params)
+                .ok()
+                .map(|c| Solution::read(model, &c, scope)),
+            gcs_lang::model::Space::D3 => Config::<D3>::from_sketch(model, params)
+                .ok()
+                .map(|c| Solution::read_space(model, &c, scope)),
+        }
+    }
+
+    /// Reads every geom of a 3d model from its configuration: as [`Solution::read`], with
+    /// three coordinates, a circle's and plane's normal, a plane's signed offset, and body
+    /// frames with their three axes.
+    pub fn read_space(
+        model: &Model,
+        cfg: &Config<D3>,
+        scope: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
+    ) -> Solution {
+        let mut s = Solution::default();
+        let v3 = |v: nalgebra::Vector3<f64>| vec![v.x, v.y, v.z];
+        for (id, g) in model.geoms.iter() {
+            if !scope.contains(&model.top_level_of(id)) {
+                continue;
+            }
+            match g.kind {
+                GeomKind::Point | GeomKind::Marker => {
+                    let p = match g.owner {
+                        // `L.point` reads the solved line, not a frame origin.
+                        Owner::Part(owner, Part::BasePoint) => cfg.line_point(owner),
+                        _ => cfg.point(model, id),
+                    };
+                    s.points.push((g.name.clone(), v3(p.coords)));
+                }
+                GeomKind::Vector => s.vectors.push((g.name.clone(), v3(cfg.dir(model, id)))),
+                _ => {}
+            }
+            match g.kind {
+                GeomKind::Circle => s.scalars.push((format!("{}.radius", g.name), cfg.dim(id))),
+                GeomKind::Segment => s.scalars.push((format!("{}.length", g.name), cfg.dim(id))),
+                GeomKind::Plane => s
+                    .scalars
+                    .push((format!("{}.offset", g.name), cfg.plane_offset(id))),
+                GeomKind::Body => {
+                    if let Some(f) = cfg.frames.get(&id) {
+                        s.frames.push((
+                            g.name.clone(),
+                            v3(f.origin.coords),
+                            vec![v3(f.x_axis()), v3(f.y_axis()), v3(f.z_axis())],
                         ));
                     }
                 }

@@ -464,13 +464,14 @@ impl Model {
     /// coordinates are constants: known without params. Computed as `sqrt(dx² + dy²)`, the
     /// arithmetic of a vector's norm, so that every consumer gets the same bits.
     pub fn constant_distance(&self, a: GeomId, b: GeomId) -> Option<f64> {
-        let local = |f: GeomId| -> Option<(f64, f64)> {
+        // In 2d the third coordinate is absent, read as 0: the sum is the plane's, exactly.
+        let local = |f: GeomId| -> Option<[f64; 3]> {
             match (&self.geoms[f].sketch, self.geoms[f].owner) {
                 (Sketch::Point(c) | Sketch::Marker { origin: c, .. }, Owner::Member(_))
                     if c.iter().all(|&e| self.exprs.is_constant(e)) =>
                 {
                     let v = |i: usize| c.get(i).map_or(0.0, |&e| self.exprs.eval(e, &[]));
-                    Some((v(0), v(1)))
+                    Some([v(0), v(1), v(2)])
                 }
                 _ => None,
             }
@@ -478,9 +479,9 @@ impl Model {
         if self.top_level_of(a) != self.top_level_of(b) {
             return None;
         }
-        let ((ax, ay), (bx, by)) = (local(a)?, local(b)?);
-        let (dx, dy) = (ax - bx, ay - by);
-        Some((dx * dx + dy * dy).sqrt())
+        let (pa, pb) = (local(a)?, local(b)?);
+        let (dx, dy, dz) = (pa[0] - pb[0], pa[1] - pb[1], pa[2] - pb[2]);
+        Some((dx * dx + dy * dy + dz * dz).sqrt())
     }
 
     /// The nominal DOF of a constraint: what it removes if independent of the others, with

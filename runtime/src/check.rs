@@ -239,3 +239,94 @@ mod tests {
         assert!(angle(u, v, t) < 1e-15);
     }
 }
+
+/// The residuals of checks in space: the same contract as the plane's, over 3d points and
+/// unit directions.
+pub mod space {
+    use nalgebra::{Point3, Vector3};
+
+    type P3 = Point3<f64>;
+    type V3 = Vector3<f64>;
+
+    /// `|a - b| = d` (a coincidence when `d` is 0): how far the distance is from `d`.
+    #[inline]
+    pub fn point_point(a: P3, b: P3, d: f64) -> f64 {
+        ((a - b).norm() - d).abs()
+    }
+
+    /// `p` on the line through `base` along unit `dir`: its distance from the line.
+    #[inline]
+    pub fn point_line(p: P3, base: P3, dir: V3) -> f64 {
+        (p - base).cross(&dir).norm()
+    }
+
+    /// The signed distance of `p` from the plane through `base` with unit `normal` is `d`.
+    #[inline]
+    pub fn point_plane(p: P3, base: P3, normal: V3, d: f64) -> f64 {
+        ((p - base).dot(&normal) - d).abs()
+    }
+
+    /// Unit `v` along `sense * u` (`sense` +1 or -1): the angle between them, in radians.
+    #[inline]
+    pub fn parallel(u: V3, v: V3, sense: f64) -> f64 {
+        let w = u * sense;
+        w.cross(&v).norm().atan2(w.dot(&v))
+    }
+
+    /// The angle from unit `u` to unit `v`, counter-clockwise about unit `axis`, is `angle`:
+    /// how far `v` is from `u` turned so, in radians (at most pi), by turning `u` with the
+    /// target's cosine and sine (Rodrigues' formula) rather than subtracting angles.
+    #[inline]
+    pub fn twist(axis: V3, u: V3, v: V3, angle: f64) -> f64 {
+        let (s, c) = angle.sin_cos();
+        let w = u * c + axis.cross(&u) * s + axis * (axis.dot(&u) * (1.0 - c));
+        w.cross(&v).norm().atan2(w.dot(&v))
+    }
+
+    /// A helix: the angle from unit `u` to unit `v` about unit `axis` is `2pi s / pitch`, `s`
+    /// the advance `offset . axis`: how far `v` is from `u` turned so, in radians (modulo a
+    /// turn, as [`twist`] measures it).
+    #[inline]
+    pub fn helix(axis: V3, u: V3, v: V3, offset: V3, pitch: f64) -> f64 {
+        twist(
+            axis,
+            u,
+            v,
+            std::f64::consts::TAU * offset.dot(&axis) / pitch,
+        )
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+
+        #[test]
+        fn a_helix_turns_a_quarter_for_a_quarter_pitch() {
+            let x = V3::x();
+            assert!(helix(V3::z(), x, V3::y(), V3::new(0.0, 0.0, 0.5), 2.0) < 1e-15);
+            assert!(
+                (helix(V3::z(), x, x, V3::new(0.0, 0.0, 0.5), 2.0) - std::f64::consts::FRAC_PI_2)
+                    .abs()
+                    < 1e-15
+            );
+            // A whole pitch is a whole turn.
+            assert!(helix(V3::z(), x, x, V3::new(1.0, 0.0, 2.0), 2.0) < 1e-15);
+        }
+
+        #[test]
+        fn residuals_measure_what_they_say() {
+            let o = P3::origin();
+            assert_eq!(point_point(o, P3::new(3.0, 4.0, 0.0), 5.0), 0.0);
+            assert!((point_line(P3::new(1.0, 2.0, 0.0), o, V3::x()) - 2.0).abs() < 1e-15);
+            assert!((point_plane(P3::new(0.0, 0.0, 1.5), o, V3::z(), 1.0) - 0.5).abs() < 1e-15);
+            assert!((parallel(V3::x(), -V3::x(), -1.0)).abs() < 1e-15);
+            assert!((parallel(V3::x(), V3::y(), 1.0) - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+            let quarter = std::f64::consts::FRAC_PI_2;
+            assert!(twist(V3::z(), V3::x(), V3::y(), quarter) < 1e-15);
+            assert!((twist(V3::z(), V3::x(), V3::y(), 0.0) - quarter).abs() < 1e-15);
+            assert!(
+                (twist(V3::z(), V3::x(), -V3::y(), quarter) - std::f64::consts::PI).abs() < 1e-12
+            );
+        }
+    }
+}

@@ -166,6 +166,14 @@ impl Sphere {
     pub fn new(center: Point3<f64>, radius: f64) -> Self {
         Self { center, radius }
     }
+
+    /// The point of the sphere nearest `p`; `None` when `p` is its centre (every point is).
+    #[inline]
+    pub fn nearest(&self, p: &Point3<f64>) -> Option<Point3<f64>> {
+        let v = p - self.center;
+        let n = v.norm();
+        (n > 0.0 && n.is_finite()).then(|| self.center + v * (self.radius / n))
+    }
 }
 
 impl Locus3 for Sphere {
@@ -214,6 +222,29 @@ impl Circle3 {
         Line3 {
             point: self.center,
             dir: self.normal,
+        }
+    }
+
+    /// The point of the circle nearest `p`; `None` when `p` is on its axis (every point is).
+    #[inline]
+    pub fn nearest(&self, p: &Point3<f64>) -> Option<Point3<f64>> {
+        let w = p - self.center;
+        let radial = w - self.normal * self.normal.dot(&w);
+        let n = radial.norm();
+        (n > 0.0 && n.is_finite()).then(|| self.center + radial * (self.radius / n))
+    }
+
+    /// The circle that `p` sweeps turning about the line through `pivot` along `axis` (not
+    /// necessarily unit): centred at `p`'s foot on the axis. A zero `axis` gives a degenerate
+    /// circle (zero normal).
+    #[inline]
+    pub fn orbit(pivot: &Point3<f64>, axis: &Vector3<f64>, p: &Point3<f64>) -> Self {
+        let a = unit_or_zero(axis);
+        let center = pivot + a * a.dot(&(p - pivot));
+        Self {
+            center,
+            normal: a,
+            radius: (p - center).norm(),
         }
     }
 }

@@ -73,7 +73,7 @@ mod discover {
 fn every_example_solves_cold_from_its_sketch_and_verifies() {
     let mut report = String::new();
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    for example in discover::analysed(&root, discover::Folder::Examples) {
+    for example in discover::compiled(&root, discover::Folder::Examples) {
         let name = example.stem.as_str();
         let model = load_text(&example.relative(), &example.text);
         let analysis = analyse(&model).expect("analysis");

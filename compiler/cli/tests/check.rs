@@ -65,11 +65,11 @@ fn brick() {
         expect![[r#"
             examples/brick.gcs: space 3d, 0 params, 4 geoms, 3 constraints
 
-            geoms                 DOF
-              g1     fixed point    0
-              g2     fixed point    0
-              g3     fixed point    0
-              brick  body           6   members: b1, b2, b3
+            geoms                 DOF  left
+              g1     fixed point    0     0
+              g2     fixed point    0     0
+              g3     fixed point    0     0
+              brick  body           6     0
 
             constraints                                         removes
               coincident_brick_b1_g1  coincident(brick.b1, g1)        3
@@ -77,8 +77,7 @@ fn brick() {
               coincident_brick_b3_g3  coincident(brick.b3, g3)        3
 
             nominal DOF: 6 - 9 = -3
-              (a count of equations against unknowns, not the analysis: it cannot see redundant constraints or which motions stay free)
-            analysis: not run: 3d models are checked but not yet solved (the degrees-of-freedom analysis covers 2d models)
+            analysis: well-constrained
         "#]],
     );
 }
@@ -118,11 +117,11 @@ fn slider_crank() {
         expect![[r#"
             examples/slider_crank.gcs: space 3d, 1 param, 4 geoms, 5 constraints
 
-            geoms                 DOF
-              ground  fixed body    0   members: o, rail
-              arm     body          6   members: o, tip
-              rod     body          6   members: a, b
-              slider  body          6   members: s, pin
+            geoms                 DOF  left
+              ground  fixed body    0     0
+              arm     body          6     0
+              rod     body          6     0
+              slider  body          6     0
 
             constraints                                                         removes
               revolute_arm_o_ground_o         revolute(arm.o, ground.o)               5
@@ -132,45 +131,24 @@ fn slider_crank() {
               prismatic_slider_s_ground_rail  prismatic(slider.s, ground.rail)        5
 
             nominal DOF: 18 - 23 = -5
-              (a count of equations against unknowns, not the analysis: it cannot see redundant constraints or which motions stay free)
-            analysis: not run: 3d models are checked but not yet solved (the degrees-of-freedom analysis covers 2d models)
+            analysis: well-constrained, with redundant constraints
+              implied in part: revolute_arm_o_ground_o (revolute(arm.o, ground.o), line 14) is partly implied by the others; that part is kept as a run-time check
+              implied in part: revolute_rod_b_slider_pin (revolute(rod.b, slider.pin), line 17) is partly implied by the others; that part is kept as a run-time check
+              branch revolute_rod_b_slider_pin: 2 roots, sketch takes 1: the second crossing, along the line
         "#]],
     );
 }
 
+/// Hoffmann and Vermeer's points and planes are not solved yet (`discover::NOT_YET`): `check`
+/// says so, with each freedom it could not remove, and fails.
 #[test]
-fn points_planes() {
-    check_example(
-        "points_planes",
-        expect![[r#"
-            examples/points_planes.gcs: space 3d, 0 params, 6 geoms, 12 constraints
-
-            geoms          DOF
-              p1    point    3
-              p2    point    3
-              P3    plane    3
-              P4    plane    3
-              p5    point    3
-              p6    point    3
-
-            constraints                                       removes
-              distance_p1_P3  distance(p1, P3) = 0                  1
-              distance_p1_P4  distance(p1, P4) = -5                 1
-              distance_p2_P4  distance(p2, P4) = -16/5              1
-              distance_p2_P3  distance(p2, P3) = 4                  1
-              distance_p1_p2  distance(p1, p2) = 5                  1
-              distance_p1_p5  distance(p1, p5) = 2 * sqrt(3)        1
-              distance_p5_P4  distance(p5, P4) = -11/5              1
-              distance_p6_P4  distance(p6, P4) = -3/5               1
-              distance_p2_p6  distance(p2, p6) = sqrt(19)           1
-              distance_p5_P3  distance(p5, P3) = 2                  1
-              distance_p6_P3  distance(p6, P3) = 1                  1
-              distance_p5_p6  distance(p5, p6) = 3 * sqrt(2)        1
-
-            nominal DOF: 18 - 12 = 6
-              (a count of equations against unknowns, not the analysis: it cannot see redundant constraints or which motions stay free)
-            analysis: not run: 3d models are checked but not yet solved (the degrees-of-freedom analysis covers 2d models)
-        "#]],
+fn points_planes_is_refused_with_its_free_motions() {
+    let (code, stdout, stderr) = gcs_check("examples/points_planes.gcs");
+    assert_eq!(code, 1, "stdout: {stdout}");
+    assert!(
+        stderr.contains("`P4` is under-constrained")
+            && stderr.contains("the analysis does not move this kind of geom in 3d yet"),
+        "{stderr}"
     );
 }
 

@@ -47,6 +47,7 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
         .flat_map(|c| c.record.recorded())
         .filter(|c| !listed.contains(c))
         .collect();
+    let redundant = b.redundant;
     let clusters = summary(model, &b.clusters);
     let undefaulted = match &b.undefaulted {
         Some(states) => summary(model, states),
@@ -58,7 +59,7 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
         undefaulted,
         unsolved,
         recorded,
-        redundant: b.redundant,
+        redundant,
     })
 }
 
@@ -174,6 +175,8 @@ pub(crate) struct Builder<'m, G: Geometry> {
     def_step: Vec<usize>,
     pub(crate) pending: Vec<Rel<G::Relation>>,
     redundant: Vec<ConstraintId>,
+    /// For each constraint, a step that moves geoms for it ([`Builder::moved_for`]).
+    moved: HashMap<ConstraintId, usize>,
     /// The keys of the relations done so far: a duplicate waits for its key here.
     done: HashSet<RelKey<G::Relation>>,
     /// The clusters before the first default, once one is added.
@@ -214,6 +217,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             def_step: Vec::new(),
             pending: Vec::new(),
             redundant: Vec::new(),
+            moved: HashMap::default(),
             done: HashSet::default(),
             undefaulted: None,
             working: None,
@@ -244,6 +248,11 @@ impl<'m, G: Geometry> Builder<'m, G> {
             let g = *geom;
             self.forget_measured(g);
         }
+        if let (Some(c), false) = (self.working, op.moves().is_empty()) {
+            if !self.moved_for(c) {
+                self.moved.insert(c, self.plan.steps.len());
+            }
+        }
         let reg = Reg(self.plan.regs);
         let out = ty.map(|t| {
             self.plan.regs += 1;
@@ -260,6 +269,18 @@ impl<'m, G: Geometry> Builder<'m, G> {
             explain,
         });
         reg
+    }
+
+    /// Whether a step of the plan so far moves geoms for constraint `c` (one of its relations
+    /// was constructed, not only checked). The index kept may be stale after a rollback: the
+    /// step at it is read to tell.
+    fn moved_for(&self, c: ConstraintId) -> bool {
+        self.moved.get(&c).is_some_and(|&i| {
+            self.plan
+                .steps
+                .get(i)
+                .is_some_and(|s| s.works_for == Some(c) && !s.op.moves().is_empty())
+        })
     }
 
     /// Forgets the measurements of the features of top-level geom `top` (it moves).
@@ -463,7 +484,10 @@ impl<'m, G: Geometry> Builder<'m, G> {
             self.satisfies(r),
             explain,
         );
-        if r.last {
+        // A constraint some of whose relations were constructed is not redundant, only its
+        // implied part is (a revolute joint of a planar mechanism modelled in space: its
+        // coincidence places the link, its parallel axes are implied): checked, not listed.
+        if r.last && !self.moved_for(r.constraint) {
             self.redundant.push(r.constraint);
         }
     }
@@ -505,6 +529,13 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 break;
             }
         }
+        // A constraint a later step constructed in part is not redundant (`check`); read
+        // before `close_iterations` renumbers the steps.
+        let redundant = std::mem::take(&mut self.redundant);
+        self.redundant = redundant
+            .into_iter()
+            .filter(|&c| !self.moved_for(c))
+            .collect();
         self.close_iterations();
     }
 

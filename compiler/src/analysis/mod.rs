@@ -7,12 +7,14 @@
 //! registers and explanations. A space's module implements the [`geometry::Geometry`] trait:
 //! the decomposition of constraints into relations between features, invariants records, the
 //! plan fragments of action analysis, the loci and intersections of locus analysis, and how a
-//! cluster is held. [`planar`] is the plane's; 3d models are checked but not yet analysed.
+//! cluster is held. [`planar`] is the plane's, [`spatial`] space's (TLA's records and
+//! fragments).
 
 mod driver;
 pub mod geometry;
 pub mod loops;
 pub mod planar;
+pub mod spatial;
 
 use crate::plan::Plan;
 use gcs_lang::model::{ConstraintId, GeomId, Space};
@@ -100,15 +102,13 @@ impl Analysis {
     }
 }
 
-/// Analyses a model. Fails only for models outside the analysis (3d for now): every 2d model
-/// gets a plan, with whatever it cannot solve reported in [`Analysis::unsolved`]. Its branch
+/// Analyses a model. Fails only for a sketch it cannot read: every model gets a plan, with
+/// whatever it cannot solve reported in [`Analysis::unsolved`]. Its branch
 /// variables' defaults are not chosen yet: [`crate::pipeline::analyse`] does that, and
 /// validates the plan.
 pub(crate) fn analyse(model: &Model) -> Result<Analysis, String> {
     match model.space {
         Space::D2 => driver::analyse::<planar::Planar>(model),
-        Space::D3 => Err(
-            "3d models are checked but not yet solved (the degrees-of-freedom analysis covers 2d models)".into(),
-        ),
+        Space::D3 => driver::analyse::<spatial::Spatial>(model),
     }
 }

@@ -40,6 +40,18 @@ use writer::Writer;
 /// The generated module for a model's plan, pruned to its `output` statements. The plan must
 /// be valid, as the pipeline's are: a register no step defines is a bug in gcs, and panics
 /// saying so rather than writing a made-up value.
+/// Whether the code generator covers the model: `Err` says why not (3d models are solved by
+/// the interpreter, `gcs solve`, and not compiled yet).
+pub fn covers(model: &Model) -> Result<(), String> {
+    match model.space {
+        gcs_lang::model::Space::D2 => Ok(()),
+        gcs_lang::model::Space::D3 => Err(
+            "3d models are analysed and solved (`gcs check`, `gcs explain`, `gcs solve`) but not compiled to Rust yet"
+                .into(),
+        ),
+    }
+}
+
 pub fn generate(model: &Model, plan: &Plan) -> String {
     let (plan, scope) = crate::prune::prune(model, plan);
     let cx = Context::new(model, &plan, &scope);

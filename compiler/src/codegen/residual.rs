@@ -107,6 +107,12 @@ impl Solve<'_> {
             Residual::Mirror { p, q, base, dir } => {
                 format!("check::mirror({}, {}, {}, {})", r(p), r(q), r(base), r(dir))
             }
+            Residual::PointPlane { .. }
+            | Residual::Parallel { .. }
+            | Residual::Twist { .. }
+            | Residual::Helix { .. } => {
+                unreachable!("bug in gcs: a spatial check reached the planar code generator (`codegen::covers` refuses 3d models)")
+            }
         }
     }
 }

@@ -328,6 +328,23 @@ impl Solve<'_> {
                 let line = (*pivot, *base, *dir);
                 self.passing_dir(w, r, line, *point, *offset, *branch, *constraint)
             }
+            Op::Plane { .. }
+            | Op::ParallelPlane { .. }
+            | Op::Sphere { .. }
+            | Op::SphereThrough { .. }
+            | Op::ShiftedSphere { .. }
+            | Op::Orbit { .. }
+            | Op::Opposite(_)
+            | Op::Across(_)
+            | Op::AngleAbout { .. }
+            | Op::HelixAdvance { .. }
+            | Op::HelixTurn { .. }
+            | Op::WorldAxis(_)
+            | Op::Coordinate { .. }
+            | Op::PointAt { .. }
+            | Op::TurnedAbout { .. } => {
+                unreachable!("bug in gcs: a spatial plan reached the planar code generator (`codegen::covers` refuses 3d models)")
+            }
             // Actions and checks define no register: `step` writes them.
             Op::Translate { .. }
             | Op::RotatePoint { .. }

@@ -159,6 +159,61 @@ impl Plan {
                 Op::ShiftedCircle { circle, from, to } => {
                     format!("shifted_circle {} {} -> {}", r(circle), r(from), r(to))
                 }
+                Op::Plane {
+                    point,
+                    normal,
+                    offset,
+                } => match offset {
+                    Some(o) => format!("plane {} {} offset {}", r(point), r(normal), r(o)),
+                    None => format!("plane {} {}", r(point), r(normal)),
+                },
+                Op::ParallelPlane { plane, through } => {
+                    format!("parallel_plane {} through {}", r(plane), r(through))
+                }
+                Op::Sphere { center, radius } => format!("sphere {} {}", r(center), r(radius)),
+                Op::SphereThrough {
+                    center,
+                    through,
+                    radius,
+                } => match radius {
+                    Some(k) => format!(
+                        "sphere_through {} {} radius {}",
+                        r(center),
+                        r(through),
+                        fmt_f64(*k)
+                    ),
+                    None => format!("sphere_through {} {}", r(center), r(through)),
+                },
+                Op::ShiftedSphere { sphere, from, to } => {
+                    format!("shifted_sphere {} {} -> {}", r(sphere), r(from), r(to))
+                }
+                Op::Orbit {
+                    pivot,
+                    axis,
+                    through,
+                } => format!("orbit {} {} {}", r(pivot), r(axis), r(through)),
+                Op::Opposite(d) => format!("opposite {}", r(d)),
+                Op::Across(d) => format!("across {}", r(d)),
+                Op::AngleAbout { u, v, axis } => {
+                    format!("angle {} -> {} about {}", r(u), r(v), r(axis))
+                }
+                Op::HelixAdvance { now, turn, pitch } => {
+                    format!(
+                        "helix_advance from {} for turn {} pitch {}",
+                        r(now),
+                        r(turn),
+                        r(pitch)
+                    )
+                }
+                Op::HelixTurn { advance, pitch } => {
+                    format!("helix_turn {} pitch {}", r(advance), r(pitch))
+                }
+                Op::WorldAxis(i) => format!("world_axis {i}"),
+                Op::Coordinate { point, axis } => format!("coordinate {axis} of {}", r(point)),
+                Op::PointAt { x, y, z } => format!("point {} {} {}", r(x), r(y), r(z)),
+                Op::TurnedAbout { dir, axis, angle } => {
+                    format!("turned {} about {} by {}", r(dir), r(axis), r(angle))
+                }
                 Op::Nearest { locus, point } => format!("nearest {} {}", r(locus), r(point)),
                 Op::Onto {
                     locus,
@@ -337,6 +392,31 @@ fn residual_text(residual: &Residual) -> String {
         Residual::Midpoint { p, a, b } => format!("midpoint {} {} {}", r(p), r(a), r(b)),
         Residual::Mirror { p, q, base, dir } => {
             format!("mirror {} {} {} {}", r(p), r(q), r(base), r(dir))
+        }
+        Residual::PointPlane { p, base, normal, d } => {
+            format!("point_plane {} {} {} {}", r(p), r(base), r(normal), opt(d))
+        }
+        Residual::Parallel { u, v, sense } => {
+            format!("parallel {} {} sense {}", r(u), r(v), fmt_f64(*sense))
+        }
+        Residual::Helix {
+            axis,
+            u,
+            v,
+            p,
+            q,
+            pitch,
+        } => format!(
+            "helix {} {} about {} advance {} -> {} pitch {}",
+            r(u),
+            r(v),
+            r(axis),
+            r(p),
+            r(q),
+            r(pitch)
+        ),
+        Residual::Twist { axis, u, v, angle } => {
+            format!("twist {} {} {} about {}", r(u), r(v), r(angle), r(axis))
         }
     }
 }

@@ -190,16 +190,16 @@ impl Meet {
         }
     }
 
-    /// Which space it belongs to.
-    pub fn space(self) -> Space {
+    /// Whether it belongs to `space`: two circles and a line and a circle meet in both (in
+    /// space, circles with their axes: a line meets a circle where it meets the circle's
+    /// sphere, and a later step checks that the root is on the circle).
+    pub fn in_space(self, space: Space) -> bool {
         match self {
-            Meet::CircleCircle
-            | Meet::LineCircle
-            | Meet::LineLine
-            | Meet::CircleConic
-            | Meet::LineConic
-            | Meet::ConicConic => Space::D2,
-            _ => Space::D3,
+            Meet::CircleCircle | Meet::LineCircle => true,
+            Meet::LineLine | Meet::CircleConic | Meet::LineConic | Meet::ConicConic => {
+                space == Space::D2
+            }
+            _ => space == Space::D3,
         }
     }
 }
@@ -266,6 +266,34 @@ pub enum Residual {
     Midpoint { p: Reg, a: Reg, b: Reg },
     /// `q` is the mirror image of `p` across the line through `base` along `dir`.
     Mirror { p: Reg, q: Reg, base: Reg, dir: Reg },
+    /// In space: the signed distance of `p` from the plane through `base` with unit normal
+    /// `normal` is `d` (absent: zero).
+    PointPlane {
+        p: Reg,
+        base: Reg,
+        normal: Reg,
+        d: Option<Reg>,
+    },
+    /// In space: directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1).
+    Parallel { u: Reg, v: Reg, sense: f64 },
+    /// In space: the angle from `u` to `v` counter-clockwise about `axis` is `2pi s / pitch`
+    /// (modulo a turn), `s` the advance `(q - p) . axis` (a helical joint).
+    Helix {
+        axis: Reg,
+        u: Reg,
+        v: Reg,
+        p: Reg,
+        q: Reg,
+        pitch: Reg,
+    },
+    /// In space: the angle from `u` to `v`, counter-clockwise about `axis` (to which both are
+    /// perpendicular), is `angle`.
+    Twist {
+        axis: Reg,
+        u: Reg,
+        v: Reg,
+        angle: Reg,
+    },
 }
 
 /// One operation.
@@ -373,6 +401,49 @@ pub enum Op {
     },
     /// The line parallel to line `line` through `through`.
     ParallelLine { line: Reg, through: Reg },
+    /// In space: the plane through `point` with unit normal `normal`, moved `offset` along it.
+    Plane {
+        point: Reg,
+        normal: Reg,
+        offset: Option<Reg>,
+    },
+    /// In space: the plane parallel to plane `plane` through `through`.
+    ParallelPlane { plane: Reg, through: Reg },
+    /// In space: the sphere about `center` with `radius`.
+    Sphere { center: Reg, radius: Reg },
+    /// In space: the sphere about `center` through `through`; `radius` as in
+    /// [`Op::CircleThrough`].
+    SphereThrough {
+        center: Reg,
+        through: Reg,
+        radius: Option<f64>,
+    },
+    /// In space: sphere `sphere` moved by the vector from `from` to `to`.
+    ShiftedSphere { sphere: Reg, from: Reg, to: Reg },
+    /// In space: the circle `through` sweeps turning about the axis through `pivot` along the
+    /// unit `axis`.
+    Orbit { pivot: Reg, axis: Reg, through: Reg },
+    /// The opposite of direction `dir`.
+    Opposite(Reg),
+    /// In space: a unit direction perpendicular to the unit `axis` (`runtime::frame::
+    /// perpendicular`, deterministic): where a turn about the axis is measured from.
+    Across(Reg),
+    /// In space: direction `dir` turned by `angle` counter-clockwise about the unit `axis`.
+    TurnedAbout { dir: Reg, axis: Reg, angle: Reg },
+    /// In space: the angle from direction `u` to `v`, counter-clockwise about the unit `axis`,
+    /// in (-pi, pi].
+    AngleAbout { u: Reg, v: Reg, axis: Reg },
+    /// A helix's advance for a turn: the advance `now + pitch / 2pi * wrap(turn - 2pi now /
+    /// pitch)`, the one of the turn's advances (a pitch apart) nearest `now`.
+    HelixAdvance { now: Reg, turn: Reg, pitch: Reg },
+    /// A helix's turn for an advance: `2pi advance / pitch`.
+    HelixTurn { advance: Reg, pitch: Reg },
+    /// In space: the world's x, y or z axis (0, 1, 2).
+    WorldAxis(u8),
+    /// In space: coordinate 0, 1 or 2 of `point`.
+    Coordinate { point: Reg, axis: u8 },
+    /// In space: the point with coordinates `x`, `y` and `z`.
+    PointAt { x: Reg, y: Reg, z: Reg },
     /// Circle `circle` moved by the vector from `from` to `to`.
     ShiftedCircle { circle: Reg, from: Reg, to: Reg },
     /// The point of `locus` nearest to `point` (least motion).

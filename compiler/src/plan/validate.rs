@@ -23,7 +23,9 @@ const VECTOR: Accepts = &[Ty::Vector];
 const LINE: Accepts = &[Ty::Line];
 const CIRCLE: Accepts = &[Ty::Circle];
 /// What the nearest point of a locus is taken on.
-const NEAREST_LOCUS: Accepts = &[Ty::Line, Ty::Circle];
+const NEAREST_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Plane, Ty::Sphere];
+const PLANE: Accepts = &[Ty::Plane];
+const SPHERE: Accepts = &[Ty::Sphere];
 /// What has a parameter along it (a place, or an implicit error): the loci a default slides on.
 const PARAM_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic];
 /// What a point can be tested to lie on.
@@ -109,6 +111,32 @@ impl Residual {
             }
             Residual::Dim { value, target } => out.extend([(*value, SCALAR), (*target, SCALAR)]),
             Residual::Midpoint { p, a, b } => out.extend([(*p, POINT), (*a, POINT), (*b, POINT)]),
+            Residual::PointPlane { p, base, normal, d } => {
+                out.extend([(*p, POINT), (*base, POINT), (*normal, VECTOR)]);
+                opt(d, &mut out);
+            }
+            Residual::Parallel { u, v, .. } => out.extend([(*u, VECTOR), (*v, VECTOR)]),
+            Residual::Helix {
+                axis,
+                u,
+                v,
+                p,
+                q,
+                pitch,
+            } => out.extend([
+                (*axis, VECTOR),
+                (*u, VECTOR),
+                (*v, VECTOR),
+                (*p, POINT),
+                (*q, POINT),
+                (*pitch, SCALAR),
+            ]),
+            Residual::Twist { axis, u, v, angle } => out.extend([
+                (*axis, VECTOR),
+                (*u, VECTOR),
+                (*v, VECTOR),
+                (*angle, SCALAR),
+            ]),
             Residual::Mirror { p, q, base, dir } => {
                 out.extend([(*p, POINT), (*q, POINT), (*base, POINT), (*dir, VECTOR)])
             }
@@ -170,6 +198,40 @@ impl Op {
                 v
             }
             Op::ParallelLine { line, through } => vec![(*line, LINE), (*through, POINT)],
+            Op::Plane {
+                point,
+                normal,
+                offset,
+            } => {
+                let mut v = vec![(*point, POINT), (*normal, VECTOR)];
+                v.extend(offset.map(|o| (o, SCALAR)));
+                v
+            }
+            Op::ParallelPlane { plane, through } => vec![(*plane, PLANE), (*through, POINT)],
+            Op::Sphere { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
+            Op::SphereThrough {
+                center, through, ..
+            } => vec![(*center, POINT), (*through, POINT)],
+            Op::ShiftedSphere { sphere, from, to } => {
+                vec![(*sphere, SPHERE), (*from, POINT), (*to, POINT)]
+            }
+            Op::Orbit {
+                pivot,
+                axis,
+                through,
+            } => vec![(*pivot, POINT), (*axis, VECTOR), (*through, POINT)],
+            Op::Opposite(d) | Op::Across(d) => vec![(*d, VECTOR)],
+            Op::TurnedAbout { dir, axis, angle } => {
+                vec![(*dir, VECTOR), (*axis, VECTOR), (*angle, SCALAR)]
+            }
+            Op::AngleAbout { u, v, axis } => vec![(*u, VECTOR), (*v, VECTOR), (*axis, VECTOR)],
+            Op::HelixAdvance { now, turn, pitch } => {
+                vec![(*now, SCALAR), (*turn, SCALAR), (*pitch, SCALAR)]
+            }
+            Op::HelixTurn { advance, pitch } => vec![(*advance, SCALAR), (*pitch, SCALAR)],
+            Op::WorldAxis(_) => vec![],
+            Op::Coordinate { point, .. } => vec![(*point, POINT)],
+            Op::PointAt { x, y, z } => vec![(*x, SCALAR), (*y, SCALAR), (*z, SCALAR)],
             Op::ShiftedCircle { circle, from, to } => {
                 vec![(*circle, CIRCLE), (*from, POINT), (*to, POINT)]
             }
@@ -240,12 +302,24 @@ impl Op {
             | Op::Error { .. }
             | Op::Implicit { .. }
             | Op::RadiusFromLine { .. }
-            | Op::RadiusFromPoint { .. } => Ty::Scalar,
+            | Op::RadiusFromPoint { .. }
+            | Op::AngleAbout { .. }
+            | Op::HelixAdvance { .. }
+            | Op::HelixTurn { .. }
+            | Op::Coordinate { .. } => Ty::Scalar,
+            Op::WorldAxis(_) => Ty::Vector,
+            Op::PointAt { .. } => Ty::Point,
             Op::DirectionTo { .. }
             | Op::DirOf(_)
             | Op::Axis(..)
             | Op::Rotated { .. }
+            | Op::Opposite(_)
+            | Op::Across(_)
+            | Op::TurnedAbout { .. }
             | Op::PassingDir { .. } => Ty::Vector,
+            Op::Plane { .. } | Op::ParallelPlane { .. } => Ty::Plane,
+            Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Ty::Sphere,
+            Op::Orbit { .. } => Ty::Circle,
             Op::Reversed(_)
             | Op::OffsetLine { .. }
             | Op::CentresLineLine { .. }
@@ -387,7 +461,7 @@ impl Plan {
     ) {
         match op {
             Op::Intersect { meet, branch, .. } => {
-                if meet.space() != self.space {
+                if !meet.in_space(self.space) {
                     errors.push(format!("step {i} intersects {meet:?} in {}", self.space));
                 }
                 match branch_uses.get_mut(branch.0 as usize) {

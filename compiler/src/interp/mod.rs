@@ -8,15 +8,18 @@
 //! pipeline validates every plan it makes): a register read as another type than it holds is
 //! a bug in gcs, and panics saying so, rather than going on with a made-up value.
 
-use crate::config::{Config, P2, V2};
+use crate::config::{Config, Frames, RigidFrame, D2, D3, P2, P3, V2, V3};
 use crate::plan::{Iteration, Meet, Op, Plan, Reg, Residual, RotationAxis, Step};
 use gcs_lang::model::ConstraintId;
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};
+use gcs_runtime::locus3d::{Circle3, Line3, Plane, Sphere};
 use gcs_runtime::outer::Outer;
 use gcs_runtime::{check, frame, intersect2d};
 use gcs_runtime::{Contact, Roots};
+
+mod spatial;
 
 /// How to choose the root of each intersection.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -28,11 +31,11 @@ pub enum Choice {
     Nearest,
 }
 
-/// A finished run.
+/// A finished run, in the plane unless said (`Run<D3>`).
 #[derive(Clone, Debug)]
-pub struct Run {
+pub struct Run<S: Frames = D2> {
     /// The configuration reached.
-    pub config: Config,
+    pub config: Config<S>,
     /// The index taken at each branch variable, if its intersection ran.
     pub chosen: Vec<Option<usize>>,
     /// The value of each default: as given, as an iteration converged to, or (on the sketch,
@@ -51,12 +54,46 @@ enum Val {
     L(Line),
     C(Circle),
     Q(Conic),
+    P3(P3),
+    V3(V3),
+    L3(Line3),
+    C3(Circle3),
+    Plane(Plane),
+    Sphere(Sphere),
 }
 
 /// Runs `plan` with `params` (indexed like the model's params) and each default at its
 /// sketch value.
 pub fn run(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Result<Run, SolveError> {
     run_with(model, plan, params, &plan.sketch_defaults(), choice)
+}
+
+/// Whether `plan` runs to its end with `params` and each default at its sketch value, in the
+/// model's space: the error that stops it, if one does.
+pub fn runs(model: &Model, plan: &Plan, params: &[f64], choice: &Choice) -> Result<(), SolveError> {
+    in_space(model, |space| {
+        space.run(
+            model,
+            plan,
+            params,
+            plan.sketch_defaults(),
+            choice,
+            None,
+            None::<&mut gcs_runtime::outer::Newton>,
+        )
+    })
+    .map(|_| ())
+}
+
+/// [`run_with`] in the space `S`, which must be the model's: `run_in::<D3>` for a 3d model.
+pub fn run_in<S: Space>(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    choice: &Choice,
+) -> Result<Run<S>, SolveError> {
+    run_machine::<S>(model, plan, params, defaults.to_vec(), choice, None)
 }
 
 /// Runs `plan` with `params` and `defaults` (indexed like the plan's defaults): each outer
@@ -82,15 +119,17 @@ pub fn errors_at(
     choice: &Choice,
 ) -> Result<Vec<f64>, SolveError> {
     let mut measure = Measure::default();
-    let run = run_machine_with(
-        model,
-        plan,
-        params,
-        defaults.to_vec(),
-        choice,
-        None,
-        Some(&mut measure),
-    );
+    let run = in_space(model, |space| {
+        space.run(
+            model,
+            plan,
+            params,
+            defaults.to_vec(),
+            choice,
+            None,
+            Some(&mut measure),
+        )
+    });
     match (measure.errors, run) {
         (Some(errors), _) => Ok(errors),
         (None, Err(e)) => Err(e),
@@ -138,29 +177,31 @@ pub fn scan(
 ) -> gcs_runtime::outer::Scan {
     let mut scan = gcs_runtime::outer::Scan::default();
     // The run ends at the iteration scanned, with the scan's stop as its error.
-    let _ = run_machine_with(
-        model,
-        plan,
-        params,
-        defaults.to_vec(),
-        choice,
-        None,
-        Some(&mut scan),
-    );
+    let _ = in_space(model, |space| {
+        space.run(
+            model,
+            plan,
+            params,
+            defaults.to_vec(),
+            choice,
+            None,
+            Some(&mut scan),
+        )
+    });
     scan
 }
 
 /// Runs `plan`; with `reached`, on the sketch: each default takes the value its measure
 /// register holds (least motion), recorded there, and closes are not enforced.
-fn run_machine(
+fn run_machine<S: Space>(
     model: &Model,
     plan: &Plan,
     params: &[f64],
     defaults: Vec<f64>,
     choice: &Choice,
     reached: Option<&mut Vec<Option<f64>>>,
-) -> Result<Run, SolveError> {
-    run_machine_with(
+) -> Result<Run<S>, SolveError> {
+    run_machine_with::<S>(
         model,
         plan,
         params,
@@ -173,7 +214,7 @@ fn run_machine(
 
 /// [`run_machine`]; with `first`, the outer iterations are driven by it instead of solved
 /// (a [`Scan`](gcs_runtime::outer::Scan), or a [`Measure`]: each ends the run at the first).
-fn run_machine_with(
+fn run_machine_with<S: Space>(
     model: &Model,
     plan: &Plan,
     params: &[f64],
@@ -181,10 +222,50 @@ fn run_machine_with(
     choice: &Choice,
     reached: Option<&mut Vec<Option<f64>>>,
     first: Option<&mut impl Outer>,
-) -> Result<Run, SolveError> {
-    let mut machine = Machine::start(model, plan, params, defaults, choice, reached)?;
+) -> Result<Run<S>, SolveError> {
+    let mut machine = Machine::<S>::start(model, plan, params, defaults, choice, reached)?;
     machine.execute(first).map_err(|f| f.error)?;
     Ok(machine.finish())
+}
+
+/// The model's space, for the runs whose result holds no configuration.
+#[derive(Clone, Copy)]
+enum InSpace {
+    D2,
+    D3,
+}
+
+impl InSpace {
+    /// [`run_machine_with`] in this space, keeping what holds no configuration.
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        self,
+        model: &Model,
+        plan: &Plan,
+        params: &[f64],
+        defaults: Vec<f64>,
+        choice: &Choice,
+        reached: Option<&mut Vec<Option<f64>>>,
+        first: Option<&mut impl Outer>,
+    ) -> Result<(Vec<Option<usize>>, Vec<f64>), SolveError> {
+        match self {
+            InSpace::D2 => {
+                run_machine_with::<D2>(model, plan, params, defaults, choice, reached, first)
+                    .map(|r| (r.chosen, r.defaults))
+            }
+            InSpace::D3 => {
+                run_machine_with::<D3>(model, plan, params, defaults, choice, reached, first)
+                    .map(|r| (r.chosen, r.defaults))
+            }
+        }
+    }
+}
+
+fn in_space<T>(model: &Model, f: impl FnOnce(InSpace) -> T) -> T {
+    match model.space {
+        gcs_lang::model::Space::D2 => f(InSpace::D2),
+        gcs_lang::model::Space::D3 => f(InSpace::D3),
+    }
 }
 
 /// A check that did not hold, or the error that stopped a run: the step it happened at (an
@@ -221,15 +302,29 @@ pub fn audit(
     defaults: &[f64],
     choice: &Choice,
 ) -> Audit {
-    let mut machine = match Machine::start(model, plan, params, defaults.to_vec(), choice, None) {
-        Ok(m) => m,
-        Err(error) => {
-            return Audit {
-                failed: Vec::new(),
-                stopped: Some(Failure { step: None, error }),
+    match model.space {
+        gcs_lang::model::Space::D2 => audit_in::<D2>(model, plan, params, defaults, choice),
+        gcs_lang::model::Space::D3 => audit_in::<D3>(model, plan, params, defaults, choice),
+    }
+}
+
+fn audit_in<S: Space>(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    choice: &Choice,
+) -> Audit {
+    let mut machine =
+        match Machine::<S>::start(model, plan, params, defaults.to_vec(), choice, None) {
+            Ok(m) => m,
+            Err(error) => {
+                return Audit {
+                    failed: Vec::new(),
+                    stopped: Some(Failure { step: None, error }),
+                }
             }
-        }
-    };
+        };
     machine.failed = Some(Vec::new());
     let stopped = machine
         .execute(None::<&mut gcs_runtime::outer::Newton>)
@@ -255,27 +350,46 @@ pub fn sketch_branches(model: &Model, plan: &Plan) -> Vec<Option<usize>> {
 /// (the model is reported inconsistent, and only that).
 pub fn sketch_choices(model: &Model, plan: &Plan) -> (Vec<Option<usize>>, Vec<Option<f64>>) {
     let mut reached = vec![None; plan.defaults.len()];
-    match run_machine(
-        model,
-        plan,
-        &model.default_params(),
-        plan.sketch_defaults(),
-        &Choice::Nearest,
-        Some(&mut reached),
-    ) {
-        Ok(run) => (run.chosen, reached),
+    let run = in_space(model, |space| {
+        space.run(
+            model,
+            plan,
+            &model.default_params(),
+            plan.sketch_defaults(),
+            &Choice::Nearest,
+            Some(&mut reached),
+            None::<&mut gcs_runtime::outer::Newton>,
+        )
+    });
+    match run {
+        Ok((chosen, _)) => (chosen, reached),
         Err(_) => (vec![None; plan.branches.len()], reached),
     }
 }
 
-/// A run in progress.
-struct Machine<'a, 'r> {
+/// What a space's interpreter adds to the machine: its steps.
+pub trait Space: Frames {
+    /// Runs one step of the space's plan, keeping the value it defines in its register.
+    #[doc(hidden)]
+    fn step(m: &mut Machine<'_, '_, Self>, i: usize, step: &Step) -> Result<(), SolveError>;
+}
+
+impl Space for D2 {
+    fn step(m: &mut Machine<'_, '_, D2>, i: usize, step: &Step) -> Result<(), SolveError> {
+        m.step_planar(i, step)
+    }
+}
+
+/// A run in progress (public only as the argument of [`Space::step`]).
+#[doc(hidden)]
+#[allow(missing_debug_implementations)]
+pub struct Machine<'a, 'r, S: Space> {
     model: &'a Model,
     plan: &'a Plan,
     params: &'a [f64],
     defaults: Vec<f64>,
     choice: &'a Choice,
-    config: Config,
+    config: Config<S>,
     /// The tolerance of checks, relative to the configuration's scale.
     tol: f64,
     /// The configuration's size: the natural step of a default that is a length.
@@ -304,7 +418,7 @@ fn malformed(r: Reg, want: &str, got: Option<&Val>) -> ! {
     )
 }
 
-impl<'a, 'r> Machine<'a, 'r> {
+impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
     /// A machine at the start of `plan`: params and defaults checked finite and within range,
     /// the configuration read from the sketch.
     fn start(
@@ -408,7 +522,7 @@ impl<'a, 'r> Machine<'a, 'r> {
     }
 
     /// The run's result.
-    fn finish(self) -> Run {
+    fn finish(self) -> Run<S> {
         Run {
             config: self.config,
             chosen: self.chosen,
@@ -482,7 +596,7 @@ impl<'a, 'r> Machine<'a, 'r> {
     fn assemble(
         &mut self,
         it: &Iteration,
-        saved: &(Config, Vec<Option<Val>>, Vec<Option<usize>>),
+        saved: &(Config<S>, Vec<Option<Val>>, Vec<Option<usize>>),
         x: &[f64],
         r: &mut [f64],
     ) -> Result<(), SolveError> {
@@ -577,8 +691,53 @@ impl<'a, 'r> Machine<'a, 'r> {
 
     /// Runs one step, keeping the value it defines in its register.
     fn step(&mut self, i: usize, step: &Step) -> Result<(), SolveError> {
+        S::step(self, i, step)
+    }
+
+    /// The root index of `branch`: the one given, or on the sketch the root `nearest` finds
+    /// (the one nearest the moving feature), recorded as the branch's default.
+    fn choose(
+        &mut self,
+        branch: crate::plan::BranchId,
+        nearest: impl FnOnce(&Self) -> Option<usize>,
+    ) -> usize {
+        let index = match self.choice {
+            Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
+            Choice::Nearest => nearest(self).unwrap_or(0),
+        };
+        if let Some(slot) = self.chosen.get_mut(branch.0 as usize) {
+            *slot = Some(index);
+        }
+        index
+    }
+
+    /// The value of a default: as given, or on the sketch the one that moves nothing (what
+    /// its measure holds), recorded.
+    fn default_value(&mut self, d: crate::plan::DefaultId) -> f64 {
+        let k = d.0 as usize;
+        let measured = (self.plan.defaults.get(k))
+            .and_then(|v| v.measure)
+            .filter(|_| self.reached.is_some())
+            .and_then(|m| match self.get(m) {
+                Some(&Val::S(x)) => Some(x),
+                _ => None,
+            });
+        if let (Some(x), Some(reached)) = (measured, self.reached.as_deref_mut()) {
+            reached[k] = Some(x);
+            self.defaults[k] = x;
+        }
+        self.defaults
+            .get(k)
+            .copied()
+            .unwrap_or_else(|| panic!("bug in gcs: no value for default {} of the plan", d.0))
+    }
+}
+
+impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
+    /// The value of a scalar step, the same in every space; `None` for any other step.
+    fn scalar(&mut self, i: usize, op: &Op) -> Result<Option<Val>, SolveError> {
         let model = self.model;
-        let value = match &step.op {
+        Ok(Some(match op {
             Op::Expr(e) => Val::S(self.finite(i, model.exprs.eval(*e, self.params))?),
             Op::Size { expr, constraint } => {
                 let x = model.exprs.eval(*expr, self.params);
@@ -588,26 +747,79 @@ impl<'a, 'r> Machine<'a, 'r> {
                 Val::S(x)
             }
             Op::Const(c) => Val::S(*c),
-            Op::Default(d) => {
-                let k = d.0 as usize;
-                // On the sketch, the value that moves nothing: what its measure holds.
-                let measured = (self.plan.defaults.get(k))
-                    .and_then(|v| v.measure)
-                    .filter(|_| self.reached.is_some())
-                    .and_then(|m| match self.get(m) {
-                        Some(&Val::S(x)) => Some(x),
-                        _ => None,
-                    });
-                if let (Some(x), Some(reached)) = (measured, self.reached.as_deref_mut()) {
-                    reached[k] = Some(x);
-                    self.defaults[k] = x;
-                }
-                Val::S(self.defaults.get(k).copied().unwrap_or_else(|| {
-                    panic!("bug in gcs: no value for default {} of the plan", d.0)
-                }))
-            }
+            // On the sketch, the value that moves nothing: what its measure holds.
+            Op::Default(d) => Val::S(self.default_value(*d)),
             Op::Neg(x) => Val::S(-self.s(*x)),
             Op::DimOf(g) => Val::S(self.config.dim(*g)),
+            Op::Sum(terms) => {
+                let sum = terms.iter().map(|(k, r)| k * self.s(*r)).sum();
+                Val::S(self.finite(i, sum)?)
+            }
+            _ => return Ok(None),
+        }))
+    }
+
+    /// Keeps the value step `step` defines in its register.
+    fn store(&mut self, step: &Step, value: Val) {
+        if let Some((r, _)) = step.out {
+            if let Some(slot) = self.regs.get_mut(r.0 as usize) {
+                *slot = Some(value);
+            }
+        }
+    }
+
+    /// A check of `constraint` at step `i` that measured `r`: within tolerance, or an error
+    /// (on the sketch, or auditing, the run goes on).
+    fn checked(&mut self, i: usize, constraint: ConstraintId, r: f64) -> Result<(), SolveError> {
+        if r.is_nan() || r > self.tol {
+            // On the sketch, a check that fails decides nothing the run is for (the
+            // branches and the defaults' sketch values): it places nothing.
+            if self.reached.is_some() {
+                return Ok(());
+            }
+            let error = err(self.model, constraint, ErrorKind::Inconsistent, r);
+            // Auditing, outside an iteration's trials: the run goes on.
+            if let (Some(failed), None) = (self.failed.as_mut(), &self.errors) {
+                failed.push(Failure {
+                    step: Some(i),
+                    error,
+                });
+                return Ok(());
+            }
+            return Err(error);
+        }
+        Ok(())
+    }
+
+    /// A close of `constraint` reading error `residual`: inside an iteration, an error
+    /// function it drives to zero; otherwise the defaults given must close it.
+    fn closed(&mut self, constraint: ConstraintId, residual: Reg) -> Result<(), SolveError> {
+        let error = self.s(residual);
+        if let Some(errors) = self.errors.as_mut() {
+            errors.push(error);
+            return Ok(());
+        }
+        if self.reached.is_some() {
+            // On the sketch: its defaults are where the iteration starts.
+            return Ok(());
+        }
+        let r = error.abs();
+        if r.is_nan() || r > self.tol {
+            return Err(err(self.model, constraint, ErrorKind::NoConvergence, r));
+        }
+        Ok(())
+    }
+}
+
+impl<'a, 'r> Machine<'a, 'r, D2> {
+    /// Runs one step of a planar plan.
+    fn step_planar(&mut self, i: usize, step: &Step) -> Result<(), SolveError> {
+        let model = self.model;
+        if let Some(value) = self.scalar(i, &step.op)? {
+            self.store(step, value);
+            return Ok(());
+        }
+        let value = match &step.op {
             Op::Along { from, dir, to } => Val::S((self.p(*to) - self.p(*from)).dot(&self.v(*dir))),
             Op::DirectionTo { from, to } => {
                 let d = self.p(*to) - self.p(*from);
@@ -616,10 +828,6 @@ impl<'a, 'r> Machine<'a, 'r> {
                     return Err(self.degenerate(i));
                 }
                 Val::V(d / n)
-            }
-            Op::Sum(terms) => {
-                let sum = terms.iter().map(|(k, r)| k * self.s(*r)).sum();
-                Val::S(self.finite(i, sum)?)
             }
             Op::Reversed(x) => Val::L(self.line(*x).reversed()),
             Op::OffsetLine { line, by } => Val::L(self.line(*line).offset(self.s(*by))),
@@ -877,70 +1085,42 @@ impl<'a, 'r> Machine<'a, 'r> {
                 residual,
             } => {
                 let r = self.residual(residual);
-                if r.is_nan() || r > self.tol {
-                    // On the sketch, a check that fails decides nothing the run is for (the
-                    // branches and the defaults' sketch values): it places nothing.
-                    if self.reached.is_some() {
-                        return Ok(());
-                    }
-                    let error = err(model, *constraint, ErrorKind::Inconsistent, r);
-                    // Auditing, outside an iteration's trials: the run goes on.
-                    if let (Some(failed), None) = (self.failed.as_mut(), &self.errors) {
-                        failed.push(Failure {
-                            step: Some(i),
-                            error,
-                        });
-                        return Ok(());
-                    }
-                    return Err(error);
-                }
-                return Ok(());
+                return self.checked(i, *constraint, r);
             }
             Op::Close {
                 constraint,
                 residual,
-            } => {
-                let error = self.s(*residual);
-                if let Some(errors) = self.errors.as_mut() {
-                    // Inside an iteration: an error function, which it drives to zero.
-                    errors.push(error);
-                    return Ok(());
-                }
-                if self.reached.is_some() {
-                    // On the sketch: its defaults are where the iteration starts.
-                    return Ok(());
-                }
-                // Without an outer iteration the defaults given must close the region.
-                let r = error.abs();
-                if r.is_nan() || r > self.tol {
-                    return Err(err(model, *constraint, ErrorKind::NoConvergence, r));
-                }
-                return Ok(());
+            } => return self.closed(*constraint, *residual),
+            Op::Plane { .. }
+            | Op::ParallelPlane { .. }
+            | Op::Sphere { .. }
+            | Op::SphereThrough { .. }
+            | Op::ShiftedSphere { .. }
+            | Op::Orbit { .. }
+            | Op::Opposite(_)
+            | Op::Across(_)
+            | Op::AngleAbout { .. }
+            | Op::HelixAdvance { .. }
+            | Op::HelixTurn { .. }
+            | Op::WorldAxis(_)
+            | Op::Coordinate { .. }
+            | Op::PointAt { .. }
+            | Op::TurnedAbout { .. }
+            | Op::Expr(_)
+            | Op::Size { .. }
+            | Op::Const(_)
+            | Op::Default(_)
+            | Op::Neg(_)
+            | Op::DimOf(_)
+            | Op::Sum(_) => {
+                panic!(
+                    "bug in gcs: step {i} ({:?}) reached the planar interpreter",
+                    step.op
+                )
             }
         };
-        if let Some((r, _)) = step.out {
-            if let Some(slot) = self.regs.get_mut(r.0 as usize) {
-                *slot = Some(value);
-            }
-        }
+        self.store(step, value);
         Ok(())
-    }
-
-    /// The root index of `branch`: the one given, or on the sketch the root `nearest` finds
-    /// (the one nearest the moving feature), recorded as the branch's default.
-    fn choose(
-        &mut self,
-        branch: crate::plan::BranchId,
-        nearest: impl FnOnce(&Self) -> Option<usize>,
-    ) -> usize {
-        let index = match self.choice {
-            Choice::Given(b) => b.get(branch.0 as usize).copied().unwrap_or(0),
-            Choice::Nearest => nearest(self).unwrap_or(0),
-        };
-        if let Some(slot) = self.chosen.get_mut(branch.0 as usize) {
-            *slot = Some(index);
-        }
-        index
     }
 
     /// The root of the intersection of loci `a` and `b` that `branch` (or the choice) takes.
@@ -1070,6 +1250,12 @@ impl<'a, 'r> Machine<'a, 'r> {
             Residual::Mirror { p, q, base, dir } => {
                 e::mirror(self.p(p), self.p(q), self.p(base), self.v(dir), component)
             }
+            Residual::PointPlane { .. }
+            | Residual::Parallel { .. }
+            | Residual::Twist { .. }
+            | Residual::Helix { .. } => {
+                panic!("bug in gcs: a spatial check reached the planar interpreter")
+            }
         }
     }
 
@@ -1110,14 +1296,16 @@ fn sense(plus: bool) -> Sense {
 
 /// The largest coordinate or dimension of the given geoms in a configuration: what tolerances
 /// scale with.
-pub fn config_scale(
-    config: &Config,
+pub fn config_scale<S: Frames>(
+    config: &Config<S>,
     geoms: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
 ) -> f64 {
     let mut s: f64 = 0.0;
     for (g, f) in &config.frames {
         if geoms.contains(g) {
-            s = s.max(f.origin.x.abs()).max(f.origin.y.abs());
+            for x in <S::Frame as RigidFrame>::coords(&f.origin()) {
+                s = s.max(x.abs());
+            }
         }
     }
     for (g, d) in &config.dims {

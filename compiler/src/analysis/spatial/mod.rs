@@ -1,0 +1,1619 @@
+//! Space's module of the analysis: the geometry vocabulary of 3d models, after TLA (003).
+//!
+//! A cluster's record is TLA's: its translational DOF with the invariant point or the locus
+//! a feature is held on ([`Trans`]: free, a feature on a line, circle, plane or sphere, a
+//! pivot, fixed) and its rotational DOF with the invariant axis ([`Turn`]: free, about one
+//! axis, known). Action analysis moves the side of a relation that is not known with the
+//! freedom its record leaves, by the brick's fragments: translate a point onto a point or
+//! the nearest point of a locus; rotate about the pivot around `v1 x v2` (the shortest turn)
+//! to bring a point onto a point or onto where its sphere meets a locus; rotate about the
+//! invariant axis by the angle between perpendiculars; turn a direction onto a direction, or
+//! about the axis to it; slide a feature along its locus to where it meets another. The same
+//! point on two loci of space is where they meet (the runtime's 3d intersection table), with
+//! a branch variable where there are two roots.
+//!
+//! Covered so far: bodies with markers and member points, free points and vectors, against
+//! fixed points, lines, planes and other bodies, with coincident, distance (point-point,
+//! point-plane), `on` (a point on a line or plane), in-line, in-plane, parallel-z, offset-x
+//! and the lower pairs built of them (revolute, prismatic, cylindrical, spherical, planar).
+//! What is not (angles between directions of space, helical joints, segments, circles and
+//! planes that move, loops of partially fixed bodies, defaults) is reported per constraint,
+//! never dropped.
+
+pub mod relation;
+
+use super::driver::Builder;
+use super::geometry::{self, Geometry, Invariants};
+use super::Unsupported;
+use crate::config::{Config, D3};
+use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Ty};
+use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
+use gcs_lang::Model;
+use relation::Relation;
+
+/// A relation of space with its constraint.
+pub(crate) type Rel = geometry::Rel<Relation>;
+
+/// The geometry of space.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Spatial;
+
+impl Geometry for Spatial {
+    type Record = Record;
+    type Relation = Relation;
+
+    /// SOLVE-LOOP's limit in space (000, Appendix A.2).
+    const MAX_LOOP: usize = 6;
+
+    fn decompose(model: &Model) -> Result<(Vec<Rel>, Vec<Unsupported>), String> {
+        let params = model.default_params();
+        let sketch = Config::<D3>::from_sketch(model, &params).map_err(|b| {
+            format!(
+                "the sketch of `{}` is invalid: {}",
+                model.geoms[b.geom].name, b.what
+            )
+        })?;
+        Ok(relation::decompose(model, &sketch))
+    }
+
+    fn features(relation: &Relation) -> Vec<GeomId> {
+        relation.features()
+    }
+
+    fn is_dimension(_: &Relation) -> bool {
+        false
+    }
+
+    fn record(model: &Model, g: GeomId) -> Record {
+        Record::new(model, g)
+    }
+
+    fn action(b: &mut Builder<'_, Self>, r: &Rel) -> bool {
+        b.action(r)
+    }
+
+    fn implied(b: &Builder<'_, Self>, r: &Relation) -> bool {
+        b.implied(r)
+    }
+
+    fn locus(b: &mut Builder<'_, Self>, r: &Rel) -> bool {
+        b.locus(r)
+    }
+
+    fn residual(b: &mut Builder<'_, Self>, relation: &Relation) -> Residual {
+        b.residual(relation)
+    }
+
+    fn ground(b: &mut Builder<'_, Self>) {
+        b.ground_if_nothing_fixed();
+    }
+
+    fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {
+        candidates.iter().any(|&k| b.default_on(k))
+    }
+}
+
+/// A locus of space a point feature is held on, in a register.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Locus {
+    /// A line (one DOF).
+    Line(Reg),
+    /// A circle (one DOF).
+    Circle(Reg),
+    /// A plane (two DOF).
+    Plane(Reg),
+    /// A sphere (two DOF).
+    Sphere(Reg),
+}
+
+impl Locus {
+    /// Its register.
+    pub fn reg(self) -> Reg {
+        match self {
+            Locus::Line(r) | Locus::Circle(r) | Locus::Plane(r) | Locus::Sphere(r) => r,
+        }
+    }
+
+    /// The DOF a point on it has.
+    pub fn dof(self) -> usize {
+        match self {
+            Locus::Line(_) | Locus::Circle(_) => 1,
+            Locus::Plane(_) | Locus::Sphere(_) => 2,
+        }
+    }
+
+    /// The locus in register `r` of type `ty`.
+    fn of(r: Reg, ty: Ty) -> Option<Locus> {
+        match ty {
+            Ty::Line => Some(Locus::Line(r)),
+            Ty::Circle => Some(Locus::Circle(r)),
+            Ty::Plane => Some(Locus::Plane(r)),
+            Ty::Sphere => Some(Locus::Sphere(r)),
+            _ => None,
+        }
+    }
+
+    fn words(self) -> &'static str {
+        match self {
+            Locus::Line(_) => "line",
+            Locus::Circle(_) => "circle",
+            Locus::Plane(_) => "plane",
+            Locus::Sphere(_) => "sphere",
+        }
+    }
+}
+
+/// TLA's translational state: what is invariant of a cluster's position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Trans {
+    /// Free to translate (three DOF).
+    Free,
+    /// A feature is held on a locus (one or two DOF).
+    On {
+        /// The feature.
+        feature: GeomId,
+        /// Its locus.
+        locus: Locus,
+    },
+    /// A feature is invariant: the cluster may only rotate about it.
+    Pivot {
+        /// Where.
+        at: Reg,
+        /// The feature.
+        feature: GeomId,
+    },
+    /// Position invariant.
+    Fixed,
+    /// The cluster has no position (a vector).
+    None,
+}
+
+/// TLA's rotational state: what is invariant of a cluster's orientation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Turn {
+    /// Free to rotate (three DOF for a body, two for a vector).
+    Free,
+    /// The cluster may only rotate about an invariant axis (one DOF).
+    Axis {
+        /// The axis' unit direction.
+        axis: Reg,
+        /// The direction feature that lies along it, if one does.
+        feature: Option<GeomId>,
+    },
+    /// Orientation invariant.
+    Known,
+    /// The cluster has no orientation (a point).
+    None,
+}
+
+/// What a record moves: how many DOF its freedoms count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// A rigid body, or a geom moved as one.
+    Body,
+    /// A point.
+    Point,
+    /// A direction.
+    Vector,
+    /// A geom of space the analysis does not move yet (a line, segment, circle or plane
+    /// that is not fixed), with its DOF.
+    Other(usize),
+}
+
+/// A cluster's invariants record in space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Record {
+    /// Translation.
+    pub trans: Trans,
+    /// Rotation.
+    pub turn: Turn,
+    /// What it moves.
+    pub shape: Shape,
+    /// Whether it is held where it is (fixed, or a temporary ground).
+    pub held: bool,
+}
+
+impl Record {
+    /// The record of top-level geom `g` before any constraint: free, unless it is `fixed`.
+    fn new(model: &Model, g: GeomId) -> Record {
+        let geom = &model.geoms[g];
+        let (trans, turn, shape) = match geom.kind {
+            GeomKind::Point => (Trans::Free, Turn::None, Shape::Point),
+            GeomKind::Vector => (Trans::None, Turn::Free, Shape::Vector),
+            GeomKind::Body => (Trans::Free, Turn::Free, Shape::Body),
+            kind => (Trans::Free, Turn::Free, Shape::Other(kind.dof(model.space))),
+        };
+        let mut record = Record {
+            trans,
+            turn,
+            shape,
+            held: false,
+        };
+        if geom.fixed {
+            record.hold();
+        }
+        record
+    }
+
+    /// Whether the record can be moved by the fragments of this module.
+    fn movable(&self) -> bool {
+        !matches!(self.shape, Shape::Other(_))
+    }
+}
+
+impl Invariants for Record {
+    fn dof(&self) -> usize {
+        if let Shape::Other(n) = self.shape {
+            return if self.held { 0 } else { n };
+        }
+        let trans = match self.trans {
+            Trans::Free => 3,
+            Trans::On { locus, .. } => locus.dof(),
+            Trans::Pivot { .. } | Trans::Fixed | Trans::None => 0,
+        };
+        let turn = match (self.turn, self.shape) {
+            (Turn::Free, Shape::Vector) => 2,
+            (Turn::Free, _) => 3,
+            (Turn::Axis { .. }, _) => 1,
+            (Turn::Known | Turn::None, _) => 0,
+        };
+        trans + turn
+    }
+
+    fn rigid(&self) -> bool {
+        true
+    }
+
+    fn loose(&self) -> bool {
+        matches!(self.trans, Trans::Free | Trans::None)
+            && matches!(self.turn, Turn::Free | Turn::None)
+    }
+
+    fn hold(&mut self) {
+        self.held = true;
+        if !matches!(self.turn, Turn::None) {
+            self.turn = Turn::Known;
+        }
+        if self.trans != Trans::None {
+            self.trans = Trans::Fixed;
+        }
+    }
+
+    fn point_known(&self, model: &Model, f: GeomId) -> bool {
+        self.grounded()
+            || matches!(self.trans, Trans::Pivot { feature, .. }
+                if feature == f || model.constant_distance(feature, f) == Some(0.0))
+            // About a pivot and an axis: the points on the axis stay.
+            || matches!((self.trans, self.turn),
+                (Trans::Pivot { feature: g, .. }, Turn::Axis { feature: Some(a), .. })
+                    if on_axis(model, g, a, f))
+    }
+
+    /// Kramer's slots in space: invariant points, 1D- and 2D-constrained points, invariant
+    /// and 1D-constrained vectors (none of the latter yet), no dimensions or fixed distances.
+    fn table2(&self) -> [usize; 9] {
+        let (inv_pts, pts_1d, pts_2d) = match self.trans {
+            Trans::Pivot { .. } | Trans::Fixed => (1, 0, 0),
+            Trans::On { locus, .. } if locus.dof() == 1 => (0, 1, 0),
+            Trans::On { .. } => (0, 0, 1),
+            Trans::Free | Trans::None => (0, 0, 0),
+        };
+        let inv_vec = match (self.turn, self.shape) {
+            (Turn::Axis { .. }, _) | (Turn::Known, Shape::Vector) => 1,
+            (Turn::Known, _) => 2,
+            _ => 0,
+        };
+        [inv_pts, pts_1d, pts_2d, inv_vec, 0, 0, 0, 0, 0]
+    }
+
+    fn recorded(&self) -> Vec<ConstraintId> {
+        Vec::new()
+    }
+
+    fn freedom(&self, model: &Model, _: GeomId) -> String {
+        if let Shape::Other(_) = self.shape {
+            return if self.held {
+                String::new()
+            } else {
+                "it may still move: the analysis does not move this kind of geom in 3d yet".into()
+            };
+        }
+        let name = |f: GeomId| model.geoms[f].name.clone();
+        let mut parts = Vec::new();
+        match self.trans {
+            Trans::Free => parts.push("it may still translate".to_string()),
+            Trans::On { feature, locus } => parts.push(format!(
+                "it may still move {} on its {}",
+                name(feature),
+                locus.words()
+            )),
+            _ => {}
+        }
+        match (self.turn, self.trans) {
+            (Turn::Free, Trans::Pivot { feature, .. }) => {
+                parts.push(format!("it may still rotate about {}", name(feature)))
+            }
+            (Turn::Free, _) => parts.push("it may still rotate".into()),
+            (Turn::Axis { feature, .. }, _) => parts.push(match feature {
+                Some(f) => format!("it may still rotate about {}", name(f)),
+                None => "it may still rotate about one axis".into(),
+            }),
+            _ => {}
+        }
+        parts.join(", and ")
+    }
+}
+
+/// A member point's or marker's constant local coordinates in its body.
+fn local_point(model: &Model, f: GeomId) -> Option<[f64; 3]> {
+    let g = &model.geoms[f];
+    let Owner::Member(_) = g.owner else {
+        return None;
+    };
+    match &g.sketch {
+        Sketch::Point(c) | Sketch::Marker { origin: c, .. } => constant(model, c),
+        _ => None,
+    }
+}
+
+/// A direction feature's constant local direction in its body (not normalized): a member
+/// vector, or a marker's z axis or its x axis made perpendicular to z.
+fn local_dir(model: &Model, v: GeomId) -> Option<[f64; 3]> {
+    let g = &model.geoms[v];
+    match (g.owner, &g.sketch) {
+        (Owner::Member(_), Sketch::Vector(c)) => constant(model, c),
+        (Owner::Part(marker, part), _) => {
+            let Sketch::Marker { z, x, .. } = &model.geoms[marker].sketch else {
+                return None;
+            };
+            let z = constant(model, z.as_ref()?)?;
+            match part {
+                Part::AxisZ => Some(z),
+                Part::AxisX => {
+                    let x = constant(model, x)?;
+                    let k = dot(x, z) / dot(z, z);
+                    Some([x[0] - k * z[0], x[1] - k * z[1], x[2] - k * z[2]])
+                }
+                _ => None,
+            }
+        }
+        _ => None,
+    }
+}
+
+fn constant(model: &Model, c: &[gcs_lang::expr::ExprId]) -> Option<[f64; 3]> {
+    if !c.iter().all(|&e| model.exprs.is_constant(e)) {
+        return None;
+    }
+    let v = |i: usize| c.get(i).map_or(0.0, |&e| model.exprs.eval(e, &[]));
+    Some([v(0), v(1), v(2)])
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Whether `a` and `b` are parallel (either sense), to rounding.
+fn parallel(a: [f64; 3], b: [f64; 3]) -> bool {
+    let c = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    dot(c, c).sqrt() <= 1e-12 * dot(a, a).sqrt() * dot(b, b).sqrt()
+}
+
+/// Whether direction features `a` and `b` of one body are parallel in it, whatever it does.
+fn same_direction(model: &Model, a: GeomId, b: GeomId) -> bool {
+    model.top_level_of(a) == model.top_level_of(b)
+        && matches!((local_dir(model, a), local_dir(model, b)), (Some(u), Some(v)) if parallel(u, v))
+}
+
+/// Whether point `f` lies on the axis through point `g` along direction `a`, all of one body.
+fn on_axis(model: &Model, g: GeomId, a: GeomId, f: GeomId) -> bool {
+    let top = model.top_level_of(g);
+    if model.top_level_of(a) != top || model.top_level_of(f) != top {
+        return false;
+    }
+    match (
+        local_point(model, g),
+        local_point(model, f),
+        local_dir(model, a),
+    ) {
+        (Some(p), Some(q), Some(d)) => {
+            let w = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+            dot(w, w) == 0.0 || parallel(w, d)
+        }
+        _ => false,
+    }
+}
+
+/// Where a point feature must go.
+#[derive(Clone, Copy, Debug)]
+enum Target {
+    /// A known point.
+    Point(Reg),
+    /// A locus.
+    On(Locus),
+}
+
+impl Builder<'_, Spatial> {
+    /// Whether direction feature `v` is invariant.
+    fn dir_known(&self, v: GeomId) -> bool {
+        let rec = self.record(v);
+        rec.grounded()
+            || rec.turn == Turn::Known
+            || matches!(rec.turn, Turn::Axis { feature: Some(f), .. }
+                if f == v || same_direction(self.model, f, v))
+    }
+
+    /// Locus analysis: a point of each of two partially fixed clusters to coincide. Each
+    /// lies on the locus its cluster's freedom sweeps (003's locus table): the pivot's sphere
+    /// or the axis' circle, the line, circle, plane or sphere it is held on (moved with it);
+    /// where the two loci meet is a pseudo-marker (a branch variable where two), to which
+    /// each cluster is then moved by action analysis.
+    fn locus(&mut self, r: &Rel) -> bool {
+        let Relation::PointPoint { a, b, d: None } = r.relation else {
+            return false;
+        };
+        if self.together(a, b) {
+            return false;
+        }
+        let (Some(la), Some(lb)) = (self.locus_of(a), self.locus_of(b)) else {
+            return false;
+        };
+        let near = self.point(a);
+        let Some(Target::Point(p)) = self.meet(la, Target::On(lb), near, r) else {
+            return false;
+        };
+        let first = Rel {
+            last: false,
+            ..r.clone()
+        };
+        self.move_point(a, Target::Point(p), &first) && self.move_point(b, Target::Point(p), r)
+    }
+
+    /// The locus point feature `f` sweeps with the freedom its cluster has, if it is a curve
+    /// or surface of the table (not the whole of space).
+    fn locus_of(&mut self, f: GeomId) -> Option<Locus> {
+        let k = self.cluster(f);
+        let rec = self.clusters[k].record.clone();
+        if !rec.movable() || self.point_known(f) {
+            return None;
+        }
+        let fname = self.name(f);
+        match (rec.trans, rec.turn) {
+            (Trans::On { feature, locus }, _) if feature == f => Some(locus),
+            (Trans::On { feature, locus }, Turn::Known | Turn::None) => {
+                Some(self.shifted(locus, feature, f))
+            }
+            (Trans::Pivot { at, feature }, Turn::Free) => {
+                let from = self.point(f);
+                let radius = self.model.constant_distance(feature, f);
+                let words = format!("the sphere about {} through {fname}", self.word(at));
+                Some(Locus::Sphere(self.value(
+                    Op::SphereThrough {
+                        center: at,
+                        through: from,
+                        radius,
+                    },
+                    Ty::Sphere,
+                    words,
+                )))
+            }
+            (Trans::Pivot { at, .. }, Turn::Axis { axis, .. }) => {
+                let from = self.point(f);
+                let words = format!(
+                    "the circle {fname} sweeps about the axis through {} along {}",
+                    self.word(at),
+                    self.word(axis)
+                );
+                Some(Locus::Circle(self.value(
+                    Op::Orbit {
+                        pivot: at,
+                        axis,
+                        through: from,
+                    },
+                    Ty::Circle,
+                    words,
+                )))
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether features `a` and `b` move together (one cluster: rigid).
+    fn together(&self, a: GeomId, b: GeomId) -> bool {
+        self.cluster(a) == self.cluster(b)
+    }
+
+    fn implied(&self, relation: &Relation) -> bool {
+        match *relation {
+            Relation::PointPoint { a, b, .. } => {
+                (self.point_known(a) && self.point_known(b)) || self.together(a, b)
+            }
+            Relation::PointLine { p, base, dir } => {
+                (self.point_known(p) && self.point_known(base) && self.dir_known(dir))
+                    || (self.together(p, base) && self.together(p, dir))
+            }
+            Relation::PointPlane {
+                p, base, normal, ..
+            } => {
+                (self.point_known(p) && self.point_known(base) && self.dir_known(normal))
+                    || (self.together(p, base) && self.together(p, normal))
+            }
+            Relation::Parallel { u, v, .. } => {
+                (self.dir_known(u) && self.dir_known(v)) || self.together(u, v)
+            }
+            Relation::Twist { axis, u, v, .. } => {
+                (self.dir_known(axis) && self.dir_known(u) && self.dir_known(v))
+                    || (self.together(axis, v) && self.together(u, v))
+            }
+            Relation::Helix {
+                axis, u, v, p, q, ..
+            } => {
+                (self.dir_known(axis)
+                    && self.dir_known(u)
+                    && self.dir_known(v)
+                    && self.point_known(p)
+                    && self.point_known(q))
+                    || (self.together(u, v) && self.together(p, q) && self.together(u, p))
+            }
+        }
+    }
+
+    fn residual(&mut self, relation: &Relation) -> Residual {
+        match *relation {
+            Relation::PointPoint { a, b, d } => {
+                let (a, b) = (self.point(a), self.point(b));
+                let d = d.map(|e| self.expr(e));
+                Residual::PointPoint { a, b, d }
+            }
+            Relation::PointLine { p, base, dir } => Residual::PointLine {
+                p: self.point(p),
+                base: self.point(base),
+                dir: self.direction(dir),
+                d: None,
+            },
+            Relation::PointPlane { p, base, normal, d } => {
+                let (p, base, normal) = (self.point(p), self.point(base), self.direction(normal));
+                let d = d.map(|e| self.expr(e));
+                Residual::PointPlane { p, base, normal, d }
+            }
+            Relation::Parallel { u, v, sense } => Residual::Parallel {
+                u: self.direction(u),
+                v: self.direction(v),
+                sense,
+            },
+            Relation::Twist { axis, u, v, angle } => {
+                let (axis, u, v) = (self.direction(axis), self.direction(u), self.direction(v));
+                let angle = self.angle(angle);
+                Residual::Twist { axis, u, v, angle }
+            }
+            Relation::Helix {
+                axis,
+                u,
+                v,
+                p,
+                q,
+                pitch,
+            } => {
+                let (axis, u, v) = (self.direction(axis), self.direction(u), self.direction(v));
+                let (p, q) = (self.point(p), self.point(q));
+                let pitch = self.expr(pitch);
+                Residual::Helix {
+                    axis,
+                    u,
+                    v,
+                    p,
+                    q,
+                    pitch,
+                }
+            }
+        }
+    }
+
+    /// The register of an angle value: its expression's, or zero.
+    fn angle(&mut self, angle: Option<gcs_lang::expr::ExprId>) -> Reg {
+        match angle {
+            Some(e) => self.expr(e),
+            None => self.value(Op::Const(0.0), Ty::Scalar, "0".into()),
+        }
+    }
+
+    /// Action analysis: the relation's unknown side moved onto its known side.
+    fn action(&mut self, r: &Rel) -> bool {
+        if self.implied(&r.relation) {
+            self.check(r);
+            return true;
+        }
+        match r.relation {
+            Relation::PointPoint { a, b, d } => {
+                for (known, moving) in [(a, b), (b, a)] {
+                    if self.point_known(known) && !self.point_known(moving) {
+                        let x = self.point(known);
+                        let target = match d {
+                            None => Target::Point(x),
+                            Some(e) => {
+                                let radius = self.expr(e);
+                                let words = format!(
+                                    "the sphere about {} of radius {}",
+                                    self.name(known),
+                                    self.word(radius)
+                                );
+                                let s =
+                                    self.value(Op::Sphere { center: x, radius }, Ty::Sphere, words);
+                                Target::On(Locus::Sphere(s))
+                            }
+                        };
+                        return self.move_point(moving, target, r);
+                    }
+                }
+                false
+            }
+            Relation::PointLine { p, base, dir } => {
+                if self.point_known(base) && self.dir_known(dir) && !self.point_known(p) {
+                    let (b, d) = (self.point(base), self.direction(dir));
+                    let words = format!(
+                        "the line through {} along {}",
+                        self.name(base),
+                        self.name(dir)
+                    );
+                    let l = self.line(b, d, words);
+                    return self.move_point(p, Target::On(Locus::Line(l)), r);
+                }
+                // The line moves: with its direction known, its point slides onto the line
+                // through the known point along it.
+                if self.point_known(p) && self.dir_known(dir) && self.together(base, dir) {
+                    let (x, d) = (self.point(p), self.direction(dir));
+                    let words =
+                        format!("the line through {} along {}", self.name(p), self.name(dir));
+                    let l = self.line(x, d, words);
+                    return self.move_point(base, Target::On(Locus::Line(l)), r);
+                }
+                false
+            }
+            Relation::PointPlane { p, base, normal, d } => {
+                if self.point_known(base) && self.dir_known(normal) && !self.point_known(p) {
+                    let (b, n) = (self.point(base), self.direction(normal));
+                    let offset = d.map(|e| self.expr(e));
+                    let words = self.plane_words(base, normal, offset);
+                    let q = self.value(
+                        Op::Plane {
+                            point: b,
+                            normal: n,
+                            offset,
+                        },
+                        Ty::Plane,
+                        words,
+                    );
+                    return self.move_point(p, Target::On(Locus::Plane(q)), r);
+                }
+                // The plane moves: with its normal known, its point slides onto the plane
+                // through the known point, moved back by the distance.
+                if self.point_known(p) && self.dir_known(normal) && self.together(base, normal) {
+                    let (x, n) = (self.point(p), self.direction(normal));
+                    let offset = d.map(|e| {
+                        let v = self.expr(e);
+                        let words = format!("minus {}", self.word(v));
+                        self.value(Op::Neg(v), Ty::Scalar, words)
+                    });
+                    let words = format!(
+                        "the plane through {} normal to {}{}",
+                        self.name(p),
+                        self.name(normal),
+                        offset.map_or(String::new(), |o| format!(" moved {}", self.word(o)))
+                    );
+                    let q = self.value(
+                        Op::Plane {
+                            point: x,
+                            normal: n,
+                            offset,
+                        },
+                        Ty::Plane,
+                        words,
+                    );
+                    return self.move_point(base, Target::On(Locus::Plane(q)), r);
+                }
+                false
+            }
+            Relation::Parallel { u, v, sense } => {
+                for (known, moving) in [(u, v), (v, u)] {
+                    if self.dir_known(known) && !self.dir_known(moving) {
+                        let k = self.direction(known);
+                        let target = if sense < 0.0 {
+                            let words = format!("the opposite of {}", self.name(known));
+                            self.value(Op::Opposite(k), Ty::Vector, words)
+                        } else {
+                            k
+                        };
+                        return self.turn_onto(moving, target, r, false);
+                    }
+                }
+                false
+            }
+            Relation::Helix {
+                axis,
+                u,
+                v,
+                p,
+                q,
+                pitch,
+            } => {
+                // The second marker moves for the first's, or the first for the second's: the
+                // angle from the second to the first about the same axis is the opposite, for
+                // the opposite advance, so the same coupling with the roles swapped.
+                self.helix(axis, (u, p), (v, q), pitch, r)
+                    || self.helix(axis, (v, q), (u, p), pitch, r)
+            }
+            Relation::Twist { axis, u, v, angle } => {
+                // The second marker's x axis turns about the first's z to the first's x turned
+                // by the angle; or the first's to the second's turned back.
+                if self.dir_known(axis) && self.dir_known(u) && !self.dir_known(v) {
+                    let (a, x) = (self.direction(axis), self.direction(u));
+                    let by = self.angle(angle);
+                    let words = format!(
+                        "{} turned by {} about {}",
+                        self.name(u),
+                        self.word(by),
+                        self.name(axis)
+                    );
+                    let target = self.value(
+                        Op::TurnedAbout {
+                            dir: x,
+                            axis: a,
+                            angle: by,
+                        },
+                        Ty::Vector,
+                        words,
+                    );
+                    return self.turn_onto(v, target, r, true);
+                }
+                if self.dir_known(v) && !self.dir_known(u) {
+                    let (a, x) = (self.direction(axis), self.direction(v));
+                    let by = self.angle(angle);
+                    let words = format!("minus {}", self.word(by));
+                    let back = self.value(Op::Neg(by), Ty::Scalar, words);
+                    let words = format!(
+                        "{} turned back by {} about {}",
+                        self.name(v),
+                        self.word(by),
+                        self.name(axis)
+                    );
+                    let target = self.value(
+                        Op::TurnedAbout {
+                            dir: x,
+                            axis: a,
+                            angle: back,
+                        },
+                        Ty::Vector,
+                        words,
+                    );
+                    return self.turn_onto(u, target, r, true);
+                }
+                false
+            }
+        }
+    }
+
+    /// A helical joint's coupling of turn and advance about `axis`: one side known, the other
+    /// placed along the axis for its turn (the advance nearest where it is: the turns are a
+    /// pitch apart), or turned about the axis for its advance.
+    fn helix(
+        &mut self,
+        axis: GeomId,
+        (u, p): (GeomId, GeomId),
+        (v, q): (GeomId, GeomId),
+        pitch: gcs_lang::expr::ExprId,
+        r: &Rel,
+    ) -> bool {
+        if !(self.dir_known(axis) && self.dir_known(u) && self.point_known(p)) {
+            return false;
+        }
+        let (z, x, at) = (self.direction(axis), self.direction(u), self.point(p));
+        let pitch = self.expr(pitch);
+        let (qname, vname) = (self.name(q), self.name(v));
+        if self.dir_known(v) && !self.point_known(q) {
+            // Turned: slide to the advance of that turn nearest where it is.
+            let to = self.point(q);
+            let w = self.direction(v);
+            let words = format!("the advance of {qname} along {}", self.name(axis));
+            let now = self.value(
+                Op::Along {
+                    from: at,
+                    dir: z,
+                    to,
+                },
+                Ty::Scalar,
+                words,
+            );
+            let words = format!("the turn of {vname} about {}", self.name(axis));
+            let turn = self.value(
+                Op::AngleAbout {
+                    u: x,
+                    v: w,
+                    axis: z,
+                },
+                Ty::Scalar,
+                words,
+            );
+            let words = format!("the advance of that turn nearest {qname}'s");
+            let advance = self.value(Op::HelixAdvance { now, turn, pitch }, Ty::Scalar, words);
+            let words = format!(
+                "the plane across {} at that advance from {}",
+                self.name(axis),
+                self.name(p)
+            );
+            let plane = self.value(
+                Op::Plane {
+                    point: at,
+                    normal: z,
+                    offset: Some(advance),
+                },
+                Ty::Plane,
+                words,
+            );
+            return self.move_point(q, Target::On(Locus::Plane(plane)), r);
+        }
+        if self.point_known(q) && !self.dir_known(v) {
+            // Placed along the axis: turn to that advance's angle.
+            let to = self.point(q);
+            let words = format!("the advance of {qname} along {}", self.name(axis));
+            let advance = self.value(
+                Op::Along {
+                    from: at,
+                    dir: z,
+                    to,
+                },
+                Ty::Scalar,
+                words,
+            );
+            let words = "the turn of that advance".to_string();
+            let turn = self.value(Op::HelixTurn { advance, pitch }, Ty::Scalar, words);
+            let words = format!(
+                "{} turned by that angle about {}",
+                self.name(u),
+                self.name(axis)
+            );
+            let target = self.value(
+                Op::TurnedAbout {
+                    dir: x,
+                    axis: z,
+                    angle: turn,
+                },
+                Ty::Vector,
+                words,
+            );
+            return self.turn_onto(v, target, r, true);
+        }
+        false
+    }
+
+    fn plane_words(&self, base: GeomId, normal: GeomId, offset: Option<Reg>) -> String {
+        let moved = offset.map_or(String::new(), |o| {
+            format!(" moved {} along it", self.word(o))
+        });
+        if self.model.geoms[base].kind == GeomKind::Plane {
+            format!("plane {}{moved}", self.name(base))
+        } else {
+            format!(
+                "the plane through {} normal to {}{moved}",
+                self.name(base),
+                self.name(normal)
+            )
+        }
+    }
+
+    fn line(&mut self, point: Reg, dir: Reg, words: String) -> Reg {
+        self.value(
+            Op::Line {
+                point,
+                dir,
+                offset: None,
+            },
+            Ty::Line,
+            words,
+        )
+    }
+
+    /// The point about which cluster `k` may rotate: its pivot, the feature it holds on a
+    /// locus, or (free to translate) its first geom's origin.
+    fn pivot_of(&mut self, k: usize) -> Reg {
+        match self.clusters[k].record.trans {
+            Trans::Pivot { at, .. } => at,
+            Trans::On { feature, .. } => self.point(feature),
+            _ => {
+                let g = self.clusters[k].geoms[0];
+                let words = format!("the origin of {}", self.name(g));
+                self.value(Op::PointOf(g), Ty::Point, words)
+            }
+        }
+    }
+
+    /// Moves the cluster of point feature `f` so that `f` reaches `target`, with the freedom
+    /// its record leaves; false when no fragment applies (yet).
+    fn move_point(&mut self, f: GeomId, target: Target, r: &Rel) -> bool {
+        let k = self.cluster(f);
+        let rec = self.clusters[k].record.clone();
+        if !rec.movable() {
+            return false;
+        }
+        let geoms = self.clusters[k].geoms.clone();
+        let names = self.group_name(&geoms);
+        let c = self.cname(r.constraint);
+        let fname = self.name(f);
+        let turns = matches!(rec.turn, Turn::Free | Turn::Axis { .. });
+        match (rec.trans, target) {
+            // Free to translate: onto the point, or by the least motion onto the locus.
+            (Trans::Free, target) => {
+                let from = self.point(f);
+                let (to, explain) = match target {
+                    Target::Point(x) => (
+                        x,
+                        format!(
+                            "{names} is free to translate: translate it so that {fname} lands on {} ({c}).",
+                            self.word(x)
+                        ),
+                    ),
+                    Target::On(locus) => {
+                        let words = format!("the point of {} nearest {fname}", self.word(locus.reg()));
+                        let to = self.value(
+                            Op::Nearest {
+                                locus: locus.reg(),
+                                point: from,
+                            },
+                            Ty::Point,
+                            words,
+                        );
+                        (
+                            to,
+                            format!(
+                                "{names} is free to translate: translate it by the least motion that puts {fname} on {} ({c}).",
+                                self.word(locus.reg())
+                            ),
+                        )
+                    }
+                };
+                self.emit(
+                    Op::Translate { geoms, from, to },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.placed(k, f, to, target);
+                true
+            }
+            // Held on a locus: slide along it (shifted to `f` when the feature held is
+            // another, which only a turn about an axis through both leaves there) to where it
+            // meets the target.
+            (Trans::On { feature: g, locus }, target)
+                if g == f || !turns || self.on_turn_axis(&rec, g, f) =>
+            {
+                let from = self.point(f);
+                let own = if g == f {
+                    locus
+                } else {
+                    self.shifted(locus, g, f)
+                };
+                let Some(met) = self.meet(own, target, from, r) else {
+                    return false;
+                };
+                let to = match met {
+                    Target::Point(x) => x,
+                    Target::On(curve) => {
+                        let words =
+                            format!("the point of {} nearest {fname}", self.word(curve.reg()));
+                        self.value(
+                            Op::Nearest {
+                                locus: curve.reg(),
+                                point: from,
+                            },
+                            Ty::Point,
+                            words,
+                        )
+                    }
+                };
+                let explain = format!(
+                    "{names} can only move {} on {}: slide it so that {fname} reaches {} ({c}).",
+                    self.name(g),
+                    self.word(locus.reg()),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::Translate { geoms, from, to },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.placed(k, f, to, met);
+                true
+            }
+            // About a pivot, free to turn: f is on the sphere about the pivot through it.
+            (Trans::Pivot { at, feature: g }, target) if rec.turn == Turn::Free && g != f => {
+                let from = self.point(f);
+                let radius = self.model.constant_distance(g, f);
+                let words = format!("the sphere about {} through {fname}", self.word(at));
+                let sphere = self.value(
+                    Op::SphereThrough {
+                        center: at,
+                        through: from,
+                        radius,
+                    },
+                    Ty::Sphere,
+                    words,
+                );
+                let Some(Target::Point(to)) = self.meet(Locus::Sphere(sphere), target, from, r)
+                else {
+                    return false;
+                };
+                let explain = format!(
+                    "{names} may only rotate about {}: rotate it about {} around the normal of the plane through {}, {fname} and {} so that {fname} reaches {} ({c}).",
+                    self.name(g),
+                    self.word(at),
+                    self.word(at),
+                    self.word(to),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::RotatePoint {
+                        geoms,
+                        pivot: at,
+                        axis: RotationAxis::Shortest,
+                        from,
+                        to,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let words = format!("the line from {} through {fname}", self.name(g));
+                let axis = self.value(Op::DirectionTo { from: at, to }, Ty::Vector, words);
+                self.clusters[k].record.turn = Turn::Axis {
+                    axis,
+                    feature: None,
+                };
+                true
+            }
+            // About a pivot and an axis: f is on the circle it sweeps about the axis.
+            (Trans::Pivot { at, feature: g }, target) if g != f => {
+                let Turn::Axis { axis, .. } = rec.turn else {
+                    return false;
+                };
+                let from = self.point(f);
+                let words = format!(
+                    "the circle {fname} sweeps about the axis through {} along {}",
+                    self.word(at),
+                    self.word(axis)
+                );
+                let orbit = self.value(
+                    Op::Orbit {
+                        pivot: at,
+                        axis,
+                        through: from,
+                    },
+                    Ty::Circle,
+                    words,
+                );
+                let Some(Target::Point(to)) = self.meet(Locus::Circle(orbit), target, from, r)
+                else {
+                    return false;
+                };
+                let explain = format!(
+                    "{names} may only rotate about the axis through {} along {}: rotate it by the angle between the perpendiculars from {fname} and {} to the axis ({c}).",
+                    self.word(at),
+                    self.word(axis),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::RotatePoint {
+                        geoms,
+                        pivot: at,
+                        axis: RotationAxis::Along(axis),
+                        from,
+                        to,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                rec.turn = Turn::Known;
+                rec.trans = Trans::Fixed;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Whether a record's turn is about an axis through its feature `g` on which `f` lies too,
+    /// so that the turn moves neither.
+    fn on_turn_axis(&self, rec: &Record, g: GeomId, f: GeomId) -> bool {
+        matches!(rec.turn, Turn::Axis { feature: Some(a), .. } if on_axis(self.model, g, a, f))
+    }
+
+    /// The record of cluster `k` once its feature `f` is at `to`, which is `target`'s point or
+    /// the nearest point of `target`'s locus.
+    fn placed(&mut self, k: usize, f: GeomId, to: Reg, target: Target) {
+        let turns = matches!(self.clusters[k].record.turn, Turn::Free | Turn::Axis { .. });
+        let trans = match target {
+            Target::Point(_) if turns => Trans::Pivot { at: to, feature: f },
+            Target::Point(_) => Trans::Fixed,
+            Target::On(locus) => Trans::On { feature: f, locus },
+        };
+        self.clusters[k].record.trans = trans;
+        if let Trans::Pivot { .. } | Trans::Fixed = trans {
+            if self.point_known(f) {
+                self.insert_known(f, to);
+            }
+        }
+    }
+
+    /// Locus `locus` of feature `g`, moved by `f - g`: where `f` goes when the cluster
+    /// translates keeping `g` on it.
+    fn shifted(&mut self, locus: Locus, g: GeomId, f: GeomId) -> Locus {
+        let (pg, pf) = (self.point(g), self.point(f));
+        let words = format!("{} moved with {}", self.word(locus.reg()), self.name(f));
+        match locus {
+            Locus::Line(l) => Locus::Line(self.value(
+                Op::ParallelLine {
+                    line: l,
+                    through: pf,
+                },
+                Ty::Line,
+                words,
+            )),
+            Locus::Plane(p) => Locus::Plane(self.value(
+                Op::ParallelPlane {
+                    plane: p,
+                    through: pf,
+                },
+                Ty::Plane,
+                words,
+            )),
+            Locus::Sphere(s) => Locus::Sphere(self.value(
+                Op::ShiftedSphere {
+                    sphere: s,
+                    from: pg,
+                    to: pf,
+                },
+                Ty::Sphere,
+                words,
+            )),
+            Locus::Circle(c) => Locus::Circle(self.value(
+                Op::ShiftedCircle {
+                    circle: c,
+                    from: pg,
+                    to: pf,
+                },
+                Ty::Circle,
+                words,
+            )),
+        }
+    }
+
+    /// Where a feature on locus `own` meets `target`: the target point (which must be on it,
+    /// or the constraint is inconsistent by the gap), a root of their intersection (a branch
+    /// variable where two), or the curve two surfaces share. `None` for pairs with no
+    /// construction here (two curves of space, which meet only by accident).
+    fn meet(&mut self, own: Locus, target: Target, near: Reg, r: &Rel) -> Option<Target> {
+        let other = match target {
+            Target::Point(x) => {
+                let words = self.word(x);
+                let at = self.value(
+                    Op::Onto {
+                        locus: own.reg(),
+                        point: x,
+                        constraint: r.constraint,
+                    },
+                    Ty::Point,
+                    words,
+                );
+                return Some(Target::Point(at));
+            }
+            Target::On(l) => l,
+        };
+        use Locus as L;
+        let (meet, a, b) = match (own, other) {
+            (L::Line(a), L::Plane(b)) | (L::Plane(b), L::Line(a)) => (Meet::LinePlane, a, b),
+            (L::Line(a), L::Sphere(b)) | (L::Sphere(b), L::Line(a)) => (Meet::LineSphere, a, b),
+            (L::Circle(a), L::Plane(b)) | (L::Plane(b), L::Circle(a)) => (Meet::CirclePlane, a, b),
+            (L::Circle(a), L::Sphere(b)) | (L::Sphere(b), L::Circle(a)) => {
+                (Meet::CircleSphere, a, b)
+            }
+            (L::Sphere(a), L::Sphere(b)) => (Meet::SphereSphere, a, b),
+            (L::Sphere(a), L::Plane(b)) | (L::Plane(b), L::Sphere(a)) => (Meet::SpherePlane, a, b),
+            (L::Plane(a), L::Plane(b)) => (Meet::PlanePlane, a, b),
+            (L::Circle(a), L::Circle(b)) => (Meet::CircleCircle, a, b),
+            (L::Line(a), L::Circle(b)) | (L::Circle(b), L::Line(a)) => (Meet::LineCircle, a, b),
+            _ => return None,
+        };
+        let (wa, wb, wn) = (self.word(a), self.word(b), self.word(near));
+        let meanings = match meet {
+            Meet::LineSphere => vec![
+                format!("where {wa} enters {wb}, along the line"),
+                format!("where {wa} leaves {wb}, along the line"),
+            ],
+            Meet::CirclePlane => vec![
+                format!("the crossing of {wa} with {wb} first along the common line of their planes"),
+                "the other crossing, second along that line".to_string(),
+            ],
+            Meet::CircleSphere => vec![
+                format!("the crossing of {wa} with {wb} counter-clockwise of the sphere's centre about the circle's axis"),
+                "the other crossing, clockwise of it".to_string(),
+            ],
+            Meet::CircleCircle => vec![
+                format!("the crossing of {wa} and {wb} to the left of the line of their centres, seen down the first's axis (or first along the line their planes share)"),
+                "the other crossing".to_string(),
+            ],
+            Meet::LineCircle => vec![
+                format!("the first crossing of {wa} with {wb}, along the line"),
+                "the second crossing, along the line".to_string(),
+            ],
+            _ => vec![format!("where {wa} and {wb} meet")],
+        };
+        let branch = self.branch(r.constraint, meanings);
+        let ty = meet.result();
+        let words = match ty {
+            Ty::Point if meet == Meet::LinePlane => format!("where {wa} crosses {wb}"),
+            Ty::Point => format!("the meeting point of {wa} and {wb} nearest {wn} in the sketch"),
+            Ty::Circle => format!("the circle where {wa} and {wb} meet"),
+            _ => format!("the line where {wa} and {wb} meet"),
+        };
+        let x = self.value(
+            Op::Intersect {
+                meet,
+                a,
+                b,
+                branch,
+                constraint: r.constraint,
+                near,
+            },
+            ty,
+            words,
+        );
+        // A line meets a circle of space where it meets the circle's sphere: the root must
+        // then be on the circle itself (it is when they are coplanar), or the loci miss.
+        let x = if meet == Meet::LineCircle {
+            let words = self.word(x);
+            self.value(
+                Op::Onto {
+                    locus: b,
+                    point: x,
+                    constraint: r.constraint,
+                },
+                Ty::Point,
+                words,
+            )
+        } else {
+            x
+        };
+        Some(match Locus::of(x, ty) {
+            Some(curve) => Target::On(curve),
+            None => Target::Point(x),
+        })
+    }
+
+    /// Turns the cluster of direction feature `v` so that it points along `target`: the
+    /// shortest turn when free (then it may still turn about `target`), the turn about its
+    /// axis otherwise. About an axis, `v` reaches `target` only if both make the same angle
+    /// with it: unless that holds by construction (`across`: both are perpendicular to the
+    /// axis, as a twist's x axes are to their z), the relation is then checked.
+    fn turn_onto(&mut self, v: GeomId, target: Reg, r: &Rel, across: bool) -> bool {
+        let k = self.cluster(v);
+        let rec = self.clusters[k].record.clone();
+        if !rec.movable() {
+            return false;
+        }
+        let geoms = self.clusters[k].geoms.clone();
+        let names = self.group_name(&geoms);
+        let c = self.cname(r.constraint);
+        let vname = self.name(v);
+        match rec.turn {
+            Turn::Free => {
+                let pivot = self.pivot_of(k);
+                let from = self.direction(v);
+                let explain = format!(
+                    "Rotate {names} about {} so that {vname} points along {} ({c}).",
+                    self.word(pivot),
+                    self.word(target)
+                );
+                self.emit(
+                    Op::RotateDir {
+                        geoms,
+                        pivot,
+                        axis: RotationAxis::Shortest,
+                        from,
+                        to: target,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.turn = if rec.shape == Shape::Vector {
+                    Turn::Known
+                } else {
+                    Turn::Axis {
+                        axis: target,
+                        feature: Some(v),
+                    }
+                };
+                true
+            }
+            Turn::Axis { axis, feature } => {
+                if feature == Some(v) {
+                    return false;
+                }
+                let pivot = self.pivot_of(k);
+                let from = self.direction(v);
+                let explain = format!(
+                    "{names} may only rotate about {}: rotate it about that axis by the angle between the perpendiculars from {vname} and {} to it ({c}{}).",
+                    self.word(axis),
+                    self.word(target),
+                    if across {
+                        ""
+                    } else {
+                        ", then checked: both must make the same angle with the axis"
+                    }
+                );
+                self.emit(
+                    Op::RotateDir {
+                        geoms,
+                        pivot,
+                        axis: RotationAxis::Along(axis),
+                        from,
+                        to: target,
+                    },
+                    None,
+                    if across {
+                        self.satisfies(r)
+                    } else {
+                        Vec::new()
+                    },
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                rec.turn = Turn::Known;
+                if let Trans::Pivot { .. } = rec.trans {
+                    rec.trans = Trans::Fixed;
+                }
+                if across {
+                    return true;
+                }
+                // The turn about the axis reaches the target only on the axis' cone: measure.
+                let residual = self.residual(&r.relation);
+                let explain = format!("... and check that {c} holds.");
+                self.emit(
+                    Op::Check {
+                        constraint: r.constraint,
+                        residual,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                true
+            }
+            Turn::Known | Turn::None => false,
+        }
+    }
+
+    /// One default on cluster `k` (000, section 5.2.1), each with its geometric meaning and
+    /// a sketch value that moves nothing (least motion): a feature's place along the line or
+    /// circle it is held on; a turn about the one axis left (the idle spin of an RSSR's
+    /// coupler about its own line); a free point's coordinates; a body's turns about the
+    /// world's axes through its pivot. A feature held on a plane or sphere, and a free
+    /// direction, have none yet.
+    fn default_on(&mut self, k: usize) -> bool {
+        let rec = self.clusters[k].record.clone();
+        if !rec.movable() {
+            return false;
+        }
+        match (rec.trans, rec.turn) {
+            (
+                Trans::On {
+                    feature,
+                    locus: locus @ (Locus::Line(_) | Locus::Circle(_)),
+                },
+                _,
+            ) => self.slide(k, feature, locus),
+            (_, Turn::Axis { axis, .. }) => self.spin(k, axis),
+            (Trans::Free, _) => self.place(k),
+            (Trans::Pivot { .. } | Trans::Fixed, Turn::Free) if rec.shape == Shape::Body => {
+                self.orient(k)
+            }
+            _ => false,
+        }
+    }
+
+    fn assume(meaning: &str, name: &str) -> String {
+        format!(
+            "No constraint, chain or loop fixes this yet: assume {meaning} is the default `{name}` (the sketch's value unless given)"
+        )
+    }
+
+    /// Feature `f` of cluster `k` held on a line or circle: default its place on it (the
+    /// distance along the line from its point, the angle about the circle's axis).
+    fn slide(&mut self, k: usize, f: GeomId, locus: Locus) -> bool {
+        let geoms = self.clusters[k].geoms.clone();
+        let fname = self.name(f);
+        let from = self.point(f);
+        let l = locus.reg();
+        let measure = self.value(
+            Op::LocusParam {
+                locus: l,
+                point: from,
+            },
+            Ty::Scalar,
+            format!("the place of {fname} on {}", self.word(l)),
+        );
+        let meaning = format!("the place of {fname} on {}", self.word(l));
+        let name = format!("{fname}_place");
+        let at = self.default_value(f, name.clone(), meaning.clone(), measure);
+        let to = self.value(
+            Op::LocusPoint { locus: l, at },
+            Ty::Point,
+            format!("{fname}'s default place"),
+        );
+        let explain = format!(
+            "{}: move {} so that {fname} is there.",
+            Self::assume(&meaning, &name),
+            self.group_name(&geoms)
+        );
+        self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        self.placed(k, f, to, Target::Point(to));
+        true
+    }
+
+    /// Cluster `k` free to translate: default its first point's coordinates.
+    fn place(&mut self, k: usize) -> bool {
+        let Some(f) = self.first_point(k) else {
+            return false;
+        };
+        let geoms = self.clusters[k].geoms.clone();
+        let fname = self.name(f);
+        let from = self.point(f);
+        let mut coords = [Reg(0); 3];
+        for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            let meaning = format!("the {axis} coordinate of {fname}");
+            let measure = self.value(
+                Op::Coordinate {
+                    point: from,
+                    axis: i as u8,
+                },
+                Ty::Scalar,
+                meaning.clone(),
+            );
+            coords[i] = self.default_value(f, format!("{fname}_{axis}"), meaning, measure);
+        }
+        let to = self.value(
+            Op::PointAt {
+                x: coords[0],
+                y: coords[1],
+                z: coords[2],
+            },
+            Ty::Point,
+            format!("{fname}'s default position"),
+        );
+        let explain = format!(
+            "{}: translate {} so that {fname} is there.",
+            Self::assume(
+                &format!("the position of {fname}"),
+                &format!("{fname}_x, {fname}_y, {fname}_z")
+            ),
+            self.group_name(&geoms)
+        );
+        self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        self.placed(k, f, to, Target::Point(to));
+        true
+    }
+
+    /// The first point feature of cluster `k`'s geoms: a point geom itself, else a body's
+    /// first member point or marker, else the body's origin.
+    fn first_point(&self, k: usize) -> Option<GeomId> {
+        let g = *self.clusters[k].geoms.first()?;
+        let geom = &self.model.geoms[g];
+        if geom.kind == GeomKind::Point {
+            return Some(g);
+        }
+        let member =
+            (geom.parts.iter().copied()).find(|&m| self.model.geoms[m].kind.is_pointlike());
+        Some(member.unwrap_or(g))
+    }
+
+    /// A body about a fixed point, free to turn: default its turns about the world's x, y
+    /// and z axes through that point, in that order, from where the constraints leave it.
+    fn orient(&mut self, k: usize) -> bool {
+        let geoms = self.clusters[k].geoms.clone();
+        let gname = self.name(geoms[0]);
+        let pivot = self.pivot_of(k);
+        for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            let words = format!("the {} axis", axis.to_uppercase());
+            let a = self.value(Op::WorldAxis(i as u8), Ty::Vector, words);
+            self.turn_by_default(&geoms, pivot, a, format!("{gname}_turn_{axis}"));
+        }
+        let rec = &mut self.clusters[k].record;
+        rec.turn = Turn::Known;
+        if let Trans::Pivot { .. } = rec.trans {
+            rec.trans = Trans::Fixed;
+        }
+        true
+    }
+
+    /// Turns `geoms` about the axis through `pivot` along `axis` by a default named `name`,
+    /// counted from where the constraints leave them (0: least motion).
+    fn turn_by_default(&mut self, geoms: &[GeomId], pivot: Reg, axis: Reg, name: String) {
+        let gname = self.name(geoms[0]);
+        // A world axis is named with the point it turns about; a body's own axis says it.
+        let through = match self.def(axis).map(|s| &s.op) {
+            Some(Op::WorldAxis(_)) => format!(" through {}", self.word(pivot)),
+            _ => String::new(),
+        };
+        let meaning = format!(
+            "the turn of {gname} about {}{through}, from where the constraints leave it",
+            self.word(axis)
+        );
+        let zero = self.value(Op::Const(0.0), Ty::Scalar, "0".into());
+        let angle = self.default_value(geoms[0], name.clone(), meaning.clone(), zero);
+        let words = format!("a direction across {}", self.word(axis));
+        let from = self.value(Op::Across(axis), Ty::Vector, words);
+        let words = format!("that direction turned by `{name}`");
+        let to = self.value(
+            Op::TurnedAbout {
+                dir: from,
+                axis,
+                angle,
+            },
+            Ty::Vector,
+            words,
+        );
+        let explain = format!(
+            "No constraint, chain or loop fixes this yet: assume {meaning} is the default `{name}` (0, least motion, unless given): turn {} about that axis by it.",
+            self.group_name(geoms)
+        );
+        self.emit(
+            Op::RotateDir {
+                geoms: geoms.to_vec(),
+                pivot,
+                axis: RotationAxis::Along(axis),
+                from,
+                to,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+    }
+
+    /// A body that may only turn about `axis`: default that turn.
+    fn spin(&mut self, k: usize, axis: Reg) -> bool {
+        let geoms = self.clusters[k].geoms.clone();
+        let pivot = self.pivot_of(k);
+        let name = format!("{}_spin", self.name(geoms[0]));
+        self.turn_by_default(&geoms, pivot, axis, name);
+        let rec = &mut self.clusters[k].record;
+        rec.turn = Turn::Known;
+        if let Trans::Pivot { .. } = rec.trans {
+            rec.trans = Trans::Fixed;
+        }
+        true
+    }
+
+    /// Grounds a model in which nothing is fixed: the cluster with the most DOF, then the
+    /// first name, is held where the sketch has it.
+    fn ground_if_nothing_fixed(&mut self) {
+        let mut best: Option<(usize, String, usize)> = None;
+        for (i, c) in self.clusters.iter().enumerate() {
+            let key = (c.record.dof(), self.model.geoms[c.geoms[0]].name.clone());
+            if best
+                .as_ref()
+                .is_none_or(|b| key.0 > b.0 || (key.0 == b.0 && key.1 < b.1))
+            {
+                best = Some((key.0, key.1, i));
+            }
+        }
+        if let Some((_, _, i)) = best {
+            self.clusters[i].record.hold();
+            self.plan.grounded = Some(self.clusters[i].geoms[0]);
+        }
+    }
+}

@@ -1,0 +1,302 @@
+//! Constraints of a 3d model decomposed into relations between features.
+//!
+//! As in the plane, a feature is a point (a point geom, a member point, a marker's point) or
+//! a direction (a vector, a marker's z or x axis, a line's `dir`, a plane's normal) that a
+//! geom carries. TLA's joints (003) are the conjunctions LANGUAGE.md gives them: a revolute
+//! joint is a coincidence and parallel z axes, a prismatic one a point on a line, parallel z
+//! axes and the x axes' twist about them, and so on; a constraint is satisfied when its last
+//! relation is. Choices the language leaves to the sketch (the sense of parallel axes) are
+//! read from the sketch here, once.
+
+use super::Rel;
+use crate::analysis::Unsupported;
+use crate::config::{Config, D3};
+use gcs_lang::constraints::ConstraintKind as K;
+use gcs_lang::expr::ExprId;
+use gcs_lang::model::{GeomId, GeomKind, Part};
+use gcs_lang::Model;
+
+/// A relation between features of space.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Relation {
+    /// `|a - b| = d` (`d` absent: coincidence).
+    PointPoint {
+        /// First point feature.
+        a: GeomId,
+        /// Second point feature.
+        b: GeomId,
+        /// The distance, or none for zero.
+        d: Option<ExprId>,
+    },
+    /// Point `p` lies on the line through point `base` along direction `dir`.
+    PointLine {
+        /// The point feature.
+        p: GeomId,
+        /// A point feature on the line.
+        base: GeomId,
+        /// The line's direction feature.
+        dir: GeomId,
+    },
+    /// The signed distance of point `p` from the plane through `base` with normal `normal`
+    /// is `d` (absent: zero).
+    PointPlane {
+        /// The point feature.
+        p: GeomId,
+        /// A point feature on the plane (a plane geom stands for its own point).
+        base: GeomId,
+        /// The plane's normal feature.
+        normal: GeomId,
+        /// The signed distance, or none for zero.
+        d: Option<ExprId>,
+    },
+    /// Directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1, the sketch's).
+    Parallel {
+        /// First direction.
+        u: GeomId,
+        /// Second direction.
+        v: GeomId,
+        /// Same sense (+1) or opposite (-1).
+        sense: f64,
+    },
+    /// A helical joint's coupling, `axis` (the first marker's z) parallel to the second's:
+    /// the angle from `u` (the first marker's x) to `v` (the second's), counter-clockwise
+    /// about `axis`, is `2pi s / pitch` modulo a turn, `s` the advance `(q - p) . axis` from
+    /// the first marker's point `p` to the second's `q`.
+    Helix {
+        /// The first marker's z axis.
+        axis: GeomId,
+        /// The first marker's x axis.
+        u: GeomId,
+        /// The second marker's x axis.
+        v: GeomId,
+        /// The first marker's point.
+        p: GeomId,
+        /// The second marker's point.
+        q: GeomId,
+        /// The advance per turn.
+        pitch: ExprId,
+    },
+    /// With `axis` (the first marker's z) parallel to the second's, the angle from `u` (the
+    /// first marker's x) to `v` (the second's), counter-clockwise about `axis`, is `angle`
+    /// (absent: zero).
+    Twist {
+        /// The first marker's z axis.
+        axis: GeomId,
+        /// The first marker's x axis.
+        u: GeomId,
+        /// The second marker's x axis.
+        v: GeomId,
+        /// The angle, or none for zero.
+        angle: Option<ExprId>,
+    },
+}
+
+impl Relation {
+    /// The features a relation involves.
+    pub fn features(&self) -> Vec<GeomId> {
+        match *self {
+            Relation::PointPoint { a, b, .. } => vec![a, b],
+            Relation::PointLine { p, base, dir } => vec![p, base, dir],
+            Relation::PointPlane {
+                p, base, normal, ..
+            } => vec![p, base, normal],
+            Relation::Parallel { u, v, .. } => vec![u, v],
+            Relation::Twist { axis, u, v, .. } => vec![axis, u, v],
+            Relation::Helix {
+                axis, u, v, p, q, ..
+            } => vec![axis, u, v, p, q],
+        }
+    }
+}
+
+/// The direction a geom stands for in a spatial constraint on directions: a marker's z axis,
+/// else what the model says (a vector, a line's `dir`, a plane's normal).
+fn direction(model: &Model, g: GeomId) -> Option<GeomId> {
+    match model.geoms[g].kind {
+        GeomKind::Marker => model.part(g, Part::AxisZ),
+        _ => model.dir_feature(g),
+    }
+}
+
+/// The (point, direction) of a line in space: a marker's point and z axis, or the model's
+/// line features of a line or segment.
+fn line(model: &Model, g: GeomId) -> Option<(GeomId, GeomId)> {
+    match model.geoms[g].kind {
+        GeomKind::Marker => Some((g, model.part(g, Part::AxisZ)?)),
+        GeomKind::Line | GeomKind::Segment => model.line_features(g),
+        _ => None,
+    }
+}
+
+/// The (point, normal) of a plane in space: a marker's point and z axis, or a plane geom
+/// (its own point) and its normal.
+fn plane(model: &Model, g: GeomId) -> Option<(GeomId, GeomId)> {
+    match model.geoms[g].kind {
+        GeomKind::Marker => Some((g, model.part(g, Part::AxisZ)?)),
+        GeomKind::Plane => Some((g, model.part(g, Part::Normal)?)),
+        _ => None,
+    }
+}
+
+/// Decomposes every constraint of a 3d model, reading the sketch where the language leaves
+/// a choice to it. Constraints the analysis does not cover yet are returned as
+/// [`Unsupported`], never dropped.
+pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupported>) {
+    let mut rels = Vec::new();
+    let mut unsupported = Vec::new();
+    for (id, c) in model.constraints.iter() {
+        let a = c.args.first().copied();
+        let b = c.args.get(1).copied();
+        let kind = |g: GeomId| model.geoms[g].kind;
+        let mut out: Vec<Relation> = Vec::new();
+        let mut missing = |reason: &str| {
+            unsupported.push(Unsupported {
+                constraint: id,
+                reason: reason.to_string(),
+            });
+        };
+        // The sense of parallel directions: the sketch's.
+        let parallel = |u: GeomId, v: GeomId| Relation::Parallel {
+            u,
+            v,
+            sense: if sketch.dir(model, u).dot(&sketch.dir(model, v)) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            },
+        };
+        let point = |g: GeomId| model.point_feature(g);
+        match (c.kind, a, b) {
+            (K::Coincident | K::Spherical, Some(a), Some(b)) => out.push(Relation::PointPoint {
+                a: point(a),
+                b: point(b),
+                d: None,
+            }),
+            (K::Distance, Some(a), Some(b)) if kind(a).is_pointlike() && kind(b).is_pointlike() => {
+                out.push(Relation::PointPoint { a, b, d: c.value })
+            }
+            (K::Distance | K::On, Some(a), Some(b))
+                if kind(a).is_pointlike() && kind(b) == GeomKind::Plane =>
+            {
+                match plane(model, b) {
+                    Some((base, normal)) => out.push(Relation::PointPlane {
+                        p: point(a),
+                        base,
+                        normal,
+                        d: if c.kind == K::Distance { c.value } else { None },
+                    }),
+                    None => missing("a plane without its normal"),
+                }
+            }
+            (K::On, Some(a), Some(b))
+                if kind(a).is_pointlike()
+                    && matches!(kind(b), GeomKind::Line | GeomKind::Segment) =>
+            {
+                match line(model, b) {
+                    Some((base, dir)) => out.push(Relation::PointLine {
+                        p: point(a),
+                        base,
+                        dir,
+                    }),
+                    None => missing("a line without its direction"),
+                }
+            }
+            (K::InLine | K::Cylindrical | K::Prismatic, Some(a), Some(b)) => match line(model, b) {
+                Some((base, dir)) => out.push(Relation::PointLine {
+                    p: point(a),
+                    base,
+                    dir,
+                }),
+                None => missing("in-line needs a marker to give the line"),
+            },
+            (K::InPlane | K::Planar, Some(a), Some(b)) => match plane(model, b) {
+                Some((base, normal)) => out.push(Relation::PointPlane {
+                    p: point(a),
+                    base,
+                    normal,
+                    d: None,
+                }),
+                None => missing("in-plane needs a marker to give the plane"),
+            },
+            (K::Revolute, Some(a), Some(b)) => out.push(Relation::PointPoint {
+                a: point(a),
+                b: point(b),
+                d: None,
+            }),
+            _ => {}
+        }
+        // The axes of TLA's joints, after their points.
+        match (c.kind, a, b) {
+            (
+                K::ParallelZ
+                | K::Helical
+                | K::Revolute
+                | K::Cylindrical
+                | K::Planar
+                | K::Prismatic
+                | K::OffsetX,
+                Some(a),
+                Some(b),
+            ) => match (direction(model, a), direction(model, b)) {
+                (Some(u), Some(v)) => out.push(parallel(u, v)),
+                _ => missing("a joint's z axes need two markers"),
+            },
+            (K::Parallel, Some(a), Some(b)) => match (direction(model, a), direction(model, b)) {
+                (Some(u), Some(v)) => out.push(parallel(u, v)),
+                _ => missing("parallel needs two directions"),
+            },
+            _ => {}
+        }
+        // The couplings of x axes about the z axes, after the axes: a helix or a twist.
+        let x_axes = |a: GeomId, b: GeomId| {
+            Some((
+                model.part(a, Part::AxisZ)?,
+                model.part(a, Part::AxisX)?,
+                model.part(b, Part::AxisX)?,
+            ))
+        };
+        if let (K::Helical | K::Prismatic | K::OffsetX, Some(a), Some(b)) = (c.kind, a, b) {
+            match (x_axes(a, b), c.kind, c.value) {
+                (Some((axis, u, v)), K::Helical, Some(pitch)) => out.push(Relation::Helix {
+                    axis,
+                    u,
+                    v,
+                    p: a,
+                    q: b,
+                    pitch,
+                }),
+                (Some((axis, u, v)), K::Prismatic | K::OffsetX, _) => out.push(Relation::Twist {
+                    axis,
+                    u,
+                    v,
+                    angle: if c.kind == K::OffsetX { c.value } else { None },
+                }),
+                _ => missing("the coupling of x axes needs two markers (and a helix its pitch)"),
+            }
+        }
+        if out.is_empty() {
+            missing(match c.kind {
+                K::Angle | K::Perpendicular | K::OffsetZ => {
+                    "an angle between directions of space (a cone of directions) is not analysed in 3d yet"
+                }
+                K::Distance | K::On | K::Tangent => {
+                    "this distance or incidence between lines, circles or planes is not analysed in 3d yet"
+                }
+                K::Length | K::Radius | K::Equal | K::Midpoint | K::Symmetric => {
+                    "segments, circles and mirror planes of space are not analysed in 3d yet"
+                }
+                _ => "not analysed in 3d yet",
+            });
+        }
+        let n = out.len();
+        for (i, relation) in out.into_iter().enumerate() {
+            rels.push(Rel {
+                relation,
+                constraint: id,
+                last: i + 1 == n,
+                duplicate: false,
+            });
+        }
+    }
+    (rels, unsupported)
+}

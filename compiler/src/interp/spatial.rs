@@ -1,0 +1,469 @@
+//! The interpreter's steps in space: the same machine as the plane's (registers, branches,
+//! defaults, outer iterations, checks), over 3d points, unit directions and the loci of
+//! space (lines, planes, spheres, circles with their axis), moving `Frame3`s.
+
+use super::{err, malformed, Machine, Space, Val};
+use crate::config::{D3, P3, V3};
+use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Step};
+use gcs_lang::model::ConstraintId;
+use gcs_runtime::error::{ErrorKind, SolveError};
+use gcs_runtime::locus3d::{Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::{check, frame, intersect3d, Contact, Roots};
+use nalgebra::UnitQuaternion;
+
+/// A circle's in-plane basis: where its angles are measured from (`frame::perpendicular` of
+/// its normal) and the direction a quarter turn on.
+fn circle_basis(c: &Circle3) -> (V3, V3) {
+    let e1 = frame::perpendicular(&c.normal).normalize();
+    (e1, c.normal.cross(&e1))
+}
+
+impl Space for D3 {
+    fn step(m: &mut Machine<'_, '_, D3>, i: usize, step: &Step) -> Result<(), SolveError> {
+        m.step_spatial(i, step)
+    }
+}
+
+impl Machine<'_, '_, D3> {
+    fn p3(&self, r: Reg) -> P3 {
+        match self.get(r) {
+            Some(&Val::P3(x)) => x,
+            v => malformed(r, "a point of space", v),
+        }
+    }
+    fn v3(&self, r: Reg) -> V3 {
+        match self.get(r) {
+            Some(&Val::V3(x)) => x,
+            v => malformed(r, "a direction of space", v),
+        }
+    }
+    fn line3(&self, r: Reg) -> Line3 {
+        match self.get(r) {
+            Some(&Val::L3(x)) => x,
+            v => malformed(r, "a line of space", v),
+        }
+    }
+    fn circle3(&self, r: Reg) -> Circle3 {
+        match self.get(r) {
+            Some(&Val::C3(x)) => x,
+            v => malformed(r, "a circle of space", v),
+        }
+    }
+    fn plane(&self, r: Reg) -> Plane {
+        match self.get(r) {
+            Some(&Val::Plane(x)) => x,
+            v => malformed(r, "a plane", v),
+        }
+    }
+    fn sphere(&self, r: Reg) -> Sphere {
+        match self.get(r) {
+            Some(&Val::Sphere(x)) => x,
+            v => malformed(r, "a sphere", v),
+        }
+    }
+
+    /// A unit direction, or step `i` is degenerate.
+    fn unit(&self, i: usize, v: V3) -> Result<V3, SolveError> {
+        let n = v.norm();
+        if n.is_nan() || n <= 0.0 {
+            return Err(self.degenerate(i));
+        }
+        Ok(v / n)
+    }
+
+    /// The distance from `p` to the locus in register `r`.
+    fn gap(&self, r: Reg, p: &P3) -> f64 {
+        match self.get(r) {
+            Some(Val::L3(l)) => l.distance(p),
+            Some(Val::C3(c)) => c.distance(p),
+            Some(Val::Plane(q)) => q.distance(p),
+            Some(Val::Sphere(s)) => s.distance(p),
+            v => malformed(r, "a locus of space", v),
+        }
+    }
+
+    /// The rotation about `axis` that takes `from` (a vector from the pivot, or a direction) to
+    /// `to`: the shortest one, or the one about the axis in a register by the angle between
+    /// the two's components across it.
+    fn rotation(&self, axis: RotationAxis, from: V3, to: V3) -> UnitQuaternion<f64> {
+        match axis {
+            RotationAxis::Shortest => {
+                frame::rotation_between3(&from, &to, &frame::perpendicular(&from))
+            }
+            RotationAxis::Along(a) => {
+                let a = self.v3(a);
+                frame::rotation_about_axis(&a, frame::signed_angle3(&from, &to, &a))
+            }
+            RotationAxis::Normal => {
+                panic!("bug in gcs: a rotation about the plane's normal reached the spatial interpreter")
+            }
+        }
+    }
+
+    /// Runs one step of a spatial plan.
+    fn step_spatial(&mut self, i: usize, step: &Step) -> Result<(), SolveError> {
+        let model = self.model;
+        if let Some(value) = self.scalar(i, &step.op)? {
+            self.store(step, value);
+            return Ok(());
+        }
+        let value = match &step.op {
+            Op::PointOf(g) => Val::P3(self.config.point(model, *g)),
+            Op::DirOf(g) => Val::V3(self.config.dir(model, *g)),
+            Op::Along { from, dir, to } => {
+                Val::S((self.p3(*to) - self.p3(*from)).dot(&self.v3(*dir)))
+            }
+            Op::DirectionTo { from, to } => Val::V3(self.unit(i, self.p3(*to) - self.p3(*from))?),
+            Op::Opposite(d) => Val::V3(-self.v3(*d)),
+            Op::Across(d) => Val::V3(self.unit(i, frame::perpendicular(&self.v3(*d)))?),
+            Op::AngleAbout { u, v, axis } => Val::S(frame::signed_angle3(
+                &self.v3(*u),
+                &self.v3(*v),
+                &self.v3(*axis),
+            )),
+            Op::HelixAdvance { now, turn, pitch } => {
+                let (now, pitch) = (self.s(*now), self.s(*pitch));
+                let tau = std::f64::consts::TAU;
+                let off = gcs_runtime::num::wrap_angle(self.s(*turn) - tau * now / pitch);
+                Val::S(self.finite(i, now + pitch / tau * off)?)
+            }
+            Op::WorldAxis(i) => {
+                let mut v = V3::zeros();
+                v[usize::from(*i).min(2)] = 1.0;
+                Val::V3(v)
+            }
+            Op::Coordinate { point, axis } => Val::S(self.p3(*point)[usize::from(*axis).min(2)]),
+            Op::PointAt { x, y, z } => Val::P3(P3::new(self.s(*x), self.s(*y), self.s(*z))),
+            Op::LocusParam { locus, point } => {
+                let q = self.p3(*point);
+                Val::S(match self.get(*locus) {
+                    Some(&Val::L3(l)) => (q - l.point).dot(&l.dir),
+                    Some(&Val::C3(c)) => {
+                        let (e1, e2) = circle_basis(&c);
+                        let w = q - c.center;
+                        w.dot(&e2).atan2(w.dot(&e1))
+                    }
+                    v => malformed(*locus, "a line or circle of space", v),
+                })
+            }
+            Op::LocusPoint { locus, at } => {
+                let t = self.s(*at);
+                Val::P3(match self.get(*locus) {
+                    Some(&Val::L3(l)) => l.point + l.dir * t,
+                    Some(&Val::C3(c)) => {
+                        let (e1, e2) = circle_basis(&c);
+                        let (s, co) = t.sin_cos();
+                        c.center + (e1 * co + e2 * s) * c.radius
+                    }
+                    v => malformed(*locus, "a line or circle of space", v),
+                })
+            }
+            Op::HelixTurn { advance, pitch } => {
+                Val::S(self.finite(i, std::f64::consts::TAU * self.s(*advance) / self.s(*pitch))?)
+            }
+            Op::TurnedAbout { dir, axis, angle } => {
+                let q = frame::rotation_about_axis(&self.v3(*axis), self.s(*angle));
+                Val::V3(q * self.v3(*dir))
+            }
+            Op::Line {
+                point,
+                dir,
+                offset: None,
+            } => Val::L3(Line3::new(self.p3(*point), self.unit(i, self.v3(*dir))?)),
+            Op::ParallelLine { line, through } => {
+                Val::L3(Line3::new(self.p3(*through), self.line3(*line).dir))
+            }
+            Op::Plane {
+                point,
+                normal,
+                offset,
+            } => {
+                let n = self.unit(i, self.v3(*normal))?;
+                let at = self.p3(*point) + n * self.s_or_zero(*offset);
+                Val::Plane(Plane::from_point_normal(&at, &n))
+            }
+            Op::ParallelPlane { plane, through } => Val::Plane(Plane::from_point_normal(
+                &self.p3(*through),
+                &self.plane(*plane).normal,
+            )),
+            Op::Sphere { center, radius } => {
+                Val::Sphere(Sphere::new(self.p3(*center), self.s(*radius)))
+            }
+            Op::SphereThrough {
+                center,
+                through,
+                radius,
+            } => {
+                let c = self.p3(*center);
+                let r = radius.unwrap_or_else(|| (self.p3(*through) - c).norm());
+                Val::Sphere(Sphere::new(c, r))
+            }
+            Op::ShiftedSphere { sphere, from, to } => {
+                let s = self.sphere(*sphere);
+                Val::Sphere(Sphere::new(
+                    s.center + (self.p3(*to) - self.p3(*from)),
+                    s.radius,
+                ))
+            }
+            Op::ShiftedCircle { circle, from, to } => {
+                let c = self.circle3(*circle);
+                Val::C3(Circle3::new(
+                    c.center + (self.p3(*to) - self.p3(*from)),
+                    c.normal,
+                    c.radius,
+                ))
+            }
+            Op::Orbit {
+                pivot,
+                axis,
+                through,
+            } => {
+                let a = self.unit(i, self.v3(*axis))?;
+                Val::C3(Circle3::orbit(&self.p3(*pivot), &a, &self.p3(*through)))
+            }
+            Op::Nearest { locus, point } => {
+                let q = self.p3(*point);
+                Val::P3(match self.get(*locus) {
+                    Some(&Val::L3(l)) => l.closest(&q),
+                    Some(&Val::Plane(p)) => p.project(&q),
+                    Some(&Val::Sphere(s)) => s.nearest(&q).ok_or_else(|| self.degenerate(i))?,
+                    Some(&Val::C3(c)) => c.nearest(&q).ok_or_else(|| self.degenerate(i))?,
+                    v => malformed(*locus, "a locus of space", v),
+                })
+            }
+            Op::Onto {
+                locus,
+                point,
+                constraint,
+            } => {
+                let q = self.p3(*point);
+                let gap = self.gap(*locus, &q);
+                if gap.is_nan() || gap > self.tol {
+                    return Err(err(model, *constraint, ErrorKind::Inconsistent, gap));
+                }
+                Val::P3(q)
+            }
+            Op::Intersect {
+                meet,
+                a,
+                b,
+                branch,
+                constraint,
+                near,
+            } => self.intersect3(*meet, (*a, *b), *branch, *constraint, *near)?,
+            Op::Translate { geoms, from, to } => {
+                let d = self.p3(*to) - self.p3(*from);
+                for g in geoms {
+                    self.config.translate(*g, d);
+                }
+                return Ok(());
+            }
+            Op::RotatePoint {
+                geoms,
+                pivot,
+                axis,
+                from,
+                to,
+            } => {
+                let c = self.p3(*pivot);
+                let rot = self.rotation(*axis, self.p3(*from) - c, self.p3(*to) - c);
+                for g in geoms {
+                    self.config.rotate(*g, c, rot);
+                }
+                return Ok(());
+            }
+            Op::RotateDir {
+                geoms,
+                pivot,
+                axis,
+                from,
+                to,
+            } => {
+                let c = self.p3(*pivot);
+                let rot = self.rotation(*axis, self.v3(*from), self.v3(*to));
+                for g in geoms {
+                    self.config.rotate(*g, c, rot);
+                }
+                return Ok(());
+            }
+            Op::SetDim { geom, value } => {
+                let x = self.s(*value);
+                if !x.is_finite() || x < 0.0 {
+                    return Err(self.error(i, ErrorKind::InvalidValue, x));
+                }
+                self.config.dims.insert(*geom, x);
+                return Ok(());
+            }
+            Op::Check {
+                constraint,
+                residual,
+            } => {
+                let r = self.residual3(residual);
+                return self.checked(i, *constraint, r);
+            }
+            Op::Error {
+                residual,
+                component,
+            } => Val::S(self.error_of3(residual, *component)),
+            Op::Implicit { locus, point } => Val::S(self.gap(*locus, &self.p3(*point))),
+            Op::Close {
+                constraint,
+                residual,
+            } => return self.closed(*constraint, *residual),
+            op => panic!("bug in gcs: step {i} ({op:?}) is no step of a spatial plan"),
+        };
+        self.store(step, value);
+        Ok(())
+    }
+
+    /// The root of the intersection of loci `a` and `b` that `branch` (or the choice) takes:
+    /// a point, or (two spheres, a sphere and a plane, two planes) a locus.
+    fn intersect3(
+        &mut self,
+        meet: Meet,
+        (a, b): (Reg, Reg),
+        branch: crate::plan::BranchId,
+        constraint: ConstraintId,
+        near: Reg,
+    ) -> Result<Val, SolveError> {
+        let model = self.model;
+        let fail = |contact: Contact| -> Option<SolveError> {
+            match contact {
+                Contact::Crossing | Contact::Tangent => None,
+                Contact::Disjoint { gap } | Contact::Parallel { gap } => {
+                    Some(err(model, constraint, ErrorKind::NoIntersection, gap))
+                }
+                Contact::Coincident | Contact::ZeroRadius => {
+                    Some(err(model, constraint, ErrorKind::Degenerate, 0.0))
+                }
+            }
+        };
+        let (roots, contact): (Roots<P3, 4>, Contact) = match meet {
+            Meet::LinePlane => {
+                let i = intersect3d::line_plane(&self.line3(a), &self.plane(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::LineSphere => {
+                let i = intersect3d::line_sphere(&self.line3(a), &self.sphere(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::CirclePlane => {
+                let i = intersect3d::circle_plane(&self.circle3(a), &self.plane(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::CircleSphere => {
+                let i = intersect3d::circle_sphere(&self.circle3(a), &self.sphere(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::CircleCircle => {
+                let i = intersect3d::circle_circle(&self.circle3(a), &self.circle3(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            // A line meets a circle of space where it meets the circle's sphere; the circle's
+            // own step then checks that the root is on it (coplanar, it is).
+            Meet::LineCircle => {
+                let c = self.circle3(b);
+                let i = intersect3d::line_sphere(&self.line3(a), &Sphere::new(c.center, c.radius));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
+            Meet::SphereSphere | Meet::SpherePlane | Meet::PlanePlane => {
+                let (locus, contact) = match meet {
+                    Meet::SphereSphere => {
+                        let i = intersect3d::sphere_sphere(&self.sphere(a), &self.sphere(b));
+                        (i.roots.get(0).map(Val::C3), i.contact)
+                    }
+                    Meet::SpherePlane => {
+                        let i = intersect3d::sphere_plane(&self.sphere(a), &self.plane(b));
+                        (i.roots.get(0).map(Val::C3), i.contact)
+                    }
+                    _ => {
+                        let i = intersect3d::plane_plane(&self.plane(a), &self.plane(b));
+                        (i.roots.get(0).map(Val::L3), i.contact)
+                    }
+                };
+                if let Some(e) = fail(contact) {
+                    return Err(e);
+                }
+                self.choose(branch, |_| Some(0));
+                return locus.ok_or_else(|| err(model, constraint, ErrorKind::NoSuchBranch, 0.0));
+            }
+            planar => panic!(
+                "bug in gcs: the planar intersection {planar:?} reached the spatial interpreter"
+            ),
+        };
+        if let Some(e) = fail(contact) {
+            return Err(e);
+        }
+        let index = self.choose(branch, |s| {
+            roots.nearest_to(s.p3(near), |x, y| (x - y).norm())
+        });
+        // The chosen branch has no root here: say so, never take another.
+        roots.get(index).map(Val::P3).ok_or_else(|| {
+            err(
+                model,
+                constraint,
+                ErrorKind::NoSuchBranch,
+                roots.len() as f64,
+            )
+        })
+    }
+
+    /// The signed error of a relation in space (component: a coincidence's axis, 0 to 2).
+    fn error_of3(&self, residual: &Residual, component: u8) -> f64 {
+        match *residual {
+            Residual::PointPoint { a, b, d: None } => {
+                let v = self.p3(a) - self.p3(b);
+                v[usize::from(component.min(2))]
+            }
+            Residual::PointPoint { a, b, d } => {
+                (self.p3(a) - self.p3(b)).norm() - self.s_or_zero(d)
+            }
+            Residual::PointPlane { p, base, normal, d } => {
+                (self.p3(p) - self.p3(base)).dot(&self.v3(normal)) - self.s_or_zero(d)
+            }
+            _ => self.residual3(residual),
+        }
+    }
+
+    /// The residual of a check in space: the runtime's measure of its kind.
+    fn residual3(&self, residual: &Residual) -> f64 {
+        use check::space as c;
+        match *residual {
+            Residual::PointPoint { a, b, d } => {
+                c::point_point(self.p3(a), self.p3(b), self.s_or_zero(d))
+            }
+            Residual::PointLine {
+                p,
+                base,
+                dir,
+                d: None,
+            } => c::point_line(self.p3(p), self.p3(base), self.v3(dir)),
+            Residual::PointPlane { p, base, normal, d } => c::point_plane(
+                self.p3(p),
+                self.p3(base),
+                self.v3(normal),
+                self.s_or_zero(d),
+            ),
+            Residual::Parallel { u, v, sense } => c::parallel(self.v3(u), self.v3(v), sense),
+            Residual::Twist { axis, u, v, angle } => {
+                c::twist(self.v3(axis), self.v3(u), self.v3(v), self.s(angle))
+            }
+            Residual::Helix {
+                axis,
+                u,
+                v,
+                p,
+                q,
+                pitch,
+            } => c::helix(
+                self.v3(axis),
+                self.v3(u),
+                self.v3(v),
+                self.p3(q) - self.p3(p),
+                self.s(pitch),
+            ),
+            Residual::Dim { value, target } => check::dimension(self.s(value), self.s(target)),
+            ref other => panic!("bug in gcs: the check {other:?} is no check of a spatial plan"),
+        }
+    }
+}
