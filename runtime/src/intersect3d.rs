@@ -126,8 +126,10 @@ fn one<T: Copy + Default, const N: usize>(a: T, contact: Contact) -> Intersectio
 ///
 /// - **Branch:** a single root (branch 0), the circle whose centre lies on the line of centres
 ///   and whose normal points from `a`'s centre to `b`'s.
-/// - `Crossing`: the circle. `Tangent` (externally or internally, within `TANGENT_REL * scale`):
-///   a circle of radius 0 at the touching point.
+/// - `Crossing`: the circle, whenever the spheres overlap, however little; its radius shrinks
+///   continuously to 0 as the overlap vanishes. `Tangent` (externally or internally, missing by
+///   at most `TANGENT_REL * scale`): a circle of radius 0 at the touching point, midway between
+///   the spheres' nearest points.
 /// - `Disjoint { gap }`: the spheres are apart (`gap = d - ra - rb`), or one holds the other
 ///   (`gap = |ra - rb| - d`), or they are concentric with different radii (`gap = |ra - rb|`).
 /// - `Coincident`: same centre and radius. `ZeroRadius`: a radius is zero.
@@ -162,14 +164,16 @@ pub fn sphere_sphere(a: &Sphere, b: &Sphere) -> Intersection<Circle3, 1> {
 
 /// How two spheres, or two circles in one plane, with centres `d` apart and radii `ra`, `rb`
 /// meet: the classification [`sphere_sphere`] and the coplanar case of [`circle_circle`] share.
-/// Lengths under `tl` are zero; gaps under `tt` are touching.
+/// Lengths under `tl` are zero; a miss of at most `tt` is touching; any overlap is crossing.
 enum Meeting {
     /// They do not meet: concentric (`Coincident` or `Disjoint`) or apart (`Disjoint`).
     Apart(Contact),
-    /// They touch, at this distance from the first centre along the line of centres.
+    /// They touch (miss by at most `tt`), at this distance from the first centre along the line
+    /// of centres.
     Touching(f64),
-    /// They cross in a circle (two points, in a plane) at distance `h` from the first centre
-    /// along the line of centres, `r` off that line.
+    /// They overlap and cross in a circle (two points, in a plane) at distance `h` from the
+    /// first centre along the line of centres, `r > 0` off that line (however small the
+    /// overlap).
     Crossing { h: f64, r: f64 },
 }
 
@@ -190,9 +194,10 @@ fn centres_meeting(d: f64, ra: f64, rb: f64, tl: f64, tt: f64) -> Meeting {
     if inner > tt {
         return Meeting::Apart(Contact::Disjoint { gap: inner });
     }
-    if outer.abs() <= tt || inner.abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Overlapping, however little: crossing.
+    if outer >= 0.0 || inner >= 0.0 {
         // Midway between the two spheres' own touching points, which differ by at most `tt`.
-        let (pa, pb) = if outer.abs() <= tt {
+        let (pa, pb) = if outer >= 0.0 {
             (ra, d - rb)
         } else if ra >= rb {
             (ra, d + rb)
@@ -202,7 +207,16 @@ fn centres_meeting(d: f64, ra: f64, rb: f64, tl: f64, tt: f64) -> Meeting {
         return Meeting::Touching(0.5 * (pa + pb));
     }
     let h = 0.5 * (d + (ra - rb) * (ra + rb) / d);
-    Meeting::Crossing { h, r: leg(ra, h) }
+    // The radius `sqrt(ra^2 - h^2)` by Heron's four factors, `(ra + rb - d)(d - |ra - rb|)`
+    // and `(d + |ra - rb|)(d + ra + rb)` over `2d`: the first two are `-outer` and `-inner`,
+    // positive here as computed, so a tiny overlap gives a tiny positive radius (where
+    // `ra - h`, from a rounded `h`, could be zero or negative).
+    let near = (-outer) * (d + (ra + rb));
+    let far = (-inner) * (d + (ra - rb).abs());
+    Meeting::Crossing {
+        h,
+        r: near.sqrt() * far.sqrt() / (2.0 * d),
+    }
 }
 
 /// Sphere-plane: the circle a plane cuts from a sphere.
@@ -531,7 +545,10 @@ pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
 /// - **Branch:** with `e` the direction from `a`'s centre to `b`'s, branch 0 is the root on the
 ///   positive side of `a.normal x e` (left of the directed line of centres seen from the tip of
 ///   `a`'s normal), branch 1 the other.
-/// - `Crossing`: two points. `Tangent` (externally or internally): the double root in both slots.
+/// - `Crossing`: two points, whenever the circles overlap, however little (the exact roots,
+///   which merge continuously into the touching point as the overlap vanishes). `Tangent`
+///   (externally or internally, missing by at most `TANGENT_REL * scale`): the double root,
+///   midway between the circles' nearest points, in both slots.
 /// - `Disjoint { gap }`: apart (`d - ra - rb`), nested (`|ra - rb| - d`) or concentric with
 ///   different radii (`|ra - rb|`). `Coincident`: the same circle.
 ///
