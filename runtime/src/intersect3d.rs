@@ -223,7 +223,10 @@ fn centres_meeting(d: f64, ra: f64, rb: f64, tl: f64, tt: f64) -> Meeting {
 ///
 /// - **Branch:** a single root (branch 0), the circle centred at the foot of the perpendicular
 ///   from the sphere's centre, with the plane's normal.
-/// - `Crossing`: the circle. `Tangent`: a circle of radius 0 at the touching point.
+/// - `Crossing`: the circle, whenever the plane cuts the sphere, however little; its radius
+///   shrinks continuously to 0 as the cut vanishes. `Tangent`: the plane misses the sphere by at
+///   most `TANGENT_REL * scale`; a circle of radius 0 at the touching point, midway between the
+///   sphere's nearest point and its foot on the plane.
 /// - `Disjoint { gap }`: the plane misses the sphere by `gap = |signed distance| - r`.
 /// - `ZeroRadius`: the radius or the plane's normal is zero.
 pub fn sphere_plane(s: &Sphere, p: &Plane) -> Intersection<Circle3, 1> {
@@ -242,7 +245,9 @@ pub fn sphere_plane(s: &Sphere, p: &Plane) -> Intersection<Circle3, 1> {
         return Intersection::none(Contact::Disjoint { gap: g });
     }
     let foot = c - n * sd;
-    if g.abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Cutting, however little: the circle, of
+    // radius `sqrt(-g (r + |sd|))` (`r - |sd|` is exactly `-g`, positive here).
+    if g >= 0.0 {
         let on_sphere = c - n * (r.copysign(sd));
         return one(
             Circle3 {
@@ -338,7 +343,10 @@ pub fn line_plane(l: &Line3, p: &Plane) -> Intersection<Point3<f64>, 1> {
 ///
 /// - **Branch:** order along the line's direction: branch 0 is the entry point (smaller
 ///   parameter), branch 1 the exit point. At tangency both slots hold the touching point.
-/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Crossing`: two points, whenever the line passes inside the sphere, however little (the
+///   exact roots, which merge continuously into the touching point as the overlap vanishes).
+///   `Tangent`: the line misses the sphere by at most `TANGENT_REL * scale`; the double root,
+///   midway between the line's and the sphere's nearest points, in both slots.
 /// - `Disjoint { gap }`: the line passes `gap` outside the sphere.
 /// - `ZeroRadius`: the radius or the line's direction is zero.
 pub fn line_sphere(l: &Line3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
@@ -358,7 +366,9 @@ pub fn line_sphere(l: &Line3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
     if g > tt {
         return Intersection::none(Contact::Disjoint { gap: g });
     }
-    if g.abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Overlapping, however little: the two
+    // roots, a half chord `sqrt(-g (r + m))` apart from the foot (`r - m` is exactly `-g`).
+    if g >= 0.0 {
         // m is close to r > 0, so off / m is a unit vector.
         let t = mid(&foot, &(c + off * (r / m)));
         return two(t, t, Contact::Tangent);
@@ -370,7 +380,10 @@ pub fn line_sphere(l: &Line3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
 /// Line-cylinder: the points where a line pierces a cylinder.
 ///
 /// - **Branch:** order along the line's direction (branch 0 first), as for [`line_sphere`].
-/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Crossing`: two points, whenever the line passes inside the cylinder, however little (the
+///   exact roots, which merge continuously as the overlap vanishes). `Tangent`: the line misses
+///   the cylinder by at most `TANGENT_REL * scale`; the double root, midway between the line's
+///   and the cylinder's nearest points, in both slots.
 /// - `Disjoint { gap }`: the line passes `gap` outside the cylinder.
 /// - `Parallel { gap }`: the line is parallel to the axis, `gap` off the surface (inside or
 ///   outside). `Coincident`: the line lies on the surface.
@@ -409,7 +422,9 @@ pub fn line_cylinder(l: &Line3, cy: &Cylinder) -> Intersection<Point3<f64>, 2> {
         return Intersection::none(Contact::Disjoint { gap: g });
     }
     let foot = q + d * t0;
-    if g.abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Overlapping, however little: the two
+    // roots (`r - m` in `leg` is exactly `-g`, positive).
+    if g >= 0.0 {
         let t = foot + radial * ((r - m) / (2.0 * m));
         return two(t, t, Contact::Tangent);
     }
@@ -752,7 +767,10 @@ fn coplanar_circles(
 /// **Plane parallel to the axis** (sine of the angle between axis and plane at most
 /// [`tol::ANGLE`]): lines along the axis direction ([`CylinderSection::Line`]).
 /// - **Branch:** order along `normal x axis`: branch 0 has the smaller coordinate.
-/// - `Crossing`: two lines. `Tangent`: the touching line in both slots.
+/// - `Crossing`: two lines, whenever the plane cuts the cylinder, however little (the exact
+///   lines, which merge continuously as the cut vanishes). `Tangent`: the plane misses the
+///   cylinder by at most `TANGENT_REL * scale`; the touching line, midway between the
+///   cylinder's nearest line and its foot on the plane, in both slots.
 /// - `Parallel { gap }`: the plane misses the cylinder by `gap`.
 ///
 /// `ZeroRadius`: the radius, the axis direction or the normal is zero.
@@ -775,7 +793,9 @@ pub fn plane_cylinder(p: &Plane, cy: &Cylinder) -> Intersection<CylinderSection,
         if g > tt {
             return Intersection::none(Contact::Parallel { gap: g });
         }
-        if g.abs() <= tt {
+        // Missing by at most `tt` (rounding): touching. Cutting, however little: the two
+        // lines (`r - |delta|` in `leg` is exactly `-g`, positive).
+        if g >= 0.0 {
             let point = o - n * (0.5 * (delta.abs() + r)).copysign(delta);
             let l = CylinderSection::Line(Line3 { point, dir: a });
             return two(l, l, Contact::Tangent);
