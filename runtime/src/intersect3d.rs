@@ -442,7 +442,11 @@ pub fn line_cylinder(l: &Line3, cy: &Cylinder) -> Intersection<Point3<f64>, 2> {
 ///   negative side of `u` from the chord's midpoint. This is `-(normal x g)` with `g` the
 ///   in-plane direction from the centre towards the plane, a direction fixed by the two normals,
 ///   so the branch does not flip when the plane sweeps through the circle's centre.
-/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Crossing`: two points, whenever the plane cuts the circle, however little (the exact
+///   roots, which merge continuously into the touching point as the cut vanishes). `Tangent`:
+///   the plane misses the circle by a `gap` (as below) of at most `TANGENT_REL * scale`; the
+///   double root, midway between the circle's nearest point and its foot on the plane, in both
+///   slots.
 /// - `Disjoint { gap }`: the plane misses the circle by `gap` (distance from the plane to the
 ///   circle's nearest point).
 /// - `Parallel { gap }`: the planes are parallel, `gap` apart. `Coincident`: the circle lies in
@@ -475,12 +479,18 @@ pub fn circle_plane(c: &Circle3, p: &Plane) -> Intersection<Point3<f64>, 2> {
     let gh = uh.cross(&nc);
     // Signed in-plane offset of the chord's midpoint from the centre along `gh`.
     let s = -sd / su;
+    // How far the circle misses the line common to the planes, in its plane (negative when
+    // it crosses it), and so the plane itself (`p` rises by `su` per unit along `gh`).
     let g = s.abs() - r;
-    if g > tt {
-        return Intersection::none(Contact::Disjoint { gap: g * su });
+    let gap = g * su;
+    if gap > tt {
+        return Intersection::none(Contact::Disjoint { gap });
     }
-    if g.abs() <= tt {
-        let t = cc + gh * (0.5 * (r + s.abs())).copysign(s);
+    // Missing by at most `tt` (rounding): touching, midway between the circle's point nearest
+    // the plane (its signed distance `gap` with the sign of `sd`) and that point's foot.
+    // Cutting, however little: the two roots (`r - |s|` in `leg` is exactly `-g`, positive).
+    if g >= 0.0 {
+        let t = cc + gh * r.copysign(s) - np * (0.5 * gap).copysign(sd);
         return two(t, t, Contact::Tangent);
     }
     let m = cc + gh * s;
