@@ -505,8 +505,12 @@ pub fn circle_plane(c: &Circle3, p: &Plane) -> Intersection<Point3<f64>, 2> {
 ///   `normal x e` (counter-clockwise from `e` seen from the tip of the circle's normal),
 ///   branch 1 the other. `e` is defined away from the singular configuration where the sphere's
 ///   centre is on the circle's axis (then the circle lies on the sphere or misses it entirely).
-/// - `Crossing`: two points. `Tangent`: the double root in both slots (the sphere touches the
-///   circle at its point nearest to or farthest from the sphere's centre).
+/// - `Crossing`: two points, whenever the sphere's radius is strictly inside the range of
+///   distances from its centre to the circle's points, however close to an end (the exact
+///   roots, which merge continuously into the touching point as the overlap vanishes).
+///   `Tangent`: the radius is outside that range by at most `TANGENT_REL * scale` (the sphere
+///   misses the circle's point nearest to or farthest from its centre by that much); the double
+///   root, midway between that point and the sphere, in both slots.
 /// - `Disjoint { gap }`: `gap` is how far the sphere's radius is outside the range of distances
 ///   from its centre to the circle's points.
 /// - `Coincident`: the circle lies on the sphere. `ZeroRadius`: a radius or the normal is zero.
@@ -535,14 +539,17 @@ pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
     let e = ev / rho;
     let dmin = sd.hypot(rho - rc);
     let dmax = sd.hypot(rho + rc);
-    if rs < dmin - tt {
-        return Intersection::none(Contact::Disjoint { gap: dmin - rs });
+    // How far the sphere misses the circle's nearest and farthest points (negative inside).
+    let (short, long) = (dmin - rs, rs - dmax);
+    if short > tt {
+        return Intersection::none(Contact::Disjoint { gap: short });
     }
-    if rs > dmax + tt {
-        return Intersection::none(Contact::Disjoint { gap: rs - dmax });
+    if long > tt {
+        return Intersection::none(Contact::Disjoint { gap: long });
     }
-    let near = (rs - dmin).abs() <= tt;
-    if near || (rs - dmax).abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Overlapping, however little: crossing.
+    let near = short >= 0.0;
+    if near || long >= 0.0 {
         let on_circle = if near { cc + e * rc } else { cc - e * rc };
         let to = on_circle - cs;
         let n = to.norm();
@@ -554,10 +561,20 @@ pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
         let t = mid(&on_circle, &on_sphere);
         return two(t, t, Contact::Tangent);
     }
-    // Coplanar circle-circle with the sphere's section by the circle's plane.
-    let r2sq = (rs - sd.abs()) * (rs + sd.abs());
-    let a = 0.5 * (rho + (rc - r2sq.max(0.0).sqrt()) * (rc + r2sq.max(0.0).sqrt()) / rho);
-    let h = leg(rc, a);
+    // The roots are at the angle `theta` from `e` where the distance to the sphere's centre,
+    // `sqrt(dmin^2 + 2 rho rc (1 - cos theta))`, is `rs`. With `x = rc (1 - cos)` and
+    // `y = rc (1 + cos)`, from `rs^2 - dmin^2 = -short (rs + dmin)` and
+    // `dmax^2 - rs^2 = -long (dmax + rs)`, both positive here: the root is `a = rc - x` along
+    // `e` and `h = sqrt(x (2 rc - x))` off it (or `y - rc` and `sqrt(y (2 rc - y))`, from the
+    // farthest point, when the roots are nearer it), so a tiny overlap at either end gives a
+    // tiny positive `h`, and `a^2 + h^2 = rc^2` to rounding.
+    let x = -short * (rs + dmin) / (2.0 * rho);
+    let y = -long * (dmax + rs) / (2.0 * rho);
+    let (a, h) = if x <= y {
+        (rc - x, (x * (2.0 * rc - x)).sqrt())
+    } else {
+        (y - rc, (y * (2.0 * rc - y)).sqrt())
+    };
     let side = nc.cross(&e);
     let m = cc + e * a;
     two(m + side * h, m - side * h, Contact::Crossing)
