@@ -13,10 +13,18 @@
 //! - **Zero size.** A radius at most `LENGTH_REL * scale` (or negative), or a zero direction or
 //!   normal, gives [`Contact::ZeroRadius`] with no roots: the caller handles the point (or
 //!   refuses) with the function of the lower-dimensional locus.
-//! - **Tangency.** When the loci miss or overlap by at most `TANGENT_REL * scale`, the contact
-//!   is [`Contact::Tangent`] and the double root, placed midway between the loci's closest
-//!   points, fills *both* branch slots, so a fixed branch stays defined through the tangency.
-//!   Such a root is within `TANGENT_REL * scale / 2` of each locus.
+//! - **Tangency.** When the loci *miss* each other by at most `TANGENT_REL * scale` (a gap in
+//!   `[0, TANGENT_REL * scale]`: rounding), the contact is [`Contact::Tangent`] and the double
+//!   root, placed midway between the loci's closest points, fills *both* branch slots, so a
+//!   fixed branch stays defined through the tangency. Such a root is within
+//!   `TANGENT_REL * scale / 2` of each locus. Loci that *overlap*, however little, cross: the
+//!   function returns their exact roots (two points, or a circle or lines), which merge
+//!   continuously into the touching point as the overlap vanishes, so a solvable near-tangent
+//!   assembly is solved to rounding rather than snapped to a midpoint. Each half chord is the
+//!   square root of a product whose factors are the overlap itself and sums, all positive as
+//!   computed when the overlap is, so a tiny overlap gives a tiny positive half chord, never
+//!   zero from cancellation nor NaN. The one exception is two non-coplanar circles
+//!   ([`circle_circle`]), whose meeting is itself decided with the tolerance both ways.
 //! - **Parallel.** Directions whose angle has a sine at most [`tol::ANGLE`] are parallel.
 //! - **Accuracy.** Outside tangency, every root lies on both loci within a few units in the last
 //!   place of `max(scale, |root|)`: the tests check `1e-13` of that. The `|root|` term matters
@@ -610,6 +618,13 @@ pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
 ///   circle and the other circle: a distance between actual points of the two circles, so an
 ///   upper bound of their true distance (which needs a degree-8 solve) that vanishes exactly
 ///   when they meet, and usually their locally nearest distance.
+/// - Tangency here is decided with `TANGENT_REL * scale` both ways, unlike the rest of the
+///   table: a circle crossing the other's plane by a hair is no overlap of the two circles.
+///   Two circles in space meet only by construction, and a circle built tangent to the other's
+///   plane at a point of the other that rounding takes a hair across the plane has no exact
+///   common point at all (its two crossings of `L` are about `sqrt(2 r hair)` either side of
+///   the point), while the point itself is within the tolerance of both: so it is kept, as
+///   `Tangent`.
 ///
 /// `ZeroRadius`: a radius or a normal is zero.
 ///
