@@ -1285,4 +1285,442 @@ mod tests {
         assert!((c.z - b.y).abs() <= 1e-28 && (c.y + b.z).abs() <= 1e-28);
         assert_eq!(diff_of_products(3.0, 5.0, 2.0, 7.0), 1.0);
     }
+
+    // -----------------------------------------------------------------------------------------
+    // Near tangency: a miss of at most the tolerance touches, any overlap crosses.
+
+    /// The scales of the near-tangency sweeps: near-degenerate small and large, and unit.
+    const SCALES: [f64; 3] = [1e-3, 1.0, 1e3];
+
+    /// Overlaps in units of `f64::EPSILON` times the kernel's scale of the inputs, shrinking
+    /// from ten times the tangency tolerance (`TANGENT_REL` is 32 of them) to a few.
+    const OVERLAPS: [f64; 8] = [320.0, 128.0, 64.0, 32.0, 16.0, 8.0, 6.0, 4.0];
+
+    /// Misses within the tangency tolerance, in the same units (rounding of the oblique inputs
+    /// moves them by a few).
+    const TOUCHING: [f64; 4] = [6.0, 12.0, 20.0, 26.0];
+
+    /// Misses beyond it, in the same units.
+    const MISSING: [f64; 4] = [40.0, 64.0, 320.0, 1e6];
+
+    /// A configuration built with a signed gap (negative: overlapping): the kernel's scale of
+    /// its inputs, the contact, each root slot sampled as points (a point, or points of a
+    /// circle or a line), the two loci, and the locus (a point, or a line) where they touch at
+    /// gap zero.
+    struct Near {
+        scale: f64,
+        contact: Contact,
+        slots: Vec<Vec<Point3<f64>>>,
+        /// Two distinct roots, or a circle of positive radius.
+        distinct: bool,
+        a: Box<dyn Locus3>,
+        b: Box<dyn Locus3>,
+        touch: Box<dyn Locus3>,
+    }
+
+    /// A point as a locus: the sphere of radius zero about it.
+    fn at(q: Point3<f64>) -> Box<dyn Locus3> {
+        Box::new(Sphere::new(q, 0.0))
+    }
+
+    /// The kernel's scale: the largest absolute coordinate, radius or offset.
+    fn scale_of(points: &[Point3<f64>], lengths: &[f64]) -> f64 {
+        let coords = points.iter().flat_map(|q| [q.x, q.y, q.z]);
+        coords
+            .chain(lengths.iter().copied())
+            .fold(0.0, |m, x| m.max(x.abs()))
+    }
+
+    fn near_points<A: Locus3 + 'static, B: Locus3 + 'static>(
+        scale: f64,
+        x: Intersection<Point3<f64>, 2>,
+        a: A,
+        b: B,
+        touch: Box<dyn Locus3>,
+    ) -> Near {
+        let r = x.roots.as_slice();
+        Near {
+            scale,
+            contact: x.contact,
+            slots: r.iter().map(|q| vec![*q]).collect(),
+            distinct: r.len() == 2 && r[0] != r[1],
+            a: Box::new(a),
+            b: Box::new(b),
+            touch,
+        }
+    }
+
+    fn near_circle<A: Locus3 + 'static, B: Locus3 + 'static>(
+        scale: f64,
+        x: Intersection<Circle3, 1>,
+        a: A,
+        b: B,
+        touch: Point3<f64>,
+    ) -> Near {
+        let c = x.branch(0);
+        Near {
+            scale,
+            contact: x.contact,
+            slots: c
+                .map(|c| vec![circle_points(&c).to_vec()])
+                .unwrap_or_default(),
+            distinct: c.is_some_and(|c| c.radius > 0.0),
+            a: Box::new(a),
+            b: Box::new(b),
+            touch: at(touch),
+        }
+    }
+
+    /// An orthonormal frame of oblique directions, exact in the reals: `(2, 3, 6) / 7`,
+    /// `(3, -6, 2) / 7`, `(6, 2, -3) / 7`.
+    fn frame() -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        (
+            v(2.0, 3.0, 6.0) / 7.0,
+            v(3.0, -6.0, 2.0) / 7.0,
+            v(6.0, 2.0, -3.0) / 7.0,
+        )
+    }
+
+    /// A centre off the origin, at scale `s`.
+    fn origin(s: f64) -> Point3<f64> {
+        p(0.3, -0.7, 0.2) * s
+    }
+
+    /// For each scale `s` of [`SCALES`], with `S` the kernel's scale of the inputs built at
+    /// `s` and `ulp = f64::EPSILON * S`: every overlap of [`OVERLAPS`] crosses, in two distinct
+    /// roots (or a circle of positive radius) on both loci to `1e-13 S`, within
+    /// `4 sqrt(overlap S)` of the touching point and no nearer than a twentieth of that (not
+    /// snapped), converging on it as the overlap shrinks; every miss of [`TOUCHING`] touches,
+    /// in one root in every slot within `TANGENT_REL * S / 2` (and rounding) of both loci and
+    /// `TANGENT_REL * S` of the touching point; every miss of [`MISSING`] gives no root and its
+    /// gap (`Parallel` rather than `Disjoint` when `parallel`).
+    fn sweep(name: &str, parallel: bool, build: impl Fn(f64, f64) -> Near) {
+        for s in SCALES {
+            let big = build(s, 0.0).scale;
+            let ulp = f64::EPSILON * big;
+            let tt = TANGENT_REL * big;
+            let mut farthest = Vec::new();
+            for k in OVERLAPS {
+                let delta = k * ulp;
+                let n = build(s, -delta);
+                let what = format!("{name}: scale {s}, overlap of {k} ulps");
+                assert_eq!(n.contact, Contact::Crossing, "{what}");
+                assert!(n.distinct && !n.slots.is_empty(), "{what}: {:?}", n.slots);
+                let mut far: f64 = 0.0;
+                for r in n.slots.iter().flatten() {
+                    let (da, db) = (n.a.distance(r), n.b.distance(r));
+                    assert!(
+                        da <= EPS * big && db <= EPS * big,
+                        "{what}: off by {da:e}, {db:e}"
+                    );
+                    far = far.max(n.touch.distance(r));
+                }
+                let chord = (delta * big).sqrt();
+                assert!(
+                    far <= 4.0 * chord && far >= 0.05 * chord,
+                    "{what}: {far:e} from the touching point, sqrt(overlap scale) {chord:e}"
+                );
+                farthest.push(far);
+            }
+            // Converging: the roots of the smallest overlap are far nearer than the largest's.
+            let (first, last) = (farthest[0], farthest[farthest.len() - 1]);
+            assert!(last <= 0.25 * first, "{name}: scale {s}: {farthest:?}");
+            for k in TOUCHING {
+                let n = build(s, k * ulp);
+                let what = format!("{name}: scale {s}, miss of {k} ulps");
+                assert_eq!(n.contact, Contact::Tangent, "{what}");
+                assert!(!n.distinct && !n.slots.is_empty(), "{what}");
+                for slot in &n.slots {
+                    assert_eq!(slot, &n.slots[0], "{what}");
+                }
+                for r in n.slots.iter().flatten() {
+                    let (da, db) = (n.a.distance(r), n.b.distance(r));
+                    let bound = 0.5 * tt + 4.0 * ulp;
+                    assert!(da <= bound && db <= bound, "{what}: off by {da:e}, {db:e}");
+                    assert!(n.touch.distance(r) <= tt, "{what}");
+                }
+            }
+            for k in MISSING {
+                let gap = k * ulp;
+                let n = build(s, gap);
+                let what = format!("{name}: scale {s}, miss of {k} ulps");
+                let g = match (n.contact, parallel) {
+                    (Contact::Disjoint { gap }, false) | (Contact::Parallel { gap }, true) => gap,
+                    (other, _) => panic!("{what}: {other:?}"),
+                };
+                assert!((g - gap).abs() <= 8.0 * ulp, "{what}: gap {g:e}");
+                assert!(n.slots.is_empty(), "{what}");
+            }
+        }
+    }
+
+    #[test]
+    fn sphere_sphere_overlap_crosses_miss_touches() {
+        let (u, _, _) = frame();
+        let near = |a: Sphere, b: Sphere, touch| {
+            let big = scale_of(&[a.center, b.center], &[a.radius, b.radius]);
+            near_circle(big, sphere_sphere(&a, &b), a, b, touch)
+        };
+        // Apart (gap d - ra - rb), and nested either way (gap |ra - rb| - d).
+        sweep("sphere_sphere apart", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 1.5 * s, 0.5 * s);
+            let b = Sphere::new(c + u * (ra + rb + g), rb);
+            near(Sphere::new(c, ra), b, c + u * ra)
+        });
+        sweep("sphere_sphere second inside", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 2.0 * s, s);
+            let b = Sphere::new(c + u * (ra - rb - g), rb);
+            near(Sphere::new(c, ra), b, c + u * ra)
+        });
+        sweep("sphere_sphere first inside", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 0.5 * s, 2.0 * s);
+            let b = Sphere::new(c - u * (rb - ra - g), rb);
+            near(Sphere::new(c, ra), b, c + u * ra)
+        });
+    }
+
+    #[test]
+    fn sphere_plane_overlap_crosses_miss_touches() {
+        let (u, _, _) = frame();
+        sweep("sphere_plane", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let (sp, pl) = (Sphere::new(c, r), Plane::new(u, u.dot(&c.coords) + r + g));
+            let big = scale_of(&[c], &[r, pl.offset]);
+            near_circle(big, sphere_plane(&sp, &pl), sp, pl, c + u * r)
+        });
+    }
+
+    #[test]
+    fn line_sphere_overlap_crosses_miss_touches() {
+        let (u, w, _) = frame();
+        sweep("line_sphere", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let sp = Sphere::new(c, r);
+            let l = Line3::new(c + u * (r + g) + w * (0.4 * s), w);
+            let big = scale_of(&[l.point, c], &[r]);
+            near_points(big, line_sphere(&l, &sp), l, sp, at(c + u * r))
+        });
+    }
+
+    #[test]
+    fn line_cylinder_overlap_crosses_miss_touches() {
+        let (u, w, z) = frame();
+        sweep("line_cylinder", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let cy = Cylinder::new(Line3::new(c, z), r);
+            // Perpendicular to the radial direction `u`, at 53 degrees to the axis.
+            let l = Line3::new(c + u * (r + g) + z * (0.3 * s), z * 0.6 + w * 0.8);
+            let big = scale_of(&[l.point, c], &[r]);
+            let touch = at(c + u * r + z * (0.3 * s));
+            near_points(big, line_cylinder(&l, &cy), l, cy, touch)
+        });
+    }
+
+    #[test]
+    fn circle_plane_overlap_crosses_miss_touches() {
+        let (u, _, z) = frame();
+        // The plane touches the circle at `c + u r`, tilted: `su = 0.6`, so the circle misses
+        // the planes' common line by `gap / 0.6`, more than the tolerance for misses near it.
+        sweep("circle_plane", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let ci = Circle3::new(c, z, r);
+            let t = c + u * r;
+            let n = u * 0.6 + z * 0.8;
+            let pl = Plane::new(n, n.dot(&t.coords) + g);
+            let big = scale_of(&[c], &[r, pl.offset]);
+            near_points(big, circle_plane(&ci, &pl), ci, pl, at(t))
+        });
+    }
+
+    #[test]
+    fn circle_sphere_overlap_crosses_miss_touches() {
+        let (u, _, z) = frame();
+        // The sphere's centre 1.2 s out along `u` and 0.5 s above the circle's plane: at the
+        // circle's nearest point `c + u r` the sphere touches from outside, at the farthest
+        // `c - u r` from inside.
+        let near = |ci: Circle3, sp: Sphere, touch| {
+            let big = scale_of(&[ci.center, sp.center], &[ci.radius, sp.radius]);
+            near_points(big, circle_sphere(&ci, &sp), ci, sp, at(touch))
+        };
+        let centre = |s: f64| origin(s) + u * (1.2 * s) + z * (0.5 * s);
+        sweep("circle_sphere nearest", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let sp = Sphere::new(centre(s), (0.5 * s).hypot(0.2 * s) - g);
+            near(Circle3::new(c, z, r), sp, c + u * r)
+        });
+        sweep("circle_sphere farthest", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let sp = Sphere::new(centre(s), (0.5 * s).hypot(2.2 * s) + g);
+            near(Circle3::new(c, z, r), sp, c - u * r)
+        });
+    }
+
+    #[test]
+    fn circle_circle_coplanar_overlap_crosses_miss_touches() {
+        let (u, _, z) = frame();
+        let near = |a: Circle3, b: Circle3| {
+            let big = scale_of(&[a.center, b.center], &[a.radius, b.radius]);
+            let touch = at(a.center + u * a.radius);
+            near_points(big, circle_circle(&a, &b), a, b, touch)
+        };
+        sweep("circle_circle apart", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 1.5 * s, 0.5 * s);
+            near(
+                Circle3::new(c, z, ra),
+                Circle3::new(c + u * (ra + rb + g), -z, rb),
+            )
+        });
+        sweep("circle_circle second inside", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 2.0 * s, s);
+            near(
+                Circle3::new(c, z, ra),
+                Circle3::new(c + u * (ra - rb - g), z, rb),
+            )
+        });
+        sweep("circle_circle first inside", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 0.5 * s, 2.0 * s);
+            near(
+                Circle3::new(c, z, ra),
+                Circle3::new(c - u * (rb - ra - g), z, rb),
+            )
+        });
+    }
+
+    #[test]
+    fn plane_cylinder_overlap_crosses_miss_touches() {
+        let (u, _, z) = frame();
+        sweep("plane_cylinder", true, |s, g| {
+            let (c, r) = (origin(s), s);
+            let cy = Cylinder::new(Line3::new(c, z), r);
+            let pl = Plane::new(u, u.dot(&c.coords) + r + g);
+            let x = plane_cylinder(&pl, &cy);
+            let lines: Vec<Line3> = x
+                .roots
+                .as_slice()
+                .iter()
+                .filter_map(|sec| match sec {
+                    CylinderSection::Line(l) => Some(*l),
+                    CylinderSection::Ellipse(_) => None,
+                })
+                .collect();
+            assert_eq!(lines.len(), x.roots.len());
+            Near {
+                scale: scale_of(&[c], &[pl.offset, r]),
+                contact: x.contact,
+                slots: lines
+                    .iter()
+                    .map(|l| vec![l.point, l.at(s), l.at(-3.0 * s)])
+                    .collect(),
+                distinct: lines.len() == 2 && lines[0].point != lines[1].point,
+                a: Box::new(pl),
+                b: Box::new(cy),
+                touch: Box::new(Line3::new(c + u * r, z)),
+            }
+        });
+    }
+
+    /// Overlaps of a unit in the last place, built exactly (axis-aligned, exact coordinates):
+    /// every function crosses, with a half chord (or a circle's radius) within `1e-12` of the
+    /// exact one, where one from a rounded foot (`leg(r, h)` with `h` rounded) is zero or off
+    /// by a factor.
+    #[test]
+    fn one_ulp_overlaps_cross_with_the_exact_half_chord() {
+        let close = |got: f64, want: f64, what: &str| {
+            assert!(
+                (got - want).abs() <= 1e-12 * want,
+                "{what}: {got:e} for {want:e}"
+            );
+        };
+        let half = |x: &Intersection<Point3<f64>, 2>, what: &str| {
+            assert_eq!(x.contact, Contact::Crossing, "{what}");
+            let r = x.roots.as_slice();
+            0.5 * (r[1] - r[0]).norm()
+        };
+        let o = p(0.0, 0.0, 0.0);
+        // Radii 1.5 and 0.5, centres 2 - 2^-51 apart: the radius by Heron's factors.
+        let e = 2f64.powi(-51);
+        let d = 2.0 - e;
+        let heron = (e * (d - 1.0) * (d + 1.0) * (d + 2.0)).sqrt() / (2.0 * d);
+        let (a, b) = (Sphere::new(o, 1.5), Sphere::new(p(d, 0.0, 0.0), 0.5));
+        let x = sphere_sphere(&a, &b);
+        assert_eq!(x.contact, Contact::Crossing);
+        let c = x.branch(0).unwrap_or_default();
+        close(c.radius, heron, "sphere_sphere");
+        on_both(&circle_points(&c), &a, &b, EPS);
+        let z = Vector3::z();
+        let (a, b) = (
+            Circle3::new(o, z, 1.5),
+            Circle3::new(p(d, 0.0, 0.0), z, 0.5),
+        );
+        let x = circle_circle(&a, &b);
+        close(half(&x, "circle_circle"), heron, "circle_circle");
+        on_both(x.roots.as_slice(), &a, &b, EPS);
+        // A unit sphere, cylinder or circle met 1 - 2^-53 from its centre or axis.
+        let e = 2f64.powi(-53);
+        let m = 1.0 - e;
+        let chord = (e * (1.0 + m)).sqrt();
+        let sp = Sphere::new(o, 1.0);
+        let pl = Plane::new(z, m);
+        let x = sphere_plane(&sp, &pl);
+        assert_eq!(x.contact, Contact::Crossing);
+        let c = x.branch(0).unwrap_or_default();
+        close(c.radius, chord, "sphere_plane");
+        on_both(&circle_points(&c), &sp, &pl, EPS);
+        let l = Line3::new(p(m, -2.0, 0.0), Vector3::y());
+        let x = line_sphere(&l, &sp);
+        close(half(&x, "line_sphere"), chord, "line_sphere");
+        on_both(x.roots.as_slice(), &l, &sp, EPS);
+        let cy = Cylinder::new(Line3::new(o, z), 1.0);
+        let l = Line3::new(p(m, -2.0, 0.5), Vector3::y());
+        let x = line_cylinder(&l, &cy);
+        close(half(&x, "line_cylinder"), chord, "line_cylinder");
+        on_both(x.roots.as_slice(), &l, &cy, EPS);
+        let ci = Circle3::new(o, z, 1.0);
+        let pl = Plane::new(Vector3::x(), m);
+        let x = circle_plane(&ci, &pl);
+        close(half(&x, "circle_plane"), chord, "circle_plane");
+        on_both(x.roots.as_slice(), &ci, &pl, EPS);
+        let x = plane_cylinder(&pl, &cy);
+        assert_eq!(x.contact, Contact::Crossing);
+        let points: Vec<Point3<f64>> = x
+            .roots
+            .as_slice()
+            .iter()
+            .map(|sec| match sec {
+                CylinderSection::Line(l) => l.point,
+                CylinderSection::Ellipse(_) => panic!("a line expected"),
+            })
+            .collect();
+        close(
+            0.5 * (points[1] - points[0]).norm(),
+            chord,
+            "plane_cylinder",
+        );
+        on_both(&points, &pl, &cy, EPS);
+        // The unit circle about z and a sphere centred at (2, 0, 0.75), 1.25 from the circle's
+        // nearest point, of radius 1.25 + 2^-52; or centred at (3, 0, 3), 5 from its farthest
+        // point, of radius 5 - 2^-50. The root is `x = (rs^2 - dmin^2) / 2 rho` (or
+        // `(dmax^2 - rs^2) / 2 rho`) from that point along the line of centres, and
+        // `sqrt(x (2 - x))` off it.
+        for (cs, rs, end, what) in [
+            (
+                p(2.0, 0.0, 0.75),
+                1.25 + 2f64.powi(-52),
+                1.25,
+                "circle_sphere nearest",
+            ),
+            (
+                p(3.0, 0.0, 3.0),
+                5.0 - 2f64.powi(-50),
+                5.0,
+                "circle_sphere farthest",
+            ),
+        ] {
+            let sp = Sphere::new(cs, rs);
+            let x = circle_sphere(&ci, &sp);
+            let along = (rs - end).abs() * (rs + end) / (2.0 * cs.x);
+            close(half(&x, what), (along * (2.0 - along)).sqrt(), what);
+            on_both(x.roots.as_slice(), &ci, &sp, EPS);
+        }
+    }
 }
