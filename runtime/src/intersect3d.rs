@@ -13,10 +13,18 @@
 //! - **Zero size.** A radius at most `LENGTH_REL * scale` (or negative), or a zero direction or
 //!   normal, gives [`Contact::ZeroRadius`] with no roots: the caller handles the point (or
 //!   refuses) with the function of the lower-dimensional locus.
-//! - **Tangency.** When the loci miss or overlap by at most `TANGENT_REL * scale`, the contact
-//!   is [`Contact::Tangent`] and the double root, placed midway between the loci's closest
-//!   points, fills *both* branch slots, so a fixed branch stays defined through the tangency.
-//!   Such a root is within `TANGENT_REL * scale / 2` of each locus.
+//! - **Tangency.** When the loci *miss* each other by at most `TANGENT_REL * scale` (a gap in
+//!   `[0, TANGENT_REL * scale]`: rounding), the contact is [`Contact::Tangent`] and the double
+//!   root, placed midway between the loci's closest points, fills *both* branch slots, so a
+//!   fixed branch stays defined through the tangency. Such a root is within
+//!   `TANGENT_REL * scale / 2` of each locus. Loci that *overlap*, however little, cross: the
+//!   function returns their exact roots (two points, or a circle or lines), which merge
+//!   continuously into the touching point as the overlap vanishes, so a solvable near-tangent
+//!   assembly is solved to rounding rather than snapped to a midpoint. Each half chord is the
+//!   square root of a product whose factors are the overlap itself and sums, all positive as
+//!   computed when the overlap is, so a tiny overlap gives a tiny positive half chord, never
+//!   zero from cancellation nor NaN. The one exception is two non-coplanar circles
+//!   ([`circle_circle`]), whose meeting is itself decided with the tolerance both ways.
 //! - **Parallel.** Directions whose angle has a sine at most [`tol::ANGLE`] are parallel.
 //! - **Accuracy.** Outside tangency, every root lies on both loci within a few units in the last
 //!   place of `max(scale, |root|)`: the tests check `1e-13` of that. The `|root|` term matters
@@ -126,8 +134,10 @@ fn one<T: Copy + Default, const N: usize>(a: T, contact: Contact) -> Intersectio
 ///
 /// - **Branch:** a single root (branch 0), the circle whose centre lies on the line of centres
 ///   and whose normal points from `a`'s centre to `b`'s.
-/// - `Crossing`: the circle. `Tangent` (externally or internally, within `TANGENT_REL * scale`):
-///   a circle of radius 0 at the touching point.
+/// - `Crossing`: the circle, whenever the spheres overlap, however little; its radius shrinks
+///   continuously to 0 as the overlap vanishes. `Tangent` (externally or internally, missing by
+///   at most `TANGENT_REL * scale`): a circle of radius 0 at the touching point, midway between
+///   the spheres' nearest points.
 /// - `Disjoint { gap }`: the spheres are apart (`gap = d - ra - rb`), or one holds the other
 ///   (`gap = |ra - rb| - d`), or they are concentric with different radii (`gap = |ra - rb|`).
 /// - `Coincident`: same centre and radius. `ZeroRadius`: a radius is zero.
@@ -162,14 +172,16 @@ pub fn sphere_sphere(a: &Sphere, b: &Sphere) -> Intersection<Circle3, 1> {
 
 /// How two spheres, or two circles in one plane, with centres `d` apart and radii `ra`, `rb`
 /// meet: the classification [`sphere_sphere`] and the coplanar case of [`circle_circle`] share.
-/// Lengths under `tl` are zero; gaps under `tt` are touching.
+/// Lengths under `tl` are zero; a miss of at most `tt` is touching; any overlap is crossing.
 enum Meeting {
     /// They do not meet: concentric (`Coincident` or `Disjoint`) or apart (`Disjoint`).
     Apart(Contact),
-    /// They touch, at this distance from the first centre along the line of centres.
+    /// They touch (miss by at most `tt`), at this distance from the first centre along the line
+    /// of centres.
     Touching(f64),
-    /// They cross in a circle (two points, in a plane) at distance `h` from the first centre
-    /// along the line of centres, `r` off that line.
+    /// They overlap and cross in a circle (two points, in a plane) at distance `h` from the
+    /// first centre along the line of centres, `r > 0` off that line (however small the
+    /// overlap).
     Crossing { h: f64, r: f64 },
 }
 
@@ -190,9 +202,10 @@ fn centres_meeting(d: f64, ra: f64, rb: f64, tl: f64, tt: f64) -> Meeting {
     if inner > tt {
         return Meeting::Apart(Contact::Disjoint { gap: inner });
     }
-    if outer.abs() <= tt || inner.abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Overlapping, however little: crossing.
+    if outer >= 0.0 || inner >= 0.0 {
         // Midway between the two spheres' own touching points, which differ by at most `tt`.
-        let (pa, pb) = if outer.abs() <= tt {
+        let (pa, pb) = if outer >= 0.0 {
             (ra, d - rb)
         } else if ra >= rb {
             (ra, d + rb)
@@ -202,14 +215,26 @@ fn centres_meeting(d: f64, ra: f64, rb: f64, tl: f64, tt: f64) -> Meeting {
         return Meeting::Touching(0.5 * (pa + pb));
     }
     let h = 0.5 * (d + (ra - rb) * (ra + rb) / d);
-    Meeting::Crossing { h, r: leg(ra, h) }
+    // The radius `sqrt(ra^2 - h^2)` by Heron's four factors, `(ra + rb - d)(d - |ra - rb|)`
+    // and `(d + |ra - rb|)(d + ra + rb)` over `2d`: the first two are `-outer` and `-inner`,
+    // positive here as computed, so a tiny overlap gives a tiny positive radius (where
+    // `ra - h`, from a rounded `h`, could be zero or negative).
+    let near = (-outer) * (d + (ra + rb));
+    let far = (-inner) * (d + (ra - rb).abs());
+    Meeting::Crossing {
+        h,
+        r: near.sqrt() * far.sqrt() / (2.0 * d),
+    }
 }
 
 /// Sphere-plane: the circle a plane cuts from a sphere.
 ///
 /// - **Branch:** a single root (branch 0), the circle centred at the foot of the perpendicular
 ///   from the sphere's centre, with the plane's normal.
-/// - `Crossing`: the circle. `Tangent`: a circle of radius 0 at the touching point.
+/// - `Crossing`: the circle, whenever the plane cuts the sphere, however little; its radius
+///   shrinks continuously to 0 as the cut vanishes. `Tangent`: the plane misses the sphere by at
+///   most `TANGENT_REL * scale`; a circle of radius 0 at the touching point, midway between the
+///   sphere's nearest point and its foot on the plane.
 /// - `Disjoint { gap }`: the plane misses the sphere by `gap = |signed distance| - r`.
 /// - `ZeroRadius`: the radius or the plane's normal is zero.
 pub fn sphere_plane(s: &Sphere, p: &Plane) -> Intersection<Circle3, 1> {
@@ -228,7 +253,9 @@ pub fn sphere_plane(s: &Sphere, p: &Plane) -> Intersection<Circle3, 1> {
         return Intersection::none(Contact::Disjoint { gap: g });
     }
     let foot = c - n * sd;
-    if g.abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Cutting, however little: the circle, of
+    // radius `sqrt(-g (r + |sd|))` (`r - |sd|` is exactly `-g`, positive here).
+    if g >= 0.0 {
         let on_sphere = c - n * (r.copysign(sd));
         return one(
             Circle3 {
@@ -324,7 +351,10 @@ pub fn line_plane(l: &Line3, p: &Plane) -> Intersection<Point3<f64>, 1> {
 ///
 /// - **Branch:** order along the line's direction: branch 0 is the entry point (smaller
 ///   parameter), branch 1 the exit point. At tangency both slots hold the touching point.
-/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Crossing`: two points, whenever the line passes inside the sphere, however little (the
+///   exact roots, which merge continuously into the touching point as the overlap vanishes).
+///   `Tangent`: the line misses the sphere by at most `TANGENT_REL * scale`; the double root,
+///   midway between the line's and the sphere's nearest points, in both slots.
 /// - `Disjoint { gap }`: the line passes `gap` outside the sphere.
 /// - `ZeroRadius`: the radius or the line's direction is zero.
 pub fn line_sphere(l: &Line3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
@@ -344,7 +374,9 @@ pub fn line_sphere(l: &Line3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
     if g > tt {
         return Intersection::none(Contact::Disjoint { gap: g });
     }
-    if g.abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Overlapping, however little: the two
+    // roots, a half chord `sqrt(-g (r + m))` apart from the foot (`r - m` is exactly `-g`).
+    if g >= 0.0 {
         // m is close to r > 0, so off / m is a unit vector.
         let t = mid(&foot, &(c + off * (r / m)));
         return two(t, t, Contact::Tangent);
@@ -356,7 +388,10 @@ pub fn line_sphere(l: &Line3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
 /// Line-cylinder: the points where a line pierces a cylinder.
 ///
 /// - **Branch:** order along the line's direction (branch 0 first), as for [`line_sphere`].
-/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Crossing`: two points, whenever the line passes inside the cylinder, however little (the
+///   exact roots, which merge continuously as the overlap vanishes). `Tangent`: the line misses
+///   the cylinder by at most `TANGENT_REL * scale`; the double root, midway between the line's
+///   and the cylinder's nearest points, in both slots.
 /// - `Disjoint { gap }`: the line passes `gap` outside the cylinder.
 /// - `Parallel { gap }`: the line is parallel to the axis, `gap` off the surface (inside or
 ///   outside). `Coincident`: the line lies on the surface.
@@ -395,7 +430,9 @@ pub fn line_cylinder(l: &Line3, cy: &Cylinder) -> Intersection<Point3<f64>, 2> {
         return Intersection::none(Contact::Disjoint { gap: g });
     }
     let foot = q + d * t0;
-    if g.abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Overlapping, however little: the two
+    // roots (`r - m` in `leg` is exactly `-g`, positive).
+    if g >= 0.0 {
         let t = foot + radial * ((r - m) / (2.0 * m));
         return two(t, t, Contact::Tangent);
     }
@@ -413,7 +450,11 @@ pub fn line_cylinder(l: &Line3, cy: &Cylinder) -> Intersection<Point3<f64>, 2> {
 ///   negative side of `u` from the chord's midpoint. This is `-(normal x g)` with `g` the
 ///   in-plane direction from the centre towards the plane, a direction fixed by the two normals,
 ///   so the branch does not flip when the plane sweeps through the circle's centre.
-/// - `Crossing`: two points. `Tangent`: the double root in both slots.
+/// - `Crossing`: two points, whenever the plane cuts the circle, however little (the exact
+///   roots, which merge continuously into the touching point as the cut vanishes). `Tangent`:
+///   the plane misses the circle by a `gap` (as below) of at most `TANGENT_REL * scale`; the
+///   double root, midway between the circle's nearest point and its foot on the plane, in both
+///   slots.
 /// - `Disjoint { gap }`: the plane misses the circle by `gap` (distance from the plane to the
 ///   circle's nearest point).
 /// - `Parallel { gap }`: the planes are parallel, `gap` apart. `Coincident`: the circle lies in
@@ -446,12 +487,18 @@ pub fn circle_plane(c: &Circle3, p: &Plane) -> Intersection<Point3<f64>, 2> {
     let gh = uh.cross(&nc);
     // Signed in-plane offset of the chord's midpoint from the centre along `gh`.
     let s = -sd / su;
+    // How far the circle misses the line common to the planes, in its plane (negative when
+    // it crosses it), and so the plane itself (`p` rises by `su` per unit along `gh`).
     let g = s.abs() - r;
-    if g > tt {
-        return Intersection::none(Contact::Disjoint { gap: g * su });
+    let gap = g * su;
+    if gap > tt {
+        return Intersection::none(Contact::Disjoint { gap });
     }
-    if g.abs() <= tt {
-        let t = cc + gh * (0.5 * (r + s.abs())).copysign(s);
+    // Missing by at most `tt` (rounding): touching, midway between the circle's point nearest
+    // the plane (its signed distance `gap` with the sign of `sd`) and that point's foot.
+    // Cutting, however little: the two roots (`r - |s|` in `leg` is exactly `-g`, positive).
+    if g >= 0.0 {
+        let t = cc + gh * r.copysign(s) - np * (0.5 * gap).copysign(sd);
         return two(t, t, Contact::Tangent);
     }
     let m = cc + gh * s;
@@ -466,8 +513,12 @@ pub fn circle_plane(c: &Circle3, p: &Plane) -> Intersection<Point3<f64>, 2> {
 ///   `normal x e` (counter-clockwise from `e` seen from the tip of the circle's normal),
 ///   branch 1 the other. `e` is defined away from the singular configuration where the sphere's
 ///   centre is on the circle's axis (then the circle lies on the sphere or misses it entirely).
-/// - `Crossing`: two points. `Tangent`: the double root in both slots (the sphere touches the
-///   circle at its point nearest to or farthest from the sphere's centre).
+/// - `Crossing`: two points, whenever the sphere's radius is strictly inside the range of
+///   distances from its centre to the circle's points, however close to an end (the exact
+///   roots, which merge continuously into the touching point as the overlap vanishes).
+///   `Tangent`: the radius is outside that range by at most `TANGENT_REL * scale` (the sphere
+///   misses the circle's point nearest to or farthest from its centre by that much); the double
+///   root, midway between that point and the sphere, in both slots.
 /// - `Disjoint { gap }`: `gap` is how far the sphere's radius is outside the range of distances
 ///   from its centre to the circle's points.
 /// - `Coincident`: the circle lies on the sphere. `ZeroRadius`: a radius or the normal is zero.
@@ -496,14 +547,17 @@ pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
     let e = ev / rho;
     let dmin = sd.hypot(rho - rc);
     let dmax = sd.hypot(rho + rc);
-    if rs < dmin - tt {
-        return Intersection::none(Contact::Disjoint { gap: dmin - rs });
+    // How far the sphere misses the circle's nearest and farthest points (negative inside).
+    let (short, long) = (dmin - rs, rs - dmax);
+    if short > tt {
+        return Intersection::none(Contact::Disjoint { gap: short });
     }
-    if rs > dmax + tt {
-        return Intersection::none(Contact::Disjoint { gap: rs - dmax });
+    if long > tt {
+        return Intersection::none(Contact::Disjoint { gap: long });
     }
-    let near = (rs - dmin).abs() <= tt;
-    if near || (rs - dmax).abs() <= tt {
+    // Missing by at most `tt` (rounding): touching. Overlapping, however little: crossing.
+    let near = short >= 0.0;
+    if near || long >= 0.0 {
         let on_circle = if near { cc + e * rc } else { cc - e * rc };
         let to = on_circle - cs;
         let n = to.norm();
@@ -515,10 +569,20 @@ pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
         let t = mid(&on_circle, &on_sphere);
         return two(t, t, Contact::Tangent);
     }
-    // Coplanar circle-circle with the sphere's section by the circle's plane.
-    let r2sq = (rs - sd.abs()) * (rs + sd.abs());
-    let a = 0.5 * (rho + (rc - r2sq.max(0.0).sqrt()) * (rc + r2sq.max(0.0).sqrt()) / rho);
-    let h = leg(rc, a);
+    // The roots are at the angle `theta` from `e` where the distance to the sphere's centre,
+    // `sqrt(dmin^2 + 2 rho rc (1 - cos theta))`, is `rs`. With `x = rc (1 - cos)` and
+    // `y = rc (1 + cos)`, from `rs^2 - dmin^2 = -short (rs + dmin)` and
+    // `dmax^2 - rs^2 = -long (dmax + rs)`, both positive here: the root is `a = rc - x` along
+    // `e` and `h = sqrt(x (2 rc - x))` off it (or `y - rc` and `sqrt(y (2 rc - y))`, from the
+    // farthest point, when the roots are nearer it), so a tiny overlap at either end gives a
+    // tiny positive `h`, and `a^2 + h^2 = rc^2` to rounding.
+    let x = -short * (rs + dmin) / (2.0 * rho);
+    let y = -long * (dmax + rs) / (2.0 * rho);
+    let (a, h) = if x <= y {
+        (rc - x, (x * (2.0 * rc - x)).sqrt())
+    } else {
+        (y - rc, (y * (2.0 * rc - y)).sqrt())
+    };
     let side = nc.cross(&e);
     let m = cc + e * a;
     two(m + side * h, m - side * h, Contact::Crossing)
@@ -531,7 +595,10 @@ pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
 /// - **Branch:** with `e` the direction from `a`'s centre to `b`'s, branch 0 is the root on the
 ///   positive side of `a.normal x e` (left of the directed line of centres seen from the tip of
 ///   `a`'s normal), branch 1 the other.
-/// - `Crossing`: two points. `Tangent` (externally or internally): the double root in both slots.
+/// - `Crossing`: two points, whenever the circles overlap, however little (the exact roots,
+///   which merge continuously into the touching point as the overlap vanishes). `Tangent`
+///   (externally or internally, missing by at most `TANGENT_REL * scale`): the double root,
+///   midway between the circles' nearest points, in both slots.
 /// - `Disjoint { gap }`: apart (`d - ra - rb`), nested (`|ra - rb| - d`) or concentric with
 ///   different radii (`|ra - rb|`). `Coincident`: the same circle.
 ///
@@ -551,6 +618,13 @@ pub fn circle_sphere(c: &Circle3, s: &Sphere) -> Intersection<Point3<f64>, 2> {
 ///   circle and the other circle: a distance between actual points of the two circles, so an
 ///   upper bound of their true distance (which needs a degree-8 solve) that vanishes exactly
 ///   when they meet, and usually their locally nearest distance.
+/// - Tangency here is decided with `TANGENT_REL * scale` both ways, unlike the rest of the
+///   table: a circle crossing the other's plane by a hair is no overlap of the two circles.
+///   Two circles in space meet only by construction, and a circle built tangent to the other's
+///   plane at a point of the other that rounding takes a hair across the plane has no exact
+///   common point at all (its two crossings of `L` are about `sqrt(2 r hair)` either side of
+///   the point), while the point itself is within the tolerance of both: so it is kept, as
+///   `Tangent`.
 ///
 /// `ZeroRadius`: a radius or a normal is zero.
 ///
@@ -735,7 +809,10 @@ fn coplanar_circles(
 /// **Plane parallel to the axis** (sine of the angle between axis and plane at most
 /// [`tol::ANGLE`]): lines along the axis direction ([`CylinderSection::Line`]).
 /// - **Branch:** order along `normal x axis`: branch 0 has the smaller coordinate.
-/// - `Crossing`: two lines. `Tangent`: the touching line in both slots.
+/// - `Crossing`: two lines, whenever the plane cuts the cylinder, however little (the exact
+///   lines, which merge continuously as the cut vanishes). `Tangent`: the plane misses the
+///   cylinder by at most `TANGENT_REL * scale`; the touching line, midway between the
+///   cylinder's nearest line and its foot on the plane, in both slots.
 /// - `Parallel { gap }`: the plane misses the cylinder by `gap`.
 ///
 /// `ZeroRadius`: the radius, the axis direction or the normal is zero.
@@ -758,7 +835,9 @@ pub fn plane_cylinder(p: &Plane, cy: &Cylinder) -> Intersection<CylinderSection,
         if g > tt {
             return Intersection::none(Contact::Parallel { gap: g });
         }
-        if g.abs() <= tt {
+        // Missing by at most `tt` (rounding): touching. Cutting, however little: the two
+        // lines (`r - |delta|` in `leg` is exactly `-g`, positive).
+        if g >= 0.0 {
             let point = o - n * (0.5 * (delta.abs() + r)).copysign(delta);
             let l = CylinderSection::Line(Line3 { point, dir: a });
             return two(l, l, Contact::Tangent);
@@ -1205,5 +1284,443 @@ mod tests {
         let c = cross_accurate(&a, &b);
         assert!((c.z - b.y).abs() <= 1e-28 && (c.y + b.z).abs() <= 1e-28);
         assert_eq!(diff_of_products(3.0, 5.0, 2.0, 7.0), 1.0);
+    }
+
+    // -----------------------------------------------------------------------------------------
+    // Near tangency: a miss of at most the tolerance touches, any overlap crosses.
+
+    /// The scales of the near-tangency sweeps: near-degenerate small and large, and unit.
+    const SCALES: [f64; 3] = [1e-3, 1.0, 1e3];
+
+    /// Overlaps in units of `f64::EPSILON` times the kernel's scale of the inputs, shrinking
+    /// from ten times the tangency tolerance (`TANGENT_REL` is 32 of them) to a few.
+    const OVERLAPS: [f64; 8] = [320.0, 128.0, 64.0, 32.0, 16.0, 8.0, 6.0, 4.0];
+
+    /// Misses within the tangency tolerance, in the same units (rounding of the oblique inputs
+    /// moves them by a few).
+    const TOUCHING: [f64; 4] = [6.0, 12.0, 20.0, 26.0];
+
+    /// Misses beyond it, in the same units.
+    const MISSING: [f64; 4] = [40.0, 64.0, 320.0, 1e6];
+
+    /// A configuration built with a signed gap (negative: overlapping): the kernel's scale of
+    /// its inputs, the contact, each root slot sampled as points (a point, or points of a
+    /// circle or a line), the two loci, and the locus (a point, or a line) where they touch at
+    /// gap zero.
+    struct Near {
+        scale: f64,
+        contact: Contact,
+        slots: Vec<Vec<Point3<f64>>>,
+        /// Two distinct roots, or a circle of positive radius.
+        distinct: bool,
+        a: Box<dyn Locus3>,
+        b: Box<dyn Locus3>,
+        touch: Box<dyn Locus3>,
+    }
+
+    /// A point as a locus: the sphere of radius zero about it.
+    fn at(q: Point3<f64>) -> Box<dyn Locus3> {
+        Box::new(Sphere::new(q, 0.0))
+    }
+
+    /// The kernel's scale: the largest absolute coordinate, radius or offset.
+    fn scale_of(points: &[Point3<f64>], lengths: &[f64]) -> f64 {
+        let coords = points.iter().flat_map(|q| [q.x, q.y, q.z]);
+        coords
+            .chain(lengths.iter().copied())
+            .fold(0.0, |m, x| m.max(x.abs()))
+    }
+
+    fn near_points<A: Locus3 + 'static, B: Locus3 + 'static>(
+        scale: f64,
+        x: Intersection<Point3<f64>, 2>,
+        a: A,
+        b: B,
+        touch: Box<dyn Locus3>,
+    ) -> Near {
+        let r = x.roots.as_slice();
+        Near {
+            scale,
+            contact: x.contact,
+            slots: r.iter().map(|q| vec![*q]).collect(),
+            distinct: r.len() == 2 && r[0] != r[1],
+            a: Box::new(a),
+            b: Box::new(b),
+            touch,
+        }
+    }
+
+    fn near_circle<A: Locus3 + 'static, B: Locus3 + 'static>(
+        scale: f64,
+        x: Intersection<Circle3, 1>,
+        a: A,
+        b: B,
+        touch: Point3<f64>,
+    ) -> Near {
+        let c = x.branch(0);
+        Near {
+            scale,
+            contact: x.contact,
+            slots: c
+                .map(|c| vec![circle_points(&c).to_vec()])
+                .unwrap_or_default(),
+            distinct: c.is_some_and(|c| c.radius > 0.0),
+            a: Box::new(a),
+            b: Box::new(b),
+            touch: at(touch),
+        }
+    }
+
+    /// An orthonormal frame of oblique directions, exact in the reals: `(2, 3, 6) / 7`,
+    /// `(3, -6, 2) / 7`, `(6, 2, -3) / 7`.
+    fn frame() -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        (
+            v(2.0, 3.0, 6.0) / 7.0,
+            v(3.0, -6.0, 2.0) / 7.0,
+            v(6.0, 2.0, -3.0) / 7.0,
+        )
+    }
+
+    /// A centre off the origin, at scale `s`.
+    fn origin(s: f64) -> Point3<f64> {
+        p(0.3, -0.7, 0.2) * s
+    }
+
+    /// For each scale `s` of [`SCALES`], with `S` the kernel's scale of the inputs built at
+    /// `s` and `ulp = f64::EPSILON * S`: every overlap of [`OVERLAPS`] crosses, in two distinct
+    /// roots (or a circle of positive radius) on both loci to `1e-13 S`, within
+    /// `4 sqrt(overlap S)` of the touching point and no nearer than a twentieth of that (not
+    /// snapped), converging on it as the overlap shrinks; every miss of [`TOUCHING`] touches,
+    /// in one root in every slot within `TANGENT_REL * S / 2` (and rounding) of both loci and
+    /// `TANGENT_REL * S` of the touching point; every miss of [`MISSING`] gives no root and its
+    /// gap (`Parallel` rather than `Disjoint` when `parallel`).
+    fn sweep(name: &str, parallel: bool, build: impl Fn(f64, f64) -> Near) {
+        for s in SCALES {
+            let big = build(s, 0.0).scale;
+            let ulp = f64::EPSILON * big;
+            let tt = TANGENT_REL * big;
+            let mut farthest = Vec::new();
+            for k in OVERLAPS {
+                let delta = k * ulp;
+                let n = build(s, -delta);
+                let what = format!("{name}: scale {s}, overlap of {k} ulps");
+                assert_eq!(n.contact, Contact::Crossing, "{what}");
+                assert!(n.distinct && !n.slots.is_empty(), "{what}: {:?}", n.slots);
+                let mut far: f64 = 0.0;
+                for r in n.slots.iter().flatten() {
+                    let (da, db) = (n.a.distance(r), n.b.distance(r));
+                    assert!(
+                        da <= EPS * big && db <= EPS * big,
+                        "{what}: off by {da:e}, {db:e}"
+                    );
+                    far = far.max(n.touch.distance(r));
+                }
+                let chord = (delta * big).sqrt();
+                assert!(
+                    far <= 4.0 * chord && far >= 0.05 * chord,
+                    "{what}: {far:e} from the touching point, sqrt(overlap scale) {chord:e}"
+                );
+                farthest.push(far);
+            }
+            // Converging: the roots of the smallest overlap are far nearer than the largest's.
+            let (first, last) = (farthest[0], farthest[farthest.len() - 1]);
+            assert!(last <= 0.25 * first, "{name}: scale {s}: {farthest:?}");
+            for k in TOUCHING {
+                let n = build(s, k * ulp);
+                let what = format!("{name}: scale {s}, miss of {k} ulps");
+                assert_eq!(n.contact, Contact::Tangent, "{what}");
+                assert!(!n.distinct && !n.slots.is_empty(), "{what}");
+                for slot in &n.slots {
+                    assert_eq!(slot, &n.slots[0], "{what}");
+                }
+                for r in n.slots.iter().flatten() {
+                    let (da, db) = (n.a.distance(r), n.b.distance(r));
+                    let bound = 0.5 * tt + 4.0 * ulp;
+                    assert!(da <= bound && db <= bound, "{what}: off by {da:e}, {db:e}");
+                    assert!(n.touch.distance(r) <= tt, "{what}");
+                }
+            }
+            for k in MISSING {
+                let gap = k * ulp;
+                let n = build(s, gap);
+                let what = format!("{name}: scale {s}, miss of {k} ulps");
+                let g = match (n.contact, parallel) {
+                    (Contact::Disjoint { gap }, false) | (Contact::Parallel { gap }, true) => gap,
+                    (other, _) => panic!("{what}: {other:?}"),
+                };
+                assert!((g - gap).abs() <= 8.0 * ulp, "{what}: gap {g:e}");
+                assert!(n.slots.is_empty(), "{what}");
+            }
+        }
+    }
+
+    #[test]
+    fn sphere_sphere_overlap_crosses_miss_touches() {
+        let (u, _, _) = frame();
+        let near = |a: Sphere, b: Sphere, touch| {
+            let big = scale_of(&[a.center, b.center], &[a.radius, b.radius]);
+            near_circle(big, sphere_sphere(&a, &b), a, b, touch)
+        };
+        // Apart (gap d - ra - rb), and nested either way (gap |ra - rb| - d).
+        sweep("sphere_sphere apart", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 1.5 * s, 0.5 * s);
+            let b = Sphere::new(c + u * (ra + rb + g), rb);
+            near(Sphere::new(c, ra), b, c + u * ra)
+        });
+        sweep("sphere_sphere second inside", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 2.0 * s, s);
+            let b = Sphere::new(c + u * (ra - rb - g), rb);
+            near(Sphere::new(c, ra), b, c + u * ra)
+        });
+        sweep("sphere_sphere first inside", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 0.5 * s, 2.0 * s);
+            let b = Sphere::new(c - u * (rb - ra - g), rb);
+            near(Sphere::new(c, ra), b, c + u * ra)
+        });
+    }
+
+    #[test]
+    fn sphere_plane_overlap_crosses_miss_touches() {
+        let (u, _, _) = frame();
+        sweep("sphere_plane", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let (sp, pl) = (Sphere::new(c, r), Plane::new(u, u.dot(&c.coords) + r + g));
+            let big = scale_of(&[c], &[r, pl.offset]);
+            near_circle(big, sphere_plane(&sp, &pl), sp, pl, c + u * r)
+        });
+    }
+
+    #[test]
+    fn line_sphere_overlap_crosses_miss_touches() {
+        let (u, w, _) = frame();
+        sweep("line_sphere", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let sp = Sphere::new(c, r);
+            let l = Line3::new(c + u * (r + g) + w * (0.4 * s), w);
+            let big = scale_of(&[l.point, c], &[r]);
+            near_points(big, line_sphere(&l, &sp), l, sp, at(c + u * r))
+        });
+    }
+
+    #[test]
+    fn line_cylinder_overlap_crosses_miss_touches() {
+        let (u, w, z) = frame();
+        sweep("line_cylinder", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let cy = Cylinder::new(Line3::new(c, z), r);
+            // Perpendicular to the radial direction `u`, at 53 degrees to the axis.
+            let l = Line3::new(c + u * (r + g) + z * (0.3 * s), z * 0.6 + w * 0.8);
+            let big = scale_of(&[l.point, c], &[r]);
+            let touch = at(c + u * r + z * (0.3 * s));
+            near_points(big, line_cylinder(&l, &cy), l, cy, touch)
+        });
+    }
+
+    #[test]
+    fn circle_plane_overlap_crosses_miss_touches() {
+        let (u, _, z) = frame();
+        // The plane touches the circle at `c + u r`, tilted: `su = 0.6`, so the circle misses
+        // the planes' common line by `gap / 0.6`, more than the tolerance for misses near it.
+        sweep("circle_plane", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let ci = Circle3::new(c, z, r);
+            let t = c + u * r;
+            let n = u * 0.6 + z * 0.8;
+            let pl = Plane::new(n, n.dot(&t.coords) + g);
+            let big = scale_of(&[c], &[r, pl.offset]);
+            near_points(big, circle_plane(&ci, &pl), ci, pl, at(t))
+        });
+    }
+
+    #[test]
+    fn circle_sphere_overlap_crosses_miss_touches() {
+        let (u, _, z) = frame();
+        // The sphere's centre 1.2 s out along `u` and 0.5 s above the circle's plane: at the
+        // circle's nearest point `c + u r` the sphere touches from outside, at the farthest
+        // `c - u r` from inside.
+        let near = |ci: Circle3, sp: Sphere, touch| {
+            let big = scale_of(&[ci.center, sp.center], &[ci.radius, sp.radius]);
+            near_points(big, circle_sphere(&ci, &sp), ci, sp, at(touch))
+        };
+        let centre = |s: f64| origin(s) + u * (1.2 * s) + z * (0.5 * s);
+        sweep("circle_sphere nearest", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let sp = Sphere::new(centre(s), (0.5 * s).hypot(0.2 * s) - g);
+            near(Circle3::new(c, z, r), sp, c + u * r)
+        });
+        sweep("circle_sphere farthest", false, |s, g| {
+            let (c, r) = (origin(s), s);
+            let sp = Sphere::new(centre(s), (0.5 * s).hypot(2.2 * s) + g);
+            near(Circle3::new(c, z, r), sp, c - u * r)
+        });
+    }
+
+    #[test]
+    fn circle_circle_coplanar_overlap_crosses_miss_touches() {
+        let (u, _, z) = frame();
+        let near = |a: Circle3, b: Circle3| {
+            let big = scale_of(&[a.center, b.center], &[a.radius, b.radius]);
+            let touch = at(a.center + u * a.radius);
+            near_points(big, circle_circle(&a, &b), a, b, touch)
+        };
+        sweep("circle_circle apart", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 1.5 * s, 0.5 * s);
+            near(
+                Circle3::new(c, z, ra),
+                Circle3::new(c + u * (ra + rb + g), -z, rb),
+            )
+        });
+        sweep("circle_circle second inside", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 2.0 * s, s);
+            near(
+                Circle3::new(c, z, ra),
+                Circle3::new(c + u * (ra - rb - g), z, rb),
+            )
+        });
+        sweep("circle_circle first inside", false, |s, g| {
+            let (c, ra, rb) = (origin(s), 0.5 * s, 2.0 * s);
+            near(
+                Circle3::new(c, z, ra),
+                Circle3::new(c - u * (rb - ra - g), z, rb),
+            )
+        });
+    }
+
+    #[test]
+    fn plane_cylinder_overlap_crosses_miss_touches() {
+        let (u, _, z) = frame();
+        sweep("plane_cylinder", true, |s, g| {
+            let (c, r) = (origin(s), s);
+            let cy = Cylinder::new(Line3::new(c, z), r);
+            let pl = Plane::new(u, u.dot(&c.coords) + r + g);
+            let x = plane_cylinder(&pl, &cy);
+            let lines: Vec<Line3> = x
+                .roots
+                .as_slice()
+                .iter()
+                .filter_map(|sec| match sec {
+                    CylinderSection::Line(l) => Some(*l),
+                    CylinderSection::Ellipse(_) => None,
+                })
+                .collect();
+            assert_eq!(lines.len(), x.roots.len());
+            Near {
+                scale: scale_of(&[c], &[pl.offset, r]),
+                contact: x.contact,
+                slots: lines
+                    .iter()
+                    .map(|l| vec![l.point, l.at(s), l.at(-3.0 * s)])
+                    .collect(),
+                distinct: lines.len() == 2 && lines[0].point != lines[1].point,
+                a: Box::new(pl),
+                b: Box::new(cy),
+                touch: Box::new(Line3::new(c + u * r, z)),
+            }
+        });
+    }
+
+    /// Overlaps of a unit in the last place, built exactly (axis-aligned, exact coordinates):
+    /// every function crosses, with a half chord (or a circle's radius) within `1e-12` of the
+    /// exact one, where one from a rounded foot (`leg(r, h)` with `h` rounded) is zero or off
+    /// by a factor.
+    #[test]
+    fn one_ulp_overlaps_cross_with_the_exact_half_chord() {
+        let close = |got: f64, want: f64, what: &str| {
+            assert!(
+                (got - want).abs() <= 1e-12 * want,
+                "{what}: {got:e} for {want:e}"
+            );
+        };
+        let half = |x: &Intersection<Point3<f64>, 2>, what: &str| {
+            assert_eq!(x.contact, Contact::Crossing, "{what}");
+            let r = x.roots.as_slice();
+            0.5 * (r[1] - r[0]).norm()
+        };
+        let o = p(0.0, 0.0, 0.0);
+        // Radii 1.5 and 0.5, centres 2 - 2^-51 apart: the radius by Heron's factors.
+        let e = 2f64.powi(-51);
+        let d = 2.0 - e;
+        let heron = (e * (d - 1.0) * (d + 1.0) * (d + 2.0)).sqrt() / (2.0 * d);
+        let (a, b) = (Sphere::new(o, 1.5), Sphere::new(p(d, 0.0, 0.0), 0.5));
+        let x = sphere_sphere(&a, &b);
+        assert_eq!(x.contact, Contact::Crossing);
+        let c = x.branch(0).unwrap_or_default();
+        close(c.radius, heron, "sphere_sphere");
+        on_both(&circle_points(&c), &a, &b, EPS);
+        let z = Vector3::z();
+        let (a, b) = (
+            Circle3::new(o, z, 1.5),
+            Circle3::new(p(d, 0.0, 0.0), z, 0.5),
+        );
+        let x = circle_circle(&a, &b);
+        close(half(&x, "circle_circle"), heron, "circle_circle");
+        on_both(x.roots.as_slice(), &a, &b, EPS);
+        // A unit sphere, cylinder or circle met 1 - 2^-53 from its centre or axis.
+        let e = 2f64.powi(-53);
+        let m = 1.0 - e;
+        let chord = (e * (1.0 + m)).sqrt();
+        let sp = Sphere::new(o, 1.0);
+        let pl = Plane::new(z, m);
+        let x = sphere_plane(&sp, &pl);
+        assert_eq!(x.contact, Contact::Crossing);
+        let c = x.branch(0).unwrap_or_default();
+        close(c.radius, chord, "sphere_plane");
+        on_both(&circle_points(&c), &sp, &pl, EPS);
+        let l = Line3::new(p(m, -2.0, 0.0), Vector3::y());
+        let x = line_sphere(&l, &sp);
+        close(half(&x, "line_sphere"), chord, "line_sphere");
+        on_both(x.roots.as_slice(), &l, &sp, EPS);
+        let cy = Cylinder::new(Line3::new(o, z), 1.0);
+        let l = Line3::new(p(m, -2.0, 0.5), Vector3::y());
+        let x = line_cylinder(&l, &cy);
+        close(half(&x, "line_cylinder"), chord, "line_cylinder");
+        on_both(x.roots.as_slice(), &l, &cy, EPS);
+        let ci = Circle3::new(o, z, 1.0);
+        let pl = Plane::new(Vector3::x(), m);
+        let x = circle_plane(&ci, &pl);
+        close(half(&x, "circle_plane"), chord, "circle_plane");
+        on_both(x.roots.as_slice(), &ci, &pl, EPS);
+        let x = plane_cylinder(&pl, &cy);
+        assert_eq!(x.contact, Contact::Crossing);
+        let points: Vec<Point3<f64>> = x
+            .roots
+            .as_slice()
+            .iter()
+            .map(|sec| match sec {
+                CylinderSection::Line(l) => l.point,
+                CylinderSection::Ellipse(_) => panic!("a line expected"),
+            })
+            .collect();
+        close(
+            0.5 * (points[1] - points[0]).norm(),
+            chord,
+            "plane_cylinder",
+        );
+        on_both(&points, &pl, &cy, EPS);
+        // The unit circle about z and a sphere centred at (2, 0, 0.75), 1.25 from the circle's
+        // nearest point, of radius 1.25 + 2^-52; or centred at (3, 0, 3), 5 from its farthest
+        // point, of radius 5 - 2^-50. The root is `x = (rs^2 - dmin^2) / 2 rho` (or
+        // `(dmax^2 - rs^2) / 2 rho`) from that point along the line of centres, and
+        // `sqrt(x (2 - x))` off it.
+        for (cs, rs, end, what) in [
+            (
+                p(2.0, 0.0, 0.75),
+                1.25 + 2f64.powi(-52),
+                1.25,
+                "circle_sphere nearest",
+            ),
+            (
+                p(3.0, 0.0, 3.0),
+                5.0 - 2f64.powi(-50),
+                5.0,
+                "circle_sphere farthest",
+            ),
+        ] {
+            let sp = Sphere::new(cs, rs);
+            let x = circle_sphere(&ci, &sp);
+            let along = (rs - end).abs() * (rs + end) / (2.0 * cs.x);
+            close(half(&x, what), (along * (2.0 - along)).sqrt(), what);
+            on_both(x.roots.as_slice(), &ci, &sp, EPS);
+        }
     }
 }

@@ -4,7 +4,8 @@
 //!
 //! Bounds (see the `intersect3d` module docs): outside tangency a root is within `1e-13` of
 //! `max(scale, |root|)` of each locus; a tangent root within `TANGENT_REL * scale / 2` (plus the
-//! same rounding); a non-coplanar circle-circle root within `TANGENT_REL * scale`.
+//! same rounding); a non-coplanar circle-circle root within `TANGENT_REL * scale`. Near
+//! tangency, a miss of at most `TANGENT_REL * scale` touches and any overlap crosses.
 
 use gcs_runtime::frame::{perpendicular, rotation_about_axis, Frame3};
 use gcs_runtime::intersect3d::*;
@@ -182,6 +183,39 @@ fn same_branches<const N: usize>(
     Ok(())
 }
 
+/// The contact of loci built with a signed gap `gap` (negative: overlapping), which rounding
+/// of the inputs moves by at most `noise`: a miss of at most the tolerance `t` touches, any
+/// overlap crosses, a larger miss reports its gap. `noise` is kept well below `t`, so that an
+/// overlap snapped to a tangency fails.
+fn classified(contact: Contact, gap: f64, t: f64, noise: f64) -> Result<(), TestCaseError> {
+    match contact {
+        Contact::Tangent => prop_assert!(
+            gap >= -noise && gap <= t + noise,
+            "tangent at gap {:e} (tolerance {:e})",
+            gap,
+            t
+        ),
+        Contact::Crossing => prop_assert!(gap <= noise, "crossing at gap {:e}", gap),
+        Contact::Disjoint { gap: g } | Contact::Parallel { gap: g } => {
+            prop_assert!(
+                gap >= t - noise,
+                "apart at gap {:e} (tolerance {:e})",
+                gap,
+                t
+            );
+            prop_assert!((g - gap).abs() <= noise, "gap {:e} for {:e}", g, gap);
+        }
+        other => prop_assert!(false, "{:?} at gap {:e}", other, gap),
+    }
+    Ok(())
+}
+
+/// Rounding of the inputs built at kernel scale `m`: 8 units in the last place, a quarter of
+/// the tangency tolerance.
+fn noise(m: f64) -> f64 {
+    8.0 * f64::EPSILON * m
+}
+
 /// Roots well apart: away from tangency, where branches are meaningful.
 fn separated<const N: usize>(x: &Intersection<Point3<f64>, N>, s: f64) -> bool {
     let r = x.roots.as_slice();
@@ -211,12 +245,10 @@ proptest! {
         let b = Sphere::new(a.center + dir * dist, rb);
         prop_assume!(dist > 1e-3 * s);
         let x = sphere_sphere(&a, &b);
-        check_circle(&x, &a, &b, mag(&[a.center, b.center], &[a.radius, b.radius]))?;
-        // Offsets well beyond the tangency tolerance are classified by their sign.
-        if eps.abs() > 100.0 * TANGENT_REL * 2.0 {
-            let apart = if inner { eps < 0.0 } else { eps > 0.0 };
-            prop_assert_eq!(matches!(x.contact, Contact::Disjoint { .. }), apart);
-        }
+        let m = mag(&[a.center, b.center], &[a.radius, b.radius]);
+        check_circle(&x, &a, &b, m)?;
+        let gap = if inner { -eps * s } else { eps * s };
+        classified(x.contact, gap, TANGENT_REL * m, noise(m))?;
     }
 
     #[test]
@@ -232,7 +264,12 @@ proptest! {
         let sp = Sphere::new(Point3::from(c * s), r * s);
         let o = if tangent { n.dot(&sp.center.coords) + sp.radius + eps * s } else { off * s };
         let pl = Plane::new(n, o);
-        check_circle(&sphere_plane(&sp, &pl), &sp, &pl, mag(&[sp.center], &[sp.radius, pl.offset]))?;
+        let m = mag(&[sp.center], &[sp.radius, pl.offset]);
+        let x = sphere_plane(&sp, &pl);
+        check_circle(&x, &sp, &pl, m)?;
+        if tangent {
+            classified(x.contact, eps * s, TANGENT_REL * m, noise(m))?;
+        }
     }
 
     #[test]
@@ -275,7 +312,11 @@ proptest! {
         let dist = if tangent { sp.radius + eps * s } else { m * s };
         let l = Line3::new(sp.center + side * dist + dir * (t0 * s), dir);
         let x = line_sphere(&l, &sp);
-        check_points(&x, &l, &sp, mag(&[l.point, sp.center], &[sp.radius]), 0.0)?;
+        let mg = mag(&[l.point, sp.center], &[sp.radius]);
+        check_points(&x, &l, &sp, mg, 0.0)?;
+        if tangent {
+            classified(x.contact, eps * s, TANGENT_REL * mg, noise(mg))?;
+        }
         if let Contact::Disjoint { gap } = x.contact {
             prop_assert!((gap - (l.distance(&sp.center) - sp.radius)).abs() <= REL * 4.0 * s);
         }
@@ -296,7 +337,12 @@ proptest! {
         };
         let l = Line3::new(cy.axis.point + radial * dist + a * (t0 * s), ldir);
         let x = line_cylinder(&l, &cy);
-        check_points(&x, &l, &cy, mag(&[l.point, cy.axis.point], &[cy.radius]), 0.0)?;
+        let mg = mag(&[l.point, cy.axis.point], &[cy.radius]);
+        check_points(&x, &l, &cy, mg, 0.0)?;
+        // Near tangency, unless the line is along the axis (then `Parallel`, checked above).
+        if mode == 1 && l.dir.cross(&a).norm() > 1e-3 {
+            classified(x.contact, eps * s, TANGENT_REL * mg, noise(mg))?;
+        }
         if x.contact == Contact::Crossing {
             let r = x.roots.as_slice();
             prop_assert!(l.param(&r[0]) <= l.param(&r[1]));
@@ -315,7 +361,15 @@ proptest! {
             Plane::new(np, np.dot(&ci.center.coords) + off * s)
         };
         let x = circle_plane(&ci, &pl);
-        check_points(&x, &ci, &pl, mag(&[ci.center], &[ci.radius, pl.offset]), 0.0)?;
+        let m = mag(&[ci.center], &[ci.radius, pl.offset]);
+        check_points(&x, &ci, &pl, m, 0.0)?;
+        if tangent {
+            // The plane is `eps s` beyond the circle's point along `g`, measured along `g`:
+            // its distance from the plane is that times the cosine between `g` and `np`.
+            let su = nc.cross(&pl.normal).norm();
+            prop_assume!(su > 1e-3);
+            classified(x.contact, eps * s * su, TANGENT_REL * m, noise(m))?;
+        }
     }
 
     #[test]
@@ -332,7 +386,13 @@ proptest! {
             Sphere::new(cs, rs * s)
         };
         let x = circle_sphere(&ci, &sp);
-        check_points(&x, &ci, &sp, mag(&[ci.center, sp.center], &[ci.radius, sp.radius]), 0.0)?;
+        let m = mag(&[ci.center, sp.center], &[ci.radius, sp.radius]);
+        check_points(&x, &ci, &sp, m, 0.0)?;
+        if tangent {
+            // The sphere reaches `eps s` beyond the circle's nearest point: an overlap.
+            prop_assume!((cs - ci.center).cross(&nc).norm() > 1e-3 * s);
+            classified(x.contact, -eps * s, TANGENT_REL * m, noise(m))?;
+        }
     }
 
     #[test]
@@ -343,7 +403,13 @@ proptest! {
         let a = Circle3::new(Point3::from(c * s), n, ra);
         let b = Circle3::new(a.center + e * dist, if flip { -n } else { n }, rb);
         let x = circle_circle(&a, &b);
-        check_points(&x, &a, &b, mag(&[a.center, b.center], &[a.radius, b.radius]), 0.0)?;
+        let m = mag(&[a.center, b.center], &[a.radius, b.radius]);
+        check_points(&x, &a, &b, m, 0.0)?;
+        if mode != 0 && dist > 1e-3 * s {
+            // Apart by `eps s` (external), or nested by `-eps s` (internal).
+            let gap = if mode == 1 { eps * s } else { -eps * s };
+            classified(x.contact, gap, TANGENT_REL * m, noise(m))?;
+        }
     }
 
     #[test]
@@ -398,6 +464,9 @@ proptest! {
             _ => prop_assert!(roots.is_empty()),
         }
         let m = mag(&[cy.axis.point], &[pl.offset, cy.radius]);
+        if mode == 2 {
+            classified(x.contact, eps * s, TANGENT_REL * m, noise(m))?;
+        }
         let bound = if x.contact == Contact::Tangent { (0.5 * TANGENT_REL + REL) * m } else { 0.0 };
         for sec in roots {
             let pts: [Point3<f64>; 5] = match sec {
