@@ -13,7 +13,7 @@
 //!   `|error|` above the tolerance between them. Each root is then assembled with the
 //!   iteration started on it, and verified like any solution;
 //! - a plan whose iteration varies a length, or several defaults, or that has several
-//!   iterations, is started from a grid of its defaults ([`GRID`] values of each) and each
+//!   iterations, is started from a grid of its defaults ([`grid`] values of each) and each
 //!   converged assembly kept: such a list is not known to be complete, and says so.
 //!
 //! Assemblies are listed once: one reached from two combinations (a branch the assembly never
@@ -33,8 +33,20 @@ pub const MAX_COMBINATIONS: usize = 4096;
 /// `solve_all` uses too.
 pub use gcs_runtime::outer::ANGLE_SAMPLES;
 
-/// Starting values of each default when the search cannot be exhaustive.
+/// Starting values of each default when the search cannot be exhaustive, for one or two
+/// defaults varied ([`grid`]).
 pub const GRID: usize = 12;
+
+/// Starting values of each of `varied` defaults in the grid: [`GRID`] for one or two, fewer
+/// past that (at least 3), so that the grid stays about `GRID^2` starts (a Stewart platform's
+/// three turns: 5 each, 125 starts, not 1,728).
+pub fn grid(varied: usize) -> usize {
+    if varied <= 2 {
+        return GRID;
+    }
+    let each = ((GRID * GRID) as f64).powf(1.0 / varied as f64).floor() as usize;
+    each.max(3)
+}
 
 /// Every real assembly found, and whether the list is known to be complete.
 #[derive(Clone, Debug, Default)]
@@ -219,12 +231,13 @@ fn starts(
             .iter()
             .chain(plan.defaults.iter().map(|d| &d.sketch))
             .fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut grid = vec![defaults.to_vec()];
+    let each = grid(varied.len());
+    let mut cells = vec![defaults.to_vec()];
     for &d in varied {
         let var = &plan.defaults[d];
-        let values: Vec<f64> = (0..GRID)
+        let values: Vec<f64> = (0..each)
             .map(|i| {
-                let t = i as f64 / GRID as f64;
+                let t = i as f64 / each as f64;
                 if var.is_angle() {
                     -std::f64::consts::PI + 2.0 * std::f64::consts::PI * t
                 } else {
@@ -232,7 +245,7 @@ fn starts(
                 }
             })
             .collect();
-        grid = (grid.iter())
+        cells = (cells.iter())
             .flat_map(|g| {
                 values.iter().map(move |&v| {
                     let mut next = g.clone();
@@ -243,7 +256,7 @@ fn starts(
             .take(MAX_COMBINATIONS)
             .collect();
     }
-    (grid, false)
+    (cells, false)
 }
 
 /// Whether two solutions are one assembly: every point and vector within a relative 1e-9.

@@ -380,3 +380,135 @@ fn the_screw_jack_turns_its_screw_by_its_lift() {
         );
     }
 }
+
+#[test]
+fn the_door_swings_to_its_angle_on_either_side_of_the_wall_normal() {
+    let model = example("door");
+    let a = analyse(&model).expect("analysed");
+    assert!(a.unsolved.is_empty(), "{:?}", a.unsolved);
+    let k = param(&model, "open");
+    for branch in 0..2 {
+        let mut side = None;
+        for step in 5..=175 {
+            let open = (step as f64).to_radians();
+            let mut params = model.default_params();
+            params[k] = open;
+            let s =
+                solve(&model, &a, &params, &[branch]).unwrap_or_else(|e| panic!("{step} deg: {e}"));
+            assert!(
+                s.max_residual <= 1e-12,
+                "{step} deg: residual {:e}",
+                s.max_residual
+            );
+            let n = vector(&s, "door.normal.z");
+            // The face's normal at the angle from the wall's x axis, in the hinge's plane.
+            assert!(
+                (n[0] - open.cos()).abs() <= 1e-13 && n[2].abs() <= 1e-13,
+                "{step} deg: {n:?}"
+            );
+            // One side of the wall's normal on each branch, all along.
+            let this = n[1] > 0.0;
+            assert_eq!(
+                *side.get_or_insert(this),
+                this,
+                "branch {branch} flipped at {step} deg"
+            );
+            // The knob keeps its height and its distance from the hinge.
+            let knob = point(&s, "door.knob");
+            assert!(
+                (knob[2] - 1.0).abs() <= 1e-13
+                    && (knob[0].hypot(knob[1]) - 0.65f64.sqrt()).abs() <= 1e-13
+            );
+        }
+        assert_eq!(
+            side,
+            Some(branch == 0),
+            "branch 0 turns counter-clockwise about z"
+        );
+    }
+}
+
+/// The rotation by `angle` about unit `axis` applied to `p` (Rodrigues), for target poses.
+fn rotate(axis: V, angle: f64, p: V) -> V {
+    let n = norm(axis);
+    let k = [axis[0] / n, axis[1] / n, axis[2] / n];
+    let (s, c) = angle.sin_cos();
+    let kxp = [
+        k[1] * p[2] - k[2] * p[1],
+        k[2] * p[0] - k[0] * p[2],
+        k[0] * p[1] - k[1] * p[0],
+    ];
+    let kp = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
+    [0, 1, 2].map(|i| p[i] * c + kxp[i] * s + k[i] * kp * (1.0 - c))
+}
+
+#[test]
+fn the_stewart_platform_iterates_to_the_pose_its_legs_measure() {
+    let model = example("stewart");
+    let a = analyse(&model).expect("analysed");
+    assert!(a.unsolved.is_empty(), "{:?}", a.unsolved);
+    assert_eq!(
+        a.plan.iterations.len(),
+        1,
+        "no closed form: one outer iteration"
+    );
+    let base = [
+        [2.0, 0.0, 0.0],
+        [1.0, 1.732, 0.0],
+        [-1.0, 1.732, 0.0],
+        [-2.0, 0.0, 0.0],
+        [-1.0, -1.732, 0.0],
+        [1.0, -1.732, 0.0],
+    ];
+    let local = [
+        [1.0, 0.2, 0.0],
+        [0.3, 1.0, 0.0],
+        [-0.3, 1.0, 0.0],
+        [-1.0, 0.2, 0.0],
+        [-0.7, -0.8, 0.0],
+        [0.7, -0.8, 0.0],
+    ];
+    let legs: Vec<usize> = (1..=6).map(|i| param(&model, &format!("l{i}"))).collect();
+    let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
+    // Poses near the sketch's (at (0, 0, 3), unturned): their legs' lengths, then the solve.
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    for trial in 0..20 {
+        let axis = [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ];
+        let angle = rng.range(-12.0, 12.0).to_radians();
+        let t = [
+            rng.range(-0.3, 0.3),
+            rng.range(-0.3, 0.3),
+            3.0 + rng.range(-0.3, 0.3),
+        ];
+        let at: Vec<V> = local
+            .iter()
+            .map(|&p| {
+                let q = rotate(axis, angle, p);
+                [q[0] + t[0], q[1] + t[1], q[2] + t[2]]
+            })
+            .collect();
+        let mut params = model.default_params();
+        for i in 0..6 {
+            params[legs[i]] = norm(sub(at[i], base[i]));
+        }
+        let s =
+            solve(&model, &a, &params, &branches).unwrap_or_else(|e| panic!("trial {trial}: {e}"));
+        assert!(
+            s.max_residual <= 1e-12 * 4.0,
+            "trial {trial}: residual {:e}",
+            s.max_residual
+        );
+        for (i, want) in at.iter().enumerate() {
+            let got = point(&s, &format!("platform.p{}", i + 1));
+            assert!(
+                norm(sub(got, *want)) <= 1e-11,
+                "trial {trial}: p{} at {got:?}, the pose has it at {want:?}",
+                i + 1
+            );
+        }
+    }
+}

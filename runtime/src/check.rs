@@ -266,6 +266,13 @@ pub mod space {
         ((p - base).dot(&normal) - d).abs()
     }
 
+    /// The unsigned angle between unit `u` and unit `v` is `angle`: how far it is, in
+    /// radians.
+    #[inline]
+    pub fn angle_between(u: V3, v: V3, angle: f64) -> f64 {
+        (u.cross(&v).norm().atan2(u.dot(&v)) - angle).abs()
+    }
+
     /// Unit `v` along `sense * u` (`sense` +1 or -1): the angle between them, in radians.
     #[inline]
     pub fn parallel(u: V3, v: V3, sense: f64) -> f64 {

@@ -822,3 +822,111 @@ mod rotation_between2_tests {
         assert!((f.x_axis() - Vector2::y()).norm() < 1e-15);
     }
 }
+
+/// The directions `v` may turn to about unit `axis` (its cone about the axis) that make the
+/// unsigned angle `angle` with unit `u`: the turns `phi` about `axis` solving
+/// `u . v(phi) = cos(angle)`.
+///
+/// - **Branch:** with `phi0` the turn that brings `v` nearest `u`, branch 0 is `phi0 + delta`
+///   (counter-clockwise about `axis` from there), branch 1 `phi0 - delta`, `delta` in
+///   `[0, pi]`: a fixed branch moves continuously until the two meet (a tangency).
+/// - `Crossing`: two directions. `Tangent` (the angle is the cone's nearest or farthest from
+///   `u` within [`tol::ANGLE`]): the double root in both slots.
+/// - `Disjoint { gap }`: no turn reaches the angle; `gap` is how far (radians) the nearest
+///   reachable angle is from it.
+/// - `ZeroRadius`: `v` or `u` is along the axis (every turn keeps the angle: no turn is
+///   determined), or a vector is zero.
+pub fn turns_to_angle(
+    u: &Vector3<f64>,
+    v: &Vector3<f64>,
+    axis: &Vector3<f64>,
+    angle: f64,
+) -> crate::Intersection<Vector3<f64>, 2> {
+    use crate::{Contact, Intersection, Roots};
+    if !(u
+        .iter()
+        .chain(v.iter())
+        .chain(axis.iter())
+        .all(|x| x.is_finite())
+        && angle.is_finite())
+    {
+        return Intersection::none(Contact::Disjoint { gap: f64::NAN });
+    }
+    let along = axis * axis.dot(v);
+    let across = v - along;
+    let side = axis.cross(&across);
+    let (a, b) = (u.dot(&across), u.dot(&side));
+    let r = a.hypot(b);
+    if across.norm() <= tol::ANGLE || r <= tol::ANGLE {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let c = angle.cos() - u.dot(&along);
+    let at = |phi: f64| -> Vector3<f64> {
+        let (s, co) = phi.sin_cos();
+        along + across * co + side * s
+    };
+    let phi0 = b.atan2(a);
+    // The reachable angles run from the nearest (cosine base + r) to the farthest (base - r).
+    let base = u.dot(&along);
+    let (nearest, farthest) = (
+        (base + r).clamp(-1.0, 1.0).acos(),
+        (base - r).clamp(-1.0, 1.0).acos(),
+    );
+    let target = angle.clamp(0.0, std::f64::consts::PI);
+    if target < nearest - tol::ANGLE || target > farthest + tol::ANGLE {
+        let gap = (nearest - target).max(target - farthest);
+        return Intersection::none(Contact::Disjoint { gap });
+    }
+    let ratio = c / r;
+    if ratio >= 1.0
+        || ratio <= -1.0
+        || (target - nearest).abs() <= tol::ANGLE
+        || (farthest - target).abs() <= tol::ANGLE
+    {
+        let phi = if ratio >= 0.0 {
+            phi0
+        } else {
+            phi0 + std::f64::consts::PI
+        };
+        let x = at(phi);
+        return Intersection {
+            roots: Roots::from_slice(&[x, x]),
+            contact: Contact::Tangent,
+        };
+    }
+    let delta = ratio.acos();
+    Intersection {
+        roots: Roots::from_slice(&[at(phi0 + delta), at(phi0 - delta)]),
+        contact: Contact::Crossing,
+    }
+}
+
+#[cfg(test)]
+mod cone_tests {
+    use super::*;
+    use crate::Contact;
+
+    #[test]
+    fn a_turn_about_an_axis_reaches_the_angle_on_both_sides() {
+        // v = x turns about z; u in the x-z plane at 60 degrees from z: the reachable angles
+        // with u run from 30 to 150 degrees.
+        let u = Vector3::new(3f64.sqrt() / 2.0, 0.0, 0.5);
+        let (v, z) = (Vector3::x(), Vector3::z());
+        let i = turns_to_angle(&u, &v, &z, std::f64::consts::FRAC_PI_2);
+        assert_eq!(i.contact, Contact::Crossing);
+        for k in 0..2 {
+            let w = i.roots.get(k).expect("root");
+            assert!(u.dot(&w).abs() < 1e-15, "{w:?}");
+            assert!(w.z.abs() < 1e-15 && (w.norm() - 1.0).abs() < 1e-15);
+        }
+        // Branch 0 is counter-clockwise about z from the nearest turn (phi0 = 0): +y side.
+        assert!(i.roots.get(0).expect("root").y > 0.0);
+        let gap = turns_to_angle(&u, &v, &z, 0.2);
+        assert!(
+            matches!(gap.contact, Contact::Disjoint { gap } if (gap - (std::f64::consts::FRAC_PI_6 - 0.2)).abs() < 1e-12)
+        );
+        let touch = turns_to_angle(&u, &v, &z, std::f64::consts::FRAC_PI_6);
+        assert_eq!(touch.contact, Contact::Tangent);
+        assert!(turns_to_angle(&u, &z, &z, 1.0).contact == Contact::ZeroRadius);
+    }
+}

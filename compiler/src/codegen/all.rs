@@ -9,7 +9,7 @@
 
 use super::context::Context;
 use super::writer::{float, Writer};
-use crate::all::{GRID, MAX_COMBINATIONS};
+use crate::all::{grid, MAX_COMBINATIONS};
 
 /// The most assemblies a generated list holds: a scan's roots, or one per branch combination.
 const CAPACITY: usize = gcs_runtime::outer::MAX_ROOTS;
@@ -63,7 +63,8 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
         w.line("/// finds. The other defaults (free motions) keep the values given, which every assembly shares.");
     } else if !varied.is_empty() {
         w.line(&format!(
-            "/// Where the plan iterates, it is solved from a grid of {GRID} values of each default it"
+            "/// Where the plan iterates, it is solved from a grid of {} values of each default it",
+            grid(varied.len())
         ));
         w.line("/// varies (a turn for an angle, the given value give or take the model's size for a length):");
         w.line("/// a search that is not known to find every assembly, as `Assemblies::is_complete` says.");
@@ -143,8 +144,9 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
     }
     // The interpreter's grid, in its order: the first default varied slowest, at most
     // `MAX_COMBINATIONS` cells.
+    let each = grid(varied.len());
     let cells = (varied.iter())
-        .try_fold(1usize, |n, _| n.checked_mul(GRID))
+        .try_fold(1usize, |n, _| n.checked_mul(each))
         .map_or(MAX_COMBINATIONS, |n| n.min(MAX_COMBINATIONS));
     let size = 1.0
         + (cx.model.default_params().iter())
@@ -154,13 +156,13 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
     w.line("let mut start = *defaults;");
     for (k, &d) in varied.iter().enumerate() {
         let field = &cx.defaults[d];
-        let stride = GRID.pow((varied.len() - 1 - k) as u32);
+        let stride = each.pow((varied.len() - 1 - k) as u32);
         let digit = if stride == 1 {
-            format!("cell % {GRID}")
+            format!("cell % {each}")
         } else {
-            format!("cell / {stride} % {GRID}")
+            format!("cell / {stride} % {each}")
         };
-        let t = format!("({digit}) as f64 / {}", float(GRID as f64));
+        let t = format!("({digit}) as f64 / {}", float(each as f64));
         if plan.defaults[d].is_angle() {
             w.line(&format!(
                 "start.{field} = -std::f64::consts::PI + 2.0 * std::f64::consts::PI * ({t});"

@@ -110,6 +110,7 @@ impl Solve<'_> {
             Residual::PointPlane { .. }
             | Residual::Parallel { .. }
             | Residual::Twist { .. }
+            | Residual::AngleBetween { .. }
             | Residual::Helix { .. } => {
                 unreachable!("bug in gcs: a spatial check reached the planar code generator (`codegen::covers` refuses 3d models)")
             }

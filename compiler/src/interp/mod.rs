@@ -1103,6 +1103,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)
+            | Op::AngleTurn { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }
             | Op::TurnedAbout { .. }
@@ -1253,6 +1254,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             Residual::PointPlane { .. }
             | Residual::Parallel { .. }
             | Residual::Twist { .. }
+            | Residual::AngleBetween { .. }
             | Residual::Helix { .. } => {
                 panic!("bug in gcs: a spatial check reached the planar interpreter")
             }

@@ -127,6 +127,30 @@ impl Machine<'_, '_, D3> {
                 let off = gcs_runtime::num::wrap_angle(self.s(*turn) - tau * now / pitch);
                 Val::S(self.finite(i, now + pitch / tau * off)?)
             }
+            Op::AngleTurn {
+                u,
+                v,
+                axis,
+                angle,
+                branch,
+                constraint,
+            } => {
+                let (dir, a) = (self.v3(*v), self.v3(*axis));
+                let i3 = frame::turns_to_angle(&self.v3(*u), &dir, &a, self.s(*angle));
+                if let Some(e) = SolveError::from_contact("", "", i3.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                let index =
+                    self.choose(*branch, |_| i3.roots.nearest_to(dir, |x, y| (x - y).norm()));
+                Val::V3(i3.roots.get(index).ok_or_else(|| {
+                    err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoSuchBranch,
+                        i3.roots.len() as f64,
+                    )
+                })?)
+            }
             Op::WorldAxis(i) => {
                 let mut v = V3::zeros();
                 v[usize::from(*i).min(2)] = 1.0;
@@ -445,6 +469,9 @@ impl Machine<'_, '_, D3> {
                 self.s_or_zero(d),
             ),
             Residual::Parallel { u, v, sense } => c::parallel(self.v3(u), self.v3(v), sense),
+            Residual::AngleBetween { u, v, angle } => {
+                c::angle_between(self.v3(u), self.v3(v), self.s(angle))
+            }
             Residual::Twist { axis, u, v, angle } => {
                 c::twist(self.v3(axis), self.v3(u), self.v3(v), self.s(angle))
             }

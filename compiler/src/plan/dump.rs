@@ -209,6 +209,22 @@ impl Plan {
                     format!("helix_turn {} pitch {}", r(advance), r(pitch))
                 }
                 Op::WorldAxis(i) => format!("world_axis {i}"),
+                Op::AngleTurn {
+                    u,
+                    v,
+                    axis,
+                    angle,
+                    branch,
+                    constraint,
+                } => format!(
+                    "angle_turn {} about {} to {} from {} branch {} for {}",
+                    r(v),
+                    r(axis),
+                    r(angle),
+                    r(u),
+                    self.branches[branch.0 as usize].name,
+                    cname(constraint)
+                ),
                 Op::Coordinate { point, axis } => format!("coordinate {axis} of {}", r(point)),
                 Op::PointAt { x, y, z } => format!("point {} {} {}", r(x), r(y), r(z)),
                 Op::TurnedAbout { dir, axis, angle } => {
@@ -395,6 +411,9 @@ fn residual_text(residual: &Residual) -> String {
         }
         Residual::PointPlane { p, base, normal, d } => {
             format!("point_plane {} {} {} {}", r(p), r(base), r(normal), opt(d))
+        }
+        Residual::AngleBetween { u, v, angle } => {
+            format!("angle_between {} {} {}", r(u), r(v), r(angle))
         }
         Residual::Parallel { u, v, sense } => {
             format!("parallel {} {} sense {}", r(u), r(v), fmt_f64(*sense))

@@ -276,6 +276,8 @@ pub enum Residual {
     },
     /// In space: directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1).
     Parallel { u: Reg, v: Reg, sense: f64 },
+    /// In space: the unsigned angle between directions `u` and `v` is `angle`.
+    AngleBetween { u: Reg, v: Reg, angle: Reg },
     /// In space: the angle from `u` to `v` counter-clockwise about `axis` is `2pi s / pitch`
     /// (modulo a turn), `s` the advance `(q - p) . axis` (a helical joint).
     Helix {
@@ -440,6 +442,18 @@ pub enum Op {
     HelixTurn { advance: Reg, pitch: Reg },
     /// In space: the world's x, y or z axis (0, 1, 2).
     WorldAxis(u8),
+    /// In space: where direction `v` turns about the unit `axis` to make the unsigned angle
+    /// `angle` with `u` (`runtime::frame::turns_to_angle`): the root of `branch` (0: counter-
+    /// clockwise about the axis from its turn nearest `u`, 1: clockwise), or an error naming
+    /// `constraint`. The sketch's branch is the root nearest `v`.
+    AngleTurn {
+        u: Reg,
+        v: Reg,
+        axis: Reg,
+        angle: Reg,
+        branch: BranchId,
+        constraint: ConstraintId,
+    },
     /// In space: coordinate 0, 1 or 2 of `point`.
     Coordinate { point: Reg, axis: u8 },
     /// In space: the point with coordinates `x`, `y` and `z`.

@@ -116,6 +116,9 @@ impl Residual {
                 opt(d, &mut out);
             }
             Residual::Parallel { u, v, .. } => out.extend([(*u, VECTOR), (*v, VECTOR)]),
+            Residual::AngleBetween { u, v, angle } => {
+                out.extend([(*u, VECTOR), (*v, VECTOR), (*angle, SCALAR)])
+            }
             Residual::Helix {
                 axis,
                 u,
@@ -230,6 +233,14 @@ impl Op {
             }
             Op::HelixTurn { advance, pitch } => vec![(*advance, SCALAR), (*pitch, SCALAR)],
             Op::WorldAxis(_) => vec![],
+            Op::AngleTurn {
+                u, v, axis, angle, ..
+            } => vec![
+                (*u, VECTOR),
+                (*v, VECTOR),
+                (*axis, VECTOR),
+                (*angle, SCALAR),
+            ],
             Op::Coordinate { point, .. } => vec![(*point, POINT)],
             Op::PointAt { x, y, z } => vec![(*x, SCALAR), (*y, SCALAR), (*z, SCALAR)],
             Op::ShiftedCircle { circle, from, to } => {
@@ -307,7 +318,7 @@ impl Op {
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::Coordinate { .. } => Ty::Scalar,
-            Op::WorldAxis(_) => Ty::Vector,
+            Op::WorldAxis(_) | Op::AngleTurn { .. } => Ty::Vector,
             Op::PointAt { .. } => Ty::Point,
             Op::DirectionTo { .. }
             | Op::DirOf(_)
@@ -463,6 +474,15 @@ impl Plan {
             Op::Intersect { meet, branch, .. } => {
                 if !meet.in_space(self.space) {
                     errors.push(format!("step {i} intersects {meet:?} in {}", self.space));
+                }
+                match branch_uses.get_mut(branch.0 as usize) {
+                    Some(n) => *n += 1,
+                    None => errors.push(format!("step {i} uses an undeclared branch")),
+                }
+            }
+            Op::AngleTurn { branch, .. } => {
+                if self.space != Space::D3 {
+                    errors.push(format!("step {i} turns to an angle about an axis in 2d"));
                 }
                 match branch_uses.get_mut(branch.0 as usize) {
                     Some(n) => *n += 1,

@@ -29,7 +29,7 @@ use crate::config::{Config, D3};
 use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::Model;
-use relation::Relation;
+use relation::{AngleValue, Relation};
 
 /// A relation of space with its constraint.
 pub(crate) type Rel = geometry::Rel<Relation>;
@@ -542,7 +542,7 @@ impl Builder<'_, Spatial> {
                 (self.point_known(p) && self.point_known(base) && self.dir_known(normal))
                     || (self.together(p, base) && self.together(p, normal))
             }
-            Relation::Parallel { u, v, .. } => {
+            Relation::Parallel { u, v, .. } | Relation::Angle { u, v, .. } => {
                 (self.dir_known(u) && self.dir_known(v)) || self.together(u, v)
             }
             Relation::Twist { axis, u, v, .. } => {
@@ -585,6 +585,11 @@ impl Builder<'_, Spatial> {
                 v: self.direction(v),
                 sense,
             },
+            Relation::Angle { u, v, angle } => {
+                let (u, v) = (self.direction(u), self.direction(v));
+                let angle = self.angle_value(angle);
+                Residual::AngleBetween { u, v, angle }
+            }
             Relation::Twist { axis, u, v, angle } => {
                 let (axis, u, v) = (self.direction(axis), self.direction(u), self.direction(v));
                 let angle = self.angle(angle);
@@ -609,6 +614,17 @@ impl Builder<'_, Spatial> {
                     q,
                     pitch,
                 }
+            }
+        }
+    }
+
+    /// The register of an angle a relation asks for.
+    fn angle_value(&mut self, angle: AngleValue) -> Reg {
+        match angle {
+            AngleValue::Expr(e) => self.expr(e),
+            AngleValue::Const(c) => {
+                let words = crate::plan::fmt_f64(c);
+                self.value(Op::Const(c), Ty::Scalar, words)
             }
         }
     }
@@ -728,6 +744,14 @@ impl Builder<'_, Spatial> {
                             k
                         };
                         return self.turn_onto(moving, target, r, false);
+                    }
+                }
+                false
+            }
+            Relation::Angle { u, v, angle } => {
+                for (known, moving) in [(u, v), (v, u)] {
+                    if self.dir_known(known) && !self.dir_known(moving) {
+                        return self.turn_to_angle(known, moving, angle, r);
                     }
                 }
                 false
@@ -887,6 +911,45 @@ impl Builder<'_, Spatial> {
             return self.turn_onto(v, target, r, true);
         }
         false
+    }
+
+    /// Direction `v` to make an angle with known `u`: its cluster, turning about one axis,
+    /// turns to where `v`'s cone about the axis meets `u`'s cone of that angle (two turns, a
+    /// branch). Free to turn, it waits: the angle alone leaves it two freedoms.
+    fn turn_to_angle(&mut self, u: GeomId, v: GeomId, angle: AngleValue, r: &Rel) -> bool {
+        let k = self.cluster(v);
+        let Turn::Axis { axis, .. } = self.clusters[k].record.turn else {
+            return false;
+        };
+        let (ur, vr) = (self.direction(u), self.direction(v));
+        let angle = self.angle_value(angle);
+        let (uname, vname) = (self.name(u), self.name(v));
+        let meanings = vec![
+            format!(
+                "{vname} turned counter-clockwise about {} from its turn nearest {uname}",
+                self.word(axis)
+            ),
+            "turned clockwise from there".to_string(),
+        ];
+        let branch = self.branch(r.constraint, meanings);
+        let words = format!(
+            "where {vname} turns about {} to {} from {uname}",
+            self.word(axis),
+            self.word(angle)
+        );
+        let target = self.value(
+            Op::AngleTurn {
+                u: ur,
+                v: vr,
+                axis,
+                angle,
+                branch,
+                constraint: r.constraint,
+            },
+            Ty::Vector,
+            words,
+        );
+        self.turn_onto(v, target, r, true)
     }
 
     fn plane_words(&self, base: GeomId, normal: GeomId, offset: Option<Reg>) -> String {
@@ -1401,8 +1464,8 @@ impl Builder<'_, Spatial> {
     /// a sketch value that moves nothing (least motion): a feature's place along the line or
     /// circle it is held on; a turn about the one axis left (the idle spin of an RSSR's
     /// coupler about its own line); a free point's coordinates; a body's turns about the
-    /// world's axes through its pivot. A feature held on a plane or sphere, and a free
-    /// direction, have none yet.
+    /// world's axes through its pivot or the feature it holds on a locus. A translation left
+    /// on a plane or sphere with the orientation known, and a free direction, have none yet.
     fn default_on(&mut self, k: usize) -> bool {
         let rec = self.clusters[k].record.clone();
         if !rec.movable() {
@@ -1418,9 +1481,9 @@ impl Builder<'_, Spatial> {
             ) => self.slide(k, feature, locus),
             (_, Turn::Axis { axis, .. }) => self.spin(k, axis),
             (Trans::Free, _) => self.place(k),
-            (Trans::Pivot { .. } | Trans::Fixed, Turn::Free) if rec.shape == Shape::Body => {
-                self.orient(k)
-            }
+            // About a pivot, or a feature held on a plane or sphere: its turns first (the
+            // feature stays on its locus), then what the constraints can do with them.
+            (_, Turn::Free) if rec.shape == Shape::Body => self.orient(k),
             _ => false,
         }
     }
@@ -1529,7 +1592,7 @@ impl Builder<'_, Spatial> {
         for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
             let words = format!("the {} axis", axis.to_uppercase());
             let a = self.value(Op::WorldAxis(i as u8), Ty::Vector, words);
-            self.turn_by_default(&geoms, pivot, a, format!("{gname}_turn_{axis}"));
+            self.turn_by_default(&geoms, pivot, a, format!("{gname}_{axis}_angle"));
         }
         let rec = &mut self.clusters[k].record;
         rec.turn = Turn::Known;
@@ -1588,7 +1651,7 @@ impl Builder<'_, Spatial> {
     fn spin(&mut self, k: usize, axis: Reg) -> bool {
         let geoms = self.clusters[k].geoms.clone();
         let pivot = self.pivot_of(k);
-        let name = format!("{}_spin", self.name(geoms[0]));
+        let name = format!("{}_spin_angle", self.name(geoms[0]));
         self.turn_by_default(&geoms, pivot, axis, name);
         let rec = &mut self.clusters[k].record;
         rec.turn = Turn::Known;

@@ -58,6 +58,15 @@ pub enum Relation {
         /// Same sense (+1) or opposite (-1).
         sense: f64,
     },
+    /// The unsigned angle between directions `u` and `v` is `angle` (in [0, pi]).
+    Angle {
+        /// First direction.
+        u: GeomId,
+        /// Second direction.
+        v: GeomId,
+        /// The angle: a model expression, or a constant (perpendicular: pi/2).
+        angle: AngleValue,
+    },
     /// A helical joint's coupling, `axis` (the first marker's z) parallel to the second's:
     /// the angle from `u` (the first marker's x) to `v` (the second's), counter-clockwise
     /// about `axis`, is `2pi s / pitch` modulo a turn, `s` the advance `(q - p) . axis` from
@@ -91,6 +100,15 @@ pub enum Relation {
     },
 }
 
+/// An angle a relation asks for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AngleValue {
+    /// The value of a model expression (radians).
+    Expr(ExprId),
+    /// A constant of the constraint (a right angle).
+    Const(f64),
+}
+
 impl Relation {
     /// The features a relation involves.
     pub fn features(&self) -> Vec<GeomId> {
@@ -100,7 +118,7 @@ impl Relation {
             Relation::PointPlane {
                 p, base, normal, ..
             } => vec![p, base, normal],
-            Relation::Parallel { u, v, .. } => vec![u, v],
+            Relation::Parallel { u, v, .. } | Relation::Angle { u, v, .. } => vec![u, v],
             Relation::Twist { axis, u, v, .. } => vec![axis, u, v],
             Relation::Helix {
                 axis, u, v, p, q, ..
@@ -245,6 +263,21 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 (Some(u), Some(v)) => out.push(parallel(u, v)),
                 _ => missing("parallel needs two directions"),
             },
+            (K::Angle | K::Perpendicular | K::OffsetZ, Some(a), Some(b)) => {
+                match (direction(model, a), direction(model, b)) {
+                    (Some(u), Some(v)) => out.push(Relation::Angle {
+                        u,
+                        v,
+                        angle: match (c.kind, c.value) {
+                            (K::Perpendicular, _) | (_, None) => {
+                                AngleValue::Const(std::f64::consts::FRAC_PI_2)
+                            }
+                            (_, Some(e)) => AngleValue::Expr(e),
+                        },
+                    }),
+                    _ => missing("an angle needs two directions"),
+                }
+            }
             _ => {}
         }
         // The couplings of x axes about the z axes, after the axes: a helix or a twist.
@@ -276,9 +309,6 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
         }
         if out.is_empty() {
             missing(match c.kind {
-                K::Angle | K::Perpendicular | K::OffsetZ => {
-                    "an angle between directions of space (a cone of directions) is not analysed in 3d yet"
-                }
                 K::Distance | K::On | K::Tangent => {
                     "this distance or incidence between lines, circles or planes is not analysed in 3d yet"
                 }
