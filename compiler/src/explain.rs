@@ -23,6 +23,13 @@ pub fn explain(model: &Model, plan: &Plan) -> String {
             "The direction from {} to {} is held as sketched: {} keeps to that line.",
             model.geoms[x].name, model.geoms[y].name, model.geoms[y].name
         );
+        if let Some(z) = plan.grounded_plane {
+            let _ = writeln!(
+                out,
+                "The plane through {}, {} and {} is held as sketched: {} keeps to that plane.",
+                model.geoms[x].name, model.geoms[y].name, model.geoms[z].name, model.geoms[z].name
+            );
+        }
     }
     // A run-time check says what implies it: the constraints (and fixed geoms) its step
     // rests on, traced through the plan.

@@ -99,6 +99,7 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
         regs: plan.regs,
         grounded: plan.grounded,
         grounded_direction: plan.grounded_direction,
+        grounded_plane: plan.grounded_plane,
         ..Plan::new(plan.space)
     };
     for (i, step) in plan.steps.iter().enumerate() {

@@ -354,6 +354,13 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
             "  and the direction from {} to {} is held as sketched (a point has no orientation of its own)",
             model.geoms[x].name, model.geoms[y].name
         );
+        if let Some(z) = a.plan.grounded_plane {
+            let _ = writeln!(
+                out,
+                "  and the plane through {}, {} and {} as sketched",
+                model.geoms[x].name, model.geoms[y].name, model.geoms[z].name
+            );
+        }
     }
     let free = a.free_geoms();
     let free_defaults = a.free_defaults();

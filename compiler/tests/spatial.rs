@@ -512,3 +512,37 @@ fn the_stewart_platform_iterates_to_the_pose_its_legs_measure() {
         }
     }
 }
+
+#[test]
+fn a_free_tetrahedron_is_solved_up_to_a_rigid_motion_by_its_edges() {
+    let model = example("tetrahedron");
+    let a = analyse(&model).expect("analysed");
+    assert!(a.unsolved.is_empty(), "{:?}", a.unsolved);
+    assert!(a.plan.grounded.is_some() && a.plan.grounded_plane.is_some());
+    let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
+    // The constraints' values are numbers: the tetrahedron is regular, of edge 3. Its solve
+    // keeps a where sketched, b on the sketched ray from a, c in the sketched plane.
+    let s = solve(&model, &a, &[], &branches).expect("solves");
+    assert!(s.max_residual <= 1e-12 * 3.0, "{}", s.max_residual);
+    let (pa, pb, pc, pd) = (
+        point(&s, "a"),
+        point(&s, "b"),
+        point(&s, "c"),
+        point(&s, "d"),
+    );
+    assert_eq!(pa, [0.0, 0.0, 0.0]);
+    let ray = [3.0, 0.2, 0.1];
+    let along = norm(ray);
+    for i in 0..3 {
+        assert!((pb[i] - 3.0 * ray[i] / along).abs() <= 1e-13, "b {pb:?}");
+    }
+    let n = [
+        ray[1] * -0.2 - 0.1 * 2.6,
+        0.1 * 1.2 - 3.0 * -0.2,
+        3.0 * 2.6 - 0.2 * 1.2,
+    ];
+    let off = (n[0] * pc[0] + n[1] * pc[1] + n[2] * pc[2]) / norm(n);
+    assert!(off.abs() <= 1e-13, "c is {off:e} off the sketched plane");
+    // d on the sketch's side of that plane.
+    assert!(n[0] * pd[0] + n[1] * pd[1] + n[2] * pd[2] > 0.0);
+}

@@ -340,6 +340,7 @@ impl Solve<'_> {
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)
+            | Op::PlaneNormal { .. }
             | Op::AngleTurn { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }

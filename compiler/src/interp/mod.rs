@@ -1103,6 +1103,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)
+            | Op::PlaneNormal { .. }
             | Op::AngleTurn { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }

@@ -151,6 +151,10 @@ impl Machine<'_, '_, D3> {
                     )
                 })?)
             }
+            Op::PlaneNormal { a, b, c } => {
+                let a = self.p3(*a);
+                Val::V3(self.unit(i, (self.p3(*b) - a).cross(&(self.p3(*c) - a)))?)
+            }
             Op::WorldAxis(i) => {
                 let mut v = V3::zeros();
                 v[usize::from(*i).min(2)] = 1.0;

@@ -23,6 +23,13 @@ impl Plan {
                 name(&b)
             );
         }
+        if let Some(c) = self.grounded_plane {
+            let _ = writeln!(
+                out,
+                "hold the sketch plane of that direction and {}",
+                name(&c)
+            );
+        }
         for b in &self.branches {
             let _ = writeln!(
                 out,
@@ -209,6 +216,9 @@ impl Plan {
                     format!("helix_turn {} pitch {}", r(advance), r(pitch))
                 }
                 Op::WorldAxis(i) => format!("world_axis {i}"),
+                Op::PlaneNormal { a, b, c } => {
+                    format!("plane_normal {} {} {}", r(a), r(b), r(c))
+                }
                 Op::AngleTurn {
                     u,
                     v,

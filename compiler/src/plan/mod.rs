@@ -440,6 +440,9 @@ pub enum Op {
     HelixAdvance { now: Reg, turn: Reg, pitch: Reg },
     /// A helix's turn for an advance: `2pi advance / pitch`.
     HelixTurn { advance: Reg, pitch: Reg },
+    /// In space: the unit normal of the plane through points `a`, `b` and `c`, along
+    /// `(b - a) x (c - a)`.
+    PlaneNormal { a: Reg, b: Reg, c: Reg },
     /// In space: the world's x, y or z axis (0, 1, 2).
     WorldAxis(u8),
     /// In space: where direction `v` turns about the unit `axis` to make the unsigned angle
@@ -577,6 +580,9 @@ pub struct Plan {
     /// When the grounded geom has no orientation: the two points whose sketch direction is
     /// held too, so that only a rigid motion is factored out.
     pub grounded_direction: Option<(GeomId, GeomId)>,
+    /// In space, when the grounded geom has no orientation: the third point whose sketch
+    /// plane with the two of `grounded_direction` is held too.
+    pub grounded_plane: Option<GeomId>,
     /// The number of registers.
     pub regs: u32,
 }
@@ -592,6 +598,7 @@ impl Plan {
             iterations: Vec::new(),
             grounded: None,
             grounded_direction: None,
+            grounded_plane: None,
             regs: 0,
         }
     }

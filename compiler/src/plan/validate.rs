@@ -233,6 +233,7 @@ impl Op {
             }
             Op::HelixTurn { advance, pitch } => vec![(*advance, SCALAR), (*pitch, SCALAR)],
             Op::WorldAxis(_) => vec![],
+            Op::PlaneNormal { a, b, c } => vec![(*a, POINT), (*b, POINT), (*c, POINT)],
             Op::AngleTurn {
                 u, v, axis, angle, ..
             } => vec![
@@ -318,7 +319,7 @@ impl Op {
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::Coordinate { .. } => Ty::Scalar,
-            Op::WorldAxis(_) | Op::AngleTurn { .. } => Ty::Vector,
+            Op::WorldAxis(_) | Op::AngleTurn { .. } | Op::PlaneNormal { .. } => Ty::Vector,
             Op::PointAt { .. } => Ty::Point,
             Op::DirectionTo { .. }
             | Op::DirOf(_)

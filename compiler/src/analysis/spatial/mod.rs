@@ -1677,6 +1677,72 @@ impl Builder<'_, Spatial> {
         if let Some((_, _, i)) = best {
             self.clusters[i].record.hold();
             self.plan.grounded = Some(self.clusters[i].geoms[0]);
+            if self.clusters[i].record.turn == Turn::None {
+                self.ground_turns(i);
+            }
         }
+    }
+
+    /// A point held at its sketch leaves the model free to turn about it (three DOF): hold
+    /// the direction to the first free point related to it (in name order) as the sketch
+    /// has it (two), and the plane of those two and the next free point related to either
+    /// (one), so that the model is solved up to a rigid motion only.
+    fn ground_turns(&mut self, i: usize) {
+        let free = |s: &Self, k: usize| {
+            s.clusters[k].record.trans == Trans::Free && s.clusters[k].record.movable()
+        };
+        // The first pending point-point relation from the held clusters to a free one.
+        let next = |s: &Self, held: &[usize]| -> Option<(GeomId, GeomId)> {
+            s.pending.iter().find_map(|r| {
+                let Relation::PointPoint { a, b, .. } = r.relation else {
+                    return None;
+                };
+                let (ka, kb) = (s.cluster(a), s.cluster(b));
+                if held.contains(&ka) && !held.contains(&kb) && free(s, kb) {
+                    Some((a, b))
+                } else if held.contains(&kb) && !held.contains(&ka) && free(s, ka) {
+                    Some((b, a))
+                } else {
+                    None
+                }
+            })
+        };
+        let Some((at, other)) = next(self, &[i]) else {
+            return;
+        };
+        let (a, o) = (self.point(at), self.point(other));
+        let (an, on) = (self.name(at), self.name(other));
+        let words = format!("the direction from {an} to {on} in the sketch");
+        let d = self.value(Op::DirectionTo { from: a, to: o }, Ty::Vector, words);
+        let line = self.line(a, d, format!("the line from {an} through {on} as sketched"));
+        let k = self.cluster(other);
+        self.clusters[k].record.trans = Trans::On {
+            feature: other,
+            locus: Locus::Line(line),
+        };
+        self.plan.grounded_direction = Some((at, other));
+        let Some((_, third)) = next(self, &[i, k]) else {
+            return;
+        };
+        let t = self.point(third);
+        let tn = self.name(third);
+        let words = format!("the normal of the plane through {an}, {on} and {tn} in the sketch");
+        let n = self.value(Op::PlaneNormal { a, b: o, c: t }, Ty::Vector, words);
+        let words = format!("the plane through {an}, {on} and {tn} as sketched");
+        let plane = self.value(
+            Op::Plane {
+                point: a,
+                normal: n,
+                offset: None,
+            },
+            Ty::Plane,
+            words,
+        );
+        let k = self.cluster(third);
+        self.clusters[k].record.trans = Trans::On {
+            feature: third,
+            locus: Locus::Plane(plane),
+        };
+        self.plan.grounded_plane = Some(third);
     }
 }
