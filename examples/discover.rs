@@ -66,11 +66,7 @@ impl Folder {
 /// The models the analysis does not solve yet, each with why: found everywhere, golden and
 /// run nowhere, and tested to be refused with a reason until they are solved.
 #[allow(dead_code)]
-pub const NOT_YET: &[&str] = &[
-    // Hoffmann and Vermeer's points and planes: planes that move, and a cluster with no
-    // ruler-and-compass construction (issue 20, part 5).
-    "points_planes",
-];
+pub const NOT_YET: &[&str] = &[];
 
 /// A model found on disk.
 #[allow(dead_code)]

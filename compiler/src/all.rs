@@ -143,7 +143,10 @@ fn solve_all_of(
     defaults: &[f64],
     only: Option<&[usize]>,
 ) -> AllSolutions {
-    let counts: Vec<usize> = plan.branches.iter().map(|b| b.count.max(1)).collect();
+    // A symmetric branch stays the sketch's: its other roots are the same assemblies turned.
+    let counts: Vec<usize> = (plan.branches.iter())
+        .map(|b| if b.symmetric { 1 } else { b.count.max(1) })
+        .collect();
     let combinations = counts
         .iter()
         .try_fold(1usize, |n, &c| n.checked_mul(c))
@@ -170,8 +173,11 @@ fn solve_all_of(
         let mut rest = k;
         let branches: Vec<usize> = match only {
             Some(given) => given.to_vec(),
-            None => (counts.iter())
-                .map(|&c| {
+            None => (counts.iter().zip(&plan.branches))
+                .map(|(&c, b)| {
+                    if b.symmetric {
+                        return b.default;
+                    }
                     let i = rest % c;
                     rest /= c;
                     i

@@ -455,11 +455,16 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
         if b.count > 1 {
             let _ = writeln!(
                 out,
-                "  branch {}: {} roots, sketch takes {}: {}",
+                "  branch {}: {} roots, sketch takes {}: {}{}",
                 b.name,
                 b.count,
                 b.default,
-                b.meanings.get(b.default).cloned().unwrap_or_default()
+                b.meanings.get(b.default).cloned().unwrap_or_default(),
+                if b.symmetric {
+                    " (the other root is the same assembly turned as a whole)"
+                } else {
+                    ""
+                }
             );
         }
     }

@@ -546,3 +546,106 @@ fn a_free_tetrahedron_is_solved_up_to_a_rigid_motion_by_its_edges() {
     // d on the sketch's side of that plane.
     assert!(n[0] * pd[0] + n[1] * pd[1] + n[2] * pd[2] > 0.0);
 }
+
+/// Hoffmann and Vermeer's points and planes (004), counted independently: with `P3` the plane
+/// z = 0 and `p1` its origin (a rigid motion), `p2` = (3, 0, 4) (the turn about `P3`'s
+/// normal), `p5` on its circle x² + y² = 8 at z = 2 by an angle `theta`; `P4`'s normal `n`
+/// from `n . p2 = 9/5`, `n . p5 = 14/5`, `|n| = 1` (two or none); `p6` at z = 1 with
+/// `n . p6 = 22/5` and `|p6 - p2|² = 19` (two or none); and the last constraint's error
+/// `|p6 - p5|² - 18` scanned over a turn of `theta` on each of the four branches. Its sign
+/// changes are the real solutions, up to a rigid motion (mirror images counted apart).
+fn points_planes_count() -> usize {
+    type W = [f64; 3];
+    let dot = |a: W, b: W| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let cross = |a: W, b: W| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let p2 = [3.0, 0.0, 4.0];
+    // The error on branch (i, j) at theta, if the construction exists there.
+    let error = |theta: f64, i: usize, j: usize| -> Option<f64> {
+        let p5 = [8f64.sqrt() * theta.cos(), 8f64.sqrt() * theta.sin(), 2.0];
+        // n = a p2 + b p5 + t (p2 x p5), the first two from the two dot products.
+        let (g11, g12, g22) = (dot(p2, p2), dot(p2, p5), dot(p5, p5));
+        let det = g11 * g22 - g12 * g12;
+        let (c1, c2) = (9.0 / 5.0, 14.0 / 5.0);
+        let a = (c1 * g22 - c2 * g12) / det;
+        let b = (c2 * g11 - c1 * g12) / det;
+        let base = [0, 1, 2].map(|k| a * p2[k] + b * p5[k]);
+        let w = cross(p2, p5);
+        let t2 = (1.0 - dot(base, base)) / dot(w, w);
+        if t2 < 0.0 {
+            return None;
+        }
+        let t = if i == 0 { t2.sqrt() } else { -t2.sqrt() };
+        let n = [0, 1, 2].map(|k| base[k] + t * w[k]);
+        // p6 = (x, y, 1): n0 x + n1 y = 22/5 - n2, and (x - 3)² + y² = 19 - 9.
+        let rhs = 22.0 / 5.0 - n[2];
+        let h = n[0].hypot(n[1]);
+        let (u0, u1) = (n[0] / h, n[1] / h);
+        // The line: foot f = u rhs / h, direction (-u1, u0); its distance to (3, 0).
+        let f = [u0 * rhs / h, u1 * rhs / h];
+        let s = (f[0] - 3.0) * -u1 + f[1] * u0;
+        let perp2 = (f[0] - 3.0).powi(2) + f[1].powi(2) - s * s;
+        let along2 = 10.0 - perp2;
+        if along2 < 0.0 {
+            return None;
+        }
+        let tt = -s
+            + if j == 0 {
+                along2.sqrt()
+            } else {
+                -along2.sqrt()
+            };
+        let p6 = [f[0] - u1 * tt, f[1] + u0 * tt, 1.0];
+        let d = [p6[0] - p5[0], p6[1] - p5[1], p6[2] - p5[2]];
+        Some(dot(d, d) - 18.0)
+    };
+    let steps = 200_000;
+    let mut roots = 0;
+    for i in 0..2 {
+        for j in 0..2 {
+            let mut last: Option<f64> = None;
+            for k in 0..=steps {
+                let theta = std::f64::consts::TAU * k as f64 / steps as f64;
+                let e = error(theta, i, j);
+                if let (Some(a), Some(b)) = (last, e) {
+                    if a == 0.0 || (a < 0.0) != (b < 0.0) {
+                        roots += 1;
+                    }
+                }
+                last = e;
+            }
+        }
+    }
+    roots
+}
+
+#[test]
+fn points_and_planes_have_every_real_solution_and_no_other() {
+    let model = example("points_planes");
+    let a = analyse(&model).expect("analysed");
+    assert!(a.unsolved.is_empty(), "{:?}", a.unsolved);
+    // One angle is iterated: the search scans it over a turn, and is complete.
+    assert_eq!(a.plan.iterations.len(), 1);
+    let all: std::collections::BTreeSet<_> = model.top_level().map(|(g, _)| g).collect();
+    let found = gcs_compiler::all::solve_all(
+        &model,
+        &a.plan,
+        &all,
+        &model.default_params(),
+        &a.plan.sketch_defaults(),
+    );
+    assert!(found.complete);
+    for s in &found.solutions {
+        assert!(
+            s.max_residual <= 1e-12 * 10.0,
+            "residual {:e}",
+            s.max_residual
+        );
+    }
+    assert_eq!(found.solutions.len(), points_planes_count());
+}

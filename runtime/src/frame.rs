@@ -365,9 +365,11 @@ pub fn signed_angle3(u: &Vector3<f64>, v: &Vector3<f64>, axis: &Vector3<f64>) ->
         return 0.0;
     }
     let a = axis / n;
-    let sin = a.dot(&u.cross(v));
-    let cos = u.dot(v) - u.dot(&a) * v.dot(&a);
-    sin.atan2(cos)
+    // Across the axis first: a direction nearly along it keeps its few significant bits
+    // there, which the products of the whole vectors would cancel to rounding.
+    let up = u - a * a.dot(u);
+    let vp = v - a * a.dot(v);
+    a.dot(&up.cross(&vp)).atan2(up.dot(&vp))
 }
 
 /// The rotation that turns the direction of `u` onto the direction of `v` about the axis

@@ -139,16 +139,46 @@ fn slider_crank() {
     );
 }
 
-/// Hoffmann and Vermeer's points and planes are not solved yet (`discover::NOT_YET`): `check`
-/// says so, with each freedom it could not remove, and fails.
 #[test]
-fn points_planes_is_refused_with_its_free_motions() {
-    let (code, stdout, stderr) = gcs_check("examples/points_planes.gcs");
-    assert_eq!(code, 1, "stdout: {stdout}");
-    assert!(
-        stderr.contains("`P4` is under-constrained")
-            && stderr.contains("the analysis does not move this kind of geom in 3d yet"),
-        "{stderr}"
+fn points_planes() {
+    check_example(
+        "points_planes",
+        expect![[r#"
+        examples/points_planes.gcs: space 3d, 0 params, 6 geoms, 12 constraints
+
+        geoms          DOF  left
+          p1    point    3     0
+          p2    point    3     0
+          P3    plane    3     0
+          P4    plane    3     0
+          p5    point    3     0
+          p6    point    3     0
+
+        constraints                                       removes
+          distance_p1_P3  distance(p1, P3) = 0                  1
+          distance_p1_P4  distance(p1, P4) = -5                 1
+          distance_p2_P4  distance(p2, P4) = -16/5              1
+          distance_p2_P3  distance(p2, P3) = 4                  1
+          distance_p1_p2  distance(p1, p2) = 5                  1
+          distance_p1_p5  distance(p1, p5) = 2 * sqrt(3)        1
+          distance_p5_P4  distance(p5, P4) = -11/5              1
+          distance_p6_P4  distance(p6, P4) = -3/5               1
+          distance_p2_p6  distance(p2, p6) = sqrt(19)           1
+          distance_p5_P3  distance(p5, P3) = 2                  1
+          distance_p6_P3  distance(p6, P3) = 1                  1
+          distance_p5_p6  distance(p5, p6) = 3 * sqrt(2)        1
+
+        nominal DOF: 18 - 12 = 6
+        grounded: p1 (nothing is fixed: it is held at its sketch placement, and the rest is solved relative to it)
+          and the direction from p1 to p2 is held as sketched (a point has no orientation of its own)
+          and the plane through p1, p2 and p5 as sketched
+        analysis: well-constrained
+          no closed form: iterates on P3_spin_angle until distance_p6_P4 closes
+          branch distance_p1_p2: 2 roots, sketch takes 1: where the line from p1 through p2 as sketched leaves the sphere about p1 of radius 5, along the line (the other root is the same assembly turned as a whole)
+          branch distance_p5_P3: 2 roots, sketch takes 1: the other crossing, second along that line (the other root is the same assembly turned as a whole)
+          branch distance_p5_P4: 2 roots, sketch takes 1: turned clockwise from there
+          branch distance_p6_P3: 2 roots, sketch takes 1: the other crossing, second along that line
+    "#]],
     );
 }
 

@@ -428,6 +428,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             count: meanings.len(),
             meanings,
             default: 0,
+            symmetric: false,
         });
         id
     }

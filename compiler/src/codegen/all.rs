@@ -18,7 +18,10 @@ const CAPACITY: usize = gcs_runtime::outer::MAX_ROOTS;
 /// can all be tried.
 pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
     let plan = cx.plan;
-    let counts: Vec<usize> = plan.branches.iter().map(|b| b.count.max(1)).collect();
+    // As the interpreter's search: a symmetric branch stays the sketch's (`Branches::default`).
+    let counts: Vec<usize> = (plan.branches.iter())
+        .map(|b| if b.symmetric { 1 } else { b.count.max(1) })
+        .collect();
     let Some(combinations) = (counts.iter())
         .try_fold(1usize, |n, &c| n.checked_mul(c))
         .filter(|&n| n <= MAX_COMBINATIONS)

@@ -341,6 +341,8 @@ impl Solve<'_> {
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)
             | Op::PlaneNormal { .. }
+            | Op::PlaneTurn { .. }
+            | Op::PlaneAxisTurn { .. }
             | Op::AngleTurn { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }

@@ -1104,6 +1104,8 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)
             | Op::PlaneNormal { .. }
+            | Op::PlaneTurn { .. }
+            | Op::PlaneAxisTurn { .. }
             | Op::AngleTurn { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }

@@ -18,6 +18,37 @@ fn circle_basis(c: &Circle3) -> (V3, V3) {
     (e1, c.normal.cross(&e1))
 }
 
+/// A line and a circle of space. In the circle's plane (the line parallel to it and in it,
+/// to the tangency tolerance) they meet where the line meets the circle's sphere: two roots
+/// along the line. Across the plane the line meets it at one point, the root in both slots
+/// when it is on the circle to the tangency tolerance over the sine of the line's angle with
+/// the plane (a circle of space meets a line there or nowhere, and the sphere's other root,
+/// off the circle, must never be taken).
+fn line_circle(l: &Line3, c: &Circle3) -> (Roots<P3, 4>, Contact) {
+    let sphere = Sphere::new(c.center, c.radius);
+    let across = l.dir.dot(&c.normal);
+    let height = (l.point - c.center).dot(&c.normal);
+    let scale = gcs_runtime::tol::scale(&[
+        l.point.x, l.point.y, l.point.z, c.center.x, c.center.y, c.center.z, c.radius,
+    ]);
+    let tt = gcs_runtime::tol::TANGENT_REL * scale;
+    if across.abs() <= gcs_runtime::tol::ANGLE {
+        if height.abs() > tt {
+            return (Roots::new(), Contact::Parallel { gap: height.abs() });
+        }
+        let i = intersect3d::line_sphere(l, &sphere);
+        return (Roots::from_slice(i.roots.as_slice()), i.contact);
+    }
+    let at = l.point - l.dir * (height / across);
+    let gap = ((at - c.center).norm() - c.radius).abs();
+    // The crossing is as precise as the line is steep across the plane: rounding over the
+    // sine of their angle.
+    if gap > tt / across.abs().min(1.0) {
+        return (Roots::new(), Contact::Disjoint { gap });
+    }
+    (Roots::from_slice(&[at, at]), Contact::Tangent)
+}
+
 impl Space for D3 {
     fn step(m: &mut Machine<'_, '_, D3>, i: usize, step: &Step) -> Result<(), SolveError> {
         m.step_spatial(i, step)
@@ -69,6 +100,16 @@ impl Machine<'_, '_, D3> {
             return Err(self.degenerate(i));
         }
         Ok(v / n)
+    }
+
+    /// For a plane through `base` with unit normal `n` turning about `pivot` to be at signed
+    /// distance `d` from `point`: the vector from the pivot to the point, and the cosine its
+    /// direction must make with the new normal (the turn keeps the pivot's distance).
+    fn plane_cone(&self, base: Reg, n: V3, pivot: Reg, point: Reg, d: Reg) -> (V3, f64) {
+        let p0 = self.p3(pivot);
+        let w = self.p3(point) - p0;
+        let sd0 = n.dot(&(p0 - self.p3(base)));
+        (w, (self.s(d) - sd0) / w.norm())
     }
 
     /// The distance from `p` to the locus in register `r`.
@@ -142,6 +183,71 @@ impl Machine<'_, '_, D3> {
                 }
                 let index =
                     self.choose(*branch, |_| i3.roots.nearest_to(dir, |x, y| (x - y).norm()));
+                Val::V3(i3.roots.get(index).ok_or_else(|| {
+                    err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoSuchBranch,
+                        i3.roots.len() as f64,
+                    )
+                })?)
+            }
+            Op::PlaneTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                constraint,
+            } => {
+                let n = self.v3(*normal);
+                let (w, c) = self.plane_cone(*base, n, *pivot, *point, *d);
+                let len = w.norm();
+                if len.is_nan() || len <= 0.0 {
+                    return Err(err(model, *constraint, ErrorKind::Degenerate, 0.0));
+                }
+                if c.abs() > 1.0 + gcs_runtime::tol::LENGTH_REL || c.is_nan() {
+                    return Err(err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoIntersection,
+                        (c.abs() - 1.0) * len,
+                    ));
+                }
+                let c = c.clamp(-1.0, 1.0);
+                let wh = w / len;
+                let across = n - wh * n.dot(&wh);
+                let e = match across.try_normalize(0.0) {
+                    Some(e) => e,
+                    None => frame::perpendicular(&wh).normalize(),
+                };
+                Val::V3(wh * c + e * (1.0 - c * c).max(0.0).sqrt())
+            }
+            Op::PlaneAxisTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                axis,
+                branch,
+                constraint,
+            } => {
+                let n = self.v3(*normal);
+                let (w, c) = self.plane_cone(*base, n, *pivot, *point, *d);
+                let Some(wh) = w.try_normalize(0.0) else {
+                    return Err(err(model, *constraint, ErrorKind::Degenerate, 0.0));
+                };
+                let angle = c.clamp(-1.0, 1.0).acos();
+                let gap = (c.abs() - 1.0).max(0.0) * w.norm();
+                let i3 = frame::turns_to_angle(&wh, &n, &self.v3(*axis), angle);
+                if let Some(e) = SolveError::from_contact("", "", i3.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude.max(gap)));
+                }
+                if gap > gcs_runtime::tol::LENGTH_REL * (1.0 + w.norm()) {
+                    return Err(err(model, *constraint, ErrorKind::NoIntersection, gap));
+                }
+                let index = self.choose(*branch, |_| i3.roots.nearest_to(n, |x, y| (x - y).norm()));
                 Val::V3(i3.roots.get(index).ok_or_else(|| {
                     err(
                         model,
@@ -333,7 +439,16 @@ impl Machine<'_, '_, D3> {
                 residual,
                 component,
             } => Val::S(self.error_of3(residual, *component)),
-            Op::Implicit { locus, point } => Val::S(self.gap(*locus, &self.p3(*point))),
+            // Signed where the locus has two sides (zero on it, smooth across it); a line's or
+            // circle's distance in space is not.
+            Op::Implicit { locus, point } => {
+                let q = self.p3(*point);
+                Val::S(match self.get(*locus) {
+                    Some(&Val::Plane(p)) => p.signed_distance(&q),
+                    Some(&Val::Sphere(s)) => (q - s.center).norm() - s.radius,
+                    _ => self.gap(*locus, &q),
+                })
+            }
             Op::Close {
                 constraint,
                 residual,
@@ -389,11 +504,7 @@ impl Machine<'_, '_, D3> {
             }
             // A line meets a circle of space where it meets the circle's sphere; the circle's
             // own step then checks that the root is on it (coplanar, it is).
-            Meet::LineCircle => {
-                let c = self.circle3(b);
-                let i = intersect3d::line_sphere(&self.line3(a), &Sphere::new(c.center, c.radius));
-                (Roots::from_slice(i.roots.as_slice()), i.contact)
-            }
+            Meet::LineCircle => line_circle(&self.line3(a), &self.circle3(b)),
             Meet::SphereSphere | Meet::SpherePlane | Meet::PlanePlane => {
                 let (locus, contact) = match meet {
                     Meet::SphereSphere => {

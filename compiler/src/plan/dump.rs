@@ -219,6 +219,42 @@ impl Plan {
                 Op::PlaneNormal { a, b, c } => {
                     format!("plane_normal {} {} {}", r(a), r(b), r(c))
                 }
+                Op::PlaneTurn {
+                    base,
+                    normal,
+                    pivot,
+                    point,
+                    d,
+                    constraint,
+                } => format!(
+                    "plane_turn {} {} about {} to {} from {} for {}",
+                    r(base),
+                    r(normal),
+                    r(pivot),
+                    r(d),
+                    r(point),
+                    cname(constraint)
+                ),
+                Op::PlaneAxisTurn {
+                    base,
+                    normal,
+                    pivot,
+                    point,
+                    d,
+                    axis,
+                    branch,
+                    constraint,
+                } => format!(
+                    "plane_axis_turn {} {} about {} along {} to {} from {} branch {} for {}",
+                    r(base),
+                    r(normal),
+                    r(pivot),
+                    r(axis),
+                    r(d),
+                    r(point),
+                    self.branches[branch.0 as usize].name,
+                    cname(constraint)
+                ),
                 Op::AngleTurn {
                     u,
                     v,

@@ -88,6 +88,11 @@ pub struct BranchVar {
     pub meanings: Vec<String>,
     /// The index the sketch has.
     pub default: usize,
+    /// Whether its roots are one assembly turned as a whole: a root on the line or plane a
+    /// model with nothing fixed is held by (`Plan::grounded_direction`, `grounded_plane`),
+    /// whose other root is the sketch's turned half a turn. The search for every assembly
+    /// keeps the sketch's.
+    pub symmetric: bool,
 }
 
 /// A default parameter of the plan: its name and meaning, and the value the sketch gives it.
@@ -440,6 +445,31 @@ pub enum Op {
     HelixAdvance { now: Reg, turn: Reg, pitch: Reg },
     /// A helix's turn for an advance: `2pi advance / pitch`.
     HelixTurn { advance: Reg, pitch: Reg },
+    /// In space: the normal a plane (through `base`, unit `normal`) turned about `pivot` must
+    /// take to be at signed distance `d` from `point`, keeping its distance from `pivot`: of
+    /// the normals on that cone about `point - pivot`, the one nearest `normal` (least
+    /// motion); an error naming `constraint` when no turn reaches it.
+    PlaneTurn {
+        base: Reg,
+        normal: Reg,
+        pivot: Reg,
+        point: Reg,
+        d: Reg,
+        constraint: ConstraintId,
+    },
+    /// As [`Op::PlaneTurn`], the plane turning about the unit `axis` through `pivot` only:
+    /// where that turn meets the cone (`runtime::frame::turns_to_angle`), the root of
+    /// `branch`.
+    PlaneAxisTurn {
+        base: Reg,
+        normal: Reg,
+        pivot: Reg,
+        point: Reg,
+        d: Reg,
+        axis: Reg,
+        branch: BranchId,
+        constraint: ConstraintId,
+    },
     /// In space: the unit normal of the plane through points `a`, `b` and `c`, along
     /// `(b - a) x (c - a)`.
     PlaneNormal { a: Reg, b: Reg, c: Reg },

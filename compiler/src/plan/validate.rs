@@ -28,6 +28,9 @@ const PLANE: Accepts = &[Ty::Plane];
 const SPHERE: Accepts = &[Ty::Sphere];
 /// What has a parameter along it (a place, or an implicit error): the loci a default slides on.
 const PARAM_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic];
+/// What an implicit function measures a point's offset from: the loci a default slides on,
+/// and in space the sphere and plane an `onto` can displace a point from.
+const IMPLICIT_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic, Ty::Plane, Ty::Sphere];
 /// What a point can be tested to lie on.
 const ANY_LOCUS: Accepts = &[
     Ty::Line,
@@ -188,9 +191,8 @@ impl Op {
             Op::Reflect { point, through } => vec![(*point, POINT), (*through, POINT)],
             Op::Mirror { point, line } => vec![(*point, POINT), (*line, LINE)],
             Op::LocusPoint { locus, at } => vec![(*locus, PARAM_LOCUS), (*at, SCALAR)],
-            Op::LocusParam { locus, point } | Op::Implicit { locus, point } => {
-                vec![(*locus, PARAM_LOCUS), (*point, POINT)]
-            }
+            Op::LocusParam { locus, point } => vec![(*locus, PARAM_LOCUS), (*point, POINT)],
+            Op::Implicit { locus, point } => vec![(*locus, IMPLICIT_LOCUS), (*point, POINT)],
             Op::Circle { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
             Op::CircleThrough {
                 center, through, ..
@@ -234,6 +236,36 @@ impl Op {
             Op::HelixTurn { advance, pitch } => vec![(*advance, SCALAR), (*pitch, SCALAR)],
             Op::WorldAxis(_) => vec![],
             Op::PlaneNormal { a, b, c } => vec![(*a, POINT), (*b, POINT), (*c, POINT)],
+            Op::PlaneTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                ..
+            } => vec![
+                (*base, POINT),
+                (*normal, VECTOR),
+                (*pivot, POINT),
+                (*point, POINT),
+                (*d, SCALAR),
+            ],
+            Op::PlaneAxisTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                axis,
+                ..
+            } => vec![
+                (*base, POINT),
+                (*normal, VECTOR),
+                (*pivot, POINT),
+                (*point, POINT),
+                (*d, SCALAR),
+                (*axis, VECTOR),
+            ],
             Op::AngleTurn {
                 u, v, axis, angle, ..
             } => vec![
@@ -319,7 +351,11 @@ impl Op {
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::Coordinate { .. } => Ty::Scalar,
-            Op::WorldAxis(_) | Op::AngleTurn { .. } | Op::PlaneNormal { .. } => Ty::Vector,
+            Op::WorldAxis(_)
+            | Op::AngleTurn { .. }
+            | Op::PlaneNormal { .. }
+            | Op::PlaneTurn { .. }
+            | Op::PlaneAxisTurn { .. } => Ty::Vector,
             Op::PointAt { .. } => Ty::Point,
             Op::DirectionTo { .. }
             | Op::DirOf(_)
@@ -481,7 +517,7 @@ impl Plan {
                     None => errors.push(format!("step {i} uses an undeclared branch")),
                 }
             }
-            Op::AngleTurn { branch, .. } => {
+            Op::AngleTurn { branch, .. } | Op::PlaneAxisTurn { branch, .. } => {
                 if self.space != Space::D3 {
                     errors.push(format!("step {i} turns to an angle about an axis in 2d"));
                 }
@@ -680,6 +716,7 @@ mod tests {
             count: 2,
             meanings: vec![],
             default: 0,
+            symmetric: false,
         });
         assert_eq!(
             errors(&p),

@@ -195,6 +195,10 @@ pub enum Shape {
     Point,
     /// A direction.
     Vector,
+    /// A plane: its offset along its normal (one DOF) and its normal (two); sliding within
+    /// itself and turning about its normal move nothing. A plane held at a distance from a
+    /// known point (`Trans::Pivot` at that point) keeps it while turning about the point.
+    Plane,
     /// A geom of space the analysis does not move yet (a line, segment, circle or plane
     /// that is not fixed), with its DOF.
     Other(usize),
@@ -221,6 +225,7 @@ impl Record {
             GeomKind::Point => (Trans::Free, Turn::None, Shape::Point),
             GeomKind::Vector => (Trans::None, Turn::Free, Shape::Vector),
             GeomKind::Body => (Trans::Free, Turn::Free, Shape::Body),
+            GeomKind::Plane => (Trans::Free, Turn::Free, Shape::Plane),
             kind => (Trans::Free, Turn::Free, Shape::Other(kind.dof(model.space))),
         };
         let mut record = Record {
@@ -247,12 +252,13 @@ impl Invariants for Record {
             return if self.held { 0 } else { n };
         }
         let trans = match self.trans {
+            Trans::Free if self.shape == Shape::Plane => 1,
             Trans::Free => 3,
             Trans::On { locus, .. } => locus.dof(),
             Trans::Pivot { .. } | Trans::Fixed | Trans::None => 0,
         };
         let turn = match (self.turn, self.shape) {
-            (Turn::Free, Shape::Vector) => 2,
+            (Turn::Free, Shape::Vector | Shape::Plane) => 2,
             (Turn::Free, _) => 3,
             (Turn::Axis { .. }, _) => 1,
             (Turn::Known | Turn::None, _) => 0,
@@ -299,7 +305,7 @@ impl Invariants for Record {
             Trans::Free | Trans::None => (0, 0, 0),
         };
         let inv_vec = match (self.turn, self.shape) {
-            (Turn::Axis { .. }, _) | (Turn::Known, Shape::Vector) => 1,
+            (Turn::Axis { .. }, _) | (Turn::Known, Shape::Vector | Shape::Plane) => 1,
             (Turn::Known, _) => 2,
             _ => 0,
         };
@@ -731,6 +737,14 @@ impl Builder<'_, Spatial> {
                     );
                     return self.move_point(base, Target::On(Locus::Plane(q)), r);
                 }
+                // A plane whose normal still turns: held at the distance from the point, then
+                // turned about it.
+                if self.point_known(p)
+                    && self.together(base, normal)
+                    && self.record(base).shape == Shape::Plane
+                {
+                    return self.plane_at_distance(base, normal, p, d, r);
+                }
                 false
             }
             Relation::Parallel { u, v, sense } => {
@@ -952,6 +966,160 @@ impl Builder<'_, Spatial> {
         self.turn_onto(v, target, r, true)
     }
 
+    /// A plane `q` (its normal `normal`) to be at signed distance `d` from known point `p`,
+    /// its normal not known: free, it slides along its normal to that distance, and may then
+    /// only turn about `p` (which keeps it); about a point, it turns the least onto the cone of
+    /// normals that also keep `p`'s distance, and may then only turn about the line from
+    /// there to `p`; about that line, it turns to where the cone meets its turn (a branch).
+    /// Three points at known distances place a plane (004's point-plane cluster) in closed form.
+    fn plane_at_distance(
+        &mut self,
+        q: GeomId,
+        normal: GeomId,
+        p: GeomId,
+        d: Option<gcs_lang::expr::ExprId>,
+        r: &Rel,
+    ) -> bool {
+        let k = self.cluster(q);
+        let rec = self.clusters[k].record.clone();
+        let geoms = self.clusters[k].geoms.clone();
+        let (qname, pname, c) = (self.name(q), self.name(p), self.cname(r.constraint));
+        let dist = match d {
+            Some(e) => self.expr(e),
+            None => self.value(Op::Const(0.0), Ty::Scalar, "0".into()),
+        };
+        match (rec.trans, rec.turn) {
+            (Trans::Free, _) => {
+                let (x, n) = (self.point(p), self.direction(normal));
+                let words = format!("minus {}", self.word(dist));
+                let back = self.value(Op::Neg(dist), Ty::Scalar, words);
+                let words = format!("{qname} moved along its normal to its distance from {pname}");
+                let target = self.value(
+                    Op::Plane {
+                        point: x,
+                        normal: n,
+                        offset: Some(back),
+                    },
+                    Ty::Plane,
+                    words,
+                );
+                let from = self.point(q);
+                let words = format!("the point of that plane nearest {qname}'s");
+                let to = self.value(
+                    Op::Nearest {
+                        locus: target,
+                        point: from,
+                    },
+                    Ty::Point,
+                    words,
+                );
+                let explain = format!(
+                    "{qname} is free to move along its normal: move it so that {pname} is at its distance from it ({c}); it may then only turn about {pname}."
+                );
+                self.emit(
+                    Op::Translate { geoms, from, to },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.trans = Trans::Pivot { at: x, feature: p };
+                true
+            }
+            (Trans::Pivot { at, feature }, Turn::Free) if feature != p => {
+                let (b, n, x) = (self.point(q), self.direction(normal), self.point(p));
+                let words = format!(
+                    "the normal {qname} takes, turned the least about {}, to be at its distance from {pname}",
+                    self.word(at)
+                );
+                let to = self.value(
+                    Op::PlaneTurn {
+                        base: b,
+                        normal: n,
+                        pivot: at,
+                        point: x,
+                        d: dist,
+                        constraint: r.constraint,
+                    },
+                    Ty::Vector,
+                    words,
+                );
+                let explain = format!(
+                    "{qname} may only turn about {}: turn it the least so that {pname} is at its distance from it ({c}); it may then only turn about the line through both.",
+                    self.word(at)
+                );
+                self.emit(
+                    Op::RotateDir {
+                        geoms,
+                        pivot: at,
+                        axis: RotationAxis::Shortest,
+                        from: n,
+                        to,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let words = format!("the line from {} through {pname}", self.word(at));
+                let axis = self.value(Op::DirectionTo { from: at, to: x }, Ty::Vector, words);
+                self.clusters[k].record.turn = Turn::Axis {
+                    axis,
+                    feature: None,
+                };
+                true
+            }
+            (Trans::Pivot { at, feature }, Turn::Axis { axis, .. }) if feature != p => {
+                let (b, n, x) = (self.point(q), self.direction(normal), self.point(p));
+                let meanings = vec![
+                    format!(
+                        "{qname}'s normal turned counter-clockwise about {} from its turn nearest the direction to {pname}",
+                        self.word(axis)
+                    ),
+                    "turned clockwise from there".to_string(),
+                ];
+                let branch = self.branch(r.constraint, meanings);
+                let words = format!(
+                    "the normal {qname} takes, turned about {}, to be at its distance from {pname}",
+                    self.word(axis)
+                );
+                let to = self.value(
+                    Op::PlaneAxisTurn {
+                        base: b,
+                        normal: n,
+                        pivot: at,
+                        point: x,
+                        d: dist,
+                        axis,
+                        branch,
+                        constraint: r.constraint,
+                    },
+                    Ty::Vector,
+                    words,
+                );
+                let explain = format!(
+                    "{qname} may only turn about {}: turn it so that {pname} is at its distance from it ({c}).",
+                    self.word(axis)
+                );
+                self.emit(
+                    Op::RotateDir {
+                        geoms,
+                        pivot: at,
+                        axis: RotationAxis::Along(axis),
+                        from: n,
+                        to,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let rec = &mut self.clusters[k].record;
+                rec.turn = Turn::Known;
+                rec.trans = Trans::Fixed;
+                true
+            }
+            _ => false,
+        }
+    }
+
     fn plane_words(&self, base: GeomId, normal: GeomId, offset: Option<Reg>) -> String {
         let moved = offset.map_or(String::new(), |o| {
             format!(" moved {} along it", self.word(o))
@@ -1058,7 +1226,11 @@ impl Builder<'_, Spatial> {
                 } else {
                     self.shifted(locus, g, f)
                 };
-                let Some(met) = self.meet(own, target, from, r) else {
+                // The grounded point's second and third, on the line and plane holding them.
+                let held = g == f
+                    && (self.plan.grounded_direction.is_some_and(|(_, b)| b == f)
+                        || self.plan.grounded_plane == Some(f));
+                let Some(met) = self.meet_held(own, target, from, r, held) else {
                     return false;
                 };
                 let to = match met {
@@ -1198,7 +1370,11 @@ impl Builder<'_, Spatial> {
     /// the nearest point of `target`'s locus.
     fn placed(&mut self, k: usize, f: GeomId, to: Reg, target: Target) {
         let turns = matches!(self.clusters[k].record.turn, Turn::Free | Turn::Axis { .. });
+        let plane = self.clusters[k].record.shape == Shape::Plane;
         let trans = match target {
+            // A plane put on a plane parallel to it is placed: sliding within itself is no
+            // motion of it.
+            Target::On(Locus::Plane(_)) if plane => Trans::Fixed,
             Target::Point(_) if turns => Trans::Pivot { at: to, feature: f },
             Target::Point(_) => Trans::Fixed,
             Target::On(locus) => Trans::On { feature: f, locus },
@@ -1259,6 +1435,19 @@ impl Builder<'_, Spatial> {
     /// variable where two), or the curve two surfaces share. `None` for pairs with no
     /// construction here (two curves of space, which meet only by accident).
     fn meet(&mut self, own: Locus, target: Target, near: Reg, r: &Rel) -> Option<Target> {
+        self.meet_held(own, target, near, r, false)
+    }
+
+    /// [`Builder::meet`]; `held`: `own` is the line or plane a model with nothing fixed is
+    /// held by, whose roots are one assembly turned as a whole (a symmetric branch).
+    fn meet_held(
+        &mut self,
+        own: Locus,
+        target: Target,
+        near: Reg,
+        r: &Rel,
+        held: bool,
+    ) -> Option<Target> {
         let other = match target {
             Target::Point(x) => {
                 let words = self.word(x);
@@ -1315,6 +1504,9 @@ impl Builder<'_, Spatial> {
             _ => vec![format!("where {wa} and {wb} meet")],
         };
         let branch = self.branch(r.constraint, meanings);
+        if held {
+            self.plan.branches[branch.0 as usize].symmetric = true;
+        }
         let ty = meet.result();
         let words = match ty {
             Ty::Point if meet == Meet::LinePlane => format!("where {wa} crosses {wb}"),
@@ -1661,12 +1853,14 @@ impl Builder<'_, Spatial> {
         true
     }
 
-    /// Grounds a model in which nothing is fixed: the cluster with the most DOF, then the
-    /// first name, is held where the sketch has it.
+    /// Grounds a model in which nothing is fixed: the cluster with the most DOF (a point
+    /// before a plane of as many: its turns are then held by the points related to it), then
+    /// the first name, is held where the sketch has it.
     fn ground_if_nothing_fixed(&mut self) {
-        let mut best: Option<(usize, String, usize)> = None;
+        let mut best: Option<((usize, bool), String, usize)> = None;
         for (i, c) in self.clusters.iter().enumerate() {
-            let key = (c.record.dof(), self.model.geoms[c.geoms[0]].name.clone());
+            let rank = (c.record.dof(), c.record.shape == Shape::Point);
+            let key = (rank, self.model.geoms[c.geoms[0]].name.clone());
             if best
                 .as_ref()
                 .is_none_or(|b| key.0 > b.0 || (key.0 == b.0 && key.1 < b.1))
