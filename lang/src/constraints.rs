@@ -493,17 +493,25 @@ impl ConstraintKind {
         let pair = (args.first().copied(), args.get(1).copied());
         match self {
             C::Coincident | C::Spherical => n,
+            // In space a line at a distance from (or tangent to) a circle lies in its plane,
+            // and two circles are coplanar: the distance is measured in that plane.
             C::Distance => match pair {
                 (_, Some(K::Point | K::Marker)) if zero => n,
                 (_, Some(K::Line | K::Segment)) if d3 && zero => 2,
                 (_, Some(K::Circle)) if d3 && zero && args[0].is_pointlike() => 2,
+                (Some(K::Line | K::Segment), Some(K::Circle)) if d3 => 3,
+                (Some(K::Circle), Some(K::Circle)) if d3 => 4,
                 _ => 1,
             },
             C::On => match pair {
                 (_, Some(K::Line | K::Segment | K::Circle)) if d3 => 2,
                 _ => 1,
             },
-            C::Tangent => 1,
+            C::Tangent => match pair {
+                (Some(K::Circle), Some(K::Circle)) if d3 => 4,
+                _ if d3 => 3,
+                _ => 1,
+            },
             C::Angle => {
                 let straight = value
                     .is_some_and(|v| v == 0.0 || (v.abs() - std::f64::consts::PI).abs() < 1e-12);

@@ -111,6 +111,7 @@ impl Solve<'_> {
             | Residual::Parallel { .. }
             | Residual::Twist { .. }
             | Residual::AngleBetween { .. }
+            | Residual::OnCircle { .. }
             | Residual::Helix { .. } => {
                 unreachable!("bug in gcs: a spatial check reached the planar code generator (`codegen::covers` refuses 3d models)")
             }

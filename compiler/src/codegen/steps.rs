@@ -336,6 +336,7 @@ impl Solve<'_> {
             | Op::Orbit { .. }
             | Op::Opposite(_)
             | Op::Across(_)
+            | Op::Circle3 { .. }
             | Op::AngleAbout { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }

@@ -1099,6 +1099,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::Orbit { .. }
             | Op::Opposite(_)
             | Op::Across(_)
+            | Op::Circle3 { .. }
             | Op::AngleAbout { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
@@ -1258,6 +1259,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Residual::Parallel { .. }
             | Residual::Twist { .. }
             | Residual::AngleBetween { .. }
+            | Residual::OnCircle { .. }
             | Residual::Helix { .. } => {
                 panic!("bug in gcs: a spatial check reached the planar interpreter")
             }

@@ -320,6 +320,15 @@ impl Machine<'_, '_, D3> {
                 &self.p3(*through),
                 &self.plane(*plane).normal,
             )),
+            Op::Circle3 {
+                center,
+                normal,
+                radius,
+            } => Val::C3(Circle3::new(
+                self.p3(*center),
+                self.unit(i, self.v3(*normal))?,
+                self.s(*radius),
+            )),
             Op::Sphere { center, radius } => {
                 Val::Sphere(Sphere::new(self.p3(*center), self.s(*radius)))
             }
@@ -586,6 +595,14 @@ impl Machine<'_, '_, D3> {
             Residual::Parallel { u, v, sense } => c::parallel(self.v3(u), self.v3(v), sense),
             Residual::AngleBetween { u, v, angle } => {
                 c::angle_between(self.v3(u), self.v3(v), self.s(angle))
+            }
+            Residual::OnCircle {
+                p,
+                centre,
+                normal,
+                radius,
+            } => {
+                Circle3::new(self.p3(centre), self.v3(normal), self.s(radius)).distance(&self.p3(p))
             }
             Residual::Twist { axis, u, v, angle } => {
                 c::twist(self.v3(axis), self.v3(u), self.v3(v), self.s(angle))

@@ -178,6 +178,16 @@ impl Plan {
                     format!("parallel_plane {} through {}", r(plane), r(through))
                 }
                 Op::Sphere { center, radius } => format!("sphere {} {}", r(center), r(radius)),
+                Op::Circle3 {
+                    center,
+                    normal,
+                    radius,
+                } => format!(
+                    "circle {} normal {} radius {}",
+                    r(center),
+                    r(normal),
+                    r(radius)
+                ),
                 Op::SphereThrough {
                     center,
                     through,
@@ -458,6 +468,18 @@ fn residual_text(residual: &Residual) -> String {
         Residual::PointPlane { p, base, normal, d } => {
             format!("point_plane {} {} {} {}", r(p), r(base), r(normal), opt(d))
         }
+        Residual::OnCircle {
+            p,
+            centre,
+            normal,
+            radius,
+        } => format!(
+            "on_circle {} {} {} {}",
+            r(p),
+            r(centre),
+            r(normal),
+            r(radius)
+        ),
         Residual::AngleBetween { u, v, angle } => {
             format!("angle_between {} {} {}", r(u), r(v), r(angle))
         }

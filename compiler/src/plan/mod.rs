@@ -281,6 +281,13 @@ pub enum Residual {
     },
     /// In space: directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1).
     Parallel { u: Reg, v: Reg, sense: f64 },
+    /// In space: `p` lies on the circle about `centre` with unit `normal` and `radius`.
+    OnCircle {
+        p: Reg,
+        centre: Reg,
+        normal: Reg,
+        radius: Reg,
+    },
     /// In space: the unsigned angle between directions `u` and `v` is `angle`.
     AngleBetween { u: Reg, v: Reg, angle: Reg },
     /// In space: the angle from `u` to `v` counter-clockwise about `axis` is `2pi s / pitch`
@@ -416,6 +423,12 @@ pub enum Op {
     },
     /// In space: the plane parallel to plane `plane` through `through`.
     ParallelPlane { plane: Reg, through: Reg },
+    /// In space: the circle about `center` with unit `normal` and `radius`.
+    Circle3 {
+        center: Reg,
+        normal: Reg,
+        radius: Reg,
+    },
     /// In space: the sphere about `center` with `radius`.
     Sphere { center: Reg, radius: Reg },
     /// In space: the sphere about `center` through `through`; `radius` as in

@@ -119,6 +119,17 @@ impl Residual {
                 opt(d, &mut out);
             }
             Residual::Parallel { u, v, .. } => out.extend([(*u, VECTOR), (*v, VECTOR)]),
+            Residual::OnCircle {
+                p,
+                centre,
+                normal,
+                radius,
+            } => out.extend([
+                (*p, POINT),
+                (*centre, POINT),
+                (*normal, VECTOR),
+                (*radius, SCALAR),
+            ]),
             Residual::AngleBetween { u, v, angle } => {
                 out.extend([(*u, VECTOR), (*v, VECTOR), (*angle, SCALAR)])
             }
@@ -214,6 +225,11 @@ impl Op {
             }
             Op::ParallelPlane { plane, through } => vec![(*plane, PLANE), (*through, POINT)],
             Op::Sphere { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
+            Op::Circle3 {
+                center,
+                normal,
+                radius,
+            } => vec![(*center, POINT), (*normal, VECTOR), (*radius, SCALAR)],
             Op::SphereThrough {
                 center, through, ..
             } => vec![(*center, POINT), (*through, POINT)],
@@ -367,7 +383,7 @@ impl Op {
             | Op::PassingDir { .. } => Ty::Vector,
             Op::Plane { .. } | Op::ParallelPlane { .. } => Ty::Plane,
             Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Ty::Sphere,
-            Op::Orbit { .. } => Ty::Circle,
+            Op::Orbit { .. } | Op::Circle3 { .. } => Ty::Circle,
             Op::Reversed(_)
             | Op::OffsetLine { .. }
             | Op::CentresLineLine { .. }

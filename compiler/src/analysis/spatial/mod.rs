@@ -551,6 +551,9 @@ impl Builder<'_, Spatial> {
             Relation::Parallel { u, v, .. } | Relation::Angle { u, v, .. } => {
                 (self.dir_known(u) && self.dir_known(v)) || self.together(u, v)
             }
+            Relation::PointCircle { p, circle } => {
+                (self.point_known(p) && self.record(circle).grounded()) || self.together(p, circle)
+            }
             Relation::Twist { axis, u, v, .. } => {
                 (self.dir_known(axis) && self.dir_known(u) && self.dir_known(v))
                     || (self.together(axis, v) && self.together(u, v))
@@ -596,6 +599,16 @@ impl Builder<'_, Spatial> {
                 let angle = self.angle_value(angle);
                 Residual::AngleBetween { u, v, angle }
             }
+            Relation::PointCircle { p, circle } => {
+                let p = self.point(p);
+                let (centre, normal, radius) = self.circle_parts(circle);
+                Residual::OnCircle {
+                    p,
+                    centre,
+                    normal,
+                    radius,
+                }
+            }
             Relation::Twist { axis, u, v, angle } => {
                 let (axis, u, v) = (self.direction(axis), self.direction(u), self.direction(v));
                 let angle = self.angle(angle);
@@ -622,6 +635,21 @@ impl Builder<'_, Spatial> {
                 }
             }
         }
+    }
+
+    /// A circle of space's centre, unit normal and radius, measured now.
+    fn circle_parts(&mut self, circle: GeomId) -> (Reg, Reg, Reg) {
+        let centre = match self.model.part(circle, gcs_lang::model::Part::Center) {
+            Some(c) => self.point(c),
+            None => self.point(circle),
+        };
+        let normal = match self.model.part(circle, gcs_lang::model::Part::Normal) {
+            Some(n) => self.direction(n),
+            None => self.value(Op::WorldAxis(2), Ty::Vector, "the Z axis".into()),
+        };
+        let words = format!("the radius of {}", self.name(circle));
+        let radius = self.value(Op::DimOf(circle), Ty::Scalar, words);
+        (centre, normal, radius)
     }
 
     /// The register of an angle a relation asks for.
@@ -761,6 +789,23 @@ impl Builder<'_, Spatial> {
                     }
                 }
                 false
+            }
+            Relation::PointCircle { p, circle } => {
+                if !self.record(circle).grounded() || self.point_known(p) {
+                    return false;
+                }
+                let (center, normal, radius) = self.circle_parts(circle);
+                let words = self.name(circle);
+                let locus = self.value(
+                    Op::Circle3 {
+                        center,
+                        normal,
+                        radius,
+                    },
+                    Ty::Circle,
+                    words,
+                );
+                self.move_point(p, Target::On(Locus::Circle(locus)), r)
             }
             Relation::Angle { u, v, angle } => {
                 for (known, moving) in [(u, v), (v, u)] {

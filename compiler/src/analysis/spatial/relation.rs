@@ -58,6 +58,13 @@ pub enum Relation {
         /// Same sense (+1) or opposite (-1).
         sense: f64,
     },
+    /// Point `p` lies on circle `circle` (in its plane, at its radius from its centre).
+    PointCircle {
+        /// The point feature.
+        p: GeomId,
+        /// The circle.
+        circle: GeomId,
+    },
     /// The unsigned angle between directions `u` and `v` is `angle` (in [0, pi]).
     Angle {
         /// First direction.
@@ -119,6 +126,7 @@ impl Relation {
                 p, base, normal, ..
             } => vec![p, base, normal],
             Relation::Parallel { u, v, .. } | Relation::Angle { u, v, .. } => vec![u, v],
+            Relation::PointCircle { p, circle } => vec![p, circle],
             Relation::Twist { axis, u, v, .. } => vec![axis, u, v],
             Relation::Helix {
                 axis, u, v, p, q, ..
@@ -205,6 +213,12 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                     }),
                     None => missing("a plane without its normal"),
                 }
+            }
+            (K::On, Some(a), Some(b)) if kind(a).is_pointlike() && kind(b) == GeomKind::Circle => {
+                out.push(Relation::PointCircle {
+                    p: point(a),
+                    circle: b,
+                })
             }
             (K::On, Some(a), Some(b))
                 if kind(a).is_pointlike()
