@@ -487,7 +487,6 @@ impl Builder<'_, Spatial> {
         if !rec.movable() || self.point_known(f) {
             return None;
         }
-        let fname = self.name(f);
         match (rec.trans, rec.turn) {
             (Trans::On { feature, locus }, _) if feature == f => Some(locus),
             (Trans::On { feature, locus }, Turn::Known | Turn::None) => {
@@ -495,37 +494,53 @@ impl Builder<'_, Spatial> {
             }
             (Trans::Pivot { at, feature }, Turn::Free) => {
                 let from = self.point(f);
-                let radius = self.model.constant_distance(feature, f);
-                let words = format!("the sphere about {} through {fname}", self.word(at));
-                Some(Locus::Sphere(self.value(
-                    Op::SphereThrough {
-                        center: at,
-                        through: from,
-                        radius,
-                    },
-                    Ty::Sphere,
-                    words,
-                )))
+                Some(Locus::Sphere(self.pivot_sphere(at, feature, f, from)))
             }
             (Trans::Pivot { at, .. }, Turn::Axis { axis, .. }) => {
                 let from = self.point(f);
-                let words = format!(
-                    "the circle {fname} sweeps about the axis through {} along {}",
-                    self.word(at),
-                    self.word(axis)
-                );
-                Some(Locus::Circle(self.value(
-                    Op::Orbit {
-                        pivot: at,
-                        axis,
-                        through: from,
-                    },
-                    Ty::Circle,
-                    words,
-                )))
+                Some(Locus::Circle(self.orbit(at, axis, f, from)))
             }
             _ => None,
         }
+    }
+
+    /// The sphere about pivot `at` (of feature `g`) that point `f`, now at `from`, keeps to
+    /// while its cluster turns about the pivot.
+    fn pivot_sphere(&mut self, at: Reg, g: GeomId, f: GeomId, from: Reg) -> Reg {
+        let radius = self.model.constant_distance(g, f);
+        let words = format!(
+            "the sphere about {} through {}",
+            self.word(at),
+            self.name(f)
+        );
+        self.value(
+            Op::SphereThrough {
+                center: at,
+                through: from,
+                radius,
+            },
+            Ty::Sphere,
+            words,
+        )
+    }
+
+    /// The circle point `f`, now at `from`, sweeps turning about the axis through `at`.
+    fn orbit(&mut self, at: Reg, axis: Reg, f: GeomId, from: Reg) -> Reg {
+        let words = format!(
+            "the circle {} sweeps about the axis through {} along {}",
+            self.name(f),
+            self.word(at),
+            self.word(axis)
+        );
+        self.value(
+            Op::Orbit {
+                pivot: at,
+                axis,
+                through: from,
+            },
+            Ty::Circle,
+            words,
+        )
     }
 
     /// Whether features `a` and `b` move together (one cluster: rigid).
@@ -1311,17 +1326,7 @@ impl Builder<'_, Spatial> {
             // About a pivot, free to turn: f is on the sphere about the pivot through it.
             (Trans::Pivot { at, feature: g }, target) if rec.turn == Turn::Free && g != f => {
                 let from = self.point(f);
-                let radius = self.model.constant_distance(g, f);
-                let words = format!("the sphere about {} through {fname}", self.word(at));
-                let sphere = self.value(
-                    Op::SphereThrough {
-                        center: at,
-                        through: from,
-                        radius,
-                    },
-                    Ty::Sphere,
-                    words,
-                );
+                let sphere = self.pivot_sphere(at, g, f, from);
                 let Some(Target::Point(to)) = self.meet(Locus::Sphere(sphere), target, from, r)
                 else {
                     return false;
@@ -1360,20 +1365,7 @@ impl Builder<'_, Spatial> {
                     return false;
                 };
                 let from = self.point(f);
-                let words = format!(
-                    "the circle {fname} sweeps about the axis through {} along {}",
-                    self.word(at),
-                    self.word(axis)
-                );
-                let orbit = self.value(
-                    Op::Orbit {
-                        pivot: at,
-                        axis,
-                        through: from,
-                    },
-                    Ty::Circle,
-                    words,
-                );
+                let orbit = self.orbit(at, axis, f, from);
                 let Some(Target::Point(to)) = self.meet(Locus::Circle(orbit), target, from, r)
                 else {
                     return false;
@@ -1671,11 +1663,7 @@ impl Builder<'_, Spatial> {
                     },
                     explain,
                 );
-                let rec = &mut self.clusters[k].record;
-                rec.turn = Turn::Known;
-                if let Trans::Pivot { .. } = rec.trans {
-                    rec.trans = Trans::Fixed;
-                }
+                self.turned(k);
                 if across {
                     return true;
                 }
@@ -1831,11 +1819,7 @@ impl Builder<'_, Spatial> {
             let a = self.value(Op::WorldAxis(i as u8), Ty::Vector, words);
             self.turn_by_default(&geoms, pivot, a, format!("{gname}_{axis}_angle"));
         }
-        let rec = &mut self.clusters[k].record;
-        rec.turn = Turn::Known;
-        if let Trans::Pivot { .. } = rec.trans {
-            rec.trans = Trans::Fixed;
-        }
+        self.turned(k);
         true
     }
 
@@ -1890,12 +1874,17 @@ impl Builder<'_, Spatial> {
         let pivot = self.pivot_of(k);
         let name = format!("{}_spin_angle", self.name(geoms[0]));
         self.turn_by_default(&geoms, pivot, axis, name);
+        self.turned(k);
+        true
+    }
+
+    /// Cluster `k`'s orientation is now known: about a pivot, it is placed.
+    fn turned(&mut self, k: usize) {
         let rec = &mut self.clusters[k].record;
         rec.turn = Turn::Known;
         if let Trans::Pivot { .. } = rec.trans {
             rec.trans = Trans::Fixed;
         }
-        true
     }
 
     /// Grounds a model in which nothing is fixed: the cluster with the most DOF (a point
