@@ -35,7 +35,7 @@ fn main() -> Result<(), gcs_compiler::build::BuildError> {
     println!("cargo:rerun-if-changed={}", here.display());
     let models: Vec<_> = discover::models(&here.join(".."))
         .into_iter()
-        .filter(|m| (m.folder.is_example() || m.folder == Folder::Families) && m.is_compiled())
+        .filter(|m| (m.folder.is_example() || m.folder == Folder::Families) && m.is_analysed())
         .collect();
     // Relative to this folder (a build script runs in it), as the generated code names them.
     let paths: Vec<String> = models

@@ -93,12 +93,6 @@ impl Found {
         !NOT_YET.contains(&self.stem.as_str())
     }
 
-    /// Whether code generation covers this model today: the filter between "analysed" and
-    /// "compiled, built, run against the interpreter and benchmarked against the baseline".
-    /// 3d plans are solved by the interpreter, not compiled yet.
-    pub fn is_compiled(&self) -> bool {
-        self.is_analysed() && self.space == gcs_lang::model::Space::D2
-    }
 
     /// The file name: `fourbar.gcs`.
     pub fn file_name(&self) -> String {
@@ -199,11 +193,3 @@ pub fn analysed(root: &Path, folder: Folder) -> Vec<Found> {
         .collect()
 }
 
-/// The models of `folder` code generation covers ([`Found::is_compiled`]), as [`analysed`].
-#[allow(dead_code)]
-pub fn compiled(root: &Path, folder: Folder) -> Vec<Found> {
-    analysed(root, folder)
-        .into_iter()
-        .filter(Found::is_compiled)
-        .collect()
-}

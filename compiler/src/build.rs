@@ -158,7 +158,6 @@ impl Builder {
         if compiled.has_errors() {
             return Err(failure(error_count(diags), rendered));
         }
-        codegen::covers(&compiled.model).map_err(|why| failure(why, String::new()))?;
         if !self.quiet {
             // As the command line shows them: repeated warnings counted in one line.
             let shown = gcs_lang::diagnostic::shown(diags);

@@ -11,8 +11,9 @@
 
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, PlanePlacement, Sketch};
 use gcs_lang::Model;
+use gcs_runtime::frame::{rotation_onto_x, rotation_onto_z, rotation_zx};
 use gcs_runtime::frame::{Frame2, Frame3};
-use nalgebra::{Point2, Point3, Rotation3, UnitComplex, UnitQuaternion, Vector2, Vector3};
+use nalgebra::{Point2, Point3, UnitComplex, UnitQuaternion, Vector2, Vector3};
 use std::collections::HashMap;
 
 /// A point of the plane.
@@ -227,6 +228,16 @@ impl<S: Frames> Config<S> {
         }
     }
 
+    /// A member's local coordinates in its body's frame, as the sketch gives them.
+    pub fn local_point(&self, g: GeomId) -> Option<Pt<S>> {
+        self.local_points.get(&g).copied()
+    }
+
+    /// A member vector's, or a marker axis', unit local direction, as the sketch gives it.
+    pub fn local_dir(&self, g: GeomId) -> Option<Vc<S>> {
+        self.local_dirs.get(&g).copied()
+    }
+
     /// `L.point` of a line: the foot of the perpendicular from its first sketch point.
     pub fn line_point(&self, line: GeomId) -> Pt<S> {
         let f = self
@@ -410,38 +421,6 @@ fn finite3(v: &V3) -> bool {
     v.iter().all(|x| x.is_finite())
 }
 
-/// The rotation whose z axis is `z` and whose x axis is `x` made perpendicular to it (the
-/// resolver has checked that a marker's axes are orthogonal, up to rounding); `None` for a
-/// zero axis.
-fn rotation_zx(z: &V3, x: &V3) -> Option<UnitQuaternion<f64>> {
-    let z = z.try_normalize(0.0)?;
-    let x = (x - z * z.dot(x)).try_normalize(0.0)?;
-    let y = z.cross(&x);
-    Some(UnitQuaternion::from_rotation_matrix(
-        &Rotation3::from_basis_unchecked(&[x, y, z]),
-    ))
-}
-
-/// A rotation whose x axis is `x`: the shortest turn from the global x axis.
-fn rotation_x(x: &V3) -> Option<UnitQuaternion<f64>> {
-    let x = x.try_normalize(0.0)?;
-    Some(gcs_runtime::frame::rotation_between3(
-        &V3::x(),
-        &x,
-        &V3::z(),
-    ))
-}
-
-/// A rotation whose z axis is `z`: the shortest turn from the global z axis.
-fn rotation_z(z: &V3) -> Option<UnitQuaternion<f64>> {
-    let z = z.try_normalize(0.0)?;
-    Some(gcs_runtime::frame::rotation_between3(
-        &V3::z(),
-        &z,
-        &V3::x(),
-    ))
-}
-
 impl Config<D3> {
     fn read_space(model: &Model, params: &[f64]) -> Result<Config<D3>, BadSketch> {
         let mut cfg = Config::<D3>::empty();
@@ -461,7 +440,7 @@ impl Config<D3> {
                 }
                 (Sketch::Vector(c), Owner::TopLevel) => {
                     let v = coords3(model, c, params);
-                    let rot = finite3(&v).then(|| rotation_x(&v)).flatten();
+                    let rot = finite3(&v).then(|| rotation_onto_x(&v)).flatten();
                     let Some(rot) = rot else {
                         return Err(bad(SketchFault::Direction));
                     };
@@ -472,7 +451,7 @@ impl Config<D3> {
                     let b = coords3(model, to, params);
                     let d = b - a;
                     let rot = (finite3(&a) && finite3(&b))
-                        .then(|| rotation_x(&d))
+                        .then(|| rotation_onto_x(&d))
                         .flatten();
                     let Some(rot) = rot else {
                         return Err(bad(SketchFault::Points));
@@ -498,7 +477,7 @@ impl Config<D3> {
                         .as_ref()
                         .map_or(V3::z(), |n| coords3(model, n, params));
                     let rot = (finite3(&c) && r.is_finite() && r >= 0.0 && finite3(&n))
-                        .then(|| rotation_z(&n))
+                        .then(|| rotation_onto_z(&n))
                         .flatten();
                     let Some(rot) = rot else {
                         return Err(bad(SketchFault::Circle));
@@ -508,7 +487,7 @@ impl Config<D3> {
                 }
                 (Sketch::Plane { normal, placement }, Owner::TopLevel) => {
                     let n = coords3(model, normal, params);
-                    let rot = finite3(&n).then(|| rotation_z(&n)).flatten();
+                    let rot = finite3(&n).then(|| rotation_onto_z(&n)).flatten();
                     let Some(rot) = rot else {
                         return Err(bad(SketchFault::Direction));
                     };
@@ -538,13 +517,8 @@ impl Config<D3> {
                     if !finite3(&o) || !a.is_finite() || !finite3(&ax) {
                         return Err(bad(SketchFault::Placement));
                     }
-                    let rot = if a == 0.0 {
-                        UnitQuaternion::identity()
-                    } else {
-                        match nalgebra::Unit::try_new(ax, 0.0) {
-                            Some(u) => UnitQuaternion::from_axis_angle(&u, a),
-                            None => return Err(bad(SketchFault::Placement)),
-                        }
+                    let Some(rot) = gcs_runtime::frame::rotation_sketched(&ax, a) else {
+                        return Err(bad(SketchFault::Placement));
                     };
                     cfg.frames.insert(id, Frame3::new(P3::from(o), rot));
                 }

@@ -10,7 +10,7 @@ mod discover {
 /// The analysed models of `tests/models/`.
 fn models() -> Vec<discover::Found> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    discover::compiled(&root, discover::Folder::TestModels)
+    discover::analysed(&root, discover::Folder::TestModels)
 }
 
 /// The generated module of a model.

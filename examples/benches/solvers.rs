@@ -168,7 +168,7 @@ macro_rules! generated_vs_interpreted {
         let choice = gcs_compiler::interp::Choice::Given(plan.branches.iter().map(|b| b.default).collect());
         let params = model.default_params();
         g.bench_function("interpreted", |b| {
-            b.iter(|| black_box(gcs_compiler::interp::run(&model, &plan, black_box(&params), &choice).is_ok()))
+            b.iter(|| black_box(gcs_compiler::interp::runs(&model, &plan, black_box(&params), &choice).is_ok()))
         });
         g.finish();
     }};

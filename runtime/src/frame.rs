@@ -903,6 +903,94 @@ pub fn turns_to_angle(
     }
 }
 
+/// `v` over its length; `None` for a zero or not-a-number length, where no direction is.
+#[inline]
+pub fn unit3(v: &Vector3<f64>) -> Option<Vector3<f64>> {
+    let n = v.norm();
+    if n.is_nan() || n <= 0.0 {
+        return None;
+    }
+    Some(v / n)
+}
+
+/// The rotation of a sketch whose x axis is `x` (a vector's, a line's, a segment's): the
+/// shortest turn from the global x axis; `None` for a zero `x`.
+pub fn rotation_onto_x(x: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
+    let x = x.try_normalize(0.0)?;
+    Some(rotation_between3(&Vector3::x(), &x, &Vector3::z()))
+}
+
+/// The rotation of a sketch whose z axis is `z` (a circle's or a plane's normal): the shortest
+/// turn from the global z axis; `None` for a zero `z`.
+pub fn rotation_onto_z(z: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
+    let z = z.try_normalize(0.0)?;
+    Some(rotation_between3(&Vector3::z(), &z, &Vector3::x()))
+}
+
+/// The rotation of a marker whose z axis is `z` and whose x axis is `x` made perpendicular to
+/// it (the language checks that a marker's axes are orthogonal, up to rounding); `None` for a
+/// zero axis, or an `x` along `z`.
+pub fn rotation_zx(z: &Vector3<f64>, x: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
+    let z = z.try_normalize(0.0)?;
+    let x = (x - z * z.dot(x)).try_normalize(0.0)?;
+    let y = z.cross(&x);
+    Some(UnitQuaternion::from_rotation_matrix(
+        &nalgebra::Rotation3::from_basis_unchecked(&[x, y, z]),
+    ))
+}
+
+/// The rotation of a body placed `rotated angle about axis`: none for a zero angle, whatever
+/// the axis; `None` for a turn about a zero axis.
+pub fn rotation_sketched(axis: &Vector3<f64>, angle: f64) -> Option<UnitQuaternion<f64>> {
+    if angle == 0.0 {
+        return Some(UnitQuaternion::identity());
+    }
+    let u = Unit::try_new(*axis, 0.0)?;
+    Some(UnitQuaternion::from_axis_angle(&u, angle))
+}
+
+/// A plane through `base` with unit normal `normal`, turning about `pivot` until it is at
+/// signed distance `d` from `point`: the vector from the pivot to the point, and the cosine
+/// its direction must make with the new normal (the turn keeps the pivot's distance).
+pub fn plane_cone(
+    base: &Point3<f64>,
+    normal: &Vector3<f64>,
+    pivot: &Point3<f64>,
+    point: &Point3<f64>,
+    d: f64,
+) -> (Vector3<f64>, f64) {
+    let w = point - pivot;
+    let sd0 = normal.dot(&(pivot - base));
+    (w, (d - sd0) / w.norm())
+}
+
+/// The normal of least turn from `normal` that makes the cosine `c` (in [-1, 1]) with the unit
+/// direction `w`: on the great circle through `w` and `normal`, or about any axis across `w`
+/// when `normal` is along it.
+pub fn plane_turn(w: &Vector3<f64>, c: f64, normal: &Vector3<f64>) -> Vector3<f64> {
+    let across = normal - w * normal.dot(w);
+    let e = match across.try_normalize(0.0) {
+        Some(e) => e,
+        None => perpendicular(w).normalize(),
+    };
+    w * c + e * (1.0 - c * c).max(0.0).sqrt()
+}
+
+/// The advance of a screw of `pitch` (per turn) whose turn is `turn` radians, the one nearest
+/// `now`: a turn and a whole number of turns more give the same screw, so the advance nearest
+/// where the screw is keeps it from jumping a pitch.
+pub fn helix_advance(now: f64, turn: f64, pitch: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let off = crate::num::wrap_angle(turn - tau * now / pitch);
+    now + pitch / tau * off
+}
+
+/// The turn, in radians, of a screw of `pitch` (per turn) advanced by `advance`.
+#[inline]
+pub fn helix_turn(advance: f64, pitch: f64) -> f64 {
+    std::f64::consts::TAU * advance / pitch
+}
+
 #[cfg(test)]
 mod cone_tests {
     use super::*;

@@ -797,6 +797,40 @@ fn coplanar_circles(
 // ---------------------------------------------------------------------------------------------
 // Plane and cylinder.
 
+/// A line and a circle of space. In the circle's plane (the line parallel to it and in it,
+/// to the tangency tolerance) they meet where the line meets the circle's sphere: branch `i`
+/// is [`line_sphere`]'s. Across the plane the line meets it at one point, the root in both
+/// slots when it is on the circle to the tangency tolerance over the sine of the line's angle
+/// with the plane (a circle of space meets a line there or nowhere, and the sphere's other
+/// root, off the circle, must never be taken); [`Contact::Disjoint`] with the gap otherwise,
+/// [`Contact::Parallel`] for a line parallel to the plane and off it.
+pub fn line_circle(l: &Line3, c: &Circle3) -> Intersection<Point3<f64>, 2> {
+    let sphere = Sphere::new(c.center, c.radius);
+    let across = l.dir.dot(&c.normal);
+    let height = (l.point - c.center).dot(&c.normal);
+    let scale = tol::scale(&[
+        l.point.x, l.point.y, l.point.z, c.center.x, c.center.y, c.center.z, c.radius,
+    ]);
+    let tt = TANGENT_REL * scale;
+    if across.abs() <= ANGLE {
+        if height.abs() > tt {
+            return Intersection::none(Contact::Parallel { gap: height.abs() });
+        }
+        return line_sphere(l, &sphere);
+    }
+    let at = l.point - l.dir * (height / across);
+    let gap = ((at - c.center).norm() - c.radius).abs();
+    // The crossing is as precise as the line is steep across the plane: rounding over the
+    // sine of their angle.
+    if gap > tt / across.abs().min(1.0) {
+        return Intersection::none(Contact::Disjoint { gap });
+    }
+    Intersection {
+        roots: Roots::from_slice(&[at, at]),
+        contact: Contact::Tangent,
+    }
+}
+
 /// Plane-cylinder: the section of a cylinder by a plane.
 ///
 /// **Plane not parallel to the axis:** `Crossing` with a single root (branch 0; slot 1 stays

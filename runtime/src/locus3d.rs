@@ -234,6 +234,30 @@ impl Circle3 {
         (n > 0.0 && n.is_finite()).then(|| self.center + radial * (self.radius / n))
     }
 
+    /// The circle's in-plane basis: where its angles are measured from
+    /// ([`crate::frame::perpendicular`] of its normal) and the direction a quarter turn on.
+    #[inline]
+    pub fn basis(&self) -> (Vector3<f64>, Vector3<f64>) {
+        let e1 = crate::frame::perpendicular(&self.normal).normalize();
+        (e1, self.normal.cross(&e1))
+    }
+
+    /// The angle of `p` about the circle's axis, from [`Circle3::basis`]'s first direction.
+    #[inline]
+    pub fn angle_of(&self, p: &Point3<f64>) -> f64 {
+        let (e1, e2) = self.basis();
+        let w = p - self.center;
+        w.dot(&e2).atan2(w.dot(&e1))
+    }
+
+    /// The point of the circle at angle `t` (see [`Circle3::angle_of`]).
+    #[inline]
+    pub fn point_at(&self, t: f64) -> Point3<f64> {
+        let (e1, e2) = self.basis();
+        let (s, co) = t.sin_cos();
+        self.center + (e1 * co + e2 * s) * self.radius
+    }
+
     /// The circle that `p` sweeps turning about the line through `pivot` along `axis` (not
     /// necessarily unit): centred at `p`'s foot on the axis. A zero `axis` gives a degenerate
     /// circle (zero normal).

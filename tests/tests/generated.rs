@@ -23,7 +23,7 @@ fn models() -> Vec<discover::Found> {
     discover::models(root().parent().expect("the workspace"))
         .into_iter()
         .filter(|m| {
-            (m.folder.is_example() || m.folder == discover::Folder::TestModels) && m.is_compiled()
+            (m.folder.is_example() || m.folder == discover::Folder::TestModels) && m.is_analysed()
         })
         .collect()
 }

@@ -106,18 +106,25 @@ fn main() {
                     let s = s.by_name();
                     let mut solution = gcs_compiler::solution::Solution::default();
                     let mut size: f64 = 1.0;
+                    // Points and vectors of either space: their coordinates in order.
                     for (name, p) in g.points() {
                         let q = s.point(name).unwrap_or_else(|| panic!("{NAME}: no point {name}"));
-                        close(name, p.x, q[0], tol);
-                        close(name, p.y, q[1], tol);
-                        size = size.max(p.x.abs()).max(p.y.abs());
-                        solution.points.push((name.to_string(), vec![p.x, p.y]));
+                        let p: Vec<f64> = p.iter().copied().collect();
+                        assert_eq!(p.len(), q.len(), "{NAME}: {name} in another space");
+                        for (a, b) in p.iter().zip(q) {
+                            close(name, *a, *b, tol);
+                            size = size.max(a.abs());
+                        }
+                        solution.points.push((name.to_string(), p));
                     }
                     for (name, v) in g.vectors() {
                         let q = s.vector(name).unwrap_or_else(|| panic!("{NAME}: no vector {name}"));
-                        close(name, v.x, q[0], tol);
-                        close(name, v.y, q[1], tol);
-                        solution.vectors.push((name.to_string(), vec![v.x, v.y]));
+                        let v: Vec<f64> = v.iter().copied().collect();
+                        assert_eq!(v.len(), q.len(), "{NAME}: {name} in another space");
+                        for (a, b) in v.iter().zip(q) {
+                            close(name, *a, *b, tol);
+                        }
+                        solution.vectors.push((name.to_string(), v));
                     }
                     for (name, x) in g.scalars() {
                         let q = s.scalar(name).unwrap_or_else(|| panic!("{NAME}: no scalar {name}"));

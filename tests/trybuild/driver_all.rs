@@ -55,11 +55,11 @@ fn all_assemblies(
             let mut size: f64 = 1.0;
             let mut solution = gcs_compiler::solution::Solution::default();
             for (name, p) in g.points() {
-                size = size.max(p.x.abs()).max(p.y.abs());
-                solution.points.push((name.to_string(), vec![p.x, p.y]));
+                size = size.max(p.coords.amax());
+                solution.points.push((name.to_string(), p.iter().copied().collect()));
             }
             for (name, v) in g.vectors() {
-                solution.vectors.push((name.to_string(), vec![v.x, v.y]));
+                solution.vectors.push((name.to_string(), v.iter().copied().collect()));
             }
             for (name, x) in g.scalars() {
                 size = size.max(x.abs());
@@ -68,8 +68,9 @@ fn all_assemblies(
             let matched = interpreted.solutions.iter().any(|s| {
                 let s = s.by_name();
                 g.points().iter().all(|(name, p)| {
-                    s.point(name)
-                        .is_some_and(|q| (p.x - q[0]).abs().max((p.y - q[1]).abs()) <= 1e-9 * size)
+                    s.point(name).is_some_and(|q| {
+                        p.iter().zip(q).all(|(a, b)| (a - b).abs() <= 1e-9 * size)
+                    })
                 })
             });
             assert!(matched, "{NAME}: a generated assembly the interpreter does not list: {g:?}");

@@ -26,17 +26,20 @@ pub enum Family {
     Params,
     /// [`points`]: a row of points along a fixed line.
     Points,
+    /// [`rssr_chain`]: spatial four-bars in series.
+    RssrChain,
 }
 
 impl Family {
     /// Every family, in a fixed order.
-    pub const ALL: [Family; 6] = [
+    pub const ALL: [Family; 7] = [
         Family::FourBarChain,
         Family::SketchProfile,
         Family::ClosedProfile,
         Family::Truss,
         Family::Params,
         Family::Points,
+        Family::RssrChain,
     ];
 
     /// The family's short name, as the command line and the reports spell it.
@@ -48,6 +51,7 @@ impl Family {
             Family::Truss => "truss",
             Family::Params => "params",
             Family::Points => "points",
+            Family::RssrChain => "rssr_chain",
         }
     }
 
@@ -65,6 +69,7 @@ impl Family {
             Family::Truss => truss(n),
             Family::Params => params(n),
             Family::Points => points(n),
+            Family::RssrChain => rssr_chain(n),
         }
     }
 
@@ -77,6 +82,7 @@ impl Family {
             Family::Truss => ("bar", 1.5, 2.5),
             Family::Params => ("p0", 0.5, 1.5),
             Family::Points => ("gap", 0.5, 1.5),
+            Family::RssrChain => ("theta", 0.0, std::f64::consts::TAU),
         }
     }
 }
@@ -119,6 +125,128 @@ pub fn four_bar_chain(n: usize) -> String {
         prev = format!("rocker{k}");
     }
     let _ = writeln!(s, "\noutput {prev}.b;");
+    s
+}
+
+/// `n` spatial four-bars (RSSR: revolute, spherical, spherical, revolute) in series, each
+/// rocker the next stage's crank: the spatial counterpart of [`four_bar_chain`].
+///
+/// Every stage is the RSSR of `examples/rssr.gcs` in its own frame: the input turns about its
+/// frame's z axis with a point at 1 from it; a coupler of length `sqrt(19)` with a ball joint
+/// at each end; a rocker turning about an axis along the frame's y through `(4, 1, 1)`, its tip
+/// 2 above the axis and a drive point 1 beside it, which is the next stage's input point. The
+/// next stage's frame is at the rocker's axis, its z axis the rocker's, its x axis towards
+/// the drive point; so the stages alternate between two orientations and climb along the
+/// diagonal. Each coupler may spin about its own line: an idle freedom, one default per stage
+/// at its sketch value. One branch variable per stage.
+pub fn rssr_chain(n: usize) -> String {
+    type V = [i64; 3];
+    // The stage frame's axes as columns: x, y, z (a rotation of integers).
+    type R = [V; 3];
+    fn apply(r: &R, v: V) -> V {
+        let mut out = [0; 3];
+        for (k, column) in r.iter().enumerate() {
+            for i in 0..3 {
+                out[i] += column[i] * v[k];
+            }
+        }
+        out
+    }
+    fn add(a: V, b: V) -> V {
+        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    }
+    fn t(v: V) -> String {
+        format!("({}, {}, {})", v[0], v[1], v[2])
+    }
+    let n = n.max(1);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// {n} spatial four-bars (RSSR) in series: each rocker is the next stage's crank."
+    );
+    s.push_str(
+        "space 3d;
+
+param theta = 30 deg;
+
+",
+    );
+    // Stage k's frame: origin and axes; the next one's at the rocker's axis.
+    let mut frames: Vec<(V, R)> = vec![([0; 3], [[1, 0, 0], [0, 1, 0], [0, 0, 1]])];
+    for k in 0..n {
+        let (o, r) = frames[k];
+        let next_o = add(o, apply(&r, [4, 1, 1]));
+        let next_r = [
+            apply(&r, [-1, 0, 0]),
+            apply(&r, [0, 0, 1]),
+            apply(&r, [0, 1, 0]),
+        ];
+        frames.push((next_o, next_r));
+    }
+    s.push_str(
+        "fixed body ground {
+",
+    );
+    for (k, (o, r)) in frames.iter().take(n + 1).enumerate() {
+        let _ = writeln!(
+            s,
+            "    marker axis{k} = {} z {} x {};",
+            t(*o),
+            t(r[2]),
+            t(r[0])
+        );
+    }
+    s.push_str(
+        "}
+",
+    );
+    s.push_str(
+        "body crank {
+    marker base = (0, 0, 0) z (0, 0, 1) x (1, 0, 0);
+    point drive = (1, 0, 0);
+}
+",
+    );
+    s.push_str(
+        "revolute(crank.base, ground.axis0);
+input: offset_x(ground.axis0, crank.base) = theta;
+",
+    );
+    let mut prev = "crank".to_string();
+    for k in 1..=n {
+        let (o, r) = frames[k - 1];
+        let at = |v: V| t(add(o, apply(&r, v)));
+        let (next_o, next_r) = frames[k];
+        let _ = writeln!(
+            s,
+            "
+body coupler{k} {{ point a = {}; point b = {}; }}",
+            at([1, 0, 0]),
+            at([4, 1, 3])
+        );
+        let _ = writeln!(
+            s,
+            "body rocker{k} {{
+    marker base = {} z {} x {};
+    point tip = {};
+    point drive = {};
+}}",
+            t(next_o),
+            t(next_r[2]),
+            t(next_r[0]),
+            at([4, 1, 3]),
+            at([3, 1, 1])
+        );
+        let _ = writeln!(s, "spherical(coupler{k}.a, {prev}.drive);");
+        let _ = writeln!(s, "revolute(rocker{k}.base, ground.axis{k});");
+        let _ = writeln!(s, "ball{k}: spherical(coupler{k}.b, rocker{k}.tip);");
+        prev = format!("rocker{k}");
+    }
+    let _ = writeln!(
+        s,
+        "
+output {prev}.drive;"
+    );
     s
 }
 

@@ -238,12 +238,16 @@ enum Ty {
 }
 
 impl Ty {
-    fn rust(self) -> &'static str {
-        match self {
-            Ty::Frame => "Frame2",
-            Ty::Scalar => "f64",
-            Ty::Point => "Point2<f64>",
-            Ty::Vector => "Vector2<f64>",
+    /// The type in the plane, or in space (`d3`).
+    fn rust(self, d3: bool) -> &'static str {
+        match (self, d3) {
+            (Ty::Frame, false) => "Frame2",
+            (Ty::Frame, true) => "Frame3",
+            (Ty::Scalar, _) => "f64",
+            (Ty::Point, false) => "Point2<f64>",
+            (Ty::Point, true) => "Point3<f64>",
+            (Ty::Vector, false) => "Vector2<f64>",
+            (Ty::Vector, true) => "Vector3<f64>",
         }
     }
 }
@@ -316,9 +320,11 @@ impl Layout {
                 let ty = if local.vector { Ty::Vector } else { Ty::Point };
                 add(&mut layout, &local.name, ty, Holds::Local(local.feature));
             }
-            if line_sketch(cx, g)
-                .is_some_and(|from| !matches!(cx.sketch_point(from), Value::Point(..)))
-            {
+            let sketched = |from: &[gcs_lang::expr::ExprId]| match cx.d3 {
+                true => !from.iter().all(|&e| m.exprs.is_constant(e)),
+                false => !matches!(cx.sketch_point(from), Value::Point(..)),
+            };
+            if line_sketch(cx, g).is_some_and(sketched) {
                 let name = format!("{}_sketch", geom.name);
                 add(&mut layout, &name, Ty::Point, Holds::LineSketch(g));
             }
@@ -379,7 +385,7 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     } else {
         w.open("pub struct Solution {");
         for f in &layout.fields {
-            w.line(&format!("{}: {},", f.name, f.ty.rust()));
+            w.line(&format!("{}: {},", f.name, f.ty.rust(cx.d3)));
         }
         if has_branches {
             w.line("branches: Branches,");
@@ -416,7 +422,10 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     for (a, accessor) in accessors(cx, layout).0 {
         w.line(&format!("/// {}", a.doc));
         w.line("#[inline]");
-        w.open(&format!("pub fn {accessor}(&self) -> {} {{", a.ty.rust()));
+        w.open(&format!(
+            "pub fn {accessor}(&self) -> {} {{",
+            a.ty.rust(cx.d3)
+        ));
         w.line(&a.body);
         w.close("}");
         w.line("");
@@ -434,7 +443,7 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         ));
         w.open(&format!(
             "pub fn {what}s(&self) -> [(&'static str, {}); {}] {{",
-            ty.rust(),
+            ty.rust(cx.d3),
             list.len()
         ));
         w.open("[");
@@ -472,6 +481,9 @@ pub(super) fn accessors(
 
 /// The accessors of reported top-level geom `g` and of its members and parts, in model order.
 fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor> {
+    if cx.d3 {
+        return geom_accessors3(cx, layout, g);
+    }
     let m = cx.model;
     let geom = &m.geoms[g];
     let name = &geom.name;
@@ -576,12 +588,117 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
     items
 }
 
+/// The accessors of reported top-level geom `g` of a 3d model and of its members and parts,
+/// in model order: the values the interpreter's `Solution::read_space` reports, read from the
+/// frame as it reads them.
+fn geom_accessors3(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor> {
+    let m = cx.model;
+    let geom = &m.geoms[g];
+    let name = &geom.name;
+    let Some(frame) = layout.read(Holds::Frame(g)) else {
+        return Vec::new();
+    };
+    let dim = layout.read(Holds::Dim(g)).unwrap_or_default();
+    let mut items = Vec::new();
+    let origin = format!("{frame}.origin");
+    let x_axis = format!("{frame}.x_axis()");
+    match geom.kind {
+        GeomKind::Body => items.push(Accessor::new(
+            name,
+            format!("The frame of body `{name}`: its origin and its axes."),
+            Ty::Frame,
+            frame.clone(),
+        )),
+        GeomKind::Point => {
+            let doc = format!("Point `{name}`.");
+            items.push(Accessor::new(name, doc, Ty::Point, origin.clone()));
+        }
+        GeomKind::Vector => {
+            let doc = format!("Vector `{name}`.");
+            items.push(Accessor::new(name, doc, Ty::Vector, x_axis.clone()));
+        }
+        GeomKind::Circle | GeomKind::Segment | GeomKind::Plane => {
+            if let Some((accessor, what)) = dimension_accessor(name, geom.kind) {
+                let (doc, body) = if geom.kind == GeomKind::Plane {
+                    let doc = format!("The offset of plane `{name}`: its signed distance from the origin along its normal.");
+                    (doc, format!("{frame}.z_axis().dot(&{frame}.origin.coords)"))
+                } else {
+                    (format!("The {what} of `{name}`."), dim.clone())
+                };
+                items.push(Accessor::new(&accessor, doc, Ty::Scalar, body));
+            }
+        }
+        _ => {}
+    }
+    // A member's position or direction from its local coordinates: a field's when params set
+    // them, else the literal.
+    let point = |f: GeomId| {
+        let local = layout
+            .read(Holds::Local(f))
+            .unwrap_or_else(|| cx.local_point3(f));
+        format!("{frame}.point_to_global(&{local})")
+    };
+    let direction = |f: GeomId| {
+        let local = layout
+            .read(Holds::Local(f))
+            .unwrap_or_else(|| cx.local_dir3(f));
+        format!("{frame}.vector_to_global(&{local})")
+    };
+    for &part in &geom.parts {
+        let p = &m.geoms[part];
+        let pname = &p.name;
+        let point_doc = format!("Point `{pname}`.");
+        let vector_doc = format!("Direction `{pname}`.");
+        match (p.owner, p.kind) {
+            (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
+                items.push(Accessor::new(pname, point_doc, Ty::Point, point(part)));
+                for &axis in &p.parts {
+                    let n = &m.geoms[axis].name;
+                    let doc = format!("Axis `{n}`.");
+                    items.push(Accessor::new(n, doc, Ty::Vector, direction(axis)));
+                }
+            }
+            (Owner::Member(_), GeomKind::Vector) => {
+                let doc = format!("Vector `{pname}`.");
+                items.push(Accessor::new(pname, doc, Ty::Vector, direction(part)));
+            }
+            (Owner::Part(_, Part::Start | Part::Center), _) => {
+                items.push(Accessor::new(pname, point_doc, Ty::Point, origin.clone()));
+            }
+            (Owner::Part(_, Part::End), _) => {
+                let body = format!("{origin} + {x_axis} * {dim}");
+                items.push(Accessor::new(pname, point_doc, Ty::Point, body));
+            }
+            (Owner::Part(_, Part::Dir), _) => {
+                items.push(Accessor::new(pname, vector_doc, Ty::Vector, x_axis.clone()));
+            }
+            (Owner::Part(_, Part::Normal), _) => {
+                let body = format!("{frame}.z_axis()");
+                items.push(Accessor::new(pname, vector_doc, Ty::Vector, body));
+            }
+            (Owner::Part(_, Part::BasePoint), _) => {
+                if let Some(from) = line_sketch(cx, g) {
+                    let s = layout
+                        .read(Holds::LineSketch(g))
+                        .unwrap_or_else(|| cx.point_lit3(from));
+                    let doc = format!("Point `{pname}`: the foot of the perpendicular from the line's first sketch point.");
+                    let body = format!("{origin} + {x_axis} * ({s} - {origin}).dot(&{x_axis})");
+                    items.push(Accessor::new(pname, doc, Ty::Point, body));
+                }
+            }
+            _ => {}
+        }
+    }
+    items
+}
+
 /// The accessor of a circle's radius (`G.radius`) or a segment's length (`S.length`), with
 /// the word for it.
 fn dimension_accessor(name: &str, kind: GeomKind) -> Option<(String, &'static str)> {
     let what = match kind {
         GeomKind::Circle => "radius",
         GeomKind::Segment => "length",
+        GeomKind::Plane => "offset",
         _ => return None,
     };
     Some((format!("{name}.{what}"), what))

@@ -33,6 +33,12 @@ pub(super) struct Context<'a> {
     pub(super) rotated_onto: HashSet<Reg>,
     /// Names of params, branch variables and defaults that became one field.
     pub(super) clashes: Vec<(Public, Clash)>,
+    /// The model is in space: frames are `Frame3`s and steps spatial (see `spatial`).
+    pub(super) d3: bool,
+    /// In space, the sketch read once, for the values of constant sketches.
+    pub(super) sketch3: Option<crate::config::Config<crate::config::D3>>,
+    /// The step that defines each register.
+    pub(super) defined_at: HashMap<Reg, usize>,
 }
 
 /// The public names of the generated module that come from the model's names.
@@ -92,7 +98,17 @@ impl<'a> Context<'a> {
                 _ => None,
             })
             .collect();
+        let d3 = model.space == gcs_lang::model::Space::D3;
+        let sketch3 = d3
+            .then(|| crate::config::Config::from_sketch(model, &model.default_params()).ok())
+            .flatten();
+        let defined_at = (plan.steps.iter().enumerate())
+            .filter_map(|(i, s)| Some((s.out?.0, i)))
+            .collect();
         Context {
+            d3,
+            sketch3,
+            defined_at,
             model,
             plan,
             scope,
@@ -172,8 +188,8 @@ impl<'a> Context<'a> {
 }
 
 /// The registers some generated step reads: what the plan's steps read, but an intersection's
-/// `near` (the sketch's branch is chosen at analysis) and the point a circle goes through when
-/// its radius is a constant.
+/// `near` (the sketch's branch is chosen at analysis) and the point a circle or sphere goes
+/// through when its radius is a constant.
 fn used_registers(plan: &Plan) -> HashSet<Reg> {
     let mut used = HashSet::new();
     for step in &plan.steps {
@@ -183,6 +199,11 @@ fn used_registers(plan: &Plan) -> HashSet<Reg> {
                 used.insert(*b);
             }
             Op::CircleThrough {
+                center,
+                through,
+                radius,
+            }
+            | Op::SphereThrough {
                 center,
                 through,
                 radius,

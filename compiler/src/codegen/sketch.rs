@@ -39,8 +39,8 @@ impl Context<'_> {
     /// is a param (or its negation) is finite, params being checked on entry.
     pub(super) fn sketch_checks(&self) -> Vec<(GeomId, String, SketchFault)> {
         let m = self.model;
-        if m.space != gcs_lang::model::Space::D2 {
-            return Vec::new();
+        if self.d3 {
+            return self.sketch_checks3();
         }
         let constant = |e: &ExprId| m.exprs.is_constant(*e);
         let surely_finite = |e: &ExprId| {
@@ -113,6 +113,9 @@ impl Context<'_> {
     /// and after a marker's its x axis's.
     pub(super) fn param_locals(&self, g: GeomId) -> Vec<ParamLocal> {
         let m = self.model;
+        if self.d3 {
+            return self.param_locals3(g);
+        }
         let mut out = Vec::new();
         for &part in &m.geoms[g].parts {
             let p = &m.geoms[part];
@@ -173,7 +176,8 @@ impl Context<'_> {
     pub(super) fn constant_value(&self, g: GeomId) -> Option<Value> {
         let m = self.model;
         let geom = &m.geoms[g];
-        if self.moved(g) {
+        // In space every reported geom has its frame in the solution.
+        if self.moved(g) || self.d3 {
             return None;
         }
         let value = |c: &[ExprId], i: usize| c.get(i).map(|&e| m.exprs.eval(e, &[]));
@@ -257,6 +261,9 @@ impl Context<'_> {
 
     /// The sketch value of a segment's length or a circle's radius, as code.
     pub(super) fn sketch_dim(&self, g: GeomId) -> Option<String> {
+        if self.d3 {
+            return self.sketch_dim3(g);
+        }
         match &self.model.geoms[g].sketch {
             Sketch::Segment { from, to } => Some(format!(
                 "({} - {}).norm()",
@@ -349,6 +356,9 @@ impl Context<'_> {
     /// a literal when the sketch is constant.
     pub(super) fn sketch_dim_declared(&self, g: GeomId) -> String {
         let m = self.model;
+        if self.d3 {
+            return self.sketch_dim3(g).unwrap_or_else(|| "0.0".into());
+        }
         match &m.geoms[g].sketch {
             Sketch::Segment { from, to }
                 if from.iter().chain(to).all(|&e| m.exprs.is_constant(e)) =>

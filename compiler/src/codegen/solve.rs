@@ -223,7 +223,11 @@ impl Solve<'_> {
     fn declare_sketch(&mut self, g: GeomId, reported: bool, decls: &mut Vec<Decl>) {
         let geom = &self.cx.model.geoms[g];
         let name = self.names.fresh(&geom.name);
-        let (ctor, facts) = self.cx.sketch_frame(g);
+        let (ctor, facts) = if self.cx.d3 {
+            self.cx.sketch_frame3(g)
+        } else {
+            self.cx.sketch_frame(g)
+        };
         decls.push(Decl::Frame(
             g,
             Binding {
@@ -287,6 +291,9 @@ impl Solve<'_> {
             let f = self.frame(g);
             terms.push(format!("{f}.origin.x"));
             terms.push(format!("{f}.origin.y"));
+            if self.cx.d3 {
+                terms.push(format!("{f}.origin.z"));
+            }
             if let Some(d) = self.dims.get(&g) {
                 if self.deferred.contains(&g) {
                     // Not declared yet: its sketch value, as the interpreter has it now.
@@ -499,6 +506,7 @@ impl Solve<'_> {
                 Holds::Dim(g) => self.dims[&g].clone(),
                 Holds::Local(f) => self.locals[&f].clone(),
                 Holds::LineSketch(g) => match super::api::line_sketch(self.cx, g) {
+                    Some(from) if self.cx.d3 => self.cx.point_lit3(from),
                     Some(from) => self.cx.point_lit(from),
                     None => unreachable!("only a line's sketch point is held"),
                 },

@@ -22,6 +22,9 @@ impl Solve<'_> {
                 from,
                 to,
             } => {
+                if self.cx.d3 {
+                    return self.rotate3(w, geoms, (*pivot, *axis), (*from, *to), true);
+                }
                 planar(*axis);
                 self.rotate_point(w, geoms, *pivot, *from, *to)
             }
@@ -32,6 +35,9 @@ impl Solve<'_> {
                 from,
                 to,
             } => {
+                if self.cx.d3 {
+                    return self.rotate3(w, geoms, (*pivot, *axis), (*from, *to), false);
+                }
                 planar(*axis);
                 self.rotate_dir(w, geoms, *pivot, *from, *to)
             }
@@ -62,6 +68,19 @@ impl Solve<'_> {
     /// Writes the value of register `r`, which step `i` computes with `op`.
     fn value(&mut self, w: &mut Writer, i: usize, r: Reg, op: &Op) {
         let m = self.cx.model;
+        let scalar = matches!(
+            op,
+            Op::Expr(_)
+                | Op::Size { .. }
+                | Op::Const(_)
+                | Op::Neg(_)
+                | Op::DimOf(_)
+                | Op::Sum(_)
+                | Op::Default(_)
+        );
+        if self.cx.d3 && !scalar {
+            return self.value3(w, i, r, op);
+        }
         let degenerate = || self.cx.error(i, "Degenerate", "0.0");
         match op {
             Op::Expr(e) => self.expr_value(w, i, r, *e),
@@ -70,6 +89,12 @@ impl Solve<'_> {
                 self.facts.regs.insert(r, Value::Scalar(*c));
             }
             Op::Neg(x) => {
+                // A literal's negation is a literal (and `--5.0` would not build).
+                if let Value::Scalar(c) = self.facts.value(*x) {
+                    let minus = Value::Scalar(-c);
+                    self.facts.regs.insert(r, minus);
+                    return;
+                }
                 if self.facts.is_finite(*x) {
                     self.facts.known_finite.insert(r);
                 }
@@ -361,7 +386,7 @@ impl Solve<'_> {
     }
 
     /// `let {name} = {code};` for register `reg`.
-    fn define(&mut self, w: &mut Writer, reg: Reg, name: &str, code: &str) {
+    pub(super) fn define(&mut self, w: &mut Writer, reg: Reg, name: &str, code: &str) {
         let local = self.names.fresh(name);
         w.line(&format!("let {local} = {code};"));
         self.facts.regs.insert(reg, Value::Local(local));
@@ -370,7 +395,14 @@ impl Solve<'_> {
     /// Like [`Solve::define`] for a scalar the params give, which can overflow however finite
     /// they are (`theta * 1e300`): the step's constraint cannot be met with a value that is
     /// not finite, so the solve says so rather than going on with garbage.
-    fn define_finite(&mut self, w: &mut Writer, i: usize, reg: Reg, name: &str, code: &str) {
+    pub(super) fn define_finite(
+        &mut self,
+        w: &mut Writer,
+        i: usize,
+        reg: Reg,
+        name: &str,
+        code: &str,
+    ) {
         self.define(w, reg, name, code);
         let v = self.r(reg);
         w.open(&format!("if !gcs_runtime::num::is_finite({v}) {{"));
@@ -634,7 +666,7 @@ impl Solve<'_> {
 
     /// The root index branch variable `branch` selects: its field of `Branches`, or 0 for a
     /// variable with one root.
-    fn branch_index(&self, branch: BranchId) -> String {
+    pub(super) fn branch_index(&self, branch: BranchId) -> String {
         match self.cx.branches.get(branch.0 as usize) {
             Some(field) if self.cx.plan.branches[branch.0 as usize].count > 1 => {
                 format!("usize::from(branches.{field})")
@@ -886,7 +918,11 @@ impl Solve<'_> {
 
     /// A run-time check of a relation of constraint `c`: its residual within the tolerance.
     fn check(&mut self, w: &mut Writer, c: ConstraintId, residual: &Residual) {
-        let residual = self.residual_code(residual);
+        let residual = if self.cx.d3 {
+            self.residual_code3(residual)
+        } else {
+            self.residual_code(residual)
+        };
         let name = self.names.fresh("residual");
         w.line(&format!("let {name} = {residual};"));
         w.open(&format!("if {name}.is_nan() || {name} > tol {{"));

@@ -80,6 +80,20 @@ fn named_float(v: f64) -> Option<String> {
         (std::f64::consts::FRAC_PI_4, "std::f64::consts::FRAC_PI_4"),
         (std::f64::consts::FRAC_PI_6, "std::f64::consts::FRAC_PI_6"),
         (std::f64::consts::TAU, "std::f64::consts::TAU"),
+        // The other constants a literal would be taken for (clippy's `approx_constant`).
+        (std::f64::consts::FRAC_PI_8, "std::f64::consts::FRAC_PI_8"),
+        (std::f64::consts::FRAC_1_PI, "std::f64::consts::FRAC_1_PI"),
+        (std::f64::consts::FRAC_2_PI, "std::f64::consts::FRAC_2_PI"),
+        (std::f64::consts::FRAC_2_SQRT_PI, "std::f64::consts::FRAC_2_SQRT_PI"),
+        (std::f64::consts::SQRT_2, "std::f64::consts::SQRT_2"),
+        (std::f64::consts::FRAC_1_SQRT_2, "std::f64::consts::FRAC_1_SQRT_2"),
+        (std::f64::consts::E, "std::f64::consts::E"),
+        (std::f64::consts::LN_2, "std::f64::consts::LN_2"),
+        (std::f64::consts::LN_10, "std::f64::consts::LN_10"),
+        (std::f64::consts::LOG2_E, "std::f64::consts::LOG2_E"),
+        (std::f64::consts::LOG10_E, "std::f64::consts::LOG10_E"),
+        (std::f64::consts::LOG2_10, "std::f64::consts::LOG2_10"),
+        (std::f64::consts::LOG10_2, "std::f64::consts::LOG10_2"),
     ] {
         if v == c {
             return Some(name.into());

@@ -11,44 +11,6 @@ use gcs_runtime::locus3d::{Circle3, Line3, Locus3, Plane, Sphere};
 use gcs_runtime::{check, frame, intersect3d, Contact, Roots};
 use nalgebra::UnitQuaternion;
 
-/// A circle's in-plane basis: where its angles are measured from (`frame::perpendicular` of
-/// its normal) and the direction a quarter turn on.
-fn circle_basis(c: &Circle3) -> (V3, V3) {
-    let e1 = frame::perpendicular(&c.normal).normalize();
-    (e1, c.normal.cross(&e1))
-}
-
-/// A line and a circle of space. In the circle's plane (the line parallel to it and in it,
-/// to the tangency tolerance) they meet where the line meets the circle's sphere: two roots
-/// along the line. Across the plane the line meets it at one point, the root in both slots
-/// when it is on the circle to the tangency tolerance over the sine of the line's angle with
-/// the plane (a circle of space meets a line there or nowhere, and the sphere's other root,
-/// off the circle, must never be taken).
-fn line_circle(l: &Line3, c: &Circle3) -> (Roots<P3, 4>, Contact) {
-    let sphere = Sphere::new(c.center, c.radius);
-    let across = l.dir.dot(&c.normal);
-    let height = (l.point - c.center).dot(&c.normal);
-    let scale = gcs_runtime::tol::scale(&[
-        l.point.x, l.point.y, l.point.z, c.center.x, c.center.y, c.center.z, c.radius,
-    ]);
-    let tt = gcs_runtime::tol::TANGENT_REL * scale;
-    if across.abs() <= gcs_runtime::tol::ANGLE {
-        if height.abs() > tt {
-            return (Roots::new(), Contact::Parallel { gap: height.abs() });
-        }
-        let i = intersect3d::line_sphere(l, &sphere);
-        return (Roots::from_slice(i.roots.as_slice()), i.contact);
-    }
-    let at = l.point - l.dir * (height / across);
-    let gap = ((at - c.center).norm() - c.radius).abs();
-    // The crossing is as precise as the line is steep across the plane: rounding over the
-    // sine of their angle.
-    if gap > tt / across.abs().min(1.0) {
-        return (Roots::new(), Contact::Disjoint { gap });
-    }
-    (Roots::from_slice(&[at, at]), Contact::Tangent)
-}
-
 impl Space for D3 {
     fn step(m: &mut Machine<'_, '_, D3>, i: usize, step: &Step) -> Result<(), SolveError> {
         m.step_spatial(i, step)
@@ -95,21 +57,13 @@ impl Machine<'_, '_, D3> {
 
     /// A unit direction, or step `i` is degenerate.
     fn unit(&self, i: usize, v: V3) -> Result<V3, SolveError> {
-        let n = v.norm();
-        if n.is_nan() || n <= 0.0 {
-            return Err(self.degenerate(i));
-        }
-        Ok(v / n)
+        frame::unit3(&v).ok_or_else(|| self.degenerate(i))
     }
 
-    /// For a plane through `base` with unit normal `n` turning about `pivot` to be at signed
-    /// distance `d` from `point`: the vector from the pivot to the point, and the cosine its
-    /// direction must make with the new normal (the turn keeps the pivot's distance).
+    /// See [`frame::plane_cone`].
     fn plane_cone(&self, base: Reg, n: V3, pivot: Reg, point: Reg, d: Reg) -> (V3, f64) {
-        let p0 = self.p3(pivot);
-        let w = self.p3(point) - p0;
-        let sd0 = n.dot(&(p0 - self.p3(base)));
-        (w, (self.s(d) - sd0) / w.norm())
+        let (b, p0, q) = (self.p3(base), self.p3(pivot), self.p3(point));
+        frame::plane_cone(&b, &n, &p0, &q, self.s(d))
     }
 
     /// The distance from `p` to the locus in register `r`.
@@ -163,10 +117,8 @@ impl Machine<'_, '_, D3> {
                 &self.v3(*axis),
             )),
             Op::HelixAdvance { now, turn, pitch } => {
-                let (now, pitch) = (self.s(*now), self.s(*pitch));
-                let tau = std::f64::consts::TAU;
-                let off = gcs_runtime::num::wrap_angle(self.s(*turn) - tau * now / pitch);
-                Val::S(self.finite(i, now + pitch / tau * off)?)
+                let advance = frame::helix_advance(self.s(*now), self.s(*turn), self.s(*pitch));
+                Val::S(self.finite(i, advance)?)
             }
             Op::AngleTurn {
                 u,
@@ -214,14 +166,7 @@ impl Machine<'_, '_, D3> {
                         (c.abs() - 1.0) * len,
                     ));
                 }
-                let c = c.clamp(-1.0, 1.0);
-                let wh = w / len;
-                let across = n - wh * n.dot(&wh);
-                let e = match across.try_normalize(0.0) {
-                    Some(e) => e,
-                    None => frame::perpendicular(&wh).normalize(),
-                };
-                Val::V3(wh * c + e * (1.0 - c * c).max(0.0).sqrt())
+                Val::V3(frame::plane_turn(&(w / len), c.clamp(-1.0, 1.0), &n))
             }
             Op::PlaneAxisTurn {
                 base,
@@ -272,11 +217,7 @@ impl Machine<'_, '_, D3> {
                 let q = self.p3(*point);
                 Val::S(match self.get(*locus) {
                     Some(&Val::L3(l)) => (q - l.point).dot(&l.dir),
-                    Some(&Val::C3(c)) => {
-                        let (e1, e2) = circle_basis(&c);
-                        let w = q - c.center;
-                        w.dot(&e2).atan2(w.dot(&e1))
-                    }
+                    Some(&Val::C3(c)) => c.angle_of(&q),
                     v => malformed(*locus, "a line or circle of space", v),
                 })
             }
@@ -284,16 +225,12 @@ impl Machine<'_, '_, D3> {
                 let t = self.s(*at);
                 Val::P3(match self.get(*locus) {
                     Some(&Val::L3(l)) => l.point + l.dir * t,
-                    Some(&Val::C3(c)) => {
-                        let (e1, e2) = circle_basis(&c);
-                        let (s, co) = t.sin_cos();
-                        c.center + (e1 * co + e2 * s) * c.radius
-                    }
+                    Some(&Val::C3(c)) => c.point_at(t),
                     v => malformed(*locus, "a line or circle of space", v),
                 })
             }
             Op::HelixTurn { advance, pitch } => {
-                Val::S(self.finite(i, std::f64::consts::TAU * self.s(*advance) / self.s(*pitch))?)
+                Val::S(self.finite(i, frame::helix_turn(self.s(*advance), self.s(*pitch)))?)
             }
             Op::TurnedAbout { dir, axis, angle } => {
                 let q = frame::rotation_about_axis(&self.v3(*axis), self.s(*angle));
@@ -511,9 +448,10 @@ impl Machine<'_, '_, D3> {
                 let i = intersect3d::circle_circle(&self.circle3(a), &self.circle3(b));
                 (Roots::from_slice(i.roots.as_slice()), i.contact)
             }
-            // A line meets a circle of space where it meets the circle's sphere; the circle's
-            // own step then checks that the root is on it (coplanar, it is).
-            Meet::LineCircle => line_circle(&self.line3(a), &self.circle3(b)),
+            Meet::LineCircle => {
+                let i = intersect3d::line_circle(&self.line3(a), &self.circle3(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
             Meet::SphereSphere | Meet::SpherePlane | Meet::PlanePlane => {
                 let (locus, contact) = match meet {
                     Meet::SphereSphere => {

@@ -359,8 +359,8 @@ pub fn solve(
 
     // parallel(left, right) (parallelogram.gcs:22)
     let right_dir_2 = right.x_axis();
-    let minus = -std::f64::consts::PI;
-    let right_dir_2_turned = rotation_from_x_unit(&direction_at(minus)) * right_dir_2;
+    let right_dir_2_turned =
+        rotation_from_x_unit(&direction_at(-std::f64::consts::PI)) * right_dir_2;
     let left_dir = left.x_axis();
     let turn_4 = rotation_between_units(&left_dir, &right_dir_2_turned);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_4);

@@ -357,8 +357,7 @@ pub fn solve(
 
     // parallel(left, Y) (rectangle_free.gcs:25)
     let y_dir = y.x_axis();
-    let minus = -std::f64::consts::PI;
-    let y_dir_turned = rotation_from_x_unit(&direction_at(minus)) * y_dir;
+    let y_dir_turned = rotation_from_x_unit(&direction_at(-std::f64::consts::PI)) * y_dir;
     let left_dir = left.x_axis();
     let turn_2 = rotation_between_units(&left_dir, &y_dir_turned);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_2);
@@ -369,8 +368,7 @@ pub fn solve(
     right.turn_by(&turn_3);
 
     // parallel(top, X) (rectangle_free.gcs:24)
-    let minus_2 = -std::f64::consts::PI;
-    let x_dir_turned = direction_at(minus_2);
+    let x_dir_turned = direction_at(-std::f64::consts::PI);
     let top_dir = top.x_axis();
     let turn_4 = rotation_between_units(&top_dir, &x_dir_turned);
     top.turn_by(&turn_4);
@@ -385,8 +383,8 @@ pub fn solve(
             0.0,
         )
     })?;
-    let minus_3 = -defaults.left_length;
-    let on_line_o = line_o.at(minus_3);
+    let minus = -defaults.left_length;
+    let on_line_o = line_o.at(minus);
     let left_start = left.origin;
     let shift_2 = on_line_o - left_start;
     left.translate(&shift_2);

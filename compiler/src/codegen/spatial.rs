@@ -1,0 +1,1115 @@
+//! Codegen in space: the sketch of a 3d model as `Frame3`s, and each spatial step of the plan
+//! lowered to the runtime's 3d calls (`locus3d`, `intersect3d`, `frame`, `check::space`).
+//!
+//! The skeleton of `solve` (params, sketch, tolerance, groups of steps with their comments,
+//! outer iterations, the `Solution`) and the steps that do not depend on the space (scalars,
+//! translations, dimensions, closes) are the plane's. What is here mirrors the interpreter's
+//! `interp/spatial.rs` call for call, so that both give the same values to the bit: where a
+//! computation is more than one call, it is one function of the runtime that both call.
+//!
+//! Facts (see `facts`) are the plane's optimisations: none is taken in space, where every
+//! frame is read and moved as it is, and every register is a local.
+
+use super::context::Context;
+use super::facts::FrameFacts;
+use super::sketch::ParamLocal;
+use super::solve::Solve;
+use super::writer::{float, lit, Writer};
+use crate::config::{SketchFault, D3};
+use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis};
+use gcs_lang::expr::ExprId;
+use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, PlanePlacement, Sketch};
+
+/// The kind of a register's value in space, as the step that defines it makes it: what a
+/// locus-generic step (a nearest point, a parameter along a locus) calls.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    Line,
+    Circle,
+    Plane,
+    Sphere,
+    Other,
+}
+
+/// `Point3::new(x, y, z)` of literal coordinates.
+fn point3(p: &nalgebra::Point3<f64>) -> String {
+    format!(
+        "Point3::new({}, {}, {})",
+        float(p.x),
+        float(p.y),
+        float(p.z)
+    )
+}
+
+/// `Vector3::new(x, y, z)` of literal coordinates (the unit axes by name).
+fn vector3(v: &nalgebra::Vector3<f64>) -> String {
+    let bits = |a: f64, b: f64| a.to_bits() == b.to_bits();
+    let is = |x: f64, y: f64, z: f64| bits(v.x, x) && bits(v.y, y) && bits(v.z, z);
+    if is(1.0, 0.0, 0.0) {
+        "Vector3::x()".into()
+    } else if is(0.0, 1.0, 0.0) {
+        "Vector3::y()".into()
+    } else if is(0.0, 0.0, 1.0) {
+        "Vector3::z()".into()
+    } else {
+        format!(
+            "Vector3::new({}, {}, {})",
+            float(v.x),
+            float(v.y),
+            float(v.z)
+        )
+    }
+}
+
+/// A rotation literal: its quaternion's coordinates, to the bit.
+fn rotation3(q: &nalgebra::UnitQuaternion<f64>) -> String {
+    if *q == nalgebra::UnitQuaternion::identity() {
+        return "UnitQuaternion::identity()".into();
+    }
+    let c = q.quaternion().coords;
+    // `Quaternion::new` takes w first; its coordinates are stored i, j, k, w.
+    format!(
+        "UnitQuaternion::new_unchecked(Quaternion::new({}, {}, {}, {}))",
+        float(c[3]),
+        float(c[0]),
+        float(c[1]),
+        float(c[2])
+    )
+}
+
+impl Context<'_> {
+    /// The sketch of a 3d model evaluated once, for what does not depend on params: the frames,
+    /// dimensions and local coordinates of constant sketches, to the bit the interpreter's.
+    fn sketch3(&self) -> &crate::config::Config<D3> {
+        self.sketch3
+            .as_ref()
+            .expect("bug in gcs: the sketch of a 3d model was not read (its analysis passed)")
+    }
+
+    /// The code of `Point3::new(..)` of a sketch's coordinates (a missing one is not a
+    /// number, as the interpreter's configuration reads it).
+    pub(super) fn point_lit3(&self, c: &[ExprId]) -> String {
+        let (x, y, z) = self.coords3(c);
+        format!("Point3::new({x}, {y}, {z})")
+    }
+
+    /// `Vector3::new(..)` of a sketch's coordinates.
+    pub(super) fn vector_lit3(&self, c: &[ExprId]) -> String {
+        let (x, y, z) = self.coords3(c);
+        format!("Vector3::new({x}, {y}, {z})")
+    }
+
+    fn coords3(&self, c: &[ExprId]) -> (String, String, String) {
+        let at = |i: usize| c.get(i).map_or("f64::NAN".into(), |&e| self.expr(e));
+        (at(0), at(1), at(2))
+    }
+
+    fn all_constant(&self, es: &[ExprId]) -> bool {
+        es.iter().all(|&e| self.model.exprs.is_constant(e))
+    }
+
+    /// Every expression of a top-level geom's own sketch.
+    fn sketch_exprs(&self, g: GeomId) -> Vec<ExprId> {
+        let mut out = Vec::new();
+        match &self.model.geoms[g].sketch {
+            Sketch::Point(c) | Sketch::Vector(c) => out.extend(c),
+            Sketch::Line { from, to } | Sketch::Segment { from, to } => {
+                out.extend(from);
+                out.extend(to);
+            }
+            Sketch::Circle {
+                center,
+                radius,
+                normal,
+            } => {
+                out.extend(center);
+                out.push(*radius);
+                out.extend(normal.iter().flatten());
+            }
+            Sketch::Plane { normal, placement } => {
+                out.extend(normal);
+                match placement {
+                    PlanePlacement::Offset(d) => out.push(*d),
+                    PlanePlacement::Point(c) => out.extend(c),
+                }
+            }
+            Sketch::Body {
+                at, angle, axis, ..
+            } => {
+                out.extend(at.iter().flatten());
+                out.extend(angle.iter());
+                out.extend(axis.iter().flatten());
+            }
+            Sketch::Marker { origin, z, x } => {
+                out.extend(origin);
+                out.extend(z.iter().flatten());
+                out.extend(x);
+            }
+            _ => {}
+        }
+        out
+    }
+
+    /// The constructor of top-level geom `g`'s `Frame3` where the sketch puts it: a literal
+    /// when its sketch is constant, else the runtime's construction from the params (which
+    /// `solve` has checked usable), as the interpreter's configuration builds it.
+    pub(super) fn sketch_frame3(&self, g: GeomId) -> (String, FrameFacts) {
+        let facts = FrameFacts::default();
+        if self.all_constant(&self.sketch_exprs(g)) {
+            let ctor = match self.sketch3().frames.get(&g) {
+                Some(f) => format!(
+                    "Frame3::new({}, {})",
+                    point3(&f.origin),
+                    rotation3(&f.rotation)
+                ),
+                None => "Frame3::identity()".into(),
+            };
+            return (ctor, facts);
+        }
+        let checked = ".unwrap_or_else(UnitQuaternion::identity)";
+        let ctor = match &self.model.geoms[g].sketch {
+            Sketch::Point(c) => format!(
+                "Frame3::new({}, UnitQuaternion::identity())",
+                self.point_lit3(c)
+            ),
+            Sketch::Vector(c) => format!(
+                "Frame3::new(Point3::origin(), frame::rotation_onto_x(&{}){checked})",
+                self.vector_lit3(c)
+            ),
+            Sketch::Line { from, to } | Sketch::Segment { from, to } => format!(
+                "{{ let start = {}; Frame3::new(start, frame::rotation_onto_x(&({} - start)){checked}) }}",
+                self.point_lit3(from),
+                self.point_lit3(to)
+            ),
+            Sketch::Circle { center, normal, .. } => {
+                let n = normal
+                    .as_ref()
+                    .map_or("Vector3::z()".into(), |n| self.vector_lit3(n));
+                format!(
+                    "Frame3::new({}, frame::rotation_onto_z(&{n}){checked})",
+                    self.point_lit3(center)
+                )
+            }
+            Sketch::Plane { normal, placement } => {
+                let rot = format!(
+                    "frame::rotation_onto_z(&{}){checked}",
+                    self.vector_lit3(normal)
+                );
+                match placement {
+                    // The plane's origin is its point nearest the global origin.
+                    PlanePlacement::Offset(d) => format!(
+                        "{{ let turn = {rot}; Frame3::new(Point3::from(turn * Vector3::z() * {}), turn) }}",
+                        self.expr(*d)
+                    ),
+                    PlanePlacement::Point(c) => {
+                        format!("Frame3::new({}, {rot})", self.point_lit3(c))
+                    }
+                }
+            }
+            Sketch::Body {
+                at, angle, axis, ..
+            } => {
+                let o = at
+                    .as_ref()
+                    .map_or("Point3::origin()".into(), |c| self.point_lit3(c));
+                let a = angle.map_or("0.0".into(), |e| self.expr(e));
+                let ax = axis
+                    .as_ref()
+                    .map_or("Vector3::z()".into(), |c| self.vector_lit3(c));
+                format!("Frame3::new({o}, frame::rotation_sketched(&{ax}, {a}){checked})")
+            }
+            _ => "Frame3::identity()".into(),
+        };
+        (ctor, facts)
+    }
+
+    /// The sketch value of a 3d segment's length or circle's radius: a literal when constant.
+    pub(super) fn sketch_dim3(&self, g: GeomId) -> Option<String> {
+        let geom = &self.model.geoms[g];
+        if !matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
+            return None;
+        }
+        if self.all_constant(&self.sketch_exprs(g)) {
+            return Some(float(self.sketch3().dim(g)));
+        }
+        match &geom.sketch {
+            Sketch::Segment { from, to } => Some(format!(
+                "({} - {}).norm()",
+                self.point_lit3(to),
+                self.point_lit3(from)
+            )),
+            Sketch::Circle { radius, .. } => Some(self.expr(*radius)),
+            _ => None,
+        }
+    }
+
+    /// The sketches of a 3d model that some params make unusable, in the model's order, with
+    /// the interpreter's tests (see `Config::<D3>::read_space`).
+    pub(super) fn sketch_checks3(&self) -> Vec<(GeomId, String, SketchFault)> {
+        let m = self.model;
+        let surely_finite = |e: ExprId| {
+            let mut e = e;
+            while let gcs_lang::expr::ExprNode::Neg(a) = m.exprs.node(e) {
+                e = *a;
+            }
+            m.exprs.is_constant(e) || matches!(m.exprs.node(e), gcs_lang::expr::ExprNode::Param(_))
+        };
+        let not_finite = |es: &[ExprId]| -> Vec<String> {
+            es.iter()
+                .filter(|e| !surely_finite(**e))
+                .map(|&e| format!("!gcs_runtime::num::is_finite({})", self.expr(e)))
+                .collect()
+        };
+        let mut out = Vec::new();
+        let mut push = |g: GeomId, mut tests: Vec<String>, fault: SketchFault| {
+            if !tests.is_empty() {
+                tests.dedup();
+                out.push((g, tests.join(" || "), fault));
+            }
+        };
+        for (id, g) in m.geoms.iter() {
+            let top = matches!(g.owner, Owner::TopLevel);
+            let member = matches!(g.owner, Owner::Member(_));
+            let exprs = self.sketch_exprs(id);
+            if (!top && !member) || self.all_constant(&exprs) {
+                continue;
+            }
+            let mut tests = not_finite(&exprs);
+            let fault = match (&g.sketch, top) {
+                (Sketch::Point(_), _) => SketchFault::Position,
+                (Sketch::Vector(c), true) => {
+                    tests.push(format!(
+                        "frame::rotation_onto_x(&{}).is_none()",
+                        self.vector_lit3(c)
+                    ));
+                    SketchFault::Direction
+                }
+                (Sketch::Vector(c), false) => {
+                    tests.push(format!("{}.norm() == 0.0", self.vector_lit3(c)));
+                    SketchFault::Direction
+                }
+                (Sketch::Line { from, to } | Sketch::Segment { from, to }, true) => {
+                    tests.push(format!(
+                        "frame::rotation_onto_x(&({} - {})).is_none()",
+                        self.point_lit3(to),
+                        self.point_lit3(from)
+                    ));
+                    SketchFault::Points
+                }
+                (Sketch::Circle { radius, normal, .. }, true) => {
+                    if !m.exprs.is_constant(*radius) {
+                        tests.push(format!("{} < 0.0", self.expr(*radius)));
+                    }
+                    if let Some(n) = normal {
+                        tests.push(format!(
+                            "frame::rotation_onto_z(&{}).is_none()",
+                            self.vector_lit3(n)
+                        ));
+                    }
+                    SketchFault::Circle
+                }
+                (Sketch::Plane { normal, placement }, true) => {
+                    // The normal first, then the origin it places, as the interpreter reads
+                    // them.
+                    let mut first = not_finite(normal);
+                    first.push(format!(
+                        "frame::rotation_onto_z(&{}).is_none()",
+                        self.vector_lit3(normal)
+                    ));
+                    push(id, first, SketchFault::Direction);
+                    let origin = match placement {
+                        PlanePlacement::Offset(d) => format!(
+                            "(frame::rotation_onto_z(&{}).unwrap_or_else(UnitQuaternion::identity) * Vector3::z() * {})",
+                            self.vector_lit3(normal),
+                            self.expr(*d)
+                        ),
+                        PlanePlacement::Point(c) => format!("{}.coords", self.point_lit3(c)),
+                    };
+                    tests = vec![format!("!{origin}.iter().all(|x| x.is_finite())")];
+                    SketchFault::Position
+                }
+                (Sketch::Body { angle, axis, .. }, true) => {
+                    let ax = axis
+                        .as_ref()
+                        .map_or("Vector3::z()".into(), |c| self.vector_lit3(c));
+                    let a = angle.map_or("0.0".into(), |e| self.expr(e));
+                    tests.push(format!("frame::rotation_sketched(&{ax}, {a}).is_none()"));
+                    SketchFault::Placement
+                }
+                (Sketch::Marker { z, x, .. }, false) => {
+                    let zv = z
+                        .as_ref()
+                        .map_or("Vector3::z()".into(), |c| self.vector_lit3(c));
+                    tests.push(format!(
+                        "frame::rotation_zx(&{zv}, &{}).is_none()",
+                        self.vector_lit3(x)
+                    ));
+                    SketchFault::Marker
+                }
+                _ => continue,
+            };
+            push(id, tests, fault);
+        }
+        out
+    }
+
+    /// Whether a 3d member's local coordinates (or a marker's axes) depend on params.
+    pub(super) fn local_is_param3(&self, g: GeomId) -> bool {
+        let m = self.model;
+        let owner = match m.geoms[g].owner {
+            Owner::Part(marker, Part::AxisX | Part::AxisZ) => marker,
+            _ => g,
+        };
+        matches!(m.geoms[owner].owner, Owner::Member(_))
+            && !self.all_constant(&self.sketch_exprs(owner))
+    }
+
+    /// The local coordinates params set among the members of 3d top-level geom `g`: a member
+    /// point's or vector's, and a marker's origin, z axis and x axis.
+    pub(super) fn param_locals3(&self, g: GeomId) -> Vec<ParamLocal> {
+        let m = self.model;
+        let mut out = Vec::new();
+        for &part in &m.geoms[g].parts {
+            let p = &m.geoms[part];
+            if !matches!(p.owner, Owner::Member(_)) || !self.local_is_param3(part) {
+                continue;
+            }
+            let local = |feature, suffix: &str, vector, value| ParamLocal {
+                feature,
+                name: format!("{}_{suffix}", p.name),
+                vector,
+                value,
+            };
+            match &p.sketch {
+                Sketch::Point(c) => out.push(local(part, "local", false, self.point_lit3(c))),
+                Sketch::Vector(c) => {
+                    let value = format!("{}.normalize()", self.vector_lit3(c));
+                    out.push(local(part, "local", true, value));
+                }
+                Sketch::Marker { origin, z, x } => {
+                    out.push(local(part, "local", false, self.point_lit3(origin)));
+                    let zv = z
+                        .as_ref()
+                        .map_or("Vector3::z()".into(), |c| self.vector_lit3(c));
+                    let turn = format!(
+                        "frame::rotation_zx(&{zv}, &{}).unwrap_or_else(UnitQuaternion::identity)",
+                        self.vector_lit3(x)
+                    );
+                    for &axis in &p.parts {
+                        let (suffix, unit) = match m.geoms[axis].owner {
+                            Owner::Part(_, Part::AxisZ) => ("z_local", "z"),
+                            Owner::Part(_, Part::AxisX) => ("x_local", "x"),
+                            _ => continue,
+                        };
+                        let value = format!("{turn} * Vector3::{unit}()");
+                        out.push(local(axis, suffix, true, value));
+                    }
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// The local coordinates of a 3d member point (or marker) whose sketch is constant.
+    pub(super) fn local_point3(&self, g: GeomId) -> String {
+        let p = self
+            .sketch3()
+            .local_point(g)
+            .unwrap_or_else(nalgebra::Point3::origin);
+        point3(&p)
+    }
+
+    /// The unit local direction of a 3d member vector or marker axis whose sketch is constant.
+    pub(super) fn local_dir3(&self, g: GeomId) -> String {
+        let v = self
+            .sketch3()
+            .local_dir(g)
+            .unwrap_or_else(nalgebra::Vector3::x);
+        vector3(&v)
+    }
+}
+
+impl Solve<'_> {
+    /// The local coordinates of member `g` (point or direction): the local params set, or the
+    /// constant literal.
+    fn local3(&self, g: GeomId, point: bool) -> String {
+        match self.locals.get(&g) {
+            Some(local) => local.clone(),
+            None if point => self.cx.local_point3(g),
+            None => self.cx.local_dir3(g),
+        }
+    }
+
+    /// The global position of point feature `g`, read from its frame now.
+    fn point_value3(&self, g: GeomId) -> String {
+        let m = self.cx.model;
+        let f = self.frame(m.top_level_of(g));
+        match m.geoms[g].owner {
+            Owner::TopLevel => format!("{f}.origin"),
+            Owner::Member(_) => format!("{f}.point_to_global(&{})", self.local3(g, true)),
+            Owner::Part(owner, Part::End) => {
+                format!("{f}.origin + {f}.x_axis() * {}", self.dim(owner))
+            }
+            Owner::Part(..) => format!("{f}.origin"),
+        }
+    }
+
+    /// The global direction of vector feature `g`, read from its frame now.
+    fn dir_value3(&self, g: GeomId) -> String {
+        let m = self.cx.model;
+        let f = self.frame(m.top_level_of(g));
+        match m.geoms[g].owner {
+            Owner::Member(_) | Owner::Part(_, Part::AxisX | Part::AxisZ) => {
+                format!("{f}.vector_to_global(&{})", self.local3(g, false))
+            }
+            Owner::Part(_, Part::Normal) => format!("{f}.z_axis()"),
+            _ => format!("{f}.x_axis()"),
+        }
+    }
+
+    /// The kind of register `r`'s value, from the step that defines it.
+    fn kind3(&self, r: Reg) -> Kind {
+        let Some(&i) = self.cx.defined_at.get(&r) else {
+            return Kind::Other;
+        };
+        match &self.cx.plan.steps[i].op {
+            Op::Line { .. } | Op::ParallelLine { .. } => Kind::Line,
+            Op::Circle3 { .. } | Op::Orbit { .. } | Op::ShiftedCircle { .. } => Kind::Circle,
+            Op::Plane { .. } | Op::ParallelPlane { .. } => Kind::Plane,
+            Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Kind::Sphere,
+            Op::Intersect { meet, .. } => match meet {
+                Meet::SphereSphere | Meet::SpherePlane => Kind::Circle,
+                Meet::PlanePlane => Kind::Line,
+                _ => Kind::Other,
+            },
+            _ => Kind::Other,
+        }
+    }
+
+    /// `.ok_or_else(|| degenerate)?` for step `i`.
+    fn or_degenerate(&self, i: usize) -> String {
+        format!(".ok_or_else(|| {})?", self.cx.error(i, "Degenerate", "0.0"))
+    }
+
+    /// `frame::unit3(&v)`, or step `i` is degenerate.
+    fn unit3(&self, i: usize, v: &str) -> String {
+        format!("frame::unit3(&{v}){}", self.or_degenerate(i))
+    }
+
+    /// Writes the value of register `r`, which step `i` computes with the spatial `op`.
+    pub(super) fn value3(&mut self, w: &mut Writer, i: usize, r: Reg, op: &Op) {
+        let m = self.cx.model;
+        match op {
+            Op::PointOf(g) => {
+                let code = self.point_value3(*g);
+                // A top-level geom's name is its frame's.
+                let n = &m.geoms[*g].name;
+                let n = match m.geoms[*g].owner {
+                    Owner::TopLevel => format!("{n}_origin"),
+                    _ => n.clone(),
+                };
+                self.define(w, r, &n, &code);
+            }
+            Op::DirOf(g) => {
+                let code = self.dir_value3(*g);
+                let n = &m.geoms[*g].name;
+                let n = if n.contains('.') {
+                    n.clone()
+                } else {
+                    format!("{n}_dir")
+                };
+                self.define(w, r, &n, &code);
+            }
+            Op::Along { from, dir, to } => {
+                let code = format!(
+                    "({} - {}).dot(&{})",
+                    self.r(*to),
+                    self.r(*from),
+                    self.r(*dir)
+                );
+                self.define(w, r, "length", &code);
+            }
+            Op::DirectionTo { from, to } => {
+                let code = self.unit3(i, &format!("({} - {})", self.r(*to), self.r(*from)));
+                self.define(w, r, "direction", &code);
+            }
+            Op::Opposite(d) => {
+                let code = format!("-{}", self.r(*d));
+                self.define(w, r, "opposite", &code);
+            }
+            Op::Across(d) => {
+                let code = self.unit3(i, &format!("frame::perpendicular(&{})", self.r(*d)));
+                self.define(w, r, "across", &code);
+            }
+            Op::AngleAbout { u, v, axis } => {
+                let code = format!(
+                    "frame::signed_angle3(&{}, &{}, &{})",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*axis)
+                );
+                self.define(w, r, "angle", &code);
+            }
+            Op::HelixAdvance { now, turn, pitch } => {
+                let code = format!(
+                    "frame::helix_advance({}, {}, {})",
+                    self.r(*now),
+                    self.r(*turn),
+                    self.r(*pitch)
+                );
+                self.define_finite(w, i, r, "advance", &code);
+            }
+            Op::HelixTurn { advance, pitch } => {
+                let code = format!(
+                    "frame::helix_turn({}, {})",
+                    self.r(*advance),
+                    self.r(*pitch)
+                );
+                self.define_finite(w, i, r, "turn", &code);
+            }
+            Op::AngleTurn {
+                u,
+                v,
+                axis,
+                angle,
+                branch,
+                constraint,
+            } => {
+                let turns = self.names.fresh("turns");
+                w.line(&format!(
+                    "let {turns} = frame::turns_to_angle(&{}, &{}, &{}, {});",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*axis),
+                    self.r(*angle)
+                ));
+                self.fail_on_contact(w, *constraint, &turns, None);
+                let code = self.root(&turns, *branch, *constraint);
+                self.define(w, r, "turned", &code);
+            }
+            Op::PlaneTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                constraint,
+            } => {
+                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
+                let con = &m.constraints[*constraint];
+                let (label, text) = (lit(&con.name), lit(&con.text));
+                let len = self.names.fresh("reach");
+                w.line(&format!("let {len} = {cone}.0.norm();"));
+                w.open(&format!("if {len}.is_nan() || {len} <= 0.0 {{"));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0));"
+                ));
+                w.close("}");
+                w.open(&format!(
+                    "if {cone}.1.abs() > 1.0 + gcs_runtime::tol::LENGTH_REL || {cone}.1.is_nan() {{"
+                ));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, ({cone}.1.abs() - 1.0) * {len}));"
+                ));
+                w.close("}");
+                let code = format!(
+                    "frame::plane_turn(&({cone}.0 / {len}), {cone}.1.clamp(-1.0, 1.0), &{})",
+                    self.r(*normal)
+                );
+                self.define(w, r, "normal", &code);
+            }
+            Op::PlaneAxisTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                axis,
+                branch,
+                constraint,
+            } => {
+                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
+                let con = &m.constraints[*constraint];
+                let (label, text) = (lit(&con.name), lit(&con.text));
+                let reach = self.names.fresh("reach");
+                w.line(&format!(
+                    "let {reach} = {cone}.0.try_normalize(0.0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0))?;"
+                ));
+                let gap = self.names.fresh("gap");
+                w.line(&format!(
+                    "let {gap} = ({cone}.1.abs() - 1.0).max(0.0) * {cone}.0.norm();"
+                ));
+                let turns = self.names.fresh("turns");
+                w.line(&format!(
+                    "let {turns} = frame::turns_to_angle(&{reach}, &{}, &{}, {cone}.1.clamp(-1.0, 1.0).acos());",
+                    self.r(*normal),
+                    self.r(*axis)
+                ));
+                self.fail_on_contact(w, *constraint, &turns, Some(&gap));
+                w.open(&format!(
+                    "if {gap} > gcs_runtime::tol::LENGTH_REL * (1.0 + {cone}.0.norm()) {{"
+                ));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, {gap}));"
+                ));
+                w.close("}");
+                let code = self.root(&turns, *branch, *constraint);
+                self.define(w, r, "normal", &code);
+            }
+            Op::PlaneNormal { a, b, c } => {
+                let code = self.unit3(
+                    i,
+                    &format!(
+                        "({} - {a}).cross(&({} - {a}))",
+                        self.r(*b),
+                        self.r(*c),
+                        a = self.r(*a)
+                    ),
+                );
+                self.define(w, r, "normal", &code);
+            }
+            Op::WorldAxis(k) => {
+                let code = ["Vector3::x()", "Vector3::y()", "Vector3::z()"][usize::from(*k).min(2)];
+                self.define(w, r, "world_axis", code);
+            }
+            Op::Coordinate { point, axis } => {
+                let c = ["x", "y", "z"][usize::from(*axis).min(2)];
+                let code = format!("{}.{c}", self.r(*point));
+                self.define(w, r, c, &code);
+            }
+            Op::PointAt { x: a, y, z } => {
+                let code = format!(
+                    "Point3::new({}, {}, {})",
+                    self.r(*a),
+                    self.r(*y),
+                    self.r(*z)
+                );
+                self.define(w, r, "point", &code);
+            }
+            Op::LocusParam { locus, point } => {
+                let (l, q) = (self.r(*locus), self.r(*point));
+                let code = match self.kind3(*locus) {
+                    Kind::Circle => format!("{l}.angle_of(&{q})"),
+                    _ => format!("({q} - {l}.point).dot(&{l}.dir)"),
+                };
+                self.define(w, r, "param", &code);
+            }
+            Op::LocusPoint { locus, at } => {
+                let (l, t) = (self.r(*locus), self.r(*at));
+                let code = match self.kind3(*locus) {
+                    Kind::Circle => format!("{l}.point_at({t})"),
+                    _ => format!("{l}.point + {l}.dir * {t}"),
+                };
+                self.define(w, r, "on_locus", &code);
+            }
+            Op::TurnedAbout { dir, axis, angle } => {
+                let code = format!(
+                    "frame::rotation_about_axis(&{}, {}) * {}",
+                    self.r(*axis),
+                    self.r(*angle),
+                    self.r(*dir)
+                );
+                self.define(w, r, "turned", &code);
+            }
+            Op::Line {
+                point,
+                dir,
+                offset: None,
+            } => {
+                let code = format!(
+                    "Line3::new({}, {})",
+                    self.r(*point),
+                    self.unit3(i, &self.r(*dir))
+                );
+                self.define(w, r, "line", &code);
+            }
+            Op::ParallelLine { line, through } => {
+                let code = format!("Line3::new({}, {}.dir)", self.r(*through), self.r(*line));
+                self.define(w, r, "line", &code);
+            }
+            Op::Plane {
+                point,
+                normal,
+                offset,
+            } => {
+                let n = self.names.fresh("normal");
+                w.line(&format!("let {n} = {};", self.unit3(i, &self.r(*normal))));
+                let at = match offset {
+                    Some(o) => format!("({} + {n} * {})", self.r(*point), self.r(*o)),
+                    None => self.r(*point),
+                };
+                let code = format!("Plane::from_point_normal(&{at}, &{n})");
+                self.define(w, r, "plane", &code);
+            }
+            Op::ParallelPlane { plane, through } => {
+                let code = format!(
+                    "Plane::from_point_normal(&{}, &{}.normal)",
+                    self.r(*through),
+                    self.r(*plane)
+                );
+                self.define(w, r, "plane", &code);
+            }
+            Op::Circle3 {
+                center,
+                normal,
+                radius,
+            } => {
+                let code = format!(
+                    "Circle3::new({}, {}, {})",
+                    self.r(*center),
+                    self.unit3(i, &self.r(*normal)),
+                    self.r(*radius)
+                );
+                self.define(w, r, "circle", &code);
+            }
+            Op::Sphere { center, radius } => {
+                let code = format!("Sphere::new({}, {})", self.r(*center), self.r(*radius));
+                self.define(w, r, "sphere", &code);
+            }
+            Op::SphereThrough {
+                center,
+                through,
+                radius,
+            } => {
+                let c = self.r(*center);
+                let rad = match radius {
+                    Some(k) => float(*k),
+                    None => format!("({} - {c}).norm()", self.r(*through)),
+                };
+                self.define(w, r, "sphere", &format!("Sphere::new({c}, {rad})"));
+            }
+            Op::ShiftedSphere { sphere, from, to } => {
+                let s = self.r(*sphere);
+                let code = format!(
+                    "Sphere::new({s}.center + ({} - {}), {s}.radius)",
+                    self.r(*to),
+                    self.r(*from)
+                );
+                self.define(w, r, "sphere_moved", &code);
+            }
+            Op::ShiftedCircle { circle, from, to } => {
+                let c = self.r(*circle);
+                let code = format!(
+                    "Circle3::new({c}.center + ({} - {}), {c}.normal, {c}.radius)",
+                    self.r(*to),
+                    self.r(*from)
+                );
+                self.define(w, r, "circle_moved", &code);
+            }
+            Op::Orbit {
+                pivot,
+                axis,
+                through,
+            } => {
+                let code = format!(
+                    "Circle3::orbit(&{}, &{}, &{})",
+                    self.r(*pivot),
+                    self.unit3(i, &self.r(*axis)),
+                    self.r(*through)
+                );
+                self.define(w, r, "orbit", &code);
+            }
+            Op::Nearest { locus, point } => {
+                let (l, q) = (self.r(*locus), self.r(*point));
+                let code = match self.kind3(*locus) {
+                    Kind::Line => format!("{l}.closest(&{q})"),
+                    Kind::Plane => format!("{l}.project(&{q})"),
+                    _ => format!("{l}.nearest(&{q}){}", self.or_degenerate(i)),
+                };
+                self.define(w, r, "nearest", &code);
+            }
+            Op::Onto {
+                locus,
+                point,
+                constraint,
+            } => {
+                let gap = self.names.fresh("gap");
+                w.line(&format!(
+                    "let {gap} = {}.distance(&{});",
+                    self.r(*locus),
+                    self.r(*point)
+                ));
+                w.open(&format!("if {gap}.is_nan() || {gap} > tol {{"));
+                w.line(&format!(
+                    "return Err({});",
+                    self.cx.error_of(*constraint, "Inconsistent", &gap)
+                ));
+                w.close("}");
+                let p = self.facts.value(*point).clone();
+                self.facts.regs.insert(r, p);
+            }
+            Op::Intersect {
+                meet,
+                a,
+                b,
+                branch,
+                constraint,
+                ..
+            } => self.intersect3(w, r, *meet, (*a, *b), *branch, *constraint),
+            Op::Implicit { locus, point } => {
+                if !self.converged {
+                    let (l, q) = (self.r(*locus), self.r(*point));
+                    let code = match self.kind3(*locus) {
+                        Kind::Plane => format!("{l}.signed_distance(&{q})"),
+                        Kind::Sphere => format!("({q} - {l}.center).norm() - {l}.radius"),
+                        _ => format!("{l}.distance(&{q})"),
+                    };
+                    self.define(w, r, "error", &code);
+                }
+            }
+            Op::Error {
+                residual,
+                component,
+            } => {
+                if !self.converged {
+                    let code = self.error_code3(residual, *component);
+                    self.define(w, r, "error", &code);
+                }
+            }
+            op => panic!("bug in gcs: step {i} ({op:?}) is no step of a spatial plan"),
+        }
+    }
+
+    /// The cone a turning plane's normal must lie on (see `frame::plane_cone`), in a local.
+    fn plane_cone(
+        &mut self,
+        w: &mut Writer,
+        (base, normal, pivot, point, d): (Reg, Reg, Reg, Reg, Reg),
+    ) -> String {
+        let cone = self.names.fresh("cone");
+        w.line(&format!(
+            "let {cone} = frame::plane_cone(&{}, &{}, &{}, &{}, {});",
+            self.r(base),
+            self.r(normal),
+            self.r(pivot),
+            self.r(point),
+            self.r(d)
+        ));
+        cone
+    }
+
+    /// Returns the error of constraint `c` where intersection `local` misses (its magnitude
+    /// at least `at_least`, when given).
+    fn fail_on_contact(
+        &self,
+        w: &mut Writer,
+        c: ConstraintId,
+        local: &str,
+        at_least: Option<&str>,
+    ) {
+        let con = &self.cx.model.constraints[c];
+        let (label, text) = (lit(&con.name), lit(&con.text));
+        let e = if at_least.is_some() { "mut e" } else { "e" };
+        w.open(&format!(
+            "if let Some({e}) = SolveError::from_contact({label}, {text}, {local}.contact) {{"
+        ));
+        if let Some(g) = at_least {
+            w.line(&format!("e.magnitude = e.magnitude.max({g});"));
+        }
+        w.line("return Err(e);");
+        w.close("}");
+    }
+
+    /// The root of `branch` of intersection `local`, or the error of constraint `c` that the
+    /// branch has no root here.
+    fn root(&self, local: &str, branch: BranchId, c: ConstraintId) -> String {
+        let con = &self.cx.model.constraints[c];
+        let (label, text) = (lit(&con.name), lit(&con.text));
+        format!(
+            "{local}.roots.get({}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, {local}.roots.len() as f64))?",
+            self.branch_index(branch)
+        )
+    }
+
+    /// The root of `branch` of the intersection of loci `a` and `b` in space, for constraint
+    /// `c`: a point, or (two spheres, a sphere and a plane, two planes) a locus.
+    fn intersect3(
+        &mut self,
+        w: &mut Writer,
+        r: Reg,
+        meet: Meet,
+        (a, b): (Reg, Reg),
+        branch: BranchId,
+        c: ConstraintId,
+    ) {
+        let f = match meet {
+            Meet::LinePlane => "line_plane",
+            Meet::LineSphere => "line_sphere",
+            Meet::CirclePlane => "circle_plane",
+            Meet::CircleSphere => "circle_sphere",
+            Meet::CircleCircle => "circle_circle",
+            Meet::LineCircle => "line_circle",
+            Meet::SphereSphere => "sphere_sphere",
+            Meet::SpherePlane => "sphere_plane",
+            Meet::PlanePlane => "plane_plane",
+            planar => panic!(
+                "bug in gcs: the planar intersection {planar:?} reached the spatial code generator"
+            ),
+        };
+        let con = &self.cx.model.constraints[c];
+        let meeting = self.names.fresh(&format!("{}_meeting", con.name));
+        w.line(&format!(
+            "let {meeting} = intersect3d::{f}(&{}, &{});",
+            self.r(a),
+            self.r(b)
+        ));
+        self.fail_on_contact(w, c, &meeting, None);
+        let code = if matches!(
+            meet,
+            Meet::SphereSphere | Meet::SpherePlane | Meet::PlanePlane
+        ) {
+            // A locus: one root, whatever the branch.
+            let (label, text) = (lit(&con.name), lit(&con.text));
+            format!(
+                "{meeting}.roots.get(0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 0.0))?"
+            )
+        } else {
+            self.root(&meeting, branch, c)
+        };
+        let name = con.name.clone();
+        self.define(w, r, &name, &code);
+    }
+
+    /// Rotates `geoms` about `pivot` by the rotation about `axis` that takes `from` to `to`
+    /// (points about the pivot, or directions).
+    pub(super) fn rotate3(
+        &mut self,
+        w: &mut Writer,
+        geoms: &[GeomId],
+        (pivot, axis): (Reg, RotationAxis),
+        (from, to): (Reg, Reg),
+        points: bool,
+    ) {
+        let c = self.r(pivot);
+        let (f, t) = if points {
+            (
+                format!("({} - {c})", self.r(from)),
+                format!("({} - {c})", self.r(to)),
+            )
+        } else {
+            (self.r(from), self.r(to))
+        };
+        let code = match axis {
+            RotationAxis::Shortest => {
+                format!("frame::rotation_between3(&{f}, &{t}, &frame::perpendicular(&{f}))")
+            }
+            RotationAxis::Along(a) => {
+                let a = self.r(a);
+                format!("frame::rotation_about_axis(&{a}, frame::signed_angle3(&{f}, &{t}, &{a}))")
+            }
+            RotationAxis::Normal => {
+                panic!("bug in gcs: a rotation about the plane's normal reached the spatial code generator")
+            }
+        };
+        let turn = self.names.fresh("turn");
+        w.line(&format!("let {turn} = {code};"));
+        for &g in geoms {
+            let frame = self.frame_local(g);
+            w.line(&format!("{frame}.rotate_about_by(&{c}, &{turn});"));
+            self.frame_writes.insert(g);
+        }
+    }
+
+    /// The call of the signed error of a relation in space (`component`: a coincidence's
+    /// axis), as the interpreter's `error_of3` measures it.
+    pub(super) fn error_code3(&self, residual: &Residual, component: u8) -> String {
+        let r = |x: &Reg| self.r(*x);
+        match residual {
+            Residual::PointPoint { a, b, d: None } => {
+                format!("({} - {})[{}]", r(a), r(b), component.min(2))
+            }
+            Residual::PointPoint { a, b, d: Some(d) } => {
+                format!("({} - {}).norm() - {}", r(a), r(b), r(d))
+            }
+            Residual::PointPlane { p, base, normal, d } => {
+                let d = d.as_ref().map_or_else(|| "0.0".to_string(), r);
+                format!("({} - {}).dot(&{}) - {d}", r(p), r(base), r(normal))
+            }
+            _ => self.residual_code3(residual),
+        }
+    }
+
+    /// The call of the runtime's residual of a check's relation in space.
+    pub(super) fn residual_code3(&self, residual: &Residual) -> String {
+        let r = |x: &Reg| self.r(*x);
+        let or_zero = |x: &Option<Reg>| x.as_ref().map_or_else(|| "0.0".to_string(), r);
+        match residual {
+            Residual::PointPoint { a, b, d } => format!(
+                "check::space::point_point({}, {}, {})",
+                r(a),
+                r(b),
+                or_zero(d)
+            ),
+            Residual::PointLine {
+                p,
+                base,
+                dir,
+                d: None,
+            } => format!(
+                "check::space::point_line({}, {}, {})",
+                r(p),
+                r(base),
+                r(dir)
+            ),
+            Residual::PointPlane { p, base, normal, d } => format!(
+                "check::space::point_plane({}, {}, {}, {})",
+                r(p),
+                r(base),
+                r(normal),
+                or_zero(d)
+            ),
+            Residual::Parallel { u, v, sense } => format!(
+                "check::space::parallel({}, {}, {})",
+                r(u),
+                r(v),
+                float(*sense)
+            ),
+            Residual::AngleBetween { u, v, angle } => format!(
+                "check::space::angle_between({}, {}, {})",
+                r(u),
+                r(v),
+                r(angle)
+            ),
+            Residual::OnCircle {
+                p,
+                centre,
+                normal,
+                radius,
+            } => format!(
+                "Circle3::new({}, {}, {}).distance(&{})",
+                r(centre),
+                r(normal),
+                r(radius),
+                r(p)
+            ),
+            Residual::Twist { axis, u, v, angle } => format!(
+                "check::space::twist({}, {}, {}, {})",
+                r(axis),
+                r(u),
+                r(v),
+                r(angle)
+            ),
+            Residual::Helix {
+                axis,
+                u,
+                v,
+                p,
+                q,
+                pitch,
+            } => format!(
+                "check::space::helix({}, {}, {}, {} - {}, {})",
+                r(axis),
+                r(u),
+                r(v),
+                r(q),
+                r(p),
+                r(pitch)
+            ),
+            Residual::Dim { value, target } => {
+                format!("check::dimension({}, {})", r(value), r(target))
+            }
+            other => panic!("bug in gcs: the check {other:?} is no check of a spatial plan"),
+        }
+    }
+}
