@@ -32,6 +32,10 @@ pub(super) enum Value {
     Point(f64, f64),
     /// A vector literal.
     Vector(f64, f64),
+    /// A point literal of space.
+    Point3([f64; 3]),
+    /// A vector literal of space.
+    Vector3([f64; 3]),
     /// A point of the sketch that params give: its coordinates' expressions (a missing one is
     /// zero), and its code.
     Sketched([Option<ExprId>; 2], String),
@@ -50,6 +54,20 @@ impl Value {
             Value::Scalar(v) => float(*v),
             Value::Point(x, y) => format!("Point2::new({}, {})", float(*x), float(*y)),
             Value::Vector(x, y) => format!("Vector2::new({}, {})", float(*x), float(*y)),
+            Value::Point3([x, y, z]) => {
+                format!("Point3::new({}, {}, {})", float(*x), float(*y), float(*z))
+            }
+            Value::Vector3(v) => match v.map(|c| c.to_bits()) {
+                b if b == [1.0f64, 0.0, 0.0].map(f64::to_bits) => "Vector3::x()".into(),
+                b if b == [0.0f64, 1.0, 0.0].map(f64::to_bits) => "Vector3::y()".into(),
+                b if b == [0.0f64, 0.0, 1.0].map(f64::to_bits) => "Vector3::z()".into(),
+                _ => format!(
+                    "Vector3::new({}, {}, {})",
+                    float(v[0]),
+                    float(v[1]),
+                    float(v[2])
+                ),
+            },
             Value::Sketched(_, code) | Value::Expr(code) => code.clone(),
         }
     }
@@ -66,6 +84,9 @@ impl Value {
             (Value::Point(ax, ay), Value::Point(bx, by))
             | (Value::Vector(ax, ay), Value::Vector(bx, by)) => {
                 same_bits(*ax, *bx) && same_bits(*ay, *by)
+            }
+            (Value::Point3(a), Value::Point3(b)) | (Value::Vector3(a), Value::Vector3(b)) => {
+                a.iter().zip(b).all(|(a, b)| same_bits(*a, *b))
             }
             (Value::Sketched(a, _), Value::Sketched(b, _)) => {
                 a.iter().zip(b).all(|(&a, &b)| cx.same_coordinate(a, b))
@@ -84,6 +105,8 @@ impl Value {
                 | Value::Scalar(_)
                 | Value::Point(..)
                 | Value::Vector(..)
+                | Value::Point3(_)
+                | Value::Vector3(_)
         )
     }
 
@@ -91,7 +114,11 @@ impl Value {
     pub(super) fn is_literal(&self) -> bool {
         matches!(
             self,
-            Value::Scalar(_) | Value::Point(..) | Value::Vector(..)
+            Value::Scalar(_)
+                | Value::Point(..)
+                | Value::Vector(..)
+                | Value::Point3(_)
+                | Value::Vector3(_)
         )
     }
 

@@ -11,7 +11,7 @@
 //! frame is read and moved as it is, and every register is a local.
 
 use super::context::Context;
-use super::facts::FrameFacts;
+use super::facts::{FrameFacts, Value};
 use super::sketch::ParamLocal;
 use super::solve::Solve;
 use super::writer::{float, lit, Writer};
@@ -353,6 +353,17 @@ impl Context<'_> {
         out
     }
 
+    /// Whether feature `g`'s global position or direction is the same at every step of every
+    /// solve: its geom is never moved nor resized, and its sketch is constant. The solve
+    /// then reads it as a literal, computed as the interpreter's configuration computes it.
+    fn constant_feature3(&self, g: GeomId) -> bool {
+        let top = self.model.top_level_of(g);
+        !self.moved(top)
+            && !self.dim_set(top)
+            && self.all_constant(&self.sketch_exprs(top))
+            && !self.local_is_param3(g)
+    }
+
     /// Whether a 3d member's local coordinates (or a marker's axes) depend on params.
     pub(super) fn local_is_param3(&self, g: GeomId) -> bool {
         let m = self.model;
@@ -497,29 +508,46 @@ impl Solve<'_> {
         format!("frame::unit3(&{v}){}", self.or_degenerate(i))
     }
 
+    /// [`Solve::unit3`] of register `v`: a literal when `v` is one (the runtime's own
+    /// function, run here).
+    fn unit3_of(&self, i: usize, v: Reg) -> String {
+        if let Value::Vector3(c) = self.facts.value(v) {
+            if let Some(u) = gcs_runtime::frame::unit3(&nalgebra::Vector3::from(*c)) {
+                return Value::Vector3(u.into()).code();
+            }
+        }
+        self.unit3(i, &self.r(v))
+    }
+
     /// Writes the value of register `r`, which step `i` computes with the spatial `op`.
     pub(super) fn value3(&mut self, w: &mut Writer, i: usize, r: Reg, op: &Op) {
         let m = self.cx.model;
         match op {
             Op::PointOf(g) => {
-                let code = self.point_value3(*g);
                 // A top-level geom's name is its frame's.
                 let n = &m.geoms[*g].name;
                 let n = match m.geoms[*g].owner {
                     Owner::TopLevel => format!("{n}_origin"),
                     _ => n.clone(),
                 };
-                self.define(w, r, &n, &code);
+                let value = match self.cx.constant_feature3(*g) {
+                    true => Value::Point3(self.cx.sketch3().point(m, *g).coords.into()),
+                    false => Value::Expr(self.point_value3(*g)),
+                };
+                self.define_or_alias(w, r, &n, value);
             }
             Op::DirOf(g) => {
-                let code = self.dir_value3(*g);
                 let n = &m.geoms[*g].name;
                 let n = if n.contains('.') {
                     n.clone()
                 } else {
                     format!("{n}_dir")
                 };
-                self.define(w, r, &n, &code);
+                let value = match self.cx.constant_feature3(*g) {
+                    true => Value::Vector3(self.cx.sketch3().dir(m, *g).into()),
+                    false => Value::Expr(self.dir_value3(*g)),
+                };
+                self.define_or_alias(w, r, &n, value);
             }
             Op::Along { from, dir, to } => {
                 let code = format!(
@@ -717,11 +745,7 @@ impl Solve<'_> {
                 dir,
                 offset: None,
             } => {
-                let code = format!(
-                    "Line3::new({}, {})",
-                    self.r(*point),
-                    self.unit3(i, &self.r(*dir))
-                );
+                let code = format!("Line3::new({}, {})", self.r(*point), self.unit3_of(i, *dir));
                 self.define(w, r, "line", &code);
             }
             Op::ParallelLine { line, through } => {
@@ -734,7 +758,7 @@ impl Solve<'_> {
                 offset,
             } => {
                 let n = self.names.fresh("normal");
-                w.line(&format!("let {n} = {};", self.unit3(i, &self.r(*normal))));
+                w.line(&format!("let {n} = {};", self.unit3_of(i, *normal)));
                 let at = match offset {
                     Some(o) => format!("({} + {n} * {})", self.r(*point), self.r(*o)),
                     None => self.r(*point),
@@ -758,7 +782,7 @@ impl Solve<'_> {
                 let code = format!(
                     "Circle3::new({}, {}, {})",
                     self.r(*center),
-                    self.unit3(i, &self.r(*normal)),
+                    self.unit3_of(i, *normal),
                     self.r(*radius)
                 );
                 self.define(w, r, "circle", &code);
@@ -805,7 +829,7 @@ impl Solve<'_> {
                 let code = format!(
                     "Circle3::orbit(&{}, &{}, &{})",
                     self.r(*pivot),
-                    self.unit3(i, &self.r(*axis)),
+                    self.unit3_of(i, *axis),
                     self.r(*through)
                 );
                 self.define(w, r, "orbit", &code);

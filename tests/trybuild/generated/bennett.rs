@@ -512,22 +512,20 @@ pub fn solve(
             ]));
 
     // input: offset_x(ground.j1, crank.start) = theta (bennett.gcs:28)
-    let ground_j1_z = ground.vector_to_global(&Vector3::z());
     let crank_origin = crank.origin;
     let crank_start_z = crank.vector_to_global(&Vector3::z());
     let turn = frame::rotation_between3(
         &crank_start_z,
-        &ground_j1_z,
+        &Vector3::z(),
         &frame::perpendicular(&crank_start_z),
     );
     crank.rotate_about_by(&crank_origin, &turn);
-    let ground_j1_x = ground.vector_to_global(&Vector3::x());
-    let turned = frame::rotation_about_axis(&ground_j1_z, params.theta) * ground_j1_x;
+    let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
     let crank_origin_2 = crank.origin;
     let crank_start_x = crank.vector_to_global(&Vector3::x());
     let turn_2 = frame::rotation_about_axis(
-        &ground_j1_z,
-        frame::signed_angle3(&crank_start_x, &turned, &ground_j1_z),
+        &Vector3::z(),
+        frame::signed_angle3(&crank_start_x, &turned, &Vector3::z()),
     );
     crank.rotate_about_by(&crank_origin_2, &turn_2);
 
@@ -543,16 +541,15 @@ pub fn solve(
     coupler.rotate_about_by(&coupler_origin, &turn_3);
 
     // revolute(crank.start, ground.j1) (bennett.gcs:27)
-    let ground_j1 = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let crank_start = crank.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift = ground_j1 - crank_start;
+    let shift = Point3::new(0.0, 0.0, 0.0) - crank_start;
     crank.translate(&shift);
     let crank_end = crank.point_to_global(&crank_end_local);
     let coupler_start = coupler.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let shift_2 = crank_end - coupler_start;
     coupler.translate(&shift_2);
     let crank_start_z_2 = crank.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(crank_start_z_2, ground_j1_z, 1.0);
+    let residual = check::space::parallel(crank_start_z_2, Vector3::z(), 1.0);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "revolute_crank_start_ground_j1",

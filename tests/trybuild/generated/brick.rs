@@ -193,16 +193,14 @@ pub fn solve(
             ]));
 
     // coincident(brick.b1, g1) (brick.gcs:11)
-    let g1_origin = g1.origin;
     let brick_b1 = brick.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift = g1_origin - brick_b1;
+    let shift = Point3::new(0.0, 0.0, 0.0) - brick_b1;
     brick.translate(&shift);
 
     // coincident(brick.b2, g2) (brick.gcs:12)
-    let g2_origin = g2.origin;
     let brick_b2 = brick.point_to_global(&Point3::new(4.0, 0.0, 0.0));
-    let sphere = Sphere::new(g1_origin, 4.0);
-    let gap = sphere.distance(&g2_origin);
+    let sphere = Sphere::new(Point3::new(0.0, 0.0, 0.0), 4.0);
+    let gap = sphere.distance(&Point3::new(4.0, 0.0, 0.0));
     if gap.is_nan() || gap > tol {
         return Err(SolveError::new(
             "coincident_brick_b2_g2",
@@ -212,25 +210,25 @@ pub fn solve(
         ));
     }
     let turn = frame::rotation_between3(
-        &(brick_b2 - g1_origin),
-        &(g2_origin - g1_origin),
-        &frame::perpendicular(&(brick_b2 - g1_origin)),
+        &(brick_b2 - Point3::new(0.0, 0.0, 0.0)),
+        &(Point3::new(4.0, 0.0, 0.0) - Point3::new(0.0, 0.0, 0.0)),
+        &frame::perpendicular(&(brick_b2 - Point3::new(0.0, 0.0, 0.0))),
     );
-    brick.rotate_about_by(&g1_origin, &turn);
+    brick.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // coincident(brick.b3, g3) (brick.gcs:13)
-    let direction = frame::unit3(&(g2_origin - g1_origin)).ok_or_else(|| {
-        SolveError::new(
-            "coincident_brick_b3_g3",
-            "coincident(brick.b3, g3)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let g3_origin = g3.origin;
+    let direction = frame::unit3(&(Point3::new(4.0, 0.0, 0.0) - Point3::new(0.0, 0.0, 0.0)))
+        .ok_or_else(|| {
+            SolveError::new(
+                "coincident_brick_b3_g3",
+                "coincident(brick.b3, g3)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let brick_b3 = brick.point_to_global(&Point3::new(0.0, 3.0, 0.0));
     let orbit = Circle3::orbit(
-        &g1_origin,
+        &Point3::new(0.0, 0.0, 0.0),
         &frame::unit3(&direction).ok_or_else(|| {
             SolveError::new(
                 "coincident_brick_b3_g3",
@@ -241,7 +239,7 @@ pub fn solve(
         })?,
         &brick_b3,
     );
-    let gap_2 = orbit.distance(&g3_origin);
+    let gap_2 = orbit.distance(&Point3::new(0.0, 3.0, 0.0));
     if gap_2.is_nan() || gap_2 > tol {
         return Err(SolveError::new(
             "coincident_brick_b3_g3",
@@ -253,12 +251,12 @@ pub fn solve(
     let turn_2 = frame::rotation_about_axis(
         &direction,
         frame::signed_angle3(
-            &(brick_b3 - g1_origin),
-            &(g3_origin - g1_origin),
+            &(brick_b3 - Point3::new(0.0, 0.0, 0.0)),
+            &(Point3::new(0.0, 3.0, 0.0) - Point3::new(0.0, 0.0, 0.0)),
             &direction,
         ),
     );
-    brick.rotate_about_by(&g1_origin, &turn_2);
+    brick.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
 
     Ok(Solution { g1, g2, g3, brick })
 }

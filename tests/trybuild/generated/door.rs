@@ -250,27 +250,24 @@ pub fn solve(
     let mut door = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
 
     // revolute(door.hinge, wall.hinge) (door.gcs:14)
-    let wall_hinge = wall.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let door_hinge = door.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift = wall_hinge - door_hinge;
+    let shift = Point3::new(0.0, 0.0, 0.0) - door_hinge;
     door.translate(&shift);
-    let wall_hinge_z = wall.vector_to_global(&Vector3::z());
     let door_hinge_z = door.vector_to_global(&Vector3::z());
     let turn = frame::rotation_between3(
         &door_hinge_z,
-        &wall_hinge_z,
+        &Vector3::z(),
         &frame::perpendicular(&door_hinge_z),
     );
-    door.rotate_about_by(&wall_hinge, &turn);
+    door.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // swing: offset_z(wall.face, door.normal) = open (door.gcs:15)
-    let wall_face_z = wall.vector_to_global(&Vector3::x());
     let door_normal_z = door.vector_to_global(&Vector3::new(
         0.19611613513818402,
         0.98058067569092,
         1.1102230246251565e-16,
     ));
-    let turns = frame::turns_to_angle(&wall_face_z, &door_normal_z, &wall_hinge_z, params.open);
+    let turns = frame::turns_to_angle(&Vector3::x(), &door_normal_z, &Vector3::z(), params.open);
     if let Some(e) = SolveError::from_contact(
         "swing",
         "offset_z(wall.face, door.normal) = open",
@@ -290,10 +287,10 @@ pub fn solve(
             )
         })?;
     let turn_2 = frame::rotation_about_axis(
-        &wall_hinge_z,
-        frame::signed_angle3(&door_normal_z, &turned, &wall_hinge_z),
+        &Vector3::z(),
+        frame::signed_angle3(&door_normal_z, &turned, &Vector3::z()),
     );
-    door.rotate_about_by(&wall_hinge, &turn_2);
+    door.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
 
     Ok(Solution {
         wall,

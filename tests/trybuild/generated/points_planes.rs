@@ -292,9 +292,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             ]));
 
     // distance(p1, P3) = 0 (points_planes.gcs:10)
-    let p1_origin = p1.origin;
     let p2_origin = p2.origin;
-    let direction = frame::unit3(&(p2_origin - p1_origin)).ok_or_else(|| {
+    let direction = frame::unit3(&(p2_origin - Point3::new(0.0, 0.0, 0.0))).ok_or_else(|| {
         SolveError::new(
             "distance_p1_P3",
             "distance(p1, P3) = 0",
@@ -303,7 +302,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         )
     })?;
     let line = Line3::new(
-        p1_origin,
+        Point3::new(0.0, 0.0, 0.0),
         frame::unit3(&direction).ok_or_else(|| {
             SolveError::new(
                 "distance_p1_P3",
@@ -314,15 +313,17 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         })?,
     );
     let p5_origin = p5.origin;
-    let normal = frame::unit3(&(p2_origin - p1_origin).cross(&(p5_origin - p1_origin)))
-        .ok_or_else(|| {
-            SolveError::new(
-                "distance_p1_P3",
-                "distance(p1, P3) = 0",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
+    let normal = frame::unit3(
+        &(p2_origin - Point3::new(0.0, 0.0, 0.0)).cross(&(p5_origin - Point3::new(0.0, 0.0, 0.0))),
+    )
+    .ok_or_else(|| {
+        SolveError::new(
+            "distance_p1_P3",
+            "distance(p1, P3) = 0",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let normal_2 = frame::unit3(&normal).ok_or_else(|| {
         SolveError::new(
             "distance_p1_P3",
@@ -331,7 +332,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let plane = Plane::from_point_normal(&p1_origin, &normal_2);
+    let plane = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal_2);
     let p3_normal = p3.z_axis();
     let normal_3 = frame::unit3(&p3_normal).ok_or_else(|| {
         SolveError::new(
@@ -341,7 +342,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let plane_2 = Plane::from_point_normal(&(p1_origin + normal_3 * -0.0), &normal_3);
+    let plane_2 =
+        Plane::from_point_normal(&(Point3::new(0.0, 0.0, 0.0) + normal_3 * -0.0), &normal_3);
     let p3_origin = p3.origin;
     let nearest = plane_2.project(&p3_origin);
     let shift = nearest - p3_origin;
@@ -357,14 +359,15 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let plane_3 = Plane::from_point_normal(&(p1_origin + normal_4 * 5.0), &normal_4);
+    let plane_3 =
+        Plane::from_point_normal(&(Point3::new(0.0, 0.0, 0.0) + normal_4 * 5.0), &normal_4);
     let p4_origin = p4.origin;
     let nearest_2 = plane_3.project(&p4_origin);
     let shift_2 = nearest_2 - p4_origin;
     p4.translate(&shift_2);
 
     // distance(p1, p2) = 5 (points_planes.gcs:11)
-    let sphere = Sphere::new(p1_origin, 5.0);
+    let sphere = Sphere::new(Point3::new(0.0, 0.0, 0.0), 5.0);
     let distance_p1_p2_meeting = intersect3d::line_sphere(&line, &sphere);
     if let Some(e) = SolveError::from_contact(
         "distance_p1_p2",
@@ -388,7 +391,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     p2.translate(&shift_3);
 
     // distance(p1, p5) = 2 * sqrt(3) (points_planes.gcs:11)
-    let sphere_2 = Sphere::new(p1_origin, 3.4641016151377544);
+    let sphere_2 = Sphere::new(Point3::new(0.0, 0.0, 0.0), 3.4641016151377544);
     let distance_p1_p5_meeting = intersect3d::sphere_plane(&sphere_2, &plane);
     if let Some(e) = SolveError::from_contact(
         "distance_p1_p5",
@@ -419,7 +422,13 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // distance(p2, P3) = 4 (points_planes.gcs:11)
     let p3_origin_2 = p3.origin;
     let p3_normal_2 = p3.z_axis();
-    let cone = frame::plane_cone(&p3_origin_2, &p3_normal_2, &p1_origin, &distance_p1_p2, 4.0);
+    let cone = frame::plane_cone(
+        &p3_origin_2,
+        &p3_normal_2,
+        &Point3::new(0.0, 0.0, 0.0),
+        &distance_p1_p2,
+        4.0,
+    );
     let reach = cone.0.norm();
     if reach.is_nan() || reach <= 0.0 {
         return Err(SolveError::new(
@@ -440,23 +449,24 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let normal_5 = frame::plane_turn(&(cone.0 / reach), cone.1.clamp(-1.0, 1.0), &p3_normal_2);
     let turn =
         frame::rotation_between3(&p3_normal_2, &normal_5, &frame::perpendicular(&p3_normal_2));
-    p3.rotate_about_by(&p1_origin, &turn);
+    p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // distance(p2, P4) = -16/5 (points_planes.gcs:10)
-    let direction_2 = frame::unit3(&(distance_p1_p2 - p1_origin)).ok_or_else(|| {
-        SolveError::new(
-            "distance_p2_P4",
-            "distance(p2, P4) = -16/5",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
+    let direction_2 =
+        frame::unit3(&(distance_p1_p2 - Point3::new(0.0, 0.0, 0.0))).ok_or_else(|| {
+            SolveError::new(
+                "distance_p2_P4",
+                "distance(p2, P4) = -16/5",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let p4_origin_2 = p4.origin;
     let p4_normal_2 = p4.z_axis();
     let cone_2 = frame::plane_cone(
         &p4_origin_2,
         &p4_normal_2,
-        &p1_origin,
+        &Point3::new(0.0, 0.0, 0.0),
         &distance_p1_p2,
         -3.2,
     );
@@ -484,17 +494,18 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     );
     let turn_2 =
         frame::rotation_between3(&p4_normal_2, &normal_6, &frame::perpendicular(&p4_normal_2));
-    p4.rotate_about_by(&p1_origin, &turn_2);
+    p4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
 
     // distance(p2, p6) = sqrt(19) (points_planes.gcs:12)
-    let direction_3 = frame::unit3(&(distance_p1_p2 - p1_origin)).ok_or_else(|| {
-        SolveError::new(
-            "distance_p2_p6",
-            "distance(p2, p6) = sqrt(19)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
+    let direction_3 =
+        frame::unit3(&(distance_p1_p2 - Point3::new(0.0, 0.0, 0.0))).ok_or_else(|| {
+            SolveError::new(
+                "distance_p2_p6",
+                "distance(p2, p6) = sqrt(19)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let sphere_3 = Sphere::new(distance_p1_p2, 4.358898943540674);
     let p6_origin = p6.origin;
     let nearest_4 = sphere_3.nearest(&p6_origin).ok_or_else(|| {
@@ -536,7 +547,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                     &direction_2,
                     frame::signed_angle3(&across, &turned, &direction_2),
                 );
-                p3.rotate_about_by(&p1_origin, &turn_3);
+                p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_3);
                 let p3_origin_3 = p3.origin;
                 let p3_normal_3 = p3.z_axis();
                 let normal_7 = frame::unit3(&p3_normal_3).ok_or_else(|| {
@@ -575,7 +586,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let cone_3 = frame::plane_cone(
                     &p4_origin_3,
                     &p4_normal_3,
-                    &p1_origin,
+                    &Point3::new(0.0, 0.0, 0.0),
                     &distance_p5_p3,
                     -2.2,
                 );
@@ -625,7 +636,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                     &direction_3,
                     frame::signed_angle3(&p4_normal_3, &normal_8, &direction_3),
                 );
-                p4.rotate_about_by(&p1_origin, &turn_4);
+                p4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
                 let sphere_4 = Sphere::new(distance_p5_p3, 4.242640687119286);
                 let p6_origin_2 = p6.origin;
                 let distance_p5_p6_meeting = intersect3d::sphere_sphere(&sphere_3, &sphere_4);
@@ -715,7 +726,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         &direction_2,
         frame::signed_angle3(&across_2, &turned_2, &direction_2),
     );
-    p3.rotate_about_by(&p1_origin, &turn_5);
+    p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_5);
     let p3_origin_4 = p3.origin;
     let p3_normal_4 = p3.z_axis();
     let normal_10 = frame::unit3(&p3_normal_4).ok_or_else(|| {
@@ -756,7 +767,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let cone_4 = frame::plane_cone(
         &p4_origin_5,
         &p4_normal_5,
-        &p1_origin,
+        &Point3::new(0.0, 0.0, 0.0),
         &distance_p5_p3_2,
         -2.2,
     );
@@ -806,7 +817,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         &direction_3,
         frame::signed_angle3(&p4_normal_5, &normal_11, &direction_3),
     );
-    p4.rotate_about_by(&p1_origin, &turn_6);
+    p4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_6);
 
     // distance(p5, p6) = 3 * sqrt(2) (points_planes.gcs:13)
     let sphere_5 = Sphere::new(distance_p5_p3_2, 4.242640687119286);

@@ -328,33 +328,29 @@ pub fn solve(
             ]));
 
     // input: offset_x(ground.crank_axis, crank.base) = theta (rssr.gcs:23)
-    let ground_crank_axis_z = ground.vector_to_global(&Vector3::z());
     let crank_origin = crank.origin;
     let crank_base_z = crank.vector_to_global(&Vector3::z());
     let turn = frame::rotation_between3(
         &crank_base_z,
-        &ground_crank_axis_z,
+        &Vector3::z(),
         &frame::perpendicular(&crank_base_z),
     );
     crank.rotate_about_by(&crank_origin, &turn);
-    let ground_crank_axis_x = ground.vector_to_global(&Vector3::x());
-    let turned =
-        frame::rotation_about_axis(&ground_crank_axis_z, params.theta) * ground_crank_axis_x;
+    let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
     let crank_origin_2 = crank.origin;
     let crank_base_x = crank.vector_to_global(&Vector3::x());
     let turn_2 = frame::rotation_about_axis(
-        &ground_crank_axis_z,
-        frame::signed_angle3(&crank_base_x, &turned, &ground_crank_axis_z),
+        &Vector3::z(),
+        frame::signed_angle3(&crank_base_x, &turned, &Vector3::z()),
     );
     crank.rotate_about_by(&crank_origin_2, &turn_2);
 
     // revolute(crank.base, ground.crank_axis) (rssr.gcs:22)
-    let ground_crank_axis = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let crank_base = crank.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift = ground_crank_axis - crank_base;
+    let shift = Point3::new(0.0, 0.0, 0.0) - crank_base;
     crank.translate(&shift);
     let crank_base_z_2 = crank.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(crank_base_z_2, ground_crank_axis_z, 1.0);
+    let residual = check::space::parallel(crank_base_z_2, Vector3::z(), 1.0);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "revolute_crank_base_ground_crank_axis",
@@ -365,19 +361,16 @@ pub fn solve(
     }
 
     // revolute(rocker.base, ground.rocker_axis) (rssr.gcs:25)
-    let ground_rocker_axis = ground.point_to_global(&Point3::new(4.0, 1.0, 1.0));
     let rocker_base = rocker.point_to_global(&Point3::new(4.0, 1.0, 1.0));
-    let shift_2 = ground_rocker_axis - rocker_base;
+    let shift_2 = Point3::new(4.0, 1.0, 1.0) - rocker_base;
     rocker.translate(&shift_2);
-    let ground_rocker_axis_z =
-        ground.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let rocker_base_z = rocker.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let turn_3 = frame::rotation_between3(
         &rocker_base_z,
-        &ground_rocker_axis_z,
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
         &frame::perpendicular(&rocker_base_z),
     );
-    rocker.rotate_about_by(&ground_rocker_axis, &turn_3);
+    rocker.rotate_about_by(&Point3::new(4.0, 1.0, 1.0), &turn_3);
 
     // spherical(coupler.a, crank.tip) (rssr.gcs:24)
     let crank_tip = crank.point_to_global(&Point3::new(1.0, 0.0, 0.0));
@@ -390,15 +383,8 @@ pub fn solve(
     let sphere = Sphere::new(crank_tip, 4.358898943540674);
     let rocker_tip = rocker.point_to_global(&Point3::new(4.0, 1.0, 3.0));
     let orbit = Circle3::orbit(
-        &ground_rocker_axis,
-        &frame::unit3(&ground_rocker_axis_z).ok_or_else(|| {
-            SolveError::new(
-                "spherical_coupler_b_rocker_tip",
-                "spherical(coupler.b, rocker.tip)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
+        &Point3::new(4.0, 1.0, 1.0),
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
         &rocker_tip,
     );
     let spherical_coupler_b_rocker_tip_meeting = intersect3d::circle_sphere(&orbit, &sphere);
@@ -446,15 +432,8 @@ pub fn solve(
             )
         })?;
     let orbit_2 = Circle3::orbit(
-        &ground_rocker_axis,
-        &frame::unit3(&ground_rocker_axis_z).ok_or_else(|| {
-            SolveError::new(
-                "spherical_coupler_b_rocker_tip",
-                "spherical(coupler.b, rocker.tip)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
+        &Point3::new(4.0, 1.0, 1.0),
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
         &rocker_tip,
     );
     let gap_2 = orbit_2.distance(&spherical_coupler_b_rocker_tip);
@@ -467,14 +446,14 @@ pub fn solve(
         ));
     }
     let turn_5 = frame::rotation_about_axis(
-        &ground_rocker_axis_z,
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
         frame::signed_angle3(
-            &(rocker_tip - ground_rocker_axis),
-            &(spherical_coupler_b_rocker_tip - ground_rocker_axis),
-            &ground_rocker_axis_z,
+            &(rocker_tip - Point3::new(4.0, 1.0, 1.0)),
+            &(spherical_coupler_b_rocker_tip - Point3::new(4.0, 1.0, 1.0)),
+            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
         ),
     );
-    rocker.rotate_about_by(&ground_rocker_axis, &turn_5);
+    rocker.rotate_about_by(&Point3::new(4.0, 1.0, 1.0), &turn_5);
     let across = frame::unit3(&frame::perpendicular(&direction)).ok_or_else(|| {
         SolveError::new(
             "spherical_coupler_b_rocker_tip",

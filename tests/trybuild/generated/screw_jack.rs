@@ -302,19 +302,7 @@ pub fn solve(
             ]));
 
     // cylindrical(screw.thread, ground.nut) (screw_jack.gcs:20)
-    let ground_nut = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let ground_nut_z = ground.vector_to_global(&Vector3::z());
-    let line = Line3::new(
-        ground_nut,
-        frame::unit3(&ground_nut_z).ok_or_else(|| {
-            SolveError::new(
-                "cylindrical_screw_thread_ground_nut",
-                "cylindrical(screw.thread, ground.nut)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-    );
+    let line = Line3::new(Point3::new(0.0, 0.0, 0.0), Vector3::z());
     let screw_thread = screw.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let nearest = line.closest(&screw_thread);
     let shift = nearest - screw_thread;
@@ -323,23 +311,17 @@ pub fn solve(
     let screw_thread_z = screw.vector_to_global(&Vector3::z());
     let turn = frame::rotation_between3(
         &screw_thread_z,
-        &ground_nut_z,
+        &Vector3::z(),
         &frame::perpendicular(&screw_thread_z),
     );
     screw.rotate_about_by(&screw_thread_2, &turn);
 
     // height: distance(screw.top, floor) = lift (screw_jack.gcs:22)
-    let floor_origin = floor.origin;
-    let floor_normal = floor.z_axis();
-    let normal = frame::unit3(&floor_normal).ok_or_else(|| {
-        SolveError::new(
-            "height",
-            "distance(screw.top, floor) = lift",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let plane = Plane::from_point_normal(&(floor_origin + normal * params.lift), &normal);
+    let normal = Vector3::z();
+    let plane = Plane::from_point_normal(
+        &(Point3::new(0.0, 0.0, 0.0) + normal * params.lift),
+        &normal,
+    );
     let screw_top = screw.point_to_global(&Point3::new(0.0, 0.0, 2.0));
     let line_2 = Line3::new(screw_top, line.dir);
     let height_meeting = intersect3d::line_plane(&line_2, &plane);
@@ -363,7 +345,7 @@ pub fn solve(
 
     // helical(ground.nut, screw.thread) = pitch (screw_jack.gcs:21)
     let screw_thread_z_2 = screw.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(ground_nut_z, screw_thread_z_2, 1.0);
+    let residual = check::space::parallel(Vector3::z(), screw_thread_z_2, 1.0);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "helical_ground_nut_screw_thread",
@@ -372,9 +354,8 @@ pub fn solve(
             residual,
         ));
     }
-    let ground_nut_x = ground.vector_to_global(&Vector3::x());
     let screw_thread_3 = screw.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let length = (screw_thread_3 - ground_nut).dot(&ground_nut_z);
+    let length = (screw_thread_3 - Point3::new(0.0, 0.0, 0.0)).dot(&Vector3::z());
     let turn_2 = frame::helix_turn(length, params.pitch);
     if !gcs_runtime::num::is_finite(turn_2) {
         return Err(SolveError::new(
@@ -384,26 +365,16 @@ pub fn solve(
             turn_2,
         ));
     }
-    let turned = frame::rotation_about_axis(&ground_nut_z, turn_2) * ground_nut_x;
+    let turned = frame::rotation_about_axis(&Vector3::z(), turn_2) * Vector3::x();
     let screw_thread_x = screw.vector_to_global(&Vector3::x());
     let turn_3 = frame::rotation_about_axis(
-        &ground_nut_z,
-        frame::signed_angle3(&screw_thread_x, &turned, &ground_nut_z),
+        &Vector3::z(),
+        frame::signed_angle3(&screw_thread_x, &turned, &Vector3::z()),
     );
     screw.rotate_about_by(&height, &turn_3);
 
     // in_line(platform.base, ground.nut) (screw_jack.gcs:24)
-    let line_3 = Line3::new(
-        ground_nut,
-        frame::unit3(&ground_nut_z).ok_or_else(|| {
-            SolveError::new(
-                "in_line_platform_base_ground_nut",
-                "in_line(platform.base, ground.nut)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-    );
+    let line_3 = Line3::new(Point3::new(0.0, 0.0, 0.0), Vector3::z());
     let platform_base = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let nearest_2 = line_3.closest(&platform_base);
     let shift_3 = nearest_2 - platform_base;
@@ -414,16 +385,16 @@ pub fn solve(
     let platform_base_z = platform.vector_to_global(&Vector3::z());
     let turn_4 = frame::rotation_between3(
         &platform_base_z,
-        &ground_nut_z,
+        &Vector3::z(),
         &frame::perpendicular(&platform_base_z),
     );
     platform.rotate_about_by(&platform_base_2, &turn_4);
-    let turned_2 = frame::rotation_about_axis(&ground_nut_z, 0.0) * ground_nut_x;
+    let turned_2 = frame::rotation_about_axis(&Vector3::z(), 0.0) * Vector3::x();
     let platform_base_3 = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let platform_base_x = platform.vector_to_global(&Vector3::x());
     let turn_5 = frame::rotation_about_axis(
-        &ground_nut_z,
-        frame::signed_angle3(&platform_base_x, &turned_2, &ground_nut_z),
+        &Vector3::z(),
+        frame::signed_angle3(&platform_base_x, &turned_2, &Vector3::z()),
     );
     platform.rotate_about_by(&platform_base_3, &turn_5);
 

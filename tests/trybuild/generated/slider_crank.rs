@@ -307,35 +307,21 @@ pub fn solve(
             ]));
 
     // offset_x(ground.o, arm.o) = phi (slider_crank.gcs:15)
-    let ground_o_z = ground.vector_to_global(&Vector3::z());
     let arm_origin = arm.origin;
     let arm_o_z = arm.vector_to_global(&Vector3::z());
-    let turn = frame::rotation_between3(&arm_o_z, &ground_o_z, &frame::perpendicular(&arm_o_z));
+    let turn = frame::rotation_between3(&arm_o_z, &Vector3::z(), &frame::perpendicular(&arm_o_z));
     arm.rotate_about_by(&arm_origin, &turn);
-    let ground_o_x = ground.vector_to_global(&Vector3::x());
-    let turned = frame::rotation_about_axis(&ground_o_z, params.phi) * ground_o_x;
+    let turned = frame::rotation_about_axis(&Vector3::z(), params.phi) * Vector3::x();
     let arm_origin_2 = arm.origin;
     let arm_o_x = arm.vector_to_global(&Vector3::x());
     let turn_2 = frame::rotation_about_axis(
-        &ground_o_z,
-        frame::signed_angle3(&arm_o_x, &turned, &ground_o_z),
+        &Vector3::z(),
+        frame::signed_angle3(&arm_o_x, &turned, &Vector3::z()),
     );
     arm.rotate_about_by(&arm_origin_2, &turn_2);
 
     // prismatic(slider.s, ground.rail) (slider_crank.gcs:18)
-    let ground_rail = ground.point_to_global(&Point3::new(5.0, 0.0, 0.0));
-    let ground_rail_z = ground.vector_to_global(&Vector3::x());
-    let line = Line3::new(
-        ground_rail,
-        frame::unit3(&ground_rail_z).ok_or_else(|| {
-            SolveError::new(
-                "prismatic_slider_s_ground_rail",
-                "prismatic(slider.s, ground.rail)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-    );
+    let line = Line3::new(Point3::new(5.0, 0.0, 0.0), Vector3::x());
     let slider_s = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let nearest = line.closest(&slider_s);
     let shift = nearest - slider_s;
@@ -344,25 +330,23 @@ pub fn solve(
     let slider_s_z = slider.vector_to_global(&Vector3::x());
     let turn_3 = frame::rotation_between3(
         &slider_s_z,
-        &ground_rail_z,
+        &Vector3::x(),
         &frame::perpendicular(&slider_s_z),
     );
     slider.rotate_about_by(&slider_s_2, &turn_3);
     let slider_s_z_2 = slider.vector_to_global(&Vector3::x());
-    let ground_rail_x = ground.vector_to_global(&Vector3::y());
-    let turned_2 = frame::rotation_about_axis(&slider_s_z_2, -0.0) * ground_rail_x;
+    let turned_2 = frame::rotation_about_axis(&slider_s_z_2, -0.0) * Vector3::y();
     let slider_s_3 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let slider_s_x = slider.vector_to_global(&Vector3::y());
     let turn_4 = frame::rotation_about_axis(
-        &ground_rail_z,
-        frame::signed_angle3(&slider_s_x, &turned_2, &ground_rail_z),
+        &Vector3::x(),
+        frame::signed_angle3(&slider_s_x, &turned_2, &Vector3::x()),
     );
     slider.rotate_about_by(&slider_s_3, &turn_4);
 
     // revolute(arm.tip, rod.a) (slider_crank.gcs:16)
-    let ground_o = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let arm_o = arm.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift_2 = ground_o - arm_o;
+    let shift_2 = Point3::new(0.0, 0.0, 0.0) - arm_o;
     arm.translate(&shift_2);
     let arm_tip = arm.point_to_global(&Point3::new(3.0, 0.0, 0.0));
     let rod_a = rod.point_to_global(&Point3::new(0.0, 0.0, 0.0));

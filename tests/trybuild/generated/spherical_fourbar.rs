@@ -362,23 +362,20 @@ pub fn solve(
             ]));
 
     // input: offset_x(ground.crank_axis, crank.base) = theta (spherical_fourbar.gcs:22)
-    let ground_crank_axis_z = ground.vector_to_global(&Vector3::z());
     let crank_origin = crank.origin;
     let crank_base_z = crank.vector_to_global(&Vector3::z());
     let turn = frame::rotation_between3(
         &crank_base_z,
-        &ground_crank_axis_z,
+        &Vector3::z(),
         &frame::perpendicular(&crank_base_z),
     );
     crank.rotate_about_by(&crank_origin, &turn);
-    let ground_crank_axis_x = ground.vector_to_global(&Vector3::x());
-    let turned =
-        frame::rotation_about_axis(&ground_crank_axis_z, params.theta) * ground_crank_axis_x;
+    let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
     let crank_origin_2 = crank.origin;
     let crank_base_x = crank.vector_to_global(&Vector3::x());
     let turn_2 = frame::rotation_about_axis(
-        &ground_crank_axis_z,
-        frame::signed_angle3(&crank_base_x, &turned, &ground_crank_axis_z),
+        &Vector3::z(),
+        frame::signed_angle3(&crank_base_x, &turned, &Vector3::z()),
     );
     crank.rotate_about_by(&crank_origin_2, &turn_2);
 
@@ -394,16 +391,15 @@ pub fn solve(
     coupler.rotate_about_by(&coupler_origin, &turn_3);
 
     // revolute(crank.base, ground.crank_axis) (spherical_fourbar.gcs:21)
-    let ground_crank_axis = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let crank_base = crank.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift = ground_crank_axis - crank_base;
+    let shift = Point3::new(0.0, 0.0, 0.0) - crank_base;
     crank.translate(&shift);
     let crank_tip = crank.point_to_global(&Point3::new(0.6, 0.0, 0.8));
     let coupler_a = coupler.point_to_global(&Point3::new(0.6, 0.0, 0.8));
     let shift_2 = crank_tip - coupler_a;
     coupler.translate(&shift_2);
     let crank_base_z_2 = crank.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(crank_base_z_2, ground_crank_axis_z, 1.0);
+    let residual = check::space::parallel(crank_base_z_2, Vector3::z(), 1.0);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "revolute_crank_base_ground_crank_axis",
@@ -414,18 +410,16 @@ pub fn solve(
     }
 
     // revolute(rocker.base, ground.rocker_axis) (spherical_fourbar.gcs:24)
-    let ground_rocker_axis = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let rocker_base = rocker.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift_3 = ground_rocker_axis - rocker_base;
+    let shift_3 = Point3::new(0.0, 0.0, 0.0) - rocker_base;
     rocker.translate(&shift_3);
-    let ground_rocker_axis_z = ground.vector_to_global(&Vector3::x());
     let rocker_base_z = rocker.vector_to_global(&Vector3::x());
     let turn_4 = frame::rotation_between3(
         &rocker_base_z,
-        &ground_rocker_axis_z,
+        &Vector3::x(),
         &frame::perpendicular(&rocker_base_z),
     );
-    rocker.rotate_about_by(&ground_rocker_axis, &turn_4);
+    rocker.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
 
     // revolute(coupler.b, rocker.tip) (spherical_fourbar.gcs:25)
     let coupler_b =
@@ -444,18 +438,7 @@ pub fn solve(
     );
     let rocker_tip =
         rocker.point_to_global(&Point3::new(std::f64::consts::FRAC_1_SQRT_2, 0.5, 0.5));
-    let orbit_2 = Circle3::orbit(
-        &ground_rocker_axis,
-        &frame::unit3(&ground_rocker_axis_z).ok_or_else(|| {
-            SolveError::new(
-                "revolute_coupler_b_rocker_tip",
-                "revolute(coupler.b, rocker.tip)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-        &rocker_tip,
-    );
+    let orbit_2 = Circle3::orbit(&Point3::new(0.0, 0.0, 0.0), &Vector3::x(), &rocker_tip);
     let revolute_coupler_b_rocker_tip_meeting = intersect3d::circle_circle(&orbit, &orbit_2);
     if let Some(e) = SolveError::from_contact(
         "revolute_coupler_b_rocker_tip",
@@ -505,18 +488,7 @@ pub fn solve(
         ),
     );
     coupler.rotate_about_by(&crank_tip, &turn_5);
-    let orbit_4 = Circle3::orbit(
-        &ground_rocker_axis,
-        &frame::unit3(&ground_rocker_axis_z).ok_or_else(|| {
-            SolveError::new(
-                "revolute_coupler_b_rocker_tip",
-                "revolute(coupler.b, rocker.tip)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-        &rocker_tip,
-    );
+    let orbit_4 = Circle3::orbit(&Point3::new(0.0, 0.0, 0.0), &Vector3::x(), &rocker_tip);
     let gap_2 = orbit_4.distance(&revolute_coupler_b_rocker_tip);
     if gap_2.is_nan() || gap_2 > tol {
         return Err(SolveError::new(
@@ -527,14 +499,14 @@ pub fn solve(
         ));
     }
     let turn_6 = frame::rotation_about_axis(
-        &ground_rocker_axis_z,
+        &Vector3::x(),
         frame::signed_angle3(
-            &(rocker_tip - ground_rocker_axis),
-            &(revolute_coupler_b_rocker_tip - ground_rocker_axis),
-            &ground_rocker_axis_z,
+            &(rocker_tip - Point3::new(0.0, 0.0, 0.0)),
+            &(revolute_coupler_b_rocker_tip - Point3::new(0.0, 0.0, 0.0)),
+            &Vector3::x(),
         ),
     );
-    rocker.rotate_about_by(&ground_rocker_axis, &turn_6);
+    rocker.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_6);
     let coupler_b_z =
         coupler.vector_to_global(&Vector3::new(0.7071067811865477, 0.5, 0.4999999999999999));
     let rocker_tip_z =

@@ -343,7 +343,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             ]));
 
     // leg1: distance(platform.p1, b1) = l1 (stewart.gcs:25)
-    let b1_origin = b1.origin;
     // leg1: a distance is zero or more.
     if params.l1 < 0.0 {
         return Err(SolveError::new(
@@ -353,7 +352,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             params.l1,
         ));
     }
-    let sphere = Sphere::new(b1_origin, params.l1);
+    let sphere = Sphere::new(Point3::new(2.0, 0.0, 0.0), params.l1);
     let platform_p1 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
     let nearest = sphere.nearest(&platform_p1).ok_or_else(|| {
         SolveError::new(
@@ -429,7 +428,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                     frame::signed_angle3(&across_3, &turned_3, &world_axis_3),
                 );
                 platform.rotate_about_by(&platform_p1_2, &turn_3);
-                let b2_origin = b2.origin;
                 // leg2: a distance is zero or more.
                 if params.l2 < 0.0 {
                     return Err(SolveError::new(
@@ -439,7 +437,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         params.l2,
                     ));
                 }
-                let sphere_2 = Sphere::new(b2_origin, params.l2);
+                let sphere_2 = Sphere::new(Point3::new(1.0, 1.732, 0.0), params.l2);
                 let platform_p2 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
                 let platform_p1_3 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
                 let sphere_moved =
@@ -470,7 +468,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 })?;
                 let shift_2 = nearest_2 - platform_p2;
                 platform.translate(&shift_2);
-                let b3_origin = b3.origin;
                 // leg3: a distance is zero or more.
                 if params.l3 < 0.0 {
                     return Err(SolveError::new(
@@ -480,7 +477,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         params.l3,
                     ));
                 }
-                let sphere_3 = Sphere::new(b3_origin, params.l3);
+                let sphere_3 = Sphere::new(Point3::new(-1.0, 1.732, 0.0), params.l3);
                 let platform_p3 = platform.point_to_global(&Point3::new(-0.3, 1.0, 0.0));
                 let platform_p2_2 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
                 let circle_moved = Circle3::new(
@@ -510,7 +507,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let shift_3 = leg3 - platform_p3;
                 platform.translate(&shift_3);
                 let platform_p4 = platform.point_to_global(&Point3::new(-1.0, 0.2, 0.0));
-                let b4_origin = b4.origin;
                 // leg4: a distance is zero or more.
                 if params.l4 < 0.0 {
                     return Err(SolveError::new(
@@ -520,10 +516,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         params.l4,
                     ));
                 }
-                let error = (platform_p4 - b4_origin).norm() - params.l4;
+                let error = (platform_p4 - Point3::new(-2.0, 0.0, 0.0)).norm() - params.l4;
                 errors[0] = error;
                 let platform_p5 = platform.point_to_global(&Point3::new(-0.7, -0.8, 0.0));
-                let b5_origin = b5.origin;
                 // leg5: a distance is zero or more.
                 if params.l5 < 0.0 {
                     return Err(SolveError::new(
@@ -533,10 +528,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         params.l5,
                     ));
                 }
-                let error_2 = (platform_p5 - b5_origin).norm() - params.l5;
+                let error_2 = (platform_p5 - Point3::new(-1.0, -1.732, 0.0)).norm() - params.l5;
                 errors[1] = error_2;
                 let platform_p6 = platform.point_to_global(&Point3::new(0.7, -0.8, 0.0));
-                let b6_origin = b6.origin;
                 // leg6: a distance is zero or more.
                 if params.l6 < 0.0 {
                     return Err(SolveError::new(
@@ -546,7 +540,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         params.l6,
                     ));
                 }
-                let error_3 = (platform_p6 - b6_origin).norm() - params.l6;
+                let error_3 = (platform_p6 - Point3::new(1.0, -1.732, 0.0)).norm() - params.l6;
                 errors[2] = error_3;
                 Ok(())
             },
@@ -607,7 +601,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         frame::signed_angle3(&across_6, &turned_6, &world_axis_5),
     );
     platform.rotate_about_by(&platform_p1_2, &turn_6);
-    let b2_origin_2 = b2.origin;
     // leg2: a distance is zero or more.
     if params.l2 < 0.0 {
         return Err(SolveError::new(
@@ -617,7 +610,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             params.l2,
         ));
     }
-    let sphere_4 = Sphere::new(b2_origin_2, params.l2);
+    let sphere_4 = Sphere::new(Point3::new(1.0, 1.732, 0.0), params.l2);
     let platform_p2_3 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
     let platform_p1_4 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
     let sphere_moved_2 = Sphere::new(
@@ -652,7 +645,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     platform.translate(&shift_4);
 
     // leg3: distance(platform.p3, b3) = l3 (stewart.gcs:27)
-    let b3_origin_2 = b3.origin;
     // leg3: a distance is zero or more.
     if params.l3 < 0.0 {
         return Err(SolveError::new(
@@ -662,7 +654,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             params.l3,
         ));
     }
-    let sphere_5 = Sphere::new(b3_origin_2, params.l3);
+    let sphere_5 = Sphere::new(Point3::new(-1.0, 1.732, 0.0), params.l3);
     let platform_p3_2 = platform.point_to_global(&Point3::new(-0.3, 1.0, 0.0));
     let platform_p2_4 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
     let circle_moved_2 = Circle3::new(

@@ -188,9 +188,8 @@ pub fn solve(
     let mut d = Frame3::new(Point3::new(1.1, 0.9, 2.4), UnitQuaternion::identity());
 
     // distance(a, b) = 3 (tetrahedron.gcs:9)
-    let a_origin = a.origin;
     let b_origin = b.origin;
-    let direction = frame::unit3(&(b_origin - a_origin)).ok_or_else(|| {
+    let direction = frame::unit3(&(b_origin - Point3::new(0.0, 0.0, 0.0))).ok_or_else(|| {
         SolveError::new(
             "distance_a_b",
             "distance(a, b) = 3",
@@ -199,7 +198,7 @@ pub fn solve(
         )
     })?;
     let line = Line3::new(
-        a_origin,
+        Point3::new(0.0, 0.0, 0.0),
         frame::unit3(&direction).ok_or_else(|| {
             SolveError::new(
                 "distance_a_b",
@@ -210,15 +209,17 @@ pub fn solve(
         })?,
     );
     let c_origin = c.origin;
-    let normal =
-        frame::unit3(&(b_origin - a_origin).cross(&(c_origin - a_origin))).ok_or_else(|| {
-            SolveError::new(
-                "distance_a_b",
-                "distance(a, b) = 3",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
+    let normal = frame::unit3(
+        &(b_origin - Point3::new(0.0, 0.0, 0.0)).cross(&(c_origin - Point3::new(0.0, 0.0, 0.0))),
+    )
+    .ok_or_else(|| {
+        SolveError::new(
+            "distance_a_b",
+            "distance(a, b) = 3",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let normal_2 = frame::unit3(&normal).ok_or_else(|| {
         SolveError::new(
             "distance_a_b",
@@ -227,8 +228,8 @@ pub fn solve(
             0.0,
         )
     })?;
-    let plane = Plane::from_point_normal(&a_origin, &normal_2);
-    let sphere = Sphere::new(a_origin, 3.0);
+    let plane = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal_2);
+    let sphere = Sphere::new(Point3::new(0.0, 0.0, 0.0), 3.0);
     let distance_a_b_meeting = intersect3d::line_sphere(&line, &sphere);
     if let Some(e) = SolveError::from_contact(
         "distance_a_b",
@@ -252,7 +253,7 @@ pub fn solve(
     b.translate(&shift);
 
     // distance(a, c) = 3 (tetrahedron.gcs:10)
-    let sphere_2 = Sphere::new(a_origin, 3.0);
+    let sphere_2 = Sphere::new(Point3::new(0.0, 0.0, 0.0), 3.0);
     let distance_a_c_meeting = intersect3d::sphere_plane(&sphere_2, &plane);
     if let Some(e) = SolveError::from_contact(
         "distance_a_c",
@@ -281,7 +282,7 @@ pub fn solve(
     c.translate(&shift_2);
 
     // distance(a, d) = 3 (tetrahedron.gcs:12)
-    let sphere_3 = Sphere::new(a_origin, 3.0);
+    let sphere_3 = Sphere::new(Point3::new(0.0, 0.0, 0.0), 3.0);
     let d_origin = d.origin;
     let nearest_2 = sphere_3.nearest(&d_origin).ok_or_else(|| {
         SolveError::new(
