@@ -154,7 +154,9 @@ const KNOWN_WRONG: &[Known] = &[
             "body | free | angle(vector, P.n.z) = a",
             "body | free | perpendicular(vector, P.n.z)",
             "body | in_line, parallel z | cylindrical(P.n, marker)",
+            "body | in_line, parallel z | midpoint(P.n, segment)",
             "body | in_line, parallel z | on(P.c, line)",
+            "body | in_line, parallel z | symmetric(P.n, point, plane)",
             "body | on a line (in_line) | helical(marker, P.n) = pitch",
             "body | on a line (in_line) | offset_z(marker, P.n) = a",
             "body | on a line (in_line) | perpendicular(vector, P.n.z)",
@@ -178,7 +180,9 @@ const KNOWN_WRONG: &[Known] = &[
         entries: &[
             "body | screw (cylindrical, helical) | coincident(P.a, point)",
             "body | screw (cylindrical, helical) | coincident(P.n, point)",
+            "body | screw (cylindrical, helical) | midpoint(P.n, segment)",
             "body | screw (cylindrical, helical) | spherical(P.n, point)",
+            "body | screw (cylindrical, helical) | symmetric(P.n, point, plane)",
         ],
     },
 ];

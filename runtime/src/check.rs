@@ -266,6 +266,19 @@ pub mod space {
         ((p - base).dot(&normal) - d).abs()
     }
 
+    /// `p` is the midpoint of `a` and `b`: how far it is from it.
+    #[inline]
+    pub fn midpoint(p: P3, a: P3, b: P3) -> f64 {
+        (crate::locus3d::midpoint(a, b) - p).norm()
+    }
+
+    /// `q` is the mirror image of `p` across the plane through `base` with unit `normal`:
+    /// how far it is from that image.
+    #[inline]
+    pub fn mirror(p: P3, q: P3, base: P3, normal: V3) -> f64 {
+        (q - crate::locus3d::mirror(base, normal, p)).norm()
+    }
+
     /// The unsigned angle between unit `u` and unit `v` is `angle`: how far it is, in
     /// radians.
     #[inline]

@@ -9,6 +9,27 @@
 
 use nalgebra::{Point3, Vector3};
 
+/// The midpoint of `a` and `b`.
+#[inline]
+pub fn midpoint(a: Point3<f64>, b: Point3<f64>) -> Point3<f64> {
+    Point3::from((a.coords + b.coords) * 0.5)
+}
+
+/// The point reflection of `p` through `centre`: the point whose midpoint with `p` is
+/// `centre`. Exact when `p` is `centre`.
+#[inline]
+pub fn reflect_through(p: Point3<f64>, centre: Point3<f64>) -> Point3<f64> {
+    centre + (centre - p)
+}
+
+/// The mirror image of `p` across the plane through `base` with unit `normal`: `p` moved
+/// twice its signed distance from the plane against the normal. A point of the plane is its
+/// own image (to rounding).
+#[inline]
+pub fn mirror(base: Point3<f64>, normal: Vector3<f64>, p: Point3<f64>) -> Point3<f64> {
+    p - normal * (2.0 * normal.dot(&(p - base)))
+}
+
 /// A locus in space: a set of points with a distance.
 pub trait Locus3 {
     /// The Euclidean distance from `p` to the nearest point of the locus (non-negative).

@@ -648,10 +648,16 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 steps.push(step);
                 continue;
             };
+            // A coincidence of points is one equation per coordinate.
+            let coordinates = match self.model.space {
+                gcs_lang::model::Space::D2 => 2,
+                gcs_lang::model::Space::D3 => 3,
+            };
             let components: u8 = match residual {
                 Residual::PointPoint { d: None, .. }
                 | Residual::Midpoint { .. }
-                | Residual::Mirror { .. } => 2,
+                | Residual::Mirror { .. }
+                | Residual::MirrorPlane { .. } => coordinates,
                 _ => 1,
             };
             let open: Vec<u32> = deps.difference(&closed).copied().collect();
@@ -663,8 +669,8 @@ impl<'m, G: Geometry> Builder<'m, G> {
             let cname = self.cname(constraint);
             for (component, &d) in open.iter().rev().take(components.into()).enumerate() {
                 closed.insert(d);
-                let words = if components == 2 {
-                    [" along x", " along y"][component]
+                let words = if components > 1 {
+                    [" along x", " along y", " along z"][component]
                 } else {
                     ""
                 };

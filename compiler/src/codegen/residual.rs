@@ -112,8 +112,9 @@ impl Solve<'_> {
             | Residual::Twist { .. }
             | Residual::AngleBetween { .. }
             | Residual::OnCircle { .. }
+            | Residual::MirrorPlane { .. }
             | Residual::Helix { .. } => {
-                unreachable!("bug in gcs: a spatial check reached the planar code generator (`codegen::covers` refuses 3d models)")
+                unreachable!("bug in gcs: a spatial check reached the planar code generator")
             }
         }
     }

@@ -685,6 +685,31 @@ impl Solve<'_> {
                 let code = self.root(&turns, *branch, *constraint);
                 self.define(w, r, "normal", &code);
             }
+            Op::Midpoint { a, b } => {
+                let code = format!("locus3d::midpoint({}, {})", self.r(*a), self.r(*b));
+                self.define(w, r, "midpoint", &code);
+            }
+            Op::Reflect { point, through } => {
+                let code = format!(
+                    "locus3d::reflect_through({}, {})",
+                    self.r(*point),
+                    self.r(*through)
+                );
+                self.define(w, r, "reflected", &code);
+            }
+            Op::MirrorPlane {
+                point,
+                base,
+                normal,
+            } => {
+                let code = format!(
+                    "locus3d::mirror({}, {}, {})",
+                    self.r(*base),
+                    self.r(*normal),
+                    self.r(*point)
+                );
+                self.define(w, r, "mirrored", &code);
+            }
             Op::PlaneNormal { a, b, c } => {
                 let code = self.unit3(
                     i,
@@ -1050,6 +1075,21 @@ impl Solve<'_> {
                 let d = d.as_ref().map_or_else(|| "0.0".to_string(), r);
                 format!("({} - {}).dot(&{}) - {d}", r(p), r(base), r(normal))
             }
+            Residual::Midpoint { p, a, b } => format!(
+                "(locus3d::midpoint({}, {}) - {})[{}]",
+                r(a),
+                r(b),
+                r(p),
+                component.min(2)
+            ),
+            Residual::MirrorPlane { p, q, base, normal } => format!(
+                "({} - locus3d::mirror({}, {}, {}))[{}]",
+                r(q),
+                r(base),
+                r(normal),
+                r(p),
+                component.min(2)
+            ),
             _ => self.residual_code3(residual),
         }
     }
@@ -1133,6 +1173,16 @@ impl Solve<'_> {
             Residual::Dim { value, target } => {
                 format!("check::dimension({}, {})", r(value), r(target))
             }
+            Residual::Midpoint { p, a, b } => {
+                format!("check::space::midpoint({}, {}, {})", r(p), r(a), r(b))
+            }
+            Residual::MirrorPlane { p, q, base, normal } => format!(
+                "check::space::mirror({}, {}, {}, {})",
+                r(p),
+                r(q),
+                r(base),
+                r(normal)
+            ),
             other => panic!("bug in gcs: the check {other:?} is no check of a spatial plan"),
         }
     }

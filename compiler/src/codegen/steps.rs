@@ -372,8 +372,9 @@ impl Solve<'_> {
             | Op::AngleTurn { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }
+            | Op::MirrorPlane { .. }
             | Op::TurnedAbout { .. } => {
-                unreachable!("bug in gcs: a spatial plan reached the planar code generator (`codegen::covers` refuses 3d models)")
+                unreachable!("bug in gcs: a spatial plan reached the planar code generator")
             }
             // Actions and checks define no register: `step` writes them.
             Op::Translate { .. }

@@ -1092,6 +1092,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
                 residual,
             } => return self.closed(*constraint, *residual),
             Op::Plane { .. }
+            | Op::MirrorPlane { .. }
             | Op::ParallelPlane { .. }
             | Op::Sphere { .. }
             | Op::SphereThrough { .. }
@@ -1260,6 +1261,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Residual::Twist { .. }
             | Residual::AngleBetween { .. }
             | Residual::OnCircle { .. }
+            | Residual::MirrorPlane { .. }
             | Residual::Helix { .. } => {
                 panic!("bug in gcs: a spatial check reached the planar interpreter")
             }

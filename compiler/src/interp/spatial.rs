@@ -7,7 +7,7 @@ use crate::config::{D3, P3, V3};
 use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Step};
 use gcs_lang::model::ConstraintId;
 use gcs_runtime::error::{ErrorKind, SolveError};
-use gcs_runtime::locus3d::{Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
 use gcs_runtime::{check, frame, intersect3d, Contact, Roots};
 use nalgebra::UnitQuaternion;
 
@@ -202,6 +202,19 @@ impl Machine<'_, '_, D3> {
                     )
                 })?)
             }
+            Op::Midpoint { a, b } => Val::P3(locus3d::midpoint(self.p3(*a), self.p3(*b))),
+            Op::Reflect { point, through } => {
+                Val::P3(locus3d::reflect_through(self.p3(*point), self.p3(*through)))
+            }
+            Op::MirrorPlane {
+                point,
+                base,
+                normal,
+            } => Val::P3(locus3d::mirror(
+                self.p3(*base),
+                self.v3(*normal),
+                self.p3(*point),
+            )),
             Op::PlaneNormal { a, b, c } => {
                 let a = self.p3(*a);
                 Val::V3(self.unit(i, (self.p3(*b) - a).cross(&(self.p3(*c) - a)))?)
@@ -507,6 +520,14 @@ impl Machine<'_, '_, D3> {
             Residual::PointPlane { p, base, normal, d } => {
                 (self.p3(p) - self.p3(base)).dot(&self.v3(normal)) - self.s_or_zero(d)
             }
+            Residual::Midpoint { p, a, b } => {
+                let v = locus3d::midpoint(self.p3(a), self.p3(b)) - self.p3(p);
+                v[usize::from(component.min(2))]
+            }
+            Residual::MirrorPlane { p, q, base, normal } => {
+                let image = locus3d::mirror(self.p3(base), self.v3(normal), self.p3(p));
+                (self.p3(q) - image)[usize::from(component.min(2))]
+            }
             _ => self.residual3(residual),
         }
     }
@@ -560,6 +581,10 @@ impl Machine<'_, '_, D3> {
                 self.s(pitch),
             ),
             Residual::Dim { value, target } => check::dimension(self.s(value), self.s(target)),
+            Residual::Midpoint { p, a, b } => c::midpoint(self.p3(p), self.p3(a), self.p3(b)),
+            Residual::MirrorPlane { p, q, base, normal } => {
+                c::mirror(self.p3(p), self.p3(q), self.p3(base), self.v3(normal))
+            }
             ref other => panic!("bug in gcs: the check {other:?} is no check of a spatial plan"),
         }
     }

@@ -145,6 +145,11 @@ impl Plan {
                     format!("reflect {} through {}", r(point), r(through))
                 }
                 Op::Mirror { point, line } => format!("mirror {} across {}", r(point), r(line)),
+                Op::MirrorPlane {
+                    point,
+                    base,
+                    normal,
+                } => format!("mirror {} across plane {} {}", r(point), r(base), r(normal)),
                 Op::LocusPoint { locus, at } => format!("locus_point {} at {}", r(locus), r(at)),
                 Op::Implicit { locus, point } => format!("implicit {} at {}", r(locus), r(point)),
                 Op::LocusParam { locus, point } => {
@@ -464,6 +469,9 @@ fn residual_text(residual: &Residual) -> String {
         Residual::Midpoint { p, a, b } => format!("midpoint {} {} {}", r(p), r(a), r(b)),
         Residual::Mirror { p, q, base, dir } => {
             format!("mirror {} {} {} {}", r(p), r(q), r(base), r(dir))
+        }
+        Residual::MirrorPlane { p, q, base, normal } => {
+            format!("mirror_plane {} {} {} {}", r(p), r(q), r(base), r(normal))
         }
         Residual::PointPlane { p, base, normal, d } => {
             format!("point_plane {} {} {} {}", r(p), r(base), r(normal), opt(d))

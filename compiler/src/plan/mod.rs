@@ -271,6 +271,14 @@ pub enum Residual {
     Midpoint { p: Reg, a: Reg, b: Reg },
     /// `q` is the mirror image of `p` across the line through `base` along `dir`.
     Mirror { p: Reg, q: Reg, base: Reg, dir: Reg },
+    /// In space: `q` is the mirror image of `p` across the plane through `base` with unit
+    /// normal `normal`.
+    MirrorPlane {
+        p: Reg,
+        q: Reg,
+        base: Reg,
+        normal: Reg,
+    },
     /// In space: the signed distance of `p` from the plane through `base` with unit normal
     /// `normal` is `d` (absent: zero).
     PointPlane {
@@ -391,6 +399,9 @@ pub enum Op {
     Reflect { point: Reg, through: Reg },
     /// The mirror image of `point` across line `line`.
     Mirror { point: Reg, line: Reg },
+    /// In space: the mirror image of `point` across the plane through `base` with unit
+    /// normal `normal`.
+    MirrorPlane { point: Reg, base: Reg, normal: Reg },
     /// The point of a line or circle `locus` at parameter `at`: the signed distance along a
     /// line from its base point, the angle about a circle's centre from the x axis.
     LocusPoint { locus: Reg, at: Reg },

@@ -157,6 +157,9 @@ impl Residual {
             Residual::Mirror { p, q, base, dir } => {
                 out.extend([(*p, POINT), (*q, POINT), (*base, POINT), (*dir, VECTOR)])
             }
+            Residual::MirrorPlane { p, q, base, normal } => {
+                out.extend([(*p, POINT), (*q, POINT), (*base, POINT), (*normal, VECTOR)])
+            }
         }
         out
     }
@@ -201,6 +204,11 @@ impl Op {
             Op::Midpoint { a, b } => vec![(*a, POINT), (*b, POINT)],
             Op::Reflect { point, through } => vec![(*point, POINT), (*through, POINT)],
             Op::Mirror { point, line } => vec![(*point, POINT), (*line, LINE)],
+            Op::MirrorPlane {
+                point,
+                base,
+                normal,
+            } => vec![(*point, POINT), (*base, POINT), (*normal, VECTOR)],
             Op::LocusPoint { locus, at } => vec![(*locus, PARAM_LOCUS), (*at, SCALAR)],
             Op::LocusParam { locus, point } => vec![(*locus, PARAM_LOCUS), (*point, POINT)],
             Op::Implicit { locus, point } => vec![(*locus, IMPLICIT_LOCUS), (*point, POINT)],
@@ -397,6 +405,7 @@ impl Op {
             | Op::Midpoint { .. }
             | Op::Reflect { .. }
             | Op::Mirror { .. }
+            | Op::MirrorPlane { .. }
             | Op::LocusPoint { .. } => Ty::Point,
             Op::Circle { .. } | Op::CircleThrough { .. } | Op::ShiftedCircle { .. } => Ty::Circle,
             Op::Intersect { meet, .. } => meet.result(),

@@ -583,11 +583,33 @@ impl Builder<'_, Spatial> {
                     && self.point_known(q))
                     || (self.together(u, v) && self.together(p, q) && self.together(u, p))
             }
+            Relation::Midpoint { p, a, b } => {
+                (self.point_known(p) && self.point_known(a) && self.point_known(b))
+                    || (self.together(p, a) && self.together(p, b))
+            }
+            Relation::Mirror { p, q, base, normal } => {
+                (self.point_known(p)
+                    && self.point_known(q)
+                    && self.point_known(base)
+                    && self.dir_known(normal))
+                    || (self.together(p, q) && self.together(p, base) && self.together(p, normal))
+            }
         }
     }
 
     fn residual(&mut self, relation: &Relation) -> Residual {
         match *relation {
+            Relation::Midpoint { p, a, b } => Residual::Midpoint {
+                p: self.point(p),
+                a: self.point(a),
+                b: self.point(b),
+            },
+            Relation::Mirror { p, q, base, normal } => Residual::MirrorPlane {
+                p: self.point(p),
+                q: self.point(q),
+                base: self.point(base),
+                normal: self.direction(normal),
+            },
             Relation::PointPoint { a, b, d } => {
                 let (a, b) = (self.point(a), self.point(b));
                 let d = d.map(|e| self.expr(e));
@@ -693,6 +715,8 @@ impl Builder<'_, Spatial> {
             return true;
         }
         match r.relation {
+            Relation::Midpoint { p, a, b } => self.midpoint(p, a, b, r),
+            Relation::Mirror { p, q, base, normal } => self.mirror(p, q, (base, normal), r),
             Relation::PointPoint { a, b, d } => {
                 for (known, moving) in [(a, b), (b, a)] {
                     if self.point_known(known) && !self.point_known(moving) {
@@ -1223,6 +1247,58 @@ impl Builder<'_, Spatial> {
 
     /// Moves the cluster of point feature `f` so that `f` reaches `target`, with the freedom
     /// its record leaves; false when no fragment applies (yet).
+    /// `midpoint(p, s)`, `a` and `b` the ends of `s`: with both ends known, `p` goes to their
+    /// midpoint; with `p` and one end known, the other end goes to that end reflected through
+    /// `p`.
+    fn midpoint(&mut self, p: GeomId, a: GeomId, b: GeomId, r: &Rel) -> bool {
+        let sname = self.name(self.model.top_level_of(a));
+        let (ka, kb) = (self.point_known(a), self.point_known(b));
+        if ka && kb && !self.point_known(p) {
+            let (pa, pb) = (self.point(a), self.point(b));
+            let words = format!("the midpoint of {sname}");
+            let mid = self.value(Op::Midpoint { a: pa, b: pb }, Ty::Point, words);
+            return self.move_point(p, Target::Point(mid), r);
+        }
+        if self.point_known(p) && ka != kb {
+            let (known, free) = if ka { (a, b) } else { (b, a) };
+            let (from, at) = (self.point(known), self.point(p));
+            let words = format!("{} reflected through {}", self.name(known), self.name(p));
+            let op = Op::Reflect {
+                point: from,
+                through: at,
+            };
+            let x = self.value(op, Ty::Point, words);
+            return self.move_point(free, Target::Point(x), r);
+        }
+        false
+    }
+
+    /// `symmetric(p, q, plane)`: with the plane known, the one of `p` and `q` not known goes
+    /// to the other's mirror image across it (a mirror is its own inverse).
+    fn mirror(&mut self, p: GeomId, q: GeomId, (base, normal): (GeomId, GeomId), r: &Rel) -> bool {
+        if !(self.point_known(base) && self.dir_known(normal)) {
+            return false;
+        }
+        for (known, free) in [(p, q), (q, p)] {
+            if self.point_known(known) && !self.point_known(free) {
+                let (at, b, n) = (self.point(known), self.point(base), self.direction(normal));
+                let words = format!(
+                    "the mirror image of {} across {}",
+                    self.name(known),
+                    self.plane_words(base, normal, None)
+                );
+                let op = Op::MirrorPlane {
+                    point: at,
+                    base: b,
+                    normal: n,
+                };
+                let image = self.value(op, Ty::Point, words);
+                return self.move_point(free, Target::Point(image), r);
+            }
+        }
+        false
+    }
+
     fn move_point(&mut self, f: GeomId, target: Target, r: &Rel) -> bool {
         let k = self.cluster(f);
         let rec = self.clusters[k].record.clone();

@@ -105,6 +105,27 @@ pub enum Relation {
         /// The angle, or none for zero.
         angle: Option<ExprId>,
     },
+    /// Point `p` is the midpoint of points `a` and `b` (a segment's ends).
+    Midpoint {
+        /// The midpoint.
+        p: GeomId,
+        /// One end.
+        a: GeomId,
+        /// The other end.
+        b: GeomId,
+    },
+    /// Point `q` is the mirror image of point `p` across the plane through `base` with normal
+    /// `normal`.
+    Mirror {
+        /// The point mirrored.
+        p: GeomId,
+        /// Its image.
+        q: GeomId,
+        /// A point feature of the mirror plane.
+        base: GeomId,
+        /// The mirror plane's normal feature.
+        normal: GeomId,
+    },
 }
 
 /// An angle a relation asks for.
@@ -131,6 +152,8 @@ impl Relation {
             Relation::Helix {
                 axis, u, v, p, q, ..
             } => vec![axis, u, v, p, q],
+            Relation::Midpoint { p, a, b } => vec![p, a, b],
+            Relation::Mirror { p, q, base, normal } => vec![p, q, base, normal],
         }
     }
 }
@@ -320,6 +343,26 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 }),
                 _ => missing("the coupling of x axes needs two markers (and a helix its pitch)"),
             }
+        }
+        match (c.kind, a, b) {
+            (K::Midpoint, Some(p), Some(s)) if kind(p).is_pointlike() => {
+                match (model.part(s, Part::Start), model.part(s, Part::End)) {
+                    (Some(a), Some(b)) => out.push(Relation::Midpoint { p: point(p), a, b }),
+                    _ => missing("a midpoint needs a segment"),
+                }
+            }
+            (K::Symmetric, Some(p), Some(q)) => {
+                match c.args.get(2).and_then(|&m| plane(model, m)) {
+                    Some((base, normal)) => out.push(Relation::Mirror {
+                        p: point(p),
+                        q: point(q),
+                        base,
+                        normal,
+                    }),
+                    None => missing("a mirror in space needs a plane"),
+                }
+            }
+            _ => {}
         }
         if out.is_empty() {
             missing(match c.kind {
