@@ -375,15 +375,19 @@ pub fn signed_angle3(u: &Vector3<f64>, v: &Vector3<f64>, axis: &Vector3<f64>) ->
 /// The rotation that turns the direction of `u` onto the direction of `v` about the axis
 /// `u x v` (the rotate step of paper 000's brick).
 ///
-/// - When `u` and `v` are parallel and point the same way (their cross product vanishes,
-///   footnote 6 of paper 000), or either is zero, the result is the identity, never NaN.
+/// - When `u` and `v` point the same way, the turn is about their cross product however
+///   small: a turn of 1e-13 rad is made, not left out (its axis is then known only to
+///   rounding over the sine, but it turns by so little that the result is still exact to
+///   rounding). When the cross product vanishes (footnote 6 of paper 000), or either vector
+///   is zero, the result is the identity, never NaN.
 /// - When they are anti-parallel, any axis perpendicular to `u` works and the cross product
 ///   cannot choose one: the result is the half turn about `fallback_axis` with its component
 ///   along `u` removed (pass the axis the geom is allowed to rotate about). If that leaves
 ///   nothing (`fallback_axis` zero or parallel to `u`), the half turn is about the
 ///   deterministic axis `u x e_k`, `e_k` the coordinate axis least aligned with `u`.
 ///
-/// "Parallel" means that the sine of the angle is below [`tol::ANGLE`].
+/// "Anti-parallel" means that the sine of the angle is below [`tol::ANGLE`] and the cosine
+/// negative.
 pub fn rotation_between3(
     u: &Vector3<f64>,
     v: &Vector3<f64>,
@@ -399,11 +403,11 @@ pub fn rotation_between3(
     let cross = uh.cross(&vh);
     let sin = cross.norm();
     let cos = uh.dot(&vh);
-    if sin > tol::ANGLE {
+    if sin > tol::ANGLE || (sin > 0.0 && cos > 0.0) {
         return UnitQuaternion::from_axis_angle(&Unit::new_unchecked(cross / sin), sin.atan2(cos));
     }
     if cos.is_nan() || cos >= 0.0 {
-        // Parallel, or NaN: identity (footnote 6).
+        // Parallel to the last bit, or NaN: identity (footnote 6).
         return UnitQuaternion::identity();
     }
     // Anti-parallel: half turn about an axis perpendicular to u.
@@ -436,6 +440,21 @@ pub fn perpendicular(u: &Vector3<f64>) -> Vector3<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A turn far below the parallel tolerance is still made: each of a chain's rockers that
+    /// barely moves must still take its joint exactly onto its target.
+    #[test]
+    fn a_tiny_turn_is_made_to_rounding() {
+        for angle in [1e-13, 3e-15, 1e-16] {
+            let u = Vector3::new(0.3, -1.2, 4.0);
+            let v = rotation_about_axis(&Vector3::new(1.0, 2.0, 0.5), angle) * u;
+            let w = rotation_between3(&u, &v, &Vector3::z()) * u;
+            assert!(
+                (w - v).norm() <= 4.0 * f64::EPSILON * v.norm(),
+                "{angle}: {w:?} vs {v:?}"
+            );
+        }
+    }
     use std::f64::consts::PI;
 
     fn close3(a: &Point3<f64>, b: &Point3<f64>, eps: f64) -> bool {
