@@ -254,10 +254,11 @@ pub mod space {
         ((a - b).norm() - d).abs()
     }
 
-    /// `p` on the line through `base` along unit `dir`: its distance from the line.
+    /// `p` at distance `d` from the line through `base` along unit `dir` (on it when `d` is
+    /// 0): how far its distance is from `d`.
     #[inline]
-    pub fn point_line(p: P3, base: P3, dir: V3) -> f64 {
-        (p - base).cross(&dir).norm()
+    pub fn point_line(p: P3, base: P3, dir: V3, d: f64) -> f64 {
+        ((p - base).cross(&dir).norm() - d).abs()
     }
 
     /// The signed distance of `p` from the plane through `base` with unit `normal` is `d`.
@@ -337,7 +338,7 @@ pub mod space {
         fn residuals_measure_what_they_say() {
             let o = P3::origin();
             assert_eq!(point_point(o, P3::new(3.0, 4.0, 0.0), 5.0), 0.0);
-            assert!((point_line(P3::new(1.0, 2.0, 0.0), o, V3::x()) - 2.0).abs() < 1e-15);
+            assert!((point_line(P3::new(1.0, 2.0, 0.0), o, V3::x(), 0.0) - 2.0).abs() < 1e-15);
             assert!((point_plane(P3::new(0.0, 0.0, 1.5), o, V3::z(), 1.0) - 0.5).abs() < 1e-15);
             assert!((parallel(V3::x(), -V3::x(), -1.0)).abs() < 1e-15);
             assert!((parallel(V3::x(), V3::y(), 1.0) - std::f64::consts::FRAC_PI_2).abs() < 1e-15);

@@ -319,6 +319,22 @@ impl Cylinder {
     pub fn new(axis: Line3, radius: f64) -> Self {
         Self { axis, radius }
     }
+
+    /// The point of the cylinder nearest `p`: along the perpendicular from the axis through
+    /// `p`; `None` when `p` is on the axis (every point of the circle about it is).
+    #[inline]
+    pub fn nearest(&self, p: &Point3<f64>) -> Option<Point3<f64>> {
+        let foot = self.axis.closest(p);
+        let radial = p - foot;
+        let n = radial.norm();
+        (n > 0.0 && n.is_finite()).then(|| foot + radial * (self.radius / n))
+    }
+
+    /// The signed distance of `p` from the cylinder: positive outside, zero on it.
+    #[inline]
+    pub fn signed_distance(&self, p: &Point3<f64>) -> f64 {
+        self.axis.distance(p) - self.radius
+    }
 }
 
 impl Locus3 for Cylinder {

@@ -28,6 +28,7 @@ enum Kind {
     Circle,
     Plane,
     Sphere,
+    Cylinder,
     Other,
 }
 
@@ -489,6 +490,7 @@ impl Solve<'_> {
             Op::Circle3 { .. } | Op::Orbit { .. } | Op::ShiftedCircle { .. } => Kind::Circle,
             Op::Plane { .. } | Op::ParallelPlane { .. } => Kind::Plane,
             Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Kind::Sphere,
+            Op::Cylinder { .. } | Op::ShiftedCylinder { .. } => Kind::Cylinder,
             Op::Intersect { meet, .. } => match meet {
                 Meet::SphereSphere | Meet::SpherePlane => Kind::Circle,
                 Meet::PlanePlane => Kind::Line,
@@ -816,6 +818,24 @@ impl Solve<'_> {
                 let code = format!("Sphere::new({}, {})", self.r(*center), self.r(*radius));
                 self.define(w, r, "sphere", &code);
             }
+            Op::Cylinder { point, dir, radius } => {
+                let code = format!(
+                    "Cylinder::new(Line3::new({}, {}), {})",
+                    self.r(*point),
+                    self.unit3_of(i, *dir),
+                    self.r(*radius)
+                );
+                self.define(w, r, "cylinder", &code);
+            }
+            Op::ShiftedCylinder { cylinder, from, to } => {
+                let c = self.r(*cylinder);
+                let code = format!(
+                    "Cylinder::new(Line3::new({c}.axis.point + ({} - {}), {c}.axis.dir), {c}.radius)",
+                    self.r(*to),
+                    self.r(*from)
+                );
+                self.define(w, r, "cylinder_moved", &code);
+            }
             Op::SphereThrough {
                 center,
                 through,
@@ -902,6 +922,7 @@ impl Solve<'_> {
                     let code = match self.kind3(*locus) {
                         Kind::Plane => format!("{l}.signed_distance(&{q})"),
                         Kind::Sphere => format!("({q} - {l}.center).norm() - {l}.radius"),
+                        Kind::Cylinder => format!("{l}.signed_distance(&{q})"),
                         _ => format!("{l}.distance(&{q})"),
                     };
                     self.define(w, r, "error", &code);
@@ -989,6 +1010,7 @@ impl Solve<'_> {
             Meet::CircleSphere => "circle_sphere",
             Meet::CircleCircle => "circle_circle",
             Meet::LineCircle => "line_circle",
+            Meet::LineCylinder => "line_cylinder",
             Meet::SphereSphere => "sphere_sphere",
             Meet::SpherePlane => "sphere_plane",
             Meet::PlanePlane => "plane_plane",
@@ -1075,6 +1097,18 @@ impl Solve<'_> {
                 let d = d.as_ref().map_or_else(|| "0.0".to_string(), r);
                 format!("({} - {}).dot(&{}) - {d}", r(p), r(base), r(normal))
             }
+            Residual::PointLine {
+                p,
+                base,
+                dir,
+                d: Some(d),
+            } => format!(
+                "({} - {}).cross(&{}).norm() - {}",
+                r(p),
+                r(base),
+                r(dir),
+                r(d)
+            ),
             Residual::Midpoint { p, a, b } => format!(
                 "(locus3d::midpoint({}, {}) - {})[{}]",
                 r(a),
@@ -1105,16 +1139,12 @@ impl Solve<'_> {
                 r(b),
                 or_zero(d)
             ),
-            Residual::PointLine {
-                p,
-                base,
-                dir,
-                d: None,
-            } => format!(
-                "check::space::point_line({}, {}, {})",
+            Residual::PointLine { p, base, dir, d } => format!(
+                "check::space::point_line({}, {}, {}, {})",
                 r(p),
                 r(base),
-                r(dir)
+                r(dir),
+                or_zero(d)
             ),
             Residual::PointPlane { p, base, normal, d } => format!(
                 "check::space::point_plane({}, {}, {}, {})",

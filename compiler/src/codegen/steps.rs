@@ -373,6 +373,8 @@ impl Solve<'_> {
             | Op::Coordinate { .. }
             | Op::PointAt { .. }
             | Op::MirrorPlane { .. }
+            | Op::Cylinder { .. }
+            | Op::ShiftedCylinder { .. }
             | Op::TurnedAbout { .. } => {
                 unreachable!("bug in gcs: a spatial plan reached the planar code generator")
             }

@@ -14,7 +14,7 @@ use gcs_lang::model::ConstraintId;
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};
-use gcs_runtime::locus3d::{Circle3, Line3, Plane, Sphere};
+use gcs_runtime::locus3d::{Circle3, Cylinder, Line3, Plane, Sphere};
 use gcs_runtime::outer::Outer;
 use gcs_runtime::{check, frame, intersect2d};
 use gcs_runtime::{Contact, Roots};
@@ -60,6 +60,7 @@ enum Val {
     C3(Circle3),
     Plane(Plane),
     Sphere(Sphere),
+    Cylinder(Cylinder),
 }
 
 /// Runs `plan` with `params` (indexed like the model's params) and each default at its
@@ -1093,6 +1094,8 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             } => return self.closed(*constraint, *residual),
             Op::Plane { .. }
             | Op::MirrorPlane { .. }
+            | Op::Cylinder { .. }
+            | Op::ShiftedCylinder { .. }
             | Op::ParallelPlane { .. }
             | Op::Sphere { .. }
             | Op::SphereThrough { .. }

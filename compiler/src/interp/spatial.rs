@@ -7,7 +7,7 @@ use crate::config::{D3, P3, V3};
 use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Step};
 use gcs_lang::model::ConstraintId;
 use gcs_runtime::error::{ErrorKind, SolveError};
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 use gcs_runtime::{check, frame, intersect3d, Contact, Roots};
 use nalgebra::UnitQuaternion;
 
@@ -54,6 +54,12 @@ impl Machine<'_, '_, D3> {
             v => malformed(r, "a sphere", v),
         }
     }
+    fn cylinder(&self, r: Reg) -> Cylinder {
+        match self.get(r) {
+            Some(&Val::Cylinder(x)) => x,
+            v => malformed(r, "a cylinder", v),
+        }
+    }
 
     /// A unit direction, or step `i` is degenerate.
     fn unit(&self, i: usize, v: V3) -> Result<V3, SolveError> {
@@ -73,6 +79,7 @@ impl Machine<'_, '_, D3> {
             Some(Val::C3(c)) => c.distance(p),
             Some(Val::Plane(q)) => q.distance(p),
             Some(Val::Sphere(s)) => s.distance(p),
+            Some(Val::Cylinder(c)) => c.distance(p),
             v => malformed(r, "a locus of space", v),
         }
     }
@@ -282,6 +289,15 @@ impl Machine<'_, '_, D3> {
             Op::Sphere { center, radius } => {
                 Val::Sphere(Sphere::new(self.p3(*center), self.s(*radius)))
             }
+            Op::Cylinder { point, dir, radius } => Val::Cylinder(Cylinder::new(
+                Line3::new(self.p3(*point), self.unit(i, self.v3(*dir))?),
+                self.s(*radius),
+            )),
+            Op::ShiftedCylinder { cylinder, from, to } => {
+                let c = self.cylinder(*cylinder);
+                let at = c.axis.point + (self.p3(*to) - self.p3(*from));
+                Val::Cylinder(Cylinder::new(Line3::new(at, c.axis.dir), c.radius))
+            }
             Op::SphereThrough {
                 center,
                 through,
@@ -321,6 +337,7 @@ impl Machine<'_, '_, D3> {
                     Some(&Val::Plane(p)) => p.project(&q),
                     Some(&Val::Sphere(s)) => s.nearest(&q).ok_or_else(|| self.degenerate(i))?,
                     Some(&Val::C3(c)) => c.nearest(&q).ok_or_else(|| self.degenerate(i))?,
+                    Some(&Val::Cylinder(c)) => c.nearest(&q).ok_or_else(|| self.degenerate(i))?,
                     v => malformed(*locus, "a locus of space", v),
                 })
             }
@@ -405,6 +422,7 @@ impl Machine<'_, '_, D3> {
                 Val::S(match self.get(*locus) {
                     Some(&Val::Plane(p)) => p.signed_distance(&q),
                     Some(&Val::Sphere(s)) => (q - s.center).norm() - s.radius,
+                    Some(&Val::Cylinder(c)) => c.signed_distance(&q),
                     _ => self.gap(*locus, &q),
                 })
             }
@@ -465,6 +483,10 @@ impl Machine<'_, '_, D3> {
                 let i = intersect3d::line_circle(&self.line3(a), &self.circle3(b));
                 (Roots::from_slice(i.roots.as_slice()), i.contact)
             }
+            Meet::LineCylinder => {
+                let i = intersect3d::line_cylinder(&self.line3(a), &self.cylinder(b));
+                (Roots::from_slice(i.roots.as_slice()), i.contact)
+            }
             Meet::SphereSphere | Meet::SpherePlane | Meet::PlanePlane => {
                 let (locus, contact) = match meet {
                     Meet::SphereSphere => {
@@ -520,6 +542,13 @@ impl Machine<'_, '_, D3> {
             Residual::PointPlane { p, base, normal, d } => {
                 (self.p3(p) - self.p3(base)).dot(&self.v3(normal)) - self.s_or_zero(d)
             }
+            // At a distance from the line: signed, smooth where the distance is not zero.
+            Residual::PointLine {
+                p,
+                base,
+                dir,
+                d: Some(d),
+            } => (self.p3(p) - self.p3(base)).cross(&self.v3(dir)).norm() - self.s(d),
             Residual::Midpoint { p, a, b } => {
                 let v = locus3d::midpoint(self.p3(a), self.p3(b)) - self.p3(p);
                 v[usize::from(component.min(2))]
@@ -539,12 +568,9 @@ impl Machine<'_, '_, D3> {
             Residual::PointPoint { a, b, d } => {
                 c::point_point(self.p3(a), self.p3(b), self.s_or_zero(d))
             }
-            Residual::PointLine {
-                p,
-                base,
-                dir,
-                d: None,
-            } => c::point_line(self.p3(p), self.p3(base), self.v3(dir)),
+            Residual::PointLine { p, base, dir, d } => {
+                c::point_line(self.p3(p), self.p3(base), self.v3(dir), self.s_or_zero(d))
+            }
             Residual::PointPlane { p, base, normal, d } => c::point_plane(
                 self.p3(p),
                 self.p3(base),

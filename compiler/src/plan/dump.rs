@@ -183,6 +183,12 @@ impl Plan {
                     format!("parallel_plane {} through {}", r(plane), r(through))
                 }
                 Op::Sphere { center, radius } => format!("sphere {} {}", r(center), r(radius)),
+                Op::Cylinder { point, dir, radius } => {
+                    format!("cylinder {} {} {}", r(point), r(dir), r(radius))
+                }
+                Op::ShiftedCylinder { cylinder, from, to } => {
+                    format!("shifted_cylinder {} {} -> {}", r(cylinder), r(from), r(to))
+                }
                 Op::Circle3 {
                     center,
                     normal,

@@ -442,6 +442,11 @@ pub enum Op {
     },
     /// In space: the sphere about `center` with `radius`.
     Sphere { center: Reg, radius: Reg },
+    /// In space: the points at distance `radius` from the line through `point` along unit
+    /// `dir`.
+    Cylinder { point: Reg, dir: Reg, radius: Reg },
+    /// In space: `cylinder` translated by `to - from`.
+    ShiftedCylinder { cylinder: Reg, from: Reg, to: Reg },
     /// In space: the sphere about `center` through `through`; `radius` as in
     /// [`Op::CircleThrough`].
     SphereThrough {

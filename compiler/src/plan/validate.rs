@@ -23,14 +23,21 @@ const VECTOR: Accepts = &[Ty::Vector];
 const LINE: Accepts = &[Ty::Line];
 const CIRCLE: Accepts = &[Ty::Circle];
 /// What the nearest point of a locus is taken on.
-const NEAREST_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Plane, Ty::Sphere];
+const NEAREST_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Plane, Ty::Sphere, Ty::Cylinder];
 const PLANE: Accepts = &[Ty::Plane];
 const SPHERE: Accepts = &[Ty::Sphere];
 /// What has a parameter along it (a place, or an implicit error): the loci a default slides on.
 const PARAM_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic];
 /// What an implicit function measures a point's offset from: the loci a default slides on,
-/// and in space the sphere and plane an `onto` can displace a point from.
-const IMPLICIT_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic, Ty::Plane, Ty::Sphere];
+/// and in space the sphere, plane and cylinder an `onto` can displace a point from.
+const IMPLICIT_LOCUS: Accepts = &[
+    Ty::Line,
+    Ty::Circle,
+    Ty::Conic,
+    Ty::Plane,
+    Ty::Sphere,
+    Ty::Cylinder,
+];
 /// What a point can be tested to lie on.
 const ANY_LOCUS: Accepts = &[
     Ty::Line,
@@ -233,6 +240,12 @@ impl Op {
             }
             Op::ParallelPlane { plane, through } => vec![(*plane, PLANE), (*through, POINT)],
             Op::Sphere { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
+            Op::Cylinder { point, dir, radius } => {
+                vec![(*point, POINT), (*dir, VECTOR), (*radius, SCALAR)]
+            }
+            Op::ShiftedCylinder { cylinder, from, to } => {
+                vec![(*cylinder, &[Ty::Cylinder]), (*from, POINT), (*to, POINT)]
+            }
             Op::Circle3 {
                 center,
                 normal,
@@ -391,6 +404,7 @@ impl Op {
             | Op::PassingDir { .. } => Ty::Vector,
             Op::Plane { .. } | Op::ParallelPlane { .. } => Ty::Plane,
             Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Ty::Sphere,
+            Op::Cylinder { .. } | Op::ShiftedCylinder { .. } => Ty::Cylinder,
             Op::Orbit { .. } | Op::Circle3 { .. } => Ty::Circle,
             Op::Reversed(_)
             | Op::OffsetLine { .. }

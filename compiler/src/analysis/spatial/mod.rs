@@ -104,13 +104,19 @@ pub enum Locus {
     Plane(Reg),
     /// A sphere (two DOF).
     Sphere(Reg),
+    /// A cylinder (two DOF).
+    Cylinder(Reg),
 }
 
 impl Locus {
     /// Its register.
     pub fn reg(self) -> Reg {
         match self {
-            Locus::Line(r) | Locus::Circle(r) | Locus::Plane(r) | Locus::Sphere(r) => r,
+            Locus::Line(r)
+            | Locus::Circle(r)
+            | Locus::Plane(r)
+            | Locus::Sphere(r)
+            | Locus::Cylinder(r) => r,
         }
     }
 
@@ -118,7 +124,7 @@ impl Locus {
     pub fn dof(self) -> usize {
         match self {
             Locus::Line(_) | Locus::Circle(_) => 1,
-            Locus::Plane(_) | Locus::Sphere(_) => 2,
+            Locus::Plane(_) | Locus::Sphere(_) | Locus::Cylinder(_) => 2,
         }
     }
 
@@ -129,6 +135,7 @@ impl Locus {
             Ty::Circle => Some(Locus::Circle(r)),
             Ty::Plane => Some(Locus::Plane(r)),
             Ty::Sphere => Some(Locus::Sphere(r)),
+            Ty::Cylinder => Some(Locus::Cylinder(r)),
             _ => None,
         }
     }
@@ -139,6 +146,7 @@ impl Locus {
             Locus::Circle(_) => "circle",
             Locus::Plane(_) => "plane",
             Locus::Sphere(_) => "sphere",
+            Locus::Cylinder(_) => "cylinder",
         }
     }
 }
@@ -553,7 +561,7 @@ impl Builder<'_, Spatial> {
             Relation::PointPoint { a, b, .. } => {
                 (self.point_known(a) && self.point_known(b)) || self.together(a, b)
             }
-            Relation::PointLine { p, base, dir } => {
+            Relation::PointLine { p, base, dir, .. } => {
                 (self.point_known(p) && self.point_known(base) && self.dir_known(dir))
                     || (self.together(p, base) && self.together(p, dir))
             }
@@ -615,11 +623,11 @@ impl Builder<'_, Spatial> {
                 let d = d.map(|e| self.expr(e));
                 Residual::PointPoint { a, b, d }
             }
-            Relation::PointLine { p, base, dir } => Residual::PointLine {
+            Relation::PointLine { p, base, dir, d } => Residual::PointLine {
                 p: self.point(p),
                 base: self.point(base),
                 dir: self.direction(dir),
-                d: None,
+                d: d.map(|e| self.expr(e)),
             },
             Relation::PointPlane { p, base, normal, d } => {
                 let (p, base, normal) = (self.point(p), self.point(base), self.direction(normal));
@@ -740,7 +748,33 @@ impl Builder<'_, Spatial> {
                 }
                 false
             }
-            Relation::PointLine { p, base, dir } => {
+            Relation::PointLine {
+                p,
+                base,
+                dir,
+                d: Some(e),
+            } => {
+                // At a distance from a known line: on the cylinder about it.
+                if self.point_known(base) && self.dir_known(dir) && !self.point_known(p) {
+                    let (b, d) = (self.point(base), self.direction(dir));
+                    let radius = self.expr(e);
+                    let words = format!(
+                        "the cylinder of radius {} about the line through {} along {}",
+                        self.word(radius),
+                        self.name(base),
+                        self.name(dir)
+                    );
+                    let op = Op::Cylinder {
+                        point: b,
+                        dir: d,
+                        radius,
+                    };
+                    let c = self.value(op, Ty::Cylinder, words);
+                    return self.move_point(p, Target::On(Locus::Cylinder(c)), r);
+                }
+                false
+            }
+            Relation::PointLine { p, base, dir, .. } => {
                 if self.point_known(base) && self.dir_known(dir) && !self.point_known(p) {
                     let (b, d) = (self.point(base), self.direction(dir));
                     let words = format!(
@@ -1540,6 +1574,15 @@ impl Builder<'_, Spatial> {
                 Ty::Circle,
                 words,
             )),
+            Locus::Cylinder(c) => Locus::Cylinder(self.value(
+                Op::ShiftedCylinder {
+                    cylinder: c,
+                    from: pg,
+                    to: pf,
+                },
+                Ty::Cylinder,
+                words,
+            )),
         }
     }
 
@@ -1590,11 +1633,14 @@ impl Builder<'_, Spatial> {
             (L::Plane(a), L::Plane(b)) => (Meet::PlanePlane, a, b),
             (L::Circle(a), L::Circle(b)) => (Meet::CircleCircle, a, b),
             (L::Line(a), L::Circle(b)) | (L::Circle(b), L::Line(a)) => (Meet::LineCircle, a, b),
+            (L::Line(a), L::Cylinder(b)) | (L::Cylinder(b), L::Line(a)) => {
+                (Meet::LineCylinder, a, b)
+            }
             _ => return None,
         };
         let (wa, wb, wn) = (self.word(a), self.word(b), self.word(near));
         let meanings = match meet {
-            Meet::LineSphere => vec![
+            Meet::LineSphere | Meet::LineCylinder => vec![
                 format!("where {wa} enters {wb}, along the line"),
                 format!("where {wa} leaves {wb}, along the line"),
             ],

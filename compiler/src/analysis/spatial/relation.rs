@@ -28,7 +28,8 @@ pub enum Relation {
         /// The distance, or none for zero.
         d: Option<ExprId>,
     },
-    /// Point `p` lies on the line through point `base` along direction `dir`.
+    /// Point `p` is at distance `d` from the line through point `base` along direction `dir`
+    /// (absent: on it).
     PointLine {
         /// The point feature.
         p: GeomId,
@@ -36,6 +37,8 @@ pub enum Relation {
         base: GeomId,
         /// The line's direction feature.
         dir: GeomId,
+        /// The distance, or none for zero.
+        d: Option<ExprId>,
     },
     /// The signed distance of point `p` from the plane through `base` with normal `normal`
     /// is `d` (absent: zero).
@@ -142,7 +145,7 @@ impl Relation {
     pub fn features(&self) -> Vec<GeomId> {
         match *self {
             Relation::PointPoint { a, b, .. } => vec![a, b],
-            Relation::PointLine { p, base, dir } => vec![p, base, dir],
+            Relation::PointLine { p, base, dir, .. } => vec![p, base, dir],
             Relation::PointPlane {
                 p, base, normal, ..
             } => vec![p, base, normal],
@@ -237,6 +240,20 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                     None => missing("a plane without its normal"),
                 }
             }
+            (K::Distance, Some(a), Some(b))
+                if kind(a).is_pointlike()
+                    && matches!(kind(b), GeomKind::Line | GeomKind::Segment) =>
+            {
+                match line(model, b) {
+                    Some((base, dir)) => out.push(Relation::PointLine {
+                        p: point(a),
+                        base,
+                        dir,
+                        d: c.value,
+                    }),
+                    None => missing("a line without its direction"),
+                }
+            }
             (K::On, Some(a), Some(b)) if kind(a).is_pointlike() && kind(b) == GeomKind::Circle => {
                 out.push(Relation::PointCircle {
                     p: point(a),
@@ -252,6 +269,7 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                         p: point(a),
                         base,
                         dir,
+                        d: None,
                     }),
                     None => missing("a line without its direction"),
                 }
@@ -261,6 +279,7 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                     p: point(a),
                     base,
                     dir,
+                    d: None,
                 }),
                 None => missing("in-line needs a marker to give the line"),
             },
