@@ -1,12 +1,12 @@
 //! The numeric baseline: Newton-Raphson and Levenberg-Marquardt on the raw constraint
 //! equations of a model, the way a numeric CAD solver (SolveSpace, PlaneGCS) solves them:
-//! [`Baseline`] for 2d models.
+//! [`Baseline`] for 2d models, [`Baseline3`] for 3d ones, with the same API.
 //!
 //! It exists for two reasons: it is the speed baseline the compiled plans are measured
 //! against, and it is an independent cross-check of the degrees-of-freedom analysis (same
 //! model, same branch, same answer). It shares nothing with the plan: it only reads the model.
 //!
-//! Each space says what its unknowns and equations are ([`planar`]: its doc);
+//! Each space says what its unknowns and equations are ([`planar`] and [`spatial`]: their docs);
 //! the linear algebra and the iteration are shared (the private module `solver`):
 //!
 //! **Unknowns** are exactly the freedom the model's [`gcs_compiler::config::Config`] has, per
@@ -45,6 +45,8 @@
 
 pub mod planar;
 mod solver;
+pub mod spatial;
 
 pub use planar::Baseline;
 pub use solver::{Linear, Method, Options, Outcome, Stop, DENSE_MAX};
+pub use spatial::Baseline3;
