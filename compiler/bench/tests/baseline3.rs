@@ -427,3 +427,109 @@ fn every_3d_example_solves_from_a_jiggled_sketch() {
     }
     println!("{report}");
 }
+
+/// `gcs bench`'s comparison (`gcs_bench::bench::run`) on every 3d example, the plan in the
+/// interpreter against the 3d baseline along a sweep of the driving param (a whole turn of an
+/// angle in 13 samples, else 90% to 110% of the first param): the plan never jumps from one
+/// assembly to another between neighbouring samples (the baseline's continuation from one
+/// answer reaches the next), every answer of the baseline verifies, and where the plan
+/// assembles all along, so does the baseline, warm from its previous answer.
+///
+/// Where the plan does not assemble, the baseline may (`door` beyond a half turn, whose
+/// unsigned angle target `a` is met at `2 pi - a`, as `verify` measures it) or may not (the
+/// Stewart platform past a pose with no assembly on its branch, from which Newton, warm from
+/// the last answer, does not find the next).
+#[test]
+fn the_bench_measures_every_3d_example_against_the_3d_baseline() {
+    use gcs_bench::bench::{self, Settings};
+    for (name, model) in &examples() {
+        let analysis = analyse(model).expect("analysis");
+        let branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
+        let sweep = bench::sweep(model, 13);
+        let scope = model.top_level().map(|(id, _)| id).collect();
+        let compiled = bench::interpreted(model, &analysis.plan, &scope, &branches, &sweep, 1.0);
+        let settings = Settings {
+            budget_ns: 1.0,
+            ..Settings::default()
+        };
+        let report = bench::run(model, &analysis.plan, &branches, sweep, compiled, &settings)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let b = &report.baseline;
+        assert_eq!(report.branch_flips, 0, "{name}: the plan jumped");
+        assert!(
+            b.max_residual <= 1e-9,
+            "{name}: the baseline's residual {:e}",
+            b.max_residual
+        );
+        if report.compiled_failures == 0 {
+            assert_eq!(
+                b.failures, 0,
+                "{name}: the baseline failed where the plan did not"
+            );
+        }
+        println!(
+            "{name:18} {:?} unknowns/equations, plan failures {}, flips {}, residual {:.1e}; \
+             baseline failures {}, residual {:.1e}, warm flips {}, cold on another assembly {}",
+            b.size,
+            report.compiled_failures,
+            report.branch_flips,
+            report.compiled_max_residual,
+            b.failures,
+            b.max_residual,
+            b.branch_flips,
+            b.cold_branch_flips
+        );
+    }
+}
+
+/// Kramer's brick from random sketches (anywhere in a box of side 40, turned by up to a half
+/// turn about any axis, as `compiler/tests/spatial.rs` places it for the plan): Newton and
+/// Levenberg-Marquardt both bring its three points onto the three fixed points, which the
+/// test knows without the baseline or the plan.
+#[test]
+fn the_brick_lands_on_its_three_points_from_random_sketches() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut range = |lo: f64, hi: f64| lo + (hi - lo) * rng.next();
+    let mut worst = 0;
+    for trial in 0..50 {
+        let at = [range(-20.0, 20.0), range(-20.0, 20.0), range(-20.0, 20.0)];
+        let axis = [range(-1.0, 1.0), range(-1.0, 1.0), range(-1.0, 1.0)];
+        let angle = range(-180.0, 180.0);
+        let text = format!(
+            "space 3d;\nfixed point g1 = (0, 0, 0);\nfixed point g2 = (4, 0, 0);\n\
+             fixed point g3 = (0, 3, 0);\n\
+             body brick at ({}, {}, {}) rotated {angle} deg about ({}, {}, {}) {{\n\
+             point b1 = (0, 0, 0);\npoint b2 = (4, 0, 0);\npoint b3 = (0, 3, 0);\n}}\n\
+             coincident(brick.b1, g1);\ncoincident(brick.b2, g2);\ncoincident(brick.b3, g3);\n",
+            at[0], at[1], at[2], axis[0], axis[1], axis[2]
+        );
+        let model = load_text("brick.gcs", &text);
+        for method in [Method::Newton, Method::LevenbergMarquardt] {
+            let mut b = Baseline3::new(&model).expect("baseline");
+            let mut x = b.start_from_sketch(&[]);
+            let opts = Options {
+                method,
+                max_iterations: 100,
+                ..Options::default()
+            };
+            let out = b.solve(&[], &mut x, &opts);
+            assert!(out.converged, "trial {trial} {method:?}: {out:?}");
+            worst = worst.max(out.iterations);
+            let (s, _) = read(&model, &b, &[], &x);
+            let by = s.by_name();
+            for (p, g) in [
+                ("brick.b1", [0.0, 0.0, 0.0]),
+                ("brick.b2", [4.0, 0.0, 0.0]),
+                ("brick.b3", [0.0, 3.0, 0.0]),
+            ] {
+                let q = by.point(p).expect("a point");
+                let off = (0..3).fold(0.0f64, |m, k| m.max((q[k] - g[k]).abs()));
+                assert!(
+                    off <= 1e-12 * 30.0,
+                    "trial {trial} {method:?}: {p} is {off:e} off"
+                );
+            }
+        }
+    }
+    println!("the brick from 50 random sketches: at most {worst} iterations");
+}

@@ -50,3 +50,88 @@ pub mod spatial;
 pub use planar::Baseline;
 pub use solver::{Linear, Method, Options, Outcome, Stop, DENSE_MAX};
 pub use spatial::Baseline3;
+
+use gcs_compiler::config::Config;
+use gcs_compiler::solution::Solution;
+
+/// A baseline of either space, as `gcs bench` drives it: [`Baseline`] for 2d models,
+/// [`Baseline3`] for 3d ones (their methods of the same names).
+pub trait Numeric {
+    /// The model's space, whose configurations the interpreter reaches.
+    type Space: gcs_compiler::interp::Space;
+    /// The number of unknowns.
+    fn unknowns(&self) -> usize;
+    /// The number of scalar equations.
+    fn equations(&self) -> usize;
+    /// Whether the sparse linear algebra is in use.
+    fn is_sparse(&self) -> bool;
+    /// The cold start: the unknowns as the sketch has them, with `params`.
+    fn start_from_sketch(&self, params: &[f64]) -> Vec<f64>;
+    /// The unknowns that describe configuration `cfg`.
+    fn unknowns_from_config(&self, params: &[f64], cfg: &Config<Self::Space>) -> Vec<f64>;
+    /// Solves in place from the start `x`.
+    fn solve(&mut self, params: &[f64], x: &mut [f64], opts: &Options) -> Outcome;
+    /// Every geom of the model as the unknowns `x` place it, read by the model's names
+    /// (its `max_residual` unset); `None` when the sketch is unusable with `params`.
+    fn solution(&self, params: &[f64], x: &[f64]) -> Option<Solution>;
+}
+
+impl Numeric for Baseline {
+    type Space = gcs_compiler::config::D2;
+    fn unknowns(&self) -> usize {
+        Baseline::unknowns(self)
+    }
+    fn equations(&self) -> usize {
+        Baseline::equations(self)
+    }
+    fn is_sparse(&self) -> bool {
+        Baseline::is_sparse(self)
+    }
+    fn start_from_sketch(&self, params: &[f64]) -> Vec<f64> {
+        Baseline::start_from_sketch(self, params)
+    }
+    fn unknowns_from_config(&self, params: &[f64], cfg: &Config) -> Vec<f64> {
+        Baseline::unknowns_from_config(self, params, cfg)
+    }
+    fn solve(&mut self, params: &[f64], x: &mut [f64], opts: &Options) -> Outcome {
+        Baseline::solve(self, params, x, opts)
+    }
+    fn solution(&self, params: &[f64], x: &[f64]) -> Option<Solution> {
+        let model = self.model();
+        let all = model.top_level().map(|(id, _)| id).collect();
+        let cfg = self.config(params, x).ok()?;
+        Some(Solution::read(model, &cfg, &all))
+    }
+}
+
+impl Numeric for Baseline3 {
+    type Space = gcs_compiler::config::D3;
+    fn unknowns(&self) -> usize {
+        Baseline3::unknowns(self)
+    }
+    fn equations(&self) -> usize {
+        Baseline3::equations(self)
+    }
+    fn is_sparse(&self) -> bool {
+        Baseline3::is_sparse(self)
+    }
+    fn start_from_sketch(&self, params: &[f64]) -> Vec<f64> {
+        Baseline3::start_from_sketch(self, params)
+    }
+    fn unknowns_from_config(
+        &self,
+        params: &[f64],
+        cfg: &Config<gcs_compiler::config::D3>,
+    ) -> Vec<f64> {
+        Baseline3::unknowns_from_config(self, params, cfg)
+    }
+    fn solve(&mut self, params: &[f64], x: &mut [f64], opts: &Options) -> Outcome {
+        Baseline3::solve(self, params, x, opts)
+    }
+    fn solution(&self, params: &[f64], x: &[f64]) -> Option<Solution> {
+        let model = self.model();
+        let all = model.top_level().map(|(id, _)| id).collect();
+        let cfg = self.config(params, x).ok()?;
+        Some(Solution::read_space(model, &cfg, &all))
+    }
+}

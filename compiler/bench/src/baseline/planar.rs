@@ -716,6 +716,11 @@ impl Baseline {
         Ok(Baseline { eq, solver })
     }
 
+    /// The model it solves.
+    pub fn model(&self) -> &Model {
+        &self.eq.model
+    }
+
     /// The number of unknowns.
     pub fn unknowns(&self) -> usize {
         self.eq.n

@@ -77,7 +77,19 @@
 //! reads (origin, rotation increment `omega` with `dR = [omega]× R`, dimension: seven numbers
 //! a frame), and carried to the unknowns by each unknown's tangent (how the frame moves per
 //! unit of it): a point feature `p = o + q` gives `dF/do = g`, `dF/domega = q × g`; a
-//! direction `u`, `dF/domega = u × g`.
+//! direction `u`, `dF/domega = u × g`. An origin unknown moves the origin along its axis; a
+//! rotation unknown turns the frame by `omega = J_l(r) b` (`b` its axis of increment) and a
+//! line's or plane's origin about its sketch point with it; an offset moves the origin along
+//! the frame's axis; a dimension is itself. The linear algebra, the equilibration and the
+//! iteration are the shared ones; the length scale of a 3d start is the largest of the spread
+//! of the origins of the frames that have a position (all but vectors'), the offsets of the
+//! features the equations read, the dimensions and the equations' lengths.
+//!
+//! **Left out**: a segment's tangency to a circle is the tangency of its supporting line, as in
+//! 2d: where an end of the segment is on the circle, `verify` also asks that end to be the
+//! touching point, which no equation here says. Every constraint of the language has a form;
+//! one with arguments the forms above do not cover is refused by [`Baseline3::new`], naming
+//! it.
 
 use super::solver::{Equations, Linear, Options, Outcome, Solver};
 use gcs_compiler::config::{BadSketch, Config, D3};
@@ -1287,6 +1299,11 @@ impl Baseline3 {
         };
         let solver = eq.structure(linear.sparse(n))?;
         Ok(Baseline3 { eq, solver })
+    }
+
+    /// The model it solves.
+    pub fn model(&self) -> &Model {
+        &self.eq.model
     }
 
     /// The number of unknowns.
