@@ -1,8 +1,12 @@
 //! The 3d numeric baseline (Newton-Raphson and Levenberg-Marquardt on the raw equations of a
 //! spatial model) against the independent verifier and against the interpreter: every 3d
-//! example (found by `examples/discover.rs`) solved cold from its sketch and warm from the
-//! interpreter's answer with its driving param moved a little, and a chain of 16 spatial
-//! four-bars on the sparse path.
+//! example (found by `examples/discover.rs`) solved cold from its sketch, from its sketch
+//! jiggled, and warm from the interpreter's answer with its driving param moved a little (to
+//! the interpreter's answer there); Kramer's brick from random sketches; a chain of 16 spatial
+//! four-bars on the sparse path; scale invariance; and every 3d example through `gcs bench`'s
+//! comparison.
+//!
+//! `cargo test -p gcs-bench --release --test baseline3 -- --nocapture` prints the iterations.
 
 use gcs_bench::baseline::{Baseline, Baseline3, Linear, Method, Options, Outcome};
 use gcs_compiler::analyse;
@@ -532,4 +536,82 @@ fn the_brick_lands_on_its_three_points_from_random_sketches() {
         }
     }
     println!("the brick from 50 random sketches: at most {worst} iterations");
+}
+
+/// Every number of a model that has only lengths (no angle), times `s`: after the header,
+/// each numeric literal is multiplied (the leg names `l1`... are not numbers).
+fn scaled(text: &str, s: f64) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        if code.trim_start().starts_with("space") {
+            out.push_str(code);
+            out.push('\n');
+            continue;
+        }
+        let mut word = String::new();
+        let flush = |word: &mut String, out: &mut String| {
+            if let Ok(v) = word.parse::<f64>() {
+                let _ = write!(out, "{:?}", v * s);
+            } else {
+                out.push_str(word);
+            }
+            word.clear();
+        };
+        for c in code.chars() {
+            let starts_number = word.is_empty() && (c.is_ascii_digit() || c == '.');
+            let continues = !word.is_empty() && (c.is_ascii_alphanumeric() || c == '.' || c == '_');
+            if starts_number || continues || (word.is_empty() && (c.is_alphabetic() || c == '_')) {
+                word.push(c);
+            } else {
+                flush(&mut word, &mut out);
+                out.push(c);
+            }
+        }
+        flush(&mut word, &mut out);
+        out.push('\n');
+    }
+    out
+}
+
+/// The 3d baseline is scale-invariant, as the 2d one: the Stewart platform with every length
+/// times 1e-6, 1e-3, 1e3 and 1e6 takes the same Newton steps from its sketch as at unit scale
+/// (to a tolerance of 1e-12 times its scale, which every scale can reach) and lands on the
+/// same pose, scaled.
+#[test]
+fn the_3d_baseline_is_scale_invariant() {
+    let path = format!("{}/../../examples/stewart.gcs", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("stewart.gcs");
+    let mut unit: Option<(usize, Solution)> = None;
+    for s in [1.0, 1e-6, 1e-3, 1e3, 1e6] {
+        let model = load_text("stewart.gcs", &scaled(&text, s));
+        let params = model.default_params();
+        for linear in [Linear::Dense, Linear::Sparse] {
+            let mut b = Baseline3::with_linear(&model, linear).expect("baseline");
+            let mut x = b.start_from_sketch(&params);
+            let opts = Options {
+                tolerance: 1e-12 * s,
+                ..Options::default()
+            };
+            let out = b.solve(&params, &mut x, &opts);
+            assert!(out.converged, "s = {s} {linear:?}: {out:?}");
+            let (sol, _) = read(&model, &b, &params, &x);
+            match &unit {
+                None => unit = Some((out.iterations, sol)),
+                Some((its, at_one)) => {
+                    assert_eq!(out.iterations, *its, "s = {s} {linear:?}");
+                    let by = sol.by_name();
+                    for (name, p) in &at_one.points {
+                        let q = by.point(name).expect("the same points");
+                        for (a, u) in q.iter().zip(p) {
+                            assert!(
+                                (a / s - u).abs() <= 1e-9,
+                                "s = {s} {linear:?} {name}: {a} vs {u} * {s}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
