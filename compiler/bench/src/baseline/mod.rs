@@ -1,6 +1,7 @@
 //! The numeric baseline: Newton-Raphson and Levenberg-Marquardt on the raw constraint
 //! equations of a model, the way a numeric CAD solver (SolveSpace, PlaneGCS) solves them:
-//! [`Baseline`] for 2d models, [`Baseline3`] for 3d ones, with the same API.
+//! [`Baseline`] for 2d models, [`Baseline3`] for 3d ones, with the same API ([`Numeric`], as
+//! `gcs bench` drives either).
 //!
 //! It exists for two reasons: it is the speed baseline the compiled plans are measured
 //! against, and it is an independent cross-check of the degrees-of-freedom analysis (same
