@@ -2,17 +2,17 @@
 //!
 //! Both solve the same samples. The compiled side is the generated solver when the caller
 //! could build one (it hands in its timings and answers as a [`CompiledRun`]) and the
-//! interpreter otherwise; the baseline is [`crate::baseline`]'s Newton solver, warm-started
-//! from its previous answer as a numeric solver in a sweep is. Every answer of both is re-checked
+//! interpreter otherwise; the baseline is [`crate::baseline`]'s Newton solver of the model's
+//! space, warm-started from its previous answer as a numeric solver in a sweep is. Every answer of both is re-checked
 //! by [`gcs_compiler::verify`], so the residuals compare like with like. Branch flips are counted
 //! against a continuation: the baseline started from the compiled plan's previous answer and
 //! run to convergence on the next sample lands on the assembly continuous with it.
 
-use crate::baseline::{Baseline, Linear, Method, Options as NewtonOptions};
+use crate::baseline::{Baseline, Baseline3, Linear, Method, Numeric, Options as NewtonOptions};
 use gcs_compiler::plan::Plan;
 use gcs_compiler::solution::Solution;
 use gcs_lang::expr::Dim;
-use gcs_lang::model::GeomId;
+use gcs_lang::model::{GeomId, Space};
 use gcs_lang::Model;
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -157,11 +157,19 @@ pub fn interpreted(
     budget_ns: f64,
 ) -> CompiledRun {
     let choice = gcs_compiler::interp::Choice::Given(branches.to_vec());
+    let defaults = plan.sketch_defaults();
     let mut ns = Vec::new();
     let mut solutions = Vec::new();
     for params in &sweep.params {
         ns.push(time_per_call(budget_ns, || {
-            std::hint::black_box(gcs_compiler::interp::run(model, plan, params, &choice).is_ok());
+            let ok = match model.space {
+                Space::D2 => gcs_compiler::interp::run(model, plan, params, &choice).is_ok(),
+                Space::D3 => gcs_compiler::interp::run_in::<gcs_compiler::config::D3>(
+                    model, plan, params, &defaults, &choice,
+                )
+                .is_ok(),
+            };
+            std::hint::black_box(ok);
         }));
         solutions.push(
             gcs_compiler::solve_plan(model, plan, scope, params, branches)
@@ -285,7 +293,8 @@ const SAME_ASSEMBLY: f64 = 1e-5;
 
 /// Runs the bench: the compiled side's answers against the baseline on the same sweep.
 /// `plan` is the whole plan (not pruned to the outputs) with the branch indices the compiled
-/// side used: the continuation that counts flips starts from every geom's place.
+/// side used: the continuation that counts flips starts from every geom's place. The
+/// baseline is the model's space's: [`Baseline`] or [`Baseline3`].
 pub fn run(
     model: &Model,
     plan: &Plan,
@@ -294,16 +303,37 @@ pub fn run(
     compiled: CompiledRun,
     settings: &Settings,
 ) -> Result<Report, String> {
+    match model.space {
+        Space::D2 => {
+            let baseline = Baseline::with_linear(model, settings.linear)?;
+            run_with(baseline, model, plan, branches, sweep, compiled, settings)
+        }
+        Space::D3 => {
+            let baseline = Baseline3::with_linear(model, settings.linear)?;
+            run_with(baseline, model, plan, branches, sweep, compiled, settings)
+        }
+    }
+}
+
+/// [`run`] with the model's baseline.
+fn run_with<B: Numeric>(
+    mut baseline: B,
+    model: &Model,
+    plan: &Plan,
+    branches: &[usize],
+    sweep: Sweep,
+    compiled: CompiledRun,
+    settings: &Settings,
+) -> Result<Report, String> {
     let choice = gcs_compiler::interp::Choice::Given(branches.to_vec());
+    let defaults = plan.sketch_defaults();
     // The whole plan's configuration at a sample, to start the baseline's continuation from
     // (the generated solver equals it to 1e-14 on what it computes, as its tests show).
     let plan_config = |params: &[f64]| {
-        gcs_compiler::interp::run(model, plan, params, &choice)
+        gcs_compiler::interp::run_in::<B::Space>(model, plan, params, &defaults, &choice)
             .ok()
             .map(|r| r.config)
     };
-    let mut baseline = Baseline::with_linear(model, settings.linear)?;
-    let all: BTreeSet<GeomId> = model.top_level().map(|(id, _)| id).collect();
     // Converged at 1e-12 relative to the model's size: an absolute 1e-12 is out of reach at
     // size 1e6 and loose at 1e-6. The floor is for angle equations, whose residuals stop at a
     // few ulps of pi.
@@ -316,14 +346,13 @@ pub fn run(
         tolerance: (1e-12 * size).max(1e-14),
         ..NewtonOptions::default()
     };
-    let read = |b: &Baseline, params: &[f64], x: &[f64]| -> Solution {
-        let Ok(cfg) = b.config(params, x) else {
+    let read = |b: &B, params: &[f64], x: &[f64]| -> Solution {
+        let Some(mut s) = b.solution(params, x) else {
             return Solution {
                 max_residual: f64::INFINITY,
                 ..Solution::default()
             };
         };
-        let mut s = Solution::read(model, &cfg, &all);
         s.max_residual =
             gcs_compiler::verify::max_residual(&gcs_compiler::verify::residuals(model, &s, params));
         s
@@ -429,7 +458,7 @@ pub fn run(
     // meet) the forward continuation may take either way, while the backward one, from a
     // regular configuration, is unique.
     let mut branch_flips = 0;
-    let joined = |from: usize, to: usize, baseline: &mut Baseline| -> bool {
+    let joined = |from: usize, to: usize, baseline: &mut B| -> bool {
         let (Some(start), Some(answer)) = (plan_config(&sweep.params[from]), compiled_ok[to])
         else {
             return true;
@@ -449,7 +478,7 @@ pub fn run(
     }
 
     // Run time against error: Newton stopped after 1, 2, ... iterations.
-    let curve = |baseline: &mut Baseline, params: &[f64], start: &[f64]| -> Vec<ErrorPoint> {
+    let curve = |baseline: &mut B, params: &[f64], start: &[f64]| -> Vec<ErrorPoint> {
         let mut out = Vec::new();
         for iterations in 0..=30 {
             let opts = NewtonOptions {

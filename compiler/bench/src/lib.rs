@@ -3,8 +3,8 @@
 //! plotter.
 //!
 //! - [`baseline`]: the numeric baseline, Newton-Raphson and Levenberg-Marquardt on the raw
-//!   constraint equations (dense LU, or faer's sparse LU and Cholesky on large models): the
-//!   speed baseline and an independent cross-check of the plan.
+//!   constraint equations of a 2d or a 3d model (dense LU, or faer's sparse LU and Cholesky on
+//!   large models): the speed baseline and an independent cross-check of the plan.
 //! - [`bench`](mod@bench): a sweep of a model's params, the compiled side against the
 //!   baseline on it, and the report as text, JSON and an SVG plot.
 //! - [`families`]: generators of model families of any size (a chain of four-bars, a sketch

@@ -1,9 +1,4 @@
-//! The numeric baseline: Newton-Raphson and Levenberg-Marquardt on the raw constraint
-//! equations of a 2d model, the way a numeric CAD solver (SolveSpace, PlaneGCS) solves them.
-//!
-//! It exists for two reasons: it is the speed baseline the compiled plans are measured
-//! against, and it is an independent cross-check of the degrees-of-freedom analysis (same
-//! model, same branch, same answer). It shares nothing with the plan: it only reads the model.
+//! The 2d baseline: unknowns and equations of a planar model.
 //!
 //! **Unknowns** are exactly the freedom [`Config`] has, per non-fixed top-level geom in
 //! declaration order: a point's `x, y`; a vector's angle; a line's angle and its offset `h`
@@ -22,34 +17,13 @@
 //! knows the two frames it reads and the local coordinates of its features; constants (member
 //! coordinates, fixed geoms, values) are re-evaluated from the params at the start of a solve.
 //!
-//! **Jacobian**: analytic, assembled in O(nnz). Dense (in-place LU with partial pivoting,
-//! Cholesky for normal equations) up to [`DENSE_MAX`] unknowns; above it sparse, with `faer`'s
-//! sparse LU (COLAMD ordering) for square Newton steps and its sparse Cholesky (AMD ordering)
-//! for normal equations. The symbolic factorisations are computed once, in [`Baseline::new`];
-//! the iteration loop allocates nothing.
-//!
-//! **Scaling**: each solve equilibrates the system by dimension: with `L` the length scale of
-//! the start configuration, length equations are divided by `L` and length unknowns measured
-//! in units of `L`, so the iteration runs on the dimensionless `W J C d = -W F`, `dx = C d`.
-//! The merit function `|W F|^2`, the LU's pivot threshold, the regularisation and every floor
-//! are then the same for a model and for that model scaled by any factor: Newton takes the
-//! same steps at unit scale and at 1e6 (an unweighted `|F|^2` adds squared lengths to squared
-//! radians, and at large scale the O(L theta^2) curvature error of a full step in lengths
-//! dwarfs the angle residual it removes, so backtracking cut every step to almost nothing).
-//! The tolerance stays on the raw largest residual.
-//!
-//! **Methods**: Newton takes full steps (LU on a square system; regularised normal equations
-//! when the system is not square or the LU is singular) with Armijo backtracking on `|W F|^2`.
-//! Levenberg-Marquardt solves `(JᵀJ + mu D) d = -JᵀF` (of the equilibrated system) with
-//! Marquardt's scaling `D = diag(JᵀJ)` and Nielsen's damping update. There is no branch
-//! steering: from a warm start Newton stays on the nearby assembly, from a cold start it lands
-//! where it lands.
+//! **Jacobian**: analytic, assembled in O(nnz): each equation's gradient with respect to the
+//! (origin, angle, dimension) of the frames it reads, carried to the unknowns of each frame.
+//! The linear algebra, the scaling and the iteration are the shared ones ([`super`]); the
+//! length scale of a 2d start is the largest of the spread of the frame origins, the offsets of
+//! the features the equations read, frame dimensions and the equations' distances.
 
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, SymbolicCholesky};
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::{Conj, MatMut, Par, Side};
+use super::solver::{Equations, Linear, Options, Outcome, Solver};
 use gcs_compiler::config::{BadSketch, Config};
 use gcs_lang::constraints::ConstraintKind as K;
 use gcs_lang::expr::{ExprId, Exprs};
@@ -57,82 +31,6 @@ use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch, Space};
 use gcs_lang::Model;
 use nalgebra::Point2;
 use std::time::Instant;
-
-/// Up to this many unknowns the linear algebra is dense; above it, sparse.
-pub const DENSE_MAX: usize = 120;
-
-/// Which iteration to run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Method {
-    /// Newton-Raphson with backtracking: the fast one near a solution.
-    Newton,
-    /// Levenberg-Marquardt: the robust one far from a solution or on non-square systems.
-    LevenbergMarquardt,
-}
-
-/// Which linear algebra to use, so that tests and benchmarks can force either path.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Linear {
-    /// Dense up to [`DENSE_MAX`] unknowns, sparse above.
-    Auto,
-    /// Always dense.
-    Dense,
-    /// Always sparse.
-    Sparse,
-}
-
-/// How to solve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Options {
-    /// Newton or Levenberg-Marquardt.
-    pub method: Method,
-    /// Stop when the largest absolute equation value (lengths and radians) is at most this.
-    pub tolerance: f64,
-    /// Stop after this many linear solves (Levenberg-Marquardt counts rejected trials too).
-    pub max_iterations: usize,
-    /// Record `(elapsed ns, max residual)` after every iteration, for time-to-accuracy plots.
-    pub trace: bool,
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Options {
-            method: Method::Newton,
-            tolerance: 1e-12,
-            max_iterations: 50,
-            trace: false,
-        }
-    }
-}
-
-/// Why a solve stopped.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stop {
-    /// The residual reached the tolerance.
-    Converged,
-    /// `max_iterations` ran out.
-    MaxIterations,
-    /// No step decreased the residual (line search or damping gave up).
-    Stalled,
-    /// The equations or the step became non-finite.
-    NotFinite,
-}
-
-/// The result of one solve.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Outcome {
-    /// Linear solves done.
-    pub iterations: usize,
-    /// The largest absolute equation value at the returned point.
-    pub max_residual: f64,
-    /// Whether `max_residual <= tolerance`.
-    pub converged: bool,
-    /// Why it stopped.
-    pub stop: Stop,
-    /// `(ns since the solve began, max residual)`: the start, then after every iteration;
-    /// empty unless [`Options::trace`].
-    pub trace: Vec<(u64, f64)>,
-}
 
 /// How to compute a constant of a solve from the params.
 #[derive(Clone, Copy, Debug)]
@@ -360,25 +258,12 @@ fn push_dir(g: &mut G4, u: [f64; 2], gu: [f64; 2]) {
     g[2] += -gu[0] * u[1] + gu[1] * u[0];
 }
 
-/// The sparse structures, built once.
-struct Sparse {
-    /// The Jacobian's pattern (square systems only).
-    j: Option<SymbolicSparseColMat<usize>>,
-    lu: Option<SymbolicLu<usize>>,
-    numeric: NumericLu<usize, f64>,
-    /// The upper triangle of JᵀJ.
-    a: SymbolicSparseColMat<usize>,
-    chol: SymbolicCholesky<usize>,
-    l: Vec<f64>,
-    buf: MemBuffer,
-}
-
-/// The solver for one model, built once and reused for every solve.
-pub struct Baseline {
+/// The equations of a 2d model and the state they are evaluated at: the unknowns, then the
+/// constants of the current solve, in one array `z`.
+struct Planar {
     model: Model,
     n: usize,
     m: usize,
-    sparse_path: bool,
     geoms: Vec<Geom>,
     eqs: Vec<Eq>,
     /// The side each equation's sign choice took at the start of the solve (0 means the
@@ -390,48 +275,25 @@ pub struct Baseline {
     start: Vec<Recipe>,
     z: Vec<f64>,
     frames: Vec<Fr>,
-    f: Vec<f64>,
-    f_trial: Vec<f64>,
-    x_trial: Vec<f64>,
     // Jacobian entries: per equation a range of (side, slot, position in J).
     ent_ptr: Vec<usize>,
     ent_side: Vec<u8>,
     ent_k: Vec<u8>,
     ent_pos: Vec<usize>,
-    // Unique entries per equation: (column, position in J).
-    uent_ptr: Vec<usize>,
-    uent_col: Vec<usize>,
-    uent_pos: Vec<usize>,
-    // JᵀJ accumulation: J[pa] * J[pb] into A[pt].
-    pair_a: Vec<usize>,
-    pair_b: Vec<usize>,
-    pair_t: Vec<usize>,
-    diag: Vec<usize>,
-    jv: Vec<f64>,
-    av: Vec<f64>,
-    lu: Vec<f64>,
-    perm: Vec<usize>,
-    g: Vec<f64>,
-    dsave: Vec<f64>,
-    step: Vec<f64>,
-    sp: Option<Sparse>,
-    // Equilibration (see [`Baseline::equilibrate`]): per Jacobian position its row and
-    // column; per equation and per unknown whether it is a length (else an angle or a pure
-    // number); the row weights and column scales of the current solve.
-    jrow: Vec<usize>,
-    jcol: Vec<usize>,
-    row_len: Vec<bool>,
-    col_len: Vec<bool>,
-    w: Vec<f64>,
-    cs: Vec<f64>,
+}
+
+/// The solver for one 2d model, built once and reused for every solve.
+pub struct Baseline {
+    eq: Planar,
+    solver: Solver,
 }
 
 impl std::fmt::Debug for Baseline {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Baseline")
-            .field("unknowns", &self.n)
-            .field("equations", &self.m)
-            .field("sparse", &self.sparse_path)
+            .field("unknowns", &self.eq.n)
+            .field("equations", &self.eq.m)
+            .field("sparse", &self.solver.is_sparse())
             .finish_non_exhaustive()
     }
 }
@@ -833,17 +695,11 @@ impl Baseline {
         }
         let n = b.n;
         let m = eqs.len();
-        let sparse_path = match linear {
-            Linear::Auto => n > DENSE_MAX,
-            Linear::Dense => false,
-            Linear::Sparse => true,
-        };
         let nz = n + b.consts.len();
-        let mut bl = Baseline {
+        let mut eq = Planar {
             model: model.clone(),
             n,
             m,
-            sparse_path,
             geoms: b.geoms,
             side: vec![1.0; m],
             eqs,
@@ -851,252 +707,53 @@ impl Baseline {
             start,
             z: vec![0.0; nz],
             frames: vec![Fr::default(); tops.len()],
-            f: vec![0.0; m],
-            f_trial: vec![0.0; m],
-            x_trial: vec![0.0; n],
             ent_ptr: vec![0],
             ent_side: Vec::new(),
             ent_k: Vec::new(),
             ent_pos: Vec::new(),
-            uent_ptr: vec![0],
-            uent_col: Vec::new(),
-            uent_pos: Vec::new(),
-            pair_a: Vec::new(),
-            pair_b: Vec::new(),
-            pair_t: Vec::new(),
-            diag: Vec::new(),
-            jv: Vec::new(),
-            av: Vec::new(),
-            lu: Vec::new(),
-            perm: vec![0; n],
-            g: vec![0.0; n],
-            dsave: vec![0.0; n],
-            step: vec![0.0; n.max(m)],
-            sp: None,
-            jrow: Vec::new(),
-            jcol: Vec::new(),
-            row_len: Vec::new(),
-            col_len: vec![false; n],
-            w: vec![1.0; m],
-            cs: vec![1.0; n],
         };
-        bl.structure()?;
-        Ok(bl)
+        let solver = eq.structure(linear.sparse(n))?;
+        Ok(Baseline { eq, solver })
     }
 
-    /// Builds the Jacobian's and JᵀJ's patterns, their entry positions and, on the sparse
-    /// path, the symbolic factorisations.
-    fn structure(&mut self) -> Result<(), String> {
-        let (n, m) = (self.n, self.m);
-        // Dimensions: slot 2 of a frame is its angle; every other slot is a length.
-        for g in &self.geoms {
-            for (k, &col) in g.q.iter().enumerate() {
-                if col < n {
-                    self.col_len[col] = k != 2;
-                }
-            }
-        }
-        self.row_len = self
-            .eqs
-            .iter()
-            .map(|e| {
-                !matches!(
-                    e,
-                    Eq::Angle { .. } | Eq::Cross { .. } | Eq::Dot { .. } | Eq::Comp { .. }
-                )
-            })
-            .collect();
-        // Columns of each equation, by (side, slot).
-        let mut rows: Vec<Vec<(u8, u8, usize)>> = Vec::with_capacity(m);
-        for e in &self.eqs {
-            let mut r = Vec::new();
-            for (side, &g) in e.geoms().iter().enumerate() {
-                if g == usize::MAX {
-                    continue;
-                }
-                for k in 0..4 {
-                    let col = self.geoms[g].q[k];
-                    if col < n {
-                        r.push((side as u8, k as u8, col));
-                    }
-                }
-            }
-            rows.push(r);
-        }
-        let ucols: Vec<Vec<usize>> = rows
-            .iter()
-            .map(|r| {
-                let mut c: Vec<usize> = r.iter().map(|e| e.2).collect();
-                c.sort_unstable();
-                c.dedup();
-                c
-            })
-            .collect();
-        // Jacobian positions.
-        let jpos: Box<dyn Fn(usize, usize) -> usize>;
-        let mut jsym = None;
-        if self.sparse_path {
-            let mut col_rows: Vec<Vec<usize>> = vec![Vec::new(); n];
-            for (e, cs) in ucols.iter().enumerate() {
-                for &c in cs {
-                    col_rows[c].push(e);
-                }
-            }
-            let mut col_ptr = vec![0usize];
-            let mut row_idx = Vec::new();
-            for rs in &col_rows {
-                row_idx.extend_from_slice(rs);
-                col_ptr.push(row_idx.len());
-            }
-            let cp = col_ptr.clone();
-            let ri = row_idx.clone();
-            jpos = Box::new(move |e, c| {
-                let rs = &ri[cp[c]..cp[c + 1]];
-                cp[c] + rs.binary_search(&e).unwrap_or(0)
-            });
-            self.jv = vec![0.0; row_idx.len()];
-            self.jrow = row_idx.clone();
-            self.jcol = (0..n)
-                .flat_map(|c| std::iter::repeat_n(c, col_ptr[c + 1] - col_ptr[c]))
-                .collect();
-            jsym = Some(SymbolicSparseColMat::new_checked(
-                m, n, col_ptr, None, row_idx,
-            ));
-        } else {
-            self.jv = vec![0.0; m * n];
-            self.jrow = (0..m * n).map(|p| p / n).collect();
-            self.jcol = (0..m * n).map(|p| p % n).collect();
-            jpos = Box::new(move |e, c| e * n + c);
-        }
-        for (e, r) in rows.iter().enumerate() {
-            for &(side, k, col) in r {
-                self.ent_side.push(side);
-                self.ent_k.push(k);
-                self.ent_pos.push(jpos(e, col));
-            }
-            self.ent_ptr.push(self.ent_pos.len());
-            for &c in &ucols[e] {
-                self.uent_col.push(c);
-                self.uent_pos.push(jpos(e, c));
-            }
-            self.uent_ptr.push(self.uent_pos.len());
-        }
-        // JᵀJ: the upper triangle, (i <= j).
-        let mut upper: Vec<Vec<usize>> = vec![Vec::new(); n];
-        for cs in &ucols {
-            for (ia, &i) in cs.iter().enumerate() {
-                for &j in &cs[ia..] {
-                    upper[j].push(i);
-                }
-            }
-        }
-        for (j, u) in upper.iter_mut().enumerate() {
-            u.push(j);
-            u.sort_unstable();
-            u.dedup();
-        }
-        let apos: Box<dyn Fn(usize, usize) -> usize>;
-        let mut asym = None;
-        if self.sparse_path {
-            let mut col_ptr = vec![0usize];
-            let mut row_idx = Vec::new();
-            for rs in &upper {
-                row_idx.extend_from_slice(rs);
-                col_ptr.push(row_idx.len());
-            }
-            let cp = col_ptr.clone();
-            let ri = row_idx.clone();
-            apos = Box::new(move |i, j| {
-                let rs = &ri[cp[j]..cp[j + 1]];
-                cp[j] + rs.binary_search(&i).unwrap_or(0)
-            });
-            self.av = vec![0.0; row_idx.len()];
-            asym = Some(SymbolicSparseColMat::new_checked(
-                n, n, col_ptr, None, row_idx,
-            ));
-        } else {
-            self.av = vec![0.0; n * n];
-            self.lu = vec![0.0; n * n];
-            apos = Box::new(move |i, j| i * n + j);
-        }
-        for e in 0..m {
-            let (s, t) = (self.uent_ptr[e], self.uent_ptr[e + 1]);
-            for a in s..t {
-                for bb in a..t {
-                    self.pair_a.push(self.uent_pos[a]);
-                    self.pair_b.push(self.uent_pos[bb]);
-                    self.pair_t.push(apos(self.uent_col[a], self.uent_col[bb]));
-                }
-            }
-        }
-        self.diag = (0..n).map(|i| apos(i, i)).collect();
-        if let Some(asym) = asym {
-            let chol = factorize_symbolic_cholesky(
-                asym.as_ref(),
-                Side::Upper,
-                Default::default(),
-                Default::default(),
-            )
-            .map_err(|e| format!("sparse Cholesky analysis failed: {e:?}"))?;
-            let mut req = chol
-                .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
-                .or(chol.solve_in_place_scratch::<f64>(1, Par::Seq));
-            let mut lu = None;
-            if m == n {
-                if let Some(js) = &jsym {
-                    let s = factorize_symbolic_lu(js.as_ref(), Default::default())
-                        .map_err(|e| format!("sparse LU analysis failed: {e:?}"))?;
-                    req = req
-                        .or(s.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()))
-                        .or(s.solve_in_place_scratch::<f64>(1, Par::Seq));
-                    lu = Some(s);
-                }
-            }
-            self.sp = Some(Sparse {
-                l: vec![0.0; chol.len_val()],
-                j: jsym,
-                lu,
-                numeric: NumericLu::new(),
-                a: asym,
-                chol,
-                buf: MemBuffer::new(req),
-            });
-        }
-        Ok(())
+    /// The model it solves.
+    pub fn model(&self) -> &Model {
+        &self.eq.model
     }
 
     /// The number of unknowns.
     pub fn unknowns(&self) -> usize {
-        self.n
+        self.eq.n
     }
 
     /// The number of scalar equations.
     pub fn equations(&self) -> usize {
-        self.m
+        self.eq.m
     }
 
     /// Whether the sparse linear algebra is in use.
     pub fn is_sparse(&self) -> bool {
-        self.sparse_path
+        self.solver.is_sparse()
     }
 
     /// The cold start: the unknowns as the sketch has them, with `params`.
     pub fn start_from_sketch(&self, params: &[f64]) -> Vec<f64> {
-        self.start
+        self.eq
+            .start
             .iter()
-            .map(|r| r.eval(&self.model.exprs, params))
+            .map(|r| r.eval(&self.eq.model.exprs, params))
             .collect()
     }
 
     /// The unknowns that describe configuration `cfg` (the plan's answer, say): a start on
     /// the assembly `cfg` is on, for a continuation.
     pub fn unknowns_from_config(&self, params: &[f64], cfg: &Config) -> Vec<f64> {
-        let n = self.n;
-        let mut z = self.z.clone();
-        for (k, r) in self.consts.iter().enumerate() {
-            z[n + k] = r.eval(&self.model.exprs, params);
+        let n = self.eq.n;
+        let mut z = self.eq.z.clone();
+        for (k, r) in self.eq.consts.iter().enumerate() {
+            z[n + k] = r.eval(&self.eq.model.exprs, params);
         }
-        for ((id, _), g) in self.model.top_level().zip(&self.geoms) {
+        for ((id, _), g) in self.eq.model.top_level().zip(&self.eq.geoms) {
             let Some(f) = cfg.frames.get(&id) else {
                 continue;
             };
@@ -1133,13 +790,13 @@ impl Baseline {
     /// The configuration the unknowns `x` describe, to read a
     /// [`gcs_compiler::solution::Solution`] and re-check it with [`gcs_compiler::verify`].
     pub fn config(&self, params: &[f64], x: &[f64]) -> Result<Config, BadSketch> {
-        let mut cfg = Config::from_sketch(&self.model, params)?;
-        let mut z = self.z.clone();
-        z[..self.n].copy_from_slice(&x[..self.n]);
-        for (k, r) in self.consts.iter().enumerate() {
-            z[self.n + k] = r.eval(&self.model.exprs, params);
+        let mut cfg = Config::from_sketch(&self.eq.model, params)?;
+        let mut z = self.eq.z.clone();
+        z[..self.eq.n].copy_from_slice(&x[..self.eq.n]);
+        for (k, r) in self.eq.consts.iter().enumerate() {
+            z[self.eq.n + k] = r.eval(&self.eq.model.exprs, params);
         }
-        for ((id, _), g) in self.model.top_level().zip(&self.geoms) {
+        for ((id, _), g) in self.eq.model.top_level().zip(&self.eq.geoms) {
             let f = frame(g, &z);
             if let Some(fr) = cfg.frames.get_mut(&id) {
                 *fr = gcs_runtime::frame::Frame2::new(Point2::new(f.ox, f.oy), f.th);
@@ -1156,132 +813,119 @@ impl Baseline {
     /// trace is asked for).
     pub fn solve(&mut self, params: &[f64], x: &mut [f64], opts: &Options) -> Outcome {
         let t0 = Instant::now();
-        let n = self.n;
-        for (k, r) in self.consts.iter().enumerate() {
-            self.z[n + k] = r.eval(&self.model.exprs, params);
+        let eq = &mut self.eq;
+        let n = eq.n;
+        for (k, r) in eq.consts.iter().enumerate() {
+            eq.z[n + k] = r.eval(&eq.model.exprs, params);
         }
-        self.z[..n].copy_from_slice(&x[..n]);
-        self.choose_sides();
-        self.equilibrate();
-        let mut out = Outcome {
-            iterations: 0,
-            max_residual: f64::NAN,
-            converged: false,
-            stop: Stop::MaxIterations,
-            trace: Vec::new(),
-        };
-        let (mut r, mut ss) = self.residual();
-        self.f.copy_from_slice(&self.f_trial);
-        let trace = |out: &mut Outcome, r: f64| {
-            if opts.trace {
-                out.trace.push((t0.elapsed().as_nanos() as u64, r));
-            }
-        };
-        trace(&mut out, r);
-        let mut mu = 0.0;
-        let mut nu = 2.0;
-        let mut fresh = true; // whether J at z is up to date
-        loop {
-            if !r.is_finite() {
-                out.stop = Stop::NotFinite;
-                break;
-            }
-            if r <= opts.tolerance {
-                out.stop = Stop::Converged;
-                break;
-            }
-            if out.iterations >= opts.max_iterations {
-                out.stop = Stop::MaxIterations;
-                break;
-            }
-            out.iterations += 1;
-            match opts.method {
-                Method::Newton => {
-                    self.jacobian();
-                    if !self.newton_step() {
-                        self.normal_equations();
-                        if !self.damped_step(1e-10, false) {
-                            out.stop = Stop::NotFinite;
-                            break;
-                        }
-                    }
-                    // Backtracking on |F|^2 along the step.
-                    let mut alpha = 1.0;
-                    let mut accepted = false;
-                    for _ in 0..30 {
-                        for i in 0..n {
-                            self.x_trial[i] = self.z[i];
-                            self.z[i] += alpha * self.cs[i] * self.step[i];
-                        }
-                        let (rt, st) = self.residual();
-                        if st.is_finite() && st <= (1.0 - 1e-4 * alpha) * ss {
-                            r = rt;
-                            ss = st;
-                            self.f.copy_from_slice(&self.f_trial);
-                            accepted = true;
-                            break;
-                        }
-                        self.z[..n].copy_from_slice(&self.x_trial[..n]);
-                        alpha *= 0.5;
-                    }
-                    if !accepted {
-                        out.stop = Stop::Stalled;
-                        trace(&mut out, r);
-                        break;
-                    }
-                }
-                Method::LevenbergMarquardt => {
-                    if fresh {
-                        self.jacobian();
-                        self.normal_equations();
-                        if mu == 0.0 {
-                            mu = 1e-3;
-                        }
-                    }
-                    if !self.damped_step(mu, true) {
-                        mu *= nu;
-                        nu *= 2.0;
-                        fresh = false;
-                    } else {
-                        // Predicted reduction: d' (mu D d - g).
-                        let mut pred = 0.0;
-                        for i in 0..n {
-                            let dd = self.av[self.diag[i]].max(1e-12);
-                            pred += self.step[i] * (mu * dd * self.step[i] - self.g[i]);
-                        }
-                        for i in 0..n {
-                            self.x_trial[i] = self.z[i];
-                            self.z[i] += self.cs[i] * self.step[i];
-                        }
-                        let (rt, st) = self.residual();
-                        let rho = (ss - st) / pred;
-                        if st.is_finite() && rho > 0.0 {
-                            r = rt;
-                            ss = st;
-                            self.f.copy_from_slice(&self.f_trial);
-                            mu *= (1.0f64 / 3.0).max(1.0 - (2.0 * rho - 1.0).powi(3));
-                            nu = 2.0;
-                            fresh = true;
-                        } else {
-                            self.z[..n].copy_from_slice(&self.x_trial[..n]);
-                            mu *= nu;
-                            nu *= 2.0;
-                            fresh = false;
-                        }
-                    }
-                    if !mu.is_finite() || mu > 1e300 {
-                        out.stop = Stop::Stalled;
-                        trace(&mut out, r);
-                        break;
-                    }
-                }
-            }
-            trace(&mut out, r);
-        }
-        x[..n].copy_from_slice(&self.z[..n]);
-        out.max_residual = r;
-        out.converged = r <= opts.tolerance;
+        eq.z[..n].copy_from_slice(&x[..n]);
+        eq.choose_sides();
+        self.solver.equilibrate(eq.length_scale());
+        let out = self.solver.iterate(eq, opts, t0);
+        x[..n].copy_from_slice(&eq.z[..n]);
         out
+    }
+}
+
+impl Equations for Planar {
+    fn unknowns_mut(&mut self) -> &mut [f64] {
+        &mut self.z[..self.n]
+    }
+
+    fn values(&mut self, f: &mut [f64]) {
+        self.update_frames();
+        for (e, v) in f.iter_mut().enumerate() {
+            *v = self.eval(e, false).0;
+        }
+    }
+
+    fn jacobian(&mut self, jv: &mut [f64]) {
+        self.update_frames();
+        for e in 0..self.m {
+            let (_, gr) = self.eval(e, true);
+            let gs = self.eqs[e].geoms();
+            for t in self.ent_ptr[e]..self.ent_ptr[e + 1] {
+                let side = self.ent_side[t] as usize;
+                let k = self.ent_k[t] as usize;
+                let gi = gs[side];
+                let gg = &gr[side];
+                let val = match self.geoms[gi].shape {
+                    Shape::Frame => gg[k],
+                    Shape::Line => {
+                        let f = &self.frames[gi];
+                        if k == 2 {
+                            gg[0] * (-f.h * f.c) + gg[1] * (-f.h * f.s) + gg[2]
+                        } else {
+                            gg[0] * (-f.s) + gg[1] * f.c
+                        }
+                    }
+                };
+                jv[self.ent_pos[t]] += val;
+            }
+        }
+    }
+}
+
+impl Planar {
+    /// Builds the Jacobian's pattern and this model's entry positions in it, and the solver
+    /// on it.
+    fn structure(&mut self, sparse_path: bool) -> Result<Solver, String> {
+        let (n, m) = (self.n, self.m);
+        // Dimensions: slot 2 of a frame is its angle; every other slot is a length.
+        let mut col_len = vec![false; n];
+        for g in &self.geoms {
+            for (k, &col) in g.q.iter().enumerate() {
+                if col < n {
+                    col_len[col] = k != 2;
+                }
+            }
+        }
+        let row_len = self
+            .eqs
+            .iter()
+            .map(|e| {
+                !matches!(
+                    e,
+                    Eq::Angle { .. } | Eq::Cross { .. } | Eq::Dot { .. } | Eq::Comp { .. }
+                )
+            })
+            .collect();
+        // Columns of each equation, by (side, slot).
+        let mut rows: Vec<Vec<(u8, u8, usize)>> = Vec::with_capacity(m);
+        for e in &self.eqs {
+            let mut r = Vec::new();
+            for (side, &g) in e.geoms().iter().enumerate() {
+                if g == usize::MAX {
+                    continue;
+                }
+                for k in 0..4 {
+                    let col = self.geoms[g].q[k];
+                    if col < n {
+                        r.push((side as u8, k as u8, col));
+                    }
+                }
+            }
+            rows.push(r);
+        }
+        let ucols: Vec<Vec<usize>> = rows
+            .iter()
+            .map(|r| {
+                let mut c: Vec<usize> = r.iter().map(|e| e.2).collect();
+                c.sort_unstable();
+                c.dedup();
+                c
+            })
+            .collect();
+        let solver = Solver::new(n, &ucols, row_len, col_len, sparse_path)?;
+        for (e, r) in rows.iter().enumerate() {
+            for &(side, k, col) in r {
+                self.ent_side.push(side);
+                self.ent_k.push(k);
+                self.ent_pos.push(solver.position(e, col));
+            }
+            self.ent_ptr.push(self.ent_pos.len());
+        }
+        Ok(solver)
     }
 
     /// Evaluates every frame from `z`.
@@ -1289,27 +933,6 @@ impl Baseline {
         for (f, g) in self.frames.iter_mut().zip(&self.geoms) {
             *f = frame(g, &self.z);
         }
-    }
-
-    /// Evaluates the equations into `f_trial`, weighted (`W F`); returns (max |F|, |W F|^2):
-    /// the raw largest residual (what the tolerance is on) and the dimensionless merit.
-    fn residual(&mut self) -> (f64, f64) {
-        self.update_frames();
-        let (mut mx, mut ss) = (0.0f64, 0.0);
-        for e in 0..self.m {
-            let (v, _) = self.eval(e, false);
-            mx = mx.max(v.abs());
-            if v.is_nan() {
-                mx = f64::NAN;
-            }
-            let v = v * self.w[e];
-            self.f_trial[e] = v;
-            ss += v * v;
-        }
-        if mx.is_nan() {
-            return (f64::NAN, f64::NAN);
-        }
-        (mx, ss)
     }
 
     /// Picks each sign choice from the start configuration.
@@ -1552,16 +1175,11 @@ impl Baseline {
         (v, gr)
     }
 
-    /// Fills `jv` with the Jacobian at `z` (frames must be current).
-    /// Sets the row weights and column scales of this solve from the length scale `L` of the
-    /// start configuration: a length equation is divided by `L`, a length unknown is measured
-    /// in units of `L` (angle equations and unknowns are left alone). The iteration then works
-    /// on the dimensionless system `W J C d = -W F`, `dx = C d`, whose merit `|W F|^2`, pivot
-    /// threshold, regularisation and floors are all independent of the model's units: a model
-    /// scaled by `s` takes the same steps. `L` is the largest of the spread of the frame
-    /// origins, the offsets of the features the equations read, frame dimensions and the
-    /// equations' distances (1 if all are zero); it is translation-invariant.
-    fn equilibrate(&mut self) {
+    /// The length scale `L` of the start configuration, for [`Solver::equilibrate`]: the
+    /// largest of the spread of the frame origins, the offsets of the features the equations
+    /// read, frame dimensions and the equations' distances (1 if all are zero); it is
+    /// translation-invariant.
+    fn length_scale(&self) -> f64 {
         let z = &self.z;
         let fr = &self.frames;
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -1595,153 +1213,7 @@ impl Baseline {
         if !fr.is_empty() {
             l = l.max(hi[0] - lo[0]).max(hi[1] - lo[1]);
         }
-        if !(l > 0.0 && l.is_finite()) {
-            l = 1.0;
-        }
-        for (w, &len) in self.w.iter_mut().zip(&self.row_len) {
-            *w = if len { 1.0 / l } else { 1.0 };
-        }
-        for (c, &len) in self.cs.iter_mut().zip(&self.col_len) {
-            *c = if len { l } else { 1.0 };
-        }
-    }
-
-    /// The equilibrated Jacobian `W J C` into `jv`.
-    fn jacobian(&mut self) {
-        self.update_frames();
-        self.jv.iter_mut().for_each(|v| *v = 0.0);
-        for e in 0..self.m {
-            let (_, gr) = self.eval(e, true);
-            let gs = self.eqs[e].geoms();
-            for t in self.ent_ptr[e]..self.ent_ptr[e + 1] {
-                let side = self.ent_side[t] as usize;
-                let k = self.ent_k[t] as usize;
-                let gi = gs[side];
-                let gg = &gr[side];
-                let val = match self.geoms[gi].shape {
-                    Shape::Frame => gg[k],
-                    Shape::Line => {
-                        let f = &self.frames[gi];
-                        if k == 2 {
-                            gg[0] * (-f.h * f.c) + gg[1] * (-f.h * f.s) + gg[2]
-                        } else {
-                            gg[0] * (-f.s) + gg[1] * f.c
-                        }
-                    }
-                };
-                self.jv[self.ent_pos[t]] += val;
-            }
-        }
-        for ((v, &r), &c) in self.jv.iter_mut().zip(&self.jrow).zip(&self.jcol) {
-            *v *= self.w[r] * self.cs[c];
-        }
-    }
-
-    /// A = JᵀJ (upper triangle) and g = JᵀF.
-    fn normal_equations(&mut self) {
-        self.av.iter_mut().for_each(|v| *v = 0.0);
-        for ((&a, &b), &t) in self.pair_a.iter().zip(&self.pair_b).zip(&self.pair_t) {
-            self.av[t] += self.jv[a] * self.jv[b];
-        }
-        self.g.iter_mut().for_each(|v| *v = 0.0);
-        for e in 0..self.m {
-            for u in self.uent_ptr[e]..self.uent_ptr[e + 1] {
-                self.g[self.uent_col[u]] += self.jv[self.uent_pos[u]] * self.f[e];
-            }
-        }
-    }
-
-    /// The Newton step `J d = -F` for a square system; false if not square or singular.
-    fn newton_step(&mut self) -> bool {
-        let n = self.n;
-        if self.m != n {
-            return false;
-        }
-        for i in 0..n {
-            self.step[i] = -self.f[i];
-        }
-        let ok = if let Some(sp) = &mut self.sp {
-            let (Some(js), Some(lu)) = (&sp.j, &sp.lu) else {
-                return false;
-            };
-            let mat = SparseColMatRef::new(js.as_ref(), &self.jv);
-            match lu.factorize_numeric_lu(
-                &mut sp.numeric,
-                mat,
-                Par::Seq,
-                MemStack::new(&mut sp.buf),
-                Default::default(),
-            ) {
-                Ok(f) => {
-                    f.solve_in_place_with_conj(
-                        Conj::No,
-                        MatMut::from_column_major_slice_mut(&mut self.step[..n], n, 1),
-                        Par::Seq,
-                        MemStack::new(&mut sp.buf),
-                    );
-                    true
-                }
-                Err(_) => false,
-            }
-        } else {
-            self.lu.copy_from_slice(&self.jv);
-            dense_lu(&mut self.lu, &mut self.perm, n) && {
-                dense_lu_solve(&self.lu, &self.perm, n, &mut self.step[..n]);
-                true
-            }
-        };
-        ok && self.step[..n].iter().all(|v| v.is_finite())
-    }
-
-    /// The step `(JᵀJ + mu D) d = -JᵀF`, with `D = diag(JᵀJ)` (floored) if `scaled`, else
-    /// `D = max diag` (a Levenberg step, used for Newton's fallback). Restores `av`.
-    fn damped_step(&mut self, mu: f64, scaled: bool) -> bool {
-        let n = self.n;
-        let mx = self.diag.iter().map(|&p| self.av[p]).fold(0.0, f64::max);
-        for i in 0..n {
-            let d = self.av[self.diag[i]];
-            self.dsave[i] = d;
-            let add = if scaled {
-                mu * d.max(1e-12)
-            } else {
-                mu * mx.max(1e-300)
-            };
-            self.av[self.diag[i]] = d + add;
-            self.step[i] = -self.g[i];
-        }
-        let ok = if let Some(sp) = &mut self.sp {
-            let mat = SparseColMatRef::new(sp.a.as_ref(), &self.av);
-            match sp.chol.factorize_numeric_llt(
-                &mut sp.l,
-                mat,
-                Side::Upper,
-                Default::default(),
-                Par::Seq,
-                MemStack::new(&mut sp.buf),
-                Default::default(),
-            ) {
-                Ok(_) => {
-                    LltRef::new(&sp.chol, &sp.l).solve_in_place_with_conj(
-                        Conj::No,
-                        MatMut::from_column_major_slice_mut(&mut self.step[..n], n, 1),
-                        Par::Seq,
-                        MemStack::new(&mut sp.buf),
-                    );
-                    true
-                }
-                Err(_) => false,
-            }
-        } else {
-            self.lu.copy_from_slice(&self.av);
-            dense_cholesky(&mut self.lu, n) && {
-                dense_cholesky_solve(&self.lu, n, &mut self.step[..n]);
-                true
-            }
-        };
-        for i in 0..n {
-            self.av[self.diag[i]] = self.dsave[i];
-        }
-        ok && self.step[..n].iter().all(|v| v.is_finite())
+        l
     }
 }
 
@@ -1775,106 +1247,6 @@ fn frame(g: &Geom, z: &[f64]) -> Fr {
     }
 }
 
-/// In-place LU with partial pivoting of a row-major `n x n` matrix; false if singular.
-fn dense_lu(a: &mut [f64], perm: &mut [usize], n: usize) -> bool {
-    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if scale == 0.0 || !scale.is_finite() {
-        return false;
-    }
-    for k in 0..n {
-        let mut p = k;
-        let mut best = a[k * n + k].abs();
-        for i in k + 1..n {
-            let v = a[i * n + k].abs();
-            if v > best {
-                best = v;
-                p = i;
-            }
-        }
-        if best <= 1e-14 * scale {
-            return false;
-        }
-        perm[k] = p;
-        if p != k {
-            for j in 0..n {
-                a.swap(k * n + j, p * n + j);
-            }
-        }
-        let piv = a[k * n + k];
-        for i in k + 1..n {
-            let l = a[i * n + k] / piv;
-            a[i * n + k] = l;
-            if l != 0.0 {
-                for j in k + 1..n {
-                    a[i * n + j] -= l * a[k * n + j];
-                }
-            }
-        }
-    }
-    true
-}
-
-fn dense_lu_solve(a: &[f64], perm: &[usize], n: usize, b: &mut [f64]) {
-    for (k, &p) in perm.iter().enumerate().take(n) {
-        b.swap(k, p);
-    }
-    for i in 0..n {
-        let mut s = b[i];
-        for j in 0..i {
-            s -= a[i * n + j] * b[j];
-        }
-        b[i] = s;
-    }
-    for i in (0..n).rev() {
-        let mut s = b[i];
-        for j in i + 1..n {
-            s -= a[i * n + j] * b[j];
-        }
-        b[i] = s / a[i * n + i];
-    }
-}
-
-/// In-place Cholesky `A = UᵀU` of the upper triangle of a row-major matrix; false if not
-/// positive definite.
-fn dense_cholesky(a: &mut [f64], n: usize) -> bool {
-    for j in 0..n {
-        for i in 0..=j {
-            let mut s = a[i * n + j];
-            for k in 0..i {
-                s -= a[k * n + i] * a[k * n + j];
-            }
-            if i == j {
-                if s <= 0.0 || !s.is_finite() {
-                    return false;
-                }
-                a[j * n + j] = s.sqrt();
-            } else {
-                a[i * n + j] = s / a[i * n + i];
-            }
-        }
-    }
-    true
-}
-
-fn dense_cholesky_solve(u: &[f64], n: usize, b: &mut [f64]) {
-    // Uᵀ y = b
-    for i in 0..n {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= u[k * n + i] * b[k];
-        }
-        b[i] = s / u[i * n + i];
-    }
-    // U x = y
-    for i in (0..n).rev() {
-        let mut s = b[i];
-        for k in i + 1..n {
-            s -= u[i * n + k] * b[k];
-        }
-        b[i] = s / u[i * n + i];
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1901,33 +1273,40 @@ mod tests {
             equal(C, D);";
         let (_, model, diags) = gcs_lang::load("jacobian.gcs", text.as_bytes());
         let model = model.unwrap_or_else(|| panic!("{diags:?}"));
-        let mut b = Baseline::with_linear(&model, Linear::Dense).expect("baseline");
+        let Baseline {
+            eq: mut b,
+            mut solver,
+        } = Baseline::with_linear(&model, Linear::Dense).expect("baseline");
         let params = model.default_params();
         let (n, m) = (b.n, b.m);
         assert_eq!(m, 2 + 2 + 2 + 2 + 1 + 1);
         for (k, r) in b.consts.iter().enumerate() {
             b.z[n + k] = r.eval(&b.model.exprs, &params);
         }
-        let start = b.start_from_sketch(&params);
+        let start: Vec<f64> = b
+            .start
+            .iter()
+            .map(|r| r.eval(&model.exprs, &params))
+            .collect();
         for (i, x) in start.iter().enumerate() {
             // Off the sketch, so that nothing sits at a special point.
             b.z[i] = x + 0.05 * (i as f64 + 1.0).sin();
         }
         b.choose_sides();
-        b.equilibrate();
-        b.jacobian();
-        let analytic = b.jv.clone();
+        solver.equilibrate(b.length_scale());
+        solver.jacobian(&mut b);
+        let analytic = solver.jacobian_values().to_vec();
         for c in 0..n {
             let (x, h) = (b.z[c], 1e-6);
             b.z[c] = x + h;
-            b.residual();
-            let plus = b.f_trial.clone();
+            solver.residual(&mut b);
+            let plus = solver.trial_values().to_vec();
             b.z[c] = x - h;
-            b.residual();
-            let minus = b.f_trial.clone();
+            solver.residual(&mut b);
+            let minus = solver.trial_values().to_vec();
             b.z[c] = x;
             for e in 0..m {
-                let numeric = (plus[e] - minus[e]) / (2.0 * h) * b.cs[c];
+                let numeric = (plus[e] - minus[e]) / (2.0 * h) * solver.column_scale(c);
                 let exact = analytic[e * n + c];
                 assert!(
                     (numeric - exact).abs() <= 1e-6 * (1.0 + exact.abs()),
