@@ -97,11 +97,20 @@ fn main() {
         match solver::solve(&params, &branches, &defaults) {
             Ok(s) => {
                 let _ = writeln!(out, "ok {ns}");
+                // Every coordinate, in either space.
                 for (n, p) in s.points() {
-                    let _ = writeln!(out, "p {n} {:e} {:e}", p.x, p.y);
+                    let _ = write!(out, "p {n}");
+                    for c in p.iter() {
+                        let _ = write!(out, " {c:e}");
+                    }
+                    let _ = writeln!(out);
                 }
                 for (n, v) in s.vectors() {
-                    let _ = writeln!(out, "v {n} {:e} {:e}", v.x, v.y);
+                    let _ = write!(out, "v {n}");
+                    for c in v.iter() {
+                        let _ = write!(out, " {c:e}");
+                    }
+                    let _ = writeln!(out);
                 }
                 for (n, x) in s.scalars() {
                     let _ = writeln!(out, "s {n} {x:e}");

@@ -511,13 +511,6 @@ fn bench(
     use gcs_bench::bench;
     with_analysis(path, color, |c| {
         let (model, analysis) = (&c.model, &c.analysis);
-        if model.space == gcs_lang::model::Space::D3 {
-            eprintln!(
-                "error: cannot bench `{}`: the numeric baseline and the code generator cover 2d models; 3d models are solved by the interpreter (`gcs solve`)",
-                path.display()
-            );
-            return ExitCode::FAILURE;
-        }
         let (plan, scope) = gcs_compiler::prune::prune(model, &analysis.plan);
         let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
         let sweep = bench::sweep(model, samples);

@@ -161,6 +161,9 @@ pub(super) struct FrameFacts {
     pub(super) identity: bool,
     /// The frame's origin, to the bit.
     pub(super) origin: Option<Value>,
+    /// In space, the whole frame, to the bit, while every step that moved it had literal
+    /// inputs: what it does is then computed here, and what reads it is a literal.
+    pub(super) literal3: Option<gcs_runtime::frame::Frame3>,
 }
 
 /// What is known of the registers at the step being written.
@@ -194,6 +197,9 @@ pub(super) struct Facts {
     /// Circle-circle roots kept with their chord, so that a rotation about either centre onto
     /// the root reads it from that centre (`root_from_a`, `root_from_b`).
     pub(super) chord_roots: HashMap<Reg, ChordRoot>,
+    /// In space, the local already holding each value computed from locals alone (reading no
+    /// frame), by its code: the same locus or point asked for twice is computed once.
+    pub(super) computed: HashMap<String, String>,
 }
 
 impl Facts {

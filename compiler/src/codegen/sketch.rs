@@ -283,6 +283,7 @@ impl Context<'_> {
         let facts = |identity: bool, origin: Value| FrameFacts {
             identity,
             origin: Some(origin),
+            literal3: None,
         };
         let zero = || Value::Point(0.0, 0.0);
         match &m.geoms[g].sketch {

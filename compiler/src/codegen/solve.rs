@@ -52,6 +52,9 @@ pub(super) struct Solve<'a> {
     /// The code of each default an iteration converged on (its trial's entry), for
     /// `Solution::defaults`.
     pub(super) converged_defaults: HashMap<DefaultId, String>,
+    /// In space, frames declared with a value other than their sketch's: a frame whose
+    /// moves were all computed here (see `FrameFacts::literal3`) starts where they left it.
+    pub(super) declared_at: HashMap<GeomId, String>,
 }
 
 /// The locals `code` declares (`let name =`) and never reads.
@@ -96,6 +99,7 @@ pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         converged: false,
         error_only: HashSet::new(),
         converged_defaults: HashMap::new(),
+        declared_at: HashMap::new(),
     };
     s.write(w, layout);
 }
@@ -174,7 +178,12 @@ impl Solve<'_> {
                 Decl::Frame(g, frame) => {
                     let mutable = self.frame_writes.contains(&g);
                     let read = self.frame_reads.borrow().contains(&g);
-                    (mutable || read).then_some(Binding { mutable, ..frame })
+                    let value = self.declared_at.get(&g).cloned().unwrap_or(frame.value);
+                    (mutable || read).then_some(Binding {
+                        mutable,
+                        value,
+                        ..frame
+                    })
                 }
                 Decl::Value(binding) => Some(binding),
             })
@@ -287,12 +296,36 @@ impl Solve<'_> {
             return None;
         }
         let mut terms = Vec::new();
+        // The values when every term is a literal: the tolerance is then one, computed here.
+        let mut values: Option<Vec<f64>> = Some(Vec::new());
         for &g in worked.iter().filter(|&&g| self.cx.touched(g)) {
-            let f = self.frame(g);
-            terms.push(format!("{f}.origin.x"));
-            terms.push(format!("{f}.origin.y"));
-            if self.cx.d3 {
-                terms.push(format!("{f}.origin.z"));
+            let dim_literal = || match self.dims.get(&g) {
+                None => Some(None),
+                Some(_) if self.deferred.contains(&g) || self.cx.dim_set(g) => None,
+                Some(_) => self.cx.sketch_dim_value3(g).map(Some),
+            };
+            match (
+                self.facts.frames.get(&g).and_then(|f| f.literal3),
+                dim_literal(),
+            ) {
+                (Some(f), Some(dim)) if self.cx.d3 => {
+                    if let Some(v) = values.as_mut() {
+                        v.extend(f.origin.iter().copied().chain(dim));
+                    }
+                }
+                _ => values = None,
+            }
+            // A frame known to the bit: its sketch's coordinates, as literals (its local may
+            // be declared where the plan's first moves leave it).
+            if let Some(f) = self.facts.frames.get(&g).and_then(|f| f.literal3) {
+                terms.extend(f.origin.iter().map(|x| super::writer::float(*x)));
+            } else {
+                let f = self.frame(g);
+                terms.push(format!("{f}.origin.x"));
+                terms.push(format!("{f}.origin.y"));
+                if self.cx.d3 {
+                    terms.push(format!("{f}.origin.z"));
+                }
             }
             if let Some(d) = self.dims.get(&g) {
                 if self.deferred.contains(&g) {
@@ -302,6 +335,13 @@ impl Solve<'_> {
                     terms.push(d.clone());
                 }
             }
+        }
+        if let Some(v) = values {
+            let tol = gcs_runtime::tol::CHECK_REL * (1.0 + gcs_runtime::tol::scale(&v));
+            return Some(format!(
+                "let tol = {}; // CHECK_REL * (1 + scale), of the sketch's constants",
+                super::writer::float(tol)
+            ));
         }
         Some(format!(
             "let tol = gcs_runtime::tol::CHECK_REL * (1.0 + gcs_runtime::tol::scale(&[{}]));",
@@ -502,7 +542,10 @@ impl Solve<'_> {
         w.open("Ok(Solution {");
         for field in &layout.fields {
             let local = match field.holds {
-                Holds::Frame(g) => self.frame(g),
+                Holds::Frame(g) => match self.facts.frames.get(&g).and_then(|f| f.literal3) {
+                    Some(f) => super::spatial::frame3(&f),
+                    None => self.frame(g),
+                },
                 Holds::Dim(g) => self.dims[&g].clone(),
                 Holds::Local(f) => self.locals[&f].clone(),
                 Holds::LineSketch(g) => match super::api::line_sketch(self.cx, g) {

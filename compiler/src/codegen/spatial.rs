@@ -62,6 +62,15 @@ fn vector3(v: &nalgebra::Vector3<f64>) -> String {
     }
 }
 
+/// A frame literal, to the bit.
+pub(super) fn frame3(f: &gcs_runtime::frame::Frame3) -> String {
+    format!(
+        "Frame3::new({}, {})",
+        point3(&f.origin),
+        rotation3(&f.rotation)
+    )
+}
+
 /// A rotation literal: its quaternion's coordinates, to the bit.
 fn rotation3(q: &nalgebra::UnitQuaternion<f64>) -> String {
     if *q == nalgebra::UnitQuaternion::identity() {
@@ -157,15 +166,12 @@ impl Context<'_> {
     pub(super) fn sketch_frame3(&self, g: GeomId) -> (String, FrameFacts) {
         let facts = FrameFacts::default();
         if self.all_constant(&self.sketch_exprs(g)) {
-            let ctor = match self.sketch3().frames.get(&g) {
-                Some(f) => format!(
-                    "Frame3::new({}, {})",
-                    point3(&f.origin),
-                    rotation3(&f.rotation)
-                ),
-                None => "Frame3::identity()".into(),
+            let frame = (self.sketch3().frames.get(&g).copied()).unwrap_or_default();
+            let facts = FrameFacts {
+                literal3: Some(frame),
+                ..facts
             };
-            return (ctor, facts);
+            return (frame3(&frame), facts);
         }
         let checked = ".unwrap_or_else(UnitQuaternion::identity)";
         let ctor = match &self.model.geoms[g].sketch {
@@ -222,6 +228,13 @@ impl Context<'_> {
             _ => "Frame3::identity()".into(),
         };
         (ctor, facts)
+    }
+
+    /// The sketch value of a 3d segment's length or circle's radius when its sketch is
+    /// constant.
+    pub(super) fn sketch_dim_value3(&self, g: GeomId) -> Option<f64> {
+        let constant = self.all_constant(&self.sketch_exprs(g));
+        (self.d3 && constant).then(|| self.sketch3().dim(g))
     }
 
     /// The sketch value of a 3d segment's length or circle's radius: a literal when constant.
@@ -354,17 +367,6 @@ impl Context<'_> {
         out
     }
 
-    /// Whether feature `g`'s global position or direction is the same at every step of every
-    /// solve: its geom is never moved nor resized, and its sketch is constant. The solve
-    /// then reads it as a literal, computed as the interpreter's configuration computes it.
-    fn constant_feature3(&self, g: GeomId) -> bool {
-        let top = self.model.top_level_of(g);
-        !self.moved(top)
-            && !self.dim_set(top)
-            && self.all_constant(&self.sketch_exprs(top))
-            && !self.local_is_param3(g)
-    }
-
     /// Whether a 3d member's local coordinates (or a marker's axes) depend on params.
     pub(super) fn local_is_param3(&self, g: GeomId) -> bool {
         let m = self.model;
@@ -480,6 +482,91 @@ impl Solve<'_> {
         }
     }
 
+    /// The frame of top-level geom `g` to the bit, while it is known so.
+    fn literal_frame3(&self, g: GeomId) -> Option<gcs_runtime::frame::Frame3> {
+        self.facts.frames.get(&g).and_then(|f| f.literal3)
+    }
+
+    /// The global position of point feature `g` when its frame and local coordinates are
+    /// known to the bit: computed here as the interpreter's configuration computes it.
+    fn literal_point3(&self, g: GeomId) -> Option<nalgebra::Point3<f64>> {
+        let (cx, m) = (self.cx, self.cx.model);
+        let f = self.literal_frame3(m.top_level_of(g))?;
+        Some(match m.geoms[g].owner {
+            Owner::TopLevel => f.origin,
+            Owner::Member(_) if cx.local_is_param3(g) => return None,
+            Owner::Member(_) => f.point_to_global(
+                &(cx.sketch3().local_point(g)).unwrap_or_else(nalgebra::Point3::origin),
+            ),
+            Owner::Part(owner, Part::End) if cx.dim_set(owner) => return None,
+            Owner::Part(owner, Part::End) => f.origin + f.x_axis() * cx.sketch3().dim(owner),
+            Owner::Part(..) => f.origin,
+        })
+    }
+
+    /// The global direction of vector feature `g` when known to the bit (see
+    /// [`Solve::literal_point3`]).
+    fn literal_dir3(&self, g: GeomId) -> Option<nalgebra::Vector3<f64>> {
+        let (cx, m) = (self.cx, self.cx.model);
+        let f = self.literal_frame3(m.top_level_of(g))?;
+        Some(match m.geoms[g].owner {
+            Owner::Member(_) | Owner::Part(_, Part::AxisX | Part::AxisZ)
+                if cx.local_is_param3(g) =>
+            {
+                return None
+            }
+            Owner::Member(_) | Owner::Part(_, Part::AxisX | Part::AxisZ) => f.vector_to_global(
+                &(cx.sketch3().local_dir(g)).unwrap_or_else(nalgebra::Vector3::x),
+            ),
+            Owner::Part(_, Part::Normal) => f.z_axis(),
+            _ => f.x_axis(),
+        })
+    }
+
+    /// From here on the code holds frame `g`: if it was known to the bit, its local starts
+    /// where the moves computed here left it (no code has read or moved it yet).
+    fn materialize(&mut self, g: GeomId) {
+        let Some(facts) = self.facts.frames.get_mut(&g) else {
+            return;
+        };
+        if let Some(f) = facts.literal3.take() {
+            self.declared_at.insert(g, frame3(&f));
+        }
+    }
+
+    /// Translates `geoms` so that point `from` lands on `to`: computed here for frames known
+    /// to the bit when both points are literals, as the interpreter computes it.
+    pub(super) fn translate3(&mut self, w: &mut Writer, geoms: &[GeomId], from: Reg, to: Reg) {
+        let (fv, tv) = (self.facts.value(from).clone(), self.facts.value(to).clone());
+        if fv.same(&tv, self.cx) {
+            // From a point onto itself: nothing moves.
+            return;
+        }
+        let shift = match (&fv, &tv) {
+            (Value::Point3(a), Value::Point3(b)) => {
+                Some(nalgebra::Point3::from(*b) - nalgebra::Point3::from(*a))
+            }
+            _ => None,
+        };
+        let mut local = None;
+        for &g in geoms {
+            if let (Some(d), Some(mut f)) = (shift, self.literal_frame3(g)) {
+                f.translate(&d);
+                self.facts.frames.entry(g).or_default().literal3 = Some(f);
+                continue;
+            }
+            self.materialize(g);
+            let shift = local.get_or_insert_with(|| {
+                let name = self.names.fresh("shift");
+                w.line(&format!("let {name} = {} - {};", tv.code(), fv.code()));
+                name
+            });
+            let frame = self.frame_local(g);
+            w.line(&format!("{frame}.translate(&{shift});"));
+            self.frame_writes.insert(g);
+        }
+    }
+
     /// The kind of register `r`'s value, from the step that defines it.
     fn kind3(&self, r: Reg) -> Kind {
         let Some(&i) = self.cx.defined_at.get(&r) else {
@@ -532,9 +619,12 @@ impl Solve<'_> {
                     Owner::TopLevel => format!("{n}_origin"),
                     _ => n.clone(),
                 };
-                let value = match self.cx.constant_feature3(*g) {
-                    true => Value::Point3(self.cx.sketch3().point(m, *g).coords.into()),
-                    false => Value::Expr(self.point_value3(*g)),
+                let value = match self.literal_point3(*g) {
+                    Some(p) => Value::Point3(p.coords.into()),
+                    None => {
+                        self.materialize(m.top_level_of(*g));
+                        Value::Expr(self.point_value3(*g))
+                    }
                 };
                 self.define_or_alias(w, r, &n, value);
             }
@@ -545,9 +635,12 @@ impl Solve<'_> {
                 } else {
                     format!("{n}_dir")
                 };
-                let value = match self.cx.constant_feature3(*g) {
-                    true => Value::Vector3(self.cx.sketch3().dir(m, *g).into()),
-                    false => Value::Expr(self.dir_value3(*g)),
+                let value = match self.literal_dir3(*g) {
+                    Some(v) => Value::Vector3(v.into()),
+                    None => {
+                        self.materialize(m.top_level_of(*g));
+                        Value::Expr(self.dir_value3(*g))
+                    }
                 };
                 self.define_or_alias(w, r, &n, value);
             }
@@ -558,19 +651,19 @@ impl Solve<'_> {
                     self.r(*from),
                     self.r(*dir)
                 );
-                self.define(w, r, "length", &code);
+                self.define_pure(w, r, "length", &code);
             }
             Op::DirectionTo { from, to } => {
                 let code = self.unit3(i, &format!("({} - {})", self.r(*to), self.r(*from)));
-                self.define(w, r, "direction", &code);
+                self.define_pure(w, r, "direction", &code);
             }
             Op::Opposite(d) => {
                 let code = format!("-{}", self.r(*d));
-                self.define(w, r, "opposite", &code);
+                self.define_pure(w, r, "opposite", &code);
             }
             Op::Across(d) => {
                 let code = self.unit3(i, &format!("frame::perpendicular(&{})", self.r(*d)));
-                self.define(w, r, "across", &code);
+                self.define_pure(w, r, "across", &code);
             }
             Op::AngleAbout { u, v, axis } => {
                 let code = format!(
@@ -579,7 +672,7 @@ impl Solve<'_> {
                     self.r(*v),
                     self.r(*axis)
                 );
-                self.define(w, r, "angle", &code);
+                self.define_pure(w, r, "angle", &code);
             }
             Op::HelixAdvance { now, turn, pitch } => {
                 let code = format!(
@@ -616,7 +709,7 @@ impl Solve<'_> {
                 ));
                 self.fail_on_contact(w, *constraint, &turns, None);
                 let code = self.root(&turns, *branch, *constraint);
-                self.define(w, r, "turned", &code);
+                self.define_pure(w, r, "turned", &code);
             }
             Op::PlaneTurn {
                 base,
@@ -647,7 +740,7 @@ impl Solve<'_> {
                     "frame::plane_turn(&({cone}.0 / {len}), {cone}.1.clamp(-1.0, 1.0), &{})",
                     self.r(*normal)
                 );
-                self.define(w, r, "normal", &code);
+                self.define_pure(w, r, "normal", &code);
             }
             Op::PlaneAxisTurn {
                 base,
@@ -685,11 +778,11 @@ impl Solve<'_> {
                 ));
                 w.close("}");
                 let code = self.root(&turns, *branch, *constraint);
-                self.define(w, r, "normal", &code);
+                self.define_pure(w, r, "normal", &code);
             }
             Op::Midpoint { a, b } => {
                 let code = format!("locus3d::midpoint({}, {})", self.r(*a), self.r(*b));
-                self.define(w, r, "midpoint", &code);
+                self.define_pure(w, r, "midpoint", &code);
             }
             Op::Reflect { point, through } => {
                 let code = format!(
@@ -697,7 +790,7 @@ impl Solve<'_> {
                     self.r(*point),
                     self.r(*through)
                 );
-                self.define(w, r, "reflected", &code);
+                self.define_pure(w, r, "reflected", &code);
             }
             Op::MirrorPlane {
                 point,
@@ -710,7 +803,7 @@ impl Solve<'_> {
                     self.r(*normal),
                     self.r(*point)
                 );
-                self.define(w, r, "mirrored", &code);
+                self.define_pure(w, r, "mirrored", &code);
             }
             Op::PlaneNormal { a, b, c } => {
                 let code = self.unit3(
@@ -722,16 +815,16 @@ impl Solve<'_> {
                         a = self.r(*a)
                     ),
                 );
-                self.define(w, r, "normal", &code);
+                self.define_pure(w, r, "normal", &code);
             }
             Op::WorldAxis(k) => {
                 let code = ["Vector3::x()", "Vector3::y()", "Vector3::z()"][usize::from(*k).min(2)];
-                self.define(w, r, "world_axis", code);
+                self.define_pure(w, r, "world_axis", code);
             }
             Op::Coordinate { point, axis } => {
                 let c = ["x", "y", "z"][usize::from(*axis).min(2)];
                 let code = format!("{}.{c}", self.r(*point));
-                self.define(w, r, c, &code);
+                self.define_pure(w, r, c, &code);
             }
             Op::PointAt { x: a, y, z } => {
                 let code = format!(
@@ -740,7 +833,7 @@ impl Solve<'_> {
                     self.r(*y),
                     self.r(*z)
                 );
-                self.define(w, r, "point", &code);
+                self.define_pure(w, r, "point", &code);
             }
             Op::LocusParam { locus, point } => {
                 let (l, q) = (self.r(*locus), self.r(*point));
@@ -748,7 +841,7 @@ impl Solve<'_> {
                     Kind::Circle => format!("{l}.angle_of(&{q})"),
                     _ => format!("({q} - {l}.point).dot(&{l}.dir)"),
                 };
-                self.define(w, r, "param", &code);
+                self.define_pure(w, r, "param", &code);
             }
             Op::LocusPoint { locus, at } => {
                 let (l, t) = (self.r(*locus), self.r(*at));
@@ -756,7 +849,7 @@ impl Solve<'_> {
                     Kind::Circle => format!("{l}.point_at({t})"),
                     _ => format!("{l}.point + {l}.dir * {t}"),
                 };
-                self.define(w, r, "on_locus", &code);
+                self.define_pure(w, r, "on_locus", &code);
             }
             Op::TurnedAbout { dir, axis, angle } => {
                 let code = format!(
@@ -765,7 +858,7 @@ impl Solve<'_> {
                     self.r(*angle),
                     self.r(*dir)
                 );
-                self.define(w, r, "turned", &code);
+                self.define_pure(w, r, "turned", &code);
             }
             Op::Line {
                 point,
@@ -773,11 +866,11 @@ impl Solve<'_> {
                 offset: None,
             } => {
                 let code = format!("Line3::new({}, {})", self.r(*point), self.unit3_of(i, *dir));
-                self.define(w, r, "line", &code);
+                self.define_pure(w, r, "line", &code);
             }
             Op::ParallelLine { line, through } => {
                 let code = format!("Line3::new({}, {}.dir)", self.r(*through), self.r(*line));
-                self.define(w, r, "line", &code);
+                self.define_pure(w, r, "line", &code);
             }
             Op::Plane {
                 point,
@@ -791,7 +884,7 @@ impl Solve<'_> {
                     None => self.r(*point),
                 };
                 let code = format!("Plane::from_point_normal(&{at}, &{n})");
-                self.define(w, r, "plane", &code);
+                self.define_pure(w, r, "plane", &code);
             }
             Op::ParallelPlane { plane, through } => {
                 let code = format!(
@@ -799,7 +892,7 @@ impl Solve<'_> {
                     self.r(*through),
                     self.r(*plane)
                 );
-                self.define(w, r, "plane", &code);
+                self.define_pure(w, r, "plane", &code);
             }
             Op::Circle3 {
                 center,
@@ -812,11 +905,11 @@ impl Solve<'_> {
                     self.unit3_of(i, *normal),
                     self.r(*radius)
                 );
-                self.define(w, r, "circle", &code);
+                self.define_pure(w, r, "circle", &code);
             }
             Op::Sphere { center, radius } => {
                 let code = format!("Sphere::new({}, {})", self.r(*center), self.r(*radius));
-                self.define(w, r, "sphere", &code);
+                self.define_pure(w, r, "sphere", &code);
             }
             Op::Cylinder { point, dir, radius } => {
                 let code = format!(
@@ -825,7 +918,7 @@ impl Solve<'_> {
                     self.unit3_of(i, *dir),
                     self.r(*radius)
                 );
-                self.define(w, r, "cylinder", &code);
+                self.define_pure(w, r, "cylinder", &code);
             }
             Op::ShiftedCylinder { cylinder, from, to } => {
                 let c = self.r(*cylinder);
@@ -834,7 +927,7 @@ impl Solve<'_> {
                     self.r(*to),
                     self.r(*from)
                 );
-                self.define(w, r, "cylinder_moved", &code);
+                self.define_pure(w, r, "cylinder_moved", &code);
             }
             Op::SphereThrough {
                 center,
@@ -846,7 +939,7 @@ impl Solve<'_> {
                     Some(k) => float(*k),
                     None => format!("({} - {c}).norm()", self.r(*through)),
                 };
-                self.define(w, r, "sphere", &format!("Sphere::new({c}, {rad})"));
+                self.define_pure(w, r, "sphere", &format!("Sphere::new({c}, {rad})"));
             }
             Op::ShiftedSphere { sphere, from, to } => {
                 let s = self.r(*sphere);
@@ -855,7 +948,7 @@ impl Solve<'_> {
                     self.r(*to),
                     self.r(*from)
                 );
-                self.define(w, r, "sphere_moved", &code);
+                self.define_pure(w, r, "sphere_moved", &code);
             }
             Op::ShiftedCircle { circle, from, to } => {
                 let c = self.r(*circle);
@@ -864,7 +957,7 @@ impl Solve<'_> {
                     self.r(*to),
                     self.r(*from)
                 );
-                self.define(w, r, "circle_moved", &code);
+                self.define_pure(w, r, "circle_moved", &code);
             }
             Op::Orbit {
                 pivot,
@@ -877,7 +970,7 @@ impl Solve<'_> {
                     self.unit3_of(i, *axis),
                     self.r(*through)
                 );
-                self.define(w, r, "orbit", &code);
+                self.define_pure(w, r, "orbit", &code);
             }
             Op::Nearest { locus, point } => {
                 let (l, q) = (self.r(*locus), self.r(*point));
@@ -886,7 +979,18 @@ impl Solve<'_> {
                     Kind::Plane => format!("{l}.project(&{q})"),
                     _ => format!("{l}.nearest(&{q}){}", self.or_degenerate(i)),
                 };
-                self.define(w, r, "nearest", &code);
+                self.define_pure(w, r, "nearest", &code);
+            }
+            Op::Onto {
+                locus,
+                point,
+                constraint,
+            } if self.root_of(*point, *locus) => {
+                // A root of an intersection with this very locus lies on it to a few ulps
+                // (the runtime's intersections promise it, far below `tol`): nothing to test.
+                let _ = constraint;
+                let p = self.facts.value(*point).clone();
+                self.facts.regs.insert(r, p);
             }
             Op::Onto {
                 locus,
@@ -925,7 +1029,7 @@ impl Solve<'_> {
                         Kind::Cylinder => format!("{l}.signed_distance(&{q})"),
                         _ => format!("{l}.distance(&{q})"),
                     };
-                    self.define(w, r, "error", &code);
+                    self.define_pure(w, r, "error", &code);
                 }
             }
             Op::Error {
@@ -934,10 +1038,46 @@ impl Solve<'_> {
             } => {
                 if !self.converged {
                     let code = self.error_code3(residual, *component);
-                    self.define(w, r, "error", &code);
+                    self.define_pure(w, r, "error", &code);
                 }
             }
             op => panic!("bug in gcs: step {i} ({op:?}) is no step of a spatial plan"),
+        }
+    }
+
+    /// Whether register `point` is a root of an intersection one of whose loci is the value
+    /// of register `locus`.
+    fn root_of(&self, point: Reg, locus: Reg) -> bool {
+        let Some(&i) = self.cx.defined_at.get(&point) else {
+            return false;
+        };
+        // A line's crossing with a circle of space is on the circle only to rounding over
+        // the line's slope across its plane: that one is tested.
+        let Op::Intersect { a, b, meet, .. } = self.cx.plan.steps[i].op else {
+            return false;
+        };
+        if meet == Meet::LineCircle {
+            return false;
+        }
+        let l = self.facts.value(locus);
+        [a, b]
+            .iter()
+            .any(|x| self.facts.regs.get(x).is_some_and(|v| v.same(l, self.cx)))
+    }
+
+    /// `let {name} = {code};` for register `r`, a value of locals alone: the local that
+    /// already holds it when one does (the same locus built twice, for an action and for the
+    /// check that the point it reached is on it).
+    fn define_pure(&mut self, w: &mut Writer, r: Reg, name: &str, code: &str) {
+        if let Some(local) = self.facts.computed.get(code) {
+            let value = Value::Local(local.clone());
+            self.facts.regs.insert(r, value);
+            return;
+        }
+        self.define(w, r, name, code);
+        if let Value::Local(local) = self.facts.value(r) {
+            let local = local.clone();
+            self.facts.computed.insert(code.to_string(), local);
         }
     }
 
@@ -1073,13 +1213,74 @@ impl Solve<'_> {
                 panic!("bug in gcs: a rotation about the plane's normal reached the spatial code generator")
             }
         };
+        // With every operand a literal, the rotation is computed here, as the interpreter
+        // computes it, and so are the frames known to the bit.
+        if let Some(q) = self.literal_rotation3((pivot, axis), (from, to), points) {
+            let c = match self.facts.value(pivot) {
+                Value::Point3(c) => nalgebra::Point3::from(*c),
+                _ => unreachable!("a literal rotation has a literal pivot"),
+            };
+            let mut turn = None;
+            for &g in geoms {
+                if let Some(mut f) = self.literal_frame3(g) {
+                    f.rotate_about_by(&c, &q);
+                    self.facts.frames.entry(g).or_default().literal3 = Some(f);
+                    continue;
+                }
+                let turn = turn.get_or_insert_with(|| {
+                    let name = self.names.fresh("turn");
+                    w.line(&format!("let {name} = {};", rotation3(&q)));
+                    name
+                });
+                let frame = self.frame_local(g);
+                w.line(&format!(
+                    "{frame}.rotate_about_by(&{c}, &{turn});",
+                    c = self.r(pivot)
+                ));
+                self.frame_writes.insert(g);
+            }
+            return;
+        }
         let turn = self.names.fresh("turn");
         w.line(&format!("let {turn} = {code};"));
         for &g in geoms {
+            self.materialize(g);
             let frame = self.frame_local(g);
             w.line(&format!("{frame}.rotate_about_by(&{c}, &{turn});"));
             self.frame_writes.insert(g);
         }
+    }
+
+    /// The rotation of [`Solve::rotate3`] when its pivot, points or directions and axis are
+    /// all literals: the interpreter's `rotation`, run here.
+    fn literal_rotation3(
+        &self,
+        (pivot, axis): (Reg, RotationAxis),
+        (from, to): (Reg, Reg),
+        points: bool,
+    ) -> Option<nalgebra::UnitQuaternion<f64>> {
+        use nalgebra::Vector3 as V;
+        let vector = |r: Reg| match self.facts.value(r) {
+            Value::Point3(p) | Value::Vector3(p) => Some(V::from(*p)),
+            _ => None,
+        };
+        let c = match self.facts.value(pivot) {
+            Value::Point3(c) => V::from(*c),
+            _ => return None,
+        };
+        let (mut f, mut t) = (vector(from)?, vector(to)?);
+        if points {
+            (f, t) = (f - c, t - c);
+        }
+        use gcs_runtime::frame as rt;
+        Some(match axis {
+            RotationAxis::Shortest => rt::rotation_between3(&f, &t, &rt::perpendicular(&f)),
+            RotationAxis::Along(a) => {
+                let a = vector(a)?;
+                rt::rotation_about_axis(&a, rt::signed_angle3(&f, &t, &a))
+            }
+            RotationAxis::Normal => return None,
+        })
     }
 
     /// The call of the signed error of a relation in space (`component`: a coincidence's

@@ -14,6 +14,9 @@ impl Solve<'_> {
     /// Writes step `i` of the plan.
     pub(super) fn step(&mut self, w: &mut Writer, i: usize, step: &Step) {
         match &step.op {
+            Op::Translate { geoms, from, to } if self.cx.d3 => {
+                self.translate3(w, geoms, *from, *to)
+            }
             Op::Translate { geoms, from, to } => self.translate(w, geoms, *from, *to),
             Op::RotatePoint {
                 geoms,

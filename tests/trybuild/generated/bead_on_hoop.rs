@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -233,36 +233,10 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("theta", params.theta), ("gap", params.gap)])?;
     // The sketch: where every geom starts.
-    let hoop = Frame3::new(
-        Point3::new(0.0, 0.0, 2.0),
-        UnitQuaternion::new_unchecked(Quaternion::new(
-            0.9238795325112867,
-            -0.3826834323650898,
-            0.0,
-            0.0,
-        )),
-    );
     let hoop_radius = 3.0;
-    let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut rod = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut bead = Frame3::new(Point3::new(2.0, 1.0, 1.0), UnitQuaternion::identity());
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                hoop.origin.x,
-                hoop.origin.y,
-                hoop.origin.z,
-                hoop_radius,
-                ground.origin.x,
-                ground.origin.y,
-                ground.origin.z,
-                rod.origin.x,
-                rod.origin.y,
-                rod.origin.z,
-                bead.origin.x,
-                bead.origin.y,
-                bead.origin.z,
-            ]));
+    let tol = 4e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // on(bead, hoop) (bead_on_hoop.gcs:12)
     let circle = Circle3::new(
@@ -270,28 +244,17 @@ pub fn solve(
         Vector3::new(0.0, std::f64::consts::FRAC_1_SQRT_2, 0.7071067811865475),
         hoop_radius,
     );
-    let bead_origin = bead.origin;
-    let nearest = circle.nearest(&bead_origin).ok_or_else(|| {
+    let nearest = circle.nearest(&Point3::new(2.0, 1.0, 1.0)).ok_or_else(|| {
         SolveError::new("on_bead_hoop", "on(bead, hoop)", ErrorKind::Degenerate, 0.0)
     })?;
-    let shift = nearest - bead_origin;
+    let shift = nearest - Point3::new(2.0, 1.0, 1.0);
     bead.translate(&shift);
 
     // revolute(rod.base, ground.pivot) (bead_on_hoop.gcs:10)
-    let rod_base = rod.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift_2 = Point3::new(0.0, 0.0, 0.0) - rod_base;
-    rod.translate(&shift_2);
-    let rod_base_z = rod.vector_to_global(&Vector3::z());
-    let turn = frame::rotation_between3(
-        &rod_base_z,
-        &Vector3::z(),
-        &frame::perpendicular(&rod_base_z),
-    );
-    rod.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // swing: offset_x(ground.pivot, rod.base) = theta (bead_on_hoop.gcs:11)
-    let rod_base_z_2 = rod.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(Vector3::z(), rod_base_z_2, 1.0);
+    let residual = check::space::parallel(Vector3::z(), Vector3::z(), 1.0);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "swing",
@@ -301,12 +264,11 @@ pub fn solve(
         ));
     }
     let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
-    let rod_base_x = rod.vector_to_global(&Vector3::x());
-    let turn_2 = frame::rotation_about_axis(
+    let turn = frame::rotation_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(&rod_base_x, &turned, &Vector3::z()),
+        frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
     );
-    rod.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+    rod.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // slide: distance(bead, rod.tip) = gap (bead_on_hoop.gcs:13)
     let rod_tip = rod.point_to_global(&Point3::new(2.0, 0.0, 3.0));
@@ -320,7 +282,7 @@ pub fn solve(
         ));
     }
     let sphere = Sphere::new(rod_tip, params.gap);
-    let bead_origin_2 = bead.origin;
+    let bead_origin = bead.origin;
     let slide_meeting = intersect3d::circle_sphere(&circle, &sphere);
     if let Some(e) = SolveError::from_contact(
         "slide",
@@ -340,13 +302,21 @@ pub fn solve(
                 slide_meeting.roots.len() as f64,
             )
         })?;
-    let shift_3 = slide - bead_origin_2;
-    bead.translate(&shift_3);
+    let shift_2 = slide - bead_origin;
+    bead.translate(&shift_2);
 
     Ok(Solution {
-        hoop,
+        hoop: Frame3::new(
+            Point3::new(0.0, 0.0, 2.0),
+            UnitQuaternion::new_unchecked(Quaternion::new(
+                0.9238795325112867,
+                -0.3826834323650898,
+                0.0,
+                0.0,
+            )),
+        ),
         hoop_radius,
-        ground,
+        ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
         rod,
         bead,
         branches: *branches,

@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -494,51 +494,35 @@ pub fn solve(
     )
     .unwrap_or_else(UnitQuaternion::identity)
         * Vector3::x();
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                ground.origin.x,
-                ground.origin.y,
-                ground.origin.z,
-                crank.origin.x,
-                crank.origin.y,
-                crank.origin.z,
-                coupler.origin.x,
-                coupler.origin.y,
-                coupler.origin.z,
-                rocker.origin.x,
-                rocker.origin.y,
-                rocker.origin.z,
-            ]));
+    let tol = 1.766928187157669e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // input: offset_x(ground.j1, crank.start) = theta (bennett.gcs:28)
-    let crank_origin = crank.origin;
-    let crank_start_z = crank.vector_to_global(&Vector3::z());
-    let turn = frame::rotation_between3(
-        &crank_start_z,
-        &Vector3::z(),
-        &frame::perpendicular(&crank_start_z),
-    );
-    crank.rotate_about_by(&crank_origin, &turn);
     let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
-    let crank_origin_2 = crank.origin;
-    let crank_start_x = crank.vector_to_global(&Vector3::x());
-    let turn_2 = frame::rotation_about_axis(
+    let turn = frame::rotation_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(&crank_start_x, &turned, &Vector3::z()),
+        frame::signed_angle3(
+            &Vector3::new(0.7660444431189781, 0.6427876096865394, 0.0),
+            &turned,
+            &Vector3::z(),
+        ),
     );
-    crank.rotate_about_by(&crank_origin_2, &turn_2);
+    crank.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // revolute(coupler.start, crank.end) (bennett.gcs:29)
     let crank_end_z = crank.vector_to_global(&crank_end_z_local);
-    let coupler_origin = coupler.origin;
-    let coupler_start_z = coupler.vector_to_global(&Vector3::z());
-    let turn_3 = frame::rotation_between3(
-        &coupler_start_z,
+    let turn_2 = frame::rotation_between3(
+        &Vector3::new(0.321393804843271, -0.3830222215594887, 0.8660254037844384),
         &crank_end_z,
-        &frame::perpendicular(&coupler_start_z),
+        &frame::perpendicular(&Vector3::new(
+            0.321393804843271,
+            -0.3830222215594887,
+            0.8660254037844384,
+        )),
     );
-    coupler.rotate_about_by(&coupler_origin, &turn_3);
+    coupler.rotate_about_by(
+        &Point3::new(0.766044443118978, 0.642787609686539, 0.0),
+        &turn_2,
+    );
 
     // revolute(crank.start, ground.j1) (bennett.gcs:27)
     let crank_start = crank.point_to_global(&Point3::new(0.0, 0.0, 0.0));
@@ -548,8 +532,8 @@ pub fn solve(
     let coupler_start = coupler.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let shift_2 = crank_end - coupler_start;
     coupler.translate(&shift_2);
-    let crank_start_z_2 = crank.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(crank_start_z_2, Vector3::z(), 1.0);
+    let crank_start_z = crank.vector_to_global(&Vector3::z());
+    let residual = check::space::parallel(crank_start_z, Vector3::z(), 1.0);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "revolute_crank_start_ground_j1",
@@ -566,12 +550,12 @@ pub fn solve(
     rocker.translate(&shift_3);
     let ground_j4_z = ground.vector_to_global(&ground_j4_z_local);
     let rocker_end_z = rocker.vector_to_global(&rocker_end_z_local);
-    let turn_4 = frame::rotation_between3(
+    let turn_3 = frame::rotation_between3(
         &rocker_end_z,
         &ground_j4_z,
         &frame::perpendicular(&rocker_end_z),
     );
-    rocker.rotate_about_by(&ground_j4, &turn_4);
+    rocker.rotate_about_by(&ground_j4, &turn_3);
 
     // revolute(rocker.start, coupler.end) (bennett.gcs:30)
     let rocker_start = rocker.point_to_global(&Point3::new(0.0, 0.0, 0.0));
@@ -619,28 +603,7 @@ pub fn solve(
                 revolute_rocker_start_coupler_end_meeting.roots.len() as f64,
             )
         })?;
-    let orbit_3 = Circle3::orbit(
-        &ground_j4,
-        &frame::unit3(&ground_j4_z).ok_or_else(|| {
-            SolveError::new(
-                "revolute_rocker_start_coupler_end",
-                "revolute(rocker.start, coupler.end)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-        &rocker_start,
-    );
-    let gap = orbit_3.distance(&revolute_rocker_start_coupler_end);
-    if gap.is_nan() || gap > tol {
-        return Err(SolveError::new(
-            "revolute_rocker_start_coupler_end",
-            "revolute(rocker.start, coupler.end)",
-            ErrorKind::Inconsistent,
-            gap,
-        ));
-    }
-    let turn_5 = frame::rotation_about_axis(
+    let turn_4 = frame::rotation_about_axis(
         &ground_j4_z,
         frame::signed_angle3(
             &(rocker_start - ground_j4),
@@ -648,29 +611,8 @@ pub fn solve(
             &ground_j4_z,
         ),
     );
-    rocker.rotate_about_by(&ground_j4, &turn_5);
-    let orbit_4 = Circle3::orbit(
-        &crank_end,
-        &frame::unit3(&crank_end_z).ok_or_else(|| {
-            SolveError::new(
-                "revolute_rocker_start_coupler_end",
-                "revolute(rocker.start, coupler.end)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-        &coupler_end,
-    );
-    let gap_2 = orbit_4.distance(&revolute_rocker_start_coupler_end);
-    if gap_2.is_nan() || gap_2 > tol {
-        return Err(SolveError::new(
-            "revolute_rocker_start_coupler_end",
-            "revolute(rocker.start, coupler.end)",
-            ErrorKind::Inconsistent,
-            gap_2,
-        ));
-    }
-    let turn_6 = frame::rotation_about_axis(
+    rocker.rotate_about_by(&ground_j4, &turn_4);
+    let turn_5 = frame::rotation_about_axis(
         &crank_end_z,
         frame::signed_angle3(
             &(coupler_end - crank_end),
@@ -678,7 +620,7 @@ pub fn solve(
             &crank_end_z,
         ),
     );
-    coupler.rotate_about_by(&crank_end, &turn_6);
+    coupler.rotate_about_by(&crank_end, &turn_5);
     let rocker_start_z = rocker.vector_to_global(&Vector3::z());
     let coupler_end_z = coupler.vector_to_global(&coupler_end_z_local);
     let residual_2 = check::space::parallel(rocker_start_z, coupler_end_z, 1.0);

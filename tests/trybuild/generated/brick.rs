@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -163,42 +163,21 @@ pub fn solve(
 ) -> Result<Solution, SolveError> {
     let _ = (params, branches, defaults);
     // The sketch: where every geom starts.
-    let g1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
-    let g2 = Frame3::new(Point3::new(4.0, 0.0, 0.0), UnitQuaternion::identity());
-    let g3 = Frame3::new(Point3::new(0.0, 3.0, 0.0), UnitQuaternion::identity());
     let mut brick = Frame3::new(
-        Point3::new(10.0, 5.0, 2.0),
+        Point3::new(0.0, 0.0, 0.0),
         UnitQuaternion::new_unchecked(Quaternion::new(
-            0.9396926207859084,
-            0.24184476264797522,
-            0.24184476264797522,
+            0.9684408309910915,
+            0.24924356936395411,
+            -2.7755575615628914e-17,
             0.0,
         )),
     );
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                g1.origin.x,
-                g1.origin.y,
-                g1.origin.z,
-                g2.origin.x,
-                g2.origin.y,
-                g2.origin.z,
-                g3.origin.x,
-                g3.origin.y,
-                g3.origin.z,
-                brick.origin.x,
-                brick.origin.y,
-                brick.origin.z,
-            ]));
+    let tol = 1.1000000000000001e-8; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // coincident(brick.b1, g1) (brick.gcs:11)
-    let brick_b1 = brick.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift = Point3::new(0.0, 0.0, 0.0) - brick_b1;
-    brick.translate(&shift);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // coincident(brick.b2, g2) (brick.gcs:12)
-    let brick_b2 = brick.point_to_global(&Point3::new(4.0, 0.0, 0.0));
     let sphere = Sphere::new(Point3::new(0.0, 0.0, 0.0), 4.0);
     let gap = sphere.distance(&Point3::new(4.0, 0.0, 0.0));
     if gap.is_nan() || gap > tol {
@@ -209,12 +188,6 @@ pub fn solve(
             gap,
         ));
     }
-    let turn = frame::rotation_between3(
-        &(brick_b2 - Point3::new(0.0, 0.0, 0.0)),
-        &(Point3::new(4.0, 0.0, 0.0) - Point3::new(0.0, 0.0, 0.0)),
-        &frame::perpendicular(&(brick_b2 - Point3::new(0.0, 0.0, 0.0))),
-    );
-    brick.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // coincident(brick.b3, g3) (brick.gcs:13)
     let direction = frame::unit3(&(Point3::new(4.0, 0.0, 0.0) - Point3::new(0.0, 0.0, 0.0)))
@@ -226,7 +199,6 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let brick_b3 = brick.point_to_global(&Point3::new(0.0, 3.0, 0.0));
     let orbit = Circle3::orbit(
         &Point3::new(0.0, 0.0, 0.0),
         &frame::unit3(&direction).ok_or_else(|| {
@@ -237,7 +209,11 @@ pub fn solve(
                 0.0,
             )
         })?,
-        &brick_b3,
+        &Point3::new(
+            -4.150739241714287e-17,
+            2.6272658587842947,
+            1.448265896604081,
+        ),
     );
     let gap_2 = orbit.distance(&Point3::new(0.0, 3.0, 0.0));
     if gap_2.is_nan() || gap_2 > tol {
@@ -248,17 +224,26 @@ pub fn solve(
             gap_2,
         ));
     }
-    let turn_2 = frame::rotation_about_axis(
+    let turn = frame::rotation_about_axis(
         &direction,
         frame::signed_angle3(
-            &(brick_b3 - Point3::new(0.0, 0.0, 0.0)),
+            &(Point3::new(
+                -4.150739241714287e-17,
+                2.6272658587842947,
+                1.448265896604081,
+            ) - Point3::new(0.0, 0.0, 0.0)),
             &(Point3::new(0.0, 3.0, 0.0) - Point3::new(0.0, 0.0, 0.0)),
             &direction,
         ),
     );
-    brick.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+    brick.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
-    Ok(Solution { g1, g2, g3, brick })
+    Ok(Solution {
+        g1: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+        g2: Frame3::new(Point3::new(4.0, 0.0, 0.0), UnitQuaternion::identity()),
+        g3: Frame3::new(Point3::new(0.0, 3.0, 0.0), UnitQuaternion::identity()),
+        brick,
+    })
 }
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.

@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -246,28 +246,22 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("open", params.open)])?;
     // The sketch: where every geom starts.
-    let wall = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut door = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
 
     // revolute(door.hinge, wall.hinge) (door.gcs:14)
-    let door_hinge = door.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift = Point3::new(0.0, 0.0, 0.0) - door_hinge;
-    door.translate(&shift);
-    let door_hinge_z = door.vector_to_global(&Vector3::z());
-    let turn = frame::rotation_between3(
-        &door_hinge_z,
-        &Vector3::z(),
-        &frame::perpendicular(&door_hinge_z),
-    );
-    door.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // swing: offset_z(wall.face, door.normal) = open (door.gcs:15)
-    let door_normal_z = door.vector_to_global(&Vector3::new(
-        0.19611613513818402,
-        0.98058067569092,
-        1.1102230246251565e-16,
-    ));
-    let turns = frame::turns_to_angle(&Vector3::x(), &door_normal_z, &Vector3::z(), params.open);
+    let turns = frame::turns_to_angle(
+        &Vector3::x(),
+        &Vector3::new(
+            0.19611613513818402,
+            0.98058067569092,
+            1.1102230246251565e-16,
+        ),
+        &Vector3::z(),
+        params.open,
+    );
     if let Some(e) = SolveError::from_contact(
         "swing",
         "offset_z(wall.face, door.normal) = open",
@@ -286,14 +280,22 @@ pub fn solve(
                 turns.roots.len() as f64,
             )
         })?;
-    let turn_2 = frame::rotation_about_axis(
+    let turn = frame::rotation_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(&door_normal_z, &turned, &Vector3::z()),
+        frame::signed_angle3(
+            &Vector3::new(
+                0.19611613513818402,
+                0.98058067569092,
+                1.1102230246251565e-16,
+            ),
+            &turned,
+            &Vector3::z(),
+        ),
     );
-    door.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+    door.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     Ok(Solution {
-        wall,
+        wall: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
         door,
         branches: *branches,
     })

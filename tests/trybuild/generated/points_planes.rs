@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -254,7 +254,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("P3_spin_angle", defaults.p3_spin_angle)])?;
     // The sketch: where every geom starts.
-    let p1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut p2 = Frame3::new(Point3::new(3.0, 0.0, 4.0), UnitQuaternion::identity());
     let mut p3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut p4 = Frame3::new(
@@ -268,39 +267,18 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     );
     let mut p5 = Frame3::new(Point3::new(2.0, 2.0, 2.0), UnitQuaternion::identity());
     let mut p6 = Frame3::new(Point3::new(6.0, 1.0, 1.0), UnitQuaternion::identity());
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                p1.origin.x,
-                p1.origin.y,
-                p1.origin.z,
-                p2.origin.x,
-                p2.origin.y,
-                p2.origin.z,
-                p3.origin.x,
-                p3.origin.y,
-                p3.origin.z,
-                p4.origin.x,
-                p4.origin.y,
-                p4.origin.z,
-                p5.origin.x,
-                p5.origin.y,
-                p5.origin.z,
-                p6.origin.x,
-                p6.origin.y,
-                p6.origin.z,
-            ]));
+    let tol = 7.000000000000001e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // distance(p1, P3) = 0 (points_planes.gcs:10)
-    let p2_origin = p2.origin;
-    let direction = frame::unit3(&(p2_origin - Point3::new(0.0, 0.0, 0.0))).ok_or_else(|| {
-        SolveError::new(
-            "distance_p1_P3",
-            "distance(p1, P3) = 0",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
+    let direction = frame::unit3(&(Point3::new(3.0, 0.0, 4.0) - Point3::new(0.0, 0.0, 0.0)))
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_p1_P3",
+                "distance(p1, P3) = 0",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let line = Line3::new(
         Point3::new(0.0, 0.0, 0.0),
         frame::unit3(&direction).ok_or_else(|| {
@@ -312,9 +290,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             )
         })?,
     );
-    let p5_origin = p5.origin;
     let normal = frame::unit3(
-        &(p2_origin - Point3::new(0.0, 0.0, 0.0)).cross(&(p5_origin - Point3::new(0.0, 0.0, 0.0))),
+        &(Point3::new(3.0, 0.0, 4.0) - Point3::new(0.0, 0.0, 0.0))
+            .cross(&(Point3::new(2.0, 2.0, 2.0) - Point3::new(0.0, 0.0, 0.0))),
     )
     .ok_or_else(|| {
         SolveError::new(
@@ -333,37 +311,19 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         )
     })?;
     let plane = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal_2);
-    let p3_normal = p3.z_axis();
-    let normal_3 = frame::unit3(&p3_normal).ok_or_else(|| {
-        SolveError::new(
-            "distance_p1_P3",
-            "distance(p1, P3) = 0",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
+    let normal_3 = Vector3::z();
     let plane_2 =
         Plane::from_point_normal(&(Point3::new(0.0, 0.0, 0.0) + normal_3 * -0.0), &normal_3);
-    let p3_origin = p3.origin;
-    let nearest = plane_2.project(&p3_origin);
-    let shift = nearest - p3_origin;
+    let nearest = plane_2.project(&Point3::new(0.0, 0.0, 0.0));
+    let shift = nearest - Point3::new(0.0, 0.0, 0.0);
     p3.translate(&shift);
 
     // distance(p1, P4) = -5 (points_planes.gcs:10)
-    let p4_normal = p4.z_axis();
-    let normal_4 = frame::unit3(&p4_normal).ok_or_else(|| {
-        SolveError::new(
-            "distance_p1_P4",
-            "distance(p1, P4) = -5",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
+    let normal_4 = Vector3::new(0.6, 0.8, 1.1102230246251565e-16);
     let plane_3 =
         Plane::from_point_normal(&(Point3::new(0.0, 0.0, 0.0) + normal_4 * 5.0), &normal_4);
-    let p4_origin = p4.origin;
-    let nearest_2 = plane_3.project(&p4_origin);
-    let shift_2 = nearest_2 - p4_origin;
+    let nearest_2 = plane_3.project(&Point3::new(3.0, 4.0, 5.551115123125783e-16));
+    let shift_2 = nearest_2 - Point3::new(3.0, 4.0, 5.551115123125783e-16);
     p4.translate(&shift_2);
 
     // distance(p1, p2) = 5 (points_planes.gcs:11)
@@ -387,7 +347,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 distance_p1_p2_meeting.roots.len() as f64,
             )
         })?;
-    let shift_3 = distance_p1_p2 - p2_origin;
+    let shift_3 = distance_p1_p2 - Point3::new(3.0, 0.0, 4.0);
     p2.translate(&shift_3);
 
     // distance(p1, p5) = 2 * sqrt(3) (points_planes.gcs:11)
@@ -408,23 +368,25 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let nearest_3 = distance_p1_p5.nearest(&p5_origin).ok_or_else(|| {
-        SolveError::new(
-            "distance_p1_p5",
-            "distance(p1, p5) = 2 * sqrt(3)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let shift_4 = nearest_3 - p5_origin;
+    let nearest_3 = distance_p1_p5
+        .nearest(&Point3::new(2.0, 2.0, 2.0))
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_p1_p5",
+                "distance(p1, p5) = 2 * sqrt(3)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let shift_4 = nearest_3 - Point3::new(2.0, 2.0, 2.0);
     p5.translate(&shift_4);
 
     // distance(p2, P3) = 4 (points_planes.gcs:11)
-    let p3_origin_2 = p3.origin;
-    let p3_normal_2 = p3.z_axis();
+    let p3_origin = p3.origin;
+    let p3_normal = p3.z_axis();
     let cone = frame::plane_cone(
-        &p3_origin_2,
-        &p3_normal_2,
+        &p3_origin,
+        &p3_normal,
         &Point3::new(0.0, 0.0, 0.0),
         &distance_p1_p2,
         4.0,
@@ -446,9 +408,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             (cone.1.abs() - 1.0) * reach,
         ));
     }
-    let normal_5 = frame::plane_turn(&(cone.0 / reach), cone.1.clamp(-1.0, 1.0), &p3_normal_2);
-    let turn =
-        frame::rotation_between3(&p3_normal_2, &normal_5, &frame::perpendicular(&p3_normal_2));
+    let normal_5 = frame::plane_turn(&(cone.0 / reach), cone.1.clamp(-1.0, 1.0), &p3_normal);
+    let turn = frame::rotation_between3(&p3_normal, &normal_5, &frame::perpendicular(&p3_normal));
     p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // distance(p2, P4) = -16/5 (points_planes.gcs:10)
@@ -461,11 +422,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 0.0,
             )
         })?;
-    let p4_origin_2 = p4.origin;
-    let p4_normal_2 = p4.z_axis();
+    let p4_origin = p4.origin;
+    let p4_normal = p4.z_axis();
     let cone_2 = frame::plane_cone(
-        &p4_origin_2,
-        &p4_normal_2,
+        &p4_origin,
+        &p4_normal,
         &Point3::new(0.0, 0.0, 0.0),
         &distance_p1_p2,
         -3.2,
@@ -487,13 +448,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             (cone_2.1.abs() - 1.0) * reach_2,
         ));
     }
-    let normal_6 = frame::plane_turn(
-        &(cone_2.0 / reach_2),
-        cone_2.1.clamp(-1.0, 1.0),
-        &p4_normal_2,
-    );
-    let turn_2 =
-        frame::rotation_between3(&p4_normal_2, &normal_6, &frame::perpendicular(&p4_normal_2));
+    let normal_6 = frame::plane_turn(&(cone_2.0 / reach_2), cone_2.1.clamp(-1.0, 1.0), &p4_normal);
+    let turn_2 = frame::rotation_between3(&p4_normal, &normal_6, &frame::perpendicular(&p4_normal));
     p4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
 
     // distance(p2, p6) = sqrt(19) (points_planes.gcs:12)
@@ -507,16 +463,17 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             )
         })?;
     let sphere_3 = Sphere::new(distance_p1_p2, 4.358898943540674);
-    let p6_origin = p6.origin;
-    let nearest_4 = sphere_3.nearest(&p6_origin).ok_or_else(|| {
-        SolveError::new(
-            "distance_p2_p6",
-            "distance(p2, p6) = sqrt(19)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let shift_5 = nearest_4 - p6_origin;
+    let nearest_4 = sphere_3
+        .nearest(&Point3::new(6.0, 1.0, 1.0))
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_p2_p6",
+                "distance(p2, p6) = sqrt(19)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let shift_5 = nearest_4 - Point3::new(6.0, 1.0, 1.0);
     p6.translate(&shift_5);
 
     // distance(p5, P3) = 2 (points_planes.gcs:13)
@@ -548,9 +505,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                     frame::signed_angle3(&across, &turned, &direction_2),
                 );
                 p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_3);
-                let p3_origin_3 = p3.origin;
-                let p3_normal_3 = p3.z_axis();
-                let normal_7 = frame::unit3(&p3_normal_3).ok_or_else(|| {
+                let p3_origin_2 = p3.origin;
+                let p3_normal_2 = p3.z_axis();
+                let normal_7 = frame::unit3(&p3_normal_2).ok_or_else(|| {
                     SolveError::new(
                         "distance_p5_P3",
                         "distance(p5, P3) = 2",
@@ -558,8 +515,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         0.0,
                     )
                 })?;
-                let plane_4 = Plane::from_point_normal(&(p3_origin_3 + normal_7 * 2.0), &normal_7);
-                let p5_origin_2 = p5.origin;
+                let plane_4 = Plane::from_point_normal(&(p3_origin_2 + normal_7 * 2.0), &normal_7);
+                let p5_origin = p5.origin;
                 let distance_p5_p3_meeting = intersect3d::circle_plane(&distance_p1_p5, &plane_4);
                 if let Some(e) = SolveError::from_contact(
                     "distance_p5_P3",
@@ -579,13 +536,13 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                             distance_p5_p3_meeting.roots.len() as f64,
                         )
                     })?;
-                let shift_6 = distance_p5_p3 - p5_origin_2;
+                let shift_6 = distance_p5_p3 - p5_origin;
                 p5.translate(&shift_6);
-                let p4_origin_3 = p4.origin;
-                let p4_normal_3 = p4.z_axis();
+                let p4_origin_2 = p4.origin;
+                let p4_normal_2 = p4.z_axis();
                 let cone_3 = frame::plane_cone(
-                    &p4_origin_3,
-                    &p4_normal_3,
+                    &p4_origin_2,
+                    &p4_normal_2,
                     &Point3::new(0.0, 0.0, 0.0),
                     &distance_p5_p3,
                     -2.2,
@@ -601,7 +558,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let gap = (cone_3.1.abs() - 1.0).max(0.0) * cone_3.0.norm();
                 let turns = frame::turns_to_angle(
                     &reach_3,
-                    &p4_normal_3,
+                    &p4_normal_2,
                     &direction_3,
                     cone_3.1.clamp(-1.0, 1.0).acos(),
                 );
@@ -634,11 +591,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                     })?;
                 let turn_4 = frame::rotation_about_axis(
                     &direction_3,
-                    frame::signed_angle3(&p4_normal_3, &normal_8, &direction_3),
+                    frame::signed_angle3(&p4_normal_2, &normal_8, &direction_3),
                 );
                 p4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
                 let sphere_4 = Sphere::new(distance_p5_p3, 4.242640687119286);
-                let p6_origin_2 = p6.origin;
+                let p6_origin = p6.origin;
                 let distance_p5_p6_meeting = intersect3d::sphere_sphere(&sphere_3, &sphere_4);
                 if let Some(e) = SolveError::from_contact(
                     "distance_p5_p6",
@@ -655,7 +612,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         0.0,
                     )
                 })?;
-                let nearest_5 = distance_p5_p6.nearest(&p6_origin_2).ok_or_else(|| {
+                let nearest_5 = distance_p5_p6.nearest(&p6_origin).ok_or_else(|| {
                     SolveError::new(
                         "distance_p5_p6",
                         "distance(p5, p6) = 3 * sqrt(2)",
@@ -663,9 +620,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         0.0,
                     )
                 })?;
-                let shift_7 = nearest_5 - p6_origin_2;
+                let shift_7 = nearest_5 - p6_origin;
                 p6.translate(&shift_7);
-                let normal_9 = frame::unit3(&p3_normal_3).ok_or_else(|| {
+                let normal_9 = frame::unit3(&p3_normal_2).ok_or_else(|| {
                     SolveError::new(
                         "distance_p6_P3",
                         "distance(p6, P3) = 1",
@@ -673,8 +630,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         0.0,
                     )
                 })?;
-                let plane_5 = Plane::from_point_normal(&(p3_origin_3 + normal_9 * 1.0), &normal_9);
-                let p6_origin_3 = p6.origin;
+                let plane_5 = Plane::from_point_normal(&(p3_origin_2 + normal_9 * 1.0), &normal_9);
+                let p6_origin_2 = p6.origin;
                 let distance_p6_p3_meeting = intersect3d::circle_plane(&distance_p5_p6, &plane_5);
                 if let Some(e) = SolveError::from_contact(
                     "distance_p6_P3",
@@ -694,11 +651,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                             distance_p6_p3_meeting.roots.len() as f64,
                         )
                     })?;
-                let shift_8 = distance_p6_p3 - p6_origin_3;
+                let shift_8 = distance_p6_p3 - p6_origin_2;
                 p6.translate(&shift_8);
-                let p4_origin_4 = p4.origin;
-                let p4_normal_4 = p4.z_axis();
-                let error = (distance_p6_p3 - p4_origin_4).dot(&p4_normal_4) - -0.6;
+                let p4_origin_3 = p4.origin;
+                let p4_normal_3 = p4.z_axis();
+                let error = (distance_p6_p3 - p4_origin_3).dot(&p4_normal_3) - -0.6;
                 errors[0] = error;
                 Ok(())
             },
@@ -727,9 +684,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         frame::signed_angle3(&across_2, &turned_2, &direction_2),
     );
     p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_5);
-    let p3_origin_4 = p3.origin;
-    let p3_normal_4 = p3.z_axis();
-    let normal_10 = frame::unit3(&p3_normal_4).ok_or_else(|| {
+    let p3_origin_3 = p3.origin;
+    let p3_normal_3 = p3.z_axis();
+    let normal_10 = frame::unit3(&p3_normal_3).ok_or_else(|| {
         SolveError::new(
             "distance_p5_P3",
             "distance(p5, P3) = 2",
@@ -737,8 +694,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let plane_6 = Plane::from_point_normal(&(p3_origin_4 + normal_10 * 2.0), &normal_10);
-    let p5_origin_3 = p5.origin;
+    let plane_6 = Plane::from_point_normal(&(p3_origin_3 + normal_10 * 2.0), &normal_10);
+    let p5_origin_2 = p5.origin;
     let distance_p5_p3_meeting_2 = intersect3d::circle_plane(&distance_p1_p5, &plane_6);
     if let Some(e) = SolveError::from_contact(
         "distance_p5_P3",
@@ -758,15 +715,15 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 distance_p5_p3_meeting_2.roots.len() as f64,
             )
         })?;
-    let shift_9 = distance_p5_p3_2 - p5_origin_3;
+    let shift_9 = distance_p5_p3_2 - p5_origin_2;
     p5.translate(&shift_9);
 
     // distance(p5, P4) = -11/5 (points_planes.gcs:12)
-    let p4_origin_5 = p4.origin;
-    let p4_normal_5 = p4.z_axis();
+    let p4_origin_4 = p4.origin;
+    let p4_normal_4 = p4.z_axis();
     let cone_4 = frame::plane_cone(
-        &p4_origin_5,
-        &p4_normal_5,
+        &p4_origin_4,
+        &p4_normal_4,
         &Point3::new(0.0, 0.0, 0.0),
         &distance_p5_p3_2,
         -2.2,
@@ -782,7 +739,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let gap_2 = (cone_4.1.abs() - 1.0).max(0.0) * cone_4.0.norm();
     let turns_2 = frame::turns_to_angle(
         &reach_4,
-        &p4_normal_5,
+        &p4_normal_4,
         &direction_3,
         cone_4.1.clamp(-1.0, 1.0).acos(),
     );
@@ -815,13 +772,13 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         })?;
     let turn_6 = frame::rotation_about_axis(
         &direction_3,
-        frame::signed_angle3(&p4_normal_5, &normal_11, &direction_3),
+        frame::signed_angle3(&p4_normal_4, &normal_11, &direction_3),
     );
     p4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_6);
 
     // distance(p5, p6) = 3 * sqrt(2) (points_planes.gcs:13)
     let sphere_5 = Sphere::new(distance_p5_p3_2, 4.242640687119286);
-    let p6_origin_4 = p6.origin;
+    let p6_origin_3 = p6.origin;
     let distance_p5_p6_meeting_2 = intersect3d::sphere_sphere(&sphere_3, &sphere_5);
     if let Some(e) = SolveError::from_contact(
         "distance_p5_p6",
@@ -838,7 +795,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let nearest_6 = distance_p5_p6_2.nearest(&p6_origin_4).ok_or_else(|| {
+    let nearest_6 = distance_p5_p6_2.nearest(&p6_origin_3).ok_or_else(|| {
         SolveError::new(
             "distance_p5_p6",
             "distance(p5, p6) = 3 * sqrt(2)",
@@ -846,11 +803,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let shift_10 = nearest_6 - p6_origin_4;
+    let shift_10 = nearest_6 - p6_origin_3;
     p6.translate(&shift_10);
 
     // distance(p6, P3) = 1 (points_planes.gcs:13)
-    let normal_12 = frame::unit3(&p3_normal_4).ok_or_else(|| {
+    let normal_12 = frame::unit3(&p3_normal_3).ok_or_else(|| {
         SolveError::new(
             "distance_p6_P3",
             "distance(p6, P3) = 1",
@@ -858,8 +815,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let plane_7 = Plane::from_point_normal(&(p3_origin_4 + normal_12 * 1.0), &normal_12);
-    let p6_origin_5 = p6.origin;
+    let plane_7 = Plane::from_point_normal(&(p3_origin_3 + normal_12 * 1.0), &normal_12);
+    let p6_origin_4 = p6.origin;
     let distance_p6_p3_meeting_2 = intersect3d::circle_plane(&distance_p5_p6_2, &plane_7);
     if let Some(e) = SolveError::from_contact(
         "distance_p6_P3",
@@ -879,14 +836,14 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 distance_p6_p3_meeting_2.roots.len() as f64,
             )
         })?;
-    let shift_11 = distance_p6_p3_2 - p6_origin_5;
+    let shift_11 = distance_p6_p3_2 - p6_origin_4;
     p6.translate(&shift_11);
 
     // distance(p6, P4) = -3/5 (points_planes.gcs:12)
     // Already true where the sketch puts the geoms: nothing moves.
 
     Ok(Solution {
-        p1,
+        p1: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
         p2,
         p3,
         p4,

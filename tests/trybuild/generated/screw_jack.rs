@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -272,8 +272,6 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("lift", params.lift), ("pitch", params.pitch)])?;
     // The sketch: where every geom starts.
-    let floor = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
-    let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut screw = Frame3::new(Point3::new(0.1, 0.0, 0.2), UnitQuaternion::identity());
     let mut platform = Frame3::new(
         Point3::new(0.3, 0.1, 2.4),
@@ -284,37 +282,21 @@ pub fn solve(
             0.08715574274765817,
         )),
     );
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                floor.origin.x,
-                floor.origin.y,
-                floor.origin.z,
-                ground.origin.x,
-                ground.origin.y,
-                ground.origin.z,
-                screw.origin.x,
-                screw.origin.y,
-                screw.origin.z,
-                platform.origin.x,
-                platform.origin.y,
-                platform.origin.z,
-            ]));
+    let tol = 3.4000000000000003e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // cylindrical(screw.thread, ground.nut) (screw_jack.gcs:20)
     let line = Line3::new(Point3::new(0.0, 0.0, 0.0), Vector3::z());
-    let screw_thread = screw.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let nearest = line.closest(&screw_thread);
-    let shift = nearest - screw_thread;
+    let nearest = line.closest(&Point3::new(0.1, 0.0, 0.2));
+    let shift = nearest - Point3::new(0.1, 0.0, 0.2);
     screw.translate(&shift);
-    let screw_thread_2 = screw.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+    let screw_thread = screw.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let screw_thread_z = screw.vector_to_global(&Vector3::z());
     let turn = frame::rotation_between3(
         &screw_thread_z,
         &Vector3::z(),
         &frame::perpendicular(&screw_thread_z),
     );
-    screw.rotate_about_by(&screw_thread_2, &turn);
+    screw.rotate_about_by(&screw_thread, &turn);
 
     // height: distance(screw.top, floor) = lift (screw_jack.gcs:22)
     let normal = Vector3::z();
@@ -354,8 +336,8 @@ pub fn solve(
             residual,
         ));
     }
-    let screw_thread_3 = screw.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let length = (screw_thread_3 - Point3::new(0.0, 0.0, 0.0)).dot(&Vector3::z());
+    let screw_thread_2 = screw.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+    let length = (screw_thread_2 - Point3::new(0.0, 0.0, 0.0)).dot(&Vector3::z());
     let turn_2 = frame::helix_turn(length, params.pitch);
     if !gcs_runtime::num::is_finite(turn_2) {
         return Err(SolveError::new(
@@ -374,29 +356,27 @@ pub fn solve(
     screw.rotate_about_by(&height, &turn_3);
 
     // in_line(platform.base, ground.nut) (screw_jack.gcs:24)
-    let line_3 = Line3::new(Point3::new(0.0, 0.0, 0.0), Vector3::z());
-    let platform_base = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let nearest_2 = line_3.closest(&platform_base);
-    let shift_3 = nearest_2 - platform_base;
+    let nearest_2 = line.closest(&Point3::new(0.3, 0.1, 2.4));
+    let shift_3 = nearest_2 - Point3::new(0.3, 0.1, 2.4);
     platform.translate(&shift_3);
 
     // offset_x(ground.nut, platform.base) = 0 deg (screw_jack.gcs:25)
-    let platform_base_2 = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+    let platform_base = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let platform_base_z = platform.vector_to_global(&Vector3::z());
     let turn_4 = frame::rotation_between3(
         &platform_base_z,
         &Vector3::z(),
         &frame::perpendicular(&platform_base_z),
     );
-    platform.rotate_about_by(&platform_base_2, &turn_4);
+    platform.rotate_about_by(&platform_base, &turn_4);
     let turned_2 = frame::rotation_about_axis(&Vector3::z(), 0.0) * Vector3::x();
-    let platform_base_3 = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+    let platform_base_2 = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let platform_base_x = platform.vector_to_global(&Vector3::x());
     let turn_5 = frame::rotation_about_axis(
         &Vector3::z(),
         frame::signed_angle3(&platform_base_x, &turned_2, &Vector3::z()),
     );
-    platform.rotate_about_by(&platform_base_3, &turn_5);
+    platform.rotate_about_by(&platform_base_2, &turn_5);
 
     // planar(platform.base, screw.top) (screw_jack.gcs:23)
     let screw_top_z = screw.vector_to_global(&Vector3::z());
@@ -409,8 +389,8 @@ pub fn solve(
         )
     })?;
     let plane_2 = Plane::from_point_normal(&height, &normal_2);
-    let platform_base_4 = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let planar_platform_base_screw_top_meeting = intersect3d::line_plane(&line_3, &plane_2);
+    let platform_base_3 = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+    let planar_platform_base_screw_top_meeting = intersect3d::line_plane(&line, &plane_2);
     if let Some(e) = SolveError::from_contact(
         "planar_platform_base_screw_top",
         "planar(platform.base, screw.top)",
@@ -429,7 +409,7 @@ pub fn solve(
                 planar_platform_base_screw_top_meeting.roots.len() as f64,
             )
         })?;
-    let shift_4 = planar_platform_base_screw_top - platform_base_4;
+    let shift_4 = planar_platform_base_screw_top - platform_base_3;
     platform.translate(&shift_4);
     let platform_base_z_2 = platform.vector_to_global(&Vector3::z());
     let residual_2 = check::space::parallel(platform_base_z_2, screw_top_z, 1.0);
@@ -443,8 +423,8 @@ pub fn solve(
     }
 
     Ok(Solution {
-        floor,
-        ground,
+        floor: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+        ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
         screw,
         platform,
         branches: *branches,

@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -285,77 +285,53 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("phi", params.phi)])?;
     // The sketch: where every geom starts.
-    let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut rod = Frame3::new(Point3::new(3.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut slider = Frame3::new(Point3::new(7.0, 0.0, 0.0), UnitQuaternion::identity());
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                ground.origin.x,
-                ground.origin.y,
-                ground.origin.z,
-                arm.origin.x,
-                arm.origin.y,
-                arm.origin.z,
-                rod.origin.x,
-                rod.origin.y,
-                rod.origin.z,
-                slider.origin.x,
-                slider.origin.y,
-                slider.origin.z,
-            ]));
+    let tol = 8e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // offset_x(ground.o, arm.o) = phi (slider_crank.gcs:15)
-    let arm_origin = arm.origin;
-    let arm_o_z = arm.vector_to_global(&Vector3::z());
-    let turn = frame::rotation_between3(&arm_o_z, &Vector3::z(), &frame::perpendicular(&arm_o_z));
-    arm.rotate_about_by(&arm_origin, &turn);
     let turned = frame::rotation_about_axis(&Vector3::z(), params.phi) * Vector3::x();
-    let arm_origin_2 = arm.origin;
-    let arm_o_x = arm.vector_to_global(&Vector3::x());
-    let turn_2 = frame::rotation_about_axis(
+    let turn = frame::rotation_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(&arm_o_x, &turned, &Vector3::z()),
+        frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
     );
-    arm.rotate_about_by(&arm_origin_2, &turn_2);
+    arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // prismatic(slider.s, ground.rail) (slider_crank.gcs:18)
     let line = Line3::new(Point3::new(5.0, 0.0, 0.0), Vector3::x());
-    let slider_s = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let nearest = line.closest(&slider_s);
-    let shift = nearest - slider_s;
+    let nearest = line.closest(&Point3::new(7.0, 0.0, 0.0));
+    let shift = nearest - Point3::new(7.0, 0.0, 0.0);
     slider.translate(&shift);
-    let slider_s_2 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+    let slider_s = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let slider_s_z = slider.vector_to_global(&Vector3::x());
-    let turn_3 = frame::rotation_between3(
+    let turn_2 = frame::rotation_between3(
         &slider_s_z,
         &Vector3::x(),
         &frame::perpendicular(&slider_s_z),
     );
-    slider.rotate_about_by(&slider_s_2, &turn_3);
+    slider.rotate_about_by(&slider_s, &turn_2);
     let slider_s_z_2 = slider.vector_to_global(&Vector3::x());
     let turned_2 = frame::rotation_about_axis(&slider_s_z_2, -0.0) * Vector3::y();
-    let slider_s_3 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+    let slider_s_2 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let slider_s_x = slider.vector_to_global(&Vector3::y());
-    let turn_4 = frame::rotation_about_axis(
+    let turn_3 = frame::rotation_about_axis(
         &Vector3::x(),
         frame::signed_angle3(&slider_s_x, &turned_2, &Vector3::x()),
     );
-    slider.rotate_about_by(&slider_s_3, &turn_4);
+    slider.rotate_about_by(&slider_s_2, &turn_3);
 
     // revolute(arm.tip, rod.a) (slider_crank.gcs:16)
     let arm_o = arm.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let shift_2 = Point3::new(0.0, 0.0, 0.0) - arm_o;
     arm.translate(&shift_2);
     let arm_tip = arm.point_to_global(&Point3::new(3.0, 0.0, 0.0));
-    let rod_a = rod.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift_3 = arm_tip - rod_a;
+    let shift_3 = arm_tip - Point3::new(3.0, 0.0, 0.0);
     rod.translate(&shift_3);
     let arm_tip_z = arm.vector_to_global(&Vector3::z());
     let rod_a_z = rod.vector_to_global(&Vector3::z());
-    let turn_5 = frame::rotation_between3(&rod_a_z, &arm_tip_z, &frame::perpendicular(&rod_a_z));
-    rod.rotate_about_by(&arm_tip, &turn_5);
+    let turn_4 = frame::rotation_between3(&rod_a_z, &arm_tip_z, &frame::perpendicular(&rod_a_z));
+    rod.rotate_about_by(&arm_tip, &turn_4);
 
     // revolute(rod.b, slider.pin) (slider_crank.gcs:17)
     let rod_b_z = rod.vector_to_global(&Vector3::z());
@@ -412,8 +388,7 @@ pub fn solve(
             gap,
         ));
     }
-    let line_3 = Line3::new(slider_pin, line.dir);
-    let gap_2 = line_3.distance(&revolute_rod_b_slider_pin);
+    let gap_2 = line_2.distance(&revolute_rod_b_slider_pin);
     if gap_2.is_nan() || gap_2 > tol {
         return Err(SolveError::new(
             "revolute_rod_b_slider_pin",
@@ -426,7 +401,7 @@ pub fn solve(
     slider.translate(&shift_4);
 
     Ok(Solution {
-        ground,
+        ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
         arm,
         slider,
         branches: *branches,

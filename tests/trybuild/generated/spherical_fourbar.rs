@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -340,55 +340,27 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
     // The sketch: where every geom starts.
-    let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut crank = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut coupler = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut rocker = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                ground.origin.x,
-                ground.origin.y,
-                ground.origin.z,
-                crank.origin.x,
-                crank.origin.y,
-                crank.origin.z,
-                coupler.origin.x,
-                coupler.origin.y,
-                coupler.origin.z,
-                rocker.origin.x,
-                rocker.origin.y,
-                rocker.origin.z,
-            ]));
+    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // input: offset_x(ground.crank_axis, crank.base) = theta (spherical_fourbar.gcs:22)
-    let crank_origin = crank.origin;
-    let crank_base_z = crank.vector_to_global(&Vector3::z());
-    let turn = frame::rotation_between3(
-        &crank_base_z,
-        &Vector3::z(),
-        &frame::perpendicular(&crank_base_z),
-    );
-    crank.rotate_about_by(&crank_origin, &turn);
     let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
-    let crank_origin_2 = crank.origin;
-    let crank_base_x = crank.vector_to_global(&Vector3::x());
-    let turn_2 = frame::rotation_about_axis(
+    let turn = frame::rotation_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(&crank_base_x, &turned, &Vector3::z()),
+        frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
     );
-    crank.rotate_about_by(&crank_origin_2, &turn_2);
+    crank.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     // revolute(coupler.a, crank.tip) (spherical_fourbar.gcs:23)
     let crank_tip_z = crank.vector_to_global(&Vector3::new(0.6, 0.0, 0.8));
-    let coupler_origin = coupler.origin;
-    let coupler_a_z = coupler.vector_to_global(&Vector3::new(0.6, 0.0, 0.8));
-    let turn_3 = frame::rotation_between3(
-        &coupler_a_z,
+    let turn_2 = frame::rotation_between3(
+        &Vector3::new(0.6, 0.0, 0.8),
         &crank_tip_z,
-        &frame::perpendicular(&coupler_a_z),
+        &frame::perpendicular(&Vector3::new(0.6, 0.0, 0.8)),
     );
-    coupler.rotate_about_by(&coupler_origin, &turn_3);
+    coupler.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
 
     // revolute(crank.base, ground.crank_axis) (spherical_fourbar.gcs:21)
     let crank_base = crank.point_to_global(&Point3::new(0.0, 0.0, 0.0));
@@ -398,8 +370,8 @@ pub fn solve(
     let coupler_a = coupler.point_to_global(&Point3::new(0.6, 0.0, 0.8));
     let shift_2 = crank_tip - coupler_a;
     coupler.translate(&shift_2);
-    let crank_base_z_2 = crank.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(crank_base_z_2, Vector3::z(), 1.0);
+    let crank_base_z = crank.vector_to_global(&Vector3::z());
+    let residual = check::space::parallel(crank_base_z, Vector3::z(), 1.0);
     if residual.is_nan() || residual > tol {
         return Err(SolveError::new(
             "revolute_crank_base_ground_crank_axis",
@@ -410,16 +382,7 @@ pub fn solve(
     }
 
     // revolute(rocker.base, ground.rocker_axis) (spherical_fourbar.gcs:24)
-    let rocker_base = rocker.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift_3 = Point3::new(0.0, 0.0, 0.0) - rocker_base;
-    rocker.translate(&shift_3);
-    let rocker_base_z = rocker.vector_to_global(&Vector3::x());
-    let turn_4 = frame::rotation_between3(
-        &rocker_base_z,
-        &Vector3::x(),
-        &frame::perpendicular(&rocker_base_z),
-    );
-    rocker.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // revolute(coupler.b, rocker.tip) (spherical_fourbar.gcs:25)
     let coupler_b =
@@ -436,9 +399,11 @@ pub fn solve(
         })?,
         &coupler_b,
     );
-    let rocker_tip =
-        rocker.point_to_global(&Point3::new(std::f64::consts::FRAC_1_SQRT_2, 0.5, 0.5));
-    let orbit_2 = Circle3::orbit(&Point3::new(0.0, 0.0, 0.0), &Vector3::x(), &rocker_tip);
+    let orbit_2 = Circle3::orbit(
+        &Point3::new(0.0, 0.0, 0.0),
+        &Vector3::x(),
+        &Point3::new(std::f64::consts::FRAC_1_SQRT_2, 0.5, 0.5),
+    );
     let revolute_coupler_b_rocker_tip_meeting = intersect3d::circle_circle(&orbit, &orbit_2);
     if let Some(e) = SolveError::from_contact(
         "revolute_coupler_b_rocker_tip",
@@ -458,28 +423,7 @@ pub fn solve(
                 revolute_coupler_b_rocker_tip_meeting.roots.len() as f64,
             )
         })?;
-    let orbit_3 = Circle3::orbit(
-        &crank_tip,
-        &frame::unit3(&crank_tip_z).ok_or_else(|| {
-            SolveError::new(
-                "revolute_coupler_b_rocker_tip",
-                "revolute(coupler.b, rocker.tip)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-        &coupler_b,
-    );
-    let gap = orbit_3.distance(&revolute_coupler_b_rocker_tip);
-    if gap.is_nan() || gap > tol {
-        return Err(SolveError::new(
-            "revolute_coupler_b_rocker_tip",
-            "revolute(coupler.b, rocker.tip)",
-            ErrorKind::Inconsistent,
-            gap,
-        ));
-    }
-    let turn_5 = frame::rotation_about_axis(
+    let turn_3 = frame::rotation_about_axis(
         &crank_tip_z,
         frame::signed_angle3(
             &(coupler_b - crank_tip),
@@ -487,26 +431,16 @@ pub fn solve(
             &crank_tip_z,
         ),
     );
-    coupler.rotate_about_by(&crank_tip, &turn_5);
-    let orbit_4 = Circle3::orbit(&Point3::new(0.0, 0.0, 0.0), &Vector3::x(), &rocker_tip);
-    let gap_2 = orbit_4.distance(&revolute_coupler_b_rocker_tip);
-    if gap_2.is_nan() || gap_2 > tol {
-        return Err(SolveError::new(
-            "revolute_coupler_b_rocker_tip",
-            "revolute(coupler.b, rocker.tip)",
-            ErrorKind::Inconsistent,
-            gap_2,
-        ));
-    }
-    let turn_6 = frame::rotation_about_axis(
+    coupler.rotate_about_by(&crank_tip, &turn_3);
+    let turn_4 = frame::rotation_about_axis(
         &Vector3::x(),
         frame::signed_angle3(
-            &(rocker_tip - Point3::new(0.0, 0.0, 0.0)),
+            &(Point3::new(std::f64::consts::FRAC_1_SQRT_2, 0.5, 0.5) - Point3::new(0.0, 0.0, 0.0)),
             &(revolute_coupler_b_rocker_tip - Point3::new(0.0, 0.0, 0.0)),
             &Vector3::x(),
         ),
     );
-    rocker.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_6);
+    rocker.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
     let coupler_b_z =
         coupler.vector_to_global(&Vector3::new(0.7071067811865477, 0.5, 0.4999999999999999));
     let rocker_tip_z =
@@ -522,7 +456,7 @@ pub fn solve(
     }
 
     Ok(Solution {
-        ground,
+        ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
         crank,
         coupler,
         rocker,

@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -309,38 +309,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         ("platform_z_angle", defaults.platform_z_angle),
     ])?;
     // The sketch: where every geom starts.
-    let b1 = Frame3::new(Point3::new(2.0, 0.0, 0.0), UnitQuaternion::identity());
-    let b2 = Frame3::new(Point3::new(1.0, 1.732, 0.0), UnitQuaternion::identity());
-    let b3 = Frame3::new(Point3::new(-1.0, 1.732, 0.0), UnitQuaternion::identity());
-    let b4 = Frame3::new(Point3::new(-2.0, 0.0, 0.0), UnitQuaternion::identity());
-    let b5 = Frame3::new(Point3::new(-1.0, -1.732, 0.0), UnitQuaternion::identity());
-    let b6 = Frame3::new(Point3::new(1.0, -1.732, 0.0), UnitQuaternion::identity());
     let mut platform = Frame3::new(Point3::new(0.0, 0.0, 3.0), UnitQuaternion::identity());
-    let tol = gcs_runtime::tol::CHECK_REL
-        * (1.0
-            + gcs_runtime::tol::scale(&[
-                b1.origin.x,
-                b1.origin.y,
-                b1.origin.z,
-                b2.origin.x,
-                b2.origin.y,
-                b2.origin.z,
-                b3.origin.x,
-                b3.origin.y,
-                b3.origin.z,
-                b4.origin.x,
-                b4.origin.y,
-                b4.origin.z,
-                b5.origin.x,
-                b5.origin.y,
-                b5.origin.z,
-                b6.origin.x,
-                b6.origin.y,
-                b6.origin.z,
-                platform.origin.x,
-                platform.origin.y,
-                platform.origin.z,
-            ]));
+    let tol = 4e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // leg1: distance(platform.p1, b1) = l1 (stewart.gcs:25)
     // leg1: a distance is zero or more.
@@ -353,8 +323,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         ));
     }
     let sphere = Sphere::new(Point3::new(2.0, 0.0, 0.0), params.l1);
-    let platform_p1 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
-    let nearest = sphere.nearest(&platform_p1).ok_or_else(|| {
+    let nearest = sphere.nearest(&Point3::new(1.0, 0.2, 3.0)).ok_or_else(|| {
         SolveError::new(
             "leg1",
             "distance(platform.p1, b1) = l1",
@@ -362,11 +331,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.0,
         )
     })?;
-    let shift = nearest - platform_p1;
+    let shift = nearest - Point3::new(1.0, 0.2, 3.0);
     platform.translate(&shift);
 
     // leg2: distance(platform.p2, b2) = l2 (stewart.gcs:26)
-    let platform_p1_2 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
+    let platform_p1 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
     let world_axis = Vector3::x();
 
     // No loop is rigid here: vary `platform_x_angle`, `platform_y_angle`, `platform_z_angle` until `leg4`, `leg5`, `leg6` close (an outer iteration).
@@ -395,7 +364,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                     &world_axis,
                     frame::signed_angle3(&across, &turned, &world_axis),
                 );
-                platform.rotate_about_by(&platform_p1_2, &turn);
+                platform.rotate_about_by(&platform_p1, &turn);
                 let world_axis_2 = Vector3::y();
                 let across_2 =
                     frame::unit3(&frame::perpendicular(&world_axis_2)).ok_or_else(|| {
@@ -411,7 +380,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                     &world_axis_2,
                     frame::signed_angle3(&across_2, &turned_2, &world_axis_2),
                 );
-                platform.rotate_about_by(&platform_p1_2, &turn_2);
+                platform.rotate_about_by(&platform_p1, &turn_2);
                 let world_axis_3 = Vector3::z();
                 let across_3 =
                     frame::unit3(&frame::perpendicular(&world_axis_3)).ok_or_else(|| {
@@ -427,7 +396,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                     &world_axis_3,
                     frame::signed_angle3(&across_3, &turned_3, &world_axis_3),
                 );
-                platform.rotate_about_by(&platform_p1_2, &turn_3);
+                platform.rotate_about_by(&platform_p1, &turn_3);
                 // leg2: a distance is zero or more.
                 if params.l2 < 0.0 {
                     return Err(SolveError::new(
@@ -439,9 +408,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 }
                 let sphere_2 = Sphere::new(Point3::new(1.0, 1.732, 0.0), params.l2);
                 let platform_p2 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
-                let platform_p1_3 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
+                let platform_p1_2 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
                 let sphere_moved =
-                    Sphere::new(sphere.center + (platform_p2 - platform_p1_3), sphere.radius);
+                    Sphere::new(sphere.center + (platform_p2 - platform_p1_2), sphere.radius);
                 let leg2_meeting = intersect3d::sphere_sphere(&sphere_moved, &sphere_2);
                 if let Some(e) = SolveError::from_contact(
                     "leg2",
@@ -570,7 +539,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         &world_axis,
         frame::signed_angle3(&across_4, &turned_4, &world_axis),
     );
-    platform.rotate_about_by(&platform_p1_2, &turn_4);
+    platform.rotate_about_by(&platform_p1, &turn_4);
     let world_axis_4 = Vector3::y();
     let across_5 = frame::unit3(&frame::perpendicular(&world_axis_4)).ok_or_else(|| {
         SolveError::new(
@@ -585,7 +554,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         &world_axis_4,
         frame::signed_angle3(&across_5, &turned_5, &world_axis_4),
     );
-    platform.rotate_about_by(&platform_p1_2, &turn_5);
+    platform.rotate_about_by(&platform_p1, &turn_5);
     let world_axis_5 = Vector3::z();
     let across_6 = frame::unit3(&frame::perpendicular(&world_axis_5)).ok_or_else(|| {
         SolveError::new(
@@ -600,7 +569,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         &world_axis_5,
         frame::signed_angle3(&across_6, &turned_6, &world_axis_5),
     );
-    platform.rotate_about_by(&platform_p1_2, &turn_6);
+    platform.rotate_about_by(&platform_p1, &turn_6);
     // leg2: a distance is zero or more.
     if params.l2 < 0.0 {
         return Err(SolveError::new(
@@ -612,9 +581,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     }
     let sphere_4 = Sphere::new(Point3::new(1.0, 1.732, 0.0), params.l2);
     let platform_p2_3 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
-    let platform_p1_4 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
+    let platform_p1_3 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
     let sphere_moved_2 = Sphere::new(
-        sphere.center + (platform_p2_3 - platform_p1_4),
+        sphere.center + (platform_p2_3 - platform_p1_3),
         sphere.radius,
     );
     let leg2_meeting_2 = intersect3d::sphere_sphere(&sphere_moved_2, &sphere_4);
@@ -694,12 +663,12 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // Already true where the sketch puts the geoms: nothing moves.
 
     Ok(Solution {
-        b1,
-        b2,
-        b3,
-        b4,
-        b5,
-        b6,
+        b1: Frame3::new(Point3::new(2.0, 0.0, 0.0), UnitQuaternion::identity()),
+        b2: Frame3::new(Point3::new(1.0, 1.732, 0.0), UnitQuaternion::identity()),
+        b3: Frame3::new(Point3::new(-1.0, 1.732, 0.0), UnitQuaternion::identity()),
+        b4: Frame3::new(Point3::new(-2.0, 0.0, 0.0), UnitQuaternion::identity()),
+        b5: Frame3::new(Point3::new(-1.0, -1.732, 0.0), UnitQuaternion::identity()),
+        b6: Frame3::new(Point3::new(1.0, -1.732, 0.0), UnitQuaternion::identity()),
         platform,
         branches: *branches,
         defaults: Defaults {

@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -226,17 +226,6 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("rope", params.rope)])?;
     // The sketch: where every geom starts.
-    let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
-    let middle = Frame3::new(
-        Point3::new(0.0, 0.0, 0.0),
-        UnitQuaternion::new_unchecked(Quaternion::new(
-            std::f64::consts::FRAC_1_SQRT_2,
-            0.0,
-            0.7071067811865475,
-            0.0,
-        )),
-    );
-    let ridge = Frame3::new(Point3::new(-1.5, 0.0, 2.0), UnitQuaternion::identity());
     let ridge_length = 3.0;
     let mut top = Frame3::new(Point3::new(0.2, 0.1, 1.9), UnitQuaternion::identity());
     let mut left_stake = Frame3::new(Point3::new(-1.2, 2.1, 0.3), UnitQuaternion::identity());
@@ -244,22 +233,22 @@ pub fn solve(
 
     // distance(left_stake, ridge.start) = 2.2 (tent.gcs:15)
     let sphere = Sphere::new(Point3::new(-1.5, 0.0, 2.0), 2.2);
-    let left_stake_origin = left_stake.origin;
-    let nearest = sphere.nearest(&left_stake_origin).ok_or_else(|| {
-        SolveError::new(
-            "distance_left_stake_ridge_start",
-            "distance(left_stake, ridge.start) = 2.2",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let shift = nearest - left_stake_origin;
+    let nearest = sphere
+        .nearest(&Point3::new(-1.2, 2.1, 0.3))
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_left_stake_ridge_start",
+                "distance(left_stake, ridge.start) = 2.2",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let shift = nearest - Point3::new(-1.2, 2.1, 0.3);
     left_stake.translate(&shift);
 
     // midpoint(top, ridge) (tent.gcs:12)
     let midpoint = locus3d::midpoint(Point3::new(-1.5, 0.0, 2.0), Point3::new(1.5, 0.0, 2.0));
-    let top_origin = top.origin;
-    let shift_2 = midpoint - top_origin;
+    let shift_2 = midpoint - Point3::new(0.2, 0.1, 1.9);
     top.translate(&shift_2);
 
     // guy: distance(left_stake, top) = rope (tent.gcs:14)
@@ -273,7 +262,7 @@ pub fn solve(
         ));
     }
     let sphere_2 = Sphere::new(midpoint, params.rope);
-    let left_stake_origin_2 = left_stake.origin;
+    let left_stake_origin = left_stake.origin;
     let guy_meeting = intersect3d::sphere_sphere(&sphere, &sphere_2);
     if let Some(e) = SolveError::from_contact(
         "guy",
@@ -290,7 +279,7 @@ pub fn solve(
             0.0,
         )
     })?;
-    let nearest_2 = guy.nearest(&left_stake_origin_2).ok_or_else(|| {
+    let nearest_2 = guy.nearest(&left_stake_origin).ok_or_else(|| {
         SolveError::new(
             "guy",
             "distance(left_stake, top) = rope",
@@ -298,13 +287,13 @@ pub fn solve(
             0.0,
         )
     })?;
-    let shift_3 = nearest_2 - left_stake_origin_2;
+    let shift_3 = nearest_2 - left_stake_origin;
     left_stake.translate(&shift_3);
 
     // on(left_stake, ground) (tent.gcs:13)
     let normal = Vector3::z();
     let plane = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal);
-    let left_stake_origin_3 = left_stake.origin;
+    let left_stake_origin_2 = left_stake.origin;
     let on_left_stake_ground_meeting = intersect3d::circle_plane(&guy, &plane);
     if let Some(e) = SolveError::from_contact(
         "on_left_stake_ground",
@@ -324,7 +313,7 @@ pub fn solve(
                 on_left_stake_ground_meeting.roots.len() as f64,
             )
         })?;
-    let shift_4 = on_left_stake_ground - left_stake_origin_3;
+    let shift_4 = on_left_stake_ground - left_stake_origin_2;
     left_stake.translate(&shift_4);
 
     // symmetric(left_stake, right_stake, middle) (tent.gcs:16)
@@ -333,14 +322,21 @@ pub fn solve(
         Vector3::new(1.0, 0.0, 2.220446049250313e-16),
         on_left_stake_ground,
     );
-    let right_stake_origin = right_stake.origin;
-    let shift_5 = mirrored - right_stake_origin;
+    let shift_5 = mirrored - Point3::new(1.3, 2.0, -0.2);
     right_stake.translate(&shift_5);
 
     Ok(Solution {
-        ground,
-        middle,
-        ridge,
+        ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+        middle: Frame3::new(
+            Point3::new(0.0, 0.0, 0.0),
+            UnitQuaternion::new_unchecked(Quaternion::new(
+                std::f64::consts::FRAC_1_SQRT_2,
+                0.0,
+                0.7071067811865475,
+                0.0,
+            )),
+        ),
+        ridge: Frame3::new(Point3::new(-1.5, 0.0, 2.0), UnitQuaternion::identity()),
         ridge_length,
         top,
         left_stake,

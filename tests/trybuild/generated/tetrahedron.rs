@@ -15,7 +15,7 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -182,21 +182,20 @@ pub fn solve(
 ) -> Result<Solution, SolveError> {
     let _ = (params, branches, defaults);
     // The sketch: where every geom starts.
-    let a = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut b = Frame3::new(Point3::new(3.0, 0.2, 0.1), UnitQuaternion::identity());
     let mut c = Frame3::new(Point3::new(1.2, 2.6, -0.2), UnitQuaternion::identity());
     let mut d = Frame3::new(Point3::new(1.1, 0.9, 2.4), UnitQuaternion::identity());
 
     // distance(a, b) = 3 (tetrahedron.gcs:9)
-    let b_origin = b.origin;
-    let direction = frame::unit3(&(b_origin - Point3::new(0.0, 0.0, 0.0))).ok_or_else(|| {
-        SolveError::new(
-            "distance_a_b",
-            "distance(a, b) = 3",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
+    let direction = frame::unit3(&(Point3::new(3.0, 0.2, 0.1) - Point3::new(0.0, 0.0, 0.0)))
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_a_b",
+                "distance(a, b) = 3",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
     let line = Line3::new(
         Point3::new(0.0, 0.0, 0.0),
         frame::unit3(&direction).ok_or_else(|| {
@@ -208,9 +207,9 @@ pub fn solve(
             )
         })?,
     );
-    let c_origin = c.origin;
     let normal = frame::unit3(
-        &(b_origin - Point3::new(0.0, 0.0, 0.0)).cross(&(c_origin - Point3::new(0.0, 0.0, 0.0))),
+        &(Point3::new(3.0, 0.2, 0.1) - Point3::new(0.0, 0.0, 0.0))
+            .cross(&(Point3::new(1.2, 2.6, -0.2) - Point3::new(0.0, 0.0, 0.0))),
     )
     .ok_or_else(|| {
         SolveError::new(
@@ -249,12 +248,11 @@ pub fn solve(
                 distance_a_b_meeting.roots.len() as f64,
             )
         })?;
-    let shift = distance_a_b - b_origin;
+    let shift = distance_a_b - Point3::new(3.0, 0.2, 0.1);
     b.translate(&shift);
 
     // distance(a, c) = 3 (tetrahedron.gcs:10)
-    let sphere_2 = Sphere::new(Point3::new(0.0, 0.0, 0.0), 3.0);
-    let distance_a_c_meeting = intersect3d::sphere_plane(&sphere_2, &plane);
+    let distance_a_c_meeting = intersect3d::sphere_plane(&sphere, &plane);
     if let Some(e) = SolveError::from_contact(
         "distance_a_c",
         "distance(a, c) = 3",
@@ -270,21 +268,21 @@ pub fn solve(
             0.0,
         )
     })?;
-    let nearest = distance_a_c.nearest(&c_origin).ok_or_else(|| {
-        SolveError::new(
-            "distance_a_c",
-            "distance(a, c) = 3",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let shift_2 = nearest - c_origin;
+    let nearest = distance_a_c
+        .nearest(&Point3::new(1.2, 2.6, -0.2))
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_a_c",
+                "distance(a, c) = 3",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let shift_2 = nearest - Point3::new(1.2, 2.6, -0.2);
     c.translate(&shift_2);
 
     // distance(a, d) = 3 (tetrahedron.gcs:12)
-    let sphere_3 = Sphere::new(Point3::new(0.0, 0.0, 0.0), 3.0);
-    let d_origin = d.origin;
-    let nearest_2 = sphere_3.nearest(&d_origin).ok_or_else(|| {
+    let nearest_2 = sphere.nearest(&Point3::new(1.1, 0.9, 2.4)).ok_or_else(|| {
         SolveError::new(
             "distance_a_d",
             "distance(a, d) = 3",
@@ -292,13 +290,13 @@ pub fn solve(
             0.0,
         )
     })?;
-    let shift_3 = nearest_2 - d_origin;
+    let shift_3 = nearest_2 - Point3::new(1.1, 0.9, 2.4);
     d.translate(&shift_3);
 
     // distance(b, c) = 3 (tetrahedron.gcs:11)
-    let sphere_4 = Sphere::new(distance_a_b, 3.0);
-    let c_origin_2 = c.origin;
-    let distance_b_c_meeting = intersect3d::circle_sphere(&distance_a_c, &sphere_4);
+    let sphere_2 = Sphere::new(distance_a_b, 3.0);
+    let c_origin = c.origin;
+    let distance_b_c_meeting = intersect3d::circle_sphere(&distance_a_c, &sphere_2);
     if let Some(e) = SolveError::from_contact(
         "distance_b_c",
         "distance(b, c) = 3",
@@ -317,13 +315,12 @@ pub fn solve(
                 distance_b_c_meeting.roots.len() as f64,
             )
         })?;
-    let shift_4 = distance_b_c - c_origin_2;
+    let shift_4 = distance_b_c - c_origin;
     c.translate(&shift_4);
 
     // distance(b, d) = 3 (tetrahedron.gcs:13)
-    let sphere_5 = Sphere::new(distance_a_b, 3.0);
-    let d_origin_2 = d.origin;
-    let distance_b_d_meeting = intersect3d::sphere_sphere(&sphere_3, &sphere_5);
+    let d_origin = d.origin;
+    let distance_b_d_meeting = intersect3d::sphere_sphere(&sphere, &sphere_2);
     if let Some(e) = SolveError::from_contact(
         "distance_b_d",
         "distance(b, d) = 3",
@@ -339,7 +336,7 @@ pub fn solve(
             0.0,
         )
     })?;
-    let nearest_3 = distance_b_d.nearest(&d_origin_2).ok_or_else(|| {
+    let nearest_3 = distance_b_d.nearest(&d_origin).ok_or_else(|| {
         SolveError::new(
             "distance_b_d",
             "distance(b, d) = 3",
@@ -347,13 +344,13 @@ pub fn solve(
             0.0,
         )
     })?;
-    let shift_5 = nearest_3 - d_origin_2;
+    let shift_5 = nearest_3 - d_origin;
     d.translate(&shift_5);
 
     // distance(c, d) = 3 (tetrahedron.gcs:14)
-    let sphere_6 = Sphere::new(distance_b_c, 3.0);
-    let d_origin_3 = d.origin;
-    let distance_c_d_meeting = intersect3d::circle_sphere(&distance_b_d, &sphere_6);
+    let sphere_3 = Sphere::new(distance_b_c, 3.0);
+    let d_origin_2 = d.origin;
+    let distance_c_d_meeting = intersect3d::circle_sphere(&distance_b_d, &sphere_3);
     if let Some(e) = SolveError::from_contact(
         "distance_c_d",
         "distance(c, d) = 3",
@@ -372,11 +369,11 @@ pub fn solve(
                 distance_c_d_meeting.roots.len() as f64,
             )
         })?;
-    let shift_6 = distance_c_d - d_origin_3;
+    let shift_6 = distance_c_d - d_origin_2;
     d.translate(&shift_6);
 
     Ok(Solution {
-        a,
+        a: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
         b,
         c,
         d,
