@@ -304,6 +304,66 @@ impl Locus3 for Circle3 {
     }
 }
 
+/// A surface of space with two coordinates on it: where a point held on it is placed by two
+/// defaults. `coordinates` and `at` are inverse on the surface; each surface's doc says what
+/// its two numbers mean.
+pub trait Surface {
+    /// The coordinates of the point of the surface nearest `p` (of `p` itself when on it).
+    fn coordinates(&self, p: &Point3<f64>) -> [f64; 2];
+    /// The point of the surface at coordinates `uv`.
+    fn at(&self, uv: [f64; 2]) -> Point3<f64>;
+}
+
+/// An orthonormal pair across unit `n`: [`crate::frame::perpendicular`] of it, normalised, and
+/// `n` across that.
+fn across(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let e1 = crate::frame::perpendicular(n).normalize();
+    (e1, n.cross(&e1))
+}
+
+/// A plane's coordinates: along the pair across its normal ([`across`]) from its point nearest
+/// the origin.
+impl Surface for Plane {
+    fn coordinates(&self, p: &Point3<f64>) -> [f64; 2] {
+        let (e1, e2) = across(&self.normal);
+        let w = p - self.origin_point();
+        [w.dot(&e1), w.dot(&e2)]
+    }
+    fn at(&self, [u, v]: [f64; 2]) -> Point3<f64> {
+        let (e1, e2) = across(&self.normal);
+        self.origin_point() + e1 * u + e2 * v
+    }
+}
+
+/// A sphere's coordinates: longitude about the global z axis from x, and latitude from the
+/// x-y plane, in radians, about its centre.
+impl Surface for Sphere {
+    fn coordinates(&self, p: &Point3<f64>) -> [f64; 2] {
+        let w = p - self.center;
+        [w.y.atan2(w.x), w.z.atan2(w.x.hypot(w.y))]
+    }
+    fn at(&self, [u, v]: [f64; 2]) -> Point3<f64> {
+        let (su, cu) = u.sin_cos();
+        let (sv, cv) = v.sin_cos();
+        self.center + Vector3::new(cv * cu, cv * su, sv) * self.radius
+    }
+}
+
+/// A cylinder's coordinates: the angle about its axis from the first direction across it
+/// ([`across`]), in radians, and the distance along the axis from its point.
+impl Surface for Cylinder {
+    fn coordinates(&self, p: &Point3<f64>) -> [f64; 2] {
+        let (e1, e2) = across(&self.axis.dir);
+        let w = p - self.axis.point;
+        [w.dot(&e2).atan2(w.dot(&e1)), w.dot(&self.axis.dir)]
+    }
+    fn at(&self, [u, v]: [f64; 2]) -> Point3<f64> {
+        let (e1, e2) = across(&self.axis.dir);
+        let (s, c) = u.sin_cos();
+        self.axis.point + self.axis.dir * v + (e1 * c + e2 * s) * self.radius
+    }
+}
+
 /// A (circular, infinite) cylinder: the points at distance `radius` from the line `axis`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Cylinder {
@@ -491,6 +551,27 @@ fn bisect_root(r0: f64, z0: f64, z1: f64, g0: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn surface_coordinates_and_points_are_inverse() {
+        let plane =
+            Plane::from_point_normal(&Point3::new(1.0, 2.0, 3.0), &Vector3::new(1.0, -2.0, 0.5));
+        let sphere = Sphere::new(Point3::new(-1.0, 0.5, 2.0), 3.0);
+        let cylinder = Cylinder::new(
+            Line3::new(Point3::new(0.5, 1.0, -2.0), Vector3::new(0.3, 0.4, 1.0)),
+            1.5,
+        );
+        let surfaces: [&dyn Surface; 3] = [&plane, &sphere, &cylinder];
+        let loci: [&dyn Locus3; 3] = [&plane, &sphere, &cylinder];
+        for (s, l) in surfaces.iter().zip(loci) {
+            for uv in [[0.3, -0.7], [-2.0, 1.2], [2.9, 0.1]] {
+                let p = s.at(uv);
+                assert!(l.distance(&p) < 1e-14, "{p:?} off its surface");
+                let back = s.coordinates(&p);
+                assert!((back[0] - uv[0]).abs() < 1e-13 && (back[1] - uv[1]).abs() < 1e-13);
+            }
+        }
+    }
 
     #[test]
     fn distances_vanish_on_the_locus() {

@@ -851,6 +851,23 @@ impl Solve<'_> {
                 };
                 self.define_pure(w, r, "on_locus", &code);
             }
+            Op::SurfaceParam {
+                locus,
+                point,
+                component,
+            } => {
+                let code = format!(
+                    "{}.coordinates(&{})[{}]",
+                    self.r(*locus),
+                    self.r(*point),
+                    component.min(&1)
+                );
+                self.define_pure(w, r, "coordinate", &code);
+            }
+            Op::SurfacePoint { locus, u, v } => {
+                let code = format!("{}.at([{}, {}])", self.r(*locus), self.r(*u), self.r(*v));
+                self.define_pure(w, r, "on_surface", &code);
+            }
             Op::TurnedAbout { dir, axis, angle } => {
                 let code = format!(
                     "frame::rotation_about_axis(&{}, {}) * {}",

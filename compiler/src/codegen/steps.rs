@@ -378,6 +378,8 @@ impl Solve<'_> {
             | Op::MirrorPlane { .. }
             | Op::Cylinder { .. }
             | Op::ShiftedCylinder { .. }
+            | Op::SurfaceParam { .. }
+            | Op::SurfacePoint { .. }
             | Op::TurnedAbout { .. } => {
                 unreachable!("bug in gcs: a spatial plan reached the planar code generator")
             }

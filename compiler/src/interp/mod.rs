@@ -1096,6 +1096,8 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::MirrorPlane { .. }
             | Op::Cylinder { .. }
             | Op::ShiftedCylinder { .. }
+            | Op::SurfaceParam { .. }
+            | Op::SurfacePoint { .. }
             | Op::ParallelPlane { .. }
             | Op::Sphere { .. }
             | Op::SphereThrough { .. }

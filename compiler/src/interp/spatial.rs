@@ -7,7 +7,7 @@ use crate::config::{D3, P3, V3};
 use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Step};
 use gcs_lang::model::ConstraintId;
 use gcs_runtime::error::{ErrorKind, SolveError};
-use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere, Surface};
 use gcs_runtime::{check, frame, intersect3d, Contact, Roots};
 use nalgebra::UnitQuaternion;
 
@@ -52,6 +52,14 @@ impl Machine<'_, '_, D3> {
         match self.get(r) {
             Some(&Val::Sphere(x)) => x,
             v => malformed(r, "a sphere", v),
+        }
+    }
+    fn surface(&self, r: Reg) -> &dyn Surface {
+        match self.get(r) {
+            Some(Val::Plane(x)) => x,
+            Some(Val::Sphere(x)) => x,
+            Some(Val::Cylinder(x)) => x,
+            v => malformed(r, "a surface of space", v),
         }
     }
     fn cylinder(&self, r: Reg) -> Cylinder {
@@ -248,6 +256,17 @@ impl Machine<'_, '_, D3> {
                     Some(&Val::C3(c)) => c.point_at(t),
                     v => malformed(*locus, "a line or circle of space", v),
                 })
+            }
+            Op::SurfaceParam {
+                locus,
+                point,
+                component,
+            } => {
+                let uv = self.surface(*locus).coordinates(&self.p3(*point));
+                Val::S(uv[usize::from(*component).min(1)])
+            }
+            Op::SurfacePoint { locus, u, v } => {
+                Val::P3(self.surface(*locus).at([self.s(*u), self.s(*v)]))
             }
             Op::HelixTurn { advance, pitch } => {
                 Val::S(self.finite(i, frame::helix_turn(self.s(*advance), self.s(*pitch)))?)

@@ -151,6 +151,14 @@ impl Plan {
                     normal,
                 } => format!("mirror {} across plane {} {}", r(point), r(base), r(normal)),
                 Op::LocusPoint { locus, at } => format!("locus_point {} at {}", r(locus), r(at)),
+                Op::SurfacePoint { locus, u, v } => {
+                    format!("surface_point {} at {} {}", r(locus), r(u), r(v))
+                }
+                Op::SurfaceParam {
+                    locus,
+                    point,
+                    component,
+                } => format!("surface_param {} of {} {component}", r(locus), r(point)),
                 Op::Implicit { locus, point } => format!("implicit {} at {}", r(locus), r(point)),
                 Op::LocusParam { locus, point } => {
                     format!("locus_param {} of {}", r(locus), r(point))

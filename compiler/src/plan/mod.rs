@@ -408,6 +408,15 @@ pub enum Op {
     /// The parameter of `point`'s nearest point on a line or circle `locus` (the inverse of
     /// [`Op::LocusPoint`]).
     LocusParam { locus: Reg, point: Reg },
+    /// In space: coordinate `component` (0 or 1) of `point` on surface `locus` (a plane, a
+    /// sphere or a cylinder: `runtime::locus3d::Surface`).
+    SurfaceParam {
+        locus: Reg,
+        point: Reg,
+        component: u8,
+    },
+    /// In space: the point of surface `locus` at coordinates `u`, `v`.
+    SurfacePoint { locus: Reg, u: Reg, v: Reg },
     /// The circle about `center` with `radius`.
     Circle { center: Reg, radius: Reg },
     /// The circle about `center` through `through`. `radius` is its radius when the analysis

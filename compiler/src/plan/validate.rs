@@ -28,6 +28,8 @@ const PLANE: Accepts = &[Ty::Plane];
 const SPHERE: Accepts = &[Ty::Sphere];
 /// What has a parameter along it (a place, or an implicit error): the loci a default slides on.
 const PARAM_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic];
+/// What a point held by two coordinates lies on.
+const SURFACE: Accepts = &[Ty::Plane, Ty::Sphere, Ty::Cylinder];
 /// What an implicit function measures a point's offset from: the loci a default slides on,
 /// and in space the sphere, plane and cylinder an `onto` can displace a point from.
 const IMPLICIT_LOCUS: Accepts = &[
@@ -218,6 +220,10 @@ impl Op {
             } => vec![(*point, POINT), (*base, POINT), (*normal, VECTOR)],
             Op::LocusPoint { locus, at } => vec![(*locus, PARAM_LOCUS), (*at, SCALAR)],
             Op::LocusParam { locus, point } => vec![(*locus, PARAM_LOCUS), (*point, POINT)],
+            Op::SurfaceParam { locus, point, .. } => vec![(*locus, SURFACE), (*point, POINT)],
+            Op::SurfacePoint { locus, u, v } => {
+                vec![(*locus, SURFACE), (*u, SCALAR), (*v, SCALAR)]
+            }
             Op::Implicit { locus, point } => vec![(*locus, IMPLICIT_LOCUS), (*point, POINT)],
             Op::Circle { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
             Op::CircleThrough {
@@ -380,6 +386,7 @@ impl Op {
             | Op::Along { .. }
             | Op::AngleOf(_)
             | Op::LocusParam { .. }
+            | Op::SurfaceParam { .. }
             | Op::Error { .. }
             | Op::Implicit { .. }
             | Op::RadiusFromLine { .. }
@@ -420,7 +427,8 @@ impl Op {
             | Op::Reflect { .. }
             | Op::Mirror { .. }
             | Op::MirrorPlane { .. }
-            | Op::LocusPoint { .. } => Ty::Point,
+            | Op::LocusPoint { .. }
+            | Op::SurfacePoint { .. } => Ty::Point,
             Op::Circle { .. } | Op::CircleThrough { .. } | Op::ShiftedCircle { .. } => Ty::Circle,
             Op::Intersect { meet, .. } => meet.result(),
             Op::Translate { .. }

@@ -1828,6 +1828,14 @@ impl Builder<'_, Spatial> {
             ) => self.slide(k, feature, locus),
             (_, Turn::Axis { axis, .. }) => self.spin(k, axis),
             (Trans::Free, _) => self.place(k),
+            // Held on a surface with nothing left to turn: its two coordinates on it.
+            (
+                Trans::On {
+                    feature,
+                    locus: locus @ (Locus::Plane(_) | Locus::Sphere(_) | Locus::Cylinder(_)),
+                },
+                Turn::Known | Turn::None,
+            ) => self.place_on(k, feature, locus),
             // About a pivot, or a feature held on a plane or sphere: its turns first (the
             // feature stays on its locus), then what the constraints can do with them.
             (_, Turn::Free) if rec.shape == Shape::Body => self.orient(k),
@@ -1867,6 +1875,61 @@ impl Builder<'_, Spatial> {
         let explain = format!(
             "{}: move {} so that {fname} is there.",
             Self::assume(&meaning, &name),
+            self.group_name(&geoms)
+        );
+        self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
+        self.placed(k, f, to, Target::Point(to));
+        true
+    }
+
+    /// Cluster `k` with feature `f` held on a surface (a plane, a sphere, a cylinder) and
+    /// nothing left to turn: default `f`'s two coordinates on it (`runtime::locus3d::Surface`
+    /// says which), where the constraints leave it.
+    fn place_on(&mut self, k: usize, f: GeomId, locus: Locus) -> bool {
+        let geoms = self.clusters[k].geoms.clone();
+        let fname = self.name(f);
+        let from = self.point(f);
+        let l = locus.reg();
+        let words = match locus {
+            Locus::Sphere(_) => ["longitude", "latitude"],
+            Locus::Cylinder(_) => ["angle", "height"],
+            _ => ["first coordinate", "second coordinate"],
+        };
+        // An angle's name ends in `_angle`: an iteration steps and wraps it as one.
+        let suffixes = match locus {
+            Locus::Sphere(_) => ["longitude_angle", "latitude_angle"],
+            Locus::Cylinder(_) => ["angle", "height"],
+            _ => ["u", "v"],
+        };
+        let mut uv = [Reg(0); 2];
+        for (i, (what, suffix)) in words.into_iter().zip(suffixes).enumerate() {
+            let meaning = format!("the {what} of {fname} on {}", self.word(l));
+            let measure = self.value(
+                Op::SurfaceParam {
+                    locus: l,
+                    point: from,
+                    component: i as u8,
+                },
+                Ty::Scalar,
+                meaning.clone(),
+            );
+            uv[i] = self.default_value(f, format!("{fname}_{suffix}"), meaning, measure);
+        }
+        let to = self.value(
+            Op::SurfacePoint {
+                locus: l,
+                u: uv[0],
+                v: uv[1],
+            },
+            Ty::Point,
+            format!("{fname}'s default place on {}", self.word(l)),
+        );
+        let explain = format!(
+            "{}: move {} so that {fname} is there.",
+            Self::assume(
+                &format!("the place of {fname} on {}", self.word(l)),
+                &format!("{fname}_{}, {fname}_{}", suffixes[0], suffixes[1])
+            ),
             self.group_name(&geoms)
         );
         self.emit(Op::Translate { geoms, from, to }, None, Vec::new(), explain);
