@@ -922,6 +922,14 @@ pub fn turns_to_angle(
     }
 }
 
+/// An orthonormal pair across unit `n`: [`perpendicular`] of it, normalised, and `n` across
+/// that. Where a circle's angles start, and the two ways off a line.
+#[inline]
+pub fn across(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let e1 = perpendicular(n).normalize();
+    (e1, n.cross(&e1))
+}
+
 /// `v` over its length; `None` for a zero or not-a-number length, where no direction is.
 #[inline]
 pub fn unit3(v: &Vector3<f64>) -> Option<Vector3<f64>> {

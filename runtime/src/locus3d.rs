@@ -259,8 +259,7 @@ impl Circle3 {
     /// ([`crate::frame::perpendicular`] of its normal) and the direction a quarter turn on.
     #[inline]
     pub fn basis(&self) -> (Vector3<f64>, Vector3<f64>) {
-        let e1 = crate::frame::perpendicular(&self.normal).normalize();
-        (e1, self.normal.cross(&e1))
+        crate::frame::across(&self.normal)
     }
 
     /// The angle of `p` about the circle's axis, from [`Circle3::basis`]'s first direction.
@@ -304,6 +303,47 @@ impl Locus3 for Circle3 {
     }
 }
 
+/// A torus: the points at distance `tube` from circle `circle` (a spindle torus when the tube
+/// is wider than the circle's radius). What `distance(p, circle) = d` holds a point to.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Torus {
+    /// The circle at its core.
+    pub circle: Circle3,
+    /// The distance from the circle.
+    pub tube: f64,
+}
+
+impl Torus {
+    /// The torus at distance `tube` from `circle`.
+    #[inline]
+    pub fn new(circle: Circle3, tube: f64) -> Self {
+        Self { circle, tube }
+    }
+
+    /// The point of the torus nearest `p`: along the line from the circle's point nearest `p`;
+    /// `None` when `p` is on the circle's axis or on the circle (no one nearest point).
+    #[inline]
+    pub fn nearest(&self, p: &Point3<f64>) -> Option<Point3<f64>> {
+        let c = self.circle.nearest(p)?;
+        let w = p - c;
+        let n = w.norm();
+        (n > 0.0 && n.is_finite()).then(|| c + w * (self.tube / n))
+    }
+
+    /// The signed distance of `p` from the torus: its distance from the circle less the tube.
+    #[inline]
+    pub fn signed_distance(&self, p: &Point3<f64>) -> f64 {
+        self.circle.distance(p) - self.tube
+    }
+}
+
+impl Locus3 for Torus {
+    #[inline]
+    fn distance(&self, p: &Point3<f64>) -> f64 {
+        self.signed_distance(p).abs()
+    }
+}
+
 /// A surface of space with two coordinates on it: where a point held on it is placed by two
 /// defaults. `coordinates` and `at` are inverse on the surface; each surface's doc says what
 /// its two numbers mean.
@@ -314,12 +354,7 @@ pub trait Surface {
     fn at(&self, uv: [f64; 2]) -> Point3<f64>;
 }
 
-/// An orthonormal pair across unit `n`: [`crate::frame::perpendicular`] of it, normalised, and
-/// `n` across that.
-fn across(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
-    let e1 = crate::frame::perpendicular(n).normalize();
-    (e1, n.cross(&e1))
-}
+use crate::frame::across;
 
 /// A plane's coordinates: along the pair across its normal ([`across`]) from its point nearest
 /// the origin.
@@ -346,6 +381,30 @@ impl Surface for Sphere {
         let (su, cu) = u.sin_cos();
         let (sv, cv) = v.sin_cos();
         self.center + Vector3::new(cv * cu, cv * su, sv) * self.radius
+    }
+}
+
+/// A torus's coordinates: the angle about its circle's axis from the circle's first direction
+/// ([`Circle3::basis`]), and the angle about the circle from outward in its plane towards its
+/// normal, in radians.
+impl Surface for Torus {
+    fn coordinates(&self, p: &Point3<f64>) -> [f64; 2] {
+        let c = &self.circle;
+        let (e1, e2) = c.basis();
+        let w = p - c.center;
+        let h = w.dot(&c.normal);
+        let radial = w - c.normal * h;
+        [
+            w.dot(&e2).atan2(w.dot(&e1)),
+            h.atan2(radial.norm() - c.radius),
+        ]
+    }
+    fn at(&self, [u, v]: [f64; 2]) -> Point3<f64> {
+        let c = &self.circle;
+        let (e1, e2) = c.basis();
+        let (su, cu) = u.sin_cos();
+        let (sv, cv) = v.sin_cos();
+        c.center + (e1 * cu + e2 * su) * (c.radius + self.tube * cv) + c.normal * (self.tube * sv)
     }
 }
 
@@ -561,8 +620,16 @@ mod tests {
             Line3::new(Point3::new(0.5, 1.0, -2.0), Vector3::new(0.3, 0.4, 1.0)),
             1.5,
         );
-        let surfaces: [&dyn Surface; 3] = [&plane, &sphere, &cylinder];
-        let loci: [&dyn Locus3; 3] = [&plane, &sphere, &cylinder];
+        let torus = Torus::new(
+            Circle3::new(
+                Point3::new(1.0, -1.0, 0.5),
+                Vector3::new(0.2, 1.0, 0.3),
+                2.0,
+            ),
+            0.7,
+        );
+        let surfaces: [&dyn Surface; 4] = [&plane, &sphere, &cylinder, &torus];
+        let loci: [&dyn Locus3; 4] = [&plane, &sphere, &cylinder, &torus];
         for (s, l) in surfaces.iter().zip(loci) {
             for uv in [[0.3, -0.7], [-2.0, 1.2], [2.9, 0.1]] {
                 let p = s.at(uv);

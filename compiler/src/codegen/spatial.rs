@@ -29,6 +29,7 @@ enum Kind {
     Plane,
     Sphere,
     Cylinder,
+    Torus,
     Other,
 }
 
@@ -578,6 +579,7 @@ impl Solve<'_> {
             Op::Plane { .. } | Op::ParallelPlane { .. } => Kind::Plane,
             Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Kind::Sphere,
             Op::Cylinder { .. } | Op::ShiftedCylinder { .. } => Kind::Cylinder,
+            Op::Torus { .. } | Op::ShiftedTorus { .. } => Kind::Torus,
             Op::Intersect { meet, .. } => match meet {
                 Meet::SphereSphere | Meet::SpherePlane => Kind::Circle,
                 Meet::PlanePlane => Kind::Line,
@@ -937,6 +939,19 @@ impl Solve<'_> {
                 );
                 self.define_pure(w, r, "cylinder", &code);
             }
+            Op::Torus { circle, tube } => {
+                let code = format!("Torus::new({}, {})", self.r(*circle), self.r(*tube));
+                self.define_pure(w, r, "torus", &code);
+            }
+            Op::ShiftedTorus { torus, from, to } => {
+                let t = self.r(*torus);
+                let code = format!(
+                    "Torus::new(Circle3::new({t}.circle.center + ({} - {}), {t}.circle.normal, {t}.circle.radius), {t}.tube)",
+                    self.r(*to),
+                    self.r(*from)
+                );
+                self.define_pure(w, r, "torus_moved", &code);
+            }
             Op::ShiftedCylinder { cylinder, from, to } => {
                 let c = self.r(*cylinder);
                 let code = format!(
@@ -1043,7 +1058,7 @@ impl Solve<'_> {
                     let code = match self.kind3(*locus) {
                         Kind::Plane => format!("{l}.signed_distance(&{q})"),
                         Kind::Sphere => format!("({q} - {l}.center).norm() - {l}.radius"),
-                        Kind::Cylinder => format!("{l}.signed_distance(&{q})"),
+                        Kind::Cylinder | Kind::Torus => format!("{l}.signed_distance(&{q})"),
                         _ => format!("{l}.distance(&{q})"),
                     };
                     self.define_pure(w, r, "error", &code);
@@ -1315,6 +1330,20 @@ impl Solve<'_> {
                 let d = d.as_ref().map_or_else(|| "0.0".to_string(), r);
                 format!("({} - {}).dot(&{}) - {d}", r(p), r(base), r(normal))
             }
+            Residual::OnCircle {
+                p,
+                centre,
+                normal,
+                radius,
+                d: Some(d),
+            } => format!(
+                "Circle3::new({}, {}, {}).distance(&{}) - {}",
+                r(centre),
+                r(normal),
+                r(radius),
+                r(p),
+                r(d)
+            ),
             Residual::PointLine {
                 p,
                 base,
@@ -1388,12 +1417,27 @@ impl Solve<'_> {
                 centre,
                 normal,
                 radius,
+                d: None,
             } => format!(
                 "Circle3::new({}, {}, {}).distance(&{})",
                 r(centre),
                 r(normal),
                 r(radius),
                 r(p)
+            ),
+            Residual::OnCircle {
+                p,
+                centre,
+                normal,
+                radius,
+                d: Some(d),
+            } => format!(
+                "(Circle3::new({}, {}, {}).distance(&{}) - {}).abs()",
+                r(centre),
+                r(normal),
+                r(radius),
+                r(p),
+                r(d)
             ),
             Residual::Twist { axis, u, v, angle } => format!(
                 "check::space::twist({}, {}, {}, {})",

@@ -380,6 +380,8 @@ impl Solve<'_> {
             | Op::ShiftedCylinder { .. }
             | Op::SurfaceParam { .. }
             | Op::SurfacePoint { .. }
+            | Op::Torus { .. }
+            | Op::ShiftedTorus { .. }
             | Op::TurnedAbout { .. } => {
                 unreachable!("bug in gcs: a spatial plan reached the planar code generator")
             }

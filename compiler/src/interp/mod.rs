@@ -14,7 +14,7 @@ use gcs_lang::model::ConstraintId;
 use gcs_lang::Model;
 use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus2d::{self, Circle, Conic, Line, Sense};
-use gcs_runtime::locus3d::{Circle3, Cylinder, Line3, Plane, Sphere};
+use gcs_runtime::locus3d::{Circle3, Cylinder, Line3, Plane, Sphere, Torus};
 use gcs_runtime::outer::Outer;
 use gcs_runtime::{check, frame, intersect2d};
 use gcs_runtime::{Contact, Roots};
@@ -61,6 +61,7 @@ enum Val {
     Plane(Plane),
     Sphere(Sphere),
     Cylinder(Cylinder),
+    Torus(Torus),
 }
 
 /// Runs `plan` with `params` (indexed like the model's params) and each default at its
@@ -1098,6 +1099,8 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::ShiftedCylinder { .. }
             | Op::SurfaceParam { .. }
             | Op::SurfacePoint { .. }
+            | Op::Torus { .. }
+            | Op::ShiftedTorus { .. }
             | Op::ParallelPlane { .. }
             | Op::Sphere { .. }
             | Op::SphereThrough { .. }

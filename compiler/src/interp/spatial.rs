@@ -7,7 +7,7 @@ use crate::config::{D3, P3, V3};
 use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Step};
 use gcs_lang::model::ConstraintId;
 use gcs_runtime::error::{ErrorKind, SolveError};
-use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere, Surface};
+use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere, Surface, Torus};
 use gcs_runtime::{check, frame, intersect3d, Contact, Roots};
 use nalgebra::UnitQuaternion;
 
@@ -59,6 +59,7 @@ impl Machine<'_, '_, D3> {
             Some(Val::Plane(x)) => x,
             Some(Val::Sphere(x)) => x,
             Some(Val::Cylinder(x)) => x,
+            Some(Val::Torus(x)) => x,
             v => malformed(r, "a surface of space", v),
         }
     }
@@ -88,6 +89,7 @@ impl Machine<'_, '_, D3> {
             Some(Val::Plane(q)) => q.distance(p),
             Some(Val::Sphere(s)) => s.distance(p),
             Some(Val::Cylinder(c)) => c.distance(p),
+            Some(Val::Torus(t)) => t.distance(p),
             v => malformed(r, "a locus of space", v),
         }
     }
@@ -312,6 +314,18 @@ impl Machine<'_, '_, D3> {
                 Line3::new(self.p3(*point), self.unit(i, self.v3(*dir))?),
                 self.s(*radius),
             )),
+            Op::Torus { circle, tube } => {
+                Val::Torus(Torus::new(self.circle3(*circle), self.s(*tube)))
+            }
+            Op::ShiftedTorus { torus, from, to } => {
+                let t = match self.get(*torus) {
+                    Some(&Val::Torus(t)) => t,
+                    v => malformed(*torus, "a torus", v),
+                };
+                let c = t.circle;
+                let at = c.center + (self.p3(*to) - self.p3(*from));
+                Val::Torus(Torus::new(Circle3::new(at, c.normal, c.radius), t.tube))
+            }
             Op::ShiftedCylinder { cylinder, from, to } => {
                 let c = self.cylinder(*cylinder);
                 let at = c.axis.point + (self.p3(*to) - self.p3(*from));
@@ -357,6 +371,7 @@ impl Machine<'_, '_, D3> {
                     Some(&Val::Sphere(s)) => s.nearest(&q).ok_or_else(|| self.degenerate(i))?,
                     Some(&Val::C3(c)) => c.nearest(&q).ok_or_else(|| self.degenerate(i))?,
                     Some(&Val::Cylinder(c)) => c.nearest(&q).ok_or_else(|| self.degenerate(i))?,
+                    Some(&Val::Torus(t)) => t.nearest(&q).ok_or_else(|| self.degenerate(i))?,
                     v => malformed(*locus, "a locus of space", v),
                 })
             }
@@ -442,6 +457,7 @@ impl Machine<'_, '_, D3> {
                     Some(&Val::Plane(p)) => p.signed_distance(&q),
                     Some(&Val::Sphere(s)) => (q - s.center).norm() - s.radius,
                     Some(&Val::Cylinder(c)) => c.signed_distance(&q),
+                    Some(&Val::Torus(t)) => t.signed_distance(&q),
                     _ => self.gap(*locus, &q),
                 })
             }
@@ -561,6 +577,17 @@ impl Machine<'_, '_, D3> {
             Residual::PointPlane { p, base, normal, d } => {
                 (self.p3(p) - self.p3(base)).dot(&self.v3(normal)) - self.s_or_zero(d)
             }
+            // At a distance from a circle: signed, smooth where the distance is not zero.
+            Residual::OnCircle {
+                p,
+                centre,
+                normal,
+                radius,
+                d: Some(d),
+            } => {
+                let c = Circle3::new(self.p3(centre), self.v3(normal), self.s(radius));
+                c.distance(&self.p3(p)) - self.s(d)
+            }
             // At a distance from the line: signed, smooth where the distance is not zero.
             Residual::PointLine {
                 p,
@@ -605,8 +632,10 @@ impl Machine<'_, '_, D3> {
                 centre,
                 normal,
                 radius,
+                d,
             } => {
-                Circle3::new(self.p3(centre), self.v3(normal), self.s(radius)).distance(&self.p3(p))
+                let c = Circle3::new(self.p3(centre), self.v3(normal), self.s(radius));
+                (c.distance(&self.p3(p)) - self.s_or_zero(d)).abs()
             }
             Residual::Twist { axis, u, v, angle } => {
                 c::twist(self.v3(axis), self.v3(u), self.v3(v), self.s(angle))

@@ -197,6 +197,10 @@ impl Plan {
                 Op::ShiftedCylinder { cylinder, from, to } => {
                     format!("shifted_cylinder {} {} -> {}", r(cylinder), r(from), r(to))
                 }
+                Op::Torus { circle, tube } => format!("torus {} {}", r(circle), r(tube)),
+                Op::ShiftedTorus { torus, from, to } => {
+                    format!("shifted_torus {} {} -> {}", r(torus), r(from), r(to))
+                }
                 Op::Circle3 {
                     center,
                     normal,
@@ -495,12 +499,14 @@ fn residual_text(residual: &Residual) -> String {
             centre,
             normal,
             radius,
+            d,
         } => format!(
-            "on_circle {} {} {} {}",
+            "on_circle {} {} {} {}{}",
             r(p),
             r(centre),
             r(normal),
-            r(radius)
+            r(radius),
+            d.map_or(String::new(), |d| format!(" at {}", r(&d)))
         ),
         Residual::AngleBetween { u, v, angle } => {
             format!("angle_between {} {} {}", r(u), r(v), r(angle))

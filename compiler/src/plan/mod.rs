@@ -62,6 +62,8 @@ pub enum Ty {
     Sphere,
     /// A cylinder.
     Cylinder,
+    /// A torus: the points at a distance from a circle of space.
+    Torus,
 }
 
 impl Ty {
@@ -69,7 +71,7 @@ impl Ty {
     pub fn in_space(self, space: Space) -> bool {
         match self {
             Ty::Conic => space == Space::D2,
-            Ty::Plane | Ty::Sphere | Ty::Cylinder => space == Space::D3,
+            Ty::Plane | Ty::Sphere | Ty::Cylinder | Ty::Torus => space == Space::D3,
             _ => true,
         }
     }
@@ -289,12 +291,14 @@ pub enum Residual {
     },
     /// In space: directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1).
     Parallel { u: Reg, v: Reg, sense: f64 },
-    /// In space: `p` lies on the circle about `centre` with unit `normal` and `radius`.
+    /// In space: `p` is at distance `d` (absent: 0, on it) from the circle about `centre`
+    /// with unit `normal` and `radius`.
     OnCircle {
         p: Reg,
         centre: Reg,
         normal: Reg,
         radius: Reg,
+        d: Option<Reg>,
     },
     /// In space: the unsigned angle between directions `u` and `v` is `angle`.
     AngleBetween { u: Reg, v: Reg, angle: Reg },
@@ -456,6 +460,10 @@ pub enum Op {
     Cylinder { point: Reg, dir: Reg, radius: Reg },
     /// In space: `cylinder` translated by `to - from`.
     ShiftedCylinder { cylinder: Reg, from: Reg, to: Reg },
+    /// In space: the points at distance `tube` from circle `circle`.
+    Torus { circle: Reg, tube: Reg },
+    /// In space: `torus` translated by `to - from`.
+    ShiftedTorus { torus: Reg, from: Reg, to: Reg },
     /// In space: the sphere about `center` through `through`; `radius` as in
     /// [`Op::CircleThrough`].
     SphereThrough {

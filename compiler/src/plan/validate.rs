@@ -23,13 +23,20 @@ const VECTOR: Accepts = &[Ty::Vector];
 const LINE: Accepts = &[Ty::Line];
 const CIRCLE: Accepts = &[Ty::Circle];
 /// What the nearest point of a locus is taken on.
-const NEAREST_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Plane, Ty::Sphere, Ty::Cylinder];
+const NEAREST_LOCUS: Accepts = &[
+    Ty::Line,
+    Ty::Circle,
+    Ty::Plane,
+    Ty::Sphere,
+    Ty::Cylinder,
+    Ty::Torus,
+];
 const PLANE: Accepts = &[Ty::Plane];
 const SPHERE: Accepts = &[Ty::Sphere];
 /// What has a parameter along it (a place, or an implicit error): the loci a default slides on.
 const PARAM_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic];
 /// What a point held by two coordinates lies on.
-const SURFACE: Accepts = &[Ty::Plane, Ty::Sphere, Ty::Cylinder];
+const SURFACE: Accepts = &[Ty::Plane, Ty::Sphere, Ty::Cylinder, Ty::Torus];
 /// What an implicit function measures a point's offset from: the loci a default slides on,
 /// and in space the sphere, plane and cylinder an `onto` can displace a point from.
 const IMPLICIT_LOCUS: Accepts = &[
@@ -39,6 +46,7 @@ const IMPLICIT_LOCUS: Accepts = &[
     Ty::Plane,
     Ty::Sphere,
     Ty::Cylinder,
+    Ty::Torus,
 ];
 /// What a point can be tested to lie on.
 const ANY_LOCUS: Accepts = &[
@@ -48,6 +56,7 @@ const ANY_LOCUS: Accepts = &[
     Ty::Plane,
     Ty::Sphere,
     Ty::Cylinder,
+    Ty::Torus,
 ];
 
 /// Why a plan is malformed: every broken invariant, one sentence each. A consumer never gets
@@ -133,12 +142,16 @@ impl Residual {
                 centre,
                 normal,
                 radius,
-            } => out.extend([
-                (*p, POINT),
-                (*centre, POINT),
-                (*normal, VECTOR),
-                (*radius, SCALAR),
-            ]),
+                d,
+            } => {
+                out.extend([
+                    (*p, POINT),
+                    (*centre, POINT),
+                    (*normal, VECTOR),
+                    (*radius, SCALAR),
+                ]);
+                opt(d, &mut out);
+            }
             Residual::AngleBetween { u, v, angle } => {
                 out.extend([(*u, VECTOR), (*v, VECTOR), (*angle, SCALAR)])
             }
@@ -251,6 +264,10 @@ impl Op {
             }
             Op::ShiftedCylinder { cylinder, from, to } => {
                 vec![(*cylinder, &[Ty::Cylinder]), (*from, POINT), (*to, POINT)]
+            }
+            Op::Torus { circle, tube } => vec![(*circle, CIRCLE), (*tube, SCALAR)],
+            Op::ShiftedTorus { torus, from, to } => {
+                vec![(*torus, &[Ty::Torus]), (*from, POINT), (*to, POINT)]
             }
             Op::Circle3 {
                 center,
@@ -412,6 +429,7 @@ impl Op {
             Op::Plane { .. } | Op::ParallelPlane { .. } => Ty::Plane,
             Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Ty::Sphere,
             Op::Cylinder { .. } | Op::ShiftedCylinder { .. } => Ty::Cylinder,
+            Op::Torus { .. } | Op::ShiftedTorus { .. } => Ty::Torus,
             Op::Orbit { .. } | Op::Circle3 { .. } => Ty::Circle,
             Op::Reversed(_)
             | Op::OffsetLine { .. }
@@ -453,6 +471,7 @@ fn accepts(ty: Ty) -> Accepts {
         Ty::Plane => &[Ty::Plane],
         Ty::Sphere => &[Ty::Sphere],
         Ty::Cylinder => &[Ty::Cylinder],
+        Ty::Torus => &[Ty::Torus],
     }
 }
 

@@ -106,6 +106,8 @@ pub enum Locus {
     Sphere(Reg),
     /// A cylinder (two DOF).
     Cylinder(Reg),
+    /// A torus (two DOF).
+    Torus(Reg),
 }
 
 impl Locus {
@@ -116,7 +118,8 @@ impl Locus {
             | Locus::Circle(r)
             | Locus::Plane(r)
             | Locus::Sphere(r)
-            | Locus::Cylinder(r) => r,
+            | Locus::Cylinder(r)
+            | Locus::Torus(r) => r,
         }
     }
 
@@ -124,7 +127,7 @@ impl Locus {
     pub fn dof(self) -> usize {
         match self {
             Locus::Line(_) | Locus::Circle(_) => 1,
-            Locus::Plane(_) | Locus::Sphere(_) | Locus::Cylinder(_) => 2,
+            Locus::Plane(_) | Locus::Sphere(_) | Locus::Cylinder(_) | Locus::Torus(_) => 2,
         }
     }
 
@@ -136,6 +139,7 @@ impl Locus {
             Ty::Plane => Some(Locus::Plane(r)),
             Ty::Sphere => Some(Locus::Sphere(r)),
             Ty::Cylinder => Some(Locus::Cylinder(r)),
+            Ty::Torus => Some(Locus::Torus(r)),
             _ => None,
         }
     }
@@ -147,6 +151,7 @@ impl Locus {
             Locus::Plane(_) => "plane",
             Locus::Sphere(_) => "sphere",
             Locus::Cylinder(_) => "cylinder",
+            Locus::Torus(_) => "torus",
         }
     }
 }
@@ -574,7 +579,7 @@ impl Builder<'_, Spatial> {
             Relation::Parallel { u, v, .. } | Relation::Angle { u, v, .. } => {
                 (self.dir_known(u) && self.dir_known(v)) || self.together(u, v)
             }
-            Relation::PointCircle { p, circle } => {
+            Relation::PointCircle { p, circle, .. } => {
                 (self.point_known(p) && self.record(circle).grounded()) || self.together(p, circle)
             }
             Relation::Twist { axis, u, v, .. } => {
@@ -644,14 +649,16 @@ impl Builder<'_, Spatial> {
                 let angle = self.angle_value(angle);
                 Residual::AngleBetween { u, v, angle }
             }
-            Relation::PointCircle { p, circle } => {
+            Relation::PointCircle { p, circle, d } => {
                 let p = self.point(p);
                 let (centre, normal, radius) = self.circle_parts(circle);
+                let d = d.map(|e| self.expr(e));
                 Residual::OnCircle {
                     p,
                     centre,
                     normal,
                     radius,
+                    d,
                 }
             }
             Relation::Twist { axis, u, v, angle } => {
@@ -863,7 +870,7 @@ impl Builder<'_, Spatial> {
                 }
                 false
             }
-            Relation::PointCircle { p, circle } => {
+            Relation::PointCircle { p, circle, d } => {
                 if !self.record(circle).grounded() || self.point_known(p) {
                     return false;
                 }
@@ -878,7 +885,27 @@ impl Builder<'_, Spatial> {
                     Ty::Circle,
                     words,
                 );
-                self.move_point(p, Target::On(Locus::Circle(locus)), r)
+                // At a distance from the circle: on the torus about it.
+                let target = match d {
+                    None => Locus::Circle(locus),
+                    Some(e) => {
+                        let tube = self.expr(e);
+                        let words = format!(
+                            "the torus at {} from {}",
+                            self.word(tube),
+                            self.name(circle)
+                        );
+                        Locus::Torus(self.value(
+                            Op::Torus {
+                                circle: locus,
+                                tube,
+                            },
+                            Ty::Torus,
+                            words,
+                        ))
+                    }
+                };
+                self.move_point(p, Target::On(target), r)
             }
             Relation::Angle { u, v, angle } => {
                 for (known, moving) in [(u, v), (v, u)] {
@@ -1583,6 +1610,15 @@ impl Builder<'_, Spatial> {
                 Ty::Cylinder,
                 words,
             )),
+            Locus::Torus(t) => Locus::Torus(self.value(
+                Op::ShiftedTorus {
+                    torus: t,
+                    from: pg,
+                    to: pf,
+                },
+                Ty::Torus,
+                words,
+            )),
         }
     }
 
@@ -1832,7 +1868,11 @@ impl Builder<'_, Spatial> {
             (
                 Trans::On {
                     feature,
-                    locus: locus @ (Locus::Plane(_) | Locus::Sphere(_) | Locus::Cylinder(_)),
+                    locus:
+                        locus @ (Locus::Plane(_)
+                        | Locus::Sphere(_)
+                        | Locus::Cylinder(_)
+                        | Locus::Torus(_)),
                 },
                 Turn::Known | Turn::None,
             ) => self.place_on(k, feature, locus),
@@ -1893,12 +1933,14 @@ impl Builder<'_, Spatial> {
         let words = match locus {
             Locus::Sphere(_) => ["longitude", "latitude"],
             Locus::Cylinder(_) => ["angle", "height"],
+            Locus::Torus(_) => ["angle about its axis", "angle about its circle"],
             _ => ["first coordinate", "second coordinate"],
         };
         // An angle's name ends in `_angle`: an iteration steps and wraps it as one.
         let suffixes = match locus {
             Locus::Sphere(_) => ["longitude_angle", "latitude_angle"],
             Locus::Cylinder(_) => ["angle", "height"],
+            Locus::Torus(_) => ["axis_angle", "tube_angle"],
             _ => ["u", "v"],
         };
         let mut uv = [Reg(0); 2];

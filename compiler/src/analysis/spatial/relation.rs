@@ -61,12 +61,15 @@ pub enum Relation {
         /// Same sense (+1) or opposite (-1).
         sense: f64,
     },
-    /// Point `p` lies on circle `circle` (in its plane, at its radius from its centre).
+    /// Point `p` is at distance `d` from circle `circle` (absent: on it, in its plane at its
+    /// radius from its centre).
     PointCircle {
         /// The point feature.
         p: GeomId,
         /// The circle.
         circle: GeomId,
+        /// The distance, or none for zero.
+        d: Option<ExprId>,
     },
     /// The unsigned angle between directions `u` and `v` is `angle` (in [0, pi]).
     Angle {
@@ -150,7 +153,7 @@ impl Relation {
                 p, base, normal, ..
             } => vec![p, base, normal],
             Relation::Parallel { u, v, .. } | Relation::Angle { u, v, .. } => vec![u, v],
-            Relation::PointCircle { p, circle } => vec![p, circle],
+            Relation::PointCircle { p, circle, .. } => vec![p, circle],
             Relation::Twist { axis, u, v, .. } => vec![axis, u, v],
             Relation::Helix {
                 axis, u, v, p, q, ..
@@ -241,6 +244,15 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 }
             }
             (K::Distance, Some(a), Some(b))
+                if kind(a).is_pointlike() && kind(b) == GeomKind::Circle =>
+            {
+                out.push(Relation::PointCircle {
+                    p: point(a),
+                    circle: b,
+                    d: c.value,
+                })
+            }
+            (K::Distance, Some(a), Some(b))
                 if kind(a).is_pointlike()
                     && matches!(kind(b), GeomKind::Line | GeomKind::Segment) =>
             {
@@ -258,6 +270,7 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 out.push(Relation::PointCircle {
                     p: point(a),
                     circle: b,
+                    d: None,
                 })
             }
             (K::On, Some(a), Some(b))
