@@ -16,8 +16,10 @@
 //! What is drawn, and how (classes of the style sheet in brackets):
 //!
 //! - A point (a top-level point, a body's member point or marker) is a dot (`point`) with its
-//!   dotted name as a label (`label`); points that coincide share one label, their names
-//!   joined. A segment's ends and a circle's centre are small dots (`end`), unlabelled.
+//!   dotted name as a label (`label`); points drawn at one pixel share one label, their names
+//!   joined. A segment's ends and a circle's centre are small dots (`end`), unlabelled; the
+//!   segment, circle, line or plane has its name as a label. A label right of the middle ends
+//!   at its point, and the picture grows where a label would cross its edge.
 //! - A body is the links between its member points and markers: a filled, semi-transparent
 //!   polygon (`body`) of their convex hull (taken once, in the drawn solution, so that no member
 //!   order draws a crossed polygon) for three or more, a bar (`bar`) for two; one colour a
@@ -91,6 +93,22 @@ pub const ARROW: f64 = 28.0;
 /// Where a label sits from the pixel it names, in pixels (right and up; left and up for a
 /// label in the right half of the picture, which ends there).
 const LABEL_OFFSET: [f64; 2] = [7.0, -7.0];
+
+/// The font size of labels, in pixels (as the style sheet says), and the width of one of
+/// their characters the picture makes room for (a little more than a sans-serif font's mean).
+const LABEL_FONT: f64 = 12.0;
+const LABEL_CHAR: f64 = 7.0;
+
+/// The least room between a label and the picture's edge, in pixels.
+const LABEL_PAD: f64 = 4.0;
+
+/// The box a label's text takes, `[left, top, right, bottom]` in pixels, as estimated from
+/// its characters: from where it is anchored, at its start or at its end (`end`).
+fn label_box(at: [f64; 2], end: bool, text: &str) -> [f64; 4] {
+    let width = LABEL_CHAR * text.chars().count() as f64;
+    let x0 = if end { at[0] - width } else { at[0] };
+    [x0, at[1] - LABEL_FONT, x0 + width, at[1] + 0.3 * LABEL_FONT]
+}
 
 /// Seconds of animation a sample.
 const SECONDS_A_SAMPLE: f64 = 0.1;
@@ -193,11 +211,35 @@ pub fn draw(
             .map(|(e, g)| g.as_ref().and_then(|g| e.item.shape(g, &fit)))
             .collect()
     };
+    let labels = merged_labels(&scene, &shapes(&drawn_geos));
+    // Room for the labels: the picture grows where one would cross its edge, in any sample.
+    let room = {
+        let mut room = [0.0f64; 4];
+        let drawn = std::iter::once(&drawn_geos);
+        for geos in drawn.chain(sample_geos.iter().flatten()) {
+            for (k, shape) in shapes(geos).iter().enumerate() {
+                if let (Some(Shape::Text(p, end)), Some(text)) = (shape, labels.get(&k)) {
+                    let [x0, y0, x1, y1] = label_box(*p, *end, text);
+                    let pad = LABEL_PAD;
+                    room[0] = room[0].max(pad - x0);
+                    room[1] = room[1].max(pad - y0);
+                    room[2] = room[2].max(x1 + pad - fit.size[0]);
+                    room[3] = room[3].max(y1 + pad - fit.size[1]);
+                }
+            }
+        }
+        room
+    };
+    let fit = fit.grow(room);
+    let shapes = |geos: &[Option<Geo>]| -> Vec<Option<Shape>> {
+        (scene.elements.iter().zip(geos))
+            .map(|(e, g)| g.as_ref().and_then(|g| e.item.shape(g, &fit)))
+            .collect()
+    };
     let drawn_shapes = shapes(&drawn_geos);
     let sample_shapes: Vec<Option<Vec<Option<Shape>>>> = (sample_geos.iter())
         .map(|g| g.as_ref().map(|g| shapes(g)))
         .collect();
-    let labels = merged_labels(&scene, &drawn_shapes);
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -311,6 +353,12 @@ enum At {
     Origin(String),
     /// The midpoint of two points.
     Mid(String, String),
+    /// The first corner of a plane's patch ([`Item::Plane`]).
+    Corner {
+        normal: String,
+        offset: String,
+        half: f64,
+    },
 }
 
 /// What an element draws, by the names of a solution.
@@ -472,13 +520,22 @@ impl Scene {
                     let Some(normal) = part(id, Part::Normal) else {
                         continue;
                     };
+                    let offset = format!("{}.offset", g.name);
                     scene.push(
                         Layer::Planes,
                         &format!("plane{fixed}"),
                         &g.name,
                         Item::Plane {
+                            normal: normal.clone(),
+                            offset: offset.clone(),
+                            half,
+                        },
+                    );
+                    scene.label(
+                        &g.name,
+                        At::Corner {
                             normal,
-                            offset: format!("{}.offset", g.name),
+                            offset,
                             half,
                         },
                     );
@@ -642,8 +699,34 @@ impl<'a> Frame<'a> {
                 let m: Vec<f64> = a.iter().zip(b).map(|(x, y)| (x + y) / 2.0).collect();
                 view.project(&m)
             }
+            At::Corner {
+                normal,
+                offset,
+                half,
+            } => *self.patch(normal, offset, *half, view)?.first()?,
         };
         finite(p)
+    }
+
+    /// The corners of a plane's square patch of half side `half`, centred where the centroid
+    /// projects onto the plane, projected; `None` when the solution lacks the plane or has
+    /// it non-finite.
+    fn patch(&self, normal: &str, offset: &str, half: f64, view: View) -> Option<Vec<[f64; 2]>> {
+        let n = three(self.by.vector(normal)?);
+        let d = self.by.scalar(offset)?;
+        let c = self.centroid;
+        let above = n[0] * c[0] + n[1] * c[1] + n[2] * c[2] - d;
+        let centre: Vec<f64> = (0..3).map(|i| c[i] - above * n[i]).collect();
+        let (u, v) = basis(n);
+        [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+            .iter()
+            .map(|(a, b)| {
+                let p: Vec<f64> = (0..3)
+                    .map(|i| centre[i] + half * (a * u[i] + b * v[i]))
+                    .collect();
+                finite(view.project(&p))
+            })
+            .collect()
     }
 }
 
@@ -806,24 +889,7 @@ impl Item {
                 normal,
                 offset,
                 half,
-            } => {
-                let n = three(f.by.vector(normal)?);
-                let d = f.by.scalar(offset)?;
-                let c = f.centroid;
-                let above = n[0] * c[0] + n[1] * c[1] + n[2] * c[2] - d;
-                let centre: Vec<f64> = (0..3).map(|i| c[i] - above * n[i]).collect();
-                let (u, v) = basis(n);
-                let ps = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
-                    .iter()
-                    .map(|(a, b)| {
-                        let p: Vec<f64> = (0..3)
-                            .map(|i| centre[i] + half * (a * u[i] + b * v[i]))
-                            .collect();
-                        finite(view.project(&p))
-                    })
-                    .collect::<Option<Vec<_>>>()?;
-                Some(Geo::Polygon(ps))
-            }
+            } => Some(Geo::Polygon(f.patch(normal, offset, *half, view)?)),
         }
     }
 
@@ -836,7 +902,7 @@ impl Item {
             (Item::Label { .. }, Geo::At(p)) => {
                 // Toward the middle of the picture, so that it stays inside.
                 let q = px(p);
-                let end = q[0] > fit.size[0] / 2.0;
+                let end = q[0] > fit.pixel(fit.mid)[0];
                 let dx = if end {
                     -LABEL_OFFSET[0]
                 } else {
@@ -1171,6 +1237,23 @@ mod tests {
         );
         assert!(!a[..a.find('\n').expect("line")].contains("<animate"));
         assert!(a[..a.find('\n').expect("line")].ends_with("/>"));
+    }
+
+    #[test]
+    fn the_picture_grows_to_hold_its_labels() {
+        let text =
+            "space 2d; fixed point a_point_with_a_long_name = (0, 0); fixed point B = (0, 10);";
+        let c = crate::compile("tall.gcs", text.as_bytes()).expect("compiles");
+        let shown = crate::solve(&c.model, &c.analysis, &[], &[]).expect("solves");
+        let d = draw(&c.model, &shown, &[], &Options::default()).expect("draws");
+        // The geometry alone is a picture 96 pixels wide; the long label starts at its point.
+        let label = 7.0 + LABEL_CHAR * 24.0 + LABEL_PAD;
+        assert_eq!(d.fit.size, [(48.0 + label).ceil(), 800.0]);
+        assert!(d.svg.starts_with(&format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"{}\" height=\"800\"",
+            (48.0 + label).ceil()
+        )));
+        assert_eq!(d.pixel(&[0.0, 0.0]), [48.0, 752.0]);
     }
 
     #[test]

@@ -79,6 +79,9 @@ pub struct Fit {
     pub corner: [f64; 2],
     /// The picture's width and height in pixels.
     pub size: [f64; 2],
+    /// The middle of the fitted box (projected, model units): labels right of it end at
+    /// their point, so that they stay inside.
+    pub mid: [f64; 2],
 }
 
 impl Fit {
@@ -120,6 +123,23 @@ impl Fit {
                 mid[1] + size[1] / 2.0 / scale,
             ],
             size,
+            mid,
+        }
+    }
+
+    /// The same fit in a picture grown by whole pixels on each side, `[left, top, right,
+    /// bottom]` (each rounded up; a negative one is none): what was drawn moves right by
+    /// `left` and down by `top`.
+    pub fn grow(&self, by: [f64; 4]) -> Fit {
+        let by = by.map(|b| if b > 0.0 { b.ceil() } else { 0.0 });
+        Fit {
+            scale: self.scale,
+            corner: [
+                self.corner[0] - by[0] / self.scale,
+                self.corner[1] + by[1] / self.scale,
+            ],
+            size: [self.size[0] + by[0] + by[2], self.size[1] + by[1] + by[3]],
+            mid: self.mid,
         }
     }
 
@@ -252,6 +272,19 @@ mod tests {
         // Nothing finite: about the origin.
         let none = Fit::around([[f64::NAN, 0.0]]);
         assert!(close(none.pixel([0.0, 0.0]), [48.0, 48.0]));
+    }
+
+    #[test]
+    fn a_grown_fit_moves_the_drawing_by_whole_pixels() {
+        let fit = Fit::around([[-1.0, 0.0], [3.0, 2.0]]);
+        let grown = fit.grow([10.2, 0.0, -3.0, 5.0]);
+        assert_eq!(grown.size, [fit.size[0] + 11.0, fit.size[1] + 5.0]);
+        for p in [[-1.0, 0.0], [3.0, 2.0], [0.5, 0.5]] {
+            let (a, b) = (fit.pixel(p), grown.pixel(p));
+            assert!(close([a[0] + 11.0, a[1]], b), "{a:?} {b:?}");
+        }
+        assert_eq!((grown.scale, grown.mid), (fit.scale, fit.mid));
+        assert_eq!(fit.grow([0.0; 4]), fit);
     }
 
     #[test]
