@@ -34,6 +34,7 @@ fn gcs(args: &[&str]) -> (i32, String, String) {
 
 /// `gcs draw ARGS` succeeds without errors, and its SVG matches `goldens/draw/NAME.svg`.
 fn golden(name: &str, args: &[&str]) {
+    assert!(GOLDENS.contains(&name), "{name} is listed in GOLDENS");
     let mut all = vec!["draw"];
     all.extend(args);
     let (code, svg, stderr) = gcs(&all);
@@ -44,6 +45,31 @@ fn golden(name: &str, args: &[&str]) {
     // Valid: a renderer reads it.
     resvg::usvg::Tree::from_data(svg.as_bytes(), &resvg::usvg::Options::default())
         .unwrap_or_else(|e| panic!("{name}: not an SVG a renderer reads: {e}"));
+}
+
+/// The goldens of this file's tests, each once: no other file is in `goldens/draw/`.
+const GOLDENS: [&str; 5] = [
+    "fourbar",
+    "fourbar_animated",
+    "jansen_leg_foot",
+    "rssr_iso",
+    "sketch_profile",
+];
+
+#[test]
+fn every_draw_golden_belongs_to_a_test() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/goldens/draw");
+    let mut found: Vec<String> = std::fs::read_dir(folder)
+        .expect("the goldens' folder")
+        .map(|e| {
+            e.expect("a golden")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    found.sort();
+    assert_eq!(found, GOLDENS.map(|g| format!("{g}.svg")));
 }
 
 #[test]
