@@ -15,6 +15,7 @@ pub mod analysis;
 pub mod build;
 pub mod codegen;
 pub mod config;
+pub mod draw;
 pub mod explain;
 pub mod interp;
 pub mod nominal;

@@ -63,6 +63,45 @@ enum Command {
         #[arg(long)]
         all_solutions: bool,
     },
+    /// Draw the solved model as an SVG: bodies, points with their names, circles, lines,
+    /// segments and planes, fixed geoms as ground; with `--sweep`, traced points' curves or an
+    /// animation of the motion.
+    Draw {
+        /// The .gcs file.
+        file: PathBuf,
+        /// Where to write the SVG; standard output when absent.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Set a param: `NAME=EXPR`, units allowed (`theta=45deg`); a bare number for an angle
+        /// is radians.
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// Choose a branch: `NAME=INDEX` (see `gcs explain` for what each index means); it
+        /// holds at every sample of a sweep.
+        #[arg(long = "branch", value_name = "NAME=INDEX")]
+        branch: Vec<String>,
+        /// Set a default: `NAME=EXPR`, units allowed: the value of a motion the constraints
+        /// leave free, or where an outer iteration starts (a sweep's first sample; each later
+        /// one starts from the one before).
+        #[arg(long = "default", value_name = "NAME=VALUE")]
+        default: Vec<String>,
+        /// Solve at evenly spaced values of a param, both ends included: `NAME=FROM..TO` or
+        /// `NAME=FROM..TO:STEPS` (60 steps unless given; `theta=0deg..360deg`). The model is
+        /// drawn at the first sample that solves.
+        #[arg(long, value_name = "NAME=FROM..TO[:STEPS]")]
+        sweep: Option<String>,
+        /// Draw a point's curve over the sweep (repeatable): one polyline for each run of
+        /// samples that solved.
+        #[arg(long = "trace", value_name = "POINT")]
+        trace: Vec<String>,
+        /// Play the sweep in the SVG itself (SMIL animation, looping).
+        #[arg(long)]
+        animate: bool,
+        /// The view of a 3d model: xy (top), xz (front), yz (side) or iso (isometric, the
+        /// default). A 2d model is drawn in its plane.
+        #[arg(long, value_parser = ["xy", "xz", "yz", "iso"])]
+        view: Option<String>,
+    },
     /// Print the assembly plan as steps a person can follow.
     Explain {
         /// The .gcs file.
@@ -166,6 +205,28 @@ fn main() -> ExitCode {
             plot.as_deref(),
             interpreted,
             dense,
+            color,
+        ),
+        Command::Draw {
+            file,
+            output,
+            set,
+            branch,
+            default,
+            sweep,
+            trace,
+            animate,
+            view,
+        } => draw(
+            &file,
+            output.as_deref(),
+            (&set, &branch, &default),
+            Drawn {
+                sweep: sweep.as_deref(),
+                trace: &trace,
+                animate,
+                view: view.as_deref(),
+            },
             color,
         ),
         Command::Explain { file } => with_analysis(&file, color, |c| {
@@ -281,106 +342,14 @@ fn solve(
 ) -> ExitCode {
     with_analysis(path, color, |c| {
         let (model, analysis) = (&c.model, &c.analysis);
-        let mut params = model.default_params();
-        for s in set {
-            let Some((name, value)) = s.split_once('=') else {
-                eprintln!("error: `--set {s}`: expected NAME=VALUE");
-                return ExitCode::from(2);
-            };
-            let Some(id) = model.param_named(name.trim()) else {
-                let names: Vec<&str> = model.params.iter().map(|(_, p)| p.name.as_str()).collect();
-                eprintln!(
-                    "error: `--set {s}`: no param `{}`; the params are: {}",
-                    name.trim(),
-                    names.join(", ")
-                );
-                return ExitCode::from(2);
-            };
-            match gcs_lang::parse::param_value(model, id, value) {
-                Ok(v) => params[id.into_raw().into_u32() as usize] = v,
-                Err(e) => {
-                    eprintln!("error: `--set {s}`: {e}");
-                    return ExitCode::from(2);
-                }
-            }
-        }
-        let mut branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
-        for b in branch {
-            let parsed = b
-                .split_once('=')
-                .and_then(|(n, i)| Some((n.trim(), i.trim().parse::<usize>().ok()?)));
-            let Some((name, index)) = parsed else {
-                eprintln!("error: `--branch {b}`: expected NAME=INDEX");
-                return ExitCode::from(2);
-            };
-            match analysis.plan.branches.iter().position(|x| x.name == name) {
-                Some(i) if index < analysis.plan.branches[i].count => branches[i] = index,
-                Some(i) => {
-                    eprintln!(
-                        "error: `--branch {b}`: `{name}` has indices 0 to {}",
-                        analysis.plan.branches[i].count - 1
-                    );
-                    return ExitCode::from(2);
-                }
-                None => {
-                    let names: Vec<&str> = analysis
-                        .plan
-                        .branches
-                        .iter()
-                        .map(|x| x.name.as_str())
-                        .collect();
-                    eprintln!(
-                        "error: `--branch {b}`: no branch `{name}`; the branches are: {}",
-                        if names.is_empty() {
-                            "(none)".to_string()
-                        } else {
-                            names.join(", ")
-                        }
-                    );
-                    return ExitCode::from(2);
-                }
-            }
-        }
-        let mut defaults = analysis.plan.sketch_defaults();
-        for s in default {
-            let Some((name, value)) = s.split_once('=') else {
-                eprintln!("error: `--default {s}`: expected NAME=VALUE");
-                return ExitCode::from(2);
-            };
-            let Some(i) = analysis
-                .plan
-                .defaults
-                .iter()
-                .position(|d| d.name == name.trim())
-            else {
-                let names: Vec<&str> = (analysis.plan.defaults.iter())
-                    .map(|d| d.name.as_str())
-                    .collect();
-                eprintln!(
-                    "error: `--default {s}`: no default `{}`; the defaults are: {}",
-                    name.trim(),
-                    if names.is_empty() {
-                        "(none)".to_string()
-                    } else {
-                        names.join(", ")
-                    }
-                );
-                return ExitCode::from(2);
-            };
-            let var = &analysis.plan.defaults[i];
-            let dim = if var.is_angle() {
-                gcs_lang::expr::Dim::Angle
-            } else {
-                gcs_lang::expr::Dim::Length
-            };
-            match gcs_lang::parse::value_for(model, &var.name, dim, value) {
-                Ok(v) => defaults[i] = v,
-                Err(e) => {
-                    eprintln!("error: `--default {s}`: {e}");
-                    return ExitCode::from(2);
-                }
-            }
-        }
+        let Inputs {
+            params,
+            branches,
+            defaults,
+        } = match inputs(model, analysis, set, branch, default) {
+            Ok(i) => i,
+            Err(code) => return code,
+        };
         // With `output` statements, only what they need is computed, as in a compiled solver.
         let all_geoms: std::collections::BTreeSet<_> =
             model.top_level().map(|(id, _)| id).collect();
@@ -465,25 +434,305 @@ fn solve(
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                // A check that fails does not hide the others: with the plan run past them,
-                // every inconsistent redundant constraint is reported, then what stopped it.
-                let audit = gcs_compiler::interp::audit(
-                    model,
-                    plan,
-                    &params,
-                    &kept_defaults,
-                    &gcs_compiler::interp::Choice::Given(chosen),
-                );
-                if audit.failed.iter().any(|f| f.error == e) {
-                    for f in audit.failed.iter().chain(&audit.stopped) {
-                        eprintln!("error: {}", f.error);
-                    }
-                } else {
-                    eprintln!("error: {e}");
-                }
+                report_failure(model, plan, &params, &kept_defaults, chosen, &e);
                 ExitCode::FAILURE
             }
         }
+    })
+}
+
+/// What `gcs draw` draws beside the model: its sweep, traces, animation and view.
+struct Drawn<'a> {
+    sweep: Option<&'a str>,
+    trace: &'a [String],
+    animate: bool,
+    view: Option<&'a str>,
+}
+
+/// `gcs draw`: solves the model (at every sample of a sweep), draws it, and writes the SVG.
+fn draw(
+    path: &Path,
+    output: Option<&Path>,
+    (set, branch, default): (&[String], &[String], &[String]),
+    drawn: Drawn<'_>,
+    color: termcolor::ColorChoice,
+) -> ExitCode {
+    use gcs_compiler::draw;
+    if drawn.sweep.is_none() {
+        let needs = if drawn.trace.is_empty() {
+            drawn.animate.then_some("--animate")
+        } else {
+            Some("--trace")
+        };
+        if let Some(flag) = needs {
+            eprintln!(
+                "error: `{flag}` plays a sweep: give one with `--sweep NAME=FROM..TO[:STEPS]`"
+            );
+            return ExitCode::from(2);
+        }
+    }
+    with_analysis(path, color, |c| {
+        let (model, analysis) = (&c.model, &c.analysis);
+        let view = match (model.space, drawn.view) {
+            (_, None) => draw::View::default(),
+            (gcs_lang::model::Space::D2, Some(v)) if v != "xy" => {
+                eprintln!(
+                    "error: `--view {v}`: `{}` is a 2d model, drawn in its plane (xy)",
+                    path.display()
+                );
+                return ExitCode::from(2);
+            }
+            (_, Some(v)) => draw::View::named(v).unwrap_or_default(),
+        };
+        for t in drawn.trace {
+            if let Some(e) = draw::trace_error(model, t) {
+                eprintln!("error: `--trace {t}`: {e}");
+                return ExitCode::from(2);
+            }
+        }
+        let sweep = match drawn.sweep.map(|s| (s, draw::Sweep::parse(model, s))) {
+            None => None,
+            Some((_, Ok(s))) => Some(s),
+            Some((s, Err(e))) => {
+                eprintln!("error: `--sweep {s}`: {e}");
+                return ExitCode::from(2);
+            }
+        };
+        let Inputs {
+            params,
+            branches,
+            defaults,
+        } = match inputs(model, analysis, set, branch, default) {
+            Ok(i) => i,
+            Err(code) => return code,
+        };
+        // Everything is drawn: the whole plan, whatever the `output` statements say.
+        let plan = &analysis.plan;
+        let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+        let given = !default.is_empty();
+        let (shown, samples) = match &sweep {
+            None => {
+                let solved = if given {
+                    gcs_compiler::solve_plan_with(
+                        model, plan, &scope, &params, &branches, &defaults,
+                    )
+                } else {
+                    gcs_compiler::all::least_motion(
+                        model, plan, &scope, &params, &branches, &defaults,
+                    )
+                };
+                match solved {
+                    Ok(s) => (s, Vec::new()),
+                    Err(e) => {
+                        report_failure(model, plan, &params, &defaults, branches, &e);
+                        return ExitCode::FAILURE;
+                    }
+                }
+            }
+            Some(sweep) => {
+                let solved = draw::sweep::solve(
+                    model, plan, &scope, &params, &branches, &defaults, given, sweep,
+                );
+                let failed: Vec<(f64, String)> = (sweep.values.iter().zip(&solved))
+                    .filter_map(|(v, s)| s.as_ref().err().map(|e| (*v, e.to_string())))
+                    .collect();
+                let Some(shown) = solved.iter().find_map(|s| s.as_ref().ok()).cloned() else {
+                    eprintln!(
+                        "error: no sample of `--sweep {}` solves; at {} = {}: {}",
+                        drawn.sweep.unwrap_or_default(),
+                        sweep.name,
+                        sweep.values[0],
+                        failed.first().map_or("", |f| f.1.as_str())
+                    );
+                    return ExitCode::FAILURE;
+                };
+                if let Some((v, e)) = failed.first() {
+                    eprintln!(
+                        "note: {} of {} samples did not solve, and leave gaps; the first, at {} = {v}: {e}",
+                        failed.len(),
+                        solved.len(),
+                        sweep.name
+                    );
+                }
+                (shown, solved.into_iter().map(Result::ok).collect())
+            }
+        };
+        let options = draw::Options {
+            view,
+            traces: drawn.trace.to_vec(),
+            animate: drawn.animate,
+        };
+        let drawing = match draw::draw(model, &shown, &samples, &options) {
+            Ok(d) => d,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+        };
+        match output {
+            Some(out) => match std::fs::write(out, &drawing.svg) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: cannot write `{}`: {e}", out.display());
+                    ExitCode::from(2)
+                }
+            },
+            None => {
+                print!("{}", drawing.svg);
+                ExitCode::SUCCESS
+            }
+        }
+    })
+}
+
+/// Says on stderr why a solve failed. A check that fails does not hide the others: with the
+/// plan run past them, every inconsistent redundant constraint is reported, then what stopped
+/// it.
+fn report_failure(
+    model: &gcs_lang::Model,
+    plan: &gcs_compiler::plan::Plan,
+    params: &[f64],
+    defaults: &[f64],
+    branches: Vec<usize>,
+    e: &gcs_runtime::error::SolveError,
+) {
+    let audit = gcs_compiler::interp::audit(
+        model,
+        plan,
+        params,
+        defaults,
+        &gcs_compiler::interp::Choice::Given(branches),
+    );
+    if audit.failed.iter().any(|f| f.error == *e) {
+        for f in audit.failed.iter().chain(&audit.stopped) {
+            eprintln!("error: {}", f.error);
+        }
+    } else {
+        eprintln!("error: {e}");
+    }
+}
+
+/// The params, branches (indexed like the whole plan's) and defaults a command's `--set`,
+/// `--branch` and `--default` give, over the model's and the sketch's.
+struct Inputs {
+    params: Vec<f64>,
+    branches: Vec<usize>,
+    defaults: Vec<f64>,
+}
+
+/// Reads `--set`, `--branch` and `--default`; a value that is wrong is said on stderr, and
+/// its exit code (2) returned.
+fn inputs(
+    model: &gcs_lang::Model,
+    analysis: &gcs_compiler::analysis::Analysis,
+    set: &[String],
+    branch: &[String],
+    default: &[String],
+) -> Result<Inputs, ExitCode> {
+    let mut params = model.default_params();
+    for s in set {
+        let Some((name, value)) = s.split_once('=') else {
+            eprintln!("error: `--set {s}`: expected NAME=VALUE");
+            return Err(ExitCode::from(2));
+        };
+        let Some(id) = model.param_named(name.trim()) else {
+            let names: Vec<&str> = model.params.iter().map(|(_, p)| p.name.as_str()).collect();
+            eprintln!(
+                "error: `--set {s}`: no param `{}`; the params are: {}",
+                name.trim(),
+                names.join(", ")
+            );
+            return Err(ExitCode::from(2));
+        };
+        match gcs_lang::parse::param_value(model, id, value) {
+            Ok(v) => params[id.into_raw().into_u32() as usize] = v,
+            Err(e) => {
+                eprintln!("error: `--set {s}`: {e}");
+                return Err(ExitCode::from(2));
+            }
+        }
+    }
+    let mut branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
+    for b in branch {
+        let parsed = b
+            .split_once('=')
+            .and_then(|(n, i)| Some((n.trim(), i.trim().parse::<usize>().ok()?)));
+        let Some((name, index)) = parsed else {
+            eprintln!("error: `--branch {b}`: expected NAME=INDEX");
+            return Err(ExitCode::from(2));
+        };
+        match analysis.plan.branches.iter().position(|x| x.name == name) {
+            Some(i) if index < analysis.plan.branches[i].count => branches[i] = index,
+            Some(i) => {
+                eprintln!(
+                    "error: `--branch {b}`: `{name}` has indices 0 to {}",
+                    analysis.plan.branches[i].count - 1
+                );
+                return Err(ExitCode::from(2));
+            }
+            None => {
+                let names: Vec<&str> = analysis
+                    .plan
+                    .branches
+                    .iter()
+                    .map(|x| x.name.as_str())
+                    .collect();
+                eprintln!(
+                    "error: `--branch {b}`: no branch `{name}`; the branches are: {}",
+                    if names.is_empty() {
+                        "(none)".to_string()
+                    } else {
+                        names.join(", ")
+                    }
+                );
+                return Err(ExitCode::from(2));
+            }
+        }
+    }
+    let mut defaults = analysis.plan.sketch_defaults();
+    for s in default {
+        let Some((name, value)) = s.split_once('=') else {
+            eprintln!("error: `--default {s}`: expected NAME=VALUE");
+            return Err(ExitCode::from(2));
+        };
+        let Some(i) = analysis
+            .plan
+            .defaults
+            .iter()
+            .position(|d| d.name == name.trim())
+        else {
+            let names: Vec<&str> = (analysis.plan.defaults.iter())
+                .map(|d| d.name.as_str())
+                .collect();
+            eprintln!(
+                "error: `--default {s}`: no default `{}`; the defaults are: {}",
+                name.trim(),
+                if names.is_empty() {
+                    "(none)".to_string()
+                } else {
+                    names.join(", ")
+                }
+            );
+            return Err(ExitCode::from(2));
+        };
+        let var = &analysis.plan.defaults[i];
+        let dim = if var.is_angle() {
+            gcs_lang::expr::Dim::Angle
+        } else {
+            gcs_lang::expr::Dim::Length
+        };
+        match gcs_lang::parse::value_for(model, &var.name, dim, value) {
+            Ok(v) => defaults[i] = v,
+            Err(e) => {
+                eprintln!("error: `--default {s}`: {e}");
+                return Err(ExitCode::from(2));
+            }
+        }
+    }
+    Ok(Inputs {
+        params,
+        branches,
+        defaults,
     })
 }
 
