@@ -344,6 +344,38 @@ impl Locus3 for Torus {
     }
 }
 
+/// A locus of space moved by a translation: where a feature held on it goes when its body
+/// translates keeping another feature on its own locus. Each is rebuilt through its
+/// constructor, as a locus built there anew would be.
+pub trait Shift {
+    /// The locus translated by `v`.
+    fn shifted(&self, v: &Vector3<f64>) -> Self;
+}
+
+impl Shift for Sphere {
+    fn shifted(&self, v: &Vector3<f64>) -> Self {
+        Sphere::new(self.center + v, self.radius)
+    }
+}
+
+impl Shift for Circle3 {
+    fn shifted(&self, v: &Vector3<f64>) -> Self {
+        Circle3::new(self.center + v, self.normal, self.radius)
+    }
+}
+
+impl Shift for Cylinder {
+    fn shifted(&self, v: &Vector3<f64>) -> Self {
+        Cylinder::new(Line3::new(self.axis.point + v, self.axis.dir), self.radius)
+    }
+}
+
+impl Shift for Torus {
+    fn shifted(&self, v: &Vector3<f64>) -> Self {
+        Torus::new(self.circle.shifted(v), self.tube)
+    }
+}
+
 /// A surface of space with two coordinates on it: where a point held on it is placed by two
 /// defaults. `coordinates` and `at` are inverse on the surface; each surface's doc says what
 /// its two numbers mean.

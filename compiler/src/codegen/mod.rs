@@ -187,7 +187,7 @@ fn header(w: &mut Writer, file: &str, d3: bool) {
         for import in [
             "use gcs_runtime::frame::{self, Frame3};",
             "use gcs_runtime::intersect3d;",
-            "use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere, Surface, Torus};",
+            "use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Shift, Sphere, Surface, Torus};",
             "use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};",
         ] {
             w.line("#[allow(unused_imports)]");

@@ -943,23 +943,40 @@ impl Solve<'_> {
                 let code = format!("Torus::new({}, {})", self.r(*circle), self.r(*tube));
                 self.define_pure(w, r, "torus", &code);
             }
-            Op::ShiftedTorus { torus, from, to } => {
-                let t = self.r(*torus);
-                let code = format!(
-                    "Torus::new(Circle3::new({t}.circle.center + ({} - {}), {t}.circle.normal, {t}.circle.radius), {t}.tube)",
-                    self.r(*to),
-                    self.r(*from)
-                );
-                self.define_pure(w, r, "torus_moved", &code);
+            // A locus moved with its body: the runtime's `Shift`, as the interpreter moves it.
+            Op::ShiftedTorus {
+                torus: locus,
+                from,
+                to,
             }
-            Op::ShiftedCylinder { cylinder, from, to } => {
-                let c = self.r(*cylinder);
+            | Op::ShiftedCylinder {
+                cylinder: locus,
+                from,
+                to,
+            }
+            | Op::ShiftedSphere {
+                sphere: locus,
+                from,
+                to,
+            }
+            | Op::ShiftedCircle {
+                circle: locus,
+                from,
+                to,
+            } => {
                 let code = format!(
-                    "Cylinder::new(Line3::new({c}.axis.point + ({} - {}), {c}.axis.dir), {c}.radius)",
+                    "{}.shifted(&({} - {}))",
+                    self.r(*locus),
                     self.r(*to),
                     self.r(*from)
                 );
-                self.define_pure(w, r, "cylinder_moved", &code);
+                let name = match self.kind3(r) {
+                    Kind::Torus => "torus_moved",
+                    Kind::Cylinder => "cylinder_moved",
+                    Kind::Sphere => "sphere_moved",
+                    _ => "circle_moved",
+                };
+                self.define_pure(w, r, name, &code);
             }
             Op::SphereThrough {
                 center,
@@ -973,24 +990,7 @@ impl Solve<'_> {
                 };
                 self.define_pure(w, r, "sphere", &format!("Sphere::new({c}, {rad})"));
             }
-            Op::ShiftedSphere { sphere, from, to } => {
-                let s = self.r(*sphere);
-                let code = format!(
-                    "Sphere::new({s}.center + ({} - {}), {s}.radius)",
-                    self.r(*to),
-                    self.r(*from)
-                );
-                self.define_pure(w, r, "sphere_moved", &code);
-            }
-            Op::ShiftedCircle { circle, from, to } => {
-                let c = self.r(*circle);
-                let code = format!(
-                    "Circle3::new({c}.center + ({} - {}), {c}.normal, {c}.radius)",
-                    self.r(*to),
-                    self.r(*from)
-                );
-                self.define_pure(w, r, "circle_moved", &code);
-            }
+
             Op::Orbit {
                 pivot,
                 axis,

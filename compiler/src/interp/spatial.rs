@@ -7,7 +7,9 @@ use crate::config::{D3, P3, V3};
 use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Step};
 use gcs_lang::model::ConstraintId;
 use gcs_runtime::error::{ErrorKind, SolveError};
-use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere, Surface, Torus};
+use gcs_runtime::locus3d::{
+    self, Circle3, Cylinder, Line3, Locus3, Plane, Shift, Sphere, Surface, Torus,
+};
 use gcs_runtime::{check, frame, intersect3d, Contact, Roots};
 use nalgebra::UnitQuaternion;
 
@@ -53,6 +55,10 @@ impl Machine<'_, '_, D3> {
             Some(&Val::Sphere(x)) => x,
             v => malformed(r, "a sphere", v),
         }
+    }
+    /// The translation from point `from` to point `to`.
+    fn shift(&self, from: Reg, to: Reg) -> V3 {
+        self.p3(to) - self.p3(from)
     }
     fn surface(&self, r: Reg) -> &dyn Surface {
         match self.get(r) {
@@ -322,14 +328,10 @@ impl Machine<'_, '_, D3> {
                     Some(&Val::Torus(t)) => t,
                     v => malformed(*torus, "a torus", v),
                 };
-                let c = t.circle;
-                let at = c.center + (self.p3(*to) - self.p3(*from));
-                Val::Torus(Torus::new(Circle3::new(at, c.normal, c.radius), t.tube))
+                Val::Torus(t.shifted(&self.shift(*from, *to)))
             }
             Op::ShiftedCylinder { cylinder, from, to } => {
-                let c = self.cylinder(*cylinder);
-                let at = c.axis.point + (self.p3(*to) - self.p3(*from));
-                Val::Cylinder(Cylinder::new(Line3::new(at, c.axis.dir), c.radius))
+                Val::Cylinder(self.cylinder(*cylinder).shifted(&self.shift(*from, *to)))
             }
             Op::SphereThrough {
                 center,
@@ -341,19 +343,10 @@ impl Machine<'_, '_, D3> {
                 Val::Sphere(Sphere::new(c, r))
             }
             Op::ShiftedSphere { sphere, from, to } => {
-                let s = self.sphere(*sphere);
-                Val::Sphere(Sphere::new(
-                    s.center + (self.p3(*to) - self.p3(*from)),
-                    s.radius,
-                ))
+                Val::Sphere(self.sphere(*sphere).shifted(&self.shift(*from, *to)))
             }
             Op::ShiftedCircle { circle, from, to } => {
-                let c = self.circle3(*circle);
-                Val::C3(Circle3::new(
-                    c.center + (self.p3(*to) - self.p3(*from)),
-                    c.normal,
-                    c.radius,
-                ))
+                Val::C3(self.circle3(*circle).shifted(&self.shift(*from, *to)))
             }
             Op::Orbit {
                 pivot,

@@ -15,7 +15,9 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere, Surface, Torus};
+use gcs_runtime::locus3d::{
+    self, Circle3, Cylinder, Line3, Locus3, Plane, Shift, Sphere, Surface, Torus,
+};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 

@@ -15,7 +15,9 @@ use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
 #[allow(unused_imports)]
-use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Sphere, Surface, Torus};
+use gcs_runtime::locus3d::{
+    self, Circle3, Cylinder, Line3, Locus3, Plane, Shift, Sphere, Surface, Torus,
+};
 #[allow(unused_imports)]
 use gcs_runtime::nalgebra::{Point3, Quaternion, UnitQuaternion, Vector3};
 
@@ -409,8 +411,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let sphere_2 = Sphere::new(Point3::new(1.0, 1.732, 0.0), params.l2);
                 let platform_p2 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
                 let platform_p1_2 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
-                let sphere_moved =
-                    Sphere::new(sphere.center + (platform_p2 - platform_p1_2), sphere.radius);
+                let sphere_moved = sphere.shifted(&(platform_p2 - platform_p1_2));
                 let leg2_meeting = intersect3d::sphere_sphere(&sphere_moved, &sphere_2);
                 if let Some(e) = SolveError::from_contact(
                     "leg2",
@@ -449,11 +450,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let sphere_3 = Sphere::new(Point3::new(-1.0, 1.732, 0.0), params.l3);
                 let platform_p3 = platform.point_to_global(&Point3::new(-0.3, 1.0, 0.0));
                 let platform_p2_2 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
-                let circle_moved = Circle3::new(
-                    leg2.center + (platform_p3 - platform_p2_2),
-                    leg2.normal,
-                    leg2.radius,
-                );
+                let circle_moved = leg2.shifted(&(platform_p3 - platform_p2_2));
                 let leg3_meeting = intersect3d::circle_sphere(&circle_moved, &sphere_3);
                 if let Some(e) = SolveError::from_contact(
                     "leg3",
@@ -582,10 +579,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let sphere_4 = Sphere::new(Point3::new(1.0, 1.732, 0.0), params.l2);
     let platform_p2_3 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
     let platform_p1_3 = platform.point_to_global(&Point3::new(1.0, 0.2, 0.0));
-    let sphere_moved_2 = Sphere::new(
-        sphere.center + (platform_p2_3 - platform_p1_3),
-        sphere.radius,
-    );
+    let sphere_moved_2 = sphere.shifted(&(platform_p2_3 - platform_p1_3));
     let leg2_meeting_2 = intersect3d::sphere_sphere(&sphere_moved_2, &sphere_4);
     if let Some(e) = SolveError::from_contact(
         "leg2",
@@ -626,11 +620,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let sphere_5 = Sphere::new(Point3::new(-1.0, 1.732, 0.0), params.l3);
     let platform_p3_2 = platform.point_to_global(&Point3::new(-0.3, 1.0, 0.0));
     let platform_p2_4 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
-    let circle_moved_2 = Circle3::new(
-        leg2_2.center + (platform_p3_2 - platform_p2_4),
-        leg2_2.normal,
-        leg2_2.radius,
-    );
+    let circle_moved_2 = leg2_2.shifted(&(platform_p3_2 - platform_p2_4));
     let leg3_meeting_2 = intersect3d::circle_sphere(&circle_moved_2, &sphere_5);
     if let Some(e) = SolveError::from_contact(
         "leg3",
