@@ -244,8 +244,8 @@ impl Context<'_> {
         if !matches!(geom.kind, GeomKind::Segment | GeomKind::Circle) {
             return None;
         }
-        if self.all_constant(&self.sketch_exprs(g)) {
-            return Some(float(self.sketch3().dim(g)));
+        if let Some(d) = self.sketch_dim_value3(g) {
+            return Some(float(d));
         }
         match &geom.sketch {
             Sketch::Segment { from, to } => Some(format!(

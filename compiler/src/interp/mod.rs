@@ -683,6 +683,22 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
 
     /// `x` when it is finite; otherwise step `i`'s constraint cannot be met: a value the
     /// params give, finite one by one, can still overflow (`theta * 1e300`).
+    /// Sets geom `g`'s dimension to register `value`, a size (finite, not negative), in
+    /// either space.
+    fn set_dim(
+        &mut self,
+        i: usize,
+        g: gcs_lang::model::GeomId,
+        value: Reg,
+    ) -> Result<(), SolveError> {
+        let x = self.s(value);
+        if !x.is_finite() || x < 0.0 {
+            return Err(self.error(i, ErrorKind::InvalidValue, x));
+        }
+        self.config.dims.insert(g, x);
+        Ok(())
+    }
+
     fn finite(&self, i: usize, x: f64) -> Result<f64, SolveError> {
         if x.is_finite() {
             Ok(x)
@@ -1074,14 +1090,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
                 }
                 return Ok(());
             }
-            Op::SetDim { geom, value } => {
-                let x = self.s(*value);
-                if !x.is_finite() || x < 0.0 {
-                    return Err(self.error(i, ErrorKind::InvalidValue, x));
-                }
-                self.config.dims.insert(*geom, x);
-                return Ok(());
-            }
+            Op::SetDim { geom, value } => return self.set_dim(i, *geom, *value),
             Op::Check {
                 constraint,
                 residual,

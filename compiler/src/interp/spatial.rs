@@ -423,14 +423,7 @@ impl Machine<'_, '_, D3> {
                 }
                 return Ok(());
             }
-            Op::SetDim { geom, value } => {
-                let x = self.s(*value);
-                if !x.is_finite() || x < 0.0 {
-                    return Err(self.error(i, ErrorKind::InvalidValue, x));
-                }
-                self.config.dims.insert(*geom, x);
-                return Ok(());
-            }
+            Op::SetDim { geom, value } => return self.set_dim(i, *geom, *value),
             Op::Check {
                 constraint,
                 residual,
