@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 mod generated;
+mod shared;
 
 /// A front end that reads a 100,000-statement model makes millions of small strings and nodes;
 /// mimalloc's thread-local free lists serve them several times faster than the system's.
@@ -291,11 +292,7 @@ fn compile(path: &Path, color: termcolor::ColorChoice) -> Result<Compiled, Stop>
         }
         Err(CompileError::Load(r)) => {
             emit(&r.source, &r.diagnostics, color);
-            let errors = r.diagnostics.iter().filter(|d| d.is_error()).count();
-            eprintln!(
-                "error: could not load `{name}` due to {errors} previous error{}",
-                if errors == 1 { "" } else { "s" }
-            );
+            eprintln!("error: {}", shared::not_loaded(&name, &r.diagnostics));
             Err(Stop::Exit(ExitCode::FAILURE))
         }
         Err(CompileError::Analysis(u)) => {
@@ -342,13 +339,16 @@ fn solve(
 ) -> ExitCode {
     with_analysis(path, color, |c| {
         let (model, analysis) = (&c.model, &c.analysis);
-        let Inputs {
+        let shared::Inputs {
             params,
             branches,
             defaults,
-        } = match inputs(model, analysis, set, branch, default) {
+        } = match shared::inputs(model, analysis, set, branch, default) {
             Ok(i) => i,
-            Err(code) => return code,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
         };
         // With `output` statements, only what they need is computed, as in a compiled solver.
         let all_geoms: std::collections::BTreeSet<_> =
@@ -419,11 +419,13 @@ fn solve(
             return ExitCode::SUCCESS;
         }
         // Given no defaults, an iterated plan returns the assembly that moves least.
-        let solved = if default.is_empty() {
-            gcs_compiler::all::least_motion(model, plan, &scope, &params, &chosen, &kept_defaults)
-        } else {
-            gcs_compiler::solve_plan_with(model, plan, &scope, &params, &chosen, &kept_defaults)
-        };
+        let solved = shared::solve(
+            model,
+            plan,
+            &scope,
+            (&params, &chosen, &kept_defaults),
+            !default.is_empty(),
+        );
         match solved {
             Ok(solution) => {
                 if json {
@@ -434,7 +436,9 @@ fn solve(
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                report_failure(model, plan, &params, &kept_defaults, chosen, &e);
+                for line in shared::failure(model, plan, &params, &kept_defaults, chosen, &e) {
+                    eprintln!("error: {line}");
+                }
                 ExitCode::FAILURE
             }
         }
@@ -498,13 +502,16 @@ fn draw(
                 return ExitCode::from(2);
             }
         };
-        let Inputs {
+        let shared::Inputs {
             params,
             branches,
             defaults,
-        } = match inputs(model, analysis, set, branch, default) {
+        } = match shared::inputs(model, analysis, set, branch, default) {
             Ok(i) => i,
-            Err(code) => return code,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
         };
         // Everything is drawn: the whole plan, whatever the `output` statements say.
         let plan = &analysis.plan;
@@ -512,19 +519,14 @@ fn draw(
         let given = !default.is_empty();
         let (shown, samples) = match &sweep {
             None => {
-                let solved = if given {
-                    gcs_compiler::solve_plan_with(
-                        model, plan, &scope, &params, &branches, &defaults,
-                    )
-                } else {
-                    gcs_compiler::all::least_motion(
-                        model, plan, &scope, &params, &branches, &defaults,
-                    )
-                };
+                let solved =
+                    shared::solve(model, plan, &scope, (&params, &branches, &defaults), given);
                 match solved {
                     Ok(s) => (s, Vec::new()),
                     Err(e) => {
-                        report_failure(model, plan, &params, &defaults, branches, &e);
+                        for line in shared::failure(model, plan, &params, &defaults, branches, &e) {
+                            eprintln!("error: {line}");
+                        }
                         return ExitCode::FAILURE;
                     }
                 }
@@ -582,157 +584,6 @@ fn draw(
                 ExitCode::SUCCESS
             }
         }
-    })
-}
-
-/// Says on stderr why a solve failed. A check that fails does not hide the others: with the
-/// plan run past them, every inconsistent redundant constraint is reported, then what stopped
-/// it.
-fn report_failure(
-    model: &gcs_lang::Model,
-    plan: &gcs_compiler::plan::Plan,
-    params: &[f64],
-    defaults: &[f64],
-    branches: Vec<usize>,
-    e: &gcs_runtime::error::SolveError,
-) {
-    let audit = gcs_compiler::interp::audit(
-        model,
-        plan,
-        params,
-        defaults,
-        &gcs_compiler::interp::Choice::Given(branches),
-    );
-    if audit.failed.iter().any(|f| f.error == *e) {
-        for f in audit.failed.iter().chain(&audit.stopped) {
-            eprintln!("error: {}", f.error);
-        }
-    } else {
-        eprintln!("error: {e}");
-    }
-}
-
-/// The params, branches (indexed like the whole plan's) and defaults a command's `--set`,
-/// `--branch` and `--default` give, over the model's and the sketch's.
-struct Inputs {
-    params: Vec<f64>,
-    branches: Vec<usize>,
-    defaults: Vec<f64>,
-}
-
-/// Reads `--set`, `--branch` and `--default`; a value that is wrong is said on stderr, and
-/// its exit code (2) returned.
-fn inputs(
-    model: &gcs_lang::Model,
-    analysis: &gcs_compiler::analysis::Analysis,
-    set: &[String],
-    branch: &[String],
-    default: &[String],
-) -> Result<Inputs, ExitCode> {
-    let mut params = model.default_params();
-    for s in set {
-        let Some((name, value)) = s.split_once('=') else {
-            eprintln!("error: `--set {s}`: expected NAME=VALUE");
-            return Err(ExitCode::from(2));
-        };
-        let Some(id) = model.param_named(name.trim()) else {
-            let names: Vec<&str> = model.params.iter().map(|(_, p)| p.name.as_str()).collect();
-            eprintln!(
-                "error: `--set {s}`: no param `{}`; the params are: {}",
-                name.trim(),
-                names.join(", ")
-            );
-            return Err(ExitCode::from(2));
-        };
-        match gcs_lang::parse::param_value(model, id, value) {
-            Ok(v) => params[id.into_raw().into_u32() as usize] = v,
-            Err(e) => {
-                eprintln!("error: `--set {s}`: {e}");
-                return Err(ExitCode::from(2));
-            }
-        }
-    }
-    let mut branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
-    for b in branch {
-        let parsed = b
-            .split_once('=')
-            .and_then(|(n, i)| Some((n.trim(), i.trim().parse::<usize>().ok()?)));
-        let Some((name, index)) = parsed else {
-            eprintln!("error: `--branch {b}`: expected NAME=INDEX");
-            return Err(ExitCode::from(2));
-        };
-        match analysis.plan.branches.iter().position(|x| x.name == name) {
-            Some(i) if index < analysis.plan.branches[i].count => branches[i] = index,
-            Some(i) => {
-                eprintln!(
-                    "error: `--branch {b}`: `{name}` has indices 0 to {}",
-                    analysis.plan.branches[i].count - 1
-                );
-                return Err(ExitCode::from(2));
-            }
-            None => {
-                let names: Vec<&str> = analysis
-                    .plan
-                    .branches
-                    .iter()
-                    .map(|x| x.name.as_str())
-                    .collect();
-                eprintln!(
-                    "error: `--branch {b}`: no branch `{name}`; the branches are: {}",
-                    if names.is_empty() {
-                        "(none)".to_string()
-                    } else {
-                        names.join(", ")
-                    }
-                );
-                return Err(ExitCode::from(2));
-            }
-        }
-    }
-    let mut defaults = analysis.plan.sketch_defaults();
-    for s in default {
-        let Some((name, value)) = s.split_once('=') else {
-            eprintln!("error: `--default {s}`: expected NAME=VALUE");
-            return Err(ExitCode::from(2));
-        };
-        let Some(i) = analysis
-            .plan
-            .defaults
-            .iter()
-            .position(|d| d.name == name.trim())
-        else {
-            let names: Vec<&str> = (analysis.plan.defaults.iter())
-                .map(|d| d.name.as_str())
-                .collect();
-            eprintln!(
-                "error: `--default {s}`: no default `{}`; the defaults are: {}",
-                name.trim(),
-                if names.is_empty() {
-                    "(none)".to_string()
-                } else {
-                    names.join(", ")
-                }
-            );
-            return Err(ExitCode::from(2));
-        };
-        let var = &analysis.plan.defaults[i];
-        let dim = if var.is_angle() {
-            gcs_lang::expr::Dim::Angle
-        } else {
-            gcs_lang::expr::Dim::Length
-        };
-        match gcs_lang::parse::value_for(model, &var.name, dim, value) {
-            Ok(v) => defaults[i] = v,
-            Err(e) => {
-                eprintln!("error: `--default {s}`: {e}");
-                return Err(ExitCode::from(2));
-            }
-        }
-    }
-    Ok(Inputs {
-        params,
-        branches,
-        defaults,
     })
 }
 
@@ -861,12 +712,8 @@ fn check(path: &Path, deny: &[String], color: termcolor::ColorChoice) -> ExitCod
     }
     match compile(path, color) {
         Ok(c) if c.has_errors() => {
-            let n = c.diagnostics.iter().filter(|d| d.is_error()).count();
-            eprintln!(
-                "error: `{}` has {n} analysis error{}",
-                path.display(),
-                if n == 1 { "" } else { "s" }
-            );
+            let name = path.display().to_string();
+            eprintln!("error: {}", shared::analysis_errors(&name, &c.diagnostics));
             ExitCode::FAILURE
         }
         Ok(c) => {
