@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 mod generated;
+mod serve;
 mod shared;
 
 /// A front end that reads a 100,000-statement model makes millions of small strings and nodes;
@@ -102,6 +103,19 @@ enum Command {
         /// default). A 2d model is drawn in its plane.
         #[arg(long, value_parser = ["xy", "xz", "yz", "iso"])]
         view: Option<String>,
+    },
+    /// Serve a local page where the model is edited, checked, solved and drawn: a slider a
+    /// param, a choice a branch, a field a default, traced curves, the generated module. The
+    /// first line printed is the page's URL.
+    Serve {
+        /// The .gcs file (the only file the server reads; it writes none).
+        file: PathBuf,
+        /// The port to listen on; 0 picks a free one.
+        #[arg(long, default_value_t = 8000)]
+        port: u16,
+        /// The address to listen on. The default answers this machine only.
+        #[arg(long, default_value = "127.0.0.1")]
+        host: String,
     },
     /// Print the assembly plan as steps a person can follow.
     Explain {
@@ -230,6 +244,7 @@ fn main() -> ExitCode {
             },
             color,
         ),
+        Command::Serve { file, port, host } => serve::run(&file, &host, port),
         Command::Explain { file } => with_analysis(&file, color, |c| {
             print!(
                 "{}",
