@@ -205,7 +205,7 @@ function paramControl(p) {
   field.addEventListener("change", () => {
     const t0 = performance.now();
     const v = Number(field.value);
-    if (!Number.isFinite(v)) return;
+    if (field.value === "" || !Number.isFinite(v)) return;
     if (v < Number(slider.min)) slider.min = v;
     if (v > Number(slider.max)) slider.max = v;
     slider.value = v;
@@ -319,13 +319,14 @@ async function pump() {
     const { t0 } = page.wanted;
     page.wanted = null;
     const request = solveRequest();
+    const sent = performance.now();
     let v;
     try {
       v = await post("/api/solve", request);
     } catch (e) {
       v = { ok: false, stage: "request", errors: [e.message] };
     }
-    show(v, t0, request);
+    show(v, { input: t0, sent, answered: performance.now() }, request);
   }
   page.busy = false;
 }
@@ -349,7 +350,9 @@ function solveRequest() {
   return request;
 }
 
-function show(v, t0, request) {
+// Shows a solve's answer; `times` are when the input that asked it happened, when it was sent
+// and when it was answered (performance.now()).
+function show(v, times, request) {
   const drawing = $("drawing");
   if (v.ok) {
     drawing.innerHTML = v.svg;
@@ -362,15 +365,22 @@ function show(v, t0, request) {
     drawing.dataset.draws = Number(drawing.dataset.draws) + 1;
     setDrawing("current", "", []);
     drawing.getBoundingClientRect(); // laid out: the picture is there to be painted
-    const ms = performance.now() - t0;
-    $("timing").textContent = `solved and drawn in ${ms.toFixed(1)} ms`;
-    $("timing").dataset.ms = ms.toFixed(3);
+    const drawn = performance.now();
+    const ms = drawn - times.input;
+    const timing = $("timing");
+    timing.textContent = `solved and drawn in ${ms.toFixed(1)} ms`;
+    timing.title = `from the input: ${(times.sent - times.input).toFixed(1)} ms waiting for the solve before, ` +
+      `${(times.answered - times.sent).toFixed(1)} ms asking the server, ${(drawn - times.answered).toFixed(1)} ms drawing`;
+    timing.dataset.ms = ms.toFixed(3);
+    timing.dataset.waited = (times.sent - times.input).toFixed(3);
+    timing.dataset.answered = (times.answered - times.sent).toFixed(3);
+    timing.dataset.drawing = (drawn - times.answered).toFixed(3);
     $("solution").textContent = JSON.stringify(v.solution, null, 2);
     showSweep(v.sweep);
   } else {
     const head = v.stage === "solve" ? "Does not solve at these values" : v.stage === "inputs" ? "Refused" : "Not solved";
     setDrawing(v.stage === "solve" ? "failed" : "stale", head, v.errors || []);
-    $("timing").textContent = `failed after ${(performance.now() - t0).toFixed(1)} ms`;
+    $("timing").textContent = `failed after ${(performance.now() - times.input).toFixed(1)} ms`;
     $("solution").textContent = (v.errors || []).map((e) => `error: ${e}`).join("\n");
     showSweep(null);
   }
