@@ -1,25 +1,14 @@
 //! `gcs check` end to end: the summary of every example, errors on stderr with a non-zero exit,
 //! and a missing file.
 
+mod support;
+
 use expect_test::{expect, Expect};
-use std::path::Path;
-use std::process::Command;
 
 /// Runs `gcs check` on a path (relative to the workspace root) and returns exit code, stdout
 /// and stderr.
 fn gcs_check(path: &str) -> (i32, String, String) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-        .current_dir(&root)
-        .args(["check", path])
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run gcs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    support::gcs(&["check", path])
 }
 
 fn check_example(name: &str, expected: Expect) {
@@ -358,18 +347,9 @@ fn very_long_tokens_are_reported_never_a_panic() {
 /// name is a usage error (exit 2).
 #[test]
 fn deny_under_constrained_makes_a_free_motion_an_error() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let run = |args: &[&str]| {
-        let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-            .current_dir(&root)
-            .args(args)
-            .env("NO_COLOR", "1")
-            .output()
-            .expect("run gcs");
-        (
-            out.status.code().unwrap_or(-1),
-            String::from_utf8_lossy(&out.stderr).into_owned(),
-        )
+        let (code, _, stderr) = support::gcs(args);
+        (code, stderr)
     };
     let (code, stderr) = run(&["check", "examples/fourbar_free.gcs"]);
     assert_eq!(code, 0, "{stderr}");

@@ -6,30 +6,14 @@
 use expect_test::expect_file;
 use gcs_compiler::draw;
 use resvg::tiny_skia;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
+
+use support::{gcs, root};
+
+mod support;
 
 mod discover {
     include!("../../../examples/discover.rs");
-}
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Runs `gcs` from the repository's root: exit code, stdout, stderr.
-fn gcs(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-        .current_dir(root())
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run gcs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 /// `gcs draw ARGS` succeeds without errors, and its SVG matches `goldens/draw/NAME.svg`.

@@ -4,25 +4,13 @@
 
 use expect_test::expect_file;
 use std::path::Path;
-use std::process::Command;
+
+use support::gcs;
+
+mod support;
 
 mod discover {
     include!("../../../examples/discover.rs");
-}
-
-fn gcs(args: &[&str]) -> (i32, String, String) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-        .current_dir(&root)
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run gcs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 /// Numbers at fixed precision (10 decimals, no negative zero), so that goldens do not depend

@@ -3,9 +3,10 @@
 //! counted in one line instead of printed each. Their speed is measured by the scaling bench
 //! (`examples/benches/scaling.rs`), never here.
 
+mod support;
+
 use expect_test::expect;
 use gcs_bench::families;
-use std::process::Command;
 
 /// Runs `gcs` with `args` on a model written to a temporary file; returns exit code, stdout and
 /// stderr. The file is called `model.gcs`, and run from its directory so that diagnostics name it
@@ -13,18 +14,9 @@ use std::process::Command;
 fn gcs(args: &[&str], model: &str) -> (i32, String, String) {
     let dir = tempfile::tempdir().expect("temporary directory");
     std::fs::write(dir.path().join("model.gcs"), model).expect("write the model");
-    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-        .current_dir(dir.path())
-        .args(args)
-        .arg("model.gcs")
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run gcs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let mut all = args.to_vec();
+    all.push("model.gcs");
+    support::gcs_in(dir.path(), &all)
 }
 
 #[test]

@@ -22,33 +22,12 @@ use serde_json::{json, Value};
 use std::io::{BufRead as _, BufReader, Read as _, Write as _};
 use std::net::{SocketAddr, TcpStream};
 use std::os::unix::process::CommandExt as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
+use support::{gcs, gcs_in, root};
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Runs `gcs` in `dir`: exit code, stdout, stderr.
-fn gcs_in(dir: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-        .current_dir(dir)
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run gcs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-/// Runs `gcs` from the repository's root.
-fn gcs(args: &[&str]) -> (i32, String, String) {
-    gcs_in(&root(), args)
-}
+mod support;
 
 /// `gcs solve --json ARGS`'s point `name`.
 fn solved_point(file: &str, args: &[&str], name: &str) -> [f64; 2] {
@@ -378,11 +357,7 @@ impl Browser {
     /// Drags a range slider's thumb from `from` to `to`, fractions of its width, through a
     /// few pointer moves; the slider's value after the drag.
     async fn drag(&self, id: &str, from: f64, to: f64) -> String {
-        let slider = self
-            .client
-            .find(Locator::Id(id))
-            .await
-            .unwrap_or_else(|e| panic!("#{id}: {e}"));
+        let slider = self.id(id).await;
         let (x, y, w, h) = slider.rectangle().await.expect("the slider's place");
         let at = |f: f64| x + 8.0 + f * (w - 16.0);
         let mouse = MouseActions::new("mouse".to_string())
@@ -438,6 +413,22 @@ impl Browser {
         };
         let (cx, cy, scale, x0, y0) = (n(0), n(1), n(2), n(3), n(4));
         ([x0 + cx / scale, y0 - cy / scale], scale)
+    }
+
+    /// The element with this id.
+    async fn id(&self, id: &str) -> fantoccini::elements::Element {
+        self.client
+            .find(Locator::Id(id))
+            .await
+            .unwrap_or_else(|e| panic!("#{id}: {e}"))
+    }
+
+    async fn click(&self, id: &str) {
+        self.id(id)
+            .await
+            .click()
+            .await
+            .unwrap_or_else(|e| panic!("click #{id}: {e}"));
     }
 
     async fn text(&self, id: &str) -> String {
@@ -525,11 +516,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
     );
 
     // Flip `elbow`: the other assembly, where `gcs solve --branch elbow=1` puts it.
-    let elbow = b
-        .client
-        .find(Locator::Id("branch-elbow"))
-        .await
-        .expect("the elbow choice");
+    let elbow = b.id("branch-elbow").await;
     let labels = b
         .js(
             "return [...document.getElementById('branch-elbow').options].map(o => o.textContent)",
@@ -566,13 +553,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
 
     // Trace the coupler curve over theta's sweep.
     let (_, draws) = b.drawing().await;
-    b.client
-        .find(Locator::Id("trace-coupler.c"))
-        .await
-        .expect("the coupler's trace box")
-        .click()
-        .await
-        .expect("tick it");
+    b.click("trace-coupler.c").await;
     b.until(
         "for the coupler curve",
         "const d = document.getElementById('drawing'); \
@@ -588,11 +569,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
 
     // A crank too long to close: the failure in `gcs solve`'s words, the picture not current.
     let (_, draws) = b.drawing().await;
-    let field = b
-        .client
-        .find(Locator::Id("param-crank_len-value"))
-        .await
-        .expect("crank_len's field");
+    let field = b.id("param-crank_len-value").await;
     field.clear().await.expect("clear");
     field
         .send_keys(&format!("20{}", Key::Enter))
@@ -634,11 +611,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
     b.redrawn(draws, "crank_len=1.5", "elbow=1").await;
 
     // A syntax error typed in the editor: its located diagnostic, as `gcs check` prints it.
-    let editor = b
-        .client
-        .find(Locator::Id("editor"))
-        .await
-        .expect("the editor");
+    let editor = b.id("editor").await;
     let original = b
         .js("return document.getElementById('editor').value", vec![])
         .await;
@@ -704,13 +677,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
     assert_drawn_at(again, scale, want, "coupler.c after the fix");
 
     // The Rust module, as `gcs compile` writes it, to show and download.
-    b.client
-        .find(Locator::Id("compile"))
-        .await
-        .expect("the module button")
-        .click()
-        .await
-        .expect("click");
+    b.click("compile").await;
     b.until(
         "for the module",
         "return document.getElementById('code-dialog').open && \

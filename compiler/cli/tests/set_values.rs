@@ -1,8 +1,9 @@
 //! Values given on the command line are checked as the file checks its own: units, finiteness,
 //! the sign of a size; and `gcs bench` refuses a sweep of fewer than two samples.
 
+mod support;
+
 use expect_test::{expect, Expect};
-use std::process::Command;
 
 /// A point `B` on a fixed line at distance `d` from `A`, and a segment at angle `a`.
 const MODEL: &str = "space 2d;
@@ -26,18 +27,9 @@ fn gcs(args: &[&str]) -> (i32, String, String) {
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join("set.gcs");
     std::fs::write(&path, MODEL).expect("write model");
-    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-        .arg(args[0])
-        .arg(&path)
-        .args(&args[1..])
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run gcs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).replace(&path.display().to_string(), "set.gcs"),
-    )
+    let mut all = vec![args[0], "set.gcs"];
+    all.extend(&args[1..]);
+    support::gcs_in(dir.path(), &all)
 }
 
 fn refused(args: &[&str], code: i32, want: Expect) {
@@ -155,19 +147,7 @@ fn a_value_past_the_range_says_what_would_overflow() {
 /// real assembly once.
 #[test]
 fn defaults_and_all_solutions_on_the_command_line() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let run = |args: &[&str]| {
-        let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-            .current_dir(&root)
-            .args(args)
-            .output()
-            .expect("run gcs");
-        (
-            out.status.code().unwrap_or(-1),
-            String::from_utf8_lossy(&out.stdout).into_owned(),
-            String::from_utf8_lossy(&out.stderr).into_owned(),
-        )
-    };
+    let run = |args: &[&str]| support::gcs(args);
     let model = "examples/fourbar_free.gcs";
     let (code, stdout, stderr) = run(&["solve", "--json", "--default", "crank_angle=90deg", model]);
     assert_eq!(code, 0, "{stderr}");

@@ -2,8 +2,9 @@
 //! (`elbow`) and the gap by which the loop misses, equal to the true gap computed here; params
 //! that break two redundant constraints get both named, each with its size.
 
+mod support;
+
 use std::path::Path;
-use std::process::Command;
 
 /// The four-bar of examples/fourbar.gcs with its coupler's and rocker's `c` members replaced.
 fn fourbar(coupler_c: &str, rocker_c: &str) -> String {
@@ -41,18 +42,9 @@ fn gap(crank: f64, theta_deg: f64, r1: f64, r2: f64) -> f64 {
 
 /// Runs `gcs solve` with `args` after the file and returns exit code, stdout and stderr.
 fn gcs_solve(path: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
-        .arg("solve")
-        .arg(path)
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run gcs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let mut all = vec![std::ffi::OsStr::new("solve"), path.as_os_str()];
+    all.extend(args.iter().map(std::ffi::OsStr::new));
+    support::gcs(&all)
 }
 
 /// Every number that follows "miss by " in `text`.
