@@ -13,7 +13,8 @@
 //! diagnostic, as `gcs check` prints it; fix it and see the mechanism again; show the Rust
 //! module, as `gcs compile` writes it. The Jansen leg's: drag its crank slider over several
 //! values, each drag redrawing, and print the page's own solve-and-draw timings (run with
-//! `--nocapture` to see them; no test asserts a speed).
+//! `--nocapture` to see them; no test asserts a speed). With `GCS_SERVE_SCREENSHOTS=DIR`, the
+//! page is saved as a PNG in DIR at each step.
 
 use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
 use fantoccini::key::Key;
@@ -415,6 +416,17 @@ impl Browser {
         ([x0 + cx / scale, y0 - cy / scale], scale)
     }
 
+    /// Saves a screenshot of the page as `NAME.png` in the folder `GCS_SERVE_SCREENSHOTS`
+    /// names, when it names one: the page as a person sees it at each step.
+    async fn shot(&self, name: &str) {
+        let Some(dir) = std::env::var_os("GCS_SERVE_SCREENSHOTS") else {
+            return;
+        };
+        let png = self.client.screenshot().await.expect("a screenshot");
+        let path = Path::new(&dir).join(format!("{name}.png"));
+        std::fs::write(&path, png).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    }
+
     /// The element with this id.
     async fn id(&self, id: &str) -> fantoccini::elements::Element {
         self.client
@@ -549,6 +561,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
         (flipped[0] - drawn[0]).hypot(flipped[1] - drawn[1]) > 1.0,
         "the other assembly: {drawn:?} then {flipped:?}"
     );
+    b.shot("fourbar-1-elbow-flipped").await;
     println!("fourbar: elbow flipped: coupler.c drawn at {flipped:?}, gcs solve {want:?}");
 
     // Trace the coupler curve over theta's sweep.
@@ -562,6 +575,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
         vec![json!(draws)],
     )
     .await;
+    b.shot("fourbar-2-traced").await;
     assert_eq!(
         b.text("sweep-status").await,
         "61 samples of theta, all solved."
@@ -602,6 +616,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
         "the page says {status:?}, gcs solve {said:?}"
     );
     assert!(status.contains("the picture greyed below is the last that solved"));
+    b.shot("fourbar-3-failed").await;
     println!("fourbar: crank_len=20 does not solve: {said}");
     field.clear().await.expect("clear");
     field
@@ -658,6 +673,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
     );
     let (state, _) = b.drawing().await;
     assert_eq!(state, "stale", "the picture is not shown as current");
+    b.shot("fourbar-4-syntax-error").await;
     println!("fourbar: typed {typed:?}: the page shows {shown}");
 
     // Fixed: the mechanism again.
@@ -685,6 +701,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
         vec![],
     )
     .await;
+    b.shot("fourbar-5-module").await;
     let (_, module, _) = gcs(&["compile", "examples/fourbar.gcs"]);
     assert_eq!(b.text("code").await, module);
     let link = b
@@ -750,6 +767,7 @@ async fn the_jansen_leg_redraws_at_each_drag_and_the_page_times_it() {
         );
         timings.push(ms);
     }
+    b.shot("jansen-leg").await;
     timings.sort_by(f64::total_cmp);
     println!(
         "jansen_leg: {} drags, solved and drawn in {:.1} ms (median), {:.1} ms (fastest), {:.1} ms (slowest)",

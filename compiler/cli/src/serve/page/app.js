@@ -78,7 +78,8 @@ async function check() {
     setStatus(v.status || "the model has errors", true);
     setControlsEnabled(false);
     showTab("diagnostics-pane");
-    setDrawing("stale", "The model has errors: not solved", [v.status || ""]);
+    setDrawing("stale", "The model has errors: not solved", [(v.status || "").replace(/^error: /, "")]);
+    $("timing").textContent = "";
   }
 }
 
