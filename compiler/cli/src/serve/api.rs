@@ -645,6 +645,28 @@ mod tests {
     }
 
     #[test]
+    fn every_cut_of_a_model_is_answered() {
+        // Every prefix of the four-bar (cut at every third character), and each with a line
+        // dropped: checked, solved and compiled, each an answer and none a panic.
+        let mut api = api();
+        let lines: Vec<&str> = FOURBAR.lines().collect();
+        let cuts = (FOURBAR.char_indices().step_by(3)).map(|(i, _)| FOURBAR[..i].to_string());
+        let dropped = (0..lines.len()).map(|k| {
+            let mut l = lines.clone();
+            l.remove(k);
+            l.join("\n")
+        });
+        for text in cuts.chain(dropped) {
+            let body = json!({ "text": text, "set": ["theta=200deg"], "branch": ["elbow=1"] });
+            for path in ["/api/check", "/api/solve", "/api/compile"] {
+                let a = api.answer(path, body.to_string().as_bytes());
+                assert_eq!(a.status, 200, "{path} {text:?}: {}", a.body);
+                assert!(a.body["ok"].is_boolean(), "{path} {text:?}: {}", a.body);
+            }
+        }
+    }
+
+    #[test]
     fn malformed_requests_are_400_and_unknown_apis_404() {
         let mut api = api();
         assert_eq!(api.answer("/api/check", b"{not json").status, 400);
