@@ -580,6 +580,19 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
         b.text("sweep-status").await,
         "61 samples of theta, all solved."
     );
+    let steps = b.id("sweep-steps").await;
+    steps.clear().await.expect("clear");
+    steps
+        .send_keys(&format!("12{}", Key::Enter))
+        .await
+        .expect("type 12 steps");
+    b.until(
+        "for a sweep of 13 samples",
+        "return document.getElementById('sweep-status').textContent \
+             === '13 samples of theta, all solved.'",
+        vec![],
+    )
+    .await;
 
     // A crank too long to close: the failure in `gcs solve`'s words, the picture not current.
     let (_, draws) = b.drawing().await;

@@ -200,7 +200,6 @@ function paramControl(p) {
     const v = Number(slider.value);
     page.params.set(p.name, v);
     field.value = v;
-    syncSweepRange(p.name);
     wantSolve(t0);
   });
   field.addEventListener("change", () => {
@@ -270,7 +269,8 @@ function buildTraces(controls) {
   select.replaceChildren();
   for (const p of controls.params) select.append(element("option", { value: p.name, text: p.name }));
   if (controls.params.some((p) => p.name === was)) select.value = was;
-  syncSweepRange(select.value, true);
+  else forgetSweepRange();
+  syncSweepRange(select.value);
   const box = $("traces");
   box.replaceChildren();
   for (const name of controls.points) {
@@ -286,14 +286,18 @@ function buildTraces(controls) {
   $("trace-box").hidden = controls.params.length === 0 || controls.points.length === 0;
 }
 
-// The sweep's range follows the param's slider until it is edited.
-function syncSweepRange(name, force) {
-  if ($("sweep-param").value !== name) return;
+// The sweep's range is the param's slider's until it is edited.
+function syncSweepRange(name) {
   const p = page.controls && page.controls.params.find((q) => q.name === name);
   if (!p) return;
-  if (force || !$("sweep-from").dataset.edited) $("sweep-from").value = p.min;
-  if (force || !$("sweep-to").dataset.edited) $("sweep-to").value = p.max;
+  if (!$("sweep-from").dataset.edited) $("sweep-from").value = p.min;
+  if (!$("sweep-to").dataset.edited) $("sweep-to").value = p.max;
   $("sweep-unit").textContent = p.unit === "deg" ? "deg" : "";
+}
+
+function forgetSweepRange() {
+  delete $("sweep-from").dataset.edited;
+  delete $("sweep-to").dataset.edited;
 }
 
 function sweepText() {
@@ -492,9 +496,8 @@ async function start() {
   $("drawing").addEventListener("mouseleave", () => { $("cursor").textContent = ""; });
   $("view").addEventListener("change", () => { page.view = $("view").value; wantSolve(performance.now()); });
   $("sweep-param").addEventListener("change", () => {
-    delete $("sweep-from").dataset.edited;
-    delete $("sweep-to").dataset.edited;
-    syncSweepRange($("sweep-param").value, true);
+    forgetSweepRange();
+    syncSweepRange($("sweep-param").value);
     wantSolve(performance.now());
   });
   for (const id of ["sweep-from", "sweep-to", "sweep-steps"]) {
