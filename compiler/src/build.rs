@@ -37,10 +37,21 @@ pub fn compile_models(paths: &[impl AsRef<Path>]) -> Result<(), BuildError> {
 }
 
 /// Options of a build-script compilation; [`compile_models`] uses the defaults.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct Builder {
     out_dir: Option<PathBuf>,
     quiet: bool,
+    form: codegen::Form,
+}
+
+impl Default for Builder {
+    fn default() -> Builder {
+        Builder {
+            out_dir: None,
+            quiet: false,
+            form: codegen::Form::Auto,
+        }
+    }
 }
 
 /// What [`Builder::compile`] did with one model.
@@ -70,6 +81,13 @@ impl Builder {
     /// diagnostics are still in the returned [`BuildError`]. For use outside a build script.
     pub fn quiet(mut self, quiet: bool) -> Builder {
         self.quiet = quiet;
+        self
+    }
+
+    /// Lays `solve` out in `form` ([`codegen::Form::Auto`] unless set: flat for a small plan,
+    /// tabled for a large one).
+    pub fn form(mut self, form: codegen::Form) -> Builder {
+        self.form = form;
         self
     }
 
@@ -172,7 +190,11 @@ impl Builder {
                 eprint!("{rendered}");
             }
         }
-        Ok(codegen::generate(&compiled.model, &compiled.analysis.plan))
+        Ok(codegen::generate_as(
+            &compiled.model,
+            &compiled.analysis.plan,
+            self.form,
+        ))
     }
 }
 

@@ -98,6 +98,16 @@ pub struct Line {
     dir: V2,
 }
 
+impl Default for Line {
+    /// The x axis: what a generated solver's store holds before a step writes a line there.
+    fn default() -> Self {
+        Line {
+            point: P2::origin(),
+            dir: V2::x(),
+        }
+    }
+}
+
 impl Line {
     /// The point of the line nearest to `p` (the foot of the perpendicular): least motion.
     #[inline]
@@ -265,6 +275,17 @@ impl Ray {
 pub struct Circle {
     center: P2,
     radius: f64,
+}
+
+impl Default for Circle {
+    /// The unit circle about the origin: what a generated solver's store holds before a step
+    /// writes a circle there.
+    fn default() -> Self {
+        Circle {
+            center: P2::origin(),
+            radius: 1.0,
+        }
+    }
 }
 
 impl Circle {

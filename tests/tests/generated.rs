@@ -50,6 +50,25 @@ fn generated_solvers_are_golden() {
     }
 }
 
+/// The tabled form of a small chain, golden so that a change to how large models are laid
+/// out shows in review (every model's tabled module is run against the interpreter below).
+#[test]
+fn a_tabled_solver_is_golden() {
+    let m = discover::models(root().parent().expect("the workspace"))
+        .into_iter()
+        .find(|m| m.stem == "fourbar_chain_16")
+        .expect("examples/families/fourbar_chain_16.gcs");
+    let c = gcs_compiler::compile(&m.file_name(), m.text.as_bytes())
+        .unwrap_or_else(|e| panic!("{}: {e:?}", m.relative()));
+    let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate_as(
+        &c.model,
+        &c.analysis.plan,
+        gcs_compiler::codegen::Form::Tabled,
+    ));
+    assert!(code.contains("pub fn solve_into("), "not tabled");
+    expect_file![root().join("trybuild/tabled/fourbar_chain_16.rs")].assert_eq(&code);
+}
+
 /// A golden whose model is gone (or no longer analysed) is stale: remove it with its model.
 #[test]
 fn every_golden_belongs_to_a_model() {
@@ -68,9 +87,28 @@ fn every_golden_belongs_to_a_model() {
 /// The trybuild case that runs one model's golden solver against the interpreter; its
 /// `solve_all` too, where it has one (a model with too many branch combinations has none).
 fn run_case(m: &discover::Found) -> String {
+    let text = std::fs::read_to_string(golden(&m.stem)).unwrap_or_default();
+    case_text(m, &golden(&m.stem), &text)
+}
+
+/// The trybuild case that runs the solver `module` (its text `code`) of model `m`.
+fn case_text(m: &discover::Found, module: &Path, code: &str) -> String {
     let path = |p: &Path| format!("{:?}", p.display().to_string());
-    let has_solve_all = std::fs::read_to_string(golden(&m.stem))
-        .is_ok_and(|text| text.contains("pub fn solve_all("));
+    let has_solve_all = code.contains("pub fn solve_all(");
+    // The solve whose allocations are counted: a tabled module's `solve_into`, on a
+    // `Solution` made before, or `solve`.
+    let solve = if code.contains("pub fn solve_into(") {
+        "let mut solution = solver::Solution::new();\n    \
+         let region = stats_alloc::Region::new(ALLOCATOR);\n    \
+         let solved = solver::solve_into(p, b, d, &mut solution);\n    \
+         let change = region.change();\n    \
+         (solved.map(|()| solution), (change.allocations, change.reallocations))"
+    } else {
+        "let region = stats_alloc::Region::new(ALLOCATOR);\n    \
+         let solved = solver::solve(p, b, d);\n    \
+         let change = region.change();\n    \
+         (solved, (change.allocations, change.reallocations))"
+    };
     let all = if has_solve_all {
         format!(
             "include!({});\n",
@@ -93,9 +131,16 @@ fn run_case(m: &discover::Found) -> String {
          const MODEL: &str = include_str!({model});\n\
          \n\
          include!({driver});\n\
-         {all}",
+         {all}\n\
+         fn generated_solve(\n    \
+         p: &solver::Params,\n    \
+         b: &solver::Branches,\n    \
+         d: &solver::Defaults,\n\
+         ) -> (Result<solver::Solution, gcs_runtime::error::SolveError>, (usize, usize)) {{\n    \
+         {solve}\n\
+         }}\n",
         relative = m.relative(),
-        golden = path(&golden(&m.stem)),
+        golden = path(module),
         file = m.file_name(),
         model = path(&m.path),
         driver = path(&root().join("trybuild/driver.rs")),
@@ -110,13 +155,33 @@ fn generated_solvers_agree_with_the_interpreter() {
     let cases = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gcs-trybuild-run");
     std::fs::create_dir_all(&cases).expect("create the cases' directory");
     let t = trybuild::TestCases::new();
+    let write = |path: &Path, text: &str| {
+        if std::fs::read_to_string(path).ok().as_deref() != Some(text) {
+            std::fs::write(path, text).expect("write a trybuild case");
+        }
+    };
     for m in models() {
         let case = cases.join(format!("run_{}.rs", m.stem));
-        let text = run_case(&m);
-        if std::fs::read_to_string(&case).ok().as_deref() != Some(text.as_str()) {
-            std::fs::write(&case, text).expect("write a trybuild case");
-        }
+        write(&case, &run_case(&m));
         t.pass(case);
+        // The same model's tabled module (what a large model gets), where its plan allows
+        // one: every model's pieces, shapes and tables checked as the flat solver is.
+        let c = gcs_compiler::compile(&m.file_name(), m.text.as_bytes())
+            .unwrap_or_else(|e| panic!("{}: {e:?}", m.relative()));
+        let tabled = gcs_compiler::codegen::generate_as(
+            &c.model,
+            &c.analysis.plan,
+            gcs_compiler::codegen::Form::Tabled,
+        );
+        let golden_is_tabled = std::fs::read_to_string(golden(&m.stem))
+            .is_ok_and(|text| text.contains("pub fn solve_into("));
+        if tabled.contains("pub fn solve_into(") && !golden_is_tabled {
+            let module = cases.join(format!("tabled_{}.rs", m.stem));
+            write(&module, &tabled);
+            let case = cases.join(format!("run_tabled_{}.rs", m.stem));
+            write(&case, &case_text(&m, &module, &tabled));
+            t.pass(case);
+        }
     }
     t.compile_fail("trybuild/ui/*.rs");
 }

@@ -4,7 +4,8 @@
 // an outer iteration converges, each side to its own rounding) or equal
 // errors (the same constraint, kind and magnitude), re-checks every constraint of the
 // generated solution with `verify`, and counts the generated solve's allocations (none,
-// errors included). Then `all_assemblies` (`driver_all.rs`, or a stand-in where the model has
+// errors included; `generated_solve`, written with the case, calls `solve`, or a tabled
+// module's `solve_into` on a `Solution` made before). Then `all_assemblies` (`driver_all.rs`, or a stand-in where the model has
 // no `solve_all`) compares the lists of every assembly.
 
 // Counts allocations, to show that a generated solve allocates nothing.
@@ -93,14 +94,8 @@ fn main() {
                 branches,
                 &given_defaults,
             );
-            let region = stats_alloc::Region::new(ALLOCATOR);
-            let generated = solver::solve(&gp, &gb, &gd);
-            let change = region.change();
-            assert_eq!(
-                (change.allocations, change.reallocations),
-                (0, 0),
-                "{NAME}: the generated solve allocated"
-            );
+            let (generated, allocations) = generated_solve(&gp, &gb, &gd);
+            assert_eq!(allocations, (0, 0), "{NAME}: the generated solve allocated");
             match (interpreted, generated) {
                 (Ok(s), Ok(g)) => {
                     let s = s.by_name();

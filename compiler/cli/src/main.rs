@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 use codespan_reporting::term::{self, termcolor};
+use gcs_compiler::codegen::Form;
 use gcs_compiler::pipeline::{AnalysisError, CompileError, Compiled, Unanalysed};
 use gcs_lang::{Diagnostic, SourceFile};
 use std::path::{Path, PathBuf};
@@ -129,6 +130,11 @@ enum Command {
         /// Where to write it; standard output when absent.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// How `solve` is laid out: `auto` (flat below a plan of 2,048 steps, tabled from
+        /// there), `flat` (one straight function) or `tabled` (a function per shape of
+        /// repeated steps, and tables of their data).
+        #[arg(long, default_value = "auto", value_parser = form)]
+        form: Form,
     },
     /// Print the plan's stable text dump.
     Plan {
@@ -157,7 +163,20 @@ enum Command {
         /// factorisations have), instead of sparse above 120 unknowns.
         #[arg(long)]
         dense: bool,
+        /// How the generated solver's `solve` is laid out, as for `gcs compile`.
+        #[arg(long, default_value = "auto", value_parser = form)]
+        form: Form,
     },
+}
+
+/// A `--form` value.
+fn form(text: &str) -> Result<Form, String> {
+    match text {
+        "auto" => Ok(Form::Auto),
+        "flat" => Ok(Form::Flat),
+        "tabled" => Ok(Form::Tabled),
+        _ => Err(format!("`{text}` is not a form: auto, flat or tabled")),
+    }
 }
 
 fn main() -> ExitCode {
@@ -187,10 +206,11 @@ fn main() -> ExitCode {
             (json, all, all_solutions),
             color,
         ),
-        Command::Compile { file, output } => with_analysis(&file, color, |c| {
-            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(
+        Command::Compile { file, output, form } => with_analysis(&file, color, |c| {
+            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate_as(
                 &c.model,
                 &c.analysis.plan,
+                form,
             ));
             match output {
                 Some(path) => match std::fs::write(&path, code) {
@@ -213,13 +233,13 @@ fn main() -> ExitCode {
             plot,
             interpreted,
             dense,
+            form,
         } => bench(
             &file,
             samples,
             json,
             plot.as_deref(),
-            interpreted,
-            dense,
+            (interpreted, dense, form),
             color,
         ),
         Command::Draw {
@@ -618,8 +638,7 @@ fn bench(
     samples: usize,
     json: bool,
     plot: Option<&std::path::Path>,
-    interpreted: bool,
-    dense: bool,
+    (interpreted, dense, form): (bool, bool, Form),
     color: termcolor::ColorChoice,
 ) -> ExitCode {
     use gcs_bench::baseline::Linear;
@@ -642,9 +661,10 @@ fn bench(
         }
         let mut compiled = None;
         if !interpreted {
-            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate(
+            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate_as(
                 model,
                 &analysis.plan,
+                form,
             ));
             let names: Vec<String> = model.params.iter().map(|(_, p)| p.name.clone()).collect();
             let named: Vec<(String, usize)> = plan

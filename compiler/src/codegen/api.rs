@@ -230,7 +230,7 @@ pub(super) fn defaults(w: &mut Writer, cx: &Context<'_>) {
 
 /// The Rust type of a value the solution holds or gives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum Ty {
+pub(super) enum Ty {
     Frame,
     Scalar,
     Point,
@@ -239,7 +239,7 @@ enum Ty {
 
 impl Ty {
     /// The type in the plane, or in space (`d3`).
-    fn rust(self, d3: bool) -> &'static str {
+    pub(super) fn rust(self, d3: bool) -> &'static str {
         match (self, d3) {
             (Ty::Frame, false) => "Frame2",
             (Ty::Frame, true) => "Frame3",
@@ -270,7 +270,7 @@ pub(super) enum Holds {
 #[derive(Debug)]
 pub(super) struct Field {
     pub(super) name: String,
-    ty: Ty,
+    pub(super) ty: Ty,
     pub(super) holds: Holds,
 }
 
@@ -347,10 +347,10 @@ impl Layout {
 /// An accessor of `Solution`: one value by its dotted name in the model.
 pub(super) struct Accessor {
     /// The dotted name.
-    name: String,
-    doc: String,
-    ty: Ty,
-    body: String,
+    pub(super) name: String,
+    pub(super) doc: String,
+    pub(super) ty: Ty,
+    pub(super) body: String,
 }
 
 impl Accessor {

@@ -28,6 +28,7 @@ mod sketch;
 mod solve;
 mod spatial;
 mod steps;
+mod tabled;
 mod writer;
 
 pub use format::format;
@@ -42,10 +43,42 @@ use writer::Writer;
 /// be valid, as the pipeline's are: a register no step defines is a bug in gcs, and panics
 /// saying so rather than writing a made-up value.
 pub fn generate(model: &Model, plan: &Plan) -> String {
+    generate_as(model, plan, Form::Auto)
+}
+
+/// How the generated module lays out `solve`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Form {
+    /// Flat for a plan of fewer than [`TABLED_STEPS`] steps, tabled from there.
+    Auto,
+    /// One straight `solve`, a group of steps after another, each with its comment.
+    Flat,
+    /// Each group of steps a call of the function of its shape with its row of data (see
+    /// `tabled`), where the plan allows it (no outer iteration); flat otherwise.
+    Tabled,
+}
+
+/// The plan size from which [`Form::Auto`] writes a tabled module.
+pub const TABLED_STEPS: usize = tabled::TABLED_STEPS;
+
+/// [`generate`] in the given form.
+pub fn generate_as(model: &Model, plan: &Plan, form: Form) -> String {
     let (plan, scope) = crate::prune::prune(model, plan);
     let cx = Context::new(model, &plan, &scope);
     let mut w = Writer::default();
     header(&mut w, &cx.file, cx.d3);
+    let tabled = match form {
+        Form::Auto => cx.plan.steps.len() >= TABLED_STEPS,
+        Form::Flat => false,
+        Form::Tabled => true,
+    };
+    if tabled {
+        let layout = api::Layout::new(&cx);
+        if let Some(module) = tabled::module(&cx, &layout) {
+            w.out.push_str(&module);
+            return w.out;
+        }
+    }
     api::params(&mut w, &cx);
     api::branches(&mut w, &cx);
     api::defaults(&mut w, &cx);

@@ -1,7 +1,7 @@
 //! The one maker of the generated module's identifiers, so that every name is derived from the
 //! model's names the same way: snake case, keyword-safe, unique, never an index.
 
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// Makes every identifier of the generated module: snake case, keyword-safe, unique within its
 /// scope, derived from the model's names (repeats get `_2`, `_3`, ... in order of first use).

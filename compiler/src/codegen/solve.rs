@@ -16,10 +16,104 @@ use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 
 /// A binding of the solve's sketch: a frame's, declared (and `mut`) once the steps show
-/// whether the frame is read or moved, or any other.
+/// whether the frame is read or moved, or any other, with its Rust type.
 enum Decl {
     Frame(GeomId, Binding),
-    Value(Binding),
+    Value(Binding, &'static str),
+}
+
+/// The parts of `solve`, for a writer that lays them out otherwise (`tabled`): the same
+/// code, cut where the flat solve's text joins it.
+pub(super) struct Parts {
+    /// The sketches' checks that params can fail (code at the top of `solve`).
+    pub(super) sketch_checks: String,
+    /// The sketch's declarations, each with its value's Rust type.
+    pub(super) bindings: Vec<(Binding, &'static str)>,
+    /// The tolerance's `let`, if any step checks.
+    pub(super) tol: Option<String>,
+    /// The terms of the tolerance's scale, a list for each geom (see [`Solve::tolerance`]).
+    pub(super) tol_terms: Vec<Vec<String>>,
+    /// The step groups, each opened by its constraints' comment.
+    pub(super) groups: Vec<String>,
+    /// For each field of the layout, the code of its value at the end of `solve`.
+    pub(super) fields: Vec<String>,
+    /// The type of each local a step defines for a register.
+    pub(super) typed: HashMap<String, crate::plan::Ty>,
+    /// The locals of dimensions.
+    pub(super) dims: HashSet<String>,
+}
+
+/// The parts of `solve` (see [`Parts`]); `None` for a plan with outer iterations, whose
+/// steps are written inside a closure.
+pub(super) fn parts(cx: &Context<'_>, layout: &Layout) -> Option<Parts> {
+    if !cx.plan.iterations.is_empty() {
+        return None;
+    }
+    let mut names = Namer::default();
+    for reserved in [
+        "params",
+        "branches",
+        "defaults",
+        "outer",
+        "tol",
+        "solution",
+        "store",
+        "row",
+        "p",
+        "tol_scale",
+    ] {
+        names.reserve(reserved);
+    }
+    let mut s = Solve {
+        cx,
+        names,
+        frames: HashMap::new(),
+        dims: HashMap::new(),
+        locals: HashMap::new(),
+        deferred: HashSet::new(),
+        facts: Facts::default(),
+        frame_reads: RefCell::new(HashSet::new()),
+        frame_writes: HashSet::new(),
+        iterated: HashMap::new(),
+        closing: None,
+        converged: false,
+        error_only: HashSet::new(),
+        converged_defaults: HashMap::new(),
+        declared_at: HashMap::new(),
+        tol_terms: RefCell::new(Vec::new()),
+    };
+    let mut checks = Writer {
+        out: String::new(),
+        indent: 1,
+    };
+    s.check_sketches(&mut checks);
+    let (worked, decls) = s.sketch(layout);
+    let tol = s.tolerance(&worked);
+    let mut body = Writer {
+        out: String::new(),
+        indent: 1,
+    };
+    let groups = s.steps_in_groups(&mut body);
+    let fields = layout
+        .fields
+        .iter()
+        .map(|field| s.field_value(field.holds))
+        .collect();
+    let typed = (cx.plan.steps.iter())
+        .filter_map(|step| step.out)
+        .filter_map(|(r, ty)| Some((s.facts.regs.get(&r)?.local()?.to_string(), ty)))
+        .collect();
+    let bindings = s.bindings_typed(decls);
+    Some(Parts {
+        sketch_checks: checks.out,
+        bindings,
+        tol,
+        tol_terms: s.tol_terms.take(),
+        groups,
+        fields,
+        typed,
+        dims: s.dims.values().cloned().collect(),
+    })
 }
 
 /// The state of writing `solve`: the locals declared so far and what is known at the current
@@ -55,6 +149,8 @@ pub(super) struct Solve<'a> {
     /// In space, frames declared with a value other than their sketch's: a frame whose
     /// moves were all computed here (see `FrameFacts::literal3`) starts where they left it.
     pub(super) declared_at: HashMap<GeomId, String>,
+    /// The terms of the tolerance's scale, a list for each geom, when it is not a literal.
+    pub(super) tol_terms: RefCell<Vec<Vec<String>>>,
 }
 
 /// The locals `code` declares (`let name =`) and never reads.
@@ -100,6 +196,7 @@ pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         error_only: HashSet::new(),
         converged_defaults: HashMap::new(),
         declared_at: HashMap::new(),
+        tol_terms: RefCell::new(Vec::new()),
     };
     s.write(w, layout);
 }
@@ -172,6 +269,15 @@ impl Solve<'_> {
     /// The declarations, now that the steps are written: a frame the code never reads or
     /// moves is left out, and only a moved one is `mut`.
     fn bindings(&self, decls: Vec<Decl>) -> Vec<Binding> {
+        self.bindings_typed(decls)
+            .into_iter()
+            .map(|(b, _)| b)
+            .collect()
+    }
+
+    /// [`Solve::bindings`], each with its Rust type.
+    fn bindings_typed(&self, decls: Vec<Decl>) -> Vec<(Binding, &'static str)> {
+        let frame_ty = if self.cx.d3 { "Frame3" } else { "Frame2" };
         decls
             .into_iter()
             .filter_map(|decl| match decl {
@@ -179,13 +285,16 @@ impl Solve<'_> {
                     let mutable = self.frame_writes.contains(&g);
                     let read = self.frame_reads.borrow().contains(&g);
                     let value = self.declared_at.get(&g).cloned().unwrap_or(frame.value);
-                    (mutable || read).then_some(Binding {
-                        mutable,
-                        value,
-                        ..frame
-                    })
+                    (mutable || read).then_some((
+                        Binding {
+                            mutable,
+                            value,
+                            ..frame
+                        },
+                        frame_ty,
+                    ))
                 }
-                Decl::Value(binding) => Some(binding),
+                Decl::Value(binding, ty) => Some((binding, ty)),
             })
             .collect()
     }
@@ -254,7 +363,13 @@ impl Solve<'_> {
         // them only where a step reads them.
         for local in self.cx.param_locals(g) {
             if reported || self.cx.reads_feature(local.feature) {
-                self.declare_local(local.feature, &local.name, local.value, decls);
+                let ty = match (local.vector, self.cx.d3) {
+                    (true, true) => "Vector3<f64>",
+                    (true, false) => "Vector2<f64>",
+                    (false, true) => "Point3<f64>",
+                    (false, false) => "Point2<f64>",
+                };
+                self.declare_local(local.feature, (&local.name, ty), local.value, decls);
             }
         }
     }
@@ -266,23 +381,35 @@ impl Solve<'_> {
         if self.cx.dim_set_before_read(g) {
             self.deferred.insert(g);
         } else {
-            decls.push(Decl::Value(Binding {
-                mutable: self.cx.dim_set(g),
-                name: name.clone(),
-                value: self.cx.sketch_dim_declared(g),
-            }));
+            decls.push(Decl::Value(
+                Binding {
+                    mutable: self.cx.dim_set(g),
+                    name: name.clone(),
+                    value: self.cx.sketch_dim_declared(g),
+                },
+                "f64",
+            ));
         }
         self.dims.insert(g, name);
     }
 
     /// Declares the local holding feature `f`'s local coordinates.
-    fn declare_local(&mut self, f: GeomId, name: &str, value: String, decls: &mut Vec<Decl>) {
+    fn declare_local(
+        &mut self,
+        f: GeomId,
+        (name, ty): (&str, &'static str),
+        value: String,
+        decls: &mut Vec<Decl>,
+    ) {
         let name = self.names.fresh(name);
-        decls.push(Decl::Value(Binding {
-            mutable: false,
-            name: name.clone(),
-            value,
-        }));
+        decls.push(Decl::Value(
+            Binding {
+                mutable: false,
+                name: name.clone(),
+                value,
+            },
+            ty,
+        ));
         self.locals.insert(f, name);
     }
 
@@ -298,7 +425,9 @@ impl Solve<'_> {
         let mut terms = Vec::new();
         // The values when every term is a literal: the tolerance is then one, computed here.
         let mut values: Option<Vec<f64>> = Some(Vec::new());
+        let mut chunks = Vec::new();
         for &g in worked.iter().filter(|&&g| self.cx.touched(g)) {
+            let chunk_at = terms.len();
             let dim_literal = || match self.dims.get(&g) {
                 None => Some(None),
                 Some(_) if self.deferred.contains(&g) || self.cx.dim_set(g) => None,
@@ -335,7 +464,9 @@ impl Solve<'_> {
                     terms.push(d.clone());
                 }
             }
+            chunks.push(terms[chunk_at..].to_vec());
         }
+        *self.tol_terms.borrow_mut() = chunks;
         if let Some(v) = values {
             let tol = gcs_runtime::tol::CHECK_REL * (1.0 + gcs_runtime::tol::scale(&v));
             return Some(format!(
@@ -541,24 +672,35 @@ impl Solve<'_> {
         w.line("");
         w.open("Ok(Solution {");
         for field in &layout.fields {
-            let local = match field.holds {
-                Holds::Frame(g) => match self.facts.frames.get(&g).and_then(|f| f.literal3) {
-                    Some(f) => super::spatial::frame3(&f),
-                    None => self.frame(g),
-                },
-                Holds::Dim(g) => self.dims[&g].clone(),
-                Holds::Local(f) => self.locals[&f].clone(),
-                Holds::LineSketch(g) => match super::api::line_sketch(self.cx, g) {
-                    Some(from) if self.cx.d3 => self.cx.point_lit3(from),
-                    Some(from) => self.cx.point_lit(from),
-                    None => unreachable!("only a line's sketch point is held"),
-                },
-            };
+            let local = self.field_value(field.holds);
             w.line(&field_init(&field.name, &local));
         }
         if !self.cx.plan.branches.is_empty() {
             w.line("branches: *branches,");
         }
+        self.defaults_init(w);
+        w.close("})");
+    }
+
+    /// The code of a solution field's value at the end of `solve`.
+    fn field_value(&self, holds: Holds) -> String {
+        match holds {
+            Holds::Frame(g) => match self.facts.frames.get(&g).and_then(|f| f.literal3) {
+                Some(f) => super::spatial::frame3(&f),
+                None => self.frame(g),
+            },
+            Holds::Dim(g) => self.dims[&g].clone(),
+            Holds::Local(f) => self.locals[&f].clone(),
+            Holds::LineSketch(g) => match super::api::line_sketch(self.cx, g) {
+                Some(from) if self.cx.d3 => self.cx.point_lit3(from),
+                Some(from) => self.cx.point_lit(from),
+                None => unreachable!("only a line's sketch point is held"),
+            },
+        }
+    }
+
+    /// The `defaults` field of the solution: each as given, or as its iteration converged.
+    fn defaults_init(&self, w: &mut Writer) {
         if !self.cx.plan.defaults.is_empty() {
             let fields: Vec<String> = (self.cx.defaults.iter().enumerate())
                 .map(|(k, field)| {
@@ -570,7 +712,6 @@ impl Solve<'_> {
                 .collect();
             w.line(&format!("defaults: Defaults {{ {} }},", fields.join(", ")));
         }
-        w.close("})");
     }
 
     /// The code of register `r`.
