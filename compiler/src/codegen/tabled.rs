@@ -327,6 +327,41 @@ impl Cut {
         cut
     }
 
+    /// Whether the code may change the `n`th value it reads: assigns it (or a field of it),
+    /// lends it `&mut`, or calls a method of the runtime's that moves a frame on it. The
+    /// others are not stored back.
+    fn writes(&self, n: usize) -> bool {
+        const MOVES: [&str; 7] = [
+            "place_origin",
+            "rotate_about",
+            "rotate_about_by",
+            "scale_about",
+            "set_rotation",
+            "translate",
+            "turn_by",
+        ];
+        let code: Vec<usize> = (0..self.tokens.len())
+            .filter(|&k| self.roles[k] != Role::Comment)
+            .collect();
+        let word = |i: usize| code.get(i).map_or("", |&k| self.word(k));
+        (0..code.len()).any(|i| {
+            if self.roles[code[i]] != Role::Outer(n) {
+                return false;
+            }
+            if i >= 2 && word(i - 1) == "mut" && word(i - 2) == "&" {
+                return true;
+            }
+            // Past its fields (`x.origin.y`) to what follows.
+            let mut j = i + 1;
+            while word(j) == "." && !MOVES.contains(&word(j + 1)) && word(j + 2) != "(" {
+                j += 2;
+            }
+            let assigned = (word(j) == "=" && word(j + 1) != "=")
+                || (matches!(word(j), "+" | "-" | "*" | "/") && word(j + 1) == "=");
+            assigned || (word(j) == "." && MOVES.contains(&word(j + 1)))
+        })
+    }
+
     /// The text of token `k`.
     fn word(&self, k: usize) -> &str {
         let t = self.tokens[k];
@@ -621,18 +656,28 @@ pub(super) fn module(cx: &Context<'_>, layout: &Layout) -> Option<String> {
     let mut w = Writer::default();
     api::params(&mut w, cx);
     let mut tables = String::new();
-    inputs(&mut w, &mut tables, cx, true);
-    inputs(&mut w, &mut tables, cx, false);
-    solution(&mut w, &mut tables, cx, &counts, &accessors, &slots);
+    let mut strings = Strings::default();
+    inputs(&mut w, &mut tables, &mut strings, cx, true);
+    inputs(&mut w, &mut tables, &mut strings, cx, false);
+    solution(
+        &mut w,
+        &mut tables,
+        cx,
+        &counts,
+        &accessors,
+        &slots,
+        &mut strings,
+    );
     solve(
         &mut w,
         &mut tables,
         cx,
         &sketch_checks,
-        &shapes,
-        &order,
+        (&shapes, &order),
         &slots,
+        &mut strings,
     );
+    strings.write(&mut w, &mut tables);
     // The tables last, after the line that tells `format` to leave them as written.
     w.line(super::format::DATA);
     w.line("");
@@ -770,7 +815,7 @@ fn body(cut: &Cut, k_at: &[Option<usize>], t_at: &[Option<usize>], in_at: &[Inpu
         let t = cut.tokens[k];
         let replacement = match role {
             Role::Constant(n) => k_at[*n].map(|i| format!("row.k[{i}]")),
-            Role::Text(n) => t_at[*n].map(|i| format!("row.text[{i}]")),
+            Role::Text(n) => t_at[*n].map(|i| format!("text(row.text[{i}])")),
             Role::Input(n, input) => {
                 let field = &cut.inputs[*n].1;
                 let index = match in_at[*n] {
@@ -852,7 +897,13 @@ fn at_places<T: Clone>(at: &[Option<usize>], values: &[T]) -> Vec<T> {
 
 /// `Branches` (`branch`) or `Defaults` of a large model: the values in an array in model
 /// order, set and read by name through a sorted table.
-fn inputs(w: &mut Writer, tables: &mut String, cx: &Context<'_>, branch: bool) {
+fn inputs(
+    w: &mut Writer,
+    tables: &mut String,
+    strings: &mut Strings,
+    cx: &Context<'_>,
+    branch: bool,
+) {
     let (name, ty, what, list): (&str, &str, &str, Vec<(String, String)>) = if branch {
         let list = (cx.plan.branches.iter())
             .map(|b| (b.name.clone(), b.default.to_string()))
@@ -871,7 +922,7 @@ fn inputs(w: &mut Writer, tables: &mut String, cx: &Context<'_>, branch: bool) {
     let eq = if branch { ", Eq" } else { "" };
     if branch {
         w.line("/// Which assembly: an index per branch variable, in model order, each with a geometric");
-        w.line("/// meaning (`Branches::meanings`). Set and read by the variable's name.");
+        w.line("/// meaning (`Branches::meaning`). Set and read by the variable's name.");
     } else {
         w.line("/// Values of the degrees of freedom the analysis had to default, in model order. Set and");
         w.line("/// read by the default's name.");
@@ -920,14 +971,18 @@ fn inputs(w: &mut Writer, tables: &mut String, cx: &Context<'_>, branch: bool) {
     w.close("}");
     w.line("");
     w.line(&format!("/// The {what}s' names, in model order."));
-    w.open("pub fn names() -> &'static [&'static str] {");
-    w.line(&format!("&{upper}_NAMES"));
+    w.open("pub fn names() -> impl Iterator<Item = &'static str> {");
+    w.line(&format!("{upper}_NAMES.iter().map(|&id| text(id))"));
     w.close("}");
     if branch {
         w.line("");
-        w.line("/// What each index of the branch variable called `name` means.");
-        w.open("pub fn meanings(name: &str) -> Option<&'static [&'static str]> {");
-        w.line("find(&BRANCHES_BY_NAME, name).map(|k| BRANCHES_MEANINGS[k])");
+        w.line("/// What index `index` of the branch variable called `name` means, if it has one.");
+        w.open("pub fn meaning(name: &str, index: u8) -> Option<&'static str> {");
+        w.line("let k = find(&BRANCHES_BY_NAME, name)?;");
+        w.line("let first = *BRANCHES_MEANING_AT.get(k)? as usize;");
+        w.line("let end = *BRANCHES_MEANING_AT.get(k + 1)? as usize;");
+        w.line("let at = first + usize::from(index);");
+        w.line("(at < end).then(|| text(BRANCHES_MEANING[at]))");
         w.close("}");
     }
     w.close("}");
@@ -945,35 +1000,35 @@ fn inputs(w: &mut Writer, tables: &mut String, cx: &Context<'_>, branch: bool) {
     w.line("");
     // The tables.
     let mut t = String::new();
-    let names: Vec<String> = list.iter().map(|(n, _)| lit(n)).collect();
-    table(&mut t, &format!("{upper}_NAMES"), "&str", &names);
+    let names: Vec<String> = list
+        .iter()
+        .map(|(n, _)| strings.id(n).to_string())
+        .collect();
+    table(&mut t, &format!("{upper}_NAMES"), "u32", &names);
     let values: Vec<String> = list.iter().map(|(_, v)| v.clone()).collect();
     table(&mut t, &format!("{upper}_SKETCH"), ty, &values);
-    table(
-        &mut t,
-        &format!("{upper}_BY_NAME"),
-        "(&str, u32)",
-        &by_name(list.iter().map(|(n, _)| n.as_str())),
-    );
+    let sorted = by_name(list.iter().map(|(n, _)| n.as_str()), strings);
+    table(&mut t, &format!("{upper}_BY_NAME"), "[u32; 2]", &sorted);
     if branch {
-        let meanings: Vec<String> = (cx.plan.branches.iter())
-            .map(|b| {
-                let m: Vec<String> = b.meanings.iter().map(|m| lit(m)).collect();
-                format!("&[{}]", m.join(", "))
-            })
-            .collect();
-        table(&mut t, "BRANCHES_MEANINGS", "&[&str]", &meanings);
+        // The meanings of branch `k`: `BRANCHES_MEANING[BRANCHES_MEANING_AT[k]..][..count]`.
+        let (mut at, mut ids) = (vec!["0".to_string()], Vec::new());
+        for b in &cx.plan.branches {
+            ids.extend(b.meanings.iter().map(|m| strings.id(m).to_string()));
+            at.push(ids.len().to_string());
+        }
+        table(&mut t, "BRANCHES_MEANING_AT", "u32", &at);
+        table(&mut t, "BRANCHES_MEANING", "u32", &ids);
     }
     tables.push_str(&t);
 }
 
-/// The entries `(name, index in model order)` sorted by name, for `find`.
-fn by_name<'n>(names: impl Iterator<Item = &'n str>) -> Vec<String> {
+/// The entries `[name's string id, index in model order]` sorted by name, for `find`.
+fn by_name<'n>(names: impl Iterator<Item = &'n str>, strings: &mut Strings) -> Vec<String> {
     let mut sorted: Vec<(&str, usize)> = names.enumerate().map(|(k, n)| (n, k)).collect();
     sorted.sort();
     sorted
         .iter()
-        .map(|(n, k)| format!("({}, {k})", lit(n)))
+        .map(|(n, k)| format!("[{}, {k}]", strings.id(n)))
         .collect()
 }
 
@@ -993,6 +1048,88 @@ fn table(out: &mut String, name: &str, ty: &str, entries: &[String]) {
     let _ = writeln!(out, "];\n");
 }
 
+/// Every string the tables hold, once: one literal (`STRINGS`) and the byte offset where each
+/// starts (`STRING_AT`), read by `text(id)`. rustc's time grows with the number of string
+/// literals it is given; one literal of a million names costs little.
+#[derive(Default)]
+struct Strings {
+    text: String,
+    at: Vec<u32>,
+    ids: HashMap<String, u32>,
+}
+
+impl Strings {
+    /// The id of string `s` (its content, not a literal).
+    fn id(&mut self, s: &str) -> u32 {
+        if let Some(&id) = self.ids.get(s) {
+            return id;
+        }
+        if self.at.is_empty() {
+            self.at.push(0);
+        }
+        self.text.push_str(s);
+        self.at.push(self.text.len() as u32);
+        let id = self.ids.len() as u32;
+        self.ids.insert(s.to_string(), id);
+        id
+    }
+
+    /// The id of the string a generated literal (`"a \"b\""`, as `lit` writes it) holds.
+    fn id_of_literal(&mut self, literal: &str) -> u32 {
+        self.id(&unescape(literal))
+    }
+
+    /// The tables and `text`.
+    fn write(&self, w: &mut Writer, tables: &mut String) {
+        w.line("/// String `id` of the tables (`STRINGS`, `STRING_AT`).");
+        w.open("fn text(id: u32) -> &'static str {");
+        w.line("let i = id as usize;");
+        w.open("match (STRING_AT.get(i), STRING_AT.get(i + 1)) {");
+        w.line(
+            "(Some(&from), Some(&to)) => STRINGS.get(from as usize..to as usize).unwrap_or(\"\"),",
+        );
+        w.line("_ => \"\",");
+        w.close("}");
+        w.close("}");
+        w.line("");
+        let _ = writeln!(tables, "#[rustfmt::skip]");
+        let _ = writeln!(tables, "static STRINGS: &str = {};\n", lit(&self.text));
+        let at: Vec<String> = self.at.iter().map(u32::to_string).collect();
+        table(tables, "STRING_AT", "u32", &at);
+    }
+}
+
+/// The content of a string literal as `lit` (Rust's `Debug`) writes it.
+fn unescape(literal: &str) -> String {
+    let inner = literal
+        .strip_prefix('"')
+        .and_then(|l| l.strip_suffix('"'))
+        .unwrap_or(literal);
+    let mut out = String::with_capacity(inner.len());
+    let mut chars = inner.chars();
+    while let Some(c) = chars.next() {
+        if c != '\\' {
+            out.push(c);
+            continue;
+        }
+        match chars.next() {
+            Some('n') => out.push('\n'),
+            Some('r') => out.push('\r'),
+            Some('t') => out.push('\t'),
+            Some('0') => out.push('\0'),
+            Some('u') => {
+                let code: String = chars.by_ref().skip(1).take_while(|&c| c != '}').collect();
+                if let Some(c) = u32::from_str_radix(&code, 16).ok().and_then(char::from_u32) {
+                    out.push(c);
+                }
+            }
+            Some(other) => out.push(other),
+            None => {}
+        }
+    }
+    out
+}
+
 /// The Solution of a large model: the store the solve works in, read by name.
 fn solution(
     w: &mut Writer,
@@ -1001,6 +1138,7 @@ fn solution(
     counts: &BTreeMap<&'static str, usize>,
     accessors: &Accessors,
     slots: &HashMap<String, Slot>,
+    strings: &mut Strings,
 ) {
     let d3 = cx.d3;
     w.line("/// Where the solve keeps the values that cross its pieces: a slice per type.");
@@ -1072,7 +1210,6 @@ fn solution(
             .map(|(c, _)| c.constants.len())
             .max()
             .unwrap_or(0);
-        let row_ty = format!("Access<{at_len}, {k_len}>");
         w.line("");
         w.line(&format!(
             "/// Every {what} of the solution, by its dotted name in the model, in model order."
@@ -1081,7 +1218,7 @@ fn solution(
             "pub fn {what}s(&self) -> impl Iterator<Item = (&'static str, {ty})> + '_ {{"
         ));
         w.line(&format!(
-            "{upper}S.iter().map(|(name, row)| (*name, self.{what}_at(row)))"
+            "{upper}_NAME.iter().enumerate().map(|(k, &name)| (text(name), self.{what}_at(k)))"
         ));
         w.close("}");
         w.line("");
@@ -1092,14 +1229,31 @@ fn solution(
             "pub fn {what}(&self, name: &str) -> Option<{ty}> {{"
         ));
         w.line(&format!(
-            "find(&{upper}S_BY_NAME, name).map(|k| self.{what}_at(&{upper}S[k].1))"
+            "find(&{upper}_BY_NAME, name).map(|k| self.{what}_at(k))"
         ));
         w.close("}");
         w.line("");
-        w.line(&format!("/// The {what} a row of `{upper}S` reads."));
+        w.line(&format!(
+            "/// The {what} at `k` in model order: the shape of the code that computes it"
+        ));
+        w.line(&format!(
+            "/// (`{upper}_SHAPE`), the store's slots it reads (`{upper}_AT`) and its constants (`{upper}_K`)."
+        ));
         w.line("#[allow(unused_variables, clippy::match_single_binding)]");
-        w.open(&format!("fn {what}_at(&self, row: &{row_ty}) -> {ty} {{"));
-        w.open("match row.shape {");
+        w.open(&format!("fn {what}_at(&self, k: usize) -> {ty} {{"));
+        let table_or_empty = |name: &str, len: usize, zero: &str| match len {
+            0 => format!("[{zero}; 0]"),
+            _ => format!("{name}[k]"),
+        };
+        w.line(&format!(
+            "let at = {};",
+            table_or_empty(&format!("{upper}_AT"), at_len, "0u32")
+        ));
+        w.line(&format!(
+            "let c = {};",
+            table_or_empty(&format!("{upper}_K"), k_len, "0.0f64")
+        ));
+        w.open(&format!("match {upper}_SHAPE[k] {{"));
         let count = kind.shapes.len();
         for (n, (cut, _)) in kind.shapes.iter().enumerate() {
             let arm = if n + 1 == count {
@@ -1114,11 +1268,11 @@ fn solution(
                     .and_then(|s| store_slice(s.ty))
                     .map_or("", |s| s.0);
                 w.line(&format!(
-                    "let {name} = self.store.{slice}[row.at[{i}] as usize];"
+                    "let {name} = self.store.{slice}[at[{i}] as usize];"
                 ));
             }
             let k_at: Vec<Option<usize>> = (0..cut.constants.len()).map(Some).collect();
-            let code = body(cut, &k_at, &[], &[]);
+            let code = body(cut, &k_at, &[], &[]).replace("row.k[", "c[");
             w.line(code.trim());
             w.close("}");
         }
@@ -1128,50 +1282,58 @@ fn solution(
         w.close("}");
         w.close("}");
         // Its tables.
-        let rows: Vec<String> = (kind.rows.iter())
-            .map(|(name, shape, at, k)| {
-                let at: Vec<String> = (0..at_len)
-                    .map(|i| at.get(i).map_or("0".to_string(), |a| a.to_string()))
-                    .collect();
-                let k: Vec<String> = (0..k_len)
-                    .map(|i| k.get(i).cloned().unwrap_or_else(|| "0.0".to_string()))
-                    .collect();
-                format!(
-                    "({}, Access {{ shape: {shape}, at: [{}], k: [{}] }})",
-                    lit(name),
-                    at.join(", "),
-                    k.join(", ")
-                )
-            })
+        let names: Vec<String> = (kind.rows.iter())
+            .map(|(name, ..)| strings.id(name).to_string())
             .collect();
-        table(
-            tables,
-            &format!("{upper}S"),
-            &format!("(&str, {row_ty})"),
-            &rows,
-        );
-        table(
-            tables,
-            &format!("{upper}S_BY_NAME"),
-            "(&str, u32)",
-            &by_name(kind.rows.iter().map(|(n, ..)| n.as_str())),
-        );
+        table(tables, &format!("{upper}_NAME"), "u32", &names);
+        let shapes: Vec<String> = kind
+            .rows
+            .iter()
+            .map(|(_, shape, ..)| shape.to_string())
+            .collect();
+        table(tables, &format!("{upper}_SHAPE"), "u16", &shapes);
+        if at_len > 0 {
+            let rows: Vec<String> = (kind.rows.iter())
+                .map(|(_, _, at, _)| {
+                    let at: Vec<String> = (0..at_len)
+                        .map(|i| at.get(i).map_or("0".to_string(), |a| a.to_string()))
+                        .collect();
+                    format!("[{}]", at.join(", "))
+                })
+                .collect();
+            table(
+                tables,
+                &format!("{upper}_AT"),
+                &format!("[u32; {at_len}]"),
+                &rows,
+            );
+        }
+        if k_len > 0 {
+            let rows: Vec<String> = (kind.rows.iter())
+                .map(|(_, _, _, k)| {
+                    let k: Vec<String> = (0..k_len)
+                        .map(|i| k.get(i).cloned().unwrap_or_else(|| "0.0".to_string()))
+                        .collect();
+                    format!("[{}]", k.join(", "))
+                })
+                .collect();
+            table(
+                tables,
+                &format!("{upper}_K"),
+                &format!("[f64; {k_len}]"),
+                &rows,
+            );
+        }
+        let sorted = by_name(kind.rows.iter().map(|(n, ..)| n.as_str()), strings);
+        table(tables, &format!("{upper}_BY_NAME"), "[u32; 2]", &sorted);
     }
     w.close("}");
     w.line("");
-    w.line("/// A value of the solution: the shape of code that computes it, the store's slots it");
-    w.line("/// reads and its constants.");
-    w.line("#[derive(Debug)]");
-    w.open("struct Access<const A: usize, const K: usize> {");
-    w.line("shape: u16,");
-    w.line("at: [u32; A],");
-    w.line("k: [f64; K],");
-    w.close("}");
-    w.line("");
-    w.line("/// The index, in model order, of the entry called `name` of a table sorted by name.");
-    w.open("fn find(by_name: &[(&str, u32)], name: &str) -> Option<usize> {");
-    w.line("let k = by_name.binary_search_by(|(n, _)| n.cmp(&name)).ok()?;");
-    w.line("Some(by_name[k].1 as usize)");
+    w.line("/// The index, in model order, of the entry called `name` of a table sorted by name");
+    w.line("/// (`[name's string id, index]`).");
+    w.open("fn find(by_name: &[[u32; 2]], name: &str) -> Option<usize> {");
+    w.line("let k = by_name.binary_search_by(|&[n, _]| text(n).cmp(name)).ok()?;");
+    w.line("Some(by_name[k][1] as usize)");
     w.close("}");
     w.line("");
 }
@@ -1187,9 +1349,9 @@ fn solve(
     tables: &mut String,
     cx: &Context<'_>,
     sketch_checks: &str,
-    shapes: &[Shape],
-    order: &[Placed],
+    (shapes, order): (&[Shape], &[Placed]),
     slots: &HashMap<String, Slot>,
+    strings: &mut Strings,
 ) {
     let m = cx.model;
     let np = m.params.len();
@@ -1214,8 +1376,8 @@ fn solve(
         ));
     }
     if !cx.plan.defaults.is_empty() {
-        w.open("for (name, value) in DEFAULTS_NAMES.iter().zip(defaults.values.iter()) {");
-        w.line("gcs_runtime::error::check_all_finite(&[(name, *value)])?;");
+        w.open("for (&name, value) in DEFAULTS_NAMES.iter().zip(defaults.values.iter()) {");
+        w.line("gcs_runtime::error::check_all_finite(&[(text(name), *value)])?;");
         w.close("}");
     }
     w.out.push_str(sketch_checks);
@@ -1224,17 +1386,26 @@ fn solve(
         .collect();
     w.line(&format!("let p: [f64; {np}] = [{}];", fields.join(", ")));
     w.line("let store = &mut solution.store;");
-    w.open("for &(shape, row) in ORDER.iter() {");
+    w.open("for &[shape, row] in ORDER.iter() {");
     w.line("let row = row as usize;");
     w.open("match shape {");
-    for (n, _) in shapes.iter().enumerate() {
+    for (n, shape) in shapes.iter().enumerate() {
         let arm = if n + 1 == shapes.len() {
             "_".to_string()
         } else {
             n.to_string()
         };
+        let widths = widths(shape);
+        let field = |name: &str, width: usize| match width {
+            0 => format!("{name}: &[]"),
+            _ => format!("{name}: &PIECE_{n}_{}[row]", name.to_uppercase()),
+        };
         w.line(&format!(
-            "{arm} => piece_{n}(store, params, &p, branches, defaults, &PIECE_{n}[row])?,"
+            "{arm} => piece_{n}(store, params, &p, branches, defaults, Row {{ {}, {}, {}, {} }})?,",
+            field("at", widths.0),
+            field("k", widths.1),
+            field("text", widths.2),
+            field("input", widths.3),
         ));
     }
     if shapes.is_empty() {
@@ -1252,6 +1423,7 @@ fn solve(
     w.line("/// # Errors");
     w.line("///");
     w.line("/// As [`solve_into`].");
+    w.line("#[allow(dead_code)]");
     w.open("pub fn solve(params: &Params, branches: &Branches, defaults: &Defaults) -> Result<Solution, SolveError> {");
     w.line("let mut solution = Solution::new();");
     w.line("solve_into(params, branches, defaults, &mut solution)?;");
@@ -1262,52 +1434,81 @@ fn solve(
         "/// A piece's data: the store's slots it reads then writes, its constants, the names its",
     );
     w.line("/// errors give, and the params, branch variables or defaults it reads.");
-    w.line("#[derive(Debug)]");
-    w.open("struct Row<const A: usize, const K: usize, const T: usize, const I: usize> {");
-    w.line("at: [u32; A],");
-    w.line("k: [f64; K],");
-    w.line("text: [&'static str; T],");
-    w.line("input: [u32; I],");
+    w.line("/// Each its row of the piece's tables (`PIECE_n_AT`, `_K`, `_TEXT`, `_INPUT`).");
+    w.line("#[derive(Clone, Copy, Debug)]");
+    w.open("struct Row<'r, const A: usize, const K: usize, const T: usize, const I: usize> {");
+    w.line("at: &'r [u32; A],");
+    w.line("k: &'r [f64; K],");
+    w.line("text: &'r [u32; T],");
+    w.line("input: &'r [u32; I],");
     w.close("}");
     w.line("");
     let mut order_rows: Vec<String> = Vec::with_capacity(order.len());
     for p in order {
-        order_rows.push(format!("({}, {})", p.shape, p.row));
+        order_rows.push(format!("[{}, {}]", p.shape, p.row));
     }
     for (n, shape) in shapes.iter().enumerate() {
-        piece(w, tables, cx, n, shape, slots);
+        piece(w, tables, strings, n, shape, slots);
     }
-    table(tables, "ORDER", "(u32, u32)", &order_rows);
+    table(tables, "ORDER", "[u32; 2]", &order_rows);
 }
 
-/// The function of shape `n` and its table.
+/// Where a shape's function finds each constant, text and input in its row.
+struct Places {
+    k_at: Vec<Option<usize>>,
+    t_at: Vec<Option<usize>>,
+    inputs_at: Vec<Option<usize>>,
+}
+
+impl Places {
+    fn of(shape: &Shape) -> Places {
+        let (cut, rows) = (&shape.representative, &shape.rows);
+        Places {
+            k_at: varying(cut.constants.len(), rows, |r, i| r.constants[i].clone()),
+            t_at: varying(cut.texts.len(), rows, |r, i| r.texts[i].clone()),
+            inputs_at: varying(cut.inputs.len(), rows, |r, i| r.inputs[i]),
+        }
+    }
+}
+
+/// The widths of a shape's rows: slots, constants, texts, inputs.
+fn widths(shape: &Shape) -> (usize, usize, usize, usize) {
+    let places = Places::of(shape);
+    let count = |at: &[Option<usize>]| at.iter().flatten().max().map_or(0, |m| m + 1);
+    (
+        shape.representative.outer.len() + shape.written.len(),
+        count(&places.k_at),
+        count(&places.t_at),
+        count(&places.inputs_at),
+    )
+}
+
+/// The function of shape `n` and its tables.
 fn piece(
     w: &mut Writer,
     tables: &mut String,
-    cx: &Context<'_>,
+    strings: &mut Strings,
     n: usize,
     shape: &Shape,
     slots: &HashMap<String, Slot>,
 ) {
     let cut = &shape.representative;
     let rows = &shape.rows;
-    let k_at = varying(cut.constants.len(), rows, |r, i| r.constants[i].clone());
-    let t_at = varying(cut.texts.len(), rows, |r, i| r.texts[i].clone());
+    let Places {
+        k_at,
+        t_at,
+        inputs_at,
+    } = Places::of(shape);
     // An input read the same by every row is written as it is (a param as `params.x`); one
     // that differs is an index in the row.
-    let inputs_at = varying(cut.inputs.len(), rows, |r, i| r.inputs[i]);
     let in_at: Vec<InputAt> = (inputs_at.iter().enumerate())
         .map(|(i, at)| match at {
             None => InputAt::Fixed(rows[0].inputs[i]),
             Some(place) => InputAt::Row(*place),
         })
         .collect();
-    let count = |at: &[Option<usize>]| at.iter().flatten().max().map_or(0, |m| m + 1);
-    let a = cut.outer.len() + shape.written.len();
-    let k = count(&k_at);
-    let t = count(&t_at);
-    let i = count(&inputs_at);
-    let row_ty = format!("Row<{a}, {k}, {t}, {i}>");
+    let (a, k, t, i) = widths(shape);
+    let row_ty = format!("Row<'_, {a}, {k}, {t}, {i}>");
     for line in &cut.comment {
         w.line(&format!("/// {line}"));
     }
@@ -1316,26 +1517,26 @@ fn piece(
             w.line("///");
         }
         w.line(&format!(
-            "/// And {} more pieces like it: the rows of `PIECE_{n}`, each with its constraint.",
+            "/// And {} more pieces like it: the rows of `PIECE_{n}_*`, each with its constraint.",
             rows.len() - 1
         ));
     }
     w.line(
         "#[allow(unused_mut, unused_variables, unused_assignments, clippy::too_many_arguments)]",
     );
-    w.open(&format!("fn piece_{n}(store: &mut Store, params: &Params, p: &[f64], branches: &Branches, defaults: &Defaults, row: &{row_ty}) -> Result<(), SolveError> {{"));
+    w.open(&format!("fn piece_{n}(store: &mut Store, params: &Params, p: &[f64], branches: &Branches, defaults: &Defaults, row: {row_ty}) -> Result<(), SolveError> {{"));
     let slice = |name: &str| {
         slots
             .get(name)
             .and_then(|s| store_slice(s.ty))
             .map_or("", |s| s.0)
     };
+    // What the code changes is stored back; what it only reads is not.
+    let written: Vec<bool> = (0..cut.outer.len())
+        .map(|j| slots.get(&cut.outer[j]).is_some_and(|s| s.mutable) && cut.writes(j))
+        .collect();
     for (j, name) in cut.outer.iter().enumerate() {
-        let m = if slots.get(name).is_some_and(|s| s.mutable) {
-            "mut "
-        } else {
-            ""
-        };
+        let m = if written[j] { "mut " } else { "" };
         w.line(&format!(
             "let {m}{name} = store.{}[row.at[{j}] as usize];",
             slice(name)
@@ -1350,7 +1551,7 @@ fn piece(
         }
     }
     for (j, name) in cut.outer.iter().enumerate() {
-        if slots.get(name).is_some_and(|s| s.mutable) {
+        if written[j] {
             w.line(&format!(
                 "store.{}[row.at[{j}] as usize] = {name};",
                 slice(name)
@@ -1367,29 +1568,53 @@ fn piece(
     w.line("Ok(())");
     w.close("}");
     w.line("");
-    let _ = cx;
-    let entries: Vec<String> = rows
-        .iter()
-        .map(|r| {
-            let at: Vec<String> = r.slots.iter().map(usize::to_string).collect();
-            let ks = at_places(&k_at, &r.constants);
-            let ts = at_places(&t_at, &r.texts);
-            let inputs: Vec<String> = r.inputs.iter().map(usize::to_string).collect();
-            let is = at_places(&inputs_at, &inputs);
-            let comment = r
-                .comment
-                .as_deref()
-                .map_or(String::new(), |c| format!(" // {c}"));
-            format!(
-                "Row {{ at: [{}], k: [{}], text: [{}], input: [{}] }},{comment}",
-                at.join(", "),
-                ks.join(", "),
-                ts.join(", "),
-                is.join(", ")
-            )
-        })
-        .collect();
-    table(tables, &format!("PIECE_{n}"), &row_ty, &entries);
+    // The tables: a row a piece, the first table's with the piece's constraint.
+    let mut columns: Vec<(&str, String, Vec<Vec<String>>)> = Vec::new();
+    if a > 0 {
+        let at = (rows.iter())
+            .map(|r| r.slots.iter().map(usize::to_string).collect())
+            .collect();
+        columns.push(("AT", format!("[u32; {a}]"), at));
+    }
+    if k > 0 {
+        let ks = rows
+            .iter()
+            .map(|r| at_places(&k_at, &r.constants))
+            .collect();
+        columns.push(("K", format!("[f64; {k}]"), ks));
+    }
+    if t > 0 {
+        let ts = (rows.iter())
+            .map(|r| {
+                let ids: Vec<String> = (r.texts.iter())
+                    .map(|l| strings.id_of_literal(l).to_string())
+                    .collect();
+                at_places(&t_at, &ids)
+            })
+            .collect();
+        columns.push(("TEXT", format!("[u32; {t}]"), ts));
+    }
+    if i > 0 {
+        let is = (rows.iter())
+            .map(|r| {
+                let inputs: Vec<String> = r.inputs.iter().map(usize::to_string).collect();
+                at_places(&inputs_at, &inputs)
+            })
+            .collect();
+        columns.push(("INPUT", format!("[u32; {i}]"), is));
+    }
+    for (c, (name, ty, values)) in columns.into_iter().enumerate() {
+        let entries: Vec<String> = (values.iter().zip(rows))
+            .map(|(v, r)| {
+                let comment = match (&r.comment, c) {
+                    (Some(comment), 0) => format!(", // {comment}"),
+                    _ => String::new(),
+                };
+                format!("[{}]{comment}", v.join(", "))
+            })
+            .collect();
+        table(tables, &format!("PIECE_{n}_{name}"), &ty, &entries);
+    }
 }
 
 #[cfg(test)]
@@ -1467,6 +1692,30 @@ g("a \"q\" b", 2u8, 3, x.0, 1e300);"#;
         // A geom called `f32` is a value read like any other.
         let d = Cut::new("f32.place_origin(&p);\n".to_string(), &outer);
         assert_eq!(d.outer, ["f32"]);
+    }
+
+    #[test]
+    fn a_value_is_stored_back_only_where_the_code_may_change_it() {
+        let outer = |w: &str| ["a", "b", "c", "d", "e", "f"].contains(&w);
+        let cut = Cut::new(
+            "let t = a.origin.x + b.x_axis().y;\nc.set_rotation(&t);\nd.origin.y = 1.0;\nmove_it(&mut e);\nlet g = f == 2.0;\n"
+                .to_string(),
+            &outer,
+        );
+        let writes: Vec<(&str, bool)> = (0..cut.outer.len())
+            .map(|n| (cut.outer[n].as_str(), cut.writes(n)))
+            .collect();
+        assert_eq!(
+            writes,
+            [
+                ("a", false),
+                ("b", false),
+                ("c", true),
+                ("d", true),
+                ("e", true),
+                ("f", false)
+            ]
+        );
     }
 
     #[test]

@@ -51,7 +51,7 @@ impl Default for Params {
 }
 
 /// Which assembly: an index per branch variable, in model order, each with a geometric
-/// meaning (`Branches::meanings`). Set and read by the variable's name.
+/// meaning (`Branches::meaning`). Set and read by the variable's name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
     indices: [u8; 16],
@@ -86,13 +86,17 @@ impl Branches {
     }
 
     /// The branch variables' names, in model order.
-    pub fn names() -> &'static [&'static str] {
-        &BRANCHES_NAMES
+    pub fn names() -> impl Iterator<Item = &'static str> {
+        BRANCHES_NAMES.iter().map(|&id| text(id))
     }
 
-    /// What each index of the branch variable called `name` means.
-    pub fn meanings(name: &str) -> Option<&'static [&'static str]> {
-        find(&BRANCHES_BY_NAME, name).map(|k| BRANCHES_MEANINGS[k])
+    /// What index `index` of the branch variable called `name` means, if it has one.
+    pub fn meaning(name: &str, index: u8) -> Option<&'static str> {
+        let k = find(&BRANCHES_BY_NAME, name)?;
+        let first = *BRANCHES_MEANING_AT.get(k)? as usize;
+        let end = *BRANCHES_MEANING_AT.get(k + 1)? as usize;
+        let at = first + usize::from(index);
+        (at < end).then(|| text(BRANCHES_MEANING[at]))
     }
 }
 
@@ -141,8 +145,8 @@ impl Defaults {
     }
 
     /// The defaults' names, in model order.
-    pub fn names() -> &'static [&'static str] {
-        &DEFAULTS_NAMES
+    pub fn names() -> impl Iterator<Item = &'static str> {
+        DEFAULTS_NAMES.iter().map(|&id| text(id))
     }
 }
 
@@ -205,20 +209,26 @@ impl Solution {
 
     /// Every frame of the solution, by its dotted name in the model, in model order.
     pub fn frames(&self) -> impl Iterator<Item = (&'static str, Frame2)> + '_ {
-        FRAMES.iter().map(|(name, row)| (*name, self.frame_at(row)))
+        FRAME_NAME
+            .iter()
+            .enumerate()
+            .map(|(k, &name)| (text(name), self.frame_at(k)))
     }
 
     /// The frame called `name` (its dotted name in the model), if the solution has it.
     pub fn frame(&self, name: &str) -> Option<Frame2> {
-        find(&FRAMES_BY_NAME, name).map(|k| self.frame_at(&FRAMES[k].1))
+        find(&FRAME_BY_NAME, name).map(|k| self.frame_at(k))
     }
 
-    /// The frame a row of `FRAMES` reads.
+    /// The frame at `k` in model order: the shape of the code that computes it
+    /// (`FRAME_SHAPE`), the store's slots it reads (`FRAME_AT`) and its constants (`FRAME_K`).
     #[allow(unused_variables, clippy::match_single_binding)]
-    fn frame_at(&self, row: &Access<1, 0>) -> Frame2 {
-        match row.shape {
+    fn frame_at(&self, k: usize) -> Frame2 {
+        let at = FRAME_AT[k];
+        let c = [0.0f64; 0];
+        match FRAME_SHAPE[k] {
             _ => {
-                let crank = self.store.frame2[row.at[0] as usize];
+                let crank = self.store.frame2[at[0] as usize];
                 crank
             }
         }
@@ -226,57 +236,67 @@ impl Solution {
 
     /// Every point of the solution, by its dotted name in the model, in model order.
     pub fn points(&self) -> impl Iterator<Item = (&'static str, Point2<f64>)> + '_ {
-        POINTS.iter().map(|(name, row)| (*name, self.point_at(row)))
+        POINT_NAME
+            .iter()
+            .enumerate()
+            .map(|(k, &name)| (text(name), self.point_at(k)))
     }
 
     /// The point called `name` (its dotted name in the model), if the solution has it.
     pub fn point(&self, name: &str) -> Option<Point2<f64>> {
-        find(&POINTS_BY_NAME, name).map(|k| self.point_at(&POINTS[k].1))
+        find(&POINT_BY_NAME, name).map(|k| self.point_at(k))
     }
 
-    /// The point a row of `POINTS` reads.
+    /// The point at `k` in model order: the shape of the code that computes it
+    /// (`POINT_SHAPE`), the store's slots it reads (`POINT_AT`) and its constants (`POINT_K`).
     #[allow(unused_variables, clippy::match_single_binding)]
-    fn point_at(&self, row: &Access<1, 2>) -> Point2<f64> {
-        match row.shape {
-            0 => Point2::new(row.k[0], row.k[1]),
+    fn point_at(&self, k: usize) -> Point2<f64> {
+        let at = POINT_AT[k];
+        let c = POINT_K[k];
+        match POINT_SHAPE[k] {
+            0 => Point2::new(c[0], c[1]),
             1 => {
-                let crank = self.store.frame2[row.at[0] as usize];
+                let crank = self.store.frame2[at[0] as usize];
                 crank.origin
             }
             2 => {
-                let crank = self.store.frame2[row.at[0] as usize];
-                crank.origin + crank.x_axis() * row.k[0]
+                let crank = self.store.frame2[at[0] as usize];
+                crank.origin + crank.x_axis() * c[0]
             }
             3 => {
-                let rocker1 = self.store.frame2[row.at[0] as usize];
-                rocker1.origin + rocker1.y_axis() * row.k[0]
+                let rocker1 = self.store.frame2[at[0] as usize];
+                rocker1.origin + rocker1.y_axis() * c[0]
             }
             _ => {
-                let rocker1 = self.store.frame2[row.at[0] as usize];
-                rocker1.origin + rocker1.y_axis() * -row.k[0]
+                let rocker1 = self.store.frame2[at[0] as usize];
+                rocker1.origin + rocker1.y_axis() * -c[0]
             }
         }
     }
 
     /// Every vector of the solution, by its dotted name in the model, in model order.
     pub fn vectors(&self) -> impl Iterator<Item = (&'static str, Vector2<f64>)> + '_ {
-        VECTORS
+        VECTOR_NAME
             .iter()
-            .map(|(name, row)| (*name, self.vector_at(row)))
+            .enumerate()
+            .map(|(k, &name)| (text(name), self.vector_at(k)))
     }
 
     /// The vector called `name` (its dotted name in the model), if the solution has it.
     pub fn vector(&self, name: &str) -> Option<Vector2<f64>> {
-        find(&VECTORS_BY_NAME, name).map(|k| self.vector_at(&VECTORS[k].1))
+        find(&VECTOR_BY_NAME, name).map(|k| self.vector_at(k))
     }
 
-    /// The vector a row of `VECTORS` reads.
+    /// The vector at `k` in model order: the shape of the code that computes it
+    /// (`VECTOR_SHAPE`), the store's slots it reads (`VECTOR_AT`) and its constants (`VECTOR_K`).
     #[allow(unused_variables, clippy::match_single_binding)]
-    fn vector_at(&self, row: &Access<1, 2>) -> Vector2<f64> {
-        match row.shape {
-            0 => Vector2::new(row.k[0], row.k[1]),
+    fn vector_at(&self, k: usize) -> Vector2<f64> {
+        let at = VECTOR_AT[k];
+        let c = VECTOR_K[k];
+        match VECTOR_SHAPE[k] {
+            0 => Vector2::new(c[0], c[1]),
             _ => {
-                let crank = self.store.frame2[row.at[0] as usize];
+                let crank = self.store.frame2[at[0] as usize];
                 crank.x_axis()
             }
         }
@@ -284,38 +304,34 @@ impl Solution {
 
     /// Every scalar of the solution, by its dotted name in the model, in model order.
     pub fn scalars(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
-        SCALARS
+        SCALAR_NAME
             .iter()
-            .map(|(name, row)| (*name, self.scalar_at(row)))
+            .enumerate()
+            .map(|(k, &name)| (text(name), self.scalar_at(k)))
     }
 
     /// The scalar called `name` (its dotted name in the model), if the solution has it.
     pub fn scalar(&self, name: &str) -> Option<f64> {
-        find(&SCALARS_BY_NAME, name).map(|k| self.scalar_at(&SCALARS[k].1))
+        find(&SCALAR_BY_NAME, name).map(|k| self.scalar_at(k))
     }
 
-    /// The scalar a row of `SCALARS` reads.
+    /// The scalar at `k` in model order: the shape of the code that computes it
+    /// (`SCALAR_SHAPE`), the store's slots it reads (`SCALAR_AT`) and its constants (`SCALAR_K`).
     #[allow(unused_variables, clippy::match_single_binding)]
-    fn scalar_at(&self, row: &Access<0, 0>) -> f64 {
-        match row.shape {
+    fn scalar_at(&self, k: usize) -> f64 {
+        let at = [0u32; 0];
+        let c = [0.0f64; 0];
+        match SCALAR_SHAPE[k] {
             _ => 0.0,
         }
     }
 }
 
-/// A value of the solution: the shape of code that computes it, the store's slots it
-/// reads and its constants.
-#[derive(Debug)]
-struct Access<const A: usize, const K: usize> {
-    shape: u16,
-    at: [u32; A],
-    k: [f64; K],
-}
-
-/// The index, in model order, of the entry called `name` of a table sorted by name.
-fn find(by_name: &[(&str, u32)], name: &str) -> Option<usize> {
-    let k = by_name.binary_search_by(|(n, _)| n.cmp(&name)).ok()?;
-    Some(by_name[k].1 as usize)
+/// The index, in model order, of the entry called `name` of a table sorted by name
+/// (`[name's string id, index]`).
+fn find(by_name: &[[u32; 2]], name: &str) -> Option<usize> {
+    let k = by_name.binary_search_by(|&[n, _]| text(n).cmp(name)).ok()?;
+    Some(by_name[k][1] as usize)
 }
 
 /// Solves the model into `solution`: the assembly plan's steps, in order, each a call of
@@ -335,14 +351,74 @@ pub fn solve_into(
     gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
     let p: [f64; 1] = [params.theta];
     let store = &mut solution.store;
-    for &(shape, row) in ORDER.iter() {
+    for &[shape, row] in ORDER.iter() {
         let row = row as usize;
         match shape {
-            0 => piece_0(store, params, &p, branches, defaults, &PIECE_0[row])?,
-            1 => piece_1(store, params, &p, branches, defaults, &PIECE_1[row])?,
-            2 => piece_2(store, params, &p, branches, defaults, &PIECE_2[row])?,
-            3 => piece_3(store, params, &p, branches, defaults, &PIECE_3[row])?,
-            _ => piece_4(store, params, &p, branches, defaults, &PIECE_4[row])?,
+            0 => piece_0(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                Row {
+                    at: &PIECE_0_AT[row],
+                    k: &PIECE_0_K[row],
+                    text: &[],
+                    input: &[],
+                },
+            )?,
+            1 => piece_1(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                Row {
+                    at: &PIECE_1_AT[row],
+                    k: &[],
+                    text: &[],
+                    input: &[],
+                },
+            )?,
+            2 => piece_2(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                Row {
+                    at: &PIECE_2_AT[row],
+                    k: &[],
+                    text: &[],
+                    input: &[],
+                },
+            )?,
+            3 => piece_3(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                Row {
+                    at: &PIECE_3_AT[row],
+                    k: &PIECE_3_K[row],
+                    text: &PIECE_3_TEXT[row],
+                    input: &PIECE_3_INPUT[row],
+                },
+            )?,
+            _ => piece_4(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                Row {
+                    at: &PIECE_4_AT[row],
+                    k: &PIECE_4_K[row],
+                    text: &[],
+                    input: &[],
+                },
+            )?,
         }
     }
     solution.branches = *branches;
@@ -355,6 +431,7 @@ pub fn solve_into(
 /// # Errors
 ///
 /// As [`solve_into`].
+#[allow(dead_code)]
 pub fn solve(
     params: &Params,
     branches: &Branches,
@@ -367,15 +444,16 @@ pub fn solve(
 
 /// A piece's data: the store's slots it reads then writes, its constants, the names its
 /// errors give, and the params, branch variables or defaults it reads.
-#[derive(Debug)]
-struct Row<const A: usize, const K: usize, const T: usize, const I: usize> {
-    at: [u32; A],
-    k: [f64; K],
-    text: [&'static str; T],
-    input: [u32; I],
+/// Each its row of the piece's tables (`PIECE_n_AT`, `_K`, `_TEXT`, `_INPUT`).
+#[derive(Clone, Copy, Debug)]
+struct Row<'r, const A: usize, const K: usize, const T: usize, const I: usize> {
+    at: &'r [u32; A],
+    k: &'r [f64; K],
+    text: &'r [u32; T],
+    input: &'r [u32; I],
 }
 
-/// And 32 more pieces like it: the rows of `PIECE_0`, each with its constraint.
+/// And 32 more pieces like it: the rows of `PIECE_0_*`, each with its constraint.
 #[allow(
     unused_mut,
     unused_variables,
@@ -388,7 +466,7 @@ fn piece_0(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: &Row<1, 1, 0, 0>,
+    row: Row<'_, 1, 1, 0, 0>,
 ) -> Result<(), SolveError> {
     let mut crank = Frame2::at(Point2::new(row.k[0], 0.0));
     store.frame2[row.at[0] as usize] = crank;
@@ -408,7 +486,7 @@ fn piece_1(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: &Row<1, 0, 0, 0>,
+    row: Row<'_, 1, 0, 0, 0>,
 ) -> Result<(), SolveError> {
     let mut crank = store.frame2[row.at[0] as usize];
     let x_dir_turned = direction_at(params.theta);
@@ -431,13 +509,12 @@ fn piece_2(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: &Row<3, 0, 0, 0>,
+    row: Row<'_, 3, 0, 0, 0>,
 ) -> Result<(), SolveError> {
-    let mut crank = store.frame2[row.at[0] as usize];
+    let crank = store.frame2[row.at[0] as usize];
     let mut coupler1 = store.frame2[row.at[1] as usize];
     let crank_b = Point2::from(crank.x_axis() * 1.5);
     coupler1.place_origin(&crank_b);
-    store.frame2[row.at[0] as usize] = crank;
     store.frame2[row.at[1] as usize] = coupler1;
     store.point2[row.at[2] as usize] = crank_b;
     Ok(())
@@ -445,7 +522,7 @@ fn piece_2(
 
 /// elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16)
 ///
-/// And 15 more pieces like it: the rows of `PIECE_3`, each with its constraint.
+/// And 15 more pieces like it: the rows of `PIECE_3_*`, each with its constraint.
 #[allow(
     unused_mut,
     unused_variables,
@@ -458,19 +535,38 @@ fn piece_3(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: &Row<2, 1, 2, 1>,
+    row: Row<'_, 2, 1, 2, 1>,
 ) -> Result<(), SolveError> {
     let crank_b = store.point2[row.at[0] as usize];
     let mut rocker1 = store.frame2[row.at[1] as usize];
-    let circle_crank_b = Circle::new(crank_b, 4.0)
-        .ok_or_else(|| SolveError::new(row.text[0], row.text[1], ErrorKind::Degenerate, 0.0))?;
-    let circle_p1 = Circle::new(Point2::new(row.k[0], 0.0), 3.0)
-        .ok_or_else(|| SolveError::new(row.text[0], row.text[1], ErrorKind::Degenerate, 0.0))?;
+    let circle_crank_b = Circle::new(crank_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[0]),
+            text(row.text[1]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let circle_p1 = Circle::new(Point2::new(row.k[0], 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[0]),
+            text(row.text[1]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
     let elbow1_chord = intersect2d::circle_circle_chord(&circle_crank_b, &circle_p1)
-        .map_err(|miss| SolveError::from_miss(row.text[0], row.text[1], miss))?;
+        .map_err(|miss| SolveError::from_miss(text(row.text[0]), text(row.text[1]), miss))?;
     let elbow1 = elbow1_chord
         .root(usize::from(branches.indices[row.input[0] as usize]))
-        .ok_or_else(|| SolveError::new(row.text[0], row.text[1], ErrorKind::NoSuchBranch, 2.0))?;
+        .ok_or_else(|| {
+            SolveError::new(
+                text(row.text[0]),
+                text(row.text[1]),
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
     let elbow1_reach = elbow1_chord
         .root_from_b(usize::from(branches.indices[row.input[0] as usize]))
         .unwrap_or(elbow1 - Point2::new(row.k[0], 0.0));
@@ -487,7 +583,7 @@ fn piece_3(
 
 /// coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22)
 ///
-/// And 14 more pieces like it: the rows of `PIECE_4`, each with its constraint.
+/// And 14 more pieces like it: the rows of `PIECE_4_*`, each with its constraint.
 #[allow(
     unused_mut,
     unused_variables,
@@ -500,37 +596,45 @@ fn piece_4(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: &Row<3, 1, 0, 0>,
+    row: Row<'_, 3, 1, 0, 0>,
 ) -> Result<(), SolveError> {
-    let mut rocker1 = store.frame2[row.at[0] as usize];
+    let rocker1 = store.frame2[row.at[0] as usize];
     let mut coupler2 = store.frame2[row.at[1] as usize];
     let rocker1_b = Point2::new(row.k[0], 0.0) + rocker1.y_axis() * -1.5;
     coupler2.place_origin(&rocker1_b);
-    store.frame2[row.at[0] as usize] = rocker1;
     store.frame2[row.at[1] as usize] = coupler2;
     store.point2[row.at[2] as usize] = rocker1_b;
     Ok(())
 }
+
+/// String `id` of the tables (`STRINGS`, `STRING_AT`).
+fn text(id: u32) -> &'static str {
+    let i = id as usize;
+    match (STRING_AT.get(i), STRING_AT.get(i + 1)) {
+        (Some(&from), Some(&to)) => STRINGS.get(from as usize..to as usize).unwrap_or(""),
+        _ => "",
+    }
+}
 // The tables the code above reads: data, written one entry a line.
 
 #[rustfmt::skip]
-static BRANCHES_NAMES: [&str; 16] = [
-    "elbow1",
-    "elbow2",
-    "elbow3",
-    "elbow4",
-    "elbow5",
-    "elbow6",
-    "elbow7",
-    "elbow8",
-    "elbow9",
-    "elbow10",
-    "elbow11",
-    "elbow12",
-    "elbow13",
-    "elbow14",
-    "elbow15",
-    "elbow16",
+static BRANCHES_NAMES: [u32; 16] = [
+    0,
+    1,
+    2,
+    3,
+    4,
+    5,
+    6,
+    7,
+    8,
+    9,
+    10,
+    11,
+    12,
+    13,
+    14,
+    15,
 ];
 
 #[rustfmt::skip]
@@ -554,47 +658,84 @@ static BRANCHES_SKETCH: [u8; 16] = [
 ];
 
 #[rustfmt::skip]
-static BRANCHES_BY_NAME: [(&str, u32); 16] = [
-    ("elbow1", 0),
-    ("elbow10", 9),
-    ("elbow11", 10),
-    ("elbow12", 11),
-    ("elbow13", 12),
-    ("elbow14", 13),
-    ("elbow15", 14),
-    ("elbow16", 15),
-    ("elbow2", 1),
-    ("elbow3", 2),
-    ("elbow4", 3),
-    ("elbow5", 4),
-    ("elbow6", 5),
-    ("elbow7", 6),
-    ("elbow8", 7),
-    ("elbow9", 8),
+static BRANCHES_BY_NAME: [[u32; 2]; 16] = [
+    [0, 0],
+    [9, 9],
+    [10, 10],
+    [11, 11],
+    [12, 12],
+    [13, 13],
+    [14, 14],
+    [15, 15],
+    [1, 1],
+    [2, 2],
+    [3, 3],
+    [4, 4],
+    [5, 5],
+    [6, 6],
+    [7, 7],
+    [8, 8],
 ];
 
 #[rustfmt::skip]
-static BRANCHES_MEANINGS: [&[&str]; 16] = [
-    &["rocker1.c to the left of the line from crank.b to P1", "rocker1.c to the right of the line from crank.b to P1"],
-    &["rocker2.c to the left of the line from rocker1.b to P2", "rocker2.c to the right of the line from rocker1.b to P2"],
-    &["rocker3.c to the left of the line from rocker2.b to P3", "rocker3.c to the right of the line from rocker2.b to P3"],
-    &["rocker4.c to the left of the line from rocker3.b to P4", "rocker4.c to the right of the line from rocker3.b to P4"],
-    &["rocker5.c to the left of the line from rocker4.b to P5", "rocker5.c to the right of the line from rocker4.b to P5"],
-    &["rocker6.c to the left of the line from rocker5.b to P6", "rocker6.c to the right of the line from rocker5.b to P6"],
-    &["rocker7.c to the left of the line from rocker6.b to P7", "rocker7.c to the right of the line from rocker6.b to P7"],
-    &["rocker8.c to the left of the line from rocker7.b to P8", "rocker8.c to the right of the line from rocker7.b to P8"],
-    &["rocker9.c to the left of the line from rocker8.b to P9", "rocker9.c to the right of the line from rocker8.b to P9"],
-    &["rocker10.c to the left of the line from rocker9.b to P10", "rocker10.c to the right of the line from rocker9.b to P10"],
-    &["rocker11.c to the left of the line from rocker10.b to P11", "rocker11.c to the right of the line from rocker10.b to P11"],
-    &["rocker12.c to the left of the line from rocker11.b to P12", "rocker12.c to the right of the line from rocker11.b to P12"],
-    &["rocker13.c to the left of the line from rocker12.b to P13", "rocker13.c to the right of the line from rocker12.b to P13"],
-    &["rocker14.c to the left of the line from rocker13.b to P14", "rocker14.c to the right of the line from rocker13.b to P14"],
-    &["rocker15.c to the left of the line from rocker14.b to P15", "rocker15.c to the right of the line from rocker14.b to P15"],
-    &["rocker16.c to the left of the line from rocker15.b to P16", "rocker16.c to the right of the line from rocker15.b to P16"],
+static BRANCHES_MEANING_AT: [u32; 17] = [
+    0,
+    2,
+    4,
+    6,
+    8,
+    10,
+    12,
+    14,
+    16,
+    18,
+    20,
+    22,
+    24,
+    26,
+    28,
+    30,
+    32,
 ];
 
 #[rustfmt::skip]
-static DEFAULTS_NAMES: [&str; 0] = [
+static BRANCHES_MEANING: [u32; 32] = [
+    16,
+    17,
+    18,
+    19,
+    20,
+    21,
+    22,
+    23,
+    24,
+    25,
+    26,
+    27,
+    28,
+    29,
+    30,
+    31,
+    32,
+    33,
+    34,
+    35,
+    36,
+    37,
+    38,
+    39,
+    40,
+    41,
+    42,
+    43,
+    44,
+    45,
+    46,
+    47,
+];
+
+#[rustfmt::skip]
+static DEFAULTS_NAMES: [u32; 0] = [
 ];
 
 #[rustfmt::skip]
@@ -602,366 +743,917 @@ static DEFAULTS_SKETCH: [f64; 0] = [
 ];
 
 #[rustfmt::skip]
-static DEFAULTS_BY_NAME: [(&str, u32); 0] = [
+static DEFAULTS_BY_NAME: [[u32; 2]; 0] = [
 ];
 
 #[rustfmt::skip]
-static FRAMES: [(&str, Access<1, 0>); 17] = [
-    ("crank", Access { shape: 0, at: [0], k: [] }),
-    ("rocker1", Access { shape: 0, at: [2], k: [] }),
-    ("rocker2", Access { shape: 0, at: [4], k: [] }),
-    ("rocker3", Access { shape: 0, at: [6], k: [] }),
-    ("rocker4", Access { shape: 0, at: [8], k: [] }),
-    ("rocker5", Access { shape: 0, at: [10], k: [] }),
-    ("rocker6", Access { shape: 0, at: [12], k: [] }),
-    ("rocker7", Access { shape: 0, at: [14], k: [] }),
-    ("rocker8", Access { shape: 0, at: [16], k: [] }),
-    ("rocker9", Access { shape: 0, at: [18], k: [] }),
-    ("rocker10", Access { shape: 0, at: [20], k: [] }),
-    ("rocker11", Access { shape: 0, at: [22], k: [] }),
-    ("rocker12", Access { shape: 0, at: [24], k: [] }),
-    ("rocker13", Access { shape: 0, at: [26], k: [] }),
-    ("rocker14", Access { shape: 0, at: [28], k: [] }),
-    ("rocker15", Access { shape: 0, at: [30], k: [] }),
-    ("rocker16", Access { shape: 0, at: [32], k: [] }),
+static FRAME_NAME: [u32; 17] = [
+    48,
+    49,
+    50,
+    51,
+    52,
+    53,
+    54,
+    55,
+    56,
+    57,
+    58,
+    59,
+    60,
+    61,
+    62,
+    63,
+    64,
 ];
 
 #[rustfmt::skip]
-static FRAMES_BY_NAME: [(&str, u32); 17] = [
-    ("crank", 0),
-    ("rocker1", 1),
-    ("rocker10", 10),
-    ("rocker11", 11),
-    ("rocker12", 12),
-    ("rocker13", 13),
-    ("rocker14", 14),
-    ("rocker15", 15),
-    ("rocker16", 16),
-    ("rocker2", 2),
-    ("rocker3", 3),
-    ("rocker4", 4),
-    ("rocker5", 5),
-    ("rocker6", 6),
-    ("rocker7", 7),
-    ("rocker8", 8),
-    ("rocker9", 9),
+static FRAME_SHAPE: [u16; 17] = [
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
 ];
 
 #[rustfmt::skip]
-static POINTS: [(&str, Access<1, 2>); 67] = [
-    ("P0", Access { shape: 0, at: [0], k: [0.0, 0.0] }),
-    ("crank.a", Access { shape: 1, at: [0], k: [0.0, 0.0] }),
-    ("crank.b", Access { shape: 2, at: [0], k: [1.5, 0.0] }),
-    ("P1", Access { shape: 0, at: [0], k: [4.0, 0.0] }),
-    ("rocker1.d", Access { shape: 1, at: [2], k: [0.0, 0.0] }),
-    ("rocker1.c", Access { shape: 3, at: [2], k: [3.0, 0.0] }),
-    ("rocker1.b", Access { shape: 4, at: [2], k: [1.5, 0.0] }),
-    ("P2", Access { shape: 0, at: [0], k: [8.0, 0.0] }),
-    ("rocker2.d", Access { shape: 1, at: [4], k: [0.0, 0.0] }),
-    ("rocker2.c", Access { shape: 3, at: [4], k: [3.0, 0.0] }),
-    ("rocker2.b", Access { shape: 4, at: [4], k: [1.5, 0.0] }),
-    ("P3", Access { shape: 0, at: [0], k: [12.0, 0.0] }),
-    ("rocker3.d", Access { shape: 1, at: [6], k: [0.0, 0.0] }),
-    ("rocker3.c", Access { shape: 3, at: [6], k: [3.0, 0.0] }),
-    ("rocker3.b", Access { shape: 4, at: [6], k: [1.5, 0.0] }),
-    ("P4", Access { shape: 0, at: [0], k: [16.0, 0.0] }),
-    ("rocker4.d", Access { shape: 1, at: [8], k: [0.0, 0.0] }),
-    ("rocker4.c", Access { shape: 3, at: [8], k: [3.0, 0.0] }),
-    ("rocker4.b", Access { shape: 4, at: [8], k: [1.5, 0.0] }),
-    ("P5", Access { shape: 0, at: [0], k: [20.0, 0.0] }),
-    ("rocker5.d", Access { shape: 1, at: [10], k: [0.0, 0.0] }),
-    ("rocker5.c", Access { shape: 3, at: [10], k: [3.0, 0.0] }),
-    ("rocker5.b", Access { shape: 4, at: [10], k: [1.5, 0.0] }),
-    ("P6", Access { shape: 0, at: [0], k: [24.0, 0.0] }),
-    ("rocker6.d", Access { shape: 1, at: [12], k: [0.0, 0.0] }),
-    ("rocker6.c", Access { shape: 3, at: [12], k: [3.0, 0.0] }),
-    ("rocker6.b", Access { shape: 4, at: [12], k: [1.5, 0.0] }),
-    ("P7", Access { shape: 0, at: [0], k: [28.0, 0.0] }),
-    ("rocker7.d", Access { shape: 1, at: [14], k: [0.0, 0.0] }),
-    ("rocker7.c", Access { shape: 3, at: [14], k: [3.0, 0.0] }),
-    ("rocker7.b", Access { shape: 4, at: [14], k: [1.5, 0.0] }),
-    ("P8", Access { shape: 0, at: [0], k: [32.0, 0.0] }),
-    ("rocker8.d", Access { shape: 1, at: [16], k: [0.0, 0.0] }),
-    ("rocker8.c", Access { shape: 3, at: [16], k: [3.0, 0.0] }),
-    ("rocker8.b", Access { shape: 4, at: [16], k: [1.5, 0.0] }),
-    ("P9", Access { shape: 0, at: [0], k: [36.0, 0.0] }),
-    ("rocker9.d", Access { shape: 1, at: [18], k: [0.0, 0.0] }),
-    ("rocker9.c", Access { shape: 3, at: [18], k: [3.0, 0.0] }),
-    ("rocker9.b", Access { shape: 4, at: [18], k: [1.5, 0.0] }),
-    ("P10", Access { shape: 0, at: [0], k: [40.0, 0.0] }),
-    ("rocker10.d", Access { shape: 1, at: [20], k: [0.0, 0.0] }),
-    ("rocker10.c", Access { shape: 3, at: [20], k: [3.0, 0.0] }),
-    ("rocker10.b", Access { shape: 4, at: [20], k: [1.5, 0.0] }),
-    ("P11", Access { shape: 0, at: [0], k: [44.0, 0.0] }),
-    ("rocker11.d", Access { shape: 1, at: [22], k: [0.0, 0.0] }),
-    ("rocker11.c", Access { shape: 3, at: [22], k: [3.0, 0.0] }),
-    ("rocker11.b", Access { shape: 4, at: [22], k: [1.5, 0.0] }),
-    ("P12", Access { shape: 0, at: [0], k: [48.0, 0.0] }),
-    ("rocker12.d", Access { shape: 1, at: [24], k: [0.0, 0.0] }),
-    ("rocker12.c", Access { shape: 3, at: [24], k: [3.0, 0.0] }),
-    ("rocker12.b", Access { shape: 4, at: [24], k: [1.5, 0.0] }),
-    ("P13", Access { shape: 0, at: [0], k: [52.0, 0.0] }),
-    ("rocker13.d", Access { shape: 1, at: [26], k: [0.0, 0.0] }),
-    ("rocker13.c", Access { shape: 3, at: [26], k: [3.0, 0.0] }),
-    ("rocker13.b", Access { shape: 4, at: [26], k: [1.5, 0.0] }),
-    ("P14", Access { shape: 0, at: [0], k: [56.0, 0.0] }),
-    ("rocker14.d", Access { shape: 1, at: [28], k: [0.0, 0.0] }),
-    ("rocker14.c", Access { shape: 3, at: [28], k: [3.0, 0.0] }),
-    ("rocker14.b", Access { shape: 4, at: [28], k: [1.5, 0.0] }),
-    ("P15", Access { shape: 0, at: [0], k: [60.0, 0.0] }),
-    ("rocker15.d", Access { shape: 1, at: [30], k: [0.0, 0.0] }),
-    ("rocker15.c", Access { shape: 3, at: [30], k: [3.0, 0.0] }),
-    ("rocker15.b", Access { shape: 4, at: [30], k: [1.5, 0.0] }),
-    ("P16", Access { shape: 0, at: [0], k: [64.0, 0.0] }),
-    ("rocker16.d", Access { shape: 1, at: [32], k: [0.0, 0.0] }),
-    ("rocker16.c", Access { shape: 3, at: [32], k: [3.0, 0.0] }),
-    ("rocker16.b", Access { shape: 4, at: [32], k: [1.5, 0.0] }),
+static FRAME_AT: [[u32; 1]; 17] = [
+    [0],
+    [2],
+    [4],
+    [6],
+    [8],
+    [10],
+    [12],
+    [14],
+    [16],
+    [18],
+    [20],
+    [22],
+    [24],
+    [26],
+    [28],
+    [30],
+    [32],
 ];
 
 #[rustfmt::skip]
-static POINTS_BY_NAME: [(&str, u32); 67] = [
-    ("P0", 0),
-    ("P1", 3),
-    ("P10", 39),
-    ("P11", 43),
-    ("P12", 47),
-    ("P13", 51),
-    ("P14", 55),
-    ("P15", 59),
-    ("P16", 63),
-    ("P2", 7),
-    ("P3", 11),
-    ("P4", 15),
-    ("P5", 19),
-    ("P6", 23),
-    ("P7", 27),
-    ("P8", 31),
-    ("P9", 35),
-    ("crank.a", 1),
-    ("crank.b", 2),
-    ("rocker1.b", 6),
-    ("rocker1.c", 5),
-    ("rocker1.d", 4),
-    ("rocker10.b", 42),
-    ("rocker10.c", 41),
-    ("rocker10.d", 40),
-    ("rocker11.b", 46),
-    ("rocker11.c", 45),
-    ("rocker11.d", 44),
-    ("rocker12.b", 50),
-    ("rocker12.c", 49),
-    ("rocker12.d", 48),
-    ("rocker13.b", 54),
-    ("rocker13.c", 53),
-    ("rocker13.d", 52),
-    ("rocker14.b", 58),
-    ("rocker14.c", 57),
-    ("rocker14.d", 56),
-    ("rocker15.b", 62),
-    ("rocker15.c", 61),
-    ("rocker15.d", 60),
-    ("rocker16.b", 66),
-    ("rocker16.c", 65),
-    ("rocker16.d", 64),
-    ("rocker2.b", 10),
-    ("rocker2.c", 9),
-    ("rocker2.d", 8),
-    ("rocker3.b", 14),
-    ("rocker3.c", 13),
-    ("rocker3.d", 12),
-    ("rocker4.b", 18),
-    ("rocker4.c", 17),
-    ("rocker4.d", 16),
-    ("rocker5.b", 22),
-    ("rocker5.c", 21),
-    ("rocker5.d", 20),
-    ("rocker6.b", 26),
-    ("rocker6.c", 25),
-    ("rocker6.d", 24),
-    ("rocker7.b", 30),
-    ("rocker7.c", 29),
-    ("rocker7.d", 28),
-    ("rocker8.b", 34),
-    ("rocker8.c", 33),
-    ("rocker8.d", 32),
-    ("rocker9.b", 38),
-    ("rocker9.c", 37),
-    ("rocker9.d", 36),
+static FRAME_BY_NAME: [[u32; 2]; 17] = [
+    [48, 0],
+    [49, 1],
+    [58, 10],
+    [59, 11],
+    [60, 12],
+    [61, 13],
+    [62, 14],
+    [63, 15],
+    [64, 16],
+    [50, 2],
+    [51, 3],
+    [52, 4],
+    [53, 5],
+    [54, 6],
+    [55, 7],
+    [56, 8],
+    [57, 9],
 ];
 
 #[rustfmt::skip]
-static VECTORS: [(&str, Access<1, 2>); 2] = [
-    ("X", Access { shape: 0, at: [0], k: [1.0, 0.0] }),
-    ("crank.u", Access { shape: 1, at: [0], k: [0.0, 0.0] }),
+static POINT_NAME: [u32; 67] = [
+    65,
+    66,
+    67,
+    68,
+    69,
+    70,
+    71,
+    72,
+    73,
+    74,
+    75,
+    76,
+    77,
+    78,
+    79,
+    80,
+    81,
+    82,
+    83,
+    84,
+    85,
+    86,
+    87,
+    88,
+    89,
+    90,
+    91,
+    92,
+    93,
+    94,
+    95,
+    96,
+    97,
+    98,
+    99,
+    100,
+    101,
+    102,
+    103,
+    104,
+    105,
+    106,
+    107,
+    108,
+    109,
+    110,
+    111,
+    112,
+    113,
+    114,
+    115,
+    116,
+    117,
+    118,
+    119,
+    120,
+    121,
+    122,
+    123,
+    124,
+    125,
+    126,
+    127,
+    128,
+    129,
+    130,
+    131,
 ];
 
 #[rustfmt::skip]
-static VECTORS_BY_NAME: [(&str, u32); 2] = [
-    ("X", 0),
-    ("crank.u", 1),
+static POINT_SHAPE: [u16; 67] = [
+    0,
+    1,
+    2,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
+    0,
+    1,
+    3,
+    4,
 ];
 
 #[rustfmt::skip]
-static SCALARS: [(&str, Access<0, 0>); 0] = [
+static POINT_AT: [[u32; 1]; 67] = [
+    [0],
+    [0],
+    [0],
+    [0],
+    [2],
+    [2],
+    [2],
+    [0],
+    [4],
+    [4],
+    [4],
+    [0],
+    [6],
+    [6],
+    [6],
+    [0],
+    [8],
+    [8],
+    [8],
+    [0],
+    [10],
+    [10],
+    [10],
+    [0],
+    [12],
+    [12],
+    [12],
+    [0],
+    [14],
+    [14],
+    [14],
+    [0],
+    [16],
+    [16],
+    [16],
+    [0],
+    [18],
+    [18],
+    [18],
+    [0],
+    [20],
+    [20],
+    [20],
+    [0],
+    [22],
+    [22],
+    [22],
+    [0],
+    [24],
+    [24],
+    [24],
+    [0],
+    [26],
+    [26],
+    [26],
+    [0],
+    [28],
+    [28],
+    [28],
+    [0],
+    [30],
+    [30],
+    [30],
+    [0],
+    [32],
+    [32],
+    [32],
 ];
 
 #[rustfmt::skip]
-static SCALARS_BY_NAME: [(&str, u32); 0] = [
+static POINT_K: [[f64; 2]; 67] = [
+    [0.0, 0.0],
+    [0.0, 0.0],
+    [1.5, 0.0],
+    [4.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [8.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [12.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [16.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [20.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [24.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [28.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [32.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [36.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [40.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [44.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [48.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [52.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [56.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [60.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
+    [64.0, 0.0],
+    [0.0, 0.0],
+    [3.0, 0.0],
+    [1.5, 0.0],
 ];
 
 #[rustfmt::skip]
-static PIECE_0: [Row<1, 1, 0, 0>; 33] = [
-    Row { at: [0], k: [0.0], text: [], input: [] },
-    Row { at: [1], k: [1.0], text: [], input: [] },
-    Row { at: [2], k: [4.0], text: [], input: [] },
-    Row { at: [3], k: [5.0], text: [], input: [] },
-    Row { at: [4], k: [8.0], text: [], input: [] },
-    Row { at: [5], k: [9.0], text: [], input: [] },
-    Row { at: [6], k: [12.0], text: [], input: [] },
-    Row { at: [7], k: [13.0], text: [], input: [] },
-    Row { at: [8], k: [16.0], text: [], input: [] },
-    Row { at: [9], k: [17.0], text: [], input: [] },
-    Row { at: [10], k: [20.0], text: [], input: [] },
-    Row { at: [11], k: [21.0], text: [], input: [] },
-    Row { at: [12], k: [24.0], text: [], input: [] },
-    Row { at: [13], k: [25.0], text: [], input: [] },
-    Row { at: [14], k: [28.0], text: [], input: [] },
-    Row { at: [15], k: [29.0], text: [], input: [] },
-    Row { at: [16], k: [32.0], text: [], input: [] },
-    Row { at: [17], k: [33.0], text: [], input: [] },
-    Row { at: [18], k: [36.0], text: [], input: [] },
-    Row { at: [19], k: [37.0], text: [], input: [] },
-    Row { at: [20], k: [40.0], text: [], input: [] },
-    Row { at: [21], k: [41.0], text: [], input: [] },
-    Row { at: [22], k: [44.0], text: [], input: [] },
-    Row { at: [23], k: [45.0], text: [], input: [] },
-    Row { at: [24], k: [48.0], text: [], input: [] },
-    Row { at: [25], k: [49.0], text: [], input: [] },
-    Row { at: [26], k: [52.0], text: [], input: [] },
-    Row { at: [27], k: [53.0], text: [], input: [] },
-    Row { at: [28], k: [56.0], text: [], input: [] },
-    Row { at: [29], k: [57.0], text: [], input: [] },
-    Row { at: [30], k: [60.0], text: [], input: [] },
-    Row { at: [31], k: [61.0], text: [], input: [] },
-    Row { at: [32], k: [64.0], text: [], input: [] },
+static POINT_BY_NAME: [[u32; 2]; 67] = [
+    [65, 0],
+    [68, 3],
+    [104, 39],
+    [108, 43],
+    [112, 47],
+    [116, 51],
+    [120, 55],
+    [124, 59],
+    [128, 63],
+    [72, 7],
+    [76, 11],
+    [80, 15],
+    [84, 19],
+    [88, 23],
+    [92, 27],
+    [96, 31],
+    [100, 35],
+    [66, 1],
+    [67, 2],
+    [71, 6],
+    [70, 5],
+    [69, 4],
+    [107, 42],
+    [106, 41],
+    [105, 40],
+    [111, 46],
+    [110, 45],
+    [109, 44],
+    [115, 50],
+    [114, 49],
+    [113, 48],
+    [119, 54],
+    [118, 53],
+    [117, 52],
+    [123, 58],
+    [122, 57],
+    [121, 56],
+    [127, 62],
+    [126, 61],
+    [125, 60],
+    [131, 66],
+    [130, 65],
+    [129, 64],
+    [75, 10],
+    [74, 9],
+    [73, 8],
+    [79, 14],
+    [78, 13],
+    [77, 12],
+    [83, 18],
+    [82, 17],
+    [81, 16],
+    [87, 22],
+    [86, 21],
+    [85, 20],
+    [91, 26],
+    [90, 25],
+    [89, 24],
+    [95, 30],
+    [94, 29],
+    [93, 28],
+    [99, 34],
+    [98, 33],
+    [97, 32],
+    [103, 38],
+    [102, 37],
+    [101, 36],
 ];
 
 #[rustfmt::skip]
-static PIECE_1: [Row<1, 0, 0, 0>; 1] = [
-    Row { at: [0], k: [], text: [], input: [] }, // drive: angle(X, crank.u) = theta (fourbar_chain_16.gcs:10)
+static VECTOR_NAME: [u32; 2] = [
+    132,
+    133,
 ];
 
 #[rustfmt::skip]
-static PIECE_2: [Row<3, 0, 0, 0>; 1] = [
-    Row { at: [0, 1, 0], k: [], text: [], input: [] }, // coincident(crank.b, coupler1.b) (fourbar_chain_16.gcs:15)
+static VECTOR_SHAPE: [u16; 2] = [
+    0,
+    1,
 ];
 
 #[rustfmt::skip]
-static PIECE_3: [Row<2, 1, 2, 1>; 16] = [
-    Row { at: [0, 2], k: [4.0], text: ["elbow1", "coincident(coupler1.c, rocker1.c)"], input: [0] }, // elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16)
-    Row { at: [1, 4], k: [8.0], text: ["elbow2", "coincident(coupler2.c, rocker2.c)"], input: [1] }, // elbow2: coincident(coupler2.c, rocker2.c) (fourbar_chain_16.gcs:23)
-    Row { at: [2, 6], k: [12.0], text: ["elbow3", "coincident(coupler3.c, rocker3.c)"], input: [2] }, // elbow3: coincident(coupler3.c, rocker3.c) (fourbar_chain_16.gcs:30)
-    Row { at: [3, 8], k: [16.0], text: ["elbow4", "coincident(coupler4.c, rocker4.c)"], input: [3] }, // elbow4: coincident(coupler4.c, rocker4.c) (fourbar_chain_16.gcs:37)
-    Row { at: [4, 10], k: [20.0], text: ["elbow5", "coincident(coupler5.c, rocker5.c)"], input: [4] }, // elbow5: coincident(coupler5.c, rocker5.c) (fourbar_chain_16.gcs:44)
-    Row { at: [5, 12], k: [24.0], text: ["elbow6", "coincident(coupler6.c, rocker6.c)"], input: [5] }, // elbow6: coincident(coupler6.c, rocker6.c) (fourbar_chain_16.gcs:51)
-    Row { at: [6, 14], k: [28.0], text: ["elbow7", "coincident(coupler7.c, rocker7.c)"], input: [6] }, // elbow7: coincident(coupler7.c, rocker7.c) (fourbar_chain_16.gcs:58)
-    Row { at: [7, 16], k: [32.0], text: ["elbow8", "coincident(coupler8.c, rocker8.c)"], input: [7] }, // elbow8: coincident(coupler8.c, rocker8.c) (fourbar_chain_16.gcs:65)
-    Row { at: [8, 18], k: [36.0], text: ["elbow9", "coincident(coupler9.c, rocker9.c)"], input: [8] }, // elbow9: coincident(coupler9.c, rocker9.c) (fourbar_chain_16.gcs:72)
-    Row { at: [9, 20], k: [40.0], text: ["elbow10", "coincident(coupler10.c, rocker10.c)"], input: [9] }, // elbow10: coincident(coupler10.c, rocker10.c) (fourbar_chain_16.gcs:79)
-    Row { at: [10, 22], k: [44.0], text: ["elbow11", "coincident(coupler11.c, rocker11.c)"], input: [10] }, // elbow11: coincident(coupler11.c, rocker11.c) (fourbar_chain_16.gcs:86)
-    Row { at: [11, 24], k: [48.0], text: ["elbow12", "coincident(coupler12.c, rocker12.c)"], input: [11] }, // elbow12: coincident(coupler12.c, rocker12.c) (fourbar_chain_16.gcs:93)
-    Row { at: [12, 26], k: [52.0], text: ["elbow13", "coincident(coupler13.c, rocker13.c)"], input: [12] }, // elbow13: coincident(coupler13.c, rocker13.c) (fourbar_chain_16.gcs:100)
-    Row { at: [13, 28], k: [56.0], text: ["elbow14", "coincident(coupler14.c, rocker14.c)"], input: [13] }, // elbow14: coincident(coupler14.c, rocker14.c) (fourbar_chain_16.gcs:107)
-    Row { at: [14, 30], k: [60.0], text: ["elbow15", "coincident(coupler15.c, rocker15.c)"], input: [14] }, // elbow15: coincident(coupler15.c, rocker15.c) (fourbar_chain_16.gcs:114)
-    Row { at: [15, 32], k: [64.0], text: ["elbow16", "coincident(coupler16.c, rocker16.c)"], input: [15] }, // elbow16: coincident(coupler16.c, rocker16.c) (fourbar_chain_16.gcs:121)
+static VECTOR_AT: [[u32; 1]; 2] = [
+    [0],
+    [0],
 ];
 
 #[rustfmt::skip]
-static PIECE_4: [Row<3, 1, 0, 0>; 15] = [
-    Row { at: [2, 3, 1], k: [4.0], text: [], input: [] }, // coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22)
-    Row { at: [4, 5, 2], k: [8.0], text: [], input: [] }, // coincident(rocker2.b, coupler3.b) (fourbar_chain_16.gcs:29)
-    Row { at: [6, 7, 3], k: [12.0], text: [], input: [] }, // coincident(rocker3.b, coupler4.b) (fourbar_chain_16.gcs:36)
-    Row { at: [8, 9, 4], k: [16.0], text: [], input: [] }, // coincident(rocker4.b, coupler5.b) (fourbar_chain_16.gcs:43)
-    Row { at: [10, 11, 5], k: [20.0], text: [], input: [] }, // coincident(rocker5.b, coupler6.b) (fourbar_chain_16.gcs:50)
-    Row { at: [12, 13, 6], k: [24.0], text: [], input: [] }, // coincident(rocker6.b, coupler7.b) (fourbar_chain_16.gcs:57)
-    Row { at: [14, 15, 7], k: [28.0], text: [], input: [] }, // coincident(rocker7.b, coupler8.b) (fourbar_chain_16.gcs:64)
-    Row { at: [16, 17, 8], k: [32.0], text: [], input: [] }, // coincident(rocker8.b, coupler9.b) (fourbar_chain_16.gcs:71)
-    Row { at: [18, 19, 9], k: [36.0], text: [], input: [] }, // coincident(rocker9.b, coupler10.b) (fourbar_chain_16.gcs:78)
-    Row { at: [20, 21, 10], k: [40.0], text: [], input: [] }, // coincident(rocker10.b, coupler11.b) (fourbar_chain_16.gcs:85)
-    Row { at: [22, 23, 11], k: [44.0], text: [], input: [] }, // coincident(rocker11.b, coupler12.b) (fourbar_chain_16.gcs:92)
-    Row { at: [24, 25, 12], k: [48.0], text: [], input: [] }, // coincident(rocker12.b, coupler13.b) (fourbar_chain_16.gcs:99)
-    Row { at: [26, 27, 13], k: [52.0], text: [], input: [] }, // coincident(rocker13.b, coupler14.b) (fourbar_chain_16.gcs:106)
-    Row { at: [28, 29, 14], k: [56.0], text: [], input: [] }, // coincident(rocker14.b, coupler15.b) (fourbar_chain_16.gcs:113)
-    Row { at: [30, 31, 15], k: [60.0], text: [], input: [] }, // coincident(rocker15.b, coupler16.b) (fourbar_chain_16.gcs:120)
+static VECTOR_K: [[f64; 2]; 2] = [
+    [1.0, 0.0],
+    [0.0, 0.0],
 ];
 
 #[rustfmt::skip]
-static ORDER: [(u32, u32); 66] = [
-    (0, 0),
-    (0, 1),
-    (0, 2),
-    (0, 3),
-    (0, 4),
-    (0, 5),
-    (0, 6),
-    (0, 7),
-    (0, 8),
-    (0, 9),
-    (0, 10),
-    (0, 11),
-    (0, 12),
-    (0, 13),
-    (0, 14),
-    (0, 15),
-    (0, 16),
-    (0, 17),
-    (0, 18),
-    (0, 19),
-    (0, 20),
-    (0, 21),
-    (0, 22),
-    (0, 23),
-    (0, 24),
-    (0, 25),
-    (0, 26),
-    (0, 27),
-    (0, 28),
-    (0, 29),
-    (0, 30),
-    (0, 31),
-    (0, 32),
-    (1, 0),
-    (2, 0),
-    (3, 0),
-    (4, 0),
-    (3, 1),
-    (4, 1),
-    (3, 2),
-    (4, 2),
-    (3, 3),
-    (4, 3),
-    (3, 4),
-    (4, 4),
-    (3, 5),
-    (4, 5),
-    (3, 6),
-    (4, 6),
-    (3, 7),
-    (4, 7),
-    (3, 8),
-    (4, 8),
-    (3, 9),
-    (4, 9),
-    (3, 10),
-    (4, 10),
-    (3, 11),
-    (4, 11),
-    (3, 12),
-    (4, 12),
-    (3, 13),
-    (4, 13),
-    (3, 14),
-    (4, 14),
-    (3, 15),
+static VECTOR_BY_NAME: [[u32; 2]; 2] = [
+    [132, 0],
+    [133, 1],
+];
+
+#[rustfmt::skip]
+static SCALAR_NAME: [u32; 0] = [
+];
+
+#[rustfmt::skip]
+static SCALAR_SHAPE: [u16; 0] = [
+];
+
+#[rustfmt::skip]
+static SCALAR_BY_NAME: [[u32; 2]; 0] = [
+];
+
+#[rustfmt::skip]
+static PIECE_0_AT: [[u32; 1]; 33] = [
+    [0],
+    [1],
+    [2],
+    [3],
+    [4],
+    [5],
+    [6],
+    [7],
+    [8],
+    [9],
+    [10],
+    [11],
+    [12],
+    [13],
+    [14],
+    [15],
+    [16],
+    [17],
+    [18],
+    [19],
+    [20],
+    [21],
+    [22],
+    [23],
+    [24],
+    [25],
+    [26],
+    [27],
+    [28],
+    [29],
+    [30],
+    [31],
+    [32],
+];
+
+#[rustfmt::skip]
+static PIECE_0_K: [[f64; 1]; 33] = [
+    [0.0],
+    [1.0],
+    [4.0],
+    [5.0],
+    [8.0],
+    [9.0],
+    [12.0],
+    [13.0],
+    [16.0],
+    [17.0],
+    [20.0],
+    [21.0],
+    [24.0],
+    [25.0],
+    [28.0],
+    [29.0],
+    [32.0],
+    [33.0],
+    [36.0],
+    [37.0],
+    [40.0],
+    [41.0],
+    [44.0],
+    [45.0],
+    [48.0],
+    [49.0],
+    [52.0],
+    [53.0],
+    [56.0],
+    [57.0],
+    [60.0],
+    [61.0],
+    [64.0],
+];
+
+#[rustfmt::skip]
+static PIECE_1_AT: [[u32; 1]; 1] = [
+    [0], // drive: angle(X, crank.u) = theta (fourbar_chain_16.gcs:10)
+];
+
+#[rustfmt::skip]
+static PIECE_2_AT: [[u32; 3]; 1] = [
+    [0, 1, 0], // coincident(crank.b, coupler1.b) (fourbar_chain_16.gcs:15)
+];
+
+#[rustfmt::skip]
+static PIECE_3_AT: [[u32; 2]; 16] = [
+    [0, 2], // elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16)
+    [1, 4], // elbow2: coincident(coupler2.c, rocker2.c) (fourbar_chain_16.gcs:23)
+    [2, 6], // elbow3: coincident(coupler3.c, rocker3.c) (fourbar_chain_16.gcs:30)
+    [3, 8], // elbow4: coincident(coupler4.c, rocker4.c) (fourbar_chain_16.gcs:37)
+    [4, 10], // elbow5: coincident(coupler5.c, rocker5.c) (fourbar_chain_16.gcs:44)
+    [5, 12], // elbow6: coincident(coupler6.c, rocker6.c) (fourbar_chain_16.gcs:51)
+    [6, 14], // elbow7: coincident(coupler7.c, rocker7.c) (fourbar_chain_16.gcs:58)
+    [7, 16], // elbow8: coincident(coupler8.c, rocker8.c) (fourbar_chain_16.gcs:65)
+    [8, 18], // elbow9: coincident(coupler9.c, rocker9.c) (fourbar_chain_16.gcs:72)
+    [9, 20], // elbow10: coincident(coupler10.c, rocker10.c) (fourbar_chain_16.gcs:79)
+    [10, 22], // elbow11: coincident(coupler11.c, rocker11.c) (fourbar_chain_16.gcs:86)
+    [11, 24], // elbow12: coincident(coupler12.c, rocker12.c) (fourbar_chain_16.gcs:93)
+    [12, 26], // elbow13: coincident(coupler13.c, rocker13.c) (fourbar_chain_16.gcs:100)
+    [13, 28], // elbow14: coincident(coupler14.c, rocker14.c) (fourbar_chain_16.gcs:107)
+    [14, 30], // elbow15: coincident(coupler15.c, rocker15.c) (fourbar_chain_16.gcs:114)
+    [15, 32], // elbow16: coincident(coupler16.c, rocker16.c) (fourbar_chain_16.gcs:121)
+];
+
+#[rustfmt::skip]
+static PIECE_3_K: [[f64; 1]; 16] = [
+    [4.0],
+    [8.0],
+    [12.0],
+    [16.0],
+    [20.0],
+    [24.0],
+    [28.0],
+    [32.0],
+    [36.0],
+    [40.0],
+    [44.0],
+    [48.0],
+    [52.0],
+    [56.0],
+    [60.0],
+    [64.0],
+];
+
+#[rustfmt::skip]
+static PIECE_3_TEXT: [[u32; 2]; 16] = [
+    [0, 134],
+    [1, 135],
+    [2, 136],
+    [3, 137],
+    [4, 138],
+    [5, 139],
+    [6, 140],
+    [7, 141],
+    [8, 142],
+    [9, 143],
+    [10, 144],
+    [11, 145],
+    [12, 146],
+    [13, 147],
+    [14, 148],
+    [15, 149],
+];
+
+#[rustfmt::skip]
+static PIECE_3_INPUT: [[u32; 1]; 16] = [
+    [0],
+    [1],
+    [2],
+    [3],
+    [4],
+    [5],
+    [6],
+    [7],
+    [8],
+    [9],
+    [10],
+    [11],
+    [12],
+    [13],
+    [14],
+    [15],
+];
+
+#[rustfmt::skip]
+static PIECE_4_AT: [[u32; 3]; 15] = [
+    [2, 3, 1], // coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22)
+    [4, 5, 2], // coincident(rocker2.b, coupler3.b) (fourbar_chain_16.gcs:29)
+    [6, 7, 3], // coincident(rocker3.b, coupler4.b) (fourbar_chain_16.gcs:36)
+    [8, 9, 4], // coincident(rocker4.b, coupler5.b) (fourbar_chain_16.gcs:43)
+    [10, 11, 5], // coincident(rocker5.b, coupler6.b) (fourbar_chain_16.gcs:50)
+    [12, 13, 6], // coincident(rocker6.b, coupler7.b) (fourbar_chain_16.gcs:57)
+    [14, 15, 7], // coincident(rocker7.b, coupler8.b) (fourbar_chain_16.gcs:64)
+    [16, 17, 8], // coincident(rocker8.b, coupler9.b) (fourbar_chain_16.gcs:71)
+    [18, 19, 9], // coincident(rocker9.b, coupler10.b) (fourbar_chain_16.gcs:78)
+    [20, 21, 10], // coincident(rocker10.b, coupler11.b) (fourbar_chain_16.gcs:85)
+    [22, 23, 11], // coincident(rocker11.b, coupler12.b) (fourbar_chain_16.gcs:92)
+    [24, 25, 12], // coincident(rocker12.b, coupler13.b) (fourbar_chain_16.gcs:99)
+    [26, 27, 13], // coincident(rocker13.b, coupler14.b) (fourbar_chain_16.gcs:106)
+    [28, 29, 14], // coincident(rocker14.b, coupler15.b) (fourbar_chain_16.gcs:113)
+    [30, 31, 15], // coincident(rocker15.b, coupler16.b) (fourbar_chain_16.gcs:120)
+];
+
+#[rustfmt::skip]
+static PIECE_4_K: [[f64; 1]; 15] = [
+    [4.0],
+    [8.0],
+    [12.0],
+    [16.0],
+    [20.0],
+    [24.0],
+    [28.0],
+    [32.0],
+    [36.0],
+    [40.0],
+    [44.0],
+    [48.0],
+    [52.0],
+    [56.0],
+    [60.0],
+];
+
+#[rustfmt::skip]
+static ORDER: [[u32; 2]; 66] = [
+    [0, 0],
+    [0, 1],
+    [0, 2],
+    [0, 3],
+    [0, 4],
+    [0, 5],
+    [0, 6],
+    [0, 7],
+    [0, 8],
+    [0, 9],
+    [0, 10],
+    [0, 11],
+    [0, 12],
+    [0, 13],
+    [0, 14],
+    [0, 15],
+    [0, 16],
+    [0, 17],
+    [0, 18],
+    [0, 19],
+    [0, 20],
+    [0, 21],
+    [0, 22],
+    [0, 23],
+    [0, 24],
+    [0, 25],
+    [0, 26],
+    [0, 27],
+    [0, 28],
+    [0, 29],
+    [0, 30],
+    [0, 31],
+    [0, 32],
+    [1, 0],
+    [2, 0],
+    [3, 0],
+    [4, 0],
+    [3, 1],
+    [4, 1],
+    [3, 2],
+    [4, 2],
+    [3, 3],
+    [4, 3],
+    [3, 4],
+    [4, 4],
+    [3, 5],
+    [4, 5],
+    [3, 6],
+    [4, 6],
+    [3, 7],
+    [4, 7],
+    [3, 8],
+    [4, 8],
+    [3, 9],
+    [4, 9],
+    [3, 10],
+    [4, 10],
+    [3, 11],
+    [4, 11],
+    [3, 12],
+    [4, 12],
+    [3, 13],
+    [4, 13],
+    [3, 14],
+    [4, 14],
+    [3, 15],
+];
+
+#[rustfmt::skip]
+static STRINGS: &str = "elbow1elbow2elbow3elbow4elbow5elbow6elbow7elbow8elbow9elbow10elbow11elbow12elbow13elbow14elbow15elbow16rocker1.c to the left of the line from crank.b to P1rocker1.c to the right of the line from crank.b to P1rocker2.c to the left of the line from rocker1.b to P2rocker2.c to the right of the line from rocker1.b to P2rocker3.c to the left of the line from rocker2.b to P3rocker3.c to the right of the line from rocker2.b to P3rocker4.c to the left of the line from rocker3.b to P4rocker4.c to the right of the line from rocker3.b to P4rocker5.c to the left of the line from rocker4.b to P5rocker5.c to the right of the line from rocker4.b to P5rocker6.c to the left of the line from rocker5.b to P6rocker6.c to the right of the line from rocker5.b to P6rocker7.c to the left of the line from rocker6.b to P7rocker7.c to the right of the line from rocker6.b to P7rocker8.c to the left of the line from rocker7.b to P8rocker8.c to the right of the line from rocker7.b to P8rocker9.c to the left of the line from rocker8.b to P9rocker9.c to the right of the line from rocker8.b to P9rocker10.c to the left of the line from rocker9.b to P10rocker10.c to the right of the line from rocker9.b to P10rocker11.c to the left of the line from rocker10.b to P11rocker11.c to the right of the line from rocker10.b to P11rocker12.c to the left of the line from rocker11.b to P12rocker12.c to the right of the line from rocker11.b to P12rocker13.c to the left of the line from rocker12.b to P13rocker13.c to the right of the line from rocker12.b to P13rocker14.c to the left of the line from rocker13.b to P14rocker14.c to the right of the line from rocker13.b to P14rocker15.c to the left of the line from rocker14.b to P15rocker15.c to the right of the line from rocker14.b to P15rocker16.c to the left of the line from rocker15.b to P16rocker16.c to the right of the line from rocker15.b to P16crankrocker1rocker2rocker3rocker4rocker5rocker6rocker7rocker8rocker9rocker10rocker11rocker12rocker13rocker14rocker15rocker16P0crank.acrank.bP1rocker1.drocker1.crocker1.bP2rocker2.drocker2.crocker2.bP3rocker3.drocker3.crocker3.bP4rocker4.drocker4.crocker4.bP5rocker5.drocker5.crocker5.bP6rocker6.drocker6.crocker6.bP7rocker7.drocker7.crocker7.bP8rocker8.drocker8.crocker8.bP9rocker9.drocker9.crocker9.bP10rocker10.drocker10.crocker10.bP11rocker11.drocker11.crocker11.bP12rocker12.drocker12.crocker12.bP13rocker13.drocker13.crocker13.bP14rocker14.drocker14.crocker14.bP15rocker15.drocker15.crocker15.bP16rocker16.drocker16.crocker16.bXcrank.ucoincident(coupler1.c, rocker1.c)coincident(coupler2.c, rocker2.c)coincident(coupler3.c, rocker3.c)coincident(coupler4.c, rocker4.c)coincident(coupler5.c, rocker5.c)coincident(coupler6.c, rocker6.c)coincident(coupler7.c, rocker7.c)coincident(coupler8.c, rocker8.c)coincident(coupler9.c, rocker9.c)coincident(coupler10.c, rocker10.c)coincident(coupler11.c, rocker11.c)coincident(coupler12.c, rocker12.c)coincident(coupler13.c, rocker13.c)coincident(coupler14.c, rocker14.c)coincident(coupler15.c, rocker15.c)coincident(coupler16.c, rocker16.c)";
+
+#[rustfmt::skip]
+static STRING_AT: [u32; 151] = [
+    0,
+    6,
+    12,
+    18,
+    24,
+    30,
+    36,
+    42,
+    48,
+    54,
+    61,
+    68,
+    75,
+    82,
+    89,
+    96,
+    103,
+    155,
+    208,
+    262,
+    317,
+    371,
+    426,
+    480,
+    535,
+    589,
+    644,
+    698,
+    753,
+    807,
+    862,
+    916,
+    971,
+    1025,
+    1080,
+    1136,
+    1193,
+    1250,
+    1308,
+    1365,
+    1423,
+    1480,
+    1538,
+    1595,
+    1653,
+    1710,
+    1768,
+    1825,
+    1883,
+    1888,
+    1895,
+    1902,
+    1909,
+    1916,
+    1923,
+    1930,
+    1937,
+    1944,
+    1951,
+    1959,
+    1967,
+    1975,
+    1983,
+    1991,
+    1999,
+    2007,
+    2009,
+    2016,
+    2023,
+    2025,
+    2034,
+    2043,
+    2052,
+    2054,
+    2063,
+    2072,
+    2081,
+    2083,
+    2092,
+    2101,
+    2110,
+    2112,
+    2121,
+    2130,
+    2139,
+    2141,
+    2150,
+    2159,
+    2168,
+    2170,
+    2179,
+    2188,
+    2197,
+    2199,
+    2208,
+    2217,
+    2226,
+    2228,
+    2237,
+    2246,
+    2255,
+    2257,
+    2266,
+    2275,
+    2284,
+    2287,
+    2297,
+    2307,
+    2317,
+    2320,
+    2330,
+    2340,
+    2350,
+    2353,
+    2363,
+    2373,
+    2383,
+    2386,
+    2396,
+    2406,
+    2416,
+    2419,
+    2429,
+    2439,
+    2449,
+    2452,
+    2462,
+    2472,
+    2482,
+    2485,
+    2495,
+    2505,
+    2515,
+    2516,
+    2523,
+    2556,
+    2589,
+    2622,
+    2655,
+    2688,
+    2721,
+    2754,
+    2787,
+    2820,
+    2855,
+    2890,
+    2925,
+    2960,
+    2995,
+    3030,
+    3065,
 ];
 
