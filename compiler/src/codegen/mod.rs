@@ -49,7 +49,8 @@ pub fn generate(model: &Model, plan: &Plan) -> String {
 /// How the generated module lays out `solve`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Form {
-    /// Flat for a plan of fewer than [`TABLED_STEPS`] steps, tabled from there.
+    /// Flat unless the flat solve's steps would be [`TABLED_LINES`] lines or more (a chain
+    /// of about 600 four-bars, a closed profile of about 180 arcs), tabled then.
     Auto,
     /// One straight `solve`, a group of steps after another, each with its comment.
     Flat,
@@ -58,8 +59,9 @@ pub enum Form {
     Tabled,
 }
 
-/// The plan size from which [`Form::Auto`] writes a tabled module.
-pub const TABLED_STEPS: usize = tabled::TABLED_STEPS;
+/// The length of the flat solve's steps, in lines, from which [`Form::Auto`] writes a
+/// tabled module.
+pub const TABLED_LINES: usize = tabled::TABLED_LINES;
 
 /// [`generate`] in the given form.
 pub fn generate_as(model: &Model, plan: &Plan, form: Form) -> String {
@@ -67,14 +69,14 @@ pub fn generate_as(model: &Model, plan: &Plan, form: Form) -> String {
     let cx = Context::new(model, &plan, &scope);
     let mut w = Writer::default();
     header(&mut w, &cx.file, cx.d3);
-    let tabled = match form {
-        Form::Auto => cx.plan.steps.len() >= TABLED_STEPS,
-        Form::Flat => false,
-        Form::Tabled => true,
+    let min_lines = match form {
+        Form::Auto if cx.plan.steps.len() >= tabled::TABLED_STEPS => Some(TABLED_LINES),
+        Form::Auto | Form::Flat => None,
+        Form::Tabled => Some(0),
     };
-    if tabled {
+    if let Some(min_lines) = min_lines {
         let layout = api::Layout::new(&cx);
-        if let Some(module) = tabled::module(&cx, &layout) {
+        if let Some(module) = tabled::module(&cx, &layout, min_lines) {
             w.out.push_str(&module);
             return w.out;
         }

@@ -31,10 +31,20 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-/// Plans of at least this many steps are laid out as tables: measured (docs/BENCHMARKS.md,
-/// "Large models build in seconds"), the tabled solve of a chain of four-bars is as fast as
-/// the flat one from about 128 stages (some 500 steps), and builds many times faster.
-pub(super) const TABLED_STEPS: usize = 2048;
+/// `Form::Auto` lays out as tables a plan whose flat solve would have at least this many
+/// lines of steps (before rustfmt, which makes them two to three times as many). Measured
+/// with `gcs bench --form` (docs/BENCHMARKS.md, "Large models build in seconds"): a piece's
+/// call costs a few nanoseconds, which a flat solve saves while its code fits the
+/// instruction cache, and loses beyond. The flat solve is 3.2x faster for the closed profile
+/// of 64 arcs (about 4,200 lines) and even with the tabled one for the chain of 128 four-bars
+/// (2,500); the two are even for the closed profile of 256 arcs (17,000), and the tabled solve
+/// is 1.45x faster for the chain of 1,024 (19,900), whose flat solve takes two minutes to
+/// build in debug.
+pub(super) const TABLED_LINES: usize = 12_000;
+
+/// Plans of fewer steps are never laid out as tables by `Form::Auto`: too small to reach
+/// [`TABLED_LINES`], and then not worth writing the flat solve's parts twice to find out.
+pub(super) const TABLED_STEPS: usize = 1024;
 
 /// The kinds of a token of the generated code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -448,8 +458,12 @@ struct Row {
 }
 
 /// The whole module of a large model, or `None` when its plan is not laid out as tables.
-pub(super) fn module(cx: &Context<'_>, layout: &Layout) -> Option<String> {
+pub(super) fn module(cx: &Context<'_>, layout: &Layout, min_lines: usize) -> Option<String> {
     let parts = solve::parts(cx, layout)?;
+    let lines: usize = parts.groups.iter().map(|g| g.lines().count()).sum();
+    if lines < min_lines {
+        return None;
+    }
     let Parts {
         sketch_checks,
         bindings,
