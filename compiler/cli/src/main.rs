@@ -9,6 +9,27 @@ use gcs_lang::{Diagnostic, SourceFile};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+/// `print!` to standard output, which stops quietly when its reader has gone (`gcs plan FILE |
+/// head`) instead of panicking as `print!` does; the exit status is then a broken pipe's.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        if write!(std::io::stdout().lock(), $($arg)*).is_err() {
+            std::process::exit(141);
+        }
+    }};
+}
+
+/// `println!` as [`out!`] is `print!`.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        if writeln!(std::io::stdout().lock(), $($arg)*).is_err() {
+            std::process::exit(141);
+        }
+    }};
+}
+
 mod generated;
 mod serve;
 mod shared;
@@ -221,7 +242,7 @@ fn main() -> ExitCode {
                     }
                 },
                 None => {
-                    print!("{code}");
+                    out!("{code}");
                     ExitCode::SUCCESS
                 }
             }
@@ -266,7 +287,7 @@ fn main() -> ExitCode {
         ),
         Command::Serve { file, port, host } => serve::run(&file, &host, port),
         Command::Explain { file } => with_analysis(&file, color, |c| {
-            print!(
+            out!(
                 "{}",
                 gcs_compiler::explain::explain(&c.model, &c.analysis.plan)
             );
@@ -276,7 +297,7 @@ fn main() -> ExitCode {
             // The dump is printed even when the plan is incomplete: it shows how far the
             // analysis got.
             Ok(c) => {
-                print!("{}", c.analysis.plan.dump(&c.model));
+                out!("{}", c.analysis.plan.dump(&c.model));
                 if c.has_errors() {
                     ExitCode::FAILURE
                 } else {
@@ -430,13 +451,13 @@ fn solve(
         if all_solutions {
             let found = gcs_compiler::all::solve_all(model, plan, &scope, &params, &kept_defaults);
             if json {
-                println!("{}", found.to_json());
+                outln!("{}", found.to_json());
             } else {
                 for (k, s) in found.solutions.iter().enumerate() {
-                    println!("solution {}:", k + 1);
-                    print!("{}", gcs_compiler::report::solution_text(s));
+                    outln!("solution {}:", k + 1);
+                    out!("{}", gcs_compiler::report::solution_text(s));
                 }
-                println!(
+                outln!(
                     "{} real assembl{}{}",
                     found.solutions.len(),
                     if found.solutions.len() == 1 {
@@ -464,9 +485,9 @@ fn solve(
         match solved {
             Ok(solution) => {
                 if json {
-                    println!("{}", solution.to_json());
+                    outln!("{}", solution.to_json());
                 } else {
-                    print!("{}", gcs_compiler::report::solution_text(&solution));
+                    out!("{}", gcs_compiler::report::solution_text(&solution));
                 }
                 ExitCode::SUCCESS
             }
@@ -615,7 +636,7 @@ fn draw(
                 }
             },
             None => {
-                print!("{}", drawing.svg);
+                out!("{}", drawing.svg);
                 ExitCode::SUCCESS
             }
         }
@@ -730,9 +751,9 @@ fn bench(
             }
         }
         if json {
-            println!("{}", report.to_json());
+            outln!("{}", report.to_json());
         } else {
-            print!("{}", report.to_text());
+            out!("{}", report.to_text());
         }
         ExitCode::SUCCESS
     })
@@ -752,7 +773,7 @@ fn check(path: &Path, deny: &[String], color: termcolor::ColorChoice) -> ExitCod
             ExitCode::FAILURE
         }
         Ok(c) => {
-            print!(
+            out!(
                 "{}",
                 gcs_compiler::report::check_report(&c.model, &c.analysis)
             );
@@ -769,8 +790,8 @@ fn check(path: &Path, deny: &[String], color: termcolor::ColorChoice) -> ExitCod
         }
         // A model the analysis does not cover yet still gets its nominal count.
         Err(Stop::Unanalysed(u)) if matches!(u.error, AnalysisError::Uncovered(_)) => {
-            print!("{}", gcs_compiler::nominal::report(&u.model));
-            println!("analysis: not run: {}", u.error);
+            out!("{}", gcs_compiler::nominal::report(&u.model));
+            outln!("analysis: not run: {}", u.error);
             ExitCode::SUCCESS
         }
         Err(stop) => stop.exit(),

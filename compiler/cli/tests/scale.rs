@@ -150,3 +150,29 @@ fn twenty_thousand_points_solve_each_in_its_place() {
         .expect("a max residual");
     assert!(residual <= 1e-9, "{residual}");
 }
+
+/// A reader that stops early (`gcs plan FILE | head`) ends the output quietly: the exit status
+/// of a broken pipe, and no panic on standard error.
+#[test]
+fn a_closed_pipe_stops_the_output_without_a_panic() {
+    use std::io::Read as _;
+    let dir = tempfile::tempdir().expect("temporary directory");
+    std::fs::write(dir.path().join("model.gcs"), families::four_bar_chain(400)).expect("write");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_gcs"))
+        .current_dir(dir.path())
+        .args(["plan", "model.gcs"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run gcs");
+    let mut stdout = child.stdout.take().expect("its output");
+    let mut first = [0u8; 16];
+    stdout
+        .read_exact(&mut first)
+        .expect("the plan's first bytes");
+    drop(stdout);
+    let out = child.wait_with_output().expect("gcs ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(141), "{stderr}");
+}

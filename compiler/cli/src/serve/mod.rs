@@ -62,7 +62,7 @@ pub fn run(path: &Path, host: &str, port: u16) -> ExitCode {
         SocketAddr::V4(a) => format!("http://{}:{}/", a.ip(), a.port()),
         SocketAddr::V6(a) => format!("http://[{}]:{}/", a.ip(), a.port()),
     };
-    println!("{url}");
+    outln!("{url}");
     eprintln!("serving `{name}` at {url} (Ctrl-C stops)");
     let _ = std::io::stdout().flush();
     let mut api = api::Api::new(name.clone());
