@@ -4,9 +4,11 @@
 //! one function grows faster than its length, so a chain of 10,000 four-bars (a million lines)
 //! does not build. But a large model is a few local problems repeated: its groups differ only
 //! in which geoms they read and move, in their constants and in the names their errors give.
-//! So each group of the flat solve (and each declaration of the sketch) is cut out as a
-//! *piece* and reduced to its *shape*: its tokens with the locals it reads from earlier pieces,
-//! its number and string literals, and its reads of params, branches and defaults abstracted.
+//! So the flat solve's declarations and step groups, taken `PIECE_GROUPS` at a time (what
+//! crosses groups inside a piece stays in its locals, and one call does the work of several),
+//! are cut out as *pieces*, each reduced to its *shape*: its tokens with the locals it reads
+//! from earlier pieces, its number and string literals, and its reads of params, branches and
+//! defaults abstracted.
 //! Pieces of one shape become one function, written from the first of them (its
 //! *representative*, whose comment it keeps); the rest is data: a table row per piece (the
 //! slots it reads and writes in the solve's store, its constants, its error names) and the
@@ -32,19 +34,21 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 /// `Form::Auto` lays out as tables a plan whose flat solve would have at least this many
-/// lines of steps (before rustfmt, which makes them two to three times as many). Measured
-/// with `gcs bench --form` (docs/BENCHMARKS.md, "Large models build in seconds"): a piece's
-/// call costs a few nanoseconds, which a flat solve saves while its code fits the
-/// instruction cache, and loses beyond. The flat solve is 3.2x faster for the closed profile
-/// of 64 arcs (about 4,200 lines) and even with the tabled one for the chain of 128 four-bars
-/// (2,500); the two are even for the closed profile of 256 arcs (17,000), and the tabled solve
-/// is 1.45x faster for the chain of 1,024 (19,900), whose flat solve takes two minutes to
-/// build in debug.
+/// lines of steps (before rustfmt, which makes them two to three times as many), and keeps
+/// smaller ones flat: readable, a comment a step. Measured with `gcs bench --form`
+/// (docs/BENCHMARKS.md, "Large models build in seconds"), pieces of `PIECE_GROUPS` groups: the
+/// flat solve is 1.17x faster for the closed profile of 64 arcs (about 4,200 lines), the tabled
+/// one 1.3x faster for the chain of 128 four-bars (2,500 lines), 2.8x for the closed profile
+/// of 256 arcs (17,000) and 2.2x for the chain of 1,024 (19,900), whose flat solve also takes
+/// two minutes to build in debug.
 pub(super) const TABLED_LINES: usize = 12_000;
 
 /// Plans of fewer steps are never laid out as tables by `Form::Auto`: too small to reach
 /// [`TABLED_LINES`], and then not worth writing the flat solve's parts twice to find out.
 pub(super) const TABLED_STEPS: usize = 1024;
+
+/// How many declarations or step groups one piece holds.
+const PIECE_GROUPS: usize = 8;
 
 /// The kinds of a token of the generated code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -203,6 +207,8 @@ struct Cut {
     inputs: Vec<(Input, String)>,
     /// Its shape but for what it stores, once known.
     key: Option<String>,
+    /// The constraint (and `file:line`) of each group it holds.
+    constraints: Vec<String>,
     /// Whether it has code (a group whose steps move nothing has only its comment).
     has_code: bool,
 }
@@ -254,6 +260,7 @@ impl Cut {
             tokens: Vec::new(),
             text: String::new(),
             key: None,
+            constraints: Vec::new(),
             has_code: false,
         };
         let mut outer_at: HashMap<String, usize> = HashMap::default();
@@ -495,7 +502,7 @@ pub(super) fn module(cx: &Context<'_>, layout: &Layout, min_lines: usize) -> Opt
         }
         Some((_, None)) => {
             texts.push((
-                "let mut tol_scale = 1e-300;\n".to_string(),
+                "let mut tol_scale: f64 = 1e-300;\n".to_string(),
                 Some("f64"),
                 true,
             ));
@@ -536,23 +543,55 @@ pub(super) fn module(cx: &Context<'_>, layout: &Layout, min_lines: usize) -> Opt
             field_names.push(name);
         }
     }
+    // The type of what each declaration declares (its first `let`).
+    let mut known: HashMap<String, (&'static str, bool)> = HashMap::default();
+    for (text, ty, mutable) in &texts {
+        if let Some(ty) = ty {
+            let rest = text.trim_start().strip_prefix("let ").unwrap_or("");
+            let rest = rest.strip_prefix("mut ").unwrap_or(rest);
+            let name: String = (rest.chars())
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            known.insert(name, (ty, *mutable));
+        }
+    }
+    let _ = first_group;
+    // Pieces of `PIECE_GROUPS` declarations or groups each, each with the constraint of every
+    // group it holds: what crosses groups inside a piece stays in its locals, and a call
+    // does the work of several.
+    let mut pieces: Vec<(String, Vec<String>)> = Vec::new();
+    for window in texts.chunks(PIECE_GROUPS) {
+        let text: String = window.iter().map(|(t, ..)| t.as_str()).collect();
+        let constraints = (window.iter())
+            .filter_map(|(t, ..)| {
+                let line = t.trim_start().lines().next()?;
+                line.strip_prefix("// ").map(str::to_string)
+            })
+            .filter(|c| c.ends_with(')'))
+            .collect();
+        pieces.push((text, constraints));
+    }
     // Pass one: what each piece declares and reads, so that only values read later (or
     // reported) are stored.
     let mut declared_by: HashMap<String, (&'static str, bool)> = HashMap::default();
-    let mut cuts = Vec::with_capacity(texts.len());
+    let mut cuts = Vec::with_capacity(pieces.len());
     let mut earlier: HashMap<String, Slot> = HashMap::default();
     // The piece that declares each name: what piece `i` reads from before it.
     let mut declared_in: HashMap<String, usize> = HashMap::default();
-    for (i, (text, ty, mutable)) in texts.into_iter().enumerate() {
+    for (i, (text, constraints)) in pieces.into_iter().enumerate() {
         let mut cut = Cut::new(text, &|w| earlier.contains_key(w));
+        cut.constraints = constraints;
         for name in &cut.declared {
-            let ty = match ty {
-                Some(ty) if i < first_group || name.starts_with("field_value_") => ty,
-                _ if dims.contains(name) => "f64",
-                _ => typed
-                    .get(name)
-                    .and_then(|&t| register_type(t, d3))
-                    .unwrap_or("?"),
+            let (ty, mutable) = match known.get(name) {
+                Some(&known) => known,
+                None if dims.contains(name) => ("f64", false),
+                None => (
+                    typed
+                        .get(name)
+                        .and_then(|&t| register_type(t, d3))
+                        .unwrap_or("?"),
+                    false,
+                ),
             };
             let m = mutable || cut.mutable.contains(name);
             declared_by.insert(name.clone(), (ty, m));
@@ -631,7 +670,7 @@ pub(super) fn module(cx: &Context<'_>, layout: &Layout, min_lines: usize) -> Opt
             let _ = write!(key, "| $l{local}:{}", slots[name].ty);
         }
         let mut row = Row {
-            comment: cut.comment.first().cloned(),
+            comment: (!cut.constraints.is_empty()).then(|| cut.constraints.join("; ")),
             slots: Vec::new(),
             constants: cut.constants.clone(),
             texts: cut.texts.clone(),
