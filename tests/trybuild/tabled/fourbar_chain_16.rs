@@ -170,7 +170,7 @@ impl Store {
     fn new() -> Store {
         Store {
             frame2: vec![Frame2::default(); 33].into_boxed_slice(),
-            point2: vec![Point2::origin(); 16].into_boxed_slice(),
+            point2: vec![Point2::origin(); 4].into_boxed_slice(),
         }
     }
 }
@@ -414,7 +414,7 @@ pub fn solve_into(
                 defaults,
                 Row {
                     at: &PIECE_4_AT[row],
-                    k: &PIECE_4_K[row],
+                    k: &[],
                     text: &[],
                     input: &[],
                 },
@@ -453,7 +453,7 @@ struct Row<'r, const A: usize, const K: usize, const T: usize, const I: usize> {
     input: &'r [u32; I],
 }
 
-/// And 32 more pieces like it: the rows of `PIECE_0_*`, each with its constraint.
+/// And 3 more pieces like it: the rows of `PIECE_0_*`, each with its constraint.
 #[allow(
     unused_mut,
     unused_variables,
@@ -466,14 +466,27 @@ fn piece_0(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: Row<'_, 1, 1, 0, 0>,
+    row: Row<'_, 8, 8, 0, 0>,
 ) -> Result<(), SolveError> {
     let mut crank = Frame2::at(Point2::new(row.k[0], 0.0));
+    let mut coupler1 = Frame2::at(Point2::new(row.k[1], 0.0));
+    let mut rocker1 = Frame2::at(Point2::new(row.k[2], 0.0));
+    let mut coupler2 = Frame2::at(Point2::new(row.k[3], 0.0));
+    let mut rocker2 = Frame2::at(Point2::new(row.k[4], 0.0));
+    let mut coupler3 = Frame2::at(Point2::new(row.k[5], 0.0));
+    let mut rocker3 = Frame2::at(Point2::new(row.k[6], 0.0));
+    let mut coupler4 = Frame2::at(Point2::new(row.k[7], 0.0));
     store.frame2[row.at[0] as usize] = crank;
+    store.frame2[row.at[1] as usize] = coupler1;
+    store.frame2[row.at[2] as usize] = rocker1;
+    store.frame2[row.at[3] as usize] = coupler2;
+    store.frame2[row.at[4] as usize] = rocker2;
+    store.frame2[row.at[5] as usize] = coupler3;
+    store.frame2[row.at[6] as usize] = rocker3;
+    store.frame2[row.at[7] as usize] = coupler4;
     Ok(())
 }
 
-/// drive: angle(X, crank.u) = theta (fourbar_chain_16.gcs:10)
 #[allow(
     unused_mut,
     unused_variables,
@@ -488,15 +501,33 @@ fn piece_1(
     defaults: &Defaults,
     row: Row<'_, 1, 0, 0, 0>,
 ) -> Result<(), SolveError> {
-    let mut crank = store.frame2[row.at[0] as usize];
-    let x_dir_turned = direction_at(params.theta);
-    let turn = rotation_from_x_unit(&x_dir_turned);
-    crank.set_rotation(&turn);
-    store.frame2[row.at[0] as usize] = crank;
+    let mut rocker16 = Frame2::at(Point2::new(64.0, 0.0));
+
+    // coincident(crank.a, P0) (fourbar_chain_16.gcs:9)
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // coincident(rocker10.d, P10) (fourbar_chain_16.gcs:80)
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // coincident(rocker11.d, P11) (fourbar_chain_16.gcs:87)
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // coincident(rocker12.d, P12) (fourbar_chain_16.gcs:94)
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // coincident(rocker13.d, P13) (fourbar_chain_16.gcs:101)
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // coincident(rocker14.d, P14) (fourbar_chain_16.gcs:108)
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // coincident(rocker15.d, P15) (fourbar_chain_16.gcs:115)
+    // Already true where the sketch puts the geoms: nothing moves.
+    store.frame2[row.at[0] as usize] = rocker16;
     Ok(())
 }
 
-/// coincident(crank.b, coupler1.b) (fourbar_chain_16.gcs:15)
+/// coincident(rocker8.d, P8) (fourbar_chain_16.gcs:66)
 #[allow(
     unused_mut,
     unused_variables,
@@ -509,20 +540,132 @@ fn piece_2(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: Row<'_, 3, 0, 0, 0>,
+    row: Row<'_, 7, 0, 0, 0>,
 ) -> Result<(), SolveError> {
-    let crank = store.frame2[row.at[0] as usize];
+    let mut crank = store.frame2[row.at[0] as usize];
     let mut coupler1 = store.frame2[row.at[1] as usize];
+    let mut rocker1 = store.frame2[row.at[2] as usize];
+    let mut coupler2 = store.frame2[row.at[3] as usize];
+    let mut rocker2 = store.frame2[row.at[4] as usize];
+    let mut coupler3 = store.frame2[row.at[5] as usize];
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // coincident(rocker9.d, P9) (fourbar_chain_16.gcs:73)
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // drive: angle(X, crank.u) = theta (fourbar_chain_16.gcs:10)
+    let x_dir_turned = direction_at(params.theta);
+    let turn = rotation_from_x_unit(&x_dir_turned);
+    crank.set_rotation(&turn);
+
+    // coincident(crank.b, coupler1.b) (fourbar_chain_16.gcs:15)
     let crank_b = Point2::from(crank.x_axis() * 1.5);
     coupler1.place_origin(&crank_b);
+
+    // elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16)
+    let circle_crank_b = Circle::new(crank_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow1",
+            "coincident(coupler1.c, rocker1.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let circle_p1 = Circle::new(Point2::new(4.0, 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow1",
+            "coincident(coupler1.c, rocker1.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow1_chord =
+        intersect2d::circle_circle_chord(&circle_crank_b, &circle_p1).map_err(|miss| {
+            SolveError::from_miss("elbow1", "coincident(coupler1.c, rocker1.c)", miss)
+        })?;
+    let elbow1 = elbow1_chord
+        .root(usize::from(branches.indices[0]))
+        .ok_or_else(|| {
+            SolveError::new(
+                "elbow1",
+                "coincident(coupler1.c, rocker1.c)",
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let elbow1_reach = elbow1_chord
+        .root_from_b(usize::from(branches.indices[0]))
+        .unwrap_or(elbow1 - Point2::new(4.0, 0.0));
+    let turn_2 = rotation_on_circle_from(
+        elbow1_reach.y * 0.3333333333333333,
+        elbow1_reach.x * -0.3333333333333333,
+        &(Point2::new(4.0, 3.0) - Point2::new(4.0, 0.0)),
+        &elbow1_reach,
+    );
+    rocker1.set_rotation(&turn_2);
+
+    // coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22)
+    let rocker1_b = Point2::new(4.0, 0.0) + rocker1.y_axis() * -1.5;
+    coupler2.place_origin(&rocker1_b);
+
+    // elbow2: coincident(coupler2.c, rocker2.c) (fourbar_chain_16.gcs:23)
+    let circle_rocker1_b = Circle::new(rocker1_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow2",
+            "coincident(coupler2.c, rocker2.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let circle_p2 = Circle::new(Point2::new(8.0, 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow2",
+            "coincident(coupler2.c, rocker2.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow2_chord =
+        intersect2d::circle_circle_chord(&circle_rocker1_b, &circle_p2).map_err(|miss| {
+            SolveError::from_miss("elbow2", "coincident(coupler2.c, rocker2.c)", miss)
+        })?;
+    let elbow2 = elbow2_chord
+        .root(usize::from(branches.indices[1]))
+        .ok_or_else(|| {
+            SolveError::new(
+                "elbow2",
+                "coincident(coupler2.c, rocker2.c)",
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let elbow2_reach = elbow2_chord
+        .root_from_b(usize::from(branches.indices[1]))
+        .unwrap_or(elbow2 - Point2::new(8.0, 0.0));
+    let turn_3 = rotation_on_circle_from(
+        elbow2_reach.y * 0.3333333333333333,
+        elbow2_reach.x * -0.3333333333333333,
+        &(Point2::new(8.0, 3.0) - Point2::new(8.0, 0.0)),
+        &elbow2_reach,
+    );
+    rocker2.set_rotation(&turn_3);
+
+    // coincident(rocker2.b, coupler3.b) (fourbar_chain_16.gcs:29)
+    let rocker2_b = Point2::new(8.0, 0.0) + rocker2.y_axis() * -1.5;
+    coupler3.place_origin(&rocker2_b);
+    store.frame2[row.at[0] as usize] = crank;
     store.frame2[row.at[1] as usize] = coupler1;
-    store.point2[row.at[2] as usize] = crank_b;
+    store.frame2[row.at[2] as usize] = rocker1;
+    store.frame2[row.at[3] as usize] = coupler2;
+    store.frame2[row.at[4] as usize] = rocker2;
+    store.frame2[row.at[5] as usize] = coupler3;
+    store.point2[row.at[6] as usize] = rocker2_b;
     Ok(())
 }
 
-/// elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16)
+/// elbow3: coincident(coupler3.c, rocker3.c) (fourbar_chain_16.gcs:30)
 ///
-/// And 15 more pieces like it: the rows of `PIECE_3_*`, each with its constraint.
+/// And 2 more pieces like it: the rows of `PIECE_3_*`, each with its constraint.
 #[allow(
     unused_mut,
     unused_variables,
@@ -535,11 +678,18 @@ fn piece_3(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: Row<'_, 2, 1, 2, 1>,
+    row: Row<'_, 10, 4, 8, 4>,
 ) -> Result<(), SolveError> {
-    let crank_b = store.point2[row.at[0] as usize];
-    let mut rocker1 = store.frame2[row.at[1] as usize];
-    let circle_crank_b = Circle::new(crank_b, 4.0).ok_or_else(|| {
+    let rocker2_b = store.point2[row.at[0] as usize];
+    let mut rocker3 = store.frame2[row.at[1] as usize];
+    let mut coupler4 = store.frame2[row.at[2] as usize];
+    let mut rocker4 = store.frame2[row.at[3] as usize];
+    let mut coupler5 = store.frame2[row.at[4] as usize];
+    let mut rocker5 = store.frame2[row.at[5] as usize];
+    let mut coupler6 = store.frame2[row.at[6] as usize];
+    let mut rocker6 = store.frame2[row.at[7] as usize];
+    let mut coupler7 = store.frame2[row.at[8] as usize];
+    let circle_rocker2_b = Circle::new(rocker2_b, 4.0).ok_or_else(|| {
         SolveError::new(
             text(row.text[0]),
             text(row.text[1]),
@@ -547,7 +697,7 @@ fn piece_3(
             0.0,
         )
     })?;
-    let circle_p1 = Circle::new(Point2::new(row.k[0], 0.0), 3.0).ok_or_else(|| {
+    let circle_p3 = Circle::new(Point2::new(row.k[0], 0.0), 3.0).ok_or_else(|| {
         SolveError::new(
             text(row.text[0]),
             text(row.text[1]),
@@ -555,9 +705,9 @@ fn piece_3(
             0.0,
         )
     })?;
-    let elbow1_chord = intersect2d::circle_circle_chord(&circle_crank_b, &circle_p1)
+    let elbow3_chord = intersect2d::circle_circle_chord(&circle_rocker2_b, &circle_p3)
         .map_err(|miss| SolveError::from_miss(text(row.text[0]), text(row.text[1]), miss))?;
-    let elbow1 = elbow1_chord
+    let elbow3 = elbow3_chord
         .root(usize::from(branches.indices[row.input[0] as usize]))
         .ok_or_else(|| {
             SolveError::new(
@@ -567,23 +717,165 @@ fn piece_3(
                 2.0,
             )
         })?;
-    let elbow1_reach = elbow1_chord
+    let elbow3_reach = elbow3_chord
         .root_from_b(usize::from(branches.indices[row.input[0] as usize]))
-        .unwrap_or(elbow1 - Point2::new(row.k[0], 0.0));
-    let turn_2 = rotation_on_circle_from(
-        elbow1_reach.y * 0.3333333333333333,
-        elbow1_reach.x * -0.3333333333333333,
+        .unwrap_or(elbow3 - Point2::new(row.k[0], 0.0));
+    let turn_4 = rotation_on_circle_from(
+        elbow3_reach.y * 0.3333333333333333,
+        elbow3_reach.x * -0.3333333333333333,
         &(Point2::new(row.k[0], 3.0) - Point2::new(row.k[0], 0.0)),
-        &elbow1_reach,
+        &elbow3_reach,
     );
-    rocker1.set_rotation(&turn_2);
-    store.frame2[row.at[1] as usize] = rocker1;
+    rocker3.set_rotation(&turn_4);
+
+    // coincident(rocker3.b, coupler4.b) (fourbar_chain_16.gcs:36)
+    let rocker3_b = Point2::new(row.k[0], 0.0) + rocker3.y_axis() * -1.5;
+    coupler4.place_origin(&rocker3_b);
+
+    // elbow4: coincident(coupler4.c, rocker4.c) (fourbar_chain_16.gcs:37)
+    let circle_rocker3_b = Circle::new(rocker3_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[2]),
+            text(row.text[3]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let circle_p4 = Circle::new(Point2::new(row.k[1], 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[2]),
+            text(row.text[3]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow4_chord = intersect2d::circle_circle_chord(&circle_rocker3_b, &circle_p4)
+        .map_err(|miss| SolveError::from_miss(text(row.text[2]), text(row.text[3]), miss))?;
+    let elbow4 = elbow4_chord
+        .root(usize::from(branches.indices[row.input[1] as usize]))
+        .ok_or_else(|| {
+            SolveError::new(
+                text(row.text[2]),
+                text(row.text[3]),
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let elbow4_reach = elbow4_chord
+        .root_from_b(usize::from(branches.indices[row.input[1] as usize]))
+        .unwrap_or(elbow4 - Point2::new(row.k[1], 0.0));
+    let turn_5 = rotation_on_circle_from(
+        elbow4_reach.y * 0.3333333333333333,
+        elbow4_reach.x * -0.3333333333333333,
+        &(Point2::new(row.k[1], 3.0) - Point2::new(row.k[1], 0.0)),
+        &elbow4_reach,
+    );
+    rocker4.set_rotation(&turn_5);
+
+    // coincident(rocker4.b, coupler5.b) (fourbar_chain_16.gcs:43)
+    let rocker4_b = Point2::new(row.k[1], 0.0) + rocker4.y_axis() * -1.5;
+    coupler5.place_origin(&rocker4_b);
+
+    // elbow5: coincident(coupler5.c, rocker5.c) (fourbar_chain_16.gcs:44)
+    let circle_rocker4_b = Circle::new(rocker4_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[4]),
+            text(row.text[5]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let circle_p5 = Circle::new(Point2::new(row.k[2], 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[4]),
+            text(row.text[5]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow5_chord = intersect2d::circle_circle_chord(&circle_rocker4_b, &circle_p5)
+        .map_err(|miss| SolveError::from_miss(text(row.text[4]), text(row.text[5]), miss))?;
+    let elbow5 = elbow5_chord
+        .root(usize::from(branches.indices[row.input[2] as usize]))
+        .ok_or_else(|| {
+            SolveError::new(
+                text(row.text[4]),
+                text(row.text[5]),
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let elbow5_reach = elbow5_chord
+        .root_from_b(usize::from(branches.indices[row.input[2] as usize]))
+        .unwrap_or(elbow5 - Point2::new(row.k[2], 0.0));
+    let turn_6 = rotation_on_circle_from(
+        elbow5_reach.y * 0.3333333333333333,
+        elbow5_reach.x * -0.3333333333333333,
+        &(Point2::new(row.k[2], 3.0) - Point2::new(row.k[2], 0.0)),
+        &elbow5_reach,
+    );
+    rocker5.set_rotation(&turn_6);
+
+    // coincident(rocker5.b, coupler6.b) (fourbar_chain_16.gcs:50)
+    let rocker5_b = Point2::new(row.k[2], 0.0) + rocker5.y_axis() * -1.5;
+    coupler6.place_origin(&rocker5_b);
+
+    // elbow6: coincident(coupler6.c, rocker6.c) (fourbar_chain_16.gcs:51)
+    let circle_rocker5_b = Circle::new(rocker5_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[6]),
+            text(row.text[7]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let circle_p6 = Circle::new(Point2::new(row.k[3], 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[6]),
+            text(row.text[7]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow6_chord = intersect2d::circle_circle_chord(&circle_rocker5_b, &circle_p6)
+        .map_err(|miss| SolveError::from_miss(text(row.text[6]), text(row.text[7]), miss))?;
+    let elbow6 = elbow6_chord
+        .root(usize::from(branches.indices[row.input[3] as usize]))
+        .ok_or_else(|| {
+            SolveError::new(
+                text(row.text[6]),
+                text(row.text[7]),
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let elbow6_reach = elbow6_chord
+        .root_from_b(usize::from(branches.indices[row.input[3] as usize]))
+        .unwrap_or(elbow6 - Point2::new(row.k[3], 0.0));
+    let turn_7 = rotation_on_circle_from(
+        elbow6_reach.y * 0.3333333333333333,
+        elbow6_reach.x * -0.3333333333333333,
+        &(Point2::new(row.k[3], 3.0) - Point2::new(row.k[3], 0.0)),
+        &elbow6_reach,
+    );
+    rocker6.set_rotation(&turn_7);
+
+    // coincident(rocker6.b, coupler7.b) (fourbar_chain_16.gcs:57)
+    let rocker6_b = Point2::new(row.k[3], 0.0) + rocker6.y_axis() * -1.5;
+    coupler7.place_origin(&rocker6_b);
+    store.frame2[row.at[1] as usize] = rocker3;
+    store.frame2[row.at[2] as usize] = coupler4;
+    store.frame2[row.at[3] as usize] = rocker4;
+    store.frame2[row.at[4] as usize] = coupler5;
+    store.frame2[row.at[5] as usize] = rocker5;
+    store.frame2[row.at[6] as usize] = coupler6;
+    store.frame2[row.at[7] as usize] = rocker6;
+    store.frame2[row.at[8] as usize] = coupler7;
+    store.point2[row.at[9] as usize] = rocker6_b;
     Ok(())
 }
 
-/// coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22)
-///
-/// And 14 more pieces like it: the rows of `PIECE_4_*`, each with its constraint.
+/// elbow15: coincident(coupler15.c, rocker15.c) (fourbar_chain_16.gcs:114)
 #[allow(
     unused_mut,
     unused_variables,
@@ -596,14 +888,101 @@ fn piece_4(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: Row<'_, 3, 1, 0, 0>,
+    row: Row<'_, 4, 0, 0, 0>,
 ) -> Result<(), SolveError> {
-    let rocker1 = store.frame2[row.at[0] as usize];
-    let mut coupler2 = store.frame2[row.at[1] as usize];
-    let rocker1_b = Point2::new(row.k[0], 0.0) + rocker1.y_axis() * -1.5;
-    coupler2.place_origin(&rocker1_b);
-    store.frame2[row.at[1] as usize] = coupler2;
-    store.point2[row.at[2] as usize] = rocker1_b;
+    let rocker14_b = store.point2[row.at[0] as usize];
+    let mut rocker15 = store.frame2[row.at[1] as usize];
+    let mut coupler16 = store.frame2[row.at[2] as usize];
+    let mut rocker16 = store.frame2[row.at[3] as usize];
+    let circle_rocker14_b = Circle::new(rocker14_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow15",
+            "coincident(coupler15.c, rocker15.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let circle_p15 = Circle::new(Point2::new(60.0, 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow15",
+            "coincident(coupler15.c, rocker15.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow15_chord =
+        intersect2d::circle_circle_chord(&circle_rocker14_b, &circle_p15).map_err(|miss| {
+            SolveError::from_miss("elbow15", "coincident(coupler15.c, rocker15.c)", miss)
+        })?;
+    let elbow15 = elbow15_chord
+        .root(usize::from(branches.indices[14]))
+        .ok_or_else(|| {
+            SolveError::new(
+                "elbow15",
+                "coincident(coupler15.c, rocker15.c)",
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let elbow15_reach = elbow15_chord
+        .root_from_b(usize::from(branches.indices[14]))
+        .unwrap_or(elbow15 - Point2::new(60.0, 0.0));
+    let turn_16 = rotation_on_circle_from(
+        elbow15_reach.y * 0.3333333333333333,
+        elbow15_reach.x * -0.3333333333333333,
+        &(Point2::new(60.0, 3.0) - Point2::new(60.0, 0.0)),
+        &elbow15_reach,
+    );
+    rocker15.set_rotation(&turn_16);
+
+    // coincident(rocker15.b, coupler16.b) (fourbar_chain_16.gcs:120)
+    let rocker15_b = Point2::new(60.0, 0.0) + rocker15.y_axis() * -1.5;
+    coupler16.place_origin(&rocker15_b);
+
+    // elbow16: coincident(coupler16.c, rocker16.c) (fourbar_chain_16.gcs:121)
+    let circle_rocker15_b = Circle::new(rocker15_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow16",
+            "coincident(coupler16.c, rocker16.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let circle_p16 = Circle::new(Point2::new(64.0, 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow16",
+            "coincident(coupler16.c, rocker16.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow16_chord =
+        intersect2d::circle_circle_chord(&circle_rocker15_b, &circle_p16).map_err(|miss| {
+            SolveError::from_miss("elbow16", "coincident(coupler16.c, rocker16.c)", miss)
+        })?;
+    let elbow16 = elbow16_chord
+        .root(usize::from(branches.indices[15]))
+        .ok_or_else(|| {
+            SolveError::new(
+                "elbow16",
+                "coincident(coupler16.c, rocker16.c)",
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let elbow16_reach = elbow16_chord
+        .root_from_b(usize::from(branches.indices[15]))
+        .unwrap_or(elbow16 - Point2::new(64.0, 0.0));
+    let turn_17 = rotation_on_circle_from(
+        elbow16_reach.y * 0.3333333333333333,
+        elbow16_reach.x * -0.3333333333333333,
+        &(Point2::new(64.0, 3.0) - Point2::new(64.0, 0.0)),
+        &elbow16_reach,
+    );
+    rocker16.set_rotation(&turn_17);
+    store.frame2[row.at[1] as usize] = rocker15;
+    store.frame2[row.at[2] as usize] = coupler16;
+    store.frame2[row.at[3] as usize] = rocker16;
     Ok(())
 }
 
@@ -1228,282 +1607,83 @@ static SCALAR_BY_NAME: [[u32; 2]; 0] = [
 ];
 
 #[rustfmt::skip]
-static PIECE_0_AT: [[u32; 1]; 33] = [
-    [0],
-    [1],
-    [2],
-    [3],
-    [4],
-    [5],
-    [6],
-    [7],
-    [8],
-    [9],
-    [10],
-    [11],
-    [12],
-    [13],
-    [14],
-    [15],
-    [16],
-    [17],
-    [18],
-    [19],
-    [20],
-    [21],
-    [22],
-    [23],
-    [24],
-    [25],
-    [26],
-    [27],
-    [28],
-    [29],
-    [30],
-    [31],
-    [32],
+static PIECE_0_AT: [[u32; 8]; 4] = [
+    [0, 1, 2, 3, 4, 5, 6, 7],
+    [8, 9, 10, 11, 12, 13, 14, 15],
+    [16, 17, 18, 19, 20, 21, 22, 23],
+    [24, 25, 26, 27, 28, 29, 30, 31],
 ];
 
 #[rustfmt::skip]
-static PIECE_0_K: [[f64; 1]; 33] = [
-    [0.0],
-    [1.0],
-    [4.0],
-    [5.0],
-    [8.0],
-    [9.0],
-    [12.0],
-    [13.0],
-    [16.0],
-    [17.0],
-    [20.0],
-    [21.0],
-    [24.0],
-    [25.0],
-    [28.0],
-    [29.0],
-    [32.0],
-    [33.0],
-    [36.0],
-    [37.0],
-    [40.0],
-    [41.0],
-    [44.0],
-    [45.0],
-    [48.0],
-    [49.0],
-    [52.0],
-    [53.0],
-    [56.0],
-    [57.0],
-    [60.0],
-    [61.0],
-    [64.0],
+static PIECE_0_K: [[f64; 8]; 4] = [
+    [0.0, 1.0, 4.0, 5.0, 8.0, 9.0, 12.0, 13.0],
+    [16.0, 17.0, 20.0, 21.0, 24.0, 25.0, 28.0, 29.0],
+    [32.0, 33.0, 36.0, 37.0, 40.0, 41.0, 44.0, 45.0],
+    [48.0, 49.0, 52.0, 53.0, 56.0, 57.0, 60.0, 61.0],
 ];
 
 #[rustfmt::skip]
 static PIECE_1_AT: [[u32; 1]; 1] = [
-    [0], // drive: angle(X, crank.u) = theta (fourbar_chain_16.gcs:10)
+    [32], // coincident(crank.a, P0) (fourbar_chain_16.gcs:9); coincident(rocker10.d, P10) (fourbar_chain_16.gcs:80); coincident(rocker11.d, P11) (fourbar_chain_16.gcs:87); coincident(rocker12.d, P12) (fourbar_chain_16.gcs:94); coincident(rocker13.d, P13) (fourbar_chain_16.gcs:101); coincident(rocker14.d, P14) (fourbar_chain_16.gcs:108); coincident(rocker15.d, P15) (fourbar_chain_16.gcs:115)
 ];
 
 #[rustfmt::skip]
-static PIECE_2_AT: [[u32; 3]; 1] = [
-    [0, 1, 0], // coincident(crank.b, coupler1.b) (fourbar_chain_16.gcs:15)
+static PIECE_2_AT: [[u32; 7]; 1] = [
+    [0, 1, 2, 3, 4, 5, 0], // coincident(rocker8.d, P8) (fourbar_chain_16.gcs:66); coincident(rocker9.d, P9) (fourbar_chain_16.gcs:73); drive: angle(X, crank.u) = theta (fourbar_chain_16.gcs:10); coincident(crank.b, coupler1.b) (fourbar_chain_16.gcs:15); elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16); coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22); elbow2: coincident(coupler2.c, rocker2.c) (fourbar_chain_16.gcs:23); coincident(rocker2.b, coupler3.b) (fourbar_chain_16.gcs:29)
 ];
 
 #[rustfmt::skip]
-static PIECE_3_AT: [[u32; 2]; 16] = [
-    [0, 2], // elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16)
-    [1, 4], // elbow2: coincident(coupler2.c, rocker2.c) (fourbar_chain_16.gcs:23)
-    [2, 6], // elbow3: coincident(coupler3.c, rocker3.c) (fourbar_chain_16.gcs:30)
-    [3, 8], // elbow4: coincident(coupler4.c, rocker4.c) (fourbar_chain_16.gcs:37)
-    [4, 10], // elbow5: coincident(coupler5.c, rocker5.c) (fourbar_chain_16.gcs:44)
-    [5, 12], // elbow6: coincident(coupler6.c, rocker6.c) (fourbar_chain_16.gcs:51)
-    [6, 14], // elbow7: coincident(coupler7.c, rocker7.c) (fourbar_chain_16.gcs:58)
-    [7, 16], // elbow8: coincident(coupler8.c, rocker8.c) (fourbar_chain_16.gcs:65)
-    [8, 18], // elbow9: coincident(coupler9.c, rocker9.c) (fourbar_chain_16.gcs:72)
-    [9, 20], // elbow10: coincident(coupler10.c, rocker10.c) (fourbar_chain_16.gcs:79)
-    [10, 22], // elbow11: coincident(coupler11.c, rocker11.c) (fourbar_chain_16.gcs:86)
-    [11, 24], // elbow12: coincident(coupler12.c, rocker12.c) (fourbar_chain_16.gcs:93)
-    [12, 26], // elbow13: coincident(coupler13.c, rocker13.c) (fourbar_chain_16.gcs:100)
-    [13, 28], // elbow14: coincident(coupler14.c, rocker14.c) (fourbar_chain_16.gcs:107)
-    [14, 30], // elbow15: coincident(coupler15.c, rocker15.c) (fourbar_chain_16.gcs:114)
-    [15, 32], // elbow16: coincident(coupler16.c, rocker16.c) (fourbar_chain_16.gcs:121)
+static PIECE_3_AT: [[u32; 10]; 3] = [
+    [0, 6, 7, 8, 9, 10, 11, 12, 13, 1], // elbow3: coincident(coupler3.c, rocker3.c) (fourbar_chain_16.gcs:30); coincident(rocker3.b, coupler4.b) (fourbar_chain_16.gcs:36); elbow4: coincident(coupler4.c, rocker4.c) (fourbar_chain_16.gcs:37); coincident(rocker4.b, coupler5.b) (fourbar_chain_16.gcs:43); elbow5: coincident(coupler5.c, rocker5.c) (fourbar_chain_16.gcs:44); coincident(rocker5.b, coupler6.b) (fourbar_chain_16.gcs:50); elbow6: coincident(coupler6.c, rocker6.c) (fourbar_chain_16.gcs:51); coincident(rocker6.b, coupler7.b) (fourbar_chain_16.gcs:57)
+    [1, 14, 15, 16, 17, 18, 19, 20, 21, 2], // elbow7: coincident(coupler7.c, rocker7.c) (fourbar_chain_16.gcs:58); coincident(rocker7.b, coupler8.b) (fourbar_chain_16.gcs:64); elbow8: coincident(coupler8.c, rocker8.c) (fourbar_chain_16.gcs:65); coincident(rocker8.b, coupler9.b) (fourbar_chain_16.gcs:71); elbow9: coincident(coupler9.c, rocker9.c) (fourbar_chain_16.gcs:72); coincident(rocker9.b, coupler10.b) (fourbar_chain_16.gcs:78); elbow10: coincident(coupler10.c, rocker10.c) (fourbar_chain_16.gcs:79); coincident(rocker10.b, coupler11.b) (fourbar_chain_16.gcs:85)
+    [2, 22, 23, 24, 25, 26, 27, 28, 29, 3], // elbow11: coincident(coupler11.c, rocker11.c) (fourbar_chain_16.gcs:86); coincident(rocker11.b, coupler12.b) (fourbar_chain_16.gcs:92); elbow12: coincident(coupler12.c, rocker12.c) (fourbar_chain_16.gcs:93); coincident(rocker12.b, coupler13.b) (fourbar_chain_16.gcs:99); elbow13: coincident(coupler13.c, rocker13.c) (fourbar_chain_16.gcs:100); coincident(rocker13.b, coupler14.b) (fourbar_chain_16.gcs:106); elbow14: coincident(coupler14.c, rocker14.c) (fourbar_chain_16.gcs:107); coincident(rocker14.b, coupler15.b) (fourbar_chain_16.gcs:113)
 ];
 
 #[rustfmt::skip]
-static PIECE_3_K: [[f64; 1]; 16] = [
-    [4.0],
-    [8.0],
-    [12.0],
-    [16.0],
-    [20.0],
-    [24.0],
-    [28.0],
-    [32.0],
-    [36.0],
-    [40.0],
-    [44.0],
-    [48.0],
-    [52.0],
-    [56.0],
-    [60.0],
-    [64.0],
+static PIECE_3_K: [[f64; 4]; 3] = [
+    [12.0, 16.0, 20.0, 24.0],
+    [28.0, 32.0, 36.0, 40.0],
+    [44.0, 48.0, 52.0, 56.0],
 ];
 
 #[rustfmt::skip]
-static PIECE_3_TEXT: [[u32; 2]; 16] = [
-    [0, 134],
-    [1, 135],
-    [2, 136],
-    [3, 137],
-    [4, 138],
-    [5, 139],
-    [6, 140],
-    [7, 141],
-    [8, 142],
-    [9, 143],
-    [10, 144],
-    [11, 145],
-    [12, 146],
-    [13, 147],
-    [14, 148],
-    [15, 149],
+static PIECE_3_TEXT: [[u32; 8]; 3] = [
+    [2, 134, 3, 135, 4, 136, 5, 137],
+    [6, 138, 7, 139, 8, 140, 9, 141],
+    [10, 142, 11, 143, 12, 144, 13, 145],
 ];
 
 #[rustfmt::skip]
-static PIECE_3_INPUT: [[u32; 1]; 16] = [
-    [0],
-    [1],
-    [2],
-    [3],
-    [4],
-    [5],
-    [6],
-    [7],
-    [8],
-    [9],
-    [10],
-    [11],
-    [12],
-    [13],
-    [14],
-    [15],
+static PIECE_3_INPUT: [[u32; 4]; 3] = [
+    [2, 3, 4, 5],
+    [6, 7, 8, 9],
+    [10, 11, 12, 13],
 ];
 
 #[rustfmt::skip]
-static PIECE_4_AT: [[u32; 3]; 15] = [
-    [2, 3, 1], // coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22)
-    [4, 5, 2], // coincident(rocker2.b, coupler3.b) (fourbar_chain_16.gcs:29)
-    [6, 7, 3], // coincident(rocker3.b, coupler4.b) (fourbar_chain_16.gcs:36)
-    [8, 9, 4], // coincident(rocker4.b, coupler5.b) (fourbar_chain_16.gcs:43)
-    [10, 11, 5], // coincident(rocker5.b, coupler6.b) (fourbar_chain_16.gcs:50)
-    [12, 13, 6], // coincident(rocker6.b, coupler7.b) (fourbar_chain_16.gcs:57)
-    [14, 15, 7], // coincident(rocker7.b, coupler8.b) (fourbar_chain_16.gcs:64)
-    [16, 17, 8], // coincident(rocker8.b, coupler9.b) (fourbar_chain_16.gcs:71)
-    [18, 19, 9], // coincident(rocker9.b, coupler10.b) (fourbar_chain_16.gcs:78)
-    [20, 21, 10], // coincident(rocker10.b, coupler11.b) (fourbar_chain_16.gcs:85)
-    [22, 23, 11], // coincident(rocker11.b, coupler12.b) (fourbar_chain_16.gcs:92)
-    [24, 25, 12], // coincident(rocker12.b, coupler13.b) (fourbar_chain_16.gcs:99)
-    [26, 27, 13], // coincident(rocker13.b, coupler14.b) (fourbar_chain_16.gcs:106)
-    [28, 29, 14], // coincident(rocker14.b, coupler15.b) (fourbar_chain_16.gcs:113)
-    [30, 31, 15], // coincident(rocker15.b, coupler16.b) (fourbar_chain_16.gcs:120)
+static PIECE_4_AT: [[u32; 4]; 1] = [
+    [3, 30, 31, 32], // elbow15: coincident(coupler15.c, rocker15.c) (fourbar_chain_16.gcs:114); coincident(rocker15.b, coupler16.b) (fourbar_chain_16.gcs:120); elbow16: coincident(coupler16.c, rocker16.c) (fourbar_chain_16.gcs:121)
 ];
 
 #[rustfmt::skip]
-static PIECE_4_K: [[f64; 1]; 15] = [
-    [4.0],
-    [8.0],
-    [12.0],
-    [16.0],
-    [20.0],
-    [24.0],
-    [28.0],
-    [32.0],
-    [36.0],
-    [40.0],
-    [44.0],
-    [48.0],
-    [52.0],
-    [56.0],
-    [60.0],
-];
-
-#[rustfmt::skip]
-static ORDER: [[u32; 2]; 66] = [
+static ORDER: [[u32; 2]; 10] = [
     [0, 0],
     [0, 1],
     [0, 2],
     [0, 3],
-    [0, 4],
-    [0, 5],
-    [0, 6],
-    [0, 7],
-    [0, 8],
-    [0, 9],
-    [0, 10],
-    [0, 11],
-    [0, 12],
-    [0, 13],
-    [0, 14],
-    [0, 15],
-    [0, 16],
-    [0, 17],
-    [0, 18],
-    [0, 19],
-    [0, 20],
-    [0, 21],
-    [0, 22],
-    [0, 23],
-    [0, 24],
-    [0, 25],
-    [0, 26],
-    [0, 27],
-    [0, 28],
-    [0, 29],
-    [0, 30],
-    [0, 31],
-    [0, 32],
     [1, 0],
     [2, 0],
     [3, 0],
-    [4, 0],
     [3, 1],
-    [4, 1],
     [3, 2],
-    [4, 2],
-    [3, 3],
-    [4, 3],
-    [3, 4],
-    [4, 4],
-    [3, 5],
-    [4, 5],
-    [3, 6],
-    [4, 6],
-    [3, 7],
-    [4, 7],
-    [3, 8],
-    [4, 8],
-    [3, 9],
-    [4, 9],
-    [3, 10],
-    [4, 10],
-    [3, 11],
-    [4, 11],
-    [3, 12],
-    [4, 12],
-    [3, 13],
-    [4, 13],
-    [3, 14],
-    [4, 14],
-    [3, 15],
+    [4, 0],
 ];
 
 #[rustfmt::skip]
-static STRINGS: &str = "elbow1elbow2elbow3elbow4elbow5elbow6elbow7elbow8elbow9elbow10elbow11elbow12elbow13elbow14elbow15elbow16rocker1.c to the left of the line from crank.b to P1rocker1.c to the right of the line from crank.b to P1rocker2.c to the left of the line from rocker1.b to P2rocker2.c to the right of the line from rocker1.b to P2rocker3.c to the left of the line from rocker2.b to P3rocker3.c to the right of the line from rocker2.b to P3rocker4.c to the left of the line from rocker3.b to P4rocker4.c to the right of the line from rocker3.b to P4rocker5.c to the left of the line from rocker4.b to P5rocker5.c to the right of the line from rocker4.b to P5rocker6.c to the left of the line from rocker5.b to P6rocker6.c to the right of the line from rocker5.b to P6rocker7.c to the left of the line from rocker6.b to P7rocker7.c to the right of the line from rocker6.b to P7rocker8.c to the left of the line from rocker7.b to P8rocker8.c to the right of the line from rocker7.b to P8rocker9.c to the left of the line from rocker8.b to P9rocker9.c to the right of the line from rocker8.b to P9rocker10.c to the left of the line from rocker9.b to P10rocker10.c to the right of the line from rocker9.b to P10rocker11.c to the left of the line from rocker10.b to P11rocker11.c to the right of the line from rocker10.b to P11rocker12.c to the left of the line from rocker11.b to P12rocker12.c to the right of the line from rocker11.b to P12rocker13.c to the left of the line from rocker12.b to P13rocker13.c to the right of the line from rocker12.b to P13rocker14.c to the left of the line from rocker13.b to P14rocker14.c to the right of the line from rocker13.b to P14rocker15.c to the left of the line from rocker14.b to P15rocker15.c to the right of the line from rocker14.b to P15rocker16.c to the left of the line from rocker15.b to P16rocker16.c to the right of the line from rocker15.b to P16crankrocker1rocker2rocker3rocker4rocker5rocker6rocker7rocker8rocker9rocker10rocker11rocker12rocker13rocker14rocker15rocker16P0crank.acrank.bP1rocker1.drocker1.crocker1.bP2rocker2.drocker2.crocker2.bP3rocker3.drocker3.crocker3.bP4rocker4.drocker4.crocker4.bP5rocker5.drocker5.crocker5.bP6rocker6.drocker6.crocker6.bP7rocker7.drocker7.crocker7.bP8rocker8.drocker8.crocker8.bP9rocker9.drocker9.crocker9.bP10rocker10.drocker10.crocker10.bP11rocker11.drocker11.crocker11.bP12rocker12.drocker12.crocker12.bP13rocker13.drocker13.crocker13.bP14rocker14.drocker14.crocker14.bP15rocker15.drocker15.crocker15.bP16rocker16.drocker16.crocker16.bXcrank.ucoincident(coupler1.c, rocker1.c)coincident(coupler2.c, rocker2.c)coincident(coupler3.c, rocker3.c)coincident(coupler4.c, rocker4.c)coincident(coupler5.c, rocker5.c)coincident(coupler6.c, rocker6.c)coincident(coupler7.c, rocker7.c)coincident(coupler8.c, rocker8.c)coincident(coupler9.c, rocker9.c)coincident(coupler10.c, rocker10.c)coincident(coupler11.c, rocker11.c)coincident(coupler12.c, rocker12.c)coincident(coupler13.c, rocker13.c)coincident(coupler14.c, rocker14.c)coincident(coupler15.c, rocker15.c)coincident(coupler16.c, rocker16.c)";
+static STRINGS: &str = "elbow1elbow2elbow3elbow4elbow5elbow6elbow7elbow8elbow9elbow10elbow11elbow12elbow13elbow14elbow15elbow16rocker1.c to the left of the line from crank.b to P1rocker1.c to the right of the line from crank.b to P1rocker2.c to the left of the line from rocker1.b to P2rocker2.c to the right of the line from rocker1.b to P2rocker3.c to the left of the line from rocker2.b to P3rocker3.c to the right of the line from rocker2.b to P3rocker4.c to the left of the line from rocker3.b to P4rocker4.c to the right of the line from rocker3.b to P4rocker5.c to the left of the line from rocker4.b to P5rocker5.c to the right of the line from rocker4.b to P5rocker6.c to the left of the line from rocker5.b to P6rocker6.c to the right of the line from rocker5.b to P6rocker7.c to the left of the line from rocker6.b to P7rocker7.c to the right of the line from rocker6.b to P7rocker8.c to the left of the line from rocker7.b to P8rocker8.c to the right of the line from rocker7.b to P8rocker9.c to the left of the line from rocker8.b to P9rocker9.c to the right of the line from rocker8.b to P9rocker10.c to the left of the line from rocker9.b to P10rocker10.c to the right of the line from rocker9.b to P10rocker11.c to the left of the line from rocker10.b to P11rocker11.c to the right of the line from rocker10.b to P11rocker12.c to the left of the line from rocker11.b to P12rocker12.c to the right of the line from rocker11.b to P12rocker13.c to the left of the line from rocker12.b to P13rocker13.c to the right of the line from rocker12.b to P13rocker14.c to the left of the line from rocker13.b to P14rocker14.c to the right of the line from rocker13.b to P14rocker15.c to the left of the line from rocker14.b to P15rocker15.c to the right of the line from rocker14.b to P15rocker16.c to the left of the line from rocker15.b to P16rocker16.c to the right of the line from rocker15.b to P16crankrocker1rocker2rocker3rocker4rocker5rocker6rocker7rocker8rocker9rocker10rocker11rocker12rocker13rocker14rocker15rocker16P0crank.acrank.bP1rocker1.drocker1.crocker1.bP2rocker2.drocker2.crocker2.bP3rocker3.drocker3.crocker3.bP4rocker4.drocker4.crocker4.bP5rocker5.drocker5.crocker5.bP6rocker6.drocker6.crocker6.bP7rocker7.drocker7.crocker7.bP8rocker8.drocker8.crocker8.bP9rocker9.drocker9.crocker9.bP10rocker10.drocker10.crocker10.bP11rocker11.drocker11.crocker11.bP12rocker12.drocker12.crocker12.bP13rocker13.drocker13.crocker13.bP14rocker14.drocker14.crocker14.bP15rocker15.drocker15.crocker15.bP16rocker16.drocker16.crocker16.bXcrank.ucoincident(coupler3.c, rocker3.c)coincident(coupler4.c, rocker4.c)coincident(coupler5.c, rocker5.c)coincident(coupler6.c, rocker6.c)coincident(coupler7.c, rocker7.c)coincident(coupler8.c, rocker8.c)coincident(coupler9.c, rocker9.c)coincident(coupler10.c, rocker10.c)coincident(coupler11.c, rocker11.c)coincident(coupler12.c, rocker12.c)coincident(coupler13.c, rocker13.c)coincident(coupler14.c, rocker14.c)";
 
 #[rustfmt::skip]
-static STRING_AT: [u32; 151] = [
+static STRING_AT: [u32; 147] = [
     0,
     6,
     12,
@@ -1646,14 +1826,10 @@ static STRING_AT: [u32; 151] = [
     2688,
     2721,
     2754,
-    2787,
-    2820,
-    2855,
-    2890,
-    2925,
-    2960,
-    2995,
-    3030,
-    3065,
+    2789,
+    2824,
+    2859,
+    2894,
+    2929,
 ];
 
