@@ -158,7 +158,7 @@ fn a_closed_pipe_stops_the_output_without_a_panic() {
     use std::io::Read as _;
     let dir = tempfile::tempdir().expect("temporary directory");
     std::fs::write(dir.path().join("model.gcs"), families::four_bar_chain(400)).expect("write");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_gcs"))
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gcs"))
         .current_dir(dir.path())
         .args(["plan", "model.gcs"])
         .stdout(std::process::Stdio::piped())
