@@ -450,7 +450,7 @@ struct Shape {
     /// Per row: the slots of the values read, then of those written; constants; texts;
     /// input indices.
     rows: Vec<Row>,
-    /// How many values the shape writes (stores after its code).
+    /// The locals it declares that later pieces read (stored after its code).
     written: Vec<String>,
 }
 
@@ -523,7 +523,6 @@ pub(super) fn module(cx: &Context<'_>, layout: &Layout, min_lines: usize) -> Opt
             ));
         }
     }
-    let first_group = texts.len();
     for g in groups {
         texts.push((g, None, false));
     }
@@ -555,7 +554,6 @@ pub(super) fn module(cx: &Context<'_>, layout: &Layout, min_lines: usize) -> Opt
             known.insert(name, (ty, *mutable));
         }
     }
-    let _ = first_group;
     // Pieces of `PIECE_GROUPS` declarations or groups each, each with the constraint of every
     // group it holds: what crosses groups inside a piece stays in its locals, and a call
     // does the work of several.
@@ -781,7 +779,7 @@ struct Accessors {
 struct AccessKind {
     ty: ApiTy,
     /// Each shape: its body, with `{at}` and `{k}` placeholders replaced when written.
-    shapes: Vec<(Cut, Vec<String>)>,
+    shapes: Vec<Cut>,
     /// Per value: its dotted name, its shape, its slots and constants.
     rows: Vec<(String, usize, Vec<usize>, Vec<String>)>,
 }
@@ -848,7 +846,7 @@ fn accessor_shapes(
                 .collect();
             let row = (a.name.clone(), 0, row_slots?, cut.constants.clone());
             let n = *by_key.entry(key).or_insert_with(|| {
-                kind.shapes.push((cut, Vec::new()));
+                kind.shapes.push(cut);
                 kind.shapes.len() - 1
             });
             kind.rows.push((row.0, n, row.2, row.3));
@@ -1256,11 +1254,11 @@ fn solution(
         };
         let upper = what.to_uppercase();
         let at_len = (kind.shapes.iter())
-            .map(|(c, _)| c.outer.len())
+            .map(|c| c.outer.len())
             .max()
             .unwrap_or(0);
         let k_len = (kind.shapes.iter())
-            .map(|(c, _)| c.constants.len())
+            .map(|c| c.constants.len())
             .max()
             .unwrap_or(0);
         w.line("");
@@ -1308,7 +1306,7 @@ fn solution(
         ));
         w.open(&format!("match {upper}_SHAPE[k] {{"));
         let count = kind.shapes.len();
-        for (n, (cut, _)) in kind.shapes.iter().enumerate() {
+        for (n, cut) in kind.shapes.iter().enumerate() {
             let arm = if n + 1 == count {
                 "_".to_string()
             } else {
@@ -1442,13 +1440,15 @@ fn solve(
     w.open("for &[shape, row] in ORDER.iter() {");
     w.line("let row = row as usize;");
     w.open("match shape {");
-    for (n, shape) in shapes.iter().enumerate() {
+    // Where each shape's rows hold what, found once.
+    let places: Vec<Places> = shapes.iter().map(Places::of).collect();
+    for (n, place) in places.iter().enumerate() {
         let arm = if n + 1 == shapes.len() {
             "_".to_string()
         } else {
             n.to_string()
         };
-        let widths = widths(shape);
+        let widths = place.widths;
         let field = |name: &str, width: usize| match width {
             0 => format!("{name}: &[]"),
             _ => format!("{name}: &PIECE_{n}_{}[row]", name.to_uppercase()),
@@ -1500,40 +1500,41 @@ fn solve(
     for p in order {
         order_rows.push(format!("[{}, {}]", p.shape, p.row));
     }
-    for (n, shape) in shapes.iter().enumerate() {
-        piece(w, tables, strings, n, shape, slots);
+    for (n, (shape, places)) in shapes.iter().zip(&places).enumerate() {
+        piece(w, tables, strings, n, (shape, places), slots);
     }
     table(tables, "ORDER", "[u32; 2]", &order_rows);
 }
 
-/// Where a shape's function finds each constant, text and input in its row.
+/// Where a shape's function finds each constant, text and input in its row, and the widths
+/// of its rows: slots, constants, texts, inputs.
 struct Places {
     k_at: Vec<Option<usize>>,
     t_at: Vec<Option<usize>>,
     inputs_at: Vec<Option<usize>>,
+    widths: (usize, usize, usize, usize),
 }
 
 impl Places {
     fn of(shape: &Shape) -> Places {
         let (cut, rows) = (&shape.representative, &shape.rows);
+        let k_at = varying(cut.constants.len(), rows, |r, i| r.constants[i].clone());
+        let t_at = varying(cut.texts.len(), rows, |r, i| r.texts[i].clone());
+        let inputs_at = varying(cut.inputs.len(), rows, |r, i| r.inputs[i]);
+        let count = |at: &[Option<usize>]| at.iter().flatten().max().map_or(0, |m| m + 1);
+        let widths = (
+            cut.outer.len() + shape.written.len(),
+            count(&k_at),
+            count(&t_at),
+            count(&inputs_at),
+        );
         Places {
-            k_at: varying(cut.constants.len(), rows, |r, i| r.constants[i].clone()),
-            t_at: varying(cut.texts.len(), rows, |r, i| r.texts[i].clone()),
-            inputs_at: varying(cut.inputs.len(), rows, |r, i| r.inputs[i]),
+            k_at,
+            t_at,
+            inputs_at,
+            widths,
         }
     }
-}
-
-/// The widths of a shape's rows: slots, constants, texts, inputs.
-fn widths(shape: &Shape) -> (usize, usize, usize, usize) {
-    let places = Places::of(shape);
-    let count = |at: &[Option<usize>]| at.iter().flatten().max().map_or(0, |m| m + 1);
-    (
-        shape.representative.outer.len() + shape.written.len(),
-        count(&places.k_at),
-        count(&places.t_at),
-        count(&places.inputs_at),
-    )
 }
 
 /// The function of shape `n` and its tables.
@@ -1542,7 +1543,7 @@ fn piece(
     tables: &mut String,
     strings: &mut Strings,
     n: usize,
-    shape: &Shape,
+    (shape, places): (&Shape, &Places),
     slots: &HashMap<String, Slot>,
 ) {
     let cut = &shape.representative;
@@ -1551,7 +1552,9 @@ fn piece(
         k_at,
         t_at,
         inputs_at,
-    } = Places::of(shape);
+        widths,
+    } = places;
+    let (a, k, t, i) = *widths;
     // An input read the same by every row is written as it is (a param as `params.x`); one
     // that differs is an index in the row.
     let in_at: Vec<InputAt> = (inputs_at.iter().enumerate())
@@ -1560,7 +1563,6 @@ fn piece(
             Some(place) => InputAt::Row(*place),
         })
         .collect();
-    let (a, k, t, i) = widths(shape);
     let row_ty = format!("Row<'_, {a}, {k}, {t}, {i}>");
     for line in &cut.comment {
         w.line(&format!("/// {line}"));
@@ -1595,7 +1597,7 @@ fn piece(
             slice(name)
         ));
     }
-    let code = body(cut, &k_at, &t_at, &in_at);
+    let code = body(cut, k_at, t_at, &in_at);
     for line in code.trim_end().lines() {
         if line.trim().is_empty() {
             w.line("");
@@ -1630,10 +1632,7 @@ fn piece(
         columns.push(("AT", format!("[u32; {a}]"), at));
     }
     if k > 0 {
-        let ks = rows
-            .iter()
-            .map(|r| at_places(&k_at, &r.constants))
-            .collect();
+        let ks = rows.iter().map(|r| at_places(k_at, &r.constants)).collect();
         columns.push(("K", format!("[f64; {k}]"), ks));
     }
     if t > 0 {
@@ -1642,7 +1641,7 @@ fn piece(
                 let ids: Vec<String> = (r.texts.iter())
                     .map(|l| strings.id_of_literal(l).to_string())
                     .collect();
-                at_places(&t_at, &ids)
+                at_places(t_at, &ids)
             })
             .collect();
         columns.push(("TEXT", format!("[u32; {t}]"), ts));
@@ -1651,7 +1650,7 @@ fn piece(
         let is = (rows.iter())
             .map(|r| {
                 let inputs: Vec<String> = r.inputs.iter().map(usize::to_string).collect();
-                at_places(&inputs_at, &inputs)
+                at_places(inputs_at, &inputs)
             })
             .collect();
         columns.push(("INPUT", format!("[u32; {i}]"), is));
