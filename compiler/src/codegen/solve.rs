@@ -64,24 +64,7 @@ pub(super) fn parts(cx: &Context<'_>, layout: &Layout) -> Option<Parts> {
     ] {
         names.reserve(reserved);
     }
-    let mut s = Solve {
-        cx,
-        names,
-        frames: HashMap::new(),
-        dims: HashMap::new(),
-        locals: HashMap::new(),
-        deferred: HashSet::new(),
-        facts: Facts::default(),
-        frame_reads: RefCell::new(HashSet::new()),
-        frame_writes: HashSet::new(),
-        iterated: HashMap::new(),
-        closing: None,
-        converged: false,
-        error_only: HashSet::new(),
-        converged_defaults: HashMap::new(),
-        declared_at: HashMap::new(),
-        tol_terms: RefCell::new(Vec::new()),
-    };
+    let mut s = Solve::new(cx, names);
     let mut checks = Writer {
         out: String::new(),
         indent: 1,
@@ -180,25 +163,32 @@ pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     for reserved in ["params", "branches", "defaults", "outer", "tol", "solution"] {
         names.reserve(reserved);
     }
-    let mut s = Solve {
-        cx,
-        names,
-        frames: HashMap::new(),
-        dims: HashMap::new(),
-        locals: HashMap::new(),
-        deferred: HashSet::new(),
-        facts: Facts::default(),
-        frame_reads: RefCell::new(HashSet::new()),
-        frame_writes: HashSet::new(),
-        iterated: HashMap::new(),
-        closing: None,
-        converged: false,
-        error_only: HashSet::new(),
-        converged_defaults: HashMap::new(),
-        declared_at: HashMap::new(),
-        tol_terms: RefCell::new(Vec::new()),
-    };
+    let mut s = Solve::new(cx, names);
     s.write(w, layout);
+}
+
+impl<'a> Solve<'a> {
+    /// Nothing written yet, with `names` taken.
+    fn new(cx: &'a Context<'a>, names: Namer) -> Solve<'a> {
+        Solve {
+            cx,
+            names,
+            frames: HashMap::new(),
+            dims: HashMap::new(),
+            locals: HashMap::new(),
+            deferred: HashSet::new(),
+            facts: Facts::default(),
+            frame_reads: RefCell::new(HashSet::new()),
+            frame_writes: HashSet::new(),
+            iterated: HashMap::new(),
+            closing: None,
+            converged: false,
+            error_only: HashSet::new(),
+            converged_defaults: HashMap::new(),
+            declared_at: HashMap::new(),
+            tol_terms: RefCell::new(Vec::new()),
+        }
+    }
 }
 
 impl Solve<'_> {
