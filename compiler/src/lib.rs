@@ -17,6 +17,7 @@ pub mod codegen;
 pub mod config;
 pub mod draw;
 pub mod explain;
+pub mod families;
 pub mod interp;
 pub mod nominal;
 pub mod pipeline;

@@ -2,7 +2,9 @@
 //! examples (`examples/`) and of the test models (`tests/models/`), is golden
 //! (`tests/trybuild/generated/<stem>.rs`), and trybuild compiles each one and runs a driver
 //! that compares it with the interpreter and re-checks every constraint
-//! (`tests/trybuild/driver.rs`). A compile-fail case shows that misuse reads well. Regenerate
+//! (`tests/trybuild/driver.rs`), with the model's tabled module beside it in the same binary;
+//! so are the large families at 1,000 stages, as `gcs compile` writes them (tabled). A
+//! compile-fail case shows that misuse reads well. Regenerate
 //! the goldens (or create a new model's) with
 //! `UPDATE_EXPECT=1 cargo test -p gcs-tests --test generated`, and the expected compiler output
 //! with `TRYBUILD=overwrite`.
@@ -13,6 +15,13 @@ use std::path::{Path, PathBuf};
 mod discover {
     include!("../../examples/discover.rs");
 }
+
+/// The large families whose generated solvers (tabled) are run: each at 1,000 stages.
+const LARGE: [(&str, usize); 3] = [
+    ("fourbar_chain", 1000),
+    ("sketch_profile", 1000),
+    ("truss", 1000),
+];
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -84,29 +93,52 @@ fn every_golden_belongs_to_a_model() {
     }
 }
 
-/// The trybuild case that runs one model's golden solver against the interpreter; its
-/// `solve_all` too, where it has one (a model with too many branch combinations has none).
-fn run_case(m: &discover::Found) -> String {
-    let text = std::fs::read_to_string(golden(&m.stem)).unwrap_or_default();
-    case_text(m, &golden(&m.stem), &text)
+/// The model a trybuild case runs.
+struct Subject {
+    /// How the case names it: `examples/fourbar.gcs`, or a family's `fourbar_chain 1000`.
+    shown: String,
+    /// Its file name, as the generated solver was compiled with it.
+    file: String,
+    /// Where its text is, for the case's `include_str!`.
+    path: PathBuf,
+    /// How many params, branch variables and defaults the driver moves, each kind: all of
+    /// them (`usize::MAX`), or a few spread over a large family.
+    spread: usize,
+    /// How much the agreement asked of the generated solver and the interpreter is loosened:
+    /// 1, or more for a long chain of dependent stages, where each side's rounding grows.
+    tol_growth: f64,
 }
 
-/// The trybuild case that runs the solver `module` (its text `code`) of model `m`.
-fn case_text(m: &discover::Found, module: &Path, code: &str) -> String {
+impl Subject {
+    fn of(m: &discover::Found) -> Subject {
+        Subject {
+            shown: m.relative(),
+            file: m.file_name(),
+            path: m.path.clone(),
+            spread: usize::MAX,
+            tol_growth: 1.0,
+        }
+    }
+}
+
+/// One solver of a trybuild case: the module `form` holding the solver `module` (its text
+/// `code`) of model `m`, the driver that runs it against the interpreter, and its `solve_all`
+/// check where it has one (a model with too many branch combinations has none).
+fn solver_module(form: &str, m: &Subject, module: &Path, code: &str) -> String {
     let path = |p: &Path| format!("{:?}", p.display().to_string());
     let has_solve_all = code.contains("pub fn solve_all(");
     // The solve whose allocations are counted: a tabled module's `solve_into`, on a
     // `Solution` made before, or `solve`.
     let solve = if code.contains("pub fn solve_into(") {
-        "let mut solution = solver::Solution::new();\n    \
-         let region = stats_alloc::Region::new(ALLOCATOR);\n    \
-         let solved = solver::solve_into(p, b, d, &mut solution);\n    \
-         let change = region.change();\n    \
+        "let mut solution = solver::Solution::new();\n        \
+         let region = stats_alloc::Region::new(crate::ALLOCATOR);\n        \
+         let solved = solver::solve_into(p, b, d, &mut solution);\n        \
+         let change = region.change();\n        \
          (solved.map(|()| solution), (change.allocations, change.reallocations))"
     } else {
-        "let region = stats_alloc::Region::new(ALLOCATOR);\n    \
-         let solved = solver::solve(p, b, d);\n    \
-         let change = region.change();\n    \
+        "let region = stats_alloc::Region::new(crate::ALLOCATOR);\n        \
+         let solved = solver::solve(p, b, d);\n        \
+         let change = region.change();\n        \
          (solved, (change.allocations, change.reallocations))"
     };
     let all = if has_solve_all {
@@ -115,35 +147,77 @@ fn case_text(m: &discover::Found, module: &Path, code: &str) -> String {
             path(&root().join("trybuild/driver_all.rs"))
         )
     } else {
-        "// No `solve_all`: too many branch combinations to list.\n\
-         fn all_assemblies<M, P, S>(_: &M, _: &P, _: &S, _: &[String]) -> usize {\n    0\n}\n"
+        "// No `solve_all`: too many branch combinations to list.\n    \
+         fn all_assemblies<M, P, S>(_: &M, _: &P, _: &S, _: &[String]) -> usize {\n        0\n    }\n"
             .to_string()
     };
     format!(
-        "// Runs the generated solver of `{relative}` against the interpreter.\n\
+        "mod {form} {{\n    \
+         mod solver {{\n        \
+         include!({module});\n    \
+         }}\n\
+         \n    \
+         const NAME: &str = \"{file}\";\n    \
+         const MODEL: &str = include_str!({model});\n    \
+         const SPREAD: usize = {spread};\n    \
+         const TOL_GROWTH: f64 = {tol_growth:?};\n\
+         \n    \
+         include!({driver});\n    \
+         {all}\n    \
+         fn generated_solve(\n        \
+         p: &solver::Params,\n        \
+         b: &solver::Branches,\n        \
+         d: &solver::Defaults,\n    \
+         ) -> (Result<solver::Solution, gcs_runtime::error::SolveError>, (usize, usize)) {{\n        \
+         {solve}\n    \
+         }}\n\
+         }}\n",
+        module = path(module),
+        file = m.file,
+        model = path(&m.path),
+        tol_growth = m.tol_growth,
+        spread = if m.spread == usize::MAX {
+            "usize::MAX".to_string()
+        } else {
+            m.spread.to_string()
+        },
+        driver = path(&root().join("trybuild/driver.rs")),
+    )
+}
+
+/// The trybuild case of model `m`: each of its `solvers` (a module name, the solver's file and
+/// text) run against the interpreter by one binary. One binary a model, not one a solver: each
+/// links the compiler, and trybuild builds every case twice.
+fn case_text(m: &Subject, solvers: &[(&str, PathBuf, String)]) -> String {
+    let modules: String = solvers
+        .iter()
+        .map(|(form, module, code)| format!("\n{}", solver_module(form, m, module, code)))
+        .collect();
+    let runs: String = solvers
+        .iter()
+        .map(|(form, ..)| {
+            format!(
+                "    if std::panic::catch_unwind({form}::run).is_err() {{\n        \
+                 eprintln!(\"{}: the {form} solver failed (above)\");\n        \
+                 std::process::exit(101);\n    \
+                 }}\n",
+                m.shown
+            )
+        })
+        .collect();
+    format!(
+        "// Runs the generated solvers of `{relative}` against the interpreter.\n\
          #![deny(warnings)]\n\
          \n\
-         mod solver {{\n    \
-         include!({golden});\n\
-         }}\n\
-         \n\
-         const NAME: &str = \"{file}\";\n\
-         const MODEL: &str = include_str!({model});\n\
-         \n\
-         include!({driver});\n\
-         {all}\n\
-         fn generated_solve(\n    \
-         p: &solver::Params,\n    \
-         b: &solver::Branches,\n    \
-         d: &solver::Defaults,\n\
-         ) -> (Result<solver::Solution, gcs_runtime::error::SolveError>, (usize, usize)) {{\n    \
-         {solve}\n\
+         // Counts allocations, to show that a generated solve allocates nothing.\n\
+         #[global_allocator]\n\
+         static ALLOCATOR: &stats_alloc::StatsAlloc<std::alloc::System> =\n    \
+         &stats_alloc::INSTRUMENTED_SYSTEM;\n\
+         {modules}\n\
+         fn main() {{\n\
+         {runs}\
          }}\n",
-        relative = m.relative(),
-        golden = path(module),
-        file = m.file_name(),
-        model = path(&m.path),
-        driver = path(&root().join("trybuild/driver.rs")),
+        relative = m.shown,
     )
 }
 
@@ -161,9 +235,8 @@ fn generated_solvers_agree_with_the_interpreter() {
         }
     };
     for m in models() {
-        let case = cases.join(format!("run_{}.rs", m.stem));
-        write(&case, &run_case(&m));
-        t.pass(case);
+        let golden_text = std::fs::read_to_string(golden(&m.stem)).unwrap_or_default();
+        let mut solvers = vec![("golden", golden(&m.stem), golden_text.clone())];
         // The same model's tabled module (what a large model gets), where its plan allows
         // one: every model's pieces, shapes and tables checked as the flat solver is.
         let c = gcs_compiler::compile(&m.file_name(), m.text.as_bytes())
@@ -173,15 +246,41 @@ fn generated_solvers_agree_with_the_interpreter() {
             &c.analysis.plan,
             gcs_compiler::codegen::Form::Tabled,
         );
-        let golden_is_tabled = std::fs::read_to_string(golden(&m.stem))
-            .is_ok_and(|text| text.contains("pub fn solve_into("));
-        if tabled.contains("pub fn solve_into(") && !golden_is_tabled {
+        if tabled.contains("pub fn solve_into(") && !golden_text.contains("pub fn solve_into(") {
             let module = cases.join(format!("tabled_{}.rs", m.stem));
             write(&module, &tabled);
-            let case = cases.join(format!("run_tabled_{}.rs", m.stem));
-            write(&case, &case_text(&m, &module, &tabled));
-            t.pass(case);
+            solvers.push(("tabled", module, tabled));
         }
+        let case = cases.join(format!("run_{}.rs", m.stem));
+        write(&case, &case_text(&Subject::of(&m), &solvers));
+        t.pass(case);
+    }
+    // Large families, as `gcs compile` writes them (tabled): the same checks, moving a few
+    // params, branch variables and defaults spread over the model, with every stage solved
+    // and every constraint re-checked each time.
+    for (family, n) in LARGE {
+        let family = gcs_compiler::families::Family::named(family).expect("a family");
+        let stem = format!("{}_{n}", family.name());
+        let path = cases.join(format!("{stem}.gcs"));
+        write(&path, &family.model(n));
+        let file = format!("{stem}.gcs");
+        let text = std::fs::read_to_string(&path).expect("the family's model");
+        let c = gcs_compiler::compile(&file, text.as_bytes())
+            .unwrap_or_else(|e| panic!("{stem}: {e:?}"));
+        let code = gcs_compiler::codegen::generate(&c.model, &c.analysis.plan);
+        assert!(code.contains("pub fn solve_into("), "{stem} is not tabled");
+        let module = cases.join(format!("{stem}.rs"));
+        write(&module, &code);
+        let subject = Subject {
+            shown: format!("the family {} at {n} stages", family.name()),
+            file,
+            path,
+            spread: 4,
+            tol_growth: 100.0,
+        };
+        let case = cases.join(format!("run_{stem}.rs"));
+        write(&case, &case_text(&subject, &[("tabled", module, code)]));
+        t.pass(case);
     }
     t.pass("trybuild/pass/*.rs");
     t.compile_fail("trybuild/ui/*.rs");

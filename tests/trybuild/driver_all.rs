@@ -28,7 +28,7 @@ fn all_assemblies(
         }
         let gd = solver::Defaults::default();
         let interpreted = gcs_compiler::all::solve_all(model, plan, scope, params, &sketch_defaults);
-        let region = stats_alloc::Region::new(ALLOCATOR);
+        let region = stats_alloc::Region::new(crate::ALLOCATOR);
         let generated = solver::solve_all(&gp, &gd);
         let change = region.change();
         assert_eq!(

@@ -7,12 +7,12 @@
 //!   large models): the speed baseline and an independent cross-check of the plan.
 //! - [`bench`](mod@bench): a sweep of a model's params, the compiled side against the
 //!   baseline on it, and the report as text, JSON and an SVG plot.
-//! - [`families`]: generators of model families of any size (a chain of four-bars, a sketch
-//!   profile, a Warren truss; many params, many points), the workloads of the scaling, stress
-//!   and peer benchmarks.
+//! - [`families`]: the compiler's generators of model families of any size (a chain of
+//!   four-bars, a sketch profile, a Warren truss; many params, many points), re-exported: the
+//!   workloads of the scaling, stress and peer benchmarks.
 //!
 //! Like every library crate here, it never prints or exits.
 
 pub mod baseline;
 pub mod bench;
-pub mod families;
+pub use gcs_compiler::families;

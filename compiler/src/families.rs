@@ -429,11 +429,11 @@ mod tests {
     fn solve(text: &str) -> f64 {
         let (diags, model, _) = gcs_lang::load("family.gcs", text.as_bytes());
         let model = model.unwrap_or_else(|| panic!("{diags:?}\n{text}"));
-        let analysis = gcs_compiler::analyse(&model).expect("analysis");
+        let analysis = crate::analyse(&model).expect("analysis");
         assert!(analysis.unsolved.is_empty(), "{text}");
         assert!(analysis.free_geoms().is_empty(), "{text}");
         let branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
-        let s = gcs_compiler::solve(&model, &analysis, &model.default_params(), &branches)
+        let s = crate::solve(&model, &analysis, &model.default_params(), &branches)
             .unwrap_or_else(|e| panic!("{e}\n{text}"));
         s.max_residual
     }
