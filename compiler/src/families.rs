@@ -28,11 +28,13 @@ pub enum Family {
     Points,
     /// [`rssr_chain`]: spatial four-bars in series.
     RssrChain,
+    /// [`mixed`]: stages of three kinds woven together, whose pieces mostly differ.
+    Mixed,
 }
 
 impl Family {
     /// Every family, in a fixed order.
-    pub const ALL: [Family; 7] = [
+    pub const ALL: [Family; 8] = [
         Family::FourBarChain,
         Family::SketchProfile,
         Family::ClosedProfile,
@@ -40,6 +42,7 @@ impl Family {
         Family::Params,
         Family::Points,
         Family::RssrChain,
+        Family::Mixed,
     ];
 
     /// The family's short name, as the command line and the reports spell it.
@@ -52,6 +55,7 @@ impl Family {
             Family::Params => "params",
             Family::Points => "points",
             Family::RssrChain => "rssr_chain",
+            Family::Mixed => "mixed",
         }
     }
 
@@ -70,6 +74,7 @@ impl Family {
             Family::Params => params(n),
             Family::Points => points(n),
             Family::RssrChain => rssr_chain(n),
+            Family::Mixed => mixed(n),
         }
     }
 
@@ -83,6 +88,7 @@ impl Family {
             Family::Params => ("p0", 0.5, 1.5),
             Family::Points => ("gap", 0.5, 1.5),
             Family::RssrChain => ("theta", 0.0, std::f64::consts::TAU),
+            Family::Mixed => ("theta", 0.0, std::f64::consts::TAU),
         }
     }
 }
@@ -102,30 +108,41 @@ pub fn four_bar_chain(n: usize) -> String {
     );
     s.push_str("space 2d;\n\nparam theta = 30 deg;\n\n");
     s.push_str("fixed vector X = (1, 0);\nfixed point P0 = (0, 0);\n");
-    s.push_str(
-        "body crank at (0, 0) { point a = (0, 0); point b = (1.5, 0); vector u = (1, 0); }\n",
-    );
-    s.push_str("coincident(crank.a, P0);\ndrive: angle(X, crank.u) = theta;\n");
-    let mut prev = "crank".to_string();
+    s.push_str(FOUR_BAR_HEAD);
     for k in 1..=n {
-        let x = 4 * k;
-        let _ = writeln!(s, "\nfixed point P{k} = ({x}, 0);");
-        let _ = writeln!(
-            s,
-            "body coupler{k} at ({}, 0) {{ point b = (0, 0); point c = (4, 0); }}",
-            x - 3
-        );
-        let _ = writeln!(
-            s,
-            "body rocker{k} at ({x}, 0) {{ point d = (0, 0); point c = (0, 3); point b = (0, -1.5); }}"
-        );
-        let _ = writeln!(s, "coincident({prev}.b, coupler{k}.b);");
-        let _ = writeln!(s, "elbow{k}: coincident(coupler{k}.c, rocker{k}.c);");
-        let _ = writeln!(s, "coincident(rocker{k}.d, P{k});");
-        prev = format!("rocker{k}");
+        four_bar_stage(&mut s, k);
     }
-    let _ = writeln!(s, "\noutput {prev}.b;");
+    let _ = writeln!(s, "\noutput rocker{n}.b;");
     s
+}
+
+/// The chain of four-bars' ground and crank, turned by `theta` about `P0`.
+const FOUR_BAR_HEAD: &str = "body crank at (0, 0) { point a = (0, 0); point b = (1.5, 0); \
+                             vector u = (1, 0); }\n\
+                             coincident(crank.a, P0);\ndrive: angle(X, crank.u) = theta;\n";
+
+/// Stage `k` (from 1) of the chain of four-bars, driven by the rocker before it (the crank
+/// for the first).
+fn four_bar_stage(s: &mut String, k: usize) {
+    let prev = if k == 1 {
+        "crank".to_string()
+    } else {
+        format!("rocker{}", k - 1)
+    };
+    let x = 4 * k;
+    let _ = writeln!(s, "\nfixed point P{k} = ({x}, 0);");
+    let _ = writeln!(
+        s,
+        "body coupler{k} at ({}, 0) {{ point b = (0, 0); point c = (4, 0); }}",
+        x - 3
+    );
+    let _ = writeln!(
+        s,
+        "body rocker{k} at ({x}, 0) {{ point d = (0, 0); point c = (0, 3); point b = (0, -1.5); }}"
+    );
+    let _ = writeln!(s, "coincident({prev}.b, coupler{k}.b);");
+    let _ = writeln!(s, "elbow{k}: coincident(coupler{k}.c, rocker{k}.c);");
+    let _ = writeln!(s, "coincident(rocker{k}.d, P{k});");
 }
 
 /// `n` spatial four-bars (RSSR: revolute, spherical, spherical, revolute) in series, each
@@ -262,37 +279,43 @@ pub fn sketch_profile(n: usize) -> String {
     );
     s.push_str("space 2d;\n\nparam len = 10;\nparam r = 2;\n\n");
     s.push_str("fixed point origin = (0, 0);\nfixed vector X = (1, 0);\n");
-    let (mut x, mut y) = (0.0f64, 0.0f64);
+    let mut at = (0.0f64, 0.0f64);
     for k in 0..n {
-        let deg: f64 = if k % 2 == 0 { 20.0 } else { -20.0 };
-        let (dy, dx) = deg.to_radians().sin_cos();
-        let (ex, ey) = (x + 10.0 * dx, y + 10.0 * dy);
-        let _ = writeln!(
-            s,
-            "\nsegment s{k} = ({x:.3}, {y:.3}) -> ({ex:.3}, {ey:.3});"
-        );
-        if k == 0 {
-            s.push_str("coincident(s0.start, origin);\n");
-        }
-        let _ = writeln!(s, "angle(X, s{k}) = {deg} deg;");
-        let _ = writeln!(s, "length(s{k}) = len;");
-        // The fillet's centre: on the inside of the turn, 2 from the segment's end.
-        let side = if deg > 0.0 { -1.0 } else { 1.0 };
-        let (cx, cy) = (ex - side * 2.0 * dy, ey + side * 2.0 * dx);
-        let _ = writeln!(s, "circle f{k} = center ({cx:.3}, {cy:.3}) radius 2;");
-        let _ = writeln!(s, "radius(f{k}) = r;");
-        let _ = writeln!(s, "tangent(s{k}, f{k});");
-        let _ = writeln!(s, "on(s{k}.end, f{k});");
-        if k > 0 {
-            let _ = writeln!(s, "tangent(s{k}, f{});", k - 1);
-            let _ = writeln!(s, "on(s{k}.start, f{});", k - 1);
-        }
-        // The next segment starts past the arc.
-        x = ex + 1.0;
-        y = ey;
+        sketch_stage(&mut s, k, &mut at);
     }
     let _ = writeln!(s, "\noutput f{};", n - 1);
     s
+}
+
+/// Segment `k` of the sketch profile and its fillet, starting at `at` (moved past the arc):
+/// at 20 degrees up or down in turn, tangent to the fillet before it.
+fn sketch_stage(s: &mut String, k: usize, at: &mut (f64, f64)) {
+    let (x, y) = *at;
+    let deg: f64 = if k.is_multiple_of(2) { 20.0 } else { -20.0 };
+    let (dy, dx) = deg.to_radians().sin_cos();
+    let (ex, ey) = (x + 10.0 * dx, y + 10.0 * dy);
+    let _ = writeln!(
+        s,
+        "\nsegment s{k} = ({x:.3}, {y:.3}) -> ({ex:.3}, {ey:.3});"
+    );
+    if k == 0 {
+        s.push_str("coincident(s0.start, origin);\n");
+    }
+    let _ = writeln!(s, "angle(X, s{k}) = {deg} deg;");
+    let _ = writeln!(s, "length(s{k}) = len;");
+    // The fillet's centre: on the inside of the turn, 2 from the segment's end.
+    let side = if deg > 0.0 { -1.0 } else { 1.0 };
+    let (cx, cy) = (ex - side * 2.0 * dy, ey + side * 2.0 * dx);
+    let _ = writeln!(s, "circle f{k} = center ({cx:.3}, {cy:.3}) radius 2;");
+    let _ = writeln!(s, "radius(f{k}) = r;");
+    let _ = writeln!(s, "tangent(s{k}, f{k});");
+    let _ = writeln!(s, "on(s{k}.end, f{k});");
+    if k > 0 {
+        let _ = writeln!(s, "tangent(s{k}, f{});", k - 1);
+        let _ = writeln!(s, "on(s{k}.start, f{});", k - 1);
+    }
+    // The next segment starts past the arc.
+    *at = (ex + 1.0, ey);
 }
 
 /// A closed profile of `n` segments (at least 3), each turned `360 / n` degrees from the last,
@@ -361,18 +384,81 @@ pub fn truss(n: usize) -> String {
     s.push_str("fixed point p0 = (0, 0);\n");
     let _ = writeln!(s, "fixed point p1 = (1, {h:.17});");
     for k in 2..n + 2 {
-        let y = if k % 2 == 1 { h } else { 0.0 };
-        // The sketch is off the assembly by a little, as a user's drawing would be.
-        let _ = writeln!(
-            s,
-            "\npoint p{k} = ({:.3}, {:.3});",
-            k as f64 + 0.05,
-            y - 0.04
-        );
-        let _ = writeln!(s, "distance(p{}, p{k}) = bar;", k - 2);
-        let _ = writeln!(s, "distance(p{}, p{k}) = bar;", k - 1);
+        truss_stage(&mut s, "p", k);
     }
     let _ = writeln!(s, "\noutput p{};", n + 1);
+    s
+}
+
+/// Point `{p}{k}` of the truss (from 2), at `bar` from the two before it: a triangle.
+fn truss_stage(s: &mut String, p: &str, k: usize) {
+    let h = 3f64.sqrt();
+    let y = if k % 2 == 1 { h } else { 0.0 };
+    // The sketch is off the assembly by a little, as a user's drawing would be.
+    let _ = writeln!(
+        s,
+        "\npoint {p}{k} = ({:.3}, {:.3});",
+        k as f64 + 0.05,
+        y - 0.04
+    );
+    let _ = writeln!(s, "distance({p}{}, {p}{k}) = bar;", k - 2);
+    let _ = writeln!(s, "distance({p}{}, {p}{k}) = bar;", k - 1);
+}
+
+/// `n` stages of three kinds woven into one model: a chain of four-bars, a truss and a sketch
+/// profile, each stage of a kind picked by a fixed pseudo-random sequence. The three are
+/// independent (no constraint joins them), but the plan takes their stages in the order
+/// written, so its runs of step groups seldom repeat: a large model whose pieces mostly
+/// differ, where every other family repeats one (issue 22).
+pub fn mixed(n: usize) -> String {
+    let n = n.max(3);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// {n} stages of a chain of four-bars, a truss and a sketch profile, woven together."
+    );
+    s.push_str(
+        "space 2d;\n\nparam theta = 30 deg;\nparam bar = 2;\nparam len = 10;\nparam r = 2;\n\n",
+    );
+    s.push_str("fixed vector X = (1, 0);\nfixed point P0 = (0, 0);\n");
+    s.push_str(FOUR_BAR_HEAD);
+    let _ = writeln!(
+        s,
+        "fixed point t0 = (0, 0);\nfixed point t1 = (1, {:.17});",
+        3f64.sqrt()
+    );
+    s.push_str("fixed point origin = (0, 0);\n");
+    let (mut bars, mut truss, mut sketch) = (0, 2, 0);
+    let mut at = (0.0f64, 0.0f64);
+    // xorshift64: the same sequence on every machine.
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    for k in 0..n {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        // Each kind at least once.
+        let kind = if k < 3 { k as u64 } else { seed % 3 };
+        match kind {
+            0 => {
+                bars += 1;
+                four_bar_stage(&mut s, bars);
+            }
+            1 => {
+                truss_stage(&mut s, "t", truss);
+                truss += 1;
+            }
+            _ => {
+                sketch_stage(&mut s, sketch, &mut at);
+                sketch += 1;
+            }
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\noutput rocker{bars}.b, t{}, f{};",
+        truss - 1,
+        sketch - 1
+    );
     s
 }
 
