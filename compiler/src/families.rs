@@ -306,6 +306,15 @@ fn sketch_stage(s: &mut String, k: usize, at: &mut (f64, f64)) {
     // The fillet's centre: on the inside of the turn, 2 from the segment's end.
     let side = if deg > 0.0 { -1.0 } else { 1.0 };
     let (cx, cy) = (ex - side * 2.0 * dy, ey + side * 2.0 * dx);
+    fillet(s, k, (cx, cy));
+    // The next segment starts past the arc.
+    *at = (ex + 1.0, ey);
+}
+
+/// Fillet `f{k}` of a profile, sketched at centre `(cx, cy)`, of radius `r`: tangent to
+/// segment `s{k}` through its end; and `s{k}` (but the first) tangent to the fillet before it
+/// through its start.
+fn fillet(s: &mut String, k: usize, (cx, cy): (f64, f64)) {
     let _ = writeln!(s, "circle f{k} = center ({cx:.3}, {cy:.3}) radius 2;");
     let _ = writeln!(s, "radius(f{k}) = r;");
     let _ = writeln!(s, "tangent(s{k}, f{k});");
@@ -314,8 +323,6 @@ fn sketch_stage(s: &mut String, k: usize, at: &mut (f64, f64)) {
         let _ = writeln!(s, "tangent(s{k}, f{});", k - 1);
         let _ = writeln!(s, "on(s{k}.start, f{});", k - 1);
     }
-    // The next segment starts past the arc.
-    *at = (ex + 1.0, ey);
 }
 
 /// A closed profile of `n` segments (at least 3), each turned `360 / n` degrees from the last,
@@ -351,14 +358,7 @@ pub fn closed_profile(n: usize) -> String {
         }
         // The fillet's centre: to the left of the segment's end (the profile turns left).
         let (cx, cy) = (ex - 2.0 * dy, ey + 2.0 * dx);
-        let _ = writeln!(s, "circle f{k} = center ({cx:.3}, {cy:.3}) radius 2;");
-        let _ = writeln!(s, "radius(f{k}) = r;");
-        let _ = writeln!(s, "tangent(s{k}, f{k});");
-        let _ = writeln!(s, "on(s{k}.end, f{k});");
-        if k > 0 {
-            let _ = writeln!(s, "tangent(s{k}, f{});", k - 1);
-            let _ = writeln!(s, "on(s{k}.start, f{});", k - 1);
-        }
+        fillet(&mut s, k, (cx, cy));
         // The next segment starts where the arc ends.
         let (ny, nx) = ((k + 1) as f64 * turn).to_radians().sin_cos();
         x = cx + 2.0 * ny;
