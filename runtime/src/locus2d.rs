@@ -117,7 +117,7 @@ impl Line {
 
     /// The line through `point` along `dir` (normalised). `None` when `dir` is zero or a value
     /// is not finite.
-    #[inline]
+    #[inline(always)]
     pub fn new(point: P2, dir: V2) -> Option<Self> {
         if !finite_p(point) {
             return None;

@@ -265,11 +265,21 @@ impl Context<'_> {
             return self.sketch_dim3(g);
         }
         match &self.model.geoms[g].sketch {
-            Sketch::Segment { from, to } => Some(format!(
-                "({} - {}).norm()",
-                self.point_lit(to),
-                self.point_lit(from)
-            )),
+            Sketch::Segment { from, to } => {
+                // Two literal ends: the length here, as the solve would compute it.
+                if let (Value::Point(tx, ty), Value::Point(fx, fy)) =
+                    (self.sketch_point(to), self.sketch_point(from))
+                {
+                    let length =
+                        (nalgebra::Point2::new(tx, ty) - nalgebra::Point2::new(fx, fy)).norm();
+                    return Some(float(length));
+                }
+                Some(format!(
+                    "({} - {}).norm()",
+                    self.point_lit(to),
+                    self.point_lit(from)
+                ))
+            }
             Sketch::Circle { radius, .. } => Some(self.expr(*radius)),
             _ => None,
         }

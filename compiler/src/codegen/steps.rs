@@ -512,8 +512,29 @@ impl Solve<'_> {
 
     /// `dir` turned by `angle`: a direction at that angle when `dir` is the x axis (a finite
     /// unit direction when the angle is finite).
+    /// A literal angle is turned here, by the runtime's own `direction_at` (the bits the solve
+    /// would compute), so that a table of pieces holds the direction, not the angle to take
+    /// the sine and cosine of at each solve.
     fn rotated(&mut self, w: &mut Writer, r: Reg, dir: Reg, angle: Reg) {
         let (d, a) = (self.r(dir), self.r(angle));
+        let literal = match *self.facts.value(angle) {
+            Value::Scalar(a) if a.is_finite() => {
+                let v = gcs_runtime::frame::direction_at(a);
+                Some(Value::Vector(v.x, v.y))
+            }
+            _ => None,
+        };
+        if let Some(turned) = literal {
+            let n = self.derived_name(dir, "_turned", "direction");
+            if self.facts.value(dir).is_x_axis() {
+                self.facts.unit_dirs.insert(r);
+                self.define_or_alias(w, r, &n, turned);
+            } else {
+                let code = format!("rotation_from_x_unit(&{}) * {d}", turned.code());
+                self.define(w, r, &n, &code);
+            }
+            return;
+        }
         let code = if self.facts.value(dir).is_x_axis() {
             if self.facts.is_finite(angle) {
                 self.facts.unit_dirs.insert(r);

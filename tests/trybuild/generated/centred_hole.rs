@@ -406,16 +406,15 @@ pub fn solve(
     right.place_origin(&bottom_end);
 
     // horizontal(top) (centred_hole.gcs:25)
-    let direction = direction_at(std::f64::consts::PI);
     let top_dir = top.x_axis();
-    let turn_2 = rotation_between_units(&top_dir, &direction);
+    let turn_2 = rotation_between_units(&top_dir, &Vector2::new(-1.0, 1.2246467991473532e-16));
     top.turn_by(&turn_2);
 
     // vertical(left) (centred_hole.gcs:26)
-    let direction_2 =
-        rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * Vector2::new(0.0, 1.0);
+    let direction =
+        rotation_from_x_unit(&Vector2::new(-1.0, 1.2246467991473532e-16)) * Vector2::new(0.0, 1.0);
     let left_dir = left.x_axis();
-    let turn_3 = rotation_between_units(&left_dir, &direction_2);
+    let turn_3 = rotation_between_units(&left_dir, &direction);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_3);
 
     // coincident(top.end, left.start) (centred_hole.gcs:21)
@@ -494,7 +493,7 @@ pub fn solve(
     // coincident(diagonal.end, top.start) (centred_hole.gcs:30)
     let top_start_2 = top.origin;
     let diagonal_dir = diagonal.x_axis();
-    let direction_3 = (top_start_2 - Point2::new(0.0, 0.0))
+    let direction_2 = (top_start_2 - Point2::new(0.0, 0.0))
         .try_normalize(0.0)
         .ok_or_else(|| {
             SolveError::new(
@@ -504,9 +503,9 @@ pub fn solve(
                 0.0,
             )
         })?;
-    let turn_5 = rotation_between_units(&diagonal_dir, &direction_3);
+    let turn_5 = rotation_between_units(&diagonal_dir, &direction_2);
     diagonal.turn_by(&turn_5);
-    let length_3 = (top_start_2 - Point2::new(0.0, 0.0)).dot(&direction_3);
+    let length_3 = (top_start_2 - Point2::new(0.0, 0.0)).dot(&direction_2);
     if !gcs_runtime::num::is_finite(length_3) || length_3 < 0.0 {
         return Err(SolveError::new(
             "coincident_diagonal_end_top_start",

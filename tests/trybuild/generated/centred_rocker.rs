@@ -334,7 +334,7 @@ pub fn solve(
             )
         })?;
     let direction_turned =
-        rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * direction;
+        rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * direction;
     let normal_dir = normal.x_axis();
     let turn_2 = rotation_between_units(&normal_dir, &direction_turned);
     normal.turn_by(&turn_2);

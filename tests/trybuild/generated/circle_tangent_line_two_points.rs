@@ -206,7 +206,7 @@ pub fn solve(
             )
         })?;
     let direction_turned =
-        rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * direction;
+        rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * direction;
     let length = (b_2 - Point2::new(1.0, 1.5)).dot(&direction);
     let sum = -0.5 * length;
     if !gcs_runtime::num::is_finite(sum) {

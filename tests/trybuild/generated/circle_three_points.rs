@@ -195,7 +195,7 @@ pub fn solve(
         .try_normalize(0.0)
         .ok_or_else(|| SolveError::new("on_C_K", "on(C, K)", ErrorKind::Degenerate, 0.0))?;
     let direction_turned =
-        rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * direction;
+        rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * direction;
     let length = (Point2::new(4.0, 0.5) - Point2::new(0.0, 0.0)).dot(&direction);
     let sum = -0.5 * length;
     if !gcs_runtime::num::is_finite(sum) {
@@ -213,7 +213,7 @@ pub fn solve(
         .try_normalize(0.0)
         .ok_or_else(|| SolveError::new("on_C_K", "on(C, K)", ErrorKind::Degenerate, 0.0))?;
     let direction_2_turned =
-        rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * direction_2;
+        rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * direction_2;
     let length_2 = (d_2 - Point2::new(0.0, 0.0)).dot(&direction_2);
     let sum_2 = -0.5 * length_2;
     if !gcs_runtime::num::is_finite(sum_2) {

@@ -415,35 +415,40 @@ pub fn solve(
 
     // angle(s1, s2) = 60 deg (hexagon.gcs:24)
     let s1_dir_2 = s1.x_axis();
-    let s1_dir_2_turned = rotation_from_x_unit(&direction_at(1.0471975511965976)) * s1_dir_2;
+    let s1_dir_2_turned =
+        rotation_from_x_unit(&Vector2::new(0.5000000000000001, 0.8660254037844386)) * s1_dir_2;
     let s2_dir = s2.x_axis();
     let turn_2 = rotation_between_units(&s2_dir, &s1_dir_2_turned);
     s2.turn_by(&turn_2);
 
     // angle(s2, s3) = 60 deg (hexagon.gcs:25)
     let s2_dir_2 = s2.x_axis();
-    let s2_dir_2_turned = rotation_from_x_unit(&direction_at(1.0471975511965976)) * s2_dir_2;
+    let s2_dir_2_turned =
+        rotation_from_x_unit(&Vector2::new(0.5000000000000001, 0.8660254037844386)) * s2_dir_2;
     let s3_dir = s3.x_axis();
     let turn_3 = rotation_between_units(&s3_dir, &s2_dir_2_turned);
     s3.turn_by(&turn_3);
 
     // angle(s3, s4) = 60 deg (hexagon.gcs:26)
     let s3_dir_2 = s3.x_axis();
-    let s3_dir_2_turned = rotation_from_x_unit(&direction_at(1.0471975511965976)) * s3_dir_2;
+    let s3_dir_2_turned =
+        rotation_from_x_unit(&Vector2::new(0.5000000000000001, 0.8660254037844386)) * s3_dir_2;
     let s4_dir = s4.x_axis();
     let turn_4 = rotation_between_units(&s4_dir, &s3_dir_2_turned);
     s4.turn_by(&turn_4);
 
     // angle(s4, s5) = 60 deg (hexagon.gcs:27)
     let s4_dir_2 = s4.x_axis();
-    let s4_dir_2_turned = rotation_from_x_unit(&direction_at(1.0471975511965976)) * s4_dir_2;
+    let s4_dir_2_turned =
+        rotation_from_x_unit(&Vector2::new(0.5000000000000001, 0.8660254037844386)) * s4_dir_2;
     let s5_dir = s5.x_axis();
     let turn_5 = rotation_between_units(&s5_dir, &s4_dir_2_turned);
     s5.turn_by(&turn_5);
 
     // angle(s5, s6) = 60 deg (hexagon.gcs:28)
     let s5_dir_2 = s5.x_axis();
-    let s5_dir_2_turned = rotation_from_x_unit(&direction_at(1.0471975511965976)) * s5_dir_2;
+    let s5_dir_2_turned =
+        rotation_from_x_unit(&Vector2::new(0.5000000000000001, 0.8660254037844386)) * s5_dir_2;
     let s6_dir = s6.x_axis();
     let turn_6 = rotation_between_units(&s6_dir, &s5_dir_2_turned);
     s6.rotate_about_by(&Point2::new(0.0, 0.0), &turn_6);

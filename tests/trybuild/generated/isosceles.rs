@@ -346,7 +346,7 @@ pub fn solve(
             )
         })?;
     let direction_turned =
-        rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * direction;
+        rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * direction;
     let axis_dir = axis.x_axis();
     let turn_2 = rotation_between_units(&axis_dir, &direction_turned);
     axis.turn_by(&turn_2);

@@ -437,15 +437,13 @@ pub fn solve(
     s2.place_origin(&s1_end);
 
     // horizontal(s3) (l_bracket.gcs:28)
-    let direction = direction_at(std::f64::consts::PI);
     let s3_dir = s3.x_axis();
-    let turn_2 = rotation_between_units(&s3_dir, &direction);
+    let turn_2 = rotation_between_units(&s3_dir, &Vector2::new(-1.0, 1.2246467991473532e-16));
     s3.turn_by(&turn_2);
 
     // horizontal(s5) (l_bracket.gcs:30)
-    let direction_2 = direction_at(std::f64::consts::PI);
     let s5_dir = s5.x_axis();
-    let turn_3 = rotation_between_units(&s5_dir, &direction_2);
+    let turn_3 = rotation_between_units(&s5_dir, &Vector2::new(-1.0, 1.2246467991473532e-16));
     s5.turn_by(&turn_3);
 
     // vertical(s2) (l_bracket.gcs:27)
@@ -463,10 +461,10 @@ pub fn solve(
     s4.turn_by(&turn_5);
 
     // vertical(s6) (l_bracket.gcs:31)
-    let direction_3 =
-        rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * Vector2::new(0.0, 1.0);
+    let direction =
+        rotation_from_x_unit(&Vector2::new(-1.0, 1.2246467991473532e-16)) * Vector2::new(0.0, 1.0);
     let s6_dir = s6.x_axis();
-    let turn_6 = rotation_between_units(&s6_dir, &direction_3);
+    let turn_6 = rotation_between_units(&s6_dir, &direction);
     s6.rotate_about_by(&Point2::new(0.0, 0.0), &turn_6);
 
     // coincident(s5.end, s6.start) (l_bracket.gcs:24)

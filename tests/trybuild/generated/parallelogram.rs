@@ -352,7 +352,7 @@ pub fn solve(
 
     // parallel(bottom, top) (parallelogram.gcs:21)
     let bottom_dir_2_turned_2 =
-        rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * bottom_dir_2;
+        rotation_from_x_unit(&Vector2::new(-1.0, 1.2246467991473532e-16)) * bottom_dir_2;
     let top_dir = top.x_axis();
     let turn_3 = rotation_between_units(&top_dir, &bottom_dir_2_turned_2);
     top.turn_by(&turn_3);
@@ -360,7 +360,7 @@ pub fn solve(
     // parallel(left, right) (parallelogram.gcs:22)
     let right_dir_2 = right.x_axis();
     let right_dir_2_turned =
-        rotation_from_x_unit(&direction_at(-std::f64::consts::PI)) * right_dir_2;
+        rotation_from_x_unit(&Vector2::new(-1.0, -1.2246467991473532e-16)) * right_dir_2;
     let left_dir = left.x_axis();
     let turn_4 = rotation_between_units(&left_dir, &right_dir_2_turned);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_4);

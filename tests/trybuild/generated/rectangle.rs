@@ -332,16 +332,15 @@ pub fn solve(
     right.place_origin(&bottom_end);
 
     // horizontal(top) (rectangle.gcs:24)
-    let direction = direction_at(std::f64::consts::PI);
     let top_dir = top.x_axis();
-    let turn_2 = rotation_between_units(&top_dir, &direction);
+    let turn_2 = rotation_between_units(&top_dir, &Vector2::new(-1.0, 1.2246467991473532e-16));
     top.turn_by(&turn_2);
 
     // vertical(left) (rectangle.gcs:25)
-    let direction_2 =
-        rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * Vector2::new(0.0, 1.0);
+    let direction =
+        rotation_from_x_unit(&Vector2::new(-1.0, 1.2246467991473532e-16)) * Vector2::new(0.0, 1.0);
     let left_dir = left.x_axis();
-    let turn_3 = rotation_between_units(&left_dir, &direction_2);
+    let turn_3 = rotation_between_units(&left_dir, &direction);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_3);
 
     // coincident(top.end, left.start) (rectangle.gcs:20)

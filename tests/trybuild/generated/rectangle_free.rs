@@ -357,7 +357,7 @@ pub fn solve(
 
     // parallel(left, Y) (rectangle_free.gcs:25)
     let y_dir = y.x_axis();
-    let y_dir_turned = rotation_from_x_unit(&direction_at(-std::f64::consts::PI)) * y_dir;
+    let y_dir_turned = rotation_from_x_unit(&Vector2::new(-1.0, -1.2246467991473532e-16)) * y_dir;
     let left_dir = left.x_axis();
     let turn_2 = rotation_between_units(&left_dir, &y_dir_turned);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_2);
@@ -368,9 +368,8 @@ pub fn solve(
     right.turn_by(&turn_3);
 
     // parallel(top, X) (rectangle_free.gcs:24)
-    let x_dir_turned = direction_at(-std::f64::consts::PI);
     let top_dir = top.x_axis();
-    let turn_4 = rotation_between_units(&top_dir, &x_dir_turned);
+    let turn_4 = rotation_between_units(&top_dir, &Vector2::new(-1.0, -1.2246467991473532e-16));
     top.turn_by(&turn_4);
 
     // coincident(top.end, left.start) (rectangle_free.gcs:21)

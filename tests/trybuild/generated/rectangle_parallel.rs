@@ -350,21 +350,22 @@ pub fn solve(
     // parallel(bottom, top) (rectangle_parallel.gcs:23)
     let bottom_dir_2 = bottom.x_axis();
     let bottom_dir_2_turned =
-        rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * bottom_dir_2;
+        rotation_from_x_unit(&Vector2::new(-1.0, 1.2246467991473532e-16)) * bottom_dir_2;
     let top_dir = top.x_axis();
     let turn_2 = rotation_between_units(&top_dir, &bottom_dir_2_turned);
     top.turn_by(&turn_2);
 
     // perpendicular(bottom, left) (rectangle_parallel.gcs:25)
     let bottom_dir_2_turned_2 =
-        rotation_from_x_unit(&direction_at(-std::f64::consts::FRAC_PI_2)) * bottom_dir_2;
+        rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, -1.0)) * bottom_dir_2;
     let left_dir = left.x_axis();
     let turn_3 = rotation_between_units(&left_dir, &bottom_dir_2_turned_2);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_3);
 
     // parallel(left, right) (rectangle_parallel.gcs:24)
     let left_dir_2 = left.x_axis();
-    let left_dir_2_turned = rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * left_dir_2;
+    let left_dir_2_turned =
+        rotation_from_x_unit(&Vector2::new(-1.0, 1.2246467991473532e-16)) * left_dir_2;
     let right_dir = right.x_axis();
     let turn_4 = rotation_between_units(&right_dir, &left_dir_2_turned);
     right.turn_by(&turn_4);

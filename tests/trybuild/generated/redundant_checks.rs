@@ -341,7 +341,7 @@ pub fn solve(
                 r_radius,
                 s.origin.x,
                 s.origin.y,
-                (Point2::new(3.8, 0.1) - Point2::new(0.0, 0.2)).norm(),
+                3.8013155617496426,
                 k.origin.x,
                 k.origin.y,
                 0.9,
@@ -434,7 +434,7 @@ pub fn solve(
     }
 
     // e_up: perpendicular(s, u) (redundant_checks.gcs:33)
-    let s_dir_turned = rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * s_dir;
+    let s_dir_turned = rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * s_dir;
     let u_dir = u.x_axis();
     let turn_2 = rotation_between_units(&u_dir, &s_dir_turned);
     u.turn_by(&turn_2);

@@ -300,7 +300,7 @@ pub fn solve(
                 t_length,
                 s.origin.x,
                 s.origin.y,
-                (Point2::new(3.9, 0.2) - Point2::new(0.1, 0.1)).norm(),
+                3.8013155617496426,
             ]));
 
     // a_start: coincident(S.start, A) (redundant_sketcher.gcs:21)

@@ -337,7 +337,8 @@ pub fn solve(
     c.place_origin(&b_end);
 
     // parallel(a, c) (rhombus.gcs:23)
-    let a_dir_2_turned_2 = rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * a_dir_2;
+    let a_dir_2_turned_2 =
+        rotation_from_x_unit(&Vector2::new(-1.0, 1.2246467991473532e-16)) * a_dir_2;
     let c_dir = c.x_axis();
     let turn_3 = rotation_between_units(&c_dir, &a_dir_2_turned_2);
     c.turn_by(&turn_3);

@@ -318,10 +318,10 @@ pub fn solve(
                 origin.origin.y,
                 bottom.origin.x,
                 bottom.origin.y,
-                (Point2::new(10.0, 0.0) - Point2::new(0.0, 0.0)).norm(),
+                10.0,
                 right.origin.x,
                 right.origin.y,
-                (Point2::new(10.0, 4.0) - Point2::new(10.0, 0.0)).norm(),
+                4.0,
                 fillet.origin.x,
                 fillet.origin.y,
                 2.0,
@@ -330,7 +330,7 @@ pub fn solve(
                 top_length,
                 left.origin.x,
                 left.origin.y,
-                (Point2::new(0.0, 0.0) - Point2::new(0.0, 6.0)).norm(),
+                6.0,
             ]));
 
     // height: length(left) = h (sketch_profile.gcs:29)
@@ -387,16 +387,15 @@ pub fn solve(
     right.place_origin(&bottom_end);
 
     // horizontal(top) (sketch_profile.gcs:22)
-    let direction = direction_at(std::f64::consts::PI);
     let top_dir = top.x_axis();
-    let turn_2 = rotation_between_units(&top_dir, &direction);
+    let turn_2 = rotation_between_units(&top_dir, &Vector2::new(-1.0, 1.2246467991473532e-16));
     top.turn_by(&turn_2);
 
     // vertical(left) (sketch_profile.gcs:23)
-    let direction_2 =
-        rotation_from_x_unit(&direction_at(std::f64::consts::PI)) * Vector2::new(0.0, 1.0);
+    let direction =
+        rotation_from_x_unit(&Vector2::new(-1.0, 1.2246467991473532e-16)) * Vector2::new(0.0, 1.0);
     let left_dir = left.x_axis();
-    let turn_3 = rotation_between_units(&left_dir, &direction_2);
+    let turn_3 = rotation_between_units(&left_dir, &direction);
     left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_3);
 
     // coincident(top.end, left.start) (sketch_profile.gcs:18)

@@ -565,7 +565,7 @@ pub fn solve(
         .try_normalize(0.0)
         .ok_or_else(|| SolveError::new("b5", "symmetric(P, Q, ml)", ErrorKind::Degenerate, 0.0))?;
     let direction_3_turned =
-        rotation_from_x_unit(&direction_at(std::f64::consts::FRAC_PI_2)) * direction_3;
+        rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * direction_3;
     let ml_dir = ml.x_axis();
     let turn_3 = rotation_between_units(&ml_dir, &direction_3_turned);
     ml.turn_by(&turn_3);
@@ -581,9 +581,11 @@ pub fn solve(
     }
 
     // c3: angle(X, s3) = 45 deg (sketcher_fragments.gcs:40)
-    let x_dir_turned = direction_at(std::f64::consts::FRAC_PI_4);
     let s3_dir = s3.x_axis();
-    let turn_4 = rotation_between_units(&s3_dir, &x_dir_turned);
+    let turn_4 = rotation_between_units(
+        &s3_dir,
+        &Vector2::new(std::f64::consts::FRAC_1_SQRT_2, 0.7071067811865475),
+    );
     s3.rotate_about_by(&Point2::new(5.0, -3.0), &turn_4);
 
     // c4: on(k4.center, wall) (sketcher_fragments.gcs:43)

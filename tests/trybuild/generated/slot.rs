@@ -263,10 +263,10 @@ pub fn solve(
                 0.9,
                 top.origin.x,
                 top.origin.y,
-                (Point2::new(5.0, 1.1) - Point2::new(0.1, 1.0)).norm(),
+                4.901020301937139,
                 bottom.origin.x,
                 bottom.origin.y,
-                (Point2::new(0.0, -1.1) - Point2::new(5.0, -0.9)).norm(),
+                5.0039984012787215,
             ]));
 
     // radius(left_end) = width / 2 (slot.gcs:15)
@@ -286,9 +286,8 @@ pub fn solve(
     // Already true where the sketch puts the geoms: nothing moves.
 
     // horizontal(bottom) (slot.gcs:17)
-    let direction = direction_at(std::f64::consts::PI);
     let bottom_dir = bottom.x_axis();
-    let turn = rotation_between_units(&bottom_dir, &direction);
+    let turn = rotation_between_units(&bottom_dir, &Vector2::new(-1.0, 1.2246467991473532e-16));
     bottom.turn_by(&turn);
 
     // horizontal(top) (slot.gcs:16)

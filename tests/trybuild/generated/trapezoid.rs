@@ -386,9 +386,8 @@ pub fn solve(
     right.place_origin(&base_end);
 
     // horizontal(top) (trapezoid.gcs:23)
-    let direction = direction_at(std::f64::consts::PI);
     let top_dir = top.x_axis();
-    let turn_4 = rotation_between_units(&top_dir, &direction);
+    let turn_4 = rotation_between_units(&top_dir, &Vector2::new(-1.0, 1.2246467991473532e-16));
     top.turn_by(&turn_4);
 
     // rise: distance(top.start, floor) = height (trapezoid.gcs:27)
