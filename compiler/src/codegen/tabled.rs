@@ -279,6 +279,21 @@ impl Cut {
                     cut.texts.push(w.to_string());
                     Role::Text(cut.texts.len() - 1)
                 }
+                // A negated number is one constant, sign and all, so that pieces alike but
+                // for the signs of their numbers (directions in every quadrant) share a
+                // shape; not before a method call, which binds tighter than the sign.
+                Tok::Punct
+                    if w == "-"
+                        && tokens.get(k + 1).is_some_and(|t| t.kind == Tok::Float)
+                        && word(k + 2) != "."
+                        && matches!(code_before(k), "(" | "," | "[" | "=" | "{") =>
+                {
+                    cut.constants.push(format!("-{}", word(k + 1)));
+                    cut.roles.push(Role::Constant(cut.constants.len() - 1));
+                    cut.roles.push(Role::Covered);
+                    k += 2;
+                    continue;
+                }
                 Tok::Int | Tok::Punct => Role::Code,
                 Tok::Ident => {
                     let before = code_before(k);
@@ -888,9 +903,14 @@ fn body(cut: &Cut, k_at: &[Option<usize>], t_at: &[Option<usize>], in_at: &[Inpu
         out.push_str(&cut.text[at..t.start]);
         out.push_str(&replacement);
         at = t.end;
-        if let Role::Input(..) = role {
+        match role {
             // The input spans three tokens.
-            at = cut.tokens[k + 2].end;
+            Role::Input(..) => at = cut.tokens[k + 2].end,
+            // A negated number spans two.
+            Role::Constant(_) if cut.roles.get(k + 1) == Some(&Role::Covered) => {
+                at = cut.tokens[k + 1].end;
+            }
+            _ => {}
         }
     }
     out.push_str(&cut.text[at..]);
@@ -1696,6 +1716,27 @@ g("a \"q\" b", 2u8, 3, x.0, 1e300);"#;
         assert!(toks.contains(&(Tok::Punct, "::")));
         assert!(toks.contains(&(Tok::Comment, "// \"not a string\"")));
         assert!(toks.contains(&(Tok::Str, r#""a \"q\" b""#)));
+    }
+
+    /// A number's sign is part of the constant, not of the shape; a minus between two values
+    /// is code.
+    #[test]
+    fn numbers_of_either_sign_are_one_shape_and_keep_their_sign() {
+        let outer = |_: &str| false;
+        let piece = |x: &str, y: &str| {
+            format!("let d = Vector2::new({x}, {y});\nlet e = d.x - 2.0;\nlet f = -3.5 * e;\n")
+        };
+        let a = Cut::new(piece("0.5", "-0.25"), &outer);
+        let b = Cut::new(piece("-0.5", "0.75"), &outer);
+        let none = HashMap::default();
+        assert_eq!(shape_key(&a, &none), shape_key(&b, &none));
+        assert_eq!(a.constants, ["0.5", "-0.25", "2.0", "-3.5"]);
+        assert_eq!(b.constants, ["-0.5", "0.75", "2.0", "-3.5"]);
+        let at: Vec<Option<usize>> = vec![Some(0), Some(1), None, None];
+        assert_eq!(
+            body(&b, &at, &[], &[]),
+            "let d = Vector2::new(row.k[0], row.k[1]);\nlet e = d.x - 2.0;\nlet f = -3.5 * e;\n"
+        );
     }
 
     /// Two pieces that differ only in the locals they name, the earlier values they read,
