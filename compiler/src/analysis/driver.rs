@@ -152,7 +152,9 @@ pub(crate) struct Builder<'m, G: Geometry> {
     pub(crate) model: &'m Model,
     pub(crate) plan: Plan,
     pub(crate) clusters: Vec<ClusterState<G::Record>>,
-    cluster_of: HashMap<GeomId, usize>,
+    /// The cluster of each top-level geom, by its index in the model's arena (0 for the
+    /// others, which no lookup reaches): read at every step, so a vector, not a map.
+    cluster_of: Vec<usize>,
     /// Registers holding invariant positions, reused once measured.
     known_points: HashMap<GeomId, Reg>,
     /// Registers holding current positions and directions, valid until their cluster moves.
@@ -185,12 +187,17 @@ pub(crate) struct Builder<'m, G: Geometry> {
     working: Option<ConstraintId>,
 }
 
+/// A geom's index in the model's arena.
+fn geom_index(g: GeomId) -> usize {
+    u32::from(g.into_raw()) as usize
+}
+
 impl<'m, G: Geometry> Builder<'m, G> {
     fn new(model: &'m Model) -> Self {
         let mut clusters = Vec::new();
-        let mut cluster_of = HashMap::default();
+        let mut cluster_of = vec![0; model.geoms.len()];
         for (id, _) in model.top_level() {
-            cluster_of.insert(id, clusters.len());
+            cluster_of[geom_index(id)] = clusters.len();
             clusters.push(ClusterState {
                 geoms: vec![id],
                 record: G::record(model, id),
@@ -438,7 +445,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// The cluster that moves feature or geom `g`.
     pub(crate) fn cluster(&self, g: GeomId) -> usize {
         let top = self.model.top_level_of(g);
-        self.cluster_of.get(&top).copied().unwrap_or(0)
+        self.cluster_of.get(geom_index(top)).copied().unwrap_or(0)
     }
 
     /// The record of the cluster that moves `g`.
@@ -984,7 +991,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             }
         }
         for &g in &geoms {
-            self.cluster_of.insert(g, ground);
+            self.cluster_of[geom_index(g)] = ground;
         }
         let names: Vec<String> = geoms.iter().map(|&g| self.name(g)).collect();
         if let Some(step) = self.plan.steps[first_step..]
