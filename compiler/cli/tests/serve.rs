@@ -11,9 +11,11 @@
 //! the coupler curve; make the four-bar fail to close and see the failure in `gcs solve`'s
 //! words with the picture marked as not current; type a syntax error and see its located
 //! diagnostic, as `gcs check` prints it; fix it and see the mechanism again; show the Rust
-//! module, as `gcs compile` writes it. The Jansen leg's: drag its crank slider over several
-//! values, each drag redrawing, and print the page's own solve-and-draw timings (run with
-//! `--nocapture` to see them; no test asserts a speed). With `GCS_SERVE_SCREENSHOTS=DIR`, the
+//! module, as `gcs compile` writes it; and on the way, the live socket closed, the page solving
+//! by POSTs instead. The Jansen leg's: drag its crank slider over several values, each drag
+//! redrawing, solved on the live socket, and print the page's own solve-and-draw timings (run
+//! with `--nocapture` to see them; no test asserts a speed). The live socket is also driven over
+//! a plain socket: it solves as `/api/solve` does, for the server's own page only. With `GCS_SERVE_SCREENSHOTS=DIR`, the
 //! page is saved as a PNG in DIR at each step.
 
 use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
@@ -187,6 +189,150 @@ fn the_server_serves_its_page_and_api_and_nothing_else() {
         "coupler.c",
     );
     assert_eq!(v["solution"]["points"]["coupler.c"], json!(want));
+    assert!(s.alive());
+}
+
+/// A WebSocket client's end of `/api/live`, over a plain socket.
+struct Live {
+    stream: TcpStream,
+}
+
+impl Live {
+    /// Opens `/api/live` with `extra` headers (an `Origin`, say): the socket, or the status and
+    /// body of the refusal.
+    fn open(s: &Served, extra: &str) -> Result<Live, (u16, String)> {
+        let mut stream = TcpStream::connect(s.addr).expect("connect");
+        stream
+            .set_read_timeout(Some(Duration::from_secs(30)))
+            .expect("timeout");
+        let head = format!(
+            "GET /api/live HTTP/1.1\r\nHost: {}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\
+             Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n{extra}\r\n",
+            s.addr
+        );
+        stream.write_all(head.as_bytes()).expect("send");
+        let mut answer = Vec::new();
+        let mut byte = [0u8; 1];
+        while !answer.ends_with(b"\r\n\r\n") {
+            stream.read_exact(&mut byte).expect("the answer's head");
+            answer.push(byte[0]);
+        }
+        let answer = String::from_utf8_lossy(&answer).into_owned();
+        let status: u16 = answer
+            .split(' ')
+            .nth(1)
+            .and_then(|c| c.parse().ok())
+            .unwrap_or_else(|| panic!("no status in {answer:?}"));
+        if status != 101 {
+            let mut body = String::new();
+            let _ = stream.read_to_string(&mut body);
+            return Err((status, body));
+        }
+        // The RFC's example key, and its answer.
+        assert!(
+            answer.contains("Sec-WebSocket-Accept: s3pPLMBiTxaQ9kYGzzhZRbK+xOo=\r\n"),
+            "{answer}"
+        );
+        Ok(Live { stream })
+    }
+
+    /// Sends one text message, masked as a browser masks it.
+    fn send(&mut self, text: &[u8]) {
+        let mask = [0x12, 0x34, 0x56, 0x78];
+        let mut frame = vec![0x81];
+        match text.len() {
+            n if n < 126 => frame.push(0x80 | n as u8),
+            n if n <= 0xFFFF => {
+                frame.push(0x80 | 126);
+                frame.extend_from_slice(&(n as u16).to_be_bytes());
+            }
+            n => {
+                frame.push(0x80 | 127);
+                frame.extend_from_slice(&(n as u64).to_be_bytes());
+            }
+        }
+        frame.extend_from_slice(&mask);
+        frame.extend(text.iter().enumerate().map(|(k, b)| b ^ mask[k % 4]));
+        // A peer that closed may refuse the rest: what it said is read next.
+        let _ = self.stream.write_all(&frame);
+    }
+
+    /// The next frame: its opcode and payload.
+    fn read(&mut self) -> (u8, Vec<u8>) {
+        let mut head = [0u8; 2];
+        self.stream.read_exact(&mut head).expect("a frame");
+        assert_eq!(head[1] & 0x80, 0, "the server does not mask");
+        let len = match head[1] {
+            126 => {
+                let mut b = [0u8; 2];
+                self.stream.read_exact(&mut b).expect("length");
+                usize::from(u16::from_be_bytes(b))
+            }
+            127 => {
+                let mut b = [0u8; 8];
+                self.stream.read_exact(&mut b).expect("length");
+                u64::from_be_bytes(b) as usize
+            }
+            n => usize::from(n),
+        };
+        let mut payload = vec![0u8; len];
+        self.stream.read_exact(&mut payload).expect("the payload");
+        (head[0] & 0x0F, payload)
+    }
+
+    /// The answer to one message: `{"status", "answer"}`.
+    fn ask(&mut self, text: &[u8]) -> Value {
+        self.send(text);
+        let (opcode, payload) = self.read();
+        assert_eq!(opcode, 1, "a text message");
+        serde_json::from_slice(&payload).expect("JSON")
+    }
+}
+
+#[test]
+fn the_live_socket_solves_for_the_servers_own_page_only() {
+    let mut s = Served::start("examples/fourbar.gcs");
+    let text = std::fs::read_to_string(root().join("examples/fourbar.gcs")).expect("read");
+    // A page of another origin may not open it; nor may a plain GET, nor a POST.
+    let refused = Live::open(&s, "Origin: http://example.com\r\n").err();
+    assert_eq!(refused.map(|r| r.0), Some(403));
+    let refused = Live::open(
+        &s,
+        &format!("Origin: http://localhost:{}\r\n", s.addr.port() + 1),
+    );
+    assert_eq!(refused.err().map(|r| r.0), Some(403));
+    assert_eq!(s.get("/api/live").0, 426);
+    assert_eq!(s.post("/api/live", b"{}").0, 405);
+    // The page's own origin may: each message is a solve, answered as `/api/solve` answers it.
+    let own = format!("Origin: http://{}\r\n", s.addr);
+    let mut live = Live::open(&s, &own).expect("the page's own origin");
+    for theta in ["75deg", "120deg"] {
+        let set = format!("theta={theta}");
+        let v = live.ask(json!({ "text": text, "set": [set] }).to_string().as_bytes());
+        assert_eq!(v["status"], 200, "{v}");
+        assert_eq!(v["answer"]["ok"], true, "{v}");
+        let want = solved_point("examples/fourbar.gcs", &["--set", &set], "coupler.c");
+        assert_eq!(v["answer"]["solution"]["points"]["coupler.c"], json!(want));
+    }
+    // A request that is not one is answered as the POST is, and the socket goes on.
+    let v = live.ask(b"[1, 2]");
+    assert_eq!(v["status"], 400, "{v}");
+    let v = live.ask(json!({ "text": "space 2d; (((" }).to_string().as_bytes());
+    assert_eq!(
+        (v["status"].as_u64(), v["answer"]["stage"].as_str()),
+        (Some(200), Some("model"))
+    );
+    // A message over a mebibyte closes the socket (1009, too large); the server goes on, and
+    // a client that is not a browser (no `Origin`) is served too.
+    let (opcode, payload) = {
+        live.send(&vec![b' '; (1 << 20) + 1]);
+        live.read()
+    };
+    assert_eq!((opcode, &payload[..2]), (8, &1009u16.to_be_bytes()[..]));
+    assert!(s.alive());
+    let mut again = Live::open(&s, "").expect("a client that is not a browser");
+    let v = again.ask(json!({ "text": text }).to_string().as_bytes());
+    assert_eq!(v["answer"]["ok"], true, "{v}");
     assert!(s.alive());
 }
 
@@ -527,6 +673,18 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
         b.text("timing").await
     );
 
+    // The drags were solved on the live socket. Closed (a server restarted, say), the page
+    // POSTs its solves instead, and draws them the same.
+    let via = "return document.getElementById('timing').dataset.via";
+    assert_eq!(b.js(via, vec![]).await, "socket");
+    b.js("live.socket.close()", vec![]).await;
+    b.until(
+        "for the live socket to close",
+        "return live.socket === null",
+        vec![],
+    )
+    .await;
+
     // Flip `elbow`: the other assembly, where `gcs solve --branch elbow=1` puts it.
     let elbow = b.id("branch-elbow").await;
     let labels = b
@@ -561,6 +719,7 @@ async fn the_fourbar_page_moves_flips_traces_fails_and_checks_in_a_browser() {
         (flipped[0] - drawn[0]).hypot(flipped[1] - drawn[1]) > 1.0,
         "the other assembly: {drawn:?} then {flipped:?}"
     );
+    assert_eq!(b.js(via, vec![]).await, "http", "solved by a POST");
     b.shot("fourbar-1-elbow-flipped").await;
     println!("fourbar: elbow flipped: coupler.c drawn at {flipped:?}, gcs solve {want:?}");
 
@@ -750,7 +909,7 @@ async fn the_jansen_leg_redraws_at_each_drag_and_the_page_times_it() {
         let parts = b
             .js(
                 "const t = document.getElementById('timing').dataset; \
-                 return [Number(t.waited), Number(t.answered), Number(t.drawing)]",
+                 return [Number(t.waited), Number(t.answered), Number(t.drawing), t.via]",
                 vec![],
             )
             .await;
@@ -766,6 +925,10 @@ async fn the_jansen_leg_redraws_at_each_drag_and_the_page_times_it() {
             timing.starts_with("solved and drawn in ") && timing.ends_with(" ms"),
             "{timing}"
         );
+        assert_eq!(
+            parts[3], "socket",
+            "the drag to {set} solved on the live socket"
+        );
         let (foot, scale) = b.drawn_point("foot").await;
         assert!(foot != last, "the drag to {set} drew the foot elsewhere");
         let want = solved_point("examples/jansen_leg.gcs", &["--set", &set], "foot");
@@ -773,7 +936,7 @@ async fn the_jansen_leg_redraws_at_each_drag_and_the_page_times_it() {
         last = foot;
         println!(
             "jansen_leg: crank dragged to {set}: {timing} (waiting for the solve before {:.1} ms, \
-             asking the server {:.1} ms, drawing {:.1} ms)",
+             asking the server {:.1} ms on the live socket, drawing {:.1} ms)",
             parts[0].as_f64().unwrap_or(f64::NAN),
             parts[1].as_f64().unwrap_or(f64::NAN),
             parts[2].as_f64().unwrap_or(f64::NAN)

@@ -215,7 +215,8 @@ function paramControl(p) {
   return element(
     "div", { class: "param", title: `${p.name}: ${p.dim}, sketch value ${p.value}${unitOf(p)}` },
     element("label", { class: "name", for: `param-${p.name}`, text: p.name }),
-    slider, field,
+    element("span", { class: "cell" }, slider),
+    element("span", { class: "cell" }, field),
     element("span", { class: "unit", text: p.unit === "deg" ? "deg" : p.dim === "length" ? "length" : "" }),
   );
 }
@@ -326,14 +327,82 @@ async function pump() {
     const request = solveRequest();
     const sent = performance.now();
     let v;
+    let via = "";
     try {
-      v = await post("/api/solve", request);
+      [v, via] = await solveOn(request);
     } catch (e) {
       v = { ok: false, stage: "request", errors: [e.message] };
     }
-    show(v, { input: t0, sent, answered: performance.now() }, request);
+    show(v, { input: t0, sent, answered: performance.now(), via }, request);
   }
   page.busy = false;
+}
+
+// ---- the live socket: solving while a control moves --------------------------------------------
+
+// The WebSocket `/api/live` carries `/api/solve`'s requests and answers, one message each way: in
+// the browser a message on an open socket costs a fraction of a fetch, which builds, checks and
+// hands back a whole request through the network process. While it is not open, solves are
+// POSTed as before.
+const live = {
+  socket: null, // the open socket
+  opening: false,
+  waiting: [], // the solves sent on it and not answered yet, in order: { resolve, reject }
+  tried: -Infinity, // when it was last opened
+};
+
+function openLive() {
+  if (live.socket || live.opening || typeof WebSocket === "undefined") return;
+  if (performance.now() - live.tried < 2000) return;
+  live.tried = performance.now();
+  live.opening = true;
+  let ws;
+  try {
+    ws = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/live`);
+  } catch {
+    live.opening = false;
+    return;
+  }
+  ws.addEventListener("open", () => {
+    live.opening = false;
+    live.socket = ws;
+  });
+  ws.addEventListener("message", (event) => {
+    const waiter = live.waiting.shift();
+    if (waiter) waiter.resolve(event.data);
+  });
+  ws.addEventListener("close", () => {
+    live.opening = false;
+    if (live.socket === ws) live.socket = null;
+    for (const waiter of live.waiting.splice(0)) waiter.reject(new SocketClosed());
+  });
+}
+
+class SocketClosed extends Error {
+  constructor() {
+    super("the live socket closed");
+  }
+}
+
+// `/api/solve`'s answer to `request`, and how it was asked: over the live socket when it is
+// open ("socket"), else POSTed ("http"), as when the socket closes before answering.
+async function solveOn(request) {
+  const ws = live.socket;
+  if (ws && ws.readyState === WebSocket.OPEN) {
+    try {
+      const text = await new Promise((resolve, reject) => {
+        ws.send(JSON.stringify(request));
+        live.waiting.push({ resolve, reject });
+      });
+      const { status, answer } = JSON.parse(text);
+      if (status !== 200) throw new Error((answer && answer.error) || `/api/solve: HTTP ${status}`);
+      return [answer, "socket"];
+    } catch (e) {
+      if (!(e instanceof SocketClosed) && ws.readyState === WebSocket.OPEN) throw e;
+    }
+  }
+  openLive();
+  return [await post("/api/solve", request), "http"];
 }
 
 function solveRequest() {
@@ -360,7 +429,7 @@ function solveRequest() {
 function show(v, times, request) {
   const drawing = $("drawing");
   if (v.ok) {
-    drawing.innerHTML = v.svg;
+    drawSvg(drawing, v.svg);
     drawing.dataset.scale = v.fit.scale;
     drawing.dataset.cornerX = v.fit.corner[0];
     drawing.dataset.cornerY = v.fit.corner[1];
@@ -375,11 +444,13 @@ function show(v, times, request) {
     const timing = $("timing");
     timing.textContent = `solved and drawn in ${ms.toFixed(1)} ms`;
     timing.title = `from the input: ${(times.sent - times.input).toFixed(1)} ms waiting for the solve before, ` +
-      `${(times.answered - times.sent).toFixed(1)} ms asking the server, ${(drawn - times.answered).toFixed(1)} ms drawing`;
+      `${(times.answered - times.sent).toFixed(1)} ms asking the server (${times.via === "socket" ? "on the live socket" : "by a POST"}), ` +
+      `${(drawn - times.answered).toFixed(1)} ms drawing`;
     timing.dataset.ms = ms.toFixed(3);
     timing.dataset.waited = (times.sent - times.input).toFixed(3);
     timing.dataset.answered = (times.answered - times.sent).toFixed(3);
     timing.dataset.drawing = (drawn - times.answered).toFixed(3);
+    timing.dataset.via = times.via;
     $("solution").textContent = JSON.stringify(v.solution, null, 2);
     showSweep(v.sweep);
   } else {
@@ -391,13 +462,71 @@ function show(v, times, request) {
   }
 }
 
+// Puts the SVG `text` (the server's drawing) in `box`. The picture already there is updated in
+// place: its elements that match the new ones (the same tag at the same place) are kept, with only
+// their changed attributes and texts set, and the others replaced. Dragging a slider then changes
+// a few coordinates in the page instead of building a new picture, which would also restyle the
+// whole page (the SVG carries its own <style>). The result is the same tree as `text` parsed.
+const svgParser = document.createElement("template");
+
+function drawSvg(box, text) {
+  svgParser.innerHTML = text;
+  const fresh = svgParser.content.firstElementChild;
+  const old = box.firstElementChild;
+  if (fresh && old && sameElement(old, fresh) && box.childNodes.length === 1) updateNode(old, fresh);
+  else if (fresh) box.replaceChildren(fresh);
+  else box.replaceChildren();
+  svgParser.content.replaceChildren();
+}
+
+function sameElement(a, b) {
+  return a.namespaceURI === b.namespaceURI && a.localName === b.localName;
+}
+
+// Makes `old` (in the page) equal to `fresh` (just parsed): its attributes, then its children,
+// pair by pair.
+function updateNode(old, fresh) {
+  for (const a of fresh.attributes) {
+    if (old.getAttributeNS(a.namespaceURI, a.localName) !== a.value) old.setAttributeNS(a.namespaceURI, a.name, a.value);
+  }
+  for (let k = old.attributes.length - 1; k >= 0; k--) {
+    const a = old.attributes[k];
+    if (!fresh.hasAttributeNS(a.namespaceURI, a.localName)) old.removeAttributeNS(a.namespaceURI, a.localName);
+  }
+  let o = old.firstChild;
+  let f = fresh.firstChild;
+  while (o && f) {
+    const nextO = o.nextSibling;
+    const nextF = f.nextSibling;
+    if (o.nodeType === Node.ELEMENT_NODE && f.nodeType === Node.ELEMENT_NODE && sameElement(o, f)) {
+      updateNode(o, f);
+    } else if (o.nodeType === f.nodeType && o.nodeType !== Node.ELEMENT_NODE) {
+      if (o.nodeValue !== f.nodeValue) o.nodeValue = f.nodeValue;
+    } else {
+      old.replaceChild(f, o);
+    }
+    o = nextO;
+    f = nextF;
+  }
+  while (o) {
+    const next = o.nextSibling;
+    o.remove();
+    o = next;
+  }
+  while (f) {
+    const next = f.nextSibling;
+    old.append(f);
+    f = next;
+  }
+}
+
 // The drawing's state: `current` (the picture is of the controls' values), or `failed` or
 // `stale` (the picture left is greyed, and the message says why it is not current).
 function setDrawing(state, head, errors) {
   const drawing = $("drawing");
   drawing.dataset.state = drawing.firstElementChild || state === "current" ? state : "empty";
   const status = $("drawing-status");
-  status.replaceChildren();
+  if (status.firstChild) status.replaceChildren();
   if (state !== "current") {
     status.append(element("strong", { text: `${head}${drawing.firstElementChild ? " — the picture greyed below is the last that solved" : ""}` }));
     status.append(errors.filter((e) => e).map((e) => `error: ${e}`).join("\n"));
@@ -507,6 +636,7 @@ async function start() {
     });
   }
   setControlsEnabled(false);
+  openLive();
   try {
     const response = await fetch("/api/model");
     const model = await response.json();
