@@ -16,8 +16,15 @@
 //! the server's own page (or a client that is not a browser, which sends none) may. A message
 //! over [`MAX_BODY`](super::MAX_BODY), a binary message or a frame that breaks the protocol
 //! closes the socket with the status the RFC gives; the server goes on.
+//!
+//! The protocol (framing, masking, fragments, pings, the closing handshake) is tungstenite's;
+//! this module chooses what is refused and answers the messages.
 
-use std::io::{self, Read, Write};
+use std::io::{Read, Write};
+use tungstenite::error::{CapacityError, Error};
+use tungstenite::protocol::frame::coding::CloseCode;
+use tungstenite::protocol::{CloseFrame, Role, WebSocket, WebSocketConfig};
+use tungstenite::Message;
 
 /// The WebSocket's path.
 pub const PATH: &str = "/api/live";
@@ -27,8 +34,7 @@ pub const MAX_SOCKETS: usize = 8;
 
 /// The `Sec-WebSocket-Accept` that answers a client's `Sec-WebSocket-Key` (RFC 6455, 4.2.2).
 pub fn accept_key(key: &str) -> String {
-    const GUID: &str = "258EAFA5-E914-47DA-95CA-C5AB0DC85B11";
-    base64(&sha1(format!("{}{GUID}", key.trim()).as_bytes()))
+    tungstenite::handshake::derive_accept_key(key.trim().as_bytes())
 }
 
 /// Whether `key` is a `Sec-WebSocket-Key`: 16 bytes in base64.
@@ -41,305 +47,74 @@ pub fn valid_key(key: &str) -> bool {
             .all(|b| b.is_ascii_alphanumeric() || b == b'+' || b == b'/')
 }
 
-/// Serves the messages of one socket until it closes: each text message is answered with
-/// `answer`'s text.
+/// Serves the messages of one socket, messages and frames of at most `max` bytes, until it
+/// closes: each text message is answered with `answer`'s text.
 pub fn serve<S: Read + Write>(stream: S, max: usize, mut answer: impl FnMut(&[u8]) -> String) {
-    let mut socket = Socket { stream };
+    let config = WebSocketConfig::default()
+        .max_message_size(Some(max))
+        .max_frame_size(Some(max));
+    let mut socket = WebSocket::from_raw_socket(stream, Role::Server, Some(config));
     let (code, why, rest) = loop {
-        match socket.read_message(max) {
-            Ok(Some(text)) => {
-                if socket.send(OP_TEXT, answer(&text).as_bytes()).is_err() {
+        match socket.read() {
+            Ok(Message::Text(text)) => {
+                if socket.send(Message::text(answer(text.as_bytes()))).is_err() {
                     return;
                 }
             }
-            // The client closed it: the close answered, the connection ends.
-            Ok(None) => return socket.close(1000, ""),
-            Err(Failure::Gone) => return,
-            // The frames cannot be told apart any more: the connection ends.
-            Err(Failure::Broken(code, why)) => return socket.close(code, why),
-            Err(Failure::Refused(code, why, rest)) => break (code, why, rest),
+            Ok(Message::Binary(_)) => {
+                break (CloseCode::Unsupported, "binary messages are not read", 0)
+            }
+            // Pings are answered and the client's close returned by the socket itself.
+            Ok(_) => {}
+            Err(Error::Capacity(CapacityError::MessageTooLong { size, .. })) => {
+                break (CloseCode::Size, "a message over the limit", size)
+            }
+            Err(Error::Utf8(_)) => break (CloseCode::Invalid, "a text message not UTF-8", 0),
+            Err(Error::Protocol(_) | Error::Capacity(_)) => {
+                break (CloseCode::Protocol, "a frame against RFC 6455", 0)
+            }
+            // Closed, or the client gone: the connection ends.
+            Err(_) => return,
         }
     };
-    // A message refused: the close sent, then the rest of its frame read and dropped (unless it
-    // is far larger than allowed) and the client's frames until its close, as RFC 6455 asks, so
-    // that the client reads the close before the connection ends.
-    socket.close(code, why);
-    if rest <= max as u64 + (1 << 20) && socket.skip(rest).is_ok() {
-        socket.linger(max);
+    // A message refused: the close sent, then what the client sends until it closes read and
+    // dropped (at most the refused frame and a mebibyte), so that it reads the close before
+    // the connection ends rather than a reset.
+    let close = CloseFrame {
+        code,
+        reason: why.into(),
+    };
+    if socket
+        .close(Some(close))
+        .and_then(|()| socket.flush())
+        .is_ok()
+    {
+        drain(socket.get_mut(), rest.saturating_add(1 << 20));
     }
 }
 
-const OP_CONTINUATION: u8 = 0x0;
-const OP_TEXT: u8 = 0x1;
-const OP_BINARY: u8 = 0x2;
-const OP_CLOSE: u8 = 0x8;
-const OP_PING: u8 = 0x9;
-const OP_PONG: u8 = 0xA;
-
-/// Why a socket stops: it failed (the client went away: nothing more to say); the client broke
-/// the framing (the close status to send, and why); or it sent a message refused (the status,
-/// why, and how many bytes of its frame are still to come).
-#[derive(Debug)]
-enum Failure {
-    Gone,
-    Broken(u16, &'static str),
-    Refused(u16, &'static str, u64),
-}
-
-impl From<io::Error> for Failure {
-    fn from(_: io::Error) -> Failure {
-        Failure::Gone
-    }
-}
-
-/// A frame from the client, unmasked.
-#[derive(Debug)]
-struct Frame {
-    fin: bool,
-    opcode: u8,
-    payload: Vec<u8>,
-}
-
-/// The server's end of a WebSocket.
-#[derive(Debug)]
-struct Socket<S> {
-    stream: S,
-}
-
-impl<S: Read + Write> Socket<S> {
-    /// The next frame, whose payload, unless it is a control frame, is at most `room` bytes.
-    fn read_frame(&mut self, room: usize) -> Result<Frame, Failure> {
-        let mut head = [0u8; 2];
-        self.stream.read_exact(&mut head)?;
-        let (fin, opcode) = (head[0] & 0x80 != 0, head[0] & 0x0F);
-        if head[0] & 0x70 != 0 {
-            return Err(Failure::Broken(1002, "no extension was agreed"));
-        }
-        if head[1] & 0x80 == 0 {
-            return Err(Failure::Broken(1002, "a client's frame is masked"));
-        }
-        let len = match head[1] & 0x7F {
-            126 => {
-                let mut b = [0u8; 2];
-                self.stream.read_exact(&mut b)?;
-                u64::from(u16::from_be_bytes(b))
-            }
-            127 => {
-                let mut b = [0u8; 8];
-                self.stream.read_exact(&mut b)?;
-                u64::from_be_bytes(b)
-            }
-            n => u64::from(n),
-        };
-        let control = opcode & 0x8 != 0;
-        if control && (!fin || len > 125) {
-            return Err(Failure::Broken(1002, "a control frame is short and whole"));
-        }
-        if !control && len > room as u64 {
-            return Err(Failure::Refused(1009, "the message is too large", len + 4));
-        }
-        let mut mask = [0u8; 4];
-        self.stream.read_exact(&mut mask)?;
-        // At most `room` (or 125) bytes: the length was checked above.
-        let mut payload = vec![0u8; len as usize];
-        self.stream.read_exact(&mut payload)?;
-        for (k, b) in payload.iter_mut().enumerate() {
-            *b ^= mask[k % 4];
-        }
-        Ok(Frame {
-            fin,
-            opcode,
-            payload,
-        })
-    }
-
-    /// The next text message, its fragments joined, at most `max` bytes; pings are answered on
-    /// the way. `None`: the client closed the socket.
-    fn read_message(&mut self, max: usize) -> Result<Option<Vec<u8>>, Failure> {
-        let mut message: Option<Vec<u8>> = None;
-        loop {
-            let room = max - message.as_ref().map_or(0, Vec::len);
-            let Frame {
-                fin,
-                opcode,
-                payload,
-            } = self.read_frame(room)?;
-            match opcode {
-                OP_PING => self.send(OP_PONG, &payload)?,
-                OP_PONG => {}
-                OP_CLOSE => return Ok(None),
-                OP_TEXT if message.is_none() => message = Some(payload),
-                OP_CONTINUATION => match message.as_mut() {
-                    Some(m) => m.extend_from_slice(&payload),
-                    None => return Err(Failure::Broken(1002, "a continuation of nothing")),
-                },
-                OP_TEXT => return Err(Failure::Broken(1002, "a message inside a message")),
-                OP_BINARY if fin => {
-                    return Err(Failure::Refused(1003, "only text messages are read", 0))
-                }
-                OP_BINARY => return Err(Failure::Broken(1003, "only text messages are read")),
-                _ => return Err(Failure::Broken(1002, "an unknown opcode")),
-            }
-            if fin && opcode & 0x8 == 0 {
-                if let Some(m) = message.take() {
-                    if std::str::from_utf8(&m).is_err() {
-                        return Err(Failure::Refused(1007, "a text message is UTF-8", 0));
-                    }
-                    return Ok(Some(m));
-                }
-            }
+/// Reads and drops up to `limit` bytes of `stream`, until it ends.
+fn drain(stream: &mut impl Read, mut limit: usize) {
+    let mut buf = [0u8; 8192];
+    while limit > 0 {
+        match stream.read(&mut buf) {
+            Ok(0) | Err(_) => return,
+            Ok(n) => limit = limit.saturating_sub(n),
         }
     }
-
-    /// Reads and drops `n` bytes.
-    fn skip(&mut self, n: u64) -> io::Result<()> {
-        let copied = io::copy(&mut (&mut self.stream).take(n), &mut io::sink())?;
-        if copied < n {
-            return Err(io::ErrorKind::UnexpectedEof.into());
-        }
-        Ok(())
-    }
-
-    /// After the server's close: the client's frames read and dropped until its close (or
-    /// until it goes away), as RFC 6455 asks, so that it reads the server's close whole.
-    fn linger(&mut self, max: usize) {
-        while let Ok(frame) = self.read_frame(max) {
-            if frame.opcode == OP_CLOSE {
-                return;
-            }
-        }
-    }
-
-    /// Sends one whole frame, written at once.
-    fn send(&mut self, opcode: u8, payload: &[u8]) -> io::Result<()> {
-        let mut frame = Vec::with_capacity(payload.len() + 10);
-        frame.push(0x80 | opcode);
-        match payload.len() {
-            n if n < 126 => frame.push(n as u8),
-            n if n <= usize::from(u16::MAX) => {
-                frame.push(126);
-                frame.extend_from_slice(&(n as u16).to_be_bytes());
-            }
-            n => {
-                frame.push(127);
-                frame.extend_from_slice(&(n as u64).to_be_bytes());
-            }
-        }
-        frame.extend_from_slice(payload);
-        self.stream.write_all(&frame)?;
-        self.stream.flush()
-    }
-
-    /// Closes the socket with `code`, saying `why`.
-    fn close(&mut self, code: u16, why: &str) {
-        let mut payload = code.to_be_bytes().to_vec();
-        payload.extend_from_slice(&why.as_bytes()[..why.len().min(123)]);
-        let _ = self.send(OP_CLOSE, &payload);
-    }
-}
-
-/// SHA-1 (FIPS 180-4), which the handshake needs and nothing else: not for security.
-fn sha1(data: &[u8]) -> [u8; 20] {
-    let mut h: [u32; 5] = [
-        0x6745_2301,
-        0xEFCD_AB89,
-        0x98BA_DCFE,
-        0x1032_5476,
-        0xC3D2_E1F0,
-    ];
-    let mut padded = data.to_vec();
-    padded.push(0x80);
-    while padded.len() % 64 != 56 {
-        padded.push(0);
-    }
-    padded.extend_from_slice(&((data.len() as u64).wrapping_mul(8)).to_be_bytes());
-    for block in padded.chunks_exact(64) {
-        let mut w = [0u32; 80];
-        for (k, word) in block.chunks_exact(4).enumerate() {
-            w[k] = u32::from_be_bytes([word[0], word[1], word[2], word[3]]);
-        }
-        for k in 16..80 {
-            w[k] = (w[k - 3] ^ w[k - 8] ^ w[k - 14] ^ w[k - 16]).rotate_left(1);
-        }
-        let [mut a, mut b, mut c, mut d, mut e] = h;
-        for (k, wk) in w.iter().enumerate() {
-            let (f, constant) = match k {
-                0..=19 => ((b & c) | (!b & d), 0x5A82_7999),
-                20..=39 => (b ^ c ^ d, 0x6ED9_EBA1),
-                40..=59 => ((b & c) | (b & d) | (c & d), 0x8F1B_BCDC),
-                _ => (b ^ c ^ d, 0xCA62_C1D6),
-            };
-            let t = (a.rotate_left(5))
-                .wrapping_add(f)
-                .wrapping_add(e)
-                .wrapping_add(constant)
-                .wrapping_add(*wk);
-            (e, d, c, b, a) = (d, c, b.rotate_left(30), a, t);
-        }
-        for (hk, v) in h.iter_mut().zip([a, b, c, d, e]) {
-            *hk = hk.wrapping_add(v);
-        }
-    }
-    let mut out = [0u8; 20];
-    for (chunk, v) in out.chunks_exact_mut(4).zip(h) {
-        chunk.copy_from_slice(&v.to_be_bytes());
-    }
-    out
-}
-
-/// Base64 with padding (RFC 4648, section 4).
-fn base64(bytes: &[u8]) -> String {
-    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for chunk in bytes.chunks(3) {
-        let n = (u32::from(chunk[0]) << 16)
-            | (u32::from(chunk.get(1).copied().unwrap_or(0)) << 8)
-            | u32::from(chunk.get(2).copied().unwrap_or(0));
-        for k in 0..4 {
-            if k <= chunk.len() {
-                out.push(char::from(ALPHABET[(n >> (18 - 6 * k) & 0x3F) as usize]));
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::io;
 
-    fn hex(bytes: &[u8]) -> String {
-        bytes.iter().map(|b| format!("{b:02x}")).collect()
-    }
-
-    #[test]
-    fn sha1_and_base64_give_the_known_values() {
-        assert_eq!(hex(&sha1(b"")), "da39a3ee5e6b4b0d3255bfef95601890afd80709");
-        assert_eq!(
-            hex(&sha1(b"abc")),
-            "a9993e364706816aba3e25717850c26c9cd0d89d"
-        );
-        let long = b"abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq";
-        assert_eq!(hex(&sha1(long)), "84983e441c3bd26ebaae4aa1f95129e5e54670f1");
-        let million = vec![b'a'; 1_000_000];
-        assert_eq!(
-            hex(&sha1(&million)),
-            "34aa973cd4c4daa4f61eeb2bdbad27316534016f"
-        );
-        for (text, coded) in [
-            ("", ""),
-            ("f", "Zg=="),
-            ("fo", "Zm8="),
-            ("foo", "Zm9v"),
-            ("foob", "Zm9vYg=="),
-            ("fooba", "Zm9vYmE="),
-            ("foobar", "Zm9vYmFy"),
-        ] {
-            assert_eq!(base64(text.as_bytes()), coded, "{text}");
-        }
-    }
+    const OP_CONTINUATION: u8 = 0x0;
+    const OP_TEXT: u8 = 0x1;
+    const OP_BINARY: u8 = 0x2;
+    const OP_CLOSE: u8 = 0x8;
+    const OP_PING: u8 = 0x9;
+    const OP_PONG: u8 = 0xA;
 
     #[test]
     fn the_handshake_answers_the_rfcs_example() {
