@@ -10,7 +10,7 @@ use super::scopes;
 use super::sketch::dimension_name;
 use super::writer::{float, lit, Writer};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// A struct of run-time inputs (`Params`, `Branches`): a field per input, set by the input's
 /// name in the model, and `Default` with the model's values.
@@ -293,8 +293,8 @@ impl Layout {
         let m = cx.model;
         let mut layout = Layout {
             fields: Vec::new(),
-            index: HashMap::new(),
-            constants: HashMap::new(),
+            index: HashMap::default(),
+            constants: HashMap::default(),
         };
         let mut names = Namer::default();
         // `Solution::branches` and `Solution::defaults`, when the plan has them.
@@ -418,7 +418,7 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         w.close("}");
         w.line("");
     }
-    let mut by_ty: HashMap<Ty, Vec<(String, String)>> = HashMap::new();
+    let mut by_ty: HashMap<Ty, Vec<(String, String)>> = HashMap::default();
     for (a, accessor) in accessors(cx, layout).0 {
         w.line(&format!("/// {}", a.doc));
         w.line("#[inline]");

@@ -8,7 +8,8 @@ use crate::plan::{Op, Plan, Reg};
 use gcs_lang::expr::ParamId;
 use gcs_lang::model::{ConstraintId, GeomId, Owner, Part};
 use gcs_lang::Model;
-use std::collections::{BTreeSet, HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use std::collections::BTreeSet;
 
 /// The read-only input of codegen.
 pub(super) struct Context<'a> {
@@ -191,7 +192,7 @@ impl<'a> Context<'a> {
 /// `near` (the sketch's branch is chosen at analysis) and the point a circle or sphere goes
 /// through when its radius is a constant.
 fn used_registers(plan: &Plan) -> HashSet<Reg> {
-    let mut used = HashSet::new();
+    let mut used = HashSet::default();
     for step in &plan.steps {
         match &step.op {
             Op::Intersect { a, b, .. } => {

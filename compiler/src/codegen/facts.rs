@@ -13,7 +13,7 @@ use super::writer::float;
 use crate::plan::Reg;
 use gcs_lang::expr::ExprId;
 use gcs_lang::model::{GeomId, Owner, Part};
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// A value of the generated code as codegen knows it: what it is decides what can be done
 /// with it (fold a constant into a literal, skip a test, see that two values are one, name

@@ -12,7 +12,7 @@
 //! 20,001 fields) overflow its stack. Past [`FLAT_LETS`] fields, it is written field by field.
 
 use super::writer::Writer;
-use std::collections::HashSet;
+use rustc_hash::FxHashSet as HashSet;
 
 /// Code with at most this many `let`s in a row is written flat: deep enough for any model a
 /// person writes by hand, and far from the depth that overflows (thousands).

@@ -13,7 +13,7 @@ use super::writer::{field_init, lit, Writer};
 use crate::plan::{DefaultId, Iteration, Op, Reg, Step};
 use gcs_lang::model::GeomId;
 use std::cell::RefCell;
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// A binding of the solve's sketch: a frame's, declared (and `mut`) once the steps show
 /// whether the frame is read or moved, or any other, with its Rust type.
@@ -173,19 +173,19 @@ impl<'a> Solve<'a> {
         Solve {
             cx,
             names,
-            frames: HashMap::new(),
-            dims: HashMap::new(),
-            locals: HashMap::new(),
-            deferred: HashSet::new(),
+            frames: HashMap::default(),
+            dims: HashMap::default(),
+            locals: HashMap::default(),
+            deferred: HashSet::default(),
             facts: Facts::default(),
-            frame_reads: RefCell::new(HashSet::new()),
-            frame_writes: HashSet::new(),
-            iterated: HashMap::new(),
+            frame_reads: RefCell::new(HashSet::default()),
+            frame_writes: HashSet::default(),
+            iterated: HashMap::default(),
             closing: None,
             converged: false,
-            error_only: HashSet::new(),
-            converged_defaults: HashMap::new(),
-            declared_at: HashMap::new(),
+            error_only: HashSet::default(),
+            converged_defaults: HashMap::default(),
+            declared_at: HashMap::default(),
             tol_terms: RefCell::new(Vec::new()),
         }
     }
