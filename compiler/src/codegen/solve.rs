@@ -12,8 +12,8 @@ use super::sketch::dimension_name;
 use super::writer::{field_init, lit, Writer};
 use crate::plan::{DefaultId, Iteration, Op, Reg, Step};
 use gcs_lang::model::GeomId;
-use std::cell::RefCell;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use std::cell::RefCell;
 
 /// A binding of the solve's sketch: a frame's, declared (and `mut`) once the steps show
 /// whether the frame is read or moved, or any other, with its Rust type.
