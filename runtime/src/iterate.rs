@@ -605,81 +605,56 @@ fn quick<E>(
         }
         f(t).ok().filter(|v| is_finite(*v))
     };
+    // Ends at the point `(t, ft)`: the answer when within the tolerance, else the search's
+    // start.
+    let stop = |x: &mut f64, (t, ft): (f64, f64), iterations: u32| {
+        *x = t;
+        if ft.abs() <= settings.tolerance {
+            Quick::Converged {
+                residual: ft.abs(),
+                iterations,
+            }
+        } else {
+            Quick::Handover { f: ft, iterations }
+        }
+    };
     let radius = MAX_STEP * scale;
     let (mut xb, mut fb) = (*x, fx);
-    let mut iterations = 0;
-    let handover = |x: &mut f64, xb: f64, fb: f64, iterations: u32| {
-        *x = xb;
-        Quick::Handover { f: fb, iterations }
-    };
-    if fb.abs() <= settings.tolerance && fb.abs() <= settings.rounding {
-        return Quick::Converged {
-            residual: fb.abs(),
-            iterations,
-        };
+    if fb.abs() <= settings.rounding {
+        return stop(x, (xb, fb), 0);
     }
     let h = SQRT_EPS * xb.abs().max(scale);
     let Some(fh) = eval(xb + h, budget) else {
-        return handover(x, xb, fb, iterations);
+        // No slope here: the search tries the other side.
+        return Quick::Handover {
+            f: fb,
+            iterations: 0,
+        };
     };
     let mut slope = (fh - fb) / h;
     // The point before the best, for the parabola's slope.
     let mut earlier: Option<(f64, f64)> = None;
-    let mut polished = 0;
+    let (mut iterations, mut polished) = (0, 0);
     loop {
         let within = fb.abs() <= settings.tolerance;
         if fb == 0.0 || (within && (fb.abs() <= settings.rounding || polished == POLISH_STEPS)) {
-            *x = xb;
-            return Quick::Converged {
-                residual: fb.abs(),
-                iterations,
-            };
+            return stop(x, (xb, fb), iterations);
         }
         let step = (-fb / slope).clamp(-radius, radius);
         let t = xb + step;
-        if !is_finite(step) || step == 0.0 || t == xb {
-            return if within {
-                *x = xb;
-                Quick::Converged {
-                    residual: fb.abs(),
-                    iterations,
-                }
-            } else {
-                handover(x, xb, fb, iterations)
-            };
+        if !is_finite(step) || t == xb {
+            return stop(x, (xb, fb), iterations);
         }
         let Some(ft) = eval(t, budget) else {
-            return if within {
-                *x = xb;
-                Quick::Converged {
-                    residual: fb.abs(),
-                    iterations,
-                }
-            } else {
-                handover(x, xb, fb, iterations)
-            };
+            return stop(x, (xb, fb), iterations);
         };
         iterations += 1;
-        if within {
-            polished += 1;
-        }
+        polished += u32::from(within);
         if ft.abs() > POLISH_GAIN * fb.abs() {
-            // Not halved: within the tolerance the better point is the answer; before it, the
-            // safeguarded search takes over from the better point.
-            let (bx, bf) = if ft.abs() < fb.abs() {
-                (t, ft)
-            } else {
-                (xb, fb)
-            };
-            *x = bx;
-            return if within {
-                Quick::Converged {
-                    residual: bf.abs(),
-                    iterations,
-                }
-            } else {
-                Quick::Handover { f: bf, iterations }
-            };
+            // Not halved: the better of the two ends it (the answer within the tolerance, the
+            // search's start before it).
+            let best = if ft.abs() < fb.abs() { (t, ft) } else { (xb, fb) };
+            return stop(x, best, iterations);
         }
         let secant = (ft - fb) / (t - xb);
         let parabola = earlier.and_then(|(xm, fm)| {
@@ -690,10 +665,7 @@ fn quick<E>(
         slope = match parabola {
             Some(d) => d,
             None if is_finite(secant) && secant != 0.0 => secant,
-            None => {
-                *x = t;
-                return Quick::Handover { f: ft, iterations };
-            }
+            None => return stop(x, (t, ft), iterations),
         };
         earlier = Some((xb, fb));
         (xb, fb) = (t, ft);
