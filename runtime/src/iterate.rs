@@ -653,7 +653,11 @@ fn quick<E>(
         if ft.abs() > POLISH_GAIN * fb.abs() {
             // Not halved: the better of the two ends it (the answer within the tolerance, the
             // search's start before it).
-            let best = if ft.abs() < fb.abs() { (t, ft) } else { (xb, fb) };
+            let best = if ft.abs() < fb.abs() {
+                (t, ft)
+            } else {
+                (xb, fb)
+            };
             return stop(x, best, iterations);
         }
         let secant = (ft - fb) / (t - xb);
@@ -1968,6 +1972,45 @@ mod tests {
             double: false,
             boundary: false,
         }
+    }
+
+    /// A warm start on a smooth function is solved by `quick` alone: a difference, a Newton
+    /// step, secant steps to rounding level; a start from which Newton's step overshoots (it
+    /// does not halve the residual) is handed to the search at the better point, and the
+    /// search still finds the root.
+    #[test]
+    fn quick_solves_a_warm_start_and_hands_an_overshoot_to_the_search() {
+        let settings = Settings::for_size(1.0);
+        let mut budget = Budget::new(settings.max_evaluations);
+        let mut cube = |t: f64| -> Result<f64, ()> { Ok(t * t * t - 2.0) };
+        let mut x = 1.25;
+        let f0 = cube(x).unwrap();
+        let done = quick(&mut x, f0, 1.0, &settings, &mut budget, &mut cube);
+        assert!(matches!(done, Quick::Converged { .. }));
+        assert!((x - 2f64.cbrt()).abs() <= 4.0 * f64::EPSILON, "{x}");
+        assert!(budget.used <= 6, "{} evaluations", budget.used);
+
+        // atan's Newton step from 1.5 lands beyond -1.5: not halved, so the search takes over.
+        let mut budget = Budget::new(settings.max_evaluations);
+        let mut atan = |t: f64| -> Result<f64, ()> { Ok(t.atan()) };
+        let mut x = 1.5;
+        let done = quick(
+            &mut x,
+            1.5f64.atan(),
+            10.0,
+            &settings,
+            &mut budget,
+            &mut atan,
+        );
+        assert!(matches!(done, Quick::Handover { .. }));
+        assert_eq!(x, 1.5, "the better point was the start");
+        let mut x = [1.5];
+        let converged = solve(&mut x, &[10.0], &settings, |t, r| {
+            r[0] = t[0].atan();
+            Ok::<(), ()>(())
+        })
+        .expect("the search finds the root");
+        assert!(x[0].abs() <= settings.tolerance, "{x:?} {converged:?}");
     }
 
     #[test]
