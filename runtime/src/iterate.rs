@@ -13,12 +13,12 @@
 //!   last answer): Newton's step on a forward difference, then secant steps (the slope of the
 //!   parabola through the last three points), each at most half the default's scale and each
 //!   required to halve the residual; the first step that does not, or whose assembly fails,
-//!   hands the best point reached to the safeguarded search, which is Newton's method with a
-//!   forward-difference derivative, each step at most half the default's scale. Once two values of opposite sign have been seen, their
-//!   bracket is kept and every later point stays inside it: a Newton step that would leave the
-//!   bracket, or that failed to halve the residual, is replaced by an Illinois step (false
-//!   position with halving of the retained end's value), and three steps that do not halve the
-//!   bracket force a bisection. So the convergence is Newton's where Newton works, and that of
+//!   hands the best point reached to the safeguarded search: Newton's method with a
+//!   forward-difference derivative, within the same bound. Once two values of opposite sign
+//!   have been seen, their bracket is kept and every later point stays inside it: a Newton
+//!   step that would leave the bracket, or that failed to halve the residual, is replaced by
+//!   an Illinois step (false position with halving of the retained end's value), and three
+//!   steps that do not halve the bracket force a bisection. So the convergence is Newton's where Newton works, and that of
 //!   bracketing (guaranteed, superlinear) where it does not. Before any sign change, a step
 //!   that fails or does not reduce the residual is halved; and when the derivative changes
 //!   sign between two successive points while `f` keeps its sign, the iteration has passed a
@@ -574,6 +574,27 @@ fn solve_scalar<E>(
     }
 }
 
+/// The slope at `x1` of the parabola through `earlier`, `(x0, f0)` and `(x1, f1)`: exact to
+/// second order, so that steps on it converge with order about 1.8. Their secant's without
+/// `earlier` or where the parabola's is not usable; `None` when neither is (not finite, or
+/// zero).
+fn local_slope(
+    earlier: Option<(f64, f64)>,
+    (x0, f0): (f64, f64),
+    (x1, f1): (f64, f64),
+) -> Option<f64> {
+    let dx = x1 - x0;
+    let secant = (f1 - f0) / dx;
+    let usable = |d: f64| is_finite(d) && d != 0.0;
+    let parabola = (earlier.filter(|&(xm, _)| xm != x0)).map(|(xm, fm)| {
+        let curvature = (secant - (f0 - fm) / (x0 - xm)) / (x1 - xm);
+        secant + curvature * dx
+    });
+    parabola
+        .filter(|&d| usable(d))
+        .or_else(|| usable(secant).then_some(secant))
+}
+
 /// How [`quick`] ended.
 enum Quick {
     /// Within the tolerance, and polished as [`Scalar::polish`] would: the answer is in `x`.
@@ -660,15 +681,8 @@ fn quick<E>(
             };
             return stop(x, best, iterations);
         }
-        let secant = (ft - fb) / (t - xb);
-        let parabola = earlier.and_then(|(xm, fm)| {
-            let curvature = (secant - (fb - fm) / (xb - xm)) / (t - xm);
-            let d = secant + curvature * (t - xb);
-            (is_finite(d) && d != 0.0).then_some(d)
-        });
-        slope = match parabola {
+        slope = match local_slope(earlier, (xb, fb), (t, ft)) {
             Some(d) => d,
-            None if is_finite(secant) && secant != 0.0 => secant,
             None => return stop(x, (t, ft), iterations),
         };
         earlier = Some((xb, fb));
@@ -855,22 +869,10 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
         if f1.abs() > 0.25 * f0.abs() || dx.abs() > SECANT_REACH * self.scale {
             return None;
         }
-        let secant = (f1 - f0) / dx;
-        // With a third point near, the slope at x1 of the parabola through the three: exact
-        // to second order, so the step's order is about 1.8.
-        let d = match self.earlier_best {
-            Some((xm, fm)) if (x1 - xm).abs() <= SECANT_REACH * self.scale && xm != x0 => {
-                let curvature = (secant - (f0 - fm) / (x0 - xm)) / (x1 - xm);
-                secant + curvature * dx
-            }
-            _ => secant,
-        };
-        let usable = |d: f64| is_finite(d) && d != 0.0;
-        if usable(d) {
-            Some(d)
-        } else {
-            usable(secant).then_some(secant)
-        }
+        // With a third point near, the parabola through the three.
+        let near =
+            (self.earlier_best).filter(|&(xm, _)| (x1 - xm).abs() <= SECANT_REACH * self.scale);
+        local_slope(near, (x0, f0), (x1, f1))
     }
 
     /// The Newton step from `(x, fx)`, bounded by the trust region; `None` without a usable

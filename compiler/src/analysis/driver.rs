@@ -189,7 +189,7 @@ pub(crate) struct Builder<'m, G: Geometry> {
 
 /// A geom's index in the model's arena.
 fn geom_index(g: GeomId) -> usize {
-    u32::from(g.into_raw()) as usize
+    g.into_raw().into_u32() as usize
 }
 
 impl<'m, G: Geometry> Builder<'m, G> {

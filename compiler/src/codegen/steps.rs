@@ -512,6 +512,7 @@ impl Solve<'_> {
 
     /// `dir` turned by `angle`: a direction at that angle when `dir` is the x axis (a finite
     /// unit direction when the angle is finite).
+    ///
     /// A literal angle is turned here, by the runtime's own `direction_at` (the bits the solve
     /// would compute), so that a table of pieces holds the direction, not the angle to take
     /// the sine and cosine of at each solve.
