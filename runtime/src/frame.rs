@@ -372,6 +372,34 @@ pub fn signed_angle3(u: &Vector3<f64>, v: &Vector3<f64>, axis: &Vector3<f64>) ->
     a.dot(&up.cross(&vp)).atan2(up.dot(&vp))
 }
 
+/// The angle about `axis` that turns `u[0]` onto `v[0]` and `u[1]` onto `v[1]` together: the
+/// argument of the sum of the two turns, each as the complex product of its projections across
+/// the axis, so that each pair weighs by how far across the axis it lies. When both pairs turn
+/// by the same angle it is that angle, as [`signed_angle3`] gives for either; but a pair nearly
+/// along the axis, whose own angle rounding fixes only to `eps` over its distance from it, no
+/// longer decides it alone (a marker whose z axis lies 1e-6 rad off the axis, and whose x axis
+/// is then across it). In `[-pi, pi]`; zero when `axis` is zero.
+#[inline]
+pub fn signed_angle3_both(
+    u: [&Vector3<f64>; 2],
+    v: [&Vector3<f64>; 2],
+    axis: &Vector3<f64>,
+) -> f64 {
+    let n = axis.norm();
+    if n.is_nan() || n <= 0.0 {
+        return 0.0;
+    }
+    let a = axis / n;
+    let (mut sin, mut cos) = (0.0, 0.0);
+    for (u, v) in u.into_iter().zip(v) {
+        let up = u - a * a.dot(u);
+        let vp = v - a * a.dot(v);
+        sin += a.dot(&up.cross(&vp));
+        cos += up.dot(&vp);
+    }
+    sin.atan2(cos)
+}
+
 /// The rotation that turns the direction of `u` onto the direction of `v` about the axis
 /// `u x v` (the rotate step of paper 000's brick).
 ///

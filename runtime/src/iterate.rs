@@ -672,8 +672,18 @@ fn quick<E>(
         iterations += 1;
         polished += u32::from(within);
         if ft.abs() > POLISH_GAIN * fb.abs() {
-            // Not halved: the better of the two ends it (the answer within the tolerance, the
-            // search's start before it).
+            // Not halved. Within the tolerance, a step past the bottom of a magnitude's V is
+            // retried on the slope of the best point's own side.
+            if within && polished < POLISH_STEPS {
+                if let Some((u, fu)) = v_step((xb, fb), (t, ft), slope, |u| eval(u, budget)) {
+                    iterations += 1;
+                    polished += 1;
+                    (xb, fb, earlier) = (u, fu, None);
+                    continue;
+                }
+            }
+            // The better of the two ends it (the answer within the tolerance, the search's
+            // start before it).
             let best = if ft.abs() < fb.abs() {
                 (t, ft)
             } else {
@@ -688,6 +698,38 @@ fn quick<E>(
         earlier = Some((xb, fb));
         (xb, fb) = (t, ft);
     }
+}
+
+/// The retry of a polishing step from `(x, fx)` to `t` that did not halve the residual although
+/// `f(t)` has the sign of `fx`: the residual may be a magnitude (a point's distance from a line
+/// or circle of space, which a default moves it across), V-shaped at its root, whose slope
+/// changes sign there, so that a step on the slope of one side, or a secant through points on
+/// both, misses the bottom. With `slope` the magnitude of the slope the step was taken on, the
+/// bottom lies `|fx| / slope` from `x`, either toward `t` (the step crossed it: then `|f(t)|` is
+/// about `slope |t - x| - |fx|`) or away from it (the step went up the other side: about
+/// `|fx| + slope |t - x|`); the one `f(t)` fits better is tried. For a residual with a sign the
+/// try is one more step like another, kept only if it halves `fx` as every polishing step must.
+/// `Some((point, residual))` when it does; `None` otherwise, or when `f(t)` has the other sign
+/// (a crossing, which the secant handles).
+fn v_step(
+    (x, fx): (f64, f64),
+    (t, ft): (f64, f64),
+    slope: f64,
+    mut eval: impl FnMut(f64) -> Option<f64>,
+) -> Option<(f64, f64)> {
+    let k = slope.abs();
+    if ft * fx <= 0.0 || t == x || !is_finite(k) || k == 0.0 {
+        return None;
+    }
+    let (a, b, dt) = (fx.abs(), ft.abs(), (t - x).abs());
+    let toward = (t - x).signum();
+    let crossed = (b - (k * dt - a)).abs() < (b - (a + k * dt)).abs();
+    let u = x + if crossed { toward } else { -toward } * (a / k);
+    if !is_finite(u) || u == x {
+        return None;
+    }
+    let fu = eval(u)?;
+    (fu.abs() <= POLISH_GAIN * a).then_some((u, fu))
 }
 
 /// The state of a scalar iteration.
@@ -981,12 +1023,28 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
                 Probe::Good(ft) => {
                     self.iterations += 1;
                     slope = Some(secant((x, fx), (t, ft))).filter(|d| usable(*d));
-                    if ft.abs() < fx.abs() {
-                        (self.best_x, self.best_f) = (t, ft);
-                    }
                     if ft.abs() > POLISH_GAIN * fx.abs() {
-                        return;
+                        // Past the bottom of a V, perhaps: the slope of the best point's side.
+                        let retried = v_step((x, fx), (t, ft), d, |u| match self.probe(u) {
+                            Probe::Good(v) => Some(v),
+                            _ => None,
+                        });
+                        match retried {
+                            Some((u, fu)) => {
+                                self.iterations += 1;
+                                (self.best_x, self.best_f) = (u, fu);
+                                slope = Some(d);
+                                continue;
+                            }
+                            None => {
+                                if ft.abs() < fx.abs() {
+                                    (self.best_x, self.best_f) = (t, ft);
+                                }
+                                return;
+                            }
+                        }
                     }
+                    (self.best_x, self.best_f) = (t, ft);
                 }
                 _ => return,
             }

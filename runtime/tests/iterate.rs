@@ -1018,3 +1018,78 @@ fn evaluation_counts() {
         stretch.evaluations()
     );
 }
+
+/// The distance of `(cos t, sin t, 0.3 t)`, a point a default moves along a helix, from the line
+/// through `(cos r, sin r, 0.3 r)` along `(1, 2, 0.5)`: a magnitude, V-shaped at its root `r`.
+fn helix_line_distance(t: f64, r: f64) -> f64 {
+    let p = [t.cos(), t.sin(), 0.3 * t];
+    let q = [r.cos(), r.sin(), 0.3 * r];
+    let d = [1.0f64, 2.0, 0.5];
+    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    let e = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let c = [
+        (e[1] * d[2] - e[2] * d[1]) / n,
+        (e[2] * d[0] - e[0] * d[2]) / n,
+        (e[0] * d[1] - e[1] * d[0]) / n,
+    ];
+    (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+}
+
+#[test]
+fn a_magnitude_is_polished_past_the_bottom_of_its_v() {
+    // A residual that is a distance has no sign: secant steps across its root see a slope of
+    // about zero. The polish must still end at rounding level, from either side and from
+    // starts near and far.
+    let settings = Settings::for_size(1.0);
+    for (r, x0) in [
+        (0.7, 0.9),
+        (0.7, 0.5),
+        (0.7, 0.7 + 1e-7),
+        (-2.0, -1.2),
+        (1.3, 1.3 - 3e-3),
+        (0.2, 0.2 + 0.4),
+    ] {
+        let mut x = [x0];
+        let out = solve(&mut x, &[1.0], &settings, |p, res| {
+            res[0] = helix_line_distance(p[0], r);
+            Ok::<(), ()>(())
+        })
+        .unwrap();
+        assert!(
+            out.residual <= 4.0 * f64::EPSILON && (x[0] - r).abs() <= 1e-15,
+            "root {r} from {x0}: {:e} off, {out:?}",
+            x[0] - r
+        );
+    }
+}
+
+#[test]
+fn a_magnitude_is_solved_when_a_step_crosses_its_root_early() {
+    // `|g|` for a `g` that bends toward zero: Newton's first step from the right lands past
+    // the root, where the magnitude rises again: far outside the tolerance from the first
+    // starts, within it (1e-12 past) from the last ones, where the secant through the two
+    // points then steps the wrong way.
+    let settings = Settings::for_size(1.0);
+    for (r, x0) in [
+        (0.4, 0.5),
+        (0.4, 0.45),
+        (-1.0, -0.8),
+        (2.0, 2.3),
+        (0.4, 0.4 + 1e-6),
+        (0.4, 0.4 + 1.5e-6),
+        (-1.0, -1.0 + 1.2e-6),
+    ] {
+        let g = |t: f64| (t - r) - 0.5 * (t - r) * (t - r);
+        let mut x = [x0];
+        let out = solve(&mut x, &[1.0], &settings, |p, res| {
+            res[0] = g(p[0]).abs();
+            Ok::<(), ()>(())
+        });
+        let out = out.unwrap_or_else(|e| panic!("root {r} from {x0}: {e:?} at {}", x[0]));
+        assert!(
+            out.residual <= 4.0 * f64::EPSILON && (x[0] - r).abs() <= 1e-15,
+            "root {r} from {x0}: {:e} off, {out:?}",
+            x[0] - r
+        );
+    }
+}

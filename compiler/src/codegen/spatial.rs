@@ -676,6 +676,17 @@ impl Solve<'_> {
                 );
                 self.define_pure(w, r, "angle", &code);
             }
+            Op::AngleAboutBoth { u, v, axis } => {
+                let code = format!(
+                    "frame::signed_angle3_both([&{}, &{}], [&{}, &{}], &{})",
+                    self.r(u[0]),
+                    self.r(u[1]),
+                    self.r(v[0]),
+                    self.r(v[1]),
+                    self.r(*axis)
+                );
+                self.define_pure(w, r, "angle", &code);
+            }
             Op::HelixAdvance { now, turn, pitch } => {
                 let code = format!(
                     "frame::helix_advance({}, {}, {})",

@@ -366,6 +366,7 @@ impl Solve<'_> {
             | Op::Across(_)
             | Op::Circle3 { .. }
             | Op::AngleAbout { .. }
+            | Op::AngleAboutBoth { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)

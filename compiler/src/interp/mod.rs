@@ -1119,6 +1119,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::Across(_)
             | Op::Circle3 { .. }
             | Op::AngleAbout { .. }
+            | Op::AngleAboutBoth { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)

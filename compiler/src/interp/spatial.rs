@@ -139,6 +139,11 @@ impl Machine<'_, '_, D3> {
                 &self.v3(*v),
                 &self.v3(*axis),
             )),
+            Op::AngleAboutBoth { u, v, axis } => Val::S(frame::signed_angle3_both(
+                [&self.v3(u[0]), &self.v3(u[1])],
+                [&self.v3(v[0]), &self.v3(v[1])],
+                &self.v3(*axis),
+            )),
             Op::HelixAdvance { now, turn, pitch } => {
                 let advance = frame::helix_advance(self.s(*now), self.s(*turn), self.s(*pitch));
                 Val::S(self.finite(i, advance)?)

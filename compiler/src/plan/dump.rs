@@ -237,6 +237,14 @@ impl Plan {
                 Op::AngleAbout { u, v, axis } => {
                     format!("angle {} -> {} about {}", r(u), r(v), r(axis))
                 }
+                Op::AngleAboutBoth { u, v, axis } => format!(
+                    "angle {} -> {} and {} -> {} about {}",
+                    r(&u[0]),
+                    r(&v[0]),
+                    r(&u[1]),
+                    r(&v[1]),
+                    r(axis)
+                ),
                 Op::HelixAdvance { now, turn, pitch } => {
                     format!(
                         "helix_advance from {} for turn {} pitch {}",

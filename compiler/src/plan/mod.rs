@@ -486,6 +486,10 @@ pub enum Op {
     /// In space: the angle from direction `u` to `v`, counter-clockwise about the unit `axis`,
     /// in (-pi, pi].
     AngleAbout { u: Reg, v: Reg, axis: Reg },
+    /// In space: the angle about the unit `axis` that turns `u[0]` onto `v[0]` and `u[1]` onto
+    /// `v[1]` together (`runtime::frame::signed_angle3_both`): a marker's z and x axes, of
+    /// which the one further across the axis decides.
+    AngleAboutBoth { u: [Reg; 2], v: [Reg; 2], axis: Reg },
     /// A helix's advance for a turn: the advance `now + pitch / 2pi * wrap(turn - 2pi now /
     /// pitch)`, the one of the turn's advances (a pitch apart) nearest `now`.
     HelixAdvance { now: Reg, turn: Reg, pitch: Reg },

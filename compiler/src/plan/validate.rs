@@ -290,6 +290,13 @@ impl Op {
                 vec![(*dir, VECTOR), (*axis, VECTOR), (*angle, SCALAR)]
             }
             Op::AngleAbout { u, v, axis } => vec![(*u, VECTOR), (*v, VECTOR), (*axis, VECTOR)],
+            Op::AngleAboutBoth { u, v, axis } => vec![
+                (u[0], VECTOR),
+                (v[0], VECTOR),
+                (u[1], VECTOR),
+                (v[1], VECTOR),
+                (*axis, VECTOR),
+            ],
             Op::HelixAdvance { now, turn, pitch } => {
                 vec![(*now, SCALAR), (*turn, SCALAR), (*pitch, SCALAR)]
             }
@@ -409,6 +416,7 @@ impl Op {
             | Op::RadiusFromLine { .. }
             | Op::RadiusFromPoint { .. }
             | Op::AngleAbout { .. }
+            | Op::AngleAboutBoth { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::Coordinate { .. } => Ty::Scalar,

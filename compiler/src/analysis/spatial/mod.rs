@@ -865,7 +865,17 @@ impl Builder<'_, Spatial> {
                         } else {
                             k
                         };
-                        return self.turn_onto(moving, target, r, false);
+                        // Only a turn about an axis has its angle decided by the x axis too.
+                        let about_axis = matches!(
+                            self.clusters[self.cluster(moving)].record.turn,
+                            Turn::Axis { feature, .. } if feature != Some(moving)
+                        );
+                        let x = if about_axis {
+                            self.twin_x_axes(r, moving, target)
+                        } else {
+                            None
+                        };
+                        return self.turn_onto_with(moving, target, x, r, false);
                     }
                 }
                 false
@@ -1749,6 +1759,81 @@ impl Builder<'_, Spatial> {
     /// with it: unless that holds by construction (`across`: both are perpendicular to the
     /// axis, as a twist's x axes are to their z), the relation is then checked.
     fn turn_onto(&mut self, v: GeomId, target: Reg, r: &Rel, across: bool) -> bool {
+        self.turn_onto_with(v, target, None, r, across)
+    }
+
+    /// The x axis a joint's coupling of x axes (offset_x, prismatic: a [`Relation::Twist`] of
+    /// constraint `r`, still to come) gives the marker whose z axis `z` is being turned onto
+    /// `z_target`: `(that x axis now, its target)`. A turn about an axis that takes the z axis
+    /// onto its target also takes the x axis onto its own, so both decide the turn: a z axis
+    /// nearly along the turn's axis fixes it only to rounding over its distance from the axis,
+    /// and the x axis, perpendicular to it, is then across the axis. `None` without such a
+    /// coupling.
+    fn twin_x_axes(&mut self, r: &Rel, z: GeomId, z_target: Reg) -> Option<(Reg, Reg)> {
+        let (axis, u, v, angle) = self.pending.iter().find_map(|p| match p.relation {
+            Relation::Twist { axis, u, v, angle } if p.constraint == r.constraint => {
+                Some((axis, u, v, angle))
+            }
+            _ => None,
+        })?;
+        let k = self.cluster(z);
+        let by = self.angle(angle);
+        if self.cluster(v) == k && self.dir_known(axis) && self.dir_known(u) {
+            // The second marker turns: its x axis goes to the first's turned by the angle.
+            let (a, x) = (self.direction(axis), self.direction(u));
+            let words = format!(
+                "{} turned by {} about {}",
+                self.name(u),
+                self.word(by),
+                self.name(axis)
+            );
+            let to = self.value(
+                Op::TurnedAbout {
+                    dir: x,
+                    axis: a,
+                    angle: by,
+                },
+                Ty::Vector,
+                words,
+            );
+            Some((self.direction(v), to))
+        } else if self.cluster(u) == k && self.dir_known(v) {
+            // The first turns: its x axis goes to the second's turned back about the first's
+            // z axis as it will be.
+            let x = self.direction(v);
+            let back = self.value(Op::Neg(by), Ty::Scalar, format!("minus {}", self.word(by)));
+            let words = format!(
+                "{} turned back by {} about {}",
+                self.name(v),
+                self.word(by),
+                self.word(z_target)
+            );
+            let to = self.value(
+                Op::TurnedAbout {
+                    dir: x,
+                    axis: z_target,
+                    angle: back,
+                },
+                Ty::Vector,
+                words,
+            );
+            Some((self.direction(u), to))
+        } else {
+            None
+        }
+    }
+
+    /// [`Builder::turn_onto`]; `also`: another direction of `v`'s cluster and its target (a
+    /// marker's x axis with its z), which a turn about an axis must reach as well and which
+    /// decides it together with `v` (see [`Builder::twin_x_axes`]).
+    fn turn_onto_with(
+        &mut self,
+        v: GeomId,
+        target: Reg,
+        also: Option<(Reg, Reg)>,
+        r: &Rel,
+        across: bool,
+    ) -> bool {
         let k = self.cluster(v);
         let rec = self.clusters[k].record.clone();
         if !rec.movable() {
@@ -1794,11 +1879,55 @@ impl Builder<'_, Spatial> {
                     return false;
                 }
                 let pivot = self.pivot_of(k);
-                let from = self.direction(v);
+                let mut from = self.direction(v);
+                let mut to = target;
+                if let Some((x, x_target)) = also {
+                    // Both directions decide the angle; the turn is by it, from any direction
+                    // across the axis.
+                    let words = format!(
+                        "the angle about {} taking {vname} to {} and its x axis to {}",
+                        self.word(axis),
+                        self.word(target),
+                        self.word(x_target)
+                    );
+                    let angle = self.value(
+                        Op::AngleAboutBoth {
+                            u: [from, x],
+                            v: [target, x_target],
+                            axis,
+                        },
+                        Ty::Scalar,
+                        words,
+                    );
+                    let words = format!("a direction across {}", self.word(axis));
+                    from = self.value(Op::Across(axis), Ty::Vector, words);
+                    let words = format!("it turned by {}", self.word(angle));
+                    to = self.value(
+                        Op::TurnedAbout {
+                            dir: from,
+                            axis,
+                            angle,
+                        },
+                        Ty::Vector,
+                        words,
+                    );
+                }
+                let how = if let Some((x, x_target)) = also {
+                    format!(
+                        "the angle that takes {vname} to {} and {} to {} together, each weighed by how far across the axis it lies",
+                        self.word(target),
+                        self.word(x),
+                        self.word(x_target)
+                    )
+                } else {
+                    format!(
+                        "the angle between the perpendiculars from {vname} and {} to it",
+                        self.word(target)
+                    )
+                };
                 let explain = format!(
-                    "{names} may only rotate about {}: rotate it about that axis by the angle between the perpendiculars from {vname} and {} to it ({c}{}).",
+                    "{names} may only rotate about {}: rotate it about that axis by {how} ({c}{}).",
                     self.word(axis),
-                    self.word(target),
                     if across {
                         ""
                     } else {
@@ -1811,7 +1940,7 @@ impl Builder<'_, Spatial> {
                         pivot,
                         axis: RotationAxis::Along(axis),
                         from,
-                        to: target,
+                        to,
                     },
                     None,
                     if across {
