@@ -130,28 +130,6 @@ const KNOWN_WRONG: &[Known] = &[
             "body | screw (cylindrical, helical) | revolute(P.n, marker)",
         ],
     },
-    Known {
-        // 2. An angle on a free body, iterated near a double root, stops at
-        //    ITERATION_REL (1 + size).
-        why: "An angle on a body free to turn is closed by iterating one of its three turns about the world's axes (the angle leaves it two freedoms, which no record holds yet): near the ends of the angles that turn reaches the root is nearly double, so the iteration stops within `ITERATION_REL (1 + size)` and its polishing, which must halve the residual at each step, cannot go further; at size 1e3 that tolerance is 1e-9 rad. (Magnitudes, a point's unsigned distance from a line or circle of space, V-shaped at the root, used to stop there too: the polish now retries a step that crosses the bottom of the V on the slope of its own side, `iterate::v_step`.)",
-        modes: &["random", "scale 1e-3", "scale 1e3", "tangent"],
-        entries: &[
-            "body | free | angle(vector, P.n.z) = a",
-        ],
-    },
-    Known {
-        // 3. A check a default displaces but cannot close stays a check of the sketch's
-        //    default, passed at 1e-9 (1 + scale).
-        why: "A check that a default displaces but cannot close (a coincidence, three equations, after the screw's one default) stays a check at the sketch's default: every instance whose sketch is off the solution is refused (Inconsistent), and one 1e-9 from it passes the check at `CHECK_REL (1 + scale)` with the point 1.3e-9 to 2e-9 off its fixed point.",
-        modes: &["tiny"],
-        entries: &[
-            "body | screw (cylindrical, helical) | coincident(P.a, point)",
-            "body | screw (cylindrical, helical) | coincident(P.n, point)",
-            "body | screw (cylindrical, helical) | midpoint(P.n, segment)",
-            "body | screw (cylindrical, helical) | spherical(P.n, point)",
-            "body | screw (cylindrical, helical) | symmetric(P.n, point, plane)",
-        ],
-    },
 ];
 
 use gcs_compiler::analyse;

@@ -672,13 +672,15 @@ fn quick<E>(
         iterations += 1;
         polished += u32::from(within);
         if ft.abs() > POLISH_GAIN * fb.abs() {
-            // Not halved. Within the tolerance, a step past the bottom of a magnitude's V is
-            // retried on the slope of the best point's own side.
-            if within && polished < POLISH_STEPS {
-                if let Some((u, fu)) = v_step((xb, fb), (t, ft), slope, |u| eval(u, budget)) {
+            // Not halved. A step past the bottom of a magnitude's V is retried on the slope of
+            // the best point's own side (within the tolerance, as a polishing step).
+            if !within || polished < POLISH_STEPS {
+                if let Some((u, fu, d)) =
+                    v_step((xb, fb), (t, ft), slope, radius, |u| eval(u, budget))
+                {
                     iterations += 1;
-                    polished += 1;
-                    (xb, fb, earlier) = (u, fu, None);
+                    polished += u32::from(within);
+                    (xb, fb, slope, earlier) = (u, fu, d, None);
                     continue;
                 }
             }
@@ -700,36 +702,49 @@ fn quick<E>(
     }
 }
 
-/// The retry of a polishing step from `(x, fx)` to `t` that did not halve the residual although
-/// `f(t)` has the sign of `fx`: the residual may be a magnitude (a point's distance from a line
-/// or circle of space, which a default moves it across), V-shaped at its root, whose slope
-/// changes sign there, so that a step on the slope of one side, or a secant through points on
-/// both, misses the bottom. With `slope` the magnitude of the slope the step was taken on, the
-/// bottom lies `|fx| / slope` from `x`, either toward `t` (the step crossed it: then `|f(t)|` is
-/// about `slope |t - x| - |fx|`) or away from it (the step went up the other side: about
-/// `|fx| + slope |t - x|`); the one `f(t)` fits better is tried. For a residual with a sign the
-/// try is one more step like another, kept only if it halves `fx` as every polishing step must.
-/// `Some((point, residual))` when it does; `None` otherwise, or when `f(t)` has the other sign
-/// (a crossing, which the secant handles).
+/// The retry of a step from `(x, fx)` to `t` that did not halve the residual although `f(t)`
+/// has the sign of `fx`: the residual may be a magnitude (a point's distance from a line, a
+/// circle or a point of space, which a default moves it across), V-shaped at its root, whose
+/// slope changes sign there, so that a step on the slope of one side, or a secant through
+/// points on both, misses the bottom. The bottom lies either toward `t` (the step crossed it:
+/// `|f(x)| + |f(t)|` is the V's slope times `|t - x|`) or away from it (the step went up the
+/// other side: `|f(t)| - |f(x)|` is); of the two slopes these give, the one nearer `slope`, the
+/// magnitude of the slope the step was taken on, tells which, and the bottom is tried where the
+/// V of that slope through the two points has it. For a residual with a sign the try is one
+/// more step like another, kept only if it halves `fx`, and like every step at most `radius`
+/// long. `Some((point, residual, slope))` when it does, the slope signed for a step from `x`'s
+/// side; `None` otherwise, or when `f(t)` has the other sign (a crossing, which the secant
+/// handles).
 fn v_step(
     (x, fx): (f64, f64),
     (t, ft): (f64, f64),
     slope: f64,
+    radius: f64,
     mut eval: impl FnMut(f64) -> Option<f64>,
-) -> Option<(f64, f64)> {
-    let k = slope.abs();
-    if ft * fx <= 0.0 || t == x || !is_finite(k) || k == 0.0 {
+) -> Option<(f64, f64, f64)> {
+    if ft * fx <= 0.0 || t == x || !is_finite(slope) {
         return None;
     }
     let (a, b, dt) = (fx.abs(), ft.abs(), (t - x).abs());
     let toward = (t - x).signum();
-    let crossed = (b - (k * dt - a)).abs() < (b - (a + k * dt)).abs();
-    let u = x + if crossed { toward } else { -toward } * (a / k);
-    if !is_finite(u) || u == x {
+    let (k_crossed, k_up) = ((a + b) / dt, (b - a).abs() / dt);
+    let crossed = (k_crossed - slope.abs()).abs() < (k_up - slope.abs()).abs();
+    let (k, direction) = if crossed {
+        (k_crossed, toward)
+    } else {
+        (k_up, -toward)
+    };
+    if !(is_finite(k) && k > 0.0) {
+        return None;
+    }
+    let u = x + direction * (a / k);
+    if !is_finite(u) || u == x || a / k > radius {
         return None;
     }
     let fu = eval(u)?;
-    (fu.abs() <= POLISH_GAIN * a).then_some((u, fu))
+    // On `x`'s side the residual's magnitude falls toward the bottom.
+    let signed = -direction * k * fx.signum();
+    (fu.abs() <= POLISH_GAIN * a).then_some((u, fu, signed))
 }
 
 /// The state of a scalar iteration.
@@ -859,8 +874,42 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
             }
             Valley::Bottom { x, g } => {
                 self.record(x, sign * g);
-                g <= tolerance
+                g <= tolerance || self.v_bottom(x, g, sign)
             }
+        }
+    }
+
+    /// The bottom of a V near `x`, where a minimization of `|f|` stopped with `g` left: a
+    /// magnitude (a distance) meets zero in a corner, which the minimization finds only to
+    /// its resolution of about `sqrt(eps)`. The values a finite-difference step either side
+    /// give the V's slope, and where its sides meet is tried: `true` when that at least halves
+    /// `g` (the iteration goes on from there), or when a side crossed zero (a bracket).
+    fn v_bottom(&mut self, x: f64, g: f64, sign: f64) -> bool {
+        let d = self.min_step(x);
+        let mut sides = [0.0; 2];
+        for (side, t) in sides.iter_mut().zip([x - d, x + d]) {
+            match self.probe(t) {
+                Probe::Good(ft) => {
+                    self.record(t, ft);
+                    if ft * sign <= 0.0 {
+                        return true;
+                    }
+                    *side = ft.abs();
+                }
+                _ => return false,
+            }
+        }
+        let k = (sides[0] + sides[1]) / (2.0 * d);
+        let v = x - d + sides[0] / k;
+        if !(is_finite(v) && (x - d) < v && v < (x + d)) {
+            return false;
+        }
+        match self.probe(v) {
+            Probe::Good(fv) => {
+                self.record(v, fv);
+                fv.abs() <= 0.5 * g
+            }
+            _ => false,
         }
     }
 
@@ -948,6 +997,20 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
                         self.record(x + step, ft);
                         return Some(self.best_f.abs() <= 0.5 * fx.abs());
                     }
+                    // Past the bottom of a V, perhaps (see `v_step`).
+                    let slope = self.slope.unwrap_or(0.0);
+                    let radius = MAX_STEP * self.scale;
+                    let v = v_step((x, fx), (x + step, ft), slope, radius, |u| {
+                        match self.probe(u) {
+                            Probe::Good(fu) => Some(fu),
+                            _ => None,
+                        }
+                    });
+                    if let Some((u, fu, d)) = v {
+                        self.record(u, fu);
+                        self.slope = Some(d);
+                        return Some(true);
+                    }
                 }
                 Probe::Bad => {}
                 Probe::Exhausted => return None,
@@ -1025,12 +1088,14 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
                     slope = Some(secant((x, fx), (t, ft))).filter(|d| usable(*d));
                     if ft.abs() > POLISH_GAIN * fx.abs() {
                         // Past the bottom of a V, perhaps: the slope of the best point's side.
-                        let retried = v_step((x, fx), (t, ft), d, |u| match self.probe(u) {
-                            Probe::Good(v) => Some(v),
-                            _ => None,
-                        });
+                        let radius = MAX_STEP * self.scale;
+                        let retried =
+                            v_step((x, fx), (t, ft), d, radius, |u| match self.probe(u) {
+                                Probe::Good(v) => Some(v),
+                                _ => None,
+                            });
                         match retried {
-                            Some((u, fu)) => {
+                            Some((u, fu, d)) => {
                                 self.iterations += 1;
                                 (self.best_x, self.best_f) = (u, fu);
                                 slope = Some(d);

@@ -668,6 +668,30 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 _ => 1,
             };
             let open: Vec<u32> = deps.difference(&closed).copied().collect();
+            // A coincidence (or a midpoint, a mirror image) one default displaced, whose
+            // coordinates are more equations than it has defaults: the distance it is off by
+            // closes the iteration (zero there, and every coordinate with it; unsigned,
+            // V-shaped at the root, which the iteration's polish knows).
+            if let [d] = open.as_slice() {
+                if components > 1 {
+                    let (d, constraint) = (*d, *constraint);
+                    closed.insert(d);
+                    let (cname, name) =
+                        (self.cname(constraint), &self.plan.defaults[d as usize].name);
+                    let explain = format!(
+                        "{cname} is what `{name}` displaced: the distance it is off by closes the iteration on `{name}`, and every coordinate with it."
+                    );
+                    let error = Op::Error {
+                        residual: residual.clone(),
+                        component: crate::plan::MAGNITUDE,
+                    };
+                    let satisfies = step.satisfies.clone();
+                    error_and_close(&mut steps, &mut regs, error, constraint, satisfies, explain);
+                    spans.entry(d).or_insert((usize::MAX, 0)).1 = steps.len();
+                    self.redundant.retain(|c| *c != constraint);
+                    continue;
+                }
+            }
             if open.len() < usize::from(components) {
                 steps.push(step);
                 continue;

@@ -1080,7 +1080,11 @@ impl Solve<'_> {
                 component,
             } => {
                 if !self.converged {
-                    let code = self.error_code3(residual, *component);
+                    let code = if *component == crate::plan::MAGNITUDE {
+                        self.residual_code3(residual)
+                    } else {
+                        self.error_code3(residual, *component)
+                    };
                     self.define_pure(w, r, "error", &code);
                 }
             }

@@ -134,7 +134,11 @@ impl Solve<'_> {
                 component,
             } => {
                 if !self.converged {
-                    let code = self.error_code(residual, *component);
+                    let code = if *component == crate::plan::MAGNITUDE {
+                        self.residual_code(residual)
+                    } else {
+                        self.error_code(residual, *component)
+                    };
                     self.define(w, r, "error", &code);
                 }
             }

@@ -919,6 +919,10 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             }
             Op::Error {
                 residual,
+                component: crate::plan::MAGNITUDE,
+            } => Val::S(self.residual(residual)),
+            Op::Error {
+                residual,
                 component,
             } => Val::S(self.error_of(residual, *component)),
             Op::AngleOf(dir) => {

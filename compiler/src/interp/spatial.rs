@@ -438,6 +438,10 @@ impl Machine<'_, '_, D3> {
             }
             Op::Error {
                 residual,
+                component: crate::plan::MAGNITUDE,
+            } => Val::S(self.residual3(residual)),
+            Op::Error {
+                residual,
                 component,
             } => Val::S(self.error_of3(residual, *component)),
             // Signed where the locus has two sides (zero on it, smooth across it); a line's or

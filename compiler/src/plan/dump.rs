@@ -410,6 +410,10 @@ impl Plan {
                 } => format!("close {} by {}", cname(constraint), r(residual)),
                 Op::Error {
                     residual,
+                    component: crate::plan::MAGNITUDE,
+                } => format!("error {} magnitude", residual_text(residual)),
+                Op::Error {
+                    residual,
                     component,
                 } => format!("error {} #{component}", residual_text(residual)),
             };

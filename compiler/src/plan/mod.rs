@@ -133,6 +133,10 @@ pub struct Iteration {
     pub end: usize,
 }
 
+/// The `component` of an [`Op::Error`] that is the relation's residual, the magnitude its
+/// check measures, rather than one coordinate of its error.
+pub const MAGNITUDE: u8 = u8::MAX;
+
 /// Which locus intersection: the pair of loci, in the order of the intersection table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Meet {
@@ -611,6 +615,8 @@ pub enum Op {
     },
     /// The signed error of a relation already implied (zero when it holds): what a `Close`
     /// drives to zero. A coincidence has two, `component` 0 and 1 (x and y); others one.
+    /// [`MAGNITUDE`] is its residual instead, the unsigned distance a coincidence, a midpoint
+    /// or a mirror image is off by: the one error of such a relation one default displaced.
     Error { residual: Residual, component: u8 },
     /// The implicit function of a line or circle `locus` at `point`, zero on it (a line's
     /// signed distance, `|point - centre| - radius`): the error of an `Onto` a default
