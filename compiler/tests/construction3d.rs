@@ -18,7 +18,8 @@
 //! screw (cylindrical and helical); a point at a distance from a fixed point (on a sphere);
 //! fully fixed, by a pivot and an orientation and by three points (Kramer's brick). A point
 //! `P`: free; on a plane; on a line (given, or two planes); on a sphere; on a circle (two
-//! spheres, a sphere and a plane); fixed. A vector `P`: free; known. Lines, segments, circles
+//! spheres, a sphere and a plane); fixed. A vector `P`: free; on a cone (an angle to a fixed
+//! vector); known. Lines, segments, circles
 //! and planes that move are probed free, to list what the analysis says of them.
 //!
 //! Then, for every state, every constraint form of the language in 3d that applies to a
@@ -126,6 +127,7 @@ const KNOWN_WRONG: &[Known] = &[
             "body | pivot, parallel z | helical(marker, P.n) = pitch",
             "body | revolute joint | helical(marker, P.n) = pitch",
             "body | screw (cylindrical, helical) | cylindrical(P.n, marker)",
+            "body | screw (cylindrical, helical) | helical(marker, P.n) = pitch",
             "body | screw (cylindrical, helical) | planar(P.n, marker)",
             "body | screw (cylindrical, helical) | revolute(P.n, marker)",
         ],
@@ -777,7 +779,11 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
             )
         }
         Kind::Vector => (
-            vec![st("free", vec![]), st("known", vec![Parallel(Di::Own)])],
+            vec![
+                st("free", vec![]),
+                st("on a cone (an angle)", vec![Angle(Di::Own)]),
+                st("known", vec![Parallel(Di::Own)]),
+            ],
             vec![Parallel(Di::Own), Angle(Di::Own), Perpendicular(Di::Own)],
         ),
         Kind::Body => {

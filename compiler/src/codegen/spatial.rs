@@ -704,6 +704,15 @@ impl Solve<'_> {
                 );
                 self.define_finite(w, i, r, "turn", &code);
             }
+            Op::ConeTurn { axis, angle, dir } => {
+                let code = format!(
+                    "frame::plane_turn(&{}, {}.cos(), &{})",
+                    self.r(*axis),
+                    self.r(*angle),
+                    self.r(*dir)
+                );
+                self.define_pure(w, r, "turned", &code);
+            }
             Op::AngleTurn {
                 u,
                 v,

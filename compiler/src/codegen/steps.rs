@@ -378,6 +378,7 @@ impl Solve<'_> {
             | Op::PlaneTurn { .. }
             | Op::PlaneAxisTurn { .. }
             | Op::AngleTurn { .. }
+            | Op::ConeTurn { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }
             | Op::MirrorPlane { .. }

@@ -1131,6 +1131,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::PlaneTurn { .. }
             | Op::PlaneAxisTurn { .. }
             | Op::AngleTurn { .. }
+            | Op::ConeTurn { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }
             | Op::TurnedAbout { .. }

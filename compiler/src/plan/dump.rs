@@ -296,6 +296,9 @@ impl Plan {
                     self.branches[branch.0 as usize].name,
                     cname(constraint)
                 ),
+                Op::ConeTurn { axis, angle, dir } => {
+                    format!("cone_turn {} about {} to {}", r(dir), r(axis), r(angle))
+                }
                 Op::AngleTurn {
                     u,
                     v,

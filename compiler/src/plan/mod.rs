@@ -541,6 +541,10 @@ pub enum Op {
         branch: BranchId,
         constraint: ConstraintId,
     },
+    /// In space: the direction of least turn from `dir` that makes the unsigned angle `angle`
+    /// with the unit `axis` (`runtime::frame::plane_turn` with its cosine): on the great circle
+    /// through `axis` and `dir`, the point of the cone about `axis` nearest `dir`.
+    ConeTurn { axis: Reg, angle: Reg, dir: Reg },
     /// In space: coordinate 0, 1 or 2 of `point`.
     Coordinate { point: Reg, axis: u8 },
     /// In space: the point with coordinates `x`, `y` and `z`.

@@ -333,6 +333,9 @@ impl Op {
                 (*d, SCALAR),
                 (*axis, VECTOR),
             ],
+            Op::ConeTurn { axis, angle, dir } => {
+                vec![(*axis, VECTOR), (*angle, SCALAR), (*dir, VECTOR)]
+            }
             Op::AngleTurn {
                 u, v, axis, angle, ..
             } => vec![
@@ -422,6 +425,7 @@ impl Op {
             | Op::Coordinate { .. } => Ty::Scalar,
             Op::WorldAxis(_)
             | Op::AngleTurn { .. }
+            | Op::ConeTurn { .. }
             | Op::PlaneNormal { .. }
             | Op::PlaneTurn { .. }
             | Op::PlaneAxisTurn { .. } => Ty::Vector,

@@ -920,7 +920,8 @@ impl Builder<'_, Spatial> {
             Relation::Angle { u, v, angle } => {
                 for (known, moving) in [(u, v), (v, u)] {
                     if self.dir_known(known) && !self.dir_known(moving) {
-                        return self.turn_to_angle(known, moving, angle, r);
+                        return self.turn_onto_cone(known, moving, angle, r)
+                            || self.turn_to_angle(known, moving, angle, r);
                     }
                 }
                 false
@@ -1085,6 +1086,62 @@ impl Builder<'_, Spatial> {
     /// Direction `v` to make an angle with known `u`: its cluster, turning about one axis,
     /// turns to where `v`'s cone about the axis meets `u`'s cone of that angle (two turns, a
     /// branch). Free to turn, it waits: the angle alone leaves it two freedoms.
+    /// A free direction (a vector, a plane's normal) to make `angle` with known direction `u`:
+    /// it turns the least onto the cone of directions about `u` at that angle, and may then
+    /// only turn about `u`, which keeps the angle (one freedom, the cone's; a vector's or a
+    /// plane's turn about itself moves nothing). A body's direction keeps a second freedom,
+    /// its spin about itself, which no record holds yet.
+    fn turn_onto_cone(&mut self, u: GeomId, v: GeomId, angle: AngleValue, r: &Rel) -> bool {
+        let k = self.cluster(v);
+        let rec = self.clusters[k].record.clone();
+        if !(rec.movable()
+            && rec.turn == Turn::Free
+            && matches!(rec.shape, Shape::Vector | Shape::Plane))
+        {
+            return false;
+        }
+        let (ur, vr) = (self.direction(u), self.direction(v));
+        let angle = self.angle_value(angle);
+        let (uname, vname) = (self.name(u), self.name(v));
+        let words = format!(
+            "the direction nearest {vname} at {} from {uname}",
+            self.word(angle)
+        );
+        let to = self.value(
+            Op::ConeTurn {
+                axis: ur,
+                angle,
+                dir: vr,
+            },
+            Ty::Vector,
+            words,
+        );
+        let geoms = self.clusters[k].geoms.clone();
+        let names = self.group_name(&geoms);
+        let pivot = self.pivot_of(k);
+        let explain = format!(
+            "Rotate {names} the least so that {vname} makes its angle with {uname}, on the plane through both ({}); it may then only turn about {uname}.",
+            self.cname(r.constraint)
+        );
+        self.emit(
+            Op::RotateDir {
+                geoms,
+                pivot,
+                axis: RotationAxis::Shortest,
+                from: vr,
+                to,
+            },
+            None,
+            self.satisfies(r),
+            explain,
+        );
+        self.clusters[k].record.turn = Turn::Axis {
+            axis: ur,
+            feature: None,
+        };
+        true
+    }
+
     fn turn_to_angle(&mut self, u: GeomId, v: GeomId, angle: AngleValue, r: &Rel) -> bool {
         let k = self.cluster(v);
         let Turn::Axis { axis, .. } = self.clusters[k].record.turn else {
