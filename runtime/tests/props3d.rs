@@ -545,3 +545,33 @@ proptest! {
         prop_assert!((q * (q.inverse() * axis) - axis).norm() <= REL);
     }
 }
+
+proptest! {
+    /// A marker's z and x axes turned together about an axis that z lies within 1e-12 to 1e-2
+    /// rad of: the angle `signed_angle3_both` reads off the two pairs is the turn to about
+    /// rounding, although z's own angle about the axis is fixed only to rounding over its
+    /// distance from it.
+    #[test]
+    fn a_turn_read_off_z_and_x_together_is_exact_near_the_axis(
+        axis in unit(),
+        across in unit(),
+        off in -12.0f64..-2.0,
+        spin in -3.1f64..3.1,
+        turn in -3.1f64..3.1,
+    ) {
+        let tilt = perp_to(&axis, &across);
+        let z = (axis + tilt * 10f64.powf(off)).normalize();
+        // An x axis across z, at `spin` about it.
+        let x = rotation_about_axis(&z, spin) * perp_to(&z, &tilt);
+        let q = rotation_about_axis(&axis, turn);
+        let (z1, x1) = (q * z, q * x);
+        let both = gcs_runtime::frame::signed_angle3_both([&z, &x], [&z1, &x1], &axis);
+        prop_assert!((both - turn).abs() <= 1e-14, "{both} for {turn}, z {off} off the axis");
+        // Either pair alone gives the same angle when it is well across the axis.
+        let from_x = gcs_runtime::frame::signed_angle3(&x, &x1, &axis);
+        let x_across = (x - axis * axis.dot(&x)).norm();
+        if x_across > 0.5 {
+            prop_assert!((from_x - turn).abs() <= 1e-14);
+        }
+    }
+}
