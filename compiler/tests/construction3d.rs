@@ -19,7 +19,8 @@
 //! fully fixed, by a pivot and an orientation and by three points (Kramer's brick). A point
 //! `P`: free; on a plane; on a line (given, or two planes); on a sphere; on a circle (two
 //! spheres, a sphere and a plane); fixed. A vector `P`: free; on a cone (an angle to a fixed
-//! vector); known. Lines, segments, circles
+//! vector); known. A line `P`: free; through a point; its direction known; on a cone;
+//! placed. Segments, circles
 //! and planes that move are probed free, to list what the analysis says of them.
 //!
 //! Then, for every state, every constraint form of the language in 3d that applies to a
@@ -863,7 +864,13 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
             )
         }
         Kind::Line => (
-            vec![st("free", vec![])],
+            vec![
+                st("free", vec![]),
+                st("through a point", vec![OnP]),
+                st("direction known", vec![Parallel(Di::Own)]),
+                st("on a cone (an angle)", vec![Angle(Di::Own)]),
+                st("placed", vec![Parallel(Di::Own), OnP]),
+            ],
             vec![
                 OnP,
                 DistP,

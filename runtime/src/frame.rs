@@ -1031,6 +1031,17 @@ pub fn plane_turn(w: &Vector3<f64>, c: f64, normal: &Vector3<f64>) -> Vector3<f6
     w * c + e * (1.0 - c * c).max(0.0).sqrt()
 }
 
+/// `dir` or its opposite, whichever is nearer `near` (the opposite only when their dot product
+/// is negative): the sense a directed line keeps when turned onto an undirected one.
+#[inline]
+pub fn aligned(dir: &Vector3<f64>, near: &Vector3<f64>) -> Vector3<f64> {
+    if dir.dot(near) < 0.0 {
+        -dir
+    } else {
+        *dir
+    }
+}
+
 /// The advance of a screw of `pitch` (per turn) whose turn is `turn` radians, the one nearest
 /// `now`: a turn and a whole number of turns more give the same screw, so the advance nearest
 /// where the screw is keeps it from jumping a pitch.

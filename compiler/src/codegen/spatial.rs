@@ -704,6 +704,10 @@ impl Solve<'_> {
                 );
                 self.define_finite(w, i, r, "turn", &code);
             }
+            Op::Aligned { dir, near } => {
+                let code = format!("frame::aligned(&{}, &{})", self.r(*dir), self.r(*near));
+                self.define_pure(w, r, "aligned", &code);
+            }
             Op::ConeTurn { axis, angle, dir } => {
                 let code = format!(
                     "frame::plane_turn(&{}, {}.cos(), &{})",

@@ -379,6 +379,7 @@ impl Solve<'_> {
             | Op::PlaneAxisTurn { .. }
             | Op::AngleTurn { .. }
             | Op::ConeTurn { .. }
+            | Op::Aligned { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }
             | Op::MirrorPlane { .. }

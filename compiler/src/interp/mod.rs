@@ -1132,6 +1132,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::PlaneAxisTurn { .. }
             | Op::AngleTurn { .. }
             | Op::ConeTurn { .. }
+            | Op::Aligned { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }
             | Op::TurnedAbout { .. }

@@ -148,6 +148,7 @@ impl Machine<'_, '_, D3> {
                 let advance = frame::helix_advance(self.s(*now), self.s(*turn), self.s(*pitch));
                 Val::S(self.finite(i, advance)?)
             }
+            Op::Aligned { dir, near } => Val::V3(frame::aligned(&self.v3(*dir), &self.v3(*near))),
             Op::ConeTurn { axis, angle, dir } => Val::V3(frame::plane_turn(
                 &self.v3(*axis),
                 self.s(*angle).cos(),

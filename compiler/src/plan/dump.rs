@@ -296,6 +296,7 @@ impl Plan {
                     self.branches[branch.0 as usize].name,
                     cname(constraint)
                 ),
+                Op::Aligned { dir, near } => format!("aligned {} near {}", r(dir), r(near)),
                 Op::ConeTurn { axis, angle, dir } => {
                     format!("cone_turn {} about {} to {}", r(dir), r(axis), r(angle))
                 }

@@ -545,6 +545,9 @@ pub enum Op {
     /// with the unit `axis` (`runtime::frame::plane_turn` with its cosine): on the great circle
     /// through `axis` and `dir`, the point of the cone about `axis` nearest `dir`.
     ConeTurn { axis: Reg, angle: Reg, dir: Reg },
+    /// In space: `dir` or its opposite, whichever is nearer `near` (a directed line turned
+    /// onto a line through two points keeps its sense).
+    Aligned { dir: Reg, near: Reg },
     /// In space: coordinate 0, 1 or 2 of `point`.
     Coordinate { point: Reg, axis: u8 },
     /// In space: the point with coordinates `x`, `y` and `z`.

@@ -333,6 +333,7 @@ impl Op {
                 (*d, SCALAR),
                 (*axis, VECTOR),
             ],
+            Op::Aligned { dir, near } => vec![(*dir, VECTOR), (*near, VECTOR)],
             Op::ConeTurn { axis, angle, dir } => {
                 vec![(*axis, VECTOR), (*angle, SCALAR), (*dir, VECTOR)]
             }
@@ -426,6 +427,7 @@ impl Op {
             Op::WorldAxis(_)
             | Op::AngleTurn { .. }
             | Op::ConeTurn { .. }
+            | Op::Aligned { .. }
             | Op::PlaneNormal { .. }
             | Op::PlaneTurn { .. }
             | Op::PlaneAxisTurn { .. } => Ty::Vector,

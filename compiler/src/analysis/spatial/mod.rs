@@ -212,6 +212,10 @@ pub enum Shape {
     /// itself and turning about its normal move nothing. A plane held at a distance from a
     /// known point (`Trans::Pivot` at that point) keeps it while turning about the point.
     Plane,
+    /// A line: its place across its direction (two DOF) and its direction (two); sliding
+    /// along itself and turning about itself move nothing (its reported point is the foot of
+    /// the perpendicular from its sketch's first point, wherever its frame's origin slid).
+    Line,
     /// A geom of space the analysis does not move yet (a line, segment, circle or plane
     /// that is not fixed), with its DOF.
     Other(usize),
@@ -239,6 +243,7 @@ impl Record {
             GeomKind::Vector => (Trans::None, Turn::Free, Shape::Vector),
             GeomKind::Body => (Trans::Free, Turn::Free, Shape::Body),
             GeomKind::Plane => (Trans::Free, Turn::Free, Shape::Plane),
+            GeomKind::Line => (Trans::Free, Turn::Free, Shape::Line),
             kind => (Trans::Free, Turn::Free, Shape::Other(kind.dof(model.space))),
         };
         let mut record = Record {
@@ -266,12 +271,13 @@ impl Invariants for Record {
         }
         let trans = match self.trans {
             Trans::Free if self.shape == Shape::Plane => 1,
+            Trans::Free if self.shape == Shape::Line => 2,
             Trans::Free => 3,
             Trans::On { locus, .. } => locus.dof(),
             Trans::Pivot { .. } | Trans::Fixed | Trans::None => 0,
         };
         let turn = match (self.turn, self.shape) {
-            (Turn::Free, Shape::Vector | Shape::Plane) => 2,
+            (Turn::Free, Shape::Vector | Shape::Plane | Shape::Line) => 2,
             (Turn::Free, _) => 3,
             (Turn::Axis { .. }, _) => 1,
             (Turn::Known | Turn::None, _) => 0,
@@ -318,7 +324,7 @@ impl Invariants for Record {
             Trans::Free | Trans::None => (0, 0, 0),
         };
         let inv_vec = match (self.turn, self.shape) {
-            (Turn::Axis { .. }, _) | (Turn::Known, Shape::Vector | Shape::Plane) => 1,
+            (Turn::Axis { .. }, _) | (Turn::Known, Shape::Vector | Shape::Plane | Shape::Line) => 1,
             (Turn::Known, _) => 2,
             _ => 0,
         };
@@ -349,6 +355,9 @@ impl Invariants for Record {
             _ => {}
         }
         match (self.turn, self.trans) {
+            (Turn::Free, Trans::Pivot { .. }) if self.shape == Shape::Line => {
+                parts.push("it may still turn about the point it passes through".into())
+            }
             (Turn::Free, Trans::Pivot { feature, .. }) => {
                 parts.push(format!("it may still rotate about {}", name(feature)))
             }
@@ -801,6 +810,32 @@ impl Builder<'_, Spatial> {
                     let l = self.line(x, d, words);
                     return self.move_point(base, Target::On(Locus::Line(l)), r);
                 }
+                // A line through a known point, its direction not known: it turns about that
+                // point onto the line through both, keeping its sense.
+                if self.point_known(p)
+                    && self.point_known(base)
+                    && self.together(base, dir)
+                    && self.record(base).shape == Shape::Line
+                {
+                    let (x, at, d) = (self.point(p), self.point(base), self.direction(dir));
+                    let (pname, lname) = (self.name(p), self.name(base));
+                    let words = format!("the direction from {lname}'s point to {pname}");
+                    let to = self.value(Op::DirectionTo { from: at, to: x }, Ty::Vector, words);
+                    let words = format!("that direction, or its opposite, nearer {lname}'s");
+                    let to = self.value(Op::Aligned { dir: to, near: d }, Ty::Vector, words);
+                    return self.turn_onto(dir, to, r, false);
+                }
+                // A line free to translate, its direction not known: it moves (across itself,
+                // its point sliding along it moves nothing) through the known point, and may
+                // then only turn about it.
+                if self.point_known(p)
+                    && self.together(base, dir)
+                    && self.record(base).shape == Shape::Line
+                    && self.record(base).trans == Trans::Free
+                {
+                    let x = self.point(p);
+                    return self.move_point(base, Target::Point(x), r);
+                }
                 false
             }
             Relation::PointPlane { p, base, normal, d } => {
@@ -1086,17 +1121,18 @@ impl Builder<'_, Spatial> {
     /// Direction `v` to make an angle with known `u`: its cluster, turning about one axis,
     /// turns to where `v`'s cone about the axis meets `u`'s cone of that angle (two turns, a
     /// branch). Free to turn, it waits: the angle alone leaves it two freedoms.
-    /// A free direction (a vector, a plane's normal) to make `angle` with known direction `u`:
+    /// A free direction (a vector, a plane's normal, a line's) to make `angle` with known
+    /// direction `u`:
     /// it turns the least onto the cone of directions about `u` at that angle, and may then
-    /// only turn about `u`, which keeps the angle (one freedom, the cone's; a vector's or a
-    /// plane's turn about itself moves nothing). A body's direction keeps a second freedom,
+    /// only turn about `u`, which keeps the angle (one freedom, the cone's; a vector's, a
+    /// plane's or a line's turn about itself moves nothing). A body's direction keeps a second freedom,
     /// its spin about itself, which no record holds yet.
     fn turn_onto_cone(&mut self, u: GeomId, v: GeomId, angle: AngleValue, r: &Rel) -> bool {
         let k = self.cluster(v);
         let rec = self.clusters[k].record.clone();
         if !(rec.movable()
             && rec.turn == Turn::Free
-            && matches!(rec.shape, Shape::Vector | Shape::Plane))
+            && matches!(rec.shape, Shape::Vector | Shape::Plane | Shape::Line))
         {
             return false;
         }
@@ -1612,10 +1648,14 @@ impl Builder<'_, Spatial> {
     fn placed(&mut self, k: usize, f: GeomId, to: Reg, target: Target) {
         let turns = matches!(self.clusters[k].record.turn, Turn::Free | Turn::Axis { .. });
         let plane = self.clusters[k].record.shape == Shape::Plane;
+        let line = self.clusters[k].record.shape == Shape::Line;
         let trans = match target {
             // A plane put on a plane parallel to it is placed: sliding within itself is no
             // motion of it.
             Target::On(Locus::Plane(_)) if plane => Trans::Fixed,
+            // A line's point put on the line along its known direction through a point: the
+            // line is placed (its only way there, `action`'s point on a moving line).
+            Target::On(Locus::Line(_)) if line => Trans::Fixed,
             Target::Point(_) if turns => Trans::Pivot { at: to, feature: f },
             Target::Point(_) => Trans::Fixed,
             Target::On(locus) => Trans::On { feature: f, locus },
@@ -1921,7 +1961,8 @@ impl Builder<'_, Spatial> {
                     self.satisfies(r),
                     explain,
                 );
-                self.clusters[k].record.turn = if rec.shape == Shape::Vector {
+                // A vector, or a line along its direction: turning about itself moves nothing.
+                self.clusters[k].record.turn = if matches!(rec.shape, Shape::Vector | Shape::Line) {
                     Turn::Known
                 } else {
                     Turn::Axis {
@@ -2041,6 +2082,9 @@ impl Builder<'_, Spatial> {
             return false;
         }
         match (rec.trans, rec.turn) {
+            // A line's free turn has no defaults yet: three turns would count a spin about
+            // itself that moves nothing.
+            (_, Turn::Free) if rec.shape == Shape::Line => false,
             (
                 Trans::On {
                     feature,
@@ -2049,6 +2093,9 @@ impl Builder<'_, Spatial> {
                 _,
             ) => self.slide(k, feature, locus),
             (_, Turn::Axis { axis, .. }) => self.spin(k, axis),
+            // A line whose direction is known: its place across itself, two coordinates on the
+            // plane through its point across it (sliding along itself moves nothing).
+            (Trans::Free, _) if rec.shape == Shape::Line => self.place_across(k),
             (Trans::Free, _) => self.place(k),
             // Held on a surface with nothing left to turn: its two coordinates on it.
             (
@@ -2073,6 +2120,27 @@ impl Builder<'_, Spatial> {
         format!(
             "No constraint, chain or loop fixes this yet: assume {meaning} is the default `{name}` (the sketch's value unless given)"
         )
+    }
+
+    /// A line (cluster `k`) whose direction is known, free to move across itself: its point's
+    /// two coordinates on the plane through it across the line (`place_on`).
+    fn place_across(&mut self, k: usize) -> bool {
+        let line = self.clusters[k].geoms[0];
+        let Some(dir) = self.model.part(line, Part::Dir) else {
+            return false;
+        };
+        let (point, normal) = (self.point(line), self.direction(dir));
+        let words = format!("the plane through {} across it", self.name(line));
+        let plane = self.value(
+            Op::Plane {
+                point,
+                normal,
+                offset: None,
+            },
+            Ty::Plane,
+            words,
+        );
+        self.place_on(k, line, Locus::Plane(plane))
     }
 
     /// Feature `f` of cluster `k` held on a line or circle: default its place on it (the
