@@ -64,8 +64,10 @@
 //! 2. **Local minima of |f|** among the samples, with no sign change next to them (the left
 //!    neighbour strictly larger in magnitude, the right one at least as large, so a tie is
 //!    refined once), are refined by Brent's minimization of `sign * f` over the two spacings
-//!    around the sample, to about `sqrt(eps) |x|`. A minimum with `|f| <= tolerance` is a
-//!    **double root**. If the minimization finds a point where `f` has crossed zero by more than
+//!    around the sample, to about `sqrt(eps) |x|`, and then, should `f` be a magnitude (a
+//!    distance, whose minimum is the corner of a V that the minimization finds only to that
+//!    resolution), where the lines through a point either side of it meet. A minimum with
+//!    `|f| <= tolerance` is a **double root** (a magnitude's root is one). If the minimization finds a point where `f` has crossed zero by more than
 //!    the tolerance, the dip holds two simple roots, and both are refined.
 //! 3. **Shallow dips**: a sample with `|f| <= tolerance` whose two neighbours have the opposite
 //!    sign is refined the same way (the deepest point of the dip): if the dip stays within the
@@ -874,42 +876,8 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
             }
             Valley::Bottom { x, g } => {
                 self.record(x, sign * g);
-                g <= tolerance || self.v_bottom(x, g, sign)
+                g <= tolerance
             }
-        }
-    }
-
-    /// The bottom of a V near `x`, where a minimization of `|f|` stopped with `g` left: a
-    /// magnitude (a distance) meets zero in a corner, which the minimization finds only to
-    /// its resolution of about `sqrt(eps)`. The values a finite-difference step either side
-    /// give the V's slope, and where its sides meet is tried: `true` when that at least halves
-    /// `g` (the iteration goes on from there), or when a side crossed zero (a bracket).
-    fn v_bottom(&mut self, x: f64, g: f64, sign: f64) -> bool {
-        let d = self.min_step(x);
-        let mut sides = [0.0; 2];
-        for (side, t) in sides.iter_mut().zip([x - d, x + d]) {
-            match self.probe(t) {
-                Probe::Good(ft) => {
-                    self.record(t, ft);
-                    if ft * sign <= 0.0 {
-                        return true;
-                    }
-                    *side = ft.abs();
-                }
-                _ => return false,
-            }
-        }
-        let k = (sides[0] + sides[1]) / (2.0 * d);
-        let v = x - d + sides[0] / k;
-        if !(is_finite(v) && (x - d) < v && v < (x + d)) {
-            return false;
-        }
-        match self.probe(v) {
-            Probe::Good(fv) => {
-                self.record(v, fv);
-                fv.abs() <= 0.5 * g
-            }
-            _ => false,
         }
     }
 
@@ -2080,6 +2048,35 @@ fn valley(
                 (v, gv, w, gw) = (w, gw, u, gu);
             } else if gu <= gv || v == x || v == w {
                 (v, gv) = (u, gu);
+            }
+        }
+    }
+    // A magnitude (a distance) meets zero in the corner of a V, which the minimization finds
+    // only to its resolution: a step either side gives the V's slope, and where its sides
+    // meet is tried (for a smooth bottom, one more point near it).
+    if gx > tolerance {
+        let h = 2.0 * (SQRT_EPS * x.abs() + abs_tol);
+        let mut sides = [0.0; 2];
+        for (side, t) in sides.iter_mut().zip([x - h, x + h]) {
+            match probe(t) {
+                Probe::Good(value) if sign * value < -tolerance => {
+                    return Valley::Crossing { x: t, f: value };
+                }
+                Probe::Good(value) => *side = sign * value,
+                _ => return Valley::Bottom { x, g: gx },
+            }
+        }
+        let k = (sides[0] + sides[1]) / (2.0 * h);
+        let u = x - h + sides[0] / k;
+        if is_finite(u) && x - h < u && u < x + h {
+            if let Probe::Good(value) = probe(u) {
+                let gu = sign * value;
+                if gu < -tolerance {
+                    return Valley::Crossing { x: u, f: value };
+                }
+                if gu < gx {
+                    (x, gx) = (u, gu);
+                }
             }
         }
     }

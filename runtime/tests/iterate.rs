@@ -1093,3 +1093,20 @@ fn a_magnitude_is_solved_when_a_step_crosses_its_root_early() {
         );
     }
 }
+
+#[test]
+fn a_scan_finds_the_roots_of_a_magnitude() {
+    // The distance of a point turning on a circle from a line through the circle's plane's
+    // axis: `|sin(t - 0.3)|`, times a radius, with a slope on both sides of each root and no
+    // sign change. Each bottom is a V, which a minimization alone finds only to about
+    // sqrt(eps), its residual then far above the tolerance.
+    let scan: RootScan<4> = all_roots(-PI, PI, true, 24, &Settings::default(), |t| {
+        Ok::<f64, ()>(2.0 * (t - 0.3).sin().abs())
+    });
+    let expected = [0.3 - PI, 0.3];
+    assert_eq!(scan.roots().len(), 2, "{scan:?}");
+    for (i, (r, e)) in scan.roots().iter().zip(expected).enumerate() {
+        assert!((r - e).abs() <= 1e-14, "{r} vs {e}");
+        assert!(scan.residual(i) <= 1e-15, "{scan:?}");
+    }
+}
