@@ -20,7 +20,7 @@
 //! `P`: free; on a plane; on a line (given, or two planes); on a sphere; on a circle (two
 //! spheres, a sphere and a plane); fixed. A vector `P`: free; on a cone (an angle to a fixed
 //! vector); known. A line `P`: free; through a point; its direction known; on a cone;
-//! placed. Segments, circles
+//! placed. A segment `P`: free; its start held; its end held. Circles
 //! and planes that move are probed free, to list what the analysis says of them.
 //!
 //! Then, for every state, every constraint form of the language in 3d that applies to a
@@ -881,7 +881,11 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
             ],
         ),
         Kind::Segment => (
-            vec![st("free", vec![])],
+            vec![
+                st("free", vec![]),
+                st("start held", vec![Coincident(Pt::Start)]),
+                st("end held", vec![Coincident(Pt::End)]),
+            ],
             vec![
                 Coincident(Pt::Start),
                 Coincident(Pt::End),

@@ -216,6 +216,12 @@ pub enum Shape {
     /// along itself and turning about itself move nothing (its reported point is the foot of
     /// the perpendicular from its sketch's first point, wherever its frame's origin slid).
     Line,
+    /// A segment: its start (three DOF), its direction (two; turning about itself moves
+    /// nothing) and, until `sized`, its length (one), which a move that scales sets.
+    Segment {
+        /// Whether its length is set (it is then rigid).
+        sized: bool,
+    },
     /// A geom of space the analysis does not move yet (a line, segment, circle or plane
     /// that is not fixed), with its DOF.
     Other(usize),
@@ -244,6 +250,7 @@ impl Record {
             GeomKind::Body => (Trans::Free, Turn::Free, Shape::Body),
             GeomKind::Plane => (Trans::Free, Turn::Free, Shape::Plane),
             GeomKind::Line => (Trans::Free, Turn::Free, Shape::Line),
+            GeomKind::Segment => (Trans::Free, Turn::Free, Shape::Segment { sized: false }),
             kind => (Trans::Free, Turn::Free, Shape::Other(kind.dof(model.space))),
         };
         let mut record = Record {
@@ -276,13 +283,14 @@ impl Invariants for Record {
             Trans::On { locus, .. } => locus.dof(),
             Trans::Pivot { .. } | Trans::Fixed | Trans::None => 0,
         };
+        let length = usize::from(self.shape == Shape::Segment { sized: false });
         let turn = match (self.turn, self.shape) {
-            (Turn::Free, Shape::Vector | Shape::Plane | Shape::Line) => 2,
+            (Turn::Free, Shape::Vector | Shape::Plane | Shape::Line | Shape::Segment { .. }) => 2,
             (Turn::Free, _) => 3,
             (Turn::Axis { .. }, _) => 1,
             (Turn::Known | Turn::None, _) => 0,
         };
-        trans + turn
+        trans + turn + length
     }
 
     fn rigid(&self) -> bool {
@@ -296,6 +304,9 @@ impl Invariants for Record {
 
     fn hold(&mut self) {
         self.held = true;
+        if let Shape::Segment { .. } = self.shape {
+            self.shape = Shape::Segment { sized: true };
+        }
         if !matches!(self.turn, Turn::None) {
             self.turn = Turn::Known;
         }
@@ -324,7 +335,10 @@ impl Invariants for Record {
             Trans::Free | Trans::None => (0, 0, 0),
         };
         let inv_vec = match (self.turn, self.shape) {
-            (Turn::Axis { .. }, _) | (Turn::Known, Shape::Vector | Shape::Plane | Shape::Line) => 1,
+            (Turn::Axis { .. }, _)
+            | (Turn::Known, Shape::Vector | Shape::Plane | Shape::Line | Shape::Segment { .. }) => {
+                1
+            }
             (Turn::Known, _) => 2,
             _ => 0,
         };
@@ -1121,8 +1135,8 @@ impl Builder<'_, Spatial> {
     /// Direction `v` to make an angle with known `u`: its cluster, turning about one axis,
     /// turns to where `v`'s cone about the axis meets `u`'s cone of that angle (two turns, a
     /// branch). Free to turn, it waits: the angle alone leaves it two freedoms.
-    /// A free direction (a vector, a plane's normal, a line's) to make `angle` with known
-    /// direction `u`:
+    /// A free direction (a vector, a plane's normal, a line's or a segment's) to make `angle`
+    /// with known direction `u`:
     /// it turns the least onto the cone of directions about `u` at that angle, and may then
     /// only turn about `u`, which keeps the angle (one freedom, the cone's; a vector's, a
     /// plane's or a line's turn about itself moves nothing). A body's direction keeps a second freedom,
@@ -1132,7 +1146,10 @@ impl Builder<'_, Spatial> {
         let rec = self.clusters[k].record.clone();
         if !(rec.movable()
             && rec.turn == Turn::Free
-            && matches!(rec.shape, Shape::Vector | Shape::Plane | Shape::Line))
+            && matches!(
+                rec.shape,
+                Shape::Vector | Shape::Plane | Shape::Line | Shape::Segment { .. }
+            ))
         {
             return false;
         }
@@ -1563,6 +1580,15 @@ impl Builder<'_, Spatial> {
                 self.placed(k, f, to, met);
                 true
             }
+            // A segment of free length, one end held: the other end reaches a point by a turn
+            // about the held end and a new length.
+            (Trans::Pivot { at, feature: g }, Target::Point(x))
+                if rec.shape == (Shape::Segment { sized: false })
+                    && rec.turn == Turn::Free
+                    && g != f =>
+            {
+                self.span(k, (g, at), x, r)
+            }
             // About a pivot, free to turn: f is on the sphere about the pivot through it.
             (Trans::Pivot { at, feature: g }, target) if rec.turn == Turn::Free && g != f => {
                 let from = self.point(f);
@@ -1962,7 +1988,10 @@ impl Builder<'_, Spatial> {
                     explain,
                 );
                 // A vector, or a line along its direction: turning about itself moves nothing.
-                self.clusters[k].record.turn = if matches!(rec.shape, Shape::Vector | Shape::Line) {
+                self.clusters[k].record.turn = if matches!(
+                    rec.shape,
+                    Shape::Vector | Shape::Line | Shape::Segment { .. }
+                ) {
                     Turn::Known
                 } else {
                     Turn::Axis {
@@ -2085,6 +2114,8 @@ impl Builder<'_, Spatial> {
             // A line's free turn has no defaults yet: three turns would count a spin about
             // itself that moves nothing.
             (_, Turn::Free) if rec.shape == Shape::Line => false,
+            // A segment's freedom has no defaults yet.
+            _ if matches!(rec.shape, Shape::Segment { .. }) => false,
             (
                 Trans::On {
                     feature,
@@ -2120,6 +2151,111 @@ impl Builder<'_, Spatial> {
         format!(
             "No constraint, chain or loop fixes this yet: assume {meaning} is the default `{name}` (the sketch's value unless given)"
         )
+    }
+
+    /// Segment cluster `k`, its end `g` held at `at`, its other end to reach `x`: it turns
+    /// about `at` so that it points from the start toward the end's place, takes the length
+    /// between them, and (when the end held is its end, not its start, which a new length
+    /// would move) moves back so that `g` is at `at`. It is then placed.
+    fn span(&mut self, k: usize, (g, at): (GeomId, Reg), x: Reg, r: &Rel) -> bool {
+        let seg = self.clusters[k].geoms[0];
+        let (Some(start), Some(dir)) = (
+            self.model.part(seg, Part::Start),
+            self.model.part(seg, Part::Dir),
+        ) else {
+            return false;
+        };
+        let held_start = g == start;
+        let (from_pt, to_pt) = if held_start { (at, x) } else { (x, at) };
+        let (sname, c) = (self.name(seg), self.cname(r.constraint));
+        let words = format!(
+            "the direction from {} to {}",
+            self.word(from_pt),
+            self.word(to_pt)
+        );
+        let target = self.value(
+            Op::DirectionTo {
+                from: from_pt,
+                to: to_pt,
+            },
+            Ty::Vector,
+            words,
+        );
+        let d = self.direction(dir);
+        let geoms = vec![seg];
+        let explain = format!(
+            "{sname}'s length is free: rotate it about {} so that it points from {} to {} ({c}) ...",
+            self.word(at),
+            self.word(from_pt),
+            self.word(to_pt)
+        );
+        self.emit(
+            Op::RotateDir {
+                geoms: geoms.clone(),
+                pivot: at,
+                axis: RotationAxis::Shortest,
+                from: d,
+                to: target,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+        let words = format!(
+            "the distance from {} to {}",
+            self.word(from_pt),
+            self.word(to_pt)
+        );
+        let length = self.value(
+            Op::Along {
+                from: from_pt,
+                dir: target,
+                to: to_pt,
+            },
+            Ty::Scalar,
+            words,
+        );
+        let explain = "... and give it the length between them.".to_string();
+        let satisfies = if held_start {
+            self.satisfies(r)
+        } else {
+            Vec::new()
+        };
+        self.emit(
+            Op::SetDim {
+                geom: seg,
+                value: length,
+            },
+            None,
+            satisfies,
+            explain,
+        );
+        if !held_start {
+            // The new length moved the end from where it was held: back there.
+            // Measured anew: the record still holds `g` at `at`, where the move brings it.
+            let words = format!("{} after the new length", self.name(g));
+            let end = self.value(Op::PointOf(g), Ty::Point, words);
+            let explain = format!(
+                "... and move it back so that {} is at {}.",
+                self.name(g),
+                self.word(at)
+            );
+            self.emit(
+                Op::Translate {
+                    geoms,
+                    from: end,
+                    to: at,
+                },
+                None,
+                self.satisfies(r),
+                explain,
+            );
+        }
+        let rec = &mut self.clusters[k].record;
+        rec.shape = Shape::Segment { sized: true };
+        rec.turn = Turn::Known;
+        rec.trans = Trans::Fixed;
+        true
     }
 
     /// A line (cluster `k`) whose direction is known, free to move across itself: its point's
