@@ -630,6 +630,10 @@ impl Builder<'_, Spatial> {
                     && self.dir_known(normal))
                     || (self.together(p, q) && self.together(p, base) && self.together(p, normal))
             }
+            // Its length set (or held): a check.
+            Relation::Length { seg, .. } => {
+                self.record(seg).shape == (Shape::Segment { sized: true })
+            }
         }
     }
 
@@ -646,6 +650,14 @@ impl Builder<'_, Spatial> {
                 base: self.point(base),
                 normal: self.direction(normal),
             },
+            Relation::Length { seg, value } => {
+                let words = format!("the length of {}", self.name(seg));
+                let now = self.value(Op::DimOf(seg), Ty::Scalar, words);
+                Residual::Dim {
+                    value: now,
+                    target: self.expr(value),
+                }
+            }
             Relation::PointPoint { a, b, d } => {
                 let (a, b) = (self.point(a), self.point(b));
                 let d = d.map(|e| self.expr(e));
@@ -755,6 +767,7 @@ impl Builder<'_, Spatial> {
         match r.relation {
             Relation::Midpoint { p, a, b } => self.midpoint(p, a, b, r),
             Relation::Mirror { p, q, base, normal } => self.mirror(p, q, (base, normal), r),
+            Relation::Length { seg, value } => self.set_length(seg, value, r),
             Relation::PointPoint { a, b, d } => {
                 for (known, moving) in [(a, b), (b, a)] {
                     if self.point_known(known) && !self.point_known(moving) {
@@ -2151,6 +2164,63 @@ impl Builder<'_, Spatial> {
         format!(
             "No constraint, chain or loop fixes this yet: assume {meaning} is the default `{name}` (the sketch's value unless given)"
         )
+    }
+
+    /// Segment `seg` of free length takes length `value`, keeping its start; when its end is
+    /// the point held, it moves back so that the end stays. It is then rigid.
+    fn set_length(&mut self, seg: GeomId, value: gcs_lang::expr::ExprId, r: &Rel) -> bool {
+        let k = self.cluster(seg);
+        let rec = self.clusters[k].record.clone();
+        if rec.shape != (Shape::Segment { sized: false }) {
+            return false;
+        }
+        let length = self.expr(value);
+        let (sname, c) = (self.name(seg), self.cname(r.constraint));
+        let held_end = match rec.trans {
+            Trans::Pivot { at, feature } if Some(feature) == self.model.part(seg, Part::End) => {
+                Some((feature, at))
+            }
+            _ => None,
+        };
+        let explain = format!(
+            "{sname}'s length is free: give it {} ({c}).",
+            self.word(length)
+        );
+        let satisfies = if held_end.is_none() {
+            self.satisfies(r)
+        } else {
+            Vec::new()
+        };
+        self.emit(
+            Op::SetDim {
+                geom: seg,
+                value: length,
+            },
+            None,
+            satisfies,
+            explain,
+        );
+        if let Some((end, at)) = held_end {
+            let words = format!("{} after the new length", self.name(end));
+            let from = self.value(Op::PointOf(end), Ty::Point, words);
+            let explain = format!(
+                "... and move it back so that {} is at {}.",
+                self.name(end),
+                self.word(at)
+            );
+            self.emit(
+                Op::Translate {
+                    geoms: vec![seg],
+                    from,
+                    to: at,
+                },
+                None,
+                self.satisfies(r),
+                explain,
+            );
+        }
+        self.clusters[k].record.shape = Shape::Segment { sized: true };
+        true
     }
 
     /// Segment cluster `k`, its end `g` held at `at`, its other end to reach `x`: it turns

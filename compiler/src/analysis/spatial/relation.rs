@@ -120,6 +120,13 @@ pub enum Relation {
         /// The other end.
         b: GeomId,
     },
+    /// Segment `seg`'s length is `value`.
+    Length {
+        /// The segment.
+        seg: GeomId,
+        /// Its length.
+        value: ExprId,
+    },
     /// Point `q` is the mirror image of point `p` across the plane through `base` with normal
     /// `normal`.
     Mirror {
@@ -160,6 +167,7 @@ impl Relation {
             } => vec![axis, u, v, p, q],
             Relation::Midpoint { p, a, b } => vec![p, a, b],
             Relation::Mirror { p, q, base, normal } => vec![p, q, base, normal],
+            Relation::Length { seg, .. } => vec![seg],
         }
     }
 }
@@ -377,6 +385,10 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
             }
         }
         match (c.kind, a, b) {
+            (K::Length, Some(s), _) if kind(s) == GeomKind::Segment => match c.value {
+                Some(value) => out.push(Relation::Length { seg: s, value }),
+                None => missing("a length needs its value"),
+            },
             (K::Midpoint, Some(p), Some(s)) if kind(p).is_pointlike() => {
                 match (model.part(s, Part::Start), model.part(s, Part::End)) {
                     (Some(a), Some(b)) => out.push(Relation::Midpoint { p: point(p), a, b }),
