@@ -1008,43 +1008,15 @@ impl Builder<'_, Spatial> {
                 if self.dir_known(axis) && self.dir_known(u) && !self.dir_known(v) {
                     let (a, x) = (self.direction(axis), self.direction(u));
                     let by = self.angle(angle);
-                    let words = format!(
-                        "{} turned by {} about {}",
-                        self.name(u),
-                        self.word(by),
-                        self.name(axis)
-                    );
-                    let target = self.value(
-                        Op::TurnedAbout {
-                            dir: x,
-                            axis: a,
-                            angle: by,
-                        },
-                        Ty::Vector,
-                        words,
-                    );
+                    let about = self.name(axis);
+                    let target = self.twist_target((u, x), (a, about), by, false);
                     return self.turn_onto(v, target, r, true);
                 }
                 if self.dir_known(v) && !self.dir_known(u) {
                     let (a, x) = (self.direction(axis), self.direction(v));
                     let by = self.angle(angle);
-                    let words = format!("minus {}", self.word(by));
-                    let back = self.value(Op::Neg(by), Ty::Scalar, words);
-                    let words = format!(
-                        "{} turned back by {} about {}",
-                        self.name(v),
-                        self.word(by),
-                        self.name(axis)
-                    );
-                    let target = self.value(
-                        Op::TurnedAbout {
-                            dir: x,
-                            axis: a,
-                            angle: back,
-                        },
-                        Ty::Vector,
-                        words,
-                    );
+                    let about = self.name(axis);
+                    let target = self.twist_target((v, x), (a, about), by, true);
                     return self.turn_onto(u, target, r, true);
                 }
                 false
@@ -1917,46 +1889,52 @@ impl Builder<'_, Spatial> {
         if self.cluster(v) == k && self.dir_known(axis) && self.dir_known(u) {
             // The second marker turns: its x axis goes to the first's turned by the angle.
             let (a, x) = (self.direction(axis), self.direction(u));
-            let words = format!(
-                "{} turned by {} about {}",
-                self.name(u),
-                self.word(by),
-                self.name(axis)
-            );
-            let to = self.value(
-                Op::TurnedAbout {
-                    dir: x,
-                    axis: a,
-                    angle: by,
-                },
-                Ty::Vector,
-                words,
-            );
+            let about = self.name(axis);
+            let to = self.twist_target((u, x), (a, about), by, false);
             Some((self.direction(v), to))
         } else if self.cluster(u) == k && self.dir_known(v) {
             // The first turns: its x axis goes to the second's turned back about the first's
             // z axis as it will be.
             let x = self.direction(v);
-            let back = self.value(Op::Neg(by), Ty::Scalar, format!("minus {}", self.word(by)));
-            let words = format!(
-                "{} turned back by {} about {}",
-                self.name(v),
-                self.word(by),
-                self.word(z_target)
-            );
-            let to = self.value(
-                Op::TurnedAbout {
-                    dir: x,
-                    axis: z_target,
-                    angle: back,
-                },
-                Ty::Vector,
-                words,
-            );
+            let about = self.word(z_target);
+            let to = self.twist_target((v, x), (z_target, about), by, true);
             Some((self.direction(u), to))
         } else {
             None
         }
+    }
+
+    /// Where a twist (offset_x, prismatic) takes the moving marker's x axis: the known x axis
+    /// `g` (its direction in `x`) turned about `axis` by the angle `by` (the second marker's),
+    /// or back by it (`back`: the first's).
+    fn twist_target(
+        &mut self,
+        (g, x): (GeomId, Reg),
+        (axis, about): (Reg, String),
+        by: Reg,
+        back: bool,
+    ) -> Reg {
+        let angle = if back {
+            let words = format!("minus {}", self.word(by));
+            self.value(Op::Neg(by), Ty::Scalar, words)
+        } else {
+            by
+        };
+        let words = format!(
+            "{} turned {}by {} about {about}",
+            self.name(g),
+            if back { "back " } else { "" },
+            self.word(by)
+        );
+        self.value(
+            Op::TurnedAbout {
+                dir: x,
+                axis,
+                angle,
+            },
+            Ty::Vector,
+            words,
+        )
     }
 
     /// [`Builder::turn_onto`]; `also`: another direction of `v`'s cluster and its target (a
@@ -2186,6 +2164,22 @@ impl Builder<'_, Spatial> {
             "{sname}'s length is free: give it {} ({c}).",
             self.word(length)
         );
+        self.resize(seg, length, held_end, explain, r);
+        self.clusters[k].record.shape = Shape::Segment { sized: true };
+        true
+    }
+
+    /// Sets segment `seg`'s length to `length` (which keeps its start), then, when its end is
+    /// the point held (`held_end`: the end, and where), moves it back there. The last step
+    /// satisfies `r`.
+    fn resize(
+        &mut self,
+        seg: GeomId,
+        length: Reg,
+        held_end: Option<(GeomId, Reg)>,
+        explain: String,
+        r: &Rel,
+    ) {
         let satisfies = if held_end.is_none() {
             self.satisfies(r)
         } else {
@@ -2201,6 +2195,7 @@ impl Builder<'_, Spatial> {
             explain,
         );
         if let Some((end, at)) = held_end {
+            // Measured anew: the record still holds the end at `at`, where this brings it.
             let words = format!("{} after the new length", self.name(end));
             let from = self.value(Op::PointOf(end), Ty::Point, words);
             let explain = format!(
@@ -2219,8 +2214,6 @@ impl Builder<'_, Spatial> {
                 explain,
             );
         }
-        self.clusters[k].record.shape = Shape::Segment { sized: true };
-        true
     }
 
     /// Segment cluster `k`, its end `g` held at `at`, its other end to reach `x`: it turns
@@ -2252,7 +2245,6 @@ impl Builder<'_, Spatial> {
             words,
         );
         let d = self.direction(dir);
-        let geoms = vec![seg];
         let explain = format!(
             "{sname}'s length is free: rotate it about {} so that it points from {} to {} ({c}) ...",
             self.word(at),
@@ -2261,7 +2253,7 @@ impl Builder<'_, Spatial> {
         );
         self.emit(
             Op::RotateDir {
-                geoms: geoms.clone(),
+                geoms: vec![seg],
                 pivot: at,
                 axis: RotationAxis::Shortest,
                 from: d,
@@ -2286,41 +2278,8 @@ impl Builder<'_, Spatial> {
             words,
         );
         let explain = "... and give it the length between them.".to_string();
-        let satisfies = if held_start {
-            self.satisfies(r)
-        } else {
-            Vec::new()
-        };
-        self.emit(
-            Op::SetDim {
-                geom: seg,
-                value: length,
-            },
-            None,
-            satisfies,
-            explain,
-        );
-        if !held_start {
-            // The new length moved the end from where it was held: back there.
-            // Measured anew: the record still holds `g` at `at`, where the move brings it.
-            let words = format!("{} after the new length", self.name(g));
-            let end = self.value(Op::PointOf(g), Ty::Point, words);
-            let explain = format!(
-                "... and move it back so that {} is at {}.",
-                self.name(g),
-                self.word(at)
-            );
-            self.emit(
-                Op::Translate {
-                    geoms,
-                    from: end,
-                    to: at,
-                },
-                None,
-                self.satisfies(r),
-                explain,
-            );
-        }
+        let held_end = (!held_start).then_some((g, at));
+        self.resize(seg, length, held_end, explain, r);
         let rec = &mut self.clusters[k].record;
         rec.shape = Shape::Segment { sized: true };
         rec.turn = Turn::Known;
