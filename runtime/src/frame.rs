@@ -364,12 +364,18 @@ pub fn signed_angle3(u: &Vector3<f64>, v: &Vector3<f64>, axis: &Vector3<f64>) ->
     if n.is_nan() || n <= 0.0 {
         return 0.0;
     }
-    let a = axis / n;
-    // Across the axis first: a direction nearly along it keeps its few significant bits
-    // there, which the products of the whole vectors would cancel to rounding.
+    let (sin, cos) = turn_across(&(axis / n), u, v);
+    sin.atan2(cos)
+}
+
+/// The sine and cosine parts, times the lengths of the projections, of the turn from `u` to
+/// `v` about the unit axis `a`. Across the axis first: a direction nearly along it keeps its
+/// few significant bits there, which the products of the whole vectors would cancel.
+#[inline]
+fn turn_across(a: &Vector3<f64>, u: &Vector3<f64>, v: &Vector3<f64>) -> (f64, f64) {
     let up = u - a * a.dot(u);
     let vp = v - a * a.dot(v);
-    a.dot(&up.cross(&vp)).atan2(up.dot(&vp))
+    (a.dot(&up.cross(&vp)), up.dot(&vp))
 }
 
 /// The angle about `axis` that turns `u[0]` onto `v[0]` and `u[1]` onto `v[1]` together: the
@@ -390,14 +396,9 @@ pub fn signed_angle3_both(
         return 0.0;
     }
     let a = axis / n;
-    let (mut sin, mut cos) = (0.0, 0.0);
-    for (u, v) in u.into_iter().zip(v) {
-        let up = u - a * a.dot(u);
-        let vp = v - a * a.dot(v);
-        sin += a.dot(&up.cross(&vp));
-        cos += up.dot(&vp);
-    }
-    sin.atan2(cos)
+    let (s0, c0) = turn_across(&a, u[0], v[0]);
+    let (s1, c1) = turn_across(&a, u[1], v[1]);
+    (s0 + s1).atan2(c0 + c1)
 }
 
 /// The rotation that turns the direction of `u` onto the direction of `v` about the axis

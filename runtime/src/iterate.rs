@@ -786,6 +786,14 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
         }
     }
 
+    /// [`Scalar::probe`]'s residual, `None` for every other outcome.
+    fn value(&mut self, t: f64) -> Option<f64> {
+        match self.probe(t) {
+            Probe::Good(v) => Some(v),
+            _ => None,
+        }
+    }
+
     /// The point steps start from: the better end of the bracket once there is one.
     fn base(&self) -> (f64, f64) {
         match self.bracket {
@@ -968,12 +976,7 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
                     // Past the bottom of a V, perhaps (see `v_step`).
                     let slope = self.slope.unwrap_or(0.0);
                     let radius = MAX_STEP * self.scale;
-                    let v = v_step((x, fx), (x + step, ft), slope, radius, |u| {
-                        match self.probe(u) {
-                            Probe::Good(fu) => Some(fu),
-                            _ => None,
-                        }
-                    });
+                    let v = v_step((x, fx), (x + step, ft), slope, radius, |u| self.value(u));
                     if let Some((u, fu, d)) = v {
                         self.record(u, fu);
                         self.slope = Some(d);
@@ -1057,11 +1060,7 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
                     if ft.abs() > POLISH_GAIN * fx.abs() {
                         // Past the bottom of a V, perhaps: the slope of the best point's side.
                         let radius = MAX_STEP * self.scale;
-                        let retried =
-                            v_step((x, fx), (t, ft), d, radius, |u| match self.probe(u) {
-                                Probe::Good(v) => Some(v),
-                                _ => None,
-                            });
+                        let retried = v_step((x, fx), (t, ft), d, radius, |u| self.value(u));
                         match retried {
                             Some((u, fu, d)) => {
                                 self.iterations += 1;

@@ -227,6 +227,17 @@ pub enum Shape {
     Other(usize),
 }
 
+impl Shape {
+    /// Whether its orientation is one direction (a vector, a plane's normal, a line's or a
+    /// segment's), so that a turn about that direction moves nothing: two turning DOF.
+    fn one_direction(self) -> bool {
+        matches!(
+            self,
+            Shape::Vector | Shape::Plane | Shape::Line | Shape::Segment { .. }
+        )
+    }
+}
+
 /// A cluster's invariants record in space.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Record {
@@ -285,7 +296,7 @@ impl Invariants for Record {
         };
         let length = usize::from(self.shape == Shape::Segment { sized: false });
         let turn = match (self.turn, self.shape) {
-            (Turn::Free, Shape::Vector | Shape::Plane | Shape::Line | Shape::Segment { .. }) => 2,
+            (Turn::Free, shape) if shape.one_direction() => 2,
             (Turn::Free, _) => 3,
             (Turn::Axis { .. }, _) => 1,
             (Turn::Known | Turn::None, _) => 0,
@@ -335,10 +346,8 @@ impl Invariants for Record {
             Trans::Free | Trans::None => (0, 0, 0),
         };
         let inv_vec = match (self.turn, self.shape) {
-            (Turn::Axis { .. }, _)
-            | (Turn::Known, Shape::Vector | Shape::Plane | Shape::Line | Shape::Segment { .. }) => {
-                1
-            }
+            (Turn::Axis { .. }, _) => 1,
+            (Turn::Known, shape) if shape.one_direction() => 1,
             (Turn::Known, _) => 2,
             _ => 0,
         };
@@ -1129,13 +1138,7 @@ impl Builder<'_, Spatial> {
     fn turn_onto_cone(&mut self, u: GeomId, v: GeomId, angle: AngleValue, r: &Rel) -> bool {
         let k = self.cluster(v);
         let rec = self.clusters[k].record.clone();
-        if !(rec.movable()
-            && rec.turn == Turn::Free
-            && matches!(
-                rec.shape,
-                Shape::Vector | Shape::Plane | Shape::Line | Shape::Segment { .. }
-            ))
-        {
+        if !(rec.movable() && rec.turn == Turn::Free && rec.shape.one_direction()) {
             return false;
         }
         let (ur, vr) = (self.direction(u), self.direction(v));
