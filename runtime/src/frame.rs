@@ -401,6 +401,129 @@ pub fn signed_angle3_both(
     (s0 + s1).atan2(c0 + c1)
 }
 
+/// The directions' turn is taken alone when their projections across the axis multiply to at
+/// least this (each then lies over 0.1 rad from the axis): its angle is then exact to about
+/// `eps / 0.1`, and a point could only add its own rounding.
+const DIRECTIONS_DECIDE: f64 = 1e-2;
+
+/// At most this many Gauss-Newton steps refine a turn that a point decides: one or two from
+/// the directions' angle, off by rounding over their distance from the axis; more from a
+/// direction exactly along the axis, which leaves the angle to the point alone (a flange
+/// bolted off a shaft's axis).
+const REACHING_STEPS: usize = 8;
+
+/// The angle about the unit `axis` through `pivot` that turns direction `u` onto `v` and
+/// takes `point` onto the line `line` (a joint's point, which the cluster's remaining slide
+/// along the line then brings home). See [`turn_reaching_plane`] for the method.
+#[inline]
+pub fn turn_reaching_line(
+    [u, v]: [&Vector3<f64>; 2],
+    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
+    point: &Point3<f64>,
+    line: &crate::locus3d::Line3,
+) -> f64 {
+    let d = line.dir;
+    let scale = point.coords.norm().max(line.point.coords.norm());
+    turn_reaching(
+        [u, v],
+        (pivot, axis),
+        point,
+        scale,
+        |x| {
+            let off = x - line.point;
+            off - d * d.dot(&off)
+        },
+        |w| w - d * d.dot(w),
+    )
+}
+
+/// The angle about the unit `axis` through `pivot` that turns direction `u` onto `v` and
+/// takes `point` into the plane `plane` (where the cluster's remaining slide within the plane
+/// brings it home).
+///
+/// A turn about an axis onto a direction that lies within `delta` rad of the axis is fixed by
+/// that direction only to rounding over `delta` (a joint's z axis turned about a z axis it
+/// nearly shares: 1e-16 / 1e-9 = 1e-7 rad), which moves a point at distance `rho` from the
+/// axis by `rho` times that. The point is then what decides the turn.
+///
+/// From the directions' angle, Gauss-Newton steps (at most `REACHING_STEPS`) on both residuals
+/// together: the direction's miss, and the point's miss of the locus (the part of its offset
+/// across the line, or along the plane's normal) divided by the size of the coordinates, so
+/// that each weighs by the inverse of its rounding. When the directions lie well across the
+/// axis (`DIRECTIONS_DECIDE`), or the point moves across the locus no faster than the
+/// directions turn, their angle stands. Where both hold at the same turn (a consistent joint),
+/// the result is that turn to rounding; otherwise a compromise, which the checks after it
+/// measure. Zero when `axis` is zero.
+#[inline]
+pub fn turn_reaching_plane(
+    [u, v]: [&Vector3<f64>; 2],
+    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
+    point: &Point3<f64>,
+    plane: &crate::locus3d::Plane,
+) -> f64 {
+    let n = plane.normal;
+    let scale = point.coords.norm().max(plane.offset.abs());
+    turn_reaching(
+        [u, v],
+        (pivot, axis),
+        point,
+        scale,
+        |x| n * (n.dot(&x.coords) - plane.offset),
+        |w| n * n.dot(w),
+    )
+}
+
+/// The method of [`turn_reaching_plane`]: `miss(x)` is the offset of `x` from the locus
+/// across it, `across(w)` the part of a velocity `w` that changes it.
+#[inline]
+fn turn_reaching(
+    [u, v]: [&Vector3<f64>; 2],
+    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
+    point: &Point3<f64>,
+    scale: f64,
+    miss: impl Fn(&Point3<f64>) -> Vector3<f64>,
+    across: impl Fn(&Vector3<f64>) -> Vector3<f64>,
+) -> f64 {
+    let n = axis.norm();
+    if n.is_nan() || n <= 0.0 {
+        return 0.0;
+    }
+    let a = axis / n;
+    let (sin, cos) = turn_across(&a, u, v);
+    let mut angle = sin.atan2(cos);
+    if sin.hypot(cos) >= DIRECTIONS_DECIDE {
+        return angle;
+    }
+    let arm = point - pivot;
+    let size = scale.max(pivot.coords.norm()).max(arm.norm());
+    if !(size > 0.0 && size.is_finite()) {
+        return angle;
+    }
+    // Rodrigues' turn by (s, c) about the unit axis.
+    let turn =
+        |x: &Vector3<f64>, (s, c): (f64, f64)| x * c + a.cross(x) * s + a * (a.dot(x) * (1.0 - c));
+    for _ in 0..REACHING_STEPS {
+        let sc = crate::num::sin_cos(angle);
+        let (w, ut) = (turn(&arm, sc), turn(u, sc));
+        let (r_point, j_point) = (miss(&(pivot + w)) / size, across(&a.cross(&w)) / size);
+        let (r_dir, j_dir) = (ut - v, a.cross(&ut));
+        let (by_point, by_dir) = (j_point.norm_squared(), j_dir.norm_squared());
+        // The point must move across the locus faster than the directions turn to decide.
+        if by_point.is_nan() || by_point <= by_dir {
+            break;
+        }
+        let step = (j_point.dot(&r_point) + j_dir.dot(&r_dir)) / (by_point + by_dir);
+        if !step.is_finite() {
+            break;
+        }
+        angle -= step;
+        if step.abs() <= 4.0 * f64::EPSILON * (1.0 + angle.abs()) {
+            break;
+        }
+    }
+    angle
+}
+
 /// The rotation that turns the direction of `u` onto the direction of `v` about the axis
 /// `u x v` (the rotate step of paper 000's brick).
 ///

@@ -575,3 +575,53 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// A z axis within 1e-12 to 1e-2 rad of the axis it turns about, and a point off the axis
+    /// that must land on a line or in a plane after the turn (a joint's point, which a slide
+    /// then brings home): the turn `turn_reaching_line` and `_plane` read off the two is the
+    /// turn to rounding at the point's distance from the axis, where z's own angle is off by
+    /// rounding over its distance from the axis (up to 1e-4 rad).
+    #[test]
+    fn a_turn_reaching_a_point_is_exact_near_the_axis(
+        axis in unit(),
+        across in unit(),
+        off in -12.0f64..-2.0,
+        turn in -3.1f64..3.1,
+        size in scale(),
+        pivot in vec3(),
+        arm in 0.2f64..1.0,
+        along in -1.0f64..1.0,
+        slide in unit(),
+        shift in -1.0f64..1.0,
+    ) {
+        let tilt = perp_to(&axis, &across);
+        let z = (axis + tilt * 10f64.powf(off)).normalize();
+        let pivot = Point3::from(pivot * size);
+        let point = pivot + (tilt * arm + axis * along) * size;
+        let q = rotation_about_axis(&axis, turn);
+        let (z1, reached) = (q * z, pivot + q * (point - pivot));
+        // How fast the point moves across the slide's line, and along the plane's normal.
+        let velocity = axis.cross(&(reached - pivot)) / (arm * size);
+        let across_line = (velocity - slide * slide.dot(&velocity)).norm();
+        let along_normal = slide.dot(&velocity).abs();
+        let wrap = |a: f64| (a - turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        // Rounding at the point's distance, in angle: the coordinates' size over the arm.
+        let bound = 64.0 * f64::EPSILON * (pivot.coords.norm() + 2.0 * size) / (arm * size);
+        let at = (&pivot, &axis);
+        if across_line > 0.3 {
+            let line = Line3::new(reached + slide * shift * size, slide);
+            let angle = gcs_runtime::frame::turn_reaching_line([&z, &z1], at, &point, &line);
+            prop_assert!(wrap(angle).abs() <= bound, "line: {angle} for {turn}, z 1e{off} off");
+        }
+        if along_normal > 0.3 {
+            let inside = perp_to(&slide, &tilt) * shift * size;
+            let plane = Plane::new(slide, slide.dot(&(reached + inside).coords));
+            let angle = gcs_runtime::frame::turn_reaching_plane([&z, &z1], at, &point, &plane);
+            prop_assert!(wrap(angle).abs() <= bound, "plane: {angle} for {turn}, z 1e{off} off");
+        }
+    }
+}

@@ -687,6 +687,29 @@ impl Solve<'_> {
                 );
                 self.define_pure(w, r, "angle", &code);
             }
+            Op::TurnReaching {
+                u,
+                v,
+                axis,
+                pivot,
+                point,
+                locus,
+            } => {
+                let onto = match self.kind3(*locus) {
+                    Kind::Plane => "plane",
+                    _ => "line",
+                };
+                let code = format!(
+                    "frame::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), &{}, &{})",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*pivot),
+                    self.r(*axis),
+                    self.r(*point),
+                    self.r(*locus)
+                );
+                self.define_pure(w, r, "angle", &code);
+            }
             Op::HelixAdvance { now, turn, pitch } => {
                 let code = format!(
                     "frame::helix_advance({}, {}, {})",

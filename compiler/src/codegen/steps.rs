@@ -371,6 +371,7 @@ impl Solve<'_> {
             | Op::Circle3 { .. }
             | Op::AngleAbout { .. }
             | Op::AngleAboutBoth { .. }
+            | Op::TurnReaching { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)

@@ -1124,6 +1124,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::Circle3 { .. }
             | Op::AngleAbout { .. }
             | Op::AngleAboutBoth { .. }
+            | Op::TurnReaching { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::WorldAxis(_)

@@ -144,6 +144,24 @@ impl Machine<'_, '_, D3> {
                 [&self.v3(v[0]), &self.v3(v[1])],
                 &self.v3(*axis),
             )),
+            Op::TurnReaching {
+                u,
+                v,
+                axis,
+                pivot,
+                point,
+                locus,
+            } => {
+                let (dirs, at, p) = (
+                    [&self.v3(*u), &self.v3(*v)],
+                    (&self.p3(*pivot), &self.v3(*axis)),
+                    self.p3(*point),
+                );
+                Val::S(match self.get(*locus) {
+                    Some(&Val::Plane(plane)) => frame::turn_reaching_plane(dirs, at, &p, &plane),
+                    _ => frame::turn_reaching_line(dirs, at, &p, &self.line3(*locus)),
+                })
+            }
             Op::HelixAdvance { now, turn, pitch } => {
                 let advance = frame::helix_advance(self.s(*now), self.s(*turn), self.s(*pitch));
                 Val::S(self.finite(i, advance)?)

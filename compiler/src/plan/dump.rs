@@ -245,6 +245,22 @@ impl Plan {
                     r(&v[1]),
                     r(axis)
                 ),
+                Op::TurnReaching {
+                    u,
+                    v,
+                    axis,
+                    pivot,
+                    point,
+                    locus,
+                } => format!(
+                    "angle {} -> {} about {} at {} taking {} onto {}",
+                    r(u),
+                    r(v),
+                    r(axis),
+                    r(pivot),
+                    r(point),
+                    r(locus)
+                ),
                 Op::HelixAdvance { now, turn, pitch } => {
                     format!(
                         "helix_advance from {} for turn {} pitch {}",

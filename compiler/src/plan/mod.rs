@@ -494,6 +494,19 @@ pub enum Op {
     /// `v[1]` together (`runtime::frame::signed_angle3_both`): a marker's z and x axes, of
     /// which the one further across the axis decides.
     AngleAboutBoth { u: [Reg; 2], v: [Reg; 2], axis: Reg },
+    /// In space: the angle about the unit `axis` through `pivot` that turns direction `u` onto
+    /// `v` and takes `point` onto `locus`, a line or a plane (`runtime::frame::
+    /// turn_reaching_line` and `_plane`): a joint's point, which the cluster's remaining slide
+    /// along that locus then brings home, decides a turn that a z axis nearly along the axis
+    /// fixes only to rounding over its distance from it.
+    TurnReaching {
+        u: Reg,
+        v: Reg,
+        axis: Reg,
+        pivot: Reg,
+        point: Reg,
+        locus: Reg,
+    },
     /// A helix's advance for a turn: the advance `now + pitch / 2pi * wrap(turn - 2pi now /
     /// pitch)`, the one of the turn's advances (a pitch apart) nearest `now`.
     HelixAdvance { now: Reg, turn: Reg, pitch: Reg },

@@ -33,6 +33,8 @@ const NEAREST_LOCUS: Accepts = &[
 ];
 const PLANE: Accepts = &[Ty::Plane];
 const SPHERE: Accepts = &[Ty::Sphere];
+/// A point's locus a turn takes it onto (`Op::TurnReaching`).
+const LINE_OR_PLANE: Accepts = &[Ty::Line, Ty::Plane];
 /// What has a parameter along it (a place, or an implicit error): the loci a default slides on.
 const PARAM_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic];
 /// What a point held by two coordinates lies on.
@@ -297,6 +299,21 @@ impl Op {
                 (v[1], VECTOR),
                 (*axis, VECTOR),
             ],
+            Op::TurnReaching {
+                u,
+                v,
+                axis,
+                pivot,
+                point,
+                locus,
+            } => vec![
+                (*u, VECTOR),
+                (*v, VECTOR),
+                (*axis, VECTOR),
+                (*pivot, POINT),
+                (*point, POINT),
+                (*locus, LINE_OR_PLANE),
+            ],
             Op::HelixAdvance { now, turn, pitch } => {
                 vec![(*now, SCALAR), (*turn, SCALAR), (*pitch, SCALAR)]
             }
@@ -421,6 +438,7 @@ impl Op {
             | Op::RadiusFromPoint { .. }
             | Op::AngleAbout { .. }
             | Op::AngleAboutBoth { .. }
+            | Op::TurnReaching { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::Coordinate { .. } => Ty::Scalar,

@@ -1907,6 +1907,136 @@ impl Builder<'_, Spatial> {
         }
     }
 
+    /// The point of cluster `k` that a joint's position (a coincidence, a point on a line or
+    /// in a plane: a relation of constraint `r`, still to come) must take onto a known locus
+    /// by the turn about `axis` now being made, and that locus: where the point must be for
+    /// the cluster's remaining slide to bring it home (none: the joint's own line or plane, or
+    /// a line along the axis through its target; along a line: the line through the target
+    /// parallel to it; in a plane: the plane through the target parallel to it). The point
+    /// off the axis then decides the turn with the z axis (see `Op::TurnReaching`). `None`
+    /// without such a relation, or when the slide and the joint's locus together leave the
+    /// point a surface no record holds.
+    fn reach(
+        &mut self,
+        r: &Rel,
+        k: usize,
+        axis: Reg,
+        (v, target): (GeomId, Reg),
+    ) -> Option<(Reg, Reg)> {
+        let relation = self.pending.iter().find_map(|p| {
+            (p.constraint == r.constraint)
+                .then_some(p.relation.clone())
+                .filter(|rel| {
+                    matches!(
+                        rel,
+                        Relation::PointPoint { d: None, .. }
+                            | Relation::PointLine { d: None, .. }
+                            | Relation::PointPlane { d: None, .. }
+                    )
+                })
+        })?;
+        let trans = self.clusters[k].record.trans;
+        let still = matches!(trans, Trans::Pivot { .. } | Trans::Fixed);
+        match relation {
+            Relation::PointPoint { a, b, .. } => {
+                let (p, q) = if self.cluster(a) == k && self.point_known(b) {
+                    (a, b)
+                } else if self.cluster(b) == k && self.point_known(a) {
+                    (b, a)
+                } else {
+                    return None;
+                };
+                let (at, to) = (self.point(p), self.point(q));
+                let qname = self.name(q);
+                let locus = match trans {
+                    _ if still => {
+                        let words = format!("the line through {qname} along {}", self.word(axis));
+                        let op = Op::Line {
+                            point: to,
+                            dir: axis,
+                            offset: None,
+                        };
+                        self.value(op, Ty::Line, words)
+                    }
+                    Trans::On {
+                        locus: Locus::Line(l),
+                        ..
+                    } => {
+                        let words = format!("{} moved through {qname}", self.word(l));
+                        self.value(
+                            Op::ParallelLine {
+                                line: l,
+                                through: to,
+                            },
+                            Ty::Line,
+                            words,
+                        )
+                    }
+                    Trans::On {
+                        locus: Locus::Plane(plane),
+                        ..
+                    } => {
+                        let words = format!("{} moved through {qname}", self.word(plane));
+                        self.value(Op::ParallelPlane { plane, through: to }, Ty::Plane, words)
+                    }
+                    _ => return None,
+                };
+                Some((at, locus))
+            }
+            Relation::PointLine { p, base, dir, .. }
+                if still && dir == v && self.cluster(base) == k && self.point_known(p) =>
+            {
+                // The line turns with the cluster (a helical joint's second marker): its point
+                // must reach the line through the known point along the direction's target.
+                let (at, point) = (self.point(base), self.point(p));
+                let words = format!(
+                    "the line through {} along {}",
+                    self.name(p),
+                    self.word(target)
+                );
+                let op = Op::Line {
+                    point,
+                    dir: target,
+                    offset: None,
+                };
+                Some((at, self.value(op, Ty::Line, words)))
+            }
+            Relation::PointLine { p, base, dir, .. } if still => {
+                if self.cluster(p) != k || !self.point_known(base) || !self.dir_known(dir) {
+                    return None;
+                }
+                let (at, point, dir) = (self.point(p), self.point(base), self.direction(dir));
+                let words = format!(
+                    "the line through {} along {}",
+                    self.name(base),
+                    self.word(dir)
+                );
+                let op = Op::Line {
+                    point,
+                    dir,
+                    offset: None,
+                };
+                Some((at, self.value(op, Ty::Line, words)))
+            }
+            Relation::PointPlane {
+                p, base, normal, ..
+            } if still => {
+                if self.cluster(p) != k || !self.point_known(base) || !self.dir_known(normal) {
+                    return None;
+                }
+                let words = self.plane_words(base, normal, None);
+                let (at, point, normal) = (self.point(p), self.point(base), self.direction(normal));
+                let op = Op::Plane {
+                    point,
+                    normal,
+                    offset: None,
+                };
+                Some((at, self.value(op, Ty::Plane, words)))
+            }
+            _ => None,
+        }
+    }
+
     /// Where a twist (offset_x, prismatic) takes the moving marker's x axis: the known x axis
     /// `g` (its direction in `x`) turned about `axis` by the angle `by` (the second marker's),
     /// or back by it (`back`: the first's).
@@ -2002,6 +2132,45 @@ impl Builder<'_, Spatial> {
                 let pivot = self.pivot_of(k);
                 let mut from = self.direction(v);
                 let mut to = target;
+                let reach = if also.is_none() && !across {
+                    self.reach(r, k, axis, (v, target))
+                } else {
+                    None
+                };
+                if let Some((point, locus)) = reach {
+                    // The joint's point decides the turn with the direction.
+                    let words = format!(
+                        "the angle about {} taking {vname} to {} and {} onto {}",
+                        self.word(axis),
+                        self.word(target),
+                        self.word(point),
+                        self.word(locus)
+                    );
+                    let angle = self.value(
+                        Op::TurnReaching {
+                            u: from,
+                            v: target,
+                            axis,
+                            pivot,
+                            point,
+                            locus,
+                        },
+                        Ty::Scalar,
+                        words,
+                    );
+                    let words = format!("a direction across {}", self.word(axis));
+                    from = self.value(Op::Across(axis), Ty::Vector, words);
+                    let words = format!("it turned by {}", self.word(angle));
+                    to = self.value(
+                        Op::TurnedAbout {
+                            dir: from,
+                            axis,
+                            angle,
+                        },
+                        Ty::Vector,
+                        words,
+                    );
+                }
                 if let Some((x, x_target)) = also {
                     // Both directions decide the angle; the turn is by it, from any direction
                     // across the axis.
@@ -2033,7 +2202,14 @@ impl Builder<'_, Spatial> {
                         words,
                     );
                 }
-                let how = if let Some((x, x_target)) = also {
+                let how = if let Some((point, locus)) = reach {
+                    format!(
+                        "the angle that takes {vname} to {} and {} onto {} together (the point decides where {vname} lies nearly along the axis)",
+                        self.word(target),
+                        self.word(point),
+                        self.word(locus)
+                    )
+                } else if let Some((x, x_target)) = also {
                     format!(
                         "the angle that takes {vname} to {} and {} to {} together, each weighed by how far across the axis it lies",
                         self.word(target),
