@@ -20,8 +20,9 @@
 //! `P`: free; on a plane; on a line (given, or two planes); on a sphere; on a circle (two
 //! spheres, a sphere and a plane); fixed. A vector `P`: free; on a cone (an angle to a fixed
 //! vector); known. A line `P`: free; through a point; its direction known; on a cone;
-//! placed. A segment `P`: free; its start held; its end held. Circles
-//! and planes that move are probed free, to list what the analysis says of them.
+//! placed. A segment `P`: free; its start held; its end held. A circle `P`: free; its centre
+//! held; square to a direction; placed (centre, normal and radius). Planes that move are
+//! probed free, to list what the analysis says of them.
 //!
 //! Then, for every state, every constraint form of the language in 3d that applies to a
 //! feature of `P` (coincident, spherical, distance point-point and signed point-plane, `on` a
@@ -896,7 +897,15 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
             ],
         ),
         Kind::Circle => (
-            vec![st("free", vec![])],
+            vec![
+                st("free", vec![]),
+                st("centre held", vec![Coincident(Pt::Center)]),
+                st("square to a direction", vec![Parallel(Di::Normal)]),
+                st(
+                    "placed (centre, normal, radius)",
+                    vec![Coincident(Pt::Center), Parallel(Di::Normal), Radius],
+                ),
+            ],
             vec![
                 Coincident(Pt::Center),
                 OnP,
@@ -1661,7 +1670,7 @@ fn op_name(op: &Op) -> Option<String> {
         Op::AngleAboutBoth { .. } => "angle about (z and x)".into(),
         Op::ConeTurn { .. } => "onto cone".into(),
         Op::Aligned { .. } => "aligned".into(),
-        Op::SetDim { .. } => "set length".into(),
+        Op::SetDim { .. } => "set dimension".into(),
         Op::HelixAdvance { .. } => "helix advance".into(),
         Op::HelixTurn { .. } => "helix turn".into(),
         Op::Along { .. } => "advance along".into(),

@@ -222,8 +222,13 @@ pub enum Shape {
         /// Whether its length is set (it is then rigid).
         sized: bool,
     },
-    /// A geom of space the analysis does not move yet (a line, segment, circle or plane
-    /// that is not fixed), with its DOF.
+    /// A circle: its centre (three DOF), its normal (two; turning about it moves nothing)
+    /// and, until `sized`, its radius (one), which a move that scales sets.
+    Circle {
+        /// Whether its radius is set (it is then rigid).
+        sized: bool,
+    },
+    /// A geom of space the analysis does not move yet, with its DOF.
     Other(usize),
 }
 
@@ -233,8 +238,29 @@ impl Shape {
     fn one_direction(self) -> bool {
         matches!(
             self,
-            Shape::Vector | Shape::Plane | Shape::Line | Shape::Segment { .. }
+            Shape::Vector
+                | Shape::Plane
+                | Shape::Line
+                | Shape::Segment { .. }
+                | Shape::Circle { .. }
         )
+    }
+
+    /// Whether it has a size still free (a segment's length, a circle's radius).
+    fn size_free(self) -> bool {
+        matches!(
+            self,
+            Shape::Segment { sized: false } | Shape::Circle { sized: false }
+        )
+    }
+
+    /// The same shape with its size set.
+    fn sized(self) -> Shape {
+        match self {
+            Shape::Segment { .. } => Shape::Segment { sized: true },
+            Shape::Circle { .. } => Shape::Circle { sized: true },
+            shape => shape,
+        }
     }
 }
 
@@ -262,6 +288,7 @@ impl Record {
             GeomKind::Plane => (Trans::Free, Turn::Free, Shape::Plane),
             GeomKind::Line => (Trans::Free, Turn::Free, Shape::Line),
             GeomKind::Segment => (Trans::Free, Turn::Free, Shape::Segment { sized: false }),
+            GeomKind::Circle => (Trans::Free, Turn::Free, Shape::Circle { sized: false }),
             kind => (Trans::Free, Turn::Free, Shape::Other(kind.dof(model.space))),
         };
         let mut record = Record {
@@ -294,7 +321,7 @@ impl Invariants for Record {
             Trans::On { locus, .. } => locus.dof(),
             Trans::Pivot { .. } | Trans::Fixed | Trans::None => 0,
         };
-        let length = usize::from(self.shape == Shape::Segment { sized: false });
+        let length = usize::from(self.shape.size_free());
         let turn = match (self.turn, self.shape) {
             (Turn::Free, shape) if shape.one_direction() => 2,
             (Turn::Free, _) => 3,
@@ -315,9 +342,7 @@ impl Invariants for Record {
 
     fn hold(&mut self) {
         self.held = true;
-        if let Shape::Segment { .. } = self.shape {
-            self.shape = Shape::Segment { sized: true };
-        }
+        self.shape = self.shape.sized();
         if !matches!(self.turn, Turn::None) {
             self.turn = Turn::Known;
         }
@@ -639,9 +664,10 @@ impl Builder<'_, Spatial> {
                     && self.dir_known(normal))
                     || (self.together(p, q) && self.together(p, base) && self.together(p, normal))
             }
-            // Its length set (or held): a check.
-            Relation::Length { seg, .. } => {
-                self.record(seg).shape == (Shape::Segment { sized: true })
+            // Its size set (or held): a check.
+            Relation::Size { geom, .. } => !self.record(geom).shape.size_free(),
+            Relation::SameSize { a, b } => {
+                !self.record(a).shape.size_free() && !self.record(b).shape.size_free()
             }
         }
     }
@@ -659,14 +685,14 @@ impl Builder<'_, Spatial> {
                 base: self.point(base),
                 normal: self.direction(normal),
             },
-            Relation::Length { seg, value } => {
-                let words = format!("the length of {}", self.name(seg));
-                let now = self.value(Op::DimOf(seg), Ty::Scalar, words);
-                Residual::Dim {
-                    value: now,
-                    target: self.expr(value),
-                }
-            }
+            Relation::Size { geom, value } => Residual::Dim {
+                value: self.size_of(geom),
+                target: self.expr(value),
+            },
+            Relation::SameSize { a, b } => Residual::Dim {
+                value: self.size_of(a),
+                target: self.size_of(b),
+            },
             Relation::PointPoint { a, b, d } => {
                 let (a, b) = (self.point(a), self.point(b));
                 let d = d.map(|e| self.expr(e));
@@ -776,7 +802,20 @@ impl Builder<'_, Spatial> {
         match r.relation {
             Relation::Midpoint { p, a, b } => self.midpoint(p, a, b, r),
             Relation::Mirror { p, q, base, normal } => self.mirror(p, q, (base, normal), r),
-            Relation::Length { seg, value } => self.set_length(seg, value, r),
+            Relation::Size { geom, value } => {
+                let size = self.expr(value);
+                self.set_size(geom, size, r)
+            }
+            Relation::SameSize { a, b } => {
+                for (known, free) in [(a, b), (b, a)] {
+                    if !self.record(known).shape.size_free() && self.record(free).shape.size_free()
+                    {
+                        let size = self.size_of(known);
+                        return self.set_size(free, size, r);
+                    }
+                }
+                false
+            }
             Relation::PointPoint { a, b, d } => {
                 for (known, moving) in [(a, b), (b, a)] {
                     if self.point_known(known) && !self.point_known(moving) {
@@ -952,6 +991,9 @@ impl Builder<'_, Spatial> {
                 false
             }
             Relation::PointCircle { p, circle, d } => {
+                if d.is_none() && self.point_known(p) && !self.record(circle).grounded() {
+                    return self.circle_through(circle, p, r);
+                }
                 if !self.record(circle).grounded() || self.point_known(p) {
                     return false;
                 }
@@ -2114,7 +2156,7 @@ impl Builder<'_, Spatial> {
                 // A vector, or a line along its direction: turning about itself moves nothing.
                 self.clusters[k].record.turn = if matches!(
                     rec.shape,
-                    Shape::Vector | Shape::Line | Shape::Segment { .. }
+                    Shape::Vector | Shape::Line | Shape::Segment { .. } | Shape::Circle { .. }
                 ) {
                     Turn::Known
                 } else {
@@ -2281,11 +2323,17 @@ impl Builder<'_, Spatial> {
             return false;
         }
         match (rec.trans, rec.turn) {
-            // A line's free turn has no defaults yet: three turns would count a spin about
-            // itself that moves nothing.
-            (_, Turn::Free) if rec.shape == Shape::Line => false,
-            // A segment's freedom has no defaults yet.
-            _ if matches!(rec.shape, Shape::Segment { .. }) => false,
+            // A line's or circle's free turn has no defaults yet: three turns would count a
+            // spin about itself that moves nothing.
+            (_, Turn::Free) if matches!(rec.shape, Shape::Line | Shape::Circle { .. }) => false,
+            // A segment's freedom, and a circle's radius, have no defaults yet.
+            _ if matches!(
+                rec.shape,
+                Shape::Segment { .. } | Shape::Circle { sized: false }
+            ) =>
+            {
+                false
+            }
             (
                 Trans::On {
                     feature,
@@ -2323,16 +2371,128 @@ impl Builder<'_, Spatial> {
         )
     }
 
-    /// Segment `seg` of free length takes length `value`, keeping its start; when its end is
-    /// the point held, it moves back so that the end stays. It is then rigid.
-    fn set_length(&mut self, seg: GeomId, value: gcs_lang::expr::ExprId, r: &Rel) -> bool {
-        let k = self.cluster(seg);
+    /// Circle `circle`, its centre held and its radius free, passes through the known point
+    /// `p`: free to turn, it turns the least about its centre so that its plane holds the
+    /// point (its normal onto the cone square to the direction from the centre to the point),
+    /// and may then only turn about that direction; with its normal known, the point must lie
+    /// in its plane (a check). Then it takes the radius that reaches the point.
+    fn circle_through(&mut self, circle: GeomId, p: GeomId, r: &Rel) -> bool {
+        let k = self.cluster(circle);
         let rec = self.clusters[k].record.clone();
-        if rec.shape != (Shape::Segment { sized: false }) {
+        let (Some(center), Some(normal)) = (
+            self.model.part(circle, Part::Center),
+            self.model.part(circle, Part::Normal),
+        ) else {
+            return false;
+        };
+        if self.clusters[k].geoms != [circle]
+            || rec.shape != (Shape::Circle { sized: false })
+            || !self.point_known(center)
+            || !matches!(rec.turn, Turn::Free | Turn::Known)
+        {
             return false;
         }
-        let length = self.expr(value);
+        let (c, at, n) = (self.point(center), self.point(p), self.direction(normal));
+        let (cname, pname, con) = (self.name(circle), self.name(p), self.cname(r.constraint));
+        let words = format!("the direction from the centre of {cname} to {pname}");
+        let toward = self.value(Op::DirectionTo { from: c, to: at }, Ty::Vector, words);
+        if rec.turn == Turn::Free {
+            let square = self.value(
+                Op::Const(std::f64::consts::FRAC_PI_2),
+                Ty::Scalar,
+                "a right angle".into(),
+            );
+            let words = format!("the normal nearest {}'s square to it", self.name(normal));
+            let to = self.value(
+                Op::ConeTurn {
+                    axis: toward,
+                    angle: square,
+                    dir: n,
+                },
+                Ty::Vector,
+                words,
+            );
+            let explain = format!(
+                "Rotate {cname} the least about its centre so that its plane holds {pname} ({con}); it may then only turn about the line from its centre to {pname}."
+            );
+            self.emit(
+                Op::RotateDir {
+                    geoms: vec![circle],
+                    pivot: c,
+                    axis: RotationAxis::Shortest,
+                    from: n,
+                    to,
+                },
+                None,
+                Vec::new(),
+                explain,
+            );
+            self.clusters[k].record.turn = Turn::Axis {
+                axis: toward,
+                feature: None,
+            };
+        } else {
+            let residual = Residual::PointPlane {
+                p: at,
+                base: c,
+                normal: n,
+                d: None,
+            };
+            let explain = format!("Check that {pname} lies in the plane of {cname} ({con}).");
+            self.emit(
+                Op::Check {
+                    constraint: r.constraint,
+                    residual,
+                },
+                None,
+                Vec::new(),
+                explain,
+            );
+        }
+        let words = format!("the distance from the centre of {cname} to {pname}");
+        let radius = self.value(
+            Op::Along {
+                from: c,
+                dir: toward,
+                to: at,
+            },
+            Ty::Scalar,
+            words,
+        );
+        let explain = format!(
+            "... and give {cname} the radius that reaches {pname}: {} ({con}).",
+            self.word(radius)
+        );
+        self.resize(circle, radius, None, explain, r);
+        self.clusters[k].record.shape = Shape::Circle { sized: true };
+        true
+    }
+
+    /// The size of a segment or circle: its length or radius, as it is now.
+    fn size_of(&mut self, g: GeomId) -> Reg {
+        let what = if self.model.geoms[g].kind == GeomKind::Circle {
+            "radius"
+        } else {
+            "length"
+        };
+        let words = format!("the {what} of {}", self.name(g));
+        self.value(Op::DimOf(g), Ty::Scalar, words)
+    }
+
+    /// Segment or circle `seg` of free size takes size `length`: a segment keeps its start
+    /// (when its end is the point held, it moves back so that the end stays), a circle its
+    /// centre. It is then rigid.
+    fn set_size(&mut self, seg: GeomId, length: Reg, r: &Rel) -> bool {
+        let k = self.cluster(seg);
+        let rec = self.clusters[k].record.clone();
+        if !rec.shape.size_free() || self.clusters[k].geoms != [seg] {
+            return false;
+        }
         let (sname, c) = (self.name(seg), self.cname(r.constraint));
+        let what = match rec.shape {
+            Shape::Circle { .. } => "radius",
+            _ => "length",
+        };
         let held_end = match rec.trans {
             Trans::Pivot { at, feature } if Some(feature) == self.model.part(seg, Part::End) => {
                 Some((feature, at))
@@ -2340,11 +2500,11 @@ impl Builder<'_, Spatial> {
             _ => None,
         };
         let explain = format!(
-            "{sname}'s length is free: give it {} ({c}).",
+            "{sname}'s {what} is free: give it {} ({c}).",
             self.word(length)
         );
         self.resize(seg, length, held_end, explain, r);
-        self.clusters[k].record.shape = Shape::Segment { sized: true };
+        self.clusters[k].record.shape = rec.shape.sized();
         true
     }
 

@@ -120,12 +120,19 @@ pub enum Relation {
         /// The other end.
         b: GeomId,
     },
-    /// Segment `seg`'s length is `value`.
-    Length {
-        /// The segment.
-        seg: GeomId,
-        /// Its length.
+    /// The size of `geom`, a segment's length or a circle's radius, is `value`.
+    Size {
+        /// The segment or circle.
+        geom: GeomId,
+        /// Its length or radius.
         value: ExprId,
+    },
+    /// Two segments' lengths, or two circles' radii, are equal, whatever they are.
+    SameSize {
+        /// One segment or circle.
+        a: GeomId,
+        /// The other.
+        b: GeomId,
     },
     /// Point `q` is the mirror image of point `p` across the plane through `base` with normal
     /// `normal`.
@@ -167,7 +174,8 @@ impl Relation {
             } => vec![axis, u, v, p, q],
             Relation::Midpoint { p, a, b } => vec![p, a, b],
             Relation::Mirror { p, q, base, normal } => vec![p, q, base, normal],
-            Relation::Length { seg, .. } => vec![seg],
+            Relation::Size { geom, .. } => vec![geom],
+            Relation::SameSize { a, b } => vec![a, b],
         }
     }
 }
@@ -386,9 +394,19 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
         }
         match (c.kind, a, b) {
             (K::Length, Some(s), _) if kind(s) == GeomKind::Segment => match c.value {
-                Some(value) => out.push(Relation::Length { seg: s, value }),
+                Some(value) => out.push(Relation::Size { geom: s, value }),
                 None => missing("a length needs its value"),
             },
+            (K::Radius, Some(s), _) if kind(s) == GeomKind::Circle => match c.value {
+                Some(value) => out.push(Relation::Size { geom: s, value }),
+                None => missing("a radius needs its value"),
+            },
+            (K::Equal, Some(a), Some(b))
+                if kind(a) == kind(b)
+                    && matches!(kind(a), GeomKind::Segment | GeomKind::Circle) =>
+            {
+                out.push(Relation::SameSize { a, b })
+            }
             (K::Midpoint, Some(p), Some(s)) if kind(p).is_pointlike() => {
                 match (model.part(s, Part::Start), model.part(s, Part::End)) {
                     (Some(a), Some(b)) => out.push(Relation::Midpoint { p: point(p), a, b }),
