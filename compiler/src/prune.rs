@@ -78,7 +78,8 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
         match &step.op {
             Op::Translate { geoms: gs, .. }
             | Op::RotatePoint { geoms: gs, .. }
-            | Op::RotateDir { geoms: gs, .. } => {
+            | Op::RotateDir { geoms: gs, .. }
+            | Op::RotateBy { geoms: gs, .. } => {
                 for g in gs {
                     if !moved[i].contains(g) {
                         geoms.remove(g);
@@ -110,7 +111,8 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
         match &mut s.op {
             Op::Translate { geoms: gs, .. }
             | Op::RotatePoint { geoms: gs, .. }
-            | Op::RotateDir { geoms: gs, .. } => {
+            | Op::RotateDir { geoms: gs, .. }
+            | Op::RotateBy { geoms: gs, .. } => {
                 gs.retain(|g| moved[i].contains(g));
             }
             Op::Intersect { branch, .. } | Op::PassingDir { branch, .. } => {

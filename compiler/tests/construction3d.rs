@@ -1654,6 +1654,8 @@ fn op_name(op: &Op) -> Option<String> {
         Op::Translate { .. } => "translate".into(),
         Op::RotatePoint { axis, .. } => format!("rotate to point{}", axis_words(axis)),
         Op::RotateDir { axis, .. } => format!("rotate to direction{}", axis_words(axis)),
+        Op::RotateBy { .. } => "rotate by the angle (about the axis)".into(),
+        Op::TurnReaching { .. } => "angle about (direction and point)".into(),
         Op::Check { .. } => "check".into(),
         Op::Line { .. } => "line".into(),
         Op::Plane { .. } => "plane".into(),
@@ -1787,7 +1789,12 @@ fn classify(e: &Entry, inst: &Instance) -> Class {
             .iter()
             .rev()
             .take_while(|s| s.satisfies.is_empty())
-            .any(|s| matches!(s.op, Op::RotateDir { .. } | Op::RotatePoint { .. }));
+            .any(|s| {
+                matches!(
+                    s.op,
+                    Op::RotateDir { .. } | Op::RotatePoint { .. } | Op::RotateBy { .. }
+                )
+            });
         if !turned {
             return Class {
                 outcome: Outcome::Check,

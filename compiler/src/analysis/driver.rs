@@ -244,7 +244,8 @@ impl<'m, G: Geometry> Builder<'m, G> {
         // An action invalidates what was measured on the geoms it moves.
         if let Op::Translate { geoms, .. }
         | Op::RotatePoint { geoms, .. }
-        | Op::RotateDir { geoms, .. } = &op
+        | Op::RotateDir { geoms, .. }
+        | Op::RotateBy { geoms, .. } = &op
         {
             let moved: Vec<GeomId> = geoms.clone();
             for g in moved {

@@ -247,7 +247,8 @@ impl PlanIndex {
             match &step.op {
                 Op::Translate { geoms, .. }
                 | Op::RotatePoint { geoms, .. }
-                | Op::RotateDir { geoms, .. } => ix.moved.extend(geoms.iter().copied()),
+                | Op::RotateDir { geoms, .. }
+                | Op::RotateBy { geoms, .. } => ix.moved.extend(geoms.iter().copied()),
                 Op::SetDim { geom, .. } => {
                     ix.dim_set.insert(*geom);
                     ix.dim_first.entry(*geom).or_insert(true);

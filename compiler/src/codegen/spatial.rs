@@ -1334,6 +1334,31 @@ impl Solve<'_> {
         }
     }
 
+    /// Rotates `geoms` by `angle` about the line through `pivot` along the unit `axis`.
+    pub(super) fn rotate_by(
+        &mut self,
+        w: &mut Writer,
+        geoms: &[GeomId],
+        (pivot, axis): (Reg, Reg),
+        angle: Reg,
+    ) {
+        let turn = self.names.fresh("turn");
+        w.line(&format!(
+            "let {turn} = frame::rotation_about_axis(&{}, {});",
+            self.r(axis),
+            self.r(angle)
+        ));
+        for &g in geoms {
+            self.materialize(g);
+            let frame = self.frame_local(g);
+            w.line(&format!(
+                "{frame}.rotate_about_by(&{}, &{turn});",
+                self.r(pivot)
+            ));
+            self.frame_writes.insert(g);
+        }
+    }
+
     /// The rotation of [`Solve::rotate3`] when its pivot, points or directions and axis are
     /// all literals: the interpreter's `rotation`, run here.
     fn literal_rotation3(

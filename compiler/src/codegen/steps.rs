@@ -44,6 +44,12 @@ impl Solve<'_> {
                 planar(*axis);
                 self.rotate_dir(w, geoms, *pivot, *from, *to)
             }
+            Op::RotateBy {
+                geoms,
+                pivot,
+                axis,
+                angle,
+            } => self.rotate_by(w, geoms, (*pivot, *axis), *angle),
             Op::SetDim { geom, value } => self.set_dim(w, i, *geom, *value),
             Op::Check {
                 constraint,
@@ -397,6 +403,7 @@ impl Solve<'_> {
             Op::Translate { .. }
             | Op::RotatePoint { .. }
             | Op::RotateDir { .. }
+            | Op::RotateBy { .. }
             | Op::SetDim { .. }
             | Op::Check { .. }
             | Op::Close { .. } => {}

@@ -1094,6 +1094,9 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
                 }
                 return Ok(());
             }
+            Op::RotateBy { .. } => {
+                unreachable!("bug in gcs: a rotation about an axis of space in a planar plan")
+            }
             Op::SetDim { geom, value } => return self.set_dim(i, *geom, *value),
             Op::Check {
                 constraint,

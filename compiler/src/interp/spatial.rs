@@ -452,6 +452,19 @@ impl Machine<'_, '_, D3> {
                 }
                 return Ok(());
             }
+            Op::RotateBy {
+                geoms,
+                pivot,
+                axis,
+                angle,
+            } => {
+                let c = self.p3(*pivot);
+                let rot = frame::rotation_about_axis(&self.v3(*axis), self.s(*angle));
+                for g in geoms {
+                    self.config.rotate(*g, c, rot);
+                }
+                return Ok(());
+            }
             Op::SetDim { geom, value } => return self.set_dim(i, *geom, *value),
             Op::Check {
                 constraint,

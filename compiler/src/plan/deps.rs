@@ -35,7 +35,8 @@ impl Op {
         match self {
             Op::Translate { geoms, .. }
             | Op::RotatePoint { geoms, .. }
-            | Op::RotateDir { geoms, .. } => geoms,
+            | Op::RotateDir { geoms, .. }
+            | Op::RotateBy { geoms, .. } => geoms,
             Op::SetDim { geom, .. } => std::slice::from_ref(geom),
             _ => &[],
         }

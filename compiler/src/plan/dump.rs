@@ -413,6 +413,18 @@ impl Plan {
                     r(from),
                     r(to)
                 ),
+                Op::RotateBy {
+                    geoms,
+                    pivot,
+                    axis,
+                    angle,
+                } => format!(
+                    "rotate [{}] about {} around {} by {}",
+                    names(geoms),
+                    r(pivot),
+                    r(axis),
+                    r(angle)
+                ),
                 Op::SetDim { geom, value } => format!("set_dim {} {}", name(geom), r(value)),
                 Op::Check {
                     constraint,

@@ -625,6 +625,14 @@ pub enum Op {
         from: Reg,
         to: Reg,
     },
+    /// In space: rotates `geoms` rigidly by `angle` about the line through `pivot` along the
+    /// unit `axis` (a turn whose angle an earlier step measured, from more than one pair).
+    RotateBy {
+        geoms: Vec<GeomId>,
+        pivot: Reg,
+        axis: Reg,
+        angle: Reg,
+    },
     /// Sets a geom's dimension (a segment's length, a circle's radius), keeping its origin.
     SetDim { geom: GeomId, value: Reg },
     /// Re-measures a relation of `constraint` already implied by earlier steps: it must hold

@@ -407,6 +407,9 @@ impl Op {
                 to,
                 ..
             } => rotation(*pivot, *axis, (*from, VECTOR), (*to, VECTOR)),
+            Op::RotateBy {
+                pivot, axis, angle, ..
+            } => vec![(*pivot, POINT), (*axis, VECTOR), (*angle, SCALAR)],
             Op::SetDim { value, .. } => vec![(*value, SCALAR)],
             Op::Check { residual, .. } | Op::Error { residual, .. } => residual.operands(),
             Op::Close { residual, .. } => vec![(*residual, SCALAR)],
@@ -484,6 +487,7 @@ impl Op {
             Op::Translate { .. }
             | Op::RotatePoint { .. }
             | Op::RotateDir { .. }
+            | Op::RotateBy { .. }
             | Op::SetDim { .. }
             | Op::Check { .. }
             | Op::Close { .. } => return None,
@@ -645,6 +649,9 @@ impl Plan {
                 if planar != (self.space == Space::D2) {
                     errors.push(format!("step {i} rotates about {axis:?} in {}", self.space));
                 }
+            }
+            Op::RotateBy { .. } if self.space == Space::D2 => {
+                errors.push(format!("step {i} rotates about an axis of space in 2d"));
             }
             Op::Close { .. }
                 if !self

@@ -373,30 +373,9 @@ pub fn solve(
         &shaft_hole,
         &line_2,
     );
-    let across = frame::unit3(&frame::perpendicular(&Vector3::new(
-        0.590076826593421,
-        -0.09658708534478794,
-        0.8015486720480774,
-    )))
-    .ok_or_else(|| {
-        SolveError::new(
-            "bolt",
-            "revolute(shaft.hole, ground.bolt)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let turned = frame::rotation_about_axis(
-        &Vector3::new(0.590076826593421, -0.09658708534478794, 0.8015486720480774),
-        angle,
-    ) * across;
     let turn_2 = frame::rotation_about_axis(
         &Vector3::new(0.590076826593421, -0.09658708534478794, 0.8015486720480774),
-        frame::signed_angle3(
-            &across,
-            &turned,
-            &Vector3::new(0.590076826593421, -0.09658708534478794, 0.8015486720480774),
-        ),
+        angle,
     );
     shaft.rotate_about_by(&shaft_journal_2, &turn_2);
     let shaft_hole_2 = shaft.point_to_global(&shaft_hole_local);

@@ -258,19 +258,7 @@ pub fn solve(
         ],
         &Vector3::z(),
     );
-    let across = frame::unit3(&frame::perpendicular(&Vector3::z())).ok_or_else(|| {
-        SolveError::new(
-            "hinge",
-            "revolute(table.hub, ground.base)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let turned_2 = frame::rotation_about_axis(&Vector3::z(), angle) * across;
-    let turn = frame::rotation_about_axis(
-        &Vector3::z(),
-        frame::signed_angle3(&across, &turned_2, &Vector3::z()),
-    );
+    let turn = frame::rotation_about_axis(&Vector3::z(), angle);
     table.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
 
     Ok(Solution {

@@ -2172,14 +2172,14 @@ impl Builder<'_, Spatial> {
                     return false;
                 }
                 let pivot = self.pivot_of(k);
-                let mut from = self.direction(v);
-                let mut to = target;
+                let from = self.direction(v);
                 let reach = if also.is_none() && !across {
                     self.reach(r, k, axis, (v, target))
                 } else {
                     None
                 };
-                if let Some((point, locus)) = reach {
+                // A second pair decides the angle with the direction: the turn is by it.
+                let angle = if let Some((point, locus)) = reach {
                     // The joint's point decides the turn with the direction.
                     let words = format!(
                         "the angle about {} taking {vname} to {} and {} onto {}",
@@ -2188,62 +2188,31 @@ impl Builder<'_, Spatial> {
                         self.word(point),
                         self.word(locus)
                     );
-                    let angle = self.value(
-                        Op::TurnReaching {
-                            u: from,
-                            v: target,
-                            axis,
-                            pivot,
-                            point,
-                            locus,
-                        },
-                        Ty::Scalar,
-                        words,
-                    );
-                    let words = format!("a direction across {}", self.word(axis));
-                    from = self.value(Op::Across(axis), Ty::Vector, words);
-                    let words = format!("it turned by {}", self.word(angle));
-                    to = self.value(
-                        Op::TurnedAbout {
-                            dir: from,
-                            axis,
-                            angle,
-                        },
-                        Ty::Vector,
-                        words,
-                    );
-                }
-                if let Some((x, x_target)) = also {
-                    // Both directions decide the angle; the turn is by it, from any direction
-                    // across the axis.
+                    let op = Op::TurnReaching {
+                        u: from,
+                        v: target,
+                        axis,
+                        pivot,
+                        point,
+                        locus,
+                    };
+                    Some(self.value(op, Ty::Scalar, words))
+                } else if let Some((x, x_target)) = also {
                     let words = format!(
                         "the angle about {} taking {vname} to {} and its x axis to {}",
                         self.word(axis),
                         self.word(target),
                         self.word(x_target)
                     );
-                    let angle = self.value(
-                        Op::AngleAboutBoth {
-                            u: [from, x],
-                            v: [target, x_target],
-                            axis,
-                        },
-                        Ty::Scalar,
-                        words,
-                    );
-                    let words = format!("a direction across {}", self.word(axis));
-                    from = self.value(Op::Across(axis), Ty::Vector, words);
-                    let words = format!("it turned by {}", self.word(angle));
-                    to = self.value(
-                        Op::TurnedAbout {
-                            dir: from,
-                            axis,
-                            angle,
-                        },
-                        Ty::Vector,
-                        words,
-                    );
-                }
+                    let op = Op::AngleAboutBoth {
+                        u: [from, x],
+                        v: [target, x_target],
+                        axis,
+                    };
+                    Some(self.value(op, Ty::Scalar, words))
+                } else {
+                    None
+                };
                 let how = if let Some((point, locus)) = reach {
                     format!(
                         "the angle that takes {vname} to {} and {} onto {} together (the point decides where {vname} lies nearly along the axis)",
@@ -2273,22 +2242,27 @@ impl Builder<'_, Spatial> {
                         ", then checked: both must make the same angle with the axis"
                     }
                 );
-                self.emit(
-                    Op::RotateDir {
+                let op = match angle {
+                    Some(angle) => Op::RotateBy {
+                        geoms,
+                        pivot,
+                        axis,
+                        angle,
+                    },
+                    None => Op::RotateDir {
                         geoms,
                         pivot,
                         axis: RotationAxis::Along(axis),
                         from,
-                        to,
+                        to: target,
                     },
-                    None,
-                    if across {
-                        self.satisfies(r)
-                    } else {
-                        Vec::new()
-                    },
-                    explain,
-                );
+                };
+                let satisfies = if across {
+                    self.satisfies(r)
+                } else {
+                    Vec::new()
+                };
+                self.emit(op, None, satisfies, explain);
                 self.turned(k);
                 if across {
                     return true;
