@@ -123,8 +123,6 @@ const KNOWN_WRONG: &[Known] = &[
         why: "A direction turned about an axis it nearly lies along (within 1e-9 to 1e-4 rad: a joint's z axis on a body turning about another z) is fixed only to rounding divided by its distance from the axis, so the body's other directions land up to about 1e-16 / 1e-5 = 1e-11 rad off. Where the joint gives an x axis (offset_x, prismatic), `frame::signed_angle3_both` weighs the two; where its point must reach a line or a plane for the slide the body has left (a revolute, cylindrical or planar joint on a body held at a point, sliding along a line or in a plane), `Op::TurnReaching` refines the turn on the point too: those entries are exact. Left: a helical joint, whose pitch ties the turn to the advance along the axis, on a body held at a point (its x axis and advance decide the turn, a coupling no record holds), and any joint on a body that is itself a screw (its slide along the axis is tied to the turn by the pitch, so where the point may go depends on the turn). Ill-conditioned by the plan; the check after such a turn accepts up to `CHECK_REL (1 + scale)`.",
         modes: &["nearly parallel axes"],
         entries: &[
-            "body | pivot, parallel z | helical(marker, P.n) = pitch",
-            "body | revolute joint | helical(marker, P.n) = pitch",
             "body | screw (cylindrical, helical) | cylindrical(P.n, marker)",
             "body | screw (cylindrical, helical) | helical(marker, P.n) = pitch",
             "body | screw (cylindrical, helical) | planar(P.n, marker)",

@@ -1923,6 +1923,9 @@ impl Builder<'_, Spatial> {
     /// and the x axis, perpendicular to it, is then across the axis. `None` without such a
     /// coupling.
     fn twin_x_axes(&mut self, r: &Rel, z: GeomId, z_target: Reg) -> Option<(Reg, Reg)> {
+        if let Some(twin) = self.helix_x_axes(r, z, z_target) {
+            return Some(twin);
+        }
         let (axis, u, v, angle) = self.pending.iter().find_map(|p| match p.relation {
             Relation::Twist { axis, u, v, angle } if p.constraint == r.constraint => {
                 Some((axis, u, v, angle))
@@ -2077,6 +2080,111 @@ impl Builder<'_, Spatial> {
             }
             _ => None,
         }
+    }
+
+    /// As [`Builder::twin_x_axes`] for a helical joint (a [`Relation::Helix`] of `r`) whose
+    /// first marker is known and whose second turns with the cluster about its axis, the
+    /// cluster held at a point (so that nothing moves it along the axis after the turn): the
+    /// second's x axis must reach the first's turned by the helix's turn for the advance, the
+    /// distance along the first's z axis between the two markers' points. The advance is
+    /// measured where the z axis' own turn takes the second point (`z` onto `z_target` about
+    /// the cluster's axis): nearly along the axis, that turn is off by rounding over its
+    /// distance from it, but the advance then changes with the turn only as much as that
+    /// distance, so it is exact to rounding; and well across the axis the turn is exact.
+    fn helix_x_axes(&mut self, r: &Rel, z: GeomId, z_target: Reg) -> Option<(Reg, Reg)> {
+        let (za, xa, xb, a, b, pitch) = self.pending.iter().find_map(|p| match p.relation {
+            Relation::Helix {
+                axis,
+                u,
+                v,
+                p: a,
+                q: b,
+                pitch,
+            } if p.constraint == r.constraint => Some((axis, u, v, a, b, pitch)),
+            _ => None,
+        })?;
+        let k = self.cluster(z);
+        let rec = &self.clusters[k].record;
+        // Held at a point: the advance after the turn is where the turn leaves it (a slide
+        // after the turn would change it).
+        let (Turn::Axis { axis: turn_axis, .. }, Trans::Pivot { .. } | Trans::Fixed) =
+            (rec.turn, rec.trans)
+        else {
+            return None;
+        };
+        if !(self.dir_known(za) && self.dir_known(xa) && self.point_known(a))
+            || self.cluster(xb) != k
+            || self.cluster(b) != k
+        {
+            return None;
+        }
+        let pivot = self.pivot_of(k);
+        let (z_now, za_reg, pa, pb) = (
+            self.direction(z),
+            self.direction(za),
+            self.point(a),
+            self.point(b),
+        );
+        let (zname, bname, aname) = (self.name(z), self.name(b), self.name(a));
+        let words = format!(
+            "the angle about {} taking {zname} to {}",
+            self.word(turn_axis),
+            self.word(z_target)
+        );
+        let turn = self.value(
+            Op::AngleAbout {
+                u: z_now,
+                v: z_target,
+                axis: turn_axis,
+            },
+            Ty::Scalar,
+            words,
+        );
+        let words = format!("minus {}", self.word(turn));
+        let back = self.value(Op::Neg(turn), Ty::Scalar, words);
+        let words = format!("{} turned back by it", self.name(za));
+        let za_back = self.value(
+            Op::TurnedAbout {
+                dir: za_reg,
+                axis: turn_axis,
+                angle: back,
+            },
+            Ty::Vector,
+            words,
+        );
+        let words = format!("the advance of the pivot from {aname}");
+        let to_pivot = self.value(
+            Op::Along {
+                from: pa,
+                dir: za_reg,
+                to: pivot,
+            },
+            Ty::Scalar,
+            words,
+        );
+        let words = format!("the advance of {bname} from the pivot once turned");
+        let from_pivot = self.value(
+            Op::Along {
+                from: pivot,
+                dir: za_back,
+                to: pb,
+            },
+            Ty::Scalar,
+            words,
+        );
+        let words = format!("the advance of {bname} from {aname} once turned");
+        let advance = self.value(
+            Op::Sum(vec![(1.0, to_pivot), (1.0, from_pivot)]),
+            Ty::Scalar,
+            words,
+        );
+        let pitch = self.expr(pitch);
+        let words = format!("the helix's turn for {}", self.word(advance));
+        let by = self.value(Op::HelixTurn { advance, pitch }, Ty::Scalar, words);
+        let about = self.name(za);
+        let xa_reg = self.direction(xa);
+        let to = self.twist_target((xa, xa_reg), (za_reg, about), by, false);
+        Some((self.direction(xb), to))
     }
 
     /// Where a twist (offset_x, prismatic) takes the moving marker's x axis: the known x axis
