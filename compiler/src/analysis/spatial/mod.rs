@@ -2107,8 +2107,12 @@ impl Builder<'_, Spatial> {
         let rec = &self.clusters[k].record;
         // Held at a point: the advance after the turn is where the turn leaves it (a slide
         // after the turn would change it).
-        let (Turn::Axis { axis: turn_axis, .. }, Trans::Pivot { .. } | Trans::Fixed) =
-            (rec.turn, rec.trans)
+        let (
+            Turn::Axis {
+                axis: turn_axis, ..
+            },
+            Trans::Pivot { .. } | Trans::Fixed,
+        ) = (rec.turn, rec.trans)
         else {
             return None;
         };
