@@ -492,20 +492,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let mut p4 = p4;
                 let mut p5 = p5;
                 let mut p6 = p6;
-                let across =
-                    frame::unit3(&frame::perpendicular(&direction_2)).ok_or_else(|| {
-                        SolveError::new(
-                            "distance_p5_P3",
-                            "distance(p5, P3) = 2",
-                            ErrorKind::Degenerate,
-                            0.0,
-                        )
-                    })?;
-                let turned = frame::rotation_about_axis(&direction_2, trial[0]) * across;
-                let turn_3 = frame::rotation_about_axis(
-                    &direction_2,
-                    frame::signed_angle3(&across, &turned, &direction_2),
-                );
+                let turn_3 = frame::rotation_about_axis(&direction_2, trial[0]);
                 p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_3);
                 let p3_origin_2 = p3.origin;
                 let p3_normal_2 = p3.z_axis();
@@ -672,19 +659,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             ),
         })?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
-    let across_2 = frame::unit3(&frame::perpendicular(&direction_2)).ok_or_else(|| {
-        SolveError::new(
-            "distance_p5_P3",
-            "distance(p5, P3) = 2",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let turned_2 = frame::rotation_about_axis(&direction_2, trial[0]) * across_2;
-    let turn_5 = frame::rotation_about_axis(
-        &direction_2,
-        frame::signed_angle3(&across_2, &turned_2, &direction_2),
-    );
+    let turn_5 = frame::rotation_about_axis(&direction_2, trial[0]);
     p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_5);
     let p3_origin_3 = p3.origin;
     let p3_normal_3 = p3.z_axis();

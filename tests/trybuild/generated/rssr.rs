@@ -395,19 +395,7 @@ pub fn solve(
         ),
     );
     rocker.rotate_about_by(&Point3::new(4.0, 1.0, 1.0), &turn_3);
-    let across = frame::unit3(&frame::perpendicular(&direction)).ok_or_else(|| {
-        SolveError::new(
-            "spherical_coupler_b_rocker_tip",
-            "spherical(coupler.b, rocker.tip)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let turned_2 = frame::rotation_about_axis(&direction, defaults.coupler_spin_angle) * across;
-    let turn_4 = frame::rotation_about_axis(
-        &direction,
-        frame::signed_angle3(&across, &turned_2, &direction),
-    );
+    let turn_4 = frame::rotation_about_axis(&direction, defaults.coupler_spin_angle);
     coupler.rotate_about_by(&crank_tip, &turn_4);
 
     Ok(Solution {

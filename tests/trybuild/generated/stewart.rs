@@ -353,51 +353,13 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
             |trial, errors| {
                 let mut platform = platform;
-                let across = frame::unit3(&frame::perpendicular(&world_axis)).ok_or_else(|| {
-                    SolveError::new(
-                        "leg2",
-                        "distance(platform.p2, b2) = l2",
-                        ErrorKind::Degenerate,
-                        0.0,
-                    )
-                })?;
-                let turned = frame::rotation_about_axis(&world_axis, trial[0]) * across;
-                let turn = frame::rotation_about_axis(
-                    &world_axis,
-                    frame::signed_angle3(&across, &turned, &world_axis),
-                );
+                let turn = frame::rotation_about_axis(&world_axis, trial[0]);
                 platform.rotate_about_by(&platform_p1, &turn);
                 let world_axis_2 = Vector3::y();
-                let across_2 =
-                    frame::unit3(&frame::perpendicular(&world_axis_2)).ok_or_else(|| {
-                        SolveError::new(
-                            "leg2",
-                            "distance(platform.p2, b2) = l2",
-                            ErrorKind::Degenerate,
-                            0.0,
-                        )
-                    })?;
-                let turned_2 = frame::rotation_about_axis(&world_axis_2, trial[1]) * across_2;
-                let turn_2 = frame::rotation_about_axis(
-                    &world_axis_2,
-                    frame::signed_angle3(&across_2, &turned_2, &world_axis_2),
-                );
+                let turn_2 = frame::rotation_about_axis(&world_axis_2, trial[1]);
                 platform.rotate_about_by(&platform_p1, &turn_2);
                 let world_axis_3 = Vector3::z();
-                let across_3 =
-                    frame::unit3(&frame::perpendicular(&world_axis_3)).ok_or_else(|| {
-                        SolveError::new(
-                            "leg2",
-                            "distance(platform.p2, b2) = l2",
-                            ErrorKind::Degenerate,
-                            0.0,
-                        )
-                    })?;
-                let turned_3 = frame::rotation_about_axis(&world_axis_3, trial[2]) * across_3;
-                let turn_3 = frame::rotation_about_axis(
-                    &world_axis_3,
-                    frame::signed_angle3(&across_3, &turned_3, &world_axis_3),
-                );
+                let turn_3 = frame::rotation_about_axis(&world_axis_3, trial[2]);
                 platform.rotate_about_by(&platform_p1, &turn_3);
                 // leg2: a distance is zero or more.
                 if params.l2 < 0.0 {
@@ -523,49 +485,13 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     trial[1] = gcs_runtime::num::wrap_angle(trial[1]);
     trial[2] = gcs_runtime::num::wrap_angle(trial[2]);
-    let across_4 = frame::unit3(&frame::perpendicular(&world_axis)).ok_or_else(|| {
-        SolveError::new(
-            "leg2",
-            "distance(platform.p2, b2) = l2",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let turned_4 = frame::rotation_about_axis(&world_axis, trial[0]) * across_4;
-    let turn_4 = frame::rotation_about_axis(
-        &world_axis,
-        frame::signed_angle3(&across_4, &turned_4, &world_axis),
-    );
+    let turn_4 = frame::rotation_about_axis(&world_axis, trial[0]);
     platform.rotate_about_by(&platform_p1, &turn_4);
     let world_axis_4 = Vector3::y();
-    let across_5 = frame::unit3(&frame::perpendicular(&world_axis_4)).ok_or_else(|| {
-        SolveError::new(
-            "leg2",
-            "distance(platform.p2, b2) = l2",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let turned_5 = frame::rotation_about_axis(&world_axis_4, trial[1]) * across_5;
-    let turn_5 = frame::rotation_about_axis(
-        &world_axis_4,
-        frame::signed_angle3(&across_5, &turned_5, &world_axis_4),
-    );
+    let turn_5 = frame::rotation_about_axis(&world_axis_4, trial[1]);
     platform.rotate_about_by(&platform_p1, &turn_5);
     let world_axis_5 = Vector3::z();
-    let across_6 = frame::unit3(&frame::perpendicular(&world_axis_5)).ok_or_else(|| {
-        SolveError::new(
-            "leg2",
-            "distance(platform.p2, b2) = l2",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let turned_6 = frame::rotation_about_axis(&world_axis_5, trial[2]) * across_6;
-    let turn_6 = frame::rotation_about_axis(
-        &world_axis_5,
-        frame::signed_angle3(&across_6, &turned_6, &world_axis_5),
-    );
+    let turn_6 = frame::rotation_about_axis(&world_axis_5, trial[2]);
     platform.rotate_about_by(&platform_p1, &turn_6);
     // leg2: a distance is zero or more.
     if params.l2 < 0.0 {

@@ -200,19 +200,7 @@ pub fn solve(
     let turned = frame::plane_turn(&Vector3::x(), params.pitch.cos(), &roof_normal);
     let turn = frame::rotation_between3(&roof_normal, &turned, &frame::perpendicular(&roof_normal));
     roof.rotate_about_by(&Point3::new(0.0, 0.0, 2.0), &turn);
-    let across = frame::unit3(&frame::perpendicular(&Vector3::x())).ok_or_else(|| {
-        SolveError::new(
-            "slope",
-            "angle(X, roof) = pitch",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let turned_2 = frame::rotation_about_axis(&Vector3::x(), defaults.roof_spin_angle) * across;
-    let turn_2 = frame::rotation_about_axis(
-        &Vector3::x(),
-        frame::signed_angle3(&across, &turned_2, &Vector3::x()),
-    );
+    let turn_2 = frame::rotation_about_axis(&Vector3::x(), defaults.roof_spin_angle);
     roof.rotate_about_by(&Point3::new(0.0, 0.0, 2.0), &turn_2);
 
     Ok(Solution {

@@ -2409,9 +2409,16 @@ impl Builder<'_, Spatial> {
             return false;
         }
         match (rec.trans, rec.turn) {
-            // A line's or circle's free turn has no defaults yet: three turns would count a
-            // spin about itself that moves nothing.
-            (_, Turn::Free) if matches!(rec.shape, Shape::Line | Shape::Circle { .. }) => false,
+            // A direction's free turn: two turns across it (a third, about itself, would
+            // move nothing).
+            (_, Turn::Free)
+                if matches!(
+                    rec.shape,
+                    Shape::Vector | Shape::Line | Shape::Plane | Shape::Circle { sized: true }
+                ) =>
+            {
+                self.orient_direction(k)
+            }
             // A segment's freedom, and a circle's radius, have no defaults yet.
             _ if matches!(
                 rec.shape,
@@ -2431,6 +2438,9 @@ impl Builder<'_, Spatial> {
             // A line whose direction is known: its place across itself, two coordinates on the
             // plane through its point across it (sliding along itself moves nothing).
             (Trans::Free, _) if rec.shape == Shape::Line => self.place_across(k),
+            // A plane whose normal is known: its place along its normal (sliding within
+            // itself moves nothing).
+            (Trans::Free, _) if rec.shape == Shape::Plane => self.place_along_normal(k),
             (Trans::Free, _) => self.place(k),
             // Held on a surface with nothing left to turn: its two coordinates on it.
             (
@@ -2733,6 +2743,27 @@ impl Builder<'_, Spatial> {
         self.place_on(k, line, Locus::Plane(plane))
     }
 
+    /// A plane whose normal is known, free to translate: default its place on the line
+    /// through its point along its normal.
+    fn place_along_normal(&mut self, k: usize) -> bool {
+        let plane = self.clusters[k].geoms[0];
+        let Some(normal) = self.model.part(plane, Part::Normal) else {
+            return false;
+        };
+        let (point, dir) = (self.point(plane), self.direction(normal));
+        let words = format!("the line through {} along its normal", self.name(plane));
+        let line = self.value(
+            Op::Line {
+                point,
+                dir,
+                offset: None,
+            },
+            Ty::Line,
+            words,
+        );
+        self.slide(k, plane, Locus::Line(line))
+    }
+
     /// Feature `f` of cluster `k` held on a line or circle: default its place on it (the
     /// distance along the line from its point, the angle about the circle's axis).
     fn slide(&mut self, k: usize, f: GeomId, locus: Locus) -> bool {
@@ -2909,34 +2940,66 @@ impl Builder<'_, Spatial> {
         );
         let zero = self.value(Op::Const(0.0), Ty::Scalar, "0".into());
         let angle = self.default_value(geoms[0], name.clone(), meaning.clone(), zero);
-        let words = format!("a direction across {}", self.word(axis));
-        let from = self.value(Op::Across(axis), Ty::Vector, words);
-        let words = format!("that direction turned by `{name}`");
-        let to = self.value(
-            Op::TurnedAbout {
-                dir: from,
-                axis,
-                angle,
-            },
-            Ty::Vector,
-            words,
-        );
         let explain = format!(
             "No constraint, chain or loop fixes this yet: assume {meaning} is the default `{name}` (0, least motion, unless given): turn {} about that axis by it.",
             self.group_name(geoms)
         );
         self.emit(
-            Op::RotateDir {
+            Op::RotateBy {
                 geoms: geoms.to_vec(),
                 pivot,
-                axis: RotationAxis::Along(axis),
-                from,
-                to,
+                axis,
+                angle,
             },
             None,
             Vec::new(),
             explain,
         );
+    }
+
+    /// A direction free to turn (a vector's, a line's, a plane's normal, a circle's normal):
+    /// two defaults, its turns about a direction across it and about the direction across
+    /// both, from where the constraints leave it (turning about itself moves nothing).
+    fn orient_direction(&mut self, k: usize) -> bool {
+        let geoms = self.clusters[k].geoms.clone();
+        let Some(dir) = self.own_direction(geoms[0]) else {
+            return false;
+        };
+        let gname = self.name(geoms[0]);
+        let pivot = self.pivot_of(k);
+        let d = self.direction(dir);
+        let words = format!("a direction across {}", self.name(dir));
+        let across = self.value(Op::Across(d), Ty::Vector, words);
+        let quarter = self.value(
+            Op::Const(std::f64::consts::FRAC_PI_2),
+            Ty::Scalar,
+            "a right angle".into(),
+        );
+        let words = format!("the direction across {} and that direction", self.name(dir));
+        let both = self.value(
+            Op::TurnedAbout {
+                dir: across,
+                axis: d,
+                angle: quarter,
+            },
+            Ty::Vector,
+            words,
+        );
+        self.turn_by_default(&geoms, pivot, across, format!("{gname}_tilt_angle"));
+        self.turn_by_default(&geoms, pivot, both, format!("{gname}_roll_angle"));
+        self.turned(k);
+        true
+    }
+
+    /// The direction feature that is a one-direction geom's orientation: a vector itself, a
+    /// line's or segment's direction, a plane's or circle's normal.
+    fn own_direction(&self, g: GeomId) -> Option<GeomId> {
+        match self.model.geoms[g].kind {
+            GeomKind::Vector => Some(g),
+            GeomKind::Plane | GeomKind::Circle => self.model.part(g, Part::Normal),
+            GeomKind::Line | GeomKind::Segment => self.model.line_features(g).map(|(_, d)| d),
+            _ => None,
+        }
     }
 
     /// A body that may only turn about `axis`: default that turn.
