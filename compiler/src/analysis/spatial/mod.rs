@@ -885,14 +885,23 @@ impl Builder<'_, Spatial> {
                     let l = self.line(x, d, words);
                     return self.move_point(base, Target::On(Locus::Line(l)), r);
                 }
-                // A line through a known point, its direction not known: it turns about that
-                // point onto the line through both, keeping its sense.
+                // A line or segment through a known point (its own, or the point it is held
+                // at), its direction not known: it turns about that point onto the line
+                // through both, keeping its sense.
+                let pivot = match self.record(base).trans {
+                    Trans::Pivot { at, .. } => Some(at),
+                    _ => None,
+                };
                 if self.point_known(p)
-                    && self.point_known(base)
+                    && (pivot.is_some() || self.point_known(base))
                     && self.together(base, dir)
-                    && self.record(base).shape == Shape::Line
+                    && matches!(self.record(base).shape, Shape::Line | Shape::Segment { .. })
                 {
-                    let (x, at, d) = (self.point(p), self.point(base), self.direction(dir));
+                    let at = match pivot {
+                        Some(at) => at,
+                        None => self.point(base),
+                    };
+                    let (x, d) = (self.point(p), self.direction(dir));
                     let (pname, lname) = (self.name(p), self.name(base));
                     let words = format!("the direction from {lname}'s point to {pname}");
                     let to = self.value(Op::DirectionTo { from: at, to: x }, Ty::Vector, words);
@@ -2409,24 +2418,12 @@ impl Builder<'_, Spatial> {
             return false;
         }
         match (rec.trans, rec.turn) {
+            // A segment's length or a circle's radius first, while the record still says which
+            // point is held (a new length keeps the start: a held end is moved back).
+            _ if rec.shape.size_free() && !self.size_pending(k) => self.size_default(k),
             // A direction's free turn: two turns across it (a third, about itself, would
             // move nothing).
-            (_, Turn::Free)
-                if matches!(
-                    rec.shape,
-                    Shape::Vector | Shape::Line | Shape::Plane | Shape::Circle { sized: true }
-                ) =>
-            {
-                self.orient_direction(k)
-            }
-            // A segment's freedom, and a circle's radius, have no defaults yet.
-            _ if matches!(
-                rec.shape,
-                Shape::Segment { .. } | Shape::Circle { sized: false }
-            ) =>
-            {
-                false
-            }
+            (_, Turn::Free) if rec.shape.one_direction() => self.orient_direction(k),
             (
                 Trans::On {
                     feature,
@@ -2559,7 +2556,8 @@ impl Builder<'_, Spatial> {
             "... and give {cname} the radius that reaches {pname}: {} ({con}).",
             self.word(radius)
         );
-        self.resize(circle, radius, None, explain, r);
+        let satisfies = self.satisfies(r);
+        self.resize(circle, radius, None, explain, satisfies);
         self.clusters[k].record.shape = Shape::Circle { sized: true };
         true
     }
@@ -2589,36 +2587,83 @@ impl Builder<'_, Spatial> {
             Shape::Circle { .. } => "radius",
             _ => "length",
         };
-        let held_end = match rec.trans {
-            Trans::Pivot { at, feature } if Some(feature) == self.model.part(seg, Part::End) => {
-                Some((feature, at))
-            }
-            _ => None,
-        };
+        let held_end = self.held_end(k, seg);
         let explain = format!(
             "{sname}'s {what} is free: give it {} ({c}).",
             self.word(length)
         );
-        self.resize(seg, length, held_end, explain, r);
+        let satisfies = self.satisfies(r);
+        self.resize(seg, length, held_end, explain, satisfies);
         self.clusters[k].record.shape = rec.shape.sized();
+        true
+    }
+
+    /// The end of segment `seg` (of cluster `k`) that its record holds at a point, and where:
+    /// a new length keeps the start, so that end must be moved back.
+    fn held_end(&self, k: usize, seg: GeomId) -> Option<(GeomId, Reg)> {
+        match self.clusters[k].record.trans {
+            Trans::Pivot { at, feature } if Some(feature) == self.model.part(seg, Part::End) => {
+                Some((feature, at))
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether a relation still to come can set the size of cluster `k`'s segment or circle
+    /// (a length or radius, an `equal`, a point on the circle): its size then takes no
+    /// default, so that the relation sets it rather than being closed by an iteration.
+    fn size_pending(&self, k: usize) -> bool {
+        let [g] = self.clusters[k].geoms[..] else {
+            return false;
+        };
+        self.pending.iter().any(|p| match p.relation {
+            Relation::Size { geom, .. } => geom == g,
+            Relation::SameSize { a, b } => a == g || b == g,
+            Relation::PointCircle { circle, .. } => circle == g,
+            _ => false,
+        })
+    }
+
+    /// A segment's length or a circle's radius still free: a default, the size where the
+    /// constraints leave it (least motion).
+    fn size_default(&mut self, k: usize) -> bool {
+        let [g] = self.clusters[k].geoms[..] else {
+            return false;
+        };
+        let what = match self.clusters[k].record.shape {
+            Shape::Circle { .. } => "radius",
+            _ => "length",
+        };
+        let gname = self.name(g);
+        let measure = self.size_of(g);
+        let (name, meaning) = (format!("{gname}_{what}"), format!("the {what} of {gname}"));
+        let size = self.default_value(g, name.clone(), meaning.clone(), measure);
+        let held_end = self.held_end(k, g);
+        let explain = format!(
+            "{}: give {gname} that {what}.",
+            Self::assume(&meaning, &name)
+        );
+        self.resize(g, size, held_end, explain, Vec::new());
+        let rec = &mut self.clusters[k].record;
+        rec.shape = rec.shape.sized();
         true
     }
 
     /// Sets segment `seg`'s length to `length` (which keeps its start), then, when its end is
     /// the point held (`held_end`: the end, and where), moves it back there. The last step
-    /// satisfies `r`.
+    /// satisfies `satisfies`.
     fn resize(
         &mut self,
         seg: GeomId,
         length: Reg,
         held_end: Option<(GeomId, Reg)>,
         explain: String,
-        r: &Rel,
+        satisfies: Vec<ConstraintId>,
     ) {
-        let satisfies = if held_end.is_none() {
-            self.satisfies(r)
+        let (now, after) = if held_end.is_none() {
+            (satisfies, Vec::new())
         } else {
-            Vec::new()
+            (Vec::new(), satisfies)
         };
         self.emit(
             Op::SetDim {
@@ -2626,7 +2671,7 @@ impl Builder<'_, Spatial> {
                 value: length,
             },
             None,
-            satisfies,
+            now,
             explain,
         );
         if let Some((end, at)) = held_end {
@@ -2645,7 +2690,7 @@ impl Builder<'_, Spatial> {
                     to: at,
                 },
                 None,
-                self.satisfies(r),
+                after,
                 explain,
             );
         }
@@ -2714,7 +2759,8 @@ impl Builder<'_, Spatial> {
         );
         let explain = "... and give it the length between them.".to_string();
         let held_end = (!held_start).then_some((g, at));
-        self.resize(seg, length, held_end, explain, r);
+        let satisfies = self.satisfies(r);
+        self.resize(seg, length, held_end, explain, satisfies);
         let rec = &mut self.clusters[k].record;
         rec.shape = Shape::Segment { sized: true };
         rec.turn = Turn::Known;
