@@ -253,7 +253,9 @@ impl PlanIndex {
                     ix.dim_set.insert(*geom);
                     ix.dim_first.entry(*geom).or_insert(true);
                 }
-                Op::DimOf(x) => {
+                // A measure no generated step reads (a default's sketch value, taken at
+                // analysis) reads nothing at run time.
+                Op::DimOf(x) if step.out.is_some_and(|o| used.contains(&o.0)) => {
                     ix.dim_first.entry(*x).or_insert(false);
                 }
                 Op::PointOf(f) => {

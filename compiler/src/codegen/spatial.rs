@@ -733,7 +733,7 @@ impl Solve<'_> {
             }
             Op::ConeTurn { axis, angle, dir } => {
                 let code = format!(
-                    "frame::plane_turn(&{}, {}.cos(), &{})",
+                    "frame::plane_turn(&{}, f64::cos({}), &{})",
                     self.r(*axis),
                     self.r(*angle),
                     self.r(*dir)

@@ -193,7 +193,7 @@ pub fn solve(
     // a: angle(X, sight) = alpha (line_on_cone.gcs:11)
     let turned = frame::plane_turn(
         &Vector3::x(),
-        params.alpha.cos(),
+        f64::cos(params.alpha),
         &Vector3::new(0.6666666666666666, 0.6666666666666666, 0.3333333333333333),
     );
     let turn = frame::rotation_between3(

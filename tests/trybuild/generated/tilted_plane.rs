@@ -197,7 +197,7 @@ pub fn solve(
 
     // slope: angle(X, roof) = pitch (tilted_plane.gcs:10)
     let roof_normal = roof.z_axis();
-    let turned = frame::plane_turn(&Vector3::x(), params.pitch.cos(), &roof_normal);
+    let turned = frame::plane_turn(&Vector3::x(), f64::cos(params.pitch), &roof_normal);
     let turn = frame::rotation_between3(&roof_normal, &turned, &frame::perpendicular(&roof_normal));
     roof.rotate_about_by(&Point3::new(0.0, 0.0, 2.0), &turn);
     let turn_2 = frame::rotation_about_axis(&Vector3::x(), defaults.roof_spin_angle);

@@ -174,7 +174,7 @@ pub fn solve(
     // a: angle(X, sight) = alpha (two_angle_direction.gcs:10)
     let turned = frame::plane_turn(
         &Vector3::x(),
-        params.alpha.cos(),
+        f64::cos(params.alpha),
         &Vector3::new(0.30304576336566325, 0.5050762722761054, 0.8081220356417687),
     );
     let turn = frame::rotation_between3(
