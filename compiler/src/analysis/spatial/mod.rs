@@ -2336,7 +2336,7 @@ impl Builder<'_, Spatial> {
                 };
                 let how = if let Some((point, locus)) = reach {
                     format!(
-                        "the angle that takes {vname} to {} and {} onto {} together (the point decides where {vname} lies nearly along the axis)",
+                        "the angle that takes {vname} to {} and {} onto {} together (the point decides the turn when {vname} lies nearly along the axis)",
                         self.word(target),
                         self.word(point),
                         self.word(locus)
