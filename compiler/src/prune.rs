@@ -46,11 +46,14 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
         }
     }
     walk.run(|_, _| {});
-    // A check is kept when everything it measures is computed anyway: live after it. What a
-    // check takes in lies before it, so the checks are decided last to first, each once.
+    // A check is kept when everything it measures is computed anyway: live after it, or fixed
+    // (a fixed geom is known without a step; a check against it guards the outputs, as a stop
+    // a screw must reach decides which of its turns a pitch apart the answer is). What a check
+    // takes in lies before it, so the checks are decided last to first, each once.
     for (i, step) in plan.steps.iter().enumerate().rev() {
         if let Op::Check { constraint, .. } = &step.op {
-            if tops(constraint).iter().all(|&g| walk.is_live_after(g, i)) {
+            if (tops(constraint).iter()).all(|&g| model.geoms[g].fixed || walk.is_live_after(g, i))
+            {
                 walk.take(i);
                 walk.run(|_, _| {});
             }

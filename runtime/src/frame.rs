@@ -421,13 +421,14 @@ pub fn turn_reaching_line(
     (pivot, axis): (&Point3<f64>, &Vector3<f64>),
     point: &Point3<f64>,
     line: &crate::locus3d::Line3,
+    screw: Option<&Screw>,
 ) -> f64 {
     let d = line.dir;
     let scale = point.coords.norm().max(line.point.coords.norm());
     turn_reaching(
         [u, v],
         (pivot, axis),
-        point,
+        (point, screw),
         scale,
         |x| {
             let off = x - line.point;
@@ -460,17 +461,66 @@ pub fn turn_reaching_plane(
     (pivot, axis): (&Point3<f64>, &Vector3<f64>),
     point: &Point3<f64>,
     plane: &crate::locus3d::Plane,
+    screw: Option<&Screw>,
 ) -> f64 {
     let n = plane.normal;
     let scale = point.coords.norm().max(plane.offset.abs());
     turn_reaching(
         [u, v],
         (pivot, axis),
-        point,
+        (point, screw),
         scale,
         |x| n * (n.dot(&x.coords) - plane.offset),
         |w| n * n.dot(w),
     )
+}
+
+/// A helical coupling the cluster rides on after a turn (a screw): the cluster then slides
+/// along `slide` until the riding marker's advance along `axis` from `origin` is the helix's
+/// advance for its turn, the angle from `x_from` to its x axis about `axis` (as
+/// [`helix_advance`], the advance nearest where it is). With it, where a joint's point ends up
+/// depends on the turn through the pitch, and [`turn_reaching_plane`] and
+/// [`turn_reaching_line`] follow it there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Screw {
+    /// The unit axis the helix is measured about (its first marker's z axis).
+    pub axis: Vector3<f64>,
+    /// The x axis its turn is measured from (its first marker's).
+    pub x_from: Vector3<f64>,
+    /// Where its advance is measured from (its first marker's point).
+    pub origin: Point3<f64>,
+    /// The riding marker's x axis, before the turn.
+    pub x: Vector3<f64>,
+    /// The riding marker's point, before the turn.
+    pub point: Point3<f64>,
+    /// The advance per turn.
+    pub pitch: f64,
+    /// The unit direction the cluster slides along.
+    pub slide: Vector3<f64>,
+}
+
+impl Screw {
+    /// The slide after the cluster turns by `(sin, cos)` about the unit `a` through `pivot`,
+    /// and its rate of change with the turn.
+    #[inline]
+    fn slide_after(
+        &self,
+        turn: impl Fn(&Vector3<f64>) -> Vector3<f64>,
+        a: &Vector3<f64>,
+        pivot: &Point3<f64>,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let z = self.axis;
+        let (x, arm) = (turn(&self.x), turn(&(self.point - pivot)));
+        let now = (pivot + arm - self.origin).dot(&z);
+        let angle = signed_angle3(&self.x_from, &x, &z);
+        let along = self.slide.dot(&z);
+        let by = (helix_advance(now, angle, self.pitch) - now) / along;
+        // The turn of x about z as the cluster turns about a, and the advance's own change.
+        let across = x - z * z.dot(&x);
+        let spin = z.dot(&across.cross(&a.cross(&x))) / across.norm_squared();
+        let rate = (self.pitch / std::f64::consts::TAU * spin - z.dot(&a.cross(&arm))) / along;
+        (self.slide * by, self.slide * rate)
+    }
 }
 
 /// The method of [`turn_reaching_plane`]: `miss(x)` is the offset of `x` from the locus
@@ -479,7 +529,7 @@ pub fn turn_reaching_plane(
 fn turn_reaching(
     [u, v]: [&Vector3<f64>; 2],
     (pivot, axis): (&Point3<f64>, &Vector3<f64>),
-    point: &Point3<f64>,
+    (point, screw): (&Point3<f64>, Option<&Screw>),
     scale: f64,
     miss: impl Fn(&Point3<f64>) -> Vector3<f64>,
     across: impl Fn(&Vector3<f64>) -> Vector3<f64>,
@@ -505,7 +555,14 @@ fn turn_reaching(
     for _ in 0..REACHING_STEPS {
         let sc = crate::num::sin_cos(angle);
         let (w, ut) = (turn(&arm, sc), turn(u, sc));
-        let (r_point, j_point) = (miss(&(pivot + w)) / size, across(&a.cross(&w)) / size);
+        let (slid, rate) = match screw {
+            Some(screw) => screw.slide_after(|x| turn(x, sc), &a, pivot),
+            None => (Vector3::zeros(), Vector3::zeros()),
+        };
+        let (r_point, j_point) = (
+            miss(&(pivot + w + slid)) / size,
+            across(&(a.cross(&w) + rate)) / size,
+        );
         let (r_dir, j_dir) = (ut - v, a.cross(&ut));
         let (by_point, by_dir) = (j_point.norm_squared(), j_dir.norm_squared());
         // The point must move across the locus faster than the directions turn to decide.

@@ -614,14 +614,63 @@ proptest! {
         let at = (&pivot, &axis);
         if across_line > 0.3 {
             let line = Line3::new(reached + slide * shift * size, slide);
-            let angle = gcs_runtime::frame::turn_reaching_line([&z, &z1], at, &point, &line);
+            let angle = gcs_runtime::frame::turn_reaching_line([&z, &z1], at, &point, &line, None);
             prop_assert!(wrap(angle).abs() <= bound, "line: {angle} for {turn}, z 1e{off} off");
         }
         if along_normal > 0.3 {
             let inside = perp_to(&slide, &tilt) * shift * size;
             let plane = Plane::new(slide, slide.dot(&(reached + inside).coords));
-            let angle = gcs_runtime::frame::turn_reaching_plane([&z, &z1], at, &point, &plane);
+            let angle = gcs_runtime::frame::turn_reaching_plane([&z, &z1], at, &point, &plane, None);
             prop_assert!(wrap(angle).abs() <= bound, "plane: {angle} for {turn}, z 1e{off} off");
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// As above on a screw: after the turn the cluster slides along the screw's axis by the
+    /// helix's advance for its turn, so where the joint's point lands depends on the turn
+    /// through the pitch; `turn_reaching_plane` with the `Screw` follows it there, where the
+    /// z axis (1e-12 to 1e-2 rad off the axis) decides the turn only to rounding over that.
+    #[test]
+    fn a_turn_reaching_a_point_on_a_screw_is_exact_near_the_axis(
+        axis in unit(),
+        across in unit(),
+        off in -12.0f64..-2.0,
+        turn in -3.0f64..3.0,
+        pivot in vec3(),
+        arm in 0.2f64..1.0,
+        along in -1.0f64..1.0,
+        normal in unit(),
+        pitch in 0.2f64..2.0,
+        x_spin in -3.1f64..3.1,
+        start in -1.0f64..1.0,
+    ) {
+        use gcs_runtime::frame::{helix_advance, signed_angle3, Screw};
+        let tilt = perp_to(&axis, &across);
+        let z = (axis + tilt * 10f64.powf(off)).normalize();
+        let pivot = Point3::from(pivot);
+        let point = pivot + tilt * arm + axis * along;
+        // The helix: measured about the axis from a fixed x axis and a point on the axis; the
+        // riding marker at the pivot, its x axis across the axis.
+        let x_from = tilt;
+        let x = rotation_about_axis(&axis, x_spin) * tilt;
+        let origin = pivot - axis * start;
+        let screw = Screw { axis, x_from, origin, x, point: pivot, pitch, slide: axis };
+        let q = rotation_about_axis(&axis, turn);
+        let now = (pivot - origin).dot(&axis);
+        let slide = helix_advance(now, signed_angle3(&x_from, &(q * x), &axis), pitch) - now;
+        let reached = pivot + q * (point - pivot) + axis * slide;
+        // The plane's condition must move with the turn, through the arm or the pitch.
+        let rate = normal.dot(&axis.cross(&(reached - axis * slide - pivot)))
+            + normal.dot(&axis) * pitch / std::f64::consts::TAU;
+        prop_assume!(rate.abs() > 0.3);
+        let plane = Plane::new(normal, normal.dot(&reached.coords));
+        let at = (&pivot, &axis);
+        let angle = gcs_runtime::frame::turn_reaching_plane([&z, &(q * z)], at, &point, &plane, Some(&screw));
+        let wrap = |a: f64| (a - turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        prop_assert!(wrap(angle).abs() <= 1e-12, "{angle} for {turn}, z 1e{off} off");
     }
 }

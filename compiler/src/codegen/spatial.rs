@@ -694,13 +694,26 @@ impl Solve<'_> {
                 pivot,
                 point,
                 locus,
+                screw,
             } => {
                 let onto = match self.kind3(*locus) {
                     Kind::Plane => "plane",
                     _ => "line",
                 };
+                let screw = screw.map_or("None".to_string(), |s| {
+                    format!(
+                        "Some(&frame::Screw {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {}, slide: {}.dir }})",
+                        self.r(s.axis),
+                        self.r(s.x_from),
+                        self.r(s.origin),
+                        self.r(s.x),
+                        self.r(s.point),
+                        self.r(s.pitch),
+                        self.r(s.slide)
+                    )
+                });
                 let code = format!(
-                    "frame::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), &{}, &{})",
+                    "frame::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), &{}, &{}, {screw})",
                     self.r(*u),
                     self.r(*v),
                     self.r(*pivot),

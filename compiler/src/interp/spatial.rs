@@ -151,15 +151,28 @@ impl Machine<'_, '_, D3> {
                 pivot,
                 point,
                 locus,
+                screw,
             } => {
                 let (dirs, at, p) = (
                     [&self.v3(*u), &self.v3(*v)],
                     (&self.p3(*pivot), &self.v3(*axis)),
                     self.p3(*point),
                 );
+                let screw = screw.map(|s| frame::Screw {
+                    axis: self.v3(s.axis),
+                    x_from: self.v3(s.x_from),
+                    origin: self.p3(s.origin),
+                    x: self.v3(s.x),
+                    point: self.p3(s.point),
+                    pitch: self.s(s.pitch),
+                    slide: self.line3(s.slide).dir,
+                });
+                let screw = screw.as_ref();
                 Val::S(match self.get(*locus) {
-                    Some(&Val::Plane(plane)) => frame::turn_reaching_plane(dirs, at, &p, &plane),
-                    _ => frame::turn_reaching_line(dirs, at, &p, &self.line3(*locus)),
+                    Some(&Val::Plane(plane)) => {
+                        frame::turn_reaching_plane(dirs, at, &p, &plane, screw)
+                    }
+                    _ => frame::turn_reaching_line(dirs, at, &p, &self.line3(*locus), screw),
                 })
             }
             Op::HelixAdvance { now, turn, pitch } => {

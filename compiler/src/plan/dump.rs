@@ -252,14 +252,25 @@ impl Plan {
                     pivot,
                     point,
                     locus,
+                    screw,
                 } => format!(
-                    "angle {} -> {} about {} at {} taking {} onto {}",
+                    "angle {} -> {} about {} at {} taking {} onto {}{}",
                     r(u),
                     r(v),
                     r(axis),
                     r(pivot),
                     r(point),
-                    r(locus)
+                    r(locus),
+                    screw.map_or(String::new(), |s| format!(
+                        " riding helix {} {} from {} of {} at {} pitch {} along {}",
+                        r(&s.axis),
+                        r(&s.x_from),
+                        r(&s.origin),
+                        r(&s.x),
+                        r(&s.point),
+                        r(&s.pitch),
+                        r(&s.slide)
+                    ))
                 ),
                 Op::HelixAdvance { now, turn, pitch } => {
                     format!(

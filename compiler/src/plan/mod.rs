@@ -215,6 +215,20 @@ impl Meet {
     }
 }
 
+/// The registers of a helical coupling a cluster rides on after a turn
+/// (`runtime::frame::Screw`): the first marker's z axis, x axis and point, the riding
+/// marker's x axis and point, the pitch, and the line the cluster slides along.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ScrewRegs {
+    pub axis: Reg,
+    pub x_from: Reg,
+    pub origin: Reg,
+    pub x: Reg,
+    pub point: Reg,
+    pub pitch: Reg,
+    pub slide: Reg,
+}
+
 /// The axis of a rotation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RotationAxis {
@@ -498,7 +512,8 @@ pub enum Op {
     /// `v` and takes `point` onto `locus`, a line or a plane (`runtime::frame::
     /// turn_reaching_line` and `_plane`): a joint's point, which the cluster's remaining slide
     /// along that locus then brings home, decides a turn that a z axis nearly along the axis
-    /// fixes only to rounding over its distance from it.
+    /// fixes only to rounding over its distance from it. With `screw`, the cluster rides a
+    /// helical coupling after the turn, and the point goes where the screw's slide takes it.
     TurnReaching {
         u: Reg,
         v: Reg,
@@ -506,6 +521,7 @@ pub enum Op {
         pivot: Reg,
         point: Reg,
         locus: Reg,
+        screw: Option<ScrewRegs>,
     },
     /// A helix's advance for a turn: the advance `now + pitch / 2pi * wrap(turn - 2pi now /
     /// pitch)`, the one of the turn's advances (a pitch apart) nearest `now`.

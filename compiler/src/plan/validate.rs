@@ -306,14 +306,29 @@ impl Op {
                 pivot,
                 point,
                 locus,
-            } => vec![
-                (*u, VECTOR),
-                (*v, VECTOR),
-                (*axis, VECTOR),
-                (*pivot, POINT),
-                (*point, POINT),
-                (*locus, LINE_OR_PLANE),
-            ],
+                screw,
+            } => {
+                let mut operands = vec![
+                    (*u, VECTOR),
+                    (*v, VECTOR),
+                    (*axis, VECTOR),
+                    (*pivot, POINT),
+                    (*point, POINT),
+                    (*locus, LINE_OR_PLANE),
+                ];
+                if let Some(s) = screw {
+                    operands.extend([
+                        (s.axis, VECTOR),
+                        (s.x_from, VECTOR),
+                        (s.origin, POINT),
+                        (s.x, VECTOR),
+                        (s.point, POINT),
+                        (s.pitch, SCALAR),
+                        (s.slide, LINE),
+                    ]);
+                }
+                operands
+            }
             Op::HelixAdvance { now, turn, pitch } => {
                 vec![(*now, SCALAR), (*turn, SCALAR), (*pitch, SCALAR)]
             }

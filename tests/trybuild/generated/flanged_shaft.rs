@@ -358,6 +358,8 @@ pub fn solve(
         &frame::perpendicular(&shaft_journal_z),
     );
     shaft.rotate_about_by(&shaft_journal, &turn);
+
+    // bolt: revolute(shaft.hole, ground.bolt) (flanged_shaft.gcs:22)
     let ground_bolt_z = ground.vector_to_global(&ground_bolt_z_local);
     let shaft_journal_2 = shaft.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let shaft_hole_z = shaft.vector_to_global(&shaft_hole_z_local);
@@ -372,12 +374,23 @@ pub fn solve(
         ),
         &shaft_hole,
         &line_2,
+        None,
     );
     let turn_2 = frame::rotation_about_axis(
         &Vector3::new(0.590076826593421, -0.09658708534478794, 0.8015486720480774),
         angle,
     );
     shaft.rotate_about_by(&shaft_journal_2, &turn_2);
+    let shaft_hole_z_2 = shaft.vector_to_global(&shaft_hole_z_local);
+    let residual = check::space::parallel(shaft_hole_z_2, ground_bolt_z, 1.0);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "bolt",
+            "revolute(shaft.hole, ground.bolt)",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
     let shaft_hole_2 = shaft.point_to_global(&shaft_hole_local);
     let line_3 = Line3::new(shaft_hole_2, line.dir);
     let gap = line_3.distance(&ground_bolt);

@@ -376,12 +376,15 @@ pub fn solve(
     )
     .unwrap_or_else(UnitQuaternion::identity)
         * Vector3::x();
+    let tol = 1.5000000000000002e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // along: parallel_z(screw.shaft, ground.guide) (screw_in_socket.gcs:25)
     // Already true where the sketch puts the geoms: nothing moves.
 
     // ball: coincident(screw.ball, ground.socket) (screw_in_socket.gcs:24)
     // Already true where the sketch puts the geoms: nothing moves.
+
+    // thread: helical(ground.nut, screw.thread) = pitch (screw_in_socket.gcs:26)
     let ground_nut_z = ground.vector_to_global(&ground_nut_z_local);
     let screw_thread_z = screw.vector_to_global(&screw_thread_z_local);
     let ground_nut = ground.point_to_global(&ground_nut_local);
@@ -409,8 +412,8 @@ pub fn solve(
     let sum = length + length_2;
     if !gcs_runtime::num::is_finite(sum) {
         return Err(SolveError::new(
-            "ball",
-            "coincident(screw.ball, ground.socket)",
+            "thread",
+            "helical(ground.nut, screw.thread) = pitch",
             ErrorKind::InvalidValue,
             sum,
         ));
@@ -418,8 +421,8 @@ pub fn solve(
     let turn = frame::helix_turn(sum, params.pitch);
     if !gcs_runtime::num::is_finite(turn) {
         return Err(SolveError::new(
-            "ball",
-            "coincident(screw.ball, ground.socket)",
+            "thread",
+            "helical(ground.nut, screw.thread) = pitch",
             ErrorKind::InvalidValue,
             turn,
         ));
@@ -445,6 +448,32 @@ pub fn solve(
         angle_2,
     );
     screw.rotate_about_by(&Point3::new(0.2, -0.1, 0.4), &turn_2);
+    let screw_thread_z_2 = screw.vector_to_global(&screw_thread_z_local);
+    let residual = check::space::parallel(ground_nut_z, screw_thread_z_2, 1.0);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "thread",
+            "helical(ground.nut, screw.thread) = pitch",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let screw_thread_x_2 = screw.vector_to_global(&screw_thread_x_local);
+    let residual_2 = check::space::helix(
+        ground_nut_z,
+        ground_nut_x,
+        screw_thread_x_2,
+        screw_thread - ground_nut,
+        params.pitch,
+    );
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "thread",
+            "helical(ground.nut, screw.thread) = pitch",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
 
     Ok(Solution {
         ground,

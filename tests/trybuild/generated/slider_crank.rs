@@ -323,10 +323,22 @@ pub fn solve(
     );
     slider.rotate_about_by(&slider_s_2, &turn_3);
 
-    // revolute(arm.tip, rod.a) (slider_crank.gcs:16)
+    // revolute(arm.o, ground.o) (slider_crank.gcs:14)
     let arm_o = arm.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let shift_2 = Point3::new(0.0, 0.0, 0.0) - arm_o;
     arm.translate(&shift_2);
+    let arm_o_z = arm.vector_to_global(&Vector3::z());
+    let residual = check::space::parallel(arm_o_z, Vector3::z(), 1.0);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "revolute_arm_o_ground_o",
+            "revolute(arm.o, ground.o)",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+
+    // revolute(arm.tip, rod.a) (slider_crank.gcs:16)
     let arm_tip = arm.point_to_global(&Point3::new(3.0, 0.0, 0.0));
     let shift_3 = arm_tip - Point3::new(3.0, 0.0, 0.0);
     rod.translate(&shift_3);
@@ -338,13 +350,13 @@ pub fn solve(
     // revolute(rod.b, slider.pin) (slider_crank.gcs:17)
     let rod_b_z = rod.vector_to_global(&Vector3::z());
     let slider_pin_z = slider.vector_to_global(&Vector3::z());
-    let residual = check::space::parallel(rod_b_z, slider_pin_z, 1.0);
-    if residual.is_nan() || residual > tol {
+    let residual_2 = check::space::parallel(rod_b_z, slider_pin_z, 1.0);
+    if residual_2.is_nan() || residual_2 > tol {
         return Err(SolveError::new(
             "revolute_rod_b_slider_pin",
             "revolute(rod.b, slider.pin)",
             ErrorKind::Inconsistent,
-            residual,
+            residual_2,
         ));
     }
     let rod_b = rod.point_to_global(&Point3::new(4.0, 0.0, 0.0));

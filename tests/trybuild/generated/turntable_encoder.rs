@@ -236,9 +236,12 @@ pub fn solve(
             0.17364817766693033,
         )),
     );
+    let tol = 1.1000000000000001e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // hinge: revolute(table.hub, ground.base) (turntable_encoder.gcs:19)
     // Already true where the sketch puts the geoms: nothing moves.
+
+    // index: offset_x(ground.pin, table.rim) = 0 deg (turntable_encoder.gcs:20)
     let turned = frame::rotation_about_axis(
         &Vector3::new(0.3213938048432696, 0.38302222155948895, 0.8660254037844387),
         0.0,
@@ -260,6 +263,37 @@ pub fn solve(
     );
     let turn = frame::rotation_about_axis(&Vector3::z(), angle);
     table.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+    let table_rim_z =
+        table.vector_to_global(&Vector3::new(0.49999999999999994, 0.0, 0.8660254037844387));
+    let residual = check::space::parallel(
+        Vector3::new(0.3213938048432696, 0.38302222155948895, 0.8660254037844387),
+        table_rim_z,
+        1.0,
+    );
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "index",
+            "offset_x(ground.pin, table.rim) = 0 deg",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let table_rim_x =
+        table.vector_to_global(&Vector3::new(0.8660254037844387, 0.0, -0.49999999999999994));
+    let residual_2 = check::space::twist(
+        Vector3::new(0.3213938048432696, 0.38302222155948895, 0.8660254037844387),
+        Vector3::new(0.5566703992264195, 0.6634139481689384, -0.5),
+        table_rim_x,
+        0.0,
+    );
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "index",
+            "offset_x(ground.pin, table.rim) = 0 deg",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
 
     Ok(Solution {
         ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),

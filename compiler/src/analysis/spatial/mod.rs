@@ -26,7 +26,7 @@ use super::driver::Builder;
 use super::geometry::{self, Geometry, Invariants};
 use super::Unsupported;
 use crate::config::{Config, D3};
-use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Ty};
+use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, ScrewRegs, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::Model;
 use relation::{AngleValue, Relation};
@@ -1976,6 +1976,103 @@ impl Builder<'_, Spatial> {
         k: usize,
         axis: Reg,
         (v, target): (GeomId, Reg),
+    ) -> Option<(Reg, Reg, Option<ScrewRegs>)> {
+        if let Some(screwed) = self.reach_on_screw(r, k) {
+            return Some(screwed);
+        }
+        self.reach_sliding(r, k, axis, (v, target))
+            .map(|(point, locus)| (point, locus, None))
+    }
+
+    /// As [`Builder::reach`] for a cluster that rides a screw (it slides along a line, and a
+    /// helical coupling of another constraint, still to come, ties that slide to the turn): a
+    /// joint's point must then reach its line or plane where the screw takes it, which
+    /// `Op::TurnReaching` follows with the screw's registers.
+    fn reach_on_screw(&mut self, r: &Rel, k: usize) -> Option<(Reg, Reg, Option<ScrewRegs>)> {
+        let Trans::On {
+            locus: Locus::Line(slide),
+            ..
+        } = self.clusters[k].record.trans
+        else {
+            return None;
+        };
+        let (za, xa, xb, a, b, pitch) = self.pending.iter().find_map(|p| match p.relation {
+            Relation::Helix {
+                axis,
+                u,
+                v,
+                p: a,
+                q: b,
+                pitch,
+            } if p.constraint != r.constraint => Some((axis, u, v, a, b, pitch)),
+            _ => None,
+        })?;
+        if !(self.dir_known(za) && self.dir_known(xa) && self.point_known(a))
+            || self.cluster(xb) != k
+            || self.cluster(b) != k
+        {
+            return None;
+        }
+        let relation = self.pending.iter().find_map(|p| {
+            (p.constraint == r.constraint)
+                .then_some(p.relation.clone())
+                .filter(|rel| {
+                    matches!(
+                        rel,
+                        Relation::PointLine { d: None, .. } | Relation::PointPlane { d: None, .. }
+                    )
+                })
+        })?;
+        let (at, locus) = match relation {
+            Relation::PointLine { p, base, dir, .. }
+                if self.cluster(p) == k && self.point_known(base) && self.dir_known(dir) =>
+            {
+                let (at, point, d) = (self.point(p), self.point(base), self.direction(dir));
+                let words = format!(
+                    "the line through {} along {}",
+                    self.name(base),
+                    self.word(d)
+                );
+                let op = Op::Line {
+                    point,
+                    dir: d,
+                    offset: None,
+                };
+                (at, self.value(op, Ty::Line, words))
+            }
+            Relation::PointPlane {
+                p, base, normal, ..
+            } if self.cluster(p) == k && self.point_known(base) && self.dir_known(normal) => {
+                let words = self.plane_words(base, normal, None);
+                let (at, point, n) = (self.point(p), self.point(base), self.direction(normal));
+                let op = Op::Plane {
+                    point,
+                    normal: n,
+                    offset: None,
+                };
+                (at, self.value(op, Ty::Plane, words))
+            }
+            _ => return None,
+        };
+        let screw = ScrewRegs {
+            axis: self.direction(za),
+            x_from: self.direction(xa),
+            origin: self.point(a),
+            x: self.direction(xb),
+            point: self.point(b),
+            pitch: self.expr(pitch),
+            slide,
+        };
+        Some((at, locus, Some(screw)))
+    }
+
+    /// [`Builder::reach`] for a cluster whose slide after the turn is free.
+    fn reach_sliding(
+        &mut self,
+        r: &Rel,
+        k: usize,
+        axis: Reg,
+        (v, target): (GeomId, Reg),
     ) -> Option<(Reg, Reg)> {
         let relation = self.pending.iter().find_map(|p| {
             (p.constraint == r.constraint)
@@ -2300,7 +2397,7 @@ impl Builder<'_, Spatial> {
                     None
                 };
                 // A second pair decides the angle with the direction: the turn is by it.
-                let angle = if let Some((point, locus)) = reach {
+                let angle = if let Some((point, locus, screw)) = reach {
                     // The joint's point decides the turn with the direction.
                     let words = format!(
                         "the angle about {} taking {vname} to {} and {} onto {}",
@@ -2316,6 +2413,7 @@ impl Builder<'_, Spatial> {
                         pivot,
                         point,
                         locus,
+                        screw,
                     };
                     Some(self.value(op, Ty::Scalar, words))
                 } else if let Some((x, x_target)) = also {
@@ -2334,7 +2432,7 @@ impl Builder<'_, Spatial> {
                 } else {
                     None
                 };
-                let how = if let Some((point, locus)) = reach {
+                let how = if let Some((point, locus, _)) = reach {
                     format!(
                         "the angle that takes {vname} to {} and {} onto {} together (the point decides the turn when {vname} lies nearly along the axis)",
                         self.word(target),
