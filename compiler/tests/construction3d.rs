@@ -116,16 +116,12 @@ struct Known {
 /// other, and fails when a listed entry no longer has a wrong run in the cause's modes, so that
 /// the list shrinks as the analysis is fixed.
 const KNOWN_WRONG: &[Known] = &[
-    Known {
-        // 1. A direction turned about an axis it nearly lies along, with no x axis to decide
-        //    the turn with it: the turn is determined only to rounding over its distance
-        //    from the axis.
-        why: "A direction turned about an axis it nearly lies along (within 1e-9 to 1e-4 rad: a joint's z axis on a body turning about another z) is fixed only to rounding divided by its distance from the axis, so the body's other directions land up to about 1e-16 / 1e-5 = 1e-11 rad off. Where the joint gives an x axis (offset_x, prismatic; a helical joint on a body held at a point, its advance measured where the z axis' turn takes the point), `frame::signed_angle3_both` weighs the two; where its point must reach a line or a plane for the slide the body has left (a revolute, cylindrical or planar joint on a body held at a point, a revolute joint on a body sliding along a line or in a plane), `Op::TurnReaching` refines the turn on the point too: those entries are exact. On a body that is itself a screw (a helical coupling of another constraint ties its slide along the axis to the turn), `Op::TurnReaching` follows the point where the screw's slide takes it (`runtime::frame::Screw`): a cylindrical or planar joint there is exact too. Left: a helical joint on a screw, whose x axes' target depends on the advance the other screw's slide gives, which the turn itself decides through that screw's pitch (the two helices and the turn are one small system). Ill-conditioned by the plan; the check after such a turn accepts up to `CHECK_REL (1 + scale)`.",
-        modes: &["nearly parallel axes"],
-        entries: &[
-            "body | screw (cylindrical, helical) | helical(marker, P.n) = pitch",
-        ],
-    },
+    // Empty: the last cause (a direction turned about an axis it nearly lies along, within
+    // 1e-9 to 1e-4 rad, a joint's z axis on a body turning about another z, which fixes the
+    // turn only to rounding over that distance) is gone. The joint's x axes
+    // (`frame::signed_angle3_both`: offset_x, prismatic, and a helical joint on a body held
+    // at a point), its point onto a line or plane, or its helix (`Op::TurnReaching`, on a
+    // screw too: `runtime::frame::Screw`) decide such a turn with the z axis.
 ];
 
 use gcs_compiler::analyse;

@@ -475,19 +475,16 @@ pub fn turn_reaching_plane(
     )
 }
 
-/// A helical coupling the cluster rides on after a turn (a screw): the cluster then slides
-/// along `slide` until the riding marker's advance along `axis` from `origin` is the helix's
-/// advance for its turn, the angle from `x_from` to its x axis about `axis` (as
-/// [`helix_advance`], the advance nearest where it is). With it, where a joint's point ends up
-/// depends on the turn through the pitch, and [`turn_reaching_plane`] and
-/// [`turn_reaching_line`] follow it there.
+/// A helical coupling of a marker that turns with the cluster (the riding marker) to a known
+/// one: the angle from `x_from` to the riding marker's x axis about `axis` is `2 pi / pitch`
+/// times its advance along `axis` from `origin` (LANGUAGE.md's `helical`, modulo a turn).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Screw {
-    /// The unit axis the helix is measured about (its first marker's z axis).
+pub struct Helix {
+    /// The unit axis the helix is measured about (the known marker's z axis).
     pub axis: Vector3<f64>,
-    /// The x axis its turn is measured from (its first marker's).
+    /// The x axis its turn is measured from (the known marker's).
     pub x_from: Vector3<f64>,
-    /// Where its advance is measured from (its first marker's point).
+    /// Where its advance is measured from (the known marker's point).
     pub origin: Point3<f64>,
     /// The riding marker's x axis, before the turn.
     pub x: Vector3<f64>,
@@ -495,13 +492,56 @@ pub struct Screw {
     pub point: Point3<f64>,
     /// The advance per turn.
     pub pitch: f64,
+}
+
+/// What a helix measures once the cluster has turned: the riding marker's advance and turn,
+/// and their rates of change with the cluster's turn.
+struct HelixAt {
+    advance: f64,
+    turn: f64,
+    advance_rate: f64,
+    turn_rate: f64,
+}
+
+impl Helix {
+    /// The helix measured after the cluster turns (`turn` applied to a vector) about the unit
+    /// `a` through `pivot`.
+    #[inline]
+    fn at(
+        &self,
+        turn: impl Fn(&Vector3<f64>) -> Vector3<f64>,
+        a: &Vector3<f64>,
+        pivot: &Point3<f64>,
+    ) -> HelixAt {
+        let z = self.axis;
+        let (x, arm) = (turn(&self.x), turn(&(self.point - pivot)));
+        // The turn of x about z as the cluster turns about a.
+        let across = x - z * z.dot(&x);
+        HelixAt {
+            advance: (pivot + arm - self.origin).dot(&z),
+            turn: signed_angle3(&self.x_from, &x, &z),
+            advance_rate: z.dot(&a.cross(&arm)),
+            turn_rate: z.dot(&across.cross(&a.cross(&x))) / across.norm_squared(),
+        }
+    }
+}
+
+/// A helical coupling the cluster rides on after a turn (a screw): the cluster then slides
+/// along `slide` until the riding marker's advance is the helix's advance for its turn (as
+/// [`helix_advance`], the advance nearest where it is). With it, where a joint's point ends up
+/// depends on the turn through the pitch, and [`turn_reaching_plane`], [`turn_reaching_line`]
+/// and [`turn_reaching_helix`] follow it there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Screw {
+    /// The coupling.
+    pub helix: Helix,
     /// The unit direction the cluster slides along.
     pub slide: Vector3<f64>,
 }
 
 impl Screw {
-    /// The slide after the cluster turns by `(sin, cos)` about the unit `a` through `pivot`,
-    /// and its rate of change with the turn.
+    /// The slide after the cluster turns by `turn` about the unit `a` through `pivot`, and its
+    /// rate of change with the turn.
     #[inline]
     fn slide_after(
         &self,
@@ -509,18 +549,74 @@ impl Screw {
         a: &Vector3<f64>,
         pivot: &Point3<f64>,
     ) -> (Vector3<f64>, Vector3<f64>) {
-        let z = self.axis;
-        let (x, arm) = (turn(&self.x), turn(&(self.point - pivot)));
-        let now = (pivot + arm - self.origin).dot(&z);
-        let angle = signed_angle3(&self.x_from, &x, &z);
-        let along = self.slide.dot(&z);
-        let by = (helix_advance(now, angle, self.pitch) - now) / along;
-        // The turn of x about z as the cluster turns about a, and the advance's own change.
-        let across = x - z * z.dot(&x);
-        let spin = z.dot(&across.cross(&a.cross(&x))) / across.norm_squared();
-        let rate = (self.pitch / std::f64::consts::TAU * spin - z.dot(&a.cross(&arm))) / along;
+        let h = &self.helix;
+        let m = h.at(turn, a, pivot);
+        let along = self.slide.dot(&h.axis);
+        let by = (helix_advance(m.advance, m.turn, h.pitch) - m.advance) / along;
+        let rate = (h.pitch / std::f64::consts::TAU * m.turn_rate - m.advance_rate) / along;
         (self.slide * by, self.slide * rate)
     }
+}
+
+/// The angle about the unit `axis` through `pivot` that turns direction `u` onto `v` and
+/// meets the helical coupling `helix` (a helical joint whose second marker turns with the
+/// cluster), on the `screw` the cluster rides after the turn if any: as
+/// [`turn_reaching_plane`], the helix's miss in radians (its turn off the turn of its advance,
+/// wrapped) weighed by its rounding, `eps (1 + 2 pi size / pitch)`.
+#[inline]
+pub fn turn_reaching_helix(
+    [u, v]: [&Vector3<f64>; 2],
+    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
+    helix: &Helix,
+    screw: Option<&Screw>,
+) -> f64 {
+    let n = axis.norm();
+    if n.is_nan() || n <= 0.0 {
+        return 0.0;
+    }
+    let a = axis / n;
+    let (sin, cos) = turn_across(&a, u, v);
+    let mut angle = sin.atan2(cos);
+    if sin.hypot(cos) >= DIRECTIONS_DECIDE {
+        return angle;
+    }
+    let size = (helix.point.coords.norm())
+        .max(helix.origin.coords.norm())
+        .max(pivot.coords.norm());
+    let weight = 1.0 / (1.0 + std::f64::consts::TAU * size / helix.pitch.abs());
+    if !(weight > 0.0 && weight.is_finite()) {
+        return angle;
+    }
+    let turn =
+        |x: &Vector3<f64>, (s, c): (f64, f64)| x * c + a.cross(x) * s + a * (a.dot(x) * (1.0 - c));
+    let tau = std::f64::consts::TAU;
+    for _ in 0..REACHING_STEPS {
+        let sc = crate::num::sin_cos(angle);
+        let ut = turn(u, sc);
+        let (slid, rate) = match screw {
+            Some(screw) => screw.slide_after(|x| turn(x, sc), &a, pivot),
+            None => (Vector3::zeros(), Vector3::zeros()),
+        };
+        let m = helix.at(|x| turn(x, sc), &a, pivot);
+        let advance = m.advance + helix.axis.dot(&slid);
+        let miss = crate::num::wrap_angle(m.turn - tau * advance / helix.pitch) * weight;
+        let miss_rate =
+            (m.turn_rate - tau / helix.pitch * (m.advance_rate + helix.axis.dot(&rate))) * weight;
+        let (r_dir, j_dir) = (ut - v, a.cross(&ut));
+        let (by_helix, by_dir) = (miss_rate * miss_rate, j_dir.norm_squared());
+        if by_helix.is_nan() || by_helix <= by_dir {
+            break;
+        }
+        let step = (miss_rate * miss + j_dir.dot(&r_dir)) / (by_helix + by_dir);
+        if !step.is_finite() {
+            break;
+        }
+        angle -= step;
+        if step.abs() <= 4.0 * f64::EPSILON * (1.0 + angle.abs()) {
+            break;
+        }
+    }
+    angle
 }
 
 /// The method of [`turn_reaching_plane`]: `miss(x)` is the offset of `x` from the locus

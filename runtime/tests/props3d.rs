@@ -647,7 +647,7 @@ proptest! {
         x_spin in -3.1f64..3.1,
         start in -1.0f64..1.0,
     ) {
-        use gcs_runtime::frame::{helix_advance, signed_angle3, Screw};
+        use gcs_runtime::frame::{helix_advance, signed_angle3, Helix, Screw};
         let tilt = perp_to(&axis, &across);
         let z = (axis + tilt * 10f64.powf(off)).normalize();
         let pivot = Point3::from(pivot);
@@ -657,7 +657,8 @@ proptest! {
         let x_from = tilt;
         let x = rotation_about_axis(&axis, x_spin) * tilt;
         let origin = pivot - axis * start;
-        let screw = Screw { axis, x_from, origin, x, point: pivot, pitch, slide: axis };
+        let helix = Helix { axis, x_from, origin, x, point: pivot, pitch };
+        let screw = Screw { helix, slide: axis };
         let q = rotation_about_axis(&axis, turn);
         let now = (pivot - origin).dot(&axis);
         let slide = helix_advance(now, signed_angle3(&x_from, &(q * x), &axis), pitch) - now;
@@ -669,6 +670,45 @@ proptest! {
         let plane = Plane::new(normal, normal.dot(&reached.coords));
         let at = (&pivot, &axis);
         let angle = gcs_runtime::frame::turn_reaching_plane([&z, &(q * z)], at, &point, &plane, Some(&screw));
+        let wrap = |a: f64| (a - turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        prop_assert!(wrap(angle).abs() <= 1e-12, "{angle} for {turn}, z 1e{off} off");
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// A helical joint's coupling decides a turn its z axis (1e-12 to 1e-2 rad off the axis)
+    /// fixes only to rounding: `turn_reaching_helix` gives the turn at which the riding
+    /// marker's x axis makes the helix's angle for its advance.
+    #[test]
+    fn a_turn_meeting_a_helix_is_exact_near_the_axis(
+        axis in unit(),
+        across in unit(),
+        off in -12.0f64..-2.0,
+        turn in -3.0f64..3.0,
+        pivot in vec3(),
+        arm in 0.2f64..1.0,
+        along in -1.0f64..1.0,
+        pitch in 0.2f64..2.0,
+        x_spin in -3.1f64..3.1,
+    ) {
+        use gcs_runtime::frame::Helix;
+        let tilt = perp_to(&axis, &across);
+        let z = (axis + tilt * 10f64.powf(off)).normalize();
+        let pivot = Point3::from(pivot);
+        let point = pivot + tilt * arm + axis * along;
+        let x = rotation_about_axis(&axis, x_spin) * tilt;
+        let origin = pivot - axis * 0.3;
+        let q = rotation_about_axis(&axis, turn);
+        // The known marker's x axis: the riding one's after the turn, turned back by the
+        // helix's angle for the advance there.
+        let advance = (pivot + q * (point - pivot) - origin).dot(&axis);
+        let x_from = rotation_about_axis(&axis, -std::f64::consts::TAU * advance / pitch) * (q * x);
+        let helix = Helix { axis, x_from, origin, x, point, pitch };
+        let at = (&pivot, &axis);
+        let angle = gcs_runtime::frame::turn_reaching_helix([&z, &(q * z)], at, &helix, None);
         let wrap = |a: f64| (a - turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
             - std::f64::consts::PI;
         prop_assert!(wrap(angle).abs() <= 1e-12, "{angle} for {turn}, z 1e{off} off");

@@ -692,34 +692,43 @@ impl Solve<'_> {
                 v,
                 axis,
                 pivot,
-                point,
-                locus,
+                reach,
                 screw,
             } => {
-                let onto = match self.kind3(*locus) {
-                    Kind::Plane => "plane",
-                    _ => "line",
+                let helix = |h: &crate::plan::HelixRegs| {
+                    format!(
+                        "frame::Helix {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {} }}",
+                        self.r(h.axis),
+                        self.r(h.x_from),
+                        self.r(h.origin),
+                        self.r(h.x),
+                        self.r(h.point),
+                        self.r(h.pitch)
+                    )
                 };
                 let screw = screw.map_or("None".to_string(), |s| {
                     format!(
-                        "Some(&frame::Screw {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {}, slide: {}.dir }})",
-                        self.r(s.axis),
-                        self.r(s.x_from),
-                        self.r(s.origin),
-                        self.r(s.x),
-                        self.r(s.point),
-                        self.r(s.pitch),
+                        "Some(&frame::Screw {{ helix: {}, slide: {}.dir }})",
+                        helix(&s.helix),
                         self.r(s.slide)
                     )
                 });
+                let (onto, target) = match reach {
+                    crate::plan::Reach::Helix(h) => ("helix", format!("&{}", helix(h))),
+                    crate::plan::Reach::Point { point, locus } => (
+                        match self.kind3(*locus) {
+                            Kind::Plane => "plane",
+                            _ => "line",
+                        },
+                        format!("&{}, &{}", self.r(*point), self.r(*locus)),
+                    ),
+                };
                 let code = format!(
-                    "frame::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), &{}, &{}, {screw})",
+                    "frame::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), {target}, {screw})",
                     self.r(*u),
                     self.r(*v),
                     self.r(*pivot),
-                    self.r(*axis),
-                    self.r(*point),
-                    self.r(*locus)
+                    self.r(*axis)
                 );
                 self.define_pure(w, r, "angle", &code);
             }

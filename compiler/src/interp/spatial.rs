@@ -149,30 +149,42 @@ impl Machine<'_, '_, D3> {
                 v,
                 axis,
                 pivot,
-                point,
-                locus,
+                reach,
                 screw,
             } => {
-                let (dirs, at, p) = (
+                let (dirs, at) = (
                     [&self.v3(*u), &self.v3(*v)],
                     (&self.p3(*pivot), &self.v3(*axis)),
-                    self.p3(*point),
                 );
+                let helix = |h: &crate::plan::HelixRegs| frame::Helix {
+                    axis: self.v3(h.axis),
+                    x_from: self.v3(h.x_from),
+                    origin: self.p3(h.origin),
+                    x: self.v3(h.x),
+                    point: self.p3(h.point),
+                    pitch: self.s(h.pitch),
+                };
                 let screw = screw.map(|s| frame::Screw {
-                    axis: self.v3(s.axis),
-                    x_from: self.v3(s.x_from),
-                    origin: self.p3(s.origin),
-                    x: self.v3(s.x),
-                    point: self.p3(s.point),
-                    pitch: self.s(s.pitch),
+                    helix: helix(&s.helix),
                     slide: self.line3(s.slide).dir,
                 });
                 let screw = screw.as_ref();
-                Val::S(match self.get(*locus) {
-                    Some(&Val::Plane(plane)) => {
-                        frame::turn_reaching_plane(dirs, at, &p, &plane, screw)
+                Val::S(match reach {
+                    crate::plan::Reach::Helix(h) => {
+                        frame::turn_reaching_helix(dirs, at, &helix(h), screw)
                     }
-                    _ => frame::turn_reaching_line(dirs, at, &p, &self.line3(*locus), screw),
+                    crate::plan::Reach::Point { point, locus } => {
+                        let p = self.p3(*point);
+                        match self.get(*locus) {
+                            Some(&Val::Plane(plane)) => {
+                                frame::turn_reaching_plane(dirs, at, &p, &plane, screw)
+                            }
+                            _ => {
+                                let line = self.line3(*locus);
+                                frame::turn_reaching_line(dirs, at, &p, &line, screw)
+                            }
+                        }
+                    }
                 })
             }
             Op::HelixAdvance { now, turn, pitch } => {

@@ -250,28 +250,39 @@ impl Plan {
                     v,
                     axis,
                     pivot,
-                    point,
-                    locus,
+                    reach,
                     screw,
-                } => format!(
-                    "angle {} -> {} about {} at {} taking {} onto {}{}",
-                    r(u),
-                    r(v),
-                    r(axis),
-                    r(pivot),
-                    r(point),
-                    r(locus),
-                    screw.map_or(String::new(), |s| format!(
-                        " riding helix {} {} from {} of {} at {} pitch {} along {}",
-                        r(&s.axis),
-                        r(&s.x_from),
-                        r(&s.origin),
-                        r(&s.x),
-                        r(&s.point),
-                        r(&s.pitch),
-                        r(&s.slide)
-                    ))
-                ),
+                } => {
+                    let helix = |h: &crate::plan::HelixRegs| {
+                        format!(
+                            "helix {} {} from {} of {} at {} pitch {}",
+                            r(&h.axis),
+                            r(&h.x_from),
+                            r(&h.origin),
+                            r(&h.x),
+                            r(&h.point),
+                            r(&h.pitch)
+                        )
+                    };
+                    let reach = match reach {
+                        crate::plan::Reach::Point { point, locus } => {
+                            format!("taking {} onto {}", r(point), r(locus))
+                        }
+                        crate::plan::Reach::Helix(h) => format!("meeting {}", helix(h)),
+                    };
+                    format!(
+                        "angle {} -> {} about {} at {} {reach}{}",
+                        r(u),
+                        r(v),
+                        r(axis),
+                        r(pivot),
+                        screw.map_or(String::new(), |s| format!(
+                            " riding {} along {}",
+                            helix(&s.helix),
+                            r(&s.slide)
+                        ))
+                    )
+                }
                 Op::HelixAdvance { now, turn, pitch } => {
                     format!(
                         "helix_advance from {} for turn {} pitch {}",

@@ -215,18 +215,34 @@ impl Meet {
     }
 }
 
-/// The registers of a helical coupling a cluster rides on after a turn
-/// (`runtime::frame::Screw`): the first marker's z axis, x axis and point, the riding
-/// marker's x axis and point, the pitch, and the line the cluster slides along.
+/// The registers of a helical coupling of a marker that turns with a cluster to a known one
+/// (`runtime::frame::Helix`): the known marker's z axis, x axis and point, the riding
+/// marker's x axis and point, and the pitch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ScrewRegs {
+pub struct HelixRegs {
     pub axis: Reg,
     pub x_from: Reg,
     pub origin: Reg,
     pub x: Reg,
     pub point: Reg,
     pub pitch: Reg,
+}
+
+/// A helical coupling a cluster rides on after a turn (`runtime::frame::Screw`), and the
+/// line it slides along.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ScrewRegs {
+    pub helix: HelixRegs,
     pub slide: Reg,
+}
+
+/// What a turn of [`Op::TurnReaching`] must reach besides its direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reach {
+    /// `point` onto `locus`, a line or a plane.
+    Point { point: Reg, locus: Reg },
+    /// A helical joint's coupling.
+    Helix(HelixRegs),
 }
 
 /// The axis of a rotation.
@@ -509,18 +525,18 @@ pub enum Op {
     /// which the one further across the axis decides.
     AngleAboutBoth { u: [Reg; 2], v: [Reg; 2], axis: Reg },
     /// In space: the angle about the unit `axis` through `pivot` that turns direction `u` onto
-    /// `v` and takes `point` onto `locus`, a line or a plane (`runtime::frame::
-    /// turn_reaching_line` and `_plane`): a joint's point, which the cluster's remaining slide
-    /// along that locus then brings home, decides a turn that a z axis nearly along the axis
-    /// fixes only to rounding over its distance from it. With `screw`, the cluster rides a
-    /// helical coupling after the turn, and the point goes where the screw's slide takes it.
+    /// `v` and meets `reach` (`runtime::frame::turn_reaching_line`, `_plane`, `_helix`): a
+    /// joint's point onto a line or plane, which the cluster's remaining slide along it then
+    /// brings home, or a helical joint's coupling, decides a turn that a z axis nearly along
+    /// the axis fixes only to rounding over its distance from it. With `screw`, the cluster
+    /// rides a helical coupling after the turn, and the point or marker goes where the
+    /// screw's slide takes it.
     TurnReaching {
         u: Reg,
         v: Reg,
         axis: Reg,
         pivot: Reg,
-        point: Reg,
-        locus: Reg,
+        reach: Reach,
         screw: Option<ScrewRegs>,
     },
     /// A helix's advance for a turn: the advance `now + pitch / 2pi * wrap(turn - 2pi now /

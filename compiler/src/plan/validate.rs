@@ -304,28 +304,30 @@ impl Op {
                 v,
                 axis,
                 pivot,
-                point,
-                locus,
+                reach,
                 screw,
             } => {
-                let mut operands = vec![
-                    (*u, VECTOR),
-                    (*v, VECTOR),
-                    (*axis, VECTOR),
-                    (*pivot, POINT),
-                    (*point, POINT),
-                    (*locus, LINE_OR_PLANE),
-                ];
+                let helix = |h: &crate::plan::HelixRegs| {
+                    [
+                        (h.axis, VECTOR),
+                        (h.x_from, VECTOR),
+                        (h.origin, POINT),
+                        (h.x, VECTOR),
+                        (h.point, POINT),
+                        (h.pitch, SCALAR),
+                    ]
+                };
+                let mut operands =
+                    vec![(*u, VECTOR), (*v, VECTOR), (*axis, VECTOR), (*pivot, POINT)];
+                match reach {
+                    crate::plan::Reach::Point { point, locus } => {
+                        operands.extend([(*point, POINT), (*locus, LINE_OR_PLANE)])
+                    }
+                    crate::plan::Reach::Helix(h) => operands.extend(helix(h)),
+                }
                 if let Some(s) = screw {
-                    operands.extend([
-                        (s.axis, VECTOR),
-                        (s.x_from, VECTOR),
-                        (s.origin, POINT),
-                        (s.x, VECTOR),
-                        (s.point, POINT),
-                        (s.pitch, SCALAR),
-                        (s.slide, LINE),
-                    ]);
+                    operands.extend(helix(&s.helix));
+                    operands.push((s.slide, LINE));
                 }
                 operands
             }

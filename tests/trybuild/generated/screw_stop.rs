@@ -449,16 +449,18 @@ pub fn solve(
         &screw_face,
         &plane,
         Some(&frame::Screw {
-            axis: Vector3::new(
-                -0.26092501605749957,
-                -0.18251373745283314,
-                0.9479487705759166,
-            ),
-            x_from: frame_nut_x,
-            origin: Point3::new(0.3, -0.2, 0.1),
-            x: screw_thread_x,
-            point: screw_thread_2,
-            pitch: params.pitch,
+            helix: frame::Helix {
+                axis: Vector3::new(
+                    -0.26092501605749957,
+                    -0.18251373745283314,
+                    0.9479487705759166,
+                ),
+                x_from: frame_nut_x,
+                origin: Point3::new(0.3, -0.2, 0.1),
+                x: screw_thread_x,
+                point: screw_thread_2,
+                pitch: params.pitch,
+            },
             slide: line.dir,
         }),
     );

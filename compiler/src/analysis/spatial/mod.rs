@@ -26,7 +26,7 @@ use super::driver::Builder;
 use super::geometry::{self, Geometry, Invariants};
 use super::Unsupported;
 use crate::config::{Config, D3};
-use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, ScrewRegs, Ty};
+use crate::plan::{HelixRegs, Meet, Op, Reach, Reg, Residual, RotationAxis, ScrewRegs, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::Model;
 use relation::{AngleValue, Relation};
@@ -1976,19 +1976,37 @@ impl Builder<'_, Spatial> {
         k: usize,
         axis: Reg,
         (v, target): (GeomId, Reg),
-    ) -> Option<(Reg, Reg, Option<ScrewRegs>)> {
+    ) -> Option<(Reach, Option<ScrewRegs>)> {
         if let Some(screwed) = self.reach_on_screw(r, k) {
             return Some(screwed);
         }
         self.reach_sliding(r, k, axis, (v, target))
-            .map(|(point, locus)| (point, locus, None))
+            .map(|(point, locus)| (Reach::Point { point, locus }, None))
+    }
+
+    /// The registers of a helical coupling whose first marker `a` (z axis `za`, x axis `xa`)
+    /// is known and whose second `b` (x axis `xb`) turns with the cluster.
+    fn helix_regs(
+        &mut self,
+        (za, xa, a): (GeomId, GeomId, GeomId),
+        (xb, b): (GeomId, GeomId),
+        pitch: gcs_lang::expr::ExprId,
+    ) -> HelixRegs {
+        HelixRegs {
+            axis: self.direction(za),
+            x_from: self.direction(xa),
+            origin: self.point(a),
+            x: self.direction(xb),
+            point: self.point(b),
+            pitch: self.expr(pitch),
+        }
     }
 
     /// As [`Builder::reach`] for a cluster that rides a screw (it slides along a line, and a
     /// helical coupling of another constraint, still to come, ties that slide to the turn): a
     /// joint's point must then reach its line or plane where the screw takes it, which
     /// `Op::TurnReaching` follows with the screw's registers.
-    fn reach_on_screw(&mut self, r: &Rel, k: usize) -> Option<(Reg, Reg, Option<ScrewRegs>)> {
+    fn reach_on_screw(&mut self, r: &Rel, k: usize) -> Option<(Reach, Option<ScrewRegs>)> {
         let Trans::On {
             locus: Locus::Line(slide),
             ..
@@ -2019,11 +2037,29 @@ impl Builder<'_, Spatial> {
                 .filter(|rel| {
                     matches!(
                         rel,
-                        Relation::PointLine { d: None, .. } | Relation::PointPlane { d: None, .. }
+                        Relation::PointLine { d: None, .. }
+                            | Relation::PointPlane { d: None, .. }
+                            | Relation::Helix { .. }
                     )
                 })
         })?;
-        let (at, locus) = match relation {
+        let reach = match relation {
+            // A helical joint itself: its coupling, where the screw takes its second marker.
+            Relation::Helix {
+                axis,
+                u,
+                v,
+                p,
+                q,
+                pitch,
+            } if self.dir_known(axis)
+                && self.dir_known(u)
+                && self.point_known(p)
+                && self.cluster(v) == k
+                && self.cluster(q) == k =>
+            {
+                Reach::Helix(self.helix_regs((axis, u, p), (v, q), pitch))
+            }
             Relation::PointLine { p, base, dir, .. }
                 if self.cluster(p) == k && self.point_known(base) && self.dir_known(dir) =>
             {
@@ -2038,7 +2074,8 @@ impl Builder<'_, Spatial> {
                     dir: d,
                     offset: None,
                 };
-                (at, self.value(op, Ty::Line, words))
+                let locus = self.value(op, Ty::Line, words);
+                Reach::Point { point: at, locus }
             }
             Relation::PointPlane {
                 p, base, normal, ..
@@ -2050,20 +2087,13 @@ impl Builder<'_, Spatial> {
                     normal: n,
                     offset: None,
                 };
-                (at, self.value(op, Ty::Plane, words))
+                let locus = self.value(op, Ty::Plane, words);
+                Reach::Point { point: at, locus }
             }
             _ => return None,
         };
-        let screw = ScrewRegs {
-            axis: self.direction(za),
-            x_from: self.direction(xa),
-            origin: self.point(a),
-            x: self.direction(xb),
-            point: self.point(b),
-            pitch: self.expr(pitch),
-            slide,
-        };
-        Some((at, locus, Some(screw)))
+        let helix = self.helix_regs((za, xa, a), (xb, b), pitch);
+        Some((reach, Some(ScrewRegs { helix, slide })))
     }
 
     /// [`Builder::reach`] for a cluster whose slide after the turn is free.
@@ -2397,22 +2427,36 @@ impl Builder<'_, Spatial> {
                     None
                 };
                 // A second pair decides the angle with the direction: the turn is by it.
-                let angle = if let Some((point, locus, screw)) = reach {
-                    // The joint's point decides the turn with the direction.
+                // What the joint's point or coupling must reach, in words.
+                let reaching = reach.map(|(reach, screw)| {
+                    let what = match reach {
+                        Reach::Point { point, locus } => {
+                            format!("{} onto {}", self.word(point), self.word(locus))
+                        }
+                        Reach::Helix(h) => {
+                            format!("{}'s x axis to its helix's turn", self.word(h.x))
+                        }
+                    };
+                    let riding = if screw.is_some() {
+                        " where the screw it rides takes it"
+                    } else {
+                        ""
+                    };
+                    format!("{what}{riding}")
+                });
+                let angle = if let (Some((reach, screw)), Some(reaching)) = (reach, &reaching) {
+                    // The joint's point or coupling decides the turn with the direction.
                     let words = format!(
-                        "the angle about {} taking {vname} to {} and {} onto {}",
+                        "the angle about {} taking {vname} to {} and {reaching}",
                         self.word(axis),
-                        self.word(target),
-                        self.word(point),
-                        self.word(locus)
+                        self.word(target)
                     );
                     let op = Op::TurnReaching {
                         u: from,
                         v: target,
                         axis,
                         pivot,
-                        point,
-                        locus,
+                        reach,
                         screw,
                     };
                     Some(self.value(op, Ty::Scalar, words))
@@ -2432,12 +2476,10 @@ impl Builder<'_, Spatial> {
                 } else {
                     None
                 };
-                let how = if let Some((point, locus, _)) = reach {
+                let how = if let Some(reaching) = &reaching {
                     format!(
-                        "the angle that takes {vname} to {} and {} onto {} together (the point decides the turn when {vname} lies nearly along the axis)",
-                        self.word(target),
-                        self.word(point),
-                        self.word(locus)
+                        "the angle that takes {vname} to {} and {reaching} together (the joint decides the turn when {vname} lies nearly along the axis)",
+                        self.word(target)
                     )
                 } else if let Some((x, x_target)) = also {
                     format!(
