@@ -570,57 +570,28 @@ pub fn turn_reaching_helix(
     helix: &Helix,
     screw: Option<&Screw>,
 ) -> f64 {
-    let n = axis.norm();
-    if n.is_nan() || n <= 0.0 {
-        return 0.0;
-    }
-    let a = axis / n;
-    let (sin, cos) = turn_across(&a, u, v);
-    let mut angle = sin.atan2(cos);
-    if sin.hypot(cos) >= DIRECTIONS_DECIDE {
-        return angle;
-    }
     let size = (helix.point.coords.norm())
         .max(helix.origin.coords.norm())
         .max(pivot.coords.norm());
-    let weight = 1.0 / (1.0 + std::f64::consts::TAU * size / helix.pitch.abs());
-    if !(weight > 0.0 && weight.is_finite()) {
-        return angle;
-    }
-    let turn =
-        |x: &Vector3<f64>, (s, c): (f64, f64)| x * c + a.cross(x) * s + a * (a.dot(x) * (1.0 - c));
     let tau = std::f64::consts::TAU;
-    for _ in 0..REACHING_STEPS {
-        let sc = crate::num::sin_cos(angle);
-        let ut = turn(u, sc);
-        let (slid, rate) = match screw {
-            Some(screw) => screw.slide_after(|x| turn(x, sc), &a, pivot),
-            None => (Vector3::zeros(), Vector3::zeros()),
-        };
-        let m = helix.at(|x| turn(x, sc), &a, pivot);
-        let advance = m.advance + helix.axis.dot(&slid);
-        let miss = crate::num::wrap_angle(m.turn - tau * advance / helix.pitch) * weight;
-        let miss_rate =
-            (m.turn_rate - tau / helix.pitch * (m.advance_rate + helix.axis.dot(&rate))) * weight;
-        let (r_dir, j_dir) = (ut - v, a.cross(&ut));
-        let (by_helix, by_dir) = (miss_rate * miss_rate, j_dir.norm_squared());
-        if by_helix.is_nan() || by_helix <= by_dir {
-            break;
-        }
-        let step = (miss_rate * miss + j_dir.dot(&r_dir)) / (by_helix + by_dir);
-        if !step.is_finite() {
-            break;
-        }
-        angle -= step;
-        if step.abs() <= 4.0 * f64::EPSILON * (1.0 + angle.abs()) {
-            break;
-        }
-    }
-    angle
+    let weight = 1.0 / (1.0 + tau * size / helix.pitch.abs());
+    refine_turn(
+        [u, v],
+        (pivot, axis),
+        screw,
+        weight,
+        |turn, a, (slid, rate)| {
+            let m = helix.at(turn, a, pivot);
+            let advance = m.advance + helix.axis.dot(&slid);
+            let miss = crate::num::wrap_angle(m.turn - tau * advance / helix.pitch);
+            let rate = m.turn_rate - tau / helix.pitch * (m.advance_rate + helix.axis.dot(&rate));
+            (rate * miss, rate * rate)
+        },
+    )
 }
 
-/// The method of [`turn_reaching_plane`]: `miss(x)` is the offset of `x` from the locus
-/// across it, `across(w)` the part of a velocity `w` that changes it.
+/// The method of [`turn_reaching_plane`] and [`turn_reaching_line`]: `miss(x)` is the offset
+/// of `x` from the locus across it, `across(w)` the part of a velocity `w` that changes it.
 #[inline]
 fn turn_reaching(
     [u, v]: [&Vector3<f64>; 2],
@@ -630,6 +601,40 @@ fn turn_reaching(
     miss: impl Fn(&Point3<f64>) -> Vector3<f64>,
     across: impl Fn(&Vector3<f64>) -> Vector3<f64>,
 ) -> f64 {
+    let arm = point - pivot;
+    let size = scale.max(pivot.coords.norm()).max(arm.norm());
+    refine_turn(
+        [u, v],
+        (pivot, axis),
+        screw,
+        1.0 / size,
+        |turn, a, (slid, rate)| {
+            let w = turn(&arm);
+            let (r, j) = (miss(&(pivot + w + slid)), across(&(a.cross(&w) + rate)));
+            (j.dot(&r), j.norm_squared())
+        },
+    )
+}
+
+/// The Gauss-Newton refinement of a turn about `axis` through `pivot` that takes direction
+/// `u` onto `v` and meets a joint's second condition, from the directions' own angle (the
+/// method of [`turn_reaching_plane`]). `joint(turn, a, (slid, rate))`, given the turn (as a map
+/// of vectors), the unit axis and the slide of `screw` after it with its rate, returns the
+/// condition's `j . r` and `j . j` (its miss `r` and rate `j`), each to be multiplied by
+/// `weight` squared: the inverse of its rounding. The condition decides only where it moves
+/// faster than the directions turn.
+#[inline]
+fn refine_turn(
+    [u, v]: [&Vector3<f64>; 2],
+    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
+    screw: Option<&Screw>,
+    weight: f64,
+    joint: impl Fn(
+        &dyn Fn(&Vector3<f64>) -> Vector3<f64>,
+        &Vector3<f64>,
+        (Vector3<f64>, Vector3<f64>),
+    ) -> (f64, f64),
+) -> f64 {
     let n = axis.norm();
     if n.is_nan() || n <= 0.0 {
         return 0.0;
@@ -637,35 +642,27 @@ fn turn_reaching(
     let a = axis / n;
     let (sin, cos) = turn_across(&a, u, v);
     let mut angle = sin.atan2(cos);
-    if sin.hypot(cos) >= DIRECTIONS_DECIDE {
+    if sin.hypot(cos) >= DIRECTIONS_DECIDE || !(weight > 0.0 && weight.is_finite()) {
         return angle;
     }
-    let arm = point - pivot;
-    let size = scale.max(pivot.coords.norm()).max(arm.norm());
-    if !(size > 0.0 && size.is_finite()) {
-        return angle;
-    }
-    // Rodrigues' turn by (s, c) about the unit axis.
-    let turn =
-        |x: &Vector3<f64>, (s, c): (f64, f64)| x * c + a.cross(x) * s + a * (a.dot(x) * (1.0 - c));
+    let w2 = weight * weight;
     for _ in 0..REACHING_STEPS {
-        let sc = crate::num::sin_cos(angle);
-        let (w, ut) = (turn(&arm, sc), turn(u, sc));
-        let (slid, rate) = match screw {
-            Some(screw) => screw.slide_after(|x| turn(x, sc), &a, pivot),
+        let (s, c) = crate::num::sin_cos(angle);
+        // Rodrigues' turn by the angle about the unit axis.
+        let turn = |x: &Vector3<f64>| x * c + a.cross(x) * s + a * (a.dot(x) * (1.0 - c));
+        let ut = turn(u);
+        let slide = match screw {
+            Some(screw) => screw.slide_after(turn, &a, pivot),
             None => (Vector3::zeros(), Vector3::zeros()),
         };
-        let (r_point, j_point) = (
-            miss(&(pivot + w + slid)) / size,
-            across(&(a.cross(&w) + rate)) / size,
-        );
+        let (jr, jj) = joint(&turn, &a, slide);
+        let (jr, by_joint) = (jr * w2, jj * w2);
         let (r_dir, j_dir) = (ut - v, a.cross(&ut));
-        let (by_point, by_dir) = (j_point.norm_squared(), j_dir.norm_squared());
-        // The point must move across the locus faster than the directions turn to decide.
-        if by_point.is_nan() || by_point <= by_dir {
+        let by_dir = j_dir.norm_squared();
+        if by_joint.is_nan() || by_joint <= by_dir {
             break;
         }
-        let step = (j_point.dot(&r_point) + j_dir.dot(&r_dir)) / (by_point + by_dir);
+        let step = (jr + j_dir.dot(&r_dir)) / (by_joint + by_dir);
         if !step.is_finite() {
             break;
         }
