@@ -1346,14 +1346,7 @@ impl Solve<'_> {
             }
             return;
         }
-        let turn = self.names.fresh("turn");
-        w.line(&format!("let {turn} = {code};"));
-        for &g in geoms {
-            self.materialize(g);
-            let frame = self.frame_local(g);
-            w.line(&format!("{frame}.rotate_about_by(&{c}, &{turn});"));
-            self.frame_writes.insert(g);
-        }
+        self.turn_frames(w, geoms, pivot, &code);
     }
 
     /// Rotates `geoms` by `angle` about the line through `pivot` along the unit `axis`.
@@ -1364,19 +1357,23 @@ impl Solve<'_> {
         (pivot, axis): (Reg, Reg),
         angle: Reg,
     ) {
-        let turn = self.names.fresh("turn");
-        w.line(&format!(
-            "let {turn} = frame::rotation_about_axis(&{}, {});",
+        let code = format!(
+            "frame::rotation_about_axis(&{}, {})",
             self.r(axis),
             self.r(angle)
-        ));
+        );
+        self.turn_frames(w, geoms, pivot, &code);
+    }
+
+    /// Turns the frames of `geoms` about `pivot` by the rotation `code` computes, in a local.
+    fn turn_frames(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, code: &str) {
+        let turn = self.names.fresh("turn");
+        w.line(&format!("let {turn} = {code};"));
+        let c = self.r(pivot);
         for &g in geoms {
             self.materialize(g);
             let frame = self.frame_local(g);
-            w.line(&format!(
-                "{frame}.rotate_about_by(&{}, &{turn});",
-                self.r(pivot)
-            ));
+            w.line(&format!("{frame}.rotate_about_by(&{c}, &{turn});"));
             self.frame_writes.insert(g);
         }
     }

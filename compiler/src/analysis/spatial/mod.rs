@@ -769,8 +769,7 @@ impl Builder<'_, Spatial> {
             Some(n) => self.direction(n),
             None => self.value(Op::WorldAxis(2), Ty::Vector, "the Z axis".into()),
         };
-        let words = format!("the radius of {}", self.name(circle));
-        let radius = self.value(Op::DimOf(circle), Ty::Scalar, words);
+        let radius = self.size_of(circle);
         (centre, normal, radius)
     }
 
@@ -2031,17 +2030,13 @@ impl Builder<'_, Spatial> {
         {
             return None;
         }
-        let relation = self.pending.iter().find_map(|p| {
-            (p.constraint == r.constraint)
-                .then_some(p.relation.clone())
-                .filter(|rel| {
-                    matches!(
-                        rel,
-                        Relation::PointLine { d: None, .. }
-                            | Relation::PointPlane { d: None, .. }
-                            | Relation::Helix { .. }
-                    )
-                })
+        let relation = self.pending_of(r, |rel| {
+            matches!(
+                rel,
+                Relation::PointLine { d: None, .. }
+                    | Relation::PointPlane { d: None, .. }
+                    | Relation::Helix { .. }
+            )
         })?;
         let reach = match relation {
             // A helical joint itself: its coupling, where the screw takes its second marker.
@@ -2060,37 +2055,11 @@ impl Builder<'_, Spatial> {
             {
                 Reach::Helix(self.helix_regs((axis, u, p), (v, q), pitch))
             }
-            Relation::PointLine { p, base, dir, .. }
-                if self.cluster(p) == k && self.point_known(base) && self.dir_known(dir) =>
-            {
-                let (at, point, d) = (self.point(p), self.point(base), self.direction(dir));
-                let words = format!(
-                    "the line through {} along {}",
-                    self.name(base),
-                    self.word(d)
-                );
-                let op = Op::Line {
-                    point,
-                    dir: d,
-                    offset: None,
-                };
-                let locus = self.value(op, Ty::Line, words);
-                Reach::Point { point: at, locus }
+            Relation::Helix { .. } => return None,
+            joint => {
+                let (point, locus) = self.joint_locus(&joint, k)?;
+                Reach::Point { point, locus }
             }
-            Relation::PointPlane {
-                p, base, normal, ..
-            } if self.cluster(p) == k && self.point_known(base) && self.dir_known(normal) => {
-                let words = self.plane_words(base, normal, None);
-                let (at, point, n) = (self.point(p), self.point(base), self.direction(normal));
-                let op = Op::Plane {
-                    point,
-                    normal: n,
-                    offset: None,
-                };
-                let locus = self.value(op, Ty::Plane, words);
-                Reach::Point { point: at, locus }
-            }
-            _ => return None,
         };
         let helix = self.helix_regs((za, xa, a), (xb, b), pitch);
         Some((reach, Some(ScrewRegs { helix, slide })))
@@ -2104,17 +2073,13 @@ impl Builder<'_, Spatial> {
         axis: Reg,
         (v, target): (GeomId, Reg),
     ) -> Option<(Reg, Reg)> {
-        let relation = self.pending.iter().find_map(|p| {
-            (p.constraint == r.constraint)
-                .then_some(p.relation.clone())
-                .filter(|rel| {
-                    matches!(
-                        rel,
-                        Relation::PointPoint { d: None, .. }
-                            | Relation::PointLine { d: None, .. }
-                            | Relation::PointPlane { d: None, .. }
-                    )
-                })
+        let relation = self.pending_of(r, |rel| {
+            matches!(
+                rel,
+                Relation::PointPoint { d: None, .. }
+                    | Relation::PointLine { d: None, .. }
+                    | Relation::PointPlane { d: None, .. }
+            )
         })?;
         let trans = self.clusters[k].record.trans;
         let still = matches!(trans, Trans::Pivot { .. } | Trans::Fixed);
@@ -2132,12 +2097,7 @@ impl Builder<'_, Spatial> {
                 let locus = match trans {
                     _ if still => {
                         let words = format!("the line through {qname} along {}", self.word(axis));
-                        let op = Op::Line {
-                            point: to,
-                            dir: axis,
-                            offset: None,
-                        };
-                        self.value(op, Ty::Line, words)
+                        self.line(to, axis, words)
                     }
                     Trans::On {
                         locus: Locus::Line(l),
@@ -2175,36 +2135,38 @@ impl Builder<'_, Spatial> {
                     self.name(p),
                     self.word(target)
                 );
-                let op = Op::Line {
-                    point,
-                    dir: target,
-                    offset: None,
-                };
-                Some((at, self.value(op, Ty::Line, words)))
+                Some((at, self.line(point, target, words)))
             }
-            Relation::PointLine { p, base, dir, .. } if still => {
-                if self.cluster(p) != k || !self.point_known(base) || !self.dir_known(dir) {
-                    return None;
-                }
+            joint if still => self.joint_locus(&joint, k),
+            _ => None,
+        }
+    }
+
+    /// The relation of constraint `r` still to come that `wanted` picks.
+    fn pending_of(&self, r: &Rel, wanted: impl Fn(&Relation) -> bool) -> Option<Relation> {
+        (self.pending.iter())
+            .find(|p| p.constraint == r.constraint && wanted(&p.relation))
+            .map(|p| p.relation.clone())
+    }
+
+    /// A joint's point of cluster `k` and the known line or plane a `PointLine` or
+    /// `PointPlane` relation puts it on.
+    fn joint_locus(&mut self, joint: &Relation, k: usize) -> Option<(Reg, Reg)> {
+        match *joint {
+            Relation::PointLine { p, base, dir, .. }
+                if self.cluster(p) == k && self.point_known(base) && self.dir_known(dir) =>
+            {
                 let (at, point, dir) = (self.point(p), self.point(base), self.direction(dir));
                 let words = format!(
                     "the line through {} along {}",
                     self.name(base),
                     self.word(dir)
                 );
-                let op = Op::Line {
-                    point,
-                    dir,
-                    offset: None,
-                };
-                Some((at, self.value(op, Ty::Line, words)))
+                Some((at, self.line(point, dir, words)))
             }
             Relation::PointPlane {
                 p, base, normal, ..
-            } if still => {
-                if self.cluster(p) != k || !self.point_known(base) || !self.dir_known(normal) {
-                    return None;
-                }
+            } if self.cluster(p) == k && self.point_known(base) && self.dir_known(normal) => {
                 let words = self.plane_words(base, normal, None);
                 let (at, point, normal) = (self.point(p), self.point(base), self.direction(normal));
                 let op = Op::Plane {
@@ -2938,15 +2900,7 @@ impl Builder<'_, Spatial> {
         };
         let (point, dir) = (self.point(plane), self.direction(normal));
         let words = format!("the line through {} along its normal", self.name(plane));
-        let line = self.value(
-            Op::Line {
-                point,
-                dir,
-                offset: None,
-            },
-            Ty::Line,
-            words,
-        );
+        let line = self.line(point, dir, words);
         self.slide(k, plane, Locus::Line(line))
     }
 
