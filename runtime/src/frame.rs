@@ -1109,6 +1109,47 @@ pub fn direction_at(angle: f64) -> Vector2<f64> {
     Vector2::new(cos, sin)
 }
 
+/// The directions of angles near one angle, the start of an outer iteration over an angle
+/// default: its trials stay within a small turn of their start (a sweep's last answer, one
+/// step on), and each trial's direction is the start's turned by the difference, whose sine
+/// and cosine are short polynomials ([`crate::num::sin_cos_small`]) where [`direction_at`]
+/// would reduce the angle and evaluate its kernels at every trial. Within a few ulps of
+/// [`direction_at`] (property-tested); angles farther than [`DirectionsNear::REACH`] from the
+/// start are [`direction_at`]'s.
+#[derive(Clone, Copy, Debug)]
+pub struct DirectionsNear {
+    angle: f64,
+    direction: Vector2<f64>,
+}
+
+impl DirectionsNear {
+    /// The largest difference from the start turned by polynomials: the domain of
+    /// [`crate::num::sin_cos_small`].
+    pub const REACH: f64 = crate::num::SMALL_ANGLE;
+
+    /// The directions near `angle`.
+    #[inline]
+    pub fn new(angle: f64) -> Self {
+        Self {
+            angle,
+            direction: direction_at(angle),
+        }
+    }
+
+    /// The unit vector at `angle`, as [`direction_at`] to a few ulps.
+    #[inline]
+    pub fn at(&self, angle: f64) -> Vector2<f64> {
+        let turn = angle - self.angle;
+        if turn.abs() <= Self::REACH {
+            let (sin, cos) = crate::num::sin_cos_small(turn);
+            let d = self.direction;
+            Vector2::new(d.x * cos - d.y * sin, d.x * sin + d.y * cos)
+        } else {
+            direction_at(angle)
+        }
+    }
+}
+
 /// The rotation that turns unit vector `a` onto unit vector `b`: `(a . b, a x b)` with no
 /// square root or division. The plan's directions are unit by construction; their products
 /// stay unit to rounding. Non-finite input gives the identity.

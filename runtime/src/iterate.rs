@@ -586,10 +586,10 @@ fn local_slope(
     (x1, f1): (f64, f64),
 ) -> Option<f64> {
     let dx = x1 - x0;
-    let secant = (f1 - f0) / dx;
+    let secant = (f1 - f0) * (1.0 / dx);
     let usable = |d: f64| is_finite(d) && d != 0.0;
     let parabola = (earlier.filter(|&(xm, _)| xm != x0)).map(|(xm, fm)| {
-        let curvature = (secant - (f0 - fm) / (x0 - xm)) / (x1 - xm);
+        let curvature = (secant - (f0 - fm) * (1.0 / (x0 - xm))) * (1.0 / (x1 - xm));
         secant + curvature * dx
     });
     parabola
@@ -608,8 +608,8 @@ enum Quick {
 
 /// The iteration of a start near its root (a sweep's last answer, one step on), with none of
 /// the safeguarded search's bookkeeping: Newton's step on a forward difference, then secant
-/// steps (the slope of the parabola through the last three points once there are three, as
-/// [`Scalar::secant_slope`]), each at most [`MAX_STEP`] scales. Every step must halve the
+/// steps (the slope of the parabola through the last three points, the forward difference's
+/// among them at first, as [`Scalar::secant_slope`]), each at most [`MAX_STEP`] scales. Every step must halve the
 /// residual; the first that does not, or fails to assemble, hands the best point over to the
 /// safeguarded search. Within the tolerance, steps go on while each at least halves the
 /// residual, at most [`POLISH_STEPS`] of them, until rounding level: the same answers as the
@@ -655,8 +655,10 @@ fn quick<E>(
         };
     };
     let mut slope = (fh - fb) / h;
-    // The point before the best, for the parabola's slope.
-    let mut earlier: Option<(f64, f64)> = None;
+    // The point before the best, for the parabola's slope: at first the difference's, so that
+    // the first secant step already takes the parabola's slope (the second step's error is
+    // then of third order in the first's, not of second).
+    let mut earlier: Option<(f64, f64)> = Some((xb + h, fh));
     let (mut iterations, mut polished) = (0, 0);
     loop {
         let within = fb.abs() <= settings.tolerance;

@@ -601,3 +601,28 @@ proptest! {
         prop_assert_eq!(reflect_through(a, a), a);
     }
 }
+
+proptest! {
+    #![proptest_config(config(20_000))]
+
+    /// An outer iteration's trial directions, turned from its start by small-angle
+    /// polynomials: within four units in the last place of `direction_at` (the turn's
+    /// rounding on top of each sine's and cosine's ulp), and unit to as much, for starts
+    /// anywhere on the turn and trials from tiny differences to the polynomials' reach and
+    /// beyond it (where `direction_at` itself answers).
+    #[test]
+    fn directions_near_a_start_are_direction_at(
+        start in -10.0f64..10.0,
+        turn in prop_oneof![
+            -gcs_runtime::frame::DirectionsNear::REACH..=gcs_runtime::frame::DirectionsNear::REACH,
+            -1e-9f64..1e-9,
+            -1.0f64..1.0,
+        ],
+    ) {
+        use gcs_runtime::frame::{direction_at, DirectionsNear};
+        let near = DirectionsNear::new(start);
+        let (got, want) = (near.at(start + turn), direction_at(start + turn));
+        prop_assert!((got - want).norm() <= 4.0 * f64::EPSILON, "{start} {turn}: {got:?} {want:?}");
+        prop_assert!((got.norm() - 1.0).abs() <= 4.0 * f64::EPSILON);
+    }
+}

@@ -232,7 +232,7 @@ fn header(w: &mut Writer, file: &str, d3: bool) {
         return;
     }
     w.line("#[allow(unused_imports)]");
-    w.line("use gcs_runtime::frame::{direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit, rotation_on_circle, rotation_on_circle_from, Frame2};");
+    w.line("use gcs_runtime::frame::{direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit, rotation_on_circle, rotation_on_circle_from, DirectionsNear, Frame2};");
     w.line("#[allow(unused_imports)]");
     w.line("use gcs_runtime::intersect2d;");
     w.line("#[allow(unused_imports)]");

@@ -129,11 +129,23 @@ pub(super) struct Solve<'a> {
     /// The code of each default an iteration converged on (its trial's entry), for
     /// `Solution::defaults`.
     pub(super) converged_defaults: HashMap<DefaultId, String>,
+    /// The directions near an iteration's start (`DirectionsNear`) of each angle it varies,
+    /// by the code of the angle's trial entry: declared before the iteration once a trial
+    /// turns the x axis by that angle, and used again where the region is written at the
+    /// angle converged to.
+    pub(super) trial_directions: HashMap<String, TrialDirections>,
     /// In space, frames declared with a value other than their sketch's: a frame whose
     /// moves were all computed here (see `FrameFacts::literal3`) starts where they left it.
     pub(super) declared_at: HashMap<GeomId, String>,
     /// The terms of the tolerance's scale, a list for each geom, when it is not a literal.
     pub(super) tol_terms: RefCell<Vec<Vec<String>>>,
+}
+
+/// The local of an angle's [`gcs_runtime::frame::DirectionsNear`] in an iteration.
+pub(super) struct TrialDirections {
+    pub(super) name: String,
+    /// Whether the trial read it (and so it is declared).
+    pub(super) used: bool,
 }
 
 /// The locals `code` declares (`let name =`) and never reads.
@@ -185,6 +197,7 @@ impl<'a> Solve<'a> {
             converged: false,
             error_only: HashSet::default(),
             converged_defaults: HashMap::default(),
+            trial_directions: HashMap::default(),
             declared_at: HashMap::default(),
             tol_terms: RefCell::new(Vec::new()),
         }
@@ -548,6 +561,16 @@ impl Solve<'_> {
             if closed.len() == 1 { "s" } else { "" }
         ));
         w.line(&format!("let mut {trial} = [{}];", start.join(", ")));
+        // An angle's directions near its start, declared here once the trial reads them.
+        let (directions_at, directions_indent) = (w.out.len(), w.indent);
+        for (k, d) in it.defaults.iter().enumerate() {
+            if plan.defaults[d.0 as usize].is_angle() {
+                let name = (self.names).fresh(&format!("{}_directions", cx.defaults[d.0 as usize]));
+                let directions = TrialDirections { name, used: false };
+                self.trial_directions
+                    .insert(format!("{trial}[{k}]"), directions);
+            }
+        }
         w.open(&format!(
             "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0), |{trial}, {errors}| {{",
             scale.join(", ")
@@ -594,6 +617,22 @@ impl Solve<'_> {
         w.out.insert_str(shadows_at, &shadows.out);
         w.line("Ok(())");
         w.close("})");
+        let mut declared = Writer {
+            out: String::new(),
+            indent: directions_indent,
+        };
+        for k in 0..it.defaults.len() {
+            match self.trial_directions.get(&format!("{trial}[{k}]")) {
+                Some(TrialDirections { name, used: true }) => {
+                    declared.line(&format!("let {name} = DirectionsNear::new({trial}[{k}]);"))
+                }
+                Some(_) => {
+                    self.trial_directions.remove(&format!("{trial}[{k}]"));
+                }
+                None => {}
+            }
+        }
+        w.out.insert_str(directions_at, &declared.out);
         let first = &cx.model.constraints[closes[0]];
         w.open(".map_err(|failure| match failure {");
         w.line("gcs_runtime::iterate::Failure::Start(error) => error,");
@@ -612,19 +651,27 @@ impl Solve<'_> {
             }
         }
         // The region again, at the defaults converged to, without what only its error
-        // functions read.
-        let is_error = |op: &Op| {
+        // functions read, nor the circle of a nearest point that is not written (whose turns
+        // read its point instead).
+        let unwritten_nearest = |s: &Step| match s.op {
+            Op::Nearest { point, .. } if !cx.d3 => (s.out)
+                .is_some_and(|(r, _)| super::steps::only_turned_toward(plan, r))
+                .then_some(point),
+            _ => None,
+        };
+        let is_error = |s: &Step| {
             matches!(
-                op,
+                s.op,
                 Op::Error { .. } | Op::Implicit { .. } | Op::Close { .. }
-            )
+            ) || unwritten_nearest(s).is_some()
         };
         let read_elsewhere: HashSet<Reg> = (plan.steps.iter())
-            .filter(|s| !is_error(&s.op))
+            .filter(|s| !is_error(s))
             .flat_map(|s| s.op.reads())
+            .chain(plan.steps.iter().filter_map(unwritten_nearest))
             .collect();
         self.error_only = (plan.steps[it.start..it.end].iter())
-            .filter(|s| is_error(&s.op))
+            .filter(|s| is_error(s))
             .flat_map(|s| s.op.reads())
             .filter(|r| !read_elsewhere.contains(r))
             .collect();

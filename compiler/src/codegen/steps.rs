@@ -6,7 +6,7 @@ use super::facts::{ChordRoot, Value};
 use super::names::Namer;
 use super::solve::Solve;
 use super::writer::{float, linear, lit, Writer};
-use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis, Step};
+use crate::plan::{BranchId, Meet, Op, Plan, Reg, Residual, RotationAxis, Step};
 use gcs_lang::expr::{ExprId, ExprNode};
 use gcs_lang::model::{ConstraintId, GeomId};
 
@@ -69,7 +69,17 @@ impl Solve<'_> {
                 {
                     self.value(w, i, r, op)
                 }
-                _ => {}
+                // A circle not written still tells its radius to the turns onto it.
+                _ => {
+                    if let Op::CircleThrough {
+                        center,
+                        through,
+                        radius: Some(k),
+                    } = op
+                    {
+                        self.facts.circle_radius.insert((*center, *through), *k);
+                    }
+                }
             },
         }
     }
@@ -181,7 +191,7 @@ impl Solve<'_> {
             }
             Op::Implicit { locus, point } => {
                 if !self.converged {
-                    let code = format!("{}.implicit({})", self.r(*locus), self.r(*point));
+                    let code = format!("{}.closing_error({})", self.r(*locus), self.r(*point));
                     self.define(w, r, "error", &code);
                 }
             }
@@ -337,6 +347,14 @@ impl Solve<'_> {
                 self.define(w, r, "radius", &code);
             }
             Op::Nearest { locus, point } => {
+                if !self.cx.d3 && only_turned_toward(self.cx.plan, r) {
+                    // Only turns about the circle's centre read it, and they need only the
+                    // direction from the centre, which the point itself has: no projection
+                    // (its square root and division) on the solve's path.
+                    let point = self.facts.value(*point).clone();
+                    self.facts.regs.insert(r, point);
+                    return;
+                }
                 let code = format!("{}.nearest({})", self.r(*locus), self.r(*point));
                 let n = self.prefixed("nearest", *point);
                 self.define(w, r, &n, &code);
@@ -551,13 +569,22 @@ impl Solve<'_> {
             }
             return;
         }
+        // An iteration's trial angle: turned from the iteration's start (`DirectionsNear`).
+        let near = match self.facts.value(angle) {
+            Value::Local(code) => self.trial_directions.get_mut(code).map(|t| {
+                t.used = true;
+                format!("{}.at({a})", t.name)
+            }),
+            _ => None,
+        };
+        let turned = near.unwrap_or_else(|| format!("direction_at({a})"));
         let code = if self.facts.value(dir).is_x_axis() {
             if self.facts.is_finite(angle) {
                 self.facts.unit_dirs.insert(r);
             }
-            format!("direction_at({a})")
+            turned
         } else {
-            format!("rotation_from_x_unit(&direction_at({a})) * {d}")
+            format!("rotation_from_x_unit(&{turned}) * {d}")
         };
         let n = self.derived_name(dir, "_turned", "direction");
         self.define(w, r, &n, &code);
@@ -1026,4 +1053,27 @@ fn size_noun(model: &gcs_lang::Model, c: ConstraintId) -> &'static str {
         gcs_lang::constraints::ConstraintKind::Radius => "a radius",
         _ => "a distance",
     }
+}
+
+/// Whether register `r` is the nearest point of a circle (`Op::Nearest`) that only turns about
+/// the circle's centre read, each turning a point onto it (`RotatePoint`): a turn about the
+/// centre onto a point of a ray from the centre is the same turn wherever on the ray the point
+/// lies, so the turns can aim at the point itself, and the projection is not written.
+pub(super) fn only_turned_toward(plan: &Plan, r: Reg) -> bool {
+    let defined = |reg: Reg| (plan.steps.iter()).find(|s| s.out.is_some_and(|(o, _)| o == reg));
+    let Some(Op::Nearest { locus, .. }) = defined(r).map(|s| &s.op) else {
+        return false;
+    };
+    let center = match defined(*locus).map(|s| &s.op) {
+        Some(Op::Circle { center, .. } | Op::CircleThrough { center, .. }) => *center,
+        _ => return false,
+    };
+    let mut readers = (plan.steps.iter())
+        .filter(|s| s.op.reads().contains(&r))
+        .peekable();
+    readers.peek().is_some()
+        && readers.all(|s| {
+            matches!(&s.op, Op::RotatePoint { pivot, from, to, .. }
+                if *to == r && *from != r && *pivot == center)
+        })
 }

@@ -947,9 +947,9 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             Op::Implicit { locus, point } => {
                 let q = self.p(*point);
                 Val::S(match self.get(*locus) {
-                    Some(&Val::L(l)) => l.implicit(q),
-                    Some(&Val::C(c)) => c.implicit(q),
-                    Some(&Val::Q(k)) => k.implicit(q),
+                    Some(&Val::L(l)) => l.closing_error(q),
+                    Some(&Val::C(c)) => c.closing_error(q),
+                    Some(&Val::Q(k)) => k.closing_error(q),
                     v => malformed(*locus, "a line, a circle or a conic", v),
                 })
             }

@@ -678,9 +678,9 @@ pub enum Op {
     /// [`MAGNITUDE`] is its residual instead, the unsigned distance a coincidence, a midpoint
     /// or a mirror image is off by: the one error of such a relation one default displaced.
     Error { residual: Residual, component: u8 },
-    /// The implicit function of a line or circle `locus` at `point`, zero on it (a line's
-    /// signed distance, `|point - centre| - radius`): the error of an `Onto` a default
-    /// displaced.
+    /// The implicit function of a line, circle or conic `locus` at `point`, zero on it (a
+    /// line's signed distance, `|point - centre| - radius` or to first order near a circle:
+    /// the runtime's `closing_error`): the error of an `Onto` a default displaced.
     Implicit { locus: Reg, point: Reg },
     /// An error function of an iteration: `residual`, which the iteration drives to zero,
     /// closes `constraint` (the constraint a default displaced).

@@ -13,7 +13,7 @@ use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
     direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
-    rotation_on_circle, rotation_on_circle_from, Frame2,
+    rotation_on_circle, rotation_on_circle_from, DirectionsNear, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -418,6 +418,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // No loop is rigid here: vary `link1_angle` until `j4` closes (an outer iteration).
     let mut trial = [defaults.link1_angle];
+    let link1_angle_directions = DirectionsNear::new(trial[0]);
     outer
         .iterate(
             &mut trial,
@@ -429,7 +430,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let mut link1 = link1;
                 let mut link2 = link2;
                 let mut link3 = link3;
-                let direction_2 = direction_at(trial[0]);
+                let direction_2 = link1_angle_directions.at(trial[0]);
                 let turn = rotation_between_units(&direction, &direction_2);
                 link1.set_rotation(&turn);
                 let link1_t_2 = link1.point_to_global(&Point2::new(2.0, -1.0));
@@ -545,10 +546,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         0.0,
                     )
                 })?;
-                let nearest_right_q = circle_g4.nearest(right_q);
-                let error = circle_g4.implicit(right_q);
+                let error = circle_g4.closing_error(right_q);
                 errors[0] = error;
-                let _ = &nearest_right_q;
                 Ok(())
             },
         )
@@ -562,7 +561,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             ),
         })?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
-    let direction_3 = direction_at(trial[0]);
+    let direction_3 = link1_angle_directions.at(trial[0]);
     let turn_6 = rotation_between_units(&direction, &direction_3);
     link1.set_rotation(&turn_6);
     let link1_t_3 = link1.point_to_global(&Point2::new(2.0, -1.0));
@@ -671,21 +670,12 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // j4: coincident(link4.t, right.q) (double_butterfly.gcs:30)
     let right_q_2 = right.point_to_global(&Point2::new(1.5, -1.5));
-    let circle_g4_2 = Circle::new(Point2::new(3.0, -3.5), 2.5).ok_or_else(|| {
-        SolveError::new(
-            "j4",
-            "coincident(link4.t, right.q)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let nearest_right_q_2 = circle_g4_2.nearest(right_q_2);
-    let nearest_right_q_2_reach = nearest_right_q_2 - Point2::new(3.0, -3.5);
+    let right_q_2_reach = right_q_2 - Point2::new(3.0, -3.5);
     let turn_11 = rotation_on_circle_from(
-        nearest_right_q_2_reach.x * -0.24 + nearest_right_q_2_reach.y * 0.32,
-        nearest_right_q_2_reach.y * -0.24 + nearest_right_q_2_reach.x * -0.32,
+        right_q_2_reach.x * -0.24 + right_q_2_reach.y * 0.32,
+        right_q_2_reach.y * -0.24 + right_q_2_reach.x * -0.32,
         &(Point2::new(1.5, -1.5) - Point2::new(3.0, -3.5)),
-        &nearest_right_q_2_reach,
+        &right_q_2_reach,
     );
     link4.set_rotation(&turn_11);
 

@@ -13,7 +13,7 @@ use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
     direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
-    rotation_on_circle, rotation_on_circle_from, Frame2,
+    rotation_on_circle, rotation_on_circle_from, DirectionsNear, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;

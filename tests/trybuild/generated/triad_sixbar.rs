@@ -13,7 +13,7 @@ use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
 use gcs_runtime::frame::{
     direction_at, rotation_between2, rotation_between_units, rotation_from_x, rotation_from_x_unit,
-    rotation_on_circle, rotation_on_circle_from, Frame2,
+    rotation_on_circle, rotation_on_circle_from, DirectionsNear, Frame2,
 };
 #[allow(unused_imports)]
 use gcs_runtime::intersect2d;
@@ -383,6 +383,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // No loop is rigid here: vary `link1_angle` until `j3` closes (an outer iteration).
     let mut trial = [defaults.link1_angle];
+    let link1_angle_directions = DirectionsNear::new(trial[0]);
     outer
         .iterate(
             &mut trial,
@@ -392,7 +393,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let mut link1 = link1;
                 let mut link2 = link2;
                 let mut platform = platform;
-                let direction_2 = direction_at(trial[0]);
+                let direction_2 = link1_angle_directions.at(trial[0]);
                 let turn_2 = rotation_between_units(&direction, &direction_2);
                 link1.set_rotation(&turn_2);
                 let link1_p = Point2::new(6.0, 4.0) + link1.x_axis() * -3.0;
@@ -456,10 +457,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         0.0,
                     )
                 })?;
-                let nearest_platform_p3 = circle_crank_t.nearest(platform_p3);
-                let error = circle_crank_t.implicit(platform_p3);
+                let error = circle_crank_t.closing_error(platform_p3);
                 errors[0] = error;
-                let _ = (&link3_p, &nearest_platform_p3);
+                let _ = &link3_p;
                 Ok(())
             },
         )
@@ -473,7 +473,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             ),
         })?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
-    let direction_3 = direction_at(trial[0]);
+    let direction_3 = link1_angle_directions.at(trial[0]);
     let turn_5 = rotation_between_units(&direction, &direction_3);
     link1.set_rotation(&turn_5);
     let link1_p_2 = Point2::new(6.0, 4.0) + link1.x_axis() * -3.0;
@@ -531,21 +531,12 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // j3: coincident(link3.p, platform.p3) (triad_sixbar.gcs:29)
     let platform_p3_2 = platform.point_to_global(&Point2::new(-2.7, -1.0));
     let link3_p_2 = crank_t + Vector2::new(0.0, 3.0);
-    let circle_crank_t_2 = Circle::new(crank_t, 3.0).ok_or_else(|| {
-        SolveError::new(
-            "j3",
-            "coincident(link3.p, platform.p3)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let nearest_platform_p3_2 = circle_crank_t_2.nearest(platform_p3_2);
-    let nearest_platform_p3_2_reach = nearest_platform_p3_2 - crank_t;
+    let platform_p3_2_reach = platform_p3_2 - crank_t;
     let turn_8 = rotation_on_circle_from(
-        nearest_platform_p3_2_reach.y * 0.3333333333333333,
-        nearest_platform_p3_2_reach.x * -0.3333333333333333,
+        platform_p3_2_reach.y * 0.3333333333333333,
+        platform_p3_2_reach.x * -0.3333333333333333,
         &(link3_p_2 - crank_t),
-        &nearest_platform_p3_2_reach,
+        &platform_p3_2_reach,
     );
     link3.set_rotation(&turn_8);
 
