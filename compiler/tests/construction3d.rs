@@ -511,6 +511,9 @@ enum Form {
     DistP,
     /// `tangent(P, circle)`.
     TangentP,
+    /// `distance(P, circle) = d`: a line in the circle's plane `d` outside it, or a circle
+    /// in its plane `d` apart from it.
+    GapP,
     Length,
     Radius,
     /// `equal(P, segment or circle)`.
@@ -552,6 +555,7 @@ impl Form {
             Form::OnP => "on(point, P)".into(),
             Form::DistP => "distance(point, P) = d".into(),
             Form::TangentP => "tangent(P, circle)".into(),
+            Form::GapP => "distance(P, circle) = d".into(),
             Form::Length => "length(P) = l".into(),
             Form::Radius => "radius(P) = r".into(),
             Form::EqualP => "equal(P, fixed)".into(),
@@ -864,6 +868,7 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
                 OnP,
                 DistP,
                 TangentP,
+                GapP,
                 Parallel(Di::Own),
                 Angle(Di::Own),
                 Perpendicular(Di::Own),
@@ -881,6 +886,7 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
                 OnP,
                 DistP,
                 TangentP,
+                GapP,
                 Parallel(Di::Own),
                 Angle(Di::Own),
                 Length,
@@ -903,6 +909,7 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
                 OnP,
                 DistP,
                 TangentP,
+                GapP,
                 Parallel(Di::Normal),
                 Radius,
                 EqualP,
@@ -1364,17 +1371,22 @@ fn derive(
                 _ => format!("midpoint(A{i}, P)"),
             }
         }
-        Form::TangentP => {
+        Form::TangentP | Form::GapP => {
             let e = q_rot(t.q, EX);
             let n = q_rot(t.q, EZ);
             let rho = s * rng.range(0.2, 1.5);
+            let gap = if f == Form::GapP {
+                s * rng.range(0.1, 1.0)
+            } else {
+                0.0
+            };
             let (c, normal) = if kind == Kind::Circle {
                 let u = turn(e, n, rng.angle());
-                (add(t.pos, mul(u, t.dim + rho)), n)
+                (add(t.pos, mul(u, t.dim + rho + gap)), n)
             } else {
                 let w = rng.across(e);
                 let foot = add(t.pos, mul(e, s * rng.range(0.0, 1.0)));
-                (add(foot, mul(w, rho)), cross(e, w))
+                (add(foot, mul(w, rho + gap)), cross(e, w))
             };
             decls.push(format!(
                 "fixed circle C{i} = center {} radius {} normal {};",
@@ -1382,7 +1394,11 @@ fn derive(
                 o.l(rho),
                 o.d(normal)
             ));
-            format!("tangent(P, C{i})")
+            if f == Form::GapP {
+                format!("distance(P, C{i}) = {}", o.l(gap))
+            } else {
+                format!("tangent(P, C{i})")
+            }
         }
         Form::Length => format!("length(P) = {}", o.l(t.dim)),
         Form::Radius => format!("radius(P) = {}", o.l(t.dim)),

@@ -287,9 +287,17 @@ pub mod space {
         (u.cross(&v).norm().atan2(u.dot(&v)) - angle).abs()
     }
 
-    /// Unit `v` along `sense * u` (`sense` +1 or -1): the angle between them, in radians.
+    /// Unit `v` along `sense * u` (`sense` +1 or -1, or 0 for either): the angle between
+    /// them, in radians.
     #[inline]
     pub fn parallel(u: V3, v: V3, sense: f64) -> f64 {
+        let sense = if sense != 0.0 {
+            sense
+        } else if u.dot(&v) < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
         let w = u * sense;
         w.cross(&v).norm().atan2(w.dot(&v))
     }

@@ -831,6 +831,27 @@ pub fn line_circle(l: &Line3, c: &Circle3) -> Intersection<Point3<f64>, 2> {
     }
 }
 
+/// The lines where a plane parallel to a cylinder's axis cuts it: [`plane_cylinder`]'s
+/// sections of that case, as lines (branches, contacts and tolerances the same). What a line
+/// whose direction lies in a plane meets when it must pass at a distance from a point: its own
+/// point in the plane, on the cylinder about the point along its direction.
+///
+/// A plane not parallel to the axis (its normal's cosine with the axis above [`tol::ANGLE`])
+/// cuts an ellipse, no line: [`Contact::Coincident`], a configuration this meeting does not
+/// cover.
+pub fn plane_cylinder_lines(p: &Plane, cy: &Cylinder) -> Intersection<Line3, 2> {
+    let i = plane_cylinder(p, cy);
+    let line = |k: usize| match i.roots.get(k) {
+        Some(CylinderSection::Line(l)) => Some(l),
+        _ => None,
+    };
+    match (i.contact, line(0), line(1)) {
+        (Contact::Crossing | Contact::Tangent, Some(a), Some(b)) => two(a, b, i.contact),
+        (Contact::Crossing | Contact::Tangent, _, _) => Intersection::none(Contact::Coincident),
+        (contact, _, _) => Intersection::none(contact),
+    }
+}
+
 /// Plane-cylinder: the section of a cylinder by a plane.
 ///
 /// **Plane not parallel to the axis:** `Crossing` with a single root (branch 0; slot 1 stays
@@ -1252,6 +1273,34 @@ mod tests {
             circle_circle(&a, &Circle3::new(p(0.0, 0.0, 0.0), Vector3::zeros(), 1.0)).contact,
             Contact::ZeroRadius
         );
+    }
+
+    #[test]
+    fn plane_cylinder_lines_are_the_parallel_sections() {
+        let cy = Cylinder::new(Line3::new(p(1.0, 0.0, 0.0), v(0.0, 0.0, 1.0)), 2.0);
+        // Parallel to the axis, 1 from it: two lines, in the order of `plane_cylinder`.
+        let pl = Plane::new(v(1.0, 0.0, 0.0), 2.0);
+        let x = plane_cylinder_lines(&pl, &cy);
+        assert_eq!(x.contact, Contact::Crossing);
+        let (a, b) = (
+            x.branch(0).unwrap_or_default(),
+            x.branch(1).unwrap_or_default(),
+        );
+        assert!(a.point.y > 0.0 && b.point.y < 0.0);
+        for l in [a, b] {
+            for t in [0.0, 5.0] {
+                assert!(cy.distance(&l.at(t)) < EPS && pl.distance(&l.at(t)) < EPS);
+            }
+        }
+        // Touching, missing, and tilted (an ellipse: not this meeting's).
+        let t = plane_cylinder_lines(&Plane::new(v(1.0, 0.0, 0.0), 3.0), &cy);
+        assert_eq!(t.contact, Contact::Tangent);
+        let m = plane_cylinder_lines(&Plane::new(v(1.0, 0.0, 0.0), 3.5), &cy);
+        assert!(matches!(m.contact, Contact::Parallel { gap } if (gap - 0.5).abs() < EPS));
+        let tilted = Plane::from_point_normal(&p(1.0, 0.0, 3.0), &v(1.0, 0.0, 1.0));
+        let e = plane_cylinder_lines(&tilted, &cy);
+        assert_eq!(e.contact, Contact::Coincident);
+        assert!(e.roots.is_empty());
     }
 
     #[test]

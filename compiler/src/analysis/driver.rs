@@ -468,6 +468,12 @@ impl<'m, G: Geometry> Builder<'m, G> {
         }
     }
 
+    /// Whether a relation of this kind between these features has been satisfied (by action,
+    /// locus analysis or a check).
+    pub(crate) fn is_done(&self, r: &G::Relation) -> bool {
+        self.done.contains(&key::<G>(r))
+    }
+
     /// A relation already implied: a run-time check that measures it. The check of a
     /// constraint's last relation satisfies the constraint, which is then redundant; an earlier
     /// relation is checked too, so that no relation the plan relies on goes unmeasured.

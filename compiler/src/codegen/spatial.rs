@@ -582,7 +582,7 @@ impl Solve<'_> {
             Op::Torus { .. } | Op::ShiftedTorus { .. } => Kind::Torus,
             Op::Intersect { meet, .. } => match meet {
                 Meet::SphereSphere | Meet::SpherePlane => Kind::Circle,
-                Meet::PlanePlane => Kind::Line,
+                Meet::PlanePlane | Meet::PlaneCylinder => Kind::Line,
                 _ => Kind::Other,
             },
             _ => Kind::Other,
@@ -1259,6 +1259,7 @@ impl Solve<'_> {
             Meet::SphereSphere => "sphere_sphere",
             Meet::SpherePlane => "sphere_plane",
             Meet::PlanePlane => "plane_plane",
+            Meet::PlaneCylinder => "plane_cylinder_lines",
             planar => panic!(
                 "bug in gcs: the planar intersection {planar:?} reached the spatial code generator"
             ),

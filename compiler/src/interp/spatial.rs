@@ -579,6 +579,29 @@ impl Machine<'_, '_, D3> {
                 let i = intersect3d::line_cylinder(&self.line3(a), &self.cylinder(b));
                 (Roots::from_slice(i.roots.as_slice()), i.contact)
             }
+            // Lines: the one the branch takes, by default the nearest the sketch's point.
+            Meet::PlaneCylinder => {
+                let i = intersect3d::plane_cylinder_lines(&self.plane(a), &self.cylinder(b));
+                if let Some(e) = fail(i.contact) {
+                    return Err(e);
+                }
+                let lines = i.roots;
+                let index = self.choose(branch, |s| {
+                    let x = s.p3(near);
+                    (0..lines.len()).min_by(|&j, &k| {
+                        let d = |l: usize| lines.get(l).map_or(f64::INFINITY, |l| l.distance(&x));
+                        d(j).total_cmp(&d(k))
+                    })
+                });
+                return lines.get(index).map(Val::L3).ok_or_else(|| {
+                    err(
+                        model,
+                        constraint,
+                        ErrorKind::NoSuchBranch,
+                        lines.len() as f64,
+                    )
+                });
+            }
             Meet::SphereSphere | Meet::SpherePlane | Meet::PlanePlane => {
                 let (locus, contact) = match meet {
                     Meet::SphereSphere => {

@@ -168,6 +168,9 @@ pub enum Meet {
     SpherePlane,
     /// Two planes: their line.
     PlanePlane,
+    /// A plane parallel to a cylinder's axis and the cylinder: their lines, in order across
+    /// the axis (`intersect3d::plane_cylinder_lines`).
+    PlaneCylinder,
 }
 
 impl Meet {
@@ -189,6 +192,7 @@ impl Meet {
             Meet::SphereSphere => (Sphere, Sphere),
             Meet::SpherePlane => (Sphere, Plane),
             Meet::PlanePlane => (Plane, Plane),
+            Meet::PlaneCylinder => (Plane, Cylinder),
         }
     }
 
@@ -196,7 +200,7 @@ impl Meet {
     pub fn result(self) -> Ty {
         match self {
             Meet::SphereSphere | Meet::SpherePlane => Ty::Circle,
-            Meet::PlanePlane => Ty::Line,
+            Meet::PlanePlane | Meet::PlaneCylinder => Ty::Line,
             _ => Ty::Point,
         }
     }
@@ -323,7 +327,8 @@ pub enum Residual {
         normal: Reg,
         d: Option<Reg>,
     },
-    /// In space: directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1).
+    /// In space: directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1; 0:
+    /// either).
     Parallel { u: Reg, v: Reg, sense: f64 },
     /// In space: `p` is at distance `d` (absent: 0, on it) from the circle about `centre`
     /// with unit `normal` and `radius`.

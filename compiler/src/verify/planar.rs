@@ -162,12 +162,15 @@ pub(super) fn residual(model: &Model, s: &ByName<'_>, c: &Constraint, value: f64
                 let gap = (cross(dir, sub(c, base)).abs() - r).abs();
                 // A segment's end on the circle (a fillet's joint) must be the touching
                 // point: its distance along the line from the centre's foot. The gap
-                // above is second order in that distance, and hides it.
+                // above is second order in that distance, and hides it. "On" is within
+                // `JOINED`: an end solved onto the circle is there to rounding, while a free
+                // end `t` from the touching point is `t² / 2r` from the circle, and at a
+                // looser bound a free end near it would count as a joint.
                 let joints = if model.geoms[a].kind == GeomKind::Segment {
                     let n = &model.geoms[a].name;
                     [look.p(&format!("{n}.start")), look.p(&format!("{n}.end"))]
                         .into_iter()
-                        .filter(|e| (norm(sub(*e, c)) - r).abs() <= 1e-6 * (1.0 + r))
+                        .filter(|e| (norm(sub(*e, c)) - r).abs() <= super::JOINED * (1.0 + r))
                         .map(|e| dot(dir, sub(e, c)).abs())
                         .fold(0.0f64, f64::max)
                 } else {

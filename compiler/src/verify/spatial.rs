@@ -320,13 +320,13 @@ pub(super) fn residual(model: &Model, s: &ByName<'_>, c: &Constraint, value: f64
                 let gap = line_circle((base, dir), circle, 0.0);
                 // A segment's end on the circle must be the touching point, as in 2d: its
                 // distance along the line from the centre's foot. The gap above is second
-                // order in that distance, and hides it.
+                // order in that distance, and hides it. "On" is within `JOINED`, as in 2d.
                 let joints = if kind(a) == GeomKind::Segment {
                     let (start, end) = look.ends(a);
                     let (center, _, r) = circle;
                     [start, end]
                         .into_iter()
-                        .filter(|&e| point_circle(e, circle) <= 1e-6 * (1.0 + r))
+                        .filter(|&e| point_circle(e, circle) <= super::JOINED * (1.0 + r))
                         .map(|e| dot(dir, sub(e, center)).abs())
                         .fold(0.0f64, f64::max)
                 } else {

@@ -29,7 +29,7 @@ use crate::config::{Config, D3};
 use crate::plan::{HelixRegs, Meet, Op, Reach, Reg, Residual, RotationAxis, ScrewRegs, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::Model;
-use relation::{AngleValue, Relation};
+use relation::{AngleValue, Length, Relation};
 
 /// A relation of space with its constraint.
 pub(crate) type Rel = geometry::Rel<Relation>;
@@ -619,6 +619,9 @@ impl Builder<'_, Spatial> {
     }
 
     fn implied(&self, relation: &Relation) -> bool {
+        if !self.radii_known(relation) {
+            return false;
+        }
         match *relation {
             Relation::PointPoint { a, b, .. } => {
                 (self.point_known(a) && self.point_known(b)) || self.together(a, b)
@@ -695,14 +698,14 @@ impl Builder<'_, Spatial> {
             },
             Relation::PointPoint { a, b, d } => {
                 let (a, b) = (self.point(a), self.point(b));
-                let d = d.map(|e| self.expr(e));
+                let d = d.map(|l| self.length(l));
                 Residual::PointPoint { a, b, d }
             }
             Relation::PointLine { p, base, dir, d } => Residual::PointLine {
                 p: self.point(p),
                 base: self.point(base),
                 dir: self.direction(dir),
-                d: d.map(|e| self.expr(e)),
+                d: d.map(|l| self.length(l)),
             },
             Relation::PointPlane { p, base, normal, d } => {
                 let (p, base, normal) = (self.point(p), self.point(base), self.direction(normal));
@@ -773,6 +776,45 @@ impl Builder<'_, Spatial> {
         (centre, normal, radius)
     }
 
+    /// The register of a distance a relation asks for: its expression's, or its circles'
+    /// radii (each known by now: see [`Builder::radii_known`]) summed with its gap.
+    fn length(&mut self, length: Length) -> Reg {
+        let (first, second, gap) = match length {
+            Length::Expr(e) => return self.expr(e),
+            Length::Radii { first, second, gap } => (first, second, gap),
+        };
+        let mut terms = Vec::new();
+        let mut words = Vec::new();
+        for (sign, circle) in std::iter::once(first).chain(second) {
+            terms.push((sign, self.size_of(circle)));
+            words.push((sign, format!("the radius of {}", self.name(circle))));
+        }
+        if let Some((sign, e)) = gap {
+            let g = self.expr(e);
+            words.push((sign, self.word(g)));
+            terms.push((sign, g));
+        }
+        if let [(1.0, one)] = terms.as_slice() {
+            return *one;
+        }
+        let mut text = String::new();
+        for (i, (sign, w)) in words.iter().enumerate() {
+            match (i, *sign < 0.0) {
+                (0, false) => text.push_str(w),
+                (0, true) => text.push_str(&format!("minus {w}")),
+                (_, false) => text.push_str(&format!(" plus {w}")),
+                (_, true) => text.push_str(&format!(" minus {w}")),
+            }
+        }
+        self.value(Op::Sum(terms), Ty::Scalar, text)
+    }
+
+    /// Whether the radii a relation's distance reads are known: a circle whose size is still
+    /// free cannot give one (its size comes first, from its own constraints or a default).
+    fn radii_known(&self, relation: &Relation) -> bool {
+        (relation.radii().into_iter()).all(|c| !self.record(c).shape.size_free())
+    }
+
     /// The register of an angle a relation asks for.
     fn angle_value(&mut self, angle: AngleValue) -> Reg {
         match angle {
@@ -794,6 +836,9 @@ impl Builder<'_, Spatial> {
 
     /// Action analysis: the relation's unknown side moved onto its known side.
     fn action(&mut self, r: &Rel) -> bool {
+        if !self.radii_known(&r.relation) {
+            return false;
+        }
         if self.implied(&r.relation) {
             self.check(r);
             return true;
@@ -821,8 +866,8 @@ impl Builder<'_, Spatial> {
                         let x = self.point(known);
                         let target = match d {
                             None => Target::Point(x),
-                            Some(e) => {
-                                let radius = self.expr(e);
+                            Some(l) => {
+                                let radius = self.length(l);
                                 let words = format!(
                                     "the sphere about {} of radius {}",
                                     self.name(known),
@@ -842,12 +887,12 @@ impl Builder<'_, Spatial> {
                 p,
                 base,
                 dir,
-                d: Some(e),
+                d: Some(l),
             } => {
                 // At a distance from a known line: on the cylinder about it.
                 if self.point_known(base) && self.dir_known(dir) && !self.point_known(p) {
                     let (b, d) = (self.point(base), self.direction(dir));
-                    let radius = self.expr(e);
+                    let radius = self.length(l);
                     let words = format!(
                         "the cylinder of radius {} about the line through {} along {}",
                         self.word(radius),
@@ -861,6 +906,32 @@ impl Builder<'_, Spatial> {
                     };
                     let c = self.value(op, Ty::Cylinder, words);
                     return self.move_point(p, Target::On(Locus::Cylinder(c)), r);
+                }
+                // The line moves, its direction known: its point slides onto the cylinder of
+                // that radius about the line through the known point along it (a point sliding
+                // along the line moves nothing).
+                if self.point_known(p) && self.dir_known(dir) && self.together(base, dir) {
+                    let (x, d) = (self.point(p), self.direction(dir));
+                    let radius = self.length(l);
+                    let words = format!(
+                        "the cylinder of radius {} about the line through {} along {}",
+                        self.word(radius),
+                        self.name(p),
+                        self.name(dir)
+                    );
+                    let op = Op::Cylinder {
+                        point: x,
+                        dir: d,
+                        radius,
+                    };
+                    let c = self.value(op, Ty::Cylinder, words);
+                    // Its point held in a plane that holds its direction (a line in a circle's
+                    // plane): the plane cuts the cylinder in two lines along the direction, and
+                    // the point goes to the nearer of the branch's.
+                    if let Some(q) = self.plane_along(base, dir) {
+                        return self.onto_cylinder_lines(q, c, base, r);
+                    }
+                    return self.move_point(base, Target::On(Locus::Cylinder(c)), r);
                 }
                 false
             }
@@ -922,6 +993,17 @@ impl Builder<'_, Spatial> {
                 false
             }
             Relation::PointPlane { p, base, normal, d } => {
+                if let Some(q) = self.pivot_in_plane(r, p, normal) {
+                    // The line lies in the plane once its pivot does: a check of the pivot.
+                    let relation = Relation::PointPlane {
+                        p: q,
+                        base,
+                        normal,
+                        d,
+                    };
+                    self.check(&Rel { relation, ..*r });
+                    return true;
+                }
                 if self.point_known(base) && self.dir_known(normal) && !self.point_known(p) {
                     let (b, n) = (self.point(base), self.direction(normal));
                     let offset = d.map(|e| self.expr(e));
@@ -980,6 +1062,15 @@ impl Builder<'_, Spatial> {
                         let target = if sense < 0.0 {
                             let words = format!("the opposite of {}", self.name(known));
                             self.value(Op::Opposite(k), Ty::Vector, words)
+                        } else if sense == 0.0 {
+                            // Either sense: the nearer (the least turn).
+                            let now = self.direction(moving);
+                            let words = format!(
+                                "{} or its opposite, nearer {}",
+                                self.name(known),
+                                self.name(moving)
+                            );
+                            self.value(Op::Aligned { dir: k, near: now }, Ty::Vector, words)
                         } else {
                             k
                         };
@@ -2140,6 +2231,128 @@ impl Builder<'_, Spatial> {
             joint if still => self.joint_locus(&joint, k),
             _ => None,
         }
+    }
+
+    /// The plane that holds point `base` (its record's locus) when that plane is known to hold
+    /// direction `dir` too: its normal is a direction a relation already turned `dir` square
+    /// to (a line in a circle's plane).
+    fn plane_along(&self, base: GeomId, dir: GeomId) -> Option<Reg> {
+        let Trans::On {
+            feature,
+            locus: Locus::Plane(q),
+        } = self.record(base).trans
+        else {
+            return None;
+        };
+        let defined = |reg: Reg| {
+            (self.plan.steps.iter().rev())
+                .find(|s| s.out.is_some_and(|(o, _)| o == reg))
+                .map(|s| &s.op)
+        };
+        let Some(Op::Plane { normal, .. }) = defined(q) else {
+            return None;
+        };
+        let Some(&Op::DirOf(m)) = defined(*normal) else {
+            return None;
+        };
+        let square = Relation::Angle {
+            u: dir,
+            v: m,
+            angle: AngleValue::Const(std::f64::consts::FRAC_PI_2),
+        };
+        (feature == base && self.is_done(&square)).then_some(q)
+    }
+
+    /// Moves the line whose point `base` is held in plane `q`, parallel to cylinder `c`'s axis
+    /// (the line's direction), onto the cylinder: the plane cuts it in two lines along the
+    /// direction (a branch), and the line slides across itself within the plane onto one, which
+    /// places it.
+    fn onto_cylinder_lines(&mut self, q: Reg, c: Reg, base: GeomId, r: &Rel) -> bool {
+        let k = self.cluster(base);
+        if !self.clusters[k].record.movable() {
+            return false;
+        }
+        let (wq, wc) = (self.word(q), self.word(c));
+        let meanings = vec![
+            format!("the line where {wq} cuts {wc} first across its axis"),
+            "the other line, second across the axis".to_string(),
+        ];
+        let branch = self.branch(r.constraint, meanings);
+        let from = self.point(base);
+        let words = format!("the line where {wq} cuts {wc}");
+        let line = self.value(
+            Op::Intersect {
+                meet: Meet::PlaneCylinder,
+                a: q,
+                b: c,
+                branch,
+                constraint: r.constraint,
+                near: from,
+            },
+            Ty::Line,
+            words,
+        );
+        let bname = self.name(base);
+        let words = format!("the point of {} nearest {bname}", self.word(line));
+        let to = self.value(
+            Op::Nearest {
+                locus: line,
+                point: from,
+            },
+            Ty::Point,
+            words,
+        );
+        let geoms = self.clusters[k].geoms.clone();
+        let explain = format!(
+            "{} can only slide {bname} in {wq}: slide it onto {} ({}).",
+            self.group_name(&geoms),
+            self.word(line),
+            self.cname(r.constraint)
+        );
+        self.emit(
+            Op::Translate { geoms, from, to },
+            None,
+            self.satisfies(r),
+            explain,
+        );
+        self.placed(k, base, to, Target::On(Locus::Line(line)));
+        true
+    }
+
+    /// For a line's point `p` that must lie in a plane of normal `normal` (a line in a
+    /// circle's plane, `r`'s relation): the other point of the line its cluster pivots about,
+    /// when the cluster only turns about that normal and the same constraint has already turned
+    /// the line square to it. Every point of the line then stays at the pivot's height along
+    /// the normal, whatever the turn and the segment's length, so the relation holds exactly
+    /// when the pivot lies in the plane: no motion can bring it about, and none is needed.
+    fn pivot_in_plane(&mut self, r: &Rel, p: GeomId, normal: GeomId) -> Option<GeomId> {
+        let k = self.cluster(p);
+        let rec = self.clusters[k].record.clone();
+        let (Trans::Pivot { feature: q, .. }, Turn::Axis { axis, .. }) = (rec.trans, rec.turn)
+        else {
+            return None;
+        };
+        let line = self.model.top_level_of(p);
+        let line_like = matches!(
+            self.model.geoms[line].kind,
+            GeomKind::Line | GeomKind::Segment
+        );
+        if q == p || !line_like || self.model.top_level_of(q) != line || !self.dir_known(normal) {
+            return None;
+        }
+        // The line's constraint with a circle (`relation::decompose`), its direction already
+        // turned square to the normal.
+        let c = &self.model.constraints[r.constraint];
+        use gcs_lang::constraints::ConstraintKind as K;
+        let with_circle = matches!(c.kind, K::Distance | K::Tangent)
+            && c.args.first() == Some(&line)
+            && (c.args.get(1)).is_some_and(|&b| self.model.geoms[b].kind == GeomKind::Circle);
+        let square = Relation::Angle {
+            u: self.model.dir_feature(line)?,
+            v: normal,
+            angle: AngleValue::Const(std::f64::consts::FRAC_PI_2),
+        };
+        (with_circle && self.is_done(&square) && self.direction(normal) == axis).then_some(q)
     }
 
     /// The relation of constraint `r` still to come that `wanted` picks.

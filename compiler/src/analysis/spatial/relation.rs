@@ -13,7 +13,7 @@ use crate::analysis::Unsupported;
 use crate::config::{Config, D3};
 use gcs_lang::constraints::ConstraintKind as K;
 use gcs_lang::expr::ExprId;
-use gcs_lang::model::{GeomId, GeomKind, Part};
+use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::Model;
 
 /// A relation between features of space.
@@ -26,7 +26,7 @@ pub enum Relation {
         /// Second point feature.
         b: GeomId,
         /// The distance, or none for zero.
-        d: Option<ExprId>,
+        d: Option<Length>,
     },
     /// Point `p` is at distance `d` from the line through point `base` along direction `dir`
     /// (absent: on it).
@@ -38,7 +38,7 @@ pub enum Relation {
         /// The line's direction feature.
         dir: GeomId,
         /// The distance, or none for zero.
-        d: Option<ExprId>,
+        d: Option<Length>,
     },
     /// The signed distance of point `p` from the plane through `base` with normal `normal`
     /// is `d` (absent: zero).
@@ -52,13 +52,14 @@ pub enum Relation {
         /// The signed distance, or none for zero.
         d: Option<ExprId>,
     },
-    /// Directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1, the sketch's).
+    /// Directions `u` and `v` are parallel, `v` along `sense * u` (+1 or -1, the sketch's; 0
+    /// for either, as two circles' normals are for their planes to be one).
     Parallel {
         /// First direction.
         u: GeomId,
         /// Second direction.
         v: GeomId,
-        /// Same sense (+1) or opposite (-1).
+        /// Same sense (+1), opposite (-1), or either (0).
         sense: f64,
     },
     /// Point `p` is at distance `d` from circle `circle` (absent: on it, in its plane at its
@@ -157,12 +158,61 @@ pub enum AngleValue {
     Const(f64),
 }
 
+/// A distance a relation asks for: a model expression, or one made of circles' radii (the
+/// distance between the centres of two tangent circles, from a centre to a tangent line).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Length {
+    /// The value of a model expression.
+    Expr(ExprId),
+    /// `sign * radius(circle)`, plus `sign * radius(circle)` of a second circle, plus
+    /// `sign * expr` (a gap): each circle's radius must be known (sized) for the relation to
+    /// act.
+    Radii {
+        /// The first circle's radius, with its sign.
+        first: (f64, GeomId),
+        /// The second circle's, if any.
+        second: Option<(f64, GeomId)>,
+        /// The gap the constraint asks for, if any, with its sign.
+        gap: Option<(f64, ExprId)>,
+    },
+}
+
+impl Length {
+    /// The circles whose radii the length reads.
+    pub fn circles(self) -> Vec<GeomId> {
+        match self {
+            Length::Expr(_) => Vec::new(),
+            Length::Radii { first, second, .. } => std::iter::once(first.1)
+                .chain(second.map(|s| s.1))
+                .collect(),
+        }
+    }
+}
+
 impl Relation {
+    /// The circles whose radii a relation's distance reads (`Length::Radii`).
+    pub fn radii(&self) -> Vec<GeomId> {
+        match *self {
+            Relation::PointPoint { d: Some(l), .. } | Relation::PointLine { d: Some(l), .. } => {
+                l.circles()
+            }
+            _ => Vec::new(),
+        }
+    }
+
     /// The features a relation involves.
     pub fn features(&self) -> Vec<GeomId> {
         match *self {
-            Relation::PointPoint { a, b, .. } => vec![a, b],
-            Relation::PointLine { p, base, dir, .. } => vec![p, base, dir],
+            Relation::PointPoint { a, b, d } => {
+                let mut f = vec![a, b];
+                f.extend(d.map_or_else(Vec::new, Length::circles));
+                f
+            }
+            Relation::PointLine { p, base, dir, d } => {
+                let mut f = vec![p, base, dir];
+                f.extend(d.map_or_else(Vec::new, Length::circles));
+                f
+            }
             Relation::PointPlane {
                 p, base, normal, ..
             } => vec![p, base, normal],
@@ -209,6 +259,109 @@ fn plane(model: &Model, g: GeomId) -> Option<(GeomId, GeomId)> {
     }
 }
 
+/// The plane of a fixed circle whose centre and normal are constants (no param moves it):
+/// its centre and unit normal.
+fn fixed_plane(model: &Model, c: GeomId) -> Option<([f64; 3], [f64; 3])> {
+    let g = &model.geoms[c];
+    let Sketch::Circle {
+        center,
+        normal: Some(normal),
+        ..
+    } = &g.sketch
+    else {
+        return None;
+    };
+    let constant = |coords: &[ExprId]| -> Option<[f64; 3]> {
+        if !coords.iter().all(|&e| model.exprs.is_constant(e)) {
+            return None;
+        }
+        let v = |i: usize| coords.get(i).map_or(0.0, |&e| model.exprs.eval(e, &[]));
+        Some([v(0), v(1), v(2)])
+    };
+    let (centre, n) = (constant(center)?, constant(normal)?);
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    (g.fixed && g.owner == Owner::TopLevel && len > 0.0)
+        .then(|| (centre, [n[0] / len, n[1] / len, n[2] / len]))
+}
+
+/// Whether fixed circles `a` and `b` lie in one plane, their constants say, to rounding.
+fn coplanar(model: &Model, a: GeomId, b: GeomId) -> bool {
+    let (Some((ca, na)), Some((cb, nb))) = (fixed_plane(model, a), fixed_plane(model, b)) else {
+        return false;
+    };
+    let cross = [
+        na[1] * nb[2] - na[2] * nb[1],
+        na[2] * nb[0] - na[0] * nb[2],
+        na[0] * nb[1] - na[1] * nb[0],
+    ];
+    let w = [cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]];
+    let scale = 1.0 + ca.iter().chain(&cb).fold(0.0f64, |m, x| m.max(x.abs()));
+    let height = (na[0] * w[0] + na[1] * w[1] + na[2] * w[2]).abs();
+    (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt() <= 1e-12
+        && height <= 1e-12 * scale
+}
+
+/// For a distance or tangency between `x` (a line, segment or circle) and fixed circle `c`:
+/// whether another such constraint ties `x` to a fixed circle in `c`'s plane first (by name,
+/// so that the order of statements does not matter). Its relations already put `x` in that
+/// plane, which is `c`'s too: this constraint adds only its distance (its own coplanarity
+/// would be a turn about a normal parallel to itself, or a plane meeting itself, which no
+/// construction can make).
+fn in_plane_already(model: &Model, x: GeomId, c: GeomId) -> bool {
+    use GeomKind as G;
+    let name = |g: GeomId| model.geoms[g].name.as_str();
+    (model.constraints.iter()).any(|(_, other)| {
+        let (Some(&p), Some(&q)) = (other.args.first(), other.args.get(1)) else {
+            return false;
+        };
+        let circle = match (p == x, q == x) {
+            (true, false) => q,
+            (false, true) => p,
+            _ => return false,
+        };
+        matches!(other.kind, K::Distance | K::Tangent)
+            && model.geoms[circle].kind == G::Circle
+            && circle != c
+            && name(circle) < name(c)
+            && coplanar(model, circle, c)
+    })
+}
+
+/// The distance between the centres of circles `a` and `b` at `gap` (none: tangent), as the
+/// sketch nests them (the reading nearest the sketch, as in the plane): apart, `ra + rb + gap`;
+/// `a` inside `b`, `rb - ra - gap`; `b` inside `a`, `ra - rb - gap`.
+fn nested_radii(
+    model: &Model,
+    sketch: &Config<D3>,
+    (a, b): (GeomId, GeomId),
+    gap: Option<ExprId>,
+) -> Length {
+    let d = (sketch.point(model, model.point_feature(a))
+        - sketch.point(model, model.point_feature(b)))
+    .norm();
+    let (ra, rb) = (sketch.dim(a), sketch.dim(b));
+    let readings = [
+        ((1.0, 1.0), (d - ra - rb).abs()),
+        (
+            (-1.0, 1.0),
+            (d - (rb - ra)).abs() + if ra <= rb { 0.0 } else { f64::INFINITY },
+        ),
+        (
+            (1.0, -1.0),
+            (d - (ra - rb)).abs() + if rb <= ra { 0.0 } else { f64::INFINITY },
+        ),
+    ];
+    let ((sa, sb), _) =
+        (readings.iter().skip(1)).fold(readings[0], |best, r| if r.1 < best.1 { *r } else { best });
+    // The gap adds to the centres' distance when apart, and takes from it when nested.
+    let sign = if sa > 0.0 && sb > 0.0 { 1.0 } else { -1.0 };
+    Length::Radii {
+        first: (sa, a),
+        second: Some((sb, b)),
+        gap: gap.map(|e| (sign, e)),
+    }
+}
+
 /// Decomposes every constraint of a 3d model, reading the sketch where the language leaves
 /// a choice to it. Constraints the analysis does not cover yet are returned as
 /// [`Unsupported`], never dropped.
@@ -244,7 +397,11 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 d: None,
             }),
             (K::Distance, Some(a), Some(b)) if kind(a).is_pointlike() && kind(b).is_pointlike() => {
-                out.push(Relation::PointPoint { a, b, d: c.value })
+                out.push(Relation::PointPoint {
+                    a,
+                    b,
+                    d: c.value.map(Length::Expr),
+                })
             }
             (K::Distance | K::On, Some(a), Some(b))
                 if kind(a).is_pointlike() && kind(b) == GeomKind::Plane =>
@@ -257,6 +414,74 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                         d: if c.kind == K::Distance { c.value } else { None },
                     }),
                     None => missing("a plane without its normal"),
+                }
+            }
+            // A line at a distance from a circle, or tangent to it, lies in the circle's plane
+            // (its direction square to the normal, its point in the plane), at the radius plus
+            // the gap from the centre (LANGUAGE.md): the line's point last, at that distance.
+            (K::Distance | K::Tangent, Some(a), Some(b))
+                if matches!(kind(a), GeomKind::Line | GeomKind::Segment)
+                    && kind(b) == GeomKind::Circle =>
+            {
+                match (line(model, a), model.part(b, Part::Normal)) {
+                    (Some((base, dir)), Some(normal)) => {
+                        let centre = point(b);
+                        if !in_plane_already(model, a, b) {
+                            out.push(Relation::Angle {
+                                u: dir,
+                                v: normal,
+                                angle: AngleValue::Const(std::f64::consts::FRAC_PI_2),
+                            });
+                            out.push(Relation::PointPlane {
+                                p: base,
+                                base: centre,
+                                normal,
+                                d: None,
+                            });
+                        }
+                        out.push(Relation::PointLine {
+                            p: centre,
+                            base,
+                            dir,
+                            d: Some(Length::Radii {
+                                first: (1.0, b),
+                                second: None,
+                                gap: c.value.map(|e| (1.0, e)),
+                            }),
+                        });
+                    }
+                    _ => missing("a line and a circle need their directions"),
+                }
+            }
+            // Two circles at a distance or tangent are coplanar (parallel normals, in the sense
+            // of the sketch, and the second centre in the first's plane), their centres apart
+            // by the radii and the gap as the sketch nests them: apart, or one inside the other.
+            (K::Distance | K::Tangent, Some(a), Some(b))
+                if kind(a) == GeomKind::Circle && kind(b) == GeomKind::Circle =>
+            {
+                match (model.part(a, Part::Normal), model.part(b, Part::Normal)) {
+                    (Some(na), Some(nb)) => {
+                        let (ca, cb) = (point(a), point(b));
+                        if !in_plane_already(model, a, b) && !in_plane_already(model, b, a) {
+                            out.push(Relation::Parallel {
+                                u: na,
+                                v: nb,
+                                sense: 0.0,
+                            });
+                            out.push(Relation::PointPlane {
+                                p: cb,
+                                base: ca,
+                                normal: na,
+                                d: None,
+                            });
+                        }
+                        out.push(Relation::PointPoint {
+                            a: ca,
+                            b: cb,
+                            d: Some(nested_radii(model, sketch, (a, b), c.value)),
+                        });
+                    }
+                    _ => missing("two circles need their normals"),
                 }
             }
             (K::Distance, Some(a), Some(b))
@@ -277,7 +502,7 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                         p: point(a),
                         base,
                         dir,
-                        d: c.value,
+                        d: c.value.map(Length::Expr),
                     }),
                     None => missing("a line without its direction"),
                 }
