@@ -1090,8 +1090,14 @@ impl Builder<'_, Spatial> {
                 false
             }
             Relation::PointCircle { p, circle, d } => {
-                if d.is_none() && self.point_known(p) && !self.record(circle).grounded() {
-                    return self.circle_through(circle, p, r);
+                let rec = self.record(circle);
+                let moves = !rec.grounded() || rec.shape.size_free();
+                if d.is_none() && self.point_known(p) && moves && self.circle_through(circle, p, r)
+                {
+                    return true;
+                }
+                if self.point_known(p) && !self.record(circle).grounded() {
+                    return self.carry_circle(circle, p, d, r);
                 }
                 if !self.record(circle).grounded() || self.point_known(p) {
                     return false;
@@ -2784,6 +2790,63 @@ impl Builder<'_, Spatial> {
     /// point (its normal onto the cone square to the direction from the centre to the point),
     /// and may then only turn about that direction; with its normal known, the point must lie
     /// in its plane (a check). Then it takes the radius that reaches the point.
+    /// A sized circle whose normal is known and whose centre is free carried (by the least
+    /// translation) to pass through known point `p`, or at distance `d` from it: its centre
+    /// goes onto the circle of its radius about `p` in a plane parallel to its own, or onto the
+    /// torus at `d` about that circle (a circle's distance from a point is the centre's from
+    /// that circle, turned about `p`'s axis). Turning it, or resizing it, would move the point
+    /// off it in a way its record cannot follow: a circle whose size or normal is free is not
+    /// carried (its size's default comes first; a free normal, not yet).
+    fn carry_circle(
+        &mut self,
+        circle: GeomId,
+        p: GeomId,
+        d: Option<gcs_lang::expr::ExprId>,
+        r: &Rel,
+    ) -> bool {
+        let k = self.cluster(circle);
+        let rec = self.clusters[k].record.clone();
+        let Some(center) = self.model.part(circle, Part::Center) else {
+            return false;
+        };
+        if self.clusters[k].geoms != [circle]
+            || rec.turn != Turn::Known
+            || rec.shape.size_free()
+            || self.point_known(center)
+        {
+            return false;
+        }
+        let at = self.point(p);
+        let (_, normal, radius) = self.circle_parts(circle);
+        let (cname, pname) = (self.name(circle), self.name(p));
+        let words = format!("the circle of {cname}'s radius about {pname}, parallel to {cname}");
+        let about = self.value(
+            Op::Circle3 {
+                center: at,
+                normal,
+                radius,
+            },
+            Ty::Circle,
+            words,
+        );
+        let locus = match d {
+            None => Locus::Circle(about),
+            Some(e) => {
+                let tube = self.expr(e);
+                let words = format!("the torus at {} from {}", self.word(tube), self.word(about));
+                Locus::Torus(self.value(
+                    Op::Torus {
+                        circle: about,
+                        tube,
+                    },
+                    Ty::Torus,
+                    words,
+                ))
+            }
+        };
+        self.move_point(center, Target::On(locus), r)
+    }
+
     fn circle_through(&mut self, circle: GeomId, p: GeomId, r: &Rel) -> bool {
         let k = self.cluster(circle);
         let rec = self.clusters[k].record.clone();
@@ -2934,7 +2997,14 @@ impl Builder<'_, Spatial> {
         self.pending.iter().any(|p| match p.relation {
             Relation::Size { geom, .. } => geom == g,
             Relation::SameSize { a, b } => a == g || b == g,
-            Relation::PointCircle { circle, .. } => circle == g,
+            // A circle through a known point sets its radius once its centre is held
+            // (`circle_through`); carried with its centre free, it keeps it.
+            Relation::PointCircle {
+                circle, d: None, ..
+            } => {
+                circle == g
+                    && (self.model.part(circle, Part::Center)).is_some_and(|c| self.point_known(c))
+            }
             _ => false,
         })
     }
