@@ -1334,6 +1334,49 @@ pub fn plane_cone(
     (w, (d - sd0) / w.norm())
 }
 
+/// The angle between the normal of a circle about `centre` of `radius` and the direction from
+/// the centre to `point`, at which `point` lies `distance` from the circle: the side of the
+/// circle's plane `now` (its normal now) has the point on, so that the turn there is the least.
+///
+/// With `L` the point's distance from the centre, the point lies `ρ = (L² + r² - d²) / 2r`
+/// from the axis and `h = √(L² - ρ²)` from the plane, so the angle is `atan2(ρ, ±h)`.
+/// - `Crossing`: that angle, in `[0, π]` (below a right angle when `now` points toward the
+///   point).
+/// - `Disjoint { gap }`: no tilt reaches the distance: it is below `|L - r|` (the point in the
+///   plane) or above `√(L² + r²)` (on the axis) by `gap`.
+/// - `ZeroRadius`: the radius is not positive, or the point is at the centre (every tilt
+///   leaves it `r` away).
+pub fn tilt_to_distance(
+    centre: &Point3<f64>,
+    point: &Point3<f64>,
+    radius: f64,
+    distance: f64,
+    now: &Vector3<f64>,
+) -> crate::Intersection<f64, 1> {
+    use crate::{Contact, Intersection, Roots};
+    let w = point - centre;
+    let l = w.norm();
+    let scale = tol::scale(&[l, radius, distance]);
+    let least = tol::LENGTH_REL * scale;
+    if radius.is_nan() || l.is_nan() || radius <= least || l <= least {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let (near, far) = ((l - radius).abs(), l.hypot(radius));
+    if distance < near || distance > far {
+        let gap = (near - distance).max(distance - far);
+        return Intersection::none(Contact::Disjoint { gap });
+    }
+    let rho = ((l * l + radius * radius - distance * distance) / (2.0 * radius)).clamp(0.0, l);
+    let h = ((l - rho) * (l + rho)).max(0.0).sqrt();
+    let h = if now.dot(&w) < 0.0 { -h } else { h };
+    let mut roots = Roots::new();
+    roots.push(rho.atan2(h));
+    Intersection {
+        roots,
+        contact: Contact::Crossing,
+    }
+}
+
 /// The normal of least turn from `normal` that makes the cosine `c` (in [-1, 1]) with the unit
 /// direction `w`: on the great circle through `w` and `normal`, or about any axis across `w`
 /// when `normal` is along it.
@@ -1399,5 +1442,45 @@ mod cone_tests {
         let touch = turns_to_angle(&u, &v, &z, std::f64::consts::FRAC_PI_6);
         assert_eq!(touch.contact, Contact::Tangent);
         assert!(turns_to_angle(&u, &z, &z, 1.0).contact == Contact::ZeroRadius);
+    }
+}
+
+#[cfg(test)]
+mod tilt_tests {
+    use super::*;
+    use crate::Contact;
+
+    /// The circle tilted by the angle found, about any axis across the direction to the point,
+    /// leaves the point at the distance asked, on the side of `now`.
+    #[test]
+    fn a_tilt_puts_the_point_at_the_distance() {
+        let (c, a) = (Point3::new(1.0, -2.0, 0.5), Point3::new(3.0, 1.0, 2.0));
+        let w = (a - c).normalize();
+        let across = w.cross(&Vector3::new(0.3, 0.1, 0.9)).normalize();
+        for (r, d) in [(3.0, 1.2), (2.0, 2.5), (1.0, 3.5), (4.0, 0.7)] {
+            for now in [w, -w] {
+                let i = tilt_to_distance(&c, &a, r, d, &now);
+                assert_eq!(i.contact, Contact::Crossing, "{r} {d}");
+                let theta = i.roots.get(0).unwrap_or(f64::NAN);
+                let n = w * theta.cos() + across * theta.sin();
+                assert!(n.dot(&now) >= 0.0 || theta == std::f64::consts::FRAC_PI_2);
+                // The point's distance from the tilted circle.
+                let v = a - c;
+                let hh = v.dot(&n);
+                let rho = (v - n * hh).norm();
+                let dist = hh.hypot(rho - r);
+                assert!((dist - d).abs() < 1e-14, "{r} {d}: {dist}");
+            }
+        }
+        // Out of reach: nearer than the point in the plane, farther than on the axis.
+        let l = (a - c).norm();
+        let i = tilt_to_distance(&c, &a, 1.0, (l - 1.0) - 0.25, &w);
+        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 0.25).abs() < 1e-12));
+        let i = tilt_to_distance(&c, &a, 1.0, l.hypot(1.0) + 0.5, &w);
+        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 0.5).abs() < 1e-12));
+        assert_eq!(
+            tilt_to_distance(&c, &c, 1.0, 1.0, &w).contact,
+            Contact::ZeroRadius
+        );
     }
 }

@@ -753,6 +753,27 @@ impl Solve<'_> {
                 let code = format!("frame::aligned(&{}, &{})", self.r(*dir), self.r(*near));
                 self.define_pure(w, r, "aligned", &code);
             }
+            Op::TiltToDistance {
+                centre,
+                point,
+                radius,
+                d,
+                now,
+                constraint,
+            } => {
+                let tilt = self.names.fresh("tilt");
+                w.line(&format!(
+                    "let {tilt} = frame::tilt_to_distance(&{}, &{}, {}, {}, &{});",
+                    self.r(*centre),
+                    self.r(*point),
+                    self.r(*radius),
+                    self.r(*d),
+                    self.r(*now)
+                ));
+                self.fail_on_contact(w, *constraint, &tilt, None);
+                let code = format!("{tilt}.roots.get(0){}", self.or_degenerate(i));
+                self.define(w, r, "tilt_angle", &code);
+            }
             Op::ConeTurn { axis, angle, dir } => {
                 let code = format!(
                     "frame::plane_turn(&{}, f64::cos({}), &{})",

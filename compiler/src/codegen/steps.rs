@@ -404,6 +404,7 @@ impl Solve<'_> {
             | Op::PlaneAxisTurn { .. }
             | Op::AngleTurn { .. }
             | Op::ConeTurn { .. }
+            | Op::TiltToDistance { .. }
             | Op::Aligned { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }

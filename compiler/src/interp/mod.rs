@@ -1136,6 +1136,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::PlaneAxisTurn { .. }
             | Op::AngleTurn { .. }
             | Op::ConeTurn { .. }
+            | Op::TiltToDistance { .. }
             | Op::Aligned { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }

@@ -192,6 +192,25 @@ impl Machine<'_, '_, D3> {
                 Val::S(self.finite(i, advance)?)
             }
             Op::Aligned { dir, near } => Val::V3(frame::aligned(&self.v3(*dir), &self.v3(*near))),
+            Op::TiltToDistance {
+                centre,
+                point,
+                radius,
+                d,
+                now,
+                constraint,
+            } => {
+                let (c, p, n) = (self.p3(*centre), self.p3(*point), self.v3(*now));
+                let i = frame::tilt_to_distance(&c, &p, self.s(*radius), self.s(*d), &n);
+                if let Some(e) = SolveError::from_contact("", "", i.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                Val::S(
+                    i.roots
+                        .get(0)
+                        .ok_or_else(|| err(model, *constraint, ErrorKind::Degenerate, 0.0))?,
+                )
+            }
             Op::ConeTurn { axis, angle, dir } => Val::V3(frame::plane_turn(
                 &self.v3(*axis),
                 self.s(*angle).cos(),

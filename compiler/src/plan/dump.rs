@@ -338,6 +338,22 @@ impl Plan {
                 Op::ConeTurn { axis, angle, dir } => {
                     format!("cone_turn {} about {} to {}", r(dir), r(axis), r(angle))
                 }
+                Op::TiltToDistance {
+                    centre,
+                    point,
+                    radius,
+                    d,
+                    now,
+                    constraint,
+                } => format!(
+                    "tilt_to_distance {} about {} radius {} at {} from {} for {}",
+                    r(now),
+                    r(centre),
+                    r(radius),
+                    r(d),
+                    r(point),
+                    cname(constraint)
+                ),
                 Op::AngleTurn {
                     u,
                     v,

@@ -595,6 +595,17 @@ pub enum Op {
     /// with the unit `axis` (`runtime::frame::plane_turn` with its cosine): on the great circle
     /// through `axis` and `dir`, the point of the cone about `axis` nearest `dir`.
     ConeTurn { axis: Reg, angle: Reg, dir: Reg },
+    /// In space: the angle between the normal of the circle about `centre` of `radius` and the
+    /// direction to `point` at which `point` is `d` from the circle, on the side `now` has it
+    /// (`runtime::frame::tilt_to_distance`), or an error naming `constraint` with the gap.
+    TiltToDistance {
+        centre: Reg,
+        point: Reg,
+        radius: Reg,
+        d: Reg,
+        now: Reg,
+        constraint: ConstraintId,
+    },
     /// In space: `dir` or its opposite, whichever is nearer `near` (a directed line turned
     /// onto a line through two points keeps its sense).
     Aligned { dir: Reg, near: Reg },

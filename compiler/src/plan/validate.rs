@@ -371,6 +371,20 @@ impl Op {
             Op::ConeTurn { axis, angle, dir } => {
                 vec![(*axis, VECTOR), (*angle, SCALAR), (*dir, VECTOR)]
             }
+            Op::TiltToDistance {
+                centre,
+                point,
+                radius,
+                d,
+                now,
+                ..
+            } => vec![
+                (*centre, POINT),
+                (*point, POINT),
+                (*radius, SCALAR),
+                (*d, SCALAR),
+                (*now, VECTOR),
+            ],
             Op::AngleTurn {
                 u, v, axis, angle, ..
             } => vec![
@@ -461,6 +475,7 @@ impl Op {
             | Op::TurnReaching { .. }
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
+            | Op::TiltToDistance { .. }
             | Op::Coordinate { .. } => Ty::Scalar,
             Op::WorldAxis(_)
             | Op::AngleTurn { .. }

@@ -1097,7 +1097,8 @@ impl Builder<'_, Spatial> {
                     return true;
                 }
                 if self.point_known(p) && !self.record(circle).grounded() {
-                    return self.carry_circle(circle, p, d, r);
+                    return self.carry_circle(circle, p, d, r)
+                        || d.is_some_and(|d| self.tilt_circle(circle, p, d, r));
                 }
                 if !self.record(circle).grounded() || self.point_known(p) {
                     return false;
@@ -2845,6 +2846,87 @@ impl Builder<'_, Spatial> {
             }
         };
         self.move_point(center, Target::On(locus), r)
+    }
+
+    /// A sized circle held at its centre, free to turn, tilted the least about its centre so
+    /// that known point `p` lies `d` from it: its normal onto the cone about the direction to
+    /// `p` whose angle puts `p` there (`Op::TiltToDistance`, on the side of the plane `p` is
+    /// on now). It may then only turn about the line from its centre to `p`.
+    fn tilt_circle(
+        &mut self,
+        circle: GeomId,
+        p: GeomId,
+        d: gcs_lang::expr::ExprId,
+        r: &Rel,
+    ) -> bool {
+        let k = self.cluster(circle);
+        let rec = self.clusters[k].record.clone();
+        let (Some(center), Some(normal)) = (
+            self.model.part(circle, Part::Center),
+            self.model.part(circle, Part::Normal),
+        ) else {
+            return false;
+        };
+        if self.clusters[k].geoms != [circle]
+            || rec.turn != Turn::Free
+            || rec.shape.size_free()
+            || !self.point_known(center)
+        {
+            return false;
+        }
+        let (c, at, n) = (self.point(center), self.point(p), self.direction(normal));
+        let radius = self.size_of(circle);
+        let d = self.expr(d);
+        let (cname, pname, con) = (self.name(circle), self.name(p), self.cname(r.constraint));
+        let words = format!("the direction from the centre of {cname} to {pname}");
+        let toward = self.value(Op::DirectionTo { from: c, to: at }, Ty::Vector, words);
+        let words = format!(
+            "the angle from {cname}'s normal to {pname} that puts {pname} {} from it",
+            self.word(d)
+        );
+        let angle = self.value(
+            Op::TiltToDistance {
+                centre: c,
+                point: at,
+                radius,
+                d,
+                now: n,
+                constraint: r.constraint,
+            },
+            Ty::Scalar,
+            words,
+        );
+        let words = format!("the normal nearest {}'s at that angle", self.name(normal));
+        let to = self.value(
+            Op::ConeTurn {
+                axis: toward,
+                angle,
+                dir: n,
+            },
+            Ty::Vector,
+            words,
+        );
+        let explain = format!(
+            "Tilt {cname} the least about its centre so that {pname} lies {} from it ({con}); it may then only turn about the line from its centre to {pname}.",
+            self.word(d)
+        );
+        self.emit(
+            Op::RotateDir {
+                geoms: vec![circle],
+                pivot: c,
+                axis: RotationAxis::Shortest,
+                from: n,
+                to,
+            },
+            None,
+            self.satisfies(r),
+            explain,
+        );
+        self.clusters[k].record.turn = Turn::Axis {
+            axis: toward,
+            feature: None,
+        };
+        true
     }
 
     fn circle_through(&mut self, circle: GeomId, p: GeomId, r: &Rel) -> bool {
