@@ -891,40 +891,14 @@ impl Builder<'_, Spatial> {
             } => {
                 // At a distance from a known line: on the cylinder about it.
                 if self.point_known(base) && self.dir_known(dir) && !self.point_known(p) {
-                    let (b, d) = (self.point(base), self.direction(dir));
-                    let radius = self.length(l);
-                    let words = format!(
-                        "the cylinder of radius {} about the line through {} along {}",
-                        self.word(radius),
-                        self.name(base),
-                        self.name(dir)
-                    );
-                    let op = Op::Cylinder {
-                        point: b,
-                        dir: d,
-                        radius,
-                    };
-                    let c = self.value(op, Ty::Cylinder, words);
+                    let c = self.cylinder_about(base, dir, l);
                     return self.move_point(p, Target::On(Locus::Cylinder(c)), r);
                 }
                 // The line moves, its direction known: its point slides onto the cylinder of
                 // that radius about the line through the known point along it (a point sliding
                 // along the line moves nothing).
                 if self.point_known(p) && self.dir_known(dir) && self.together(base, dir) {
-                    let (x, d) = (self.point(p), self.direction(dir));
-                    let radius = self.length(l);
-                    let words = format!(
-                        "the cylinder of radius {} about the line through {} along {}",
-                        self.word(radius),
-                        self.name(p),
-                        self.name(dir)
-                    );
-                    let op = Op::Cylinder {
-                        point: x,
-                        dir: d,
-                        radius,
-                    };
-                    let c = self.value(op, Ty::Cylinder, words);
+                    let c = self.cylinder_about(p, dir, l);
                     // Its point held in a plane that holds its direction (a line in a circle's
                     // plane): the plane cuts the cylinder in two lines along the direction, and
                     // the point goes to the nearer of the branch's.
@@ -2238,6 +2212,25 @@ impl Builder<'_, Spatial> {
             joint if still => self.joint_locus(&joint, k),
             _ => None,
         }
+    }
+
+    /// The cylinder of radius `length` about the line through known point `at` along known
+    /// direction `dir`: where a point at that distance from the line lies.
+    fn cylinder_about(&mut self, at: GeomId, dir: GeomId, length: Length) -> Reg {
+        let (point, d) = (self.point(at), self.direction(dir));
+        let radius = self.length(length);
+        let words = format!(
+            "the cylinder of radius {} about the line through {} along {}",
+            self.word(radius),
+            self.name(at),
+            self.name(dir)
+        );
+        let op = Op::Cylinder {
+            point,
+            dir: d,
+            radius,
+        };
+        self.value(op, Ty::Cylinder, words)
     }
 
     /// The plane that holds point `base` (its record's locus) when that plane is known to hold
