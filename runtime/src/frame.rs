@@ -1377,6 +1377,39 @@ pub fn tilt_to_distance(
     }
 }
 
+/// The unsigned angle between a line through `from` and the direction from `from` to `to` at
+/// which the line passes `distance` from `to`: `asin(distance / L)`, `L` the distance between
+/// the points, or its supplement when `now` (the line's direction now) points away from `to`,
+/// so that the line keeps its sense.
+/// - `Crossing`: that angle, in `[0, π]`.
+/// - `Disjoint { gap }`: the distance exceeds `L` by `gap` (no line through `from` is that far).
+/// - `ZeroRadius`: the points coincide.
+pub fn passing_angle(
+    from: &Point3<f64>,
+    to: &Point3<f64>,
+    distance: f64,
+    now: &Vector3<f64>,
+) -> crate::Intersection<f64, 1> {
+    use crate::{Contact, Intersection, Roots};
+    let w = to - from;
+    let l = w.norm();
+    if l.is_nan() || distance.is_nan() || l <= tol::LENGTH_REL * tol::scale(&[l, distance]) {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    if distance > l {
+        return Intersection::none(Contact::Disjoint { gap: distance - l });
+    }
+    let d = distance.max(0.0);
+    let along = ((l - d) * (l + d)).sqrt();
+    let along = if now.dot(&w) < 0.0 { -along } else { along };
+    let mut roots = Roots::new();
+    roots.push(d.atan2(along));
+    Intersection {
+        roots,
+        contact: Contact::Crossing,
+    }
+}
+
 /// The normal of least turn from `normal` that makes the cosine `c` (in [-1, 1]) with the unit
 /// direction `w`: on the great circle through `w` and `normal`, or about any axis across `w`
 /// when `normal` is along it.
@@ -1480,6 +1513,39 @@ mod tilt_tests {
         assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 0.5).abs() < 1e-12));
         assert_eq!(
             tilt_to_distance(&c, &c, 1.0, 1.0, &w).contact,
+            Contact::ZeroRadius
+        );
+    }
+}
+
+#[cfg(test)]
+mod passing_tests {
+    use super::*;
+    use crate::Contact;
+
+    /// A line through `from` at the angle found from the direction to `to` passes at the
+    /// distance asked, keeping the sense `now` has.
+    #[test]
+    fn a_line_at_the_passing_angle_passes_at_the_distance() {
+        let (from, to) = (Point3::new(0.5, -1.0, 2.0), Point3::new(2.0, 3.0, -1.0));
+        let w = (to - from).normalize();
+        let across = w.cross(&Vector3::new(0.2, 0.7, 0.1)).normalize();
+        for d in [0.0, 0.3, 2.5, (to - from).norm()] {
+            for now in [w, -w] {
+                let i = passing_angle(&from, &to, d, &now);
+                assert_eq!(i.contact, Contact::Crossing);
+                let a = i.roots.get(0).unwrap_or(f64::NAN);
+                let dir = w * a.cos() + across * a.sin();
+                let dist = (to - from).cross(&dir).norm();
+                assert!((dist - d).abs() < 1e-14, "{d}: {dist}");
+                assert!(dir.dot(&now) >= -1e-15);
+            }
+        }
+        let l = (to - from).norm();
+        let i = passing_angle(&from, &to, l + 0.5, &w);
+        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 0.5).abs() < 1e-12));
+        assert_eq!(
+            passing_angle(&from, &from, 1.0, &w).contact,
             Contact::ZeroRadius
         );
     }

@@ -753,6 +753,25 @@ impl Solve<'_> {
                 let code = format!("frame::aligned(&{}, &{})", self.r(*dir), self.r(*near));
                 self.define_pure(w, r, "aligned", &code);
             }
+            Op::PassingAngle {
+                from,
+                to,
+                d,
+                now,
+                constraint,
+            } => {
+                let passing = self.names.fresh("passing");
+                w.line(&format!(
+                    "let {passing} = frame::passing_angle(&{}, &{}, {}, &{});",
+                    self.r(*from),
+                    self.r(*to),
+                    self.r(*d),
+                    self.r(*now)
+                ));
+                self.fail_on_contact(w, *constraint, &passing, None);
+                let code = format!("{passing}.roots.get(0){}", self.or_degenerate(i));
+                self.define(w, r, "passing_angle", &code);
+            }
             Op::TiltToDistance {
                 centre,
                 point,

@@ -405,6 +405,7 @@ impl Solve<'_> {
             | Op::AngleTurn { .. }
             | Op::ConeTurn { .. }
             | Op::TiltToDistance { .. }
+            | Op::PassingAngle { .. }
             | Op::Aligned { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }

@@ -1137,6 +1137,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
             | Op::AngleTurn { .. }
             | Op::ConeTurn { .. }
             | Op::TiltToDistance { .. }
+            | Op::PassingAngle { .. }
             | Op::Aligned { .. }
             | Op::Coordinate { .. }
             | Op::PointAt { .. }

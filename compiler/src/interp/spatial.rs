@@ -192,6 +192,24 @@ impl Machine<'_, '_, D3> {
                 Val::S(self.finite(i, advance)?)
             }
             Op::Aligned { dir, near } => Val::V3(frame::aligned(&self.v3(*dir), &self.v3(*near))),
+            Op::PassingAngle {
+                from,
+                to,
+                d,
+                now,
+                constraint,
+            } => {
+                let (a, b, n) = (self.p3(*from), self.p3(*to), self.v3(*now));
+                let i = frame::passing_angle(&a, &b, self.s(*d), &n);
+                if let Some(e) = SolveError::from_contact("", "", i.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                Val::S(
+                    i.roots
+                        .get(0)
+                        .ok_or_else(|| err(model, *constraint, ErrorKind::Degenerate, 0.0))?,
+                )
+            }
             Op::TiltToDistance {
                 centre,
                 point,

@@ -338,6 +338,20 @@ impl Plan {
                 Op::ConeTurn { axis, angle, dir } => {
                     format!("cone_turn {} about {} to {}", r(dir), r(axis), r(angle))
                 }
+                Op::PassingAngle {
+                    from,
+                    to,
+                    d,
+                    now,
+                    constraint,
+                } => format!(
+                    "passing_angle {} from {} to {} at {} for {}",
+                    r(now),
+                    r(from),
+                    r(to),
+                    r(d),
+                    cname(constraint)
+                ),
                 Op::TiltToDistance {
                     centre,
                     point,

@@ -606,6 +606,16 @@ pub enum Op {
         now: Reg,
         constraint: ConstraintId,
     },
+    /// In space: the unsigned angle from the direction `from` to `to` at which a line through
+    /// `from` passes `d` from `to`, keeping the sense of `now` (`runtime::frame::passing_angle`),
+    /// or an error naming `constraint` with the gap.
+    PassingAngle {
+        from: Reg,
+        to: Reg,
+        d: Reg,
+        now: Reg,
+        constraint: ConstraintId,
+    },
     /// In space: `dir` or its opposite, whichever is nearer `near` (a directed line turned
     /// onto a line through two points keeps its sense).
     Aligned { dir: Reg, near: Reg },

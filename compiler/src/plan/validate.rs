@@ -371,6 +371,9 @@ impl Op {
             Op::ConeTurn { axis, angle, dir } => {
                 vec![(*axis, VECTOR), (*angle, SCALAR), (*dir, VECTOR)]
             }
+            Op::PassingAngle {
+                from, to, d, now, ..
+            } => vec![(*from, POINT), (*to, POINT), (*d, SCALAR), (*now, VECTOR)],
             Op::TiltToDistance {
                 centre,
                 point,
@@ -476,6 +479,7 @@ impl Op {
             | Op::HelixAdvance { .. }
             | Op::HelixTurn { .. }
             | Op::TiltToDistance { .. }
+            | Op::PassingAngle { .. }
             | Op::Coordinate { .. } => Ty::Scalar,
             Op::WorldAxis(_)
             | Op::AngleTurn { .. }

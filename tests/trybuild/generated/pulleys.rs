@@ -50,6 +50,10 @@ impl Default for Params {
 /// Which assembly: one field per branch variable, each an index with a geometric meaning.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
+    /// `tangent_arm_idler`:
+    /// - 0: arm.dir turned counter-clockwise about idler.normal from its turn nearest the direction to idler.center
+    /// - 1: turned clockwise from there
+    pub tangent_arm_idler: u8,
     /// `tangent_roller_drive`:
     /// - 0: where the sphere about drive.center of radius the radius of roller plus the radius of drive and the plane through drive.center normal to roller.normal meet
     pub tangent_roller_drive: u8,
@@ -76,6 +80,7 @@ impl Branches {
     /// Sets the branch variable called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, index: u8) -> bool {
         match name {
+            "tangent_arm_idler" => self.tangent_arm_idler = index,
             "tangent_roller_drive" => self.tangent_roller_drive = index,
             "tangent_roller_idler" => self.tangent_roller_idler = index,
             "perpendicular_guard_belt" => self.perpendicular_guard_belt = index,
@@ -91,6 +96,7 @@ impl Default for Branches {
     /// The sketch's assembly.
     fn default() -> Self {
         Branches {
+            tangent_arm_idler: 1,
             tangent_roller_drive: 0,
             tangent_roller_idler: 1,
             perpendicular_guard_belt: 1,
@@ -103,8 +109,6 @@ impl Default for Branches {
 /// The degrees of freedom the analysis had to default: where an iteration starts, or the value of a motion the constraints leave free.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Defaults {
-    /// `arm_spin_angle`: the turn of arm about idler.normal, from where the constraints leave it; the sketch's value is 0.0.
-    pub arm_spin_angle: f64,
     /// `belt_spin_angle`: the turn of belt about drive.normal, from where the constraints leave it; the sketch's value is 0.0.
     pub belt_spin_angle: f64,
 }
@@ -114,7 +118,6 @@ impl Defaults {
     /// Sets the default called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
         match name {
-            "arm_spin_angle" => self.arm_spin_angle = value,
             "belt_spin_angle" => self.belt_spin_angle = value,
             _ => return false,
         }
@@ -126,7 +129,6 @@ impl Default for Defaults {
     /// The sketch's values.
     fn default() -> Self {
         Defaults {
-            arm_spin_angle: 0.0,
             belt_spin_angle: 0.0,
         }
     }
@@ -342,7 +344,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[
         ("gap", params.gap),
-        ("arm_spin_angle", defaults.arm_spin_angle),
         ("belt_spin_angle", defaults.belt_spin_angle),
     ])?;
     // The sketch: where every geom starts.
@@ -429,7 +430,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // radius(roller) = 2 (pulleys.gcs:21)
     let roller_radius = 2.0;
 
-    // tangent(roller, drive) (pulleys.gcs:22)
+    // tangent(arm, idler) (pulleys.gcs:27)
     let turned_2 = frame::plane_turn(
         &Vector3::new(0.0, 0.6, 0.8),
         f64::cos(std::f64::consts::FRAC_PI_2),
@@ -459,7 +460,65 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             residual,
         ));
     }
-    let turned_3 = frame::plane_turn(
+    let arm_dir = arm.x_axis();
+    let direction = frame::unit3(&(Point3::new(5.0, 0.8, -0.6) - Point3::new(2.0, -2.4, 1.8)))
+        .ok_or_else(|| {
+            SolveError::new(
+                "tangent_arm_idler",
+                "tangent(arm, idler)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let passing = frame::passing_angle(
+        &Point3::new(2.0, -2.4, 1.8),
+        &Point3::new(5.0, 0.8, -0.6),
+        idler_radius,
+        &arm_dir,
+    );
+    if let Some(e) =
+        SolveError::from_contact("tangent_arm_idler", "tangent(arm, idler)", passing.contact)
+    {
+        return Err(e);
+    }
+    let passing_angle = passing.roots.get(0).ok_or_else(|| {
+        SolveError::new(
+            "tangent_arm_idler",
+            "tangent(arm, idler)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let turns = frame::turns_to_angle(
+        &direction,
+        &arm_dir,
+        &Vector3::new(0.0, 0.6, 0.8),
+        passing_angle,
+    );
+    if let Some(e) =
+        SolveError::from_contact("tangent_arm_idler", "tangent(arm, idler)", turns.contact)
+    {
+        return Err(e);
+    }
+    let turned_3 = turns
+        .roots
+        .get(usize::from(branches.tangent_arm_idler))
+        .ok_or_else(|| {
+            SolveError::new(
+                "tangent_arm_idler",
+                "tangent(arm, idler)",
+                ErrorKind::NoSuchBranch,
+                turns.roots.len() as f64,
+            )
+        })?;
+    let turn_3 = frame::rotation_about_axis(
+        &Vector3::new(0.0, 0.6, 0.8),
+        frame::signed_angle3(&arm_dir, &turned_3, &Vector3::new(0.0, 0.6, 0.8)),
+    );
+    arm.rotate_about_by(&Point3::new(2.0, -2.4, 1.8), &turn_3);
+
+    // tangent(roller, drive) (pulleys.gcs:22)
+    let turned_4 = frame::plane_turn(
         &Vector3::new(0.0, 0.6, 0.8),
         f64::cos(std::f64::consts::FRAC_PI_2),
         &Vector3::new(
@@ -468,20 +527,20 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             -0.07148713237105839,
         ),
     );
-    let turn_3 = frame::rotation_between3(
+    let turn_4 = frame::rotation_between3(
         &Vector3::new(
             0.9928768384869221,
             0.09531617649474451,
             -0.07148713237105839,
         ),
-        &turned_3,
+        &turned_4,
         &frame::perpendicular(&Vector3::new(
             0.9928768384869221,
             0.09531617649474451,
             -0.07148713237105839,
         )),
     );
-    belt.rotate_about_by(&Point3::new(0.0, 0.8, -0.6), &turn_3);
+    belt.rotate_about_by(&Point3::new(0.0, 0.8, -0.6), &turn_4);
     let normal_2 = Vector3::new(0.0, 0.6, 0.8);
     let plane_2 = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal_2);
     let belt_origin = belt.origin;
@@ -489,12 +548,12 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let shift_2 = nearest_2 - belt_origin;
     belt.translate(&shift_2);
     let aligned = frame::aligned(&Vector3::new(0.0, 0.6, 0.8), &Vector3::new(0.0, 0.6, 0.8));
-    let turn_4 = frame::rotation_between3(
+    let turn_5 = frame::rotation_between3(
         &Vector3::new(0.0, 0.6, 0.8),
         &aligned,
         &frame::perpendicular(&Vector3::new(0.0, 0.6, 0.8)),
     );
-    roller.rotate_about_by(&Point3::new(2.5, -1.8, 1.35), &turn_4);
+    roller.rotate_about_by(&Point3::new(2.5, -1.8, 1.35), &turn_5);
     let roller_normal = roller.z_axis();
     let normal_3 = frame::unit3(&roller_normal).ok_or_else(|| {
         SolveError::new(
@@ -583,59 +642,24 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let shift_5 = tangent_roller_idler - roller_center_3;
     roller.translate(&shift_5);
 
-    // tangent(arm, idler) (pulleys.gcs:27)
+    // perpendicular(guard, belt) (pulleys.gcs:29)
+    let belt_origin_2 = belt.origin;
 
-    // No loop is rigid here: vary `arm_spin_angle` until `tangent_arm_idler` closes (an outer iteration).
-    let mut trial = [defaults.arm_spin_angle];
+    // No loop is rigid here: vary `belt_spin_angle` until `tangent_belt_idler` closes (an outer iteration).
+    let mut trial = [defaults.belt_spin_angle];
     outer
         .iterate(
             &mut trial,
             &[1.0],
             &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
             |trial, errors| {
-                let mut arm = arm;
-                let turn_5 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial[0]);
-                arm.rotate_about_by(&Point3::new(2.0, -2.4, 1.8), &turn_5);
-                let arm_dir = arm.x_axis();
-                let error = (Point3::new(5.0, 0.8, -0.6) - Point3::new(2.0, -2.4, 1.8))
-                    .cross(&arm_dir)
-                    .norm()
-                    - idler_radius;
-                errors[0] = error;
-                Ok(())
-            },
-        )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "tangent_arm_idler",
-                "tangent(arm, idler)",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
-    trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
-    let turn_6 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial[0]);
-    arm.rotate_about_by(&Point3::new(2.0, -2.4, 1.8), &turn_6);
-
-    // perpendicular(guard, belt) (pulleys.gcs:29)
-    let belt_origin_2 = belt.origin;
-
-    // No loop is rigid here: vary `belt_spin_angle` until `tangent_belt_idler` closes (an outer iteration).
-    let mut trial_2 = [defaults.belt_spin_angle];
-    outer
-        .iterate(
-            &mut trial_2,
-            &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
-            |trial_2, errors_2| {
                 let mut belt = belt;
                 let mut guard = guard;
-                let turn_7 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial_2[0]);
-                belt.rotate_about_by(&belt_origin_2, &turn_7);
+                let turn_6 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial[0]);
+                belt.rotate_about_by(&belt_origin_2, &turn_6);
                 let belt_dir = belt.x_axis();
                 let guard_dir = guard.x_axis();
-                let turns = frame::turns_to_angle(
+                let turns_2 = frame::turns_to_angle(
                     &belt_dir,
                     &guard_dir,
                     &Vector3::new(0.0, 0.6, 0.8),
@@ -644,11 +668,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 if let Some(e) = SolveError::from_contact(
                     "perpendicular_guard_belt",
                     "perpendicular(guard, belt)",
-                    turns.contact,
+                    turns_2.contact,
                 ) {
                     return Err(e);
                 }
-                let turned_4 = turns
+                let turned_5 = turns_2
                     .roots
                     .get(usize::from(branches.perpendicular_guard_belt))
                     .ok_or_else(|| {
@@ -656,15 +680,15 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                             "perpendicular_guard_belt",
                             "perpendicular(guard, belt)",
                             ErrorKind::NoSuchBranch,
-                            turns.roots.len() as f64,
+                            turns_2.roots.len() as f64,
                         )
                     })?;
                 let guard_origin_2 = guard.origin;
-                let turn_8 = frame::rotation_about_axis(
+                let turn_7 = frame::rotation_about_axis(
                     &Vector3::new(0.0, 0.6, 0.8),
-                    frame::signed_angle3(&guard_dir, &turned_4, &Vector3::new(0.0, 0.6, 0.8)),
+                    frame::signed_angle3(&guard_dir, &turned_5, &Vector3::new(0.0, 0.6, 0.8)),
                 );
-                guard.rotate_about_by(&guard_origin_2, &turn_8);
+                guard.rotate_about_by(&guard_origin_2, &turn_7);
                 let guard_dir_2 = guard.x_axis();
                 // distance_guard_drive: a distance is zero or more.
                 if params.gap < 0.0 {
@@ -761,11 +785,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let shift_7 = nearest_6 - belt_origin_3;
                 belt.translate(&shift_7);
                 let belt_dir_2 = belt.x_axis();
-                let error_2 = (Point3::new(5.0, 0.8, -0.6) - nearest_6)
+                let error = (Point3::new(5.0, 0.8, -0.6) - nearest_6)
                     .cross(&belt_dir_2)
                     .norm()
                     - idler_radius;
-                errors_2[0] = error_2;
+                errors[0] = error;
                 Ok(())
             },
         )
@@ -778,12 +802,12 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 residual,
             ),
         })?;
-    trial_2[0] = gcs_runtime::num::wrap_angle(trial_2[0]);
-    let turn_9 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial_2[0]);
-    belt.rotate_about_by(&belt_origin_2, &turn_9);
+    trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
+    let turn_8 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial[0]);
+    belt.rotate_about_by(&belt_origin_2, &turn_8);
     let belt_dir_3 = belt.x_axis();
     let guard_dir_3 = guard.x_axis();
-    let turns_2 = frame::turns_to_angle(
+    let turns_3 = frame::turns_to_angle(
         &belt_dir_3,
         &guard_dir_3,
         &Vector3::new(0.0, 0.6, 0.8),
@@ -792,11 +816,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     if let Some(e) = SolveError::from_contact(
         "perpendicular_guard_belt",
         "perpendicular(guard, belt)",
-        turns_2.contact,
+        turns_3.contact,
     ) {
         return Err(e);
     }
-    let turned_5 = turns_2
+    let turned_6 = turns_3
         .roots
         .get(usize::from(branches.perpendicular_guard_belt))
         .ok_or_else(|| {
@@ -804,15 +828,15 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 "perpendicular_guard_belt",
                 "perpendicular(guard, belt)",
                 ErrorKind::NoSuchBranch,
-                turns_2.roots.len() as f64,
+                turns_3.roots.len() as f64,
             )
         })?;
     let guard_origin_4 = guard.origin;
-    let turn_10 = frame::rotation_about_axis(
+    let turn_9 = frame::rotation_about_axis(
         &Vector3::new(0.0, 0.6, 0.8),
-        frame::signed_angle3(&guard_dir_3, &turned_5, &Vector3::new(0.0, 0.6, 0.8)),
+        frame::signed_angle3(&guard_dir_3, &turned_6, &Vector3::new(0.0, 0.6, 0.8)),
     );
-    guard.rotate_about_by(&guard_origin_4, &turn_10);
+    guard.rotate_about_by(&guard_origin_4, &turn_9);
 
     // distance(guard, drive) = gap (pulleys.gcs:30)
     let guard_dir_4 = guard.x_axis();
@@ -944,8 +968,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         guard,
         branches: *branches,
         defaults: Defaults {
-            arm_spin_angle: trial[0],
-            belt_spin_angle: trial_2[0],
+            belt_spin_angle: trial[0],
         },
     })
 }
@@ -955,7 +978,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 pub const MAX_ASSEMBLIES: usize = 64;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found. It is complete
-/// only if the search were exhaustive: this model's starts from a grid, which is not.
+/// when every branch combination was solved, its iteration's error scanned over a turn,
+/// and neither the scan nor the list overflowed.
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
@@ -985,26 +1009,31 @@ fn same_assembly(a: &Solution, b: &Solution) -> bool {
 /// Never panics, allocates nothing.
 ///
 /// Each combination of the branch variables is solved.
-/// Where the plan iterates, it is solved from a grid of 12 values of each default it
-/// varies (a turn for an angle, the given value give or take the model's size for a length):
-/// a search that is not known to find every assembly, as `Assemblies::is_complete` says.
+/// The outer iteration's error is scanned over a whole turn of `belt_spin_angle`,
+/// and the plan solved from each root; the runtime's `outer::Scan` says which roots a scan
+/// finds. The other defaults (free motions) keep the values given, which every assembly shares.
 #[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
-    let mut found = Assemblies::new(false);
-    for combination in 0..16usize {
+    let mut found = Assemblies::new(true);
+    for combination in 0..32usize {
         let branches = Branches {
-            tangent_roller_idler: (combination % 2) as u8,
-            perpendicular_guard_belt: (combination / 2 % 2) as u8,
-            distance_guard_drive: (combination / 4 % 2) as u8,
-            tangent_belt_drive: (combination / 8 % 2) as u8,
+            tangent_arm_idler: (combination % 2) as u8,
+            tangent_roller_idler: (combination / 2 % 2) as u8,
+            perpendicular_guard_belt: (combination / 4 % 2) as u8,
+            distance_guard_drive: (combination / 8 % 2) as u8,
+            tangent_belt_drive: (combination / 16 % 2) as u8,
             ..Branches::default()
         };
-        for cell in 0..144usize {
-            let mut start = *defaults;
-            start.arm_spin_angle = -std::f64::consts::PI
-                + 2.0 * std::f64::consts::PI * ((cell / 12 % 12) as f64 / 12.0);
-            start.belt_spin_angle =
-                -std::f64::consts::PI + 2.0 * std::f64::consts::PI * ((cell % 12) as f64 / 12.0);
+        let mut scan = gcs_runtime::outer::Scan::default();
+        // The scan ends this solve at the iteration, with the roots listed.
+        let _ = assemble(params, &branches, defaults, &mut scan);
+        if scan.truncated() {
+            found.mark_incomplete();
+        }
+        for &root in scan.roots() {
+            let start = Defaults {
+                belt_spin_angle: root,
+            };
             if let Ok(s) = solve(params, &branches, &start) {
                 found.push(s, same_assembly);
             }

@@ -907,6 +907,11 @@ impl Builder<'_, Spatial> {
                     }
                     return self.move_point(base, Target::On(Locus::Cylinder(c)), r);
                 }
+                // The line turns about an axis through a point of it that is known: it turns
+                // until it passes at the distance from the known point.
+                if self.point_known(p) && !self.dir_known(dir) && self.together(base, dir) {
+                    return self.turn_line_past(base, dir, p, l, r);
+                }
                 false
             }
             Relation::PointLine { p, base, dir, .. } => {
@@ -1339,6 +1344,84 @@ impl Builder<'_, Spatial> {
             words,
         );
         self.turn_onto(v, target, r, true)
+    }
+
+    /// A line (its point `base`, direction `dir`) that only turns about an axis through a known
+    /// point of it (`base` itself, or the point its cluster pivots about, another point of the
+    /// line), turned about that axis until it passes `length` from known point `p`: its
+    /// direction at the angle from the direction to `p` whose sine is the distance over theirs
+    /// (`Op::PassingAngle`, keeping its sense), where its turn meets that cone (a branch).
+    fn turn_line_past(
+        &mut self,
+        base: GeomId,
+        dir: GeomId,
+        p: GeomId,
+        length: Length,
+        r: &Rel,
+    ) -> bool {
+        let k = self.cluster(dir);
+        let rec = self.clusters[k].record.clone();
+        let Turn::Axis { axis, .. } = rec.turn else {
+            return false;
+        };
+        let line = self.model.top_level_of(base);
+        let through = match rec.trans {
+            _ if self.point_known(base) => self.point(base),
+            Trans::Pivot { at, feature } if self.model.top_level_of(feature) == line => at,
+            _ => return false,
+        };
+        if !matches!(
+            self.model.geoms[line].kind,
+            GeomKind::Line | GeomKind::Segment
+        ) {
+            return false;
+        }
+        let (to, now) = (self.point(p), self.direction(dir));
+        let d = self.length(length);
+        let (dname, pname) = (self.name(dir), self.name(p));
+        let words = format!("the direction from the line's pivot to {pname}");
+        let toward = self.value(Op::DirectionTo { from: through, to }, Ty::Vector, words);
+        let words = format!(
+            "the angle from that direction at which the line passes {} from {pname}",
+            self.word(d)
+        );
+        let angle = self.value(
+            Op::PassingAngle {
+                from: through,
+                to,
+                d,
+                now,
+                constraint: r.constraint,
+            },
+            Ty::Scalar,
+            words,
+        );
+        let meanings = vec![
+            format!(
+                "{dname} turned counter-clockwise about {} from its turn nearest the direction to {pname}",
+                self.word(axis)
+            ),
+            "turned clockwise from there".to_string(),
+        ];
+        let branch = self.branch(r.constraint, meanings);
+        let words = format!(
+            "where {dname} turns about {} to pass {} from {pname}",
+            self.word(axis),
+            self.word(d)
+        );
+        let target = self.value(
+            Op::AngleTurn {
+                u: toward,
+                v: now,
+                axis,
+                angle,
+                branch,
+                constraint: r.constraint,
+            },
+            Ty::Vector,
+            words,
+        );
+        self.turn_onto(dir, target, r, true)
     }
 
     /// A plane `q` (its normal `normal`) to be at signed distance `d` from known point `p`,
