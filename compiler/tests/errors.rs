@@ -507,3 +507,33 @@ fn a_triad_that_cannot_close_names_its_constraint_and_the_residual() {
         assert!(e.magnitude > 1.0, "off by {}: {e}", e.magnitude);
     }
 }
+
+/// A line tangent to two pulleys in parallel planes 1 apart cannot lie in both: the second
+/// tangency is refused naming it and the gap between the planes, not as a degenerate turn
+/// about a normal parallel to itself; in one plane, the same model solves.
+#[test]
+fn a_line_tangent_to_pulleys_in_parallel_planes_names_the_gap() {
+    let model = |height: &str| {
+        load(&format!(
+            "space 3d;
+fixed circle A = center (0, 0, 0) radius 1 normal (0, 0, 1);
+fixed circle B = center (4, 0, {height}) radius 1 normal (0, 0, 1);
+line L = (0, 1, 0) -> (4, 1, 0);
+tangent(L, A);
+tangent(L, B);
+"
+        ))
+    };
+    let apart = model("1");
+    let a = analyse(&apart).expect("analyse");
+    let e = solve_defaults(&apart, &a).expect_err("the planes are 1 apart");
+    assert_eq!(e.label.as_ref(), "tangent_L_B", "{e}");
+    assert_eq!(e.kind, ErrorKind::NoIntersection, "{e}");
+    assert!((e.magnitude - 1.0).abs() < 1e-12, "{e}");
+    let flat = model("0");
+    let a = analyse(&flat).expect("analyse");
+    let s = solve_defaults(&flat, &a).expect("one plane");
+    let worst =
+        gcs_compiler::verify::max_residual(&gcs_compiler::verify::residuals(&flat, &s, &[]));
+    assert!(worst < 1e-12, "{worst}");
+}

@@ -284,47 +284,51 @@ fn fixed_plane(model: &Model, c: GeomId) -> Option<([f64; 3], [f64; 3])> {
         .then(|| (centre, [n[0] / len, n[1] / len, n[2] / len]))
 }
 
-/// Whether fixed circles `a` and `b` lie in one plane, their constants say, to rounding.
-fn coplanar(model: &Model, a: GeomId, b: GeomId) -> bool {
+/// How fixed circles `a` and `b` lie, their constants say, to rounding: `Some(true)` in one
+/// plane, `Some(false)` in parallel planes apart, `None` otherwise.
+fn coplanar(model: &Model, a: GeomId, b: GeomId) -> Option<bool> {
     let (Some((ca, na)), Some((cb, nb))) = (fixed_plane(model, a), fixed_plane(model, b)) else {
-        return false;
+        return None;
     };
     let cross = [
         na[1] * nb[2] - na[2] * nb[1],
         na[2] * nb[0] - na[0] * nb[2],
         na[0] * nb[1] - na[1] * nb[0],
     ];
+    if (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt() > 1e-12 {
+        return None;
+    }
     let w = [cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]];
     let scale = 1.0 + ca.iter().chain(&cb).fold(0.0f64, |m, x| m.max(x.abs()));
     let height = (na[0] * w[0] + na[1] * w[1] + na[2] * w[2]).abs();
-    (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt() <= 1e-12
-        && height <= 1e-12 * scale
+    Some(height <= 1e-12 * scale)
 }
 
 /// For a distance or tangency between `x` (a line, segment or circle) and fixed circle `c`:
-/// whether another such constraint ties `x` to a fixed circle in `c`'s plane first (by name,
-/// so that the order of statements does not matter). Its relations already put `x` in that
-/// plane, which is `c`'s too: this constraint adds only its distance (its own coplanarity
-/// would be a turn about a normal parallel to itself, or a plane meeting itself, which no
-/// construction can make).
-fn in_plane_already(model: &Model, x: GeomId, c: GeomId) -> bool {
+/// how another such constraint, tying `x` to a fixed circle parallel to `c` first (by name, so
+/// that the order of statements does not matter), has already placed `x`: `Some(true)` in
+/// `c`'s plane (this constraint adds only its distance), `Some(false)` square to `c`'s normal
+/// (it adds its plane and its distance). Its own direction relation would be a turn about a
+/// normal parallel to itself, and its plane in the first case a plane meeting itself, which no
+/// construction can make.
+fn placed_already(model: &Model, x: GeomId, c: GeomId) -> Option<bool> {
     use GeomKind as G;
     let name = |g: GeomId| model.geoms[g].name.as_str();
-    (model.constraints.iter()).any(|(_, other)| {
-        let (Some(&p), Some(&q)) = (other.args.first(), other.args.get(1)) else {
-            return false;
-        };
-        let circle = match (p == x, q == x) {
-            (true, false) => q,
-            (false, true) => p,
-            _ => return false,
-        };
-        matches!(other.kind, K::Distance | K::Tangent)
-            && model.geoms[circle].kind == G::Circle
-            && circle != c
-            && name(circle) < name(c)
-            && coplanar(model, circle, c)
-    })
+    (model.constraints.iter())
+        .filter_map(|(_, other)| {
+            let (&p, &q) = (other.args.first()?, other.args.get(1)?);
+            let circle = match (p == x, q == x) {
+                (true, false) => q,
+                (false, true) => p,
+                _ => return None,
+            };
+            let earlier = matches!(other.kind, K::Distance | K::Tangent)
+                && model.geoms[circle].kind == G::Circle
+                && circle != c
+                && name(circle) < name(c);
+            earlier.then(|| coplanar(model, circle, c)).flatten()
+        })
+        .max()
 }
 
 /// The distance between the centres of circles `a` and `b` at `gap` (none: tangent), as the
@@ -426,12 +430,15 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 match (line(model, a), model.part(b, Part::Normal)) {
                     (Some((base, dir)), Some(normal)) => {
                         let centre = point(b);
-                        if !in_plane_already(model, a, b) {
+                        let placed = placed_already(model, a, b);
+                        if placed.is_none() {
                             out.push(Relation::Angle {
                                 u: dir,
                                 v: normal,
                                 angle: AngleValue::Const(std::f64::consts::FRAC_PI_2),
                             });
+                        }
+                        if placed != Some(true) {
                             out.push(Relation::PointPlane {
                                 p: base,
                                 base: centre,
@@ -462,12 +469,15 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 match (model.part(a, Part::Normal), model.part(b, Part::Normal)) {
                     (Some(na), Some(nb)) => {
                         let (ca, cb) = (point(a), point(b));
-                        if !in_plane_already(model, a, b) && !in_plane_already(model, b, a) {
+                        let placed = placed_already(model, a, b).max(placed_already(model, b, a));
+                        if placed.is_none() {
                             out.push(Relation::Parallel {
                                 u: na,
                                 v: nb,
                                 sense: 0.0,
                             });
+                        }
+                        if placed != Some(true) {
                             out.push(Relation::PointPlane {
                                 p: cb,
                                 base: ca,
