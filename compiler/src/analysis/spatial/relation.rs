@@ -271,14 +271,10 @@ fn fixed_plane(model: &Model, c: GeomId) -> Option<([f64; 3], [f64; 3])> {
     else {
         return None;
     };
-    let constant = |coords: &[ExprId]| -> Option<[f64; 3]> {
-        if !coords.iter().all(|&e| model.exprs.is_constant(e)) {
-            return None;
-        }
-        let v = |i: usize| coords.get(i).map_or(0.0, |&e| model.exprs.eval(e, &[]));
-        Some([v(0), v(1), v(2)])
-    };
-    let (centre, n) = (constant(center)?, constant(normal)?);
+    let (centre, n) = (
+        super::constant(model, center)?,
+        super::constant(model, normal)?,
+    );
     let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
     (g.fixed && g.owner == Owner::TopLevel && len > 0.0)
         .then(|| (centre, [n[0] / len, n[1] / len, n[2] / len]))
