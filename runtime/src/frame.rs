@@ -1353,7 +1353,7 @@ pub fn tilt_to_distance(
     distance: f64,
     now: &Vector3<f64>,
 ) -> crate::Intersection<f64, 1> {
-    use crate::{Contact, Intersection, Roots};
+    use crate::{Contact, Intersection};
     let w = point - centre;
     let l = w.norm();
     let scale = tol::scale(&[l, radius, distance]);
@@ -1369,12 +1369,7 @@ pub fn tilt_to_distance(
     let rho = ((l * l + radius * radius - distance * distance) / (2.0 * radius)).clamp(0.0, l);
     let h = ((l - rho) * (l + rho)).max(0.0).sqrt();
     let h = if now.dot(&w) < 0.0 { -h } else { h };
-    let mut roots = Roots::new();
-    roots.push(rho.atan2(h));
-    Intersection {
-        roots,
-        contact: Contact::Crossing,
-    }
+    crate::intersect3d::one(rho.atan2(h), Contact::Crossing)
 }
 
 /// The unsigned angle between a line through `from` and the direction from `from` to `to` at
@@ -1390,7 +1385,7 @@ pub fn passing_angle(
     distance: f64,
     now: &Vector3<f64>,
 ) -> crate::Intersection<f64, 1> {
-    use crate::{Contact, Intersection, Roots};
+    use crate::{Contact, Intersection};
     let w = to - from;
     let l = w.norm();
     if l.is_nan() || distance.is_nan() || l <= tol::LENGTH_REL * tol::scale(&[l, distance]) {
@@ -1402,12 +1397,7 @@ pub fn passing_angle(
     let d = distance.max(0.0);
     let along = ((l - d) * (l + d)).sqrt();
     let along = if now.dot(&w) < 0.0 { -along } else { along };
-    let mut roots = Roots::new();
-    roots.push(d.atan2(along));
-    Intersection {
-        roots,
-        contact: Contact::Crossing,
-    }
+    crate::intersect3d::one(d.atan2(along), Contact::Crossing)
 }
 
 /// The normal of least turn from `normal` that makes the cosine `c` (in [-1, 1]) with the unit

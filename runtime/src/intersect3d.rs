@@ -120,8 +120,9 @@ fn two<T: Copy + Default>(a: T, b: T, contact: Contact) -> Intersection<T, 2> {
     Intersection { roots, contact }
 }
 
+/// One root and its contact.
 #[inline]
-fn one<T: Copy + Default, const N: usize>(a: T, contact: Contact) -> Intersection<T, N> {
+pub(crate) fn one<T: Copy + Default, const N: usize>(a: T, contact: Contact) -> Intersection<T, N> {
     let mut roots = Roots::new();
     roots.push(a);
     Intersection { roots, contact }

@@ -589,6 +589,24 @@ impl Solve<'_> {
         }
     }
 
+    /// Register `r` (of step `i`) as the one root of the intersection `call` returns, named
+    /// `names.0` (the intersection) and `names.1` (the root); a contact without one is an
+    /// error naming constraint `c`.
+    fn only_root(
+        &mut self,
+        w: &mut Writer,
+        (i, r): (usize, Reg),
+        c: ConstraintId,
+        names: (&str, &str),
+        call: &str,
+    ) {
+        let local = self.names.fresh(names.0);
+        w.line(&format!("let {local} = {call};"));
+        self.fail_on_contact(w, c, &local, None);
+        let code = format!("{local}.roots.get(0){}", self.or_degenerate(i));
+        self.define(w, r, names.1, &code);
+    }
+
     /// `.ok_or_else(|| degenerate)?` for step `i`.
     fn or_degenerate(&self, i: usize) -> String {
         format!(".ok_or_else(|| {})?", self.cx.error(i, "Degenerate", "0.0"))
@@ -760,17 +778,14 @@ impl Solve<'_> {
                 now,
                 constraint,
             } => {
-                let passing = self.names.fresh("passing");
-                w.line(&format!(
-                    "let {passing} = frame::passing_angle(&{}, &{}, {}, &{});",
+                let call = format!(
+                    "frame::passing_angle(&{}, &{}, {}, &{})",
                     self.r(*from),
                     self.r(*to),
                     self.r(*d),
                     self.r(*now)
-                ));
-                self.fail_on_contact(w, *constraint, &passing, None);
-                let code = format!("{passing}.roots.get(0){}", self.or_degenerate(i));
-                self.define(w, r, "passing_angle", &code);
+                );
+                self.only_root(w, (i, r), *constraint, ("passing", "passing_angle"), &call);
             }
             Op::TiltToDistance {
                 centre,
@@ -780,18 +795,15 @@ impl Solve<'_> {
                 now,
                 constraint,
             } => {
-                let tilt = self.names.fresh("tilt");
-                w.line(&format!(
-                    "let {tilt} = frame::tilt_to_distance(&{}, &{}, {}, {}, &{});",
+                let call = format!(
+                    "frame::tilt_to_distance(&{}, &{}, {}, {}, &{})",
                     self.r(*centre),
                     self.r(*point),
                     self.r(*radius),
                     self.r(*d),
                     self.r(*now)
-                ));
-                self.fail_on_contact(w, *constraint, &tilt, None);
-                let code = format!("{tilt}.roots.get(0){}", self.or_degenerate(i));
-                self.define(w, r, "tilt_angle", &code);
+                );
+                self.only_root(w, (i, r), *constraint, ("tilt", "tilt_angle"), &call);
             }
             Op::ConeTurn { axis, angle, dir } => {
                 let code = format!(

@@ -2,11 +2,12 @@
 //! the runtime's calls, with what is known at that step (see `facts`) deciding the cheapest
 //! code that gives the same value.
 
+use super::context::Context;
 use super::facts::{ChordRoot, Value};
 use super::names::Namer;
 use super::solve::Solve;
 use super::writer::{float, linear, lit, Writer};
-use crate::plan::{BranchId, Meet, Op, Plan, Reg, Residual, RotationAxis, Step};
+use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis, Step};
 use gcs_lang::expr::{ExprId, ExprNode};
 use gcs_lang::model::{ConstraintId, GeomId};
 
@@ -347,7 +348,7 @@ impl Solve<'_> {
                 self.define(w, r, "radius", &code);
             }
             Op::Nearest { locus, point } => {
-                if !self.cx.d3 && only_turned_toward(self.cx.plan, r) {
+                if !self.cx.d3 && only_turned_toward(self.cx, r) {
                     // Only turns about the circle's centre read it, and they need only the
                     // direction from the centre, which the point itself has: no projection
                     // (its square root and division) on the solve's path.
@@ -1061,8 +1062,9 @@ fn size_noun(model: &gcs_lang::Model, c: ConstraintId) -> &'static str {
 /// the circle's centre read, each turning a point onto it (`RotatePoint`): a turn about the
 /// centre onto a point of a ray from the centre is the same turn wherever on the ray the point
 /// lies, so the turns can aim at the point itself, and the projection is not written.
-pub(super) fn only_turned_toward(plan: &Plan, r: Reg) -> bool {
-    let defined = |reg: Reg| (plan.steps.iter()).find(|s| s.out.is_some_and(|(o, _)| o == reg));
+pub(super) fn only_turned_toward(cx: &Context<'_>, r: Reg) -> bool {
+    let plan = cx.plan;
+    let defined = |reg: Reg| cx.defined_at.get(&reg).map(|&i| &plan.steps[i]);
     let Some(Op::Nearest { locus, .. }) = defined(r).map(|s| &s.op) else {
         return false;
     };

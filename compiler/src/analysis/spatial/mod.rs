@@ -2316,6 +2316,16 @@ impl Builder<'_, Spatial> {
         self.value(op, Ty::Cylinder, words)
     }
 
+    /// Whether a relation has turned direction `dir` square to direction `normal` (a line
+    /// into a circle's plane, `relation::decompose`).
+    fn made_square(&self, dir: GeomId, normal: GeomId) -> bool {
+        self.is_done(&Relation::Angle {
+            u: dir,
+            v: normal,
+            angle: AngleValue::Const(std::f64::consts::FRAC_PI_2),
+        })
+    }
+
     /// The plane that holds point `base` (its record's locus) when that plane is known to hold
     /// direction `dir` too: its normal is a direction a relation already turned `dir` square
     /// to (a line in a circle's plane).
@@ -2338,12 +2348,7 @@ impl Builder<'_, Spatial> {
         let Some(&Op::DirOf(m)) = defined(*normal) else {
             return None;
         };
-        let square = Relation::Angle {
-            u: dir,
-            v: m,
-            angle: AngleValue::Const(std::f64::consts::FRAC_PI_2),
-        };
-        (feature == base && self.is_done(&square)).then_some(q)
+        (feature == base && self.made_square(dir, m)).then_some(q)
     }
 
     /// Moves the line whose point `base` is held in plane `q`, parallel to cylinder `c`'s axis
@@ -2430,12 +2435,9 @@ impl Builder<'_, Spatial> {
         let with_circle = matches!(c.kind, K::Distance | K::Tangent)
             && c.args.first() == Some(&line)
             && (c.args.get(1)).is_some_and(|&b| self.model.geoms[b].kind == GeomKind::Circle);
-        let square = Relation::Angle {
-            u: self.model.dir_feature(line)?,
-            v: normal,
-            angle: AngleValue::Const(std::f64::consts::FRAC_PI_2),
-        };
-        (with_circle && self.is_done(&square) && self.direction(normal) == axis).then_some(q)
+        let dir = self.model.dir_feature(line)?;
+        (with_circle && self.made_square(dir, normal) && self.direction(normal) == axis)
+            .then_some(q)
     }
 
     /// The relation of constraint `r` still to come that `wanted` picks.
@@ -2862,11 +2864,6 @@ impl Builder<'_, Spatial> {
         )
     }
 
-    /// Circle `circle`, its centre held and its radius free, passes through the known point
-    /// `p`: free to turn, it turns the least about its centre so that its plane holds the
-    /// point (its normal onto the cone square to the direction from the centre to the point),
-    /// and may then only turn about that direction; with its normal known, the point must lie
-    /// in its plane (a check). Then it takes the radius that reaches the point.
     /// A sized circle whose normal is known and whose centre is free carried (by the least
     /// translation) to pass through known point `p`, or at distance `d` from it: its centre
     /// goes onto the circle of its radius about `p` in a plane parallel to its own, or onto the
@@ -2973,6 +2970,27 @@ impl Builder<'_, Spatial> {
             words,
         );
         let words = format!("the normal nearest {}'s at that angle", self.name(normal));
+        let explain = format!(
+            "Tilt {cname} the least about its centre so that {pname} lies {} from it ({con}); it may then only turn about the line from its centre to {pname}.",
+            self.word(d)
+        );
+        let satisfies = self.satisfies(r);
+        self.turn_normal_onto_cone(k, (c, n), (toward, angle), words, explain, satisfies);
+        true
+    }
+
+    /// Turns circle cluster `k` (its centre at `c`, its normal `n`) the least about its centre
+    /// so that its normal makes `angle` with `toward`: onto the cone about `toward` nearest it
+    /// (`Op::ConeTurn`). It may then only turn about `toward`.
+    fn turn_normal_onto_cone(
+        &mut self,
+        k: usize,
+        (c, n): (Reg, Reg),
+        (toward, angle): (Reg, Reg),
+        words: String,
+        explain: String,
+        satisfies: Vec<ConstraintId>,
+    ) {
         let to = self.value(
             Op::ConeTurn {
                 axis: toward,
@@ -2982,29 +3000,30 @@ impl Builder<'_, Spatial> {
             Ty::Vector,
             words,
         );
-        let explain = format!(
-            "Tilt {cname} the least about its centre so that {pname} lies {} from it ({con}); it may then only turn about the line from its centre to {pname}.",
-            self.word(d)
-        );
+        let geoms = self.clusters[k].geoms.clone();
         self.emit(
             Op::RotateDir {
-                geoms: vec![circle],
+                geoms,
                 pivot: c,
                 axis: RotationAxis::Shortest,
                 from: n,
                 to,
             },
             None,
-            self.satisfies(r),
+            satisfies,
             explain,
         );
         self.clusters[k].record.turn = Turn::Axis {
             axis: toward,
             feature: None,
         };
-        true
     }
 
+    /// Circle `circle`, its centre held and its radius free, passes through the known point
+    /// `p`: free to turn, it turns the least about its centre so that its plane holds the
+    /// point (its normal onto the cone square to the direction from the centre to the point),
+    /// and may then only turn about that direction; with its normal known, the point must lie
+    /// in its plane (a check). Then it takes the radius that reaches the point.
     fn circle_through(&mut self, circle: GeomId, p: GeomId, r: &Rel) -> bool {
         let k = self.cluster(circle);
         let rec = self.clusters[k].record.clone();
@@ -3032,34 +3051,10 @@ impl Builder<'_, Spatial> {
                 "a right angle".into(),
             );
             let words = format!("the normal nearest {}'s square to it", self.name(normal));
-            let to = self.value(
-                Op::ConeTurn {
-                    axis: toward,
-                    angle: square,
-                    dir: n,
-                },
-                Ty::Vector,
-                words,
-            );
             let explain = format!(
                 "Rotate {cname} the least about its centre so that its plane holds {pname} ({con}); it may then only turn about the line from its centre to {pname}."
             );
-            self.emit(
-                Op::RotateDir {
-                    geoms: vec![circle],
-                    pivot: c,
-                    axis: RotationAxis::Shortest,
-                    from: n,
-                    to,
-                },
-                None,
-                Vec::new(),
-                explain,
-            );
-            self.clusters[k].record.turn = Turn::Axis {
-                axis: toward,
-                feature: None,
-            };
+            self.turn_normal_onto_cone(k, (c, n), (toward, square), words, explain, Vec::new());
         } else {
             let residual = Residual::PointPlane {
                 p: at,
