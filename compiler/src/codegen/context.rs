@@ -40,6 +40,8 @@ pub(super) struct Context<'a> {
     pub(super) sketch3: Option<crate::config::Config<crate::config::D3>>,
     /// The step that defines each register.
     pub(super) defined_at: HashMap<Reg, usize>,
+    /// Nearest points of circles that only turns toward them read (`steps::turned_toward`).
+    pub(super) turned_toward: HashSet<Reg>,
 }
 
 /// The public names of the generated module that come from the model's names.
@@ -106,7 +108,9 @@ impl<'a> Context<'a> {
         let defined_at = (plan.steps.iter().enumerate())
             .filter_map(|(i, s)| Some((s.out?.0, i)))
             .collect();
+        let turned_toward = super::steps::turned_toward(plan, &defined_at);
         Context {
+            turned_toward,
             d3,
             sketch3,
             defined_at,

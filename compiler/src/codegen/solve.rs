@@ -655,7 +655,7 @@ impl Solve<'_> {
         // read its point instead).
         let unwritten_nearest = |s: &Step| match s.op {
             Op::Nearest { point, .. } if !cx.d3 => (s.out)
-                .is_some_and(|(r, _)| super::steps::only_turned_toward(cx, r))
+                .is_some_and(|(r, _)| cx.turned_toward.contains(&r))
                 .then_some(point),
             _ => None,
         };

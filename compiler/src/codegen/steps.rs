@@ -2,7 +2,6 @@
 //! the runtime's calls, with what is known at that step (see `facts`) deciding the cheapest
 //! code that gives the same value.
 
-use super::context::Context;
 use super::facts::{ChordRoot, Value};
 use super::names::Namer;
 use super::solve::Solve;
@@ -10,6 +9,7 @@ use super::writer::{float, linear, lit, Writer};
 use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis, Step};
 use gcs_lang::expr::{ExprId, ExprNode};
 use gcs_lang::model::{ConstraintId, GeomId};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 impl Solve<'_> {
     /// Writes step `i` of the plan.
@@ -348,7 +348,7 @@ impl Solve<'_> {
                 self.define(w, r, "radius", &code);
             }
             Op::Nearest { locus, point } => {
-                if !self.cx.d3 && only_turned_toward(self.cx, r) {
+                if !self.cx.d3 && self.cx.turned_toward.contains(&r) {
                     // Only turns about the circle's centre read it, and they need only the
                     // direction from the centre, which the point itself has: no projection
                     // (its square root and division) on the solve's path.
@@ -1058,26 +1058,39 @@ fn size_noun(model: &gcs_lang::Model, c: ConstraintId) -> &'static str {
     }
 }
 
-/// Whether register `r` is the nearest point of a circle (`Op::Nearest`) that only turns about
+/// The registers that are the nearest point of a circle (`Op::Nearest`) that only turns about
 /// the circle's centre read, each turning a point onto it (`RotatePoint`): a turn about the
 /// centre onto a point of a ray from the centre is the same turn wherever on the ray the point
-/// lies, so the turns can aim at the point itself, and the projection is not written.
-pub(super) fn only_turned_toward(cx: &Context<'_>, r: Reg) -> bool {
-    let plan = cx.plan;
-    let defined = |reg: Reg| cx.defined_at.get(&reg).map(|&i| &plan.steps[i]);
-    let Some(Op::Nearest { locus, .. }) = defined(r).map(|s| &s.op) else {
-        return false;
-    };
-    let center = match defined(*locus).map(|s| &s.op) {
-        Some(Op::Circle { center, .. } | Op::CircleThrough { center, .. }) => *center,
-        _ => return false,
-    };
-    let mut readers = (plan.steps.iter())
-        .filter(|s| s.op.reads().contains(&r))
-        .peekable();
-    readers.peek().is_some()
-        && readers.all(|s| {
-            matches!(&s.op, Op::RotatePoint { pivot, from, to, .. }
-                if *to == r && *from != r && *pivot == center)
-        })
+/// lies, so the turns can aim at the point itself, and the projection is not written. One pass
+/// over the plan.
+pub(super) fn turned_toward(
+    plan: &crate::plan::Plan,
+    defined_at: &HashMap<Reg, usize>,
+) -> HashSet<Reg> {
+    let defined = |reg: Reg| defined_at.get(&reg).map(|&i| &plan.steps[i].op);
+    // The centre of each nearest point of a circle, and whether every reader so far turns
+    // about it onto the point (none while nothing has read it).
+    let mut nearest: HashMap<Reg, (Reg, Option<bool>)> = HashMap::default();
+    for s in &plan.steps {
+        if let (Op::Nearest { locus, .. }, Some((r, _))) = (&s.op, s.out) {
+            if let Some(Op::Circle { center, .. } | Op::CircleThrough { center, .. }) =
+                defined(*locus)
+            {
+                nearest.insert(r, (*center, None));
+            }
+        }
+    }
+    for s in &plan.steps {
+        for r in s.op.reads() {
+            if let Some((center, all)) = nearest.get_mut(&r) {
+                let turns_toward = matches!(&s.op, Op::RotatePoint { pivot, from, to, .. }
+                    if *to == r && *from != r && pivot == center);
+                *all = Some(all.unwrap_or(true) && turns_toward);
+            }
+        }
+    }
+    (nearest.into_iter())
+        .filter(|(_, (_, all))| *all == Some(true))
+        .map(|(r, _)| r)
+        .collect()
 }
