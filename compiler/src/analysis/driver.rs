@@ -185,11 +185,29 @@ pub(crate) struct Builder<'m, G: Geometry> {
     undefaulted: Option<Vec<ClusterState<G::Record>>>,
     /// The constraint of the relation being tried, which each step written records.
     working: Option<ConstraintId>,
+    /// Each geom's place in name order (by arena index): the last key of the defaults' order.
+    name_rank: std::rc::Rc<Vec<u32>>,
+    /// Once no relation is pending, the clusters that may take a default in their order: a
+    /// default then changes its own cluster only, so the order is kept, not sorted again.
+    idle_order: Option<std::collections::BinaryHeap<std::cmp::Reverse<(usize, u32, usize)>>>,
 }
 
 /// A geom's index in the model's arena.
 fn geom_index(g: GeomId) -> usize {
     g.into_raw().into_u32() as usize
+}
+
+/// Each geom's place in the order of names, by its index in the model's arena.
+fn name_ranks(model: &Model) -> Vec<u32> {
+    let mut by_name: Vec<(&str, usize)> = (model.geoms.iter())
+        .map(|(id, g)| (g.name.as_str(), geom_index(id)))
+        .collect();
+    by_name.sort();
+    let mut rank = vec![0; model.geoms.len()];
+    for (place, (_, index)) in by_name.into_iter().enumerate() {
+        rank[index] = place as u32;
+    }
+    rank
 }
 
 impl<'m, G: Geometry> Builder<'m, G> {
@@ -228,6 +246,8 @@ impl<'m, G: Geometry> Builder<'m, G> {
             done: HashSet::default(),
             undefaulted: None,
             working: None,
+            name_rank: std::rc::Rc::new(name_ranks(model)),
+            idle_order: None,
         }
     }
 
@@ -539,8 +559,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             if self.undefaulted.is_none() {
                 self.undefaulted = Some(self.clusters.clone());
             }
-            let candidates = self.default_candidates();
-            if candidates.is_empty() || !G::default(self, &candidates) {
+            if !self.take_default() {
                 break;
             }
         }
@@ -554,27 +573,98 @@ impl<'m, G: Geometry> Builder<'m, G> {
         self.close_iterations();
     }
 
-    /// Clusters that may take a default: not grounded, in the order Kramer picks a loop to
-    /// rigidify: those a pending relation involves first, then by fewest DOF, then by name.
-    fn default_candidates(&self) -> Vec<usize> {
-        let involved: BTreeSet<usize> = (self.pending.iter())
-            .flat_map(|r| self.clusters_of(r))
-            .collect();
-        let mut out: Vec<usize> = (0..self.clusters.len())
-            .filter(|&k| {
-                let c = &self.clusters[k];
-                !c.geoms.is_empty() && c.record.dof() > 0
-            })
-            .collect();
-        out.sort_by_cached_key(|&k| {
-            let c = &self.clusters[k];
+    /// The order in which clusters may take a default: not grounded, in the order Kramer picks
+    /// a loop to rigidify: those a pending relation involves first, then by fewest DOF, then
+    /// by name. `None` for a cluster that may not.
+    fn default_key(&self, involved: &BTreeSet<usize>, k: usize) -> Option<(bool, usize, u32, usize)> {
+        let c = &self.clusters[k];
+        let first = c.geoms.first()?;
+        let dof = c.record.dof();
+        (dof > 0).then(|| {
             (
                 !involved.contains(&k),
-                c.record.dof(),
-                self.name(c.geoms[0]),
+                dof,
+                self.name_rank[geom_index(*first)],
+                k,
             )
-        });
-        out
+        })
+    }
+
+    /// The clusters a pending relation involves.
+    fn involved_clusters(&self) -> BTreeSet<usize> {
+        (self.pending.iter())
+            .flat_map(|r| self.clusters_of(r))
+            .collect()
+    }
+
+    /// Gives a default to the first cluster that takes one, in the order of
+    /// [`Builder::default_key`]; `false` when none does.
+    ///
+    /// A model with a default per stage asks once per stage, so the order is not sorted each
+    /// time: while relations are pending, the first is one of the clusters they involve (a
+    /// pass over those); once none is, the order is kept in a heap across defaults, each of
+    /// which changes its own cluster only. The clusters are sorted only when the first
+    /// refuses.
+    fn take_default(&mut self) -> bool {
+        if !self.pending.is_empty() {
+            self.idle_order = None;
+            let involved = self.involved_clusters();
+            let first = (involved.iter())
+                .filter_map(|&k| self.default_key(&involved, k))
+                .min()
+                .or_else(|| {
+                    (0..self.clusters.len())
+                        .filter_map(|k| self.default_key(&involved, k))
+                        .min()
+                });
+            let Some(first) = first.map(|key| key.3) else {
+                return false;
+            };
+            if G::default(self, &[first]) {
+                return true;
+            }
+            let involved = self.involved_clusters();
+            let mut keys: Vec<_> = (0..self.clusters.len())
+                .filter(|&k| k != first)
+                .filter_map(|k| self.default_key(&involved, k))
+                .collect();
+            keys.sort();
+            let others: Vec<usize> = keys.into_iter().map(|key| key.3).collect();
+            return G::default(self, &others);
+        }
+        let none = BTreeSet::new();
+        let mut heap = match self.idle_order.take() {
+            Some(heap) => heap,
+            None => (0..self.clusters.len())
+                .filter_map(|k| self.default_key(&none, k))
+                .map(|(_, dof, rank, k)| std::cmp::Reverse((dof, rank, k)))
+                .collect(),
+        };
+        let mut refused = Vec::new();
+        let mut taken = false;
+        while let Some(std::cmp::Reverse(entry)) = heap.pop() {
+            let k = entry.2;
+            // An entry whose cluster changed since is put back at its place now.
+            match self.default_key(&none, k) {
+                Some((_, dof, rank, _)) if (dof, rank, k) == entry => {}
+                Some((_, dof, rank, _)) => {
+                    heap.push(std::cmp::Reverse((dof, rank, k)));
+                    continue;
+                }
+                None => continue,
+            }
+            if G::default(self, &[k]) {
+                if let Some((_, dof, rank, _)) = self.default_key(&none, k) {
+                    heap.push(std::cmp::Reverse((dof, rank, k)));
+                }
+                taken = true;
+                break;
+            }
+            refused.push(std::cmp::Reverse(entry));
+        }
+        heap.extend(refused);
+        self.idle_order = Some(heap);
+        taken
     }
 
     /// Case (b) of 000, section 5.2.1: a run-time check that depends on a default is a
