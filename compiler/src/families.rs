@@ -30,11 +30,19 @@ pub enum Family {
     RssrChain,
     /// [`mixed`]: stages of three kinds woven together, whose pieces mostly differ.
     Mixed,
+    /// [`hung_chain`]: a crank and free points hung on it by distances only.
+    HungChain,
+    /// [`strip`]: a triangulated strip of points, its rungs set by a param.
+    Strip,
+    /// [`circle_sketch`]: a long sketch of segments, each with a circle tangent to it.
+    CircleSketch,
+    /// [`random_mix`]: stages of every planar family, picked at random.
+    RandomMix,
 }
 
 impl Family {
     /// Every family, in a fixed order.
-    pub const ALL: [Family; 8] = [
+    pub const ALL: [Family; 12] = [
         Family::FourBarChain,
         Family::SketchProfile,
         Family::ClosedProfile,
@@ -43,6 +51,10 @@ impl Family {
         Family::Points,
         Family::RssrChain,
         Family::Mixed,
+        Family::HungChain,
+        Family::Strip,
+        Family::CircleSketch,
+        Family::RandomMix,
     ];
 
     /// The family's short name, as the command line and the reports spell it.
@@ -56,6 +68,10 @@ impl Family {
             Family::Points => "points",
             Family::RssrChain => "rssr_chain",
             Family::Mixed => "mixed",
+            Family::HungChain => "hung_chain",
+            Family::Strip => "strip",
+            Family::CircleSketch => "circle_sketch",
+            Family::RandomMix => "random_mix",
         }
     }
 
@@ -75,6 +91,10 @@ impl Family {
             Family::Points => points(n),
             Family::RssrChain => rssr_chain(n),
             Family::Mixed => mixed(n),
+            Family::HungChain => hung_chain(n),
+            Family::Strip => strip(n),
+            Family::CircleSketch => circle_sketch(n),
+            Family::RandomMix => random_mix(n),
         }
     }
 
@@ -89,6 +109,10 @@ impl Family {
             Family::Points => ("gap", 0.5, 1.5),
             Family::RssrChain => ("theta", 0.0, std::f64::consts::TAU),
             Family::Mixed => ("theta", 0.0, std::f64::consts::TAU),
+            Family::HungChain => ("theta", 0.0, std::f64::consts::TAU),
+            Family::Strip => ("w", 0.9, 1.1),
+            Family::CircleSketch => ("r", 0.8, 1.2),
+            Family::RandomMix => ("theta", 0.0, std::f64::consts::TAU),
         }
     }
 }
@@ -460,6 +484,229 @@ pub fn mixed(n: usize) -> String {
         sketch - 1
     );
     s
+}
+
+/// A chain of `n` four-bars hung on each other as SolveSpace and PlaneGCS pose Kramer's Fig. 10
+/// family: no bodies, only points and distances. A crank `crank` turned by `theta` about the
+/// fixed `O`, the fixed `C0`, then free points `B1, C1, …, Bn, Cn`, each stage a pair of
+/// triangles: `Bk` at fixed distances from `B{k-1}` and `C{k-1}`, `Ck` from `Bk` and `C{k-1}`
+/// (with `B0` the crank's end). One `output`, the last two points.
+pub fn hung_chain(n: usize) -> String {
+    let n = n.max(1);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// A chain of {n} four-bars of points hung on a crank by distances only."
+    );
+    s.push_str("space 2d;\n\nparam theta = 90 deg;\n\n");
+    s.push_str(HUNG_HEAD);
+    for k in 1..=n {
+        hung_stage(&mut s, k);
+    }
+    let _ = writeln!(s, "\noutput B{n}, C{n};");
+    s
+}
+
+/// The hung chain's ground and crank: `B0` is the crank's end.
+const HUNG_HEAD: &str = "fixed vector X = (1, 0);\nfixed point O = (0, 0);\n\
+                         fixed point C0 = (1, 0);\n\
+                         segment crank = (0, 0) -> (0, 1.5);\n\
+                         coincident(crank.start, O);\nlength(crank) = 1.5;\n\
+                         drive: angle(X, crank) = theta;\npoint B0 = (0.02, 1.49);\n\
+                         coincident(B0, crank.end);\n";
+
+/// Stage `k` (from 1) of the hung chain: `Bk` and `Ck`, sketched a little off the assembly.
+fn hung_stage(s: &mut String, k: usize) {
+    let x = 2.0 * k as f64;
+    let _ = writeln!(s, "\npoint B{k} = ({:.2}, 1.52);", x + 0.03);
+    let _ = writeln!(s, "point C{k} = ({:.2}, -0.02);", x + 1.0);
+    let j = k - 1;
+    let diagonal = 3.25f64.sqrt();
+    let _ = writeln!(s, "distance(B{j}, B{k}) = 2;");
+    let _ = writeln!(s, "distance(C{j}, B{k}) = {diagonal:.17};");
+    let _ = writeln!(s, "distance(B{k}, C{k}) = {diagonal:.17};");
+    let _ = writeln!(s, "distance(C{j}, C{k}) = 2;");
+}
+
+/// A triangulated strip of `n` quads between two rails of points, `a0` and `b0` fixed: each
+/// quad's rail edges of lengths that vary along the strip (a fixed pseudo-random sequence, so
+/// that no two stages share their constants), its rung `distance(ak, bk) = w` and its diagonal
+/// `distance(a{k-1}, bk)`. One branch variable per point.
+pub fn strip(n: usize) -> String {
+    let n = n.max(1);
+    let mut s = String::new();
+    let _ = writeln!(s, "// A triangulated strip of {n} quads, its rungs `w`.");
+    s.push_str("space 2d;\n\nparam w = 1;\n\n");
+    s.push_str("fixed point a0 = (0, 0);\nfixed point b0 = (0, 1);\n");
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut x = 0.0f64;
+    for k in 1..=n {
+        // A rail edge between 0.9 and 1.1.
+        let step = 0.9 + 0.2 * (xorshift(&mut seed) % 1000) as f64 / 1000.0;
+        x += step;
+        let j = k - 1;
+        let _ = writeln!(s, "\npoint a{k} = ({:.3}, 0.02);", x + 0.03);
+        let _ = writeln!(s, "point b{k} = ({:.3}, 0.97);", x - 0.02);
+        let _ = writeln!(s, "distance(a{j}, a{k}) = {step:.3};");
+        let _ = writeln!(
+            s,
+            "distance(a{j}, b{k}) = {:.17};",
+            (step * step + 1.0).sqrt()
+        );
+        let _ = writeln!(s, "distance(a{k}, b{k}) = w;");
+        let _ = writeln!(s, "distance(b{j}, b{k}) = {step:.3};");
+    }
+    let _ = writeln!(s, "\noutput a{n}, b{n};");
+    s
+}
+
+/// A long sketch of `n` segments end to end, each turned up or down from the last, and a circle
+/// of radius `r` tangent to each, its centre at a given distance from the segment's start: the
+/// centre where a line beside the segment meets a circle about its start (a branch variable
+/// per circle).
+pub fn circle_sketch(n: usize) -> String {
+    let n = n.max(1);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// A sketch of {n} segments end to end, each with a tangent circle."
+    );
+    s.push_str("space 2d;\n\nparam r = 1;\n\n");
+    s.push_str("fixed point origin = (0, 0);\nfixed vector X = (1, 0);\n");
+    let mut at = (0.0f64, 0.0f64);
+    for k in 0..n {
+        circle_sketch_stage(&mut s, k, &mut at);
+    }
+    let _ = writeln!(s, "\noutput s{}.end, c{};", n - 1, n - 1);
+    s
+}
+
+/// Segment `s{k}` of the circle sketch from `at` (moved to its end) and its circle `c{k}`.
+fn circle_sketch_stage(s: &mut String, k: usize, at: &mut (f64, f64)) {
+    let (x, y) = *at;
+    let deg: f64 = if k.is_multiple_of(2) { 15.0 } else { -15.0 };
+    let (dy, dx) = deg.to_radians().sin_cos();
+    let (ex, ey) = (x + 4.0 * dx, y + 4.0 * dy);
+    let _ = writeln!(
+        s,
+        "\nsegment s{k} = ({x:.3}, {y:.3}) -> ({ex:.3}, {ey:.3});"
+    );
+    match k {
+        0 => s.push_str("coincident(s0.start, origin);\n"),
+        _ => {
+            let _ = writeln!(s, "coincident(s{k}.start, s{}.end);", k - 1);
+        }
+    }
+    let _ = writeln!(s, "angle(X, s{k}) = {deg} deg;");
+    let _ = writeln!(s, "length(s{k}) = 4;");
+    // The circle above the segment, its centre 2 along and 1 beside it: at sqrt(5) from the
+    // start.
+    let (cx, cy) = (x + 2.0 * dx - dy, y + 2.0 * dy + dx);
+    let _ = writeln!(
+        s,
+        "circle c{k} = center ({:.3}, {:.3}) radius 1.05;",
+        cx + 0.02,
+        cy - 0.03
+    );
+    let _ = writeln!(s, "radius(c{k}) = r;");
+    let _ = writeln!(s, "tangent(s{k}, c{k});");
+    let _ = writeln!(
+        s,
+        "distance(c{k}.center, s{k}.start) = {:.17};",
+        5f64.sqrt()
+    );
+    *at = (ex, ey);
+}
+
+/// `n` stages of every planar family (the chain of four-bars, the hung chain, the strip, the
+/// truss, the sketch profile and the circle sketch), each stage's kind picked by a fixed
+/// pseudo-random sequence and every kind's stages chained to its own: a large model no
+/// generator's order repeats.
+pub fn random_mix(n: usize) -> String {
+    let n = n.max(6);
+    let mut s = String::new();
+    let _ = writeln!(s, "// {n} stages of six planar families, picked at random.");
+    s.push_str(
+        "space 2d;\n\nparam theta = 90 deg;\nparam bar = 2;\nparam len = 10;\nparam r = 2;\n\n",
+    );
+    // The chain of four-bars' crank turns by theta as the hung chain's does: one drive, two
+    // cranks, and the four-bars' ground its own.
+    s.push_str("fixed point P0 = (0, 0);\n");
+    s.push_str(HUNG_HEAD);
+    s.push_str(
+        "body crank4 at (0, 0) { point a = (0, 0); point b = (1.5, 0); vector u = (1, 0); }\n\
+         coincident(crank4.a, P0);\ndrive4: angle(X, crank4.u) = theta;\n",
+    );
+    let _ = writeln!(
+        s,
+        "fixed point t0 = (0, 0);\nfixed point t1 = (1, {:.17});",
+        3f64.sqrt()
+    );
+    s.push_str("fixed point origin = (0, 0);\n");
+    let (mut bars, mut hung, mut truss, mut sketch, mut circles) = (0, 0, 2, 0, 0);
+    let mut at = (0.0f64, 0.0f64);
+    let mut circle_at = (0.0f64, 0.0f64);
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut four_bars = String::new();
+    for k in 0..n {
+        let kind = if k < 5 { k as u64 } else { xorshift(&mut seed) % 5 };
+        match kind {
+            0 => {
+                bars += 1;
+                four_bars.clear();
+                four_bar_stage(&mut four_bars, bars);
+                // The four-bars hang on their own crank.
+                s.push_str(&four_bars.replace("(crank.b,", "(crank4.b,"));
+            }
+            1 => {
+                hung += 1;
+                hung_stage(&mut s, hung);
+            }
+            2 => {
+                truss_stage(&mut s, "t", truss);
+                truss += 1;
+            }
+            3 => {
+                sketch_stage(&mut s, sketch, &mut at);
+                sketch += 1;
+            }
+            _ => {
+                // The circle sketch starts where the profile's origin is, its segments named
+                // apart.
+                let mut stage = String::new();
+                circle_sketch_stage(&mut stage, circles, &mut circle_at);
+                s.push_str(&rename_circle_stage(&stage, circles));
+                circles += 1;
+            }
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\noutput rocker{bars}.b, B{hung}, t{}, f{}, c{};",
+        truss - 1,
+        sketch - 1,
+        circles - 1
+    );
+    s
+}
+
+/// A circle sketch's stage with its segments `s{k}` renamed `g{k}` (the profile has `s{k}`).
+fn rename_circle_stage(stage: &str, k: usize) -> String {
+    let mut out = stage
+        .replace(&format!("s{k}"), &format!("g{k}"))
+        .replace("s0.start", "g0.start");
+    if k > 0 {
+        out = out.replace(&format!("s{}.end", k - 1), &format!("g{}.end", k - 1));
+    }
+    out
+}
+
+/// The next of a fixed pseudo-random sequence (xorshift64): the same on every machine.
+fn xorshift(seed: &mut u64) -> u64 {
+    *seed ^= *seed << 13;
+    *seed ^= *seed >> 7;
+    *seed ^= *seed << 17;
+    *seed
 }
 
 /// `n` params in groups of four, as a large model's table of inputs is (`n` rounded up to a
