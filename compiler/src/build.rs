@@ -190,11 +190,8 @@ impl Builder {
                 eprint!("{rendered}");
             }
         }
-        Ok(codegen::generate_as(
-            &compiled.model,
-            &compiled.analysis.plan,
-            self.form,
-        ))
+        codegen::generate_as(&compiled.model, &compiled.analysis.plan, self.form)
+            .map_err(|why| failure(format!("cannot be laid out as tables: {why}"), "".into()))
     }
 }
 

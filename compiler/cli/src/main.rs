@@ -239,11 +239,14 @@ fn main() -> ExitCode {
             color,
         ),
         Command::Compile { file, output, form } => with_analysis(&file, color, |c| {
-            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate_as(
-                &c.model,
-                &c.analysis.plan,
-                form,
-            ));
+            let code = match gcs_compiler::codegen::generate_as(&c.model, &c.analysis.plan, form)
+            {
+                Ok(code) => gcs_compiler::codegen::format(&code),
+                Err(why) => {
+                    eprintln!("error: `{}` cannot be laid out as tables: {why}", file.display());
+                    return ExitCode::from(1);
+                }
+            };
             match output {
                 Some(path) => match std::fs::write(&path, code) {
                     Ok(()) => ExitCode::SUCCESS,
@@ -693,11 +696,13 @@ fn bench(
         }
         let mut compiled = None;
         if !interpreted {
-            let code = gcs_compiler::codegen::format(&gcs_compiler::codegen::generate_as(
-                model,
-                &analysis.plan,
-                form,
-            ));
+            let code = match gcs_compiler::codegen::generate_as(model, &analysis.plan, form) {
+                Ok(code) => gcs_compiler::codegen::format(&code),
+                Err(why) => {
+                    eprintln!("error: `{}` cannot be laid out as tables: {why}", path.display());
+                    return ExitCode::from(1);
+                }
+            };
             let names: Vec<String> = model.params.iter().map(|(_, p)| p.name.clone()).collect();
             let named: Vec<(String, usize)> = plan
                 .branches

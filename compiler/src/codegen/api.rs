@@ -338,7 +338,7 @@ impl Layout {
     }
 
     /// `self.{field}` of the field that holds `holds`, if one does.
-    fn read(&self, holds: Holds) -> Option<String> {
+    pub(super) fn read(&self, holds: Holds) -> Option<String> {
         let field = &self.fields[*self.index.get(&holds)?];
         Some(format!("self.{}", field.name))
     }
@@ -350,16 +350,97 @@ pub(super) struct Accessor {
     pub(super) name: String,
     pub(super) doc: String,
     pub(super) ty: Ty,
-    pub(super) body: String,
+    /// The top-level geom it reads.
+    pub(super) geom: GeomId,
+    /// What of that geom it reads.
+    pub(super) reads: Reads,
+}
+
+/// What an accessor reads of its top-level geom's frame, dimension and local coordinates:
+/// its value as data, which [`Accessor::body`] writes as code from where the solution holds
+/// them (a field of the flat `Solution`, a slot of a large model's store).
+#[derive(Clone, Debug)]
+pub(super) enum Reads {
+    /// A value the solve never moves, whose sketch is constant.
+    Constant(Value),
+    /// The frame itself (a body's).
+    Frame,
+    /// The frame's origin.
+    Origin,
+    /// The frame's x axis (a vector's, a line's direction).
+    XAxis,
+    /// In space, the frame's z axis (a plane's or a circle's normal).
+    ZAxis,
+    /// In space, a plane's signed distance from the origin along its normal.
+    PlaneOffset,
+    /// The dimension (a segment's length, a circle's radius).
+    Dim,
+    /// A segment's end: the origin plus the x axis times the length.
+    End,
+    /// Member point (or marker) `f` at its local coordinates.
+    MemberPoint(GeomId),
+    /// Member vector (or marker axis) `f` at its local direction.
+    MemberDir(GeomId),
+    /// A line's base point: the foot of the perpendicular from its first sketch point.
+    BasePoint,
 }
 
 impl Accessor {
-    fn new(name: &str, doc: String, ty: Ty, body: String) -> Accessor {
+    fn new(name: &str, doc: String, ty: Ty, geom: GeomId, reads: Reads) -> Accessor {
         Accessor {
             name: name.to_string(),
             doc,
             ty,
-            body,
+            geom,
+            reads,
+        }
+    }
+
+    /// The code of its value, where `read` gives the code of what the solution holds (`None`
+    /// for what it does not: a dimension never set, constant local coordinates).
+    pub(super) fn body(&self, cx: &Context<'_>, read: &mut dyn FnMut(Holds) -> Option<String>) -> String {
+        let g = self.geom;
+        if let Reads::Constant(value) = &self.reads {
+            return value.code();
+        }
+        let frame = read(Holds::Frame(g)).unwrap_or_default();
+        let origin = format!("{frame}.origin");
+        let x_axis = format!("{frame}.x_axis()");
+        match &self.reads {
+            Reads::Constant(_) => unreachable!("written above"),
+            Reads::Frame => frame,
+            Reads::Origin => origin,
+            Reads::XAxis => x_axis,
+            Reads::ZAxis => format!("{frame}.z_axis()"),
+            Reads::PlaneOffset => format!("{frame}.z_axis().dot(&{frame}.origin.coords)"),
+            Reads::Dim => read(Holds::Dim(g)).unwrap_or_default(),
+            Reads::End => {
+                let dim = read(Holds::Dim(g)).unwrap_or_default();
+                format!("{origin} + {x_axis} * {dim}")
+            }
+            Reads::MemberPoint(f) => match (read(Holds::Local(*f)), cx.d3) {
+                (Some(local), _) => format!("{frame}.point_to_global(&{local})"),
+                (None, true) => format!("{frame}.point_to_global(&{})", cx.local_point3(*f)),
+                (None, false) => {
+                    let origin = Value::Expr(origin);
+                    point_in(|| frame.clone(), &origin, cx.literal_coords(*f, true)).code()
+                }
+            },
+            Reads::MemberDir(f) => match (read(Holds::Local(*f)), cx.d3) {
+                (Some(local), _) => format!("{frame}.vector_to_global(&{local})"),
+                (None, true) => format!("{frame}.vector_to_global(&{})", cx.local_dir3(*f)),
+                (None, false) => direction_in(&frame, cx.literal_coords(*f, false)),
+            },
+            Reads::BasePoint => {
+                // The foot of the perpendicular from the first sketch point: a literal, or the
+                // value that holds it when params set it.
+                let from = line_sketch(cx, g).unwrap_or(&[]);
+                let s = read(Holds::LineSketch(g)).unwrap_or_else(|| match cx.d3 {
+                    true => cx.point_lit3(from),
+                    false => cx.point_lit(from),
+                });
+                format!("{origin} + {x_axis} * ({s} - {origin}).dot(&{x_axis})")
+            }
         }
     }
 }
@@ -426,7 +507,7 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
             "pub fn {accessor}(&self) -> {} {{",
             a.ty.rust(cx.d3)
         ));
-        w.line(&a.body);
+        w.line(&a.body(cx, &mut |holds| layout.read(holds)));
         w.close("}");
         w.line("");
         by_ty.entry(a.ty).or_default().push((a.name, accessor));
@@ -479,171 +560,60 @@ pub(super) fn accessors(
     (out, names.clashes().to_vec())
 }
 
-/// The accessors of reported top-level geom `g` and of its members and parts, in model order.
+/// The accessors of reported top-level geom `g` and of its members and parts, in model order:
+/// in space, the values the interpreter's `Solution::read_space` reports, read from the frame
+/// as it reads them.
 fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor> {
-    if cx.d3 {
-        return geom_accessors3(cx, layout, g);
-    }
     let m = cx.model;
     let geom = &m.geoms[g];
     let name = &geom.name;
+    let mut items = Vec::new();
+    let mut add = |name: &str, doc: String, ty: Ty, reads: Reads| {
+        items.push(Accessor::new(name, doc, ty, g, reads));
+    };
     if let Some(value) = layout.constants.get(&g) {
         let (what, ty) = match geom.kind {
             GeomKind::Vector => ("Vector", Ty::Vector),
             _ => ("Point", Ty::Point),
         };
         let doc = format!("{what} `{name}`, which the solve never moves.");
-        return vec![Accessor::new(name, doc, ty, value.code())];
+        add(name, doc, ty, Reads::Constant(value.clone()));
+        return items;
     }
-    let Some(frame) = layout.read(Holds::Frame(g)) else {
-        return Vec::new();
-    };
-    let dim = layout.read(Holds::Dim(g)).unwrap_or_default();
-    let mut items = Vec::new();
+    if layout.read(Holds::Frame(g)).is_none() {
+        return items;
+    }
     match geom.kind {
-        GeomKind::Body => items.push(Accessor::new(
-            name,
-            format!("The frame of body `{name}`."),
-            Ty::Frame,
-            frame.clone(),
-        )),
-        GeomKind::Point => items.push(Accessor::new(
-            name,
-            format!("Point `{name}`."),
-            Ty::Point,
-            format!("{frame}.origin"),
-        )),
-        GeomKind::Vector => items.push(Accessor::new(
-            name,
-            format!("Vector `{name}`."),
-            Ty::Vector,
-            format!("{frame}.x_axis()"),
-        )),
-        GeomKind::Circle | GeomKind::Segment => {
-            if let Some((accessor, what)) = dimension_accessor(name, geom.kind) {
-                let doc = format!("The {what} of `{name}`.");
-                items.push(Accessor::new(&accessor, doc, Ty::Scalar, dim.clone()));
-            }
-        }
-        _ => {}
-    }
-    // A member's position or direction from its local coordinates: a field's when params set
-    // them, else the literal.
-    let point = |f: GeomId| match layout.read(Holds::Local(f)) {
-        Some(local) => format!("{frame}.point_to_global(&{local})"),
-        None => {
-            let origin = Value::Expr(format!("{frame}.origin"));
-            point_in(|| frame.clone(), &origin, cx.literal_coords(f, true)).code()
-        }
-    };
-    let direction = |f: GeomId| match layout.read(Holds::Local(f)) {
-        Some(local) => format!("{frame}.vector_to_global(&{local})"),
-        None => direction_in(&frame, cx.literal_coords(f, false)),
-    };
-    for &part in &geom.parts {
-        let p = &m.geoms[part];
-        let pname = &p.name;
-        let point_doc = format!("Point `{pname}`.");
-        match (p.owner, p.kind) {
-            (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
-                items.push(Accessor::new(pname, point_doc, Ty::Point, point(part)));
-                if let (GeomKind::Marker, Some(&ax)) = (p.kind, p.parts.first()) {
-                    let n = &m.geoms[ax].name;
-                    let doc = format!("Axis `{n}`.");
-                    items.push(Accessor::new(n, doc, Ty::Vector, direction(ax)));
-                }
-            }
-            (Owner::Member(_), GeomKind::Vector) => {
-                let doc = format!("Vector `{pname}`.");
-                items.push(Accessor::new(pname, doc, Ty::Vector, direction(part)));
-            }
-            (Owner::Part(_, Part::Start | Part::Center), _) => {
-                let body = format!("{frame}.origin");
-                items.push(Accessor::new(pname, point_doc, Ty::Point, body));
-            }
-            (Owner::Part(_, Part::End), _) => {
-                let body = format!("{frame}.origin + {frame}.x_axis() * {dim}");
-                items.push(Accessor::new(pname, point_doc, Ty::Point, body));
-            }
-            (Owner::Part(_, Part::Dir), _) => {
-                let doc = format!("Direction `{pname}`.");
-                let body = format!("{frame}.x_axis()");
-                items.push(Accessor::new(pname, doc, Ty::Vector, body));
-            }
-            (Owner::Part(_, Part::BasePoint), _) => {
-                // The foot of the perpendicular from the first sketch point: a literal, or the
-                // field that holds it when params set it.
-                if let Some(from) = line_sketch(cx, g) {
-                    let s = layout
-                        .read(Holds::LineSketch(g))
-                        .unwrap_or_else(|| cx.point_lit(from));
-                    let doc = format!("Point `{pname}`: the foot of the perpendicular from the line's first sketch point.");
-                    let body = format!("{frame}.origin + {frame}.x_axis() * ({s} - {frame}.origin).dot(&{frame}.x_axis())");
-                    items.push(Accessor::new(pname, doc, Ty::Point, body));
-                }
-            }
-            _ => {}
-        }
-    }
-    items
-}
-
-/// The accessors of reported top-level geom `g` of a 3d model and of its members and parts,
-/// in model order: the values the interpreter's `Solution::read_space` reports, read from the
-/// frame as it reads them.
-fn geom_accessors3(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor> {
-    let m = cx.model;
-    let geom = &m.geoms[g];
-    let name = &geom.name;
-    let Some(frame) = layout.read(Holds::Frame(g)) else {
-        return Vec::new();
-    };
-    let dim = layout.read(Holds::Dim(g)).unwrap_or_default();
-    let mut items = Vec::new();
-    let origin = format!("{frame}.origin");
-    let x_axis = format!("{frame}.x_axis()");
-    match geom.kind {
-        GeomKind::Body => items.push(Accessor::new(
+        GeomKind::Body if cx.d3 => add(
             name,
             format!("The frame of body `{name}`: its origin and its axes."),
             Ty::Frame,
-            frame.clone(),
-        )),
-        GeomKind::Point => {
-            let doc = format!("Point `{name}`.");
-            items.push(Accessor::new(name, doc, Ty::Point, origin.clone()));
+            Reads::Frame,
+        ),
+        GeomKind::Body => add(
+            name,
+            format!("The frame of body `{name}`."),
+            Ty::Frame,
+            Reads::Frame,
+        ),
+        GeomKind::Point => add(name, format!("Point `{name}`."), Ty::Point, Reads::Origin),
+        GeomKind::Vector => add(name, format!("Vector `{name}`."), Ty::Vector, Reads::XAxis),
+        GeomKind::Plane if cx.d3 => {
+            if let Some((accessor, _)) = dimension_accessor(name, geom.kind) {
+                let doc = format!("The offset of plane `{name}`: its signed distance from the origin along its normal.");
+                add(&accessor, doc, Ty::Scalar, Reads::PlaneOffset);
+            }
         }
-        GeomKind::Vector => {
-            let doc = format!("Vector `{name}`.");
-            items.push(Accessor::new(name, doc, Ty::Vector, x_axis.clone()));
-        }
-        GeomKind::Circle | GeomKind::Segment | GeomKind::Plane => {
+        GeomKind::Circle | GeomKind::Segment => {
             if let Some((accessor, what)) = dimension_accessor(name, geom.kind) {
-                let (doc, body) = if geom.kind == GeomKind::Plane {
-                    let doc = format!("The offset of plane `{name}`: its signed distance from the origin along its normal.");
-                    (doc, format!("{frame}.z_axis().dot(&{frame}.origin.coords)"))
-                } else {
-                    (format!("The {what} of `{name}`."), dim.clone())
-                };
-                items.push(Accessor::new(&accessor, doc, Ty::Scalar, body));
+                let doc = format!("The {what} of `{name}`.");
+                add(&accessor, doc, Ty::Scalar, Reads::Dim);
             }
         }
         _ => {}
     }
     // A member's position or direction from its local coordinates: a field's when params set
     // them, else the literal.
-    let point = |f: GeomId| {
-        let local = layout
-            .read(Holds::Local(f))
-            .unwrap_or_else(|| cx.local_point3(f));
-        format!("{frame}.point_to_global(&{local})")
-    };
-    let direction = |f: GeomId| {
-        let local = layout
-            .read(Holds::Local(f))
-            .unwrap_or_else(|| cx.local_dir3(f));
-        format!("{frame}.vector_to_global(&{local})")
-    };
     for &part in &geom.parts {
         let p = &m.geoms[part];
         let pname = &p.name;
@@ -651,40 +621,37 @@ fn geom_accessors3(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor
         let vector_doc = format!("Direction `{pname}`.");
         match (p.owner, p.kind) {
             (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
-                items.push(Accessor::new(pname, point_doc, Ty::Point, point(part)));
-                for &axis in &p.parts {
+                add(pname, point_doc, Ty::Point, Reads::MemberPoint(part));
+                // A marker's x axis in the plane; its axes in space.
+                let axes = match (cx.d3, p.kind) {
+                    (true, _) => &p.parts[..],
+                    (false, GeomKind::Marker) => &p.parts[..p.parts.len().min(1)],
+                    (false, _) => &[],
+                };
+                for &axis in axes {
                     let n = &m.geoms[axis].name;
-                    let doc = format!("Axis `{n}`.");
-                    items.push(Accessor::new(n, doc, Ty::Vector, direction(axis)));
+                    add(n, format!("Axis `{n}`."), Ty::Vector, Reads::MemberDir(axis));
                 }
             }
             (Owner::Member(_), GeomKind::Vector) => {
-                let doc = format!("Vector `{pname}`.");
-                items.push(Accessor::new(pname, doc, Ty::Vector, direction(part)));
+                add(pname, format!("Vector `{pname}`."), Ty::Vector, Reads::MemberDir(part));
             }
             (Owner::Part(_, Part::Start | Part::Center), _) => {
-                items.push(Accessor::new(pname, point_doc, Ty::Point, origin.clone()));
+                add(pname, point_doc, Ty::Point, Reads::Origin);
             }
-            (Owner::Part(_, Part::End), _) => {
-                let body = format!("{origin} + {x_axis} * {dim}");
-                items.push(Accessor::new(pname, point_doc, Ty::Point, body));
+            (Owner::Part(_, Part::End), _) => add(pname, point_doc, Ty::Point, Reads::End),
+            (Owner::Part(_, Part::Dir), _) if cx.d3 => {
+                add(pname, vector_doc, Ty::Vector, Reads::XAxis);
             }
             (Owner::Part(_, Part::Dir), _) => {
-                items.push(Accessor::new(pname, vector_doc, Ty::Vector, x_axis.clone()));
+                add(pname, format!("Direction `{pname}`."), Ty::Vector, Reads::XAxis);
             }
-            (Owner::Part(_, Part::Normal), _) => {
-                let body = format!("{frame}.z_axis()");
-                items.push(Accessor::new(pname, vector_doc, Ty::Vector, body));
+            (Owner::Part(_, Part::Normal), _) if cx.d3 => {
+                add(pname, vector_doc, Ty::Vector, Reads::ZAxis);
             }
-            (Owner::Part(_, Part::BasePoint), _) => {
-                if let Some(from) = line_sketch(cx, g) {
-                    let s = layout
-                        .read(Holds::LineSketch(g))
-                        .unwrap_or_else(|| cx.point_lit3(from));
-                    let doc = format!("Point `{pname}`: the foot of the perpendicular from the line's first sketch point.");
-                    let body = format!("{origin} + {x_axis} * ({s} - {origin}).dot(&{x_axis})");
-                    items.push(Accessor::new(pname, doc, Ty::Point, body));
-                }
+            (Owner::Part(_, Part::BasePoint), _) if line_sketch(cx, g).is_some() => {
+                let doc = format!("Point `{pname}`: the foot of the perpendicular from the line's first sketch point.");
+                add(pname, doc, Ty::Point, Reads::BasePoint);
             }
             _ => {}
         }

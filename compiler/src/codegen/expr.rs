@@ -27,7 +27,10 @@ impl Context<'_> {
         }
         match m.exprs.node(e) {
             ExprNode::Const(v) => constant(*v),
-            ExprNode::Param(p) => (format!("params.{}", self.params[p]), Prec::Atom),
+            ExprNode::Param(p) => {
+                let index = p.into_raw().into_u32() as usize;
+                (super::lift::param(index, &self.params[p]), Prec::Atom)
+            }
             ExprNode::Neg(a) => (
                 format!("-{}", self.wrap(*a, Prec::Negation)),
                 Prec::Negation,

@@ -22,10 +22,10 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 pub(super) enum Value {
     /// A local of the solve, by name.
     Local(String),
-    /// A param, by its field of `Params`.
-    Param(String),
-    /// A default, by its field of `Defaults`.
-    Default(String),
+    /// A param, by its index in model order and its field of `Params`.
+    Param(usize, String),
+    /// A default, by its index in the plan and its field of `Defaults`.
+    Default(usize, String),
     /// A scalar literal.
     Scalar(f64),
     /// A point literal.
@@ -49,8 +49,8 @@ impl Value {
     pub(super) fn code(&self) -> String {
         match self {
             Value::Local(name) => name.clone(),
-            Value::Param(field) => format!("params.{field}"),
-            Value::Default(field) => format!("defaults.{field}"),
+            Value::Param(index, field) => super::lift::param(*index, field),
+            Value::Default(index, field) => super::lift::default(*index, field),
             Value::Scalar(v) => float(*v),
             Value::Point(x, y) => format!("Point2::new({}, {})", float(*x), float(*y)),
             Value::Vector(x, y) => format!("Vector2::new({}, {})", float(*x), float(*y)),
@@ -78,8 +78,8 @@ impl Value {
     pub(super) fn same(&self, other: &Value, cx: &Context<'_>) -> bool {
         match (self, other) {
             (Value::Local(a), Value::Local(b))
-            | (Value::Param(a), Value::Param(b))
-            | (Value::Default(a), Value::Default(b)) => a == b,
+            | (Value::Param(_, a), Value::Param(_, b))
+            | (Value::Default(_, a), Value::Default(_, b)) => a == b,
             (Value::Scalar(a), Value::Scalar(b)) => same_bits(*a, *b),
             (Value::Point(ax, ay), Value::Point(bx, by))
             | (Value::Vector(ax, ay), Value::Vector(bx, by)) => {
@@ -100,8 +100,8 @@ impl Value {
         matches!(
             self,
             Value::Local(_)
-                | Value::Param(_)
-                | Value::Default(_)
+                | Value::Param(..)
+                | Value::Default(..)
                 | Value::Scalar(_)
                 | Value::Point(..)
                 | Value::Vector(..)
@@ -219,7 +219,7 @@ impl Facts {
     pub(super) fn is_finite(&self, r: Reg) -> bool {
         match self.value(r) {
             // Inputs are checked finite on entry.
-            Value::Param(_) | Value::Default(_) => true,
+            Value::Param(..) | Value::Default(..) => true,
             Value::Scalar(v) => v.is_finite(),
             _ => self.known_finite.contains(&r),
         }

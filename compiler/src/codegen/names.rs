@@ -18,6 +18,9 @@ pub struct Namer {
     /// The text each identifier was made from (none for a reserved one).
     owners: HashMap<String, Option<String>>,
     clashes: Vec<Clash>,
+    /// Names are `v0`, `v1`, ... in order, whatever they are made from: a piece's canonical
+    /// form (see `lift`) does not depend on the model's names.
+    numbered: bool,
 }
 
 /// Two names of the model that become one identifier.
@@ -40,6 +43,14 @@ const KEYWORDS: &[&str] = &[
 ];
 
 impl Namer {
+    /// A namer whose names are numbers in order (see [`Namer::numbered`]'s field).
+    pub(crate) fn numbered() -> Namer {
+        Namer {
+            numbered: true,
+            ..Namer::default()
+        }
+    }
+
     /// `text` as a snake-case identifier (not yet unique).
     pub fn snake(text: &str) -> String {
         let mut out = String::new();
@@ -66,6 +77,11 @@ impl Namer {
     /// A fresh identifier from `text`. A repeat takes `_2`, `_3`, ...: never a double
     /// underscore, which is not snake case.
     pub fn fresh(&mut self, text: &str) -> String {
+        if self.numbered {
+            let name = format!("v{}", self.used.len());
+            self.used.insert(name.clone());
+            return name;
+        }
         let base = Self::snake(text);
         if let Some(first) = self.owners.get(&base) {
             if first.as_deref() != Some(text) {

@@ -152,10 +152,7 @@ pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String
             read_after.extend(identifiers(g));
         }
     }
-    let mut w = Writer {
-        out: String::new(),
-        indent,
-    };
+    let mut w = Writer::at(indent);
     for (run, out) in runs.iter().zip(&handed_on) {
         w.line("");
         w.line(match out.len() {
@@ -267,10 +264,7 @@ mod tests {
     fn short_code_is_written_as_it_is() {
         let groups = vec![group("a", 10, "x"), group("b", 10, "a_9")];
         assert_eq!(in_blocks(&groups, "b_9", 1), groups.concat());
-        let mut w = Writer {
-            out: String::new(),
-            indent: 1,
-        };
+        let mut w = Writer::at(1);
         let bindings = [Binding {
             mutable: true,
             name: "crank".into(),
@@ -366,10 +360,7 @@ mod tests {
                 value: format!("Frame2::at(Point2::new({i}.0, 0.0))"),
             })
             .collect();
-        let mut w = Writer {
-            out: String::new(),
-            indent: 1,
-        };
+        let mut w = Writer::at(1);
         declare(&mut w, &bindings);
         // sqrt(600) rounds up to 25, below the least block: 64 a tuple, ten tuples.
         assert_eq!(w.out.matches("let (").count(), 10, "{}", w.out);

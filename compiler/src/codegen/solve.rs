@@ -22,83 +22,6 @@ enum Decl {
     Value(Binding, &'static str),
 }
 
-/// The parts of `solve`, for a writer that lays them out otherwise (`tabled`): the same
-/// code, cut where the flat solve's text joins it.
-pub(super) struct Parts {
-    /// The sketches' checks that params can fail (code at the top of `solve`).
-    pub(super) sketch_checks: String,
-    /// The sketch's declarations, each with its value's Rust type.
-    pub(super) bindings: Vec<(Binding, &'static str)>,
-    /// The tolerance's `let`, if any step checks.
-    pub(super) tol: Option<String>,
-    /// The terms of the tolerance's scale, a list for each geom (see [`Solve::tolerance`]).
-    pub(super) tol_terms: Vec<Vec<String>>,
-    /// The step groups, each opened by its constraints' comment.
-    pub(super) groups: Vec<String>,
-    /// For each field of the layout, the code of its value at the end of `solve`.
-    pub(super) fields: Vec<String>,
-    /// The type of each local a step defines for a register.
-    pub(super) typed: HashMap<String, crate::plan::Ty>,
-    /// The locals of dimensions.
-    pub(super) dims: HashSet<String>,
-}
-
-/// The parts of `solve` (see [`Parts`]); `None` for a plan with outer iterations, whose
-/// steps are written inside a closure.
-pub(super) fn parts(cx: &Context<'_>, layout: &Layout) -> Option<Parts> {
-    if !cx.plan.iterations.is_empty() {
-        return None;
-    }
-    let mut names = Namer::default();
-    for reserved in [
-        "params",
-        "branches",
-        "defaults",
-        "outer",
-        "tol",
-        "solution",
-        "store",
-        "row",
-        "p",
-        "tol_scale",
-    ] {
-        names.reserve(reserved);
-    }
-    let mut s = Solve::new(cx, names);
-    let mut checks = Writer {
-        out: String::new(),
-        indent: 1,
-    };
-    s.check_sketches(&mut checks);
-    let (worked, decls) = s.sketch(layout);
-    let tol = s.tolerance(&worked);
-    let mut body = Writer {
-        out: String::new(),
-        indent: 1,
-    };
-    let groups = s.steps_in_groups(&mut body);
-    let fields = layout
-        .fields
-        .iter()
-        .map(|field| s.field_value(field.holds))
-        .collect();
-    let typed = (cx.plan.steps.iter())
-        .filter_map(|step| step.out)
-        .filter_map(|(r, ty)| Some((s.facts.regs.get(&r)?.local()?.to_string(), ty)))
-        .collect();
-    let bindings = s.bindings_typed(decls);
-    Some(Parts {
-        sketch_checks: checks.out,
-        bindings,
-        tol,
-        tol_terms: s.tol_terms.take(),
-        groups,
-        fields,
-        typed,
-        dims: s.dims.values().cloned().collect(),
-    })
-}
-
 /// The state of writing `solve`: the locals declared so far and what is known at the current
 /// step.
 pub(super) struct Solve<'a> {
@@ -181,7 +104,7 @@ pub(super) fn solve(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
 
 impl<'a> Solve<'a> {
     /// Nothing written yet, with `names` taken.
-    fn new(cx: &'a Context<'a>, names: Namer) -> Solve<'a> {
+    pub(super) fn new(cx: &'a Context<'a>, names: Namer) -> Solve<'a> {
         Solve {
             cx,
             names,
@@ -235,10 +158,7 @@ impl Solve<'_> {
         w.line("// The sketch: where every geom starts.");
         let (worked, decls) = self.sketch(layout);
         let tol = self.tolerance(&worked);
-        let mut body = Writer {
-            out: String::new(),
-            indent: w.indent,
-        };
+        let mut body = Writer::at(w.indent);
         let groups = self.steps_in_groups(&mut body);
         self.solution_init(&mut body, layout);
         let bindings = self.bindings(decls);
@@ -512,7 +432,7 @@ impl Solve<'_> {
             self.step(w, i, step);
             if !step.satisfies.is_empty() {
                 if w.out.len() == group_code {
-                    w.line("// Already true where the sketch puts the geoms: nothing moves.");
+                    w.comment("Already true where the sketch puts the geoms: nothing moves.");
                 }
                 group_start = true;
             }
@@ -602,10 +522,7 @@ impl Solve<'_> {
             w.line(&format!("let _ = {refs};"));
         }
         let written = std::mem::replace(&mut self.frame_writes, written_before);
-        let mut shadows = Writer {
-            out: String::new(),
-            indent: w.indent,
-        };
+        let mut shadows = Writer::at(w.indent);
         let mut written: Vec<GeomId> = written.into_iter().collect();
         written.sort();
         for g in &written {
@@ -617,10 +534,7 @@ impl Solve<'_> {
         w.out.insert_str(shadows_at, &shadows.out);
         w.line("Ok(())");
         w.close("})");
-        let mut declared = Writer {
-            out: String::new(),
-            indent: directions_indent,
-        };
+        let mut declared = Writer::at(directions_indent);
         for k in 0..it.defaults.len() {
             match self.trial_directions.get(&format!("{trial}[{k}]")) {
                 Some(TrialDirections { name, used: true }) => {
@@ -695,8 +609,8 @@ impl Solve<'_> {
                 .label
                 .as_ref()
                 .map_or(String::new(), |l| format!("{l}: "));
-            w.line(&format!(
-                "// {label}{} ({}:{})",
+            w.comment(&format!(
+                "{label}{} ({}:{})",
                 con.text,
                 self.cx.file,
                 m.line(con.span)
@@ -719,13 +633,45 @@ impl Solve<'_> {
         w.close("})");
     }
 
+    /// The code of frame `g`'s value now: its literal while it is known to the bit (in space),
+    /// else its local.
+    pub(super) fn frame_value(&self, g: GeomId) -> String {
+        match self.facts.frames.get(&g).and_then(|f| f.literal3) {
+            Some(f) => super::spatial::frame3(&f),
+            None => self.frame(g),
+        }
+    }
+
+    /// Writes steps `range` of a plan without outer iterations (a piece of a large model's
+    /// solve), each group up to the step that satisfies a constraint opened with a comment
+    /// quoting that constraint, as [`Solve::steps_in_groups`] writes the whole plan.
+    pub(super) fn groups(&mut self, w: &mut Writer, range: std::ops::Range<usize>) {
+        let steps = &self.cx.plan.steps;
+        let mut group_start = true;
+        let mut group_code = 0;
+        for i in range.clone() {
+            let step = &steps[i];
+            if group_start {
+                if let Some(end) = steps[i..range.end].iter().find(|s| !s.satisfies.is_empty()) {
+                    self.constraint_comments(w, end);
+                }
+                group_start = false;
+                group_code = w.out.len();
+            }
+            self.step(w, i, step);
+            if !step.satisfies.is_empty() {
+                if w.out.len() == group_code {
+                    w.comment("Already true where the sketch puts the geoms: nothing moves.");
+                }
+                group_start = true;
+            }
+        }
+    }
+
     /// The code of a solution field's value at the end of `solve`.
     fn field_value(&self, holds: Holds) -> String {
         match holds {
-            Holds::Frame(g) => match self.facts.frames.get(&g).and_then(|f| f.literal3) {
-                Some(f) => super::spatial::frame3(&f),
-                None => self.frame(g),
-            },
+            Holds::Frame(g) => self.frame_value(g),
             Holds::Dim(g) => self.dims[&g].clone(),
             Holds::Local(f) => self.locals[&f].clone(),
             Holds::LineSketch(g) => match super::api::line_sketch(self.cx, g) {

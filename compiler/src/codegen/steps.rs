@@ -227,7 +227,9 @@ impl Solve<'_> {
                 // varies is its trial's entry.
                 let value = match self.iterated.get(d) {
                     Some(code) => Value::Local(code.clone()),
-                    None => Value::Default(self.cx.defaults[d.0 as usize].clone()),
+                    None => {
+                        Value::Default(d.0 as usize, self.cx.defaults[d.0 as usize].clone())
+                    }
                 };
                 self.facts.regs.insert(r, value);
             }
@@ -499,7 +501,8 @@ impl Solve<'_> {
         let m = self.cx.model;
         if let ExprNode::Param(p) = m.exprs.node(e) {
             let field = self.cx.params[p].clone();
-            self.facts.regs.insert(r, Value::Param(field));
+            let index = p.into_raw().into_u32() as usize;
+            self.facts.regs.insert(r, Value::Param(index, field));
         } else if m.exprs.is_constant(e) {
             let v = m.exprs.eval(e, &[]);
             self.facts.regs.insert(r, Value::Scalar(v));
@@ -517,7 +520,8 @@ impl Solve<'_> {
         let test = if let ExprNode::Param(p) = m.exprs.node(e) {
             // Params are checked finite on entry.
             let field = self.cx.params[p].clone();
-            self.facts.regs.insert(r, Value::Param(field));
+            let index = p.into_raw().into_u32() as usize;
+            self.facts.regs.insert(r, Value::Param(index, field));
             format!("{} < 0.0", self.r(r))
         } else if m.exprs.is_constant(e) && m.exprs.eval(e, &[]) >= 0.0 {
             self.facts
@@ -532,8 +536,8 @@ impl Solve<'_> {
             format!("!gcs_runtime::num::is_finite({v}) || {v} < 0.0")
         };
         let con = &m.constraints[constraint];
-        w.line(&format!(
-            "// {}: {} is zero or more.",
+        w.comment(&format!(
+            "{}: {} is zero or more.",
             con.name,
             size_noun(m, constraint)
         ));
@@ -746,7 +750,8 @@ impl Solve<'_> {
     pub(super) fn branch_index(&self, branch: BranchId) -> String {
         match self.cx.branches.get(branch.0 as usize) {
             Some(field) if self.cx.plan.branches[branch.0 as usize].count > 1 => {
-                format!("usize::from(branches.{field})")
+                let field = super::lift::branch(branch.0 as usize, field);
+                format!("usize::from({field})")
             }
             _ => "0".into(),
         }

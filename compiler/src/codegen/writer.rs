@@ -6,9 +6,43 @@
 pub(super) struct Writer {
     pub(super) out: String,
     pub(super) indent: usize,
+    /// Comments are left out: a piece's canonical form (see `lift`) is its code alone.
+    pub(super) no_comments: bool,
 }
 
 impl Writer {
+    /// A writer of code at `indent`.
+    pub(super) fn at(indent: usize) -> Writer {
+        Writer {
+            indent,
+            ..Writer::default()
+        }
+    }
+
+    /// A `//` comment line (`text` without its slashes); nothing in a canonical form.
+    pub(super) fn comment(&mut self, text: &str) {
+        if !self.no_comments {
+            self.line(&format!("// {text}"));
+        }
+    }
+
+    /// A `///` doc comment of `text`, wrapped at the formatter's width as a person would.
+    pub(super) fn doc(&mut self, text: &str) {
+        let width = 96usize.saturating_sub(4 * self.indent + 4).max(40);
+        let mut line = String::new();
+        for word in text.split(' ') {
+            if !line.is_empty() && line.len() + 1 + word.len() > width {
+                self.line(&format!("/// {line}"));
+                line.clear();
+            }
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line.push_str(word);
+        }
+        self.line(&format!("/// {line}").trim_end());
+    }
+
     pub(super) fn line(&mut self, text: &str) {
         if text.is_empty() {
             self.out.push('\n');
@@ -45,19 +79,23 @@ pub(super) fn field_init(field: &str, value: &str) -> String {
     }
 }
 
-/// A Rust string literal.
+/// A Rust string literal (in a piece of a large model, what its row holds: see `lift`).
 pub(super) fn lit(s: &str) -> String {
-    format!("{s:?}")
+    let literal = || format!("{s:?}");
+    super::lift::text(s, literal).unwrap_or_else(literal)
 }
 
-/// A float literal: shortest round-trip form, always with a decimal point or exponent.
+/// A float literal: shortest round-trip form, always with a decimal point or exponent (in a
+/// piece of a large model, what its row holds: see `lift`).
 pub(super) fn float(v: f64) -> String {
-    named_float(v).unwrap_or_else(|| numeric_float(v))
+    let literal = || named_float(v).unwrap_or_else(|| numeric_float(v));
+    super::lift::float(v, literal).unwrap_or_else(literal)
 }
 
 /// A float literal typed `f64`, as the receiver of a method must be: `2.0_f64.sqrt()`.
 pub(super) fn typed_float(v: f64) -> String {
-    named_float(v).unwrap_or_else(|| format!("{}_f64", numeric_float(v)))
+    let literal = || named_float(v).unwrap_or_else(|| format!("{}_f64", numeric_float(v)));
+    super::lift::float(v, literal).unwrap_or_else(literal)
 }
 
 /// The float as a constant of `f64` or `std::f64::consts`, when it is one.

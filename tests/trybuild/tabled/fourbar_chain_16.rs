@@ -159,18 +159,16 @@ impl Default for Defaults {
     }
 }
 
-/// Where the solve keeps the values that cross its pieces: a slice per type.
+/// Where the solve keeps what crosses its pieces: a slice per kind of value.
 #[derive(Clone, Debug, PartialEq)]
 struct Store {
-    frame2: Box<[Frame2]>,
-    point2: Box<[Point2<f64>]>,
+    frame: Box<[Frame2]>,
 }
 
 impl Store {
     fn new() -> Store {
         Store {
-            frame2: vec![Frame2::default(); 33].into_boxed_slice(),
-            point2: vec![Point2::origin(); 4].into_boxed_slice(),
+            frame: vec![Default::default(); 51].into_boxed_slice(),
         }
     }
 }
@@ -209,26 +207,27 @@ impl Solution {
 
     /// Every frame of the solution, by its dotted name in the model, in model order.
     pub fn frames(&self) -> impl Iterator<Item = (&'static str, Frame2)> + '_ {
-        FRAME_NAME
+        FRAMES
             .iter()
             .enumerate()
-            .map(|(k, &name)| (text(name), self.frame_at(k)))
+            .map(|(k, v)| (text(v.name), self.frame_at(k)))
     }
 
     /// The frame called `name` (its dotted name in the model), if the solution has it.
     pub fn frame(&self, name: &str) -> Option<Frame2> {
-        find(&FRAME_BY_NAME, name).map(|k| self.frame_at(k))
+        find(&FRAMES_BY_NAME, name).map(|k| self.frame_at(k))
     }
 
-    /// The frame at `k` in model order: the shape of the code that computes it
-    /// (`FRAME_SHAPE`), the store's slots it reads (`FRAME_AT`) and its constants (`FRAME_K`).
+    /// The frame at `k` in model order: the shape of the code that computes it, the
+    /// store's slots it reads and its constants (`FRAMES`).
     #[allow(unused_variables, clippy::match_single_binding)]
     fn frame_at(&self, k: usize) -> Frame2 {
-        let at = FRAME_AT[k];
-        let c = [0.0f64; 0];
-        match FRAME_SHAPE[k] {
+        let Some(row) = FRAMES.get(k) else {
+            return Frame2::default();
+        };
+        match row.shape {
             _ => {
-                let crank = self.store.frame2[at[0] as usize];
+                let crank = self.store.frame[row.at[0] as usize];
                 crank
             }
         }
@@ -236,67 +235,66 @@ impl Solution {
 
     /// Every point of the solution, by its dotted name in the model, in model order.
     pub fn points(&self) -> impl Iterator<Item = (&'static str, Point2<f64>)> + '_ {
-        POINT_NAME
+        POINTS
             .iter()
             .enumerate()
-            .map(|(k, &name)| (text(name), self.point_at(k)))
+            .map(|(k, v)| (text(v.name), self.point_at(k)))
     }
 
     /// The point called `name` (its dotted name in the model), if the solution has it.
     pub fn point(&self, name: &str) -> Option<Point2<f64>> {
-        find(&POINT_BY_NAME, name).map(|k| self.point_at(k))
+        find(&POINTS_BY_NAME, name).map(|k| self.point_at(k))
     }
 
-    /// The point at `k` in model order: the shape of the code that computes it
-    /// (`POINT_SHAPE`), the store's slots it reads (`POINT_AT`) and its constants (`POINT_K`).
+    /// The point at `k` in model order: the shape of the code that computes it, the
+    /// store's slots it reads and its constants (`POINTS`).
     #[allow(unused_variables, clippy::match_single_binding)]
     fn point_at(&self, k: usize) -> Point2<f64> {
-        let at = POINT_AT[k];
-        let c = POINT_K[k];
-        match POINT_SHAPE[k] {
-            0 => Point2::new(c[0], c[1]),
+        let Some(row) = POINTS.get(k) else {
+            return Point2::origin();
+        };
+        match row.shape {
+            0 => Point2::new(0.0, 0.0),
             1 => {
-                let crank = self.store.frame2[at[0] as usize];
+                let crank = self.store.frame[row.at[0] as usize];
                 crank.origin
             }
             2 => {
-                let crank = self.store.frame2[at[0] as usize];
-                crank.origin + crank.x_axis() * c[0]
+                let crank = self.store.frame[2];
+                crank.origin + crank.x_axis() * 1.5
             }
-            3 => {
-                let rocker1 = self.store.frame2[at[0] as usize];
-                rocker1.origin + rocker1.y_axis() * c[0]
-            }
+            3 => Point2::new(row.k[0], 0.0),
             _ => {
-                let rocker1 = self.store.frame2[at[0] as usize];
-                rocker1.origin + rocker1.y_axis() * -c[0]
+                let rocker1 = self.store.frame[row.at[0] as usize];
+                rocker1.origin + rocker1.y_axis() * row.k[0]
             }
         }
     }
 
     /// Every vector of the solution, by its dotted name in the model, in model order.
     pub fn vectors(&self) -> impl Iterator<Item = (&'static str, Vector2<f64>)> + '_ {
-        VECTOR_NAME
+        VECTORS
             .iter()
             .enumerate()
-            .map(|(k, &name)| (text(name), self.vector_at(k)))
+            .map(|(k, v)| (text(v.name), self.vector_at(k)))
     }
 
     /// The vector called `name` (its dotted name in the model), if the solution has it.
     pub fn vector(&self, name: &str) -> Option<Vector2<f64>> {
-        find(&VECTOR_BY_NAME, name).map(|k| self.vector_at(k))
+        find(&VECTORS_BY_NAME, name).map(|k| self.vector_at(k))
     }
 
-    /// The vector at `k` in model order: the shape of the code that computes it
-    /// (`VECTOR_SHAPE`), the store's slots it reads (`VECTOR_AT`) and its constants (`VECTOR_K`).
+    /// The vector at `k` in model order: the shape of the code that computes it, the
+    /// store's slots it reads and its constants (`VECTORS`).
     #[allow(unused_variables, clippy::match_single_binding)]
     fn vector_at(&self, k: usize) -> Vector2<f64> {
-        let at = VECTOR_AT[k];
-        let c = VECTOR_K[k];
-        match VECTOR_SHAPE[k] {
-            0 => Vector2::new(c[0], c[1]),
+        let Some(row) = VECTORS.get(k) else {
+            return Vector2::zeros();
+        };
+        match row.shape {
+            0 => Vector2::new(1.0, 0.0),
             _ => {
-                let crank = self.store.frame2[at[0] as usize];
+                let crank = self.store.frame[2];
                 crank.x_axis()
             }
         }
@@ -304,27 +302,38 @@ impl Solution {
 
     /// Every scalar of the solution, by its dotted name in the model, in model order.
     pub fn scalars(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
-        SCALAR_NAME
+        SCALARS
             .iter()
             .enumerate()
-            .map(|(k, &name)| (text(name), self.scalar_at(k)))
+            .map(|(k, v)| (text(v.name), self.scalar_at(k)))
     }
 
     /// The scalar called `name` (its dotted name in the model), if the solution has it.
     pub fn scalar(&self, name: &str) -> Option<f64> {
-        find(&SCALAR_BY_NAME, name).map(|k| self.scalar_at(k))
+        find(&SCALARS_BY_NAME, name).map(|k| self.scalar_at(k))
     }
 
-    /// The scalar at `k` in model order: the shape of the code that computes it
-    /// (`SCALAR_SHAPE`), the store's slots it reads (`SCALAR_AT`) and its constants (`SCALAR_K`).
+    /// The scalar at `k` in model order: the shape of the code that computes it, the
+    /// store's slots it reads and its constants (`SCALARS`).
     #[allow(unused_variables, clippy::match_single_binding)]
     fn scalar_at(&self, k: usize) -> f64 {
-        let at = [0u32; 0];
-        let c = [0.0f64; 0];
-        match SCALAR_SHAPE[k] {
+        let Some(row) = SCALARS.get(k) else {
+            return 0.0;
+        };
+        match row.shape {
             _ => 0.0,
         }
     }
+}
+
+/// A value of the solution: its name's id, the shape of its accessor, the store's slots it
+/// reads and its constants.
+#[derive(Clone, Copy, Debug)]
+struct Access<const A: usize, const K: usize> {
+    name: u32,
+    shape: u16,
+    at: [u32; A],
+    k: [f64; K],
 }
 
 /// The index, in model order, of the entry called `name` of a table sorted by name
@@ -334,9 +343,9 @@ fn find(by_name: &[[u32; 2]], name: &str) -> Option<usize> {
     Some(by_name[k][1] as usize)
 }
 
-/// Solves the model into `solution`: the assembly plan's steps, in order, each a call of
-/// the piece it is an instance of with its row of data (`ORDER`). Never panics, allocates
-/// nothing. After an error, `solution` holds the steps done before it.
+/// Solves the model into `solution`: the sketch's pieces, then the assembly plan's steps,
+/// each a call of the function of its shape with its row (`SKETCH_ORDER`, `ORDER`). Never
+/// panics, allocates nothing. After an error, `solution` holds the steps done before it.
 ///
 /// # Errors
 ///
@@ -351,74 +360,25 @@ pub fn solve_into(
     gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
     let p: [f64; 1] = [params.theta];
     let store = &mut solution.store;
+    let mut tol_scale = 0.0f64;
+    for &[shape, row] in SKETCH_ORDER.iter() {
+        let row = row as usize;
+        match shape {
+            0 => sketch_0(store, params, &p, &mut tol_scale, &SKETCH_0[row]),
+            1 => sketch_1(store, params, &p, &mut tol_scale, &SKETCH_1[row]),
+            2 => sketch_2(store, params, &p, &mut tol_scale, &SKETCH_2[row]),
+            3 => sketch_3(store, params, &p, &mut tol_scale, &SKETCH_3[row]),
+            _ => sketch_4(store, params, &p, &mut tol_scale, &SKETCH_4[row]),
+        }
+    }
+    let tol = gcs_runtime::tol::CHECK_REL * (1.0 + tol_scale);
     for &[shape, row] in ORDER.iter() {
         let row = row as usize;
         match shape {
-            0 => piece_0(
-                store,
-                params,
-                &p,
-                branches,
-                defaults,
-                Row {
-                    at: &PIECE_0_AT[row],
-                    k: &PIECE_0_K[row],
-                    text: &[],
-                    input: &[],
-                },
-            )?,
-            1 => piece_1(
-                store,
-                params,
-                &p,
-                branches,
-                defaults,
-                Row {
-                    at: &PIECE_1_AT[row],
-                    k: &[],
-                    text: &[],
-                    input: &[],
-                },
-            )?,
-            2 => piece_2(
-                store,
-                params,
-                &p,
-                branches,
-                defaults,
-                Row {
-                    at: &PIECE_2_AT[row],
-                    k: &[],
-                    text: &[],
-                    input: &[],
-                },
-            )?,
-            3 => piece_3(
-                store,
-                params,
-                &p,
-                branches,
-                defaults,
-                Row {
-                    at: &PIECE_3_AT[row],
-                    k: &PIECE_3_K[row],
-                    text: &PIECE_3_TEXT[row],
-                    input: &PIECE_3_INPUT[row],
-                },
-            )?,
-            _ => piece_4(
-                store,
-                params,
-                &p,
-                branches,
-                defaults,
-                Row {
-                    at: &PIECE_4_AT[row],
-                    k: &[],
-                    text: &[],
-                    input: &[],
-                },
-            )?,
+            0 => piece_0(store, params, &p, branches, defaults, tol, &PIECE_0[row])?,
+            1 => piece_1(store, params, &p, branches, defaults, tol, &PIECE_1[row])?,
+            2 => piece_2(store, params, &p, branches, defaults, tol, &PIECE_2[row])?,
+            _ => piece_3(store, params, &p, branches, defaults, tol, &PIECE_3[row])?,
         }
     }
     solution.branches = *branches;
@@ -442,18 +402,170 @@ pub fn solve(
     Ok(solution)
 }
 
-/// A piece's data: the store's slots it reads then writes, its constants, the names its
-/// errors give, and the params, branch variables or defaults it reads.
-/// Each its row of the piece's tables (`PIECE_n_AT`, `_K`, `_TEXT`, `_INPUT`).
-#[derive(Clone, Copy, Debug)]
-struct Row<'r, const A: usize, const K: usize, const T: usize, const I: usize> {
-    at: &'r [u32; A],
-    k: &'r [f64; K],
-    text: &'r [u32; T],
-    input: &'r [u32; I],
+/// The sketch of `X`, `P0`, `crank`, `P1`, `coupler1`, `rocker1`, `P2`, `coupler2`: where they
+/// start, stored for the steps and the solution.
+#[allow(
+    unused_mut,
+    unused_variables,
+    unused_assignments,
+    clippy::too_many_arguments
+)]
+fn sketch_0(
+    store: &mut Store,
+    params: &Params,
+    p: &[f64],
+    tol_scale: &mut f64,
+    row: &Row<0, 0, 0, 0>,
+) {
+    let x = Frame2::at(Point2::origin());
+    store.frame[0] = x;
+    let p0 = Frame2::at(Point2::new(0.0, 0.0));
+    store.frame[1] = p0;
+    let crank = Frame2::at(Point2::new(0.0, 0.0));
+    store.frame[2] = crank;
+    let p1 = Frame2::at(Point2::new(4.0, 0.0));
+    store.frame[3] = p1;
+    let coupler1 = Frame2::at(Point2::new(1.0, 0.0));
+    store.frame[4] = coupler1;
+    let rocker1 = Frame2::at(Point2::new(4.0, 0.0));
+    store.frame[5] = rocker1;
+    let p2 = Frame2::at(Point2::new(8.0, 0.0));
+    store.frame[6] = p2;
+    let coupler2 = Frame2::at(Point2::new(5.0, 0.0));
+    store.frame[7] = coupler2;
 }
 
-/// And 3 more pieces like it: the rows of `PIECE_0_*`, each with its constraint.
+/// The sketch of `rocker2`, `P3`, `coupler3`, `rocker3`, `P4`, `coupler4`, `rocker4`, `P5`:
+/// where they start, stored for the steps and the solution.
+///
+/// And 1 more piece like it: the rows of `SKETCH_1`.
+#[allow(
+    unused_mut,
+    unused_variables,
+    unused_assignments,
+    clippy::too_many_arguments
+)]
+fn sketch_1(
+    store: &mut Store,
+    params: &Params,
+    p: &[f64],
+    tol_scale: &mut f64,
+    row: &Row<8, 6, 0, 0>,
+) {
+    let rocker2 = Frame2::at(Point2::new(row.k[0], 0.0));
+    store.frame[row.at[0] as usize] = rocker2;
+    let p3 = Frame2::at(Point2::new(row.k[1], 0.0));
+    store.frame[row.at[1] as usize] = p3;
+    let coupler3 = Frame2::at(Point2::new(row.k[2], 0.0));
+    store.frame[row.at[2] as usize] = coupler3;
+    let rocker3 = Frame2::at(Point2::new(row.k[1], 0.0));
+    store.frame[row.at[3] as usize] = rocker3;
+    let p4 = Frame2::at(Point2::new(row.k[3], 0.0));
+    store.frame[row.at[4] as usize] = p4;
+    let coupler4 = Frame2::at(Point2::new(row.k[4], 0.0));
+    store.frame[row.at[5] as usize] = coupler4;
+    let rocker4 = Frame2::at(Point2::new(row.k[3], 0.0));
+    store.frame[row.at[6] as usize] = rocker4;
+    let p5 = Frame2::at(Point2::new(row.k[5], 0.0));
+    store.frame[row.at[7] as usize] = p5;
+}
+
+/// The sketch of `coupler5`, `rocker5`, `P6`, `coupler6`, `rocker6`, `P7`, `coupler7`,
+/// `rocker7`: where they start, stored for the steps and the solution.
+///
+/// And 1 more piece like it: the rows of `SKETCH_2`.
+#[allow(
+    unused_mut,
+    unused_variables,
+    unused_assignments,
+    clippy::too_many_arguments
+)]
+fn sketch_2(
+    store: &mut Store,
+    params: &Params,
+    p: &[f64],
+    tol_scale: &mut f64,
+    row: &Row<8, 6, 0, 0>,
+) {
+    let coupler5 = Frame2::at(Point2::new(row.k[0], 0.0));
+    store.frame[row.at[0] as usize] = coupler5;
+    let rocker5 = Frame2::at(Point2::new(row.k[1], 0.0));
+    store.frame[row.at[1] as usize] = rocker5;
+    let p6 = Frame2::at(Point2::new(row.k[2], 0.0));
+    store.frame[row.at[2] as usize] = p6;
+    let coupler6 = Frame2::at(Point2::new(row.k[3], 0.0));
+    store.frame[row.at[3] as usize] = coupler6;
+    let rocker6 = Frame2::at(Point2::new(row.k[2], 0.0));
+    store.frame[row.at[4] as usize] = rocker6;
+    let p7 = Frame2::at(Point2::new(row.k[4], 0.0));
+    store.frame[row.at[5] as usize] = p7;
+    let coupler7 = Frame2::at(Point2::new(row.k[5], 0.0));
+    store.frame[row.at[6] as usize] = coupler7;
+    let rocker7 = Frame2::at(Point2::new(row.k[4], 0.0));
+    store.frame[row.at[7] as usize] = rocker7;
+}
+
+/// The sketch of `P8`, `coupler8`, `rocker8`, `P9`, `coupler9`, `rocker9`, `P10`, `coupler10`:
+/// where they start, stored for the steps and the solution.
+#[allow(
+    unused_mut,
+    unused_variables,
+    unused_assignments,
+    clippy::too_many_arguments
+)]
+fn sketch_3(
+    store: &mut Store,
+    params: &Params,
+    p: &[f64],
+    tol_scale: &mut f64,
+    row: &Row<0, 0, 0, 0>,
+) {
+    let p8 = Frame2::at(Point2::new(32.0, 0.0));
+    store.frame[24] = p8;
+    let coupler8 = Frame2::at(Point2::new(29.0, 0.0));
+    store.frame[25] = coupler8;
+    let rocker8 = Frame2::at(Point2::new(32.0, 0.0));
+    store.frame[26] = rocker8;
+    let p9 = Frame2::at(Point2::new(36.0, 0.0));
+    store.frame[27] = p9;
+    let coupler9 = Frame2::at(Point2::new(33.0, 0.0));
+    store.frame[28] = coupler9;
+    let rocker9 = Frame2::at(Point2::new(36.0, 0.0));
+    store.frame[29] = rocker9;
+    let p10 = Frame2::at(Point2::new(40.0, 0.0));
+    store.frame[30] = p10;
+    let coupler10 = Frame2::at(Point2::new(37.0, 0.0));
+    store.frame[31] = coupler10;
+}
+
+/// The sketch of `P16`, `coupler16`, `rocker16`: where they start, stored for the steps and the
+/// solution.
+#[allow(
+    unused_mut,
+    unused_variables,
+    unused_assignments,
+    clippy::too_many_arguments
+)]
+fn sketch_4(
+    store: &mut Store,
+    params: &Params,
+    p: &[f64],
+    tol_scale: &mut f64,
+    row: &Row<0, 0, 0, 0>,
+) {
+    let p16 = Frame2::at(Point2::new(64.0, 0.0));
+    store.frame[48] = p16;
+    let coupler16 = Frame2::at(Point2::new(61.0, 0.0));
+    store.frame[49] = coupler16;
+    let rocker16 = Frame2::at(Point2::new(64.0, 0.0));
+    store.frame[50] = rocker16;
+}
+
+/// Satisfies `coincident(crank.a, P0)`, `coincident(rocker10.d, P10)`, `coincident(rocker11.d,
+/// P11)`, `coincident(rocker12.d, P12)`, `coincident(rocker13.d, P13)`, `coincident(rocker14.d,
+/// P14)`, `coincident(rocker15.d, P15)`, `coincident(rocker16.d, P16)`.
+///
+/// And 1 more piece like it: the rows of `PIECE_0`.
 #[allow(
     unused_mut,
     unused_variables,
@@ -466,43 +578,9 @@ fn piece_0(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: Row<'_, 8, 8, 0, 0>,
+    tol: f64,
+    row: &Row<0, 0, 0, 0>,
 ) -> Result<(), SolveError> {
-    let mut crank = Frame2::at(Point2::new(row.k[0], 0.0));
-    let mut coupler1 = Frame2::at(Point2::new(row.k[1], 0.0));
-    let mut rocker1 = Frame2::at(Point2::new(row.k[2], 0.0));
-    let mut coupler2 = Frame2::at(Point2::new(row.k[3], 0.0));
-    let mut rocker2 = Frame2::at(Point2::new(row.k[4], 0.0));
-    let mut coupler3 = Frame2::at(Point2::new(row.k[5], 0.0));
-    let mut rocker3 = Frame2::at(Point2::new(row.k[6], 0.0));
-    let mut coupler4 = Frame2::at(Point2::new(row.k[7], 0.0));
-    store.frame2[row.at[0] as usize] = crank;
-    store.frame2[row.at[1] as usize] = coupler1;
-    store.frame2[row.at[2] as usize] = rocker1;
-    store.frame2[row.at[3] as usize] = coupler2;
-    store.frame2[row.at[4] as usize] = rocker2;
-    store.frame2[row.at[5] as usize] = coupler3;
-    store.frame2[row.at[6] as usize] = rocker3;
-    store.frame2[row.at[7] as usize] = coupler4;
-    Ok(())
-}
-
-#[allow(
-    unused_mut,
-    unused_variables,
-    unused_assignments,
-    clippy::too_many_arguments
-)]
-fn piece_1(
-    store: &mut Store,
-    params: &Params,
-    p: &[f64],
-    branches: &Branches,
-    defaults: &Defaults,
-    row: Row<'_, 1, 0, 0, 0>,
-) -> Result<(), SolveError> {
-    let mut rocker16 = Frame2::at(Point2::new(64.0, 0.0));
-
     // coincident(crank.a, P0) (fourbar_chain_16.gcs:9)
     // Already true where the sketch puts the geoms: nothing moves.
 
@@ -523,43 +601,50 @@ fn piece_1(
 
     // coincident(rocker15.d, P15) (fourbar_chain_16.gcs:115)
     // Already true where the sketch puts the geoms: nothing moves.
-    store.frame2[row.at[0] as usize] = rocker16;
+
+    // coincident(rocker16.d, P16) (fourbar_chain_16.gcs:122)
+    // Already true where the sketch puts the geoms: nothing moves.
     Ok(())
 }
 
-/// coincident(rocker8.d, P8) (fourbar_chain_16.gcs:66)
+/// Satisfies `coincident(rocker9.d, P9)`, `drive: angle(X, crank.u) = theta`,
+/// `coincident(crank.b, coupler1.b)`, `elbow1: coincident(coupler1.c, rocker1.c)`,
+/// `coincident(rocker1.b, coupler2.b)`, `elbow2: coincident(coupler2.c, rocker2.c)`,
+/// `coincident(rocker2.b, coupler3.b)`, `elbow3: coincident(coupler3.c, rocker3.c)`.
 #[allow(
     unused_mut,
     unused_variables,
     unused_assignments,
     clippy::too_many_arguments
 )]
-fn piece_2(
+fn piece_1(
     store: &mut Store,
     params: &Params,
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: Row<'_, 7, 0, 0, 0>,
+    tol: f64,
+    row: &Row<0, 0, 0, 0>,
 ) -> Result<(), SolveError> {
-    let mut crank = store.frame2[row.at[0] as usize];
-    let mut coupler1 = store.frame2[row.at[1] as usize];
-    let mut rocker1 = store.frame2[row.at[2] as usize];
-    let mut coupler2 = store.frame2[row.at[3] as usize];
-    let mut rocker2 = store.frame2[row.at[4] as usize];
-    let mut coupler3 = store.frame2[row.at[5] as usize];
-    // Already true where the sketch puts the geoms: nothing moves.
+    let mut crank = store.frame[2];
+    let mut coupler1 = store.frame[4];
+    let mut rocker1 = store.frame[5];
+    let mut coupler2 = store.frame[7];
+    let mut rocker2 = store.frame[8];
+    let mut coupler3 = store.frame[10];
+    let mut rocker3 = store.frame[11];
 
     // coincident(rocker9.d, P9) (fourbar_chain_16.gcs:73)
     // Already true where the sketch puts the geoms: nothing moves.
 
     // drive: angle(X, crank.u) = theta (fourbar_chain_16.gcs:10)
     let x_dir_turned = direction_at(params.theta);
-    let turn = rotation_from_x_unit(&x_dir_turned);
-    crank.set_rotation(&turn);
+    let crank_u_dir = crank.x_axis();
+    let turn = rotation_between_units(&crank_u_dir, &x_dir_turned);
+    crank.rotate_about_by(&Point2::new(0.0, 0.0), &turn);
 
     // coincident(crank.b, coupler1.b) (fourbar_chain_16.gcs:15)
-    let crank_b = Point2::from(crank.x_axis() * 1.5);
+    let crank_b = crank.origin + crank.x_axis() * 1.5;
     coupler1.place_origin(&crank_b);
 
     // elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16)
@@ -571,6 +656,7 @@ fn piece_2(
             0.0,
         )
     })?;
+    let rocker1_c = rocker1.origin + rocker1.y_axis() * 3.0;
     let circle_p1 = Circle::new(Point2::new(4.0, 0.0), 3.0).ok_or_else(|| {
         SolveError::new(
             "elbow1",
@@ -593,19 +679,17 @@ fn piece_2(
                 2.0,
             )
         })?;
-    let elbow1_reach = elbow1_chord
-        .root_from_b(usize::from(branches.indices[0]))
-        .unwrap_or(elbow1 - Point2::new(4.0, 0.0));
-    let turn_2 = rotation_on_circle_from(
-        elbow1_reach.y * 0.3333333333333333,
-        elbow1_reach.x * -0.3333333333333333,
-        &(Point2::new(4.0, 3.0) - Point2::new(4.0, 0.0)),
-        &elbow1_reach,
+    let turn_2 = rotation_on_circle(
+        &(rocker1_c - Point2::new(4.0, 0.0)),
+        &elbow1_chord
+            .root_from_b(usize::from(branches.indices[0]))
+            .unwrap_or(elbow1 - Point2::new(4.0, 0.0)),
+        3.0,
     );
-    rocker1.set_rotation(&turn_2);
+    rocker1.rotate_about_by(&Point2::new(4.0, 0.0), &turn_2);
 
     // coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22)
-    let rocker1_b = Point2::new(4.0, 0.0) + rocker1.y_axis() * -1.5;
+    let rocker1_b = rocker1.origin + rocker1.y_axis() * -1.5;
     coupler2.place_origin(&rocker1_b);
 
     // elbow2: coincident(coupler2.c, rocker2.c) (fourbar_chain_16.gcs:23)
@@ -617,6 +701,7 @@ fn piece_2(
             0.0,
         )
     })?;
+    let rocker2_c = rocker2.origin + rocker2.y_axis() * 3.0;
     let circle_p2 = Circle::new(Point2::new(8.0, 0.0), 3.0).ok_or_else(|| {
         SolveError::new(
             "elbow2",
@@ -639,33 +724,284 @@ fn piece_2(
                 2.0,
             )
         })?;
-    let elbow2_reach = elbow2_chord
-        .root_from_b(usize::from(branches.indices[1]))
-        .unwrap_or(elbow2 - Point2::new(8.0, 0.0));
-    let turn_3 = rotation_on_circle_from(
-        elbow2_reach.y * 0.3333333333333333,
-        elbow2_reach.x * -0.3333333333333333,
-        &(Point2::new(8.0, 3.0) - Point2::new(8.0, 0.0)),
-        &elbow2_reach,
+    let turn_3 = rotation_on_circle(
+        &(rocker2_c - Point2::new(8.0, 0.0)),
+        &elbow2_chord
+            .root_from_b(usize::from(branches.indices[1]))
+            .unwrap_or(elbow2 - Point2::new(8.0, 0.0)),
+        3.0,
     );
-    rocker2.set_rotation(&turn_3);
+    rocker2.rotate_about_by(&Point2::new(8.0, 0.0), &turn_3);
 
     // coincident(rocker2.b, coupler3.b) (fourbar_chain_16.gcs:29)
-    let rocker2_b = Point2::new(8.0, 0.0) + rocker2.y_axis() * -1.5;
+    let rocker2_b = rocker2.origin + rocker2.y_axis() * -1.5;
     coupler3.place_origin(&rocker2_b);
-    store.frame2[row.at[0] as usize] = crank;
-    store.frame2[row.at[1] as usize] = coupler1;
-    store.frame2[row.at[2] as usize] = rocker1;
-    store.frame2[row.at[3] as usize] = coupler2;
-    store.frame2[row.at[4] as usize] = rocker2;
-    store.frame2[row.at[5] as usize] = coupler3;
-    store.point2[row.at[6] as usize] = rocker2_b;
+
+    // elbow3: coincident(coupler3.c, rocker3.c) (fourbar_chain_16.gcs:30)
+    let circle_rocker2_b = Circle::new(rocker2_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow3",
+            "coincident(coupler3.c, rocker3.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let rocker3_c = rocker3.origin + rocker3.y_axis() * 3.0;
+    let circle_p3 = Circle::new(Point2::new(12.0, 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            "elbow3",
+            "coincident(coupler3.c, rocker3.c)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow3_chord =
+        intersect2d::circle_circle_chord(&circle_rocker2_b, &circle_p3).map_err(|miss| {
+            SolveError::from_miss("elbow3", "coincident(coupler3.c, rocker3.c)", miss)
+        })?;
+    let elbow3 = elbow3_chord
+        .root(usize::from(branches.indices[2]))
+        .ok_or_else(|| {
+            SolveError::new(
+                "elbow3",
+                "coincident(coupler3.c, rocker3.c)",
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let turn_4 = rotation_on_circle(
+        &(rocker3_c - Point2::new(12.0, 0.0)),
+        &elbow3_chord
+            .root_from_b(usize::from(branches.indices[2]))
+            .unwrap_or(elbow3 - Point2::new(12.0, 0.0)),
+        3.0,
+    );
+    rocker3.rotate_about_by(&Point2::new(12.0, 0.0), &turn_4);
+    store.frame[2] = crank;
+    store.frame[4] = coupler1;
+    store.frame[5] = rocker1;
+    store.frame[7] = coupler2;
+    store.frame[8] = rocker2;
+    store.frame[10] = coupler3;
+    store.frame[11] = rocker3;
     Ok(())
 }
 
-/// elbow3: coincident(coupler3.c, rocker3.c) (fourbar_chain_16.gcs:30)
+/// Satisfies `coincident(rocker3.b, coupler4.b)`, `elbow4: coincident(coupler4.c, rocker4.c)`,
+/// `coincident(rocker4.b, coupler5.b)`, `elbow5: coincident(coupler5.c, rocker5.c)`,
+/// `coincident(rocker5.b, coupler6.b)`, `elbow6: coincident(coupler6.c, rocker6.c)`,
+/// `coincident(rocker6.b, coupler7.b)`, `elbow7: coincident(coupler7.c, rocker7.c)`.
 ///
-/// And 2 more pieces like it: the rows of `PIECE_3_*`, each with its constraint.
+/// And 2 more pieces like it: the rows of `PIECE_2`.
+#[allow(
+    unused_mut,
+    unused_variables,
+    unused_assignments,
+    clippy::too_many_arguments
+)]
+fn piece_2(
+    store: &mut Store,
+    params: &Params,
+    p: &[f64],
+    branches: &Branches,
+    defaults: &Defaults,
+    tol: f64,
+    row: &Row<9, 8, 8, 4>,
+) -> Result<(), SolveError> {
+    let rocker3 = store.frame[row.at[8] as usize];
+    let mut coupler4 = store.frame[row.at[0] as usize];
+    let mut rocker4 = store.frame[row.at[1] as usize];
+    let mut coupler5 = store.frame[row.at[2] as usize];
+    let mut rocker5 = store.frame[row.at[3] as usize];
+    let mut coupler6 = store.frame[row.at[4] as usize];
+    let mut rocker6 = store.frame[row.at[5] as usize];
+    let mut coupler7 = store.frame[row.at[6] as usize];
+    let mut rocker7 = store.frame[row.at[7] as usize];
+
+    // coincident(rocker3.b, coupler4.b) (fourbar_chain_16.gcs:36)
+    let rocker3_b = rocker3.origin + rocker3.y_axis() * -1.5;
+    coupler4.place_origin(&rocker3_b);
+
+    // elbow4: coincident(coupler4.c, rocker4.c) (fourbar_chain_16.gcs:37)
+    let circle_rocker3_b = Circle::new(rocker3_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[0]),
+            text(row.text[1]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let rocker4_c = rocker4.origin + rocker4.y_axis() * 3.0;
+    let circle_p4 = Circle::new(Point2::new(row.k[1], 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[0]),
+            text(row.text[1]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow4_chord = intersect2d::circle_circle_chord(&circle_rocker3_b, &circle_p4)
+        .map_err(|miss| SolveError::from_miss(text(row.text[0]), text(row.text[1]), miss))?;
+    let elbow4 = elbow4_chord
+        .root(usize::from(branches.indices[row.input[0] as usize]))
+        .ok_or_else(|| {
+            SolveError::new(
+                text(row.text[0]),
+                text(row.text[1]),
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let turn = rotation_on_circle(
+        &(rocker4_c - Point2::new(row.k[1], 0.0)),
+        &elbow4_chord
+            .root_from_b(usize::from(branches.indices[row.input[0] as usize]))
+            .unwrap_or(elbow4 - Point2::new(row.k[1], 0.0)),
+        3.0,
+    );
+    rocker4.rotate_about_by(&Point2::new(row.k[1], 0.0), &turn);
+
+    // coincident(rocker4.b, coupler5.b) (fourbar_chain_16.gcs:43)
+    let rocker4_b = rocker4.origin + rocker4.y_axis() * -1.5;
+    coupler5.place_origin(&rocker4_b);
+
+    // elbow5: coincident(coupler5.c, rocker5.c) (fourbar_chain_16.gcs:44)
+    let circle_rocker4_b = Circle::new(rocker4_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[2]),
+            text(row.text[3]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let rocker5_c = rocker5.origin + rocker5.y_axis() * 3.0;
+    let circle_p5 = Circle::new(Point2::new(row.k[3], 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[2]),
+            text(row.text[3]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow5_chord = intersect2d::circle_circle_chord(&circle_rocker4_b, &circle_p5)
+        .map_err(|miss| SolveError::from_miss(text(row.text[2]), text(row.text[3]), miss))?;
+    let elbow5 = elbow5_chord
+        .root(usize::from(branches.indices[row.input[1] as usize]))
+        .ok_or_else(|| {
+            SolveError::new(
+                text(row.text[2]),
+                text(row.text[3]),
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let turn_2 = rotation_on_circle(
+        &(rocker5_c - Point2::new(row.k[3], 0.0)),
+        &elbow5_chord
+            .root_from_b(usize::from(branches.indices[row.input[1] as usize]))
+            .unwrap_or(elbow5 - Point2::new(row.k[3], 0.0)),
+        3.0,
+    );
+    rocker5.rotate_about_by(&Point2::new(row.k[3], 0.0), &turn_2);
+
+    // coincident(rocker5.b, coupler6.b) (fourbar_chain_16.gcs:50)
+    let rocker5_b = rocker5.origin + rocker5.y_axis() * -1.5;
+    coupler6.place_origin(&rocker5_b);
+
+    // elbow6: coincident(coupler6.c, rocker6.c) (fourbar_chain_16.gcs:51)
+    let circle_rocker5_b = Circle::new(rocker5_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[4]),
+            text(row.text[5]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let rocker6_c = rocker6.origin + rocker6.y_axis() * 3.0;
+    let circle_p6 = Circle::new(Point2::new(row.k[5], 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[4]),
+            text(row.text[5]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow6_chord = intersect2d::circle_circle_chord(&circle_rocker5_b, &circle_p6)
+        .map_err(|miss| SolveError::from_miss(text(row.text[4]), text(row.text[5]), miss))?;
+    let elbow6 = elbow6_chord
+        .root(usize::from(branches.indices[row.input[2] as usize]))
+        .ok_or_else(|| {
+            SolveError::new(
+                text(row.text[4]),
+                text(row.text[5]),
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let turn_3 = rotation_on_circle(
+        &(rocker6_c - Point2::new(row.k[5], 0.0)),
+        &elbow6_chord
+            .root_from_b(usize::from(branches.indices[row.input[2] as usize]))
+            .unwrap_or(elbow6 - Point2::new(row.k[5], 0.0)),
+        3.0,
+    );
+    rocker6.rotate_about_by(&Point2::new(row.k[5], 0.0), &turn_3);
+
+    // coincident(rocker6.b, coupler7.b) (fourbar_chain_16.gcs:57)
+    let rocker6_b = rocker6.origin + rocker6.y_axis() * -1.5;
+    coupler7.place_origin(&rocker6_b);
+
+    // elbow7: coincident(coupler7.c, rocker7.c) (fourbar_chain_16.gcs:58)
+    let circle_rocker6_b = Circle::new(rocker6_b, 4.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[6]),
+            text(row.text[7]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let rocker7_c = rocker7.origin + rocker7.y_axis() * 3.0;
+    let circle_p7 = Circle::new(Point2::new(row.k[7], 0.0), 3.0).ok_or_else(|| {
+        SolveError::new(
+            text(row.text[6]),
+            text(row.text[7]),
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let elbow7_chord = intersect2d::circle_circle_chord(&circle_rocker6_b, &circle_p7)
+        .map_err(|miss| SolveError::from_miss(text(row.text[6]), text(row.text[7]), miss))?;
+    let elbow7 = elbow7_chord
+        .root(usize::from(branches.indices[row.input[3] as usize]))
+        .ok_or_else(|| {
+            SolveError::new(
+                text(row.text[6]),
+                text(row.text[7]),
+                ErrorKind::NoSuchBranch,
+                2.0,
+            )
+        })?;
+    let turn_4 = rotation_on_circle(
+        &(rocker7_c - Point2::new(row.k[7], 0.0)),
+        &elbow7_chord
+            .root_from_b(usize::from(branches.indices[row.input[3] as usize]))
+            .unwrap_or(elbow7 - Point2::new(row.k[7], 0.0)),
+        3.0,
+    );
+    rocker7.rotate_about_by(&Point2::new(row.k[7], 0.0), &turn_4);
+    store.frame[row.at[0] as usize] = coupler4;
+    store.frame[row.at[1] as usize] = rocker4;
+    store.frame[row.at[2] as usize] = coupler5;
+    store.frame[row.at[3] as usize] = rocker5;
+    store.frame[row.at[4] as usize] = coupler6;
+    store.frame[row.at[5] as usize] = rocker6;
+    store.frame[row.at[6] as usize] = coupler7;
+    store.frame[row.at[7] as usize] = rocker7;
+    Ok(())
+}
+
+/// Satisfies `coincident(rocker15.b, coupler16.b)`, `elbow16: coincident(coupler16.c,
+/// rocker16.c)`.
 #[allow(
     unused_mut,
     unused_variables,
@@ -678,265 +1014,15 @@ fn piece_3(
     p: &[f64],
     branches: &Branches,
     defaults: &Defaults,
-    row: Row<'_, 10, 4, 8, 4>,
+    tol: f64,
+    row: &Row<0, 0, 0, 0>,
 ) -> Result<(), SolveError> {
-    let rocker2_b = store.point2[row.at[0] as usize];
-    let mut rocker3 = store.frame2[row.at[1] as usize];
-    let mut coupler4 = store.frame2[row.at[2] as usize];
-    let mut rocker4 = store.frame2[row.at[3] as usize];
-    let mut coupler5 = store.frame2[row.at[4] as usize];
-    let mut rocker5 = store.frame2[row.at[5] as usize];
-    let mut coupler6 = store.frame2[row.at[6] as usize];
-    let mut rocker6 = store.frame2[row.at[7] as usize];
-    let mut coupler7 = store.frame2[row.at[8] as usize];
-    let circle_rocker2_b = Circle::new(rocker2_b, 4.0).ok_or_else(|| {
-        SolveError::new(
-            text(row.text[0]),
-            text(row.text[1]),
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let circle_p3 = Circle::new(Point2::new(row.k[0], 0.0), 3.0).ok_or_else(|| {
-        SolveError::new(
-            text(row.text[0]),
-            text(row.text[1]),
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let elbow3_chord = intersect2d::circle_circle_chord(&circle_rocker2_b, &circle_p3)
-        .map_err(|miss| SolveError::from_miss(text(row.text[0]), text(row.text[1]), miss))?;
-    let elbow3 = elbow3_chord
-        .root(usize::from(branches.indices[row.input[0] as usize]))
-        .ok_or_else(|| {
-            SolveError::new(
-                text(row.text[0]),
-                text(row.text[1]),
-                ErrorKind::NoSuchBranch,
-                2.0,
-            )
-        })?;
-    let elbow3_reach = elbow3_chord
-        .root_from_b(usize::from(branches.indices[row.input[0] as usize]))
-        .unwrap_or(elbow3 - Point2::new(row.k[0], 0.0));
-    let turn_4 = rotation_on_circle_from(
-        elbow3_reach.y * 0.3333333333333333,
-        elbow3_reach.x * -0.3333333333333333,
-        &(Point2::new(row.k[0], 3.0) - Point2::new(row.k[0], 0.0)),
-        &elbow3_reach,
-    );
-    rocker3.set_rotation(&turn_4);
-
-    // coincident(rocker3.b, coupler4.b) (fourbar_chain_16.gcs:36)
-    let rocker3_b = Point2::new(row.k[0], 0.0) + rocker3.y_axis() * -1.5;
-    coupler4.place_origin(&rocker3_b);
-
-    // elbow4: coincident(coupler4.c, rocker4.c) (fourbar_chain_16.gcs:37)
-    let circle_rocker3_b = Circle::new(rocker3_b, 4.0).ok_or_else(|| {
-        SolveError::new(
-            text(row.text[2]),
-            text(row.text[3]),
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let circle_p4 = Circle::new(Point2::new(row.k[1], 0.0), 3.0).ok_or_else(|| {
-        SolveError::new(
-            text(row.text[2]),
-            text(row.text[3]),
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let elbow4_chord = intersect2d::circle_circle_chord(&circle_rocker3_b, &circle_p4)
-        .map_err(|miss| SolveError::from_miss(text(row.text[2]), text(row.text[3]), miss))?;
-    let elbow4 = elbow4_chord
-        .root(usize::from(branches.indices[row.input[1] as usize]))
-        .ok_or_else(|| {
-            SolveError::new(
-                text(row.text[2]),
-                text(row.text[3]),
-                ErrorKind::NoSuchBranch,
-                2.0,
-            )
-        })?;
-    let elbow4_reach = elbow4_chord
-        .root_from_b(usize::from(branches.indices[row.input[1] as usize]))
-        .unwrap_or(elbow4 - Point2::new(row.k[1], 0.0));
-    let turn_5 = rotation_on_circle_from(
-        elbow4_reach.y * 0.3333333333333333,
-        elbow4_reach.x * -0.3333333333333333,
-        &(Point2::new(row.k[1], 3.0) - Point2::new(row.k[1], 0.0)),
-        &elbow4_reach,
-    );
-    rocker4.set_rotation(&turn_5);
-
-    // coincident(rocker4.b, coupler5.b) (fourbar_chain_16.gcs:43)
-    let rocker4_b = Point2::new(row.k[1], 0.0) + rocker4.y_axis() * -1.5;
-    coupler5.place_origin(&rocker4_b);
-
-    // elbow5: coincident(coupler5.c, rocker5.c) (fourbar_chain_16.gcs:44)
-    let circle_rocker4_b = Circle::new(rocker4_b, 4.0).ok_or_else(|| {
-        SolveError::new(
-            text(row.text[4]),
-            text(row.text[5]),
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let circle_p5 = Circle::new(Point2::new(row.k[2], 0.0), 3.0).ok_or_else(|| {
-        SolveError::new(
-            text(row.text[4]),
-            text(row.text[5]),
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let elbow5_chord = intersect2d::circle_circle_chord(&circle_rocker4_b, &circle_p5)
-        .map_err(|miss| SolveError::from_miss(text(row.text[4]), text(row.text[5]), miss))?;
-    let elbow5 = elbow5_chord
-        .root(usize::from(branches.indices[row.input[2] as usize]))
-        .ok_or_else(|| {
-            SolveError::new(
-                text(row.text[4]),
-                text(row.text[5]),
-                ErrorKind::NoSuchBranch,
-                2.0,
-            )
-        })?;
-    let elbow5_reach = elbow5_chord
-        .root_from_b(usize::from(branches.indices[row.input[2] as usize]))
-        .unwrap_or(elbow5 - Point2::new(row.k[2], 0.0));
-    let turn_6 = rotation_on_circle_from(
-        elbow5_reach.y * 0.3333333333333333,
-        elbow5_reach.x * -0.3333333333333333,
-        &(Point2::new(row.k[2], 3.0) - Point2::new(row.k[2], 0.0)),
-        &elbow5_reach,
-    );
-    rocker5.set_rotation(&turn_6);
-
-    // coincident(rocker5.b, coupler6.b) (fourbar_chain_16.gcs:50)
-    let rocker5_b = Point2::new(row.k[2], 0.0) + rocker5.y_axis() * -1.5;
-    coupler6.place_origin(&rocker5_b);
-
-    // elbow6: coincident(coupler6.c, rocker6.c) (fourbar_chain_16.gcs:51)
-    let circle_rocker5_b = Circle::new(rocker5_b, 4.0).ok_or_else(|| {
-        SolveError::new(
-            text(row.text[6]),
-            text(row.text[7]),
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let circle_p6 = Circle::new(Point2::new(row.k[3], 0.0), 3.0).ok_or_else(|| {
-        SolveError::new(
-            text(row.text[6]),
-            text(row.text[7]),
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let elbow6_chord = intersect2d::circle_circle_chord(&circle_rocker5_b, &circle_p6)
-        .map_err(|miss| SolveError::from_miss(text(row.text[6]), text(row.text[7]), miss))?;
-    let elbow6 = elbow6_chord
-        .root(usize::from(branches.indices[row.input[3] as usize]))
-        .ok_or_else(|| {
-            SolveError::new(
-                text(row.text[6]),
-                text(row.text[7]),
-                ErrorKind::NoSuchBranch,
-                2.0,
-            )
-        })?;
-    let elbow6_reach = elbow6_chord
-        .root_from_b(usize::from(branches.indices[row.input[3] as usize]))
-        .unwrap_or(elbow6 - Point2::new(row.k[3], 0.0));
-    let turn_7 = rotation_on_circle_from(
-        elbow6_reach.y * 0.3333333333333333,
-        elbow6_reach.x * -0.3333333333333333,
-        &(Point2::new(row.k[3], 3.0) - Point2::new(row.k[3], 0.0)),
-        &elbow6_reach,
-    );
-    rocker6.set_rotation(&turn_7);
-
-    // coincident(rocker6.b, coupler7.b) (fourbar_chain_16.gcs:57)
-    let rocker6_b = Point2::new(row.k[3], 0.0) + rocker6.y_axis() * -1.5;
-    coupler7.place_origin(&rocker6_b);
-    store.frame2[row.at[1] as usize] = rocker3;
-    store.frame2[row.at[2] as usize] = coupler4;
-    store.frame2[row.at[3] as usize] = rocker4;
-    store.frame2[row.at[4] as usize] = coupler5;
-    store.frame2[row.at[5] as usize] = rocker5;
-    store.frame2[row.at[6] as usize] = coupler6;
-    store.frame2[row.at[7] as usize] = rocker6;
-    store.frame2[row.at[8] as usize] = coupler7;
-    store.point2[row.at[9] as usize] = rocker6_b;
-    Ok(())
-}
-
-/// elbow15: coincident(coupler15.c, rocker15.c) (fourbar_chain_16.gcs:114)
-#[allow(
-    unused_mut,
-    unused_variables,
-    unused_assignments,
-    clippy::too_many_arguments
-)]
-fn piece_4(
-    store: &mut Store,
-    params: &Params,
-    p: &[f64],
-    branches: &Branches,
-    defaults: &Defaults,
-    row: Row<'_, 4, 0, 0, 0>,
-) -> Result<(), SolveError> {
-    let rocker14_b = store.point2[row.at[0] as usize];
-    let mut rocker15 = store.frame2[row.at[1] as usize];
-    let mut coupler16 = store.frame2[row.at[2] as usize];
-    let mut rocker16 = store.frame2[row.at[3] as usize];
-    let circle_rocker14_b = Circle::new(rocker14_b, 4.0).ok_or_else(|| {
-        SolveError::new(
-            "elbow15",
-            "coincident(coupler15.c, rocker15.c)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let circle_p15 = Circle::new(Point2::new(60.0, 0.0), 3.0).ok_or_else(|| {
-        SolveError::new(
-            "elbow15",
-            "coincident(coupler15.c, rocker15.c)",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let elbow15_chord =
-        intersect2d::circle_circle_chord(&circle_rocker14_b, &circle_p15).map_err(|miss| {
-            SolveError::from_miss("elbow15", "coincident(coupler15.c, rocker15.c)", miss)
-        })?;
-    let elbow15 = elbow15_chord
-        .root(usize::from(branches.indices[14]))
-        .ok_or_else(|| {
-            SolveError::new(
-                "elbow15",
-                "coincident(coupler15.c, rocker15.c)",
-                ErrorKind::NoSuchBranch,
-                2.0,
-            )
-        })?;
-    let elbow15_reach = elbow15_chord
-        .root_from_b(usize::from(branches.indices[14]))
-        .unwrap_or(elbow15 - Point2::new(60.0, 0.0));
-    let turn_16 = rotation_on_circle_from(
-        elbow15_reach.y * 0.3333333333333333,
-        elbow15_reach.x * -0.3333333333333333,
-        &(Point2::new(60.0, 3.0) - Point2::new(60.0, 0.0)),
-        &elbow15_reach,
-    );
-    rocker15.set_rotation(&turn_16);
+    let rocker15 = store.frame[47];
+    let mut coupler16 = store.frame[49];
+    let mut rocker16 = store.frame[50];
 
     // coincident(rocker15.b, coupler16.b) (fourbar_chain_16.gcs:120)
-    let rocker15_b = Point2::new(60.0, 0.0) + rocker15.y_axis() * -1.5;
+    let rocker15_b = rocker15.origin + rocker15.y_axis() * -1.5;
     coupler16.place_origin(&rocker15_b);
 
     // elbow16: coincident(coupler16.c, rocker16.c) (fourbar_chain_16.gcs:121)
@@ -948,6 +1034,7 @@ fn piece_4(
             0.0,
         )
     })?;
+    let rocker16_c = rocker16.origin + rocker16.y_axis() * 3.0;
     let circle_p16 = Circle::new(Point2::new(64.0, 0.0), 3.0).ok_or_else(|| {
         SolveError::new(
             "elbow16",
@@ -970,20 +1057,27 @@ fn piece_4(
                 2.0,
             )
         })?;
-    let elbow16_reach = elbow16_chord
-        .root_from_b(usize::from(branches.indices[15]))
-        .unwrap_or(elbow16 - Point2::new(64.0, 0.0));
-    let turn_17 = rotation_on_circle_from(
-        elbow16_reach.y * 0.3333333333333333,
-        elbow16_reach.x * -0.3333333333333333,
-        &(Point2::new(64.0, 3.0) - Point2::new(64.0, 0.0)),
-        &elbow16_reach,
+    let turn = rotation_on_circle(
+        &(rocker16_c - Point2::new(64.0, 0.0)),
+        &elbow16_chord
+            .root_from_b(usize::from(branches.indices[15]))
+            .unwrap_or(elbow16 - Point2::new(64.0, 0.0)),
+        3.0,
     );
-    rocker16.set_rotation(&turn_17);
-    store.frame2[row.at[1] as usize] = rocker15;
-    store.frame2[row.at[2] as usize] = coupler16;
-    store.frame2[row.at[3] as usize] = rocker16;
+    rocker16.rotate_about_by(&Point2::new(64.0, 0.0), &turn);
+    store.frame[49] = coupler16;
+    store.frame[50] = rocker16;
     Ok(())
+}
+
+/// A piece's data: the store's slots it reads and writes, its constants, the names its
+/// errors give (ids of `text`), and the params, branch variables or defaults it reads.
+#[derive(Clone, Copy, Debug)]
+struct Row<const A: usize, const K: usize, const T: usize, const I: usize> {
+    at: [u32; A],
+    k: [f64; K],
+    text: [u32; T],
+    input: [u32; I],
 }
 
 /// String `id` of the tables (`STRINGS`, `STRING_AT`).
@@ -998,119 +1092,30 @@ fn text(id: u32) -> &'static str {
 
 #[rustfmt::skip]
 static BRANCHES_NAMES: [u32; 16] = [
-    0,
-    1,
-    2,
-    3,
-    4,
-    5,
-    6,
-    7,
-    8,
-    9,
-    10,
-    11,
-    12,
-    13,
-    14,
-    15,
+    0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
 ];
 
 #[rustfmt::skip]
 static BRANCHES_SKETCH: [u8; 16] = [
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
 ];
 
 #[rustfmt::skip]
 static BRANCHES_BY_NAME: [[u32; 2]; 16] = [
-    [0, 0],
-    [9, 9],
-    [10, 10],
-    [11, 11],
-    [12, 12],
-    [13, 13],
-    [14, 14],
-    [15, 15],
-    [1, 1],
-    [2, 2],
-    [3, 3],
-    [4, 4],
-    [5, 5],
-    [6, 6],
-    [7, 7],
-    [8, 8],
+    [0, 0], [9, 9], [10, 10], [11, 11], [12, 12], [13, 13], [14, 14], [15, 15],
+    [1, 1], [2, 2], [3, 3], [4, 4], [5, 5], [6, 6], [7, 7], [8, 8],
 ];
 
 #[rustfmt::skip]
 static BRANCHES_MEANING_AT: [u32; 17] = [
-    0,
-    2,
-    4,
-    6,
-    8,
-    10,
-    12,
-    14,
-    16,
-    18,
-    20,
-    22,
-    24,
-    26,
-    28,
-    30,
+    0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30,
     32,
 ];
 
 #[rustfmt::skip]
 static BRANCHES_MEANING: [u32; 32] = [
-    16,
-    17,
-    18,
-    19,
-    20,
-    21,
-    22,
-    23,
-    24,
-    25,
-    26,
-    27,
-    28,
-    29,
-    30,
-    31,
-    32,
-    33,
-    34,
-    35,
-    36,
-    37,
-    38,
-    39,
-    40,
-    41,
-    42,
-    43,
-    44,
-    45,
-    46,
-    47,
+    16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+    32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
 ];
 
 #[rustfmt::skip]
@@ -1126,710 +1131,210 @@ static DEFAULTS_BY_NAME: [[u32; 2]; 0] = [
 ];
 
 #[rustfmt::skip]
-static FRAME_NAME: [u32; 17] = [
-    48,
-    49,
-    50,
-    51,
-    52,
-    53,
-    54,
-    55,
-    56,
-    57,
-    58,
-    59,
-    60,
-    61,
-    62,
-    63,
-    64,
+static FRAMES: [Access<1, 0>; 17] = [
+    Access { name: 48, shape: 0, at: [2], k: [] },
+    Access { name: 49, shape: 0, at: [5], k: [] },
+    Access { name: 50, shape: 0, at: [8], k: [] },
+    Access { name: 51, shape: 0, at: [11], k: [] },
+    Access { name: 52, shape: 0, at: [14], k: [] },
+    Access { name: 53, shape: 0, at: [17], k: [] },
+    Access { name: 54, shape: 0, at: [20], k: [] },
+    Access { name: 55, shape: 0, at: [23], k: [] },
+    Access { name: 56, shape: 0, at: [26], k: [] },
+    Access { name: 57, shape: 0, at: [29], k: [] },
+    Access { name: 58, shape: 0, at: [32], k: [] },
+    Access { name: 59, shape: 0, at: [35], k: [] },
+    Access { name: 60, shape: 0, at: [38], k: [] },
+    Access { name: 61, shape: 0, at: [41], k: [] },
+    Access { name: 62, shape: 0, at: [44], k: [] },
+    Access { name: 63, shape: 0, at: [47], k: [] },
+    Access { name: 64, shape: 0, at: [50], k: [] },
 ];
 
 #[rustfmt::skip]
-static FRAME_SHAPE: [u16; 17] = [
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-    0,
-];
-
-#[rustfmt::skip]
-static FRAME_AT: [[u32; 1]; 17] = [
-    [0],
-    [2],
-    [4],
-    [6],
-    [8],
-    [10],
-    [12],
-    [14],
-    [16],
-    [18],
-    [20],
-    [22],
-    [24],
-    [26],
-    [28],
-    [30],
-    [32],
-];
-
-#[rustfmt::skip]
-static FRAME_BY_NAME: [[u32; 2]; 17] = [
-    [48, 0],
-    [49, 1],
-    [58, 10],
-    [59, 11],
-    [60, 12],
-    [61, 13],
-    [62, 14],
-    [63, 15],
-    [64, 16],
-    [50, 2],
-    [51, 3],
-    [52, 4],
-    [53, 5],
-    [54, 6],
-    [55, 7],
-    [56, 8],
+static FRAMES_BY_NAME: [[u32; 2]; 17] = [
+    [48, 0], [49, 1], [58, 10], [59, 11], [60, 12], [61, 13], [62, 14], [63, 15],
+    [64, 16], [50, 2], [51, 3], [52, 4], [53, 5], [54, 6], [55, 7], [56, 8],
     [57, 9],
 ];
 
 #[rustfmt::skip]
-static POINT_NAME: [u32; 67] = [
-    65,
-    66,
-    67,
-    68,
-    69,
-    70,
-    71,
-    72,
-    73,
-    74,
-    75,
-    76,
-    77,
-    78,
-    79,
-    80,
-    81,
-    82,
-    83,
-    84,
-    85,
-    86,
-    87,
-    88,
-    89,
-    90,
-    91,
-    92,
-    93,
-    94,
-    95,
-    96,
-    97,
-    98,
-    99,
-    100,
-    101,
-    102,
-    103,
-    104,
-    105,
-    106,
-    107,
-    108,
-    109,
-    110,
-    111,
-    112,
-    113,
-    114,
-    115,
-    116,
-    117,
-    118,
-    119,
-    120,
-    121,
-    122,
-    123,
-    124,
-    125,
-    126,
-    127,
-    128,
-    129,
-    130,
-    131,
+static POINTS: [Access<1, 1>; 67] = [
+    Access { name: 65, shape: 0, at: [0], k: [0.0] },
+    Access { name: 66, shape: 1, at: [2], k: [0.0] },
+    Access { name: 67, shape: 2, at: [0], k: [0.0] },
+    Access { name: 68, shape: 3, at: [0], k: [4.0] },
+    Access { name: 69, shape: 1, at: [5], k: [0.0] },
+    Access { name: 70, shape: 4, at: [5], k: [3.0] },
+    Access { name: 71, shape: 4, at: [5], k: [-1.5] },
+    Access { name: 72, shape: 3, at: [0], k: [8.0] },
+    Access { name: 73, shape: 1, at: [8], k: [0.0] },
+    Access { name: 74, shape: 4, at: [8], k: [3.0] },
+    Access { name: 75, shape: 4, at: [8], k: [-1.5] },
+    Access { name: 76, shape: 3, at: [0], k: [12.0] },
+    Access { name: 77, shape: 1, at: [11], k: [0.0] },
+    Access { name: 78, shape: 4, at: [11], k: [3.0] },
+    Access { name: 79, shape: 4, at: [11], k: [-1.5] },
+    Access { name: 80, shape: 3, at: [0], k: [16.0] },
+    Access { name: 81, shape: 1, at: [14], k: [0.0] },
+    Access { name: 82, shape: 4, at: [14], k: [3.0] },
+    Access { name: 83, shape: 4, at: [14], k: [-1.5] },
+    Access { name: 84, shape: 3, at: [0], k: [20.0] },
+    Access { name: 85, shape: 1, at: [17], k: [0.0] },
+    Access { name: 86, shape: 4, at: [17], k: [3.0] },
+    Access { name: 87, shape: 4, at: [17], k: [-1.5] },
+    Access { name: 88, shape: 3, at: [0], k: [24.0] },
+    Access { name: 89, shape: 1, at: [20], k: [0.0] },
+    Access { name: 90, shape: 4, at: [20], k: [3.0] },
+    Access { name: 91, shape: 4, at: [20], k: [-1.5] },
+    Access { name: 92, shape: 3, at: [0], k: [28.0] },
+    Access { name: 93, shape: 1, at: [23], k: [0.0] },
+    Access { name: 94, shape: 4, at: [23], k: [3.0] },
+    Access { name: 95, shape: 4, at: [23], k: [-1.5] },
+    Access { name: 96, shape: 3, at: [0], k: [32.0] },
+    Access { name: 97, shape: 1, at: [26], k: [0.0] },
+    Access { name: 98, shape: 4, at: [26], k: [3.0] },
+    Access { name: 99, shape: 4, at: [26], k: [-1.5] },
+    Access { name: 100, shape: 3, at: [0], k: [36.0] },
+    Access { name: 101, shape: 1, at: [29], k: [0.0] },
+    Access { name: 102, shape: 4, at: [29], k: [3.0] },
+    Access { name: 103, shape: 4, at: [29], k: [-1.5] },
+    Access { name: 104, shape: 3, at: [0], k: [40.0] },
+    Access { name: 105, shape: 1, at: [32], k: [0.0] },
+    Access { name: 106, shape: 4, at: [32], k: [3.0] },
+    Access { name: 107, shape: 4, at: [32], k: [-1.5] },
+    Access { name: 108, shape: 3, at: [0], k: [44.0] },
+    Access { name: 109, shape: 1, at: [35], k: [0.0] },
+    Access { name: 110, shape: 4, at: [35], k: [3.0] },
+    Access { name: 111, shape: 4, at: [35], k: [-1.5] },
+    Access { name: 112, shape: 3, at: [0], k: [48.0] },
+    Access { name: 113, shape: 1, at: [38], k: [0.0] },
+    Access { name: 114, shape: 4, at: [38], k: [3.0] },
+    Access { name: 115, shape: 4, at: [38], k: [-1.5] },
+    Access { name: 116, shape: 3, at: [0], k: [52.0] },
+    Access { name: 117, shape: 1, at: [41], k: [0.0] },
+    Access { name: 118, shape: 4, at: [41], k: [3.0] },
+    Access { name: 119, shape: 4, at: [41], k: [-1.5] },
+    Access { name: 120, shape: 3, at: [0], k: [56.0] },
+    Access { name: 121, shape: 1, at: [44], k: [0.0] },
+    Access { name: 122, shape: 4, at: [44], k: [3.0] },
+    Access { name: 123, shape: 4, at: [44], k: [-1.5] },
+    Access { name: 124, shape: 3, at: [0], k: [60.0] },
+    Access { name: 125, shape: 1, at: [47], k: [0.0] },
+    Access { name: 126, shape: 4, at: [47], k: [3.0] },
+    Access { name: 127, shape: 4, at: [47], k: [-1.5] },
+    Access { name: 128, shape: 3, at: [0], k: [64.0] },
+    Access { name: 129, shape: 1, at: [50], k: [0.0] },
+    Access { name: 130, shape: 4, at: [50], k: [3.0] },
+    Access { name: 131, shape: 4, at: [50], k: [-1.5] },
 ];
 
 #[rustfmt::skip]
-static POINT_SHAPE: [u16; 67] = [
-    0,
-    1,
-    2,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
-    0,
-    1,
-    3,
-    4,
+static POINTS_BY_NAME: [[u32; 2]; 67] = [
+    [65, 0], [68, 3], [104, 39], [108, 43], [112, 47], [116, 51], [120, 55], [124, 59],
+    [128, 63], [72, 7], [76, 11], [80, 15], [84, 19], [88, 23], [92, 27], [96, 31],
+    [100, 35], [66, 1], [67, 2], [71, 6], [70, 5], [69, 4], [107, 42], [106, 41],
+    [105, 40], [111, 46], [110, 45], [109, 44], [115, 50], [114, 49], [113, 48], [119, 54],
+    [118, 53], [117, 52], [123, 58], [122, 57], [121, 56], [127, 62], [126, 61], [125, 60],
+    [131, 66], [130, 65], [129, 64], [75, 10], [74, 9], [73, 8], [79, 14], [78, 13],
+    [77, 12], [83, 18], [82, 17], [81, 16], [87, 22], [86, 21], [85, 20], [91, 26],
+    [90, 25], [89, 24], [95, 30], [94, 29], [93, 28], [99, 34], [98, 33], [97, 32],
+    [103, 38], [102, 37], [101, 36],
 ];
 
 #[rustfmt::skip]
-static POINT_AT: [[u32; 1]; 67] = [
-    [0],
-    [0],
-    [0],
-    [0],
-    [2],
-    [2],
-    [2],
-    [0],
-    [4],
-    [4],
-    [4],
-    [0],
-    [6],
-    [6],
-    [6],
-    [0],
-    [8],
-    [8],
-    [8],
-    [0],
-    [10],
-    [10],
-    [10],
-    [0],
-    [12],
-    [12],
-    [12],
-    [0],
-    [14],
-    [14],
-    [14],
-    [0],
-    [16],
-    [16],
-    [16],
-    [0],
-    [18],
-    [18],
-    [18],
-    [0],
-    [20],
-    [20],
-    [20],
-    [0],
-    [22],
-    [22],
-    [22],
-    [0],
-    [24],
-    [24],
-    [24],
-    [0],
-    [26],
-    [26],
-    [26],
-    [0],
-    [28],
-    [28],
-    [28],
-    [0],
-    [30],
-    [30],
-    [30],
-    [0],
-    [32],
-    [32],
-    [32],
+static VECTORS: [Access<0, 0>; 2] = [
+    Access { name: 132, shape: 0, at: [], k: [] },
+    Access { name: 133, shape: 1, at: [], k: [] },
 ];
 
 #[rustfmt::skip]
-static POINT_K: [[f64; 2]; 67] = [
-    [0.0, 0.0],
-    [0.0, 0.0],
-    [1.5, 0.0],
-    [4.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [8.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [12.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [16.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [20.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [24.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [28.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [32.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [36.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [40.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [44.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [48.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [52.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [56.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [60.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
-    [64.0, 0.0],
-    [0.0, 0.0],
-    [3.0, 0.0],
-    [1.5, 0.0],
+static VECTORS_BY_NAME: [[u32; 2]; 2] = [
+    [132, 0], [133, 1],
 ];
 
 #[rustfmt::skip]
-static POINT_BY_NAME: [[u32; 2]; 67] = [
-    [65, 0],
-    [68, 3],
-    [104, 39],
-    [108, 43],
-    [112, 47],
-    [116, 51],
-    [120, 55],
-    [124, 59],
-    [128, 63],
-    [72, 7],
-    [76, 11],
-    [80, 15],
-    [84, 19],
-    [88, 23],
-    [92, 27],
-    [96, 31],
-    [100, 35],
-    [66, 1],
-    [67, 2],
-    [71, 6],
-    [70, 5],
-    [69, 4],
-    [107, 42],
-    [106, 41],
-    [105, 40],
-    [111, 46],
-    [110, 45],
-    [109, 44],
-    [115, 50],
-    [114, 49],
-    [113, 48],
-    [119, 54],
-    [118, 53],
-    [117, 52],
-    [123, 58],
-    [122, 57],
-    [121, 56],
-    [127, 62],
-    [126, 61],
-    [125, 60],
-    [131, 66],
-    [130, 65],
-    [129, 64],
-    [75, 10],
-    [74, 9],
-    [73, 8],
-    [79, 14],
-    [78, 13],
-    [77, 12],
-    [83, 18],
-    [82, 17],
-    [81, 16],
-    [87, 22],
-    [86, 21],
-    [85, 20],
-    [91, 26],
-    [90, 25],
-    [89, 24],
-    [95, 30],
-    [94, 29],
-    [93, 28],
-    [99, 34],
-    [98, 33],
-    [97, 32],
-    [103, 38],
-    [102, 37],
-    [101, 36],
+static SCALARS: [Access<0, 0>; 0] = [
 ];
 
 #[rustfmt::skip]
-static VECTOR_NAME: [u32; 2] = [
-    132,
-    133,
+static SCALARS_BY_NAME: [[u32; 2]; 0] = [
 ];
 
 #[rustfmt::skip]
-static VECTOR_SHAPE: [u16; 2] = [
-    0,
-    1,
+static SKETCH_0: [Row<0, 0, 0, 0>; 1] = [
+    Row { at: [], k: [], text: [], input: [] }, // the sketch of `X`, ...
 ];
 
 #[rustfmt::skip]
-static VECTOR_AT: [[u32; 1]; 2] = [
-    [0],
-    [0],
+static SKETCH_1: [Row<8, 6, 0, 0>; 2] = [
+    Row { at: [8, 9, 10, 11, 12, 13, 14, 15], k: [8.0, 12.0, 9.0, 16.0, 13.0, 20.0], text: [], input: [] }, // the sketch of `rocker2`, ...
+    Row { at: [32, 33, 34, 35, 36, 37, 38, 39], k: [40.0, 44.0, 41.0, 48.0, 45.0, 52.0], text: [], input: [] }, // the sketch of `rocker10`, ...
 ];
 
 #[rustfmt::skip]
-static VECTOR_K: [[f64; 2]; 2] = [
-    [1.0, 0.0],
-    [0.0, 0.0],
+static SKETCH_2: [Row<8, 6, 0, 0>; 2] = [
+    Row { at: [16, 17, 18, 19, 20, 21, 22, 23], k: [17.0, 20.0, 24.0, 21.0, 28.0, 25.0], text: [], input: [] }, // the sketch of `coupler5`, ...
+    Row { at: [40, 41, 42, 43, 44, 45, 46, 47], k: [49.0, 52.0, 56.0, 53.0, 60.0, 57.0], text: [], input: [] }, // the sketch of `coupler13`, ...
 ];
 
 #[rustfmt::skip]
-static VECTOR_BY_NAME: [[u32; 2]; 2] = [
-    [132, 0],
-    [133, 1],
+static SKETCH_3: [Row<0, 0, 0, 0>; 1] = [
+    Row { at: [], k: [], text: [], input: [] }, // the sketch of `P8`, ...
 ];
 
 #[rustfmt::skip]
-static SCALAR_NAME: [u32; 0] = [
+static SKETCH_4: [Row<0, 0, 0, 0>; 1] = [
+    Row { at: [], k: [], text: [], input: [] }, // the sketch of `P16`, ...
 ];
 
 #[rustfmt::skip]
-static SCALAR_SHAPE: [u16; 0] = [
+static PIECE_0: [Row<0, 0, 0, 0>; 2] = [
+    Row { at: [], k: [], text: [], input: [] }, // coincident_crank_a_P0 (fourbar_chain_16.gcs:9)
+    Row { at: [], k: [], text: [], input: [] }, // coincident_rocker1_d_P1 (fourbar_chain_16.gcs:17)
 ];
 
 #[rustfmt::skip]
-static SCALAR_BY_NAME: [[u32; 2]; 0] = [
+static PIECE_1: [Row<0, 0, 0, 0>; 1] = [
+    Row { at: [], k: [], text: [], input: [] }, // coincident_rocker9_d_P9 (fourbar_chain_16.gcs:73)
 ];
 
 #[rustfmt::skip]
-static PIECE_0_AT: [[u32; 8]; 4] = [
-    [0, 1, 2, 3, 4, 5, 6, 7],
-    [8, 9, 10, 11, 12, 13, 14, 15],
-    [16, 17, 18, 19, 20, 21, 22, 23],
-    [24, 25, 26, 27, 28, 29, 30, 31],
+static PIECE_2: [Row<9, 8, 8, 4>; 3] = [
+    Row { at: [13, 14, 16, 17, 19, 20, 22, 23, 11], k: [13.0, 16.0, 17.0, 20.0, 21.0, 24.0, 25.0, 28.0], text: [3, 134, 4, 135, 5, 136, 6, 137], input: [3, 4, 5, 6] }, // coincident_rocker3_b_coupler4_b (fourbar_chain_16.gcs:36)
+    Row { at: [25, 26, 28, 29, 31, 32, 34, 35, 23], k: [29.0, 32.0, 33.0, 36.0, 37.0, 40.0, 41.0, 44.0], text: [7, 138, 8, 139, 9, 140, 10, 141], input: [7, 8, 9, 10] }, // coincident_rocker7_b_coupler8_b (fourbar_chain_16.gcs:64)
+    Row { at: [37, 38, 40, 41, 43, 44, 46, 47, 35], k: [45.0, 48.0, 49.0, 52.0, 53.0, 56.0, 57.0, 60.0], text: [11, 142, 12, 143, 13, 144, 14, 145], input: [11, 12, 13, 14] }, // coincident_rocker11_b_coupler12_b (fourbar_chain_16.gcs:92)
 ];
 
 #[rustfmt::skip]
-static PIECE_0_K: [[f64; 8]; 4] = [
-    [0.0, 1.0, 4.0, 5.0, 8.0, 9.0, 12.0, 13.0],
-    [16.0, 17.0, 20.0, 21.0, 24.0, 25.0, 28.0, 29.0],
-    [32.0, 33.0, 36.0, 37.0, 40.0, 41.0, 44.0, 45.0],
-    [48.0, 49.0, 52.0, 53.0, 56.0, 57.0, 60.0, 61.0],
+static PIECE_3: [Row<0, 0, 0, 0>; 1] = [
+    Row { at: [], k: [], text: [], input: [] }, // coincident_rocker15_b_coupler16_b (fourbar_chain_16.gcs:120)
 ];
 
 #[rustfmt::skip]
-static PIECE_1_AT: [[u32; 1]; 1] = [
-    [32], // coincident(crank.a, P0) (fourbar_chain_16.gcs:9); coincident(rocker10.d, P10) (fourbar_chain_16.gcs:80); coincident(rocker11.d, P11) (fourbar_chain_16.gcs:87); coincident(rocker12.d, P12) (fourbar_chain_16.gcs:94); coincident(rocker13.d, P13) (fourbar_chain_16.gcs:101); coincident(rocker14.d, P14) (fourbar_chain_16.gcs:108); coincident(rocker15.d, P15) (fourbar_chain_16.gcs:115)
+static SKETCH_ORDER: [[u32; 2]; 7] = [
+    [0, 0], [1, 0], [2, 0], [3, 0], [1, 1], [2, 1], [4, 0],
 ];
 
 #[rustfmt::skip]
-static PIECE_2_AT: [[u32; 7]; 1] = [
-    [0, 1, 2, 3, 4, 5, 0], // coincident(rocker8.d, P8) (fourbar_chain_16.gcs:66); coincident(rocker9.d, P9) (fourbar_chain_16.gcs:73); drive: angle(X, crank.u) = theta (fourbar_chain_16.gcs:10); coincident(crank.b, coupler1.b) (fourbar_chain_16.gcs:15); elbow1: coincident(coupler1.c, rocker1.c) (fourbar_chain_16.gcs:16); coincident(rocker1.b, coupler2.b) (fourbar_chain_16.gcs:22); elbow2: coincident(coupler2.c, rocker2.c) (fourbar_chain_16.gcs:23); coincident(rocker2.b, coupler3.b) (fourbar_chain_16.gcs:29)
+static ORDER: [[u32; 2]; 7] = [
+    [0, 0], [0, 1], [1, 0], [2, 0], [2, 1], [2, 2], [3, 0],
 ];
 
 #[rustfmt::skip]
-static PIECE_3_AT: [[u32; 10]; 3] = [
-    [0, 6, 7, 8, 9, 10, 11, 12, 13, 1], // elbow3: coincident(coupler3.c, rocker3.c) (fourbar_chain_16.gcs:30); coincident(rocker3.b, coupler4.b) (fourbar_chain_16.gcs:36); elbow4: coincident(coupler4.c, rocker4.c) (fourbar_chain_16.gcs:37); coincident(rocker4.b, coupler5.b) (fourbar_chain_16.gcs:43); elbow5: coincident(coupler5.c, rocker5.c) (fourbar_chain_16.gcs:44); coincident(rocker5.b, coupler6.b) (fourbar_chain_16.gcs:50); elbow6: coincident(coupler6.c, rocker6.c) (fourbar_chain_16.gcs:51); coincident(rocker6.b, coupler7.b) (fourbar_chain_16.gcs:57)
-    [1, 14, 15, 16, 17, 18, 19, 20, 21, 2], // elbow7: coincident(coupler7.c, rocker7.c) (fourbar_chain_16.gcs:58); coincident(rocker7.b, coupler8.b) (fourbar_chain_16.gcs:64); elbow8: coincident(coupler8.c, rocker8.c) (fourbar_chain_16.gcs:65); coincident(rocker8.b, coupler9.b) (fourbar_chain_16.gcs:71); elbow9: coincident(coupler9.c, rocker9.c) (fourbar_chain_16.gcs:72); coincident(rocker9.b, coupler10.b) (fourbar_chain_16.gcs:78); elbow10: coincident(coupler10.c, rocker10.c) (fourbar_chain_16.gcs:79); coincident(rocker10.b, coupler11.b) (fourbar_chain_16.gcs:85)
-    [2, 22, 23, 24, 25, 26, 27, 28, 29, 3], // elbow11: coincident(coupler11.c, rocker11.c) (fourbar_chain_16.gcs:86); coincident(rocker11.b, coupler12.b) (fourbar_chain_16.gcs:92); elbow12: coincident(coupler12.c, rocker12.c) (fourbar_chain_16.gcs:93); coincident(rocker12.b, coupler13.b) (fourbar_chain_16.gcs:99); elbow13: coincident(coupler13.c, rocker13.c) (fourbar_chain_16.gcs:100); coincident(rocker13.b, coupler14.b) (fourbar_chain_16.gcs:106); elbow14: coincident(coupler14.c, rocker14.c) (fourbar_chain_16.gcs:107); coincident(rocker14.b, coupler15.b) (fourbar_chain_16.gcs:113)
-];
-
-#[rustfmt::skip]
-static PIECE_3_K: [[f64; 4]; 3] = [
-    [12.0, 16.0, 20.0, 24.0],
-    [28.0, 32.0, 36.0, 40.0],
-    [44.0, 48.0, 52.0, 56.0],
-];
-
-#[rustfmt::skip]
-static PIECE_3_TEXT: [[u32; 8]; 3] = [
-    [2, 134, 3, 135, 4, 136, 5, 137],
-    [6, 138, 7, 139, 8, 140, 9, 141],
-    [10, 142, 11, 143, 12, 144, 13, 145],
-];
-
-#[rustfmt::skip]
-static PIECE_3_INPUT: [[u32; 4]; 3] = [
-    [2, 3, 4, 5],
-    [6, 7, 8, 9],
-    [10, 11, 12, 13],
-];
-
-#[rustfmt::skip]
-static PIECE_4_AT: [[u32; 4]; 1] = [
-    [3, 30, 31, 32], // elbow15: coincident(coupler15.c, rocker15.c) (fourbar_chain_16.gcs:114); coincident(rocker15.b, coupler16.b) (fourbar_chain_16.gcs:120); elbow16: coincident(coupler16.c, rocker16.c) (fourbar_chain_16.gcs:121)
-];
-
-#[rustfmt::skip]
-static ORDER: [[u32; 2]; 10] = [
-    [0, 0],
-    [0, 1],
-    [0, 2],
-    [0, 3],
-    [1, 0],
-    [2, 0],
-    [3, 0],
-    [3, 1],
-    [3, 2],
-    [4, 0],
-];
-
-#[rustfmt::skip]
-static STRINGS: &str = "elbow1elbow2elbow3elbow4elbow5elbow6elbow7elbow8elbow9elbow10elbow11elbow12elbow13elbow14elbow15elbow16rocker1.c to the left of the line from crank.b to P1rocker1.c to the right of the line from crank.b to P1rocker2.c to the left of the line from rocker1.b to P2rocker2.c to the right of the line from rocker1.b to P2rocker3.c to the left of the line from rocker2.b to P3rocker3.c to the right of the line from rocker2.b to P3rocker4.c to the left of the line from rocker3.b to P4rocker4.c to the right of the line from rocker3.b to P4rocker5.c to the left of the line from rocker4.b to P5rocker5.c to the right of the line from rocker4.b to P5rocker6.c to the left of the line from rocker5.b to P6rocker6.c to the right of the line from rocker5.b to P6rocker7.c to the left of the line from rocker6.b to P7rocker7.c to the right of the line from rocker6.b to P7rocker8.c to the left of the line from rocker7.b to P8rocker8.c to the right of the line from rocker7.b to P8rocker9.c to the left of the line from rocker8.b to P9rocker9.c to the right of the line from rocker8.b to P9rocker10.c to the left of the line from rocker9.b to P10rocker10.c to the right of the line from rocker9.b to P10rocker11.c to the left of the line from rocker10.b to P11rocker11.c to the right of the line from rocker10.b to P11rocker12.c to the left of the line from rocker11.b to P12rocker12.c to the right of the line from rocker11.b to P12rocker13.c to the left of the line from rocker12.b to P13rocker13.c to the right of the line from rocker12.b to P13rocker14.c to the left of the line from rocker13.b to P14rocker14.c to the right of the line from rocker13.b to P14rocker15.c to the left of the line from rocker14.b to P15rocker15.c to the right of the line from rocker14.b to P15rocker16.c to the left of the line from rocker15.b to P16rocker16.c to the right of the line from rocker15.b to P16crankrocker1rocker2rocker3rocker4rocker5rocker6rocker7rocker8rocker9rocker10rocker11rocker12rocker13rocker14rocker15rocker16P0crank.acrank.bP1rocker1.drocker1.crocker1.bP2rocker2.drocker2.crocker2.bP3rocker3.drocker3.crocker3.bP4rocker4.drocker4.crocker4.bP5rocker5.drocker5.crocker5.bP6rocker6.drocker6.crocker6.bP7rocker7.drocker7.crocker7.bP8rocker8.drocker8.crocker8.bP9rocker9.drocker9.crocker9.bP10rocker10.drocker10.crocker10.bP11rocker11.drocker11.crocker11.bP12rocker12.drocker12.crocker12.bP13rocker13.drocker13.crocker13.bP14rocker14.drocker14.crocker14.bP15rocker15.drocker15.crocker15.bP16rocker16.drocker16.crocker16.bXcrank.ucoincident(coupler3.c, rocker3.c)coincident(coupler4.c, rocker4.c)coincident(coupler5.c, rocker5.c)coincident(coupler6.c, rocker6.c)coincident(coupler7.c, rocker7.c)coincident(coupler8.c, rocker8.c)coincident(coupler9.c, rocker9.c)coincident(coupler10.c, rocker10.c)coincident(coupler11.c, rocker11.c)coincident(coupler12.c, rocker12.c)coincident(coupler13.c, rocker13.c)coincident(coupler14.c, rocker14.c)";
+static STRINGS: &str = "elbow1elbow2elbow3elbow4elbow5elbow6elbow7elbow8elbow9elbow10elbow11elbow12elbow13elbow14elbow15elbow16rocker1.c to the left of the line from crank.b to P1rocker1.c to the right of the line from crank.b to P1rocker2.c to the left of the line from rocker1.b to P2rocker2.c to the right of the line from rocker1.b to P2rocker3.c to the left of the line from rocker2.b to P3rocker3.c to the right of the line from rocker2.b to P3rocker4.c to the left of the line from rocker3.b to P4rocker4.c to the right of the line from rocker3.b to P4rocker5.c to the left of the line from rocker4.b to P5rocker5.c to the right of the line from rocker4.b to P5rocker6.c to the left of the line from rocker5.b to P6rocker6.c to the right of the line from rocker5.b to P6rocker7.c to the left of the line from rocker6.b to P7rocker7.c to the right of the line from rocker6.b to P7rocker8.c to the left of the line from rocker7.b to P8rocker8.c to the right of the line from rocker7.b to P8rocker9.c to the left of the line from rocker8.b to P9rocker9.c to the right of the line from rocker8.b to P9rocker10.c to the left of the line from rocker9.b to P10rocker10.c to the right of the line from rocker9.b to P10rocker11.c to the left of the line from rocker10.b to P11rocker11.c to the right of the line from rocker10.b to P11rocker12.c to the left of the line from rocker11.b to P12rocker12.c to the right of the line from rocker11.b to P12rocker13.c to the left of the line from rocker12.b to P13rocker13.c to the right of the line from rocker12.b to P13rocker14.c to the left of the line from rocker13.b to P14rocker14.c to the right of the line from rocker13.b to P14rocker15.c to the left of the line from rocker14.b to P15rocker15.c to the right of the line from rocker14.b to P15rocker16.c to the left of the line from rocker15.b to P16rocker16.c to the right of the line from rocker15.b to P16crankrocker1rocker2rocker3rocker4rocker5rocker6rocker7rocker8rocker9rocker10rocker11rocker12rocker13rocker14rocker15rocker16P0crank.acrank.bP1rocker1.drocker1.crocker1.bP2rocker2.drocker2.crocker2.bP3rocker3.drocker3.crocker3.bP4rocker4.drocker4.crocker4.bP5rocker5.drocker5.crocker5.bP6rocker6.drocker6.crocker6.bP7rocker7.drocker7.crocker7.bP8rocker8.drocker8.crocker8.bP9rocker9.drocker9.crocker9.bP10rocker10.drocker10.crocker10.bP11rocker11.drocker11.crocker11.bP12rocker12.drocker12.crocker12.bP13rocker13.drocker13.crocker13.bP14rocker14.drocker14.crocker14.bP15rocker15.drocker15.crocker15.bP16rocker16.drocker16.crocker16.bXcrank.ucoincident(coupler4.c, rocker4.c)coincident(coupler5.c, rocker5.c)coincident(coupler6.c, rocker6.c)coincident(coupler7.c, rocker7.c)coincident(coupler8.c, rocker8.c)coincident(coupler9.c, rocker9.c)coincident(coupler10.c, rocker10.c)coincident(coupler11.c, rocker11.c)coincident(coupler12.c, rocker12.c)coincident(coupler13.c, rocker13.c)coincident(coupler14.c, rocker14.c)coincident(coupler15.c, rocker15.c)";
 
 #[rustfmt::skip]
 static STRING_AT: [u32; 147] = [
-    0,
-    6,
-    12,
-    18,
-    24,
-    30,
-    36,
-    42,
-    48,
-    54,
-    61,
-    68,
-    75,
-    82,
-    89,
-    96,
-    103,
-    155,
-    208,
-    262,
-    317,
-    371,
-    426,
-    480,
-    535,
-    589,
-    644,
-    698,
-    753,
-    807,
-    862,
-    916,
-    971,
-    1025,
-    1080,
-    1136,
-    1193,
-    1250,
-    1308,
-    1365,
-    1423,
-    1480,
-    1538,
-    1595,
-    1653,
-    1710,
-    1768,
-    1825,
-    1883,
-    1888,
-    1895,
-    1902,
-    1909,
-    1916,
-    1923,
-    1930,
-    1937,
-    1944,
-    1951,
-    1959,
-    1967,
-    1975,
-    1983,
-    1991,
-    1999,
-    2007,
-    2009,
-    2016,
-    2023,
-    2025,
-    2034,
-    2043,
-    2052,
-    2054,
-    2063,
-    2072,
-    2081,
-    2083,
-    2092,
-    2101,
-    2110,
-    2112,
-    2121,
-    2130,
-    2139,
-    2141,
-    2150,
-    2159,
-    2168,
-    2170,
-    2179,
-    2188,
-    2197,
-    2199,
-    2208,
-    2217,
-    2226,
-    2228,
-    2237,
-    2246,
-    2255,
-    2257,
-    2266,
-    2275,
-    2284,
-    2287,
-    2297,
-    2307,
-    2317,
-    2320,
-    2330,
-    2340,
-    2350,
-    2353,
-    2363,
-    2373,
-    2383,
-    2386,
-    2396,
-    2406,
-    2416,
-    2419,
-    2429,
-    2439,
-    2449,
-    2452,
-    2462,
-    2472,
-    2482,
-    2485,
-    2495,
-    2505,
-    2515,
-    2516,
-    2523,
-    2556,
-    2589,
-    2622,
-    2655,
-    2688,
-    2721,
-    2754,
-    2789,
-    2824,
-    2859,
-    2894,
-    2929,
+    0, 6, 12, 18, 24, 30, 36, 42, 48, 54, 61, 68, 75, 82, 89, 96,
+    103, 155, 208, 262, 317, 371, 426, 480, 535, 589, 644, 698, 753, 807, 862, 916,
+    971, 1025, 1080, 1136, 1193, 1250, 1308, 1365, 1423, 1480, 1538, 1595, 1653, 1710, 1768, 1825,
+    1883, 1888, 1895, 1902, 1909, 1916, 1923, 1930, 1937, 1944, 1951, 1959, 1967, 1975, 1983, 1991,
+    1999, 2007, 2009, 2016, 2023, 2025, 2034, 2043, 2052, 2054, 2063, 2072, 2081, 2083, 2092, 2101,
+    2110, 2112, 2121, 2130, 2139, 2141, 2150, 2159, 2168, 2170, 2179, 2188, 2197, 2199, 2208, 2217,
+    2226, 2228, 2237, 2246, 2255, 2257, 2266, 2275, 2284, 2287, 2297, 2307, 2317, 2320, 2330, 2340,
+    2350, 2353, 2363, 2373, 2383, 2386, 2396, 2406, 2416, 2419, 2429, 2439, 2449, 2452, 2462, 2472,
+    2482, 2485, 2495, 2505, 2515, 2516, 2523, 2556, 2589, 2622, 2655, 2688, 2721, 2756, 2791, 2826,
+    2861, 2896, 2931,
 ];
 
