@@ -24,6 +24,16 @@
 //! Only plans without outer iterations are laid out so (their trial closure is not a
 //! sequence of pieces), and only when every value that crosses pieces has a type the store
 //! holds; any other plan keeps the flat solve, whatever its size.
+//!
+//! [`super::Form::Auto`] tables a plan whose flat solve's steps would be `TABLED_LINES` lines
+//! or more: there the flat solve outgrows the instruction cache and rustc's patience, while
+//! below it a piece's call costs more than it saves. Tables are arrays of numbers: every
+//! string (error names, dotted names, branch meanings) is one `STRINGS` literal with offsets,
+//! since rustc's time grows with string literals; a row's comment gives its constraint with
+//! `file:line`, and the data follows a `format::DATA` line, which `format` leaves as written. A
+//! piece stores back only what its code may change (assigns, lends `&mut`, or moves with a
+//! runtime frame method); anything else it loads is bound without `mut`, so a change missed
+//! there is a compile error, not a lost write.
 
 use super::api::{self, Layout, Ty as ApiTy};
 use super::context::Context;
