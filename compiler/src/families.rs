@@ -1,9 +1,17 @@
 //! Families of models of any size, written as `.gcs` text: the workloads of the scaling
 //! measurements, the benchmarks and the stress tests (issue 7).
 //!
-//! Each generator returns a well-constrained 2d model whose sketch is close to an assembly, so
-//! that the sketch's branches are the natural ones. Every family is a chain of the same local
-//! problem repeated `n` times, so analysis and solve time should grow linearly in `n`.
+//! Each generator returns a well-constrained model whose sketch is close to an assembly, so
+//! that the sketch's branches are the natural ones: 2d but for [`rssr_chain`], the spatial
+//! counterpart of the chain of four-bars. Every family is a chain of local problems repeated
+//! `n` times, so analysis and solve time should grow linearly in `n`: the same problem, or for
+//! [`mixed`] three kinds woven in a fixed pseudo-random order, so that a large model's pieces
+//! mostly differ.
+//!
+//! `gcs-bench` re-exports this module; `cargo run -p gcs-bench --example family -- FAMILY N`
+//! prints a member of any size, and `examples/families/` keeps members at the sizes the
+//! benches use (`compiler/bench/tests/family_files.rs` checks each file against its
+//! generator).
 //!
 //! [`params`] and [`points`] stress the front end rather than the analysis (issue 17, item 7):
 //! many params, half of them warned about, for `gcs check`; many points in one JSON answer

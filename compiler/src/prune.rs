@@ -5,7 +5,12 @@
 //! before it; an action is kept for the geoms whose later state is read, and dropped after the
 //! last read of a geom that is not an output (a rocker need not be turned into place once the
 //! coupler has been placed from it). Only geoms the pruned plan places completely are reported;
-//! branch variables of pruned intersections disappear.
+//! branch variables of pruned intersections disappear, and branches and defaults are
+//! renumbered and iterated regions moved to match.
+//!
+//! A check stays when every geom it measures is computed anyway or fixed, so that a pruned
+//! solve refuses what the whole plan refuses wherever the outputs depend on it (a check
+//! against a fixed stop guards the outputs). A pruned plan is validated in debug builds.
 
 use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan};
 use gcs_lang::model::GeomId;

@@ -1,5 +1,7 @@
-//! The finiteness test of the kernel's solve paths, in one place; and the one way a number
-//! is written in a message.
+//! The finiteness test of the kernel's solve paths, in one place; the sine and cosine every
+//! turn by an angle uses ([`sin_cos`], inlined, and [`sin_cos_small`] for small angles), shared
+//! by the interpreter and generated code so that both agree to the bit; and the one way a
+//! number is written in a message.
 
 use std::fmt;
 

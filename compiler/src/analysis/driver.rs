@@ -9,6 +9,25 @@
 //! (SOLVE-RIGID-CHAINS, SOLVE-LOOP), then goes on. Attempts that fail are rolled back, so the
 //! plan holds only what was used. It also owns the plan being written: registers, their
 //! words for explanations, and the caches of what has been measured.
+//!
+//! Checks: a relation already implied becomes a run-time check ([`Builder::check`]), and
+//! every implied relation is measured, not only a constraint's last, so that no relation the
+//! plan relies on goes unmeasured.
+//!
+//! Defaults (000, section 5.2.1): when nothing else applies and clusters still move, the
+//! geometry fixes one freedom of the cluster a pending relation involves with the fewest DOF
+//! (`Geometry::default`), and analysis goes on. `close_iterations` then finds, by tracing which
+//! defaults each register and frame depends on (`Op::measures`, `Op::moves`), the checks (and
+//! `Onto`s) a default displaced: each becomes an `Op::Error` and an `Op::Close` of an
+//! `Iteration` region that varies the default. A coincidence, midpoint or mirror image with
+//! more coordinates than open defaults closes one default by the distance it is off by
+//! (`plan::MAGNITUDE`). A default that displaces nothing parameterizes a free motion
+//! (`Analysis::free_defaults`, the mobility); `Analysis::undefaulted` keeps the clusters as the
+//! constraints alone left them.
+//!
+//! The work is linear in the model: a relation is retried only when a cluster it involves
+//! changes, caches roll back by an insertion log, and registers and steps are looked up by
+//! index, never by a scan.
 
 use super::geometry::{Geometry, Invariants, Rel};
 use super::{Analysis, Cluster, Unsupported};

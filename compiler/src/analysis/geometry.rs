@@ -5,10 +5,16 @@
 //! A geometry module knows the rest: how constraints decompose into relations between
 //! features, what a cluster's invariants record is, the plan fragments that move a cluster
 //! (action analysis), the loci of partially fixed clusters and their intersections (locus
-//! analysis), and how to hold a cluster in place. [`super::planar`] is the plane's module; a
-//! spatial one implements the same trait with 3d records (TLA's translational and rotational
-//! DOF with their invariant points and axes), relations (point-plane, marker axes) and
-//! loops of up to six clusters.
+//! analysis), and how to hold a cluster in place. [`super::planar`] is the plane's module;
+//! [`super::spatial`] implements the same trait with 3d records (TLA's translational and
+//! rotational DOF with their invariant points and axes), relations (point-plane, marker axes)
+//! and loops of up to six clusters.
+//!
+//! One driver generic over the space, with per-space records, relations and fragments: the
+//! driver's work (canonical order, retries, rollback, chains and loops, defaults and their
+//! iterations, checks, registers and words) does not depend on the space, while a record in
+//! space and its fragments share nothing with the plane's but their purpose, so a record
+//! generic over both would be an enum of the two.
 
 use super::driver::Builder;
 use super::Unsupported;

@@ -2,6 +2,11 @@
 //! from the file, with setters by the model's names), and `Solution` with accessors named after
 //! the model and every value by dotted name (`points()`, `vectors()`, `scalars()`). Everything
 //! a caller touches is here; how `solve` computes it is not.
+//!
+//! One writer serves the three input structs. The `Solution`'s fields are one [`Layout`],
+//! each field saying what it holds (a frame, a dimension, local coordinates, or a line's
+//! sketch point that params set), read by the struct, its accessors and `solve`'s
+//! initialiser, so that these agree by construction.
 
 use super::context::Context;
 use super::facts::{direction_in, point_in, Value};

@@ -6,6 +6,23 @@
 //!
 //! Facts are typed values, never read back from generated code: a literal is a [`Value`]
 //! literal whatever its spelling, and two values are compared as values.
+//!
+//! What they buy, each giving the same value as the plain code: no products by an identity
+//! rotation or a zero coordinate (the compiler cannot fold `x * 0.0`, NaN times zero being
+//! NaN); no move that cannot move anything; `place_origin` when the point moved is the origin,
+//! `set_rotation`/`turn_by` about the origin; only the branch's root of a circle-circle
+//! intersection (`circle_circle_chord`, kept when a rotation reads the root from the pivot's
+//! centre, `root_from_a`/`root_from_b`, without the cancellation of `root - pivot` far from the
+//! origin); and a rotation onto a rigid point's circle from its known radius and constant arm
+//! (`rotation_on_circle`, `rotation_on_circle_from`).
+//!
+//! What they check: a value the params give can overflow, and is then
+//! `ErrorKind::InvalidValue` naming its constraint; so is a size (an unsigned distance, a
+//! length, a radius: `Model::value_is_size`) that is negative, which the plan evaluates with
+//! `Op::Size` rather than `Op::Expr`, so that it is said to be negative instead of surfacing as
+//! loci that miss. A sketch that params can make unusable (a zero direction, coinciding
+//! points, a negative radius, an overflow) is tested on entry, in the model's order, with the
+//! interpreter's words (`config::SketchFault`), so that both report the same geom.
 
 use super::context::Context;
 use super::solve::Solve;

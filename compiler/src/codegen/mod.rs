@@ -13,7 +13,17 @@
 //! the skeleton of `solve`, `steps` each step of the plan in it, `residual` the residual of
 //! a run-time check, all three from what `facts` knows at each step and the sketch's values
 //! (`sketch`, `expr`); `scopes` keeps a long solve's scopes shallow; `writer` and
-//! `names` spell the text; `format` runs rustfmt on it.
+//! `names` spell the text; `format` runs rustfmt on it. `spatial` writes a 3d model's sketch
+//! and steps under the same skeleton; `all` writes `solve_all`; `tabled` lays a large model's
+//! solve out as functions and tables ([`Form`]).
+//!
+//! [`generate`] prunes the plan to the model's outputs first. [`name_clashes`], the model's
+//! names that would become one public identifier, runs for every command (the pipeline calls
+//! it), so a cheap test over a superset of the public names (every param, branch, default and
+//! geom name) decides first whether the exact check, which builds the pruned module's layout,
+//! can find anything. No inner attributes are written, so the module works through
+//! `include!`; the setters and accessors allow dead code, so that a caller that reads one
+//! output builds under `deny(warnings)`.
 
 mod all;
 mod api;

@@ -2,6 +2,15 @@
 //! run-time checks, the plan's steps in groups each opened by a comment quoting the constraint
 //! it satisfies, put in blocks when long (see `scopes`), and the `Ok(Solution { .. })`. What
 //! each step writes is in `steps`.
+//!
+//! A frame is declared only if written code reads or moves it, and only a moved one is `mut`.
+//! An iterated region is a closure that assembles it on copies of the frames it moves for a
+//! trial of its defaults and writes its closes' errors, passed to `outer.iterate`; the region
+//! is then written again, straight, at the converged defaults. A plan with iterations is
+//! written once, as `fn assemble<O: Outer>`, which `solve` calls with the runtime's
+//! `outer::Newton` (the plain iteration) and `solve_all` with `outer::Scan`. `solve` is
+//! `#[inline]`, so that a caller in another crate can inline a small one; the runtime's
+//! per-step intersections are always inlined, their cold cases out of line.
 
 use super::api::{Holds, Layout};
 use super::context::Context;

@@ -5,10 +5,21 @@
 //! outer iterations, the `Solution`) and the steps that do not depend on the space (scalars,
 //! translations, dimensions, closes) are the plane's. What is here mirrors the interpreter's
 //! `interp/spatial.rs` call for call, so that both give the same values to the bit: where a
-//! computation is more than one call, it is one function of the runtime that both call.
+//! computation is more than one call, it is one function of the runtime that both call
+//! (`frame::plane_turn`, `frame::helix_advance`, `intersect3d::line_circle`,
+//! `Circle3::angle_of`). A sketch's rotation is a literal quaternion where the sketch is
+//! constant, and otherwise the runtime's `rotation_onto_x`/`rotation_onto_z`/`rotation_zx`/
+//! `rotation_sketched`, which the configuration calls too. Checks go through
+//! `check::space`; the accessors are those `Solution::read_space` reports (points with three
+//! coordinates, marker axes and normals, a plane's offset, a body's `Frame3`).
 //!
-//! Facts (see `facts`) are the plane's optimisations: none is taken in space, where every
-//! frame is read and moved as it is, and every register is a local.
+//! Facts (see `facts`) are mostly the plane's optimisations; space takes three. A frame known
+//! to the bit (`FrameFacts::literal3`: a constant sketch moved only by literal translations
+//! and rotations) is moved at compile time by the runtime's own functions and declared where
+//! those moves leave it, so that what it carries is a literal; the same locus built twice is
+//! one local (`Facts::computed`); and a root of an intersection is not re-tested on a locus it
+//! came from. Every other frame is read and moved as it is, and every other register is a
+//! local.
 
 use super::context::Context;
 use super::facts::{FrameFacts, Value};

@@ -7,6 +7,23 @@
 //! configuration, or a non-finite param. The plan must be valid ([`Plan::validate`]; the
 //! pipeline validates every plan it makes): a register read as another type than it holds is
 //! a bug in gcs, and panics saying so, rather than going on with a made-up value.
+//!
+//! One machine, generic over the space ([`Space`]): registers, branch choices, defaults, outer
+//! iterations, checks and closes are shared; each space runs its own steps (the plane's here,
+//! space's in `spatial.rs`, over `Frame3`s and the runtime's `locus3d`/`intersect3d`).
+//! [`run`]/[`run_with`] are the plane's, [`run_in`] any space's; what returns no configuration
+//! ([`sketch_choices`], [`audit`], [`errors_at`], [`scan`], [`runs`]) dispatches on the model's
+//! space. An iterated region is run by the runtime's `iterate::solve` (through `outer::Outer`,
+//! as generated code does) from the defaults given, re-assembling the region from its saved
+//! state for each trial.
+//!
+//! - [`sketch_choices`] runs the plan on the sketch, taking at each intersection the root
+//!   nearest the moving feature and each default's least-motion value: the pipeline makes
+//!   those the branches' and defaults' sketch values.
+//! - [`scan`] lists every root of the first iteration's error with `outer::Scan`;
+//!   [`errors_at`] measures the closes' errors once at given defaults.
+//! - [`audit`] runs past the checks that fail (a check places nothing) and returns every one
+//!   with its step, and what stopped the run: the report of inconsistent redundant sets.
 
 use crate::config::{Config, Frames, RigidFrame, D2, D3, P2, P3, V2, V3};
 use crate::plan::{Iteration, Meet, Op, Plan, Reg, Residual, RotationAxis, Step};

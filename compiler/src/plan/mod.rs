@@ -11,9 +11,16 @@
 //! the plan: what they need of the analysis is in it. [`Plan::validate`] states and checks its
 //! invariants; a consumer given a plan that fails them has a bug to report, not an answer.
 //!
-//! The IR has room for what the analysis does not emit yet: rotations about an axis in space
-//! and spatial locus intersections (for 3d models), and default parameters with the iterated
-//! regions that close them (for models with no closed form).
+//! Both spaces' plans are written in it, and the analysis emits all of it: registers of the
+//! plane (conics) and of space (planes, spheres, cylinders, tori) beside those of both ([`Ty`]);
+//! the locus intersections of either space ([`Meet`]: the plane's pairs from
+//! `analysis::planar`, space's from `analysis::spatial`, each checked by the validator to
+//! belong to the plan's space); rotations about the plane's normal, about an axis in a register
+//! or the shortest ([`RotationAxis`]); and, for models with no closed form, default parameters
+//! ([`DefaultVar`], read by `Op::Default`) with the iterated regions that close them
+//! ([`Iteration`], whose `Op::Close` steps an outer iteration drives to zero). [`Residual`] is
+//! the one table of checks: the relation a check holds, over registers, one kind per residual
+//! function of `gcs_runtime::check`.
 
 mod deps;
 mod dump;

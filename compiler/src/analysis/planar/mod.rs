@@ -9,7 +9,25 @@
 //! coincidence between two partially fixed clusters, asks the locus table where each feature
 //! can lie, and intersects the two loci (a branch variable). Relations whose both sides are
 //! already known become run-time checks. Circles of free radius ([`circle`]) and segments of
-//! free length ([`segment`]) have fragments of their own.
+//! free length ([`segment`]) have fragments of their own, as have `equal`, `midpoint` and
+//! `symmetric` (`sketcher.rs`) and the defaults (`defaults.rs`); [`relation`] decomposes the
+//! constraints.
+//!
+//! The fragments here, by what they move: `move_feature` translates, rotates about a pivot,
+//! slides along a locus, or takes the least motion; `turn` turns a direction onto a
+//! direction; `turn_line_past` turns a line about a pivot until it passes a point at a
+//! distance (`Op::PassingDir`); a cluster sliding on a locus and turning is taken to a point
+//! where its locus meets a circle; a lone line that must pass two known points at distances
+//! records each as a [`Pass`] until the second fixes its direction. Locus analysis is
+//! `locus_of` (the locus table, and the segment ends that a free length slides along a known
+//! line) and `intersect`, each branch with its geometric meaning. A model with nothing fixed is
+//! grounded (`ground`).
+//!
+//! A record remembers what makes a later contact exact: a cluster put on its own line keeps
+//! that line known while it slides (`along`); a circle keeps the lines made tangent to it and
+//! the joint it passes through (`tangent`, `joint`), and a segment the circle its end was put
+//! on (`on_circle`). A touching contact is then built as the foot of a perpendicular, not as
+//! the double root of an intersection, whose rounding grows to its square root.
 
 pub mod circle;
 mod defaults;

@@ -1,24 +1,104 @@
 //! Space's module of the analysis: the geometry vocabulary of 3d models, after TLA (003).
 //!
-//! A cluster's record is TLA's: its translational DOF with the invariant point or the locus
-//! a feature is held on ([`Trans`]: free, a feature on a line, circle, plane or sphere, a
-//! pivot, fixed) and its rotational DOF with the invariant axis ([`Turn`]: free, about one
-//! axis, known). Action analysis moves the side of a relation that is not known with the
-//! freedom its record leaves, by the brick's fragments: translate a point onto a point or
-//! the nearest point of a locus; rotate about the pivot around `v1 x v2` (the shortest turn)
-//! to bring a point onto a point or onto where its sphere meets a locus; rotate about the
-//! invariant axis by the angle between perpendiculars; turn a direction onto a direction, or
-//! about the axis to it; slide a feature along its locus to where it meets another. The same
-//! point on two loci of space is where they meet (the runtime's 3d intersection table), with
-//! a branch variable where there are two roots.
+//! A cluster's record is TLA's: its translational DOF with the invariant point or the locus a
+//! feature is held on ([`Trans`]: free, a feature on a [`Locus`] (a line, circle, plane,
+//! sphere, cylinder, that is a point at a distance from a line, or torus), a pivot, fixed) and
+//! its rotational DOF with the invariant axis ([`Turn`]: free, about one axis, known);
+//! [`Shape`] says what the cluster's own geometry leaves free besides (a plane, a line, a
+//! segment of free length, a circle of free size and normal). Action analysis moves the side of
+//! a relation that is not known with the freedom its record leaves, by the brick's fragments:
+//! translate a point onto a point or the nearest point of a locus; rotate about the pivot
+//! around `v1 x v2` (the shortest turn) to bring a point onto a point or onto where its sphere
+//! meets a locus; rotate about the invariant axis by the angle between perpendiculars; turn a
+//! direction onto a direction, or about the axis to it; slide a feature along its locus to
+//! where it meets another. The same point on two loci of space is where they meet (the
+//! runtime's 3d intersection table), with a branch variable where there are two roots.
 //!
-//! Covered so far: bodies with markers and member points, free points and vectors, against
-//! fixed points, lines, planes and other bodies, with coincident, distance (point-point,
-//! point-plane), `on` (a point on a line or plane), in-line, in-plane, parallel-z, offset-x
-//! and the lower pairs built of them (revolute, prismatic, cylindrical, spherical, planar).
-//! What is not (angles between directions of space, helical joints, segments, circles and
-//! planes that move, loops of partially fixed bodies, defaults) is reported per constraint,
-//! never dropped.
+//! Covered: bodies with markers and member points, points, vectors, lines, planes, segments
+//! and circles of space, fixed or moving, with every 3d constraint form of the language (the
+//! joints as the conjunctions [`relation`] makes of them). The 3d construction checker
+//! (`compiler/tests/construction3d.rs`, its table in `docs/FRAGMENTS3D.md`) lists what the
+//! analysis does for each state and form. A constraint the analysis cannot cover is reported
+//! per constraint as not analysed in 3d yet, never dropped.
+//!
+//! # Records
+//!
+//! A record also keeps invariant the directions and points it does not name: a body's
+//! features parallel to its axis feature, its points on the axis through its pivot. A line
+//! that moves (`Shape::Line`) has four DOF (sliding along and turning about itself move
+//! nothing); a segment of free length or a circle of free size (`Shape::Segment`,
+//! `Shape::Circle`: centre, normal, radius) has six until it is sized.
+//!
+//! # Action analysis, the brick's fragments and their kin
+//!
+//! - `move_point`: translate onto a point or the nearest point of a locus; rotate about the
+//!   pivot around `v1 x v2` (`RotationAxis::Shortest`) to where its sphere meets the target;
+//!   rotate about the invariant axis (`RotationAxis::Along`) to where its circle meets it;
+//!   slide a feature held on a locus to where the locus, moved with it, meets the target (a
+//!   branch where there are two roots).
+//! - `turn_onto`: a direction onto a direction, by the shortest turn or about the axis,
+//!   checked where the axis' cone must agree. A free vector's, plane's or line's angle to a
+//!   known direction turns it the least onto the cone (`Op::ConeTurn`), then about that
+//!   direction.
+//! - Turns a z axis cannot decide alone. A turn about an axis that must take a marker's z and
+//!   x axes to theirs (offset_x, prismatic, and a helical joint on a body held at a point, the
+//!   x axis' target at the advance where the z axis' turn takes the marker) reads its angle
+//!   off both (`Op::AngleAboutBoth`). One that must take a joint's point onto a line or a
+//!   plane, where the slide the cluster has left brings it home, refines its angle on the
+//!   point too (`Op::TurnReaching`; a helical joint's coupling likewise, `plan::Reach::Helix`;
+//!   on a screw, where the helix's slide for each trial turn carries the point or marker,
+//!   `runtime::frame::Screw`). A z axis nearly along the turn's axis then does not decide the
+//!   turn alone; the turn is made by the angle measured (`Op::RotateBy`).
+//! - Midpoints and mirror planes: a known segment's middle, an end reflected through a known
+//!   midpoint, an image across a known plane.
+//! - Planes that move (`Shape::Plane`): at a distance from a known point a plane may only turn
+//!   about it, from a second one about the line through both, and a third places it, a
+//!   branch: 004's point-plane clusters in closed form (`Op::PlaneTurn`,
+//!   `Op::PlaneAxisTurn`).
+//! - Lines that move: through a known point a line may only turn about it, onto a second
+//!   (`Op::Aligned` keeps its sense); parallel to a known direction it is placed by a point. A
+//!   line whose direction is known passes at a distance from a known point by sliding onto the
+//!   cylinder about the point along its direction; held in a plane along its direction, onto
+//!   one of the two lines the plane cuts the cylinder in (`Meet::PlaneCylinder`, a branch). A
+//!   line that only turns about an axis through a known point of it (a segment held at an
+//!   end, a line through a point) turns until it passes a circle's centre at the distance
+//!   (`Op::PassingAngle`); turned square to a circle's normal about a pivot, it lies in the
+//!   circle's plane when the pivot does (a check).
+//! - Segments of free length: an end to a point translates the segment, the other end to a
+//!   point then turns it about the first, sets its length (`Op::SetDim`) and, when the end
+//!   held was its end, moves it back; a `length` sets it the same way (`Relation::Size`).
+//! - Circles that move: a centre moves one, a normal turns it (turning about its normal then
+//!   moves nothing), a `radius` or an `equal` with a sized circle sets its radius
+//!   (`Relation::Size`, `Relation::SameSize`, also for segments); with its centre held it
+//!   passes through a known point by the least turn that puts the point in its plane and the
+//!   radius that reaches it (`circle_through`). A sized circle whose normal is known is carried
+//!   by the least translation through a point or to a distance from it (`carry_circle`), and
+//!   one held at its centre tilts the least to put a point at a distance (`tilt_circle`,
+//!   `Op::TiltToDistance`).
+//!
+//! # Locus analysis
+//!
+//! 003's locus table (`locus_of`: the pivot's sphere, the axis' circle, the locus a feature is
+//! held on); two of them met, a pseudo-marker, each cluster then moved to it. A point on a
+//! fixed circle of space has that circle as its locus. A line meets a circle of space where it
+//! crosses the circle's plane (one root, refused off the circle), and through the circle's
+//! sphere only when it lies in that plane (`runtime::intersect3d::line_circle`).
+//!
+//! # Defaults and grounding
+//!
+//! Each default has a meaning and is read from where the constraints leave it: the idle turn
+//! about an axis (`{body}_spin_angle`); a free point's coordinates; a feature's two
+//! coordinates on the plane, sphere or cylinder it is held on (`runtime::locus3d::Surface`,
+//! `Op::SurfaceParam`, `Op::SurfacePoint`); a body's turns about the world's axes; a free
+//! direction's two turns across itself (`{geom}_tilt_angle`, `{geom}_roll_angle`; a third,
+//! about itself, would move nothing), for a vector, a line, a plane or a sized circle's
+//! normal; a plane's place along its normal; a segment's length or a circle's radius first,
+//! and none while a relation still to come can set it. Each turn by a default is an
+//! `Op::RotateBy`.
+//!
+//! A model with nothing fixed is grounded at a point, with the direction to a second and the
+//! plane of a third held as sketched; its branches on that line and plane are `symmetric`
+//! (the same assembly turned: the search for every assembly keeps the sketch's).
 
 pub mod relation;
 

@@ -7,6 +7,18 @@
 //! axes and the x axes' twist about them, and so on; a constraint is satisfied when its last
 //! relation is. Choices the language leaves to the sketch (the sense of parallel axes) are
 //! read from the sketch here, once.
+//!
+//! Constraints are point-point, point-line, point-plane, parallel (the sense from the sketch;
+//! either, for two circles' planes), angle, twist and helix relations, and sizes
+//! ([`Relation::Size`] for `length` and `radius`, [`Relation::SameSize`] for `equal`). A line
+//! (or segment) at a distance from a circle, or tangent to it, is its direction square to the
+//! circle's normal, its point in the circle's plane, and the circle's centre at the radius
+//! plus the gap from it; two circles are parallel normals, one centre in the other's plane and
+//! their centres apart by the radii and the gap as the sketch nests them (a distance made of
+//! radii, [`Length::Radii`], read once the radii are known). A second such constraint with a
+//! fixed circle in the plane of a first adds only its distance, and with one in a parallel
+//! plane its plane and its distance (fixed circles' planes read from their constants), so that
+//! no turn about a normal parallel to itself and no plane meeting itself is planned.
 
 use super::Rel;
 use crate::analysis::Unsupported;
