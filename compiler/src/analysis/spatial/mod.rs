@@ -29,6 +29,7 @@ use crate::config::{Config, D3};
 use crate::plan::{HelixRegs, Meet, Op, Reach, Reg, Residual, RotationAxis, ScrewRegs, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::Model;
+use gcs_runtime::tol;
 use relation::{AngleValue, Length, Relation};
 
 /// A relation of space with its constraint.
@@ -476,7 +477,7 @@ fn parallel(a: [f64; 3], b: [f64; 3]) -> bool {
         a[2] * b[0] - a[0] * b[2],
         a[0] * b[1] - a[1] * b[0],
     ];
-    dot(c, c).sqrt() <= 1e-12 * dot(a, a).sqrt() * dot(b, b).sqrt()
+    dot(c, c).sqrt() <= tol::ANGLE * dot(a, a).sqrt() * dot(b, b).sqrt()
 }
 
 /// Whether direction features `a` and `b` of one body are parallel in it, whatever it does.
