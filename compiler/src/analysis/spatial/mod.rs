@@ -19,6 +19,16 @@
 //! What is not (angles between directions of space, helical joints, segments, circles and
 //! planes that move, loops of partially fixed bodies, defaults) is reported per constraint,
 //! never dropped.
+//!
+//! The module is split by concern, each file an `impl Builder<'_, Spatial>` block of its own:
+//! `record.rs` the record; `action.rs` action analysis, one helper per kind of relation, over
+//! the fragments of `point.rs` (point moves), `turn.rs` (direction turns), `joint.rs` (what a
+//! joint's other relations ask of a turn about an axis), `plane.rs` (planes that move, lines
+//! in a plane), `circle.rs` (circles that move), `size.rs` (lengths and radii) and
+//! `sketcher.rs` (midpoints and mirrors); `locus.rs` locus analysis and the loci of space;
+//! `check.rs` the relations that are run-time checks and the registers relations read;
+//! `defaults.rs` and `ground.rs` the freedoms no constraint fixes. This file keeps the
+//! [`Geometry`] impl and a body's constant geometry (its local points and directions).
 
 mod action;
 mod check;
