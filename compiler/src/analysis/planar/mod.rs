@@ -17,7 +17,7 @@
 //! [`circle`], [`segment`] and `sketcher.rs` (equal dimensions, midpoints, mirrors);
 //! `locus.rs` locus analysis and the loci it intersects; `check.rs` the relations that are
 //! run-time checks and the registers relations read; `defaults.rs` and `ground.rs` the
-//! freedoms no constraint fixes. This file keeps the [`Geometry`] impl, the sketch as the
+//! freedoms no constraint fixes. This file keeps the `Geometry` impl, the sketch as the
 //! decomposition sees it, and small helpers the files share.
 
 mod action;

@@ -28,7 +28,7 @@
 //! `sketcher.rs` (midpoints and mirrors); `locus.rs` locus analysis and the loci of space;
 //! `check.rs` the relations that are run-time checks and the registers relations read;
 //! `defaults.rs` and `ground.rs` the freedoms no constraint fixes. This file keeps the
-//! [`Geometry`] impl and a body's constant geometry (its local points and directions).
+//! `Geometry` impl and a body's constant geometry (its local points and directions).
 
 mod action;
 mod check;
