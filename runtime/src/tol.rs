@@ -12,6 +12,12 @@ pub const LENGTH_REL: f64 = 64.0 * f64::EPSILON;
 /// vectors are parallel.
 pub const ANGLE: f64 = 1e-12;
 
+/// Relative tolerance (times one plus the largest coordinate involved) under which a point
+/// given by the model's constants lies in a plane given by them: its height above the plane is
+/// zero. The analysis reads by it whether two fixed circles lie in one plane or in parallel
+/// planes apart, before any plan runs.
+pub const COPLANAR_REL: f64 = 1e-12;
+
 /// Relative tolerance of a plan's run-time checks (an implied constraint re-measured, a point
 /// that must lie on a locus), times one plus the model's scale: far above rounding, far below
 /// any violation a user would call small.

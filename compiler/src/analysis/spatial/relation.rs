@@ -27,6 +27,7 @@ use gcs_lang::constraints::ConstraintKind as K;
 use gcs_lang::expr::ExprId;
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
 use gcs_lang::Model;
+use gcs_runtime::tol;
 
 /// A relation between features of space.
 #[derive(Clone, Debug, PartialEq)]
@@ -303,13 +304,13 @@ fn coplanar(model: &Model, a: GeomId, b: GeomId) -> Option<bool> {
         na[2] * nb[0] - na[0] * nb[2],
         na[0] * nb[1] - na[1] * nb[0],
     ];
-    if (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt() > 1e-12 {
+    if (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt() > tol::ANGLE {
         return None;
     }
     let w = [cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]];
     let scale = 1.0 + ca.iter().chain(&cb).fold(0.0f64, |m, x| m.max(x.abs()));
     let height = (na[0] * w[0] + na[1] * w[1] + na[2] * w[2]).abs();
-    Some(height <= 1e-12 * scale)
+    Some(height <= tol::COPLANAR_REL * scale)
 }
 
 /// For a distance or tangency between `x` (a line, segment or circle) and fixed circle `c`:
