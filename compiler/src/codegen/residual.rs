@@ -30,29 +30,33 @@ impl Solve<'_> {
                 self.r(*dir)
             ),
             _ => {
-                let code = self.residual_code(residual);
-                format!("check::error::{}", code.trim_start_matches("check::"))
+                format!("check::error::{}", self.residual_call(residual))
             }
         }
     }
 
     /// The call of the runtime's residual of a check's relation.
     pub(super) fn residual_code(&self, residual: &Residual) -> String {
+        format!("check::{}", self.residual_call(residual))
+    }
+
+    /// The call of a check's residual, by its name in `check` (and in `check::error`).
+    fn residual_call(&self, residual: &Residual) -> String {
         let r = |x: &Reg| self.r(*x);
         let or_zero = |x: &Option<Reg>| x.as_ref().map_or_else(|| "0.0".to_string(), r);
         match residual {
             Residual::PointPoint { a, b, d } => {
-                format!("check::point_point({}, {}, {})", r(a), r(b), or_zero(d))
+                format!("point_point({}, {}, {})", r(a), r(b), or_zero(d))
             }
             Residual::PointLine { p, base, dir, d } => format!(
-                "check::point_line({}, {}, {}, {})",
+                "point_line({}, {}, {}, {})",
                 r(p),
                 r(base),
                 r(dir),
                 or_zero(d)
             ),
             Residual::Angle { u, v, angle } => {
-                format!("check::angle({}, {}, {})", r(u), r(v), r(angle))
+                format!("angle({}, {}, {})", r(u), r(v), r(angle))
             }
             Residual::CircleLine {
                 centre,
@@ -62,7 +66,7 @@ impl Solve<'_> {
                 gap,
                 side,
             } => format!(
-                "check::circle_line({}, {}, {}, {}, {}, {})",
+                "circle_line({}, {}, {}, {}, {}, {})",
                 r(centre),
                 r(radius),
                 r(base),
@@ -77,7 +81,7 @@ impl Solve<'_> {
                 gap,
                 outside,
             } => format!(
-                "check::point_circle({}, {}, {}, {}, {outside})",
+                "point_circle({}, {}, {}, {}, {outside})",
                 r(p),
                 r(centre),
                 r(radius),
@@ -91,7 +95,7 @@ impl Solve<'_> {
                 gap,
                 nesting,
             } => format!(
-                "check::circle_circle({}, {}, {}, {}, {}, check::Nesting::{nesting:?})",
+                "circle_circle({}, {}, {}, {}, {}, check::Nesting::{nesting:?})",
                 r(c1),
                 r(r1),
                 r(c2),
@@ -99,13 +103,13 @@ impl Solve<'_> {
                 or_zero(gap)
             ),
             Residual::Dim { value, target } => {
-                format!("check::dimension({}, {})", r(value), r(target))
+                format!("dimension({}, {})", r(value), r(target))
             }
             Residual::Midpoint { p, a, b } => {
-                format!("check::midpoint({}, {}, {})", r(p), r(a), r(b))
+                format!("midpoint({}, {}, {})", r(p), r(a), r(b))
             }
             Residual::Mirror { p, q, base, dir } => {
-                format!("check::mirror({}, {}, {}, {})", r(p), r(q), r(base), r(dir))
+                format!("mirror({}, {}, {}, {})", r(p), r(q), r(base), r(dir))
             }
             Residual::PointPlane { .. }
             | Residual::Parallel { .. }
