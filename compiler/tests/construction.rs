@@ -68,16 +68,26 @@
 //!
 //! `GCS_WRITE_FRAGMENTS=1` writes `docs/FRAGMENTS.md`; without it the test checks that the
 //! committed file is current. The file holds no timing (the test prints its run time).
+//!
+//! The probing, the checker, the defaults' checker and the table writer are shared with the
+//! checker in space (`construction3d.rs`): `construction/harness.rs`. This file has the plane's
+//! kinds, states, constraint forms and instances, and what its plans and tables say ([`Planar`]).
 
-use gcs_compiler::analyse;
-use gcs_compiler::analysis::Analysis;
-use gcs_compiler::plan::Op;
+#[path = "construction/harness.rs"]
+mod harness;
+
+use gcs_compiler::plan::{DefaultVar, Op};
 use gcs_lang::constraints::ConstraintKind as CK;
-use gcs_lang::model::ConstraintId;
-use gcs_lang::Model;
-use std::collections::BTreeMap;
+use harness::{
+    angular, ConstraintForm, GeomKind, Instance, Mode, Out, Rng, Solved, Space, Statements, Table,
+    REL,
+};
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::fmt::Write as _;
+
+#[test]
+fn construction_checker() {
+    harness::check::<Planar>();
+}
 
 // ---------------------------------------------------------------- small maths
 
@@ -121,51 +131,14 @@ fn angle_from(u: V, v: V) -> f64 {
     cross(u, v).atan2(dot(u, v))
 }
 
-// ---------------------------------------------------------------- a deterministic RNG
-
-/// xorshift64*, seeded through splitmix64.
-struct Rng(u64);
+// ---------------------------------------------------------------- random draws in the plane
 
 impl Rng {
-    fn new(seed: u64) -> Rng {
-        let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        Rng(z | 1)
-    }
-    fn next(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        self.0 = x;
-        x.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn f(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.f()
-    }
-    fn sign(&mut self) -> f64 {
-        if self.next() & 1 == 0 {
-            1.0
-        } else {
-            -1.0
-        }
-    }
-    fn angle(&mut self) -> f64 {
-        self.range(-PI, PI)
-    }
     fn unit(&mut self) -> V {
         dir(self.angle())
     }
     fn point(&mut self, s: f64) -> V {
         [self.range(-s, s), self.range(-s, s)]
-    }
-    fn log_range(&mut self, a: f64, b: f64) -> f64 {
-        (a.ln() + (b.ln() - a.ln()) * self.f()).exp()
     }
 }
 
@@ -181,7 +154,7 @@ enum Kind {
     Body,
 }
 
-impl Kind {
+impl GeomKind for Kind {
     fn name(self) -> &'static str {
         match self {
             Kind::Point => "point",
@@ -327,8 +300,7 @@ enum Form {
     MirrorLine,
 }
 
-impl Form {
-    /// The form as it reads in the table (fixed geoms by their kind).
+impl ConstraintForm for Form {
     fn text(self) -> String {
         match self {
             Form::Coincident(p) => format!("coincident({}, point)", p.text()),
@@ -368,7 +340,9 @@ impl Form {
             Form::MirrorLine => "symmetric(point, point, P)".into(),
         }
     }
+}
 
+impl Form {
     /// The point feature it places, if any (for near-degenerate instances).
     fn point(self) -> Option<Pt> {
         match self {
@@ -421,11 +395,8 @@ enum Motion {
     Slide(usize, Pt),
 }
 
-struct State {
-    name: &'static str,
-    prefix: Vec<Form>,
-    motion: Motion,
-}
+type State = harness::State<Planar>;
+type Entry = harness::Entry<Planar>;
 
 fn st(name: &'static str, prefix: Vec<Form>, motion: Motion) -> State {
     State {
@@ -678,104 +649,7 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
     }
 }
 
-struct Entry {
-    kind: Kind,
-    state: &'static str,
-    prefix: Vec<Form>,
-    motion: Motion,
-    last: Form,
-}
-
-fn entries() -> Vec<Entry> {
-    let mut out = Vec::new();
-    for kind in [
-        Kind::Point,
-        Kind::Vector,
-        Kind::Line,
-        Kind::Segment,
-        Kind::Circle,
-        Kind::Body,
-    ] {
-        let (states, forms) = catalogue(kind);
-        for s in &states {
-            for &f in &forms {
-                // Dimensions are solved first: probe them only after dimensions.
-                if f.is_dim() && !s.prefix.iter().all(|p| p.is_dim()) {
-                    continue;
-                }
-                out.push(Entry {
-                    kind,
-                    state: s.name,
-                    prefix: s.prefix.clone(),
-                    motion: s.motion,
-                    last: f,
-                });
-            }
-        }
-    }
-    out
-}
-
 // ---------------------------------------------------------------- instances
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Mode {
-    /// A random rigid motion of the sketch (moderate or small), and a dimension change.
-    Random,
-    /// The new locus tangent to the motion the prefix leaves.
-    Tangent,
-    /// Nearly tangent.
-    NearTangent,
-    /// The sketch exactly at the target.
-    Exact,
-    /// The sketch 1e-9 (relative) from the target.
-    Tiny,
-    /// Everything scaled.
-    Scale(f64),
-    /// The prefix derived from a target moved by 1e-2: no solution (for checks only).
-    Inconsistent,
-}
-
-impl Mode {
-    fn name(self) -> String {
-        match self {
-            Mode::Random => "random".into(),
-            Mode::Tangent => "tangent".into(),
-            Mode::NearTangent => "near-tangent".into(),
-            Mode::Exact => "exact".into(),
-            Mode::Tiny => "tiny".into(),
-            Mode::Scale(k) => format!("scale {k:e}"),
-            Mode::Inconsistent => "inconsistent".into(),
-        }
-    }
-}
-
-struct Instance {
-    text: String,
-    prefix_text: String,
-    scale: f64,
-}
-
-/// Writes numbers, tracking the largest length for the tolerance.
-struct Out {
-    scale: f64,
-}
-
-impl Out {
-    fn l(&mut self, x: f64) -> String {
-        self.scale = self.scale.max(x.abs());
-        format!("{x:?}")
-    }
-    fn p(&mut self, p: V) -> String {
-        format!("({}, {})", self.l(p[0]), self.l(p[1]))
-    }
-    fn a(&mut self, x: f64) -> String {
-        format!("{x:?}")
-    }
-    fn d(&mut self, v: V) -> String {
-        format!("({:?}, {:?})", v[0], v[1])
-    }
-}
 
 /// Derives the fixed geom and the statement of form `f` (number `i`) from the target `t`.
 /// `degen` is the tangent direction of the motion at the feature and the angle off it, for
@@ -1186,11 +1060,7 @@ fn probe_decl(kind: Kind, c: &Conf, m: &Members, s: f64, o: &mut Out) -> String 
 
 fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
     let mut rng = Rng::new(seed);
-    let k = match mode {
-        Mode::Scale(k) => k,
-        _ => 1.0,
-    };
-    let s = k * rng.range(0.5, 2.0);
+    let s = harness::size(&mut rng, mode);
     let members = Members {
         a: rng.point(s),
         b: rng.point(s),
@@ -1211,23 +1081,17 @@ fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
         }
     }
     let mut o = Out { scale: 0.0 };
-    let mut decls = Vec::new();
-    let mut lines = Vec::new();
+    let mut stmts = Statements::default();
     let mut locs = Vec::new();
-    // An inconsistent instance: the prefix places P slightly elsewhere than z wants it.
-    let tp = if mode == Mode::Inconsistent {
-        Conf {
-            pos: add(t.pos, mul(rng.unit(), 1e-2 * s)),
-            ang: t.ang + 1e-2 * rng.sign(),
-            dim: t.dim * 1.01,
-        }
-    } else {
-        t
-    };
+    let tp = harness::prefix_target(mode, t, |t| Conf {
+        pos: add(t.pos, mul(rng.unit(), 1e-2 * s)),
+        ang: t.ang + 1e-2 * rng.sign(),
+        dim: t.dim * 1.01,
+    });
     for (i, &f) in e.prefix.iter().enumerate() {
         let (d, c, loc) = derive(f, i, &tp, &members, s, &mut rng, None, &mut o);
-        decls.extend(d);
-        lines.push(format!("p{i}: {c};"));
+        stmts.decls.extend(d);
+        stmts.prefix.push(format!("p{i}: {c};"));
         locs.push(loc);
     }
     // The motion the prefix leaves, at the last constraint's feature.
@@ -1247,28 +1111,13 @@ fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
         };
         tv.map(unit)
     });
-    let degen = match (mode, tangent) {
-        (Mode::Tangent, Some(tv)) => Some((tv, 0.0)),
-        (Mode::NearTangent, Some(tv)) => Some((tv, rng.log_range(1e-9, 1e-4))),
-        _ => None,
-    };
+    let degen = harness::off_tangent(mode, tangent, &mut rng);
     let n = e.prefix.len();
     let (d, c, _) = derive(e.last, n, &t, &members, s, &mut rng, degen, &mut o);
-    decls.extend(d);
-    let last = format!("z: {c};");
+    stmts.decls.extend(d);
+    stmts.last.push(format!("z: {c};"));
     // The sketch: the target moved.
-    let mag = match mode {
-        Mode::Exact => 0.0,
-        Mode::Tiny => 1e-9,
-        Mode::Inconsistent => 1e-3,
-        _ => {
-            if rng.sign() > 0.0 {
-                rng.range(0.05, 1.0)
-            } else {
-                rng.log_range(1e-4, 1e-2)
-            }
-        }
-    };
+    let mag = harness::sketch_motion(mode, &mut rng);
     let q = add(t.pos, rng.point(s));
     let turn = mag * rng.range(-0.6, 0.6);
     let shift = mul(rng.point(s), mag);
@@ -1278,1166 +1127,117 @@ fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
         dim: t.dim * (mag * rng.range(-0.5, 0.5)).exp(),
     };
     let probe = probe_decl(e.kind, &sk, &members, s, &mut o);
-    // A fixed origin, so that no model is grounded at its probe's sketch.
-    let head = format!(
-        "space 2d;\nfixed point O = (0, 0);\n{}\n{probe}\n",
-        decls.join("\n")
-    );
-    let prefix_text = format!("{head}{}\n", lines.join("\n"));
-    let text = format!("{prefix_text}{last}\n");
-    Instance {
-        text,
-        prefix_text,
-        scale: o.scale,
-    }
+    stmts.instance("space 2d;\nfixed point O = (0, 0);", &probe, o.scale)
 }
 
-// ---------------------------------------------------------------- classification
+// ---------------------------------------------------------------- the plane's checker
 
-fn load(text: &str) -> Model {
-    let (_, model, diags) = gcs_lang::load("probe.gcs", text.as_bytes());
-    match model {
-        Some(m)
-            if !diags
-                .iter()
-                .any(|d| d.severity == gcs_lang::diagnostic::Severity::Error) =>
-        {
-            m
-        }
-        _ => panic!(
-            "the checker wrote an invalid model: {:?}\n{text}",
-            diags.iter().map(|d| d.message.clone()).collect::<Vec<_>>()
-        ),
-    }
-}
+/// The construction checker in the plane.
+struct Planar;
 
-fn label(model: &Model, l: &str) -> Option<ConstraintId> {
-    model
-        .constraints
-        .iter()
-        .find(|(_, c)| c.label.as_deref() == Some(l))
-        .map(|(id, _)| id)
-}
+impl Space for Planar {
+    type Kind = Kind;
+    type Form = Form;
+    type StateMotion = Motion;
 
-/// The record of `P`'s cluster: signature and DOF.
-fn record_of(model: &Model, a: &Analysis) -> String {
-    let p = model.geom_named("P").expect("P");
-    match a.undefaulted.iter().find(|c| c.geoms.contains(&p)) {
-        Some(c) => format!("{} ({} DOF)", c.signature(), c.dof),
-        None => "?".into(),
-    }
-}
-
-fn op_name(op: &Op) -> Option<String> {
-    Some(match op {
-        Op::Intersect { meet, .. } => format!("intersect {meet:?}"),
-        Op::Onto { .. } => "onto".into(),
-        Op::Nearest { .. } => "nearest".into(),
-        Op::Translate { .. } => "translate".into(),
-        Op::RotatePoint { .. } => "rotate to point".into(),
-        Op::RotateDir { .. } => "rotate to direction".into(),
-        Op::SetDim { .. } => "set dimension".into(),
-        Op::Check { .. } => "check".into(),
-        Op::CentresLineLine { .. } => "bisector locus".into(),
-        Op::CentresLinePoint { .. } => "parabola locus".into(),
-        Op::CentresPointPoint { .. } => "conic locus".into(),
-        Op::RadiusFromLine { .. } | Op::RadiusFromPoint { .. } => "radius from distance".into(),
-        Op::DirectionTo { .. } => "direction to".into(),
-        Op::Along { .. } => "length along".into(),
-        Op::ShiftedCircle { .. } => "shifted circle".into(),
-        Op::ParallelLine { .. } => "parallel line".into(),
-        Op::OffsetLine { .. } => "offset line".into(),
-        Op::Default(_) => "default".into(),
-        Op::LocusPoint { .. } => "point on locus".into(),
-        Op::PointXY { .. } => "point".into(),
-        Op::Close { .. } => "close by iteration".into(),
-        Op::Midpoint { .. } => "midpoint".into(),
-        Op::Reflect { .. } => "reflect through a point".into(),
-        Op::Mirror { .. } => "mirror across a line".into(),
-        _ => return None,
-    })
-}
-
-#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
-enum Outcome {
-    Fragment(String),
-    Check,
-    Recorded,
-    NotYet(String),
-    /// The prefix does not reach the state.
-    Unreached(String),
-}
-
-impl Outcome {
-    fn text(&self) -> String {
-        match self {
-            Outcome::Fragment(ops) => format!("fragment: {ops}"),
-            Outcome::Check => "check".into(),
-            Outcome::Recorded => "recorded (satisfied when placed)".into(),
-            Outcome::NotYet(r) => format!("not yet: {r}"),
-            Outcome::Unreached(r) => format!("state not reached: {r}"),
-        }
-    }
-    fn checked(&self) -> bool {
-        matches!(self, Outcome::Fragment(_) | Outcome::Check)
-    }
-}
-
-struct Class {
-    outcome: Outcome,
-    before: String,
-    after: String,
-    note: String,
-}
-
-fn classify(e: &Entry, inst: &Instance) -> Class {
-    let pm = load(&inst.prefix_text);
-    let pa = analyse(&pm).expect("2d");
-    let before = record_of(&pm, &pa);
-    let model = load(&inst.text);
-    let a = analyse(&model).expect("2d");
-    let after = record_of(&model, &a);
-    let z = label(&model, "z").expect("z");
-    let mut note = String::new();
-    if let Some(u) = pa.unsolved.first() {
-        return Class {
-            outcome: Outcome::Unreached(format!(
-                "{}: {}",
-                pm.constraints[u.constraint].text, u.reason
-            )),
-            before,
-            after,
-            note,
-        };
-    }
-    if let Some(u) = a.unsolved.iter().find(|u| u.constraint == z) {
-        return Class {
-            outcome: Outcome::NotYet(u.reason.clone()),
-            before,
-            after,
-            note,
-        };
-    }
-    if let Some(u) = a.unsolved.first() {
-        let _ = write!(
-            note,
-            "prefix constraint {} no longer solved",
-            model.constraints[u.constraint].text
-        );
-    }
-    let steps = &a.plan.steps;
-    // The first default the analysis adds for the freedom left: a step satisfying z after it
-    // is a fragment that needs the default (the defaults alone are probed below).
-    let defaulted = (steps.iter())
-        .position(|s| matches!(s.op, Op::Default(_)))
-        .unwrap_or(steps.len());
-    let Some(j) = steps.iter().position(|s| s.satisfies.contains(&z)) else {
-        assert!(
-            a.recorded.contains(&z),
-            "z is neither satisfied nor recorded"
-        );
-        return Class {
-            outcome: Outcome::Recorded,
-            before,
-            after,
-            note,
-        };
-    };
-    if matches!(steps[j].op, Op::Check { .. }) {
-        return Class {
-            outcome: Outcome::Check,
-            before,
-            after,
-            note,
-        };
-    }
-    // The fragment starts after the prefix's own steps: after the last step that satisfied
-    // something, and after the steps the prefix alone emits (a circle's centre locus).
-    let common = steps
-        .iter()
-        .zip(&pa.plan.steps)
-        .take_while(|(x, y)| x == y)
-        .count();
-    let start = steps[..j]
-        .iter()
-        .rposition(|s| !s.satisfies.is_empty())
-        .map_or(0, |i| i + 1)
-        .max(common.min(j));
-    let mut ops: Vec<String> = steps[start..=j]
-        .iter()
-        .filter_map(|s| op_name(&s.op))
-        .collect();
-    let prefix_ids: Vec<ConstraintId> = (0..e.prefix.len())
-        .filter_map(|i| label(&model, &format!("p{i}")))
-        .collect();
-    let last_prefix = steps
-        .iter()
-        .rposition(|s| s.satisfies.iter().any(|c| prefix_ids.contains(c)));
-    match last_prefix {
-        Some(i) if i > j => {
-            // Only the record closing right after z (a settle) belongs to it.
-            let settle = steps[j + 1..]
-                .iter()
-                .take_while(|s| {
-                    matches!(
-                        s.op,
-                        Op::SetDim { .. }
-                            | Op::RadiusFromLine { .. }
-                            | Op::RadiusFromPoint { .. }
-                            | Op::PointOf(_)
-                    )
-                })
-                .count();
-            let after_ops: Vec<String> = steps[j + 1..j + 1 + settle]
-                .iter()
-                .filter(|s| !s.satisfies.is_empty() || s.out.is_some())
-                .filter_map(|s| op_name(&s.op))
-                .collect();
-            let closes = steps[j + 1..j + 1 + settle]
-                .iter()
-                .any(|s| s.satisfies.iter().any(|c| prefix_ids.contains(c)));
-            if closes && !after_ops.is_empty() {
-                ops.push(format!("then {}", after_ops.join(" + ")));
-            }
-            if steps[j + 1 + settle..]
-                .iter()
-                .any(|s| s.satisfies.iter().any(|c| prefix_ids.contains(c)))
-            {
-                let _ = write!(note, "runs before part of the prefix");
-            }
-        }
-        _ => {}
-    }
-    if j > defaulted {
-        if !note.is_empty() {
-            note.push_str("; ");
-        }
-        note.push_str("after a default");
-    }
-    Class {
-        outcome: Outcome::Fragment(ops.join(" + ")),
-        before,
-        after,
-        note,
-    }
-}
-
-// ---------------------------------------------------------------- the checker
-
-const N_RANDOM: usize = 20;
-const DEGENERATE: [Mode; 8] = [
-    Mode::Tangent,
-    Mode::Tangent,
-    Mode::NearTangent,
-    Mode::NearTangent,
-    Mode::Exact,
-    Mode::Tiny,
-    Mode::Scale(1e-3),
-    Mode::Scale(1e3),
-];
-const REL: f64 = 1e-12;
-
-#[derive(Default)]
-struct Stats {
-    instances: usize,
-    runs: usize,
-    /// Instances some branch solved, all verified.
-    solved: usize,
-    /// Instances the default branches solved.
-    default_solved: usize,
-    /// Instances no branch solved, by error kind.
-    unsolved: BTreeMap<String, usize>,
-    /// Instances whose analysis did not claim `z` (classified otherwise).
-    reclassified: usize,
-    /// Wrong runs: the largest relative residual, and the details.
-    wrong: Vec<(f64, String)>,
-    /// Inconsistent instances of a check (no solution): run, refused with an error, and the
-    /// accepted ones (a solution violating the check's constraint).
-    inconsistent: usize,
-    inconsistent_refused: usize,
-    inconsistent_accepted: Vec<String>,
-    /// An example of an unsolved instance.
-    unsolved_example: Option<String>,
-}
-
-fn angular(k: CK) -> bool {
-    matches!(
-        k,
-        CK::Angle | CK::Parallel | CK::Perpendicular | CK::Horizontal | CK::Vertical | CK::OffsetX
-    )
-}
-
-/// Every branch combination (at most 64; beyond, a deterministic sample).
-fn combos(counts: &[usize], defaults: &[usize]) -> Vec<Vec<usize>> {
-    let mut out = vec![defaults.to_vec()];
-    let total: usize = counts.iter().map(|c| (*c).max(1)).product();
-    let step = total.div_ceil(64).max(1);
-    let mut n = 0;
-    while n < total {
-        let mut idx = Vec::with_capacity(counts.len());
-        let mut r = n;
-        for &c in counts {
-            let c = c.max(1);
-            idx.push(r % c);
-            r /= c;
-        }
-        if idx != defaults {
-            out.push(idx);
-        }
-        n += step;
-    }
-    out
-}
-
-/// The largest coordinate or dimension of a solution.
-fn magnitude_of(s: &gcs_compiler::solution::Solution) -> f64 {
-    (s.points.iter().flat_map(|(_, x)| x.iter()))
-        .chain(s.scalars.iter().map(|(_, x)| x))
-        .fold(0.0, |m: f64, x| m.max(x.abs()))
-}
-
-fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &mut Stats) {
-    stats.instances += 1;
-    let model = load(&inst.text);
-    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        let a = analyse(&model).expect("2d");
-        let z = label(&model, "z").expect("z");
-        let claimed: Vec<ConstraintId> = a
-            .plan
-            .steps
-            .iter()
-            .flat_map(|s| s.satisfies.iter().copied())
-            .collect();
-        let counts: Vec<usize> = a.plan.branches.iter().map(|b| b.count).collect();
-        let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-        let params = model.default_params();
-        let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
-        let tol_len = REL * inst.scale.max(f64::MIN_POSITIVE);
-        let mut results = Vec::new();
-        for combo in combos(&counts, &defaults) {
-            // The plan as it is, even when it leaves geoms free (`solve` refuses those): the
-            // fragments are what is checked.
-            let r = gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo);
-            let verdict = match r {
-                Ok(sol) => {
-                    // Relative to the inputs' scale, or to the answer's own magnitude when it
-                    // lies farther out (a root far along a parabola's arm, met by a line
-                    // nearly tangent to it): its coordinates carry rounding relative to that.
-                    let tol_len = tol_len.max(REL * magnitude_of(&sol));
-                    let res = gcs_compiler::verify::residuals(&model, &sol, &params);
-                    let mut worst: f64 = 0.0;
-                    let bad: Vec<String> = res
-                        .iter()
-                        .filter(|r| claimed.contains(&r.constraint))
-                        .filter(|r| {
-                            let kind = model.constraints[r.constraint].kind;
-                            let tol = if angular(kind) {
-                                REL
-                            } else if kind == CK::Prismatic {
-                                tol_len.max(REL)
-                            } else {
-                                tol_len
-                            };
-                            r.value.is_nan() || r.value > tol
-                        })
-                        .map(|r| {
-                            worst = worst.max(r.value / inst.scale.max(1.0));
-                            format!(
-                                "{} residual {:.3e} (scale {:.3e}, relative {:.3e})",
-                                model.constraints[r.constraint].text,
-                                r.value,
-                                inst.scale,
-                                r.value / inst.scale
-                            )
-                        })
-                        .collect();
-                    if bad.is_empty() {
-                        Ok(())
-                    } else {
-                        Err(Some(format!("{worst:e}|{}", bad.join("; "))))
-                    }
-                }
-                Err(e) => Err(Some(format!("ERR {:?} {:.3e}", e.kind, e.magnitude))),
-            };
-            results.push((combo, verdict));
-        }
-        (claimed.contains(&z), results)
-    }));
-    let (claims_z, results) = match outcome {
-        Ok(x) => x,
-        Err(p) => {
-            let msg = p
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default();
-            stats.wrong.push((
-                f64::INFINITY,
-                format!(
-                    "{entry_id}: seed {seed} ({}): panic: {msg}\n```gcs\n{}```",
-                    mode.name(),
-                    inst.text
-                ),
-            ));
-            return;
-        }
-    };
-    if !claims_z {
-        stats.reclassified += 1;
-    }
-    let mut any = false;
-    let mut first_err = None;
-    for (i, (combo, v)) in results.iter().enumerate() {
-        stats.runs += 1;
-        match v {
-            Ok(()) => {
-                any = true;
-                if i == 0 {
-                    stats.default_solved += 1;
-                }
-            }
-            Err(Some(msg)) if !msg.starts_with("ERR ") => {
-                let (worst, msg) = msg.split_once('|').unwrap_or(("inf", msg));
-                stats.wrong.push((
-                    worst.parse().unwrap_or(f64::INFINITY),
-                    format!(
-                        "{entry_id}: seed {seed} ({}), branches {combo:?}: {msg}\n```gcs\n{}```",
-                        mode.name(),
-                        inst.text
-                    ),
-                ));
-            }
-            Err(Some(msg)) => {
-                if first_err.is_none() {
-                    first_err = Some(msg.trim_start_matches("ERR ").to_string());
-                }
-            }
-            Err(None) => {}
-        }
-    }
-    if any {
-        stats.solved += 1;
-    } else {
-        let e =
-            first_err.unwrap_or_else(|| "Wrong (every run violated a claimed constraint)".into());
-        let kind = e.split(' ').next().unwrap_or("").to_string();
-        *stats.unsolved.entry(kind).or_default() += 1;
-        if stats.unsolved_example.is_none() {
-            stats.unsolved_example = Some(format!(
-                "seed {seed} ({}): {e}\n```gcs\n{}```",
-                mode.name(),
-                inst.text
-            ));
-        }
-    }
-}
-
-/// Inconsistent instances of a check entry: the plan must refuse them (a `SolveError`), never
-/// return a solution that violates the checked constraint. Reported, not asserted: the checker's
-/// bar is the solvable instances.
-fn run_inconsistent(entry_id: &str, seed: u64, inst: &Instance, stats: &mut Stats) {
-    let model = load(&inst.text);
-    let Ok(a) = analyse(&model) else { return };
-    let z = label(&model, "z").expect("z");
-    if !a
-        .plan
-        .steps
-        .iter()
-        .any(|s| s.satisfies.contains(&z) && matches!(s.op, Op::Check { .. }))
-    {
-        return;
-    }
-    stats.inconsistent += 1;
-    let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
-    let counts: Vec<usize> = a.plan.branches.iter().map(|b| b.count).collect();
-    let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-    let params = model.default_params();
-    for combo in combos(&counts, &defaults) {
-        if let Ok(sol) = gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo) {
-            let res = gcs_compiler::verify::residuals(&model, &sol, &params);
-            let rz = res
-                .iter()
-                .find(|r| r.constraint == z)
-                .map_or(0.0, |r| r.value);
-            if rz.is_nan() || rz > 1e-9 * inst.scale.max(1.0) {
-                stats.inconsistent_accepted.push(format!(
-                    "{entry_id}: seed {seed}, branches {combo:?}: `{}` checked but violated by {rz:.3e}\n```gcs\n{}```",
-                    model.constraints[z].text,
-                    inst.text
-                ));
-                return;
-            }
-        }
-    }
-    stats.inconsistent_refused += 1;
-}
-
-const N_INCONSISTENT: usize = 4;
-
-// ---------------------------------------------------------------- the test and the report
-
-struct Row {
-    id: String,
-    kind: Kind,
-    state: &'static str,
-    form: String,
-    class: Class,
-    stats: Option<Stats>,
-}
-
-#[test]
-fn construction_checker() {
-    // Debugging aids: print one model's plan and solves instead of running the checker.
-    if std::env::var("GCS_PROBE").is_ok() {
-        probe();
-        return;
-    }
-    if std::env::var("GCS_ENTRY").is_ok() {
-        instance();
-        return;
-    }
-    let t0 = std::time::Instant::now();
-    let entries = entries();
-    let mut rows = Vec::new();
-    for (n, e) in entries.iter().enumerate() {
-        let id = format!("#{n}");
-        let canonical = make(e, (n as u64) << 32, Mode::Random);
-        let class = classify(e, &canonical);
-        let stats = class.outcome.checked().then(|| {
-            let mut stats = Stats::default();
-            let modes = std::iter::repeat_n(Mode::Random, N_RANDOM).chain(DEGENERATE);
-            for (i, mode) in modes.enumerate() {
-                let seed = ((n as u64) << 32) | (i as u64 + 1);
-                let inst = make(e, seed, mode);
-                run_instance(&id, seed, mode, &inst, &mut stats);
-            }
-            if class.outcome == Outcome::Check {
-                for i in 0..N_INCONSISTENT {
-                    let seed = ((n as u64) << 32) | (1000 + i as u64);
-                    let inst = make(e, seed, Mode::Inconsistent);
-                    run_inconsistent(&id, seed, &inst, &mut stats);
-                }
-            }
-            stats
-        });
-        rows.push(Row {
-            id,
-            kind: e.kind,
-            state: e.state,
-            form: e.last.text(),
-            class,
-            stats,
-        });
-    }
-    let defaults = default_rows();
-    let elapsed = t0.elapsed().as_secs_f64();
-    let report = report(&rows) + &defaults_report(&defaults);
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/FRAGMENTS.md");
-    let wrong: usize = rows
-        .iter()
-        .filter_map(|r| r.stats.as_ref())
-        .map(|s| s.wrong.len())
-        .sum();
-    println!("{}- runtime {elapsed:.1} s", summary(&rows));
-    if std::env::var("GCS_WRITE_FRAGMENTS").as_deref() == Ok("1") {
-        std::fs::write(&path, &report).expect("write docs/FRAGMENTS.md");
-    }
-    for r in &rows {
-        if let Some(s) = &r.stats {
-            for (_, w) in &s.wrong {
-                println!("WRONG {w}");
-            }
-        }
-    }
-    assert_eq!(wrong, 0, "wrong fragments: see the WRONG lines above");
-    for r in &defaults {
-        for w in &r.wrong {
-            println!("WRONG DEFAULT {} {}: {w}", r.kind.name(), r.state);
-        }
-        assert!(
-            r.refused || r.defaults.len() == r.dof,
-            "{} {}: {} defaults for {} DOF",
-            r.kind.name(),
-            r.state,
-            r.defaults.len(),
-            r.dof
-        );
-    }
-    let wrong_defaults: usize = defaults.iter().map(|r| r.wrong.len()).sum();
-    assert_eq!(
-        wrong_defaults, 0,
-        "wrong default fragments: see the WRONG DEFAULT lines above"
-    );
-    let committed = std::fs::read_to_string(&path).unwrap_or_default();
-    assert!(
-        committed == report,
-        "docs/FRAGMENTS.md is out of date: regenerate it with GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --test construction"
-    );
-}
-
-fn summary(rows: &[Row]) -> String {
-    let mut o = String::new();
-    let count = |f: &dyn Fn(&Outcome) -> bool| rows.iter().filter(|r| f(&r.class.outcome)).count();
-    let stats: Vec<&Stats> = rows.iter().filter_map(|r| r.stats.as_ref()).collect();
-    let verified = rows
-        .iter()
-        .filter(|r| {
-            r.stats
-                .as_ref()
-                .is_some_and(|s| s.wrong.is_empty() && s.solved > 0)
-        })
-        .count();
-    let keys: std::collections::BTreeSet<(Kind, String, String)> = rows
-        .iter()
-        .filter(|r| !matches!(r.class.outcome, Outcome::Unreached(_)))
-        .map(|r| (r.kind, r.class.before.clone(), r.form.clone()))
-        .collect();
-    let _ = writeln!(o, "- entries: {}", rows.len());
-    let _ = writeln!(
-        o,
-        "- distinct (geom kind, signature, constraint form) keys: {}",
-        keys.len()
-    );
-    let _ = writeln!(
-        o,
-        "- fragment: {}",
-        count(&|x| matches!(x, Outcome::Fragment(_)))
-    );
-    let _ = writeln!(o, "- check: {}", count(&|x| *x == Outcome::Check));
-    let _ = writeln!(
-        o,
-        "- recorded (kept in the record, satisfied when the geom is placed): {}",
-        count(&|x| *x == Outcome::Recorded)
-    );
-    let _ = writeln!(
-        o,
-        "- not yet: {}",
-        count(&|x| matches!(x, Outcome::NotYet(_)))
-    );
-    let _ = writeln!(
-        o,
-        "- state not reached by its prefix: {}",
-        count(&|x| matches!(x, Outcome::Unreached(_)))
-    );
-    let _ = writeln!(
-        o,
-        "- entries checked (fragment or check): {}; verified (no wrong run, at least one instance solved): {verified}",
-        stats.len()
-    );
-    let inst: usize = stats.iter().map(|s| s.instances).sum();
-    let runs: usize = stats.iter().map(|s| s.runs).sum();
-    let solved: usize = stats.iter().map(|s| s.solved).sum();
-    let dsolved: usize = stats.iter().map(|s| s.default_solved).sum();
-    let recl: usize = stats.iter().map(|s| s.reclassified).sum();
-    let wrong: usize = stats.iter().map(|s| s.wrong.len()).sum();
-    let mut unsolved: BTreeMap<String, usize> = BTreeMap::new();
-    for s in &stats {
-        for (k, v) in &s.unsolved {
-            *unsolved.entry(k.clone()).or_default() += v;
-        }
-    }
-    let _ = writeln!(
-        o,
-        "- instances: {inst} ({N_RANDOM} random and {} near-degenerate per entry); solves (instance x branch combination): {runs}",
-        DEGENERATE.len()
-    );
-    let _ = writeln!(
-        o,
-        "- instances solved and verified: {solved} (on the default branches: {dsolved}); not solved by any branch: {} {:?}",
-        inst - solved,
-        unsolved
-    );
-    let _ = writeln!(
-        o,
-        "- instances whose plan did not claim the probed constraint (classified otherwise on that sketch): {recl}"
-    );
-    let _ = writeln!(o, "- wrong runs (solved, but a claimed constraint violated beyond 1e-12 relative, or a panic): {wrong}");
-    let precision: usize = stats
-        .iter()
-        .map(|s| s.wrong.iter().filter(|w| w.0 <= 1e-9).count())
-        .sum();
-    let _ = writeln!(
-        o,
-        "  - of which precision losses (relative residual between 1e-12 and 1e-9): {precision}; wrong results beyond 1e-9: {}",
-        wrong - precision
-    );
-    let wrong_entries = stats.iter().filter(|s| !s.wrong.is_empty()).count();
-    let _ = writeln!(o, "- entries with a wrong run: {wrong_entries}");
-    let inc: usize = stats.iter().map(|s| s.inconsistent).sum();
-    let refused: usize = stats.iter().map(|s| s.inconsistent_refused).sum();
-    let accepted: usize = stats.iter().map(|s| s.inconsistent_accepted.len()).sum();
-    let _ = writeln!(
-        o,
-        "- inconsistent instances of check entries (reported, not asserted): {inc}; refused with an error: {refused}; accepted with the checked constraint violated: {accepted}"
-    );
-    let _ = writeln!(
-        o,
-        "- every plan analysed here (entries and instances) passed the plan validator"
-    );
-    o
-}
-
-fn report(rows: &[Row]) -> String {
-    let mut o = String::new();
-    let _ = writeln!(o, "# Plan fragment table and construction checker\n");
-    let _ = writeln!(
-        o,
-        "Generated by `compiler/tests/construction.rs` (`GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --test construction`); do not edit.\n\
-         Each entry probes one free geom `P` of a kind, brought into a state by a prefix of constraints with fixed geoms, \
-         and one more constraint between a feature of `P` and a fixed geom. The outcome is what the analysis does for \
-         that constraint; *before* and *after* are the signature (Kramer's `IR[...]`) and DOF of `P`'s cluster. \
-         For every fragment and check, random solvable instances (and near-degenerate ones) are solved on every branch \
-         and verified independently (`verify`); see the test's header for the method.\n"
-    );
-    let _ = writeln!(o, "## Totals\n");
-    o.push_str(&summary(rows));
-    let _ = writeln!(o, "\n## Table\n");
-    let mut kind = None;
-    for r in rows {
-        if kind != Some(r.kind) {
-            kind = Some(r.kind);
-            let _ = writeln!(o, "\n### {}\n", r.kind.name());
-            let _ = writeln!(
-                o,
-                "| id | state | before | constraint | outcome | after | instances: solved / run |"
-            );
-            let _ = writeln!(o, "| --- | --- | --- | --- | --- | --- | --- |");
-        }
-        let inst = match &r.stats {
-            Some(s) => {
-                let mut t = format!("{} / {}", s.solved, s.instances);
-                if !s.wrong.is_empty() {
-                    let _ = write!(t, ", **{} wrong**", s.wrong.len());
-                }
-                t
-            }
-            None => String::new(),
-        };
-        let mut outcome = r.class.outcome.text();
-        if !r.class.note.is_empty() {
-            let _ = write!(outcome, " ({})", r.class.note);
-        }
-        let _ = writeln!(
-            o,
-            "| {} | {} | {} | `{}` | {} | {} | {} |",
-            r.id,
-            r.state,
-            r.class.before,
-            r.form,
-            outcome.replace('|', "\\|"),
-            r.class.after,
-            inst
-        );
-    }
-    let _ = writeln!(o, "\n## Not yet, by reason\n");
-    let mut by: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for r in rows {
-        if let Outcome::NotYet(reason) | Outcome::Unreached(reason) = &r.class.outcome {
-            let key = match &r.class.outcome {
-                Outcome::Unreached(_) => format!("state not reached: {reason}"),
-                _ => reason.clone(),
-            };
-            by.entry(key).or_default().push(format!(
-                "{} {} ({}): `{}`",
-                r.id,
-                r.kind.name(),
-                r.state,
-                r.form
-            ));
-        }
-    }
-    for (reason, list) in &by {
-        let _ = writeln!(o, "- **{reason}** ({}):", list.len());
-        for l in list {
-            let _ = writeln!(o, "  - {l}");
-        }
-    }
-    let _ = writeln!(o, "\n## Instances no branch solved\n");
-    let _ = writeln!(
-        o,
-        "A `SolveError` is never a wrong answer; these are instances built from a solvable target that the plan \
-         (on every branch) refused, usually because the sketch's reading of a side, sense or nesting differs from \
-         the target's, or a locus meets at a tangency. One example per entry.\n"
-    );
-    for r in rows {
-        if let Some(s) = &r.stats {
-            let n: usize = s.unsolved.values().sum();
-            if n > 0 {
-                let _ = writeln!(
-                    o,
-                    "- {} {} ({}), `{}`: {n} of {} {:?}",
-                    r.id,
-                    r.kind.name(),
-                    r.state,
-                    r.form,
-                    s.instances,
-                    s.unsolved
-                );
-            }
-        }
-    }
-    let _ = writeln!(o, "\n## Checks that accept inconsistent instances\n");
-    let _ = writeln!(
-        o,
-        "An inconsistent instance of a check entry has no solution; the check must refuse it. One example per entry.\n"
-    );
-    let mut none = true;
-    for r in rows {
-        if let Some(s) = &r.stats {
-            if let Some(w) = s.inconsistent_accepted.first() {
-                // The model text of the first few only.
-                let w = if none {
-                    w.clone()
-                } else {
-                    w.split("\n```").next().unwrap_or("").to_string()
-                };
-                let w = &w;
-                none = false;
-                let _ = writeln!(
-                    o,
-                    "- {} {} ({}), `{}`: {} of {} accepted. {w}",
-                    r.id,
-                    r.kind.name(),
-                    r.state,
-                    r.form,
-                    s.inconsistent_accepted.len(),
-                    s.inconsistent
-                );
-            }
-        }
-    }
-    if none {
-        let _ = writeln!(o, "None.");
-    }
-    let _ = writeln!(o, "\n## Failures\n");
-    let mut any = false;
-    for r in rows {
-        if let Some(s) = &r.stats {
-            for (rel, w) in &s.wrong {
-                any = true;
-                let class = if *rel <= 1e-9 {
-                    "precision (relative residual at most 1e-9)"
-                } else {
-                    "wrong result"
-                };
-                let _ = writeln!(o, "- {class}: {w}");
-            }
-        }
-    }
-    if !any {
-        let _ = writeln!(o, "None: every solved instance verifies.");
-    }
-    o
-}
-
-/// Debugging aid: `GCS_PROBE=model.gcs cargo test -p gcs-compiler --test construction --
-/// --nocapture` prints the plan of one model and its solve on every branch.
-fn probe() {
-    let path = std::env::var("GCS_PROBE").expect("GCS_PROBE=model.gcs");
-    let text = std::fs::read_to_string(path).expect("read");
-    let model = load(&text);
-    let a = analyse(&model).expect("2d");
-    println!("{}", a.plan.dump(&model));
-    println!("unsolved: {:?}", a.unsolved);
-    println!("record of P: {}", record_of(&model, &a));
-    let counts: Vec<usize> = a.plan.branches.iter().map(|b| b.count).collect();
-    let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-    let params = model.default_params();
-    for combo in combos(&counts, &defaults) {
-        let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
-        match gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo) {
-            Ok(s) => {
-                println!("{combo:?}: max residual {:.3e}", s.max_residual);
-                for r in gcs_compiler::verify::residuals(&model, &s, &params) {
-                    println!("  {} {:.3e}", model.constraints[r.constraint].text, r.value);
-                }
-            }
-            Err(e) => println!("{combo:?}: {e:?}"),
-        }
-    }
-}
-
-/// Debugging aid: `GCS_ENTRY=n GCS_INSTANCE=i cargo test -p gcs-compiler --test construction
-/// -- --nocapture` prints instance `i` of entry `n` (0: the canonical one)
-/// and its plan.
-fn instance() {
-    let n: usize = std::env::var("GCS_ENTRY")
-        .expect("GCS_ENTRY")
-        .parse()
-        .expect("n");
-    let i: usize = std::env::var("GCS_INSTANCE")
-        .map_or(Ok(0), |s| s.parse())
-        .expect("i");
-    let e = &entries()[n];
-    let mode = match i {
-        0 => Mode::Random,
-        i if i <= N_RANDOM => Mode::Random,
-        i => DEGENERATE[i - 1 - N_RANDOM],
-    };
-    let inst = make(e, ((n as u64) << 32) | i as u64, mode);
-    println!("{}", inst.text);
-    let model = load(&inst.text);
-    let a = analyse(&model).expect("2d");
-    println!("{}", a.plan.dump(&model));
-    let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
-    let counts: Vec<usize> = a.plan.branches.iter().map(|b| b.count).collect();
-    let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-    let params = model.default_params();
-    for combo in combos(&counts, &defaults) {
-        match gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo) {
-            Ok(s) => println!("{combo:?}: max residual {:.3e}", s.max_residual),
-            Err(e) => println!("{combo:?}: {e:?}"),
-        }
-    }
-}
-
-// ---------------------------------------------------------------- default fragments
-
-/// What the analysis does with the freedom a state leaves (000, section 5.2.1): the defaults it
-/// adds for `P`, probed on the prefix alone.
-struct DefaultRow {
-    kind: Kind,
-    state: &'static str,
-    /// `P`'s record before any default, with its DOF.
-    before: String,
-    dof: usize,
-    /// The defaults' names, in plan order.
-    defaults: Vec<String>,
-    /// Whether the analysis refused to default the freedom (it stays free and is reported).
-    refused: bool,
-    /// Exact instances (the sketch satisfies the prefix) solved at the sketch's defaults with
-    /// nothing moved, of those run.
-    still: (usize, usize),
-    /// Random instances solved at the sketch's defaults, and with each default moved, with
-    /// every constraint verified and the moved default moving `P`, of those run.
-    moved: (usize, usize),
-    /// Wrong runs.
-    wrong: Vec<String>,
-}
-
-/// Every point, vector and scalar of `P` in a solution, by name.
-fn values_of_p(s: &gcs_compiler::solution::Solution) -> Vec<(String, Vec<f64>)> {
-    let of_p = |n: &str| n == "P" || n.starts_with("P.");
-    (s.points.iter().chain(&s.vectors))
-        .filter(|(n, _)| of_p(n))
-        .cloned()
-        .chain(
-            (s.scalars.iter())
-                .filter(|(n, _)| of_p(n))
-                .map(|(n, x)| (n.clone(), vec![*x])),
-        )
-        .collect()
-}
-
-/// The largest difference between same-named values.
-fn largest_difference(a: &[(String, Vec<f64>)], b: &[(String, Vec<f64>)]) -> f64 {
-    let mut d: f64 = 0.0;
-    for (n, u) in a {
-        if let Some((_, v)) = b.iter().find(|(m, _)| m == n) {
-            for (x, y) in u.iter().zip(v) {
-                d = d.max((x - y).abs());
-            }
-        }
-    }
-    d
-}
-
-/// The largest residual of every constraint of `model` in `s`, relative to `scale` for
-/// lengths (angles absolute).
-fn worst_residual(model: &Model, s: &gcs_compiler::solution::Solution, scale: f64) -> f64 {
-    let params = model.default_params();
-    (gcs_compiler::verify::residuals(model, s, &params).iter())
-        .map(|r| {
-            if angular(model.constraints[r.constraint].kind) {
-                r.value
-            } else {
-                r.value / scale.max(1.0)
-            }
-        })
-        .fold(0.0, f64::max)
-}
-
-/// The checker of the defaults of one state: the sketch's defaults move nothing the
-/// constraints do not move, every default keeps the state's constraints, and each moves `P`.
-fn default_row(kind: Kind, state: &State, last: Form, n: usize) -> DefaultRow {
-    let entry = Entry {
-        kind,
-        state: state.name,
-        prefix: state.prefix.clone(),
-        motion: state.motion,
-        last,
-    };
-    let canonical = make(&entry, (n as u64) << 40, Mode::Random);
-    let model = load(&canonical.prefix_text);
-    let a = analyse(&model).expect("2d");
-    let p = model.geom_named("P").expect("P");
-    let dof = (a.undefaulted.iter())
-        .find(|c| c.geoms.contains(&p))
-        .map_or(0, |c| c.dof);
-    let mut row = DefaultRow {
-        kind,
-        state: state.name,
-        before: record_of(&model, &a),
-        dof,
-        defaults: a.plan.defaults.iter().map(|d| d.name.clone()).collect(),
-        refused: !a.free_geoms().is_empty(),
-        still: (0, 0),
-        moved: (0, 0),
-        wrong: Vec::new(),
-    };
-    if row.refused || row.defaults.is_empty() {
-        return row;
-    }
-    for i in 0..N_DEFAULT_INSTANCES {
-        for mode in [Mode::Exact, Mode::Random] {
-            let seed = ((n as u64) << 40) | (i as u64 + 1);
-            let inst = make(&entry, seed, mode);
-            let model = load(&inst.prefix_text);
-            let a = analyse(&model).expect("2d");
-            let params = model.default_params();
-            let scope: std::collections::BTreeSet<_> =
-                model.top_level().map(|(id, _)| id).collect();
-            let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-            let sketch_defaults = a.plan.sketch_defaults();
-            let solve = |defaults: &[f64]| {
-                gcs_compiler::solve_plan_with(&model, &a.plan, &scope, &params, &branches, defaults)
-            };
-            let scale = inst.scale.max(1.0);
-            let at_sketch = match solve(&sketch_defaults) {
-                Ok(s) => s,
-                Err(_) if mode == Mode::Random => continue,
-                Err(e) => {
-                    row.wrong
-                        .push(format!("seed {seed} ({}): {e}", mode.name()));
-                    continue;
-                }
-            };
-            let worst = worst_residual(&model, &at_sketch, scale);
-            if worst > REL {
-                row.wrong.push(format!(
-                    "seed {seed} ({}): a constraint off by {worst:e} at the sketch's defaults",
-                    mode.name()
-                ));
-                continue;
-            }
-            if mode == Mode::Exact {
-                row.still.1 += 1;
-                let config = gcs_compiler::config::Config::from_sketch(&model, &params)
-                    .expect("a finite sketch");
-                let sketch = gcs_compiler::solution::Solution::read(&model, &config, &scope);
-                let moved = largest_difference(&values_of_p(&at_sketch), &values_of_p(&sketch));
-                if moved <= REL * scale {
-                    row.still.0 += 1;
-                } else {
-                    row.wrong.push(format!(
-                        "seed {seed} (exact): P moved {moved:e} at the sketch's defaults\n```gcs\n{}```",
-                        inst.prefix_text
-                    ));
-                }
-                continue;
-            }
-            row.moved.1 += 1;
-            let mut ok = true;
-            for (k, d) in a.plan.defaults.iter().enumerate() {
-                let mut given = sketch_defaults.clone();
-                given[k] += if d.is_angle() { 0.25 } else { 0.25 * scale };
-                let Ok(s) = solve(&given) else {
-                    // A default past where the state lets P go (a length below zero) is an
-                    // error, never a wrong answer.
-                    continue;
-                };
-                let worst = worst_residual(&model, &s, scale);
-                let moved = largest_difference(&values_of_p(&s), &values_of_p(&at_sketch));
-                if worst > REL || moved <= 1e-6 * scale {
-                    ok = false;
-                    row.wrong.push(format!(
-                        "seed {seed}: default {} moved: constraints off by {worst:e}, P moved {moved:e}\n```gcs\n{}```",
-                        d.name, inst.prefix_text
-                    ));
-                }
-            }
-            row.moved.0 += usize::from(ok);
-        }
-    }
-    row
-}
-
-/// Instances of each mode per state.
-const N_DEFAULT_INSTANCES: usize = 6;
-
-/// The default fragments of every state of every kind.
-fn default_rows() -> Vec<DefaultRow> {
-    let mut rows = Vec::new();
-    for kind in [
+    const KINDS: &'static [Kind] = &[
         Kind::Point,
         Kind::Vector,
         Kind::Line,
         Kind::Segment,
         Kind::Circle,
         Kind::Body,
-    ] {
-        let (states, forms) = catalogue(kind);
-        for s in &states {
-            let n = rows.len() + 1;
-            rows.push(default_row(kind, s, forms[0], n));
-        }
-    }
-    rows
-}
+    ];
+    const N_RANDOM: usize = 20;
+    const TABLE: Table = Table {
+        test: "construction",
+        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --test construction",
+        file: "FRAGMENTS.md",
+        title: "Plan fragment table and construction checker",
+        members: "",
+        degenerate: "",
+        last: "",
+        unsolved: ", usually because the sketch's reading of a side, sense or nesting differs \
+                   from the target's, or a locus meets at a tangency. One example per entry.",
+        defaults_source: "compiler/src/analysis/planar/defaults.rs",
+        refused_example: " (a segment held by its end with its length free)",
+        validated: true,
+        detailed: false,
+    };
 
-/// The section of `docs/FRAGMENTS.md` on defaults.
-fn defaults_report(rows: &[DefaultRow]) -> String {
-    let mut o = String::new();
-    let _ = writeln!(o, "\n## Defaults\n");
-    let _ = writeln!(
-        o,
-        "Each state's prefix alone, with the freedom it leaves `P`: the defaults the analysis adds \
-         (000, section 5.2.1; `compiler/src/analysis/planar/defaults.rs`). Checked on instances \
-         whose sketch already satisfies the prefix (*still*: solved at the sketch's defaults, \
-         `P` must not move: least motion) and on random ones (*moved*: at the sketch's defaults \
-         and with each default moved by 0.25 rad or 0.25 of the size, every constraint must hold \
-         to 1e-12 relative and the moved default must move `P`). *Refused*: the analysis leaves \
-         the freedom unparameterized (a segment held by its end with its length free), and \
-         `gcs check` reports it.\n"
-    );
-    let total = rows.len();
-    let with = rows.iter().filter(|r| !r.defaults.is_empty()).count();
-    let refused = rows.iter().filter(|r| r.refused).count();
-    let overstated = (rows.iter())
-        .filter(|r| !r.refused && r.defaults.len() != r.dof)
-        .count();
-    let wrong: usize = rows.iter().map(|r| r.wrong.len()).sum();
-    let _ = writeln!(o, "- states: {total}; with defaults: {with}; fully fixed by their prefix: {}; refused: {refused}", total - with - refused);
-    let _ = writeln!(
-        o,
-        "- states whose defaults are not as many as `P`'s DOF left: {overstated}"
-    );
-    let _ = writeln!(o, "- wrong runs: {wrong}\n");
-    let _ = writeln!(o, "| kind | state | before | defaults | still | moved |");
-    let _ = writeln!(o, "|---|---|---|---|---:|---:|");
-    for r in rows {
-        let defaults = if r.refused {
-            "refused".to_string()
-        } else if r.defaults.is_empty() {
-            "none".to_string()
-        } else {
-            r.defaults
-                .iter()
-                .map(|d| format!("`{d}`"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        let _ = writeln!(
-            o,
-            "| {} | {} | {} | {defaults} | {} / {} | {} / {} |",
-            r.kind.name(),
-            r.state,
-            r.before,
-            r.still.0,
-            r.still.1,
-            r.moved.0,
-            r.moved.1
-        );
+    fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
+        catalogue(kind)
     }
-    o
+    fn probed(prefix: &[Form], last: Form) -> bool {
+        // Dimensions are solved first: probe them only after dimensions.
+        !last.is_dim() || prefix.iter().all(|p| p.is_dim())
+    }
+    fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
+        make(e, seed, mode)
+    }
+
+    fn op_name(op: &Op) -> Option<String> {
+        Some(match op {
+            Op::RotatePoint { .. } => "rotate to point".into(),
+            Op::RotateDir { .. } => "rotate to direction".into(),
+            Op::CentresLineLine { .. } => "bisector locus".into(),
+            Op::CentresLinePoint { .. } => "parabola locus".into(),
+            Op::CentresPointPoint { .. } => "conic locus".into(),
+            Op::RadiusFromLine { .. } | Op::RadiusFromPoint { .. } => "radius from distance".into(),
+            Op::Along { .. } => "length along".into(),
+            Op::OffsetLine { .. } => "offset line".into(),
+            Op::PointXY { .. } => "point".into(),
+            Op::Midpoint { .. } => "midpoint".into(),
+            Op::Reflect { .. } => "reflect through a point".into(),
+            Op::Mirror { .. } => "mirror across a line".into(),
+            _ => return harness::op_name(op),
+        })
+    }
+
+    /// A circle's radius set when its centre is placed, or a point read off its geom.
+    fn settles(op: &Op) -> bool {
+        matches!(
+            op,
+            Op::SetDim { .. }
+                | Op::RadiusFromLine { .. }
+                | Op::RadiusFromPoint { .. }
+                | Op::PointOf(_)
+        )
+    }
+
+    /// Measured by `verify` on the model itself, each claimed constraint to its tolerance (a
+    /// prismatic joint's to at least `REL`), relative to the instance's largest length.
+    fn violations(v: &Solved<'_>) -> Vec<(f64, String)> {
+        let tol_len = v.tol_len();
+        let params = v.model.default_params();
+        let res = gcs_compiler::verify::residuals(v.model, v.sol, &params);
+        res.iter()
+            .filter(|r| v.claimed.contains(&r.constraint))
+            .filter(|r| {
+                let kind = v.model.constraints[r.constraint].kind;
+                let tol = if angular(kind) {
+                    REL
+                } else if kind == CK::Prismatic {
+                    tol_len.max(REL)
+                } else {
+                    tol_len
+                };
+                r.value.is_nan() || r.value > tol
+            })
+            .map(|r| {
+                let words = format!(
+                    "{} residual {:.3e} (scale {:.3e}, relative {:.3e})",
+                    v.model.constraints[r.constraint].text,
+                    r.value,
+                    v.scale,
+                    r.value / v.scale
+                );
+                (r.value / v.scale.max(1.0), words)
+            })
+            .collect()
+    }
+
+    fn angle_default(d: &DefaultVar) -> bool {
+        d.is_angle()
+    }
 }

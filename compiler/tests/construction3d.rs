@@ -99,16 +99,27 @@
 //!
 //! Debugging aids: `GCS_PROBE=model.gcs` prints one model's plan and its solves on every
 //! branch; `GCS_ENTRY=n GCS_INSTANCE=i` prints instance `i` of entry `n` (0 the canonical one,
-//! 1 to `N_RANDOM` random, then the near-degenerate ones in `DEGENERATE`'s order, 1000 and up
-//! inconsistent) with its plan and solves (`-- --nocapture`).
+//! 1 to `N_RANDOM` random, then the near-degenerate ones in `harness::degenerate`'s order,
+//! 1000 and up inconsistent) with its plan and solves (`-- --nocapture`).
+//!
+//! The probing, the checker, the defaults' checker and the table writer are shared with the
+//! checker in the plane (`construction.rs`): `construction/harness.rs`. This file has the
+//! kinds, states, constraint forms and instances of space, and what its plans and tables say
+//! ([`Spatial`]).
 
-/// A known cause of wrong runs: what the plans do wrong, the instance modes its wrong runs
-/// show in (`analysis` for a plan the analysis could not build), and the entries it makes
-/// wrong, by `kind | state | constraint form` as the table writes them.
-struct Known {
-    why: &'static str,
-    modes: &'static [&'static str],
-    entries: &'static [&'static str],
+#[path = "construction/harness.rs"]
+mod harness;
+
+use gcs_compiler::plan::{DefaultVar, Op, RotationAxis};
+use harness::{
+    angular, ConstraintForm, GeomKind, Instance, Known, Mode, Out, Rng, Solved, Space, Statements,
+    Table, REL,
+};
+use std::f64::consts::PI;
+
+#[test]
+fn construction_checker_3d() {
+    harness::check::<Spatial>();
 }
 
 /// The wrong entries known so far, by cause. The test passes over a wrong run of a listed entry
@@ -123,16 +134,6 @@ const KNOWN_WRONG: &[Known] = &[
     // at a point), its point onto a line or plane, or its helix (`Op::TurnReaching`, on a
     // screw too: `runtime::frame::Screw`) decide such a turn with the z axis.
 ];
-
-use gcs_compiler::analyse;
-use gcs_compiler::analysis::Analysis;
-use gcs_compiler::plan::{Op, RotationAxis};
-use gcs_lang::constraints::ConstraintKind as CK;
-use gcs_lang::model::ConstraintId;
-use gcs_lang::Model;
-use std::collections::BTreeMap;
-use std::f64::consts::PI;
-use std::fmt::Write as _;
 
 // ---------------------------------------------------------------- small maths
 
@@ -229,43 +230,9 @@ fn q_axis_angle(q: Q) -> (V, f64) {
     (mul(u, 1.0 / s), 2.0 * s.atan2(q[0]))
 }
 
-// ---------------------------------------------------------------- a deterministic RNG
-
-/// xorshift64*, seeded through splitmix64.
-struct Rng(u64);
+// ---------------------------------------------------------------- random draws in space
 
 impl Rng {
-    fn new(seed: u64) -> Rng {
-        let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        Rng(z | 1)
-    }
-    fn next(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        self.0 = x;
-        x.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn f(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.f()
-    }
-    fn sign(&mut self) -> f64 {
-        if self.next() & 1 == 0 {
-            1.0
-        } else {
-            -1.0
-        }
-    }
-    fn angle(&mut self) -> f64 {
-        self.range(-PI, PI)
-    }
     /// A uniform unit vector.
     fn unit(&mut self) -> V {
         let z = self.range(-1.0, 1.0);
@@ -285,9 +252,6 @@ impl Rng {
         let axis = self.unit();
         let angle = self.range(0.0, PI);
         q_axis(axis, angle)
-    }
-    fn log_range(&mut self, a: f64, b: f64) -> f64 {
-        (a.ln() + (b.ln() - a.ln()) * self.f()).exp()
     }
 }
 
@@ -314,7 +278,7 @@ const KINDS: [Kind; 7] = [
     Kind::Plane,
 ];
 
-impl Kind {
+impl GeomKind for Kind {
     fn name(self) -> &'static str {
         match self {
             Kind::Point => "point",
@@ -524,8 +488,7 @@ enum Form {
     MirrorPlane,
 }
 
-impl Form {
-    /// The form as it reads in the table (fixed geoms by their kind).
+impl ConstraintForm for Form {
     fn text(self) -> String {
         match self {
             Form::Coincident(p) => format!("coincident({}, point)", p.text()),
@@ -563,7 +526,9 @@ impl Form {
             Form::MirrorPlane => "symmetric(point, point, P)".into(),
         }
     }
+}
 
+impl Form {
     /// The point feature it puts on a new locus (line, plane or sphere), for tangent
     /// near-degenerate instances.
     fn locus_point(self) -> Option<Pt> {
@@ -704,13 +669,15 @@ fn motion_at(o: V, holds: &[Loc], rotates: bool, x: V) -> Option<Motion> {
     }
 }
 
-struct State {
-    name: &'static str,
-    prefix: Vec<Form>,
-}
+type State = harness::State<Spatial>;
+type Entry = harness::Entry<Spatial>;
 
 fn st(name: &'static str, prefix: Vec<Form>) -> State {
-    State { name, prefix }
+    State {
+        name,
+        prefix,
+        motion: (),
+    }
 }
 
 /// The forms of the language the analysis covers, on a point feature.
@@ -929,110 +896,9 @@ fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
     }
 }
 
-struct Entry {
-    kind: Kind,
-    state: &'static str,
-    prefix: Vec<Form>,
-    last: Form,
-}
-
-impl Entry {
-    /// The key `KNOWN_WRONG` lists it by.
-    fn key(&self) -> String {
-        format!(
-            "{} | {} | {}",
-            self.kind.name(),
-            self.state,
-            self.last.text()
-        )
-    }
-}
-
-fn entries() -> Vec<Entry> {
-    let mut out = Vec::new();
-    for kind in KINDS {
-        let (states, forms) = catalogue(kind);
-        for s in &states {
-            for &f in &forms {
-                out.push(Entry {
-                    kind,
-                    state: s.name,
-                    prefix: s.prefix.clone(),
-                    last: f,
-                });
-            }
-        }
-    }
-    out
-}
-
 // ---------------------------------------------------------------- instances
 
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Mode {
-    /// A random rigid motion of the sketch (moderate or small), and a dimension change.
-    Random,
-    /// The new locus tangent to the motion the prefix leaves.
-    Tangent,
-    /// Nearly tangent.
-    NearTangent,
-    /// `n`'s z axis nearly parallel to `m`'s.
-    NearParallel,
-    /// `n` and `a` at `m`'s point.
-    Coincident,
-    /// The sketch exactly at the target.
-    Exact,
-    /// The sketch 1e-9 (relative) from the target.
-    Tiny,
-    /// Everything scaled.
-    Scale(f64),
-    /// The prefix derived from a target moved by 1e-2: no solution (for checks only).
-    Inconsistent,
-}
-
-impl Mode {
-    fn name(self) -> String {
-        match self {
-            Mode::Random => "random".into(),
-            Mode::Tangent => "tangent".into(),
-            Mode::NearTangent => "near-tangent".into(),
-            Mode::NearParallel => "nearly parallel axes".into(),
-            Mode::Coincident => "coincident markers".into(),
-            Mode::Exact => "exact".into(),
-            Mode::Tiny => "tiny".into(),
-            Mode::Scale(k) => format!("scale {k:e}"),
-            Mode::Inconsistent => "inconsistent".into(),
-        }
-    }
-}
-
-struct Instance {
-    text: String,
-    prefix_text: String,
-    /// The model with every joint written as its parts (labelled `{label}__{i}`).
-    split_text: String,
-    scale: f64,
-}
-
-/// Writes numbers, tracking the largest length for the tolerance.
-struct Out {
-    scale: f64,
-}
-
 impl Out {
-    fn l(&mut self, x: f64) -> String {
-        self.scale = self.scale.max(x.abs());
-        format!("{x:?}")
-    }
-    fn p(&mut self, p: V) -> String {
-        format!("({}, {}, {})", self.l(p[0]), self.l(p[1]), self.l(p[2]))
-    }
-    fn a(&mut self, x: f64) -> String {
-        format!("{x:?}")
-    }
-    fn d(&mut self, v: V) -> String {
-        format!("({:?}, {:?}, {:?})", v[0], v[1], v[2])
-    }
     /// A fixed body's marker at `o` with z axis `z` (x any across it, or `x`).
     fn marker(&mut self, name: String, o: V, z: V, x: Option<V>) -> String {
         let x = x.unwrap_or_else(|| any_perp(z));
@@ -1523,11 +1389,7 @@ fn members(rng: &mut Rng, s: f64, mode: Mode) -> Members {
 
 fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
     let mut rng = Rng::new(seed);
-    let k = match mode {
-        Mode::Scale(k) => k,
-        _ => 1.0,
-    };
-    let s = k * rng.range(0.5, 2.0);
+    let s = harness::size(&mut rng, mode);
     let mem = members(&mut rng, s, mode);
     let t = Conf {
         pos: rng.point(3.0 * s),
@@ -1535,62 +1397,42 @@ fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
         dim: s * rng.range(0.5, 2.0),
     };
     let mut o = Out { scale: 0.0 };
-    let mut decls = Vec::new();
-    let mut lines = Vec::new();
-    let mut split = Vec::new();
+    let mut stmts = Statements::default();
     let mut holds = Vec::new();
-    // An inconsistent instance: the prefix places P slightly elsewhere than z wants it.
-    let tp = if mode == Mode::Inconsistent {
-        Conf {
-            pos: add(t.pos, mul(rng.unit(), 1e-2 * s)),
-            q: q_mul(q_axis(rng.unit(), 1e-2), t.q),
-            dim: t.dim * 1.01,
-        }
-    } else {
-        t
-    };
-    let mut push = |label: String, d: Derived, lines: &mut Vec<String>| {
-        decls.extend(d.decls);
-        lines.push(format!("{label}: {};", d.text));
+    let tp = harness::prefix_target(mode, t, |t| Conf {
+        pos: add(t.pos, mul(rng.unit(), 1e-2 * s)),
+        q: q_mul(q_axis(rng.unit(), 1e-2), t.q),
+        dim: t.dim * 1.01,
+    });
+    // A constraint, its declarations, and its parts in the split model; what it holds.
+    let push = |stmts: &mut Statements, label: String, d: Derived| {
+        stmts.decls.extend(d.decls);
         if d.parts.is_empty() {
-            split.push(format!("{label}: {};", d.text));
+            stmts.split.push(format!("{label}: {};", d.text));
         }
         for (j, part) in d.parts.iter().enumerate() {
-            split.push(format!("{label}__{j}: {part};"));
+            stmts.split.push(format!("{label}__{j}: {part};"));
         }
-        d.holds
+        (format!("{label}: {};", d.text), d.holds)
     };
     for (i, &f) in e.prefix.iter().enumerate() {
         let d = derive(f, i, e.kind, &tp, &mem, s, &mut rng, None, &mut o);
-        holds.extend(push(format!("p{i}"), d, &mut lines));
+        let (line, held) = push(&mut stmts, format!("p{i}"), d);
+        stmts.prefix.push(line);
+        holds.extend(held);
     }
     // The motion the prefix leaves the last constraint's feature, for tangent instances.
     let motion = e.last.locus_point().and_then(|p| {
         let x = pt(&t, &mem, p);
         motion_at(t.pos, &holds, e.kind != Kind::Point, x)
     });
-    let degen = match (mode, motion) {
-        (Mode::Tangent, Some(mo)) => Some((mo, 0.0)),
-        (Mode::NearTangent, Some(mo)) => Some((mo, rng.log_range(1e-9, 1e-4))),
-        _ => None,
-    };
+    let degen = harness::off_tangent(mode, motion, &mut rng);
     let n = e.prefix.len();
     let d = derive(e.last, n, e.kind, &t, &mem, s, &mut rng, degen, &mut o);
-    let mut last = Vec::new();
-    push("z".into(), d, &mut last);
+    let (line, _) = push(&mut stmts, "z".into(), d);
+    stmts.last.push(line);
     // The sketch: the target moved.
-    let mag = match mode {
-        Mode::Exact => 0.0,
-        Mode::Tiny => 1e-9,
-        Mode::Inconsistent => 1e-3,
-        _ => {
-            if rng.sign() > 0.0 {
-                rng.range(0.05, 1.0)
-            } else {
-                rng.log_range(1e-4, 1e-2)
-            }
-        }
-    };
+    let mag = harness::sketch_motion(mode, &mut rng);
     let about = add(t.pos, rng.point(s));
     let spin = q_axis(rng.unit(), mag * rng.range(-0.6, 0.6));
     let shift = mul(rng.point(s), mag);
@@ -1600,1396 +1442,132 @@ fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
         dim: t.dim * (mag * rng.range(-0.5, 0.5)).exp(),
     };
     let probe = probe_decl(e.kind, &sk, &mem, s, &mut o);
-    // A fixed origin, so that no model is grounded at its probe's sketch.
-    let head = format!(
-        "space 3d;\nfixed point O = (0, 0, 0);\n{}\n{probe}\n",
-        decls.join("\n")
-    );
-    let prefix_text = format!("{head}{}\n", lines.join("\n"));
-    let text = format!("{prefix_text}{}\n", last.join("\n"));
-    let split_text = format!("{head}{}\n", split.join("\n"));
-    Instance {
-        text,
-        prefix_text,
-        split_text,
-        scale: o.scale,
-    }
+    stmts.instance("space 3d;\nfixed point O = (0, 0, 0);", &probe, o.scale)
 }
 
-// ---------------------------------------------------------------- classification
+// ---------------------------------------------------------------- the checker in space
 
-fn load(text: &str) -> Model {
-    let (_, model, diags) = gcs_lang::load("probe.gcs", text.as_bytes());
-    match model {
-        Some(m) if !diags.iter().any(|d| d.is_error()) => m,
-        _ => panic!(
-            "the checker wrote an invalid model: {:?}\n{text}",
-            diags.iter().map(|d| d.message.clone()).collect::<Vec<_>>()
-        ),
-    }
-}
+/// The construction checker in space.
+struct Spatial;
 
-fn label(model: &Model, l: &str) -> Option<ConstraintId> {
-    model
-        .constraints
-        .iter()
-        .find(|(_, c)| c.label.as_deref() == Some(l))
-        .map(|(id, _)| id)
-}
+impl Space for Spatial {
+    type Kind = Kind;
+    type Form = Form;
+    type StateMotion = ();
 
-/// The record of `P`'s cluster: signature and DOF.
-fn record_of(model: &Model, a: &Analysis) -> String {
-    let p = model.geom_named("P").expect("P");
-    match a.undefaulted.iter().find(|c| c.geoms.contains(&p)) {
-        Some(c) => format!("{} ({} DOF)", c.signature(), c.dof),
-        None => "?".into(),
-    }
-}
-
-fn axis_words(a: &RotationAxis) -> &'static str {
-    match a {
-        RotationAxis::Shortest => " (shortest)",
-        RotationAxis::Along(_) => " (about the axis)",
-        RotationAxis::Normal => " (about the normal)",
-    }
-}
-
-fn op_name(op: &Op) -> Option<String> {
-    Some(match op {
-        Op::Intersect { meet, .. } => format!("intersect {meet:?}"),
-        Op::Onto { .. } => "onto".into(),
-        Op::Nearest { .. } => "nearest".into(),
-        Op::Translate { .. } => "translate".into(),
-        Op::RotatePoint { axis, .. } => format!("rotate to point{}", axis_words(axis)),
-        Op::RotateDir { axis, .. } => format!("rotate to direction{}", axis_words(axis)),
-        Op::RotateBy { .. } => "rotate by the angle (about the axis)".into(),
-        Op::TurnReaching { .. } => "angle about (direction and point)".into(),
-        Op::Check { .. } => "check".into(),
-        Op::Line { .. } => "line".into(),
-        Op::Plane { .. } => "plane".into(),
-        Op::Sphere { .. } => "sphere".into(),
-        Op::SphereThrough { .. } => "sphere through".into(),
-        Op::Orbit { .. } => "orbit".into(),
-        Op::ParallelLine { .. } => "parallel line".into(),
-        Op::ParallelPlane { .. } => "parallel plane".into(),
-        Op::ShiftedSphere { .. } => "shifted sphere".into(),
-        Op::ShiftedCircle { .. } => "shifted circle".into(),
-        Op::Opposite(_) => "opposite".into(),
-        Op::TurnedAbout { .. } => "turned about".into(),
-        Op::AngleAbout { .. } => "angle about".into(),
-        Op::AngleAboutBoth { .. } => "angle about (z and x)".into(),
-        Op::ConeTurn { .. } => "onto cone".into(),
-        Op::Aligned { .. } => "aligned".into(),
-        Op::SetDim { .. } => "set dimension".into(),
-        Op::HelixAdvance { .. } => "helix advance".into(),
-        Op::HelixTurn { .. } => "helix turn".into(),
-        Op::Along { .. } => "advance along".into(),
-        Op::DirectionTo { .. } => "direction to".into(),
-        Op::Default(_) => "default".into(),
-        Op::LocusPoint { .. } => "point on locus".into(),
-        Op::PointAt { .. } => "point".into(),
-        Op::Close { .. } => "close by iteration".into(),
-        _ => return None,
-    })
-}
-
-#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
-enum Outcome {
-    Fragment(String),
-    Check,
-    Recorded,
-    NotYet(String),
-    /// The prefix does not reach the state.
-    Unreached(String),
-    /// The analysis failed (a malformed plan): a bug, counted as wrong.
-    Failed(String),
-}
-
-impl Outcome {
-    fn text(&self) -> String {
-        match self {
-            Outcome::Fragment(ops) => format!("fragment: {ops}"),
-            Outcome::Check => "check".into(),
-            Outcome::Recorded => "recorded (satisfied when placed)".into(),
-            Outcome::NotYet(r) => format!("not yet: {r}"),
-            Outcome::Unreached(r) => format!("state not reached: {r}"),
-            Outcome::Failed(r) => format!("**analysis failed**: {r}"),
-        }
-    }
-    fn checked(&self) -> bool {
-        matches!(self, Outcome::Fragment(_) | Outcome::Check)
-    }
-}
-
-struct Class {
-    outcome: Outcome,
-    before: String,
-    after: String,
-    note: String,
-}
-
-fn classify(e: &Entry, inst: &Instance) -> Class {
-    let pm = load(&inst.prefix_text);
-    let model = load(&inst.text);
-    let failed = |why: String| Class {
-        outcome: Outcome::Failed(why),
-        before: "?".into(),
-        after: "?".into(),
-        note: String::new(),
+    const KINDS: &'static [Kind] = &KINDS;
+    const N_RANDOM: usize = 16;
+    const OWN_MODES: &'static [Mode] = &[Mode::NearParallel, Mode::NearParallel, Mode::Coincident];
+    const KNOWN_WRONG: &'static [Known] = KNOWN_WRONG;
+    const TABLE: Table = Table {
+        test: "construction3d",
+        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --release --test construction3d",
+        file: "FRAGMENTS3D.md",
+        title: "Plan fragment table and construction checker in space",
+        members: "A body `P` has markers `m`, `n`, `k` and points `a`, `b`, `c` (`c` on `m`'s z \
+                  axis); the prefix holds `m` (and `k`, `b`). ",
+        degenerate: ": tangent and nearly tangent loci, nearly parallel axes, coincident markers, \
+                     the sketch at the target, scales 1e-3 and 1e3",
+        last: " The 2d table is `docs/FRAGMENTS.md`.",
+        unsolved: ". One example for the first few entries.",
+        defaults_source: "compiler/src/analysis/spatial/mod.rs",
+        refused_example: "",
+        validated: false,
+        detailed: true,
     };
-    let pa = match analyse(&pm) {
-        Ok(a) => a,
-        Err(err) => return failed(format!("the prefix: {err}")),
-    };
-    let before = record_of(&pm, &pa);
-    let a = match analyse(&model) {
-        Ok(a) => a,
-        Err(err) => return failed(err.to_string()),
-    };
-    let after = record_of(&model, &a);
-    let z = label(&model, "z").expect("z");
-    let mut note = String::new();
-    if let Some(u) = pa.unsolved.first() {
-        return Class {
-            outcome: Outcome::Unreached(format!(
-                "{}: {}",
-                pm.constraints[u.constraint].text, u.reason
-            )),
-            before,
-            after,
-            note,
+    /// Fewer defaults than the record's DOF when a relation pending at the first default is
+    /// solved after it (the screw's helical joint); never more.
+    const FEWER_DEFAULTS: bool = true;
+    const SOLVE_PANIC_REFUSES: bool = true;
+    const NAN_DEFAULT_WRONG: bool = true;
+
+    fn catalogue(kind: Kind) -> (Vec<State>, Vec<Form>) {
+        catalogue(kind)
+    }
+    fn make(e: &Entry, seed: u64, mode: Mode) -> Instance {
+        make(e, seed, mode)
+    }
+
+    fn op_name(op: &Op) -> Option<String> {
+        let axis_words = |a: &RotationAxis| match a {
+            RotationAxis::Shortest => " (shortest)",
+            RotationAxis::Along(_) => " (about the axis)",
+            RotationAxis::Normal => " (about the normal)",
         };
-    }
-    if let Some(u) = a.unsolved.iter().find(|u| u.constraint == z) {
-        return Class {
-            outcome: Outcome::NotYet(u.reason.clone()),
-            before,
-            after,
-            note,
-        };
-    }
-    if let Some(u) = a.unsolved.first() {
-        let _ = write!(
-            note,
-            "prefix constraint {} no longer solved",
-            model.constraints[u.constraint].text
-        );
-    }
-    let steps = &a.plan.steps;
-    let defaulted = (steps.iter())
-        .position(|s| matches!(s.op, Op::Default(_)))
-        .unwrap_or(steps.len());
-    let Some(j) = steps.iter().position(|s| s.satisfies.contains(&z)) else {
-        assert!(
-            a.recorded.contains(&z),
-            "z is neither satisfied nor recorded"
-        );
-        return Class {
-            outcome: Outcome::Recorded,
-            before,
-            after,
-            note,
-        };
-    };
-    if matches!(steps[j].op, Op::Check { .. }) {
-        // A turn about an axis checked where the cone must agree is a fragment and a check.
-        let turned = steps[..j]
-            .iter()
-            .rev()
-            .take_while(|s| s.satisfies.is_empty())
-            .any(|s| {
-                matches!(
-                    s.op,
-                    Op::RotateDir { .. } | Op::RotatePoint { .. } | Op::RotateBy { .. }
-                )
-            });
-        if !turned {
-            return Class {
-                outcome: Outcome::Check,
-                before,
-                after,
-                note,
-            };
-        }
-    }
-    // The fragment starts after the prefix's own steps.
-    let common = steps
-        .iter()
-        .zip(&pa.plan.steps)
-        .take_while(|(x, y)| x == y)
-        .count();
-    let start = steps[..j]
-        .iter()
-        .rposition(|s| !s.satisfies.is_empty())
-        .map_or(0, |i| i + 1)
-        .max(common.min(j));
-    let ops: Vec<String> = steps[start..=j]
-        .iter()
-        .filter_map(|s| op_name(&s.op))
-        .collect();
-    let prefix_ids: Vec<ConstraintId> = (0..e.prefix.len())
-        .filter_map(|i| label(&model, &format!("p{i}")))
-        .collect();
-    if steps[j + 1..]
-        .iter()
-        .any(|s| s.satisfies.iter().any(|c| prefix_ids.contains(c)))
-    {
-        let _ = write!(note, "runs before part of the prefix");
-    }
-    if j > defaulted {
-        if !note.is_empty() {
-            note.push_str("; ");
-        }
-        note.push_str("after a default");
-    }
-    Class {
-        outcome: Outcome::Fragment(ops.join(" + ")),
-        before,
-        after,
-        note,
-    }
-}
-
-// ---------------------------------------------------------------- the checker
-
-const N_RANDOM: usize = 16;
-const DEGENERATE: [Mode; 11] = [
-    Mode::Tangent,
-    Mode::Tangent,
-    Mode::NearTangent,
-    Mode::NearTangent,
-    Mode::NearParallel,
-    Mode::NearParallel,
-    Mode::Coincident,
-    Mode::Exact,
-    Mode::Tiny,
-    Mode::Scale(1e-3),
-    Mode::Scale(1e3),
-];
-const REL: f64 = 1e-12;
-
-#[derive(Default)]
-struct Stats {
-    instances: usize,
-    runs: usize,
-    /// Instances some branch solved, all verified.
-    solved: usize,
-    /// Instances the default branches solved.
-    default_solved: usize,
-    /// Random instances (of `N_RANDOM`) some branch solved.
-    random_solved: usize,
-    /// Instances no branch solved, by error kind.
-    unsolved: BTreeMap<String, usize>,
-    /// Instances no branch solved, by mode.
-    unsolved_modes: BTreeMap<String, usize>,
-    /// Instances whose analysis did not claim `z` (classified otherwise).
-    reclassified: usize,
-    /// Wrong runs: the largest relative residual, the instance's mode, and the details.
-    wrong: Vec<(f64, String, String)>,
-    /// Inconsistent instances of a check: run, refused, and accepted ones.
-    inconsistent: usize,
-    inconsistent_refused: usize,
-    inconsistent_accepted: Vec<String>,
-    /// An example of an unsolved instance.
-    unsolved_example: Option<String>,
-}
-
-fn angular(k: CK) -> bool {
-    matches!(
-        k,
-        CK::Angle
-            | CK::Parallel
-            | CK::Perpendicular
-            | CK::ParallelZ
-            | CK::OffsetZ
-            | CK::OffsetX
-            | CK::Helical
-    )
-}
-
-/// Every branch combination (at most 64; beyond, a deterministic sample).
-fn combos(counts: &[usize], defaults: &[usize]) -> Vec<Vec<usize>> {
-    let mut out = vec![defaults.to_vec()];
-    let total: usize = counts.iter().map(|c| (*c).max(1)).product();
-    let step = total.div_ceil(64).max(1);
-    let mut n = 0;
-    while n < total {
-        let mut idx = Vec::with_capacity(counts.len());
-        let mut r = n;
-        for &c in counts {
-            let c = c.max(1);
-            idx.push(r % c);
-            r /= c;
-        }
-        if idx != defaults {
-            out.push(idx);
-        }
-        n += step;
-    }
-    out
-}
-
-/// The largest coordinate or dimension of a solution.
-fn magnitude_of(s: &gcs_compiler::solution::Solution) -> f64 {
-    (s.points.iter().flat_map(|(_, x)| x.iter()))
-        .chain(s.scalars.iter().map(|(_, x)| x))
-        .fold(0.0, |m: f64, x| m.max(x.abs()))
-}
-
-/// The claimed constraints' residuals beyond tolerance, measured by `verify` on the twin
-/// model where every joint is written as its parts: `(relative residual, words)`.
-fn violations(
-    model: &Model,
-    split: &Model,
-    sol: &gcs_compiler::solution::Solution,
-    claimed: &[ConstraintId],
-    scale: f64,
-) -> Vec<(f64, String)> {
-    let tol_len = (REL * scale.max(f64::MIN_POSITIVE)).max(REL * magnitude_of(sol));
-    let claimed_labels: Vec<&str> = claimed
-        .iter()
-        .filter_map(|c| model.constraints[*c].label.as_deref())
-        .collect();
-    let params = split.default_params();
-    let res = gcs_compiler::verify::residuals(split, sol, &params);
-    res.iter()
-        .filter(|r| {
-            let l = split.constraints[r.constraint]
-                .label
-                .as_deref()
-                .unwrap_or("");
-            let base = l.split("__").next().unwrap_or(l);
-            claimed_labels.contains(&base)
+        Some(match op {
+            Op::RotatePoint { axis, .. } => format!("rotate to point{}", axis_words(axis)),
+            Op::RotateDir { axis, .. } => format!("rotate to direction{}", axis_words(axis)),
+            Op::RotateBy { .. } => "rotate by the angle (about the axis)".into(),
+            Op::TurnReaching { .. } => "angle about (direction and point)".into(),
+            Op::Line { .. } => "line".into(),
+            Op::Plane { .. } => "plane".into(),
+            Op::Sphere { .. } => "sphere".into(),
+            Op::SphereThrough { .. } => "sphere through".into(),
+            Op::Orbit { .. } => "orbit".into(),
+            Op::ParallelPlane { .. } => "parallel plane".into(),
+            Op::ShiftedSphere { .. } => "shifted sphere".into(),
+            Op::Opposite(_) => "opposite".into(),
+            Op::TurnedAbout { .. } => "turned about".into(),
+            Op::AngleAbout { .. } => "angle about".into(),
+            Op::AngleAboutBoth { .. } => "angle about (z and x)".into(),
+            Op::ConeTurn { .. } => "onto cone".into(),
+            Op::Aligned { .. } => "aligned".into(),
+            Op::HelixAdvance { .. } => "helix advance".into(),
+            Op::HelixTurn { .. } => "helix turn".into(),
+            Op::Along { .. } => "advance along".into(),
+            Op::PointAt { .. } => "point".into(),
+            _ => return harness::op_name(op),
         })
-        .filter_map(|r| {
-            let c = &split.constraints[r.constraint];
-            let tol = if angular(c.kind) { REL } else { tol_len };
-            if !(r.value.is_nan() || r.value > tol) {
-                return None;
-            }
-            let rel = if angular(c.kind) {
-                r.value
-            } else {
-                r.value / scale.max(f64::MIN_POSITIVE)
-            };
-            let rel = if rel.is_nan() { f64::INFINITY } else { rel };
-            Some((
-                rel,
-                format!(
-                    "`{}` residual {:.3e} ({}, scale {:.3e})",
-                    c.text,
-                    r.value,
-                    if angular(c.kind) { "rad" } else { "length" },
-                    scale
-                ),
-            ))
-        })
-        .collect()
-}
+    }
 
-fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
-    p.downcast_ref::<String>()
-        .cloned()
-        .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-        .unwrap_or_default()
-}
-
-type Verdict = Result<(), Result<(f64, String), String>>;
-
-fn run_instance(entry_id: &str, seed: u64, mode: Mode, inst: &Instance, stats: &mut Stats) {
-    stats.instances += 1;
-    let model = load(&inst.text);
-    let split = load(&inst.split_text);
-    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        let a = analyse(&model).map_err(|e| e.to_string())?;
-        let z = label(&model, "z").expect("z");
-        let claimed: Vec<ConstraintId> = a
-            .plan
-            .steps
-            .iter()
-            .flat_map(|s| s.satisfies.iter().copied())
-            .collect();
-        let counts: Vec<usize> = a.plan.branches.iter().map(|b| b.count).collect();
-        let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-        let params = model.default_params();
-        let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
-        let mut results: Vec<(Vec<usize>, Verdict)> = Vec::new();
-        for combo in combos(&counts, &defaults) {
-            // The plan as it is, even when it leaves geoms free: the fragments are checked.
-            let r = gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo);
-            let verdict = match r {
-                Ok(sol) => {
-                    let bad = violations(&model, &split, &sol, &claimed, inst.scale);
-                    if bad.is_empty() {
-                        Ok(())
-                    } else {
-                        let worst = bad.iter().map(|b| b.0).fold(0.0, f64::max);
-                        let words: Vec<String> = bad.into_iter().map(|b| b.1).collect();
-                        Err(Ok((worst, words.join("; "))))
-                    }
-                }
-                Err(e) => Err(Err(format!("{:?} {:.3e}", e.kind, e.magnitude))),
-            };
-            results.push((combo, verdict));
-        }
-        Ok::<_, String>((claimed.contains(&z), results))
-    }));
-    let failure = match outcome {
-        Ok(Ok(x)) => Ok(x),
-        Ok(Err(e)) => Err(format!("analysis failed: {e}")),
-        Err(p) => Err(format!("panic: {}", panic_text(p))),
-    };
-    let (claims_z, results) = match failure {
-        Ok(x) => x,
-        Err(msg) => {
-            stats.wrong.push((
-                f64::INFINITY,
-                mode.name(),
-                format!(
-                    "{entry_id}: seed {seed} ({}): {msg}\n```gcs\n{}```",
-                    mode.name(),
-                    inst.text
-                ),
-            ));
-            return;
-        }
-    };
-    if !claims_z {
-        stats.reclassified += 1;
-    }
-    let mut any = false;
-    let mut first_err = None;
-    for (i, (combo, v)) in results.iter().enumerate() {
-        stats.runs += 1;
-        match v {
-            Ok(()) => {
-                any = true;
-                if i == 0 {
-                    stats.default_solved += 1;
-                }
-            }
-            Err(Ok((worst, msg))) => {
-                stats.wrong.push((
-                    *worst,
-                    mode.name(),
-                    format!(
-                        "{entry_id}: seed {seed} ({}), branches {combo:?}: {msg}\n```gcs\n{}```",
-                        mode.name(),
-                        inst.text
-                    ),
-                ));
-            }
-            Err(Err(msg)) => {
-                if first_err.is_none() {
-                    first_err = Some(msg.clone());
-                }
-            }
-        }
-    }
-    if any {
-        stats.solved += 1;
-        if mode == Mode::Random {
-            stats.random_solved += 1;
-        }
-    } else {
-        let e =
-            first_err.unwrap_or_else(|| "Wrong (every run violated a claimed constraint)".into());
-        let kind = e.split(' ').next().unwrap_or("").to_string();
-        *stats.unsolved.entry(kind).or_default() += 1;
-        *stats.unsolved_modes.entry(mode.name()).or_default() += 1;
-        if stats.unsolved_example.is_none() {
-            stats.unsolved_example = Some(format!(
-                "seed {seed} ({}): {e}\n```gcs\n{}```",
-                mode.name(),
-                inst.text
-            ));
-        }
-    }
-}
-
-/// Inconsistent instances of a check entry: the plan must refuse them (a `SolveError`), never
-/// return a solution that violates the checked constraint. Reported, not asserted.
-fn run_inconsistent(entry_id: &str, seed: u64, inst: &Instance, stats: &mut Stats) {
-    let model = load(&inst.text);
-    let Ok(a) = analyse(&model) else { return };
-    let z = label(&model, "z").expect("z");
-    if !a
-        .plan
-        .steps
-        .iter()
-        .any(|s| s.satisfies.contains(&z) && matches!(s.op, Op::Check { .. }))
-    {
-        return;
-    }
-    stats.inconsistent += 1;
-    let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
-    let counts: Vec<usize> = a.plan.branches.iter().map(|b| b.count).collect();
-    let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-    let params = model.default_params();
-    for combo in combos(&counts, &defaults) {
-        let Ok(Ok(sol)) = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo)
-        })) else {
-            continue;
-        };
-        let res = gcs_compiler::verify::residuals(&model, &sol, &params);
-        let rz = res
-            .iter()
-            .find(|r| r.constraint == z)
-            .map_or(0.0, |r| r.value);
-        if rz.is_nan() || rz > 1e-9 * inst.scale.max(1.0) {
-            stats.inconsistent_accepted.push(format!(
-                "{entry_id}: seed {seed}, branches {combo:?}: `{}` checked but violated by {rz:.3e}\n```gcs\n{}```",
-                model.constraints[z].text,
-                inst.text
-            ));
-            return;
-        }
-    }
-    stats.inconsistent_refused += 1;
-}
-
-const N_INCONSISTENT: usize = 4;
-
-// ---------------------------------------------------------------- the test and the report
-
-struct Row {
-    id: String,
-    key: String,
-    kind: Kind,
-    state: &'static str,
-    form: String,
-    class: Class,
-    stats: Option<Stats>,
-}
-
-impl Row {
-    /// Its wrong runs' modes (`analysis` for a failed analysis).
-    fn wrong_modes(&self) -> Vec<String> {
-        let mut modes: Vec<String> = (self.stats.iter())
-            .flat_map(|s| s.wrong.iter().map(|w| w.1.clone()))
-            .collect();
-        if matches!(self.class.outcome, Outcome::Failed(_)) {
-            modes.push("analysis".into());
-        }
-        modes
-    }
-    fn wrong(&self) -> usize {
-        self.wrong_modes().len()
-    }
-    /// Whether a wrong run in `mode` is known.
-    fn known(&self, mode: &str) -> bool {
-        KNOWN_WRONG
-            .iter()
-            .any(|k| k.entries.contains(&self.key.as_str()) && k.modes.contains(&mode))
-    }
-    /// Its wrong runs that no known cause lists.
-    fn unexpected(&self) -> usize {
-        self.wrong_modes().iter().filter(|m| !self.known(m)).count()
-    }
-}
-
-fn row(n: usize, e: &Entry) -> Row {
-    let id = format!("#{n}");
-    let canonical = make(e, (n as u64) << 32, Mode::Random);
-    let class = classify(e, &canonical);
-    let stats = class.outcome.checked().then(|| {
-        let mut stats = Stats::default();
-        let modes = std::iter::repeat_n(Mode::Random, N_RANDOM).chain(DEGENERATE);
-        for (i, mode) in modes.enumerate() {
-            let seed = ((n as u64) << 32) | (i as u64 + 1);
-            let inst = make(e, seed, mode);
-            run_instance(&id, seed, mode, &inst, &mut stats);
-        }
-        if class.outcome == Outcome::Check {
-            for i in 0..N_INCONSISTENT {
-                let seed = ((n as u64) << 32) | (1000 + i as u64);
-                let inst = make(e, seed, Mode::Inconsistent);
-                run_inconsistent(&id, seed, &inst, &mut stats);
-            }
-        }
-        stats
-    });
-    Row {
-        id,
-        key: e.key(),
-        kind: e.kind,
-        state: e.state,
-        form: e.last.text(),
-        class,
-        stats,
-    }
-}
-
-/// Runs `f` on every item on a few threads, keeping the items' order.
-fn parallel_map<T: Sync, R: Send>(items: &[T], f: impl Fn(usize, &T) -> R + Sync) -> Vec<R> {
-    let threads = std::thread::available_parallelism()
-        .map_or(2, |n| n.get())
-        .clamp(1, 8);
-    let mut out: Vec<(usize, R)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..threads)
-            .map(|k| {
-                let f = &f;
-                scope.spawn(move || {
-                    (k..items.len())
-                        .step_by(threads)
-                        .map(|i| (i, f(i, &items[i])))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().expect("a checker thread"))
-            .collect()
-    });
-    out.sort_by_key(|(i, _)| *i);
-    out.into_iter().map(|(_, r)| r).collect()
-}
-
-#[test]
-fn construction_checker_3d() {
-    // Debugging aids: print one model's plan and solves instead of running the checker.
-    if std::env::var("GCS_PROBE").is_ok() {
-        probe();
-        return;
-    }
-    if std::env::var("GCS_ENTRY").is_ok() {
-        instance();
-        return;
-    }
-    let t0 = std::time::Instant::now();
-    let entries = entries();
-    let rows = parallel_map(&entries, row);
-    let defaults = default_rows();
-    let elapsed = t0.elapsed().as_secs_f64();
-    let report = report(&rows) + &defaults_report(&defaults);
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/FRAGMENTS3D.md");
-    println!("{}- runtime {elapsed:.1} s", summary(&rows));
-    if std::env::var("GCS_WRITE_FRAGMENTS").as_deref() == Ok("1") {
-        std::fs::write(&path, &report).expect("write docs/FRAGMENTS3D.md");
-    }
-    let mut unexpected = 0;
-    for r in &rows {
-        if r.unexpected() == 0 {
-            continue;
-        }
-        unexpected += r.unexpected();
-        if let Outcome::Failed(why) = &r.class.outcome {
-            println!(
-                "WRONG {} {} [analysis]: analysis failed: {why}",
-                r.id, r.key
-            );
-        }
-        for (_, mode, w) in r.stats.iter().flat_map(|s| &s.wrong) {
-            if !r.known(mode) {
-                println!("WRONG {} {} [{mode}]: {w}", r.id, r.key);
-            }
-        }
-    }
-    let stale: Vec<String> = KNOWN_WRONG
-        .iter()
-        .flat_map(|k| k.entries.iter().map(move |e| (k, e)))
-        .filter(|(k, e)| {
-            !rows.iter().any(|r| {
-                r.key == **e
-                    && r.wrong_modes()
-                        .iter()
-                        .any(|m| k.modes.contains(&m.as_str()))
-            })
-        })
-        .map(|(k, e)| format!("{e} ({})", k.modes.join(", ")))
-        .collect();
-    assert_eq!(
-        unexpected, 0,
-        "wrong runs not in KNOWN_WRONG: see the WRONG lines above"
-    );
-    assert!(
-        stale.is_empty(),
-        "entries in KNOWN_WRONG that are no longer wrong in its modes (remove them): {stale:?}"
-    );
-    for r in &defaults {
-        for w in &r.wrong {
-            println!("WRONG DEFAULT {} {}: {w}", r.kind.name(), r.state);
-        }
-        // Fewer defaults than the record's DOF when a relation pending at the first default
-        // is solved after it (the screw's helical joint); never more.
-        assert!(
-            r.refused || r.defaults.len() <= r.dof,
-            "{} {}: {} defaults for {} DOF",
-            r.kind.name(),
-            r.state,
-            r.defaults.len(),
-            r.dof
-        );
-    }
-    let wrong_defaults: usize = defaults.iter().map(|r| r.wrong.len()).sum();
-    assert_eq!(
-        wrong_defaults, 0,
-        "wrong default fragments: see the WRONG DEFAULT lines above"
-    );
-    let committed = std::fs::read_to_string(&path).unwrap_or_default();
-    assert!(
-        committed == report,
-        "docs/FRAGMENTS3D.md is out of date: regenerate it with GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --release --test construction3d"
-    );
-}
-
-/// Whether a checked entry solves fewer than half of its random instances.
-fn rarely(r: &Row) -> bool {
-    r.stats
-        .as_ref()
-        .is_some_and(|s| 2 * s.random_solved < N_RANDOM)
-}
-
-fn summary(rows: &[Row]) -> String {
-    let mut o = String::new();
-    let count = |f: &dyn Fn(&Outcome) -> bool| rows.iter().filter(|r| f(&r.class.outcome)).count();
-    let stats: Vec<&Stats> = rows.iter().filter_map(|r| r.stats.as_ref()).collect();
-    let verified = rows
-        .iter()
-        .filter(|r| {
-            r.stats
-                .as_ref()
-                .is_some_and(|s| s.wrong.is_empty() && s.solved > 0)
-        })
-        .count();
-    let keys: std::collections::BTreeSet<(Kind, String, String)> = rows
-        .iter()
-        .filter(|r| !matches!(r.class.outcome, Outcome::Unreached(_)))
-        .map(|r| (r.kind, r.class.before.clone(), r.form.clone()))
-        .collect();
-    let _ = writeln!(o, "- entries: {}", rows.len());
-    let _ = writeln!(
-        o,
-        "- distinct (geom kind, signature, constraint form) keys: {}",
-        keys.len()
-    );
-    let _ = writeln!(
-        o,
-        "- fragment: {}",
-        count(&|x| matches!(x, Outcome::Fragment(_)))
-    );
-    let _ = writeln!(o, "- check: {}", count(&|x| *x == Outcome::Check));
-    let _ = writeln!(
-        o,
-        "- recorded (kept in the record, satisfied when the geom is placed): {}",
-        count(&|x| *x == Outcome::Recorded)
-    );
-    let _ = writeln!(
-        o,
-        "- not yet: {}",
-        count(&|x| matches!(x, Outcome::NotYet(_)))
-    );
-    let _ = writeln!(
-        o,
-        "- state not reached by its prefix: {}",
-        count(&|x| matches!(x, Outcome::Unreached(_)))
-    );
-    let _ = writeln!(
-        o,
-        "- analysis failed (a malformed plan): {}",
-        count(&|x| matches!(x, Outcome::Failed(_)))
-    );
-    let _ = writeln!(
-        o,
-        "- entries checked (fragment or check): {}; verified (no wrong run, at least one instance solved): {verified}",
-        stats.len()
-    );
-    let inst: usize = stats.iter().map(|s| s.instances).sum();
-    let runs: usize = stats.iter().map(|s| s.runs).sum();
-    let solved: usize = stats.iter().map(|s| s.solved).sum();
-    let dsolved: usize = stats.iter().map(|s| s.default_solved).sum();
-    let recl: usize = stats.iter().map(|s| s.reclassified).sum();
-    let wrong: usize = stats.iter().map(|s| s.wrong.len()).sum();
-    let mut unsolved: BTreeMap<String, usize> = BTreeMap::new();
-    for s in &stats {
-        for (k, v) in &s.unsolved {
-            *unsolved.entry(k.clone()).or_default() += v;
-        }
-    }
-    let _ = writeln!(
-        o,
-        "- instances: {inst} ({N_RANDOM} random and {} near-degenerate per entry); solves (instance x branch combination): {runs}",
-        DEGENERATE.len()
-    );
-    let _ = writeln!(
-        o,
-        "- instances solved and verified: {solved} (on the default branches: {dsolved}); not solved by any branch: {} {:?}",
-        inst - solved,
-        unsolved
-    );
-    let _ = writeln!(
-        o,
-        "- checked entries that solve fewer than half of their random instances: {}",
-        rows.iter().filter(|r| rarely(r)).count()
-    );
-    let _ = writeln!(
-        o,
-        "- instances whose plan did not claim the probed constraint (classified otherwise on that sketch): {recl}"
-    );
-    let _ = writeln!(o, "- wrong runs (solved, but a claimed constraint violated beyond 1e-12 relative, or a panic): {wrong}");
-    let precision: usize = stats
-        .iter()
-        .map(|s| s.wrong.iter().filter(|w| w.0 <= 1e-9).count())
-        .sum();
-    let _ = writeln!(
-        o,
-        "  - of which precision losses (relative residual between 1e-12 and 1e-9): {precision}; wrong results beyond 1e-9: {}",
-        wrong - precision
-    );
-    let wrong_entries = rows.iter().filter(|r| r.wrong() > 0).count();
-    let known = rows
-        .iter()
-        .filter(|r| r.wrong() > 0 && r.unexpected() == 0)
-        .count();
-    let _ = writeln!(
-        o,
-        "- entries with a wrong run (or a failed analysis): {wrong_entries}, all of whose wrong runs the test's KNOWN_WRONG lists: {known}"
-    );
-    let inc: usize = stats.iter().map(|s| s.inconsistent).sum();
-    let refused: usize = stats.iter().map(|s| s.inconsistent_refused).sum();
-    let accepted: usize = stats.iter().map(|s| s.inconsistent_accepted.len()).sum();
-    let _ = writeln!(
-        o,
-        "- inconsistent instances of check entries (reported, not asserted): {inc}; refused with an error: {refused}; accepted with the checked constraint violated: {accepted}"
-    );
-    o
-}
-
-fn report(rows: &[Row]) -> String {
-    let mut o = String::new();
-    let _ = writeln!(
-        o,
-        "# Plan fragment table and construction checker in space\n"
-    );
-    let _ = writeln!(
-        o,
-        "Generated by `compiler/tests/construction3d.rs` (`GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --release --test construction3d`); do not edit.\n\
-         Each entry probes one free geom `P` of a kind, brought into a state by a prefix of constraints with fixed geoms, \
-         and one more constraint between a feature of `P` and a fixed geom. A body `P` has markers `m`, `n`, `k` and \
-         points `a`, `b`, `c` (`c` on `m`'s z axis); the prefix holds `m` (and `k`, `b`). The outcome is what the analysis does for \
-         that constraint; *before* and *after* are the signature (Kramer's `IR[...]`) and DOF of `P`'s cluster. \
-         For every fragment and check, random solvable instances (and near-degenerate ones: tangent and nearly tangent \
-         loci, nearly parallel axes, coincident markers, the sketch at the target, scales 1e-3 and 1e3) are solved on \
-         every branch and verified independently (`verify`); see the test's header for the method. \
-         The 2d table is `docs/FRAGMENTS.md`.\n"
-    );
-    let _ = writeln!(o, "## Totals\n");
-    o.push_str(&summary(rows));
-    let _ = writeln!(o, "\n## Table\n");
-    let mut kind = None;
-    for r in rows {
-        if kind != Some(r.kind) {
-            kind = Some(r.kind);
-            let _ = writeln!(o, "\n### {}\n", r.kind.name());
-            let _ = writeln!(
-                o,
-                "| id | state | before | constraint | outcome | after | instances: solved / run |"
-            );
-            let _ = writeln!(o, "| --- | --- | --- | --- | --- | --- | --- |");
-        }
-        let inst = match &r.stats {
-            Some(s) => {
-                let mut t = format!("{} / {}", s.solved, s.instances);
-                if !s.wrong.is_empty() {
-                    let _ = write!(t, ", **{} wrong**", s.wrong.len());
-                    if r.unexpected() == 0 {
-                        t.push_str(" (known)");
-                    }
-                }
-                t
-            }
-            None => String::new(),
-        };
-        let mut outcome = r.class.outcome.text();
-        if !r.class.note.is_empty() {
-            let _ = write!(outcome, " ({})", r.class.note);
-        }
-        let _ = writeln!(
-            o,
-            "| {} | {} | {} | `{}` | {} | {} | {} |",
-            r.id,
-            r.state,
-            r.class.before,
-            r.form,
-            outcome.replace('|', "\\|"),
-            r.class.after,
-            inst
-        );
-    }
-    let _ = writeln!(o, "\n## Not yet, by reason\n");
-    let mut by: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for r in rows {
-        if let Outcome::NotYet(reason) | Outcome::Unreached(reason) = &r.class.outcome {
-            let key = match &r.class.outcome {
-                Outcome::Unreached(_) => format!("state not reached: {reason}"),
-                _ => reason.clone(),
-            };
-            by.entry(key).or_default().push(format!(
-                "{} {} ({}): `{}`",
-                r.id,
-                r.kind.name(),
-                r.state,
-                r.form
-            ));
-        }
-    }
-    for (reason, list) in &by {
-        let _ = writeln!(o, "- **{reason}** ({}):", list.len());
-        for l in list {
-            let _ = writeln!(o, "  - {l}");
-        }
-    }
-    let _ = writeln!(o, "\n## Instances no branch solved\n");
-    let _ = writeln!(
-        o,
-        "A `SolveError` is never a wrong answer; these are instances built from a solvable target that the plan \
-         (on every branch) refused. One example for the first few entries.\n"
-    );
-    let mut examples = 0;
-    for r in rows {
-        if let Some(s) = &r.stats {
-            let n: usize = s.unsolved.values().sum();
-            if n > 0 {
-                let _ = writeln!(
-                    o,
-                    "- {} {} ({}), `{}`: {n} of {} {:?}, by mode {:?}",
-                    r.id,
-                    r.kind.name(),
-                    r.state,
-                    r.form,
-                    s.instances,
-                    s.unsolved,
-                    s.unsolved_modes
-                );
-                if examples < 5 {
-                    if let Some(ex) = &s.unsolved_example {
-                        examples += 1;
-                        let _ = writeln!(o, "  - {}", ex.replace('\n', "\n    "));
-                    }
-                }
-            }
-        }
-    }
-    let _ = writeln!(o, "\n## Entries that rarely solve\n");
-    let _ = writeln!(
-        o,
-        "Fragment and check entries whose plan solves fewer than half of their {N_RANDOM} random instances \
-         (each solvable by construction): not wrong, but a construction that rarely applies.\n"
-    );
-    for r in rows.iter().filter(|r| rarely(r)) {
-        if let Some(s) = &r.stats {
-            let _ = writeln!(
-                o,
-                "- {} `{}`: {} of {N_RANDOM} random instances solved; not solved: {:?}",
-                r.id, r.key, s.random_solved, s.unsolved
-            );
-        }
-    }
-    let _ = writeln!(o, "\n## Checks that accept inconsistent instances\n");
-    let _ = writeln!(
-        o,
-        "An inconsistent instance of a check entry has no solution; the check must refuse it. One example per entry.\n"
-    );
-    let mut none = true;
-    for r in rows {
-        if let Some(s) = &r.stats {
-            if let Some(w) = s.inconsistent_accepted.first() {
-                let w = if none {
-                    w.clone()
-                } else {
-                    w.split("\n```").next().unwrap_or("").to_string()
-                };
-                none = false;
-                let _ = writeln!(
-                    o,
-                    "- {} {} ({}), `{}`: {} of {} accepted. {w}",
-                    r.id,
-                    r.kind.name(),
-                    r.state,
-                    r.form,
-                    s.inconsistent_accepted.len(),
-                    s.inconsistent
-                );
-            }
-        }
-    }
-    if none {
-        let _ = writeln!(o, "None.");
-    }
-    let _ = writeln!(o, "\n## Failures\n");
-    let mut any = false;
-    // By known cause: its entries, and the first wrong run of the first with its model.
-    for (i, k) in KNOWN_WRONG.iter().enumerate() {
-        any = true;
-        let _ = writeln!(o, "### Known cause {}\n\n{}\n", i + 1, k.why);
-        let _ = writeln!(o, "Modes: {}.\n", k.modes.join(", "));
-        let mut example = None;
-        for r in rows.iter().filter(|r| k.entries.contains(&r.key.as_str())) {
-            let runs: Vec<&(f64, String, String)> = (r.stats.iter())
-                .flat_map(|s| &s.wrong)
-                .filter(|w| k.modes.contains(&w.1.as_str()))
-                .collect();
-            let worst = runs.iter().map(|w| w.0).fold(0.0, f64::max);
-            if let Outcome::Failed(why) = &r.class.outcome {
-                let _ = writeln!(o, "- {} `{}`: analysis failed: {why}", r.id, r.key);
-            } else {
-                let _ = writeln!(
-                    o,
-                    "- {} `{}`: {} wrong runs, worst relative residual {worst:.1e}",
-                    r.id,
-                    r.key,
-                    runs.len()
-                );
-            }
-            if example.is_none() {
-                example = runs.first().map(|w| w.2.clone());
-            }
-        }
-        if let Some(w) = example {
-            let _ = writeln!(o, "\nFirst wrong run: {w}");
-        }
-        let _ = writeln!(o);
-    }
-    // Wrong runs no known cause lists, each with its model.
-    let mut first = true;
-    for r in rows.iter().filter(|r| r.unexpected() > 0) {
-        if first {
-            let _ = writeln!(o, "### Not in KNOWN_WRONG\n");
-            first = false;
-        }
-        any = true;
-        if let Outcome::Failed(why) = &r.class.outcome {
-            let _ = writeln!(o, "- {} `{}`: analysis failed: {why}", r.id, r.key);
-        }
-        for (rel, mode, w) in r.stats.iter().flat_map(|s| &s.wrong) {
-            if r.known(mode) {
-                continue;
-            }
-            let class = if *rel <= 1e-9 {
-                "precision (relative residual at most 1e-9)"
-            } else {
-                "wrong result"
-            };
-            let _ = writeln!(o, "- `{}` [{mode}], {class}: {w}", r.key);
-        }
-    }
-    if !any {
-        let _ = writeln!(o, "None: every solved instance verifies.");
-    }
-    o
-}
-
-/// Debugging aid: `GCS_PROBE=model.gcs cargo test -p gcs-compiler --release --test
-/// construction3d -- --nocapture` prints the plan of one model and its solve on every branch.
-fn probe() {
-    let path = std::env::var("GCS_PROBE").expect("GCS_PROBE=model.gcs");
-    let text = std::fs::read_to_string(path).expect("read");
-    show(&text);
-}
-
-fn show(text: &str) {
-    let model = load(text);
-    let a = match analyse(&model) {
-        Ok(a) => a,
-        Err(e) => {
-            println!("analysis failed: {e}");
-            return;
-        }
-    };
-    println!("{}", a.plan.dump(&model));
-    println!("unsolved: {:?}", a.unsolved);
-    println!("record of P: {}", record_of(&model, &a));
-    let counts: Vec<usize> = a.plan.branches.iter().map(|b| b.count).collect();
-    let defaults: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-    let params = model.default_params();
-    let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
-    for combo in combos(&counts, &defaults) {
-        match gcs_compiler::solve_plan(&model, &a.plan, &scope, &params, &combo) {
-            Ok(s) => {
-                println!("{combo:?}: max residual {:.3e}", s.max_residual);
-                for r in gcs_compiler::verify::residuals(&model, &s, &params) {
-                    println!("  {} {:.3e}", model.constraints[r.constraint].text, r.value);
-                }
-            }
-            Err(e) => println!("{combo:?}: {e:?}"),
-        }
-    }
-}
-
-/// Debugging aid: `GCS_ENTRY=n GCS_INSTANCE=i cargo test -p gcs-compiler --release --test
-/// construction3d -- --nocapture` prints instance `i` of entry `n` (0: the canonical one) and
-/// its plan.
-fn instance() {
-    let n: usize = std::env::var("GCS_ENTRY")
-        .expect("GCS_ENTRY")
-        .parse()
-        .expect("n");
-    let i: usize = std::env::var("GCS_INSTANCE")
-        .map_or(Ok(0), |s| s.parse())
-        .expect("i");
-    let e = &entries()[n];
-    let mode = match i {
-        i if i <= N_RANDOM => Mode::Random,
-        i if i >= 1000 => Mode::Inconsistent,
-        i => DEGENERATE[i - 1 - N_RANDOM],
-    };
-    let inst = make(e, ((n as u64) << 32) | i as u64, mode);
-    println!("{}: {}\n{}", e.key(), mode.name(), inst.text);
-    show(&inst.text);
-}
-
-// ---------------------------------------------------------------- default fragments
-
-/// What the analysis does with the freedom a state leaves (000, section 5.2.1): the defaults it
-/// adds for `P`, probed on the prefix alone.
-struct DefaultRow {
-    kind: Kind,
-    state: &'static str,
-    before: String,
-    dof: usize,
-    defaults: Vec<String>,
-    refused: bool,
-    still: (usize, usize),
-    moved: (usize, usize),
-    wrong: Vec<String>,
-}
-
-/// Every point, vector and scalar of `P` in a solution, by name.
-fn values_of_p(s: &gcs_compiler::solution::Solution) -> Vec<(String, Vec<f64>)> {
-    let of_p = |n: &str| n == "P" || n.starts_with("P.");
-    (s.points.iter().chain(&s.vectors))
-        .filter(|(n, _)| of_p(n))
-        .cloned()
-        .chain(
-            (s.scalars.iter())
-                .filter(|(n, _)| of_p(n))
-                .map(|(n, x)| (n.clone(), vec![*x])),
+    /// A turn about an axis checked where the cone must agree is a fragment and a check.
+    fn turns(op: &Op) -> bool {
+        matches!(
+            op,
+            Op::RotateDir { .. } | Op::RotatePoint { .. } | Op::RotateBy { .. }
         )
-        .collect()
-}
-
-fn largest_difference(a: &[(String, Vec<f64>)], b: &[(String, Vec<f64>)]) -> f64 {
-    let mut d: f64 = 0.0;
-    for (n, u) in a {
-        if let Some((_, v)) = b.iter().find(|(m, _)| m == n) {
-            for (x, y) in u.iter().zip(v) {
-                d = d.max((x - y).abs());
-            }
-        }
     }
-    d
-}
 
-/// The largest residual of every constraint of `model` in `s`, relative to `scale` for
-/// lengths (angles absolute; a joint's, which mixes both, relative).
-fn worst_residual(model: &Model, s: &gcs_compiler::solution::Solution, scale: f64) -> f64 {
-    let params = model.default_params();
-    (gcs_compiler::verify::residuals(model, s, &params).iter())
-        .map(|r| {
-            if r.value.is_nan() {
-                f64::INFINITY
-            } else if angular(model.constraints[r.constraint].kind) {
-                r.value
-            } else {
-                r.value / scale.max(1.0)
-            }
-        })
-        .fold(0.0, f64::max)
-}
-
-/// Whether default `name` is an angle (a turn, a spin, a place on a circle counts as one).
-fn angle_default(name: &str) -> bool {
-    name.ends_with("_angle") || name.ends_with("_spin") || name.contains("_turn_")
-}
-
-fn default_row(kind: Kind, state: &State, last: Form, n: usize) -> DefaultRow {
-    let entry = Entry {
-        kind,
-        state: state.name,
-        prefix: state.prefix.clone(),
-        last,
-    };
-    let canonical = make(&entry, (n as u64) << 40, Mode::Random);
-    let model = load(&canonical.prefix_text);
-    let a = analyse(&model).expect("the prefix analysed");
-    let p = model.geom_named("P").expect("P");
-    let dof = (a.undefaulted.iter())
-        .find(|c| c.geoms.contains(&p))
-        .map_or(0, |c| c.dof);
-    let mut row = DefaultRow {
-        kind,
-        state: state.name,
-        before: record_of(&model, &a),
-        dof,
-        defaults: a.plan.defaults.iter().map(|d| d.name.clone()).collect(),
-        refused: !a.free_geoms().is_empty(),
-        still: (0, 0),
-        moved: (0, 0),
-        wrong: Vec::new(),
-    };
-    if row.refused || row.defaults.is_empty() {
-        return row;
-    }
-    for i in 0..N_DEFAULT_INSTANCES {
-        for mode in [Mode::Exact, Mode::Random] {
-            let seed = ((n as u64) << 40) | (i as u64 + 1);
-            let inst = make(&entry, seed, mode);
-            let model = load(&inst.prefix_text);
-            let a = analyse(&model).expect("the prefix analysed");
-            let params = model.default_params();
-            let scope: std::collections::BTreeSet<_> =
-                model.top_level().map(|(id, _)| id).collect();
-            let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
-            let sketch_defaults = a.plan.sketch_defaults();
-            let solve = |defaults: &[f64]| {
-                gcs_compiler::solve_plan_with(&model, &a.plan, &scope, &params, &branches, defaults)
-            };
-            let scale = inst.scale.max(1.0);
-            let at_sketch = match solve(&sketch_defaults) {
-                Ok(s) => s,
-                Err(_) if mode == Mode::Random => continue,
-                Err(e) => {
-                    row.wrong
-                        .push(format!("seed {seed} ({}): {e}", mode.name()));
-                    continue;
+    /// Measured by `verify` on the twin model where every joint is written as its parts, each
+    /// part to its own tolerance: `REL` rad for an angle, [`Solved::tol_len`] for a length.
+    fn violations(v: &Solved<'_>) -> Vec<(f64, String)> {
+        let tol_len = v.tol_len();
+        let claimed_labels: Vec<&str> = (v.claimed.iter())
+            .filter_map(|c| v.model.constraints[*c].label.as_deref())
+            .collect();
+        let params = v.split.default_params();
+        let res = gcs_compiler::verify::residuals(v.split, v.sol, &params);
+        res.iter()
+            .filter(|r| {
+                let l = (v.split.constraints[r.constraint].label.as_deref()).unwrap_or("");
+                let base = l.split("__").next().unwrap_or(l);
+                claimed_labels.contains(&base)
+            })
+            .filter_map(|r| {
+                let c = &v.split.constraints[r.constraint];
+                let tol = if angular(c.kind) { REL } else { tol_len };
+                if !(r.value.is_nan() || r.value > tol) {
+                    return None;
                 }
-            };
-            let worst = worst_residual(&model, &at_sketch, scale);
-            if worst > REL {
-                row.wrong.push(format!(
-                    "seed {seed} ({}): a constraint off by {worst:e} at the sketch's defaults\n```gcs\n{}```",
-                    mode.name(),
-                    inst.prefix_text
-                ));
-                continue;
-            }
-            if mode == Mode::Exact {
-                row.still.1 += 1;
-                let sketch = gcs_compiler::solution::Solution::of_sketch(&model, &params, &scope)
-                    .expect("a finite sketch");
-                let moved = largest_difference(&values_of_p(&at_sketch), &values_of_p(&sketch));
-                if moved <= REL * scale {
-                    row.still.0 += 1;
+                let rel = if angular(c.kind) {
+                    r.value
                 } else {
-                    row.wrong.push(format!(
-                        "seed {seed} (exact): P moved {moved:e} at the sketch's defaults\n```gcs\n{}```",
-                        inst.prefix_text
-                    ));
-                }
-                continue;
-            }
-            row.moved.1 += 1;
-            let mut ok = true;
-            for (k, d) in a.plan.defaults.iter().enumerate() {
-                let mut given = sketch_defaults.clone();
-                given[k] += if angle_default(&d.name) {
-                    0.25
-                } else {
-                    0.25 * scale
+                    r.value / v.scale.max(f64::MIN_POSITIVE)
                 };
-                let Ok(s) = solve(&given) else {
-                    continue;
-                };
-                let worst = worst_residual(&model, &s, scale);
-                let moved = largest_difference(&values_of_p(&s), &values_of_p(&at_sketch));
-                if worst > REL || moved <= 1e-6 * scale {
-                    ok = false;
-                    row.wrong.push(format!(
-                        "seed {seed}: default {} moved: constraints off by {worst:e}, P moved {moved:e}\n```gcs\n{}```",
-                        d.name, inst.prefix_text
-                    ));
-                }
-            }
-            row.moved.0 += usize::from(ok);
-        }
+                let rel = if rel.is_nan() { f64::INFINITY } else { rel };
+                let unit = if angular(c.kind) { "rad" } else { "length" };
+                let words = format!(
+                    "`{}` residual {:.3e} ({unit}, scale {:.3e})",
+                    c.text, r.value, v.scale
+                );
+                Some((rel, words))
+            })
+            .collect()
     }
-    row
-}
 
-/// Instances of each mode per state.
-const N_DEFAULT_INSTANCES: usize = 6;
-
-fn default_rows() -> Vec<DefaultRow> {
-    let mut states = Vec::new();
-    for kind in KINDS {
-        let (list, forms) = catalogue(kind);
-        for s in list {
-            states.push((kind, s, forms[0]));
-        }
+    /// A turn, a spin, a place on a circle count as angles.
+    fn angle_default(d: &DefaultVar) -> bool {
+        let name = &d.name;
+        name.ends_with("_angle") || name.ends_with("_spin") || name.contains("_turn_")
     }
-    parallel_map(&states, |i, (kind, s, f)| default_row(*kind, s, *f, i + 1))
-}
-
-fn defaults_report(rows: &[DefaultRow]) -> String {
-    let mut o = String::new();
-    let _ = writeln!(o, "\n## Defaults\n");
-    let _ = writeln!(
-        o,
-        "Each state's prefix alone, with the freedom it leaves `P`: the defaults the analysis adds \
-         (000, section 5.2.1; `compiler/src/analysis/spatial/mod.rs`). Checked on instances \
-         whose sketch already satisfies the prefix (*still*: solved at the sketch's defaults, \
-         `P` must not move: least motion) and on random ones (*moved*: at the sketch's defaults \
-         and with each default moved by 0.25 rad or 0.25 of the size, every constraint must hold \
-         to 1e-12 relative and the moved default must move `P`). *Refused*: the analysis leaves \
-         the freedom unparameterized, and `gcs check` reports it.\n"
-    );
-    let total = rows.len();
-    let with = rows.iter().filter(|r| !r.defaults.is_empty()).count();
-    let refused = rows.iter().filter(|r| r.refused).count();
-    let fixed = (rows.iter())
-        .filter(|r| !r.refused && r.defaults.is_empty())
-        .count();
-    let overstated = (rows.iter())
-        .filter(|r| !r.refused && r.defaults.len() != r.dof)
-        .count();
-    let wrong: usize = rows.iter().map(|r| r.wrong.len()).sum();
-    let _ = writeln!(
-        o,
-        "- states: {total}; with defaults: {with}; fully fixed by their prefix: {fixed}; refused: {refused}"
-    );
-    let _ = writeln!(
-        o,
-        "- states whose defaults are not as many as `P`'s DOF left: {overstated} (fewer: a relation pending when the first default is taken, and solved after it, which the record's DOF does not count)"
-    );
-    let _ = writeln!(o, "- wrong runs: {wrong}\n");
-    let _ = writeln!(o, "| kind | state | before | defaults | still | moved |");
-    let _ = writeln!(o, "|---|---|---|---|---:|---:|");
-    for r in rows {
-        let defaults = if r.refused {
-            if r.defaults.is_empty() {
-                "refused".to_string()
-            } else {
-                format!(
-                    "refused (after {})",
-                    r.defaults
-                        .iter()
-                        .map(|d| format!("`{d}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )
-            }
-        } else if r.defaults.is_empty() {
-            "none".to_string()
-        } else {
-            r.defaults
-                .iter()
-                .map(|d| format!("`{d}`"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        let _ = writeln!(
-            o,
-            "| {} | {} | {} | {defaults} | {} / {} | {} / {} |",
-            r.kind.name(),
-            r.state,
-            r.before,
-            r.still.0,
-            r.still.1,
-            r.moved.0,
-            r.moved.1
-        );
-    }
-    o
 }
