@@ -176,15 +176,11 @@ impl Layout {
             held: HashMap::default(),
             reg: HashMap::default(),
             counts: BTreeMap::new(),
-            checked: plan.steps.iter().any(|st| {
-                matches!(
-                    st.op,
-                    Op::Check { .. } | Op::Onto { .. } | Op::Close { .. }
-                )
-            }),
-            types: (plan.steps.iter())
-                .filter_map(|s| s.out)
-                .collect(),
+            checked: plan
+                .steps
+                .iter()
+                .any(|st| matches!(st.op, Op::Check { .. } | Op::Onto { .. } | Op::Close { .. })),
+            types: (plan.steps.iter()).filter_map(|s| s.out).collect(),
         };
         // What the solution reads besides frames and dimensions, by the geom that holds it.
         let mut held_by: HashMap<GeomId, Vec<&api::Field>> = HashMap::default();
