@@ -657,7 +657,11 @@ pub fn random_mix(n: usize) -> String {
     let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut four_bars = String::new();
     for k in 0..n {
-        let kind = if k < 5 { k as u64 } else { xorshift(&mut seed) % 5 };
+        let kind = if k < 5 {
+            k as u64
+        } else {
+            xorshift(&mut seed) % 5
+        };
         match kind {
             0 => {
                 bars += 1;

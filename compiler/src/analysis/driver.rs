@@ -595,7 +595,11 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// The order in which clusters may take a default: not grounded, in the order Kramer picks
     /// a loop to rigidify: those a pending relation involves first, then by fewest DOF, then
     /// by name. `None` for a cluster that may not.
-    fn default_key(&self, involved: &BTreeSet<usize>, k: usize) -> Option<(bool, usize, u32, usize)> {
+    fn default_key(
+        &self,
+        involved: &BTreeSet<usize>,
+        k: usize,
+    ) -> Option<(bool, usize, u32, usize)> {
         let c = &self.clusters[k];
         let first = c.geoms.first()?;
         let dof = c.record.dof();

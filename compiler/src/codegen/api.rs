@@ -403,7 +403,11 @@ impl Accessor {
 
     /// The code of its value, where `read` gives the code of what the solution holds (`None`
     /// for what it does not: a dimension never set, constant local coordinates).
-    pub(super) fn body(&self, cx: &Context<'_>, read: &mut dyn FnMut(Holds) -> Option<String>) -> String {
+    pub(super) fn body(
+        &self,
+        cx: &Context<'_>,
+        read: &mut dyn FnMut(Holds) -> Option<String>,
+    ) -> String {
         let g = self.geom;
         if let Reads::Constant(value) = &self.reads {
             return value.code();
@@ -635,11 +639,21 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
                 };
                 for &axis in axes {
                     let n = &m.geoms[axis].name;
-                    add(n, format!("Axis `{n}`."), Ty::Vector, Reads::MemberDir(axis));
+                    add(
+                        n,
+                        format!("Axis `{n}`."),
+                        Ty::Vector,
+                        Reads::MemberDir(axis),
+                    );
                 }
             }
             (Owner::Member(_), GeomKind::Vector) => {
-                add(pname, format!("Vector `{pname}`."), Ty::Vector, Reads::MemberDir(part));
+                add(
+                    pname,
+                    format!("Vector `{pname}`."),
+                    Ty::Vector,
+                    Reads::MemberDir(part),
+                );
             }
             (Owner::Part(_, Part::Start | Part::Center), _) => {
                 add(pname, point_doc, Ty::Point, Reads::Origin);
@@ -649,7 +663,12 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
                 add(pname, vector_doc, Ty::Vector, Reads::XAxis);
             }
             (Owner::Part(_, Part::Dir), _) => {
-                add(pname, format!("Direction `{pname}`."), Ty::Vector, Reads::XAxis);
+                add(
+                    pname,
+                    format!("Direction `{pname}`."),
+                    Ty::Vector,
+                    Reads::XAxis,
+                );
             }
             (Owner::Part(_, Part::Normal), _) if cx.d3 => {
                 add(pname, vector_doc, Ty::Vector, Reads::ZAxis);

@@ -147,7 +147,11 @@ pub(super) fn render<R>(
 /// Where the datum `hole` goes: `None` outside a scope (written as it is); else the code that
 /// stands for it. `fixed` is its code when every row has the same, `row` its read from entry
 /// `n` of its column.
-fn hole(hole: Hole, fixed: impl FnOnce() -> String, row: impl FnOnce(usize) -> String) -> Option<String> {
+fn hole(
+    hole: Hole,
+    fixed: impl FnOnce() -> String,
+    row: impl FnOnce(usize) -> String,
+) -> Option<String> {
     SCOPE.with(|s| {
         let mut scope = s.borrow_mut();
         match scope.as_mut()? {

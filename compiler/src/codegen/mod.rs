@@ -36,6 +36,7 @@ mod names;
 mod residual;
 mod scopes;
 mod sketch;
+mod sketch3;
 mod solve;
 mod spatial;
 mod steps;

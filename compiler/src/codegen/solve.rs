@@ -646,7 +646,7 @@ impl Solve<'_> {
     /// else its local.
     pub(super) fn frame_value(&self, g: GeomId) -> String {
         match self.facts.frames.get(&g).and_then(|f| f.literal3) {
-            Some(f) => super::spatial::frame3(&f),
+            Some(f) => super::sketch3::frame3(&f),
             None => self.frame(g),
         }
     }

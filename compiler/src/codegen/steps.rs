@@ -227,9 +227,7 @@ impl Solve<'_> {
                 // varies is its trial's entry.
                 let value = match self.iterated.get(d) {
                     Some(code) => Value::Local(code.clone()),
-                    None => {
-                        Value::Default(d.0 as usize, self.cx.defaults[d.0 as usize].clone())
-                    }
+                    None => Value::Default(d.0 as usize, self.cx.defaults[d.0 as usize].clone()),
                 };
                 self.facts.regs.insert(r, value);
             }

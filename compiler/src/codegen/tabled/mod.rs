@@ -206,8 +206,7 @@ pub(super) fn module(
             );
             entries.push(entry);
         }
-        Table::rows(&table, &row_ty_array(&row_ty), entries)
-            .write(&mut tables, shape.pieces.len());
+        Table::rows(&table, &row_ty_array(&row_ty), entries).write(&mut tables, shape.pieces.len());
         signatures[kind].push((name, table));
     }
     solve_into(&mut w, cx, &signatures);
@@ -247,8 +246,9 @@ fn piece_comment(cx: &Context<'_>, work: &Work) -> String {
             let first = geoms.first().map(|g| m.geoms[*g].name.as_str());
             return first.map_or(String::new(), |g| format!(" // the sketch of `{g}`, ..."));
         }
-        Work::Steps(range) => (cx.plan.steps[range.clone()].iter())
-            .find_map(|s| s.satisfies.first().copied()),
+        Work::Steps(range) => {
+            (cx.plan.steps[range.clone()].iter()).find_map(|s| s.satisfies.first().copied())
+        }
     };
     match constraint {
         Some(c) => {
@@ -285,7 +285,10 @@ fn function(
                 .flat_map(|s| s.satisfies.iter())
                 .map(|c| {
                     let con = &m.constraints[*c];
-                    let label = con.label.as_ref().map_or(String::new(), |l| format!("{l}: "));
+                    let label = con
+                        .label
+                        .as_ref()
+                        .map_or(String::new(), |l| format!("{l}: "));
                     format!("{label}{}", con.text)
                 })
                 .collect();
@@ -303,7 +306,9 @@ fn function(
         w.line("///");
         let more = shape.pieces.len() - 1;
         let pieces = if more == 1 { "piece" } else { "pieces" };
-        w.doc(&format!("And {more} more {pieces} like it: the rows of `{table}`."));
+        w.doc(&format!(
+            "And {more} more {pieces} like it: the rows of `{table}`."
+        ));
     }
     w.line(
         "#[allow(unused_mut, unused_variables, unused_assignments, clippy::too_many_arguments)]",
@@ -333,8 +338,12 @@ fn function(
 
 /// `Row`: the type of a piece's row of data.
 fn row_struct(w: &mut Writer) {
-    w.line("/// A piece's data: the store's slots it reads and writes, its constants, the names its");
-    w.line("/// errors give (ids of `text`), and the params, branch variables or defaults it reads.");
+    w.line(
+        "/// A piece's data: the store's slots it reads and writes, its constants, the names its",
+    );
+    w.line(
+        "/// errors give (ids of `text`), and the params, branch variables or defaults it reads.",
+    );
     w.line("#[derive(Clone, Copy, Debug)]");
     w.open("struct Row<const A: usize, const K: usize, const T: usize, const I: usize> {");
     w.line("at: [u32; A],");
@@ -350,7 +359,9 @@ fn solve_into(w: &mut Writer, cx: &Context<'_>, signatures: &[Vec<(String, Strin
     let m = cx.model;
     w.line("/// Solves the model into `solution`: the sketch's pieces, then the assembly plan's steps,");
     w.line("/// each a call of the function of its shape with its row (`SKETCH_ORDER`, `ORDER`). Never");
-    w.line("/// panics, allocates nothing. After an error, `solution` holds the steps done before it.");
+    w.line(
+        "/// panics, allocates nothing. After an error, `solution` holds the steps done before it.",
+    );
     w.line("///");
     w.line("/// # Errors");
     w.line("///");
@@ -443,12 +454,7 @@ fn solve_into(w: &mut Writer, cx: &Context<'_>, signatures: &[Vec<(String, Strin
 }
 
 /// The orders of the calls: `[shape, row]` of each piece, sketch pieces and step pieces apart.
-fn orders(
-    tables: &mut String,
-    order: &[(usize, usize)],
-    shapes: &[Shape],
-    numbers: &[usize],
-) {
+fn orders(tables: &mut String, order: &[(usize, usize)], shapes: &[Shape], numbers: &[usize]) {
     let mut lists = [Vec::new(), Vec::new()];
     for &(n, row) in order {
         let kind = usize::from(!shapes[n].sketch);

@@ -222,7 +222,10 @@ fn steps(
     let mut loads = Vec::new();
     for &r in &piece.imports {
         let Some((handed, known)) = handoff.regs.get(&r).cloned() else {
-            panic!("bug in gcs: a piece reads r{} before the piece that defines it hands it on", r.0);
+            panic!(
+                "bug in gcs: a piece reads r{} before the piece that defines it hands it on",
+                r.0
+            );
         };
         let value = match handed {
             Handed::Literal(value, name) => {
@@ -263,7 +266,9 @@ fn steps(
         };
         if value.is_literal() {
             let name = s.facts.literal_names.get(&r).cloned();
-            handoff.regs.insert(r, (Handed::Literal(value, name), known));
+            handoff
+                .regs
+                .insert(r, (Handed::Literal(value, name), known));
             continue;
         }
         let slot = match handoff.regs.get(&r) {
@@ -319,7 +324,11 @@ fn steps(
             decls.line(&format!("let {m}{} = {value};", s.frame_local(g)));
         }
         if let (Some(d), Some(&slot)) = (s.dims.get(&g).cloned(), layout.dim.get(&g)) {
-            let m = if piece.sets_dim.contains(&g) { "mut " } else { "" };
+            let m = if piece.sets_dim.contains(&g) {
+                "mut "
+            } else {
+                ""
+            };
             decls.line(&format!("let {m}{d} = store.scalar[{}];", lift::slot(slot)));
         }
     }
