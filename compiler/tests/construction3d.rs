@@ -132,7 +132,7 @@ const KNOWN_WRONG: &[Known] = &[
     // turn only to rounding over that distance) is gone. The joint's x axes
     // (`frame::signed_angle3_both`: offset_x, prismatic, and a helical joint on a body held
     // at a point), its point onto a line or plane, or its helix (`Op::TurnReaching`, on a
-    // screw too: `runtime::frame::Screw`) decide such a turn with the z axis.
+    // screw too: `runtime::fragment3::Screw`) decide such a turn with the z axis.
 ];
 
 // ---------------------------------------------------------------- small maths

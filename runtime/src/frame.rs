@@ -372,7 +372,7 @@ pub fn signed_angle3(u: &Vector3<f64>, v: &Vector3<f64>, axis: &Vector3<f64>) ->
 /// `v` about the unit axis `a`. Across the axis first: a direction nearly along it keeps its
 /// few significant bits there, which the products of the whole vectors would cancel.
 #[inline]
-fn turn_across(a: &Vector3<f64>, u: &Vector3<f64>, v: &Vector3<f64>) -> (f64, f64) {
+pub(crate) fn turn_across(a: &Vector3<f64>, u: &Vector3<f64>, v: &Vector3<f64>) -> (f64, f64) {
     let up = u - a * a.dot(u);
     let vp = v - a * a.dot(v);
     (a.dot(&up.cross(&vp)), up.dot(&vp))
@@ -399,279 +399,6 @@ pub fn signed_angle3_both(
     let (s0, c0) = turn_across(&a, u[0], v[0]);
     let (s1, c1) = turn_across(&a, u[1], v[1]);
     (s0 + s1).atan2(c0 + c1)
-}
-
-/// The directions' turn is taken alone when their projections across the axis multiply to at
-/// least this (each then lies over 0.1 rad from the axis): its angle is then exact to about
-/// `eps / 0.1`, and a point could only add its own rounding.
-const DIRECTIONS_DECIDE: f64 = 1e-2;
-
-/// At most this many Gauss-Newton steps refine a turn that a point decides: one or two from
-/// the directions' angle, off by rounding over their distance from the axis; more from a
-/// direction exactly along the axis, which leaves the angle to the point alone (a flange
-/// bolted off a shaft's axis).
-const REACHING_STEPS: usize = 8;
-
-/// The angle about the unit `axis` through `pivot` that turns direction `u` onto `v` and
-/// takes `point` onto the line `line` (a joint's point, which the cluster's remaining slide
-/// along the line then brings home). See [`turn_reaching_plane`] for the method.
-#[inline]
-pub fn turn_reaching_line(
-    [u, v]: [&Vector3<f64>; 2],
-    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
-    point: &Point3<f64>,
-    line: &crate::locus3d::Line3,
-    screw: Option<&Screw>,
-) -> f64 {
-    let d = line.dir;
-    let scale = point.coords.norm().max(line.point.coords.norm());
-    turn_reaching(
-        [u, v],
-        (pivot, axis),
-        (point, screw),
-        scale,
-        |x| {
-            let off = x - line.point;
-            off - d * d.dot(&off)
-        },
-        |w| w - d * d.dot(w),
-    )
-}
-
-/// The angle about the unit `axis` through `pivot` that turns direction `u` onto `v` and
-/// takes `point` into the plane `plane` (where the cluster's remaining slide within the plane
-/// brings it home).
-///
-/// A turn about an axis onto a direction that lies within `delta` rad of the axis is fixed by
-/// that direction only to rounding over `delta` (a joint's z axis turned about a z axis it
-/// nearly shares: 1e-16 / 1e-9 = 1e-7 rad), which moves a point at distance `rho` from the
-/// axis by `rho` times that. The point is then what decides the turn.
-///
-/// From the directions' angle, Gauss-Newton steps (at most `REACHING_STEPS`) on both residuals
-/// together: the direction's miss, and the point's miss of the locus (the part of its offset
-/// across the line, or along the plane's normal) divided by the size of the coordinates, so
-/// that each weighs by the inverse of its rounding. When the directions lie well across the
-/// axis (`DIRECTIONS_DECIDE`), or the point moves across the locus no faster than the
-/// directions turn, their angle stands. Where both hold at the same turn (a consistent joint),
-/// the result is that turn to rounding; otherwise a compromise, which the checks after it
-/// measure. Zero when `axis` is zero.
-#[inline]
-pub fn turn_reaching_plane(
-    [u, v]: [&Vector3<f64>; 2],
-    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
-    point: &Point3<f64>,
-    plane: &crate::locus3d::Plane,
-    screw: Option<&Screw>,
-) -> f64 {
-    let n = plane.normal;
-    let scale = point.coords.norm().max(plane.offset.abs());
-    turn_reaching(
-        [u, v],
-        (pivot, axis),
-        (point, screw),
-        scale,
-        |x| n * (n.dot(&x.coords) - plane.offset),
-        |w| n * n.dot(w),
-    )
-}
-
-/// A helical coupling of a marker that turns with the cluster (the riding marker) to a known
-/// one: the angle from `x_from` to the riding marker's x axis about `axis` is `2 pi / pitch`
-/// times its advance along `axis` from `origin` (LANGUAGE.md's `helical`, modulo a turn).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Helix {
-    /// The unit axis the helix is measured about (the known marker's z axis).
-    pub axis: Vector3<f64>,
-    /// The x axis its turn is measured from (the known marker's).
-    pub x_from: Vector3<f64>,
-    /// Where its advance is measured from (the known marker's point).
-    pub origin: Point3<f64>,
-    /// The riding marker's x axis, before the turn.
-    pub x: Vector3<f64>,
-    /// The riding marker's point, before the turn.
-    pub point: Point3<f64>,
-    /// The advance per turn.
-    pub pitch: f64,
-}
-
-/// What a helix measures once the cluster has turned: the riding marker's advance and turn,
-/// and their rates of change with the cluster's turn.
-struct HelixAt {
-    advance: f64,
-    turn: f64,
-    advance_rate: f64,
-    turn_rate: f64,
-}
-
-impl Helix {
-    /// The helix measured after the cluster turns (`turn` applied to a vector) about the unit
-    /// `a` through `pivot`.
-    #[inline]
-    fn at(
-        &self,
-        turn: impl Fn(&Vector3<f64>) -> Vector3<f64>,
-        a: &Vector3<f64>,
-        pivot: &Point3<f64>,
-    ) -> HelixAt {
-        let z = self.axis;
-        let (x, arm) = (turn(&self.x), turn(&(self.point - pivot)));
-        // The turn of x about z as the cluster turns about a.
-        let across = x - z * z.dot(&x);
-        HelixAt {
-            advance: (pivot + arm - self.origin).dot(&z),
-            turn: signed_angle3(&self.x_from, &x, &z),
-            advance_rate: z.dot(&a.cross(&arm)),
-            turn_rate: z.dot(&across.cross(&a.cross(&x))) / across.norm_squared(),
-        }
-    }
-}
-
-/// A helical coupling the cluster rides on after a turn (a screw): the cluster then slides
-/// along `slide` until the riding marker's advance is the helix's advance for its turn (as
-/// [`helix_advance`], the advance nearest where it is). With it, where a joint's point ends up
-/// depends on the turn through the pitch, and [`turn_reaching_plane`], [`turn_reaching_line`]
-/// and [`turn_reaching_helix`] follow it there.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Screw {
-    /// The coupling.
-    pub helix: Helix,
-    /// The unit direction the cluster slides along.
-    pub slide: Vector3<f64>,
-}
-
-impl Screw {
-    /// The slide after the cluster turns by `turn` about the unit `a` through `pivot`, and its
-    /// rate of change with the turn.
-    #[inline]
-    fn slide_after(
-        &self,
-        turn: impl Fn(&Vector3<f64>) -> Vector3<f64>,
-        a: &Vector3<f64>,
-        pivot: &Point3<f64>,
-    ) -> (Vector3<f64>, Vector3<f64>) {
-        let h = &self.helix;
-        let m = h.at(turn, a, pivot);
-        let along = self.slide.dot(&h.axis);
-        let by = (helix_advance(m.advance, m.turn, h.pitch) - m.advance) / along;
-        let rate = (h.pitch / std::f64::consts::TAU * m.turn_rate - m.advance_rate) / along;
-        (self.slide * by, self.slide * rate)
-    }
-}
-
-/// The angle about the unit `axis` through `pivot` that turns direction `u` onto `v` and
-/// meets the helical coupling `helix` (a helical joint whose second marker turns with the
-/// cluster), on the `screw` the cluster rides after the turn if any: as
-/// [`turn_reaching_plane`], the helix's miss in radians (its turn off the turn of its advance,
-/// wrapped) weighed by its rounding, `eps (1 + 2 pi size / pitch)`.
-#[inline]
-pub fn turn_reaching_helix(
-    [u, v]: [&Vector3<f64>; 2],
-    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
-    helix: &Helix,
-    screw: Option<&Screw>,
-) -> f64 {
-    let size = (helix.point.coords.norm())
-        .max(helix.origin.coords.norm())
-        .max(pivot.coords.norm());
-    let tau = std::f64::consts::TAU;
-    let weight = 1.0 / (1.0 + tau * size / helix.pitch.abs());
-    refine_turn(
-        [u, v],
-        (pivot, axis),
-        screw,
-        weight,
-        |turn, a, (slid, rate)| {
-            let m = helix.at(turn, a, pivot);
-            let advance = m.advance + helix.axis.dot(&slid);
-            let miss = crate::num::wrap_angle(m.turn - tau * advance / helix.pitch);
-            let rate = m.turn_rate - tau / helix.pitch * (m.advance_rate + helix.axis.dot(&rate));
-            (rate * miss, rate * rate)
-        },
-    )
-}
-
-/// The method of [`turn_reaching_plane`] and [`turn_reaching_line`]: `miss(x)` is the offset
-/// of `x` from the locus across it, `across(w)` the part of a velocity `w` that changes it.
-#[inline]
-fn turn_reaching(
-    [u, v]: [&Vector3<f64>; 2],
-    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
-    (point, screw): (&Point3<f64>, Option<&Screw>),
-    scale: f64,
-    miss: impl Fn(&Point3<f64>) -> Vector3<f64>,
-    across: impl Fn(&Vector3<f64>) -> Vector3<f64>,
-) -> f64 {
-    let arm = point - pivot;
-    let size = scale.max(pivot.coords.norm()).max(arm.norm());
-    refine_turn(
-        [u, v],
-        (pivot, axis),
-        screw,
-        1.0 / size,
-        |turn, a, (slid, rate)| {
-            let w = turn(&arm);
-            let (r, j) = (miss(&(pivot + w + slid)), across(&(a.cross(&w) + rate)));
-            (j.dot(&r), j.norm_squared())
-        },
-    )
-}
-
-/// The Gauss-Newton refinement of a turn about `axis` through `pivot` that takes direction
-/// `u` onto `v` and meets a joint's second condition, from the directions' own angle (the
-/// method of [`turn_reaching_plane`]). `joint(turn, a, (slid, rate))`, given the turn (as a map
-/// of vectors), the unit axis and the slide of `screw` after it with its rate, returns the
-/// condition's `j . r` and `j . j` (its miss `r` and rate `j`), each to be multiplied by
-/// `weight` squared: the inverse of its rounding. The condition decides only where it moves
-/// faster than the directions turn.
-#[inline]
-fn refine_turn(
-    [u, v]: [&Vector3<f64>; 2],
-    (pivot, axis): (&Point3<f64>, &Vector3<f64>),
-    screw: Option<&Screw>,
-    weight: f64,
-    joint: impl Fn(
-        &dyn Fn(&Vector3<f64>) -> Vector3<f64>,
-        &Vector3<f64>,
-        (Vector3<f64>, Vector3<f64>),
-    ) -> (f64, f64),
-) -> f64 {
-    let n = axis.norm();
-    if n.is_nan() || n <= 0.0 {
-        return 0.0;
-    }
-    let a = axis / n;
-    let (sin, cos) = turn_across(&a, u, v);
-    let mut angle = sin.atan2(cos);
-    if sin.hypot(cos) >= DIRECTIONS_DECIDE || !(weight > 0.0 && weight.is_finite()) {
-        return angle;
-    }
-    let w2 = weight * weight;
-    for _ in 0..REACHING_STEPS {
-        let (s, c) = crate::num::sin_cos(angle);
-        // Rodrigues' turn by the angle about the unit axis.
-        let turn = |x: &Vector3<f64>| x * c + a.cross(x) * s + a * (a.dot(x) * (1.0 - c));
-        let ut = turn(u);
-        let slide = match screw {
-            Some(screw) => screw.slide_after(turn, &a, pivot),
-            None => (Vector3::zeros(), Vector3::zeros()),
-        };
-        let (jr, jj) = joint(&turn, &a, slide);
-        let (jr, by_joint) = (jr * w2, jj * w2);
-        let (r_dir, j_dir) = (ut - v, a.cross(&ut));
-        let by_dir = j_dir.norm_squared();
-        if by_joint.is_nan() || by_joint <= by_dir {
-            break;
-        }
-        let step = (jr + j_dir.dot(&r_dir)) / (by_joint + by_dir);
-        if !step.is_finite() {
-            break;
-        }
-        angle -= step;
-        if step.abs() <= 4.0 * f64::EPSILON * (1.0 + angle.abs()) {
-            break;
-        }
-    }
-    angle
 }
 
 /// The rotation that turns the direction of `u` onto the direction of `v` about the axis
@@ -737,6 +464,354 @@ pub fn perpendicular(u: &Vector3<f64>) -> Vector3<f64> {
         Vector3::z()
     };
     u.cross(&e)
+}
+
+/// The rotation that turns the direction of `a` onto the direction of `b`, computed without
+/// trigonometry (a normalised complex number `(a . b, a x b)`). When either vector is zero or
+/// not finite, or the two are exactly opposite with a zero cross product, the result is
+/// well-defined: the identity for a zero vector (paper 000, footnote 6), a half turn for
+/// opposite directions.
+#[inline]
+pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
+    let c = a.dot(b);
+    let s = a.x * b.y - a.y * b.x;
+    // The plan's case: a point turned onto a target at its own distance from the pivot, so
+    // `|a| = |b|` to rounding and `|a| |b|` is their mean square, `(|a|^2 + |b|^2) / 2`, to
+    // second order in the difference: one division and no square root. One Newton step on the
+    // norm makes the pair unit to rounding; when the lengths differ by more than about 1e-4
+    // (relative), the exact path below takes over.
+    let mean = 0.5 * (a.norm_squared() + b.norm_squared());
+    if mean > 1e-250 && mean < 1e250 {
+        let inv = 1.0 / mean;
+        let (c1, s1) = (c * inv, s * inv);
+        let n1 = c1 * c1 + s1 * s1;
+        if (n1 - 1.0).abs() < 1e-8 {
+            let k = 1.5 - 0.5 * n1;
+            return UnitComplex::from_cos_sin_unchecked(c1 * k, s1 * k);
+        }
+    }
+    // Lengths that differ: one square root and one division.
+    let n2 = c * c + s * s;
+    if n2 > 1e-250 && n2 < 1e250 {
+        let inv = 1.0 / n2.sqrt();
+        return UnitComplex::from_cos_sin_unchecked(c * inv, s * inv);
+    }
+    // Tiny or huge: scaled by the larger component first, so that the square root neither
+    // overflows nor underflows.
+    let m = c.abs().max(s.abs());
+    if !(m > 0.0 && m.is_finite()) {
+        return UnitComplex::identity();
+    }
+    let (c, s) = (c / m, s / m);
+    let n = (c * c + s * s).sqrt();
+    UnitComplex::from_cos_sin_unchecked(c / n, s / n)
+}
+
+/// The rotation about a circle's centre that turns `a` onto `b`, two radii of the circle:
+/// both of length `radius` to rounding, as the plan knows when it turns a point of a rigid
+/// geom onto a target on that point's circle. The result of [`rotation_between2`] to
+/// rounding (unit to a few ulps, the direction exact), by a shorter fast path: with the
+/// radius known (a constant in generated code), the division is by `radius^2`, which the
+/// compiler folds. When the lengths differ from the radius by more than about 5e-9 (relative,
+/// the two together: `c² + s²` more than 1e-8 from 1), it is [`rotation_between2`].
+#[inline]
+pub fn rotation_on_circle(a: &Vector2<f64>, b: &Vector2<f64>, radius: f64) -> UnitComplex<f64> {
+    let inv = 1.0 / (radius * radius);
+    rotation_on_circle_from(a.dot(b) * inv, (a.x * b.y - a.y * b.x) * inv, a, b)
+}
+
+/// [`rotation_on_circle`] from its cosine and sine as the caller computed them,
+/// `(a . b, a x b) / radius²`: generated code that knows the arm `a` as constants writes them
+/// with constant coefficients, and no product by a zero coordinate.
+///
+/// - Unit to rounding (`|c² + s² - 1|` at most 4 ulps), as they are when `b` lies on
+///   the circle: they are the rotation as they are, with nothing on the solve's critical path.
+/// - Within 1e-8 of unit: one Newton step makes them unit (to about `(3/8) 1e-16`, rounding).
+/// - Otherwise (and for NaN) the lengths disagree with the radius, and the rotation is
+///   [`rotation_between2`] of `a` and `b`.
+#[inline]
+pub fn rotation_on_circle_from(
+    c: f64,
+    s: f64,
+    a: &Vector2<f64>,
+    b: &Vector2<f64>,
+) -> UnitComplex<f64> {
+    let n = c * c + s * s;
+    let off = (n - 1.0).abs();
+    if off <= 4.0 * f64::EPSILON {
+        return UnitComplex::from_cos_sin_unchecked(c, s);
+    }
+    if off < 1e-8 {
+        let k = 1.5 - 0.5 * n;
+        return UnitComplex::from_cos_sin_unchecked(c * k, s * k);
+    }
+    rotation_between2(a, b)
+}
+
+/// The rotation that turns the x axis onto unit vector `b`: [`rotation_between_units`] from
+/// `(1, 0)`, which is `b` itself read as a rotation. Non-finite input gives the identity.
+#[inline]
+pub fn rotation_from_x(b: &Vector2<f64>) -> UnitComplex<f64> {
+    if is_finite(b.x) && is_finite(b.y) && (b.x != 0.0 || b.y != 0.0) {
+        rotation_from_x_unit(b)
+    } else {
+        UnitComplex::identity()
+    }
+}
+
+/// The rotation that turns the x axis onto `b`, a unit vector known to be finite (such as
+/// [`direction_at`] of a finite angle): `b` itself read as a rotation, with no test. For a
+/// direction that may not be finite, [`rotation_from_x`].
+#[inline]
+pub fn rotation_from_x_unit(b: &Vector2<f64>) -> UnitComplex<f64> {
+    UnitComplex::from_cos_sin_unchecked(b.x, b.y)
+}
+
+/// The unit vector at `angle` radians counter-clockwise from the x axis: the x axis turned
+/// by `angle`, `(cos, sin)`.
+#[inline]
+pub fn direction_at(angle: f64) -> Vector2<f64> {
+    let (sin, cos) = crate::num::sin_cos(angle);
+    Vector2::new(cos, sin)
+}
+
+/// The directions of angles near one angle, the start of an outer iteration over an angle
+/// default: its trials stay within a small turn of their start (a sweep's last answer, one
+/// step on), and each trial's direction is the start's turned by the difference, whose sine
+/// and cosine are short polynomials ([`crate::num::sin_cos_small`]) where [`direction_at`]
+/// would reduce the angle and evaluate its kernels at every trial. Within a few ulps of
+/// [`direction_at`] (property-tested); angles farther than [`DirectionsNear::REACH`] from the
+/// start are [`direction_at`]'s.
+#[derive(Clone, Copy, Debug)]
+pub struct DirectionsNear {
+    angle: f64,
+    direction: Vector2<f64>,
+}
+
+impl DirectionsNear {
+    /// The largest difference from the start turned by polynomials: the domain of
+    /// [`crate::num::sin_cos_small`].
+    pub const REACH: f64 = crate::num::SMALL_ANGLE;
+
+    /// The directions near `angle`.
+    #[inline]
+    pub fn new(angle: f64) -> Self {
+        Self {
+            angle,
+            direction: direction_at(angle),
+        }
+    }
+
+    /// The unit vector at `angle`, as [`direction_at`] to a few ulps.
+    #[inline]
+    pub fn at(&self, angle: f64) -> Vector2<f64> {
+        let turn = angle - self.angle;
+        if turn.abs() <= Self::REACH {
+            let (sin, cos) = crate::num::sin_cos_small(turn);
+            let d = self.direction;
+            Vector2::new(d.x * cos - d.y * sin, d.x * sin + d.y * cos)
+        } else {
+            direction_at(angle)
+        }
+    }
+}
+
+/// The rotation that turns unit vector `a` onto unit vector `b`: `(a . b, a x b)` with no
+/// square root or division. The plan's directions are unit by construction; their products
+/// stay unit to rounding. Non-finite input gives the identity.
+#[inline]
+pub fn rotation_between_units(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
+    let (c, s) = (a.dot(b), a.x * b.y - a.y * b.x);
+    if is_finite(c) && is_finite(s) && (c != 0.0 || s != 0.0) {
+        UnitComplex::from_cos_sin_unchecked(c, s)
+    } else {
+        UnitComplex::identity()
+    }
+}
+
+/// The directions `v` may turn to about unit `axis` (its cone about the axis) that make the
+/// unsigned angle `angle` with unit `u`: the turns `phi` about `axis` solving
+/// `u . v(phi) = cos(angle)`.
+///
+/// - **Branch:** with `phi0` the turn that brings `v` nearest `u`, branch 0 is `phi0 + delta`
+///   (counter-clockwise about `axis` from there), branch 1 `phi0 - delta`, `delta` in
+///   `[0, pi]`: a fixed branch moves continuously until the two meet (a tangency).
+/// - `Crossing`: two directions. `Tangent` (the angle is the cone's nearest or farthest from
+///   `u` within [`tol::ANGLE`]): the double root in both slots.
+/// - `Disjoint { gap }`: no turn reaches the angle; `gap` is how far (radians) the nearest
+///   reachable angle is from it.
+/// - `ZeroRadius`: `v` or `u` is along the axis (every turn keeps the angle: no turn is
+///   determined), or a vector is zero.
+pub fn turns_to_angle(
+    u: &Vector3<f64>,
+    v: &Vector3<f64>,
+    axis: &Vector3<f64>,
+    angle: f64,
+) -> crate::Intersection<Vector3<f64>, 2> {
+    use crate::{Contact, Intersection, Roots};
+    if !(u
+        .iter()
+        .chain(v.iter())
+        .chain(axis.iter())
+        .all(|x| x.is_finite())
+        && angle.is_finite())
+    {
+        return Intersection::none(Contact::Disjoint { gap: f64::NAN });
+    }
+    let along = axis * axis.dot(v);
+    let across = v - along;
+    let side = axis.cross(&across);
+    let (a, b) = (u.dot(&across), u.dot(&side));
+    let r = a.hypot(b);
+    if across.norm() <= tol::ANGLE || r <= tol::ANGLE {
+        return Intersection::none(Contact::ZeroRadius);
+    }
+    let c = angle.cos() - u.dot(&along);
+    let at = |phi: f64| -> Vector3<f64> {
+        let (s, co) = phi.sin_cos();
+        along + across * co + side * s
+    };
+    let phi0 = b.atan2(a);
+    // The reachable angles run from the nearest (cosine base + r) to the farthest (base - r).
+    let base = u.dot(&along);
+    let (nearest, farthest) = (
+        (base + r).clamp(-1.0, 1.0).acos(),
+        (base - r).clamp(-1.0, 1.0).acos(),
+    );
+    let target = angle.clamp(0.0, std::f64::consts::PI);
+    if target < nearest - tol::ANGLE || target > farthest + tol::ANGLE {
+        let gap = (nearest - target).max(target - farthest);
+        return Intersection::none(Contact::Disjoint { gap });
+    }
+    let ratio = c / r;
+    if ratio >= 1.0
+        || ratio <= -1.0
+        || (target - nearest).abs() <= tol::ANGLE
+        || (farthest - target).abs() <= tol::ANGLE
+    {
+        let phi = if ratio >= 0.0 {
+            phi0
+        } else {
+            phi0 + std::f64::consts::PI
+        };
+        let x = at(phi);
+        return Intersection {
+            roots: Roots::from_slice(&[x, x]),
+            contact: Contact::Tangent,
+        };
+    }
+    let delta = ratio.acos();
+    Intersection {
+        roots: Roots::from_slice(&[at(phi0 + delta), at(phi0 - delta)]),
+        contact: Contact::Crossing,
+    }
+}
+
+/// An orthonormal pair across unit `n`: [`perpendicular`] of it, normalised, and `n` across
+/// that. Where a circle's angles start, and the two ways off a line.
+#[inline]
+pub fn across(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let e1 = perpendicular(n).normalize();
+    (e1, n.cross(&e1))
+}
+
+/// `v` over its length; `None` for a zero or not-a-number length, where no direction is.
+#[inline]
+pub fn unit3(v: &Vector3<f64>) -> Option<Vector3<f64>> {
+    let n = v.norm();
+    if n.is_nan() || n <= 0.0 {
+        return None;
+    }
+    Some(v / n)
+}
+
+/// The rotation of a sketch whose x axis is `x` (a vector's, a line's, a segment's): the
+/// shortest turn from the global x axis; `None` for a zero `x`.
+pub fn rotation_onto_x(x: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
+    let x = x.try_normalize(0.0)?;
+    Some(rotation_between3(&Vector3::x(), &x, &Vector3::z()))
+}
+
+/// The rotation of a sketch whose z axis is `z` (a circle's or a plane's normal): the shortest
+/// turn from the global z axis; `None` for a zero `z`.
+pub fn rotation_onto_z(z: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
+    let z = z.try_normalize(0.0)?;
+    Some(rotation_between3(&Vector3::z(), &z, &Vector3::x()))
+}
+
+/// The rotation of a marker whose z axis is `z` and whose x axis is `x` made perpendicular to
+/// it (the language checks that a marker's axes are orthogonal, up to rounding); `None` for a
+/// zero axis, or an `x` along `z`.
+pub fn rotation_zx(z: &Vector3<f64>, x: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
+    let z = z.try_normalize(0.0)?;
+    let x = (x - z * z.dot(x)).try_normalize(0.0)?;
+    let y = z.cross(&x);
+    Some(UnitQuaternion::from_rotation_matrix(
+        &nalgebra::Rotation3::from_basis_unchecked(&[x, y, z]),
+    ))
+}
+
+/// The rotation of a body placed `rotated angle about axis`: none for a zero angle, whatever
+/// the axis; `None` for a turn about a zero axis.
+pub fn rotation_sketched(axis: &Vector3<f64>, angle: f64) -> Option<UnitQuaternion<f64>> {
+    if angle == 0.0 {
+        return Some(UnitQuaternion::identity());
+    }
+    let u = Unit::try_new(*axis, 0.0)?;
+    Some(UnitQuaternion::from_axis_angle(&u, angle))
+}
+
+/// A plane through `base` with unit normal `normal`, turning about `pivot` until it is at
+/// signed distance `d` from `point`: the vector from the pivot to the point, and the cosine
+/// its direction must make with the new normal (the turn keeps the pivot's distance).
+pub fn plane_cone(
+    base: &Point3<f64>,
+    normal: &Vector3<f64>,
+    pivot: &Point3<f64>,
+    point: &Point3<f64>,
+    d: f64,
+) -> (Vector3<f64>, f64) {
+    let w = point - pivot;
+    let sd0 = normal.dot(&(pivot - base));
+    (w, (d - sd0) / w.norm())
+}
+
+/// The normal of least turn from `normal` that makes the cosine `c` (in [-1, 1]) with the unit
+/// direction `w`: on the great circle through `w` and `normal`, or about any axis across `w`
+/// when `normal` is along it.
+pub fn plane_turn(w: &Vector3<f64>, c: f64, normal: &Vector3<f64>) -> Vector3<f64> {
+    let across = normal - w * normal.dot(w);
+    let e = match across.try_normalize(0.0) {
+        Some(e) => e,
+        None => perpendicular(w).normalize(),
+    };
+    w * c + e * (1.0 - c * c).max(0.0).sqrt()
+}
+
+/// `dir` or its opposite, whichever is nearer `near` (the opposite only when their dot product
+/// is negative): the sense a directed line keeps when turned onto an undirected one.
+#[inline]
+pub fn aligned(dir: &Vector3<f64>, near: &Vector3<f64>) -> Vector3<f64> {
+    if dir.dot(near) < 0.0 {
+        -dir
+    } else {
+        *dir
+    }
+}
+
+/// The advance of a screw of `pitch` (per turn) whose turn is `turn` radians, the one nearest
+/// `now`: a turn and a whole number of turns more give the same screw, so the advance nearest
+/// where the screw is keeps it from jumping a pitch.
+pub fn helix_advance(now: f64, turn: f64, pitch: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let off = crate::num::wrap_angle(turn - tau * now / pitch);
+    now + pitch / tau * off
+}
+
+/// The turn, in radians, of a screw of `pitch` (per turn) advanced by `advance`.
+#[inline]
+pub fn helix_turn(advance: f64, pitch: f64) -> f64 {
+    std::f64::consts::TAU * advance / pitch
 }
 
 #[cfg(test)]
@@ -998,545 +1073,56 @@ mod tests {
             &Vector3::new(f64::NAN, 0.0, 0.0),
         );
     }
-}
 
-/// The rotation that turns the direction of `a` onto the direction of `b`, computed without
-/// trigonometry (a normalised complex number `(a . b, a x b)`). When either vector is zero or
-/// not finite, or the two are exactly opposite with a zero cross product, the result is
-/// well-defined: the identity for a zero vector (paper 000, footnote 6), a half turn for
-/// opposite directions.
-#[inline]
-pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
-    let c = a.dot(b);
-    let s = a.x * b.y - a.y * b.x;
-    // The plan's case: a point turned onto a target at its own distance from the pivot, so
-    // `|a| = |b|` to rounding and `|a| |b|` is their mean square, `(|a|^2 + |b|^2) / 2`, to
-    // second order in the difference: one division and no square root. One Newton step on the
-    // norm makes the pair unit to rounding; when the lengths differ by more than about 1e-4
-    // (relative), the exact path below takes over.
-    let mean = 0.5 * (a.norm_squared() + b.norm_squared());
-    if mean > 1e-250 && mean < 1e250 {
-        let inv = 1.0 / mean;
-        let (c1, s1) = (c * inv, s * inv);
-        let n1 = c1 * c1 + s1 * s1;
-        if (n1 - 1.0).abs() < 1e-8 {
-            let k = 1.5 - 0.5 * n1;
-            return UnitComplex::from_cos_sin_unchecked(c1 * k, s1 * k);
-        }
-    }
-    // Lengths that differ: one square root and one division.
-    let n2 = c * c + s * s;
-    if n2 > 1e-250 && n2 < 1e250 {
-        let inv = 1.0 / n2.sqrt();
-        return UnitComplex::from_cos_sin_unchecked(c * inv, s * inv);
-    }
-    // Tiny or huge: scaled by the larger component first, so that the square root neither
-    // overflows nor underflows.
-    let m = c.abs().max(s.abs());
-    if !(m > 0.0 && m.is_finite()) {
-        return UnitComplex::identity();
-    }
-    let (c, s) = (c / m, s / m);
-    let n = (c * c + s * s).sqrt();
-    UnitComplex::from_cos_sin_unchecked(c / n, s / n)
-}
+    mod rotation_between2 {
+        use super::super::*;
 
-/// The rotation about a circle's centre that turns `a` onto `b`, two radii of the circle:
-/// both of length `radius` to rounding, as the plan knows when it turns a point of a rigid
-/// geom onto a target on that point's circle. The result of [`rotation_between2`] to
-/// rounding (unit to a few ulps, the direction exact), by a shorter fast path: with the
-/// radius known (a constant in generated code), the division is by `radius^2`, which the
-/// compiler folds. When the lengths differ from the radius by more than about 5e-9 (relative,
-/// the two together: `c² + s²` more than 1e-8 from 1), it is [`rotation_between2`].
-#[inline]
-pub fn rotation_on_circle(a: &Vector2<f64>, b: &Vector2<f64>, radius: f64) -> UnitComplex<f64> {
-    let inv = 1.0 / (radius * radius);
-    rotation_on_circle_from(a.dot(b) * inv, (a.x * b.y - a.y * b.x) * inv, a, b)
-}
-
-/// [`rotation_on_circle`] from its cosine and sine as the caller computed them,
-/// `(a . b, a x b) / radius²`: generated code that knows the arm `a` as constants writes them
-/// with constant coefficients, and no product by a zero coordinate.
-///
-/// - Unit to rounding (`|c² + s² - 1|` at most 4 ulps), as they are when `b` lies on
-///   the circle: they are the rotation as they are, with nothing on the solve's critical path.
-/// - Within 1e-8 of unit: one Newton step makes them unit (to about `(3/8) 1e-16`, rounding).
-/// - Otherwise (and for NaN) the lengths disagree with the radius, and the rotation is
-///   [`rotation_between2`] of `a` and `b`.
-#[inline]
-pub fn rotation_on_circle_from(
-    c: f64,
-    s: f64,
-    a: &Vector2<f64>,
-    b: &Vector2<f64>,
-) -> UnitComplex<f64> {
-    let n = c * c + s * s;
-    let off = (n - 1.0).abs();
-    if off <= 4.0 * f64::EPSILON {
-        return UnitComplex::from_cos_sin_unchecked(c, s);
-    }
-    if off < 1e-8 {
-        let k = 1.5 - 0.5 * n;
-        return UnitComplex::from_cos_sin_unchecked(c * k, s * k);
-    }
-    rotation_between2(a, b)
-}
-
-/// The rotation that turns the x axis onto unit vector `b`: [`rotation_between_units`] from
-/// `(1, 0)`, which is `b` itself read as a rotation. Non-finite input gives the identity.
-#[inline]
-pub fn rotation_from_x(b: &Vector2<f64>) -> UnitComplex<f64> {
-    if is_finite(b.x) && is_finite(b.y) && (b.x != 0.0 || b.y != 0.0) {
-        rotation_from_x_unit(b)
-    } else {
-        UnitComplex::identity()
-    }
-}
-
-/// The rotation that turns the x axis onto `b`, a unit vector known to be finite (such as
-/// [`direction_at`] of a finite angle): `b` itself read as a rotation, with no test. For a
-/// direction that may not be finite, [`rotation_from_x`].
-#[inline]
-pub fn rotation_from_x_unit(b: &Vector2<f64>) -> UnitComplex<f64> {
-    UnitComplex::from_cos_sin_unchecked(b.x, b.y)
-}
-
-/// The unit vector at `angle` radians counter-clockwise from the x axis: the x axis turned
-/// by `angle`, `(cos, sin)`.
-#[inline]
-pub fn direction_at(angle: f64) -> Vector2<f64> {
-    let (sin, cos) = crate::num::sin_cos(angle);
-    Vector2::new(cos, sin)
-}
-
-/// The directions of angles near one angle, the start of an outer iteration over an angle
-/// default: its trials stay within a small turn of their start (a sweep's last answer, one
-/// step on), and each trial's direction is the start's turned by the difference, whose sine
-/// and cosine are short polynomials ([`crate::num::sin_cos_small`]) where [`direction_at`]
-/// would reduce the angle and evaluate its kernels at every trial. Within a few ulps of
-/// [`direction_at`] (property-tested); angles farther than [`DirectionsNear::REACH`] from the
-/// start are [`direction_at`]'s.
-#[derive(Clone, Copy, Debug)]
-pub struct DirectionsNear {
-    angle: f64,
-    direction: Vector2<f64>,
-}
-
-impl DirectionsNear {
-    /// The largest difference from the start turned by polynomials: the domain of
-    /// [`crate::num::sin_cos_small`].
-    pub const REACH: f64 = crate::num::SMALL_ANGLE;
-
-    /// The directions near `angle`.
-    #[inline]
-    pub fn new(angle: f64) -> Self {
-        Self {
-            angle,
-            direction: direction_at(angle),
-        }
-    }
-
-    /// The unit vector at `angle`, as [`direction_at`] to a few ulps.
-    #[inline]
-    pub fn at(&self, angle: f64) -> Vector2<f64> {
-        let turn = angle - self.angle;
-        if turn.abs() <= Self::REACH {
-            let (sin, cos) = crate::num::sin_cos_small(turn);
-            let d = self.direction;
-            Vector2::new(d.x * cos - d.y * sin, d.x * sin + d.y * cos)
-        } else {
-            direction_at(angle)
-        }
-    }
-}
-
-/// The rotation that turns unit vector `a` onto unit vector `b`: `(a . b, a x b)` with no
-/// square root or division. The plan's directions are unit by construction; their products
-/// stay unit to rounding. Non-finite input gives the identity.
-#[inline]
-pub fn rotation_between_units(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64> {
-    let (c, s) = (a.dot(b), a.x * b.y - a.y * b.x);
-    if is_finite(c) && is_finite(s) && (c != 0.0 || s != 0.0) {
-        UnitComplex::from_cos_sin_unchecked(c, s)
-    } else {
-        UnitComplex::identity()
-    }
-}
-
-#[cfg(test)]
-mod rotation_between2_tests {
-    use super::*;
-
-    #[test]
-    fn turns_a_onto_b_without_trigonometry() {
-        for (a, b) in [
-            (Vector2::new(1.0, 0.0), Vector2::new(0.0, 2.0)),
-            (Vector2::new(3.0, -1.0), Vector2::new(-2.0, 0.5)),
-            (Vector2::new(1.0, 1.0), Vector2::new(-1.0, -1.0)),
-        ] {
-            let r = rotation_between2(&a, &b);
-            let turned = r * a.normalize();
-            assert!((turned - b.normalize()).norm() < 1e-15, "{a} {b}");
-        }
-        assert_eq!(
-            rotation_between2(&Vector2::zeros(), &Vector2::x()),
-            UnitComplex::identity()
-        );
-        let f = Frame2::along(Point2::new(1.0, 2.0), Vector2::new(0.0, 3.0));
-        assert!((f.x_axis() - Vector2::y()).norm() < 1e-15);
-    }
-}
-
-/// The directions `v` may turn to about unit `axis` (its cone about the axis) that make the
-/// unsigned angle `angle` with unit `u`: the turns `phi` about `axis` solving
-/// `u . v(phi) = cos(angle)`.
-///
-/// - **Branch:** with `phi0` the turn that brings `v` nearest `u`, branch 0 is `phi0 + delta`
-///   (counter-clockwise about `axis` from there), branch 1 `phi0 - delta`, `delta` in
-///   `[0, pi]`: a fixed branch moves continuously until the two meet (a tangency).
-/// - `Crossing`: two directions. `Tangent` (the angle is the cone's nearest or farthest from
-///   `u` within [`tol::ANGLE`]): the double root in both slots.
-/// - `Disjoint { gap }`: no turn reaches the angle; `gap` is how far (radians) the nearest
-///   reachable angle is from it.
-/// - `ZeroRadius`: `v` or `u` is along the axis (every turn keeps the angle: no turn is
-///   determined), or a vector is zero.
-pub fn turns_to_angle(
-    u: &Vector3<f64>,
-    v: &Vector3<f64>,
-    axis: &Vector3<f64>,
-    angle: f64,
-) -> crate::Intersection<Vector3<f64>, 2> {
-    use crate::{Contact, Intersection, Roots};
-    if !(u
-        .iter()
-        .chain(v.iter())
-        .chain(axis.iter())
-        .all(|x| x.is_finite())
-        && angle.is_finite())
-    {
-        return Intersection::none(Contact::Disjoint { gap: f64::NAN });
-    }
-    let along = axis * axis.dot(v);
-    let across = v - along;
-    let side = axis.cross(&across);
-    let (a, b) = (u.dot(&across), u.dot(&side));
-    let r = a.hypot(b);
-    if across.norm() <= tol::ANGLE || r <= tol::ANGLE {
-        return Intersection::none(Contact::ZeroRadius);
-    }
-    let c = angle.cos() - u.dot(&along);
-    let at = |phi: f64| -> Vector3<f64> {
-        let (s, co) = phi.sin_cos();
-        along + across * co + side * s
-    };
-    let phi0 = b.atan2(a);
-    // The reachable angles run from the nearest (cosine base + r) to the farthest (base - r).
-    let base = u.dot(&along);
-    let (nearest, farthest) = (
-        (base + r).clamp(-1.0, 1.0).acos(),
-        (base - r).clamp(-1.0, 1.0).acos(),
-    );
-    let target = angle.clamp(0.0, std::f64::consts::PI);
-    if target < nearest - tol::ANGLE || target > farthest + tol::ANGLE {
-        let gap = (nearest - target).max(target - farthest);
-        return Intersection::none(Contact::Disjoint { gap });
-    }
-    let ratio = c / r;
-    if ratio >= 1.0
-        || ratio <= -1.0
-        || (target - nearest).abs() <= tol::ANGLE
-        || (farthest - target).abs() <= tol::ANGLE
-    {
-        let phi = if ratio >= 0.0 {
-            phi0
-        } else {
-            phi0 + std::f64::consts::PI
-        };
-        let x = at(phi);
-        return Intersection {
-            roots: Roots::from_slice(&[x, x]),
-            contact: Contact::Tangent,
-        };
-    }
-    let delta = ratio.acos();
-    Intersection {
-        roots: Roots::from_slice(&[at(phi0 + delta), at(phi0 - delta)]),
-        contact: Contact::Crossing,
-    }
-}
-
-/// An orthonormal pair across unit `n`: [`perpendicular`] of it, normalised, and `n` across
-/// that. Where a circle's angles start, and the two ways off a line.
-#[inline]
-pub fn across(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
-    let e1 = perpendicular(n).normalize();
-    (e1, n.cross(&e1))
-}
-
-/// `v` over its length; `None` for a zero or not-a-number length, where no direction is.
-#[inline]
-pub fn unit3(v: &Vector3<f64>) -> Option<Vector3<f64>> {
-    let n = v.norm();
-    if n.is_nan() || n <= 0.0 {
-        return None;
-    }
-    Some(v / n)
-}
-
-/// The rotation of a sketch whose x axis is `x` (a vector's, a line's, a segment's): the
-/// shortest turn from the global x axis; `None` for a zero `x`.
-pub fn rotation_onto_x(x: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
-    let x = x.try_normalize(0.0)?;
-    Some(rotation_between3(&Vector3::x(), &x, &Vector3::z()))
-}
-
-/// The rotation of a sketch whose z axis is `z` (a circle's or a plane's normal): the shortest
-/// turn from the global z axis; `None` for a zero `z`.
-pub fn rotation_onto_z(z: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
-    let z = z.try_normalize(0.0)?;
-    Some(rotation_between3(&Vector3::z(), &z, &Vector3::x()))
-}
-
-/// The rotation of a marker whose z axis is `z` and whose x axis is `x` made perpendicular to
-/// it (the language checks that a marker's axes are orthogonal, up to rounding); `None` for a
-/// zero axis, or an `x` along `z`.
-pub fn rotation_zx(z: &Vector3<f64>, x: &Vector3<f64>) -> Option<UnitQuaternion<f64>> {
-    let z = z.try_normalize(0.0)?;
-    let x = (x - z * z.dot(x)).try_normalize(0.0)?;
-    let y = z.cross(&x);
-    Some(UnitQuaternion::from_rotation_matrix(
-        &nalgebra::Rotation3::from_basis_unchecked(&[x, y, z]),
-    ))
-}
-
-/// The rotation of a body placed `rotated angle about axis`: none for a zero angle, whatever
-/// the axis; `None` for a turn about a zero axis.
-pub fn rotation_sketched(axis: &Vector3<f64>, angle: f64) -> Option<UnitQuaternion<f64>> {
-    if angle == 0.0 {
-        return Some(UnitQuaternion::identity());
-    }
-    let u = Unit::try_new(*axis, 0.0)?;
-    Some(UnitQuaternion::from_axis_angle(&u, angle))
-}
-
-/// A plane through `base` with unit normal `normal`, turning about `pivot` until it is at
-/// signed distance `d` from `point`: the vector from the pivot to the point, and the cosine
-/// its direction must make with the new normal (the turn keeps the pivot's distance).
-pub fn plane_cone(
-    base: &Point3<f64>,
-    normal: &Vector3<f64>,
-    pivot: &Point3<f64>,
-    point: &Point3<f64>,
-    d: f64,
-) -> (Vector3<f64>, f64) {
-    let w = point - pivot;
-    let sd0 = normal.dot(&(pivot - base));
-    (w, (d - sd0) / w.norm())
-}
-
-/// The angle between the normal of a circle about `centre` of `radius` and the direction from
-/// the centre to `point`, at which `point` lies `distance` from the circle: the side of the
-/// circle's plane `now` (its normal now) has the point on, so that the turn there is the least.
-///
-/// With `L` the point's distance from the centre, the point lies `ρ = (L² + r² - d²) / 2r`
-/// from the axis and `h = √(L² - ρ²)` from the plane, so the angle is `atan2(ρ, ±h)`.
-/// - `Crossing`: that angle, in `[0, π]` (below a right angle when `now` points toward the
-///   point).
-/// - `Disjoint { gap }`: no tilt reaches the distance: it is below `|L - r|` (the point in the
-///   plane) or above `√(L² + r²)` (on the axis) by `gap`.
-/// - `ZeroRadius`: the radius is not positive, or the point is at the centre (every tilt
-///   leaves it `r` away).
-pub fn tilt_to_distance(
-    centre: &Point3<f64>,
-    point: &Point3<f64>,
-    radius: f64,
-    distance: f64,
-    now: &Vector3<f64>,
-) -> crate::Intersection<f64, 1> {
-    use crate::{Contact, Intersection};
-    let w = point - centre;
-    let l = w.norm();
-    let scale = tol::scale(&[l, radius, distance]);
-    let least = tol::LENGTH_REL * scale;
-    if radius.is_nan() || l.is_nan() || radius <= least || l <= least {
-        return Intersection::none(Contact::ZeroRadius);
-    }
-    let (near, far) = ((l - radius).abs(), l.hypot(radius));
-    if distance < near || distance > far {
-        let gap = (near - distance).max(distance - far);
-        return Intersection::none(Contact::Disjoint { gap });
-    }
-    let rho = ((l * l + radius * radius - distance * distance) / (2.0 * radius)).clamp(0.0, l);
-    let h = ((l - rho) * (l + rho)).max(0.0).sqrt();
-    let h = if now.dot(&w) < 0.0 { -h } else { h };
-    crate::intersect3d::one(rho.atan2(h), Contact::Crossing)
-}
-
-/// The unsigned angle between a line through `from` and the direction from `from` to `to` at
-/// which the line passes `distance` from `to`: `asin(distance / L)`, `L` the distance between
-/// the points, or its supplement when `now` (the line's direction now) points away from `to`,
-/// so that the line keeps its sense.
-/// - `Crossing`: that angle, in `[0, π]`.
-/// - `Disjoint { gap }`: the distance exceeds `L` by `gap` (no line through `from` is that far).
-/// - `ZeroRadius`: the points coincide.
-pub fn passing_angle(
-    from: &Point3<f64>,
-    to: &Point3<f64>,
-    distance: f64,
-    now: &Vector3<f64>,
-) -> crate::Intersection<f64, 1> {
-    use crate::{Contact, Intersection};
-    let w = to - from;
-    let l = w.norm();
-    if l.is_nan() || distance.is_nan() || l <= tol::LENGTH_REL * tol::scale(&[l, distance]) {
-        return Intersection::none(Contact::ZeroRadius);
-    }
-    if distance > l {
-        return Intersection::none(Contact::Disjoint { gap: distance - l });
-    }
-    let d = distance.max(0.0);
-    let along = ((l - d) * (l + d)).sqrt();
-    let along = if now.dot(&w) < 0.0 { -along } else { along };
-    crate::intersect3d::one(d.atan2(along), Contact::Crossing)
-}
-
-/// The normal of least turn from `normal` that makes the cosine `c` (in [-1, 1]) with the unit
-/// direction `w`: on the great circle through `w` and `normal`, or about any axis across `w`
-/// when `normal` is along it.
-pub fn plane_turn(w: &Vector3<f64>, c: f64, normal: &Vector3<f64>) -> Vector3<f64> {
-    let across = normal - w * normal.dot(w);
-    let e = match across.try_normalize(0.0) {
-        Some(e) => e,
-        None => perpendicular(w).normalize(),
-    };
-    w * c + e * (1.0 - c * c).max(0.0).sqrt()
-}
-
-/// `dir` or its opposite, whichever is nearer `near` (the opposite only when their dot product
-/// is negative): the sense a directed line keeps when turned onto an undirected one.
-#[inline]
-pub fn aligned(dir: &Vector3<f64>, near: &Vector3<f64>) -> Vector3<f64> {
-    if dir.dot(near) < 0.0 {
-        -dir
-    } else {
-        *dir
-    }
-}
-
-/// The advance of a screw of `pitch` (per turn) whose turn is `turn` radians, the one nearest
-/// `now`: a turn and a whole number of turns more give the same screw, so the advance nearest
-/// where the screw is keeps it from jumping a pitch.
-pub fn helix_advance(now: f64, turn: f64, pitch: f64) -> f64 {
-    let tau = std::f64::consts::TAU;
-    let off = crate::num::wrap_angle(turn - tau * now / pitch);
-    now + pitch / tau * off
-}
-
-/// The turn, in radians, of a screw of `pitch` (per turn) advanced by `advance`.
-#[inline]
-pub fn helix_turn(advance: f64, pitch: f64) -> f64 {
-    std::f64::consts::TAU * advance / pitch
-}
-
-#[cfg(test)]
-mod cone_tests {
-    use super::*;
-    use crate::Contact;
-
-    #[test]
-    fn a_turn_about_an_axis_reaches_the_angle_on_both_sides() {
-        // v = x turns about z; u in the x-z plane at 60 degrees from z: the reachable angles
-        // with u run from 30 to 150 degrees.
-        let u = Vector3::new(3f64.sqrt() / 2.0, 0.0, 0.5);
-        let (v, z) = (Vector3::x(), Vector3::z());
-        let i = turns_to_angle(&u, &v, &z, std::f64::consts::FRAC_PI_2);
-        assert_eq!(i.contact, Contact::Crossing);
-        for k in 0..2 {
-            let w = i.roots.get(k).expect("root");
-            assert!(u.dot(&w).abs() < 1e-15, "{w:?}");
-            assert!(w.z.abs() < 1e-15 && (w.norm() - 1.0).abs() < 1e-15);
-        }
-        // Branch 0 is counter-clockwise about z from the nearest turn (phi0 = 0): +y side.
-        assert!(i.roots.get(0).expect("root").y > 0.0);
-        let gap = turns_to_angle(&u, &v, &z, 0.2);
-        assert!(
-            matches!(gap.contact, Contact::Disjoint { gap } if (gap - (std::f64::consts::FRAC_PI_6 - 0.2)).abs() < 1e-12)
-        );
-        let touch = turns_to_angle(&u, &v, &z, std::f64::consts::FRAC_PI_6);
-        assert_eq!(touch.contact, Contact::Tangent);
-        assert!(turns_to_angle(&u, &z, &z, 1.0).contact == Contact::ZeroRadius);
-    }
-}
-
-#[cfg(test)]
-mod tilt_tests {
-    use super::*;
-    use crate::Contact;
-
-    /// The circle tilted by the angle found, about any axis across the direction to the point,
-    /// leaves the point at the distance asked, on the side of `now`.
-    #[test]
-    fn a_tilt_puts_the_point_at_the_distance() {
-        let (c, a) = (Point3::new(1.0, -2.0, 0.5), Point3::new(3.0, 1.0, 2.0));
-        let w = (a - c).normalize();
-        let across = w.cross(&Vector3::new(0.3, 0.1, 0.9)).normalize();
-        for (r, d) in [(3.0, 1.2), (2.0, 2.5), (1.0, 3.5), (4.0, 0.7)] {
-            for now in [w, -w] {
-                let i = tilt_to_distance(&c, &a, r, d, &now);
-                assert_eq!(i.contact, Contact::Crossing, "{r} {d}");
-                let theta = i.roots.get(0).unwrap_or(f64::NAN);
-                let n = w * theta.cos() + across * theta.sin();
-                assert!(n.dot(&now) >= 0.0 || theta == std::f64::consts::FRAC_PI_2);
-                // The point's distance from the tilted circle.
-                let v = a - c;
-                let hh = v.dot(&n);
-                let rho = (v - n * hh).norm();
-                let dist = hh.hypot(rho - r);
-                assert!((dist - d).abs() < 1e-14, "{r} {d}: {dist}");
+        #[test]
+        fn turns_a_onto_b_without_trigonometry() {
+            for (a, b) in [
+                (Vector2::new(1.0, 0.0), Vector2::new(0.0, 2.0)),
+                (Vector2::new(3.0, -1.0), Vector2::new(-2.0, 0.5)),
+                (Vector2::new(1.0, 1.0), Vector2::new(-1.0, -1.0)),
+            ] {
+                let r = rotation_between2(&a, &b);
+                let turned = r * a.normalize();
+                assert!((turned - b.normalize()).norm() < 1e-15, "{a} {b}");
             }
+            assert_eq!(
+                rotation_between2(&Vector2::zeros(), &Vector2::x()),
+                UnitComplex::identity()
+            );
+            let f = Frame2::along(Point2::new(1.0, 2.0), Vector2::new(0.0, 3.0));
+            assert!((f.x_axis() - Vector2::y()).norm() < 1e-15);
         }
-        // Out of reach: nearer than the point in the plane, farther than on the axis.
-        let l = (a - c).norm();
-        let i = tilt_to_distance(&c, &a, 1.0, (l - 1.0) - 0.25, &w);
-        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 0.25).abs() < 1e-12));
-        let i = tilt_to_distance(&c, &a, 1.0, l.hypot(1.0) + 0.5, &w);
-        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 0.5).abs() < 1e-12));
-        assert_eq!(
-            tilt_to_distance(&c, &c, 1.0, 1.0, &w).contact,
-            Contact::ZeroRadius
-        );
     }
-}
 
-#[cfg(test)]
-mod passing_tests {
-    use super::*;
-    use crate::Contact;
+    mod cone {
+        use super::super::*;
+        use crate::Contact;
 
-    /// A line through `from` at the angle found from the direction to `to` passes at the
-    /// distance asked, keeping the sense `now` has.
-    #[test]
-    fn a_line_at_the_passing_angle_passes_at_the_distance() {
-        let (from, to) = (Point3::new(0.5, -1.0, 2.0), Point3::new(2.0, 3.0, -1.0));
-        let w = (to - from).normalize();
-        let across = w.cross(&Vector3::new(0.2, 0.7, 0.1)).normalize();
-        for d in [0.0, 0.3, 2.5, (to - from).norm()] {
-            for now in [w, -w] {
-                let i = passing_angle(&from, &to, d, &now);
-                assert_eq!(i.contact, Contact::Crossing);
-                let a = i.roots.get(0).unwrap_or(f64::NAN);
-                let dir = w * a.cos() + across * a.sin();
-                let dist = (to - from).cross(&dir).norm();
-                assert!((dist - d).abs() < 1e-14, "{d}: {dist}");
-                assert!(dir.dot(&now) >= -1e-15);
+        #[test]
+        fn a_turn_about_an_axis_reaches_the_angle_on_both_sides() {
+            // v = x turns about z; u in the x-z plane at 60 degrees from z: the reachable angles
+            // with u run from 30 to 150 degrees.
+            let u = Vector3::new(3f64.sqrt() / 2.0, 0.0, 0.5);
+            let (v, z) = (Vector3::x(), Vector3::z());
+            let i = turns_to_angle(&u, &v, &z, std::f64::consts::FRAC_PI_2);
+            assert_eq!(i.contact, Contact::Crossing);
+            for k in 0..2 {
+                let w = i.roots.get(k).expect("root");
+                assert!(u.dot(&w).abs() < 1e-15, "{w:?}");
+                assert!(w.z.abs() < 1e-15 && (w.norm() - 1.0).abs() < 1e-15);
             }
+            // Branch 0 is counter-clockwise about z from the nearest turn (phi0 = 0): +y side.
+            assert!(i.roots.get(0).expect("root").y > 0.0);
+            let gap = turns_to_angle(&u, &v, &z, 0.2);
+            assert!(
+                matches!(gap.contact, Contact::Disjoint { gap } if (gap - (std::f64::consts::FRAC_PI_6 - 0.2)).abs() < 1e-12)
+            );
+            let touch = turns_to_angle(&u, &v, &z, std::f64::consts::FRAC_PI_6);
+            assert_eq!(touch.contact, Contact::Tangent);
+            assert!(turns_to_angle(&u, &z, &z, 1.0).contact == Contact::ZeroRadius);
         }
-        let l = (to - from).norm();
-        let i = passing_angle(&from, &to, l + 0.5, &w);
-        assert!(matches!(i.contact, Contact::Disjoint { gap } if (gap - 0.5).abs() < 1e-12));
-        assert_eq!(
-            passing_angle(&from, &from, 1.0, &w).contact,
-            Contact::ZeroRadius
-        );
     }
 }

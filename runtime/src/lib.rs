@@ -1,7 +1,8 @@
 //! The numeric kernel that generated gcs solvers call, and that the interpreter shares:
-//! frames and Kramer's actions, loci, the locus intersection table with branch selection,
-//! polynomial roots, error accounting, named tolerances, and the outer iterations that solve for
-//! a plan's defaults (Newton with brackets, a trust region, and a scan for every root).
+//! frames and Kramer's actions, loci, the locus intersection table with branch selection, the
+//! closed-form solutions of the 3d plan fragments built on them, polynomial roots, error
+//! accounting, named tolerances, and the outer iterations that solve for a plan's defaults
+//! (Newton with brackets, a trust region, and a scan for every root).
 //!
 //! Architecture invariants: this crate depends on nalgebra only; nothing in it panics on finite
 //! or non-finite input; nothing on a solve path allocates.
@@ -9,6 +10,7 @@
 
 pub mod check;
 pub mod error;
+pub mod fragment3;
 pub mod frame;
 pub mod intersect2d;
 pub mod intersect3d;

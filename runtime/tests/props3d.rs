@@ -614,13 +614,13 @@ proptest! {
         let at = (&pivot, &axis);
         if across_line > 0.3 {
             let line = Line3::new(reached + slide * shift * size, slide);
-            let angle = gcs_runtime::frame::turn_reaching_line([&z, &z1], at, &point, &line, None);
+            let angle = gcs_runtime::fragment3::turn_reaching_line([&z, &z1], at, &point, &line, None);
             prop_assert!(wrap(angle).abs() <= bound, "line: {angle} for {turn}, z 1e{off} off");
         }
         if along_normal > 0.3 {
             let inside = perp_to(&slide, &tilt) * shift * size;
             let plane = Plane::new(slide, slide.dot(&(reached + inside).coords));
-            let angle = gcs_runtime::frame::turn_reaching_plane([&z, &z1], at, &point, &plane, None);
+            let angle = gcs_runtime::fragment3::turn_reaching_plane([&z, &z1], at, &point, &plane, None);
             prop_assert!(wrap(angle).abs() <= bound, "plane: {angle} for {turn}, z 1e{off} off");
         }
     }
@@ -647,7 +647,8 @@ proptest! {
         x_spin in -3.1f64..3.1,
         start in -1.0f64..1.0,
     ) {
-        use gcs_runtime::frame::{helix_advance, signed_angle3, Helix, Screw};
+        use gcs_runtime::fragment3::{Helix, Screw};
+        use gcs_runtime::frame::{helix_advance, signed_angle3};
         let tilt = perp_to(&axis, &across);
         let z = (axis + tilt * 10f64.powf(off)).normalize();
         let pivot = Point3::from(pivot);
@@ -669,7 +670,7 @@ proptest! {
         prop_assume!(rate.abs() > 0.3);
         let plane = Plane::new(normal, normal.dot(&reached.coords));
         let at = (&pivot, &axis);
-        let angle = gcs_runtime::frame::turn_reaching_plane([&z, &(q * z)], at, &point, &plane, Some(&screw));
+        let angle = gcs_runtime::fragment3::turn_reaching_plane([&z, &(q * z)], at, &point, &plane, Some(&screw));
         let wrap = |a: f64| (a - turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
             - std::f64::consts::PI;
         prop_assert!(wrap(angle).abs() <= 1e-12, "{angle} for {turn}, z 1e{off} off");
@@ -694,7 +695,7 @@ proptest! {
         pitch in 0.2f64..2.0,
         x_spin in -3.1f64..3.1,
     ) {
-        use gcs_runtime::frame::Helix;
+        use gcs_runtime::fragment3::Helix;
         let tilt = perp_to(&axis, &across);
         let z = (axis + tilt * 10f64.powf(off)).normalize();
         let pivot = Point3::from(pivot);
@@ -708,7 +709,7 @@ proptest! {
         let x_from = rotation_about_axis(&axis, -std::f64::consts::TAU * advance / pitch) * (q * x);
         let helix = Helix { axis, x_from, origin, x, point, pitch };
         let at = (&pivot, &axis);
-        let angle = gcs_runtime::frame::turn_reaching_helix([&z, &(q * z)], at, &helix, None);
+        let angle = gcs_runtime::fragment3::turn_reaching_helix([&z, &(q * z)], at, &helix, None);
         let wrap = |a: f64| (a - turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
             - std::f64::consts::PI;
         prop_assert!(wrap(angle).abs() <= 1e-12, "{angle} for {turn}, z 1e{off} off");

@@ -247,6 +247,7 @@ pub(in crate::codegen) fn header(w: &mut Writer, file: &str, d3: bool) {
     if d3 {
         // Space's types and functions; nothing of the plane's.
         for import in [
+            "use gcs_runtime::fragment3;",
             "use gcs_runtime::frame::{self, Frame3};",
             "use gcs_runtime::intersect3d;",
             "use gcs_runtime::locus3d::{self, Circle3, Cylinder, Line3, Locus3, Plane, Shift, Sphere, Surface, Torus};",

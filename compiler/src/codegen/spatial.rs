@@ -1,6 +1,6 @@
 //! Codegen in space: each spatial step of the plan lowered to the runtime's 3d calls
-//! (`locus3d`, `intersect3d`, `frame`, `check::space`); the sketch of a 3d model as `Frame3`s
-//! is `sketch3.rs`.
+//! (`locus3d`, `intersect3d`, `frame`, `fragment3`, `check::space`); the sketch of a 3d model
+//! as `Frame3`s is `sketch3.rs`.
 //!
 //! The skeleton of `solve` (params, sketch, tolerance, groups of steps with their comments,
 //! outer iterations, the `Solution`) and the steps that do not depend on the space (scalars,
@@ -312,7 +312,7 @@ impl Solve<'_> {
             } => {
                 let helix = |h: &crate::plan::HelixRegs| {
                     format!(
-                        "frame::Helix {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {} }}",
+                        "fragment3::Helix {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {} }}",
                         self.r(h.axis),
                         self.r(h.x_from),
                         self.r(h.origin),
@@ -323,7 +323,7 @@ impl Solve<'_> {
                 };
                 let screw = screw.map_or("None".to_string(), |s| {
                     format!(
-                        "Some(&frame::Screw {{ helix: {}, slide: {}.dir }})",
+                        "Some(&fragment3::Screw {{ helix: {}, slide: {}.dir }})",
                         helix(&s.helix),
                         self.r(s.slide)
                     )
@@ -339,7 +339,7 @@ impl Solve<'_> {
                     ),
                 };
                 let code = format!(
-                    "frame::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), {target}, {screw})",
+                    "fragment3::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), {target}, {screw})",
                     self.r(*u),
                     self.r(*v),
                     self.r(*pivot),
@@ -376,7 +376,7 @@ impl Solve<'_> {
                 constraint,
             } => {
                 let call = format!(
-                    "frame::passing_angle(&{}, &{}, {}, &{})",
+                    "fragment3::passing_angle(&{}, &{}, {}, &{})",
                     self.r(*from),
                     self.r(*to),
                     self.r(*d),
@@ -393,7 +393,7 @@ impl Solve<'_> {
                 constraint,
             } => {
                 let call = format!(
-                    "frame::tilt_to_distance(&{}, &{}, {}, {}, &{})",
+                    "fragment3::tilt_to_distance(&{}, &{}, {}, {}, &{})",
                     self.r(*centre),
                     self.r(*point),
                     self.r(*radius),

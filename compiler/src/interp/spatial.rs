@@ -10,7 +10,7 @@ use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus3d::{
     self, Circle3, Cylinder, Line3, Locus3, Plane, Shift, Sphere, Surface, Torus,
 };
-use gcs_runtime::{check, frame, intersect3d, Contact, Roots};
+use gcs_runtime::{check, fragment3, frame, intersect3d, Contact, Roots};
 use nalgebra::UnitQuaternion;
 
 impl Space for D3 {
@@ -156,7 +156,7 @@ impl Machine<'_, '_, D3> {
                     [&self.v3(*u), &self.v3(*v)],
                     (&self.p3(*pivot), &self.v3(*axis)),
                 );
-                let helix = |h: &crate::plan::HelixRegs| frame::Helix {
+                let helix = |h: &crate::plan::HelixRegs| fragment3::Helix {
                     axis: self.v3(h.axis),
                     x_from: self.v3(h.x_from),
                     origin: self.p3(h.origin),
@@ -164,24 +164,24 @@ impl Machine<'_, '_, D3> {
                     point: self.p3(h.point),
                     pitch: self.s(h.pitch),
                 };
-                let screw = screw.map(|s| frame::Screw {
+                let screw = screw.map(|s| fragment3::Screw {
                     helix: helix(&s.helix),
                     slide: self.line3(s.slide).dir,
                 });
                 let screw = screw.as_ref();
                 Val::S(match reach {
                     crate::plan::Reach::Helix(h) => {
-                        frame::turn_reaching_helix(dirs, at, &helix(h), screw)
+                        fragment3::turn_reaching_helix(dirs, at, &helix(h), screw)
                     }
                     crate::plan::Reach::Point { point, locus } => {
                         let p = self.p3(*point);
                         match self.get(*locus) {
                             Some(&Val::Plane(plane)) => {
-                                frame::turn_reaching_plane(dirs, at, &p, &plane, screw)
+                                fragment3::turn_reaching_plane(dirs, at, &p, &plane, screw)
                             }
                             _ => {
                                 let line = self.line3(*locus);
-                                frame::turn_reaching_line(dirs, at, &p, &line, screw)
+                                fragment3::turn_reaching_line(dirs, at, &p, &line, screw)
                             }
                         }
                     }
@@ -200,7 +200,7 @@ impl Machine<'_, '_, D3> {
                 constraint,
             } => {
                 let (a, b, n) = (self.p3(*from), self.p3(*to), self.v3(*now));
-                let i = frame::passing_angle(&a, &b, self.s(*d), &n);
+                let i = fragment3::passing_angle(&a, &b, self.s(*d), &n);
                 if let Some(e) = SolveError::from_contact("", "", i.contact) {
                     return Err(err(model, *constraint, e.kind, e.magnitude));
                 }
@@ -219,7 +219,7 @@ impl Machine<'_, '_, D3> {
                 constraint,
             } => {
                 let (c, p, n) = (self.p3(*centre), self.p3(*point), self.v3(*now));
-                let i = frame::tilt_to_distance(&c, &p, self.s(*radius), self.s(*d), &n);
+                let i = fragment3::tilt_to_distance(&c, &p, self.s(*radius), self.s(*d), &n);
                 if let Some(e) = SolveError::from_contact("", "", i.contact) {
                     return Err(err(model, *constraint, e.kind, e.magnitude));
                 }

@@ -227,7 +227,7 @@ impl Meet {
 }
 
 /// The registers of a helical coupling of a marker that turns with a cluster to a known one
-/// (`runtime::frame::Helix`): the known marker's z axis, x axis and point, the riding
+/// (`runtime::fragment3::Helix`): the known marker's z axis, x axis and point, the riding
 /// marker's x axis and point, and the pitch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct HelixRegs {
@@ -239,7 +239,7 @@ pub struct HelixRegs {
     pub pitch: Reg,
 }
 
-/// A helical coupling a cluster rides on after a turn (`runtime::frame::Screw`), and the
+/// A helical coupling a cluster rides on after a turn (`runtime::fragment3::Screw`), and the
 /// line it slides along.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ScrewRegs {
@@ -537,7 +537,7 @@ pub enum Op {
     /// which the one further across the axis decides.
     AngleAboutBoth { u: [Reg; 2], v: [Reg; 2], axis: Reg },
     /// In space: the angle about the unit `axis` through `pivot` that turns direction `u` onto
-    /// `v` and meets `reach` (`runtime::frame::turn_reaching_line`, `_plane`, `_helix`): a
+    /// `v` and meets `reach` (`runtime::fragment3::turn_reaching_line`, `_plane`, `_helix`): a
     /// joint's point onto a line or plane, which the cluster's remaining slide along it then
     /// brings home, or a helical joint's coupling, decides a turn that a z axis nearly along
     /// the axis fixes only to rounding over its distance from it. With `screw`, the cluster
@@ -604,7 +604,7 @@ pub enum Op {
     ConeTurn { axis: Reg, angle: Reg, dir: Reg },
     /// In space: the angle between the normal of the circle about `centre` of `radius` and the
     /// direction to `point` at which `point` is `d` from the circle, on the side `now` has it
-    /// (`runtime::frame::tilt_to_distance`), or an error naming `constraint` with the gap.
+    /// (`runtime::fragment3::tilt_to_distance`), or an error naming `constraint` with the gap.
     TiltToDistance {
         centre: Reg,
         point: Reg,
@@ -614,8 +614,8 @@ pub enum Op {
         constraint: ConstraintId,
     },
     /// In space: the unsigned angle from the direction `from` to `to` at which a line through
-    /// `from` passes `d` from `to`, keeping the sense of `now` (`runtime::frame::passing_angle`),
-    /// or an error naming `constraint` with the gap.
+    /// `from` passes `d` from `to`, keeping the sense of `now`
+    /// (`runtime::fragment3::passing_angle`), or an error naming `constraint` with the gap.
     PassingAngle {
         from: Reg,
         to: Reg,

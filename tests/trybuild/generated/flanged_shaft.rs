@@ -11,6 +11,8 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
+use gcs_runtime::fragment3;
+#[allow(unused_imports)]
 use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
@@ -366,7 +368,7 @@ pub fn solve(
     let shaft_hole = shaft.point_to_global(&shaft_hole_local);
     let ground_bolt = ground.point_to_global(&ground_bolt_local);
     let line_2 = Line3::new(ground_bolt, line.dir);
-    let angle = frame::turn_reaching_line(
+    let angle = fragment3::turn_reaching_line(
         [&shaft_hole_z, &ground_bolt_z],
         (
             &shaft_journal_2,

@@ -11,6 +11,8 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
+use gcs_runtime::fragment3;
+#[allow(unused_imports)]
 use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
@@ -429,7 +431,7 @@ pub fn solve(
     let screw_lock = screw.point_to_global(&screw_lock_local);
     let frame_nut_x = frame.vector_to_global(&Vector3::x());
     let screw_thread_x = screw.vector_to_global(&Vector3::x());
-    let angle = frame::turn_reaching_helix(
+    let angle = fragment3::turn_reaching_helix(
         [&screw_lock_z, &frame_bushing_z],
         (
             &screw_thread_2,
@@ -439,7 +441,7 @@ pub fn solve(
                 0.9479487705759166,
             ),
         ),
-        &frame::Helix {
+        &fragment3::Helix {
             axis: frame_bushing_z,
             x_from: frame_bushing_x,
             origin: frame_bushing,
@@ -447,8 +449,8 @@ pub fn solve(
             point: screw_lock,
             pitch: params.fine,
         },
-        Some(&frame::Screw {
-            helix: frame::Helix {
+        Some(&fragment3::Screw {
+            helix: fragment3::Helix {
                 axis: Vector3::new(
                     -0.26092501605749957,
                     -0.18251373745283314,

@@ -11,6 +11,8 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
+use gcs_runtime::fragment3;
+#[allow(unused_imports)]
 use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
@@ -470,7 +472,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 0.0,
             )
         })?;
-    let passing = frame::passing_angle(
+    let passing = fragment3::passing_angle(
         &Point3::new(2.0, -2.4, 1.8),
         &Point3::new(5.0, 0.8, -0.6),
         idler_radius,

@@ -11,6 +11,8 @@ use gcs_runtime::check;
 #[allow(unused_imports)]
 use gcs_runtime::error::{ErrorKind, SolveError};
 #[allow(unused_imports)]
+use gcs_runtime::fragment3;
+#[allow(unused_imports)]
 use gcs_runtime::frame::{self, Frame3};
 #[allow(unused_imports)]
 use gcs_runtime::intersect3d;
@@ -436,7 +438,7 @@ pub fn solve(
     let plane = Plane::from_point_normal(&frame_stop, &normal);
     let frame_nut_x = frame.vector_to_global(&Vector3::x());
     let screw_thread_x = screw.vector_to_global(&Vector3::x());
-    let angle = frame::turn_reaching_plane(
+    let angle = fragment3::turn_reaching_plane(
         [&screw_face_z, &frame_stop_z],
         (
             &screw_thread_2,
@@ -448,8 +450,8 @@ pub fn solve(
         ),
         &screw_face,
         &plane,
-        Some(&frame::Screw {
-            helix: frame::Helix {
+        Some(&fragment3::Screw {
+            helix: fragment3::Helix {
                 axis: Vector3::new(
                     -0.26092501605749957,
                     -0.18251373745283314,

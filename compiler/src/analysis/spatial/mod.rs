@@ -47,7 +47,7 @@
 //!   plane, where the slide the cluster has left brings it home, refines its angle on the
 //!   point too (`Op::TurnReaching`; a helical joint's coupling likewise, `plan::Reach::Helix`;
 //!   on a screw, where the helix's slide for each trial turn carries the point or marker,
-//!   `runtime::frame::Screw`). A z axis nearly along the turn's axis then does not decide the
+//!   `runtime::fragment3::Screw`). A z axis nearly along the turn's axis then does not decide the
 //!   turn alone; the turn is made by the angle measured (`Op::RotateBy`).
 //! - Midpoints and mirror planes: a known segment's middle, an end reflected through a known
 //!   midpoint, an image across a known plane.
