@@ -265,7 +265,8 @@ fn starts(
     (cells, false)
 }
 
-/// Whether two solutions are one assembly: every point and vector within a relative 1e-9.
+/// Whether two solutions are one assembly: every point and vector within a relative
+/// [`gcs_runtime::tol::SAME_ASSEMBLY_REL`].
 fn same_assembly(a: &Solution, b: &Solution) -> bool {
     let scale = 1.0
         + (a.points.iter())
@@ -277,5 +278,6 @@ fn same_assembly(a: &Solution, b: &Solution) -> bool {
                 n == m && x.iter().zip(y).all(|(p, q)| (p - q).abs() <= tol)
             })
     };
-    close(&a.points, &b.points, 1e-9 * scale) && close(&a.vectors, &b.vectors, 1e-9)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    close(&a.points, &b.points, tol * scale) && close(&a.vectors, &b.vectors, tol)
 }
