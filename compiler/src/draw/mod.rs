@@ -855,7 +855,8 @@ impl Item {
             }
             Item::Arrow { from, dir } => {
                 let d = finite(view.project(f.by.vector(dir)?))?;
-                (d[0].hypot(d[1]) > gcs_runtime::tol::END_ON).then_some(Geo::Arrow(f.at(from, view)?, d))
+                (d[0].hypot(d[1]) > gcs_runtime::tol::END_ON)
+                    .then_some(Geo::Arrow(f.at(from, view)?, d))
             }
             Item::Circle {
                 center,
