@@ -3,13 +3,13 @@
 //! of branches, the same scan or grid of starts, the same rule for when two solutions are one
 //! assembly), so that the two lists agree.
 //!
-//! A model with more branch combinations than [`crate::all::MAX_COMBINATIONS`] gets no
+//! A model with more branch combinations than [`crate::plan::MAX_COMBINATIONS`] gets no
 //! `solve_all`: the interpreter would only list the assemblies of its first combinations, and
 //! a module of a large model is no place for a loop that cannot finish its search.
 
 use super::context::Context;
 use super::writer::{float, Writer};
-use crate::all::{grid, MAX_COMBINATIONS};
+use crate::plan::{grid, MAX_COMBINATIONS};
 
 /// The most assemblies a generated list holds: a scan's roots, or one per branch combination.
 const CAPACITY: usize = gcs_runtime::outer::MAX_ROOTS;
