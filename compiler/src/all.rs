@@ -20,33 +20,15 @@
 //! reaches) or two roots is kept the first time.
 
 use crate::interp::{self, Choice};
-use crate::plan::Plan;
+use crate::plan::{grid, Plan, MAX_COMBINATIONS};
 use crate::solution::Solution;
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use std::collections::BTreeSet;
 
-/// The most branch combinations tried.
-pub const MAX_COMBINATIONS: usize = 4096;
-
 /// Samples of an angle's turn (half a degree apart): the runtime's, which generated
 /// `solve_all` uses too.
 pub use gcs_runtime::outer::ANGLE_SAMPLES;
-
-/// Starting values of each default when the search cannot be exhaustive, for one or two
-/// defaults varied ([`grid`]).
-pub const GRID: usize = 12;
-
-/// Starting values of each of `varied` defaults in the grid: [`GRID`] for one or two, fewer
-/// past that (at least 3), so that the grid stays about `GRID^2` starts (a Stewart platform's
-/// three turns: 5 each, 125 starts, not 1,728).
-pub fn grid(varied: usize) -> usize {
-    if varied <= 2 {
-        return GRID;
-    }
-    let each = ((GRID * GRID) as f64).powf(1.0 / varied as f64).floor() as usize;
-    each.max(3)
-}
 
 /// Every real assembly found, and whether the list is known to be complete.
 #[derive(Clone, Debug, Default)]
@@ -265,7 +247,8 @@ fn starts(
     (cells, false)
 }
 
-/// Whether two solutions are one assembly: every point and vector within a relative 1e-9.
+/// Whether two solutions are one assembly: every point and vector within a relative
+/// [`gcs_runtime::tol::SAME_ASSEMBLY_REL`].
 fn same_assembly(a: &Solution, b: &Solution) -> bool {
     let scale = 1.0
         + (a.points.iter())
@@ -277,5 +260,6 @@ fn same_assembly(a: &Solution, b: &Solution) -> bool {
                 n == m && x.iter().zip(y).all(|(p, q)| (p - q).abs() <= tol)
             })
     };
-    close(&a.points, &b.points, 1e-9 * scale) && close(&a.vectors, &b.vectors, 1e-9)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    close(&a.points, &b.points, tol * scale) && close(&a.vectors, &b.vectors, tol)
 }

@@ -53,7 +53,7 @@ pub fn load(name: &str, bytes: &[u8]) -> Result<Loaded, Rejected> {
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnalysisError {
     /// Its sketch cannot be read.
-    Uncovered(String),
+    Uncovered(analysis::Unreadable),
     /// The analysis produced a plan that breaks the plan's invariants: a bug in gcs.
     Malformed(Malformed),
 }
@@ -61,7 +61,7 @@ pub enum AnalysisError {
 impl fmt::Display for AnalysisError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            AnalysisError::Uncovered(why) => f.write_str(why),
+            AnalysisError::Uncovered(why) => write!(f, "{why}"),
             AnalysisError::Malformed(m) => {
                 write!(f, "internal error: {m} (a bug in gcs: please report it)")
             }

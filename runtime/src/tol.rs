@@ -46,6 +46,24 @@ pub const TANGENT_REL: f64 = 32.0 * f64::EPSILON;
 /// critical point with such a value is reported as a multiple root.
 pub const POLY_ZERO_REL: f64 = 8.0 * f64::EPSILON;
 
+/// Relative tolerance under which two solutions of one model are one assembly: every point
+/// within this times `1 + ` the largest coordinate of the first solution's points, every
+/// (unit) vector within this. It is a check's ([`CHECK_REL`]) size: two solutions that differ
+/// by less both satisfy the same constraints as closely as a plan checks them.
+pub const SAME_ASSEMBLY_REL: f64 = 1e-9;
+
+/// Relative tolerance (times `1 + radius`) under which the verifier counts a segment's end as
+/// joined to a circle, for a tangency's touching point (a fillet's joint): an end solved onto
+/// the circle lies there to rounding, while a free end a distance `t` along the tangent from
+/// the touching point lies `t² / 2r` from the circle. At 1e-6, a free end 2e-3 from the
+/// touching point of a circle of radius 2 counted as a joint; at 1e-9 only ends within about
+/// 1e-4 do.
+pub const JOINED_REL: f64 = 1e-9;
+
+/// Absolute length (in drawing units) under which a direction projected into a drawing's
+/// view is seen end on: an arrow or a line along it is not drawn.
+pub const END_ON: f64 = 1e-9;
+
 /// The magnitude of a set of inputs: the largest absolute value among them, never below 1e-300
 /// so that a tolerance scaled by it is never zero.
 #[inline]

@@ -38,7 +38,7 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Analyses a model with the geometry of its space.
-pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, String> {
+pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, super::Unreadable> {
     let (mut rels, unsupported) = G::decompose(model)?;
     // Canonical order: by constraint name, then relation order within the constraint, so that
     // the plan does not depend on the order of statements.

@@ -92,7 +92,9 @@ pub(crate) trait Geometry: Sized + Clone {
     /// not cover yet (never dropped); reads the sketch where the language leaves a choice to
     /// it. Fails for a model the module cannot read at all (an invalid sketch).
     #[allow(clippy::type_complexity)]
-    fn decompose(model: &Model) -> Result<(Vec<Rel<Self::Relation>>, Vec<Unsupported>), String>;
+    fn decompose(
+        model: &Model,
+    ) -> Result<(Vec<Rel<Self::Relation>>, Vec<Unsupported>), super::Unreadable>;
 
     /// The features (points, directions, geoms with a dimension) a relation involves.
     fn features(relation: &Self::Relation) -> Vec<GeomId>;

@@ -102,11 +102,46 @@ impl Analysis {
     }
 }
 
+/// Why the analysis cannot read a model at all. Every model it can read gets a plan, with
+/// whatever it cannot solve reported in [`Analysis::unsolved`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Unreadable {
+    /// The sketch of a geom is invalid (a value that is not finite, a zero direction).
+    InvalidSketch {
+        /// The geom's name.
+        geom: String,
+        /// What is wrong with its sketch.
+        what: String,
+    },
+}
+
+impl std::fmt::Display for Unreadable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Unreadable::InvalidSketch { geom, what } => {
+                write!(f, "the sketch of `{geom}` is invalid: {what}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for Unreadable {}
+
+impl Unreadable {
+    /// The error of a sketch that cannot be evaluated.
+    pub(crate) fn sketch(model: &Model, bad: crate::config::BadSketch) -> Self {
+        Unreadable::InvalidSketch {
+            geom: model.geoms[bad.geom].name.clone(),
+            what: bad.what,
+        }
+    }
+}
+
 /// Analyses a model. Fails only for a sketch it cannot read: every model gets a plan, with
 /// whatever it cannot solve reported in [`Analysis::unsolved`]. Its branch
 /// variables' defaults are not chosen yet: [`crate::pipeline::analyse`] does that, and
 /// validates the plan.
-pub(crate) fn analyse(model: &Model) -> Result<Analysis, String> {
+pub(crate) fn analyse(model: &Model) -> Result<Analysis, Unreadable> {
     match model.space {
         Space::D2 => driver::analyse::<planar::Planar>(model),
         Space::D3 => driver::analyse::<spatial::Spatial>(model),

@@ -3,13 +3,13 @@
 //! of branches, the same scan or grid of starts, the same rule for when two solutions are one
 //! assembly), so that the two lists agree.
 //!
-//! A model with more branch combinations than [`crate::all::MAX_COMBINATIONS`] gets no
+//! A model with more branch combinations than [`crate::plan::MAX_COMBINATIONS`] gets no
 //! `solve_all`: the interpreter would only list the assemblies of its first combinations, and
 //! a module of a large model is no place for a loop that cannot finish its search.
 
 use super::context::Context;
 use super::writer::{float, Writer};
-use crate::all::{grid, MAX_COMBINATIONS};
+use crate::plan::{grid, MAX_COMBINATIONS};
 
 /// The most assemblies a generated list holds: a scan's roots, or one per branch combination.
 const CAPACITY: usize = gcs_runtime::outer::MAX_ROOTS;
@@ -204,15 +204,13 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
     w.line("#[allow(dead_code)]");
     w.line("pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;");
     w.line("");
-    w.line(
-        "/// Whether two solutions are one assembly: every point within 1e-9 of the model's size,",
-    );
-    w.line("/// every vector within 1e-9.");
+    w.line("/// Whether two solutions are one assembly: every point and vector within a relative");
+    w.line("/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size).");
     w.line("#[allow(dead_code)]");
     w.open("fn same_assembly(a: &Solution, b: &Solution) -> bool {");
     w.line("let scale = 1.0 + a.points().iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
-    w.line("let same_points = a.points().iter().zip(&b.points()).all(|((_, p), (_, q))| (p - q).amax() <= 1e-9 * scale);");
-    w.line("let same_vectors = a.vectors().iter().zip(&b.vectors()).all(|((_, u), (_, v))| (u - v).amax() <= 1e-9);");
+    w.line("let same_points = a.points().iter().zip(&b.points()).all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale);");
+    w.line("let same_vectors = a.vectors().iter().zip(&b.vectors()).all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL);");
     w.line("same_points && same_vectors");
     w.close("}");
     w.line("");

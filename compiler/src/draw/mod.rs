@@ -855,7 +855,8 @@ impl Item {
             }
             Item::Arrow { from, dir } => {
                 let d = finite(view.project(f.by.vector(dir)?))?;
-                (d[0].hypot(d[1]) > 1e-9).then_some(Geo::Arrow(f.at(from, view)?, d))
+                (d[0].hypot(d[1]) > gcs_runtime::tol::END_ON)
+                    .then_some(Geo::Arrow(f.at(from, view)?, d))
             }
             Item::Circle {
                 center,
@@ -883,7 +884,7 @@ impl Item {
             }
             Item::Line { point: p, dir } => {
                 let d = finite(view.project(f.by.vector(dir)?))?;
-                (d[0].hypot(d[1]) > 1e-9).then_some(Geo::Line(point(p)?, d))
+                (d[0].hypot(d[1]) > gcs_runtime::tol::END_ON).then_some(Geo::Line(point(p)?, d))
             }
             Item::Plane {
                 normal,

@@ -293,3 +293,55 @@ fn step_constraints(step: &Step) -> impl Iterator<Item = ConstraintId> + '_ {
         .chain(step.works_for.filter(|_| action))
         .chain(step.op.constraint())
 }
+
+/// `a`, `a and b`, `a, b and c`.
+fn listed(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    }
+}
+
+/// A support in words: `a, b and c (with fixed A and fixed B)`, `fixed A and fixed B`, or
+/// the grounded geom's placement when nothing else; `None` when it names nothing.
+pub fn support_words(model: &Model, support: &Support) -> Option<String> {
+    let (mut constraints, mut fixed) = (Vec::new(), Vec::new());
+    for (_, who) in by_position(model, support) {
+        match who {
+            Supporter::Constraint(c) => constraints.push(model.constraints[c].name.clone()),
+            Supporter::Fixed(g) => fixed.push(format!("fixed {}", model.geoms[g].name)),
+        }
+    }
+    match (constraints.is_empty(), fixed.is_empty()) {
+        (false, false) => Some(format!(
+            "{} (with {})",
+            listed(&constraints),
+            listed(&fixed)
+        )),
+        (false, true) => Some(listed(&constraints)),
+        (true, false) => Some(listed(&fixed)),
+        (true, true) => support
+            .grounded
+            .map(|g| format!("where the sketch places {}, grounded", model.geoms[g].name)),
+    }
+}
+
+/// One member of a support.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Supporter {
+    /// A constraint whose steps placed what the step reads.
+    Constraint(ConstraintId),
+    /// A fixed geom the step reads.
+    Fixed(GeomId),
+}
+
+/// The members of a support with their spans, in source order.
+pub fn by_position(model: &Model, support: &Support) -> Vec<(gcs_lang::Span, Supporter)> {
+    let mut out: Vec<(gcs_lang::Span, Supporter)> = (support.constraints.iter())
+        .map(|&c| (model.constraints[c].span, Supporter::Constraint(c)))
+        .chain((support.fixed.iter()).map(|&g| (model.geoms[g].span, Supporter::Fixed(g))))
+        .collect();
+    out.sort_by_key(|(span, _)| (span.start, span.end));
+    out
+}

@@ -24,9 +24,11 @@
 
 mod deps;
 mod dump;
+mod search;
 mod validate;
 
-pub use deps::{Deps, Slice, Support, Walk};
+pub use deps::{by_position, support_words, Deps, Slice, Support, Supporter, Walk};
+pub use search::{grid, GRID, MAX_COMBINATIONS};
 pub use validate::Malformed;
 
 use gcs_lang::expr::ExprId;

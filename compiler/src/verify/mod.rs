@@ -10,11 +10,8 @@ mod planar;
 mod spatial;
 
 /// How near a circle (relative to `1 + radius`) a segment's end must lie to count as joined to
-/// it, for a tangency's touching point (a fillet's joint): an end solved onto the circle lies
-/// there to rounding, while a free end a distance `t` along the tangent from the touching point
-/// lies `t² / 2r` from the circle. At 1e-6, a free end 2e-3 from the touching point of a
-/// circle of radius 2 counted as a joint; at 1e-9 only ends within about 1e-4 do.
-const JOINED: f64 = 1e-9;
+/// it: [`gcs_runtime::tol::JOINED_REL`], which says why.
+const JOINED: f64 = gcs_runtime::tol::JOINED_REL;
 
 use crate::solution::Solution;
 use gcs_lang::model::{ConstraintId, Space};

@@ -433,8 +433,8 @@ pub const MAX_ASSEMBLIES: usize = 2;
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
-/// Whether two solutions are one assembly: every point within 1e-9 of the model's size,
-/// every vector within 1e-9.
+/// Whether two solutions are one assembly: every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size).
 #[allow(dead_code)]
 fn same_assembly(a: &Solution, b: &Solution) -> bool {
     let scale = 1.0
@@ -445,12 +445,12 @@ fn same_assembly(a: &Solution, b: &Solution) -> bool {
         .points()
         .iter()
         .zip(&b.points())
-        .all(|((_, p), (_, q))| (p - q).amax() <= 1e-9 * scale);
+        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale);
     let same_vectors = a
         .vectors()
         .iter()
         .zip(&b.vectors())
-        .all(|((_, u), (_, v))| (u - v).amax() <= 1e-9);
+        .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL);
     same_points && same_vectors
 }
 

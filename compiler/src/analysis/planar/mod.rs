@@ -75,14 +75,12 @@ impl Geometry for Planar {
     /// SOLVE-LOOP's limit in the plane (000, Appendix A.2).
     const MAX_LOOP: usize = 3;
 
-    fn decompose(model: &Model) -> Result<(Vec<Rel>, Vec<Unsupported>), String> {
+    fn decompose(
+        model: &Model,
+    ) -> Result<(Vec<Rel>, Vec<Unsupported>), crate::analysis::Unreadable> {
         let params = model.default_params();
-        let sketch = Config::from_sketch(model, &params).map_err(|b| {
-            format!(
-                "the sketch of `{}` is invalid: {}",
-                model.geoms[b.geom].name, b.what
-            )
-        })?;
+        let sketch = Config::from_sketch(model, &params)
+            .map_err(|b| crate::analysis::Unreadable::sketch(model, b))?;
         let view = SketchOf {
             model,
             config: &sketch,

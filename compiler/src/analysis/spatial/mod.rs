@@ -150,14 +150,12 @@ impl Geometry for Spatial {
     /// SOLVE-LOOP's limit in space (000, Appendix A.2).
     const MAX_LOOP: usize = 6;
 
-    fn decompose(model: &Model) -> Result<(Vec<Rel>, Vec<Unsupported>), String> {
+    fn decompose(
+        model: &Model,
+    ) -> Result<(Vec<Rel>, Vec<Unsupported>), crate::analysis::Unreadable> {
         let params = model.default_params();
-        let sketch = Config::<D3>::from_sketch(model, &params).map_err(|b| {
-            format!(
-                "the sketch of `{}` is invalid: {}",
-                model.geoms[b.geom].name, b.what
-            )
-        })?;
+        let sketch = Config::<D3>::from_sketch(model, &params)
+            .map_err(|b| crate::analysis::Unreadable::sketch(model, b))?;
         Ok(relation::decompose(model, &sketch))
     }
 
