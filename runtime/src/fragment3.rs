@@ -16,11 +16,6 @@ use crate::locus3d::{Line3, Plane};
 use crate::roots::{Contact, Intersection};
 use crate::tol;
 
-/// The directions' turn is taken alone when their projections across the axis multiply to at
-/// least this (each then lies over 0.1 rad from the axis): its angle is then exact to about
-/// `eps / 0.1`, and a point could only add its own rounding.
-const DIRECTIONS_DECIDE: f64 = 1e-2;
-
 /// At most this many Gauss-Newton steps refine a turn that a point decides: one or two from
 /// the directions' angle, off by rounding over their distance from the axis; more from a
 /// direction exactly along the axis, which leaves the angle to the point alone (a flange
@@ -66,7 +61,7 @@ pub fn turn_reaching_line(
 /// together: the direction's miss, and the point's miss of the locus (the part of its offset
 /// across the line, or along the plane's normal) divided by the size of the coordinates, so
 /// that each weighs by the inverse of its rounding. When the directions lie well across the
-/// axis (`DIRECTIONS_DECIDE`), or the point moves across the locus no faster than the
+/// axis ([`tol::DIRECTIONS_DECIDE`]), or the point moves across the locus no faster than the
 /// directions turn, their angle stands. Where both hold at the same turn (a consistent joint),
 /// the result is that turn to rounding; otherwise a compromise, which the checks after it
 /// measure. Zero when `axis` is zero.
@@ -257,7 +252,7 @@ fn refine_turn(
     let a = axis / n;
     let (sin, cos) = turn_across(&a, u, v);
     let mut angle = sin.atan2(cos);
-    if sin.hypot(cos) >= DIRECTIONS_DECIDE || !(weight > 0.0 && weight.is_finite()) {
+    if sin.hypot(cos) >= tol::DIRECTIONS_DECIDE || !(weight > 0.0 && weight.is_finite()) {
         return angle;
     }
     let w2 = weight * weight;
@@ -282,7 +277,7 @@ fn refine_turn(
             break;
         }
         angle -= step;
-        if step.abs() <= 4.0 * f64::EPSILON * (1.0 + angle.abs()) {
+        if step.abs() <= tol::STEP_STOP_REL * (1.0 + angle.abs()) {
             break;
         }
     }

@@ -485,7 +485,7 @@ pub fn rotation_between2(a: &Vector2<f64>, b: &Vector2<f64>) -> UnitComplex<f64>
         let inv = 1.0 / mean;
         let (c1, s1) = (c * inv, s * inv);
         let n1 = c1 * c1 + s1 * s1;
-        if (n1 - 1.0).abs() < 1e-8 {
+        if (n1 - 1.0).abs() < tol::NEWTON_UNIT {
             let k = 1.5 - 0.5 * n1;
             return UnitComplex::from_cos_sin_unchecked(c1 * k, s1 * k);
         }
@@ -538,10 +538,10 @@ pub fn rotation_on_circle_from(
 ) -> UnitComplex<f64> {
     let n = c * c + s * s;
     let off = (n - 1.0).abs();
-    if off <= 4.0 * f64::EPSILON {
+    if off <= tol::UNIT_ROUNDING {
         return UnitComplex::from_cos_sin_unchecked(c, s);
     }
-    if off < 1e-8 {
+    if off < tol::NEWTON_UNIT {
         let k = 1.5 - 0.5 * n;
         return UnitComplex::from_cos_sin_unchecked(c * k, s * k);
     }

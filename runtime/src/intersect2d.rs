@@ -715,7 +715,7 @@ impl Curve<'_> {
 #[inline]
 fn first_order(f: f64, g: V2) -> f64 {
     let n = g.norm();
-    if n > 1e-300 {
+    if n > tol::TINY {
         f.abs() / n
     } else {
         f.abs()
@@ -737,7 +737,7 @@ fn polish(x: P2, a: Curve<'_>, b: Curve<'_>) -> P2 {
             break;
         }
         let det = cross(ga, gb);
-        if det.abs() <= 1e-6 * ga.norm() * gb.norm() || !det.is_finite() {
+        if det.abs() <= tol::POLISH_MIN_SIN * ga.norm() * gb.norm() || !det.is_finite() {
             break;
         }
         // Solve [ga; gb] dx = -[fa; fb].
@@ -805,7 +805,7 @@ fn line_conic_t(l: &Line, c: &Conic) -> (Roots<f64, 2>, Contact, Option<P2>) {
             0.0
         };
         // The cheap test first: only a close pair of roots can be a tangency.
-        if split <= 1e-4 * sx
+        if split <= tol::TANGENT_SPLIT_REL * sx
             && finite_p(x0)
             && f.h(x0) >= -eps_h
             && curve.residual(x0) <= tol::TANGENT_REL * sx
@@ -840,7 +840,7 @@ fn line_conic_t(l: &Line, c: &Conic) -> (Roots<f64, 2>, Contact, Option<P2>) {
             let mut u = t;
             for _ in 0..2 {
                 let step = g / dg;
-                if best_g == 0.0 || !step.is_finite() || step.abs() <= f64::EPSILON * u.abs() {
+                if best_g == 0.0 || !step.is_finite() || step.abs() <= tol::ULP * u.abs() {
                     break;
                 }
                 u -= step;
@@ -1064,7 +1064,7 @@ fn param_implicit(a: &Conic, b: Curve<'_>, scale: f64) -> Intersection<P2, 4> {
     if low
         .iter()
         .zip(&mag)
-        .all(|(c, m)| c.abs() <= tol::TANGENT_REL * m.max(top * 1e-3))
+        .all(|(c, m)| c.abs() <= tol::TANGENT_REL * m.max(top * tol::COINCIDENT_FLOOR_REL))
     {
         return Intersection::none(Contact::Coincident);
     }
@@ -1100,10 +1100,9 @@ fn param_implicit(a: &Conic, b: Curve<'_>, scale: f64) -> Intersection<P2, 4> {
     for r in roots.as_slice() {
         let Some((t, x)) = valid(r.x) else { continue };
         // A root that a tangent point absorbs: its close partner in the merged pair.
-        let absorbed = tangents
-            .as_slice()
-            .iter()
-            .any(|&(_, _, y)| (x - y).norm() <= 1e-4 * scale.max(y.coords.norm()));
+        let absorbed = tangents.as_slice().iter().any(|&(_, _, y)| {
+            (x - y).norm() <= tol::TANGENT_ABSORB_REL * scale.max(y.coords.norm())
+        });
         if absorbed {
             continue;
         }

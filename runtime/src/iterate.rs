@@ -145,11 +145,6 @@ use nalgebra::{SMatrix, SVector};
 use crate::num::is_finite;
 use crate::tol;
 
-/// `sqrt(f64::EPSILON)`: the relative size of a forward-difference step (it balances the
-/// truncation error of the difference against the rounding of the two values), and the
-/// relative precision to which a minimum's location can be found from function values.
-const SQRT_EPS: f64 = 1.490_116_119_384_765_6e-8;
-
 /// The longest step, in units of each default's scale: half an angle's radian, half a model's
 /// size. Newton steps longer than this usually mean the start is far from the root, and the
 /// bound keeps the iteration on the assembly (branch) it started on.
@@ -175,9 +170,6 @@ const MIN_SAMPLES: u32 = 8;
 /// failing stretches riddle.
 const MAX_SPLITS: u32 = 4;
 
-/// Roots of [`all_roots`] closer than this times `hi - lo` are the same root.
-const SAME_ROOT_REL: f64 = 1e-9;
-
 /// How an outer iteration stops.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -193,15 +185,15 @@ pub struct Settings {
 }
 
 impl Default for Settings {
-    /// Tolerance `1e-10`: far above the rounding of an assembly of a model of size up to about
-    /// 1e3 (whose residuals end near 1e-13), far below any error a drawing shows; the answer is
-    /// polished to rounding level past it anyway. Budget `200`: a converging Newton iteration
+    /// Tolerance [`tol::OUTER_DEFAULT`] (`1e-10`): far above the rounding of an assembly of a
+    /// model of size up to about 1e3 (whose residuals end near 1e-13), far below any error a
+    /// drawing shows; the answer is polished to rounding level past it anyway. Budget `200`: a converging Newton iteration
     /// needs under ten steps of `N + 1` evaluations, bracketing about sixty halvings of a whole
     /// turn to reach rounding level, so 200 is ample for both and still bounds a failing
     /// iteration to a fraction of a millisecond of assemblies.
     fn default() -> Self {
         Self {
-            tolerance: 1e-10,
+            tolerance: tol::OUTER_DEFAULT,
             rounding: 0.0,
             max_evaluations: 200,
         }
@@ -646,7 +638,7 @@ fn quick<E>(
     if fb.abs() <= settings.rounding {
         return stop(x, (xb, fb), 0);
     }
-    let h = SQRT_EPS * xb.abs().max(scale);
+    let h = tol::SQRT_EPS * xb.abs().max(scale);
     let Some(fh) = eval(xb + h, budget) else {
         // No slope here: the search tries the other side.
         return Quick::Handover {
@@ -807,7 +799,7 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
     /// The shortest step worth taking from `x`: below the finite-difference step the
     /// derivative says nothing.
     fn min_step(&self, x: f64) -> f64 {
-        SQRT_EPS * x.abs().max(self.scale)
+        tol::SQRT_EPS * x.abs().max(self.scale)
     }
 
     /// Records a good point: the bracket, and the best point.
@@ -869,7 +861,7 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
     fn settle(&mut self, x0: f64, tolerance: f64) -> bool {
         let (x1, f1) = (self.best_x, self.best_f);
         let sign = f1.signum();
-        let abs_tol = 1e-3 * SQRT_EPS * self.scale;
+        let abs_tol = tol::LOCATE_ABS * tol::SQRT_EPS * self.scale;
         let found = valley(
             x0.min(x1),
             x0.max(x1),
@@ -1196,7 +1188,7 @@ impl<F: FnMut(&[f64; N], &mut [f64; N]) -> bool, const N: usize> System<F, N> {
     fn jacobian(&mut self) -> Option<SMatrix<f64, N, N>> {
         let mut jacobian = SMatrix::<f64, N, N>::zeros();
         for j in 0..N {
-            let h = SQRT_EPS * self.x[j].abs().max(self.scale[j]);
+            let h = tol::SQRT_EPS * self.x[j].abs().max(self.scale[j]);
             for dx in [h, -h] {
                 let mut p = self.x;
                 p[j] += dx;
@@ -1219,7 +1211,7 @@ impl<F: FnMut(&[f64; N], &mut [f64; N]) -> bool, const N: usize> System<F, N> {
         for i in 0..N {
             size = size.max((self.x[i] / self.scale[i]).abs());
         }
-        4.0 * f64::EPSILON * size
+        tol::STEP_STOP_REL * size
     }
 
     fn accept(&mut self, x: SVector<f64, N>, r: SVector<f64, N>) {
@@ -1263,7 +1255,7 @@ impl<F: FnMut(&[f64; N], &mut [f64; N]) -> bool, const N: usize> System<F, N> {
                     Probe::Good(rt) => {
                         let actual = norm2 - rt.norm_squared();
                         let ratio = actual / predicted;
-                        if actual > 0.0 && (predicted <= 0.0 || ratio >= 1e-4) {
+                        if actual > 0.0 && (predicted <= 0.0 || ratio >= tol::TRUST_ACCEPT) {
                             if ratio < 0.25 {
                                 self.radius = 0.25 * length;
                             } else if ratio > 0.75 && length >= 0.99 * self.radius {
@@ -1678,7 +1670,8 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
             boundary,
         };
         let period = self.periodic.then_some(self.span);
-        self.scan.insert(found, SAME_ROOT_REL * self.span, period);
+        self.scan
+            .insert(found, tol::SAME_ROOT_REL * self.span, period);
     }
 
     /// Adds a grid sample, with a boundary point before it when exactly one of it and the
@@ -1862,7 +1855,7 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
             return;
         }
         let mut budget = Budget::new(self.limit);
-        let abs_tol = 1e-3 * f64::EPSILON * self.span;
+        let abs_tol = tol::LOCATE_ABS * tol::ULP * self.span;
         // `b` is the best point, `c` the other end of the bracket, `a` the previous `b`.
         let (mut a, mut fa, mut b, mut fb) = (a, fa, b, fb);
         let (mut c, mut fc) = (a, fa);
@@ -1874,7 +1867,7 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
                 (b, fb) = (c, fc);
                 (c, fc) = (a, fa);
             }
-            let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * abs_tol;
+            let tol1 = 2.0 * tol::ULP * b.abs() + 0.5 * abs_tol;
             let half = 0.5 * (c - b);
             if half.abs() <= tol1 || fb == 0.0 {
                 break;
@@ -1960,7 +1953,7 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
     /// [`valley`].
     fn minimize(&mut self, a: f64, b: f64, x0: f64, f0: f64, sign: f64) -> Valley {
         let mut budget = Budget::new(self.limit);
-        let abs_tol = 1e-3 * SQRT_EPS * self.span;
+        let abs_tol = tol::LOCATE_ABS * tol::SQRT_EPS * self.span;
         let tolerance = self.tolerance;
         valley(a, b, (x0, f0), sign, tolerance, abs_tol, |u| {
             self.probe(&mut budget, u)
@@ -1991,7 +1984,7 @@ fn valley(
     let (mut d, mut e): (f64, f64) = (0.0, 0.0);
     loop {
         let mid = 0.5 * (a + b);
-        let tol1 = SQRT_EPS * x.abs() + abs_tol;
+        let tol1 = tol::SQRT_EPS * x.abs() + abs_tol;
         let tol2 = 2.0 * tol1;
         if (x - mid).abs() <= tol2 - 0.5 * (b - a) {
             break;
@@ -2056,7 +2049,7 @@ fn valley(
     // only to its resolution: a step either side gives the V's slope, and where its sides
     // meet is tried (for a smooth bottom, one more point near it).
     if gx > tolerance {
-        let h = 2.0 * (SQRT_EPS * x.abs() + abs_tol);
+        let h = 2.0 * (tol::SQRT_EPS * x.abs() + abs_tol);
         let mut sides = [0.0; 2];
         for (side, t) in sides.iter_mut().zip([x - h, x + h]) {
             match probe(t) {

@@ -355,7 +355,7 @@ impl Circle {
     }
 
     /// The error of an outer iteration that closes on the circle: [`Circle::implicit`],
-    /// except within [`Circle::FIRST_ORDER`] of the circle, where it is the power of `p`
+    /// except within [`tol::CIRCLE_FIRST_ORDER`] of the circle, where it is the power of `p`
     /// over the diameter, `(|p - center|² - radius²) / (2 radius)`: no square root on the
     /// path from one trial to the next (about a tenth of a warm triad's solve). The two have
     /// the same sign and root and agree to first order: the power is the distance times
@@ -365,7 +365,7 @@ impl Circle {
     pub fn closing_error(&self, p: P2) -> f64 {
         let squared = (p - self.center).norm_squared();
         let power = squared - self.radius * self.radius;
-        if power.abs() < Self::FIRST_ORDER * self.radius * self.radius {
+        if power.abs() < tol::CIRCLE_FIRST_ORDER * self.radius * self.radius {
             power * (0.5 / self.radius)
         } else {
             Self::far_error(squared, self.radius)
@@ -380,10 +380,6 @@ impl Circle {
     fn far_error(squared: f64, radius: f64) -> f64 {
         squared.sqrt() - radius
     }
-
-    /// Where [`Circle::closing_error`] is first-order: the power within this fraction of the
-    /// radius squared (the distance within about half of it times the radius).
-    pub const FIRST_ORDER: f64 = 1e-2;
 }
 
 /// A parabola: the points equidistant from a focus and a directed directrix, on the directrix's
@@ -649,7 +645,7 @@ impl Hyperbola {
 /// `|f| / |∇f|`, the first-order distance to the zero set; `|f|` where the gradient vanishes.
 #[inline]
 fn first_order(f: f64, grad: f64) -> f64 {
-    if grad > 1e-300 {
+    if grad > tol::TINY {
         f.abs() / grad
     } else {
         f.abs()

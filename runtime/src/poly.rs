@@ -320,7 +320,7 @@ fn cubic_starts(a: f64, b: f64, c: f64, d: f64) -> ([f64; 3], usize) {
 }
 
 /// [`cubic_starts`], ascending when there are three, and whether the discriminant is clearly
-/// away from zero (relative `1e-10`), so that the roots are well separated and accurate.
+/// away from zero (relative [`tol::CUBIC_CLEAR_REL`]), so that the roots are well separated and accurate.
 #[inline]
 fn cubic_starts_checked(a: f64, b: f64, c: f64, d: f64) -> ([f64; 3], usize, bool) {
     let (b, c, d) = (b / a, c / a, d / a);
@@ -332,7 +332,7 @@ fn cubic_starts_checked(a: f64, b: f64, c: f64, d: f64) -> ([f64; 3], usize, boo
     let (qq, ppp) = (q2 * q2, p3 * p3 * p3);
     let delta = qq + ppp;
     // Rounding in p and q (from the shift) and in the discriminant itself.
-    let noise = 1e-10 * (qq + ppp.abs() + (shift * shift).powi(3));
+    let noise = tol::CUBIC_CLEAR_REL * (qq + ppp.abs() + (shift * shift).powi(3));
     let clear = delta.abs() > noise && delta.is_finite();
     if delta < 0.0 {
         // Three real roots: t = 2 √(-p/3) cos(φ - 2πk/3), cos 3φ = -q/2 / (-p/3)^(3/2).
@@ -675,7 +675,7 @@ impl Slot {
             eval_compensated(c, x)
         } else {
             let (p, dp, half_ddp, mag) = eval_plain(c, x);
-            if p.abs() <= 2.0 * N as f64 * f64::EPSILON * mag {
+            if p.abs() <= 2.0 * N as f64 * tol::ULP * mag {
                 // At the rounding level of Horner's rule: as close as it can tell.
                 self.done = true;
                 return;
@@ -700,12 +700,12 @@ impl Slot {
         // quarter unit in the last place, `newton` is the root rounded (its value was computed
         // as if in twice the precision), and no further evaluation could move it.
         let quadratic_error = step * step * half_ddp.abs();
-        if inside && quadratic_error <= 0.25 * f64::EPSILON * newton.abs() * dp.abs() {
+        if inside && quadratic_error <= tol::QUARTER_ULP * newton.abs() * dp.abs() {
             self.x = newton;
             self.done = true;
             return;
         }
-        if step <= 2.0 * f64::EPSILON * x.abs() {
+        if step <= tol::POLY_STEP_REL * x.abs() {
             // Newton's step is at the rounding level: the root is polished.
             if inside {
                 self.x = newton;

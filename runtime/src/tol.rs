@@ -64,13 +64,117 @@ pub const JOINED_REL: f64 = 1e-9;
 /// view is seen end on: an arrow or a line along it is not drawn.
 pub const END_ON: f64 = 1e-9;
 
-/// The magnitude of a set of inputs: the largest absolute value among them, never below 1e-300
-/// so that a tolerance scaled by it is never zero.
+/// One unit in the last place, relative to 1 (`f64::EPSILON`): twice the relative rounding of
+/// one operation. Error bounds that count rounding in ulps use it by this name: Brent's
+/// `2 ULP |b|` of a bracket's end, Horner's `2 n ULP` of a polynomial's magnitude, a Newton step
+/// below one ulp of the point it moves (adding it changes nothing).
+pub const ULP: f64 = f64::EPSILON;
+
+/// `sqrt(f64::EPSILON)`: the relative size of a forward-difference step (it balances the
+/// truncation error of the difference against the rounding of the two values), and the
+/// relative precision to which a minimum's location can be found from function values.
+pub const SQRT_EPS: f64 = 1.490_116_119_384_765_6e-8;
+
+/// The absolute part of the tolerance on a root's or a minimum's location in `iterate`, as a
+/// fraction of the relative one ([`ULP`] or [`SQRT_EPS`]) times the span or scale: a thousandth,
+/// so that a location at or near zero is still found to well below the relative precision of
+/// the locations around it, without iterating forever on one exactly at zero.
+pub const LOCATE_ABS: f64 = 1e-3;
+
+/// A step (or trust radius) at most this relative to the size of what it moves is at the
+/// rounding level, four units in the last place: it no longer changes the point, and an
+/// iteration stops there.
+pub const STEP_STOP_REL: f64 = 4.0 * f64::EPSILON;
+
+/// Roots of `iterate::all_roots` closer than this times `hi - lo` (across the wrap when
+/// periodic) are the same root: a check's ([`CHECK_REL`]) size, far above the precision to
+/// which a root is located, far below any distance between two roots a model means.
+pub const SAME_ROOT_REL: f64 = 1e-9;
+
+/// The default tolerance of an outer iteration (`iterate::Settings::default`), absolute in the
+/// model's units: far above the rounding of an assembly of a model of size up to about 1e3
+/// (whose residuals end near 1e-13), far below any error a drawing shows; the answer is
+/// polished to rounding level past it anyway.
+pub const OUTER_DEFAULT: f64 = 1e-10;
+
+/// The trust-region iteration accepts a step when the reduction of the squared residual it
+/// achieves is at least this fraction of the one its linear model predicted: the customary
+/// small value, which rejects only a step that made things worse or nearly no better, so that
+/// an accurate Jacobian's step is never thrown away for a rounding-level shortfall.
+pub const TRUST_ACCEPT: f64 = 1e-4;
+
+/// The directions' turn in `fragment3` is taken alone when their projections across the axis
+/// multiply to at least this (each then lies over 0.1 rad from the axis): its angle is then
+/// exact to about `eps / 0.1`, and a point could only add its own rounding.
+pub const DIRECTIONS_DECIDE: f64 = 1e-2;
+
+/// How far from 1 a rotation's `c² + s²` may be for one Newton step on the norm,
+/// `(c, s) (3 - n) / 2`, to make it unit to rounding: the step leaves about `(3/8) off²`,
+/// `(3/8) 1e-16` here, below one ulp. Past it (lengths that differ by more than about 5e-9
+/// relative each) the rotation is normalised exactly, by a square root.
+pub const NEWTON_UNIT: f64 = 1e-8;
+
+/// A rotation's `|c² + s² - 1|` at most this is unit to rounding (four units in the last place,
+/// as a cosine and sine computed from a point on its circle are): it is used as it is.
+pub const UNIT_ROUNDING: f64 = 4.0 * f64::EPSILON;
+
+/// The smallest magnitude counted as nonzero: a scale (see [`scale`]) is never below it, and a
+/// gradient no longer than it vanishes (a first-order distance `|f| / |∇f|` is then `|f|`). A
+/// normal number far below any model's size, so that a tolerance scaled by it is never zero
+/// and a division by a length above it does not overflow for any finite numerator of a model.
+pub const TINY: f64 = 1e-300;
+
+/// Newton's polishing of a point where two 2D curves cross is skipped when the sine of the
+/// angle between their gradients is at most this: the curves are then nearly tangent, the
+/// step's error grows as the inverse of that sine, and the point as found is kept.
+pub const POLISH_MIN_SIN: f64 = 1e-6;
+
+/// A line meets a conic in a close pair of roots that may be one tangency when half their
+/// distance is at most this, relative to the point's magnitude: the cheap test before the
+/// tangency's own test ([`TANGENT_REL`] on the residual), wide enough for any pair a rounding
+/// of [`TANGENT_REL`] size splits a double root into (the split grows as its square root).
+pub const TANGENT_SPLIT_REL: f64 = 1e-4;
+
+/// A root of two conics' crossing within this (relative to the larger of the scale and the
+/// tangent point's magnitude) of a tangent point found for the same pair is that tangency's
+/// close partner, absorbed into it: a double root split by rounding lies about the square root
+/// of [`TANGENT_REL`] from it, well within.
+pub const TANGENT_ABSORB_REL: f64 = 1e-4;
+
+/// The floor, as a fraction of the largest coefficient magnitude, under each coefficient's own
+/// magnitude when two conics are tested for coincidence (every coefficient of one substituted
+/// into the other within [`TANGENT_REL`] of it): a coefficient whose terms all nearly vanish is
+/// judged against a thousandth of the largest, not against its own rounding alone.
+pub const COINCIDENT_FLOOR_REL: f64 = 1e-3;
+
+/// A cubic's discriminant is clearly away from zero (its roots well separated and accurate)
+/// when it exceeds this times the size of its terms (and the shift's): far above the rounding
+/// in the reduced coefficients and in the discriminant itself.
+pub const CUBIC_CLEAR_REL: f64 = 1e-10;
+
+/// A polynomial root's Newton step is final when its error, about `step² p'' / 2p'`, is at most
+/// this times the root times `|p'|`: a quarter unit in the last place, so that the step's result
+/// is the root rounded and no further evaluation could move it.
+pub const QUARTER_ULP: f64 = 0.25 * f64::EPSILON;
+
+/// A polynomial root's Newton step at most this relative to the point is at the rounding
+/// level (two units in the last place): the root is polished.
+pub const POLY_STEP_REL: f64 = 2.0 * f64::EPSILON;
+
+/// Where a circle's closing error is first-order (`locus2d::Circle::closing_error`): the power
+/// within this fraction of the radius squared (the distance within about half of it times the
+/// radius). Within it the power over the diameter is the distance to within 0.25%, so that a
+/// miss an iteration reports is the distance to that much; outside it the exact distance costs
+/// one square root, on a trial far from closing anyway.
+pub const CIRCLE_FIRST_ORDER: f64 = 1e-2;
+
+/// The magnitude of a set of inputs: the largest absolute value among them, never below [`TINY`]
+/// (1e-300) so that a tolerance scaled by it is never zero.
 #[inline]
 pub fn scale(values: &[f64]) -> f64 {
     // A plain comparison, not `f64::max`: it skips a NaN just the same and compiles to one
     // instruction, where `max` needs several to order signed zeros and NaNs.
-    let mut s: f64 = 1e-300;
+    let mut s: f64 = TINY;
     for v in values {
         let a = v.abs();
         if a > s {
