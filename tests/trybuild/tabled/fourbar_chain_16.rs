@@ -207,10 +207,9 @@ impl Solution {
 
     /// Every frame of the solution, by its dotted name in the model, in model order.
     pub fn frames(&self) -> impl Iterator<Item = (&'static str, Frame2)> + '_ {
-        FRAMES
-            .iter()
-            .enumerate()
-            .map(|(k, v)| (text(v.name), self.frame_at(k)))
+        (0..FRAMES.len() / 3).filter_map(move |k| {
+            Some((text(access(&FRAMES, 1, &[], 0, k)?.name), self.frame_at(k)))
+        })
     }
 
     /// The frame called `name` (its dotted name in the model), if the solution has it.
@@ -222,7 +221,7 @@ impl Solution {
     /// store's slots it reads and its constants (`FRAMES`).
     #[allow(unused_variables, clippy::match_single_binding)]
     fn frame_at(&self, k: usize) -> Frame2 {
-        let Some(row) = FRAMES.get(k) else {
+        let Some(row) = access(&FRAMES, 1, &[], 0, k) else {
             return Frame2::default();
         };
         match row.shape {
@@ -235,10 +234,12 @@ impl Solution {
 
     /// Every point of the solution, by its dotted name in the model, in model order.
     pub fn points(&self) -> impl Iterator<Item = (&'static str, Point2<f64>)> + '_ {
-        POINTS
-            .iter()
-            .enumerate()
-            .map(|(k, v)| (text(v.name), self.point_at(k)))
+        (0..POINTS.len() / 3).filter_map(move |k| {
+            Some((
+                text(access(&POINTS, 1, &POINTS_K, 1, k)?.name),
+                self.point_at(k),
+            ))
+        })
     }
 
     /// The point called `name` (its dotted name in the model), if the solution has it.
@@ -250,7 +251,7 @@ impl Solution {
     /// store's slots it reads and its constants (`POINTS`).
     #[allow(unused_variables, clippy::match_single_binding)]
     fn point_at(&self, k: usize) -> Point2<f64> {
-        let Some(row) = POINTS.get(k) else {
+        let Some(row) = access(&POINTS, 1, &POINTS_K, 1, k) else {
             return Point2::origin();
         };
         match row.shape {
@@ -273,10 +274,12 @@ impl Solution {
 
     /// Every vector of the solution, by its dotted name in the model, in model order.
     pub fn vectors(&self) -> impl Iterator<Item = (&'static str, Vector2<f64>)> + '_ {
-        VECTORS
-            .iter()
-            .enumerate()
-            .map(|(k, v)| (text(v.name), self.vector_at(k)))
+        (0..VECTORS.len() / 2).filter_map(move |k| {
+            Some((
+                text(access(&VECTORS, 0, &[], 0, k)?.name),
+                self.vector_at(k),
+            ))
+        })
     }
 
     /// The vector called `name` (its dotted name in the model), if the solution has it.
@@ -288,7 +291,7 @@ impl Solution {
     /// store's slots it reads and its constants (`VECTORS`).
     #[allow(unused_variables, clippy::match_single_binding)]
     fn vector_at(&self, k: usize) -> Vector2<f64> {
-        let Some(row) = VECTORS.get(k) else {
+        let Some(row) = access(&VECTORS, 0, &[], 0, k) else {
             return Vector2::zeros();
         };
         match row.shape {
@@ -302,10 +305,12 @@ impl Solution {
 
     /// Every scalar of the solution, by its dotted name in the model, in model order.
     pub fn scalars(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
-        SCALARS
-            .iter()
-            .enumerate()
-            .map(|(k, v)| (text(v.name), self.scalar_at(k)))
+        (0..SCALARS.len() / 2).filter_map(move |k| {
+            Some((
+                text(access(&SCALARS, 0, &[], 0, k)?.name),
+                self.scalar_at(k),
+            ))
+        })
     }
 
     /// The scalar called `name` (its dotted name in the model), if the solution has it.
@@ -317,7 +322,7 @@ impl Solution {
     /// store's slots it reads and its constants (`SCALARS`).
     #[allow(unused_variables, clippy::match_single_binding)]
     fn scalar_at(&self, k: usize) -> f64 {
-        let Some(row) = SCALARS.get(k) else {
+        let Some(row) = access(&SCALARS, 0, &[], 0, k) else {
             return 0.0;
         };
         match row.shape {
@@ -329,11 +334,29 @@ impl Solution {
 /// A value of the solution: its name's id, the shape of its accessor, the store's slots it
 /// reads and its constants.
 #[derive(Clone, Copy, Debug)]
-struct Access<const A: usize, const K: usize> {
+struct Access {
     name: u32,
-    shape: u16,
-    at: [u32; A],
-    k: [f64; K],
+    shape: u32,
+    at: &'static [u32],
+    k: &'static [f64],
+}
+
+/// Value `k` of a solution's tables: `ids` holds each value's name, shape and `at` slots,
+/// `ks` its `kw` constants.
+fn access(
+    ids: &'static [u32],
+    at: usize,
+    ks: &'static [f64],
+    kw: usize,
+    k: usize,
+) -> Option<Access> {
+    let row = ids.get(k * (2 + at)..(k + 1) * (2 + at))?;
+    Some(Access {
+        name: row[0],
+        shape: row[1],
+        at: &row[2..],
+        k: ks.get(k * kw..(k + 1) * kw).unwrap_or(&[]),
+    })
 }
 
 /// The index, in model order, of the entry called `name` of a table sorted by name
@@ -364,21 +387,128 @@ pub fn solve_into(
     for &[shape, row] in SKETCH_ORDER.iter() {
         let row = row as usize;
         match shape {
-            0 => sketch_0(store, params, &p, &mut tol_scale, &SKETCH_0[row]),
-            1 => sketch_1(store, params, &p, &mut tol_scale, &SKETCH_1[row]),
-            2 => sketch_2(store, params, &p, &mut tol_scale, &SKETCH_2[row]),
-            3 => sketch_3(store, params, &p, &mut tol_scale, &SKETCH_3[row]),
-            _ => sketch_4(store, params, &p, &mut tol_scale, &SKETCH_4[row]),
+            0 => sketch_0(
+                store,
+                params,
+                &p,
+                &mut tol_scale,
+                &Row {
+                    at: &[],
+                    k: &[],
+                    text: &[],
+                    input: &[],
+                },
+            ),
+            1 => sketch_1(
+                store,
+                params,
+                &p,
+                &mut tol_scale,
+                &Row {
+                    at: row_of(&SKETCH_1_AT, row, 8),
+                    k: row_of(&SKETCH_1_K, row, 6),
+                    text: &[],
+                    input: &[],
+                },
+            ),
+            2 => sketch_2(
+                store,
+                params,
+                &p,
+                &mut tol_scale,
+                &Row {
+                    at: row_of(&SKETCH_2_AT, row, 8),
+                    k: row_of(&SKETCH_2_K, row, 6),
+                    text: &[],
+                    input: &[],
+                },
+            ),
+            3 => sketch_3(
+                store,
+                params,
+                &p,
+                &mut tol_scale,
+                &Row {
+                    at: &[],
+                    k: &[],
+                    text: &[],
+                    input: &[],
+                },
+            ),
+            _ => sketch_4(
+                store,
+                params,
+                &p,
+                &mut tol_scale,
+                &Row {
+                    at: &[],
+                    k: &[],
+                    text: &[],
+                    input: &[],
+                },
+            ),
         }
     }
     let tol = gcs_runtime::tol::CHECK_REL * (1.0 + tol_scale);
     for &[shape, row] in ORDER.iter() {
         let row = row as usize;
         match shape {
-            0 => piece_0(store, params, &p, branches, defaults, tol, &PIECE_0[row])?,
-            1 => piece_1(store, params, &p, branches, defaults, tol, &PIECE_1[row])?,
-            2 => piece_2(store, params, &p, branches, defaults, tol, &PIECE_2[row])?,
-            _ => piece_3(store, params, &p, branches, defaults, tol, &PIECE_3[row])?,
+            0 => piece_0(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                tol,
+                &Row {
+                    at: &[],
+                    k: &[],
+                    text: &[],
+                    input: &[],
+                },
+            )?,
+            1 => piece_1(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                tol,
+                &Row {
+                    at: &[],
+                    k: &[],
+                    text: &[],
+                    input: &[],
+                },
+            )?,
+            2 => piece_2(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                tol,
+                &Row {
+                    at: row_of(&PIECE_2_AT, row, 9),
+                    k: row_of(&PIECE_2_K, row, 8),
+                    text: row_of(&PIECE_2_TEXT, row, 8),
+                    input: row_of(&PIECE_2_INPUT, row, 4),
+                },
+            )?,
+            _ => piece_3(
+                store,
+                params,
+                &p,
+                branches,
+                defaults,
+                tol,
+                &Row {
+                    at: &[],
+                    k: &[],
+                    text: &[],
+                    input: &[],
+                },
+            )?,
         }
     }
     solution.branches = *branches;
@@ -410,13 +540,7 @@ pub fn solve(
     unused_assignments,
     clippy::too_many_arguments
 )]
-fn sketch_0(
-    store: &mut Store,
-    params: &Params,
-    p: &[f64],
-    tol_scale: &mut f64,
-    row: &Row<0, 0, 0, 0>,
-) {
+fn sketch_0(store: &mut Store, params: &Params, p: &[f64], tol_scale: &mut f64, row: &Row<'_>) {
     let x = Frame2::at(Point2::origin());
     store.frame[0] = x;
     let p0 = Frame2::at(Point2::new(0.0, 0.0));
@@ -445,13 +569,7 @@ fn sketch_0(
     unused_assignments,
     clippy::too_many_arguments
 )]
-fn sketch_1(
-    store: &mut Store,
-    params: &Params,
-    p: &[f64],
-    tol_scale: &mut f64,
-    row: &Row<8, 6, 0, 0>,
-) {
+fn sketch_1(store: &mut Store, params: &Params, p: &[f64], tol_scale: &mut f64, row: &Row<'_>) {
     let rocker2 = Frame2::at(Point2::new(row.k[0], 0.0));
     store.frame[row.at[0] as usize] = rocker2;
     let p3 = Frame2::at(Point2::new(row.k[1], 0.0));
@@ -480,13 +598,7 @@ fn sketch_1(
     unused_assignments,
     clippy::too_many_arguments
 )]
-fn sketch_2(
-    store: &mut Store,
-    params: &Params,
-    p: &[f64],
-    tol_scale: &mut f64,
-    row: &Row<8, 6, 0, 0>,
-) {
+fn sketch_2(store: &mut Store, params: &Params, p: &[f64], tol_scale: &mut f64, row: &Row<'_>) {
     let coupler5 = Frame2::at(Point2::new(row.k[0], 0.0));
     store.frame[row.at[0] as usize] = coupler5;
     let rocker5 = Frame2::at(Point2::new(row.k[1], 0.0));
@@ -513,13 +625,7 @@ fn sketch_2(
     unused_assignments,
     clippy::too_many_arguments
 )]
-fn sketch_3(
-    store: &mut Store,
-    params: &Params,
-    p: &[f64],
-    tol_scale: &mut f64,
-    row: &Row<0, 0, 0, 0>,
-) {
+fn sketch_3(store: &mut Store, params: &Params, p: &[f64], tol_scale: &mut f64, row: &Row<'_>) {
     let p8 = Frame2::at(Point2::new(32.0, 0.0));
     store.frame[24] = p8;
     let coupler8 = Frame2::at(Point2::new(29.0, 0.0));
@@ -546,13 +652,7 @@ fn sketch_3(
     unused_assignments,
     clippy::too_many_arguments
 )]
-fn sketch_4(
-    store: &mut Store,
-    params: &Params,
-    p: &[f64],
-    tol_scale: &mut f64,
-    row: &Row<0, 0, 0, 0>,
-) {
+fn sketch_4(store: &mut Store, params: &Params, p: &[f64], tol_scale: &mut f64, row: &Row<'_>) {
     let p16 = Frame2::at(Point2::new(64.0, 0.0));
     store.frame[48] = p16;
     let coupler16 = Frame2::at(Point2::new(61.0, 0.0));
@@ -579,7 +679,7 @@ fn piece_0(
     branches: &Branches,
     defaults: &Defaults,
     tol: f64,
-    row: &Row<0, 0, 0, 0>,
+    row: &Row<'_>,
 ) -> Result<(), SolveError> {
     // coincident(crank.a, P0) (fourbar_chain_16.gcs:9)
     // Already true where the sketch puts the geoms: nothing moves.
@@ -624,7 +724,7 @@ fn piece_1(
     branches: &Branches,
     defaults: &Defaults,
     tol: f64,
-    row: &Row<0, 0, 0, 0>,
+    row: &Row<'_>,
 ) -> Result<(), SolveError> {
     let mut crank = store.frame[2];
     let mut coupler1 = store.frame[4];
@@ -806,7 +906,7 @@ fn piece_2(
     branches: &Branches,
     defaults: &Defaults,
     tol: f64,
-    row: &Row<9, 8, 8, 4>,
+    row: &Row<'_>,
 ) -> Result<(), SolveError> {
     let rocker3 = store.frame[row.at[8] as usize];
     let mut coupler4 = store.frame[row.at[0] as usize];
@@ -1015,7 +1115,7 @@ fn piece_3(
     branches: &Branches,
     defaults: &Defaults,
     tol: f64,
-    row: &Row<0, 0, 0, 0>,
+    row: &Row<'_>,
 ) -> Result<(), SolveError> {
     let rocker15 = store.frame[47];
     let mut coupler16 = store.frame[49];
@@ -1073,11 +1173,16 @@ fn piece_3(
 /// A piece's data: the store's slots it reads and writes, its constants, the names its
 /// errors give (ids of `text`), and the params, branch variables or defaults it reads.
 #[derive(Clone, Copy, Debug)]
-struct Row<const A: usize, const K: usize, const T: usize, const I: usize> {
-    at: [u32; A],
-    k: [f64; K],
-    text: [u32; T],
-    input: [u32; I],
+struct Row<'a> {
+    at: &'a [u32],
+    k: &'a [f64],
+    text: &'a [u32],
+    input: &'a [u32],
+}
+
+/// Row `row` of a flat table of rows `width` entries wide.
+fn row_of<T>(table: &'static [T], row: usize, width: usize) -> &'static [T] {
+    table.get(row * width..(row + 1) * width).unwrap_or(&[])
 }
 
 /// String `id` of the tables (`STRINGS`, `STRING_AT`).
@@ -1131,24 +1236,24 @@ static DEFAULTS_BY_NAME: [[u32; 2]; 0] = [
 ];
 
 #[rustfmt::skip]
-static FRAMES: [Access<1, 0>; 17] = [
-    Access { name: 48, shape: 0, at: [2], k: [] },
-    Access { name: 49, shape: 0, at: [5], k: [] },
-    Access { name: 50, shape: 0, at: [8], k: [] },
-    Access { name: 51, shape: 0, at: [11], k: [] },
-    Access { name: 52, shape: 0, at: [14], k: [] },
-    Access { name: 53, shape: 0, at: [17], k: [] },
-    Access { name: 54, shape: 0, at: [20], k: [] },
-    Access { name: 55, shape: 0, at: [23], k: [] },
-    Access { name: 56, shape: 0, at: [26], k: [] },
-    Access { name: 57, shape: 0, at: [29], k: [] },
-    Access { name: 58, shape: 0, at: [32], k: [] },
-    Access { name: 59, shape: 0, at: [35], k: [] },
-    Access { name: 60, shape: 0, at: [38], k: [] },
-    Access { name: 61, shape: 0, at: [41], k: [] },
-    Access { name: 62, shape: 0, at: [44], k: [] },
-    Access { name: 63, shape: 0, at: [47], k: [] },
-    Access { name: 64, shape: 0, at: [50], k: [] },
+static FRAMES: [u32; 51] = [
+    48, 0, 2,
+    49, 0, 5,
+    50, 0, 8,
+    51, 0, 11,
+    52, 0, 14,
+    53, 0, 17,
+    54, 0, 20,
+    55, 0, 23,
+    56, 0, 26,
+    57, 0, 29,
+    58, 0, 32,
+    59, 0, 35,
+    60, 0, 38,
+    61, 0, 41,
+    62, 0, 44,
+    63, 0, 47,
+    64, 0, 50,
 ];
 
 #[rustfmt::skip]
@@ -1159,74 +1264,145 @@ static FRAMES_BY_NAME: [[u32; 2]; 17] = [
 ];
 
 #[rustfmt::skip]
-static POINTS: [Access<1, 1>; 67] = [
-    Access { name: 65, shape: 0, at: [0], k: [0.0] },
-    Access { name: 66, shape: 1, at: [2], k: [0.0] },
-    Access { name: 67, shape: 2, at: [0], k: [0.0] },
-    Access { name: 68, shape: 3, at: [0], k: [4.0] },
-    Access { name: 69, shape: 1, at: [5], k: [0.0] },
-    Access { name: 70, shape: 4, at: [5], k: [3.0] },
-    Access { name: 71, shape: 4, at: [5], k: [-1.5] },
-    Access { name: 72, shape: 3, at: [0], k: [8.0] },
-    Access { name: 73, shape: 1, at: [8], k: [0.0] },
-    Access { name: 74, shape: 4, at: [8], k: [3.0] },
-    Access { name: 75, shape: 4, at: [8], k: [-1.5] },
-    Access { name: 76, shape: 3, at: [0], k: [12.0] },
-    Access { name: 77, shape: 1, at: [11], k: [0.0] },
-    Access { name: 78, shape: 4, at: [11], k: [3.0] },
-    Access { name: 79, shape: 4, at: [11], k: [-1.5] },
-    Access { name: 80, shape: 3, at: [0], k: [16.0] },
-    Access { name: 81, shape: 1, at: [14], k: [0.0] },
-    Access { name: 82, shape: 4, at: [14], k: [3.0] },
-    Access { name: 83, shape: 4, at: [14], k: [-1.5] },
-    Access { name: 84, shape: 3, at: [0], k: [20.0] },
-    Access { name: 85, shape: 1, at: [17], k: [0.0] },
-    Access { name: 86, shape: 4, at: [17], k: [3.0] },
-    Access { name: 87, shape: 4, at: [17], k: [-1.5] },
-    Access { name: 88, shape: 3, at: [0], k: [24.0] },
-    Access { name: 89, shape: 1, at: [20], k: [0.0] },
-    Access { name: 90, shape: 4, at: [20], k: [3.0] },
-    Access { name: 91, shape: 4, at: [20], k: [-1.5] },
-    Access { name: 92, shape: 3, at: [0], k: [28.0] },
-    Access { name: 93, shape: 1, at: [23], k: [0.0] },
-    Access { name: 94, shape: 4, at: [23], k: [3.0] },
-    Access { name: 95, shape: 4, at: [23], k: [-1.5] },
-    Access { name: 96, shape: 3, at: [0], k: [32.0] },
-    Access { name: 97, shape: 1, at: [26], k: [0.0] },
-    Access { name: 98, shape: 4, at: [26], k: [3.0] },
-    Access { name: 99, shape: 4, at: [26], k: [-1.5] },
-    Access { name: 100, shape: 3, at: [0], k: [36.0] },
-    Access { name: 101, shape: 1, at: [29], k: [0.0] },
-    Access { name: 102, shape: 4, at: [29], k: [3.0] },
-    Access { name: 103, shape: 4, at: [29], k: [-1.5] },
-    Access { name: 104, shape: 3, at: [0], k: [40.0] },
-    Access { name: 105, shape: 1, at: [32], k: [0.0] },
-    Access { name: 106, shape: 4, at: [32], k: [3.0] },
-    Access { name: 107, shape: 4, at: [32], k: [-1.5] },
-    Access { name: 108, shape: 3, at: [0], k: [44.0] },
-    Access { name: 109, shape: 1, at: [35], k: [0.0] },
-    Access { name: 110, shape: 4, at: [35], k: [3.0] },
-    Access { name: 111, shape: 4, at: [35], k: [-1.5] },
-    Access { name: 112, shape: 3, at: [0], k: [48.0] },
-    Access { name: 113, shape: 1, at: [38], k: [0.0] },
-    Access { name: 114, shape: 4, at: [38], k: [3.0] },
-    Access { name: 115, shape: 4, at: [38], k: [-1.5] },
-    Access { name: 116, shape: 3, at: [0], k: [52.0] },
-    Access { name: 117, shape: 1, at: [41], k: [0.0] },
-    Access { name: 118, shape: 4, at: [41], k: [3.0] },
-    Access { name: 119, shape: 4, at: [41], k: [-1.5] },
-    Access { name: 120, shape: 3, at: [0], k: [56.0] },
-    Access { name: 121, shape: 1, at: [44], k: [0.0] },
-    Access { name: 122, shape: 4, at: [44], k: [3.0] },
-    Access { name: 123, shape: 4, at: [44], k: [-1.5] },
-    Access { name: 124, shape: 3, at: [0], k: [60.0] },
-    Access { name: 125, shape: 1, at: [47], k: [0.0] },
-    Access { name: 126, shape: 4, at: [47], k: [3.0] },
-    Access { name: 127, shape: 4, at: [47], k: [-1.5] },
-    Access { name: 128, shape: 3, at: [0], k: [64.0] },
-    Access { name: 129, shape: 1, at: [50], k: [0.0] },
-    Access { name: 130, shape: 4, at: [50], k: [3.0] },
-    Access { name: 131, shape: 4, at: [50], k: [-1.5] },
+static POINTS: [u32; 201] = [
+    65, 0, 0,
+    66, 1, 2,
+    67, 2, 0,
+    68, 3, 0,
+    69, 1, 5,
+    70, 4, 5,
+    71, 4, 5,
+    72, 3, 0,
+    73, 1, 8,
+    74, 4, 8,
+    75, 4, 8,
+    76, 3, 0,
+    77, 1, 11,
+    78, 4, 11,
+    79, 4, 11,
+    80, 3, 0,
+    81, 1, 14,
+    82, 4, 14,
+    83, 4, 14,
+    84, 3, 0,
+    85, 1, 17,
+    86, 4, 17,
+    87, 4, 17,
+    88, 3, 0,
+    89, 1, 20,
+    90, 4, 20,
+    91, 4, 20,
+    92, 3, 0,
+    93, 1, 23,
+    94, 4, 23,
+    95, 4, 23,
+    96, 3, 0,
+    97, 1, 26,
+    98, 4, 26,
+    99, 4, 26,
+    100, 3, 0,
+    101, 1, 29,
+    102, 4, 29,
+    103, 4, 29,
+    104, 3, 0,
+    105, 1, 32,
+    106, 4, 32,
+    107, 4, 32,
+    108, 3, 0,
+    109, 1, 35,
+    110, 4, 35,
+    111, 4, 35,
+    112, 3, 0,
+    113, 1, 38,
+    114, 4, 38,
+    115, 4, 38,
+    116, 3, 0,
+    117, 1, 41,
+    118, 4, 41,
+    119, 4, 41,
+    120, 3, 0,
+    121, 1, 44,
+    122, 4, 44,
+    123, 4, 44,
+    124, 3, 0,
+    125, 1, 47,
+    126, 4, 47,
+    127, 4, 47,
+    128, 3, 0,
+    129, 1, 50,
+    130, 4, 50,
+    131, 4, 50,
+];
+
+#[rustfmt::skip]
+static POINTS_K: [f64; 67] = [
+    0.0,
+    0.0,
+    0.0,
+    4.0,
+    0.0,
+    3.0,
+    -1.5,
+    8.0,
+    0.0,
+    3.0,
+    -1.5,
+    12.0,
+    0.0,
+    3.0,
+    -1.5,
+    16.0,
+    0.0,
+    3.0,
+    -1.5,
+    20.0,
+    0.0,
+    3.0,
+    -1.5,
+    24.0,
+    0.0,
+    3.0,
+    -1.5,
+    28.0,
+    0.0,
+    3.0,
+    -1.5,
+    32.0,
+    0.0,
+    3.0,
+    -1.5,
+    36.0,
+    0.0,
+    3.0,
+    -1.5,
+    40.0,
+    0.0,
+    3.0,
+    -1.5,
+    44.0,
+    0.0,
+    3.0,
+    -1.5,
+    48.0,
+    0.0,
+    3.0,
+    -1.5,
+    52.0,
+    0.0,
+    3.0,
+    -1.5,
+    56.0,
+    0.0,
+    3.0,
+    -1.5,
+    60.0,
+    0.0,
+    3.0,
+    -1.5,
+    64.0,
+    0.0,
+    3.0,
+    -1.5,
 ];
 
 #[rustfmt::skip]
@@ -1243,9 +1419,9 @@ static POINTS_BY_NAME: [[u32; 2]; 67] = [
 ];
 
 #[rustfmt::skip]
-static VECTORS: [Access<0, 0>; 2] = [
-    Access { name: 132, shape: 0, at: [], k: [] },
-    Access { name: 133, shape: 1, at: [], k: [] },
+static VECTORS: [u32; 4] = [
+    132, 0,
+    133, 1,
 ];
 
 #[rustfmt::skip]
@@ -1254,7 +1430,7 @@ static VECTORS_BY_NAME: [[u32; 2]; 2] = [
 ];
 
 #[rustfmt::skip]
-static SCALARS: [Access<0, 0>; 0] = [
+static SCALARS: [u32; 0] = [
 ];
 
 #[rustfmt::skip]
@@ -1262,53 +1438,55 @@ static SCALARS_BY_NAME: [[u32; 2]; 0] = [
 ];
 
 #[rustfmt::skip]
-static SKETCH_0: [Row<0, 0, 0, 0>; 1] = [
-    Row { at: [], k: [], text: [], input: [] }, // the sketch of `X`, ...
+static SKETCH_1_AT: [u32; 16] = [
+    8, 9, 10, 11, 12, 13, 14, 15, // the sketch of `rocker2`, ...
+    32, 33, 34, 35, 36, 37, 38, 39, // the sketch of `rocker10`, ...
 ];
 
 #[rustfmt::skip]
-static SKETCH_1: [Row<8, 6, 0, 0>; 2] = [
-    Row { at: [8, 9, 10, 11, 12, 13, 14, 15], k: [8.0, 12.0, 9.0, 16.0, 13.0, 20.0], text: [], input: [] }, // the sketch of `rocker2`, ...
-    Row { at: [32, 33, 34, 35, 36, 37, 38, 39], k: [40.0, 44.0, 41.0, 48.0, 45.0, 52.0], text: [], input: [] }, // the sketch of `rocker10`, ...
+static SKETCH_1_K: [f64; 12] = [
+    8.0, 12.0, 9.0, 16.0, 13.0, 20.0,
+    40.0, 44.0, 41.0, 48.0, 45.0, 52.0,
 ];
 
 #[rustfmt::skip]
-static SKETCH_2: [Row<8, 6, 0, 0>; 2] = [
-    Row { at: [16, 17, 18, 19, 20, 21, 22, 23], k: [17.0, 20.0, 24.0, 21.0, 28.0, 25.0], text: [], input: [] }, // the sketch of `coupler5`, ...
-    Row { at: [40, 41, 42, 43, 44, 45, 46, 47], k: [49.0, 52.0, 56.0, 53.0, 60.0, 57.0], text: [], input: [] }, // the sketch of `coupler13`, ...
+static SKETCH_2_AT: [u32; 16] = [
+    16, 17, 18, 19, 20, 21, 22, 23, // the sketch of `coupler5`, ...
+    40, 41, 42, 43, 44, 45, 46, 47, // the sketch of `coupler13`, ...
 ];
 
 #[rustfmt::skip]
-static SKETCH_3: [Row<0, 0, 0, 0>; 1] = [
-    Row { at: [], k: [], text: [], input: [] }, // the sketch of `P8`, ...
+static SKETCH_2_K: [f64; 12] = [
+    17.0, 20.0, 24.0, 21.0, 28.0, 25.0,
+    49.0, 52.0, 56.0, 53.0, 60.0, 57.0,
 ];
 
 #[rustfmt::skip]
-static SKETCH_4: [Row<0, 0, 0, 0>; 1] = [
-    Row { at: [], k: [], text: [], input: [] }, // the sketch of `P16`, ...
+static PIECE_2_AT: [u32; 27] = [
+    13, 14, 16, 17, 19, 20, 22, 23, 11, // coincident_rocker3_b_coupler4_b (fourbar_chain_16.gcs:36)
+    25, 26, 28, 29, 31, 32, 34, 35, 23, // coincident_rocker7_b_coupler8_b (fourbar_chain_16.gcs:64)
+    37, 38, 40, 41, 43, 44, 46, 47, 35, // coincident_rocker11_b_coupler12_b (fourbar_chain_16.gcs:92)
 ];
 
 #[rustfmt::skip]
-static PIECE_0: [Row<0, 0, 0, 0>; 2] = [
-    Row { at: [], k: [], text: [], input: [] }, // coincident_crank_a_P0 (fourbar_chain_16.gcs:9)
-    Row { at: [], k: [], text: [], input: [] }, // coincident_rocker1_d_P1 (fourbar_chain_16.gcs:17)
+static PIECE_2_K: [f64; 24] = [
+    13.0, 16.0, 17.0, 20.0, 21.0, 24.0, 25.0, 28.0,
+    29.0, 32.0, 33.0, 36.0, 37.0, 40.0, 41.0, 44.0,
+    45.0, 48.0, 49.0, 52.0, 53.0, 56.0, 57.0, 60.0,
 ];
 
 #[rustfmt::skip]
-static PIECE_1: [Row<0, 0, 0, 0>; 1] = [
-    Row { at: [], k: [], text: [], input: [] }, // coincident_rocker9_d_P9 (fourbar_chain_16.gcs:73)
+static PIECE_2_TEXT: [u32; 24] = [
+    3, 134, 4, 135, 5, 136, 6, 137,
+    7, 138, 8, 139, 9, 140, 10, 141,
+    11, 142, 12, 143, 13, 144, 14, 145,
 ];
 
 #[rustfmt::skip]
-static PIECE_2: [Row<9, 8, 8, 4>; 3] = [
-    Row { at: [13, 14, 16, 17, 19, 20, 22, 23, 11], k: [13.0, 16.0, 17.0, 20.0, 21.0, 24.0, 25.0, 28.0], text: [3, 134, 4, 135, 5, 136, 6, 137], input: [3, 4, 5, 6] }, // coincident_rocker3_b_coupler4_b (fourbar_chain_16.gcs:36)
-    Row { at: [25, 26, 28, 29, 31, 32, 34, 35, 23], k: [29.0, 32.0, 33.0, 36.0, 37.0, 40.0, 41.0, 44.0], text: [7, 138, 8, 139, 9, 140, 10, 141], input: [7, 8, 9, 10] }, // coincident_rocker7_b_coupler8_b (fourbar_chain_16.gcs:64)
-    Row { at: [37, 38, 40, 41, 43, 44, 46, 47, 35], k: [45.0, 48.0, 49.0, 52.0, 53.0, 56.0, 57.0, 60.0], text: [11, 142, 12, 143, 13, 144, 14, 145], input: [11, 12, 13, 14] }, // coincident_rocker11_b_coupler12_b (fourbar_chain_16.gcs:92)
-];
-
-#[rustfmt::skip]
-static PIECE_3: [Row<0, 0, 0, 0>; 1] = [
-    Row { at: [], k: [], text: [], input: [] }, // coincident_rocker15_b_coupler16_b (fourbar_chain_16.gcs:120)
+static PIECE_2_INPUT: [u32; 12] = [
+    3, 4, 5, 6,
+    7, 8, 9, 10,
+    11, 12, 13, 14,
 ];
 
 #[rustfmt::skip]

@@ -151,7 +151,7 @@ pub(super) fn module(
     let mut functions = Writer::default();
     let mut numbers = vec![0usize; shapes.len()];
     let mut counts = [0usize; 2];
-    let mut signatures: Vec<Vec<(String, String)>> = vec![Vec::new(), Vec::new()];
+    let mut signatures: Vec<Vec<(String, String, bool)>> = vec![Vec::new(), Vec::new()];
     for (n, shape) in shapes.iter().enumerate() {
         let kind = usize::from(!shape.sketch);
         numbers[n] = counts[kind];
@@ -173,41 +173,56 @@ pub(super) fn module(
             false => format!("piece_{}", numbers[n]),
         };
         let table = name.to_uppercase();
-        let row_ty = format!(
-            "Row<{}, {}, {}, {}>",
-            widths[lift::Column::At as usize],
-            widths[lift::Column::K as usize],
-            widths[lift::Column::Text as usize],
-            widths[lift::Column::Input as usize]
-        );
-        function(
-            &mut functions,
-            cx,
-            (&name, &table, &row_ty),
-            shape,
-            &pieces,
-            &code,
-        );
-        // A row a piece, with the first constraint it works on.
-        let mut entries = Vec::with_capacity(shape.pieces.len());
+        function(&mut functions, cx, (&name, &table), shape, &pieces, &code);
+        // Its rows, a table per column (`TABLE_AT`, `TABLE_K`, `TABLE_TEXT`, `TABLE_INPUT`),
+        // a row to a line, the first column's with the first constraint the piece works on.
+        let columns = [
+            (lift::Column::At, "AT", "u32"),
+            (lift::Column::K, "K", "f64"),
+            (lift::Column::Text, "TEXT", "u32"),
+            (lift::Column::Input, "INPUT", "u32"),
+        ];
+        let mut lines: [Vec<String>; 4] = Default::default();
         for (holes, &k) in shape.holes.iter().zip(&shape.pieces) {
             let row = lift::row_entries(holes, &renderings, widths);
             let texts: Vec<String> = (row.text.iter())
                 .map(|t| strings.id(t).to_string())
                 .collect();
-            let join = |v: Vec<String>| v.join(", ");
-            let entry = format!(
-                "Row {{ at: [{}], k: [{}], text: [{}], input: [{}] }},{}",
-                join(row.at.iter().map(u32::to_string).collect()),
-                join(row.k.iter().map(|v| float_entry(*v)).collect()),
-                join(texts),
-                join(row.input.iter().map(u32::to_string).collect()),
-                piece_comment(cx, &pieces[k].work)
-            );
-            entries.push(entry);
+            let cells: [Vec<String>; 4] = [
+                row.at.iter().map(u32::to_string).collect(),
+                row.k.iter().map(|v| float_entry(*v)).collect(),
+                texts,
+                row.input.iter().map(u32::to_string).collect(),
+            ];
+            let first = cells.iter().position(|c| !c.is_empty());
+            for (c, cell) in cells.into_iter().enumerate() {
+                if cell.is_empty() {
+                    continue;
+                }
+                let comment = match Some(c) == first {
+                    true => piece_comment(cx, &pieces[k].work),
+                    false => String::new(),
+                };
+                lines[c].push(format!("{},{comment}", cell.join(", ")));
+            }
         }
-        Table::rows(&table, &row_ty_array(&row_ty), entries).write(&mut tables, shape.pieces.len());
-        signatures[kind].push((name, table));
+        let mut reads = Vec::new();
+        let mut reads_row = false;
+        for ((column, suffix, ty), rows) in columns.into_iter().zip(lines) {
+            let width = widths[column as usize];
+            let field = suffix.to_lowercase();
+            match width {
+                0 => reads.push(format!("{field}: &[]")),
+                _ => {
+                    let name = format!("{table}_{suffix}");
+                    reads.push(format!("{field}: row_of(&{name}, row, {width})"));
+                    reads_row = true;
+                    Table::flat_rows(&name, ty, width, rows).write(&mut tables, 1);
+                }
+            }
+        }
+        let row = format!("Row {{ {} }}", reads.join(", "));
+        signatures[kind].push((name, row, reads_row));
     }
     solve_into(&mut w, cx, &signatures);
     orders(&mut tables, &order, &shapes, &numbers);
@@ -219,11 +234,6 @@ pub(super) fn module(
     w.line("");
     w.out.push_str(&tables);
     Ok(Some(w.out))
-}
-
-/// `[Row<..>; ` of a table of rows of type `row_ty` (the count follows).
-fn row_ty_array(row_ty: &str) -> String {
-    format!("[{row_ty}; ")
 }
 
 /// A float of a table: the literal, always with a decimal point or exponent.
@@ -263,7 +273,7 @@ fn piece_comment(cx: &Context<'_>, work: &Work) -> String {
 fn function(
     w: &mut Writer,
     cx: &Context<'_>,
-    (name, table, row_ty): (&str, &str, &str),
+    (name, table): (&str, &str),
     shape: &Shape,
     pieces: &[layout::Piece],
     code: &str,
@@ -321,7 +331,7 @@ fn function(
         ),
     };
     w.open(&format!(
-        "fn {name}(store: &mut Store, params: &Params, p: &[f64], {fixed}, row: &{row_ty}){result} {{"
+        "fn {name}(store: &mut Store, params: &Params, p: &[f64], {fixed}, row: &Row<'_>){result} {{"
     ));
     for line in code.lines() {
         match line.strip_prefix("    ") {
@@ -345,17 +355,22 @@ fn row_struct(w: &mut Writer) {
         "/// errors give (ids of `text`), and the params, branch variables or defaults it reads.",
     );
     w.line("#[derive(Clone, Copy, Debug)]");
-    w.open("struct Row<const A: usize, const K: usize, const T: usize, const I: usize> {");
-    w.line("at: [u32; A],");
-    w.line("k: [f64; K],");
-    w.line("text: [u32; T],");
-    w.line("input: [u32; I],");
+    w.open("struct Row<'a> {");
+    w.line("at: &'a [u32],");
+    w.line("k: &'a [f64],");
+    w.line("text: &'a [u32],");
+    w.line("input: &'a [u32],");
+    w.close("}");
+    w.line("");
+    w.line("/// Row `row` of a flat table of rows `width` entries wide.");
+    w.open("fn row_of<T>(table: &'static [T], row: usize, width: usize) -> &'static [T] {");
+    w.line("table.get(row * width..(row + 1) * width).unwrap_or(&[])");
     w.close("}");
     w.line("");
 }
 
 /// `solve_into` and `solve`: the sketch's pieces, the tolerance, the steps' pieces.
-fn solve_into(w: &mut Writer, cx: &Context<'_>, signatures: &[Vec<(String, String)>]) {
+fn solve_into(w: &mut Writer, cx: &Context<'_>, signatures: &[Vec<(String, String, bool)>]) {
     let m = cx.model;
     w.line("/// Solves the model into `solution`: the sketch's pieces, then the assembly plan's steps,");
     w.line("/// each a call of the function of its shape with its row (`SKETCH_ORDER`, `ORDER`). Never");
@@ -406,11 +421,17 @@ fn solve_into(w: &mut Writer, cx: &Context<'_>, signatures: &[Vec<(String, Strin
     w.line("let mut tol_scale = 0.0f64;");
     let calls = |w: &mut Writer, kind: usize, table: &str| {
         let sketch = kind == 0;
-        w.open(&format!("for &[shape, row] in {table}.iter() {{"));
-        w.line("let row = row as usize;");
-        w.open("match shape {");
         let list = &signatures[kind];
-        for (n, (name, rows)) in list.iter().enumerate() {
+        // The row index, where some shape has data to read.
+        match list.iter().any(|(_, _, reads_row)| *reads_row) {
+            true => {
+                w.open(&format!("for &[shape, row] in {table}.iter() {{"));
+                w.line("let row = row as usize;");
+            }
+            false => w.open(&format!("for &[shape, _] in {table}.iter() {{")),
+        }
+        w.open("match shape {");
+        for (n, (name, row, _)) in list.iter().enumerate() {
             let arm = if n + 1 == list.len() {
                 "_".to_string()
             } else {
@@ -418,10 +439,10 @@ fn solve_into(w: &mut Writer, cx: &Context<'_>, signatures: &[Vec<(String, Strin
             };
             match sketch {
                 true => w.line(&format!(
-                    "{arm} => {name}(store, params, &p, &mut tol_scale, &{rows}[row]),"
+                    "{arm} => {name}(store, params, &p, &mut tol_scale, &{row}),"
                 )),
                 false => w.line(&format!(
-                    "{arm} => {name}(store, params, &p, branches, defaults, tol, &{rows}[row])?,"
+                    "{arm} => {name}(store, params, &p, branches, defaults, tol, &{row})?,"
                 )),
             }
         }
@@ -711,8 +732,14 @@ fn solution(
         w.open(&format!(
             "pub fn {what}s(&self) -> impl Iterator<Item = (&'static str, {rust})> + '_ {{"
         ));
+        let ids = format!("&{upper}S, {at_len}");
+        let ks = match k_len {
+            0 => "&[], 0".to_string(),
+            _ => format!("&{upper}S_K, {k_len}"),
+        };
         w.line(&format!(
-            "{upper}S.iter().enumerate().map(|(k, v)| (text(v.name), self.{what}_at(k)))"
+            "(0..{upper}S.len() / {}).filter_map(move |k| Some((text(access({ids}, {ks}, k)?.name), self.{what}_at(k))))",
+            2 + at_len
         ));
         w.close("}");
         w.line("");
@@ -736,7 +763,7 @@ fn solution(
         w.line("#[allow(unused_variables, clippy::match_single_binding)]");
         w.open(&format!("fn {what}_at(&self, k: usize) -> {rust} {{"));
         w.line(&format!(
-            "let Some(row) = {upper}S.get(k) else {{ return {}; }};",
+            "let Some(row) = access({ids}, {ks}, k) else {{ return {}; }};",
             zero_of(ty, d3)
         ));
         w.open("match row.shape {");
@@ -758,8 +785,10 @@ fn solution(
         }
         w.close("}");
         w.close("}");
-        // Its table: a row a value.
-        let mut entries = Vec::with_capacity(values.len());
+        // Its tables, a row a value: its name's id, its shape and the store's slots it reads
+        // (`POINTS`), and its constants (`POINTS_K`).
+        let mut ids = Vec::with_capacity(values.len());
+        let mut constants = Vec::with_capacity(values.len());
         for (name, n, holes) in &values {
             let (r, counts, _) = &renderings[*n];
             let row = lift::row_entries(holes, r, *counts);
@@ -767,19 +796,15 @@ fn solution(
             at.resize(at_len, "0".into());
             let mut k: Vec<String> = row.k.iter().map(|v| float_entry(*v)).collect();
             k.resize(k_len, "0.0".into());
-            entries.push(format!(
-                "Access {{ name: {}, shape: {n}, at: [{}], k: [{}] }},",
-                strings.id(name),
-                at.join(", "),
-                k.join(", ")
-            ));
+            let mut id = vec![strings.id(name).to_string(), n.to_string()];
+            id.extend(at);
+            ids.push(format!("{},", id.join(", ")));
+            constants.push(format!("{},", k.join(", ")));
         }
-        Table::rows(
-            &format!("{upper}S"),
-            &format!("[Access<{at_len}, {k_len}>; "),
-            entries,
-        )
-        .write(tables, values.len());
+        Table::flat_rows(&format!("{upper}S"), "u32", 2 + at_len, ids).write(tables, 1);
+        if k_len > 0 {
+            Table::flat_rows(&format!("{upper}S_K"), "f64", k_len, constants).write(tables, 1);
+        }
         let sorted = strings.by_name(values.iter().map(|(n, ..)| *n));
         Table::packed(&format!("{upper}S_BY_NAME"), "[u32; 2]", sorted).write(tables, 8);
     }
@@ -788,11 +813,23 @@ fn solution(
     w.line("/// A value of the solution: its name's id, the shape of its accessor, the store's slots it");
     w.line("/// reads and its constants.");
     w.line("#[derive(Clone, Copy, Debug)]");
-    w.open("struct Access<const A: usize, const K: usize> {");
+    w.open("struct Access {");
     w.line("name: u32,");
-    w.line("shape: u16,");
-    w.line("at: [u32; A],");
-    w.line("k: [f64; K],");
+    w.line("shape: u32,");
+    w.line("at: &'static [u32],");
+    w.line("k: &'static [f64],");
+    w.close("}");
+    w.line("");
+    w.line("/// Value `k` of a solution's tables: `ids` holds each value's name, shape and `at` slots,");
+    w.line("/// `ks` its `kw` constants.");
+    w.open("fn access(ids: &'static [u32], at: usize, ks: &'static [f64], kw: usize, k: usize) -> Option<Access> {");
+    w.line("let row = ids.get(k * (2 + at)..(k + 1) * (2 + at))?;");
+    w.open("Some(Access {");
+    w.line("name: row[0],");
+    w.line("shape: row[1],");
+    w.line("at: &row[2..],");
+    w.line("k: ks.get(k * kw..(k + 1) * kw).unwrap_or(&[]),");
+    w.close("})");
     w.close("}");
     w.line("");
     w.line("/// The index, in model order, of the entry called `name` of a table sorted by name");
