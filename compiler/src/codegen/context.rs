@@ -13,6 +13,9 @@ use std::collections::BTreeSet;
 
 /// The read-only input of codegen.
 pub(super) struct Context<'a> {
+    /// Each top-level geom's members whose local coordinates params set, once asked for
+    /// ([`Context::param_members`]).
+    pub(super) param_members_of: std::cell::RefCell<HashMap<GeomId, Vec<GeomId>>>,
     pub(super) model: &'a Model,
     pub(super) plan: &'a Plan,
     /// The top-level geoms the solution reports.
@@ -110,6 +113,7 @@ impl<'a> Context<'a> {
             .collect();
         let turned_toward = super::steps::turned_toward(plan, &defined_at);
         Context {
+            param_members_of: Default::default(),
             turned_toward,
             d3,
             sketch3,

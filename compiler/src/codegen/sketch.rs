@@ -109,6 +109,26 @@ impl Context<'_> {
         out
     }
 
+    /// The members of top-level geom `g` whose local coordinates params set, found once per
+    /// geom (a body with a member per stage is asked by every piece of a large model). Only
+    /// the members are kept: their code is written anew where asked for, in the scope of the
+    /// caller (see `lift`).
+    pub(super) fn param_members(&self, g: GeomId) -> Vec<GeomId> {
+        if let Some(known) = self.param_members_of.borrow().get(&g) {
+            return known.clone();
+        }
+        let m = self.model;
+        let found: Vec<GeomId> = (m.geoms[g].parts.iter().copied())
+            .filter(|&part| matches!(m.geoms[part].owner, Owner::Member(_)))
+            .filter(|&part| match self.d3 {
+                true => self.local_is_param3(part),
+                false => self.local_is_param(part),
+            })
+            .collect();
+        self.param_members_of.borrow_mut().insert(g, found.clone());
+        found
+    }
+
     /// The local coordinates params set among the members of top-level geom `g`: a member's,
     /// and after a marker's its x axis's.
     pub(super) fn param_locals(&self, g: GeomId) -> Vec<ParamLocal> {
@@ -117,11 +137,8 @@ impl Context<'_> {
             return self.param_locals3(g);
         }
         let mut out = Vec::new();
-        for &part in &m.geoms[g].parts {
+        for part in self.param_members(g) {
             let p = &m.geoms[part];
-            if !matches!(p.owner, Owner::Member(_)) || !self.local_is_param(part) {
-                continue;
-            }
             let local = |feature, suffix: &str, vector, value| ParamLocal {
                 feature,
                 name: format!("{}_{suffix}", p.name),

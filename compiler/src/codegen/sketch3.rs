@@ -363,11 +363,8 @@ impl Context<'_> {
     pub(super) fn param_locals3(&self, g: GeomId) -> Vec<ParamLocal> {
         let m = self.model;
         let mut out = Vec::new();
-        for &part in &m.geoms[g].parts {
+        for part in self.param_members(g) {
             let p = &m.geoms[part];
-            if !matches!(p.owner, Owner::Member(_)) || !self.local_is_param3(part) {
-                continue;
-            }
             let local = |feature, suffix: &str, vector, value| ParamLocal {
                 feature,
                 name: format!("{}_{suffix}", p.name),
