@@ -239,11 +239,13 @@ fn main() -> ExitCode {
             color,
         ),
         Command::Compile { file, output, form } => with_analysis(&file, color, |c| {
-            let code = match gcs_compiler::codegen::generate_as(&c.model, &c.analysis.plan, form)
-            {
+            let code = match gcs_compiler::codegen::generate_as(&c.model, &c.analysis.plan, form) {
                 Ok(code) => gcs_compiler::codegen::format(&code),
                 Err(why) => {
-                    eprintln!("error: `{}` cannot be laid out as tables: {why}", file.display());
+                    eprintln!(
+                        "error: `{}` cannot be laid out as tables: {why}",
+                        file.display()
+                    );
                     return ExitCode::from(1);
                 }
             };
@@ -699,7 +701,10 @@ fn bench(
             let code = match gcs_compiler::codegen::generate_as(model, &analysis.plan, form) {
                 Ok(code) => gcs_compiler::codegen::format(&code),
                 Err(why) => {
-                    eprintln!("error: `{}` cannot be laid out as tables: {why}", path.display());
+                    eprintln!(
+                        "error: `{}` cannot be laid out as tables: {why}",
+                        path.display()
+                    );
                     return ExitCode::from(1);
                 }
             };
