@@ -142,7 +142,7 @@ pub fn four_bar_chain(n: usize) -> String {
     s.push_str("fixed vector X = (1, 0);\nfixed point P0 = (0, 0);\n");
     s.push_str(FOUR_BAR_HEAD);
     for k in 1..=n {
-        four_bar_stage(&mut s, k);
+        four_bar_stage(&mut s, k, "crank");
     }
     let _ = writeln!(s, "\noutput rocker{n}.b;");
     s
@@ -153,11 +153,11 @@ const FOUR_BAR_HEAD: &str = "body crank at (0, 0) { point a = (0, 0); point b = 
                              vector u = (1, 0); }\n\
                              coincident(crank.a, P0);\ndrive: angle(X, crank.u) = theta;\n";
 
-/// Stage `k` (from 1) of the chain of four-bars, driven by the rocker before it (the crank
-/// for the first).
-fn four_bar_stage(s: &mut String, k: usize) {
+/// Stage `k` (from 1) of the chain of four-bars, driven by the rocker before it (the body
+/// `crank` for the first).
+fn four_bar_stage(s: &mut String, k: usize, crank: &str) {
     let prev = if k == 1 {
-        "crank".to_string()
+        crank.to_string()
     } else {
         format!("rocker{}", k - 1)
     };
@@ -473,7 +473,7 @@ pub fn mixed(n: usize) -> String {
         match kind {
             0 => {
                 bars += 1;
-                four_bar_stage(&mut s, bars);
+                four_bar_stage(&mut s, bars, "crank");
             }
             1 => {
                 truss_stage(&mut s, "t", truss);
@@ -583,30 +583,32 @@ pub fn circle_sketch(n: usize) -> String {
     s.push_str("fixed point origin = (0, 0);\nfixed vector X = (1, 0);\n");
     let mut at = (0.0f64, 0.0f64);
     for k in 0..n {
-        circle_sketch_stage(&mut s, k, &mut at);
+        circle_sketch_stage(&mut s, "s", k, &mut at);
     }
     let _ = writeln!(s, "\noutput s{}.end, c{};", n - 1, n - 1);
     s
 }
 
-/// Segment `s{k}` of the circle sketch from `at` (moved to its end) and its circle `c{k}`.
-fn circle_sketch_stage(s: &mut String, k: usize, at: &mut (f64, f64)) {
+/// Segment `{seg}{k}` of the circle sketch from `at` (moved to its end) and its circle `c{k}`.
+fn circle_sketch_stage(s: &mut String, seg: &str, k: usize, at: &mut (f64, f64)) {
     let (x, y) = *at;
     let deg: f64 = if k.is_multiple_of(2) { 15.0 } else { -15.0 };
     let (dy, dx) = deg.to_radians().sin_cos();
     let (ex, ey) = (x + 4.0 * dx, y + 4.0 * dy);
     let _ = writeln!(
         s,
-        "\nsegment s{k} = ({x:.3}, {y:.3}) -> ({ex:.3}, {ey:.3});"
+        "\nsegment {seg}{k} = ({x:.3}, {y:.3}) -> ({ex:.3}, {ey:.3});"
     );
     match k {
-        0 => s.push_str("coincident(s0.start, origin);\n"),
+        0 => {
+            let _ = writeln!(s, "coincident({seg}0.start, origin);");
+        }
         _ => {
-            let _ = writeln!(s, "coincident(s{k}.start, s{}.end);", k - 1);
+            let _ = writeln!(s, "coincident({seg}{k}.start, {seg}{}.end);", k - 1);
         }
     }
-    let _ = writeln!(s, "angle(X, s{k}) = {deg} deg;");
-    let _ = writeln!(s, "length(s{k}) = 4;");
+    let _ = writeln!(s, "angle(X, {seg}{k}) = {deg} deg;");
+    let _ = writeln!(s, "length({seg}{k}) = 4;");
     // The circle above the segment, its centre 2 along and 1 beside it: at sqrt(5) from the
     // start.
     let (cx, cy) = (x + 2.0 * dx - dy, y + 2.0 * dy + dx);
@@ -617,10 +619,10 @@ fn circle_sketch_stage(s: &mut String, k: usize, at: &mut (f64, f64)) {
         cy - 0.03
     );
     let _ = writeln!(s, "radius(c{k}) = r;");
-    let _ = writeln!(s, "tangent(s{k}, c{k});");
+    let _ = writeln!(s, "tangent({seg}{k}, c{k});");
     let _ = writeln!(
         s,
-        "distance(c{k}.center, s{k}.start) = {:.17};",
+        "distance(c{k}.center, {seg}{k}.start) = {:.17};",
         5f64.sqrt()
     );
     *at = (ex, ey);
@@ -655,7 +657,6 @@ pub fn random_mix(n: usize) -> String {
     let mut at = (0.0f64, 0.0f64);
     let mut circle_at = (0.0f64, 0.0f64);
     let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-    let mut four_bars = String::new();
     for k in 0..n {
         let kind = if k < 5 {
             k as u64
@@ -665,10 +666,8 @@ pub fn random_mix(n: usize) -> String {
         match kind {
             0 => {
                 bars += 1;
-                four_bars.clear();
-                four_bar_stage(&mut four_bars, bars);
                 // The four-bars hang on their own crank.
-                s.push_str(&four_bars.replace("(crank.b,", "(crank4.b,"));
+                four_bar_stage(&mut s, bars, "crank4");
             }
             1 => {
                 hung += 1;
@@ -684,10 +683,8 @@ pub fn random_mix(n: usize) -> String {
             }
             _ => {
                 // The circle sketch starts where the profile's origin is, its segments named
-                // apart.
-                let mut stage = String::new();
-                circle_sketch_stage(&mut stage, circles, &mut circle_at);
-                s.push_str(&rename_circle_stage(&stage, circles));
+                // apart from the profile's.
+                circle_sketch_stage(&mut s, "g", circles, &mut circle_at);
                 circles += 1;
             }
         }
@@ -700,17 +697,6 @@ pub fn random_mix(n: usize) -> String {
         circles - 1
     );
     s
-}
-
-/// A circle sketch's stage with its segments `s{k}` renamed `g{k}` (the profile has `s{k}`).
-fn rename_circle_stage(stage: &str, k: usize) -> String {
-    let mut out = stage
-        .replace(&format!("s{k}"), &format!("g{k}"))
-        .replace("s0.start", "g0.start");
-    if k > 0 {
-        out = out.replace(&format!("s{}.end", k - 1), &format!("g{}.end", k - 1));
-    }
-    out
 }
 
 /// The next of a fixed pseudo-random sequence (xorshift64): the same on every machine.
