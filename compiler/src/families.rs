@@ -462,14 +462,11 @@ pub fn mixed(n: usize) -> String {
     s.push_str("fixed point origin = (0, 0);\n");
     let (mut bars, mut truss, mut sketch) = (0, 2, 0);
     let mut at = (0.0f64, 0.0f64);
-    // xorshift64: the same sequence on every machine.
     let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
     for k in 0..n {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
+        let next = xorshift(&mut seed);
         // Each kind at least once.
-        let kind = if k < 3 { k as u64 } else { seed % 3 };
+        let kind = if k < 3 { k as u64 } else { next % 3 };
         match kind {
             0 => {
                 bars += 1;

@@ -646,7 +646,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             if G::default(self, &[first]) {
                 return true;
             }
-            let involved = self.involved_clusters();
+            // A refused default changes nothing: the order is the one `first` came from.
             let mut keys: Vec<_> = (0..self.clusters.len())
                 .filter(|&k| k != first)
                 .filter_map(|k| self.default_key(&involved, k))
