@@ -167,7 +167,8 @@ pub(super) fn module(
                 representative,
                 Spelling::Representative,
             )
-        });
+        })
+        .unwrap_or_else(|why| panic!("bug in gcs: {why}"));
         let name = match shape.sketch {
             true => format!("sketch_{}", numbers[n]),
             false => format!("piece_{}", numbers[n]),
@@ -718,7 +719,8 @@ fn solution(
             for c in 0..4 {
                 widths[c] = widths[c].max(counts[c]);
             }
-            let code = lift::render(rep_holes, &r, || accessor(cx, layout, of_ty[*rep], true));
+            let code = lift::render(rep_holes, &r, || accessor(cx, layout, of_ty[*rep], true))
+                .unwrap_or_else(|why| panic!("bug in gcs: {why}"));
             renderings.push((r, counts, code));
         }
         let (at_len, k_len) = (
