@@ -39,7 +39,11 @@ pub fn explain(model: &Model, plan: &Plan) -> String {
         .collect();
     let implied_by: HashMap<usize, String> = (checks.iter().copied())
         .zip(plan.supports(model, &checks))
-        .filter_map(|(i, s)| Some((i, crate::plan::support_words(model, &s)?)))
+        .filter_map(|(i, s)| {
+            let near = (plan.steps[i].op.constraint())
+                .map_or_else(Default::default, |c| model.constraints[c].span);
+            Some((i, crate::plan::support_words(model, &s, near)?))
+        })
         .collect();
     let mut n = 0;
     for (i, step) in plan.steps.iter().enumerate() {

@@ -10,7 +10,7 @@
 
 use crate::analysis::Analysis;
 use crate::interp::Failure;
-use crate::plan::{by_position, support_words, Op, Plan, Residual, Support, Supporter};
+use crate::plan::{nearest, support_words, Op, Plan, Residual, Support, Supporter};
 use crate::solution::Solution;
 use gcs_lang::model::GeomId;
 use gcs_lang::{Diagnostic, Model};
@@ -227,7 +227,9 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
         } else {
             format!("part of what `{}` builds on", c.name)
         };
-        for (span, who) in by_position(model, support) {
+        // The members nearest it; the note counts the others.
+        let (shown, _) = nearest(model, support, c.span);
+        for (span, who) in shown {
             // A constraint's own statement is its primary label already.
             if matches!(who, Supporter::Constraint(x) if x == id) {
                 continue;
@@ -238,7 +240,7 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
             };
             d = d.with_secondary(span, label);
         }
-        if let Some(words) = support_words(model, support) {
+        if let Some(words) = support_words(model, support, c.span) {
             d = d.with_note(if check {
                 format!(
                     "`{}` is implied by {words}, and disagrees with them by {m_words}: change or remove one of them",
@@ -381,7 +383,7 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
         let con = &model.constraints[*c];
         let by = (check_of.get(c))
             .and_then(|i| supports.get(i))
-            .and_then(|s| support_words(model, s))
+            .and_then(|s| support_words(model, s, con.span))
             .unwrap_or_else(|| "the others".to_string());
         let _ = writeln!(
             out,

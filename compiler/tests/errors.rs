@@ -537,3 +537,33 @@ tangent(L, B);
         gcs_compiler::verify::max_residual(&gcs_compiler::verify::residuals(&flat, &s, &[]));
     assert!(worst < 1e-12, "{worst}");
 }
+
+/// An error about a large model fits a screen and gives the real gap: a strip of 2,000 quads
+/// whose last point is also held 1 from the first, about 2,000 away along the strip. The
+/// diagnostic marks a few of the constraints it builds on, nearest the one that fails, and
+/// counts the others.
+#[test]
+fn an_error_about_a_large_model_fits_a_screen() {
+    let mut text = gcs_compiler::families::strip(2000);
+    text.push_str("distance(a2000, a0) = 1;\n");
+    let model = load(&text);
+    let a = analyse(&model).expect("analysed");
+    let errors: Vec<_> = problems(&model, &a)
+        .into_iter()
+        .filter(|d| d.is_error())
+        .collect();
+    assert_eq!(errors.len(), 1, "{errors:#?}");
+    let e = &errors[0];
+    assert!(e.secondary.len() <= gcs_compiler::plan::SHOWN, "{e:#?}");
+    let words = e.notes.join("\n");
+    assert!(
+        words.contains(" more (with fixed a0 and fixed b0)"),
+        "{words}"
+    );
+    // The gap is the strip's length less 1, not a rounding-sized one.
+    let gap: f64 = (e.primary.message)
+        .strip_prefix("no assembly: the loci miss by ")
+        .and_then(|m| m.parse().ok())
+        .unwrap_or_else(|| panic!("{e:#?}"));
+    assert!(gap > 1500.0, "{gap}");
+}

@@ -32,6 +32,14 @@ pub enum ErrorKind {
     /// A constraint's value, computed from finite params, cannot be used: an angle or distance
     /// that is not finite (`theta * 1e300`), or a negative size. The magnitude is the value.
     InvalidValue,
+    /// A default parameter's given value cannot be used: a length or a radius it fixes is
+    /// negative. The label is the default's name, the text what it fixes; the magnitude is
+    /// the value.
+    InvalidDefault,
+    /// A param's value cannot be used: a constraint takes it as a size (a length, a distance,
+    /// a radius) and it is negative. The label is the param's name, the text the constraint's;
+    /// the magnitude is the value.
+    InvalidParam,
     /// The loci meet, but not in the chosen branch: the magnitude is how many real roots the
     /// intersection has. The solver never takes another branch instead.
     NoSuchBranch,
@@ -125,6 +133,20 @@ impl fmt::Display for SolveError {
                 )
             };
         }
+        if self.kind == ErrorKind::InvalidDefault {
+            return write!(
+                f,
+                "default `{}` is invalid: its value, {m}, is negative, and it fixes {}, which is zero or more",
+                self.label, self.text
+            );
+        }
+        if self.kind == ErrorKind::InvalidParam {
+            return write!(
+                f,
+                "parameter `{}` is invalid: its value, {m}, is negative, and `{}` takes it as a distance, a length or a radius, which is zero or more",
+                self.label, self.text
+            );
+        }
         write!(f, "constraint `{}`", self.label)?;
         if !self.text.is_empty() {
             write!(f, " ({})", self.text)?;
@@ -149,7 +171,9 @@ impl fmt::Display for SolveError {
             ErrorKind::InvalidValue => {
                 write!(f, " cannot be met: its value, {m}, is not a finite number")
             }
-            ErrorKind::InvalidInput => Ok(()),
+            ErrorKind::InvalidInput | ErrorKind::InvalidDefault | ErrorKind::InvalidParam => {
+                Ok(())
+            }
             ErrorKind::NoSuchBranch => write!(
                 f,
                 " cannot be met on the chosen branch: the loci meet in only {m} real point(s) here"
@@ -321,6 +345,25 @@ mod tests {
         }
         let err: Box<dyn std::error::Error> = Box::new(e);
         assert!(err.to_string().contains("elbow"));
+    }
+
+    #[test]
+    fn a_negative_param_or_default_is_blamed_on_itself() {
+        let param = SolveError::new("d", "distance(A, B) = d", ErrorKind::InvalidParam, -5.0);
+        assert_eq!(
+            param.to_string(),
+            "parameter `d` is invalid: its value, -5, is negative, and `distance(A, B) = d` takes it as a distance, a length or a radius, which is zero or more"
+        );
+        let default = SolveError::new(
+            "left_length",
+            "the length of left",
+            ErrorKind::InvalidDefault,
+            -5.0,
+        );
+        assert_eq!(
+            default.to_string(),
+            "default `left_length` is invalid: its value, -5, is negative, and it fixes the length of left, which is zero or more"
+        );
     }
 
     #[test]

@@ -91,7 +91,7 @@ fn a_negative_size_says_it_is_negative() {
         &["solve", "--set", "d=-5"],
         1,
         expect![[r#"
-            error: constraint `reach` (distance(A, B) = d) cannot be met: its value, -5, is negative; a distance, a length or a radius is zero or more
+            error: parameter `d` is invalid: its value, -5, is negative, and `distance(A, B) = d` takes it as a distance, a length or a radius, which is zero or more
         "#]],
     );
     // Zero is a size: B at A.
@@ -171,4 +171,32 @@ fn defaults_and_all_solutions_on_the_command_line() {
         !stdout.contains("\"complete\": false"),
         "one angle: exhaustive"
     );
+}
+
+/// A default given a negative size is blamed on the default, with what it fixes; not on the
+/// constraint whose step reads it.
+#[test]
+fn a_negative_default_is_blamed_on_the_default() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let model = "space 2d;
+fixed point O = (0, 0);
+fixed vector X = (1, 0);
+fixed vector Y = (0, 1);
+segment bottom = (0, 0) -> (4, 0);
+segment left = (0, 3) -> (0, 0);
+coincident(bottom.start, O);
+coincident(left.end, bottom.start);
+parallel(bottom, X);
+parallel(left, Y);
+length(bottom) = 4;
+";
+    std::fs::write(dir.path().join("free.gcs"), model).expect("write model");
+    let (code, stdout, stderr) = support::gcs_in(
+        dir.path(),
+        &["solve", "free.gcs", "--default", "left_length=-5"],
+    );
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    let last = stderr.lines().last().unwrap_or_default();
+    expect![[r#"error: default `left_length` is invalid: its value, -5, is negative, and it fixes the length of left, which is zero or more"#]]
+        .assert_eq(last);
 }

@@ -539,11 +539,16 @@ impl Solve<'_> {
             con.name,
             size_noun(m, constraint)
         ));
+        // A size that is a param alone is the param's fault.
+        let error = match m.exprs.node(e) {
+            ExprNode::Param(p) => {
+                self.cx
+                    .error_with(&m.params[*p].name, &con.text, "InvalidParam", &self.r(r))
+            }
+            _ => self.cx.error_of(constraint, "InvalidValue", &self.r(r)),
+        };
         w.open(&format!("if {test} {{"));
-        w.line(&format!(
-            "return Err({});",
-            self.cx.error_of(constraint, "InvalidValue", &self.r(r))
-        ));
+        w.line(&format!("return Err({error});"));
         w.close("}");
         self.facts.known_sizes.insert(r);
     }
@@ -980,11 +985,17 @@ impl Solve<'_> {
             } else {
                 format!("if !gcs_runtime::num::is_finite({v}) || {v} < 0.0 {{")
             };
+            // A size given as a default is the default's fault, not the constraint's.
+            let error = match self.facts.value(value) {
+                Value::Default(k, _) => {
+                    let d = &self.cx.plan.defaults[*k];
+                    self.cx
+                        .error_with(&d.name, &d.meaning, "InvalidDefault", &v)
+                }
+                _ => self.cx.error(i, "InvalidValue", &v),
+            };
             w.open(&test);
-            w.line(&format!(
-                "return Err({});",
-                self.cx.error(i, "InvalidValue", &v)
-            ));
+            w.line(&format!("return Err({error});"));
             w.close("}");
         }
         let d = self.dim(g);

@@ -710,6 +710,16 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
     ) -> Result<(), SolveError> {
         let x = self.s(value);
         if !x.is_finite() || x < 0.0 {
+            // A size given as a default is the default's fault, not the constraint's.
+            if let Some(d) = self.plan.given_default(value) {
+                let d = &self.plan.defaults[d.0 as usize];
+                return Err(SolveError::new(
+                    d.name.clone(),
+                    d.meaning.clone(),
+                    ErrorKind::InvalidDefault,
+                    x,
+                ));
+            }
             return Err(self.error(i, ErrorKind::InvalidValue, x));
         }
         self.config.dims.insert(g, x);
@@ -777,6 +787,15 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
             Op::Size { expr, constraint } => {
                 let x = model.exprs.eval(*expr, self.params);
                 if !x.is_finite() || x < 0.0 {
+                    // A size that is a param alone is the param's fault (params are finite).
+                    if let gcs_lang::expr::ExprNode::Param(p) = model.exprs.node(*expr) {
+                        return Err(SolveError::new(
+                            model.params[*p].name.clone(),
+                            model.constraints[*constraint].text.clone(),
+                            ErrorKind::InvalidParam,
+                            x,
+                        ));
+                    }
                     return Err(err(model, *constraint, ErrorKind::InvalidValue, x));
                 }
                 Val::S(x)

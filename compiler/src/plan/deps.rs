@@ -303,15 +303,25 @@ fn listed(items: &[String]) -> String {
     }
 }
 
+/// The most members of a support a message names or marks: a message about a large model
+/// fits a screen, and says how many more there are.
+pub const SHOWN: usize = 12;
+
 /// A support in words: `a, b and c (with fixed A and fixed B)`, `fixed A and fixed B`, or
-/// the grounded geom's placement when nothing else; `None` when it names nothing.
-pub fn support_words(model: &Model, support: &Support) -> Option<String> {
+/// the grounded geom's placement when nothing else; `None` when it names nothing. Of a large
+/// support, the [`SHOWN`] members nearest `near` in the source (the constraint it is about),
+/// then how many more.
+pub fn support_words(model: &Model, support: &Support, near: gcs_lang::Span) -> Option<String> {
+    let (shown, more) = nearest(model, support, near);
     let (mut constraints, mut fixed) = (Vec::new(), Vec::new());
-    for (_, who) in by_position(model, support) {
+    for (_, who) in shown {
         match who {
             Supporter::Constraint(c) => constraints.push(model.constraints[c].name.clone()),
             Supporter::Fixed(g) => fixed.push(format!("fixed {}", model.geoms[g].name)),
         }
+    }
+    if more > 0 {
+        constraints.push(format!("{more} more"));
     }
     match (constraints.is_empty(), fixed.is_empty()) {
         (false, false) => Some(format!(
@@ -325,6 +335,31 @@ pub fn support_words(model: &Model, support: &Support) -> Option<String> {
             .grounded
             .map(|g| format!("where the sketch places {}, grounded", model.geoms[g].name)),
     }
+}
+
+/// At most [`SHOWN`] members of a support, in source order: its fixed geoms first, then the
+/// constraints nearest `near` in the source; and how many are left out.
+pub fn nearest(
+    model: &Model,
+    support: &Support,
+    near: gcs_lang::Span,
+) -> (Vec<(gcs_lang::Span, Supporter)>, usize) {
+    let all = by_position(model, support);
+    if all.len() <= SHOWN {
+        return (all, 0);
+    }
+    let (mut fixed, mut constraints): (Vec<_>, Vec<_>) =
+        (all.into_iter()).partition(|(_, who)| matches!(who, Supporter::Fixed(_)));
+    let dropped = fixed.len().saturating_sub(SHOWN / 2);
+    fixed.truncate(SHOWN / 2);
+    let room = SHOWN - fixed.len();
+    let distance = |span: &gcs_lang::Span| span.start.abs_diff(near.start);
+    constraints.sort_by_key(|(span, _)| (distance(span), span.start));
+    let more = dropped + constraints.len().saturating_sub(room);
+    constraints.truncate(room);
+    let mut shown: Vec<_> = fixed.into_iter().chain(constraints).collect();
+    shown.sort_by_key(|(span, _)| (span.start, span.end));
+    (shown, more)
 }
 
 /// One member of a support.

@@ -27,7 +27,7 @@ mod dump;
 mod search;
 mod validate;
 
-pub use deps::{by_position, support_words, Deps, Slice, Support, Supporter, Walk};
+pub use deps::{by_position, nearest, support_words, Deps, Slice, Support, Supporter, Walk, SHOWN};
 pub use search::{grid, GRID, MAX_COMBINATIONS};
 pub use validate::Malformed;
 
@@ -769,6 +769,20 @@ pub struct Plan {
 }
 
 impl Plan {
+    /// The default whose given value register `r` holds: defined by [`Op::Default`] of a
+    /// default no iteration varies (an iteration's trial values are its own to bound).
+    pub fn given_default(&self, r: Reg) -> Option<DefaultId> {
+        let step = self
+            .steps
+            .iter()
+            .find(|s| s.out.is_some_and(|(o, _)| o == r))?;
+        let Op::Default(d) = step.op else {
+            return None;
+        };
+        let iterated = (self.iterations.iter()).any(|it| it.defaults.contains(&d));
+        (!iterated).then_some(d)
+    }
+
     /// An empty plan of `space`.
     pub fn new(space: Space) -> Plan {
         Plan {
