@@ -279,9 +279,9 @@ pub fn solve(
     // slide: a distance is zero or more.
     if params.gap < 0.0 {
         return Err(SolveError::new(
-            "slide",
+            "gap",
             "distance(bead, rod.tip) = gap",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.gap,
         ));
     }

@@ -194,9 +194,9 @@ pub fn solve(
     // c_reach: a length is zero or more.
     if params.reach < 0.0 {
         return Err(SolveError::new(
-            "c_reach",
+            "reach",
             "length(boom) = reach",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.reach,
         ));
     }

@@ -353,9 +353,9 @@ pub fn solve(
     // length_bottom: a length is zero or more.
     if params.width < 0.0 {
         return Err(SolveError::new(
-            "length_bottom",
+            "width",
             "length(bottom) = width",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.width,
         ));
     }
@@ -365,9 +365,9 @@ pub fn solve(
     // length_left: a length is zero or more.
     if params.height < 0.0 {
         return Err(SolveError::new(
-            "length_left",
+            "height",
             "length(left) = height",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.height,
         ));
     }
@@ -377,9 +377,9 @@ pub fn solve(
     // radius_bore: a radius is zero or more.
     if params.hole < 0.0 {
         return Err(SolveError::new(
-            "radius_bore",
+            "hole",
             "radius(bore) = hole",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.hole,
         ));
     }

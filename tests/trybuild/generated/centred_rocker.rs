@@ -272,9 +272,9 @@ pub fn solve(
     // radius_a: a radius is zero or more.
     if params.pad < 0.0 {
         return Err(SolveError::new(
-            "radius_a",
+            "pad",
             "radius(a) = pad",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.pad,
         ));
     }

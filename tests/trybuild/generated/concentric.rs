@@ -177,9 +177,9 @@ pub fn solve(
     // radius_inner: a radius is zero or more.
     if params.inner_radius < 0.0 {
         return Err(SolveError::new(
-            "radius_inner",
+            "inner_radius",
             "radius(inner) = inner_radius",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.inner_radius,
         ));
     }
@@ -195,9 +195,9 @@ pub fn solve(
     // gap: a distance is zero or more.
     if params.wall < 0.0 {
         return Err(SolveError::new(
-            "gap",
+            "wall",
             "distance(inner, outer) = wall",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.wall,
         ));
     }

@@ -460,9 +460,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // eh: a distance is zero or more.
                 if params.diagonal < 0.0 {
                     return Err(SolveError::new(
-                        "eh",
+                        "diagonal",
                         "distance(E, H) = diagonal",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.diagonal,
                     ));
                 }
@@ -563,9 +563,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // eh: a distance is zero or more.
     if params.diagonal < 0.0 {
         return Err(SolveError::new(
-            "eh",
+            "diagonal",
             "distance(E, H) = diagonal",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.diagonal,
         ));
     }

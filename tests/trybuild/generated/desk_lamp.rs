@@ -277,9 +277,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // reach: a distance is zero or more.
                 if params.arm < 0.0 {
                     return Err(SolveError::new(
-                        "reach",
+                        "arm",
                         "distance(base, shade) = arm",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.arm,
                     ));
                 }

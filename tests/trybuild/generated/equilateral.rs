@@ -255,9 +255,9 @@ pub fn solve(
     // length_base: a length is zero or more.
     if params.side < 0.0 {
         return Err(SolveError::new(
-            "length_base",
+            "side",
             "length(base) = side",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.side,
         ));
     }

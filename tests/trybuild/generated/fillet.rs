@@ -201,9 +201,9 @@ pub fn solve(
     // radius_round: a radius is zero or more.
     if params.r < 0.0 {
         return Err(SolveError::new(
-            "radius_round",
+            "r",
             "radius(round) = r",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.r,
         ));
     }

@@ -221,7 +221,7 @@ pub fn solve(
         return Err(SolveError::new(
             "width",
             "distance(A, B) = width",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.width,
         ));
     }

@@ -356,9 +356,9 @@ pub fn solve(
     // length_s1: a length is zero or more.
     if params.side < 0.0 {
         return Err(SolveError::new(
-            "length_s1",
+            "side",
             "length(s1) = side",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.side,
         ));
     }
@@ -368,9 +368,9 @@ pub fn solve(
     // length_s2: a length is zero or more.
     if params.side < 0.0 {
         return Err(SolveError::new(
-            "length_s2",
+            "side",
             "length(s2) = side",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.side,
         ));
     }
@@ -380,9 +380,9 @@ pub fn solve(
     // length_s3: a length is zero or more.
     if params.side < 0.0 {
         return Err(SolveError::new(
-            "length_s3",
+            "side",
             "length(s3) = side",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.side,
         ));
     }
@@ -392,9 +392,9 @@ pub fn solve(
     // length_s4: a length is zero or more.
     if params.side < 0.0 {
         return Err(SolveError::new(
-            "length_s4",
+            "side",
             "length(s4) = side",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.side,
         ));
     }

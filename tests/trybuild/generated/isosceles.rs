@@ -311,9 +311,9 @@ pub fn solve(
     // length_base: a length is zero or more.
     if params.base_length < 0.0 {
         return Err(SolveError::new(
-            "length_base",
+            "base_length",
             "length(base) = base_length",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.base_length,
         ));
     }

@@ -375,9 +375,9 @@ pub fn solve(
     // length_s1: a length is zero or more.
     if params.width < 0.0 {
         return Err(SolveError::new(
-            "length_s1",
+            "width",
             "length(s1) = width",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.width,
         ));
     }
@@ -387,9 +387,9 @@ pub fn solve(
     // length_s2: a length is zero or more.
     if params.foot < 0.0 {
         return Err(SolveError::new(
-            "length_s2",
+            "foot",
             "length(s2) = foot",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.foot,
         ));
     }
@@ -399,9 +399,9 @@ pub fn solve(
     // length_s5: a length is zero or more.
     if params.arm < 0.0 {
         return Err(SolveError::new(
-            "length_s5",
+            "arm",
             "length(s5) = arm",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.arm,
         ));
     }
@@ -411,9 +411,9 @@ pub fn solve(
     // length_s6: a length is zero or more.
     if params.height < 0.0 {
         return Err(SolveError::new(
-            "length_s6",
+            "height",
             "length(s6) = height",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.height,
         ));
     }

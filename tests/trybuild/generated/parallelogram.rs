@@ -302,9 +302,9 @@ pub fn solve(
     // length_bottom: a length is zero or more.
     if params.a < 0.0 {
         return Err(SolveError::new(
-            "length_bottom",
+            "a",
             "length(bottom) = a",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.a,
         ));
     }
@@ -314,9 +314,9 @@ pub fn solve(
     // length_right: a length is zero or more.
     if params.b < 0.0 {
         return Err(SolveError::new(
-            "length_right",
+            "b",
             "length(right) = b",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.b,
         ));
     }

@@ -695,9 +695,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // distance_guard_drive: a distance is zero or more.
                 if params.gap < 0.0 {
                     return Err(SolveError::new(
-                        "distance_guard_drive",
+                        "gap",
                         "distance(guard, drive) = gap",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.gap,
                     ));
                 }
@@ -845,9 +845,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // distance_guard_drive: a distance is zero or more.
     if params.gap < 0.0 {
         return Err(SolveError::new(
-            "distance_guard_drive",
+            "gap",
             "distance(guard, drive) = gap",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.gap,
         ));
     }

@@ -294,9 +294,9 @@ pub fn solve(
     // h: a length is zero or more.
     if params.height < 0.0 {
         return Err(SolveError::new(
-            "h",
+            "height",
             "length(left) = height",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.height,
         ));
     }
@@ -306,9 +306,9 @@ pub fn solve(
     // w: a length is zero or more.
     if params.width < 0.0 {
         return Err(SolveError::new(
-            "w",
+            "width",
             "length(bottom) = width",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.width,
         ));
     }

@@ -330,9 +330,9 @@ pub fn solve(
     // w: a length is zero or more.
     if params.width < 0.0 {
         return Err(SolveError::new(
-            "w",
+            "width",
             "length(bottom) = width",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.width,
         ));
     }
@@ -389,9 +389,9 @@ pub fn solve(
     left.translate(&shift_2);
     if defaults.left_length < 0.0 {
         return Err(SolveError::new(
-            "coincident_top_end_left_start",
-            "coincident(top.end, left.start)",
-            ErrorKind::InvalidValue,
+            "left_length",
+            "the length of left",
+            ErrorKind::InvalidDefault,
             defaults.left_length,
         ));
     }

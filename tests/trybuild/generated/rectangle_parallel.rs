@@ -309,9 +309,9 @@ pub fn solve(
     // h: a length is zero or more.
     if params.height < 0.0 {
         return Err(SolveError::new(
-            "h",
+            "height",
             "length(right) = height",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.height,
         ));
     }
@@ -321,9 +321,9 @@ pub fn solve(
     // w: a length is zero or more.
     if params.width < 0.0 {
         return Err(SolveError::new(
-            "w",
+            "width",
             "length(bottom) = width",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.width,
         ));
     }

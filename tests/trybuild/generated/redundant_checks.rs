@@ -355,9 +355,9 @@ pub fn solve(
     // d_long: a length is zero or more.
     if params.len < 0.0 {
         return Err(SolveError::new(
-            "d_long",
+            "len",
             "length(s) = len",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.len,
         ));
     }
@@ -367,9 +367,9 @@ pub fn solve(
     // k_radius: a radius is zero or more.
     if params.k < 0.0 {
         return Err(SolveError::new(
-            "k_radius",
+            "k",
             "radius(K) = k",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.k,
         ));
     }
@@ -379,9 +379,9 @@ pub fn solve(
     // q_r: a radius is zero or more.
     if params.rr < 0.0 {
         return Err(SolveError::new(
-            "q_r",
+            "rr",
             "radius(R) = rr",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.rr,
         ));
     }
@@ -529,9 +529,9 @@ pub fn solve(
     // l_off: a distance is zero or more.
     if params.gap < 0.0 {
         return Err(SolveError::new(
-            "l_off",
+            "gap",
             "distance(P, R) = gap",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.gap,
         ));
     }
@@ -567,9 +567,9 @@ pub fn solve(
     // n_ap: a distance is zero or more.
     if params.ap < 0.0 {
         return Err(SolveError::new(
-            "n_ap",
+            "ap",
             "distance(P, A) = ap",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.ap,
         ));
     }

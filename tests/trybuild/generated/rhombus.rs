@@ -278,9 +278,9 @@ pub fn solve(
     // length_a: a length is zero or more.
     if params.side < 0.0 {
         return Err(SolveError::new(
-            "length_a",
+            "side",
             "length(a) = side",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.side,
         ));
     }

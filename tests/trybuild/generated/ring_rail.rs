@@ -219,9 +219,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // distance_grip_rail: a distance is zero or more.
     if params.gap < 0.0 {
         return Err(SolveError::new(
-            "distance_grip_rail",
+            "gap",
             "distance(grip, rail) = gap",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.gap,
         ));
     }

@@ -261,9 +261,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // l1: a distance is zero or more.
     if params.leg1 < 0.0 {
         return Err(SolveError::new(
-            "l1",
+            "leg1",
             "distance(B1, platform.p1) = leg1",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.leg1,
         ));
     }
@@ -294,9 +294,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // l2: a distance is zero or more.
                 if params.leg2 < 0.0 {
                     return Err(SolveError::new(
-                        "l2",
+                        "leg2",
                         "distance(B2, platform.p2) = leg2",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.leg2,
                     ));
                 }
@@ -343,9 +343,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // l3: a distance is zero or more.
                 if params.leg3 < 0.0 {
                     return Err(SolveError::new(
-                        "l3",
+                        "leg3",
                         "distance(B3, platform.p3) = leg3",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.leg3,
                     ));
                 }
@@ -370,9 +370,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // l2: a distance is zero or more.
     if params.leg2 < 0.0 {
         return Err(SolveError::new(
-            "l2",
+            "leg2",
             "distance(B2, platform.p2) = leg2",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.leg2,
         ));
     }

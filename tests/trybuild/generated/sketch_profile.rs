@@ -337,9 +337,9 @@ pub fn solve(
     // height: a length is zero or more.
     if params.h < 0.0 {
         return Err(SolveError::new(
-            "height",
+            "h",
             "length(left) = h",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.h,
         ));
     }
@@ -349,9 +349,9 @@ pub fn solve(
     // radius_fillet: a radius is zero or more.
     if params.r < 0.0 {
         return Err(SolveError::new(
-            "radius_fillet",
+            "r",
             "radius(fillet) = r",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.r,
         ));
     }
@@ -361,9 +361,9 @@ pub fn solve(
     // width: a length is zero or more.
     if params.w < 0.0 {
         return Err(SolveError::new(
-            "width",
+            "w",
             "length(bottom) = w",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.w,
         ));
     }

@@ -372,9 +372,9 @@ pub fn solve(
     // coincident(pointer.start, strut.start) (sketch_space.gcs:14)
     if defaults.strut_length < 0.0 {
         return Err(SolveError::new(
-            "coincident_pointer_start_strut_start",
-            "coincident(pointer.start, strut.start)",
-            ErrorKind::InvalidValue,
+            "strut_length",
+            "the length of strut",
+            ErrorKind::InvalidDefault,
             defaults.strut_length,
         ));
     }
@@ -404,9 +404,9 @@ pub fn solve(
     wind.rotate_about_by(&wind_origin, &turn_6);
     if defaults.pointer_length < 0.0 {
         return Err(SolveError::new(
-            "coincident_pointer_start_strut_start",
-            "coincident(pointer.start, strut.start)",
-            ErrorKind::InvalidValue,
+            "pointer_length",
+            "the length of pointer",
+            ErrorKind::InvalidDefault,
             defaults.pointer_length,
         ));
     }

@@ -320,9 +320,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // leg1: a distance is zero or more.
     if params.l1 < 0.0 {
         return Err(SolveError::new(
-            "leg1",
+            "l1",
             "distance(platform.p1, b1) = l1",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.l1,
         ));
     }
@@ -366,9 +366,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // leg2: a distance is zero or more.
                 if params.l2 < 0.0 {
                     return Err(SolveError::new(
-                        "leg2",
+                        "l2",
                         "distance(platform.p2, b2) = l2",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.l2,
                     ));
                 }
@@ -405,9 +405,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // leg3: a distance is zero or more.
                 if params.l3 < 0.0 {
                     return Err(SolveError::new(
-                        "leg3",
+                        "l3",
                         "distance(platform.p3, b3) = l3",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.l3,
                     ));
                 }
@@ -440,9 +440,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // leg4: a distance is zero or more.
                 if params.l4 < 0.0 {
                     return Err(SolveError::new(
-                        "leg4",
+                        "l4",
                         "distance(platform.p4, b4) = l4",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.l4,
                     ));
                 }
@@ -452,9 +452,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // leg5: a distance is zero or more.
                 if params.l5 < 0.0 {
                     return Err(SolveError::new(
-                        "leg5",
+                        "l5",
                         "distance(platform.p5, b5) = l5",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.l5,
                     ));
                 }
@@ -464,9 +464,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 // leg6: a distance is zero or more.
                 if params.l6 < 0.0 {
                     return Err(SolveError::new(
-                        "leg6",
+                        "l6",
                         "distance(platform.p6, b6) = l6",
-                        ErrorKind::InvalidValue,
+                        ErrorKind::InvalidParam,
                         params.l6,
                     ));
                 }
@@ -498,9 +498,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // leg2: a distance is zero or more.
     if params.l2 < 0.0 {
         return Err(SolveError::new(
-            "leg2",
+            "l2",
             "distance(platform.p2, b2) = l2",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.l2,
         ));
     }
@@ -539,9 +539,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // leg3: a distance is zero or more.
     if params.l3 < 0.0 {
         return Err(SolveError::new(
-            "leg3",
+            "l3",
             "distance(platform.p3, b3) = l3",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.l3,
         ));
     }

@@ -339,9 +339,9 @@ pub fn solve(
     // length_base: a length is zero or more.
     if params.width < 0.0 {
         return Err(SolveError::new(
-            "length_base",
+            "width",
             "length(base) = width",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.width,
         ));
     }
@@ -351,9 +351,9 @@ pub fn solve(
     // length_left: a length is zero or more.
     if params.arm < 0.0 {
         return Err(SolveError::new(
-            "length_left",
+            "arm",
             "length(left) = arm",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.arm,
         ));
     }
@@ -363,9 +363,9 @@ pub fn solve(
     // radius_bolt_left: a radius is zero or more.
     if params.hole < 0.0 {
         return Err(SolveError::new(
-            "radius_bolt_left",
+            "hole",
             "radius(bolt_left) = hole",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.hole,
         ));
     }

@@ -197,9 +197,9 @@ pub fn solve(
     // radius_wheel: a radius is zero or more.
     if params.wheel_radius < 0.0 {
         return Err(SolveError::new(
-            "radius_wheel",
+            "wheel_radius",
             "radius(wheel) = wheel_radius",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.wheel_radius,
         ));
     }

@@ -259,9 +259,9 @@ pub fn solve(
     // guy: a distance is zero or more.
     if params.rope < 0.0 {
         return Err(SolveError::new(
-            "guy",
+            "rope",
             "distance(left_stake, top) = rope",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.rope,
         ));
     }

@@ -258,9 +258,9 @@ pub fn solve(
     // length_s1: a length is zero or more.
     if params.a < 0.0 {
         return Err(SolveError::new(
-            "length_s1",
+            "a",
             "length(s1) = a",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.a,
         ));
     }
@@ -270,9 +270,9 @@ pub fn solve(
     // length_s2: a length is zero or more.
     if params.b < 0.0 {
         return Err(SolveError::new(
-            "length_s2",
+            "b",
             "length(s2) = b",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.b,
         ));
     }

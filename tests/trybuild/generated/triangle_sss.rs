@@ -264,9 +264,9 @@ pub fn solve(
     // length_base: a length is zero or more.
     if params.a < 0.0 {
         return Err(SolveError::new(
-            "length_base",
+            "a",
             "length(base) = a",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.a,
         ));
     }
@@ -276,9 +276,9 @@ pub fn solve(
     // length_left: a length is zero or more.
     if params.c < 0.0 {
         return Err(SolveError::new(
-            "length_left",
+            "c",
             "length(left) = c",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.c,
         ));
     }
@@ -288,9 +288,9 @@ pub fn solve(
     // length_right: a length is zero or more.
     if params.b < 0.0 {
         return Err(SolveError::new(
-            "length_right",
+            "b",
             "length(right) = b",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.b,
         ));
     }

@@ -201,9 +201,9 @@ pub fn solve(
     // distance_valve_sensor: a distance is zero or more.
     if params.reach < 0.0 {
         return Err(SolveError::new(
-            "distance_valve_sensor",
+            "reach",
             "distance(valve, sensor) = reach",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.reach,
         ));
     }
@@ -223,9 +223,9 @@ pub fn solve(
     // size: a radius is zero or more.
     if params.r < 0.0 {
         return Err(SolveError::new(
-            "size",
+            "r",
             "radius(rim) = r",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.r,
         ));
     }

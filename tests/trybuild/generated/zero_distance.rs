@@ -211,9 +211,9 @@ pub fn solve(
     // distance_A_B: a distance is zero or more.
     if params.c < 0.0 {
         return Err(SolveError::new(
-            "distance_A_B",
+            "c",
             "distance(A, B) = c",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.c,
         ));
     }
@@ -244,9 +244,9 @@ pub fn solve(
     // distance_D_F: a distance is zero or more.
     if params.e < 0.0 {
         return Err(SolveError::new(
-            "distance_D_F",
+            "e",
             "distance(D, F) = e",
-            ErrorKind::InvalidValue,
+            ErrorKind::InvalidParam,
             params.e,
         ));
     }
