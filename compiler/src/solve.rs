@@ -94,5 +94,54 @@ pub fn solve_plan_with(
     s.iterations = iterations;
     s.grounded = plan.grounded.map(|g| model.geoms[g].name.clone());
     s.max_residual = verify::max_residual_in(model, &s, params, scope);
+    off_by(model, &s, params, scope)?;
     Ok(s)
+}
+
+/// Nothing off is `Ok`: the error of the constraint the verifier finds furthest from met, when
+/// that is past a run-time check's tolerance ([`gcs_runtime::tol::CHECK_REL`] times one plus
+/// the solution's size). A plan meets every constraint by construction or checks it, so this
+/// fires only where a plan is wrong (an iteration that closed on an error that does not
+/// measure what it displaced); the verifier shares nothing with the plan, so it sees that.
+fn off_by(
+    model: &gcs_lang::Model,
+    s: &solution::Solution,
+    params: &[f64],
+    scope: &BTreeSet<GeomId>,
+) -> Result<(), SolveError> {
+    let size = (s.points.iter().flat_map(|(_, p)| p.iter()))
+        .chain(s.scalars.iter().map(|(_, x)| x))
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let tol = gcs_runtime::tol::CHECK_REL * (1.0 + size);
+    if s.max_residual.is_finite() && s.max_residual <= tol {
+        return Ok(());
+    }
+    let worst = (verify::residuals(model, s, params).into_iter())
+        .filter(|r| {
+            (model.constraints[r.constraint].args.iter())
+                .all(|a| scope.contains(&model.top_level_of(*a)))
+        })
+        .map(|r| {
+            (
+                if r.value.is_nan() {
+                    f64::INFINITY
+                } else {
+                    r.value
+                },
+                r,
+            )
+        })
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    match worst {
+        Some((off, r)) if off > tol => {
+            let c = &model.constraints[r.constraint];
+            Err(SolveError::new(
+                c.name.clone(),
+                c.text.clone(),
+                gcs_runtime::error::ErrorKind::Inconsistent,
+                off,
+            ))
+        }
+        _ => Ok(()),
+    }
 }

@@ -343,3 +343,59 @@ fn crank_rocker_traces_its_coupler_curve_on_both_branches() {
         );
     }
 }
+
+/// The inverted slider-crank whose slot passes neither pin (pyslvs' form): the slot is a
+/// common tangent of two circles about the pins, built in closed form (no default, no
+/// iteration). Every one-degree sample solved on its own lands on the sketch's assembly: the
+/// slot's direction moves continuously, and the block's offset from the slot is the one the
+/// sketch gives it (read here from the sketch, not the plan).
+#[test]
+fn inverted_slider_crank_with_offsets_is_closed_form_and_keeps_its_assembly() {
+    let model = load(&example("inverted_slider_crank_offset"));
+    let analysis = analyse(&model).expect("analysed");
+    assert!(
+        analysis.plan.defaults.is_empty(),
+        "{:?}",
+        analysis.plan.defaults
+    );
+    assert!(analysis.plan.iterations.is_empty());
+    let branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
+    let mut params = model.default_params();
+    let theta = param(&model, "theta");
+    // The pins' signed distances from the slot (left positive), in their bodies' frames as
+    // the example's sketch gives them: L2's marker at (0.2, 0.5) along (1, 0) about its pin at
+    // the origin, L3's at (-1, 0.8) along (-0.9, 0.3) about its pivot at the origin.
+    let offset = |origin: P, x: P| cross(scale(x, 1.0 / norm(x)), sub([0.0, 0.0], origin));
+    let (block, rocker) = (
+        offset([0.2, 0.5], [1.0, 0.0]),
+        offset([-1.0, 0.8], [-0.9, 0.3]),
+    );
+    let mut last: Option<P> = None;
+    for deg in 0..360 {
+        params[theta] = (deg as f64).to_radians();
+        let s = gcs_compiler::solve(&model, &analysis, &params, &branches)
+            .unwrap_or_else(|e| panic!("theta = {deg} deg: {e}"));
+        assert!(
+            s.max_residual < 1e-12,
+            "theta = {deg} deg: {}",
+            s.max_residual
+        );
+        let dir = s.by_name().vector("L3.s.x").expect("the slot's direction");
+        let u = [dir[0], dir[1]];
+        // Each pin at its body's offset from the one slot.
+        let (tip, b) = (get(&s, "crank.tip"), get(&s, "B"));
+        let slot = get(&s, "L2.m");
+        assert!(
+            (cross(u, sub(tip, slot)) - block).abs() < 1e-12,
+            "theta = {deg} deg"
+        );
+        assert!(
+            (cross(u, sub(b, slot)) - rocker).abs() < 1e-12,
+            "theta = {deg} deg"
+        );
+        if let Some(prev) = last {
+            assert!(dist(prev, u) < 0.1, "theta = {deg} deg: the slot jumped");
+        }
+        last = Some(u);
+    }
+}

@@ -115,7 +115,7 @@ impl Builder<'_, Planar> {
                     let d = d.map(|d| self.expr(d));
                     return self.move_line_to_point(p, base, dir, d, r);
                 }
-                false
+                d.is_none() && self.common_line(p, base, dir, r)
             }
             Relation::Angle { u, v, angle } => {
                 let (ku, kv) = (self.dir_known(u), self.dir_known(v));

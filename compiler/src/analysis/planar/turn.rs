@@ -4,7 +4,7 @@
 //! it records the point ([`Pass`]) until a second one gives its direction, or its direction
 //! becomes known (`place_by_passes`).
 
-use super::relation::{Dir, Relation};
+use super::relation::{AngleValue, Dir, Relation};
 use super::{
     depends_on_dim, pinned_at_midpoint, pivot_name, Locus, Pass, Planar, Pos, Rel, Rot, Target,
 };
@@ -217,6 +217,91 @@ impl Builder<'_, Planar> {
         false
     }
 
+    /// Point `p` on line (`base`, `dir`) where each lies in a cluster that may only turn about
+    /// a known pivot, and a pending relation keeps `p`'s cluster's direction `ax` along `dir`
+    /// (a prismatic joint between two rockers: the inverted slider-crank). The line through
+    /// `p` along `ax` is rigid in `p`'s cluster, so it passes that cluster's pivot at a known
+    /// signed distance; once the two directions agree, the two lines are one. So the line's
+    /// cluster turns about its pivot until its line passes the other pivot at that distance
+    /// (the common tangent of two circles about the pivots, the offsets their radii: two
+    /// roots, a branch); the pending angle then turns `p`'s cluster, which puts `p` on the
+    /// line.
+    pub(super) fn common_line(&mut self, p: GeomId, base: GeomId, dir: GeomId, r: &Rel) -> bool {
+        let (kp, kl) = (self.cluster(p), self.cluster(base));
+        if kp == kl {
+            return false;
+        }
+        let (rp, rl) = (&self.clusters[kp].record, &self.clusters[kl].record);
+        let (
+            Pos::Pivot { at: pivot_p, .. },
+            Pos::Pivot {
+                at: pivot_l,
+                feature: about,
+            },
+        ) = (rp.pos, rl.pos)
+        else {
+            return false;
+        };
+        if rp.rot != Rot::Free
+            || rl.rot != Rot::Free
+            || rp.free_dim.is_some()
+            || rl.free_dim.is_some()
+        {
+            return false;
+        }
+        // The direction of `p`'s cluster a pending relation sets along `dir`.
+        let along = |u: &Dir, v: &Dir| match (u, v) {
+            (Dir::Feature(a), Dir::Feature(b)) if *b == dir => Some(*a),
+            _ => None,
+        };
+        let ax = self.pending.iter().find_map(|q| match &q.relation {
+            Relation::Angle {
+                u,
+                v,
+                angle: AngleValue::Const(c),
+            } if *c == 0.0 => along(u, v)
+                .or_else(|| along(v, u))
+                .filter(|&a| self.cluster(a) == kp),
+            _ => None,
+        });
+        let Some(ax) = ax else {
+            return false;
+        };
+        // The signed distance of `p`'s pivot from the line through `p` along `ax` (to its
+        // left positive): what the common line's will be.
+        let at = self.point(p);
+        let axis = self.dir(Dir::Feature(ax));
+        let quarter = self.value(
+            Op::Const(std::f64::consts::FRAC_PI_2),
+            Ty::Scalar,
+            "a quarter turn".into(),
+        );
+        let left = self.value(
+            Op::Rotated {
+                dir: axis,
+                angle: quarter,
+            },
+            Ty::Vector,
+            format!("the left of {}", self.name(ax)),
+        );
+        let offset = self.value(
+            Op::Along {
+                from: at,
+                dir: left,
+                to: pivot_p,
+            },
+            Ty::Scalar,
+            format!(
+                "the distance of {} from the line through {} along {}",
+                self.word(pivot_p),
+                self.name(p),
+                self.name(ax)
+            ),
+        );
+        let name = self.word(pivot_p);
+        self.turn_line_past_point(pivot_l, about, pivot_p, &name, base, dir, Some(offset), r)
+    }
+
     /// Turns the cluster of line (`base`, `dir`), which may only rotate about `pivot` (at
     /// feature `about`), until the line passes known point `p` at signed distance `d` (none:
     /// through it): a line through a point tangent to a circle, a slotted link through a pin.
@@ -234,6 +319,23 @@ impl Builder<'_, Planar> {
         r: &Rel,
     ) -> bool {
         let point = self.point(p);
+        let pn = self.name(p);
+        self.turn_line_past_point(pivot, about, point, &pn, base, dir, d, r)
+    }
+
+    /// [`Self::turn_line_past`] to a known point `point`, called `pn`.
+    #[allow(clippy::too_many_arguments)]
+    fn turn_line_past_point(
+        &mut self,
+        pivot: Reg,
+        about: GeomId,
+        point: Reg,
+        pn: &str,
+        base: GeomId,
+        dir: GeomId,
+        d: Option<Reg>,
+        r: &Rel,
+    ) -> bool {
         let bp = self.point(base);
         let dv = self.dir(Dir::Feature(dir));
         // The pivot as the plan knows it (a line's own point is named after the line).
@@ -242,7 +344,7 @@ impl Builder<'_, Planar> {
         } else {
             self.name(about)
         };
-        let (pn, dn) = (self.name(p), self.name(dir));
+        let dn = self.name(dir);
         let branch = self.branch(
             r.constraint,
             vec![
