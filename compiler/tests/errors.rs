@@ -567,3 +567,35 @@ fn an_error_about_a_large_model_fits_a_screen() {
         .unwrap_or_else(|| panic!("{e:#?}"));
     assert!(gap > 1500.0, "{gap}");
 }
+
+/// Nothing off is `Ok`: the solve re-measures every constraint by the verifier, which shares
+/// nothing with the plan, and a constraint off by more than a check's tolerance is an error
+/// naming it. Shown on a plan with its run-time checks taken out: the redundant distance, which
+/// only a check guarded, is then off by the difference of the two values.
+#[test]
+fn a_solution_off_a_constraint_is_never_ok() {
+    let model = load(
+        "space 2d;
+fixed point A = (0, 0);
+fixed point B = (3, 0);
+point C = (1, 2);
+distance(A, C) = 2;
+distance(B, C) = 2;
+twice: distance(A, C) = 2.5;
+",
+    );
+    let a = analyse(&model).expect("analysed");
+    let mut plan = a.plan.clone();
+    assert!(plan.iterations.is_empty());
+    let checks = plan.steps.len();
+    plan.steps
+        .retain(|s| !matches!(s.op, gcs_compiler::plan::Op::Check { .. }));
+    assert!(plan.steps.len() < checks, "the plan checks `twice`");
+    let all = model.top_level().map(|(id, _)| id).collect();
+    let params = model.default_params();
+    let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+    let e = gcs_compiler::solve_plan(&model, &plan, &all, &params, &branches)
+        .expect_err("off by 0.5");
+    assert_eq!((&*e.label, e.kind), ("twice", ErrorKind::Inconsistent), "{e}");
+    assert!((e.magnitude - 0.5).abs() < 1e-12, "{e}");
+}
