@@ -77,10 +77,56 @@ impl std::error::Error for AnalysisError {}
 /// invariants, and that only the constraints the analysis reports unsolved (or recorded) are
 /// left without a step.
 pub fn analyse(model: &Model) -> Result<Analysis, AnalysisError> {
-    let mut analysis = analysis::analyse(model).map_err(AnalysisError::Uncovered)?;
+    let mut analysis = analysis::analyse(model, moving_checks).map_err(AnalysisError::Uncovered)?;
     choose_branch_defaults(model, &mut analysis.plan);
     validate(model, &analysis).map_err(AnalysisError::Malformed)?;
     Ok(analysis)
+}
+
+/// For each step of `plan` (defaults, no iterations yet), whether a run-time check's residual
+/// or an `Onto`'s gap moves with the defaults: the plan run on the sketch (its branches and
+/// defaults' sketch values), then with every default moved a little at once, twice (random
+/// signs, two sizes). A residual that stays within rounding of its sketch value both times
+/// depends on none of them. `None` for every step when a run fails.
+fn moving_checks(model: &Model, plan: &Plan) -> Vec<Option<bool>> {
+    use gcs_runtime::tol::{PROBE_MOVE, PROBE_STILL};
+    let mut out = vec![None; plan.steps.len()];
+    if plan.defaults.is_empty() {
+        return out;
+    }
+    let (chosen, reached) = crate::interp::sketch_choices(model, plan);
+    let choice = crate::interp::Choice::Given(chosen.iter().map(|b| b.unwrap_or(0)).collect());
+    let sketch: Vec<f64> = (reached.iter()).map(|v| v.unwrap_or(0.0)).collect();
+    let at = |defaults: &[f64]| crate::interp::residuals_at(model, plan, defaults, &choice);
+    let Ok((base, scale)) = at(&sketch) else {
+        return out;
+    };
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut moved = |size: f64| -> Vec<f64> {
+        (sketch.iter())
+            .map(|x| {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                let sign = if seed & 1 == 0 { 1.0 } else { -1.0 };
+                x + sign * size * (1.0 + x.abs())
+            })
+            .collect()
+    };
+    let (small, large) = (moved(PROBE_MOVE), moved(3.0 * PROBE_MOVE));
+    let (Ok((a, _)), Ok((b, _))) = (at(&small), at(&large)) else {
+        return out;
+    };
+    if a.len() != base.len() || b.len() != base.len() {
+        return out;
+    }
+    for ((&(i, r0), &(_, ra)), &(_, rb)) in base.iter().zip(&a).zip(&b) {
+        // Only rounding: a residual that moves at all, however little (near a tangency), is
+        // an error its default can close.
+        let still = |r: f64| (r - r0).abs() <= PROBE_STILL * (1.0 + scale);
+        out[i] = Some(!(still(ra) && still(rb)));
+    }
+    out
 }
 
 /// Sets each branch variable's default to the sketch's branch, and each default's sketch

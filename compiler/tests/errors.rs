@@ -594,8 +594,12 @@ twice: distance(A, C) = 2.5;
     let all = model.top_level().map(|(id, _)| id).collect();
     let params = model.default_params();
     let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
-    let e = gcs_compiler::solve_plan(&model, &plan, &all, &params, &branches)
-        .expect_err("off by 0.5");
-    assert_eq!((&*e.label, e.kind), ("twice", ErrorKind::Inconsistent), "{e}");
+    let e =
+        gcs_compiler::solve_plan(&model, &plan, &all, &params, &branches).expect_err("off by 0.5");
+    assert_eq!(
+        (&*e.label, e.kind),
+        ("twice", ErrorKind::Inconsistent),
+        "{e}"
+    );
     assert!((e.magnitude - 0.5).abs() < 1e-12, "{e}");
 }

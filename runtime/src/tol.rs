@@ -60,6 +60,19 @@ pub const SAME_ASSEMBLY_REL: f64 = 1e-9;
 /// 1e-4 do.
 pub const JOINED_REL: f64 = 1e-9;
 
+/// How far the analysis moves each default (relative to one plus its size) to see which
+/// run-time checks move with the defaults: small enough that the plan still assembles on the
+/// sketch's branches, large enough that a residual that depends on a default moves far past
+/// rounding.
+pub const PROBE_MOVE: f64 = 1e-3;
+
+/// Relative change (times one plus the model's size) under which a residual has not moved
+/// when the defaults moved by [`PROBE_MOVE`]: rounding, a few hundred units in the last place.
+/// A residual that moves at all, however little (near a tangency), depends on the defaults;
+/// one built along a line it is measured across (a point displaced along the very line it
+/// must lie on) moves by nothing or by rounding.
+pub const PROBE_STILL: f64 = 1e-13;
+
 /// Absolute length (in drawing units) under which a direction projected into a drawing's
 /// view is seen end on: an arrow or a line along it is not drawn.
 pub const END_ON: f64 = 1e-9;

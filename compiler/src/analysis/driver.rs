@@ -38,7 +38,10 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Analyses a model with the geometry of its space.
-pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, super::Unreadable> {
+pub(super) fn analyse<G: Geometry>(
+    model: &Model,
+    moves: super::Moves,
+) -> Result<Analysis, super::Unreadable> {
     let (mut rels, unsupported) = G::decompose(model)?;
     // Canonical order: by constraint name, then relation order within the constraint, so that
     // the plan does not depend on the order of statements.
@@ -49,6 +52,7 @@ pub(super) fn analyse<G: Geometry>(model: &Model) -> Result<Analysis, super::Unr
     });
     mark_duplicates::<G>(&mut rels);
     let mut b = Builder::<G>::new(model);
+    b.moves = Some(moves);
     b.run(rels);
     let mut unsolved = unsupported;
     let mut listed: BTreeSet<ConstraintId> = unsolved.iter().map(|u| u.constraint).collect();
@@ -169,6 +173,9 @@ type Checkpoint = (usize, u32, usize);
 #[derive(Clone)]
 pub(crate) struct Builder<'m, G: Geometry> {
     pub(crate) model: &'m Model,
+    /// Which checks move with the defaults, asked once the plan is written (see
+    /// [`super::analyse`]); none while a loop is solved on a temporary ground.
+    pub(crate) moves: Option<super::Moves>,
     pub(crate) plan: Plan,
     pub(crate) clusters: Vec<ClusterState<G::Record>>,
     /// The cluster of each top-level geom, by its index in the model's arena (0 for the
@@ -242,6 +249,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
         }
         Builder {
             model,
+            moves: None,
             plan: Plan::new(model.space),
             clusters,
             cluster_of,
@@ -711,7 +719,10 @@ impl<'m, G: Geometry> Builder<'m, G> {
         // For each closed default: the step that reads it and its last close, in new steps.
         let mut spans: BTreeMap<u32, (usize, usize)> = BTreeMap::new();
         let mut regs = self.plan.regs;
-        for step in std::mem::take(&mut self.plan.steps) {
+        // Which checks move with the defaults, run on the sketch: one that does not is no
+        // error to close, whatever it depends on on paper.
+        let moving = self.moves.map(|f| f(model, &self.plan)).unwrap_or_default();
+        for (i, step) in std::mem::take(&mut self.plan.steps).into_iter().enumerate() {
             let mut deps: BTreeSet<u32> = BTreeSet::new();
             for r in step.op.reads() {
                 deps.extend(reg_deps[r.0 as usize].iter().copied());
@@ -734,6 +745,10 @@ impl<'m, G: Geometry> Builder<'m, G> {
             if let Some((r, _)) = step.out {
                 reg_deps[r.0 as usize] = deps.clone();
             }
+            let displaced = match moving.get(i) {
+                Some(Some(false)) => BTreeSet::new(),
+                _ => deps,
+            };
             // A point that a 1-DOF motion must reach on its locus, displaced by a default: it
             // goes to the locus' nearest point, and its distance closes the iteration.
             if let (
@@ -743,7 +758,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                     constraint,
                 },
                 Some(&d),
-            ) = (&step.op, deps.difference(&closed).last())
+            ) = (&step.op, displaced.difference(&closed).last())
             {
                 closed.insert(d);
                 let (locus, point, constraint) = (*locus, *point, *constraint);
@@ -787,7 +802,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 | Residual::MirrorPlane { .. } => coordinates,
                 _ => 1,
             };
-            let open: Vec<u32> = deps.difference(&closed).copied().collect();
+            let open: Vec<u32> = displaced.difference(&closed).copied().collect();
             // A coincidence (or a midpoint, a mirror image) one default displaced, whose
             // coordinates are more equations than it has defaults: the distance it is off by
             // closes the iteration (zero there, and every coordinate with it; unsigned,

@@ -141,9 +141,19 @@ impl Unreadable {
 /// whatever it cannot solve reported in [`Analysis::unsolved`]. Its branch
 /// variables' defaults are not chosen yet: [`crate::pipeline::analyse`] does that, and
 /// validates the plan.
-pub(crate) fn analyse(model: &Model) -> Result<Analysis, Unreadable> {
+///
+/// `moves` runs a plan on the sketch (the analysis runs none itself): for each run-time check
+/// and `Onto`, by step, whether its residual moves with the defaults. A check that depends on
+/// a default only on paper (a point displaced along the very line it must lie on) then stays
+/// a check, and the default a free motion, rather than an iteration with nothing to close.
+pub(crate) fn analyse(model: &Model, moves: Moves) -> Result<Analysis, Unreadable> {
     match model.space {
-        Space::D2 => driver::analyse::<planar::Planar>(model),
-        Space::D3 => driver::analyse::<spatial::Spatial>(model),
+        Space::D2 => driver::analyse::<planar::Planar>(model, moves),
+        Space::D3 => driver::analyse::<spatial::Spatial>(model, moves),
     }
 }
+
+/// For each step of a plan with defaults and no iterations yet, whether a check's residual or
+/// an `Onto`'s gap changes when the defaults move (`None` where that is not known: the step is
+/// neither, or the plan does not run); see [`analyse`].
+pub(crate) type Moves = fn(&Model, &crate::plan::Plan) -> Vec<Option<bool>>;

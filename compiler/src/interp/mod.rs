@@ -354,6 +354,35 @@ fn audit_in<S: Space>(
     }
 }
 
+/// Each run-time check's residual and each `Onto`'s gap of `plan` (one with no outer
+/// iterations) run with `defaults`, by step index, and the configuration's size: the run goes
+/// on past those that fail, so that the analysis can see which of them move with the
+/// defaults. An error where the plan cannot assemble.
+pub fn residuals_at(
+    model: &Model,
+    plan: &Plan,
+    defaults: &[f64],
+    choice: &Choice,
+) -> Result<(Vec<(usize, f64)>, f64), SolveError> {
+    fn run<S: Space>(
+        model: &Model,
+        plan: &Plan,
+        defaults: &[f64],
+        choice: &Choice,
+    ) -> Result<(Vec<(usize, f64)>, f64), SolveError> {
+        let params = model.default_params();
+        let mut machine =
+            Machine::<S>::start(model, plan, &params, defaults.to_vec(), choice, None)?;
+        machine.probed = Some(Vec::new());
+        (machine.execute(None::<&mut gcs_runtime::outer::Newton>)).map_err(|f| f.error)?;
+        Ok((machine.probed.take().unwrap_or_default(), machine.scale))
+    }
+    match model.space {
+        gcs_lang::model::Space::D2 => run::<D2>(model, plan, defaults, choice),
+        gcs_lang::model::Space::D3 => run::<D3>(model, plan, defaults, choice),
+    }
+}
+
 /// The index of the root nearest to the sketch's position of the moving feature, at each
 /// intersection of the plan run on the sketch with the default params: each branch
 /// variable's default. `None` where the run did not reach an intersection.
@@ -425,6 +454,9 @@ pub struct Machine<'a, 'r, S: Space> {
     iterations: u32,
     /// When auditing ([`audit`]): the checks that failed, the run going on past them.
     failed: Option<Vec<Failure>>,
+    /// When probing ([`residuals_at`]): each check's residual and each `Onto`'s gap by step,
+    /// the run going on past them.
+    probed: Option<Vec<(usize, f64)>>,
 }
 
 /// The panic of a malformed plan: a bug in gcs, never an input's fault.
@@ -495,6 +527,7 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
             evaluations: 0,
             iterations: 0,
             failed: None,
+            probed: None,
         })
     }
 
@@ -825,6 +858,10 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
     /// A check of `constraint` at step `i` that measured `r`: within tolerance, or an error
     /// (on the sketch, or auditing, the run goes on).
     fn checked(&mut self, i: usize, constraint: ConstraintId, r: f64) -> Result<(), SolveError> {
+        if let Some(probed) = self.probed.as_mut() {
+            probed.push((i, r));
+            return Ok(());
+        }
         if r.is_nan() || r > self.tol {
             // On the sketch, a check that fails decides nothing the run is for (the
             // branches and the defaults' sketch values): it places nothing.
@@ -841,6 +878,19 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
                 return Ok(());
             }
             return Err(error);
+        }
+        Ok(())
+    }
+
+    /// A point that a motion must reach on its locus, `gap` from it: inconsistent past the
+    /// tolerance (probing, recorded instead).
+    fn onto(&mut self, i: usize, constraint: ConstraintId, gap: f64) -> Result<(), SolveError> {
+        if let Some(probed) = self.probed.as_mut() {
+            probed.push((i, gap));
+            return Ok(());
+        }
+        if gap.is_nan() || gap > self.tol {
+            return Err(err(self.model, constraint, ErrorKind::Inconsistent, gap));
         }
         Ok(())
     }
@@ -1052,9 +1102,7 @@ impl<'a, 'r> Machine<'a, 'r, D2> {
                     Some(&Val::Q(k)) => k.residual(q),
                     v => malformed(*locus, "a locus", v),
                 };
-                if gap.is_nan() || gap > self.tol {
-                    return Err(err(model, *constraint, ErrorKind::Inconsistent, gap));
-                }
+                self.onto(i, *constraint, gap)?;
                 Val::P(q)
             }
             Op::Intersect {

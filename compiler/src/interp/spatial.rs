@@ -466,9 +466,7 @@ impl Machine<'_, '_, D3> {
             } => {
                 let q = self.p3(*point);
                 let gap = self.gap(*locus, &q);
-                if gap.is_nan() || gap > self.tol {
-                    return Err(err(model, *constraint, ErrorKind::Inconsistent, gap));
-                }
+                self.onto(i, *constraint, gap)?;
                 Val::P3(q)
             }
             Op::Intersect {
