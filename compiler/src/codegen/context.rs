@@ -4,7 +4,7 @@
 
 use super::names::{Clash, Namer};
 use super::writer::lit;
-use crate::plan::{Op, Plan, Reg};
+use crate::plan::{Op, Plan, PlanarOp, Reg, SpatialOp};
 use gcs_lang::expr::ParamId;
 use gcs_lang::model::{ConstraintId, GeomId, Owner, Part};
 use gcs_lang::Model;
@@ -207,16 +207,16 @@ fn used_registers(plan: &Plan) -> HashSet<Reg> {
                 used.insert(*a);
                 used.insert(*b);
             }
-            Op::CircleThrough {
+            Op::Planar(PlanarOp::CircleThrough {
                 center,
                 through,
                 radius,
-            }
-            | Op::SphereThrough {
+            })
+            | Op::Spatial(SpatialOp::SphereThrough {
                 center,
                 through,
                 radius,
-            } => {
+            }) => {
                 used.insert(*center);
                 if radius.is_none() {
                     used.insert(*through);
@@ -256,7 +256,9 @@ impl PlanIndex {
                 Op::Translate { geoms, .. }
                 | Op::RotatePoint { geoms, .. }
                 | Op::RotateDir { geoms, .. }
-                | Op::RotateBy { geoms, .. } => ix.moved.extend(geoms.iter().copied()),
+                | Op::Spatial(SpatialOp::RotateBy { geoms, .. }) => {
+                    ix.moved.extend(geoms.iter().copied())
+                }
                 Op::SetDim { geom, .. } => {
                     ix.dim_set.insert(*geom);
                     ix.dim_first.entry(*geom).or_insert(true);

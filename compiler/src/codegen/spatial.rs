@@ -26,7 +26,7 @@ use super::facts::Value;
 use super::sketch3::{frame3, rotation3};
 use super::solve::Solve;
 use super::writer::{float, lit, Writer};
-use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis};
+use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis, SpatialOp};
 use gcs_lang::model::{ConstraintId, GeomId, Owner, Part};
 
 /// The kind of a register's value in space, as the step that defines it makes it: what a
@@ -172,11 +172,17 @@ impl Solve<'_> {
         };
         match &self.cx.plan.steps[i].op {
             Op::Line { .. } | Op::ParallelLine { .. } => Kind::Line,
-            Op::Circle3 { .. } | Op::Orbit { .. } | Op::ShiftedCircle { .. } => Kind::Circle,
-            Op::Plane { .. } | Op::ParallelPlane { .. } => Kind::Plane,
-            Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Kind::Sphere,
-            Op::Cylinder { .. } | Op::ShiftedCylinder { .. } => Kind::Cylinder,
-            Op::Torus { .. } | Op::ShiftedTorus { .. } => Kind::Torus,
+            Op::ShiftedCircle { .. } => Kind::Circle,
+            Op::Spatial(op) => match op {
+                SpatialOp::Circle3 { .. } | SpatialOp::Orbit { .. } => Kind::Circle,
+                SpatialOp::Plane { .. } | SpatialOp::ParallelPlane { .. } => Kind::Plane,
+                SpatialOp::Sphere { .. }
+                | SpatialOp::SphereThrough { .. }
+                | SpatialOp::ShiftedSphere { .. } => Kind::Sphere,
+                SpatialOp::Cylinder { .. } | SpatialOp::ShiftedCylinder { .. } => Kind::Cylinder,
+                SpatialOp::Torus { .. } | SpatialOp::ShiftedTorus { .. } => Kind::Torus,
+                _ => Kind::Other,
+            },
             Op::Intersect { meet, .. } => match meet {
                 Meet::SphereSphere | Meet::SpherePlane => Kind::Circle,
                 Meet::PlanePlane | Meet::PlaneCylinder => Kind::Line,
@@ -274,232 +280,6 @@ impl Solve<'_> {
                 let code = self.unit3(i, &format!("({} - {})", self.r(*to), self.r(*from)));
                 self.define_pure(w, r, "direction", &code);
             }
-            Op::Opposite(d) => {
-                let code = format!("-{}", self.r(*d));
-                self.define_pure(w, r, "opposite", &code);
-            }
-            Op::Across(d) => {
-                let code = self.unit3(i, &format!("frame::perpendicular(&{})", self.r(*d)));
-                self.define_pure(w, r, "across", &code);
-            }
-            Op::AngleAbout { u, v, axis } => {
-                let code = format!(
-                    "frame::signed_angle3(&{}, &{}, &{})",
-                    self.r(*u),
-                    self.r(*v),
-                    self.r(*axis)
-                );
-                self.define_pure(w, r, "angle", &code);
-            }
-            Op::AngleAboutBoth { u, v, axis } => {
-                let code = format!(
-                    "frame::signed_angle3_both([&{}, &{}], [&{}, &{}], &{})",
-                    self.r(u[0]),
-                    self.r(u[1]),
-                    self.r(v[0]),
-                    self.r(v[1]),
-                    self.r(*axis)
-                );
-                self.define_pure(w, r, "angle", &code);
-            }
-            Op::TurnReaching {
-                u,
-                v,
-                axis,
-                pivot,
-                reach,
-                screw,
-            } => {
-                let helix = |h: &crate::plan::HelixRegs| {
-                    format!(
-                        "fragment3::Helix {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {} }}",
-                        self.r(h.axis),
-                        self.r(h.x_from),
-                        self.r(h.origin),
-                        self.r(h.x),
-                        self.r(h.point),
-                        self.r(h.pitch)
-                    )
-                };
-                let screw = screw.map_or("None".to_string(), |s| {
-                    format!(
-                        "Some(&fragment3::Screw {{ helix: {}, slide: {}.dir }})",
-                        helix(&s.helix),
-                        self.r(s.slide)
-                    )
-                });
-                let (onto, target) = match reach {
-                    crate::plan::Reach::Helix(h) => ("helix", format!("&{}", helix(h))),
-                    crate::plan::Reach::Point { point, locus } => (
-                        match self.kind3(*locus) {
-                            Kind::Plane => "plane",
-                            _ => "line",
-                        },
-                        format!("&{}, &{}", self.r(*point), self.r(*locus)),
-                    ),
-                };
-                let code = format!(
-                    "fragment3::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), {target}, {screw})",
-                    self.r(*u),
-                    self.r(*v),
-                    self.r(*pivot),
-                    self.r(*axis)
-                );
-                self.define_pure(w, r, "angle", &code);
-            }
-            Op::HelixAdvance { now, turn, pitch } => {
-                let code = format!(
-                    "frame::helix_advance({}, {}, {})",
-                    self.r(*now),
-                    self.r(*turn),
-                    self.r(*pitch)
-                );
-                self.define_finite(w, i, r, "advance", &code);
-            }
-            Op::HelixTurn { advance, pitch } => {
-                let code = format!(
-                    "frame::helix_turn({}, {})",
-                    self.r(*advance),
-                    self.r(*pitch)
-                );
-                self.define_finite(w, i, r, "turn", &code);
-            }
-            Op::Aligned { dir, near } => {
-                let code = format!("frame::aligned(&{}, &{})", self.r(*dir), self.r(*near));
-                self.define_pure(w, r, "aligned", &code);
-            }
-            Op::PassingAngle {
-                from,
-                to,
-                d,
-                now,
-                constraint,
-            } => {
-                let call = format!(
-                    "fragment3::passing_angle(&{}, &{}, {}, &{})",
-                    self.r(*from),
-                    self.r(*to),
-                    self.r(*d),
-                    self.r(*now)
-                );
-                self.only_root(w, (i, r), *constraint, ("passing", "passing_angle"), &call);
-            }
-            Op::TiltToDistance {
-                centre,
-                point,
-                radius,
-                d,
-                now,
-                constraint,
-            } => {
-                let call = format!(
-                    "fragment3::tilt_to_distance(&{}, &{}, {}, {}, &{})",
-                    self.r(*centre),
-                    self.r(*point),
-                    self.r(*radius),
-                    self.r(*d),
-                    self.r(*now)
-                );
-                self.only_root(w, (i, r), *constraint, ("tilt", "tilt_angle"), &call);
-            }
-            Op::ConeTurn { axis, angle, dir } => {
-                let code = format!(
-                    "frame::plane_turn(&{}, f64::cos({}), &{})",
-                    self.r(*axis),
-                    self.r(*angle),
-                    self.r(*dir)
-                );
-                self.define_pure(w, r, "turned", &code);
-            }
-            Op::AngleTurn {
-                u,
-                v,
-                axis,
-                angle,
-                branch,
-                constraint,
-            } => {
-                let turns = self.names.fresh("turns");
-                w.line(&format!(
-                    "let {turns} = frame::turns_to_angle(&{}, &{}, &{}, {});",
-                    self.r(*u),
-                    self.r(*v),
-                    self.r(*axis),
-                    self.r(*angle)
-                ));
-                self.fail_on_contact(w, *constraint, &turns, None);
-                let code = self.root(&turns, *branch, *constraint);
-                self.define_pure(w, r, "turned", &code);
-            }
-            Op::PlaneTurn {
-                base,
-                normal,
-                pivot,
-                point,
-                d,
-                constraint,
-            } => {
-                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
-                let con = &m.constraints[*constraint];
-                let (label, text) = (lit(&con.name), lit(&con.text));
-                let len = self.names.fresh("reach");
-                w.line(&format!("let {len} = {cone}.0.norm();"));
-                w.open(&format!("if {len}.is_nan() || {len} <= 0.0 {{"));
-                w.line(&format!(
-                    "return Err(SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0));"
-                ));
-                w.close("}");
-                w.open(&format!(
-                    "if {cone}.1.abs() > 1.0 + gcs_runtime::tol::LENGTH_REL || {cone}.1.is_nan() {{"
-                ));
-                w.line(&format!(
-                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, ({cone}.1.abs() - 1.0) * {len}));"
-                ));
-                w.close("}");
-                let code = format!(
-                    "frame::plane_turn(&({cone}.0 / {len}), {cone}.1.clamp(-1.0, 1.0), &{})",
-                    self.r(*normal)
-                );
-                self.define_pure(w, r, "normal", &code);
-            }
-            Op::PlaneAxisTurn {
-                base,
-                normal,
-                pivot,
-                point,
-                d,
-                axis,
-                branch,
-                constraint,
-            } => {
-                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
-                let con = &m.constraints[*constraint];
-                let (label, text) = (lit(&con.name), lit(&con.text));
-                let reach = self.names.fresh("reach");
-                w.line(&format!(
-                    "let {reach} = {cone}.0.try_normalize(0.0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0))?;"
-                ));
-                let gap = self.names.fresh("gap");
-                w.line(&format!(
-                    "let {gap} = ({cone}.1.abs() - 1.0).max(0.0) * {cone}.0.norm();"
-                ));
-                let turns = self.names.fresh("turns");
-                w.line(&format!(
-                    "let {turns} = frame::turns_to_angle(&{reach}, &{}, &{}, {cone}.1.clamp(-1.0, 1.0).acos());",
-                    self.r(*normal),
-                    self.r(*axis)
-                ));
-                self.fail_on_contact(w, *constraint, &turns, Some(&gap));
-                w.open(&format!(
-                    "if {gap} > gcs_runtime::tol::LENGTH_REL * (1.0 + {cone}.0.norm()) {{"
-                ));
-                w.line(&format!(
-                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, {gap}));"
-                ));
-                w.close("}");
-                let code = self.root(&turns, *branch, *constraint);
-                self.define_pure(w, r, "normal", &code);
-            }
             Op::Midpoint { a, b } => {
                 let code = format!("locus3d::midpoint({}, {})", self.r(*a), self.r(*b));
                 self.define_pure(w, r, "midpoint", &code);
@@ -511,49 +291,6 @@ impl Solve<'_> {
                     self.r(*through)
                 );
                 self.define_pure(w, r, "reflected", &code);
-            }
-            Op::MirrorPlane {
-                point,
-                base,
-                normal,
-            } => {
-                let code = format!(
-                    "locus3d::mirror({}, {}, {})",
-                    self.r(*base),
-                    self.r(*normal),
-                    self.r(*point)
-                );
-                self.define_pure(w, r, "mirrored", &code);
-            }
-            Op::PlaneNormal { a, b, c } => {
-                let code = self.unit3(
-                    i,
-                    &format!(
-                        "({} - {a}).cross(&({} - {a}))",
-                        self.r(*b),
-                        self.r(*c),
-                        a = self.r(*a)
-                    ),
-                );
-                self.define_pure(w, r, "normal", &code);
-            }
-            Op::WorldAxis(k) => {
-                let code = ["Vector3::x()", "Vector3::y()", "Vector3::z()"][usize::from(*k).min(2)];
-                self.define_pure(w, r, "world_axis", code);
-            }
-            Op::Coordinate { point, axis } => {
-                let c = ["x", "y", "z"][usize::from(*axis).min(2)];
-                let code = format!("{}.{c}", self.r(*point));
-                self.define_pure(w, r, c, &code);
-            }
-            Op::PointAt { x: a, y, z } => {
-                let code = format!(
-                    "Point3::new({}, {}, {})",
-                    self.r(*a),
-                    self.r(*y),
-                    self.r(*z)
-                );
-                self.define_pure(w, r, "point", &code);
             }
             Op::LocusParam { locus, point } => {
                 let (l, q) = (self.r(*locus), self.r(*point));
@@ -571,32 +308,6 @@ impl Solve<'_> {
                 };
                 self.define_pure(w, r, "on_locus", &code);
             }
-            Op::SurfaceParam {
-                locus,
-                point,
-                component,
-            } => {
-                let code = format!(
-                    "{}.coordinates(&{})[{}]",
-                    self.r(*locus),
-                    self.r(*point),
-                    component.min(&1)
-                );
-                self.define_pure(w, r, "coordinate", &code);
-            }
-            Op::SurfacePoint { locus, u, v } => {
-                let code = format!("{}.at([{}, {}])", self.r(*locus), self.r(*u), self.r(*v));
-                self.define_pure(w, r, "on_surface", &code);
-            }
-            Op::TurnedAbout { dir, axis, angle } => {
-                let code = format!(
-                    "frame::rotation_about_axis(&{}, {}) * {}",
-                    self.r(*axis),
-                    self.r(*angle),
-                    self.r(*dir)
-                );
-                self.define_pure(w, r, "turned", &code);
-            }
             Op::Line {
                 point,
                 dir,
@@ -609,75 +320,8 @@ impl Solve<'_> {
                 let code = format!("Line3::new({}, {}.dir)", self.r(*through), self.r(*line));
                 self.define_pure(w, r, "line", &code);
             }
-            Op::Plane {
-                point,
-                normal,
-                offset,
-            } => {
-                let n = self.names.fresh("normal");
-                w.line(&format!("let {n} = {};", self.unit3_of(i, *normal)));
-                let at = match offset {
-                    Some(o) => format!("({} + {n} * {})", self.r(*point), self.r(*o)),
-                    None => self.r(*point),
-                };
-                let code = format!("Plane::from_point_normal(&{at}, &{n})");
-                self.define_pure(w, r, "plane", &code);
-            }
-            Op::ParallelPlane { plane, through } => {
-                let code = format!(
-                    "Plane::from_point_normal(&{}, &{}.normal)",
-                    self.r(*through),
-                    self.r(*plane)
-                );
-                self.define_pure(w, r, "plane", &code);
-            }
-            Op::Circle3 {
-                center,
-                normal,
-                radius,
-            } => {
-                let code = format!(
-                    "Circle3::new({}, {}, {})",
-                    self.r(*center),
-                    self.unit3_of(i, *normal),
-                    self.r(*radius)
-                );
-                self.define_pure(w, r, "circle", &code);
-            }
-            Op::Sphere { center, radius } => {
-                let code = format!("Sphere::new({}, {})", self.r(*center), self.r(*radius));
-                self.define_pure(w, r, "sphere", &code);
-            }
-            Op::Cylinder { point, dir, radius } => {
-                let code = format!(
-                    "Cylinder::new(Line3::new({}, {}), {})",
-                    self.r(*point),
-                    self.unit3_of(i, *dir),
-                    self.r(*radius)
-                );
-                self.define_pure(w, r, "cylinder", &code);
-            }
-            Op::Torus { circle, tube } => {
-                let code = format!("Torus::new({}, {})", self.r(*circle), self.r(*tube));
-                self.define_pure(w, r, "torus", &code);
-            }
             // A locus moved with its body: the runtime's `Shift`, as the interpreter moves it.
-            Op::ShiftedTorus {
-                torus: locus,
-                from,
-                to,
-            }
-            | Op::ShiftedCylinder {
-                cylinder: locus,
-                from,
-                to,
-            }
-            | Op::ShiftedSphere {
-                sphere: locus,
-                from,
-                to,
-            }
-            | Op::ShiftedCircle {
+            Op::ShiftedCircle {
                 circle: locus,
                 from,
                 to,
@@ -695,32 +339,6 @@ impl Solve<'_> {
                     _ => "circle_moved",
                 };
                 self.define_pure(w, r, name, &code);
-            }
-            Op::SphereThrough {
-                center,
-                through,
-                radius,
-            } => {
-                let c = self.r(*center);
-                let rad = match radius {
-                    Some(k) => float(*k),
-                    None => format!("({} - {c}).norm()", self.r(*through)),
-                };
-                self.define_pure(w, r, "sphere", &format!("Sphere::new({c}, {rad})"));
-            }
-
-            Op::Orbit {
-                pivot,
-                axis,
-                through,
-            } => {
-                let code = format!(
-                    "Circle3::orbit(&{}, &{}, &{})",
-                    self.r(*pivot),
-                    self.unit3_of(i, *axis),
-                    self.r(*through)
-                );
-                self.define_pure(w, r, "orbit", &code);
             }
             Op::Nearest { locus, point } => {
                 let (l, q) = (self.r(*locus), self.r(*point));
@@ -795,7 +413,425 @@ impl Solve<'_> {
                     self.define_pure(w, r, "error", &code);
                 }
             }
-            op => panic!("bug in gcs: step {i} ({op:?}) is no step of a spatial plan"),
+            Op::Spatial(op) => self.spatial_value(w, i, r, op),
+            Op::Planar(_) => {
+                unreachable!("bug in gcs: step {i} is an operation of the plane in a spatial plan")
+            }
+            // Scalars are written by `value`, actions and checks by `step`.
+            op => panic!("bug in gcs: step {i} ({op:?}) is no value of a spatial plan"),
+        }
+    }
+
+    /// Writes the value of register `r`, which step `i` computes with an operation of space.
+    fn spatial_value(&mut self, w: &mut Writer, i: usize, r: Reg, op: &SpatialOp) {
+        let m = self.cx.model;
+        match op {
+            // An action defines no value: `step` writes it.
+            SpatialOp::RotateBy { .. } => {
+                panic!("bug in gcs: step {i} defines a value by a rotation")
+            }
+            SpatialOp::Opposite(d) => {
+                let code = format!("-{}", self.r(*d));
+                self.define_pure(w, r, "opposite", &code);
+            }
+            SpatialOp::Across(d) => {
+                let code = self.unit3(i, &format!("frame::perpendicular(&{})", self.r(*d)));
+                self.define_pure(w, r, "across", &code);
+            }
+            SpatialOp::AngleAbout { u, v, axis } => {
+                let code = format!(
+                    "frame::signed_angle3(&{}, &{}, &{})",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*axis)
+                );
+                self.define_pure(w, r, "angle", &code);
+            }
+            SpatialOp::AngleAboutBoth { u, v, axis } => {
+                let code = format!(
+                    "frame::signed_angle3_both([&{}, &{}], [&{}, &{}], &{})",
+                    self.r(u[0]),
+                    self.r(u[1]),
+                    self.r(v[0]),
+                    self.r(v[1]),
+                    self.r(*axis)
+                );
+                self.define_pure(w, r, "angle", &code);
+            }
+            SpatialOp::TurnReaching {
+                u,
+                v,
+                axis,
+                pivot,
+                reach,
+                screw,
+            } => {
+                let helix = |h: &crate::plan::HelixRegs| {
+                    format!(
+                        "fragment3::Helix {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {} }}",
+                        self.r(h.axis),
+                        self.r(h.x_from),
+                        self.r(h.origin),
+                        self.r(h.x),
+                        self.r(h.point),
+                        self.r(h.pitch)
+                    )
+                };
+                let screw = screw.map_or("None".to_string(), |s| {
+                    format!(
+                        "Some(&fragment3::Screw {{ helix: {}, slide: {}.dir }})",
+                        helix(&s.helix),
+                        self.r(s.slide)
+                    )
+                });
+                let (onto, target) = match reach {
+                    crate::plan::Reach::Helix(h) => ("helix", format!("&{}", helix(h))),
+                    crate::plan::Reach::Point { point, locus } => (
+                        match self.kind3(*locus) {
+                            Kind::Plane => "plane",
+                            _ => "line",
+                        },
+                        format!("&{}, &{}", self.r(*point), self.r(*locus)),
+                    ),
+                };
+                let code = format!(
+                    "fragment3::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), {target}, {screw})",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*pivot),
+                    self.r(*axis)
+                );
+                self.define_pure(w, r, "angle", &code);
+            }
+            SpatialOp::HelixAdvance { now, turn, pitch } => {
+                let code = format!(
+                    "frame::helix_advance({}, {}, {})",
+                    self.r(*now),
+                    self.r(*turn),
+                    self.r(*pitch)
+                );
+                self.define_finite(w, i, r, "advance", &code);
+            }
+            SpatialOp::HelixTurn { advance, pitch } => {
+                let code = format!(
+                    "frame::helix_turn({}, {})",
+                    self.r(*advance),
+                    self.r(*pitch)
+                );
+                self.define_finite(w, i, r, "turn", &code);
+            }
+            SpatialOp::Aligned { dir, near } => {
+                let code = format!("frame::aligned(&{}, &{})", self.r(*dir), self.r(*near));
+                self.define_pure(w, r, "aligned", &code);
+            }
+            SpatialOp::PassingAngle {
+                from,
+                to,
+                d,
+                now,
+                constraint,
+            } => {
+                let call = format!(
+                    "fragment3::passing_angle(&{}, &{}, {}, &{})",
+                    self.r(*from),
+                    self.r(*to),
+                    self.r(*d),
+                    self.r(*now)
+                );
+                self.only_root(w, (i, r), *constraint, ("passing", "passing_angle"), &call);
+            }
+            SpatialOp::TiltToDistance {
+                centre,
+                point,
+                radius,
+                d,
+                now,
+                constraint,
+            } => {
+                let call = format!(
+                    "fragment3::tilt_to_distance(&{}, &{}, {}, {}, &{})",
+                    self.r(*centre),
+                    self.r(*point),
+                    self.r(*radius),
+                    self.r(*d),
+                    self.r(*now)
+                );
+                self.only_root(w, (i, r), *constraint, ("tilt", "tilt_angle"), &call);
+            }
+            SpatialOp::ConeTurn { axis, angle, dir } => {
+                let code = format!(
+                    "frame::plane_turn(&{}, f64::cos({}), &{})",
+                    self.r(*axis),
+                    self.r(*angle),
+                    self.r(*dir)
+                );
+                self.define_pure(w, r, "turned", &code);
+            }
+            SpatialOp::AngleTurn {
+                u,
+                v,
+                axis,
+                angle,
+                branch,
+                constraint,
+            } => {
+                let turns = self.names.fresh("turns");
+                w.line(&format!(
+                    "let {turns} = frame::turns_to_angle(&{}, &{}, &{}, {});",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*axis),
+                    self.r(*angle)
+                ));
+                self.fail_on_contact(w, *constraint, &turns, None);
+                let code = self.root(&turns, *branch, *constraint);
+                self.define_pure(w, r, "turned", &code);
+            }
+            SpatialOp::PlaneTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                constraint,
+            } => {
+                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
+                let con = &m.constraints[*constraint];
+                let (label, text) = (lit(&con.name), lit(&con.text));
+                let len = self.names.fresh("reach");
+                w.line(&format!("let {len} = {cone}.0.norm();"));
+                w.open(&format!("if {len}.is_nan() || {len} <= 0.0 {{"));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0));"
+                ));
+                w.close("}");
+                w.open(&format!(
+                    "if {cone}.1.abs() > 1.0 + gcs_runtime::tol::LENGTH_REL || {cone}.1.is_nan() {{"
+                ));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, ({cone}.1.abs() - 1.0) * {len}));"
+                ));
+                w.close("}");
+                let code = format!(
+                    "frame::plane_turn(&({cone}.0 / {len}), {cone}.1.clamp(-1.0, 1.0), &{})",
+                    self.r(*normal)
+                );
+                self.define_pure(w, r, "normal", &code);
+            }
+            SpatialOp::PlaneAxisTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                axis,
+                branch,
+                constraint,
+            } => {
+                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
+                let con = &m.constraints[*constraint];
+                let (label, text) = (lit(&con.name), lit(&con.text));
+                let reach = self.names.fresh("reach");
+                w.line(&format!(
+                    "let {reach} = {cone}.0.try_normalize(0.0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0))?;"
+                ));
+                let gap = self.names.fresh("gap");
+                w.line(&format!(
+                    "let {gap} = ({cone}.1.abs() - 1.0).max(0.0) * {cone}.0.norm();"
+                ));
+                let turns = self.names.fresh("turns");
+                w.line(&format!(
+                    "let {turns} = frame::turns_to_angle(&{reach}, &{}, &{}, {cone}.1.clamp(-1.0, 1.0).acos());",
+                    self.r(*normal),
+                    self.r(*axis)
+                ));
+                self.fail_on_contact(w, *constraint, &turns, Some(&gap));
+                w.open(&format!(
+                    "if {gap} > gcs_runtime::tol::LENGTH_REL * (1.0 + {cone}.0.norm()) {{"
+                ));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, {gap}));"
+                ));
+                w.close("}");
+                let code = self.root(&turns, *branch, *constraint);
+                self.define_pure(w, r, "normal", &code);
+            }
+            SpatialOp::MirrorPlane {
+                point,
+                base,
+                normal,
+            } => {
+                let code = format!(
+                    "locus3d::mirror({}, {}, {})",
+                    self.r(*base),
+                    self.r(*normal),
+                    self.r(*point)
+                );
+                self.define_pure(w, r, "mirrored", &code);
+            }
+            SpatialOp::PlaneNormal { a, b, c } => {
+                let code = self.unit3(
+                    i,
+                    &format!(
+                        "({} - {a}).cross(&({} - {a}))",
+                        self.r(*b),
+                        self.r(*c),
+                        a = self.r(*a)
+                    ),
+                );
+                self.define_pure(w, r, "normal", &code);
+            }
+            SpatialOp::WorldAxis(k) => {
+                let code = ["Vector3::x()", "Vector3::y()", "Vector3::z()"][usize::from(*k).min(2)];
+                self.define_pure(w, r, "world_axis", code);
+            }
+            SpatialOp::Coordinate { point, axis } => {
+                let c = ["x", "y", "z"][usize::from(*axis).min(2)];
+                let code = format!("{}.{c}", self.r(*point));
+                self.define_pure(w, r, c, &code);
+            }
+            SpatialOp::PointAt { x: a, y, z } => {
+                let code = format!(
+                    "Point3::new({}, {}, {})",
+                    self.r(*a),
+                    self.r(*y),
+                    self.r(*z)
+                );
+                self.define_pure(w, r, "point", &code);
+            }
+            SpatialOp::SurfaceParam {
+                locus,
+                point,
+                component,
+            } => {
+                let code = format!(
+                    "{}.coordinates(&{})[{}]",
+                    self.r(*locus),
+                    self.r(*point),
+                    component.min(&1)
+                );
+                self.define_pure(w, r, "coordinate", &code);
+            }
+            SpatialOp::SurfacePoint { locus, u, v } => {
+                let code = format!("{}.at([{}, {}])", self.r(*locus), self.r(*u), self.r(*v));
+                self.define_pure(w, r, "on_surface", &code);
+            }
+            SpatialOp::TurnedAbout { dir, axis, angle } => {
+                let code = format!(
+                    "frame::rotation_about_axis(&{}, {}) * {}",
+                    self.r(*axis),
+                    self.r(*angle),
+                    self.r(*dir)
+                );
+                self.define_pure(w, r, "turned", &code);
+            }
+            SpatialOp::Plane {
+                point,
+                normal,
+                offset,
+            } => {
+                let n = self.names.fresh("normal");
+                w.line(&format!("let {n} = {};", self.unit3_of(i, *normal)));
+                let at = match offset {
+                    Some(o) => format!("({} + {n} * {})", self.r(*point), self.r(*o)),
+                    None => self.r(*point),
+                };
+                let code = format!("Plane::from_point_normal(&{at}, &{n})");
+                self.define_pure(w, r, "plane", &code);
+            }
+            SpatialOp::ParallelPlane { plane, through } => {
+                let code = format!(
+                    "Plane::from_point_normal(&{}, &{}.normal)",
+                    self.r(*through),
+                    self.r(*plane)
+                );
+                self.define_pure(w, r, "plane", &code);
+            }
+            SpatialOp::Circle3 {
+                center,
+                normal,
+                radius,
+            } => {
+                let code = format!(
+                    "Circle3::new({}, {}, {})",
+                    self.r(*center),
+                    self.unit3_of(i, *normal),
+                    self.r(*radius)
+                );
+                self.define_pure(w, r, "circle", &code);
+            }
+            SpatialOp::Sphere { center, radius } => {
+                let code = format!("Sphere::new({}, {})", self.r(*center), self.r(*radius));
+                self.define_pure(w, r, "sphere", &code);
+            }
+            SpatialOp::Cylinder { point, dir, radius } => {
+                let code = format!(
+                    "Cylinder::new(Line3::new({}, {}), {})",
+                    self.r(*point),
+                    self.unit3_of(i, *dir),
+                    self.r(*radius)
+                );
+                self.define_pure(w, r, "cylinder", &code);
+            }
+            SpatialOp::Torus { circle, tube } => {
+                let code = format!("Torus::new({}, {})", self.r(*circle), self.r(*tube));
+                self.define_pure(w, r, "torus", &code);
+            }
+            // A locus moved with its body: the runtime's `Shift`, as the interpreter moves it.
+            SpatialOp::ShiftedTorus {
+                torus: locus,
+                from,
+                to,
+            }
+            | SpatialOp::ShiftedCylinder {
+                cylinder: locus,
+                from,
+                to,
+            }
+            | SpatialOp::ShiftedSphere {
+                sphere: locus,
+                from,
+                to,
+            } => {
+                let code = format!(
+                    "{}.shifted(&({} - {}))",
+                    self.r(*locus),
+                    self.r(*to),
+                    self.r(*from)
+                );
+                let name = match self.kind3(r) {
+                    Kind::Torus => "torus_moved",
+                    Kind::Cylinder => "cylinder_moved",
+                    Kind::Sphere => "sphere_moved",
+                    _ => "circle_moved",
+                };
+                self.define_pure(w, r, name, &code);
+            }
+            SpatialOp::SphereThrough {
+                center,
+                through,
+                radius,
+            } => {
+                let c = self.r(*center);
+                let rad = match radius {
+                    Some(k) => float(*k),
+                    None => format!("({} - {c}).norm()", self.r(*through)),
+                };
+                self.define_pure(w, r, "sphere", &format!("Sphere::new({c}, {rad})"));
+            }
+            SpatialOp::Orbit {
+                pivot,
+                axis,
+                through,
+            } => {
+                let code = format!(
+                    "Circle3::orbit(&{}, &{}, &{})",
+                    self.r(*pivot),
+                    self.unit3_of(i, *axis),
+                    self.r(*through)
+                );
+                self.define_pure(w, r, "orbit", &code);
+            }
         }
     }
 

@@ -6,7 +6,7 @@ use super::facts::{ChordRoot, Value};
 use super::names::Namer;
 use super::solve::Solve;
 use super::writer::{float, linear, lit, Writer};
-use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis, Step};
+use crate::plan::{BranchId, Meet, Op, PlanarOp, Reg, Residual, RotationAxis, SpatialOp, Step};
 use gcs_lang::expr::{ExprId, ExprNode};
 use gcs_lang::model::{ConstraintId, GeomId};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -45,12 +45,12 @@ impl Solve<'_> {
                 planar(*axis);
                 self.rotate_dir(w, geoms, *pivot, *from, *to)
             }
-            Op::RotateBy {
+            Op::Spatial(SpatialOp::RotateBy {
                 geoms,
                 pivot,
                 axis,
                 angle,
-            } => self.rotate_by(w, geoms, (*pivot, *axis), *angle),
+            }) => self.rotate_by(w, geoms, (*pivot, *axis), *angle),
             Op::SetDim { geom, value } => self.set_dim(w, i, *geom, *value),
             Op::Check {
                 constraint,
@@ -72,11 +72,11 @@ impl Solve<'_> {
                 }
                 // A circle not written still tells its radius to the turns onto it.
                 _ => {
-                    if let Op::CircleThrough {
+                    if let Op::Planar(PlanarOp::CircleThrough {
                         center,
                         through,
                         radius: Some(k),
-                    } = op
+                    }) = op
                     {
                         self.facts.circle_radius.insert((*center, *through), *k);
                     }
@@ -142,10 +142,6 @@ impl Solve<'_> {
                 let d = self.dim(*g);
                 self.facts.regs.insert(r, Value::Local(d));
             }
-            Op::Axis(x, y) => {
-                self.facts.regs.insert(r, Value::Vector(*x, *y));
-            }
-            Op::Rotated { dir, angle } => self.rotated(w, r, *dir, *angle),
             Op::Error {
                 residual,
                 component,
@@ -159,14 +155,6 @@ impl Solve<'_> {
                     self.define(w, r, "error", &code);
                 }
             }
-            Op::AngleOf(dir) => {
-                let d = self.r(*dir);
-                self.define(w, r, "angle", &format!("{d}.y.atan2({d}.x)"));
-            }
-            Op::PointXY { x, y } => {
-                let code = format!("Point2::new({}, {})", self.r(*x), self.r(*y));
-                self.define(w, r, "point", &code);
-            }
             Op::Midpoint { a, b } => {
                 let code = format!("locus2d::midpoint({}, {})", self.r(*a), self.r(*b));
                 self.define(w, r, "midpoint", &code);
@@ -178,11 +166,6 @@ impl Solve<'_> {
                     self.r(*through)
                 );
                 let n = self.prefixed("reflected", *point);
-                self.define(w, r, &n, &code);
-            }
-            Op::Mirror { point, line } => {
-                let code = format!("{}.mirror({})", self.r(*line), self.r(*point));
-                let n = self.prefixed("mirrored", *point);
                 self.define(w, r, &n, &code);
             }
             Op::LocusPoint { locus, at } => {
@@ -216,12 +199,6 @@ impl Solve<'_> {
                 );
                 self.define(w, r, "direction", &code);
             }
-            Op::Circle { center, radius } => self.circle(w, i, r, *center, *radius),
-            Op::CircleThrough {
-                center,
-                through,
-                radius,
-            } => self.circle_through(w, i, r, *center, *through, *radius),
             Op::Default(d) => {
                 // An input, like a param: `solve` checks it finite on entry. One an iteration
                 // varies is its trial's entry.
@@ -265,88 +242,6 @@ impl Solve<'_> {
                 let n = self.derived_name(*circle, "_moved", "circle_moved");
                 self.define(w, r, &n, &code);
             }
-            Op::Reversed(x) => {
-                let code = format!("{}.reversed()", self.r(*x));
-                let n = self.derived_name(*x, "_reversed", "reversed");
-                self.define(w, r, &n, &code);
-            }
-            Op::OffsetLine { line, by } => {
-                let code = format!("{}.offset({})", self.r(*line), self.r(*by));
-                let n = self.derived_name(*line, "_offset", "offset");
-                self.define(w, r, &n, &code);
-            }
-            Op::CentresLineLine { l1, a1, l2, a2 } => {
-                let code = format!(
-                    "locus2d::centres_line_line(&{}, {}, &{}, {}).ok_or_else(|| {})?",
-                    self.r(*l1),
-                    self.r(*a1),
-                    self.r(*l2),
-                    self.r(*a2),
-                    degenerate()
-                );
-                self.define(w, r, "bisector", &code);
-            }
-            Op::CentresLinePoint {
-                line,
-                a,
-                at,
-                b,
-                plus,
-            } => {
-                let code = format!(
-                    "Conic::Parabola(locus2d::centres_line_circle(&{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?)",
-                    self.r(*line),
-                    self.r(*a),
-                    self.r(*at),
-                    sense(*plus),
-                    self.r(*b),
-                    degenerate()
-                );
-                self.define(w, r, "parabola", &code);
-            }
-            Op::CentresPointPoint {
-                c1,
-                b1,
-                p1,
-                c2,
-                b2,
-                p2,
-            } => {
-                let code = format!(
-                    "locus2d::centres_circle_circle({}, Sense::{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?",
-                    self.r(*c1),
-                    sense(*p1),
-                    self.r(*b1),
-                    self.r(*c2),
-                    sense(*p2),
-                    self.r(*b2),
-                    degenerate()
-                );
-                self.define(w, r, "conic", &code);
-            }
-            Op::RadiusFromLine { line, a, centre } => {
-                let code = format!(
-                    "{}.signed_distance({}) - {}",
-                    self.r(*line),
-                    self.r(*centre),
-                    self.r(*a)
-                );
-                self.define(w, r, "radius", &code);
-            }
-            Op::RadiusFromPoint {
-                at,
-                b,
-                plus,
-                centre,
-            } => {
-                let d = format!("({} - {}).norm()", self.r(*centre), self.r(*at));
-                let code = if *plus {
-                    format!("{d} - {}", self.r(*b))
-                } else {
-                    format!("{} - {d}", self.r(*b))
-                };
-                self.define(w, r, "radius", &code);
-            }
             Op::Nearest { locus, point } => {
                 if !self.cx.d3 && self.cx.turned_toward.contains(&r) {
                     // Only turns about the circle's centre read it, and they need only the
@@ -373,7 +268,131 @@ impl Solve<'_> {
                 constraint,
                 ..
             } => self.intersect(w, r, *meet, (*a, *b), *branch, *constraint),
-            Op::PassingDir {
+            // Actions and checks define no register: `step` writes them.
+            Op::Translate { .. }
+            | Op::RotatePoint { .. }
+            | Op::RotateDir { .. }
+            | Op::SetDim { .. }
+            | Op::Check { .. }
+            | Op::Close { .. } => {}
+            Op::Planar(op) => self.planar_value(w, i, r, op),
+            Op::Spatial(_) => {
+                unreachable!("bug in gcs: step {i} is an operation of space in a planar plan")
+            }
+        }
+    }
+
+    /// Writes the value of register `r`, which step `i` computes with an operation of the
+    /// plane.
+    fn planar_value(&mut self, w: &mut Writer, i: usize, r: Reg, op: &PlanarOp) {
+        let degenerate = || self.cx.error(i, "Degenerate", "0.0");
+        match op {
+            PlanarOp::Axis(x, y) => {
+                self.facts.regs.insert(r, Value::Vector(*x, *y));
+            }
+            PlanarOp::Rotated { dir, angle } => self.rotated(w, r, *dir, *angle),
+            PlanarOp::AngleOf(dir) => {
+                let d = self.r(*dir);
+                self.define(w, r, "angle", &format!("{d}.y.atan2({d}.x)"));
+            }
+            PlanarOp::PointXY { x, y } => {
+                let code = format!("Point2::new({}, {})", self.r(*x), self.r(*y));
+                self.define(w, r, "point", &code);
+            }
+            PlanarOp::Mirror { point, line } => {
+                let code = format!("{}.mirror({})", self.r(*line), self.r(*point));
+                let n = self.prefixed("mirrored", *point);
+                self.define(w, r, &n, &code);
+            }
+            PlanarOp::Circle { center, radius } => self.circle(w, i, r, *center, *radius),
+            PlanarOp::CircleThrough {
+                center,
+                through,
+                radius,
+            } => self.circle_through(w, i, r, *center, *through, *radius),
+            PlanarOp::Reversed(x) => {
+                let code = format!("{}.reversed()", self.r(*x));
+                let n = self.derived_name(*x, "_reversed", "reversed");
+                self.define(w, r, &n, &code);
+            }
+            PlanarOp::OffsetLine { line, by } => {
+                let code = format!("{}.offset({})", self.r(*line), self.r(*by));
+                let n = self.derived_name(*line, "_offset", "offset");
+                self.define(w, r, &n, &code);
+            }
+            PlanarOp::CentresLineLine { l1, a1, l2, a2 } => {
+                let code = format!(
+                    "locus2d::centres_line_line(&{}, {}, &{}, {}).ok_or_else(|| {})?",
+                    self.r(*l1),
+                    self.r(*a1),
+                    self.r(*l2),
+                    self.r(*a2),
+                    degenerate()
+                );
+                self.define(w, r, "bisector", &code);
+            }
+            PlanarOp::CentresLinePoint {
+                line,
+                a,
+                at,
+                b,
+                plus,
+            } => {
+                let code = format!(
+                    "Conic::Parabola(locus2d::centres_line_circle(&{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?)",
+                    self.r(*line),
+                    self.r(*a),
+                    self.r(*at),
+                    sense(*plus),
+                    self.r(*b),
+                    degenerate()
+                );
+                self.define(w, r, "parabola", &code);
+            }
+            PlanarOp::CentresPointPoint {
+                c1,
+                b1,
+                p1,
+                c2,
+                b2,
+                p2,
+            } => {
+                let code = format!(
+                    "locus2d::centres_circle_circle({}, Sense::{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?",
+                    self.r(*c1),
+                    sense(*p1),
+                    self.r(*b1),
+                    self.r(*c2),
+                    sense(*p2),
+                    self.r(*b2),
+                    degenerate()
+                );
+                self.define(w, r, "conic", &code);
+            }
+            PlanarOp::RadiusFromLine { line, a, centre } => {
+                let code = format!(
+                    "{}.signed_distance({}) - {}",
+                    self.r(*line),
+                    self.r(*centre),
+                    self.r(*a)
+                );
+                self.define(w, r, "radius", &code);
+            }
+            PlanarOp::RadiusFromPoint {
+                at,
+                b,
+                plus,
+                centre,
+            } => {
+                let d = format!("({} - {}).norm()", self.r(*centre), self.r(*at));
+                let code = if *plus {
+                    format!("{d} - {}", self.r(*b))
+                } else {
+                    format!("{} - {d}", self.r(*b))
+                };
+                self.define(w, r, "radius", &code);
+            }
+            PlanarOp::PassingDir {
                 pivot,
                 base,
                 dir,
@@ -385,49 +404,6 @@ impl Solve<'_> {
                 let line = (*pivot, *base, *dir);
                 self.passing_dir(w, r, line, *point, *offset, *branch, *constraint)
             }
-            Op::Plane { .. }
-            | Op::ParallelPlane { .. }
-            | Op::Sphere { .. }
-            | Op::SphereThrough { .. }
-            | Op::ShiftedSphere { .. }
-            | Op::Orbit { .. }
-            | Op::Opposite(_)
-            | Op::Across(_)
-            | Op::Circle3 { .. }
-            | Op::AngleAbout { .. }
-            | Op::AngleAboutBoth { .. }
-            | Op::TurnReaching { .. }
-            | Op::HelixAdvance { .. }
-            | Op::HelixTurn { .. }
-            | Op::WorldAxis(_)
-            | Op::PlaneNormal { .. }
-            | Op::PlaneTurn { .. }
-            | Op::PlaneAxisTurn { .. }
-            | Op::AngleTurn { .. }
-            | Op::ConeTurn { .. }
-            | Op::TiltToDistance { .. }
-            | Op::PassingAngle { .. }
-            | Op::Aligned { .. }
-            | Op::Coordinate { .. }
-            | Op::PointAt { .. }
-            | Op::MirrorPlane { .. }
-            | Op::Cylinder { .. }
-            | Op::ShiftedCylinder { .. }
-            | Op::SurfaceParam { .. }
-            | Op::SurfacePoint { .. }
-            | Op::Torus { .. }
-            | Op::ShiftedTorus { .. }
-            | Op::TurnedAbout { .. } => {
-                unreachable!("bug in gcs: a spatial plan reached the planar code generator")
-            }
-            // Actions and checks define no register: `step` writes them.
-            Op::Translate { .. }
-            | Op::RotatePoint { .. }
-            | Op::RotateDir { .. }
-            | Op::RotateBy { .. }
-            | Op::SetDim { .. }
-            | Op::Check { .. }
-            | Op::Close { .. } => {}
         }
     }
 
@@ -1076,8 +1052,9 @@ pub(super) fn turned_toward(
     let mut nearest: HashMap<Reg, (Reg, Option<bool>)> = HashMap::default();
     for s in &plan.steps {
         if let (Op::Nearest { locus, .. }, Some((r, _))) = (&s.op, s.out) {
-            if let Some(Op::Circle { center, .. } | Op::CircleThrough { center, .. }) =
-                defined(*locus)
+            if let Some(Op::Planar(
+                PlanarOp::Circle { center, .. } | PlanarOp::CircleThrough { center, .. },
+            )) = defined(*locus)
             {
                 nearest.insert(r, (*center, None));
             }

@@ -12,7 +12,7 @@
 use super::super::api::{self, Holds};
 use super::super::context::Context;
 use super::super::sketch::dimension_name;
-use crate::plan::{Op, Reg, Ty};
+use crate::plan::{Op, PlanarOp, Reg, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::collections::BTreeMap;
@@ -340,16 +340,16 @@ fn model_order(g: GeomId) -> u32 {
 pub(in crate::codegen) fn generated_reads(op: &Op) -> Vec<Reg> {
     match op {
         Op::Intersect { a, b, .. } => vec![*a, *b],
-        Op::CircleThrough {
+        Op::Planar(PlanarOp::CircleThrough {
             center,
             through,
             radius,
-        }
-        | Op::SphereThrough {
+        })
+        | Op::Spatial(SpatialOp::SphereThrough {
             center,
             through,
             radius,
-        } => match radius {
+        }) => match radius {
             Some(_) => vec![*center],
             None => vec![*center, *through],
         },
