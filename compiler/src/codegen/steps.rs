@@ -6,7 +6,7 @@ use super::facts::{ChordRoot, Value};
 use super::names::Namer;
 use super::solve::Solve;
 use super::writer::{float, linear, lit, Writer};
-use crate::plan::{BranchId, Meet, Op, PlanarOp, Reg, Residual, RotationAxis, SpatialOp, Step};
+use crate::plan::{BranchId, Meet, Op, PlanarOp, Reg, Residual, SpatialOp, Step};
 use gcs_lang::expr::{ExprId, ExprNode};
 use gcs_lang::model::{ConstraintId, GeomId};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -15,10 +15,10 @@ impl Solve<'_> {
     /// Writes step `i` of the plan.
     pub(super) fn step(&mut self, w: &mut Writer, i: usize, step: &Step) {
         match &step.op {
-            Op::Translate { geoms, from, to } if self.cx.d3 => {
-                self.translate3(w, geoms, *from, *to)
+            Op::Translate { geoms, from, to } => {
+                let space = self.cx.space;
+                space.translate(self, w, geoms, *from, *to)
             }
-            Op::Translate { geoms, from, to } => self.translate(w, geoms, *from, *to),
             Op::RotatePoint {
                 geoms,
                 pivot,
@@ -26,11 +26,8 @@ impl Solve<'_> {
                 from,
                 to,
             } => {
-                if self.cx.d3 {
-                    return self.rotate3(w, geoms, (*pivot, *axis), (*from, *to), true);
-                }
-                planar(*axis);
-                self.rotate_point(w, geoms, *pivot, *from, *to)
+                let space = self.cx.space;
+                space.rotate(self, w, geoms, (*pivot, *axis), (*from, *to), true)
             }
             Op::RotateDir {
                 geoms,
@@ -39,11 +36,8 @@ impl Solve<'_> {
                 from,
                 to,
             } => {
-                if self.cx.d3 {
-                    return self.rotate3(w, geoms, (*pivot, *axis), (*from, *to), false);
-                }
-                planar(*axis);
-                self.rotate_dir(w, geoms, *pivot, *from, *to)
+                let space = self.cx.space;
+                space.rotate(self, w, geoms, (*pivot, *axis), (*from, *to), false)
             }
             Op::Spatial(SpatialOp::RotateBy {
                 geoms,
@@ -85,23 +79,9 @@ impl Solve<'_> {
         }
     }
 
-    /// Writes the value of register `r`, which step `i` computes with `op`.
+    /// Writes the value of register `r`, which step `i` computes with `op`: a scalar the same
+    /// way in both spaces, anything else as the model's space writes it.
     fn value(&mut self, w: &mut Writer, i: usize, r: Reg, op: &Op) {
-        let m = self.cx.model;
-        let scalar = matches!(
-            op,
-            Op::Expr(_)
-                | Op::Size { .. }
-                | Op::Const(_)
-                | Op::Neg(_)
-                | Op::DimOf(_)
-                | Op::Sum(_)
-                | Op::Default(_)
-        );
-        if self.cx.d3 && !scalar {
-            return self.value3(w, i, r, op);
-        }
-        let degenerate = || self.cx.error(i, "Degenerate", "0.0");
         match op {
             Op::Expr(e) => self.expr_value(w, i, r, *e),
             Op::Size { expr, constraint } => self.size_value(w, r, *expr, *constraint),
@@ -121,6 +101,36 @@ impl Solve<'_> {
                 let code = format!("-{}", self.r(*x));
                 self.define(w, r, "minus", &code);
             }
+            Op::DimOf(g) => {
+                let d = self.dim(*g);
+                self.facts.regs.insert(r, Value::Local(d));
+            }
+            Op::Sum(terms) => {
+                let code = self.sum(terms);
+                self.define_finite(w, i, r, "sum", &code);
+            }
+            Op::Default(d) => {
+                // An input, like a param: `solve` checks it finite on entry. One an iteration
+                // varies is its trial's entry.
+                let value = match self.iterated.get(d) {
+                    Some(code) => Value::Local(code.clone()),
+                    None => Value::Default(d.0 as usize, self.cx.defaults[d.0 as usize].clone()),
+                };
+                self.facts.regs.insert(r, value);
+            }
+
+            _ => {
+                let space = self.cx.space;
+                space.value(self, w, i, r, op)
+            }
+        }
+    }
+
+    /// Writes the value of register `r`, which step `i` computes with `op`, in the plane.
+    pub(super) fn value2(&mut self, w: &mut Writer, i: usize, r: Reg, op: &Op) {
+        let m = self.cx.model;
+        let degenerate = || self.cx.error(i, "Degenerate", "0.0");
+        match op {
             Op::PointOf(g) => {
                 if let Some(at) = self.offset_from_origin(*g) {
                     self.facts.at_offset.insert(r, at);
@@ -137,10 +147,6 @@ impl Solve<'_> {
                     format!("{n}_dir")
                 };
                 self.define_or_alias(w, r, &n, value);
-            }
-            Op::DimOf(g) => {
-                let d = self.dim(*g);
-                self.facts.regs.insert(r, Value::Local(d));
             }
             Op::Error {
                 residual,
@@ -183,10 +189,6 @@ impl Solve<'_> {
                 let code = format!("{}.param_of({})", self.r(*locus), self.r(*point));
                 self.define(w, r, "param", &code);
             }
-            Op::Sum(terms) => {
-                let code = self.sum(terms);
-                self.define_finite(w, i, r, "sum", &code);
-            }
             Op::Along { from, dir, to } => {
                 let (f, d, t) = (self.r(*from), self.r(*dir), self.r(*to));
                 self.define(w, r, "length", &format!("({t} - {f}).dot(&{d})"));
@@ -198,15 +200,6 @@ impl Solve<'_> {
                     degenerate()
                 );
                 self.define(w, r, "direction", &code);
-            }
-            Op::Default(d) => {
-                // An input, like a param: `solve` checks it finite on entry. One an iteration
-                // varies is its trial's entry.
-                let value = match self.iterated.get(d) {
-                    Some(code) => Value::Local(code.clone()),
-                    None => Value::Default(d.0 as usize, self.cx.defaults[d.0 as usize].clone()),
-                };
-                self.facts.regs.insert(r, value);
             }
             Op::Line { point, dir, offset } => {
                 let mut code = format!(
@@ -243,7 +236,7 @@ impl Solve<'_> {
                 self.define(w, r, &n, &code);
             }
             Op::Nearest { locus, point } => {
-                if !self.cx.d3 && self.cx.turned_toward.contains(&r) {
+                if self.cx.turned_toward.contains(&r) {
                     // Only turns about the circle's centre read it, and they need only the
                     // direction from the centre, which the point itself has: no projection
                     // (its square root and division) on the solve's path.
@@ -279,6 +272,13 @@ impl Solve<'_> {
             Op::Spatial(_) => {
                 unreachable!("bug in gcs: step {i} is an operation of space in a planar plan")
             }
+            Op::Expr(_)
+            | Op::Size { .. }
+            | Op::Const(_)
+            | Op::Neg(_)
+            | Op::DimOf(_)
+            | Op::Sum(_)
+            | Op::Default(_) => unreachable!("bug in gcs: step {i}'s scalar is written by `value`"),
         }
     }
 
@@ -817,7 +817,7 @@ impl Solve<'_> {
 
     /// Translates `geoms` so that point `from` lands on `to`: nothing when they are one value,
     /// the origin placed when it is the point moved, else a shift.
-    fn translate(&mut self, w: &mut Writer, geoms: &[GeomId], from: Reg, to: Reg) {
+    pub(super) fn translate(&mut self, w: &mut Writer, geoms: &[GeomId], from: Reg, to: Reg) {
         let (from, to) = (self.facts.value(from).clone(), self.facts.value(to).clone());
         if from.same(&to, self.cx) {
             // From a point onto itself: nothing moves.
@@ -850,7 +850,14 @@ impl Solve<'_> {
     }
 
     /// Rotates `geoms` about `pivot` so that point `from` lands on `to`.
-    fn rotate_point(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, from: Reg, to: Reg) {
+    pub(super) fn rotate_point(
+        &mut self,
+        w: &mut Writer,
+        geoms: &[GeomId],
+        pivot: Reg,
+        from: Reg,
+        to: Reg,
+    ) {
         let (p, f, t) = (self.r(pivot), self.r(from), self.r(to));
         // From the pivot to the target: read from the chord when the target is a root of a
         // circle about the pivot (the same vector, without the cancellation of a difference of
@@ -901,7 +908,14 @@ impl Solve<'_> {
     }
 
     /// Rotates `geoms` about `pivot` so that direction `from` turns onto `to`.
-    fn rotate_dir(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, from: Reg, to: Reg) {
+    pub(super) fn rotate_dir(
+        &mut self,
+        w: &mut Writer,
+        geoms: &[GeomId],
+        pivot: Reg,
+        from: Reg,
+        to: Reg,
+    ) {
         let (f, t) = (self.r(from), self.r(to));
         let from_x = self.facts.value(from).is_x_axis();
         let code = if from_x && self.facts.unit_dirs.contains(&to) {
@@ -974,11 +988,7 @@ impl Solve<'_> {
 
     /// A run-time check of a relation of constraint `c`: its residual within the tolerance.
     fn check(&mut self, w: &mut Writer, c: ConstraintId, residual: &Residual) {
-        let residual = if self.cx.d3 {
-            self.residual_code3(residual)
-        } else {
-            self.residual_code(residual)
-        };
+        let residual = self.cx.space.residual_code(self, residual);
         let name = self.names.fresh("residual");
         w.line(&format!("let {name} = {residual};"));
         w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
@@ -1009,13 +1019,6 @@ impl Solve<'_> {
             lit(&con.text)
         ));
         w.close("}");
-    }
-}
-
-/// A rotation of the plane turns about its normal; any other axis is a spatial plan's.
-fn planar(axis: RotationAxis) {
-    if axis != RotationAxis::Normal {
-        panic!("bug in gcs: a rotation about {axis:?} reached the planar code generator");
     }
 }
 
