@@ -1,6 +1,7 @@
 //! Codegen in space: each spatial step of the plan lowered to the runtime's 3d calls
-//! (`locus3d`, `intersect3d`, `frame`, `fragment3`, `check::space`); the sketch of a 3d model
-//! as `Frame3`s is `sketch3.rs`.
+//! (`locus3d`, `intersect3d`, `frame`, `fragment3`, `check::space`): values here, actions in
+//! `actions.rs`, checks in `residual.rs`; the sketch of a 3d model as `Frame3`s is
+//! `sketch3.rs`.
 //!
 //! The skeleton of `solve` (params, sketch, tolerance, groups of steps with their comments,
 //! outer iterations, the `Solution`) and the steps that do not depend on the space (scalars,
@@ -22,11 +23,14 @@
 //! came from. Every other frame is read and moved as it is, and every other register is a
 //! local.
 
+mod actions;
+mod residual;
+
 use super::facts::Value;
-use super::sketch3::{frame3, rotation3};
+use super::sketch3::frame3;
 use super::solve::Solve;
 use super::writer::{float, lit, Writer};
-use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis, SpatialOp};
+use crate::plan::{BranchId, Meet, Op, Reg, SpatialOp};
 use gcs_lang::model::{ConstraintId, GeomId, Owner, Part};
 
 /// The kind of a register's value in space, as the step that defines it makes it: what a
@@ -129,39 +133,6 @@ impl Solve<'_> {
         };
         if let Some(f) = facts.literal3.take() {
             self.declared_at.insert(g, frame3(&f));
-        }
-    }
-
-    /// Translates `geoms` so that point `from` lands on `to`: computed here for frames known
-    /// to the bit when both points are literals, as the interpreter computes it.
-    pub(super) fn translate3(&mut self, w: &mut Writer, geoms: &[GeomId], from: Reg, to: Reg) {
-        let (fv, tv) = (self.facts.value(from).clone(), self.facts.value(to).clone());
-        if fv.same(&tv, self.cx) {
-            // From a point onto itself: nothing moves.
-            return;
-        }
-        let shift = match (&fv, &tv) {
-            (Value::Point3(a), Value::Point3(b)) => {
-                Some(nalgebra::Point3::from(*b) - nalgebra::Point3::from(*a))
-            }
-            _ => None,
-        };
-        let mut local = None;
-        for &g in geoms {
-            if let (Some(d), Some(mut f)) = (shift, self.literal_frame3(g)) {
-                f.translate(&d);
-                self.facts.frames.entry(g).or_default().literal3 = Some(f);
-                continue;
-            }
-            self.materialize(g);
-            let shift = local.get_or_insert_with(|| {
-                let name = self.names.fresh("shift");
-                w.line(&format!("let {name} = {} - {};", tv.code(), fv.code()));
-                name
-            });
-            let frame = self.frame_local(g);
-            w.line(&format!("{frame}.translate(&{shift});"));
-            self.frame_writes.insert(g);
         }
     }
 
@@ -971,292 +942,5 @@ impl Solve<'_> {
         };
         let name = con.name.clone();
         self.define(w, r, &name, &code);
-    }
-
-    /// Rotates `geoms` about `pivot` by the rotation about `axis` that takes `from` to `to`
-    /// (points about the pivot, or directions).
-    pub(super) fn rotate3(
-        &mut self,
-        w: &mut Writer,
-        geoms: &[GeomId],
-        (pivot, axis): (Reg, RotationAxis),
-        (from, to): (Reg, Reg),
-        points: bool,
-    ) {
-        let c = self.r(pivot);
-        let (f, t) = if points {
-            (
-                format!("({} - {c})", self.r(from)),
-                format!("({} - {c})", self.r(to)),
-            )
-        } else {
-            (self.r(from), self.r(to))
-        };
-        let code = match axis {
-            RotationAxis::Shortest => {
-                format!("frame::rotation_between3(&{f}, &{t}, &frame::perpendicular(&{f}))")
-            }
-            RotationAxis::Along(a) => {
-                let a = self.r(a);
-                format!("frame::rotation_about_axis(&{a}, frame::signed_angle3(&{f}, &{t}, &{a}))")
-            }
-            RotationAxis::Normal => {
-                panic!("bug in gcs: a rotation about the plane's normal reached the spatial code generator")
-            }
-        };
-        // With every operand a literal, the rotation is computed here, as the interpreter
-        // computes it, and so are the frames known to the bit.
-        if let Some(q) = self.literal_rotation3((pivot, axis), (from, to), points) {
-            let c = match self.facts.value(pivot) {
-                Value::Point3(c) => nalgebra::Point3::from(*c),
-                _ => unreachable!("a literal rotation has a literal pivot"),
-            };
-            let mut turn = None;
-            for &g in geoms {
-                if let Some(mut f) = self.literal_frame3(g) {
-                    f.rotate_about_by(&c, &q);
-                    self.facts.frames.entry(g).or_default().literal3 = Some(f);
-                    continue;
-                }
-                let turn = turn.get_or_insert_with(|| {
-                    let name = self.names.fresh("turn");
-                    w.line(&format!("let {name} = {};", rotation3(&q)));
-                    name
-                });
-                let frame = self.frame_local(g);
-                w.line(&format!(
-                    "{frame}.rotate_about_by(&{c}, &{turn});",
-                    c = self.r(pivot)
-                ));
-                self.frame_writes.insert(g);
-            }
-            return;
-        }
-        self.turn_frames(w, geoms, pivot, &code);
-    }
-
-    /// Rotates `geoms` by `angle` about the line through `pivot` along the unit `axis`.
-    pub(super) fn rotate_by(
-        &mut self,
-        w: &mut Writer,
-        geoms: &[GeomId],
-        (pivot, axis): (Reg, Reg),
-        angle: Reg,
-    ) {
-        let code = format!(
-            "frame::rotation_about_axis(&{}, {})",
-            self.r(axis),
-            self.r(angle)
-        );
-        self.turn_frames(w, geoms, pivot, &code);
-    }
-
-    /// Turns the frames of `geoms` about `pivot` by the rotation `code` computes, in a local.
-    fn turn_frames(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, code: &str) {
-        let turn = self.names.fresh("turn");
-        w.line(&format!("let {turn} = {code};"));
-        let c = self.r(pivot);
-        for &g in geoms {
-            self.materialize(g);
-            let frame = self.frame_local(g);
-            w.line(&format!("{frame}.rotate_about_by(&{c}, &{turn});"));
-            self.frame_writes.insert(g);
-        }
-    }
-
-    /// The rotation of [`Solve::rotate3`] when its pivot, points or directions and axis are
-    /// all literals: the interpreter's `rotation`, run here.
-    fn literal_rotation3(
-        &self,
-        (pivot, axis): (Reg, RotationAxis),
-        (from, to): (Reg, Reg),
-        points: bool,
-    ) -> Option<nalgebra::UnitQuaternion<f64>> {
-        use nalgebra::Vector3 as V;
-        let vector = |r: Reg| match self.facts.value(r) {
-            Value::Point3(p) | Value::Vector3(p) => Some(V::from(*p)),
-            _ => None,
-        };
-        let c = match self.facts.value(pivot) {
-            Value::Point3(c) => V::from(*c),
-            _ => return None,
-        };
-        let (mut f, mut t) = (vector(from)?, vector(to)?);
-        if points {
-            (f, t) = (f - c, t - c);
-        }
-        use gcs_runtime::frame as rt;
-        Some(match axis {
-            RotationAxis::Shortest => rt::rotation_between3(&f, &t, &rt::perpendicular(&f)),
-            RotationAxis::Along(a) => {
-                let a = vector(a)?;
-                rt::rotation_about_axis(&a, rt::signed_angle3(&f, &t, &a))
-            }
-            RotationAxis::Normal => return None,
-        })
-    }
-
-    /// The call of the signed error of a relation in space (`component`: a coincidence's
-    /// axis), as the interpreter's `error_of3` measures it.
-    pub(super) fn error_code3(&self, residual: &Residual, component: u8) -> String {
-        let r = |x: &Reg| self.r(*x);
-        match residual {
-            Residual::PointPoint { a, b, d: None } => {
-                format!("({} - {})[{}]", r(a), r(b), component.min(2))
-            }
-            Residual::PointPoint { a, b, d: Some(d) } => {
-                format!("({} - {}).norm() - {}", r(a), r(b), r(d))
-            }
-            Residual::PointPlane { p, base, normal, d } => {
-                let d = d.as_ref().map_or_else(|| "0.0".to_string(), r);
-                format!("({} - {}).dot(&{}) - {d}", r(p), r(base), r(normal))
-            }
-            Residual::OnCircle {
-                p,
-                centre,
-                normal,
-                radius,
-                d: Some(d),
-            } => format!(
-                "Circle3::new({}, {}, {}).distance(&{}) - {}",
-                r(centre),
-                r(normal),
-                r(radius),
-                r(p),
-                r(d)
-            ),
-            Residual::PointLine {
-                p,
-                base,
-                dir,
-                d: Some(d),
-            } => format!(
-                "({} - {}).cross(&{}).norm() - {}",
-                r(p),
-                r(base),
-                r(dir),
-                r(d)
-            ),
-            Residual::Midpoint { p, a, b } => format!(
-                "(locus3d::midpoint({}, {}) - {})[{}]",
-                r(a),
-                r(b),
-                r(p),
-                component.min(2)
-            ),
-            Residual::MirrorPlane { p, q, base, normal } => format!(
-                "({} - locus3d::mirror({}, {}, {}))[{}]",
-                r(q),
-                r(base),
-                r(normal),
-                r(p),
-                component.min(2)
-            ),
-            _ => self.residual_code3(residual),
-        }
-    }
-
-    /// The call of the runtime's residual of a check's relation in space.
-    pub(super) fn residual_code3(&self, residual: &Residual) -> String {
-        let r = |x: &Reg| self.r(*x);
-        let or_zero = |x: &Option<Reg>| x.as_ref().map_or_else(|| "0.0".to_string(), r);
-        match residual {
-            Residual::PointPoint { a, b, d } => format!(
-                "check::space::point_point({}, {}, {})",
-                r(a),
-                r(b),
-                or_zero(d)
-            ),
-            Residual::PointLine { p, base, dir, d } => format!(
-                "check::space::point_line({}, {}, {}, {})",
-                r(p),
-                r(base),
-                r(dir),
-                or_zero(d)
-            ),
-            Residual::PointPlane { p, base, normal, d } => format!(
-                "check::space::point_plane({}, {}, {}, {})",
-                r(p),
-                r(base),
-                r(normal),
-                or_zero(d)
-            ),
-            Residual::Parallel { u, v, sense } => format!(
-                "check::space::parallel({}, {}, {})",
-                r(u),
-                r(v),
-                float(*sense)
-            ),
-            Residual::AngleBetween { u, v, angle } => format!(
-                "check::space::angle_between({}, {}, {})",
-                r(u),
-                r(v),
-                r(angle)
-            ),
-            Residual::OnCircle {
-                p,
-                centre,
-                normal,
-                radius,
-                d: None,
-            } => format!(
-                "Circle3::new({}, {}, {}).distance(&{})",
-                r(centre),
-                r(normal),
-                r(radius),
-                r(p)
-            ),
-            Residual::OnCircle {
-                p,
-                centre,
-                normal,
-                radius,
-                d: Some(d),
-            } => format!(
-                "(Circle3::new({}, {}, {}).distance(&{}) - {}).abs()",
-                r(centre),
-                r(normal),
-                r(radius),
-                r(p),
-                r(d)
-            ),
-            Residual::Twist { axis, u, v, angle } => format!(
-                "check::space::twist({}, {}, {}, {})",
-                r(axis),
-                r(u),
-                r(v),
-                r(angle)
-            ),
-            Residual::Helix {
-                axis,
-                u,
-                v,
-                p,
-                q,
-                pitch,
-            } => format!(
-                "check::space::helix({}, {}, {}, {} - {}, {})",
-                r(axis),
-                r(u),
-                r(v),
-                r(q),
-                r(p),
-                r(pitch)
-            ),
-            Residual::Dim { value, target } => {
-                format!("check::dimension({}, {})", r(value), r(target))
-            }
-            Residual::Midpoint { p, a, b } => {
-                format!("check::space::midpoint({}, {}, {})", r(p), r(a), r(b))
-            }
-            Residual::MirrorPlane { p, q, base, normal } => format!(
-                "check::space::mirror({}, {}, {}, {})",
-                r(p),
-                r(q),
-                r(base),
-                r(normal)
-            ),
-            other => panic!("bug in gcs: the check {other:?} is no check of a spatial plan"),
-        }
     }
 }

@@ -9,8 +9,8 @@
 //! a bug in gcs, and panics saying so, rather than going on with a made-up value.
 //!
 //! One machine, generic over the space ([`Space`]): registers, branch choices, defaults, outer
-//! iterations, checks and closes are shared; each space runs its own steps (the plane's here,
-//! space's in `spatial.rs`, over `Frame3`s and the runtime's `locus3d`/`intersect3d`).
+//! iterations, checks and closes are shared; each space runs its own steps (the plane's in
+//! `planar.rs`, space's in `spatial.rs`, over `Frame3`s and the runtime's `locus3d`/`intersect3d`).
 //! [`run`]/[`run_with`] are the plane's, [`run_in`] any space's; what returns no configuration
 //! ([`sketch_choices`], [`audit`], [`errors_at`], [`scan`], [`runs`]) dispatches on the model's
 //! space. An iterated region is run by the runtime's `iterate::solve` (through `outer::Outer`,
