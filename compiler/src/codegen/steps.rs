@@ -118,7 +118,6 @@ impl Solve<'_> {
                 };
                 self.facts.regs.insert(r, value);
             }
-
             _ => {
                 let space = self.cx.space;
                 space.value(self, w, i, r, op)
