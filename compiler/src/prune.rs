@@ -12,7 +12,7 @@
 //! solve refuses what the whole plan refuses wherever the outputs depend on it (a check
 //! against a fixed stop guards the outputs). A pruned plan is validated in debug builds.
 
-use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan};
+use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan, PlanarOp, SpatialOp};
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use std::collections::{BTreeSet, HashMap};
@@ -87,7 +87,7 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             Op::Translate { geoms: gs, .. }
             | Op::RotatePoint { geoms: gs, .. }
             | Op::RotateDir { geoms: gs, .. }
-            | Op::RotateBy { geoms: gs, .. } => {
+            | Op::Spatial(SpatialOp::RotateBy { geoms: gs, .. }) => {
                 for g in gs {
                     if !moved[i].contains(g) {
                         geoms.remove(g);
@@ -120,10 +120,10 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             Op::Translate { geoms: gs, .. }
             | Op::RotatePoint { geoms: gs, .. }
             | Op::RotateDir { geoms: gs, .. }
-            | Op::RotateBy { geoms: gs, .. } => {
+            | Op::Spatial(SpatialOp::RotateBy { geoms: gs, .. }) => {
                 gs.retain(|g| moved[i].contains(g));
             }
-            Op::Intersect { branch, .. } | Op::PassingDir { branch, .. } => {
+            Op::Intersect { branch, .. } | Op::Planar(PlanarOp::PassingDir { branch, .. }) => {
                 let next = BranchId(branch_map.len() as u32);
                 let new = *branch_map.entry(*branch).or_insert(next);
                 if new == next {

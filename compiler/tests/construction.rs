@@ -76,7 +76,7 @@
 #[path = "construction/harness.rs"]
 mod harness;
 
-use gcs_compiler::plan::{DefaultVar, Op};
+use gcs_compiler::plan::{DefaultVar, Op, PlanarOp};
 use gcs_lang::constraints::ConstraintKind as CK;
 use harness::{
     angular, ConstraintForm, GeomKind, Instance, Mode, Out, Rng, Solved, Space, Statements, Table,
@@ -1180,16 +1180,17 @@ impl Space for Planar {
         Some(match op {
             Op::RotatePoint { .. } => "rotate to point".into(),
             Op::RotateDir { .. } => "rotate to direction".into(),
-            Op::CentresLineLine { .. } => "bisector locus".into(),
-            Op::CentresLinePoint { .. } => "parabola locus".into(),
-            Op::CentresPointPoint { .. } => "conic locus".into(),
-            Op::RadiusFromLine { .. } | Op::RadiusFromPoint { .. } => "radius from distance".into(),
+            Op::Planar(PlanarOp::CentresLineLine { .. }) => "bisector locus".into(),
+            Op::Planar(PlanarOp::CentresLinePoint { .. }) => "parabola locus".into(),
+            Op::Planar(PlanarOp::CentresPointPoint { .. }) => "conic locus".into(),
+            Op::Planar(PlanarOp::RadiusFromLine { .. })
+            | Op::Planar(PlanarOp::RadiusFromPoint { .. }) => "radius from distance".into(),
             Op::Along { .. } => "length along".into(),
-            Op::OffsetLine { .. } => "offset line".into(),
-            Op::PointXY { .. } => "point".into(),
+            Op::Planar(PlanarOp::OffsetLine { .. }) => "offset line".into(),
+            Op::Planar(PlanarOp::PointXY { .. }) => "point".into(),
             Op::Midpoint { .. } => "midpoint".into(),
             Op::Reflect { .. } => "reflect through a point".into(),
-            Op::Mirror { .. } => "mirror across a line".into(),
+            Op::Planar(PlanarOp::Mirror { .. }) => "mirror across a line".into(),
             _ => return harness::op_name(op),
         })
     }
@@ -1199,8 +1200,8 @@ impl Space for Planar {
         matches!(
             op,
             Op::SetDim { .. }
-                | Op::RadiusFromLine { .. }
-                | Op::RadiusFromPoint { .. }
+                | Op::Planar(PlanarOp::RadiusFromLine { .. })
+                | Op::Planar(PlanarOp::RadiusFromPoint { .. })
                 | Op::PointOf(_)
         )
     }

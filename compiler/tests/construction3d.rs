@@ -110,7 +110,7 @@
 #[path = "construction/harness.rs"]
 mod harness;
 
-use gcs_compiler::plan::{DefaultVar, Op, RotationAxis};
+use gcs_compiler::plan::{DefaultVar, Op, RotationAxis, SpatialOp};
 use harness::{
     angular, ConstraintForm, GeomKind, Instance, Known, Mode, Out, Rng, Solved, Space, Statements,
     Table, REL,
@@ -131,7 +131,7 @@ const KNOWN_WRONG: &[Known] = &[
     // 1e-9 to 1e-4 rad, a joint's z axis on a body turning about another z, which fixes the
     // turn only to rounding over that distance) is gone. The joint's x axes
     // (`frame::signed_angle3_both`: offset_x, prismatic, and a helical joint on a body held
-    // at a point), its point onto a line or plane, or its helix (`Op::TurnReaching`, on a
+    // at a point), its point onto a line or plane, or its helix (`SpatialOp::TurnReaching`, on a
     // screw too: `runtime::fragment3::Screw`) decide such a turn with the z axis.
 ];
 
@@ -1497,25 +1497,29 @@ impl Space for Spatial {
         Some(match op {
             Op::RotatePoint { axis, .. } => format!("rotate to point{}", axis_words(axis)),
             Op::RotateDir { axis, .. } => format!("rotate to direction{}", axis_words(axis)),
-            Op::RotateBy { .. } => "rotate by the angle (about the axis)".into(),
-            Op::TurnReaching { .. } => "angle about (direction and point)".into(),
+            Op::Spatial(SpatialOp::RotateBy { .. }) => {
+                "rotate by the angle (about the axis)".into()
+            }
+            Op::Spatial(SpatialOp::TurnReaching { .. }) => {
+                "angle about (direction and point)".into()
+            }
             Op::Line { .. } => "line".into(),
-            Op::Plane { .. } => "plane".into(),
-            Op::Sphere { .. } => "sphere".into(),
-            Op::SphereThrough { .. } => "sphere through".into(),
-            Op::Orbit { .. } => "orbit".into(),
-            Op::ParallelPlane { .. } => "parallel plane".into(),
-            Op::ShiftedSphere { .. } => "shifted sphere".into(),
-            Op::Opposite(_) => "opposite".into(),
-            Op::TurnedAbout { .. } => "turned about".into(),
-            Op::AngleAbout { .. } => "angle about".into(),
-            Op::AngleAboutBoth { .. } => "angle about (z and x)".into(),
-            Op::ConeTurn { .. } => "onto cone".into(),
-            Op::Aligned { .. } => "aligned".into(),
-            Op::HelixAdvance { .. } => "helix advance".into(),
-            Op::HelixTurn { .. } => "helix turn".into(),
+            Op::Spatial(SpatialOp::Plane { .. }) => "plane".into(),
+            Op::Spatial(SpatialOp::Sphere { .. }) => "sphere".into(),
+            Op::Spatial(SpatialOp::SphereThrough { .. }) => "sphere through".into(),
+            Op::Spatial(SpatialOp::Orbit { .. }) => "orbit".into(),
+            Op::Spatial(SpatialOp::ParallelPlane { .. }) => "parallel plane".into(),
+            Op::Spatial(SpatialOp::ShiftedSphere { .. }) => "shifted sphere".into(),
+            Op::Spatial(SpatialOp::Opposite(_)) => "opposite".into(),
+            Op::Spatial(SpatialOp::TurnedAbout { .. }) => "turned about".into(),
+            Op::Spatial(SpatialOp::AngleAbout { .. }) => "angle about".into(),
+            Op::Spatial(SpatialOp::AngleAboutBoth { .. }) => "angle about (z and x)".into(),
+            Op::Spatial(SpatialOp::ConeTurn { .. }) => "onto cone".into(),
+            Op::Spatial(SpatialOp::Aligned { .. }) => "aligned".into(),
+            Op::Spatial(SpatialOp::HelixAdvance { .. }) => "helix advance".into(),
+            Op::Spatial(SpatialOp::HelixTurn { .. }) => "helix turn".into(),
             Op::Along { .. } => "advance along".into(),
-            Op::PointAt { .. } => "point".into(),
+            Op::Spatial(SpatialOp::PointAt { .. }) => "point".into(),
             _ => return harness::op_name(op),
         })
     }
@@ -1524,7 +1528,7 @@ impl Space for Spatial {
     fn turns(op: &Op) -> bool {
         matches!(
             op,
-            Op::RotateDir { .. } | Op::RotatePoint { .. } | Op::RotateBy { .. }
+            Op::RotateDir { .. } | Op::RotatePoint { .. } | Op::Spatial(SpatialOp::RotateBy { .. })
         )
     }
 

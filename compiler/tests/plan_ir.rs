@@ -8,7 +8,7 @@
 //! `deny(warnings)` and solves with the closing angle as its default).
 
 use gcs_compiler::plan::{
-    BranchId, BranchVar, DefaultId, DefaultVar, Iteration, Meet, Op, Plan, Reg, Step, Ty,
+    BranchId, BranchVar, DefaultId, DefaultVar, Iteration, Meet, Op, Plan, PlanarOp, Reg, Step, Ty,
 };
 use gcs_lang::Model;
 use gcs_runtime::error::ErrorKind;
@@ -54,19 +54,19 @@ fn plan(model: &Model) -> Plan {
     def(Op::PointOf(a), Ty::Point); // r0
     def(Op::Expr(five), Ty::Scalar); // r1
     def(
-        Op::Circle {
+        Op::Planar(PlanarOp::Circle {
             center: Reg(0),
             radius: Reg(1),
-        },
+        }),
         Ty::Circle,
     ); // r2
     def(Op::Default(DefaultId(0)), Ty::Scalar); // r3
-    def(Op::Axis(1.0, 0.0), Ty::Vector); // r4
+    def(Op::Planar(PlanarOp::Axis(1.0, 0.0)), Ty::Vector); // r4
     def(
-        Op::Rotated {
+        Op::Planar(PlanarOp::Rotated {
             dir: Reg(4),
             angle: Reg(3),
-        },
+        }),
         Ty::Vector,
     ); // r5
     def(
@@ -110,12 +110,12 @@ fn plan(model: &Model) -> Plan {
         explain: String::new(),
     });
     steps.push(Step {
-        op: Op::RadiusFromPoint {
+        op: Op::Planar(PlanarOp::RadiusFromPoint {
             at: Reg(9),
             b: Reg(10),
             plus: true,
             centre: Reg(11),
-        },
+        }),
         out: Some((Reg(12), Ty::Scalar)),
         satisfies: vec![],
         works_for: None,

@@ -283,24 +283,14 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// Appends a step; returns the register it defines (meaningless when `ty` is `None`).
     pub(crate) fn emit(
         &mut self,
-        op: Op,
+        op: impl Into<Op>,
         ty: Option<Ty>,
         satisfies: Vec<ConstraintId>,
         explain: String,
     ) -> Reg {
+        let op = op.into();
         // An action invalidates what was measured on the geoms it moves.
-        if let Op::Translate { geoms, .. }
-        | Op::RotatePoint { geoms, .. }
-        | Op::RotateDir { geoms, .. }
-        | Op::RotateBy { geoms, .. } = &op
-        {
-            let moved: Vec<GeomId> = geoms.clone();
-            for g in moved {
-                self.forget_measured(g);
-            }
-        }
-        if let Op::SetDim { geom, .. } = &op {
-            let g = *geom;
+        for g in op.moves().to_vec() {
             self.forget_measured(g);
         }
         if let (Some(c), false) = (self.working, op.moves().is_empty()) {
@@ -377,7 +367,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
     }
 
     /// A step computing a value, described by `words` where explanations name it.
-    pub(crate) fn value(&mut self, op: Op, ty: Ty, words: String) -> Reg {
+    pub(crate) fn value(&mut self, op: impl Into<Op>, ty: Ty, words: String) -> Reg {
         let r = self.emit(op, Some(ty), Vec::new(), String::new());
         let i = r.0 as usize;
         if self.words.len() <= i {

@@ -9,7 +9,7 @@
 //! initialiser, so that these agree by construction.
 
 use super::context::Context;
-use super::facts::{direction_in, point_in, Value};
+use super::facts::Value;
 use super::names::{Clash, Namer};
 use super::scopes;
 use super::sketch::dimension_name;
@@ -243,17 +243,9 @@ pub(super) enum Ty {
 }
 
 impl Ty {
-    /// The type in the plane, or in space (`d3`).
-    pub(super) fn rust(self, d3: bool) -> &'static str {
-        match (self, d3) {
-            (Ty::Frame, false) => "Frame2",
-            (Ty::Frame, true) => "Frame3",
-            (Ty::Scalar, _) => "f64",
-            (Ty::Point, false) => "Point2<f64>",
-            (Ty::Point, true) => "Point3<f64>",
-            (Ty::Vector, false) => "Vector2<f64>",
-            (Ty::Vector, true) => "Vector3<f64>",
-        }
+    /// The type in the model's space.
+    pub(super) fn rust(self, cx: &Context<'_>) -> &'static str {
+        cx.space.rust(self)
     }
 }
 
@@ -325,10 +317,7 @@ impl Layout {
                 let ty = if local.vector { Ty::Vector } else { Ty::Point };
                 add(&mut layout, &local.name, ty, Holds::Local(local.feature));
             }
-            let sketched = |from: &[gcs_lang::expr::ExprId]| match cx.d3 {
-                true => !from.iter().all(|&e| m.exprs.is_constant(e)),
-                false => !matches!(cx.sketch_point(from), Value::Point(..)),
-            };
+            let sketched = |from: &[gcs_lang::expr::ExprId]| !cx.all_constant(from);
             if line_sketch(cx, g).is_some_and(sketched) {
                 let name = format!("{}_sketch", geom.name);
                 add(&mut layout, &name, Ty::Point, Holds::LineSketch(g));
@@ -427,27 +416,19 @@ impl Accessor {
                 let dim = read(Holds::Dim(g)).unwrap_or_default();
                 format!("{origin} + {x_axis} * {dim}")
             }
-            Reads::MemberPoint(f) => match (read(Holds::Local(*f)), cx.d3) {
-                (Some(local), _) => format!("{frame}.point_to_global(&{local})"),
-                (None, true) => format!("{frame}.point_to_global(&{})", cx.local_point3(*f)),
-                (None, false) => {
-                    let origin = Value::Expr(origin);
-                    point_in(|| frame.clone(), &origin, cx.literal_coords(*f, true)).code()
-                }
+            Reads::MemberPoint(f) => match read(Holds::Local(*f)) {
+                Some(local) => format!("{frame}.point_to_global(&{local})"),
+                None => cx.space.member_point(cx, &frame, &origin, *f),
             },
-            Reads::MemberDir(f) => match (read(Holds::Local(*f)), cx.d3) {
-                (Some(local), _) => format!("{frame}.vector_to_global(&{local})"),
-                (None, true) => format!("{frame}.vector_to_global(&{})", cx.local_dir3(*f)),
-                (None, false) => direction_in(&frame, cx.literal_coords(*f, false)),
+            Reads::MemberDir(f) => match read(Holds::Local(*f)) {
+                Some(local) => format!("{frame}.vector_to_global(&{local})"),
+                None => cx.space.member_dir(cx, &frame, *f),
             },
             Reads::BasePoint => {
                 // The foot of the perpendicular from the first sketch point: a literal, or the
                 // value that holds it when params set it.
                 let from = line_sketch(cx, g).unwrap_or(&[]);
-                let s = read(Holds::LineSketch(g)).unwrap_or_else(|| match cx.d3 {
-                    true => cx.point_lit3(from),
-                    false => cx.point_lit(from),
-                });
+                let s = read(Holds::LineSketch(g)).unwrap_or_else(|| cx.point_code(from));
                 format!("{origin} + {x_axis} * ({s} - {origin}).dot(&{x_axis})")
             }
         }
@@ -475,7 +456,7 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     } else {
         w.open("pub struct Solution {");
         for f in &layout.fields {
-            w.line(&format!("{}: {},", f.name, f.ty.rust(cx.d3)));
+            w.line(&format!("{}: {},", f.name, f.ty.rust(cx)));
         }
         if has_branches {
             w.line("branches: Branches,");
@@ -512,10 +493,7 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     for (a, accessor) in accessors(cx, layout).0 {
         w.line(&format!("/// {}", a.doc));
         w.line("#[inline]");
-        w.open(&format!(
-            "pub fn {accessor}(&self) -> {} {{",
-            a.ty.rust(cx.d3)
-        ));
+        w.open(&format!("pub fn {accessor}(&self) -> {} {{", a.ty.rust(cx)));
         w.line(&a.body(cx, &mut |holds| layout.read(holds)));
         w.close("}");
         w.line("");
@@ -533,7 +511,7 @@ pub(super) fn solution(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         ));
         w.open(&format!(
             "pub fn {what}s(&self) -> [(&'static str, {}); {}] {{",
-            ty.rust(cx.d3),
+            ty.rust(cx),
             list.len()
         ));
         w.open("[");
@@ -593,21 +571,10 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
         return items;
     }
     match geom.kind {
-        GeomKind::Body if cx.d3 => add(
-            name,
-            format!("The frame of body `{name}`: its origin and its axes."),
-            Ty::Frame,
-            Reads::Frame,
-        ),
-        GeomKind::Body => add(
-            name,
-            format!("The frame of body `{name}`."),
-            Ty::Frame,
-            Reads::Frame,
-        ),
+        GeomKind::Body => add(name, cx.space.body_frame_doc(name), Ty::Frame, Reads::Frame),
         GeomKind::Point => add(name, format!("Point `{name}`."), Ty::Point, Reads::Origin),
         GeomKind::Vector => add(name, format!("Vector `{name}`."), Ty::Vector, Reads::XAxis),
-        GeomKind::Plane if cx.d3 => {
+        GeomKind::Plane => {
             if let Some((accessor, _)) = dimension_accessor(name, geom.kind) {
                 let doc = format!("The offset of plane `{name}`: its signed distance from the origin along its normal.");
                 add(&accessor, doc, Ty::Scalar, Reads::PlaneOffset);
@@ -631,13 +598,8 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
         match (p.owner, p.kind) {
             (Owner::Member(_), GeomKind::Point | GeomKind::Marker) => {
                 add(pname, point_doc, Ty::Point, Reads::MemberPoint(part));
-                // A marker's x axis in the plane; its axes in space.
-                let axes = match (cx.d3, p.kind) {
-                    (true, _) => &p.parts[..],
-                    (false, GeomKind::Marker) => &p.parts[..p.parts.len().min(1)],
-                    (false, _) => &[],
-                };
-                for &axis in axes {
+                // A marker's axes: its x axis in the plane, all three in space.
+                for &axis in &p.parts {
                     let n = &m.geoms[axis].name;
                     add(
                         n,
@@ -659,18 +621,9 @@ fn geom_accessors(cx: &Context<'_>, layout: &Layout, g: GeomId) -> Vec<Accessor>
                 add(pname, point_doc, Ty::Point, Reads::Origin);
             }
             (Owner::Part(_, Part::End), _) => add(pname, point_doc, Ty::Point, Reads::End),
-            (Owner::Part(_, Part::Dir), _) if cx.d3 => {
-                add(pname, vector_doc, Ty::Vector, Reads::XAxis);
-            }
-            (Owner::Part(_, Part::Dir), _) => {
-                add(
-                    pname,
-                    format!("Direction `{pname}`."),
-                    Ty::Vector,
-                    Reads::XAxis,
-                );
-            }
-            (Owner::Part(_, Part::Normal), _) if cx.d3 => {
+            (Owner::Part(_, Part::Dir), _) => add(pname, vector_doc, Ty::Vector, Reads::XAxis),
+            // Only in space: a plane's or a circle's.
+            (Owner::Part(_, Part::Normal), _) => {
                 add(pname, vector_doc, Ty::Vector, Reads::ZAxis);
             }
             (Owner::Part(_, Part::BasePoint), _) if line_sketch(cx, g).is_some() => {

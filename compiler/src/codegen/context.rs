@@ -4,7 +4,7 @@
 
 use super::names::{Clash, Namer};
 use super::writer::lit;
-use crate::plan::{Op, Plan, Reg};
+use crate::plan::{Op, Plan, PlanarOp, Reg, SpatialOp};
 use gcs_lang::expr::ParamId;
 use gcs_lang::model::{ConstraintId, GeomId, Owner, Part};
 use gcs_lang::Model;
@@ -37,8 +37,8 @@ pub(super) struct Context<'a> {
     pub(super) rotated_onto: HashSet<Reg>,
     /// Names of params, branch variables and defaults that became one field.
     pub(super) clashes: Vec<(Public, Clash)>,
-    /// The model is in space: frames are `Frame3`s and steps spatial (see `spatial`).
-    pub(super) d3: bool,
+    /// What the model's space writes differently (see `space`).
+    pub(super) space: &'static dyn super::space::Space,
     /// In space, the sketch read once, for the values of constant sketches.
     pub(super) sketch3: Option<crate::config::Config<crate::config::D3>>,
     /// The step that defines each register.
@@ -104,10 +104,8 @@ impl<'a> Context<'a> {
                 _ => None,
             })
             .collect();
-        let d3 = model.space == gcs_lang::model::Space::D3;
-        let sketch3 = d3
-            .then(|| crate::config::Config::from_sketch(model, &model.default_params()).ok())
-            .flatten();
+        let space = super::space::of(model);
+        let sketch3 = space.sketch_config(model);
         let defined_at = (plan.steps.iter().enumerate())
             .filter_map(|(i, s)| Some((s.out?.0, i)))
             .collect();
@@ -115,7 +113,7 @@ impl<'a> Context<'a> {
         Context {
             param_members_of: Default::default(),
             turned_toward,
-            d3,
+            space,
             sketch3,
             defined_at,
             model,
@@ -207,16 +205,16 @@ fn used_registers(plan: &Plan) -> HashSet<Reg> {
                 used.insert(*a);
                 used.insert(*b);
             }
-            Op::CircleThrough {
+            Op::Planar(PlanarOp::CircleThrough {
                 center,
                 through,
                 radius,
-            }
-            | Op::SphereThrough {
+            })
+            | Op::Spatial(SpatialOp::SphereThrough {
                 center,
                 through,
                 radius,
-            } => {
+            }) => {
                 used.insert(*center);
                 if radius.is_none() {
                     used.insert(*through);
@@ -256,7 +254,9 @@ impl PlanIndex {
                 Op::Translate { geoms, .. }
                 | Op::RotatePoint { geoms, .. }
                 | Op::RotateDir { geoms, .. }
-                | Op::RotateBy { geoms, .. } => ix.moved.extend(geoms.iter().copied()),
+                | Op::Spatial(SpatialOp::RotateBy { geoms, .. }) => {
+                    ix.moved.extend(geoms.iter().copied())
+                }
                 Op::SetDim { geom, .. } => {
                     ix.dim_set.insert(*geom);
                     ix.dim_first.entry(*geom).or_insert(true);

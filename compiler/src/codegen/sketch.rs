@@ -33,15 +33,9 @@ pub(super) struct ParamLocal {
 }
 
 impl Context<'_> {
-    /// The sketches that some params make unusable, in the model's order (the order the
-    /// interpreter reads them in): each geom with the code of the test that its sketch is
-    /// unusable, and how. A constant sketch was checked when the model was; a coordinate that
-    /// is a param (or its negation) is finite, params being checked on entry.
-    pub(super) fn sketch_checks(&self) -> Vec<(GeomId, String, SketchFault)> {
+    /// [`Context::sketch_checks`] in the plane.
+    pub(super) fn sketch_checks2(&self) -> Vec<(GeomId, String, SketchFault)> {
         let m = self.model;
-        if self.d3 {
-            return self.sketch_checks3();
-        }
         let constant = |e: &ExprId| m.exprs.is_constant(*e);
         let surely_finite = |e: &ExprId| {
             let mut e = *e;
@@ -120,22 +114,15 @@ impl Context<'_> {
         let m = self.model;
         let found: Vec<GeomId> = (m.geoms[g].parts.iter().copied())
             .filter(|&part| matches!(m.geoms[part].owner, Owner::Member(_)))
-            .filter(|&part| match self.d3 {
-                true => self.local_is_param3(part),
-                false => self.local_is_param(part),
-            })
+            .filter(|&part| self.space.local_is_param(self, part))
             .collect();
         self.param_members_of.borrow_mut().insert(g, found.clone());
         found
     }
 
-    /// The local coordinates params set among the members of top-level geom `g`: a member's,
-    /// and after a marker's its x axis's.
-    pub(super) fn param_locals(&self, g: GeomId) -> Vec<ParamLocal> {
+    /// [`Context::param_locals`] in the plane.
+    pub(super) fn param_locals2(&self, g: GeomId) -> Vec<ParamLocal> {
         let m = self.model;
-        if self.d3 {
-            return self.param_locals3(g);
-        }
         let mut out = Vec::new();
         for part in self.param_members(g) {
             let p = &m.geoms[part];
@@ -164,7 +151,7 @@ impl Context<'_> {
     }
 
     /// Whether a member's local coordinates depend on params (then the solution stores them).
-    fn local_is_param(&self, g: GeomId) -> bool {
+    pub(super) fn local_is_param2(&self, g: GeomId) -> bool {
         match &self.model.geoms[g].sketch {
             Sketch::Point(c) | Sketch::Vector(c) => {
                 c.iter().any(|&e| !self.model.exprs.is_constant(e))
@@ -193,8 +180,7 @@ impl Context<'_> {
     pub(super) fn constant_value(&self, g: GeomId) -> Option<Value> {
         let m = self.model;
         let geom = &m.geoms[g];
-        // In space every reported geom has its frame in the solution.
-        if self.moved(g) || self.d3 {
+        if self.moved(g) || self.space.reports_every_frame() {
             return None;
         }
         let value = |c: &[ExprId], i: usize| c.get(i).map(|&e| m.exprs.eval(e, &[]));
@@ -276,11 +262,8 @@ impl Context<'_> {
         Value::Sketched([c.first().copied(), c.get(1).copied()], self.point_lit(c))
     }
 
-    /// The sketch value of a segment's length or a circle's radius, as code.
-    pub(super) fn sketch_dim(&self, g: GeomId) -> Option<String> {
-        if self.d3 {
-            return self.sketch_dim3(g);
-        }
+    /// [`Context::sketch_dim`] in the plane.
+    pub(super) fn sketch_dim2(&self, g: GeomId) -> Option<String> {
         match &self.model.geoms[g].sketch {
             Sketch::Segment { from, to } => {
                 // Two literal ends: the length here, as the solve would compute it.
@@ -302,10 +285,8 @@ impl Context<'_> {
         }
     }
 
-    /// The constructor of top-level geom `g`'s frame where the sketch puts it, and what is
-    /// known of the frame then. The same construction as the interpreter's configuration, so
-    /// that both agree to the last bits: no rotation, a direction, or an angle.
-    pub(super) fn sketch_frame(&self, g: GeomId) -> (String, FrameFacts) {
+    /// [`Context::sketch_frame`] in the plane: no rotation, a direction, or an angle.
+    pub(super) fn sketch_frame2(&self, g: GeomId) -> (String, FrameFacts) {
         let m = self.model;
         let facts = |identity: bool, origin: Value| FrameFacts {
             identity,
@@ -380,13 +361,9 @@ impl Context<'_> {
         }
     }
 
-    /// The declared value of a segment's length or a circle's radius where the sketch puts it:
-    /// a literal when the sketch is constant.
-    pub(super) fn sketch_dim_declared(&self, g: GeomId) -> String {
+    /// [`Context::sketch_dim_declared`] in the plane.
+    pub(super) fn sketch_dim_declared2(&self, g: GeomId) -> String {
         let m = self.model;
-        if self.d3 {
-            return self.sketch_dim3(g).unwrap_or_else(|| "0.0".into());
-        }
         match &m.geoms[g].sketch {
             Sketch::Segment { from, to }
                 if from.iter().chain(to).all(|&e| m.exprs.is_constant(e)) =>

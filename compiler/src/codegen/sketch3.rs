@@ -214,7 +214,9 @@ impl Context<'_> {
     /// constant.
     pub(super) fn sketch_dim_value3(&self, g: GeomId) -> Option<f64> {
         let constant = self.all_constant(&self.sketch_exprs(g));
-        (self.d3 && constant).then(|| self.sketch3().dim(g))
+        (self.sketch3.as_ref())
+            .filter(|_| constant)
+            .map(|s| s.dim(g))
     }
 
     /// The sketch value of a 3d segment's length or circle's radius: a literal when constant.

@@ -209,7 +209,7 @@ impl Solve<'_> {
 
     /// [`Solve::bindings`], each with its Rust type.
     fn bindings_typed(&self, decls: Vec<Decl>) -> Vec<(Binding, &'static str)> {
-        let frame_ty = if self.cx.d3 { "Frame3" } else { "Frame2" };
+        let frame_ty = self.cx.space.rust(super::api::Ty::Frame);
         decls
             .into_iter()
             .filter_map(|decl| match decl {
@@ -273,11 +273,7 @@ impl Solve<'_> {
     fn declare_sketch(&mut self, g: GeomId, reported: bool, decls: &mut Vec<Decl>) {
         let geom = &self.cx.model.geoms[g];
         let name = self.names.fresh(&geom.name);
-        let (ctor, facts) = if self.cx.d3 {
-            self.cx.sketch_frame3(g)
-        } else {
-            self.cx.sketch_frame(g)
-        };
+        let (ctor, facts) = self.cx.sketch_frame(g);
         decls.push(Decl::Frame(
             g,
             Binding {
@@ -295,11 +291,9 @@ impl Solve<'_> {
         // them only where a step reads them.
         for local in self.cx.param_locals(g) {
             if reported || self.cx.reads_feature(local.feature) {
-                let ty = match (local.vector, self.cx.d3) {
-                    (true, true) => "Vector3<f64>",
-                    (true, false) => "Vector2<f64>",
-                    (false, true) => "Point3<f64>",
-                    (false, false) => "Point2<f64>",
+                let ty = match local.vector {
+                    true => self.cx.space.rust(super::api::Ty::Vector),
+                    false => self.cx.space.rust(super::api::Ty::Point),
                 };
                 self.declare_local(local.feature, (&local.name, ty), local.value, decls);
             }
@@ -369,7 +363,7 @@ impl Solve<'_> {
                 self.facts.frames.get(&g).and_then(|f| f.literal3),
                 dim_literal(),
             ) {
-                (Some(f), Some(dim)) if self.cx.d3 => {
+                (Some(f), Some(dim)) => {
                     if let Some(v) = values.as_mut() {
                         v.extend(f.origin.iter().copied().chain(dim));
                     }
@@ -382,11 +376,8 @@ impl Solve<'_> {
                 terms.extend(f.origin.iter().map(|x| super::writer::float(*x)));
             } else {
                 let f = self.frame(g);
-                terms.push(format!("{f}.origin.x"));
-                terms.push(format!("{f}.origin.y"));
-                if self.cx.d3 {
-                    terms.push(format!("{f}.origin.z"));
-                }
+                let coordinates = self.cx.space.coordinates().iter();
+                terms.extend(coordinates.map(|x| format!("{f}.origin.{x}")));
             }
             if let Some(d) = self.dims.get(&g) {
                 if self.deferred.contains(&g) {
@@ -577,7 +568,7 @@ impl Solve<'_> {
         // functions read, nor the circle of a nearest point that is not written (whose turns
         // read its point instead).
         let unwritten_nearest = |s: &Step| match s.op {
-            Op::Nearest { point, .. } if !cx.d3 => (s.out)
+            Op::Nearest { point, .. } => (s.out)
                 .is_some_and(|(r, _)| cx.turned_toward.contains(&r))
                 .then_some(point),
             _ => None,
@@ -684,8 +675,7 @@ impl Solve<'_> {
             Holds::Dim(g) => self.dims[&g].clone(),
             Holds::Local(f) => self.locals[&f].clone(),
             Holds::LineSketch(g) => match super::api::line_sketch(self.cx, g) {
-                Some(from) if self.cx.d3 => self.cx.point_lit3(from),
-                Some(from) => self.cx.point_lit(from),
+                Some(from) => self.cx.point_code(from),
                 None => unreachable!("only a line's sketch point is held"),
             },
         }

@@ -1,6 +1,7 @@
 //! Codegen in space: each spatial step of the plan lowered to the runtime's 3d calls
-//! (`locus3d`, `intersect3d`, `frame`, `fragment3`, `check::space`); the sketch of a 3d model
-//! as `Frame3`s is `sketch3.rs`.
+//! (`locus3d`, `intersect3d`, `frame`, `fragment3`, `check::space`): values here, actions in
+//! `actions.rs`, checks in `residual.rs`; the sketch of a 3d model as `Frame3`s is
+//! `sketch3.rs`.
 //!
 //! The skeleton of `solve` (params, sketch, tolerance, groups of steps with their comments,
 //! outer iterations, the `Solution`) and the steps that do not depend on the space (scalars,
@@ -22,11 +23,14 @@
 //! came from. Every other frame is read and moved as it is, and every other register is a
 //! local.
 
+mod actions;
+mod residual;
+
 use super::facts::Value;
-use super::sketch3::{frame3, rotation3};
+use super::sketch3::frame3;
 use super::solve::Solve;
 use super::writer::{float, lit, Writer};
-use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis};
+use crate::plan::{BranchId, Meet, Op, Reg, SpatialOp};
 use gcs_lang::model::{ConstraintId, GeomId, Owner, Part};
 
 /// The kind of a register's value in space, as the step that defines it makes it: what a
@@ -132,39 +136,6 @@ impl Solve<'_> {
         }
     }
 
-    /// Translates `geoms` so that point `from` lands on `to`: computed here for frames known
-    /// to the bit when both points are literals, as the interpreter computes it.
-    pub(super) fn translate3(&mut self, w: &mut Writer, geoms: &[GeomId], from: Reg, to: Reg) {
-        let (fv, tv) = (self.facts.value(from).clone(), self.facts.value(to).clone());
-        if fv.same(&tv, self.cx) {
-            // From a point onto itself: nothing moves.
-            return;
-        }
-        let shift = match (&fv, &tv) {
-            (Value::Point3(a), Value::Point3(b)) => {
-                Some(nalgebra::Point3::from(*b) - nalgebra::Point3::from(*a))
-            }
-            _ => None,
-        };
-        let mut local = None;
-        for &g in geoms {
-            if let (Some(d), Some(mut f)) = (shift, self.literal_frame3(g)) {
-                f.translate(&d);
-                self.facts.frames.entry(g).or_default().literal3 = Some(f);
-                continue;
-            }
-            self.materialize(g);
-            let shift = local.get_or_insert_with(|| {
-                let name = self.names.fresh("shift");
-                w.line(&format!("let {name} = {} - {};", tv.code(), fv.code()));
-                name
-            });
-            let frame = self.frame_local(g);
-            w.line(&format!("{frame}.translate(&{shift});"));
-            self.frame_writes.insert(g);
-        }
-    }
-
     /// The kind of register `r`'s value, from the step that defines it.
     fn kind3(&self, r: Reg) -> Kind {
         let Some(&i) = self.cx.defined_at.get(&r) else {
@@ -172,11 +143,17 @@ impl Solve<'_> {
         };
         match &self.cx.plan.steps[i].op {
             Op::Line { .. } | Op::ParallelLine { .. } => Kind::Line,
-            Op::Circle3 { .. } | Op::Orbit { .. } | Op::ShiftedCircle { .. } => Kind::Circle,
-            Op::Plane { .. } | Op::ParallelPlane { .. } => Kind::Plane,
-            Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Kind::Sphere,
-            Op::Cylinder { .. } | Op::ShiftedCylinder { .. } => Kind::Cylinder,
-            Op::Torus { .. } | Op::ShiftedTorus { .. } => Kind::Torus,
+            Op::ShiftedCircle { .. } => Kind::Circle,
+            Op::Spatial(op) => match op {
+                SpatialOp::Circle3 { .. } | SpatialOp::Orbit { .. } => Kind::Circle,
+                SpatialOp::Plane { .. } | SpatialOp::ParallelPlane { .. } => Kind::Plane,
+                SpatialOp::Sphere { .. }
+                | SpatialOp::SphereThrough { .. }
+                | SpatialOp::ShiftedSphere { .. } => Kind::Sphere,
+                SpatialOp::Cylinder { .. } | SpatialOp::ShiftedCylinder { .. } => Kind::Cylinder,
+                SpatialOp::Torus { .. } | SpatialOp::ShiftedTorus { .. } => Kind::Torus,
+                _ => Kind::Other,
+            },
             Op::Intersect { meet, .. } => match meet {
                 Meet::SphereSphere | Meet::SpherePlane => Kind::Circle,
                 Meet::PlanePlane | Meet::PlaneCylinder => Kind::Line,
@@ -274,232 +251,6 @@ impl Solve<'_> {
                 let code = self.unit3(i, &format!("({} - {})", self.r(*to), self.r(*from)));
                 self.define_pure(w, r, "direction", &code);
             }
-            Op::Opposite(d) => {
-                let code = format!("-{}", self.r(*d));
-                self.define_pure(w, r, "opposite", &code);
-            }
-            Op::Across(d) => {
-                let code = self.unit3(i, &format!("frame::perpendicular(&{})", self.r(*d)));
-                self.define_pure(w, r, "across", &code);
-            }
-            Op::AngleAbout { u, v, axis } => {
-                let code = format!(
-                    "frame::signed_angle3(&{}, &{}, &{})",
-                    self.r(*u),
-                    self.r(*v),
-                    self.r(*axis)
-                );
-                self.define_pure(w, r, "angle", &code);
-            }
-            Op::AngleAboutBoth { u, v, axis } => {
-                let code = format!(
-                    "frame::signed_angle3_both([&{}, &{}], [&{}, &{}], &{})",
-                    self.r(u[0]),
-                    self.r(u[1]),
-                    self.r(v[0]),
-                    self.r(v[1]),
-                    self.r(*axis)
-                );
-                self.define_pure(w, r, "angle", &code);
-            }
-            Op::TurnReaching {
-                u,
-                v,
-                axis,
-                pivot,
-                reach,
-                screw,
-            } => {
-                let helix = |h: &crate::plan::HelixRegs| {
-                    format!(
-                        "fragment3::Helix {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {} }}",
-                        self.r(h.axis),
-                        self.r(h.x_from),
-                        self.r(h.origin),
-                        self.r(h.x),
-                        self.r(h.point),
-                        self.r(h.pitch)
-                    )
-                };
-                let screw = screw.map_or("None".to_string(), |s| {
-                    format!(
-                        "Some(&fragment3::Screw {{ helix: {}, slide: {}.dir }})",
-                        helix(&s.helix),
-                        self.r(s.slide)
-                    )
-                });
-                let (onto, target) = match reach {
-                    crate::plan::Reach::Helix(h) => ("helix", format!("&{}", helix(h))),
-                    crate::plan::Reach::Point { point, locus } => (
-                        match self.kind3(*locus) {
-                            Kind::Plane => "plane",
-                            _ => "line",
-                        },
-                        format!("&{}, &{}", self.r(*point), self.r(*locus)),
-                    ),
-                };
-                let code = format!(
-                    "fragment3::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), {target}, {screw})",
-                    self.r(*u),
-                    self.r(*v),
-                    self.r(*pivot),
-                    self.r(*axis)
-                );
-                self.define_pure(w, r, "angle", &code);
-            }
-            Op::HelixAdvance { now, turn, pitch } => {
-                let code = format!(
-                    "frame::helix_advance({}, {}, {})",
-                    self.r(*now),
-                    self.r(*turn),
-                    self.r(*pitch)
-                );
-                self.define_finite(w, i, r, "advance", &code);
-            }
-            Op::HelixTurn { advance, pitch } => {
-                let code = format!(
-                    "frame::helix_turn({}, {})",
-                    self.r(*advance),
-                    self.r(*pitch)
-                );
-                self.define_finite(w, i, r, "turn", &code);
-            }
-            Op::Aligned { dir, near } => {
-                let code = format!("frame::aligned(&{}, &{})", self.r(*dir), self.r(*near));
-                self.define_pure(w, r, "aligned", &code);
-            }
-            Op::PassingAngle {
-                from,
-                to,
-                d,
-                now,
-                constraint,
-            } => {
-                let call = format!(
-                    "fragment3::passing_angle(&{}, &{}, {}, &{})",
-                    self.r(*from),
-                    self.r(*to),
-                    self.r(*d),
-                    self.r(*now)
-                );
-                self.only_root(w, (i, r), *constraint, ("passing", "passing_angle"), &call);
-            }
-            Op::TiltToDistance {
-                centre,
-                point,
-                radius,
-                d,
-                now,
-                constraint,
-            } => {
-                let call = format!(
-                    "fragment3::tilt_to_distance(&{}, &{}, {}, {}, &{})",
-                    self.r(*centre),
-                    self.r(*point),
-                    self.r(*radius),
-                    self.r(*d),
-                    self.r(*now)
-                );
-                self.only_root(w, (i, r), *constraint, ("tilt", "tilt_angle"), &call);
-            }
-            Op::ConeTurn { axis, angle, dir } => {
-                let code = format!(
-                    "frame::plane_turn(&{}, f64::cos({}), &{})",
-                    self.r(*axis),
-                    self.r(*angle),
-                    self.r(*dir)
-                );
-                self.define_pure(w, r, "turned", &code);
-            }
-            Op::AngleTurn {
-                u,
-                v,
-                axis,
-                angle,
-                branch,
-                constraint,
-            } => {
-                let turns = self.names.fresh("turns");
-                w.line(&format!(
-                    "let {turns} = frame::turns_to_angle(&{}, &{}, &{}, {});",
-                    self.r(*u),
-                    self.r(*v),
-                    self.r(*axis),
-                    self.r(*angle)
-                ));
-                self.fail_on_contact(w, *constraint, &turns, None);
-                let code = self.root(&turns, *branch, *constraint);
-                self.define_pure(w, r, "turned", &code);
-            }
-            Op::PlaneTurn {
-                base,
-                normal,
-                pivot,
-                point,
-                d,
-                constraint,
-            } => {
-                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
-                let con = &m.constraints[*constraint];
-                let (label, text) = (lit(&con.name), lit(&con.text));
-                let len = self.names.fresh("reach");
-                w.line(&format!("let {len} = {cone}.0.norm();"));
-                w.open(&format!("if {len}.is_nan() || {len} <= 0.0 {{"));
-                w.line(&format!(
-                    "return Err(SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0));"
-                ));
-                w.close("}");
-                w.open(&format!(
-                    "if {cone}.1.abs() > 1.0 + gcs_runtime::tol::LENGTH_REL || {cone}.1.is_nan() {{"
-                ));
-                w.line(&format!(
-                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, ({cone}.1.abs() - 1.0) * {len}));"
-                ));
-                w.close("}");
-                let code = format!(
-                    "frame::plane_turn(&({cone}.0 / {len}), {cone}.1.clamp(-1.0, 1.0), &{})",
-                    self.r(*normal)
-                );
-                self.define_pure(w, r, "normal", &code);
-            }
-            Op::PlaneAxisTurn {
-                base,
-                normal,
-                pivot,
-                point,
-                d,
-                axis,
-                branch,
-                constraint,
-            } => {
-                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
-                let con = &m.constraints[*constraint];
-                let (label, text) = (lit(&con.name), lit(&con.text));
-                let reach = self.names.fresh("reach");
-                w.line(&format!(
-                    "let {reach} = {cone}.0.try_normalize(0.0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0))?;"
-                ));
-                let gap = self.names.fresh("gap");
-                w.line(&format!(
-                    "let {gap} = ({cone}.1.abs() - 1.0).max(0.0) * {cone}.0.norm();"
-                ));
-                let turns = self.names.fresh("turns");
-                w.line(&format!(
-                    "let {turns} = frame::turns_to_angle(&{reach}, &{}, &{}, {cone}.1.clamp(-1.0, 1.0).acos());",
-                    self.r(*normal),
-                    self.r(*axis)
-                ));
-                self.fail_on_contact(w, *constraint, &turns, Some(&gap));
-                w.open(&format!(
-                    "if {gap} > gcs_runtime::tol::LENGTH_REL * (1.0 + {cone}.0.norm()) {{"
-                ));
-                w.line(&format!(
-                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, {gap}));"
-                ));
-                w.close("}");
-                let code = self.root(&turns, *branch, *constraint);
-                self.define_pure(w, r, "normal", &code);
-            }
             Op::Midpoint { a, b } => {
                 let code = format!("locus3d::midpoint({}, {})", self.r(*a), self.r(*b));
                 self.define_pure(w, r, "midpoint", &code);
@@ -511,49 +262,6 @@ impl Solve<'_> {
                     self.r(*through)
                 );
                 self.define_pure(w, r, "reflected", &code);
-            }
-            Op::MirrorPlane {
-                point,
-                base,
-                normal,
-            } => {
-                let code = format!(
-                    "locus3d::mirror({}, {}, {})",
-                    self.r(*base),
-                    self.r(*normal),
-                    self.r(*point)
-                );
-                self.define_pure(w, r, "mirrored", &code);
-            }
-            Op::PlaneNormal { a, b, c } => {
-                let code = self.unit3(
-                    i,
-                    &format!(
-                        "({} - {a}).cross(&({} - {a}))",
-                        self.r(*b),
-                        self.r(*c),
-                        a = self.r(*a)
-                    ),
-                );
-                self.define_pure(w, r, "normal", &code);
-            }
-            Op::WorldAxis(k) => {
-                let code = ["Vector3::x()", "Vector3::y()", "Vector3::z()"][usize::from(*k).min(2)];
-                self.define_pure(w, r, "world_axis", code);
-            }
-            Op::Coordinate { point, axis } => {
-                let c = ["x", "y", "z"][usize::from(*axis).min(2)];
-                let code = format!("{}.{c}", self.r(*point));
-                self.define_pure(w, r, c, &code);
-            }
-            Op::PointAt { x: a, y, z } => {
-                let code = format!(
-                    "Point3::new({}, {}, {})",
-                    self.r(*a),
-                    self.r(*y),
-                    self.r(*z)
-                );
-                self.define_pure(w, r, "point", &code);
             }
             Op::LocusParam { locus, point } => {
                 let (l, q) = (self.r(*locus), self.r(*point));
@@ -571,32 +279,6 @@ impl Solve<'_> {
                 };
                 self.define_pure(w, r, "on_locus", &code);
             }
-            Op::SurfaceParam {
-                locus,
-                point,
-                component,
-            } => {
-                let code = format!(
-                    "{}.coordinates(&{})[{}]",
-                    self.r(*locus),
-                    self.r(*point),
-                    component.min(&1)
-                );
-                self.define_pure(w, r, "coordinate", &code);
-            }
-            Op::SurfacePoint { locus, u, v } => {
-                let code = format!("{}.at([{}, {}])", self.r(*locus), self.r(*u), self.r(*v));
-                self.define_pure(w, r, "on_surface", &code);
-            }
-            Op::TurnedAbout { dir, axis, angle } => {
-                let code = format!(
-                    "frame::rotation_about_axis(&{}, {}) * {}",
-                    self.r(*axis),
-                    self.r(*angle),
-                    self.r(*dir)
-                );
-                self.define_pure(w, r, "turned", &code);
-            }
             Op::Line {
                 point,
                 dir,
@@ -609,75 +291,8 @@ impl Solve<'_> {
                 let code = format!("Line3::new({}, {}.dir)", self.r(*through), self.r(*line));
                 self.define_pure(w, r, "line", &code);
             }
-            Op::Plane {
-                point,
-                normal,
-                offset,
-            } => {
-                let n = self.names.fresh("normal");
-                w.line(&format!("let {n} = {};", self.unit3_of(i, *normal)));
-                let at = match offset {
-                    Some(o) => format!("({} + {n} * {})", self.r(*point), self.r(*o)),
-                    None => self.r(*point),
-                };
-                let code = format!("Plane::from_point_normal(&{at}, &{n})");
-                self.define_pure(w, r, "plane", &code);
-            }
-            Op::ParallelPlane { plane, through } => {
-                let code = format!(
-                    "Plane::from_point_normal(&{}, &{}.normal)",
-                    self.r(*through),
-                    self.r(*plane)
-                );
-                self.define_pure(w, r, "plane", &code);
-            }
-            Op::Circle3 {
-                center,
-                normal,
-                radius,
-            } => {
-                let code = format!(
-                    "Circle3::new({}, {}, {})",
-                    self.r(*center),
-                    self.unit3_of(i, *normal),
-                    self.r(*radius)
-                );
-                self.define_pure(w, r, "circle", &code);
-            }
-            Op::Sphere { center, radius } => {
-                let code = format!("Sphere::new({}, {})", self.r(*center), self.r(*radius));
-                self.define_pure(w, r, "sphere", &code);
-            }
-            Op::Cylinder { point, dir, radius } => {
-                let code = format!(
-                    "Cylinder::new(Line3::new({}, {}), {})",
-                    self.r(*point),
-                    self.unit3_of(i, *dir),
-                    self.r(*radius)
-                );
-                self.define_pure(w, r, "cylinder", &code);
-            }
-            Op::Torus { circle, tube } => {
-                let code = format!("Torus::new({}, {})", self.r(*circle), self.r(*tube));
-                self.define_pure(w, r, "torus", &code);
-            }
             // A locus moved with its body: the runtime's `Shift`, as the interpreter moves it.
-            Op::ShiftedTorus {
-                torus: locus,
-                from,
-                to,
-            }
-            | Op::ShiftedCylinder {
-                cylinder: locus,
-                from,
-                to,
-            }
-            | Op::ShiftedSphere {
-                sphere: locus,
-                from,
-                to,
-            }
-            | Op::ShiftedCircle {
+            Op::ShiftedCircle {
                 circle: locus,
                 from,
                 to,
@@ -695,32 +310,6 @@ impl Solve<'_> {
                     _ => "circle_moved",
                 };
                 self.define_pure(w, r, name, &code);
-            }
-            Op::SphereThrough {
-                center,
-                through,
-                radius,
-            } => {
-                let c = self.r(*center);
-                let rad = match radius {
-                    Some(k) => float(*k),
-                    None => format!("({} - {c}).norm()", self.r(*through)),
-                };
-                self.define_pure(w, r, "sphere", &format!("Sphere::new({c}, {rad})"));
-            }
-
-            Op::Orbit {
-                pivot,
-                axis,
-                through,
-            } => {
-                let code = format!(
-                    "Circle3::orbit(&{}, &{}, &{})",
-                    self.r(*pivot),
-                    self.unit3_of(i, *axis),
-                    self.r(*through)
-                );
-                self.define_pure(w, r, "orbit", &code);
             }
             Op::Nearest { locus, point } => {
                 let (l, q) = (self.r(*locus), self.r(*point));
@@ -795,7 +384,425 @@ impl Solve<'_> {
                     self.define_pure(w, r, "error", &code);
                 }
             }
-            op => panic!("bug in gcs: step {i} ({op:?}) is no step of a spatial plan"),
+            Op::Spatial(op) => self.spatial_value(w, i, r, op),
+            Op::Planar(_) => {
+                unreachable!("bug in gcs: step {i} is an operation of the plane in a spatial plan")
+            }
+            // Scalars are written by `value`, actions and checks by `step`.
+            op => panic!("bug in gcs: step {i} ({op:?}) is no value of a spatial plan"),
+        }
+    }
+
+    /// Writes the value of register `r`, which step `i` computes with an operation of space.
+    fn spatial_value(&mut self, w: &mut Writer, i: usize, r: Reg, op: &SpatialOp) {
+        let m = self.cx.model;
+        match op {
+            // An action defines no value: `step` writes it.
+            SpatialOp::RotateBy { .. } => {
+                panic!("bug in gcs: step {i} defines a value by a rotation")
+            }
+            SpatialOp::Opposite(d) => {
+                let code = format!("-{}", self.r(*d));
+                self.define_pure(w, r, "opposite", &code);
+            }
+            SpatialOp::Across(d) => {
+                let code = self.unit3(i, &format!("frame::perpendicular(&{})", self.r(*d)));
+                self.define_pure(w, r, "across", &code);
+            }
+            SpatialOp::AngleAbout { u, v, axis } => {
+                let code = format!(
+                    "frame::signed_angle3(&{}, &{}, &{})",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*axis)
+                );
+                self.define_pure(w, r, "angle", &code);
+            }
+            SpatialOp::AngleAboutBoth { u, v, axis } => {
+                let code = format!(
+                    "frame::signed_angle3_both([&{}, &{}], [&{}, &{}], &{})",
+                    self.r(u[0]),
+                    self.r(u[1]),
+                    self.r(v[0]),
+                    self.r(v[1]),
+                    self.r(*axis)
+                );
+                self.define_pure(w, r, "angle", &code);
+            }
+            SpatialOp::TurnReaching {
+                u,
+                v,
+                axis,
+                pivot,
+                reach,
+                screw,
+            } => {
+                let helix = |h: &crate::plan::HelixRegs| {
+                    format!(
+                        "fragment3::Helix {{ axis: {}, x_from: {}, origin: {}, x: {}, point: {}, pitch: {} }}",
+                        self.r(h.axis),
+                        self.r(h.x_from),
+                        self.r(h.origin),
+                        self.r(h.x),
+                        self.r(h.point),
+                        self.r(h.pitch)
+                    )
+                };
+                let screw = screw.map_or("None".to_string(), |s| {
+                    format!(
+                        "Some(&fragment3::Screw {{ helix: {}, slide: {}.dir }})",
+                        helix(&s.helix),
+                        self.r(s.slide)
+                    )
+                });
+                let (onto, target) = match reach {
+                    crate::plan::Reach::Helix(h) => ("helix", format!("&{}", helix(h))),
+                    crate::plan::Reach::Point { point, locus } => (
+                        match self.kind3(*locus) {
+                            Kind::Plane => "plane",
+                            _ => "line",
+                        },
+                        format!("&{}, &{}", self.r(*point), self.r(*locus)),
+                    ),
+                };
+                let code = format!(
+                    "fragment3::turn_reaching_{onto}([&{}, &{}], (&{}, &{}), {target}, {screw})",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*pivot),
+                    self.r(*axis)
+                );
+                self.define_pure(w, r, "angle", &code);
+            }
+            SpatialOp::HelixAdvance { now, turn, pitch } => {
+                let code = format!(
+                    "frame::helix_advance({}, {}, {})",
+                    self.r(*now),
+                    self.r(*turn),
+                    self.r(*pitch)
+                );
+                self.define_finite(w, i, r, "advance", &code);
+            }
+            SpatialOp::HelixTurn { advance, pitch } => {
+                let code = format!(
+                    "frame::helix_turn({}, {})",
+                    self.r(*advance),
+                    self.r(*pitch)
+                );
+                self.define_finite(w, i, r, "turn", &code);
+            }
+            SpatialOp::Aligned { dir, near } => {
+                let code = format!("frame::aligned(&{}, &{})", self.r(*dir), self.r(*near));
+                self.define_pure(w, r, "aligned", &code);
+            }
+            SpatialOp::PassingAngle {
+                from,
+                to,
+                d,
+                now,
+                constraint,
+            } => {
+                let call = format!(
+                    "fragment3::passing_angle(&{}, &{}, {}, &{})",
+                    self.r(*from),
+                    self.r(*to),
+                    self.r(*d),
+                    self.r(*now)
+                );
+                self.only_root(w, (i, r), *constraint, ("passing", "passing_angle"), &call);
+            }
+            SpatialOp::TiltToDistance {
+                centre,
+                point,
+                radius,
+                d,
+                now,
+                constraint,
+            } => {
+                let call = format!(
+                    "fragment3::tilt_to_distance(&{}, &{}, {}, {}, &{})",
+                    self.r(*centre),
+                    self.r(*point),
+                    self.r(*radius),
+                    self.r(*d),
+                    self.r(*now)
+                );
+                self.only_root(w, (i, r), *constraint, ("tilt", "tilt_angle"), &call);
+            }
+            SpatialOp::ConeTurn { axis, angle, dir } => {
+                let code = format!(
+                    "frame::plane_turn(&{}, f64::cos({}), &{})",
+                    self.r(*axis),
+                    self.r(*angle),
+                    self.r(*dir)
+                );
+                self.define_pure(w, r, "turned", &code);
+            }
+            SpatialOp::AngleTurn {
+                u,
+                v,
+                axis,
+                angle,
+                branch,
+                constraint,
+            } => {
+                let turns = self.names.fresh("turns");
+                w.line(&format!(
+                    "let {turns} = frame::turns_to_angle(&{}, &{}, &{}, {});",
+                    self.r(*u),
+                    self.r(*v),
+                    self.r(*axis),
+                    self.r(*angle)
+                ));
+                self.fail_on_contact(w, *constraint, &turns, None);
+                let code = self.root(&turns, *branch, *constraint);
+                self.define_pure(w, r, "turned", &code);
+            }
+            SpatialOp::PlaneTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                constraint,
+            } => {
+                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
+                let con = &m.constraints[*constraint];
+                let (label, text) = (lit(&con.name), lit(&con.text));
+                let len = self.names.fresh("reach");
+                w.line(&format!("let {len} = {cone}.0.norm();"));
+                w.open(&format!("if {len}.is_nan() || {len} <= 0.0 {{"));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0));"
+                ));
+                w.close("}");
+                w.open(&format!(
+                    "if {cone}.1.abs() > 1.0 + gcs_runtime::tol::LENGTH_REL || {cone}.1.is_nan() {{"
+                ));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, ({cone}.1.abs() - 1.0) * {len}));"
+                ));
+                w.close("}");
+                let code = format!(
+                    "frame::plane_turn(&({cone}.0 / {len}), {cone}.1.clamp(-1.0, 1.0), &{})",
+                    self.r(*normal)
+                );
+                self.define_pure(w, r, "normal", &code);
+            }
+            SpatialOp::PlaneAxisTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                axis,
+                branch,
+                constraint,
+            } => {
+                let cone = self.plane_cone(w, (*base, *normal, *pivot, *point, *d));
+                let con = &m.constraints[*constraint];
+                let (label, text) = (lit(&con.name), lit(&con.text));
+                let reach = self.names.fresh("reach");
+                w.line(&format!(
+                    "let {reach} = {cone}.0.try_normalize(0.0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0))?;"
+                ));
+                let gap = self.names.fresh("gap");
+                w.line(&format!(
+                    "let {gap} = ({cone}.1.abs() - 1.0).max(0.0) * {cone}.0.norm();"
+                ));
+                let turns = self.names.fresh("turns");
+                w.line(&format!(
+                    "let {turns} = frame::turns_to_angle(&{reach}, &{}, &{}, {cone}.1.clamp(-1.0, 1.0).acos());",
+                    self.r(*normal),
+                    self.r(*axis)
+                ));
+                self.fail_on_contact(w, *constraint, &turns, Some(&gap));
+                w.open(&format!(
+                    "if {gap} > gcs_runtime::tol::LENGTH_REL * (1.0 + {cone}.0.norm()) {{"
+                ));
+                w.line(&format!(
+                    "return Err(SolveError::new({label}, {text}, ErrorKind::NoIntersection, {gap}));"
+                ));
+                w.close("}");
+                let code = self.root(&turns, *branch, *constraint);
+                self.define_pure(w, r, "normal", &code);
+            }
+            SpatialOp::MirrorPlane {
+                point,
+                base,
+                normal,
+            } => {
+                let code = format!(
+                    "locus3d::mirror({}, {}, {})",
+                    self.r(*base),
+                    self.r(*normal),
+                    self.r(*point)
+                );
+                self.define_pure(w, r, "mirrored", &code);
+            }
+            SpatialOp::PlaneNormal { a, b, c } => {
+                let code = self.unit3(
+                    i,
+                    &format!(
+                        "({} - {a}).cross(&({} - {a}))",
+                        self.r(*b),
+                        self.r(*c),
+                        a = self.r(*a)
+                    ),
+                );
+                self.define_pure(w, r, "normal", &code);
+            }
+            SpatialOp::WorldAxis(k) => {
+                let code = ["Vector3::x()", "Vector3::y()", "Vector3::z()"][usize::from(*k).min(2)];
+                self.define_pure(w, r, "world_axis", code);
+            }
+            SpatialOp::Coordinate { point, axis } => {
+                let c = ["x", "y", "z"][usize::from(*axis).min(2)];
+                let code = format!("{}.{c}", self.r(*point));
+                self.define_pure(w, r, c, &code);
+            }
+            SpatialOp::PointAt { x: a, y, z } => {
+                let code = format!(
+                    "Point3::new({}, {}, {})",
+                    self.r(*a),
+                    self.r(*y),
+                    self.r(*z)
+                );
+                self.define_pure(w, r, "point", &code);
+            }
+            SpatialOp::SurfaceParam {
+                locus,
+                point,
+                component,
+            } => {
+                let code = format!(
+                    "{}.coordinates(&{})[{}]",
+                    self.r(*locus),
+                    self.r(*point),
+                    component.min(&1)
+                );
+                self.define_pure(w, r, "coordinate", &code);
+            }
+            SpatialOp::SurfacePoint { locus, u, v } => {
+                let code = format!("{}.at([{}, {}])", self.r(*locus), self.r(*u), self.r(*v));
+                self.define_pure(w, r, "on_surface", &code);
+            }
+            SpatialOp::TurnedAbout { dir, axis, angle } => {
+                let code = format!(
+                    "frame::rotation_about_axis(&{}, {}) * {}",
+                    self.r(*axis),
+                    self.r(*angle),
+                    self.r(*dir)
+                );
+                self.define_pure(w, r, "turned", &code);
+            }
+            SpatialOp::Plane {
+                point,
+                normal,
+                offset,
+            } => {
+                let n = self.names.fresh("normal");
+                w.line(&format!("let {n} = {};", self.unit3_of(i, *normal)));
+                let at = match offset {
+                    Some(o) => format!("({} + {n} * {})", self.r(*point), self.r(*o)),
+                    None => self.r(*point),
+                };
+                let code = format!("Plane::from_point_normal(&{at}, &{n})");
+                self.define_pure(w, r, "plane", &code);
+            }
+            SpatialOp::ParallelPlane { plane, through } => {
+                let code = format!(
+                    "Plane::from_point_normal(&{}, &{}.normal)",
+                    self.r(*through),
+                    self.r(*plane)
+                );
+                self.define_pure(w, r, "plane", &code);
+            }
+            SpatialOp::Circle3 {
+                center,
+                normal,
+                radius,
+            } => {
+                let code = format!(
+                    "Circle3::new({}, {}, {})",
+                    self.r(*center),
+                    self.unit3_of(i, *normal),
+                    self.r(*radius)
+                );
+                self.define_pure(w, r, "circle", &code);
+            }
+            SpatialOp::Sphere { center, radius } => {
+                let code = format!("Sphere::new({}, {})", self.r(*center), self.r(*radius));
+                self.define_pure(w, r, "sphere", &code);
+            }
+            SpatialOp::Cylinder { point, dir, radius } => {
+                let code = format!(
+                    "Cylinder::new(Line3::new({}, {}), {})",
+                    self.r(*point),
+                    self.unit3_of(i, *dir),
+                    self.r(*radius)
+                );
+                self.define_pure(w, r, "cylinder", &code);
+            }
+            SpatialOp::Torus { circle, tube } => {
+                let code = format!("Torus::new({}, {})", self.r(*circle), self.r(*tube));
+                self.define_pure(w, r, "torus", &code);
+            }
+            // A locus moved with its body: the runtime's `Shift`, as the interpreter moves it.
+            SpatialOp::ShiftedTorus {
+                torus: locus,
+                from,
+                to,
+            }
+            | SpatialOp::ShiftedCylinder {
+                cylinder: locus,
+                from,
+                to,
+            }
+            | SpatialOp::ShiftedSphere {
+                sphere: locus,
+                from,
+                to,
+            } => {
+                let code = format!(
+                    "{}.shifted(&({} - {}))",
+                    self.r(*locus),
+                    self.r(*to),
+                    self.r(*from)
+                );
+                let name = match self.kind3(r) {
+                    Kind::Torus => "torus_moved",
+                    Kind::Cylinder => "cylinder_moved",
+                    Kind::Sphere => "sphere_moved",
+                    _ => "circle_moved",
+                };
+                self.define_pure(w, r, name, &code);
+            }
+            SpatialOp::SphereThrough {
+                center,
+                through,
+                radius,
+            } => {
+                let c = self.r(*center);
+                let rad = match radius {
+                    Some(k) => float(*k),
+                    None => format!("({} - {c}).norm()", self.r(*through)),
+                };
+                self.define_pure(w, r, "sphere", &format!("Sphere::new({c}, {rad})"));
+            }
+            SpatialOp::Orbit {
+                pivot,
+                axis,
+                through,
+            } => {
+                let code = format!(
+                    "Circle3::orbit(&{}, &{}, &{})",
+                    self.r(*pivot),
+                    self.unit3_of(i, *axis),
+                    self.r(*through)
+                );
+                self.define_pure(w, r, "orbit", &code);
+            }
         }
     }
 
@@ -935,292 +942,5 @@ impl Solve<'_> {
         };
         let name = con.name.clone();
         self.define(w, r, &name, &code);
-    }
-
-    /// Rotates `geoms` about `pivot` by the rotation about `axis` that takes `from` to `to`
-    /// (points about the pivot, or directions).
-    pub(super) fn rotate3(
-        &mut self,
-        w: &mut Writer,
-        geoms: &[GeomId],
-        (pivot, axis): (Reg, RotationAxis),
-        (from, to): (Reg, Reg),
-        points: bool,
-    ) {
-        let c = self.r(pivot);
-        let (f, t) = if points {
-            (
-                format!("({} - {c})", self.r(from)),
-                format!("({} - {c})", self.r(to)),
-            )
-        } else {
-            (self.r(from), self.r(to))
-        };
-        let code = match axis {
-            RotationAxis::Shortest => {
-                format!("frame::rotation_between3(&{f}, &{t}, &frame::perpendicular(&{f}))")
-            }
-            RotationAxis::Along(a) => {
-                let a = self.r(a);
-                format!("frame::rotation_about_axis(&{a}, frame::signed_angle3(&{f}, &{t}, &{a}))")
-            }
-            RotationAxis::Normal => {
-                panic!("bug in gcs: a rotation about the plane's normal reached the spatial code generator")
-            }
-        };
-        // With every operand a literal, the rotation is computed here, as the interpreter
-        // computes it, and so are the frames known to the bit.
-        if let Some(q) = self.literal_rotation3((pivot, axis), (from, to), points) {
-            let c = match self.facts.value(pivot) {
-                Value::Point3(c) => nalgebra::Point3::from(*c),
-                _ => unreachable!("a literal rotation has a literal pivot"),
-            };
-            let mut turn = None;
-            for &g in geoms {
-                if let Some(mut f) = self.literal_frame3(g) {
-                    f.rotate_about_by(&c, &q);
-                    self.facts.frames.entry(g).or_default().literal3 = Some(f);
-                    continue;
-                }
-                let turn = turn.get_or_insert_with(|| {
-                    let name = self.names.fresh("turn");
-                    w.line(&format!("let {name} = {};", rotation3(&q)));
-                    name
-                });
-                let frame = self.frame_local(g);
-                w.line(&format!(
-                    "{frame}.rotate_about_by(&{c}, &{turn});",
-                    c = self.r(pivot)
-                ));
-                self.frame_writes.insert(g);
-            }
-            return;
-        }
-        self.turn_frames(w, geoms, pivot, &code);
-    }
-
-    /// Rotates `geoms` by `angle` about the line through `pivot` along the unit `axis`.
-    pub(super) fn rotate_by(
-        &mut self,
-        w: &mut Writer,
-        geoms: &[GeomId],
-        (pivot, axis): (Reg, Reg),
-        angle: Reg,
-    ) {
-        let code = format!(
-            "frame::rotation_about_axis(&{}, {})",
-            self.r(axis),
-            self.r(angle)
-        );
-        self.turn_frames(w, geoms, pivot, &code);
-    }
-
-    /// Turns the frames of `geoms` about `pivot` by the rotation `code` computes, in a local.
-    fn turn_frames(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, code: &str) {
-        let turn = self.names.fresh("turn");
-        w.line(&format!("let {turn} = {code};"));
-        let c = self.r(pivot);
-        for &g in geoms {
-            self.materialize(g);
-            let frame = self.frame_local(g);
-            w.line(&format!("{frame}.rotate_about_by(&{c}, &{turn});"));
-            self.frame_writes.insert(g);
-        }
-    }
-
-    /// The rotation of [`Solve::rotate3`] when its pivot, points or directions and axis are
-    /// all literals: the interpreter's `rotation`, run here.
-    fn literal_rotation3(
-        &self,
-        (pivot, axis): (Reg, RotationAxis),
-        (from, to): (Reg, Reg),
-        points: bool,
-    ) -> Option<nalgebra::UnitQuaternion<f64>> {
-        use nalgebra::Vector3 as V;
-        let vector = |r: Reg| match self.facts.value(r) {
-            Value::Point3(p) | Value::Vector3(p) => Some(V::from(*p)),
-            _ => None,
-        };
-        let c = match self.facts.value(pivot) {
-            Value::Point3(c) => V::from(*c),
-            _ => return None,
-        };
-        let (mut f, mut t) = (vector(from)?, vector(to)?);
-        if points {
-            (f, t) = (f - c, t - c);
-        }
-        use gcs_runtime::frame as rt;
-        Some(match axis {
-            RotationAxis::Shortest => rt::rotation_between3(&f, &t, &rt::perpendicular(&f)),
-            RotationAxis::Along(a) => {
-                let a = vector(a)?;
-                rt::rotation_about_axis(&a, rt::signed_angle3(&f, &t, &a))
-            }
-            RotationAxis::Normal => return None,
-        })
-    }
-
-    /// The call of the signed error of a relation in space (`component`: a coincidence's
-    /// axis), as the interpreter's `error_of3` measures it.
-    pub(super) fn error_code3(&self, residual: &Residual, component: u8) -> String {
-        let r = |x: &Reg| self.r(*x);
-        match residual {
-            Residual::PointPoint { a, b, d: None } => {
-                format!("({} - {})[{}]", r(a), r(b), component.min(2))
-            }
-            Residual::PointPoint { a, b, d: Some(d) } => {
-                format!("({} - {}).norm() - {}", r(a), r(b), r(d))
-            }
-            Residual::PointPlane { p, base, normal, d } => {
-                let d = d.as_ref().map_or_else(|| "0.0".to_string(), r);
-                format!("({} - {}).dot(&{}) - {d}", r(p), r(base), r(normal))
-            }
-            Residual::OnCircle {
-                p,
-                centre,
-                normal,
-                radius,
-                d: Some(d),
-            } => format!(
-                "Circle3::new({}, {}, {}).distance(&{}) - {}",
-                r(centre),
-                r(normal),
-                r(radius),
-                r(p),
-                r(d)
-            ),
-            Residual::PointLine {
-                p,
-                base,
-                dir,
-                d: Some(d),
-            } => format!(
-                "({} - {}).cross(&{}).norm() - {}",
-                r(p),
-                r(base),
-                r(dir),
-                r(d)
-            ),
-            Residual::Midpoint { p, a, b } => format!(
-                "(locus3d::midpoint({}, {}) - {})[{}]",
-                r(a),
-                r(b),
-                r(p),
-                component.min(2)
-            ),
-            Residual::MirrorPlane { p, q, base, normal } => format!(
-                "({} - locus3d::mirror({}, {}, {}))[{}]",
-                r(q),
-                r(base),
-                r(normal),
-                r(p),
-                component.min(2)
-            ),
-            _ => self.residual_code3(residual),
-        }
-    }
-
-    /// The call of the runtime's residual of a check's relation in space.
-    pub(super) fn residual_code3(&self, residual: &Residual) -> String {
-        let r = |x: &Reg| self.r(*x);
-        let or_zero = |x: &Option<Reg>| x.as_ref().map_or_else(|| "0.0".to_string(), r);
-        match residual {
-            Residual::PointPoint { a, b, d } => format!(
-                "check::space::point_point({}, {}, {})",
-                r(a),
-                r(b),
-                or_zero(d)
-            ),
-            Residual::PointLine { p, base, dir, d } => format!(
-                "check::space::point_line({}, {}, {}, {})",
-                r(p),
-                r(base),
-                r(dir),
-                or_zero(d)
-            ),
-            Residual::PointPlane { p, base, normal, d } => format!(
-                "check::space::point_plane({}, {}, {}, {})",
-                r(p),
-                r(base),
-                r(normal),
-                or_zero(d)
-            ),
-            Residual::Parallel { u, v, sense } => format!(
-                "check::space::parallel({}, {}, {})",
-                r(u),
-                r(v),
-                float(*sense)
-            ),
-            Residual::AngleBetween { u, v, angle } => format!(
-                "check::space::angle_between({}, {}, {})",
-                r(u),
-                r(v),
-                r(angle)
-            ),
-            Residual::OnCircle {
-                p,
-                centre,
-                normal,
-                radius,
-                d: None,
-            } => format!(
-                "Circle3::new({}, {}, {}).distance(&{})",
-                r(centre),
-                r(normal),
-                r(radius),
-                r(p)
-            ),
-            Residual::OnCircle {
-                p,
-                centre,
-                normal,
-                radius,
-                d: Some(d),
-            } => format!(
-                "(Circle3::new({}, {}, {}).distance(&{}) - {}).abs()",
-                r(centre),
-                r(normal),
-                r(radius),
-                r(p),
-                r(d)
-            ),
-            Residual::Twist { axis, u, v, angle } => format!(
-                "check::space::twist({}, {}, {}, {})",
-                r(axis),
-                r(u),
-                r(v),
-                r(angle)
-            ),
-            Residual::Helix {
-                axis,
-                u,
-                v,
-                p,
-                q,
-                pitch,
-            } => format!(
-                "check::space::helix({}, {}, {}, {} - {}, {})",
-                r(axis),
-                r(u),
-                r(v),
-                r(q),
-                r(p),
-                r(pitch)
-            ),
-            Residual::Dim { value, target } => {
-                format!("check::dimension({}, {})", r(value), r(target))
-            }
-            Residual::Midpoint { p, a, b } => {
-                format!("check::space::midpoint({}, {}, {})", r(p), r(a), r(b))
-            }
-            Residual::MirrorPlane { p, q, base, normal } => format!(
-                "check::space::mirror({}, {}, {}, {})",
-                r(p),
-                r(q),
-                r(base),
-                r(normal)
-            ),
-            other => panic!("bug in gcs: the check {other:?} is no check of a spatial plan"),
-        }
     }
 }

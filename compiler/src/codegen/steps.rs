@@ -6,7 +6,7 @@ use super::facts::{ChordRoot, Value};
 use super::names::Namer;
 use super::solve::Solve;
 use super::writer::{float, linear, lit, Writer};
-use crate::plan::{BranchId, Meet, Op, Reg, Residual, RotationAxis, Step};
+use crate::plan::{BranchId, Meet, Op, PlanarOp, Reg, Residual, SpatialOp, Step};
 use gcs_lang::expr::{ExprId, ExprNode};
 use gcs_lang::model::{ConstraintId, GeomId};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -15,10 +15,10 @@ impl Solve<'_> {
     /// Writes step `i` of the plan.
     pub(super) fn step(&mut self, w: &mut Writer, i: usize, step: &Step) {
         match &step.op {
-            Op::Translate { geoms, from, to } if self.cx.d3 => {
-                self.translate3(w, geoms, *from, *to)
+            Op::Translate { geoms, from, to } => {
+                let space = self.cx.space;
+                space.translate(self, w, geoms, *from, *to)
             }
-            Op::Translate { geoms, from, to } => self.translate(w, geoms, *from, *to),
             Op::RotatePoint {
                 geoms,
                 pivot,
@@ -26,11 +26,8 @@ impl Solve<'_> {
                 from,
                 to,
             } => {
-                if self.cx.d3 {
-                    return self.rotate3(w, geoms, (*pivot, *axis), (*from, *to), true);
-                }
-                planar(*axis);
-                self.rotate_point(w, geoms, *pivot, *from, *to)
+                let space = self.cx.space;
+                space.rotate(self, w, geoms, (*pivot, *axis), (*from, *to), true)
             }
             Op::RotateDir {
                 geoms,
@@ -39,18 +36,15 @@ impl Solve<'_> {
                 from,
                 to,
             } => {
-                if self.cx.d3 {
-                    return self.rotate3(w, geoms, (*pivot, *axis), (*from, *to), false);
-                }
-                planar(*axis);
-                self.rotate_dir(w, geoms, *pivot, *from, *to)
+                let space = self.cx.space;
+                space.rotate(self, w, geoms, (*pivot, *axis), (*from, *to), false)
             }
-            Op::RotateBy {
+            Op::Spatial(SpatialOp::RotateBy {
                 geoms,
                 pivot,
                 axis,
                 angle,
-            } => self.rotate_by(w, geoms, (*pivot, *axis), *angle),
+            }) => self.rotate_by(w, geoms, (*pivot, *axis), *angle),
             Op::SetDim { geom, value } => self.set_dim(w, i, *geom, *value),
             Op::Check {
                 constraint,
@@ -72,11 +66,11 @@ impl Solve<'_> {
                 }
                 // A circle not written still tells its radius to the turns onto it.
                 _ => {
-                    if let Op::CircleThrough {
+                    if let Op::Planar(PlanarOp::CircleThrough {
                         center,
                         through,
                         radius: Some(k),
-                    } = op
+                    }) = op
                     {
                         self.facts.circle_radius.insert((*center, *through), *k);
                     }
@@ -85,23 +79,9 @@ impl Solve<'_> {
         }
     }
 
-    /// Writes the value of register `r`, which step `i` computes with `op`.
+    /// Writes the value of register `r`, which step `i` computes with `op`: a scalar the same
+    /// way in both spaces, anything else as the model's space writes it.
     fn value(&mut self, w: &mut Writer, i: usize, r: Reg, op: &Op) {
-        let m = self.cx.model;
-        let scalar = matches!(
-            op,
-            Op::Expr(_)
-                | Op::Size { .. }
-                | Op::Const(_)
-                | Op::Neg(_)
-                | Op::DimOf(_)
-                | Op::Sum(_)
-                | Op::Default(_)
-        );
-        if self.cx.d3 && !scalar {
-            return self.value3(w, i, r, op);
-        }
-        let degenerate = || self.cx.error(i, "Degenerate", "0.0");
         match op {
             Op::Expr(e) => self.expr_value(w, i, r, *e),
             Op::Size { expr, constraint } => self.size_value(w, r, *expr, *constraint),
@@ -121,6 +101,35 @@ impl Solve<'_> {
                 let code = format!("-{}", self.r(*x));
                 self.define(w, r, "minus", &code);
             }
+            Op::DimOf(g) => {
+                let d = self.dim(*g);
+                self.facts.regs.insert(r, Value::Local(d));
+            }
+            Op::Sum(terms) => {
+                let code = self.sum(terms);
+                self.define_finite(w, i, r, "sum", &code);
+            }
+            Op::Default(d) => {
+                // An input, like a param: `solve` checks it finite on entry. One an iteration
+                // varies is its trial's entry.
+                let value = match self.iterated.get(d) {
+                    Some(code) => Value::Local(code.clone()),
+                    None => Value::Default(d.0 as usize, self.cx.defaults[d.0 as usize].clone()),
+                };
+                self.facts.regs.insert(r, value);
+            }
+            _ => {
+                let space = self.cx.space;
+                space.value(self, w, i, r, op)
+            }
+        }
+    }
+
+    /// Writes the value of register `r`, which step `i` computes with `op`, in the plane.
+    pub(super) fn value2(&mut self, w: &mut Writer, i: usize, r: Reg, op: &Op) {
+        let m = self.cx.model;
+        let degenerate = || self.cx.error(i, "Degenerate", "0.0");
+        match op {
             Op::PointOf(g) => {
                 if let Some(at) = self.offset_from_origin(*g) {
                     self.facts.at_offset.insert(r, at);
@@ -138,14 +147,6 @@ impl Solve<'_> {
                 };
                 self.define_or_alias(w, r, &n, value);
             }
-            Op::DimOf(g) => {
-                let d = self.dim(*g);
-                self.facts.regs.insert(r, Value::Local(d));
-            }
-            Op::Axis(x, y) => {
-                self.facts.regs.insert(r, Value::Vector(*x, *y));
-            }
-            Op::Rotated { dir, angle } => self.rotated(w, r, *dir, *angle),
             Op::Error {
                 residual,
                 component,
@@ -159,14 +160,6 @@ impl Solve<'_> {
                     self.define(w, r, "error", &code);
                 }
             }
-            Op::AngleOf(dir) => {
-                let d = self.r(*dir);
-                self.define(w, r, "angle", &format!("{d}.y.atan2({d}.x)"));
-            }
-            Op::PointXY { x, y } => {
-                let code = format!("Point2::new({}, {})", self.r(*x), self.r(*y));
-                self.define(w, r, "point", &code);
-            }
             Op::Midpoint { a, b } => {
                 let code = format!("locus2d::midpoint({}, {})", self.r(*a), self.r(*b));
                 self.define(w, r, "midpoint", &code);
@@ -178,11 +171,6 @@ impl Solve<'_> {
                     self.r(*through)
                 );
                 let n = self.prefixed("reflected", *point);
-                self.define(w, r, &n, &code);
-            }
-            Op::Mirror { point, line } => {
-                let code = format!("{}.mirror({})", self.r(*line), self.r(*point));
-                let n = self.prefixed("mirrored", *point);
                 self.define(w, r, &n, &code);
             }
             Op::LocusPoint { locus, at } => {
@@ -200,10 +188,6 @@ impl Solve<'_> {
                 let code = format!("{}.param_of({})", self.r(*locus), self.r(*point));
                 self.define(w, r, "param", &code);
             }
-            Op::Sum(terms) => {
-                let code = self.sum(terms);
-                self.define_finite(w, i, r, "sum", &code);
-            }
             Op::Along { from, dir, to } => {
                 let (f, d, t) = (self.r(*from), self.r(*dir), self.r(*to));
                 self.define(w, r, "length", &format!("({t} - {f}).dot(&{d})"));
@@ -215,21 +199,6 @@ impl Solve<'_> {
                     degenerate()
                 );
                 self.define(w, r, "direction", &code);
-            }
-            Op::Circle { center, radius } => self.circle(w, i, r, *center, *radius),
-            Op::CircleThrough {
-                center,
-                through,
-                radius,
-            } => self.circle_through(w, i, r, *center, *through, *radius),
-            Op::Default(d) => {
-                // An input, like a param: `solve` checks it finite on entry. One an iteration
-                // varies is its trial's entry.
-                let value = match self.iterated.get(d) {
-                    Some(code) => Value::Local(code.clone()),
-                    None => Value::Default(d.0 as usize, self.cx.defaults[d.0 as usize].clone()),
-                };
-                self.facts.regs.insert(r, value);
             }
             Op::Line { point, dir, offset } => {
                 let mut code = format!(
@@ -265,90 +234,8 @@ impl Solve<'_> {
                 let n = self.derived_name(*circle, "_moved", "circle_moved");
                 self.define(w, r, &n, &code);
             }
-            Op::Reversed(x) => {
-                let code = format!("{}.reversed()", self.r(*x));
-                let n = self.derived_name(*x, "_reversed", "reversed");
-                self.define(w, r, &n, &code);
-            }
-            Op::OffsetLine { line, by } => {
-                let code = format!("{}.offset({})", self.r(*line), self.r(*by));
-                let n = self.derived_name(*line, "_offset", "offset");
-                self.define(w, r, &n, &code);
-            }
-            Op::CentresLineLine { l1, a1, l2, a2 } => {
-                let code = format!(
-                    "locus2d::centres_line_line(&{}, {}, &{}, {}).ok_or_else(|| {})?",
-                    self.r(*l1),
-                    self.r(*a1),
-                    self.r(*l2),
-                    self.r(*a2),
-                    degenerate()
-                );
-                self.define(w, r, "bisector", &code);
-            }
-            Op::CentresLinePoint {
-                line,
-                a,
-                at,
-                b,
-                plus,
-            } => {
-                let code = format!(
-                    "Conic::Parabola(locus2d::centres_line_circle(&{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?)",
-                    self.r(*line),
-                    self.r(*a),
-                    self.r(*at),
-                    sense(*plus),
-                    self.r(*b),
-                    degenerate()
-                );
-                self.define(w, r, "parabola", &code);
-            }
-            Op::CentresPointPoint {
-                c1,
-                b1,
-                p1,
-                c2,
-                b2,
-                p2,
-            } => {
-                let code = format!(
-                    "locus2d::centres_circle_circle({}, Sense::{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?",
-                    self.r(*c1),
-                    sense(*p1),
-                    self.r(*b1),
-                    self.r(*c2),
-                    sense(*p2),
-                    self.r(*b2),
-                    degenerate()
-                );
-                self.define(w, r, "conic", &code);
-            }
-            Op::RadiusFromLine { line, a, centre } => {
-                let code = format!(
-                    "{}.signed_distance({}) - {}",
-                    self.r(*line),
-                    self.r(*centre),
-                    self.r(*a)
-                );
-                self.define(w, r, "radius", &code);
-            }
-            Op::RadiusFromPoint {
-                at,
-                b,
-                plus,
-                centre,
-            } => {
-                let d = format!("({} - {}).norm()", self.r(*centre), self.r(*at));
-                let code = if *plus {
-                    format!("{d} - {}", self.r(*b))
-                } else {
-                    format!("{} - {d}", self.r(*b))
-                };
-                self.define(w, r, "radius", &code);
-            }
             Op::Nearest { locus, point } => {
-                if !self.cx.d3 && self.cx.turned_toward.contains(&r) {
+                if self.cx.turned_toward.contains(&r) {
                     // Only turns about the circle's centre read it, and they need only the
                     // direction from the centre, which the point itself has: no projection
                     // (its square root and division) on the solve's path.
@@ -373,7 +260,138 @@ impl Solve<'_> {
                 constraint,
                 ..
             } => self.intersect(w, r, *meet, (*a, *b), *branch, *constraint),
-            Op::PassingDir {
+            // Actions and checks define no register: `step` writes them.
+            Op::Translate { .. }
+            | Op::RotatePoint { .. }
+            | Op::RotateDir { .. }
+            | Op::SetDim { .. }
+            | Op::Check { .. }
+            | Op::Close { .. } => {}
+            Op::Planar(op) => self.planar_value(w, i, r, op),
+            Op::Spatial(_) => {
+                unreachable!("bug in gcs: step {i} is an operation of space in a planar plan")
+            }
+            Op::Expr(_)
+            | Op::Size { .. }
+            | Op::Const(_)
+            | Op::Neg(_)
+            | Op::DimOf(_)
+            | Op::Sum(_)
+            | Op::Default(_) => unreachable!("bug in gcs: step {i}'s scalar is written by `value`"),
+        }
+    }
+
+    /// Writes the value of register `r`, which step `i` computes with an operation of the
+    /// plane.
+    fn planar_value(&mut self, w: &mut Writer, i: usize, r: Reg, op: &PlanarOp) {
+        let degenerate = || self.cx.error(i, "Degenerate", "0.0");
+        match op {
+            PlanarOp::Axis(x, y) => {
+                self.facts.regs.insert(r, Value::Vector(*x, *y));
+            }
+            PlanarOp::Rotated { dir, angle } => self.rotated(w, r, *dir, *angle),
+            PlanarOp::AngleOf(dir) => {
+                let d = self.r(*dir);
+                self.define(w, r, "angle", &format!("{d}.y.atan2({d}.x)"));
+            }
+            PlanarOp::PointXY { x, y } => {
+                let code = format!("Point2::new({}, {})", self.r(*x), self.r(*y));
+                self.define(w, r, "point", &code);
+            }
+            PlanarOp::Mirror { point, line } => {
+                let code = format!("{}.mirror({})", self.r(*line), self.r(*point));
+                let n = self.prefixed("mirrored", *point);
+                self.define(w, r, &n, &code);
+            }
+            PlanarOp::Circle { center, radius } => self.circle(w, i, r, *center, *radius),
+            PlanarOp::CircleThrough {
+                center,
+                through,
+                radius,
+            } => self.circle_through(w, i, r, *center, *through, *radius),
+            PlanarOp::Reversed(x) => {
+                let code = format!("{}.reversed()", self.r(*x));
+                let n = self.derived_name(*x, "_reversed", "reversed");
+                self.define(w, r, &n, &code);
+            }
+            PlanarOp::OffsetLine { line, by } => {
+                let code = format!("{}.offset({})", self.r(*line), self.r(*by));
+                let n = self.derived_name(*line, "_offset", "offset");
+                self.define(w, r, &n, &code);
+            }
+            PlanarOp::CentresLineLine { l1, a1, l2, a2 } => {
+                let code = format!(
+                    "locus2d::centres_line_line(&{}, {}, &{}, {}).ok_or_else(|| {})?",
+                    self.r(*l1),
+                    self.r(*a1),
+                    self.r(*l2),
+                    self.r(*a2),
+                    degenerate()
+                );
+                self.define(w, r, "bisector", &code);
+            }
+            PlanarOp::CentresLinePoint {
+                line,
+                a,
+                at,
+                b,
+                plus,
+            } => {
+                let code = format!(
+                    "Conic::Parabola(locus2d::centres_line_circle(&{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?)",
+                    self.r(*line),
+                    self.r(*a),
+                    self.r(*at),
+                    sense(*plus),
+                    self.r(*b),
+                    degenerate()
+                );
+                self.define(w, r, "parabola", &code);
+            }
+            PlanarOp::CentresPointPoint {
+                c1,
+                b1,
+                p1,
+                c2,
+                b2,
+                p2,
+            } => {
+                let code = format!(
+                    "locus2d::centres_circle_circle({}, Sense::{}, {}, {}, Sense::{}, {}).ok_or_else(|| {})?",
+                    self.r(*c1),
+                    sense(*p1),
+                    self.r(*b1),
+                    self.r(*c2),
+                    sense(*p2),
+                    self.r(*b2),
+                    degenerate()
+                );
+                self.define(w, r, "conic", &code);
+            }
+            PlanarOp::RadiusFromLine { line, a, centre } => {
+                let code = format!(
+                    "{}.signed_distance({}) - {}",
+                    self.r(*line),
+                    self.r(*centre),
+                    self.r(*a)
+                );
+                self.define(w, r, "radius", &code);
+            }
+            PlanarOp::RadiusFromPoint {
+                at,
+                b,
+                plus,
+                centre,
+            } => {
+                let d = format!("({} - {}).norm()", self.r(*centre), self.r(*at));
+                let code = if *plus {
+                    format!("{d} - {}", self.r(*b))
+                } else {
+                    format!("{} - {d}", self.r(*b))
+                };
+                self.define(w, r, "radius", &code);
+            }
+            PlanarOp::PassingDir {
                 pivot,
                 base,
                 dir,
@@ -385,49 +403,6 @@ impl Solve<'_> {
                 let line = (*pivot, *base, *dir);
                 self.passing_dir(w, r, line, *point, *offset, *branch, *constraint)
             }
-            Op::Plane { .. }
-            | Op::ParallelPlane { .. }
-            | Op::Sphere { .. }
-            | Op::SphereThrough { .. }
-            | Op::ShiftedSphere { .. }
-            | Op::Orbit { .. }
-            | Op::Opposite(_)
-            | Op::Across(_)
-            | Op::Circle3 { .. }
-            | Op::AngleAbout { .. }
-            | Op::AngleAboutBoth { .. }
-            | Op::TurnReaching { .. }
-            | Op::HelixAdvance { .. }
-            | Op::HelixTurn { .. }
-            | Op::WorldAxis(_)
-            | Op::PlaneNormal { .. }
-            | Op::PlaneTurn { .. }
-            | Op::PlaneAxisTurn { .. }
-            | Op::AngleTurn { .. }
-            | Op::ConeTurn { .. }
-            | Op::TiltToDistance { .. }
-            | Op::PassingAngle { .. }
-            | Op::Aligned { .. }
-            | Op::Coordinate { .. }
-            | Op::PointAt { .. }
-            | Op::MirrorPlane { .. }
-            | Op::Cylinder { .. }
-            | Op::ShiftedCylinder { .. }
-            | Op::SurfaceParam { .. }
-            | Op::SurfacePoint { .. }
-            | Op::Torus { .. }
-            | Op::ShiftedTorus { .. }
-            | Op::TurnedAbout { .. } => {
-                unreachable!("bug in gcs: a spatial plan reached the planar code generator")
-            }
-            // Actions and checks define no register: `step` writes them.
-            Op::Translate { .. }
-            | Op::RotatePoint { .. }
-            | Op::RotateDir { .. }
-            | Op::RotateBy { .. }
-            | Op::SetDim { .. }
-            | Op::Check { .. }
-            | Op::Close { .. } => {}
         }
     }
 
@@ -846,7 +821,7 @@ impl Solve<'_> {
 
     /// Translates `geoms` so that point `from` lands on `to`: nothing when they are one value,
     /// the origin placed when it is the point moved, else a shift.
-    fn translate(&mut self, w: &mut Writer, geoms: &[GeomId], from: Reg, to: Reg) {
+    pub(super) fn translate(&mut self, w: &mut Writer, geoms: &[GeomId], from: Reg, to: Reg) {
         let (from, to) = (self.facts.value(from).clone(), self.facts.value(to).clone());
         if from.same(&to, self.cx) {
             // From a point onto itself: nothing moves.
@@ -879,7 +854,14 @@ impl Solve<'_> {
     }
 
     /// Rotates `geoms` about `pivot` so that point `from` lands on `to`.
-    fn rotate_point(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, from: Reg, to: Reg) {
+    pub(super) fn rotate_point(
+        &mut self,
+        w: &mut Writer,
+        geoms: &[GeomId],
+        pivot: Reg,
+        from: Reg,
+        to: Reg,
+    ) {
         let (p, f, t) = (self.r(pivot), self.r(from), self.r(to));
         // From the pivot to the target: read from the chord when the target is a root of a
         // circle about the pivot (the same vector, without the cancellation of a difference of
@@ -930,7 +912,14 @@ impl Solve<'_> {
     }
 
     /// Rotates `geoms` about `pivot` so that direction `from` turns onto `to`.
-    fn rotate_dir(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, from: Reg, to: Reg) {
+    pub(super) fn rotate_dir(
+        &mut self,
+        w: &mut Writer,
+        geoms: &[GeomId],
+        pivot: Reg,
+        from: Reg,
+        to: Reg,
+    ) {
         let (f, t) = (self.r(from), self.r(to));
         let from_x = self.facts.value(from).is_x_axis();
         let code = if from_x && self.facts.unit_dirs.contains(&to) {
@@ -1009,11 +998,7 @@ impl Solve<'_> {
 
     /// A run-time check of a relation of constraint `c`: its residual within the tolerance.
     fn check(&mut self, w: &mut Writer, c: ConstraintId, residual: &Residual) {
-        let residual = if self.cx.d3 {
-            self.residual_code3(residual)
-        } else {
-            self.residual_code(residual)
-        };
+        let residual = self.cx.space.residual_code(self, residual);
         let name = self.names.fresh("residual");
         w.line(&format!("let {name} = {residual};"));
         w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
@@ -1044,13 +1029,6 @@ impl Solve<'_> {
             lit(&con.text)
         ));
         w.close("}");
-    }
-}
-
-/// A rotation of the plane turns about its normal; any other axis is a spatial plan's.
-fn planar(axis: RotationAxis) {
-    if axis != RotationAxis::Normal {
-        panic!("bug in gcs: a rotation about {axis:?} reached the planar code generator");
     }
 }
 
@@ -1087,8 +1065,9 @@ pub(super) fn turned_toward(
     let mut nearest: HashMap<Reg, (Reg, Option<bool>)> = HashMap::default();
     for s in &plan.steps {
         if let (Op::Nearest { locus, .. }, Some((r, _))) = (&s.op, s.out) {
-            if let Some(Op::Circle { center, .. } | Op::CircleThrough { center, .. }) =
-                defined(*locus)
+            if let Some(Op::Planar(
+                PlanarOp::Circle { center, .. } | PlanarOp::CircleThrough { center, .. },
+            )) = defined(*locus)
             {
                 nearest.insert(r, (*center, None));
             }

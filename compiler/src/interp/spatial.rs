@@ -4,7 +4,7 @@
 
 use super::{err, malformed, Machine, Space, Val};
 use crate::config::{D3, P3, V3};
-use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, Step};
+use crate::plan::{Meet, Op, Reg, Residual, RotationAxis, SpatialOp, Step};
 use gcs_lang::model::ConstraintId;
 use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus3d::{
@@ -132,214 +132,10 @@ impl Machine<'_, '_, D3> {
                 Val::S((self.p3(*to) - self.p3(*from)).dot(&self.v3(*dir)))
             }
             Op::DirectionTo { from, to } => Val::V3(self.unit(i, self.p3(*to) - self.p3(*from))?),
-            Op::Opposite(d) => Val::V3(-self.v3(*d)),
-            Op::Across(d) => Val::V3(self.unit(i, frame::perpendicular(&self.v3(*d)))?),
-            Op::AngleAbout { u, v, axis } => Val::S(frame::signed_angle3(
-                &self.v3(*u),
-                &self.v3(*v),
-                &self.v3(*axis),
-            )),
-            Op::AngleAboutBoth { u, v, axis } => Val::S(frame::signed_angle3_both(
-                [&self.v3(u[0]), &self.v3(u[1])],
-                [&self.v3(v[0]), &self.v3(v[1])],
-                &self.v3(*axis),
-            )),
-            Op::TurnReaching {
-                u,
-                v,
-                axis,
-                pivot,
-                reach,
-                screw,
-            } => {
-                let (dirs, at) = (
-                    [&self.v3(*u), &self.v3(*v)],
-                    (&self.p3(*pivot), &self.v3(*axis)),
-                );
-                let helix = |h: &crate::plan::HelixRegs| fragment3::Helix {
-                    axis: self.v3(h.axis),
-                    x_from: self.v3(h.x_from),
-                    origin: self.p3(h.origin),
-                    x: self.v3(h.x),
-                    point: self.p3(h.point),
-                    pitch: self.s(h.pitch),
-                };
-                let screw = screw.map(|s| fragment3::Screw {
-                    helix: helix(&s.helix),
-                    slide: self.line3(s.slide).dir,
-                });
-                let screw = screw.as_ref();
-                Val::S(match reach {
-                    crate::plan::Reach::Helix(h) => {
-                        fragment3::turn_reaching_helix(dirs, at, &helix(h), screw)
-                    }
-                    crate::plan::Reach::Point { point, locus } => {
-                        let p = self.p3(*point);
-                        match self.get(*locus) {
-                            Some(&Val::Plane(plane)) => {
-                                fragment3::turn_reaching_plane(dirs, at, &p, &plane, screw)
-                            }
-                            _ => {
-                                let line = self.line3(*locus);
-                                fragment3::turn_reaching_line(dirs, at, &p, &line, screw)
-                            }
-                        }
-                    }
-                })
-            }
-            Op::HelixAdvance { now, turn, pitch } => {
-                let advance = frame::helix_advance(self.s(*now), self.s(*turn), self.s(*pitch));
-                Val::S(self.finite(i, advance)?)
-            }
-            Op::Aligned { dir, near } => Val::V3(frame::aligned(&self.v3(*dir), &self.v3(*near))),
-            Op::PassingAngle {
-                from,
-                to,
-                d,
-                now,
-                constraint,
-            } => {
-                let (a, b, n) = (self.p3(*from), self.p3(*to), self.v3(*now));
-                let i = fragment3::passing_angle(&a, &b, self.s(*d), &n);
-                if let Some(e) = SolveError::from_contact("", "", i.contact) {
-                    return Err(err(model, *constraint, e.kind, e.magnitude));
-                }
-                Val::S(
-                    i.roots
-                        .get(0)
-                        .ok_or_else(|| err(model, *constraint, ErrorKind::Degenerate, 0.0))?,
-                )
-            }
-            Op::TiltToDistance {
-                centre,
-                point,
-                radius,
-                d,
-                now,
-                constraint,
-            } => {
-                let (c, p, n) = (self.p3(*centre), self.p3(*point), self.v3(*now));
-                let i = fragment3::tilt_to_distance(&c, &p, self.s(*radius), self.s(*d), &n);
-                if let Some(e) = SolveError::from_contact("", "", i.contact) {
-                    return Err(err(model, *constraint, e.kind, e.magnitude));
-                }
-                Val::S(
-                    i.roots
-                        .get(0)
-                        .ok_or_else(|| err(model, *constraint, ErrorKind::Degenerate, 0.0))?,
-                )
-            }
-            Op::ConeTurn { axis, angle, dir } => Val::V3(frame::plane_turn(
-                &self.v3(*axis),
-                self.s(*angle).cos(),
-                &self.v3(*dir),
-            )),
-            Op::AngleTurn {
-                u,
-                v,
-                axis,
-                angle,
-                branch,
-                constraint,
-            } => {
-                let (dir, a) = (self.v3(*v), self.v3(*axis));
-                let i3 = frame::turns_to_angle(&self.v3(*u), &dir, &a, self.s(*angle));
-                if let Some(e) = SolveError::from_contact("", "", i3.contact) {
-                    return Err(err(model, *constraint, e.kind, e.magnitude));
-                }
-                let index =
-                    self.choose(*branch, |_| i3.roots.nearest_to(dir, |x, y| (x - y).norm()));
-                Val::V3(i3.roots.get(index).ok_or_else(|| {
-                    err(
-                        model,
-                        *constraint,
-                        ErrorKind::NoSuchBranch,
-                        i3.roots.len() as f64,
-                    )
-                })?)
-            }
-            Op::PlaneTurn {
-                base,
-                normal,
-                pivot,
-                point,
-                d,
-                constraint,
-            } => {
-                let n = self.v3(*normal);
-                let (w, c) = self.plane_cone(*base, n, *pivot, *point, *d);
-                let len = w.norm();
-                if len.is_nan() || len <= 0.0 {
-                    return Err(err(model, *constraint, ErrorKind::Degenerate, 0.0));
-                }
-                if c.abs() > 1.0 + gcs_runtime::tol::LENGTH_REL || c.is_nan() {
-                    return Err(err(
-                        model,
-                        *constraint,
-                        ErrorKind::NoIntersection,
-                        (c.abs() - 1.0) * len,
-                    ));
-                }
-                Val::V3(frame::plane_turn(&(w / len), c.clamp(-1.0, 1.0), &n))
-            }
-            Op::PlaneAxisTurn {
-                base,
-                normal,
-                pivot,
-                point,
-                d,
-                axis,
-                branch,
-                constraint,
-            } => {
-                let n = self.v3(*normal);
-                let (w, c) = self.plane_cone(*base, n, *pivot, *point, *d);
-                let Some(wh) = w.try_normalize(0.0) else {
-                    return Err(err(model, *constraint, ErrorKind::Degenerate, 0.0));
-                };
-                let angle = c.clamp(-1.0, 1.0).acos();
-                let gap = (c.abs() - 1.0).max(0.0) * w.norm();
-                let i3 = frame::turns_to_angle(&wh, &n, &self.v3(*axis), angle);
-                if let Some(e) = SolveError::from_contact("", "", i3.contact) {
-                    return Err(err(model, *constraint, e.kind, e.magnitude.max(gap)));
-                }
-                if gap > gcs_runtime::tol::LENGTH_REL * (1.0 + w.norm()) {
-                    return Err(err(model, *constraint, ErrorKind::NoIntersection, gap));
-                }
-                let index = self.choose(*branch, |_| i3.roots.nearest_to(n, |x, y| (x - y).norm()));
-                Val::V3(i3.roots.get(index).ok_or_else(|| {
-                    err(
-                        model,
-                        *constraint,
-                        ErrorKind::NoSuchBranch,
-                        i3.roots.len() as f64,
-                    )
-                })?)
-            }
             Op::Midpoint { a, b } => Val::P3(locus3d::midpoint(self.p3(*a), self.p3(*b))),
             Op::Reflect { point, through } => {
                 Val::P3(locus3d::reflect_through(self.p3(*point), self.p3(*through)))
             }
-            Op::MirrorPlane {
-                point,
-                base,
-                normal,
-            } => Val::P3(locus3d::mirror(
-                self.p3(*base),
-                self.v3(*normal),
-                self.p3(*point),
-            )),
-            Op::PlaneNormal { a, b, c } => {
-                let a = self.p3(*a);
-                Val::V3(self.unit(i, (self.p3(*b) - a).cross(&(self.p3(*c) - a)))?)
-            }
-            Op::WorldAxis(i) => {
-                let mut v = V3::zeros();
-                v[usize::from(*i).min(2)] = 1.0;
-                Val::V3(v)
-            }
-            Op::Coordinate { point, axis } => Val::S(self.p3(*point)[usize::from(*axis).min(2)]),
-            Op::PointAt { x, y, z } => Val::P3(P3::new(self.s(*x), self.s(*y), self.s(*z))),
             Op::LocusParam { locus, point } => {
                 let q = self.p3(*point);
                 Val::S(match self.get(*locus) {
@@ -356,24 +152,6 @@ impl Machine<'_, '_, D3> {
                     v => malformed(*locus, "a line or circle of space", v),
                 })
             }
-            Op::SurfaceParam {
-                locus,
-                point,
-                component,
-            } => {
-                let uv = self.surface(*locus).coordinates(&self.p3(*point));
-                Val::S(uv[usize::from(*component).min(1)])
-            }
-            Op::SurfacePoint { locus, u, v } => {
-                Val::P3(self.surface(*locus).at([self.s(*u), self.s(*v)]))
-            }
-            Op::HelixTurn { advance, pitch } => {
-                Val::S(self.finite(i, frame::helix_turn(self.s(*advance), self.s(*pitch)))?)
-            }
-            Op::TurnedAbout { dir, axis, angle } => {
-                let q = frame::rotation_about_axis(&self.v3(*axis), self.s(*angle));
-                Val::V3(q * self.v3(*dir))
-            }
             Op::Line {
                 point,
                 dir,
@@ -382,70 +160,8 @@ impl Machine<'_, '_, D3> {
             Op::ParallelLine { line, through } => {
                 Val::L3(Line3::new(self.p3(*through), self.line3(*line).dir))
             }
-            Op::Plane {
-                point,
-                normal,
-                offset,
-            } => {
-                let n = self.unit(i, self.v3(*normal))?;
-                let at = self.p3(*point) + n * self.s_or_zero(*offset);
-                Val::Plane(Plane::from_point_normal(&at, &n))
-            }
-            Op::ParallelPlane { plane, through } => Val::Plane(Plane::from_point_normal(
-                &self.p3(*through),
-                &self.plane(*plane).normal,
-            )),
-            Op::Circle3 {
-                center,
-                normal,
-                radius,
-            } => Val::C3(Circle3::new(
-                self.p3(*center),
-                self.unit(i, self.v3(*normal))?,
-                self.s(*radius),
-            )),
-            Op::Sphere { center, radius } => {
-                Val::Sphere(Sphere::new(self.p3(*center), self.s(*radius)))
-            }
-            Op::Cylinder { point, dir, radius } => Val::Cylinder(Cylinder::new(
-                Line3::new(self.p3(*point), self.unit(i, self.v3(*dir))?),
-                self.s(*radius),
-            )),
-            Op::Torus { circle, tube } => {
-                Val::Torus(Torus::new(self.circle3(*circle), self.s(*tube)))
-            }
-            Op::ShiftedTorus { torus, from, to } => {
-                let t = match self.get(*torus) {
-                    Some(&Val::Torus(t)) => t,
-                    v => malformed(*torus, "a torus", v),
-                };
-                Val::Torus(t.shifted(&self.shift(*from, *to)))
-            }
-            Op::ShiftedCylinder { cylinder, from, to } => {
-                Val::Cylinder(self.cylinder(*cylinder).shifted(&self.shift(*from, *to)))
-            }
-            Op::SphereThrough {
-                center,
-                through,
-                radius,
-            } => {
-                let c = self.p3(*center);
-                let r = radius.unwrap_or_else(|| (self.p3(*through) - c).norm());
-                Val::Sphere(Sphere::new(c, r))
-            }
-            Op::ShiftedSphere { sphere, from, to } => {
-                Val::Sphere(self.sphere(*sphere).shifted(&self.shift(*from, *to)))
-            }
             Op::ShiftedCircle { circle, from, to } => {
                 Val::C3(self.circle3(*circle).shifted(&self.shift(*from, *to)))
-            }
-            Op::Orbit {
-                pivot,
-                axis,
-                through,
-            } => {
-                let a = self.unit(i, self.v3(*axis))?;
-                Val::C3(Circle3::orbit(&self.p3(*pivot), &a, &self.p3(*through)))
             }
             Op::Nearest { locus, point } => {
                 let q = self.p3(*point);
@@ -512,19 +228,6 @@ impl Machine<'_, '_, D3> {
                 }
                 return Ok(());
             }
-            Op::RotateBy {
-                geoms,
-                pivot,
-                axis,
-                angle,
-            } => {
-                let c = self.p3(*pivot);
-                let rot = frame::rotation_about_axis(&self.v3(*axis), self.s(*angle));
-                for g in geoms {
-                    self.config.rotate(*g, c, rot);
-                }
-                return Ok(());
-            }
             Op::SetDim { geom, value } => return self.set_dim(i, *geom, *value),
             Op::Check {
                 constraint,
@@ -557,10 +260,334 @@ impl Machine<'_, '_, D3> {
                 constraint,
                 residual,
             } => return self.closed(*constraint, *residual),
-            op => panic!("bug in gcs: step {i} ({op:?}) is no step of a spatial plan"),
+            Op::Spatial(op) => match self.spatial(i, op)? {
+                Some(value) => value,
+                None => return Ok(()),
+            },
+            Op::Line {
+                offset: Some(_), ..
+            } => unreachable!("bug in gcs: step {i} offsets a line of space, which has no left"),
+            Op::Planar(_) => {
+                unreachable!("bug in gcs: step {i} is an operation of the plane in a spatial plan")
+            }
+            Op::Expr(_)
+            | Op::Size { .. }
+            | Op::Const(_)
+            | Op::Default(_)
+            | Op::Neg(_)
+            | Op::DimOf(_)
+            | Op::Sum(_) => unreachable!("bug in gcs: step {i}'s scalar was evaluated above"),
         };
         self.store(step, value);
         Ok(())
+    }
+
+    /// The value of an operation of space; `None` for an action, which moves geoms.
+    fn spatial(&mut self, i: usize, op: &SpatialOp) -> Result<Option<Val>, SolveError> {
+        let model = self.model;
+        Ok(Some(match op {
+            SpatialOp::Opposite(d) => Val::V3(-self.v3(*d)),
+            SpatialOp::Across(d) => Val::V3(self.unit(i, frame::perpendicular(&self.v3(*d)))?),
+            SpatialOp::AngleAbout { u, v, axis } => Val::S(frame::signed_angle3(
+                &self.v3(*u),
+                &self.v3(*v),
+                &self.v3(*axis),
+            )),
+            SpatialOp::AngleAboutBoth { u, v, axis } => Val::S(frame::signed_angle3_both(
+                [&self.v3(u[0]), &self.v3(u[1])],
+                [&self.v3(v[0]), &self.v3(v[1])],
+                &self.v3(*axis),
+            )),
+            SpatialOp::TurnReaching {
+                u,
+                v,
+                axis,
+                pivot,
+                reach,
+                screw,
+            } => {
+                let (dirs, at) = (
+                    [&self.v3(*u), &self.v3(*v)],
+                    (&self.p3(*pivot), &self.v3(*axis)),
+                );
+                let helix = |h: &crate::plan::HelixRegs| fragment3::Helix {
+                    axis: self.v3(h.axis),
+                    x_from: self.v3(h.x_from),
+                    origin: self.p3(h.origin),
+                    x: self.v3(h.x),
+                    point: self.p3(h.point),
+                    pitch: self.s(h.pitch),
+                };
+                let screw = screw.map(|s| fragment3::Screw {
+                    helix: helix(&s.helix),
+                    slide: self.line3(s.slide).dir,
+                });
+                let screw = screw.as_ref();
+                Val::S(match reach {
+                    crate::plan::Reach::Helix(h) => {
+                        fragment3::turn_reaching_helix(dirs, at, &helix(h), screw)
+                    }
+                    crate::plan::Reach::Point { point, locus } => {
+                        let p = self.p3(*point);
+                        match self.get(*locus) {
+                            Some(&Val::Plane(plane)) => {
+                                fragment3::turn_reaching_plane(dirs, at, &p, &plane, screw)
+                            }
+                            _ => {
+                                let line = self.line3(*locus);
+                                fragment3::turn_reaching_line(dirs, at, &p, &line, screw)
+                            }
+                        }
+                    }
+                })
+            }
+            SpatialOp::HelixAdvance { now, turn, pitch } => {
+                let advance = frame::helix_advance(self.s(*now), self.s(*turn), self.s(*pitch));
+                Val::S(self.finite(i, advance)?)
+            }
+            SpatialOp::Aligned { dir, near } => {
+                Val::V3(frame::aligned(&self.v3(*dir), &self.v3(*near)))
+            }
+            SpatialOp::PassingAngle {
+                from,
+                to,
+                d,
+                now,
+                constraint,
+            } => {
+                let (a, b, n) = (self.p3(*from), self.p3(*to), self.v3(*now));
+                let i = fragment3::passing_angle(&a, &b, self.s(*d), &n);
+                if let Some(e) = SolveError::from_contact("", "", i.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                Val::S(
+                    i.roots
+                        .get(0)
+                        .ok_or_else(|| err(model, *constraint, ErrorKind::Degenerate, 0.0))?,
+                )
+            }
+            SpatialOp::TiltToDistance {
+                centre,
+                point,
+                radius,
+                d,
+                now,
+                constraint,
+            } => {
+                let (c, p, n) = (self.p3(*centre), self.p3(*point), self.v3(*now));
+                let i = fragment3::tilt_to_distance(&c, &p, self.s(*radius), self.s(*d), &n);
+                if let Some(e) = SolveError::from_contact("", "", i.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                Val::S(
+                    i.roots
+                        .get(0)
+                        .ok_or_else(|| err(model, *constraint, ErrorKind::Degenerate, 0.0))?,
+                )
+            }
+            SpatialOp::ConeTurn { axis, angle, dir } => Val::V3(frame::plane_turn(
+                &self.v3(*axis),
+                self.s(*angle).cos(),
+                &self.v3(*dir),
+            )),
+            SpatialOp::AngleTurn {
+                u,
+                v,
+                axis,
+                angle,
+                branch,
+                constraint,
+            } => {
+                let (dir, a) = (self.v3(*v), self.v3(*axis));
+                let i3 = frame::turns_to_angle(&self.v3(*u), &dir, &a, self.s(*angle));
+                if let Some(e) = SolveError::from_contact("", "", i3.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                let index =
+                    self.choose(*branch, |_| i3.roots.nearest_to(dir, |x, y| (x - y).norm()));
+                Val::V3(i3.roots.get(index).ok_or_else(|| {
+                    err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoSuchBranch,
+                        i3.roots.len() as f64,
+                    )
+                })?)
+            }
+            SpatialOp::PlaneTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                constraint,
+            } => {
+                let n = self.v3(*normal);
+                let (w, c) = self.plane_cone(*base, n, *pivot, *point, *d);
+                let len = w.norm();
+                if len.is_nan() || len <= 0.0 {
+                    return Err(err(model, *constraint, ErrorKind::Degenerate, 0.0));
+                }
+                if c.abs() > 1.0 + gcs_runtime::tol::LENGTH_REL || c.is_nan() {
+                    return Err(err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoIntersection,
+                        (c.abs() - 1.0) * len,
+                    ));
+                }
+                Val::V3(frame::plane_turn(&(w / len), c.clamp(-1.0, 1.0), &n))
+            }
+            SpatialOp::PlaneAxisTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                axis,
+                branch,
+                constraint,
+            } => {
+                let n = self.v3(*normal);
+                let (w, c) = self.plane_cone(*base, n, *pivot, *point, *d);
+                let Some(wh) = w.try_normalize(0.0) else {
+                    return Err(err(model, *constraint, ErrorKind::Degenerate, 0.0));
+                };
+                let angle = c.clamp(-1.0, 1.0).acos();
+                let gap = (c.abs() - 1.0).max(0.0) * w.norm();
+                let i3 = frame::turns_to_angle(&wh, &n, &self.v3(*axis), angle);
+                if let Some(e) = SolveError::from_contact("", "", i3.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude.max(gap)));
+                }
+                if gap > gcs_runtime::tol::LENGTH_REL * (1.0 + w.norm()) {
+                    return Err(err(model, *constraint, ErrorKind::NoIntersection, gap));
+                }
+                let index = self.choose(*branch, |_| i3.roots.nearest_to(n, |x, y| (x - y).norm()));
+                Val::V3(i3.roots.get(index).ok_or_else(|| {
+                    err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoSuchBranch,
+                        i3.roots.len() as f64,
+                    )
+                })?)
+            }
+            SpatialOp::MirrorPlane {
+                point,
+                base,
+                normal,
+            } => Val::P3(locus3d::mirror(
+                self.p3(*base),
+                self.v3(*normal),
+                self.p3(*point),
+            )),
+            SpatialOp::PlaneNormal { a, b, c } => {
+                let a = self.p3(*a);
+                Val::V3(self.unit(i, (self.p3(*b) - a).cross(&(self.p3(*c) - a)))?)
+            }
+            SpatialOp::WorldAxis(i) => {
+                let mut v = V3::zeros();
+                v[usize::from(*i).min(2)] = 1.0;
+                Val::V3(v)
+            }
+            SpatialOp::Coordinate { point, axis } => {
+                Val::S(self.p3(*point)[usize::from(*axis).min(2)])
+            }
+            SpatialOp::PointAt { x, y, z } => Val::P3(P3::new(self.s(*x), self.s(*y), self.s(*z))),
+            SpatialOp::SurfaceParam {
+                locus,
+                point,
+                component,
+            } => {
+                let uv = self.surface(*locus).coordinates(&self.p3(*point));
+                Val::S(uv[usize::from(*component).min(1)])
+            }
+            SpatialOp::SurfacePoint { locus, u, v } => {
+                Val::P3(self.surface(*locus).at([self.s(*u), self.s(*v)]))
+            }
+            SpatialOp::HelixTurn { advance, pitch } => {
+                Val::S(self.finite(i, frame::helix_turn(self.s(*advance), self.s(*pitch)))?)
+            }
+            SpatialOp::TurnedAbout { dir, axis, angle } => {
+                let q = frame::rotation_about_axis(&self.v3(*axis), self.s(*angle));
+                Val::V3(q * self.v3(*dir))
+            }
+            SpatialOp::Plane {
+                point,
+                normal,
+                offset,
+            } => {
+                let n = self.unit(i, self.v3(*normal))?;
+                let at = self.p3(*point) + n * self.s_or_zero(*offset);
+                Val::Plane(Plane::from_point_normal(&at, &n))
+            }
+            SpatialOp::ParallelPlane { plane, through } => Val::Plane(Plane::from_point_normal(
+                &self.p3(*through),
+                &self.plane(*plane).normal,
+            )),
+            SpatialOp::Circle3 {
+                center,
+                normal,
+                radius,
+            } => Val::C3(Circle3::new(
+                self.p3(*center),
+                self.unit(i, self.v3(*normal))?,
+                self.s(*radius),
+            )),
+            SpatialOp::Sphere { center, radius } => {
+                Val::Sphere(Sphere::new(self.p3(*center), self.s(*radius)))
+            }
+            SpatialOp::Cylinder { point, dir, radius } => Val::Cylinder(Cylinder::new(
+                Line3::new(self.p3(*point), self.unit(i, self.v3(*dir))?),
+                self.s(*radius),
+            )),
+            SpatialOp::Torus { circle, tube } => {
+                Val::Torus(Torus::new(self.circle3(*circle), self.s(*tube)))
+            }
+            SpatialOp::ShiftedTorus { torus, from, to } => {
+                let t = match self.get(*torus) {
+                    Some(&Val::Torus(t)) => t,
+                    v => malformed(*torus, "a torus", v),
+                };
+                Val::Torus(t.shifted(&self.shift(*from, *to)))
+            }
+            SpatialOp::ShiftedCylinder { cylinder, from, to } => {
+                Val::Cylinder(self.cylinder(*cylinder).shifted(&self.shift(*from, *to)))
+            }
+            SpatialOp::SphereThrough {
+                center,
+                through,
+                radius,
+            } => {
+                let c = self.p3(*center);
+                let r = radius.unwrap_or_else(|| (self.p3(*through) - c).norm());
+                Val::Sphere(Sphere::new(c, r))
+            }
+            SpatialOp::ShiftedSphere { sphere, from, to } => {
+                Val::Sphere(self.sphere(*sphere).shifted(&self.shift(*from, *to)))
+            }
+            SpatialOp::Orbit {
+                pivot,
+                axis,
+                through,
+            } => {
+                let a = self.unit(i, self.v3(*axis))?;
+                Val::C3(Circle3::orbit(&self.p3(*pivot), &a, &self.p3(*through)))
+            }
+            SpatialOp::RotateBy {
+                geoms,
+                pivot,
+                axis,
+                angle,
+            } => {
+                let c = self.p3(*pivot);
+                let rot = frame::rotation_about_axis(&self.v3(*axis), self.s(*angle));
+                for g in geoms {
+                    self.config.rotate(*g, c, rot);
+                }
+                return Ok(None);
+            }
+        }))
     }
 
     /// The root of the intersection of loci `a` and `b` that `branch` (or the choice) takes:

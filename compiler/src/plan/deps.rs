@@ -12,7 +12,7 @@
 //! them. The analysis's forward tracing of defaults (`close_iterations`) reads the same
 //! [`Op::measures`] and [`Op::moves`].
 
-use super::{Op, Plan, Reg, Step};
+use super::{Op, Plan, PlanarOp, Reg, SpatialOp, Step};
 use gcs_lang::expr::ExprId;
 use gcs_lang::model::{ConstraintId, GeomId};
 use gcs_lang::Model;
@@ -36,7 +36,7 @@ impl Op {
             Op::Translate { geoms, .. }
             | Op::RotatePoint { geoms, .. }
             | Op::RotateDir { geoms, .. }
-            | Op::RotateBy { geoms, .. } => geoms,
+            | Op::Spatial(SpatialOp::RotateBy { geoms, .. }) => geoms,
             Op::SetDim { geom, .. } => std::slice::from_ref(geom),
             _ => &[],
         }
@@ -47,7 +47,7 @@ impl Op {
     pub fn constraint(&self) -> Option<ConstraintId> {
         match self {
             Op::Intersect { constraint, .. }
-            | Op::PassingDir { constraint, .. }
+            | Op::Planar(PlanarOp::PassingDir { constraint, .. })
             | Op::Onto { constraint, .. }
             | Op::Check { constraint, .. }
             | Op::Close { constraint, .. }

@@ -1,6 +1,6 @@
 //! The plan's stable text dump (`gcs plan`): one step a line, with the model's names.
 
-use super::{expr_text, fmt_f64, Op, Plan, Reg, Residual, RotationAxis};
+use super::{expr_text, fmt_f64, Op, Plan, PlanarOp, Reg, Residual, RotationAxis, SpatialOp};
 use gcs_lang::model::{ConstraintId, GeomId};
 use gcs_lang::Model;
 use std::fmt::Write as _;
@@ -82,92 +82,18 @@ impl Plan {
                         .collect::<Vec<_>>()
                         .join(" ")
                 ),
-                Op::Reversed(x) => format!("reversed {}", r(x)),
                 Op::Along { from, dir, to } => format!("along {} {} {}", r(from), r(dir), r(to)),
                 Op::DirectionTo { from, to } => format!("direction_to {} {}", r(from), r(to)),
-                Op::OffsetLine { line, by } => format!("offset_line {} by {}", r(line), r(by)),
-                Op::CentresLineLine { l1, a1, l2, a2 } => {
-                    format!("centres_line_line {} {} {} {}", r(l1), r(a1), r(l2), r(a2))
-                }
-                Op::CentresLinePoint {
-                    line,
-                    a,
-                    at,
-                    b,
-                    plus,
-                } => format!(
-                    "centres_line_point {} {} {} {} {}",
-                    r(line),
-                    r(a),
-                    r(at),
-                    r(b),
-                    if *plus { "plus" } else { "minus" }
-                ),
-                Op::CentresPointPoint {
-                    c1,
-                    b1,
-                    p1,
-                    c2,
-                    b2,
-                    p2,
-                } => format!(
-                    "centres_point_point {} {} {} {} {} {}",
-                    r(c1),
-                    r(b1),
-                    if *p1 { "plus" } else { "minus" },
-                    r(c2),
-                    r(b2),
-                    if *p2 { "plus" } else { "minus" }
-                ),
-                Op::RadiusFromLine { line, a, centre } => {
-                    format!("radius_from_line {} {} {}", r(line), r(a), r(centre))
-                }
-                Op::RadiusFromPoint {
-                    at,
-                    b,
-                    plus,
-                    centre,
-                } => format!(
-                    "radius_from_point {} {} {} {}",
-                    r(at),
-                    r(b),
-                    if *plus { "plus" } else { "minus" },
-                    r(centre)
-                ),
                 Op::PointOf(g) => format!("point_of {}", name(g)),
                 Op::DirOf(g) => format!("dir_of {}", name(g)),
-                Op::Axis(x, y) => format!("axis ({x}, {y})"),
-                Op::Rotated { dir, angle } => format!("rotated {} by {}", r(dir), r(angle)),
-                Op::AngleOf(dir) => format!("angle_of {}", r(dir)),
-                Op::PointXY { x, y } => format!("point ({}, {})", r(x), r(y)),
                 Op::Midpoint { a, b } => format!("midpoint {} {}", r(a), r(b)),
                 Op::Reflect { point, through } => {
                     format!("reflect {} through {}", r(point), r(through))
                 }
-                Op::Mirror { point, line } => format!("mirror {} across {}", r(point), r(line)),
-                Op::MirrorPlane {
-                    point,
-                    base,
-                    normal,
-                } => format!("mirror {} across plane {} {}", r(point), r(base), r(normal)),
                 Op::LocusPoint { locus, at } => format!("locus_point {} at {}", r(locus), r(at)),
-                Op::SurfacePoint { locus, u, v } => {
-                    format!("surface_point {} at {} {}", r(locus), r(u), r(v))
-                }
-                Op::SurfaceParam {
-                    locus,
-                    point,
-                    component,
-                } => format!("surface_param {} of {} {component}", r(locus), r(point)),
                 Op::Implicit { locus, point } => format!("implicit {} at {}", r(locus), r(point)),
                 Op::LocusParam { locus, point } => {
                     format!("locus_param {} of {}", r(locus), r(point))
-                }
-                Op::Circle { center, radius } => format!("circle {} {}", r(center), r(radius)),
-                Op::CircleThrough {
-                    center, through, ..
-                } => {
-                    format!("circle_through {} {}", r(center), r(through))
                 }
                 Op::Line { point, dir, offset } => match offset {
                     Some(o) => format!("line {} {} offset {}", r(point), r(dir), r(o)),
@@ -179,216 +105,6 @@ impl Plan {
                 Op::ShiftedCircle { circle, from, to } => {
                     format!("shifted_circle {} {} -> {}", r(circle), r(from), r(to))
                 }
-                Op::Plane {
-                    point,
-                    normal,
-                    offset,
-                } => match offset {
-                    Some(o) => format!("plane {} {} offset {}", r(point), r(normal), r(o)),
-                    None => format!("plane {} {}", r(point), r(normal)),
-                },
-                Op::ParallelPlane { plane, through } => {
-                    format!("parallel_plane {} through {}", r(plane), r(through))
-                }
-                Op::Sphere { center, radius } => format!("sphere {} {}", r(center), r(radius)),
-                Op::Cylinder { point, dir, radius } => {
-                    format!("cylinder {} {} {}", r(point), r(dir), r(radius))
-                }
-                Op::ShiftedCylinder { cylinder, from, to } => {
-                    format!("shifted_cylinder {} {} -> {}", r(cylinder), r(from), r(to))
-                }
-                Op::Torus { circle, tube } => format!("torus {} {}", r(circle), r(tube)),
-                Op::ShiftedTorus { torus, from, to } => {
-                    format!("shifted_torus {} {} -> {}", r(torus), r(from), r(to))
-                }
-                Op::Circle3 {
-                    center,
-                    normal,
-                    radius,
-                } => format!(
-                    "circle {} normal {} radius {}",
-                    r(center),
-                    r(normal),
-                    r(radius)
-                ),
-                Op::SphereThrough {
-                    center,
-                    through,
-                    radius,
-                } => match radius {
-                    Some(k) => format!(
-                        "sphere_through {} {} radius {}",
-                        r(center),
-                        r(through),
-                        fmt_f64(*k)
-                    ),
-                    None => format!("sphere_through {} {}", r(center), r(through)),
-                },
-                Op::ShiftedSphere { sphere, from, to } => {
-                    format!("shifted_sphere {} {} -> {}", r(sphere), r(from), r(to))
-                }
-                Op::Orbit {
-                    pivot,
-                    axis,
-                    through,
-                } => format!("orbit {} {} {}", r(pivot), r(axis), r(through)),
-                Op::Opposite(d) => format!("opposite {}", r(d)),
-                Op::Across(d) => format!("across {}", r(d)),
-                Op::AngleAbout { u, v, axis } => {
-                    format!("angle {} -> {} about {}", r(u), r(v), r(axis))
-                }
-                Op::AngleAboutBoth { u, v, axis } => format!(
-                    "angle {} -> {} and {} -> {} about {}",
-                    r(&u[0]),
-                    r(&v[0]),
-                    r(&u[1]),
-                    r(&v[1]),
-                    r(axis)
-                ),
-                Op::TurnReaching {
-                    u,
-                    v,
-                    axis,
-                    pivot,
-                    reach,
-                    screw,
-                } => {
-                    let helix = |h: &crate::plan::HelixRegs| {
-                        format!(
-                            "helix {} {} from {} of {} at {} pitch {}",
-                            r(&h.axis),
-                            r(&h.x_from),
-                            r(&h.origin),
-                            r(&h.x),
-                            r(&h.point),
-                            r(&h.pitch)
-                        )
-                    };
-                    let reach = match reach {
-                        crate::plan::Reach::Point { point, locus } => {
-                            format!("taking {} onto {}", r(point), r(locus))
-                        }
-                        crate::plan::Reach::Helix(h) => format!("meeting {}", helix(h)),
-                    };
-                    format!(
-                        "angle {} -> {} about {} at {} {reach}{}",
-                        r(u),
-                        r(v),
-                        r(axis),
-                        r(pivot),
-                        screw.map_or(String::new(), |s| format!(
-                            " riding {} along {}",
-                            helix(&s.helix),
-                            r(&s.slide)
-                        ))
-                    )
-                }
-                Op::HelixAdvance { now, turn, pitch } => {
-                    format!(
-                        "helix_advance from {} for turn {} pitch {}",
-                        r(now),
-                        r(turn),
-                        r(pitch)
-                    )
-                }
-                Op::HelixTurn { advance, pitch } => {
-                    format!("helix_turn {} pitch {}", r(advance), r(pitch))
-                }
-                Op::WorldAxis(i) => format!("world_axis {i}"),
-                Op::PlaneNormal { a, b, c } => {
-                    format!("plane_normal {} {} {}", r(a), r(b), r(c))
-                }
-                Op::PlaneTurn {
-                    base,
-                    normal,
-                    pivot,
-                    point,
-                    d,
-                    constraint,
-                } => format!(
-                    "plane_turn {} {} about {} to {} from {} for {}",
-                    r(base),
-                    r(normal),
-                    r(pivot),
-                    r(d),
-                    r(point),
-                    cname(constraint)
-                ),
-                Op::PlaneAxisTurn {
-                    base,
-                    normal,
-                    pivot,
-                    point,
-                    d,
-                    axis,
-                    branch,
-                    constraint,
-                } => format!(
-                    "plane_axis_turn {} {} about {} along {} to {} from {} branch {} for {}",
-                    r(base),
-                    r(normal),
-                    r(pivot),
-                    r(axis),
-                    r(d),
-                    r(point),
-                    self.branches[branch.0 as usize].name,
-                    cname(constraint)
-                ),
-                Op::Aligned { dir, near } => format!("aligned {} near {}", r(dir), r(near)),
-                Op::ConeTurn { axis, angle, dir } => {
-                    format!("cone_turn {} about {} to {}", r(dir), r(axis), r(angle))
-                }
-                Op::PassingAngle {
-                    from,
-                    to,
-                    d,
-                    now,
-                    constraint,
-                } => format!(
-                    "passing_angle {} from {} to {} at {} for {}",
-                    r(now),
-                    r(from),
-                    r(to),
-                    r(d),
-                    cname(constraint)
-                ),
-                Op::TiltToDistance {
-                    centre,
-                    point,
-                    radius,
-                    d,
-                    now,
-                    constraint,
-                } => format!(
-                    "tilt_to_distance {} about {} radius {} at {} from {} for {}",
-                    r(now),
-                    r(centre),
-                    r(radius),
-                    r(d),
-                    r(point),
-                    cname(constraint)
-                ),
-                Op::AngleTurn {
-                    u,
-                    v,
-                    axis,
-                    angle,
-                    branch,
-                    constraint,
-                } => format!(
-                    "angle_turn {} about {} to {} from {} branch {} for {}",
-                    r(v),
-                    r(axis),
-                    r(angle),
-                    r(u),
-                    self.branches[branch.0 as usize].name,
-                    cname(constraint)
-                ),
-                Op::Coordinate { point, axis } => format!("coordinate {axis} of {}", r(point)),
-                Op::PointAt { x, y, z } => format!("point {} {} {}", r(x), r(y), r(z)),
-                Op::TurnedAbout { dir, axis, angle } => {
-                    format!("turned {} about {} by {}", r(dir), r(axis), r(angle))
-                }
                 Op::Nearest { locus, point } => format!("nearest {} {}", r(locus), r(point)),
                 Op::Onto {
                     locus,
@@ -397,26 +113,6 @@ impl Plan {
                 } => {
                     format!("onto {} {} for {}", r(locus), r(point), cname(constraint))
                 }
-                Op::PassingDir {
-                    pivot,
-                    base,
-                    dir,
-                    point,
-                    offset,
-                    branch,
-                    constraint,
-                } => format!(
-                    "passing_dir about {} of {} {} past {}{} branch {} for {}",
-                    r(pivot),
-                    r(base),
-                    r(dir),
-                    r(point),
-                    offset.map_or(String::new(), |o| format!(" at {}", r(&o))),
-                    self.branches
-                        .get(branch.0 as usize)
-                        .map_or("?", |b| b.name.as_str()),
-                    cname(constraint)
-                ),
                 Op::Intersect {
                     meet,
                     a,
@@ -465,18 +161,6 @@ impl Plan {
                     r(from),
                     r(to)
                 ),
-                Op::RotateBy {
-                    geoms,
-                    pivot,
-                    axis,
-                    angle,
-                } => format!(
-                    "rotate [{}] about {} around {} by {}",
-                    names(geoms),
-                    r(pivot),
-                    r(axis),
-                    r(angle)
-                ),
                 Op::SetDim { geom, value } => format!("set_dim {} {}", name(geom), r(value)),
                 Op::Check {
                     constraint,
@@ -500,6 +184,8 @@ impl Plan {
                     residual,
                     component,
                 } => format!("error {} #{component}", residual_text(residual)),
+                Op::Planar(op) => self.planar_text(model, op),
+                Op::Spatial(op) => self.spatial_text(model, op),
             };
             let sat = if s.satisfies.is_empty() {
                 String::new()
@@ -512,6 +198,340 @@ impl Plan {
             let _ = writeln!(out, "{lhs}{op}{sat}");
         }
         out
+    }
+
+    /// The text of an operation of the plane.
+    fn planar_text(&self, model: &Model, op: &PlanarOp) -> String {
+        let r = |r: &Reg| format!("r{}", r.0);
+        let cname = |c: &ConstraintId| model.constraints[*c].name.clone();
+        match op {
+            PlanarOp::Reversed(x) => format!("reversed {}", r(x)),
+            PlanarOp::OffsetLine { line, by } => format!("offset_line {} by {}", r(line), r(by)),
+            PlanarOp::CentresLineLine { l1, a1, l2, a2 } => {
+                format!("centres_line_line {} {} {} {}", r(l1), r(a1), r(l2), r(a2))
+            }
+            PlanarOp::CentresLinePoint {
+                line,
+                a,
+                at,
+                b,
+                plus,
+            } => format!(
+                "centres_line_point {} {} {} {} {}",
+                r(line),
+                r(a),
+                r(at),
+                r(b),
+                if *plus { "plus" } else { "minus" }
+            ),
+            PlanarOp::CentresPointPoint {
+                c1,
+                b1,
+                p1,
+                c2,
+                b2,
+                p2,
+            } => format!(
+                "centres_point_point {} {} {} {} {} {}",
+                r(c1),
+                r(b1),
+                if *p1 { "plus" } else { "minus" },
+                r(c2),
+                r(b2),
+                if *p2 { "plus" } else { "minus" }
+            ),
+            PlanarOp::RadiusFromLine { line, a, centre } => {
+                format!("radius_from_line {} {} {}", r(line), r(a), r(centre))
+            }
+            PlanarOp::RadiusFromPoint {
+                at,
+                b,
+                plus,
+                centre,
+            } => format!(
+                "radius_from_point {} {} {} {}",
+                r(at),
+                r(b),
+                if *plus { "plus" } else { "minus" },
+                r(centre)
+            ),
+            PlanarOp::Axis(x, y) => format!("axis ({x}, {y})"),
+            PlanarOp::Rotated { dir, angle } => format!("rotated {} by {}", r(dir), r(angle)),
+            PlanarOp::AngleOf(dir) => format!("angle_of {}", r(dir)),
+            PlanarOp::PointXY { x, y } => format!("point ({}, {})", r(x), r(y)),
+            PlanarOp::Mirror { point, line } => format!("mirror {} across {}", r(point), r(line)),
+            PlanarOp::Circle { center, radius } => format!("circle {} {}", r(center), r(radius)),
+            PlanarOp::CircleThrough {
+                center, through, ..
+            } => {
+                format!("circle_through {} {}", r(center), r(through))
+            }
+            PlanarOp::PassingDir {
+                pivot,
+                base,
+                dir,
+                point,
+                offset,
+                branch,
+                constraint,
+            } => format!(
+                "passing_dir about {} of {} {} past {}{} branch {} for {}",
+                r(pivot),
+                r(base),
+                r(dir),
+                r(point),
+                offset.map_or(String::new(), |o| format!(" at {}", r(&o))),
+                self.branches
+                    .get(branch.0 as usize)
+                    .map_or("?", |b| b.name.as_str()),
+                cname(constraint)
+            ),
+        }
+    }
+
+    /// The text of an operation of space.
+    fn spatial_text(&self, model: &Model, op: &SpatialOp) -> String {
+        let r = |r: &Reg| format!("r{}", r.0);
+        let name = |g: &GeomId| model.geoms[*g].name.clone();
+        let names = |gs: &[GeomId]| gs.iter().map(name).collect::<Vec<_>>().join(" ");
+        let cname = |c: &ConstraintId| model.constraints[*c].name.clone();
+        match op {
+            SpatialOp::MirrorPlane {
+                point,
+                base,
+                normal,
+            } => format!("mirror {} across plane {} {}", r(point), r(base), r(normal)),
+            SpatialOp::SurfacePoint { locus, u, v } => {
+                format!("surface_point {} at {} {}", r(locus), r(u), r(v))
+            }
+            SpatialOp::SurfaceParam {
+                locus,
+                point,
+                component,
+            } => format!("surface_param {} of {} {component}", r(locus), r(point)),
+            SpatialOp::Plane {
+                point,
+                normal,
+                offset,
+            } => match offset {
+                Some(o) => format!("plane {} {} offset {}", r(point), r(normal), r(o)),
+                None => format!("plane {} {}", r(point), r(normal)),
+            },
+            SpatialOp::ParallelPlane { plane, through } => {
+                format!("parallel_plane {} through {}", r(plane), r(through))
+            }
+            SpatialOp::Sphere { center, radius } => format!("sphere {} {}", r(center), r(radius)),
+            SpatialOp::Cylinder { point, dir, radius } => {
+                format!("cylinder {} {} {}", r(point), r(dir), r(radius))
+            }
+            SpatialOp::ShiftedCylinder { cylinder, from, to } => {
+                format!("shifted_cylinder {} {} -> {}", r(cylinder), r(from), r(to))
+            }
+            SpatialOp::Torus { circle, tube } => format!("torus {} {}", r(circle), r(tube)),
+            SpatialOp::ShiftedTorus { torus, from, to } => {
+                format!("shifted_torus {} {} -> {}", r(torus), r(from), r(to))
+            }
+            SpatialOp::Circle3 {
+                center,
+                normal,
+                radius,
+            } => format!(
+                "circle {} normal {} radius {}",
+                r(center),
+                r(normal),
+                r(radius)
+            ),
+            SpatialOp::SphereThrough {
+                center,
+                through,
+                radius,
+            } => match radius {
+                Some(k) => format!(
+                    "sphere_through {} {} radius {}",
+                    r(center),
+                    r(through),
+                    fmt_f64(*k)
+                ),
+                None => format!("sphere_through {} {}", r(center), r(through)),
+            },
+            SpatialOp::ShiftedSphere { sphere, from, to } => {
+                format!("shifted_sphere {} {} -> {}", r(sphere), r(from), r(to))
+            }
+            SpatialOp::Orbit {
+                pivot,
+                axis,
+                through,
+            } => format!("orbit {} {} {}", r(pivot), r(axis), r(through)),
+            SpatialOp::Opposite(d) => format!("opposite {}", r(d)),
+            SpatialOp::Across(d) => format!("across {}", r(d)),
+            SpatialOp::AngleAbout { u, v, axis } => {
+                format!("angle {} -> {} about {}", r(u), r(v), r(axis))
+            }
+            SpatialOp::AngleAboutBoth { u, v, axis } => format!(
+                "angle {} -> {} and {} -> {} about {}",
+                r(&u[0]),
+                r(&v[0]),
+                r(&u[1]),
+                r(&v[1]),
+                r(axis)
+            ),
+            SpatialOp::TurnReaching {
+                u,
+                v,
+                axis,
+                pivot,
+                reach,
+                screw,
+            } => {
+                let helix = |h: &crate::plan::HelixRegs| {
+                    format!(
+                        "helix {} {} from {} of {} at {} pitch {}",
+                        r(&h.axis),
+                        r(&h.x_from),
+                        r(&h.origin),
+                        r(&h.x),
+                        r(&h.point),
+                        r(&h.pitch)
+                    )
+                };
+                let reach = match reach {
+                    crate::plan::Reach::Point { point, locus } => {
+                        format!("taking {} onto {}", r(point), r(locus))
+                    }
+                    crate::plan::Reach::Helix(h) => format!("meeting {}", helix(h)),
+                };
+                format!(
+                    "angle {} -> {} about {} at {} {reach}{}",
+                    r(u),
+                    r(v),
+                    r(axis),
+                    r(pivot),
+                    screw.map_or(String::new(), |s| format!(
+                        " riding {} along {}",
+                        helix(&s.helix),
+                        r(&s.slide)
+                    ))
+                )
+            }
+            SpatialOp::HelixAdvance { now, turn, pitch } => {
+                format!(
+                    "helix_advance from {} for turn {} pitch {}",
+                    r(now),
+                    r(turn),
+                    r(pitch)
+                )
+            }
+            SpatialOp::HelixTurn { advance, pitch } => {
+                format!("helix_turn {} pitch {}", r(advance), r(pitch))
+            }
+            SpatialOp::WorldAxis(i) => format!("world_axis {i}"),
+            SpatialOp::PlaneNormal { a, b, c } => {
+                format!("plane_normal {} {} {}", r(a), r(b), r(c))
+            }
+            SpatialOp::PlaneTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                constraint,
+            } => format!(
+                "plane_turn {} {} about {} to {} from {} for {}",
+                r(base),
+                r(normal),
+                r(pivot),
+                r(d),
+                r(point),
+                cname(constraint)
+            ),
+            SpatialOp::PlaneAxisTurn {
+                base,
+                normal,
+                pivot,
+                point,
+                d,
+                axis,
+                branch,
+                constraint,
+            } => format!(
+                "plane_axis_turn {} {} about {} along {} to {} from {} branch {} for {}",
+                r(base),
+                r(normal),
+                r(pivot),
+                r(axis),
+                r(d),
+                r(point),
+                self.branches[branch.0 as usize].name,
+                cname(constraint)
+            ),
+            SpatialOp::Aligned { dir, near } => format!("aligned {} near {}", r(dir), r(near)),
+            SpatialOp::ConeTurn { axis, angle, dir } => {
+                format!("cone_turn {} about {} to {}", r(dir), r(axis), r(angle))
+            }
+            SpatialOp::PassingAngle {
+                from,
+                to,
+                d,
+                now,
+                constraint,
+            } => format!(
+                "passing_angle {} from {} to {} at {} for {}",
+                r(now),
+                r(from),
+                r(to),
+                r(d),
+                cname(constraint)
+            ),
+            SpatialOp::TiltToDistance {
+                centre,
+                point,
+                radius,
+                d,
+                now,
+                constraint,
+            } => format!(
+                "tilt_to_distance {} about {} radius {} at {} from {} for {}",
+                r(now),
+                r(centre),
+                r(radius),
+                r(d),
+                r(point),
+                cname(constraint)
+            ),
+            SpatialOp::AngleTurn {
+                u,
+                v,
+                axis,
+                angle,
+                branch,
+                constraint,
+            } => format!(
+                "angle_turn {} about {} to {} from {} branch {} for {}",
+                r(v),
+                r(axis),
+                r(angle),
+                r(u),
+                self.branches[branch.0 as usize].name,
+                cname(constraint)
+            ),
+            SpatialOp::Coordinate { point, axis } => format!("coordinate {axis} of {}", r(point)),
+            SpatialOp::PointAt { x, y, z } => format!("point {} {} {}", r(x), r(y), r(z)),
+            SpatialOp::TurnedAbout { dir, axis, angle } => {
+                format!("turned {} about {} by {}", r(dir), r(axis), r(angle))
+            }
+            SpatialOp::RotateBy {
+                geoms,
+                pivot,
+                axis,
+                angle,
+            } => format!(
+                "rotate [{}] about {} around {} by {}",
+                names(geoms),
+                r(pivot),
+                r(axis),
+                r(angle)
+            ),
+        }
     }
 }
 

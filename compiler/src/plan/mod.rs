@@ -24,11 +24,15 @@
 
 mod deps;
 mod dump;
+mod planar;
 mod search;
+mod spatial;
 mod validate;
 
 pub use deps::{by_position, nearest, support_words, Deps, Slice, Support, Supporter, Walk, SHOWN};
+pub use planar::PlanarOp;
 pub use search::{grid, GRID, MAX_COMBINATIONS};
+pub use spatial::{HelixRegs, Reach, ScrewRegs, SpatialOp};
 pub use validate::Malformed;
 
 use gcs_lang::expr::ExprId;
@@ -228,36 +232,6 @@ impl Meet {
     }
 }
 
-/// The registers of a helical coupling of a marker that turns with a cluster to a known one
-/// (`runtime::fragment3::Helix`): the known marker's z axis, x axis and point, the riding
-/// marker's x axis and point, and the pitch.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct HelixRegs {
-    pub axis: Reg,
-    pub x_from: Reg,
-    pub origin: Reg,
-    pub x: Reg,
-    pub point: Reg,
-    pub pitch: Reg,
-}
-
-/// A helical coupling a cluster rides on after a turn (`runtime::fragment3::Screw`), and the
-/// line it slides along.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ScrewRegs {
-    pub helix: HelixRegs,
-    pub slide: Reg,
-}
-
-/// What a turn of [`Op::TurnReaching`] must reach besides its direction.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Reach {
-    /// `point` onto `locus`, a line or a plane.
-    Point { point: Reg, locus: Reg },
-    /// A helical joint's coupling.
-    Helix(HelixRegs),
-}
-
 /// The axis of a rotation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RotationAxis {
@@ -370,7 +344,8 @@ pub enum Residual {
     },
 }
 
-/// One operation.
+/// One operation: those of both spaces, then each space's own, so that a back end matches
+/// only its space's.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Op {
     /// Evaluates an expression of the model (params are inputs).
@@ -397,88 +372,21 @@ pub enum Op {
     Along { from: Reg, dir: Reg, to: Reg },
     /// The unit direction from point `from` to point `to`.
     DirectionTo { from: Reg, to: Reg },
-    /// A line with its direction reversed (left and right swap).
-    Reversed(Reg),
-    /// Line `line` moved `by` to its left.
-    OffsetLine { line: Reg, by: Reg },
-    /// The centres `X` of circles of any radius `r` with `sd_l1(X) = r + a1` and
-    /// `sd_l2(X) = r + a2`: an angular bisector (002, RR-1).
-    CentresLineLine { l1: Reg, a1: Reg, l2: Reg, a2: Reg },
-    /// The centres with `sd_line(X) = r + a` and `|X - at| = r + b` (`plus`) or `b - r`: a
-    /// parabola.
-    CentresLinePoint {
-        line: Reg,
-        a: Reg,
-        at: Reg,
-        b: Reg,
-        plus: bool,
-    },
-    /// The centres with `|X - c1| = ±r + b1` and `|X - c2| = ±r + b2`: a hyperbola branch or an
-    /// ellipse.
-    CentresPointPoint {
-        c1: Reg,
-        b1: Reg,
-        p1: bool,
-        c2: Reg,
-        b2: Reg,
-        p2: bool,
-    },
-    /// The radius `sd_line(centre) - a`.
-    RadiusFromLine { line: Reg, a: Reg, centre: Reg },
-    /// The radius `|centre - at| - b` (`plus`) or `b - |centre - at|`.
-    RadiusFromPoint {
-        at: Reg,
-        b: Reg,
-        plus: bool,
-        centre: Reg,
-    },
     /// The global position of a point feature (a point geom, member, marker or part).
     PointOf(GeomId),
     /// The global direction of a vector feature (a vector geom, member, axis or `dir`).
     DirOf(GeomId),
-    /// A constant direction (the X or Y axis).
-    Axis(f64, f64),
-    /// `dir` rotated counter-clockwise by `angle`.
-    Rotated { dir: Reg, angle: Reg },
-    /// The counter-clockwise angle of direction `dir` from the x axis, in (-pi, pi].
-    AngleOf(Reg),
-    /// The point with coordinates `x` and `y`.
-    PointXY { x: Reg, y: Reg },
     /// The midpoint of points `a` and `b`.
     Midpoint { a: Reg, b: Reg },
     /// The reflection of `point` through `through`: `2 through - point` (a segment's other
     /// end, from one end and its midpoint).
     Reflect { point: Reg, through: Reg },
-    /// The mirror image of `point` across line `line`.
-    Mirror { point: Reg, line: Reg },
-    /// In space: the mirror image of `point` across the plane through `base` with unit
-    /// normal `normal`.
-    MirrorPlane { point: Reg, base: Reg, normal: Reg },
     /// The point of a line or circle `locus` at parameter `at`: the signed distance along a
     /// line from its base point, the angle about a circle's centre from the x axis.
     LocusPoint { locus: Reg, at: Reg },
     /// The parameter of `point`'s nearest point on a line or circle `locus` (the inverse of
     /// [`Op::LocusPoint`]).
     LocusParam { locus: Reg, point: Reg },
-    /// In space: coordinate `component` (0 or 1) of `point` on surface `locus` (a plane, a
-    /// sphere or a cylinder: `runtime::locus3d::Surface`).
-    SurfaceParam {
-        locus: Reg,
-        point: Reg,
-        component: u8,
-    },
-    /// In space: the point of surface `locus` at coordinates `u`, `v`.
-    SurfacePoint { locus: Reg, u: Reg, v: Reg },
-    /// The circle about `center` with `radius`.
-    Circle { center: Reg, radius: Reg },
-    /// The circle about `center` through `through`. `radius` is its radius when the analysis
-    /// knows it (the two points belong to one rigid geom whose sketch of them is constant):
-    /// the consumers then use that number, and agree to the bit.
-    CircleThrough {
-        center: Reg,
-        through: Reg,
-        radius: Option<f64>,
-    },
     /// The line through `point` along `dir`, moved `offset` to its left.
     Line {
         point: Reg,
@@ -487,151 +395,6 @@ pub enum Op {
     },
     /// The line parallel to line `line` through `through`.
     ParallelLine { line: Reg, through: Reg },
-    /// In space: the plane through `point` with unit normal `normal`, moved `offset` along it.
-    Plane {
-        point: Reg,
-        normal: Reg,
-        offset: Option<Reg>,
-    },
-    /// In space: the plane parallel to plane `plane` through `through`.
-    ParallelPlane { plane: Reg, through: Reg },
-    /// In space: the circle about `center` with unit `normal` and `radius`.
-    Circle3 {
-        center: Reg,
-        normal: Reg,
-        radius: Reg,
-    },
-    /// In space: the sphere about `center` with `radius`.
-    Sphere { center: Reg, radius: Reg },
-    /// In space: the points at distance `radius` from the line through `point` along unit
-    /// `dir`.
-    Cylinder { point: Reg, dir: Reg, radius: Reg },
-    /// In space: `cylinder` translated by `to - from`.
-    ShiftedCylinder { cylinder: Reg, from: Reg, to: Reg },
-    /// In space: the points at distance `tube` from circle `circle`.
-    Torus { circle: Reg, tube: Reg },
-    /// In space: `torus` translated by `to - from`.
-    ShiftedTorus { torus: Reg, from: Reg, to: Reg },
-    /// In space: the sphere about `center` through `through`; `radius` as in
-    /// [`Op::CircleThrough`].
-    SphereThrough {
-        center: Reg,
-        through: Reg,
-        radius: Option<f64>,
-    },
-    /// In space: sphere `sphere` moved by the vector from `from` to `to`.
-    ShiftedSphere { sphere: Reg, from: Reg, to: Reg },
-    /// In space: the circle `through` sweeps turning about the axis through `pivot` along the
-    /// unit `axis`.
-    Orbit { pivot: Reg, axis: Reg, through: Reg },
-    /// The opposite of direction `dir`.
-    Opposite(Reg),
-    /// In space: a unit direction perpendicular to the unit `axis` (`runtime::frame::
-    /// perpendicular`, deterministic): where a turn about the axis is measured from.
-    Across(Reg),
-    /// In space: direction `dir` turned by `angle` counter-clockwise about the unit `axis`.
-    TurnedAbout { dir: Reg, axis: Reg, angle: Reg },
-    /// In space: the angle from direction `u` to `v`, counter-clockwise about the unit `axis`,
-    /// in (-pi, pi].
-    AngleAbout { u: Reg, v: Reg, axis: Reg },
-    /// In space: the angle about the unit `axis` that turns `u[0]` onto `v[0]` and `u[1]` onto
-    /// `v[1]` together (`runtime::frame::signed_angle3_both`): a marker's z and x axes, of
-    /// which the one further across the axis decides.
-    AngleAboutBoth { u: [Reg; 2], v: [Reg; 2], axis: Reg },
-    /// In space: the angle about the unit `axis` through `pivot` that turns direction `u` onto
-    /// `v` and meets `reach` (`runtime::fragment3::turn_reaching_line`, `_plane`, `_helix`): a
-    /// joint's point onto a line or plane, which the cluster's remaining slide along it then
-    /// brings home, or a helical joint's coupling, decides a turn that a z axis nearly along
-    /// the axis fixes only to rounding over its distance from it. With `screw`, the cluster
-    /// rides a helical coupling after the turn, and the point or marker goes where the
-    /// screw's slide takes it.
-    TurnReaching {
-        u: Reg,
-        v: Reg,
-        axis: Reg,
-        pivot: Reg,
-        reach: Reach,
-        screw: Option<ScrewRegs>,
-    },
-    /// A helix's advance for a turn: the advance `now + pitch / 2pi * wrap(turn - 2pi now /
-    /// pitch)`, the one of the turn's advances (a pitch apart) nearest `now`.
-    HelixAdvance { now: Reg, turn: Reg, pitch: Reg },
-    /// A helix's turn for an advance: `2pi advance / pitch`.
-    HelixTurn { advance: Reg, pitch: Reg },
-    /// In space: the normal a plane (through `base`, unit `normal`) turned about `pivot` must
-    /// take to be at signed distance `d` from `point`, keeping its distance from `pivot`: of
-    /// the normals on that cone about `point - pivot`, the one nearest `normal` (least
-    /// motion); an error naming `constraint` when no turn reaches it.
-    PlaneTurn {
-        base: Reg,
-        normal: Reg,
-        pivot: Reg,
-        point: Reg,
-        d: Reg,
-        constraint: ConstraintId,
-    },
-    /// As [`Op::PlaneTurn`], the plane turning about the unit `axis` through `pivot` only:
-    /// where that turn meets the cone (`runtime::frame::turns_to_angle`), the root of
-    /// `branch`.
-    PlaneAxisTurn {
-        base: Reg,
-        normal: Reg,
-        pivot: Reg,
-        point: Reg,
-        d: Reg,
-        axis: Reg,
-        branch: BranchId,
-        constraint: ConstraintId,
-    },
-    /// In space: the unit normal of the plane through points `a`, `b` and `c`, along
-    /// `(b - a) x (c - a)`.
-    PlaneNormal { a: Reg, b: Reg, c: Reg },
-    /// In space: the world's x, y or z axis (0, 1, 2).
-    WorldAxis(u8),
-    /// In space: where direction `v` turns about the unit `axis` to make the unsigned angle
-    /// `angle` with `u` (`runtime::frame::turns_to_angle`): the root of `branch` (0: counter-
-    /// clockwise about the axis from its turn nearest `u`, 1: clockwise), or an error naming
-    /// `constraint`. The sketch's branch is the root nearest `v`.
-    AngleTurn {
-        u: Reg,
-        v: Reg,
-        axis: Reg,
-        angle: Reg,
-        branch: BranchId,
-        constraint: ConstraintId,
-    },
-    /// In space: the direction of least turn from `dir` that makes the unsigned angle `angle`
-    /// with the unit `axis` (`runtime::frame::plane_turn` with its cosine): on the great circle
-    /// through `axis` and `dir`, the point of the cone about `axis` nearest `dir`.
-    ConeTurn { axis: Reg, angle: Reg, dir: Reg },
-    /// In space: the angle between the normal of the circle about `centre` of `radius` and the
-    /// direction to `point` at which `point` is `d` from the circle, on the side `now` has it
-    /// (`runtime::fragment3::tilt_to_distance`), or an error naming `constraint` with the gap.
-    TiltToDistance {
-        centre: Reg,
-        point: Reg,
-        radius: Reg,
-        d: Reg,
-        now: Reg,
-        constraint: ConstraintId,
-    },
-    /// In space: the unsigned angle from the direction `from` to `to` at which a line through
-    /// `from` passes `d` from `to`, keeping the sense of `now`
-    /// (`runtime::fragment3::passing_angle`), or an error naming `constraint` with the gap.
-    PassingAngle {
-        from: Reg,
-        to: Reg,
-        d: Reg,
-        now: Reg,
-        constraint: ConstraintId,
-    },
-    /// In space: `dir` or its opposite, whichever is nearer `near` (a directed line turned
-    /// onto a line through two points keeps its sense).
-    Aligned { dir: Reg, near: Reg },
-    /// In space: coordinate 0, 1 or 2 of `point`.
-    Coordinate { point: Reg, axis: u8 },
-    /// In space: the point with coordinates `x`, `y` and `z`.
-    PointAt { x: Reg, y: Reg, z: Reg },
     /// Circle `circle` moved by the vector from `from` to `to`.
     ShiftedCircle { circle: Reg, from: Reg, to: Reg },
     /// The point of `locus` nearest to `point` (least motion).
@@ -653,20 +416,6 @@ pub enum Op {
         branch: BranchId,
         constraint: ConstraintId,
         near: Reg,
-    },
-    /// The direction of line (`base`, `dir`) once its cluster has turned about `pivot` until the
-    /// line passes `point` at signed distance `offset` (absent: through it; positive: `point`
-    /// to the line's left): the root of `branch` (0: `point` ahead of the pivot along the
-    /// line, 1: behind), or an error naming `constraint`. The sketch's branch is the root
-    /// nearest `dir`. A line through a point tangent to a circle; a crank's slot through a pin.
-    PassingDir {
-        pivot: Reg,
-        base: Reg,
-        dir: Reg,
-        point: Reg,
-        offset: Option<Reg>,
-        branch: BranchId,
-        constraint: ConstraintId,
     },
     /// Translates `geoms` rigidly by the vector from `from` to `to`.
     Translate {
@@ -692,14 +441,6 @@ pub enum Op {
         from: Reg,
         to: Reg,
     },
-    /// In space: rotates `geoms` rigidly by `angle` about the line through `pivot` along the
-    /// unit `axis` (a turn whose angle an earlier step measured, from more than one pair).
-    RotateBy {
-        geoms: Vec<GeomId>,
-        pivot: Reg,
-        axis: Reg,
-        angle: Reg,
-    },
     /// Sets a geom's dimension (a segment's length, a circle's radius), keeping its origin.
     SetDim { geom: GeomId, value: Reg },
     /// Re-measures a relation of `constraint` already implied by earlier steps: it must hold
@@ -723,6 +464,22 @@ pub enum Op {
         constraint: ConstraintId,
         residual: Reg,
     },
+    /// An operation of the plane only.
+    Planar(PlanarOp),
+    /// An operation of space only.
+    Spatial(SpatialOp),
+}
+
+impl From<PlanarOp> for Op {
+    fn from(op: PlanarOp) -> Op {
+        Op::Planar(op)
+    }
+}
+
+impl From<SpatialOp> for Op {
+    fn from(op: SpatialOp) -> Op {
+        Op::Spatial(op)
+    }
 }
 
 /// One step: an operation, the register it defines (if any), what it satisfies, and why.
@@ -814,7 +571,7 @@ impl Plan {
         let of = |s: &Step| {
             s.satisfies.first().copied().or(match &s.op {
                 Op::Intersect { constraint, .. }
-                | Op::PassingDir { constraint, .. }
+                | Op::Planar(PlanarOp::PassingDir { constraint, .. })
                 | Op::Onto { constraint, .. }
                 | Op::Check { constraint, .. }
                 | Op::Close { constraint, .. } => Some(*constraint),

@@ -8,7 +8,7 @@
 //! constraint is satisfied twice. [`Plan::unsatisfied`] lists the constraints no step
 //! satisfies or checks, which the pipeline compares with what the analysis reports unsolved.
 
-use super::{Op, Plan, Reg, Residual, RotationAxis, Ty};
+use super::{Op, Plan, PlanarOp, Reg, Residual, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::{ConstraintId, Space};
 use gcs_lang::Model;
 use std::collections::HashMap;
@@ -33,7 +33,7 @@ const NEAREST_LOCUS: Accepts = &[
 ];
 const PLANE: Accepts = &[Ty::Plane];
 const SPHERE: Accepts = &[Ty::Sphere];
-/// A point's locus a turn takes it onto (`Op::TurnReaching`).
+/// A point's locus a turn takes it onto (`SpatialOp::TurnReaching`).
 const LINE_OR_PLANE: Accepts = &[Ty::Line, Ty::Plane];
 /// What has a parameter along it (a place, or an implicit error): the loci a default slides on.
 const PARAM_LOCUS: Accepts = &[Ty::Line, Ty::Circle, Ty::Conic];
@@ -199,58 +199,182 @@ impl Op {
             | Op::Default(_)
             | Op::PointOf(_)
             | Op::DirOf(_)
-            | Op::DimOf(_)
-            | Op::Axis(..) => vec![],
+            | Op::DimOf(_) => vec![],
             Op::Neg(x) => vec![(*x, SCALAR)],
-            Op::Reversed(x) => vec![(*x, LINE)],
             Op::Sum(terms) => terms.iter().map(|t| (t.1, SCALAR)).collect(),
             Op::Along { from, dir, to } => vec![(*from, POINT), (*dir, VECTOR), (*to, POINT)],
             Op::DirectionTo { from, to } => vec![(*from, POINT), (*to, POINT)],
-            Op::OffsetLine { line, by } => vec![(*line, LINE), (*by, SCALAR)],
-            Op::CentresLineLine { l1, a1, l2, a2 } => {
-                vec![(*l1, LINE), (*a1, SCALAR), (*l2, LINE), (*a2, SCALAR)]
-            }
-            Op::CentresLinePoint { line, a, at, b, .. } => {
-                vec![(*line, LINE), (*a, SCALAR), (*at, POINT), (*b, SCALAR)]
-            }
-            Op::CentresPointPoint { c1, b1, c2, b2, .. } => {
-                vec![(*c1, POINT), (*b1, SCALAR), (*c2, POINT), (*b2, SCALAR)]
-            }
-            Op::RadiusFromLine { line, a, centre } => {
-                vec![(*line, LINE), (*a, SCALAR), (*centre, POINT)]
-            }
-            Op::RadiusFromPoint { at, b, centre, .. } => {
-                vec![(*at, POINT), (*b, SCALAR), (*centre, POINT)]
-            }
-            Op::Rotated { dir, angle } => vec![(*dir, VECTOR), (*angle, SCALAR)],
-            Op::AngleOf(dir) => vec![(*dir, VECTOR)],
-            Op::PointXY { x, y } => vec![(*x, SCALAR), (*y, SCALAR)],
             Op::Midpoint { a, b } => vec![(*a, POINT), (*b, POINT)],
             Op::Reflect { point, through } => vec![(*point, POINT), (*through, POINT)],
-            Op::Mirror { point, line } => vec![(*point, POINT), (*line, LINE)],
-            Op::MirrorPlane {
-                point,
-                base,
-                normal,
-            } => vec![(*point, POINT), (*base, POINT), (*normal, VECTOR)],
             Op::LocusPoint { locus, at } => vec![(*locus, PARAM_LOCUS), (*at, SCALAR)],
             Op::LocusParam { locus, point } => vec![(*locus, PARAM_LOCUS), (*point, POINT)],
-            Op::SurfaceParam { locus, point, .. } => vec![(*locus, SURFACE), (*point, POINT)],
-            Op::SurfacePoint { locus, u, v } => {
-                vec![(*locus, SURFACE), (*u, SCALAR), (*v, SCALAR)]
-            }
             Op::Implicit { locus, point } => vec![(*locus, IMPLICIT_LOCUS), (*point, POINT)],
-            Op::Circle { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
-            Op::CircleThrough {
-                center, through, ..
-            } => vec![(*center, POINT), (*through, POINT)],
             Op::Line { point, dir, offset } => {
                 let mut v = vec![(*point, POINT), (*dir, VECTOR)];
                 v.extend(offset.map(|o| (o, SCALAR)));
                 v
             }
             Op::ParallelLine { line, through } => vec![(*line, LINE), (*through, POINT)],
-            Op::Plane {
+            Op::ShiftedCircle { circle, from, to } => {
+                vec![(*circle, CIRCLE), (*from, POINT), (*to, POINT)]
+            }
+            Op::Nearest { locus, point } => vec![(*locus, NEAREST_LOCUS), (*point, POINT)],
+            Op::Onto { locus, point, .. } => vec![(*locus, ANY_LOCUS), (*point, POINT)],
+            Op::Intersect {
+                meet, a, b, near, ..
+            } => {
+                let (ta, tb) = meet.operands();
+                vec![(*a, accepts(ta)), (*b, accepts(tb)), (*near, POINT)]
+            }
+            Op::Translate { from, to, .. } => vec![(*from, POINT), (*to, POINT)],
+            Op::RotatePoint {
+                pivot,
+                axis,
+                from,
+                to,
+                ..
+            } => rotation(*pivot, *axis, (*from, POINT), (*to, POINT)),
+            Op::RotateDir {
+                pivot,
+                axis,
+                from,
+                to,
+                ..
+            } => rotation(*pivot, *axis, (*from, VECTOR), (*to, VECTOR)),
+            Op::SetDim { value, .. } => vec![(*value, SCALAR)],
+            Op::Check { residual, .. } | Op::Error { residual, .. } => residual.operands(),
+            Op::Close { residual, .. } => vec![(*residual, SCALAR)],
+            Op::Planar(op) => op.operands(),
+            Op::Spatial(op) => op.operands(),
+        }
+    }
+
+    /// The registers the operation reads.
+    pub fn reads(&self) -> Vec<Reg> {
+        self.operands().into_iter().map(|(r, _)| r).collect()
+    }
+
+    /// The type of the value it defines, if it defines one.
+    pub fn output(&self) -> Option<Ty> {
+        Some(match self {
+            Op::Expr(_)
+            | Op::Size { .. }
+            | Op::Const(_)
+            | Op::Default(_)
+            | Op::Neg(_)
+            | Op::DimOf(_)
+            | Op::Sum(_)
+            | Op::Along { .. }
+            | Op::LocusParam { .. }
+            | Op::Error { .. }
+            | Op::Implicit { .. } => Ty::Scalar,
+            Op::DirectionTo { .. } | Op::DirOf(_) => Ty::Vector,
+            Op::Line { .. } | Op::ParallelLine { .. } => Ty::Line,
+            Op::PointOf(_)
+            | Op::Nearest { .. }
+            | Op::Onto { .. }
+            | Op::Midpoint { .. }
+            | Op::Reflect { .. }
+            | Op::LocusPoint { .. } => Ty::Point,
+            Op::ShiftedCircle { .. } => Ty::Circle,
+            Op::Intersect { meet, .. } => meet.result(),
+            Op::Translate { .. }
+            | Op::RotatePoint { .. }
+            | Op::RotateDir { .. }
+            | Op::SetDim { .. }
+            | Op::Check { .. }
+            | Op::Close { .. } => return None,
+            Op::Planar(op) => op.output(),
+            Op::Spatial(op) => return op.output(),
+        })
+    }
+}
+
+impl PlanarOp {
+    /// The registers the operation reads, with the types it accepts for each.
+    pub fn operands(&self) -> Vec<(Reg, Accepts)> {
+        match self {
+            PlanarOp::Axis(..) => vec![],
+            PlanarOp::Reversed(x) => vec![(*x, LINE)],
+            PlanarOp::OffsetLine { line, by } => vec![(*line, LINE), (*by, SCALAR)],
+            PlanarOp::CentresLineLine { l1, a1, l2, a2 } => {
+                vec![(*l1, LINE), (*a1, SCALAR), (*l2, LINE), (*a2, SCALAR)]
+            }
+            PlanarOp::CentresLinePoint { line, a, at, b, .. } => {
+                vec![(*line, LINE), (*a, SCALAR), (*at, POINT), (*b, SCALAR)]
+            }
+            PlanarOp::CentresPointPoint { c1, b1, c2, b2, .. } => {
+                vec![(*c1, POINT), (*b1, SCALAR), (*c2, POINT), (*b2, SCALAR)]
+            }
+            PlanarOp::RadiusFromLine { line, a, centre } => {
+                vec![(*line, LINE), (*a, SCALAR), (*centre, POINT)]
+            }
+            PlanarOp::RadiusFromPoint { at, b, centre, .. } => {
+                vec![(*at, POINT), (*b, SCALAR), (*centre, POINT)]
+            }
+            PlanarOp::Rotated { dir, angle } => vec![(*dir, VECTOR), (*angle, SCALAR)],
+            PlanarOp::AngleOf(dir) => vec![(*dir, VECTOR)],
+            PlanarOp::PointXY { x, y } => vec![(*x, SCALAR), (*y, SCALAR)],
+            PlanarOp::Mirror { point, line } => vec![(*point, POINT), (*line, LINE)],
+            PlanarOp::Circle { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
+            PlanarOp::CircleThrough {
+                center, through, ..
+            } => vec![(*center, POINT), (*through, POINT)],
+            PlanarOp::PassingDir {
+                pivot,
+                base,
+                dir,
+                point,
+                offset,
+                ..
+            } => {
+                let mut v = vec![
+                    (*pivot, POINT),
+                    (*base, POINT),
+                    (*dir, VECTOR),
+                    (*point, POINT),
+                ];
+                v.extend(offset.map(|o| (o, SCALAR)));
+                v
+            }
+        }
+    }
+
+    /// The type of the value it defines: every one defines one.
+    pub fn output(&self) -> Ty {
+        match self {
+            PlanarOp::AngleOf(_)
+            | PlanarOp::RadiusFromLine { .. }
+            | PlanarOp::RadiusFromPoint { .. } => Ty::Scalar,
+            PlanarOp::Axis(..) | PlanarOp::Rotated { .. } | PlanarOp::PassingDir { .. } => {
+                Ty::Vector
+            }
+            PlanarOp::Reversed(_)
+            | PlanarOp::OffsetLine { .. }
+            | PlanarOp::CentresLineLine { .. } => Ty::Line,
+            PlanarOp::CentresLinePoint { .. } | PlanarOp::CentresPointPoint { .. } => Ty::Conic,
+            PlanarOp::PointXY { .. } | PlanarOp::Mirror { .. } => Ty::Point,
+            PlanarOp::Circle { .. } | PlanarOp::CircleThrough { .. } => Ty::Circle,
+        }
+    }
+}
+
+impl SpatialOp {
+    /// The registers the operation reads, with the types it accepts for each.
+    pub fn operands(&self) -> Vec<(Reg, Accepts)> {
+        match self {
+            SpatialOp::MirrorPlane {
+                point,
+                base,
+                normal,
+            } => vec![(*point, POINT), (*base, POINT), (*normal, VECTOR)],
+            SpatialOp::SurfaceParam { locus, point, .. } => {
+                vec![(*locus, SURFACE), (*point, POINT)]
+            }
+            SpatialOp::SurfacePoint { locus, u, v } => {
+                vec![(*locus, SURFACE), (*u, SCALAR), (*v, SCALAR)]
+            }
+            SpatialOp::Plane {
                 point,
                 normal,
                 offset,
@@ -259,47 +383,46 @@ impl Op {
                 v.extend(offset.map(|o| (o, SCALAR)));
                 v
             }
-            Op::ParallelPlane { plane, through } => vec![(*plane, PLANE), (*through, POINT)],
-            Op::Sphere { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
-            Op::Cylinder { point, dir, radius } => {
+            SpatialOp::ParallelPlane { plane, through } => vec![(*plane, PLANE), (*through, POINT)],
+            SpatialOp::Sphere { center, radius } => vec![(*center, POINT), (*radius, SCALAR)],
+            SpatialOp::Cylinder { point, dir, radius } => {
                 vec![(*point, POINT), (*dir, VECTOR), (*radius, SCALAR)]
             }
-            Op::ShiftedCylinder { cylinder, from, to } => {
+            SpatialOp::ShiftedCylinder { cylinder, from, to } => {
                 vec![(*cylinder, &[Ty::Cylinder]), (*from, POINT), (*to, POINT)]
             }
-            Op::Torus { circle, tube } => vec![(*circle, CIRCLE), (*tube, SCALAR)],
-            Op::ShiftedTorus { torus, from, to } => {
+            SpatialOp::Torus { circle, tube } => vec![(*circle, CIRCLE), (*tube, SCALAR)],
+            SpatialOp::ShiftedTorus { torus, from, to } => {
                 vec![(*torus, &[Ty::Torus]), (*from, POINT), (*to, POINT)]
             }
-            Op::Circle3 {
+            SpatialOp::Circle3 {
                 center,
                 normal,
                 radius,
             } => vec![(*center, POINT), (*normal, VECTOR), (*radius, SCALAR)],
-            Op::SphereThrough {
+            SpatialOp::SphereThrough {
                 center, through, ..
             } => vec![(*center, POINT), (*through, POINT)],
-            Op::ShiftedSphere { sphere, from, to } => {
+            SpatialOp::ShiftedSphere { sphere, from, to } => {
                 vec![(*sphere, SPHERE), (*from, POINT), (*to, POINT)]
             }
-            Op::Orbit {
+            SpatialOp::Orbit {
                 pivot,
                 axis,
                 through,
             } => vec![(*pivot, POINT), (*axis, VECTOR), (*through, POINT)],
-            Op::Opposite(d) | Op::Across(d) => vec![(*d, VECTOR)],
-            Op::TurnedAbout { dir, axis, angle } => {
-                vec![(*dir, VECTOR), (*axis, VECTOR), (*angle, SCALAR)]
+            SpatialOp::Opposite(d) | SpatialOp::Across(d) => vec![(*d, VECTOR)],
+            SpatialOp::AngleAbout { u, v, axis } => {
+                vec![(*u, VECTOR), (*v, VECTOR), (*axis, VECTOR)]
             }
-            Op::AngleAbout { u, v, axis } => vec![(*u, VECTOR), (*v, VECTOR), (*axis, VECTOR)],
-            Op::AngleAboutBoth { u, v, axis } => vec![
+            SpatialOp::AngleAboutBoth { u, v, axis } => vec![
                 (u[0], VECTOR),
                 (v[0], VECTOR),
                 (u[1], VECTOR),
                 (v[1], VECTOR),
                 (*axis, VECTOR),
             ],
-            Op::TurnReaching {
+            SpatialOp::TurnReaching {
                 u,
                 v,
                 axis,
@@ -331,13 +454,13 @@ impl Op {
                 }
                 operands
             }
-            Op::HelixAdvance { now, turn, pitch } => {
+            SpatialOp::HelixAdvance { now, turn, pitch } => {
                 vec![(*now, SCALAR), (*turn, SCALAR), (*pitch, SCALAR)]
             }
-            Op::HelixTurn { advance, pitch } => vec![(*advance, SCALAR), (*pitch, SCALAR)],
-            Op::WorldAxis(_) => vec![],
-            Op::PlaneNormal { a, b, c } => vec![(*a, POINT), (*b, POINT), (*c, POINT)],
-            Op::PlaneTurn {
+            SpatialOp::HelixTurn { advance, pitch } => vec![(*advance, SCALAR), (*pitch, SCALAR)],
+            SpatialOp::WorldAxis(_) => vec![],
+            SpatialOp::PlaneNormal { a, b, c } => vec![(*a, POINT), (*b, POINT), (*c, POINT)],
+            SpatialOp::PlaneTurn {
                 base,
                 normal,
                 pivot,
@@ -351,7 +474,7 @@ impl Op {
                 (*point, POINT),
                 (*d, SCALAR),
             ],
-            Op::PlaneAxisTurn {
+            SpatialOp::PlaneAxisTurn {
                 base,
                 normal,
                 pivot,
@@ -367,14 +490,14 @@ impl Op {
                 (*d, SCALAR),
                 (*axis, VECTOR),
             ],
-            Op::Aligned { dir, near } => vec![(*dir, VECTOR), (*near, VECTOR)],
-            Op::ConeTurn { axis, angle, dir } => {
+            SpatialOp::Aligned { dir, near } => vec![(*dir, VECTOR), (*near, VECTOR)],
+            SpatialOp::ConeTurn { axis, angle, dir } => {
                 vec![(*axis, VECTOR), (*angle, SCALAR), (*dir, VECTOR)]
             }
-            Op::PassingAngle {
+            SpatialOp::PassingAngle {
                 from, to, d, now, ..
             } => vec![(*from, POINT), (*to, POINT), (*d, SCALAR), (*now, VECTOR)],
-            Op::TiltToDistance {
+            SpatialOp::TiltToDistance {
                 centre,
                 point,
                 radius,
@@ -388,7 +511,7 @@ impl Op {
                 (*d, SCALAR),
                 (*now, VECTOR),
             ],
-            Op::AngleTurn {
+            SpatialOp::AngleTurn {
                 u, v, axis, angle, ..
             } => vec![
                 (*u, VECTOR),
@@ -396,137 +519,50 @@ impl Op {
                 (*axis, VECTOR),
                 (*angle, SCALAR),
             ],
-            Op::Coordinate { point, .. } => vec![(*point, POINT)],
-            Op::PointAt { x, y, z } => vec![(*x, SCALAR), (*y, SCALAR), (*z, SCALAR)],
-            Op::ShiftedCircle { circle, from, to } => {
-                vec![(*circle, CIRCLE), (*from, POINT), (*to, POINT)]
-            }
-            Op::Nearest { locus, point } => vec![(*locus, NEAREST_LOCUS), (*point, POINT)],
-            Op::Onto { locus, point, .. } => vec![(*locus, ANY_LOCUS), (*point, POINT)],
-            Op::Intersect {
-                meet, a, b, near, ..
-            } => {
-                let (ta, tb) = meet.operands();
-                vec![(*a, accepts(ta)), (*b, accepts(tb)), (*near, POINT)]
-            }
-            Op::PassingDir {
-                pivot,
-                base,
-                dir,
-                point,
-                offset,
-                ..
-            } => {
-                let mut v = vec![
-                    (*pivot, POINT),
-                    (*base, POINT),
-                    (*dir, VECTOR),
-                    (*point, POINT),
-                ];
-                v.extend(offset.map(|o| (o, SCALAR)));
-                v
-            }
-            Op::Translate { from, to, .. } => vec![(*from, POINT), (*to, POINT)],
-            Op::RotatePoint {
-                pivot,
-                axis,
-                from,
-                to,
-                ..
-            } => rotation(*pivot, *axis, (*from, POINT), (*to, POINT)),
-            Op::RotateDir {
-                pivot,
-                axis,
-                from,
-                to,
-                ..
-            } => rotation(*pivot, *axis, (*from, VECTOR), (*to, VECTOR)),
-            Op::RotateBy {
+            SpatialOp::Coordinate { point, .. } => vec![(*point, POINT)],
+            SpatialOp::PointAt { x, y, z } => vec![(*x, SCALAR), (*y, SCALAR), (*z, SCALAR)],
+            SpatialOp::RotateBy {
                 pivot, axis, angle, ..
             } => vec![(*pivot, POINT), (*axis, VECTOR), (*angle, SCALAR)],
-            Op::SetDim { value, .. } => vec![(*value, SCALAR)],
-            Op::Check { residual, .. } | Op::Error { residual, .. } => residual.operands(),
-            Op::Close { residual, .. } => vec![(*residual, SCALAR)],
+            SpatialOp::TurnedAbout { dir, axis, angle } => {
+                vec![(*dir, VECTOR), (*axis, VECTOR), (*angle, SCALAR)]
+            }
         }
-    }
-
-    /// The registers the operation reads.
-    pub fn reads(&self) -> Vec<Reg> {
-        self.operands().into_iter().map(|(r, _)| r).collect()
     }
 
     /// The type of the value it defines, if it defines one.
     pub fn output(&self) -> Option<Ty> {
         Some(match self {
-            Op::Expr(_)
-            | Op::Size { .. }
-            | Op::Const(_)
-            | Op::Default(_)
-            | Op::Neg(_)
-            | Op::DimOf(_)
-            | Op::Sum(_)
-            | Op::Along { .. }
-            | Op::AngleOf(_)
-            | Op::LocusParam { .. }
-            | Op::SurfaceParam { .. }
-            | Op::Error { .. }
-            | Op::Implicit { .. }
-            | Op::RadiusFromLine { .. }
-            | Op::RadiusFromPoint { .. }
-            | Op::AngleAbout { .. }
-            | Op::AngleAboutBoth { .. }
-            | Op::TurnReaching { .. }
-            | Op::HelixAdvance { .. }
-            | Op::HelixTurn { .. }
-            | Op::TiltToDistance { .. }
-            | Op::PassingAngle { .. }
-            | Op::Coordinate { .. } => Ty::Scalar,
-            Op::WorldAxis(_)
-            | Op::AngleTurn { .. }
-            | Op::ConeTurn { .. }
-            | Op::Aligned { .. }
-            | Op::PlaneNormal { .. }
-            | Op::PlaneTurn { .. }
-            | Op::PlaneAxisTurn { .. } => Ty::Vector,
-            Op::PointAt { .. } => Ty::Point,
-            Op::DirectionTo { .. }
-            | Op::DirOf(_)
-            | Op::Axis(..)
-            | Op::Rotated { .. }
-            | Op::Opposite(_)
-            | Op::Across(_)
-            | Op::TurnedAbout { .. }
-            | Op::PassingDir { .. } => Ty::Vector,
-            Op::Plane { .. } | Op::ParallelPlane { .. } => Ty::Plane,
-            Op::Sphere { .. } | Op::SphereThrough { .. } | Op::ShiftedSphere { .. } => Ty::Sphere,
-            Op::Cylinder { .. } | Op::ShiftedCylinder { .. } => Ty::Cylinder,
-            Op::Torus { .. } | Op::ShiftedTorus { .. } => Ty::Torus,
-            Op::Orbit { .. } | Op::Circle3 { .. } => Ty::Circle,
-            Op::Reversed(_)
-            | Op::OffsetLine { .. }
-            | Op::CentresLineLine { .. }
-            | Op::Line { .. }
-            | Op::ParallelLine { .. } => Ty::Line,
-            Op::CentresLinePoint { .. } | Op::CentresPointPoint { .. } => Ty::Conic,
-            Op::PointOf(_)
-            | Op::Nearest { .. }
-            | Op::Onto { .. }
-            | Op::PointXY { .. }
-            | Op::Midpoint { .. }
-            | Op::Reflect { .. }
-            | Op::Mirror { .. }
-            | Op::MirrorPlane { .. }
-            | Op::LocusPoint { .. }
-            | Op::SurfacePoint { .. } => Ty::Point,
-            Op::Circle { .. } | Op::CircleThrough { .. } | Op::ShiftedCircle { .. } => Ty::Circle,
-            Op::Intersect { meet, .. } => meet.result(),
-            Op::Translate { .. }
-            | Op::RotatePoint { .. }
-            | Op::RotateDir { .. }
-            | Op::RotateBy { .. }
-            | Op::SetDim { .. }
-            | Op::Check { .. }
-            | Op::Close { .. } => return None,
+            SpatialOp::SurfaceParam { .. }
+            | SpatialOp::AngleAbout { .. }
+            | SpatialOp::AngleAboutBoth { .. }
+            | SpatialOp::TurnReaching { .. }
+            | SpatialOp::HelixAdvance { .. }
+            | SpatialOp::HelixTurn { .. }
+            | SpatialOp::TiltToDistance { .. }
+            | SpatialOp::PassingAngle { .. }
+            | SpatialOp::Coordinate { .. } => Ty::Scalar,
+            SpatialOp::TurnedAbout { .. }
+            | SpatialOp::Opposite(_)
+            | SpatialOp::Across(_)
+            | SpatialOp::WorldAxis(_)
+            | SpatialOp::AngleTurn { .. }
+            | SpatialOp::ConeTurn { .. }
+            | SpatialOp::Aligned { .. }
+            | SpatialOp::PlaneNormal { .. }
+            | SpatialOp::PlaneTurn { .. }
+            | SpatialOp::PlaneAxisTurn { .. } => Ty::Vector,
+            SpatialOp::Plane { .. } | SpatialOp::ParallelPlane { .. } => Ty::Plane,
+            SpatialOp::Sphere { .. }
+            | SpatialOp::SphereThrough { .. }
+            | SpatialOp::ShiftedSphere { .. } => Ty::Sphere,
+            SpatialOp::Cylinder { .. } | SpatialOp::ShiftedCylinder { .. } => Ty::Cylinder,
+            SpatialOp::Torus { .. } | SpatialOp::ShiftedTorus { .. } => Ty::Torus,
+            SpatialOp::Orbit { .. } | SpatialOp::Circle3 { .. } => Ty::Circle,
+            SpatialOp::PointAt { .. }
+            | SpatialOp::MirrorPlane { .. }
+            | SpatialOp::SurfacePoint { .. } => Ty::Point,
+            SpatialOp::RotateBy { .. } => return None,
         })
     }
 }
@@ -645,37 +681,37 @@ impl Plan {
         default_uses: &mut [usize],
         errors: &mut Vec<String>,
     ) {
+        // A plan holds its own space's operations and meets only: each back end matches no
+        // other's.
         match op {
-            Op::Intersect { meet, branch, .. } => {
-                if !meet.in_space(self.space) {
-                    errors.push(format!("step {i} intersects {meet:?} in {}", self.space));
-                }
-                match branch_uses.get_mut(branch.0 as usize) {
-                    Some(n) => *n += 1,
-                    None => errors.push(format!("step {i} uses an undeclared branch")),
-                }
+            Op::Planar(_) if self.space != Space::D2 => errors.push(format!(
+                "step {i} is an operation of the plane in {}",
+                self.space
+            )),
+            Op::Spatial(_) if self.space != Space::D3 => errors.push(format!(
+                "step {i} is an operation of space in {}",
+                self.space
+            )),
+            Op::Intersect { meet, .. } if !meet.in_space(self.space) => {
+                errors.push(format!("step {i} intersects {meet:?} in {}", self.space));
             }
-            Op::AngleTurn { branch, .. } | Op::PlaneAxisTurn { branch, .. } => {
-                if self.space != Space::D3 {
-                    errors.push(format!("step {i} turns to an angle about an axis in 2d"));
-                }
-                match branch_uses.get_mut(branch.0 as usize) {
-                    Some(n) => *n += 1,
-                    None => errors.push(format!("step {i} uses an undeclared branch")),
-                }
+            _ => {}
+        }
+        let branch = match op {
+            Op::Intersect { branch, .. }
+            | Op::Planar(PlanarOp::PassingDir { branch, .. })
+            | Op::Spatial(
+                SpatialOp::AngleTurn { branch, .. } | SpatialOp::PlaneAxisTurn { branch, .. },
+            ) => Some(*branch),
+            _ => None,
+        };
+        if let Some(branch) = branch {
+            match branch_uses.get_mut(branch.0 as usize) {
+                Some(n) => *n += 1,
+                None => errors.push(format!("step {i} uses an undeclared branch")),
             }
-            Op::PassingDir { branch, .. } => {
-                if self.space != Space::D2 {
-                    errors.push(format!(
-                        "step {i} turns a line onto a point in {}",
-                        self.space
-                    ));
-                }
-                match branch_uses.get_mut(branch.0 as usize) {
-                    Some(n) => *n += 1,
-                    None => errors.push(format!("step {i} uses an undeclared branch")),
-                }
-            }
+        }
+        match op {
             Op::Default(d) => match default_uses.get_mut(d.0 as usize) {
                 Some(n) => *n += 1,
                 None => errors.push(format!("step {i} reads an undeclared default")),
@@ -686,9 +722,6 @@ impl Plan {
                     errors.push(format!("step {i} rotates about {axis:?} in {}", self.space));
                 }
             }
-            Op::RotateBy { .. } if self.space == Space::D2 => {
-                errors.push(format!("step {i} rotates about an axis of space in 2d"));
-            }
             Op::Close { .. }
                 if !self
                     .iterations
@@ -697,14 +730,6 @@ impl Plan {
             {
                 errors.push(format!(
                     "step {i} closes an iteration outside every iterated region"
-                ));
-            }
-            Op::Axis(..) | Op::CentresLineLine { .. } | Op::CentresLinePoint { .. }
-                if self.space != Space::D2 =>
-            {
-                errors.push(format!(
-                    "step {i} is an operation of the plane in {}",
-                    self.space
                 ));
             }
             _ => {}

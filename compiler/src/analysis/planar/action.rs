@@ -8,7 +8,7 @@
 use super::relation::{AngleValue, Dir, Relation};
 use super::{Locus, Planar, Rel, Target};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Ty};
+use crate::plan::{Op, PlanarOp, Ty};
 use gcs_lang::model::GeomKind;
 
 impl Builder<'_, Planar> {
@@ -67,7 +67,8 @@ impl Builder<'_, Planar> {
                             self.word(radius),
                             self.word(at)
                         );
-                        let c = self.value(Op::Circle { center: at, radius }, Ty::Circle, words);
+                        let c =
+                            self.value(PlanarOp::Circle { center: at, radius }, Ty::Circle, words);
                         self.centers.insert(c, self.word(at));
                         Target::On(Locus::Circle(c))
                     }
@@ -133,7 +134,7 @@ impl Builder<'_, Planar> {
                         let base = self.dir(u);
                         let words = format!("{} turned by {}", self.word(base), self.word(a));
                         let target = self.value(
-                            Op::Rotated {
+                            PlanarOp::Rotated {
                                 dir: base,
                                 angle: a,
                             },
@@ -147,7 +148,7 @@ impl Builder<'_, Planar> {
                         let words = format!("{} turned back by {}", self.word(base), self.word(a));
                         let minus = self.neg(a);
                         let target = self.value(
-                            Op::Rotated {
+                            PlanarOp::Rotated {
                                 dir: base,
                                 angle: minus,
                             },

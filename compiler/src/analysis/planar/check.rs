@@ -8,7 +8,7 @@ use super::relation::{AngleValue, Dir, Relation};
 use super::{angle_words, pinned_at_midpoint, Planar, Pos, Rot};
 use crate::analysis::driver::Builder;
 use crate::analysis::geometry::Invariants;
-use crate::plan::{Op, Reg, Residual, Ty};
+use crate::plan::{Op, PlanarOp, Reg, Residual, Ty};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part};
 
 impl Builder<'_, Planar> {
@@ -18,7 +18,7 @@ impl Builder<'_, Planar> {
             Dir::Feature(g) => self.direction(g),
             Dir::World(x, y) => {
                 let words = if x != 0.0 { "the X axis" } else { "the Y axis" }.to_string();
-                self.value(Op::Axis(x, y), Ty::Vector, words)
+                self.value(PlanarOp::Axis(x, y), Ty::Vector, words)
             }
         }
     }

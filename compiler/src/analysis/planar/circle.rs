@@ -12,7 +12,7 @@ use super::relation::{Nesting, Relation};
 use super::{Locus, Planar, Pos, Rel, Target};
 use crate::analysis::driver::Builder;
 use crate::analysis::geometry::Invariants;
-use crate::plan::{Op, Reg, Ty};
+use crate::plan::{Op, PlanarOp, Reg, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, Part};
 
 /// A fixed-distance invariant of a circle with centre `X` and free radius `ρ`.
@@ -110,7 +110,7 @@ impl Builder<'_, Planar> {
                         self.name(centre)
                     );
                     let c = self.value(
-                        Op::Circle {
+                        PlanarOp::Circle {
                             center: at,
                             radius: rr,
                         },
@@ -382,7 +382,7 @@ impl Builder<'_, Planar> {
                 );
                 if side < 0.0 {
                     let words = format!("{} reversed", self.word(line));
-                    line = self.value(Op::Reversed(line), Ty::Line, words);
+                    line = self.value(PlanarOp::Reversed(line), Ty::Line, words);
                 }
                 let fd = Fd::Line {
                     line,
@@ -657,7 +657,7 @@ impl Builder<'_, Planar> {
             "pi/2".into(),
         );
         let across = self.value(
-            Op::Rotated {
+            PlanarOp::Rotated {
                 dir: towards,
                 angle: quarter,
             },
@@ -696,7 +696,7 @@ impl Builder<'_, Planar> {
             Fd::Line { line, a, .. } => {
                 let by = self.sum(vec![(1.0, radius), (1.0, a)]);
                 let words = format!("{} moved {} to its left", self.word(line), self.word(by));
-                Locus::Line(self.value(Op::OffsetLine { line, by }, Ty::Line, words))
+                Locus::Line(self.value(PlanarOp::OffsetLine { line, by }, Ty::Line, words))
             }
             Fd::Point { at, b, plus, .. } => {
                 let rr = if plus {
@@ -710,7 +710,7 @@ impl Builder<'_, Planar> {
                     self.word(at)
                 );
                 let c = self.value(
-                    Op::Circle {
+                    PlanarOp::Circle {
                         center: at,
                         radius: rr,
                     },
@@ -741,13 +741,17 @@ impl Builder<'_, Planar> {
                 },
             ) => {
                 let words = format!("the bisector of centres of {name}");
-                Locus::Line(self.value(Op::CentresLineLine { l1, a1, l2, a2 }, Ty::Line, words))
+                Locus::Line(self.value(
+                    PlanarOp::CentresLineLine { l1, a1, l2, a2 },
+                    Ty::Line,
+                    words,
+                ))
             }
             (Fd::Line { line, a, .. }, Fd::Point { at, b, plus, .. })
             | (Fd::Point { at, b, plus, .. }, Fd::Line { line, a, .. }) => {
                 let words = format!("the parabola of centres of {name}");
                 Locus::Conic(self.value(
-                    Op::CentresLinePoint {
+                    PlanarOp::CentresLinePoint {
                         line,
                         a,
                         at,
@@ -774,7 +778,7 @@ impl Builder<'_, Planar> {
             ) => {
                 let words = format!("the conic of centres of {name}");
                 Locus::Conic(self.value(
-                    Op::CentresPointPoint {
+                    PlanarOp::CentresPointPoint {
                         c1,
                         b1,
                         p1,
@@ -810,7 +814,11 @@ impl Builder<'_, Planar> {
                     self.word(line),
                     self.word(a)
                 );
-                self.value(Op::RadiusFromLine { line, a, centre: x }, Ty::Scalar, words)
+                self.value(
+                    PlanarOp::RadiusFromLine { line, a, centre: x },
+                    Ty::Scalar,
+                    words,
+                )
             }
             Fd::Point { at, b, plus, .. } => {
                 let words = format!(
@@ -819,7 +827,7 @@ impl Builder<'_, Planar> {
                     self.word(at)
                 );
                 self.value(
-                    Op::RadiusFromPoint {
+                    PlanarOp::RadiusFromPoint {
                         at,
                         b,
                         plus,

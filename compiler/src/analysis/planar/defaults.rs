@@ -15,7 +15,7 @@
 
 use super::{locus_reg, Locus, Planar, Pos, Rot};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Reg, RotationAxis, Ty};
+use crate::plan::{Op, PlanarOp, Reg, RotationAxis, Ty};
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part};
 
 impl Builder<'_, Planar> {
@@ -299,14 +299,14 @@ impl Builder<'_, Planar> {
         explain: String,
     ) {
         let measure = self.value(
-            Op::AngleOf(from),
+            PlanarOp::AngleOf(from),
             Ty::Scalar,
             format!("the angle of {}", self.word(from)),
         );
         let angle = self.default_value(geoms[0], name.clone(), meaning, measure);
-        let x = self.value(Op::Axis(1.0, 0.0), Ty::Vector, "the X axis".into());
+        let x = self.value(PlanarOp::Axis(1.0, 0.0), Ty::Vector, "the X axis".into());
         let to = self.value(
-            Op::Rotated { dir: x, angle },
+            PlanarOp::Rotated { dir: x, angle },
             Ty::Vector,
             format!("the direction at `{name}`"),
         );
@@ -339,7 +339,7 @@ impl Builder<'_, Planar> {
             .enumerate()
         {
             let words = format!("the {} axis", axis.to_uppercase());
-            let dir = self.value(Op::Axis(x, y), Ty::Vector, words);
+            let dir = self.value(PlanarOp::Axis(x, y), Ty::Vector, words);
             let measure = self.value(
                 Op::Along {
                     from: origin,
@@ -353,7 +353,7 @@ impl Builder<'_, Planar> {
             coords[i] = self.default_value(f, format!("{fname}_{axis}"), meaning, measure);
         }
         let to = self.value(
-            Op::PointXY {
+            PlanarOp::PointXY {
                 x: coords[0],
                 y: coords[1],
             },
@@ -470,7 +470,7 @@ impl Builder<'_, Planar> {
     fn origin(&mut self) -> Reg {
         let zero = self.value(Op::Const(0.0), Ty::Scalar, "0".into());
         self.value(
-            Op::PointXY { x: zero, y: zero },
+            PlanarOp::PointXY { x: zero, y: zero },
             Ty::Point,
             "the origin".into(),
         )

@@ -10,7 +10,7 @@ use super::{
     depends_on_dim, locus_reg, pinned_at_midpoint, pivot_name, Locus, Planar, Pos, Rel, Rot, Target,
 };
 use crate::analysis::driver::Builder;
-use crate::plan::{Meet, Op, Reg, RotationAxis, Ty};
+use crate::plan::{Meet, Op, PlanarOp, Reg, RotationAxis, Ty};
 use gcs_lang::model::{ConstraintId, GeomId};
 
 impl Builder<'_, Planar> {
@@ -25,7 +25,7 @@ impl Builder<'_, Planar> {
             self.name(f)
         );
         let c = self.value(
-            Op::CircleThrough {
+            PlanarOp::CircleThrough {
                 center: at,
                 through: from,
                 radius,

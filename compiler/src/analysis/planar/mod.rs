@@ -16,7 +16,7 @@
 //! The fragments here, by what they move: `move_feature` translates, rotates about a pivot,
 //! slides along a locus, or takes the least motion; `turn` turns a direction onto a
 //! direction; `turn_line_past` turns a line about a pivot until it passes a point at a
-//! distance (`Op::PassingDir`); a cluster sliding on a locus and turning is taken to a point
+//! distance (`PlanarOp::PassingDir`); a cluster sliding on a locus and turning is taken to a point
 //! where its locus meets a circle; a lone line that must pass two known points at distances
 //! records each as a [`Pass`] until the second fixes its direction. Locus analysis is
 //! `locus_of` (the locus table, and the segment ends that a free length slides along a known

@@ -28,7 +28,7 @@
 use super::relation::Relation;
 use super::{Dir, Locus, Planar, Pos, Rel, Rot, Target};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Reg, Ty};
+use crate::plan::{Op, PlanarOp, Reg, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Part};
 
 impl Builder<'_, Planar> {
@@ -333,7 +333,7 @@ impl Builder<'_, Planar> {
                     self.word(pivot)
                 );
                 let own = self.value(
-                    Op::CircleThrough {
+                    PlanarOp::CircleThrough {
                         center: pivot,
                         through: mid,
                         radius: None,
@@ -368,7 +368,7 @@ impl Builder<'_, Planar> {
                 // it so that the midpoint lands on `at`.
                 let pg = self.point(g);
                 let about_g = self.value(
-                    Op::CircleThrough {
+                    PlanarOp::CircleThrough {
                         center: pg,
                         through: mid,
                         radius: None,
@@ -521,7 +521,7 @@ impl Builder<'_, Planar> {
         );
         let from = self.point(known);
         let x = self.value(
-            Op::Mirror { point: from, line },
+            PlanarOp::Mirror { point: from, line },
             Ty::Point,
             format!("the mirror image of {} across {lname}", self.name(known)),
         );
@@ -567,7 +567,7 @@ impl Builder<'_, Planar> {
                 if sense > 0.0 { "pi/2" } else { "-pi/2" }.into(),
             );
             let along = self.value(
-                Op::Rotated {
+                PlanarOp::Rotated {
                     dir: across,
                     angle: quarter,
                 },

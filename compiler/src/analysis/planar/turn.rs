@@ -9,7 +9,7 @@ use super::{
     depends_on_dim, pinned_at_midpoint, pivot_name, Locus, Pass, Planar, Pos, Rel, Rot, Target,
 };
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Reg, RotationAxis, Ty};
+use crate::plan::{Op, PlanarOp, Reg, RotationAxis, Ty};
 use gcs_lang::model::{GeomId, GeomKind, Part};
 
 impl Builder<'_, Planar> {
@@ -196,7 +196,7 @@ impl Builder<'_, Planar> {
                 ],
             );
             let to = self.value(
-                Op::PassingDir {
+                PlanarOp::PassingDir {
                     pivot: first.at,
                     base: first.at,
                     dir: dv,
@@ -277,7 +277,7 @@ impl Builder<'_, Planar> {
             "a quarter turn".into(),
         );
         let left = self.value(
-            Op::Rotated {
+            PlanarOp::Rotated {
                 dir: axis,
                 angle: quarter,
             },
@@ -357,7 +357,7 @@ impl Builder<'_, Planar> {
             None => format!("the direction of {dn} that passes through {pn}"),
         };
         let to = self.value(
-            Op::PassingDir {
+            PlanarOp::PassingDir {
                 pivot,
                 base: bp,
                 dir: dv,

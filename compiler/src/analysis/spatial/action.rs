@@ -8,7 +8,7 @@ use super::relation::{AngleValue, Length, Relation};
 use super::{Locus, Rel, Shape, Spatial, Target, Trans, Turn};
 use crate::analysis::driver::Builder;
 use crate::analysis::geometry::Invariants;
-use crate::plan::{Op, Ty};
+use crate::plan::{Op, SpatialOp, Ty};
 use gcs_lang::expr::ExprId;
 use gcs_lang::model::GeomId;
 
@@ -88,7 +88,8 @@ impl Builder<'_, Spatial> {
                             self.name(known),
                             self.word(radius)
                         );
-                        let s = self.value(Op::Sphere { center: x, radius }, Ty::Sphere, words);
+                        let s =
+                            self.value(SpatialOp::Sphere { center: x, radius }, Ty::Sphere, words);
                         Target::On(Locus::Sphere(s))
                     }
                 };
@@ -177,7 +178,7 @@ impl Builder<'_, Spatial> {
             let words = format!("the direction from {lname}'s point to {pname}");
             let to = self.value(Op::DirectionTo { from: at, to: x }, Ty::Vector, words);
             let words = format!("that direction, or its opposite, nearer {lname}'s");
-            let to = self.value(Op::Aligned { dir: to, near: d }, Ty::Vector, words);
+            let to = self.value(SpatialOp::Aligned { dir: to, near: d }, Ty::Vector, words);
             return self.turn_onto(dir, to, r, false);
         }
         // A line free to translate, its direction not known: it moves (across itself,
@@ -220,7 +221,7 @@ impl Builder<'_, Spatial> {
             let offset = d.map(|e| self.expr(e));
             let words = self.plane_words(base, normal, offset);
             let q = self.value(
-                Op::Plane {
+                SpatialOp::Plane {
                     point: b,
                     normal: n,
                     offset,
@@ -246,7 +247,7 @@ impl Builder<'_, Spatial> {
                 offset.map_or(String::new(), |o| format!(" moved {}", self.word(o)))
             );
             let q = self.value(
-                Op::Plane {
+                SpatialOp::Plane {
                     point: x,
                     normal: n,
                     offset,
@@ -275,7 +276,7 @@ impl Builder<'_, Spatial> {
                 let k = self.direction(known);
                 let target = if sense < 0.0 {
                     let words = format!("the opposite of {}", self.name(known));
-                    self.value(Op::Opposite(k), Ty::Vector, words)
+                    self.value(SpatialOp::Opposite(k), Ty::Vector, words)
                 } else if sense == 0.0 {
                     // Either sense: the nearer (the least turn).
                     let now = self.direction(moving);
@@ -284,7 +285,7 @@ impl Builder<'_, Spatial> {
                         self.name(known),
                         self.name(moving)
                     );
-                    self.value(Op::Aligned { dir: k, near: now }, Ty::Vector, words)
+                    self.value(SpatialOp::Aligned { dir: k, near: now }, Ty::Vector, words)
                 } else {
                     k
                 };
@@ -328,7 +329,7 @@ impl Builder<'_, Spatial> {
         let (center, normal, radius) = self.circle_parts(circle);
         let words = self.name(circle);
         let locus = self.value(
-            Op::Circle3 {
+            SpatialOp::Circle3 {
                 center,
                 normal,
                 radius,
@@ -347,7 +348,7 @@ impl Builder<'_, Spatial> {
                     self.name(circle)
                 );
                 Locus::Torus(self.value(
-                    Op::Torus {
+                    SpatialOp::Torus {
                         circle: locus,
                         tube,
                     },
@@ -433,7 +434,7 @@ impl Builder<'_, Spatial> {
             );
             let words = format!("the turn of {vname} about {}", self.name(axis));
             let turn = self.value(
-                Op::AngleAbout {
+                SpatialOp::AngleAbout {
                     u: x,
                     v: w,
                     axis: z,
@@ -442,14 +443,18 @@ impl Builder<'_, Spatial> {
                 words,
             );
             let words = format!("the advance of that turn nearest {qname}'s");
-            let advance = self.value(Op::HelixAdvance { now, turn, pitch }, Ty::Scalar, words);
+            let advance = self.value(
+                SpatialOp::HelixAdvance { now, turn, pitch },
+                Ty::Scalar,
+                words,
+            );
             let words = format!(
                 "the plane across {} at that advance from {}",
                 self.name(axis),
                 self.name(p)
             );
             let plane = self.value(
-                Op::Plane {
+                SpatialOp::Plane {
                     point: at,
                     normal: z,
                     offset: Some(advance),
@@ -473,14 +478,14 @@ impl Builder<'_, Spatial> {
                 words,
             );
             let words = "the turn of that advance".to_string();
-            let turn = self.value(Op::HelixTurn { advance, pitch }, Ty::Scalar, words);
+            let turn = self.value(SpatialOp::HelixTurn { advance, pitch }, Ty::Scalar, words);
             let words = format!(
                 "{} turned by that angle about {}",
                 self.name(u),
                 self.name(axis)
             );
             let target = self.value(
-                Op::TurnedAbout {
+                SpatialOp::TurnedAbout {
                     dir: x,
                     axis: z,
                     angle: turn,

@@ -9,7 +9,7 @@ use super::relation::{AngleValue, Length, Relation};
 use super::Spatial;
 use crate::analysis::driver::Builder;
 use crate::analysis::geometry::Invariants;
-use crate::plan::{Op, Reg, Residual, Ty};
+use crate::plan::{Op, Reg, Residual, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
 
 impl Builder<'_, Spatial> {
@@ -165,7 +165,7 @@ impl Builder<'_, Spatial> {
         };
         let normal = match self.model.part(circle, gcs_lang::model::Part::Normal) {
             Some(n) => self.direction(n),
-            None => self.value(Op::WorldAxis(2), Ty::Vector, "the Z axis".into()),
+            None => self.value(SpatialOp::WorldAxis(2), Ty::Vector, "the Z axis".into()),
         };
         let radius = self.size_of(circle);
         (centre, normal, radius)

@@ -5,7 +5,7 @@
 
 use super::{Locus, Rel, Shape, Spatial, Target, Turn};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Reg, Residual, RotationAxis, Ty};
+use crate::plan::{Op, Reg, Residual, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::{ConstraintId, GeomId, Part};
 
 impl Builder<'_, Spatial> {
@@ -40,7 +40,7 @@ impl Builder<'_, Spatial> {
         let (cname, pname) = (self.name(circle), self.name(p));
         let words = format!("the circle of {cname}'s radius about {pname}, parallel to {cname}");
         let about = self.value(
-            Op::Circle3 {
+            SpatialOp::Circle3 {
                 center: at,
                 normal,
                 radius,
@@ -54,7 +54,7 @@ impl Builder<'_, Spatial> {
                 let tube = self.expr(e);
                 let words = format!("the torus at {} from {}", self.word(tube), self.word(about));
                 Locus::Torus(self.value(
-                    Op::Torus {
+                    SpatialOp::Torus {
                         circle: about,
                         tube,
                     },
@@ -68,7 +68,7 @@ impl Builder<'_, Spatial> {
 
     /// A sized circle held at its centre, free to turn, tilted the least about its centre so
     /// that known point `p` lies `d` from it: its normal onto the cone about the direction to
-    /// `p` whose angle puts `p` there (`Op::TiltToDistance`, on the side of the plane `p` is
+    /// `p` whose angle puts `p` there (`SpatialOp::TiltToDistance`, on the side of the plane `p` is
     /// on now). It may then only turn about the line from its centre to `p`.
     pub(super) fn tilt_circle(
         &mut self,
@@ -103,7 +103,7 @@ impl Builder<'_, Spatial> {
             self.word(d)
         );
         let angle = self.value(
-            Op::TiltToDistance {
+            SpatialOp::TiltToDistance {
                 centre: c,
                 point: at,
                 radius,
@@ -126,7 +126,7 @@ impl Builder<'_, Spatial> {
 
     /// Turns circle cluster `k` (its centre at `c`, its normal `n`) the least about its centre
     /// so that its normal makes `angle` with `toward`: onto the cone about `toward` nearest it
-    /// (`Op::ConeTurn`). It may then only turn about `toward`.
+    /// (`SpatialOp::ConeTurn`). It may then only turn about `toward`.
     fn turn_normal_onto_cone(
         &mut self,
         k: usize,
@@ -137,7 +137,7 @@ impl Builder<'_, Spatial> {
         satisfies: Vec<ConstraintId>,
     ) {
         let to = self.value(
-            Op::ConeTurn {
+            SpatialOp::ConeTurn {
                 axis: toward,
                 angle,
                 dir: n,

@@ -8,7 +8,7 @@
 use super::relation::Relation;
 use super::{Locus, Shape, Spatial, Target, Trans, Turn};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Reg, Ty};
+use crate::plan::{Op, Reg, SpatialOp, Ty};
 use gcs_lang::model::{GeomId, GeomKind, Part};
 
 impl Builder<'_, Spatial> {
@@ -127,7 +127,7 @@ impl Builder<'_, Spatial> {
         let (point, normal) = (self.point(line), self.direction(dir));
         let words = format!("the plane through {} across it", self.name(line));
         let plane = self.value(
-            Op::Plane {
+            SpatialOp::Plane {
                 point,
                 normal,
                 offset: None,
@@ -209,7 +209,7 @@ impl Builder<'_, Spatial> {
         for (i, (what, suffix)) in words.into_iter().zip(suffixes).enumerate() {
             let meaning = format!("the {what} of {fname} on {}", self.word(l));
             let measure = self.value(
-                Op::SurfaceParam {
+                SpatialOp::SurfaceParam {
                     locus: l,
                     point: from,
                     component: i as u8,
@@ -220,7 +220,7 @@ impl Builder<'_, Spatial> {
             uv[i] = self.default_value(f, format!("{fname}_{suffix}"), meaning, measure);
         }
         let to = self.value(
-            Op::SurfacePoint {
+            SpatialOp::SurfacePoint {
                 locus: l,
                 u: uv[0],
                 v: uv[1],
@@ -253,7 +253,7 @@ impl Builder<'_, Spatial> {
         for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
             let meaning = format!("the {axis} coordinate of {fname}");
             let measure = self.value(
-                Op::Coordinate {
+                SpatialOp::Coordinate {
                     point: from,
                     axis: i as u8,
                 },
@@ -263,7 +263,7 @@ impl Builder<'_, Spatial> {
             coords[i] = self.default_value(f, format!("{fname}_{axis}"), meaning, measure);
         }
         let to = self.value(
-            Op::PointAt {
+            SpatialOp::PointAt {
                 x: coords[0],
                 y: coords[1],
                 z: coords[2],
@@ -305,7 +305,7 @@ impl Builder<'_, Spatial> {
         let pivot = self.pivot_of(k);
         for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
             let words = format!("the {} axis", axis.to_uppercase());
-            let a = self.value(Op::WorldAxis(i as u8), Ty::Vector, words);
+            let a = self.value(SpatialOp::WorldAxis(i as u8), Ty::Vector, words);
             self.turn_by_default(&geoms, pivot, a, format!("{gname}_{axis}_angle"));
         }
         self.turned(k);
@@ -318,7 +318,7 @@ impl Builder<'_, Spatial> {
         let gname = self.name(geoms[0]);
         // A world axis is named with the point it turns about; a body's own axis says it.
         let through = match self.def(axis).map(|s| &s.op) {
-            Some(Op::WorldAxis(_)) => format!(" through {}", self.word(pivot)),
+            Some(Op::Spatial(SpatialOp::WorldAxis(_))) => format!(" through {}", self.word(pivot)),
             _ => String::new(),
         };
         let meaning = format!(
@@ -332,7 +332,7 @@ impl Builder<'_, Spatial> {
             self.group_name(geoms)
         );
         self.emit(
-            Op::RotateBy {
+            SpatialOp::RotateBy {
                 geoms: geoms.to_vec(),
                 pivot,
                 axis,
@@ -356,7 +356,7 @@ impl Builder<'_, Spatial> {
         let pivot = self.pivot_of(k);
         let d = self.direction(dir);
         let words = format!("a direction across {}", self.name(dir));
-        let across = self.value(Op::Across(d), Ty::Vector, words);
+        let across = self.value(SpatialOp::Across(d), Ty::Vector, words);
         let quarter = self.value(
             Op::Const(std::f64::consts::FRAC_PI_2),
             Ty::Scalar,
@@ -364,7 +364,7 @@ impl Builder<'_, Spatial> {
         );
         let words = format!("the direction across {} and that direction", self.name(dir));
         let both = self.value(
-            Op::TurnedAbout {
+            SpatialOp::TurnedAbout {
                 dir: across,
                 axis: d,
                 angle: quarter,

@@ -7,7 +7,7 @@ use super::relation::Relation;
 use super::{Locus, Shape, Spatial, Trans, Turn};
 use crate::analysis::driver::Builder;
 use crate::analysis::geometry::Invariants;
-use crate::plan::{Op, Ty};
+use crate::plan::{Op, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
 
 impl Builder<'_, Spatial> {
@@ -79,10 +79,10 @@ impl Builder<'_, Spatial> {
         let t = self.point(third);
         let tn = self.name(third);
         let words = format!("the normal of the plane through {an}, {on} and {tn} in the sketch");
-        let n = self.value(Op::PlaneNormal { a, b: o, c: t }, Ty::Vector, words);
+        let n = self.value(SpatialOp::PlaneNormal { a, b: o, c: t }, Ty::Vector, words);
         let words = format!("the plane through {an}, {on} and {tn} as sketched");
         let plane = self.value(
-            Op::Plane {
+            SpatialOp::Plane {
                 point: a,
                 normal: n,
                 offset: None,

@@ -8,7 +8,7 @@
 use super::relation::Relation;
 use super::{Locus, Rel, Spatial, Trans, Turn};
 use crate::analysis::driver::Builder;
-use crate::plan::{HelixRegs, Op, Reach, Reg, ScrewRegs, Ty};
+use crate::plan::{HelixRegs, Op, Reach, Reg, ScrewRegs, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
 
 impl Builder<'_, Spatial> {
@@ -55,7 +55,7 @@ impl Builder<'_, Spatial> {
     /// the cluster's remaining slide to bring it home (none: the joint's own line or plane, or
     /// a line along the axis through its target; along a line: the line through the target
     /// parallel to it; in a plane: the plane through the target parallel to it). The point
-    /// off the axis then decides the turn with the z axis (see `Op::TurnReaching`). `None`
+    /// off the axis then decides the turn with the z axis (see `SpatialOp::TurnReaching`). `None`
     /// without such a relation, or when the slide and the joint's locus together leave the
     /// point a surface no record holds.
     pub(super) fn reach(
@@ -93,7 +93,7 @@ impl Builder<'_, Spatial> {
     /// As [`Builder::reach`] for a cluster that rides a screw (it slides along a line, and a
     /// helical coupling of another constraint, still to come, ties that slide to the turn): a
     /// joint's point must then reach its line or plane where the screw takes it, which
-    /// `Op::TurnReaching` follows with the screw's registers.
+    /// `SpatialOp::TurnReaching` follows with the screw's registers.
     fn reach_on_screw(&mut self, r: &Rel, k: usize) -> Option<(Reach, Option<ScrewRegs>)> {
         let Trans::On {
             locus: Locus::Line(slide),
@@ -207,7 +207,11 @@ impl Builder<'_, Spatial> {
                         ..
                     } => {
                         let words = format!("{} moved through {qname}", self.word(plane));
-                        self.value(Op::ParallelPlane { plane, through: to }, Ty::Plane, words)
+                        self.value(
+                            SpatialOp::ParallelPlane { plane, through: to },
+                            Ty::Plane,
+                            words,
+                        )
                     }
                     _ => return None,
                 };
@@ -258,11 +262,11 @@ impl Builder<'_, Spatial> {
             } if self.cluster(p) == k && self.point_known(base) && self.dir_known(normal) => {
                 let words = self.plane_words(base, normal, None);
                 let (at, point, normal) = (self.point(p), self.point(base), self.direction(normal));
-                let op = Op::Plane {
+                let op = Op::Spatial(SpatialOp::Plane {
                     point,
                     normal,
                     offset: None,
-                };
+                });
                 Some((at, self.value(op, Ty::Plane, words)))
             }
             _ => None,
@@ -323,7 +327,7 @@ impl Builder<'_, Spatial> {
             self.word(z_target)
         );
         let turn = self.value(
-            Op::AngleAbout {
+            SpatialOp::AngleAbout {
                 u: z_now,
                 v: z_target,
                 axis: turn_axis,
@@ -335,7 +339,7 @@ impl Builder<'_, Spatial> {
         let back = self.value(Op::Neg(turn), Ty::Scalar, words);
         let words = format!("{} turned back by it", self.name(za));
         let za_back = self.value(
-            Op::TurnedAbout {
+            SpatialOp::TurnedAbout {
                 dir: za_reg,
                 axis: turn_axis,
                 angle: back,
@@ -371,7 +375,7 @@ impl Builder<'_, Spatial> {
         );
         let pitch = self.expr(pitch);
         let words = format!("the helix's turn for {}", self.word(advance));
-        let by = self.value(Op::HelixTurn { advance, pitch }, Ty::Scalar, words);
+        let by = self.value(SpatialOp::HelixTurn { advance, pitch }, Ty::Scalar, words);
         let about = self.name(za);
         let xa_reg = self.direction(xa);
         let to = self.twist_target((xa, xa_reg), (za_reg, about), by, false);
@@ -401,7 +405,7 @@ impl Builder<'_, Spatial> {
             self.word(by)
         );
         self.value(
-            Op::TurnedAbout {
+            SpatialOp::TurnedAbout {
                 dir: x,
                 axis,
                 angle,

@@ -8,7 +8,7 @@
 use super::relation::{Length, Relation};
 use super::{Locus, Rel, Spatial, Target, Trans, Turn};
 use crate::analysis::driver::Builder;
-use crate::plan::{Meet, Op, Reg, Ty};
+use crate::plan::{Meet, Op, Reg, SpatialOp, Ty};
 use gcs_lang::model::{GeomId, GeomKind};
 
 impl Builder<'_, Spatial> {
@@ -73,7 +73,7 @@ impl Builder<'_, Spatial> {
             self.name(f)
         );
         self.value(
-            Op::SphereThrough {
+            SpatialOp::SphereThrough {
                 center: at,
                 through: from,
                 radius,
@@ -92,7 +92,7 @@ impl Builder<'_, Spatial> {
             self.word(axis)
         );
         self.value(
-            Op::Orbit {
+            SpatialOp::Orbit {
                 pivot: at,
                 axis,
                 through: from,
@@ -144,7 +144,7 @@ impl Builder<'_, Spatial> {
                 words,
             )),
             Locus::Plane(p) => Locus::Plane(self.value(
-                Op::ParallelPlane {
+                SpatialOp::ParallelPlane {
                     plane: p,
                     through: pf,
                 },
@@ -152,7 +152,7 @@ impl Builder<'_, Spatial> {
                 words,
             )),
             Locus::Sphere(s) => Locus::Sphere(self.value(
-                Op::ShiftedSphere {
+                SpatialOp::ShiftedSphere {
                     sphere: s,
                     from: pg,
                     to: pf,
@@ -170,7 +170,7 @@ impl Builder<'_, Spatial> {
                 words,
             )),
             Locus::Cylinder(c) => Locus::Cylinder(self.value(
-                Op::ShiftedCylinder {
+                SpatialOp::ShiftedCylinder {
                     cylinder: c,
                     from: pg,
                     to: pf,
@@ -179,7 +179,7 @@ impl Builder<'_, Spatial> {
                 words,
             )),
             Locus::Torus(t) => Locus::Torus(self.value(
-                Op::ShiftedTorus {
+                SpatialOp::ShiftedTorus {
                     torus: t,
                     from: pg,
                     to: pf,
@@ -328,11 +328,11 @@ impl Builder<'_, Spatial> {
             self.name(at),
             self.name(dir)
         );
-        let op = Op::Cylinder {
+        let op = Op::Spatial(SpatialOp::Cylinder {
             point,
             dir: d,
             radius,
-        };
+        });
         self.value(op, Ty::Cylinder, words)
     }
 }

@@ -38,32 +38,32 @@
 //!   branch where there are two roots).
 //! - `turn_onto`: a direction onto a direction, by the shortest turn or about the axis,
 //!   checked where the axis' cone must agree. A free vector's, plane's or line's angle to a
-//!   known direction turns it the least onto the cone (`Op::ConeTurn`), then about that
+//!   known direction turns it the least onto the cone (`SpatialOp::ConeTurn`), then about that
 //!   direction.
-//! - Turns a z axis cannot decide alone. A turn about an axis that must take a marker's z and
-//!   x axes to theirs (offset_x, prismatic, and a helical joint on a body held at a point, the
-//!   x axis' target at the advance where the z axis' turn takes the marker) reads its angle
-//!   off both (`Op::AngleAboutBoth`). One that must take a joint's point onto a line or a
-//!   plane, where the slide the cluster has left brings it home, refines its angle on the
-//!   point too (`Op::TurnReaching`; a helical joint's coupling likewise, `plan::Reach::Helix`;
-//!   on a screw, where the helix's slide for each trial turn carries the point or marker,
+//! - Turns a z axis cannot decide alone. A turn about an axis that must take a marker's z and x
+//!   axes to theirs (offset_x, prismatic, and a helical joint on a body held at a point, the x
+//!   axis' target at the advance where the z axis' turn takes the marker) reads its angle off both
+//!   (`SpatialOp::AngleAboutBoth`). One that must take a joint's point onto a line or a plane,
+//!   where the slide the cluster has left brings it home, refines its angle on the point too
+//!   (`SpatialOp::TurnReaching`; a helical joint's coupling likewise, `plan::Reach::Helix`; on a
+//!   screw, where the helix's slide for each trial turn carries the point or marker,
 //!   `runtime::fragment3::Screw`). A z axis nearly along the turn's axis then does not decide the
-//!   turn alone; the turn is made by the angle measured (`Op::RotateBy`).
+//!   turn alone; the turn is made by the angle measured (`SpatialOp::RotateBy`).
 //! - Midpoints and mirror planes: a known segment's middle, an end reflected through a known
 //!   midpoint, an image across a known plane.
 //! - Planes that move (`Shape::Plane`): at a distance from a known point a plane may only turn
 //!   about it, from a second one about the line through both, and a third places it, a
-//!   branch: 004's point-plane clusters in closed form (`Op::PlaneTurn`,
-//!   `Op::PlaneAxisTurn`).
+//!   branch: 004's point-plane clusters in closed form (`SpatialOp::PlaneTurn`,
+//!   `SpatialOp::PlaneAxisTurn`).
 //! - Lines that move: through a known point a line may only turn about it, onto a second
-//!   (`Op::Aligned` keeps its sense); parallel to a known direction it is placed by a point. A
-//!   line whose direction is known passes at a distance from a known point by sliding onto the
-//!   cylinder about the point along its direction; held in a plane along its direction, onto
-//!   one of the two lines the plane cuts the cylinder in (`Meet::PlaneCylinder`, a branch). A
-//!   line that only turns about an axis through a known point of it (a segment held at an
-//!   end, a line through a point) turns until it passes a circle's centre at the distance
-//!   (`Op::PassingAngle`); turned square to a circle's normal about a pivot, it lies in the
-//!   circle's plane when the pivot does (a check).
+//!   (`SpatialOp::Aligned` keeps its sense); parallel to a known direction it is placed by a point.
+//!   A line whose direction is known passes at a distance from a known point by sliding onto the
+//!   cylinder about the point along its direction; held in a plane along its direction, onto one of
+//!   the two lines the plane cuts the cylinder in (`Meet::PlaneCylinder`, a branch). A line that
+//!   only turns about an axis through a known point of it (a segment held at an end, a line through
+//!   a point) turns until it passes a circle's centre at the distance (`SpatialOp::PassingAngle`);
+//!   turned square to a circle's normal about a pivot, it lies in the circle's plane when the pivot
+//!   does (a check).
 //! - Segments of free length: an end to a point translates the segment, the other end to a
 //!   point then turns it about the first, sets its length (`Op::SetDim`) and, when the end
 //!   held was its end, moves it back; a `length` sets it the same way (`Relation::Size`).
@@ -74,7 +74,7 @@
 //!   radius that reaches it (`circle_through`). A sized circle whose normal is known is carried
 //!   by the least translation through a point or to a distance from it (`carry_circle`), and
 //!   one held at its centre tilts the least to put a point at a distance (`tilt_circle`,
-//!   `Op::TiltToDistance`).
+//!   `SpatialOp::TiltToDistance`).
 //!
 //! # Locus analysis
 //!
@@ -86,15 +86,14 @@
 //!
 //! # Defaults and grounding
 //!
-//! Each default has a meaning and is read from where the constraints leave it: the idle turn
-//! about an axis (`{body}_spin_angle`); a free point's coordinates; a feature's two
-//! coordinates on the plane, sphere or cylinder it is held on (`runtime::locus3d::Surface`,
-//! `Op::SurfaceParam`, `Op::SurfacePoint`); a body's turns about the world's axes; a free
-//! direction's two turns across itself (`{geom}_tilt_angle`, `{geom}_roll_angle`; a third,
-//! about itself, would move nothing), for a vector, a line, a plane or a sized circle's
-//! normal; a plane's place along its normal; a segment's length or a circle's radius first,
-//! and none while a relation still to come can set it. Each turn by a default is an
-//! `Op::RotateBy`.
+//! Each default has a meaning and is read from where the constraints leave it: the idle turn about
+//! an axis (`{body}_spin_angle`); a free point's coordinates; a feature's two coordinates on the
+//! plane, sphere or cylinder it is held on (`runtime::locus3d::Surface`, `SpatialOp::SurfaceParam`,
+//! `SpatialOp::SurfacePoint`); a body's turns about the world's axes; a free direction's two turns
+//! across itself (`{geom}_tilt_angle`, `{geom}_roll_angle`; a third, about itself, would move
+//! nothing), for a vector, a line, a plane or a sized circle's normal; a plane's place along its
+//! normal; a segment's length or a circle's radius first, and none while a relation still to come
+//! can set it. Each turn by a default is an `SpatialOp::RotateBy`.
 //!
 //! A model with nothing fixed is grounded at a point, with the direction to a second and the
 //! plane of a third held as sketched; its branches on that line and plane are `symmetric`

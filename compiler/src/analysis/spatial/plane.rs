@@ -7,7 +7,7 @@
 use super::relation::{AngleValue, Relation};
 use super::{Locus, Rel, Spatial, Target, Trans, Turn};
 use crate::analysis::driver::Builder;
-use crate::plan::{Meet, Op, Reg, RotationAxis, Ty};
+use crate::plan::{Meet, Op, Reg, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::{GeomId, GeomKind};
 
 impl Builder<'_, Spatial> {
@@ -40,7 +40,7 @@ impl Builder<'_, Spatial> {
                 let back = self.value(Op::Neg(dist), Ty::Scalar, words);
                 let words = format!("{qname} moved along its normal to its distance from {pname}");
                 let target = self.value(
-                    Op::Plane {
+                    SpatialOp::Plane {
                         point: x,
                         normal: n,
                         offset: Some(back),
@@ -77,7 +77,7 @@ impl Builder<'_, Spatial> {
                     self.word(at)
                 );
                 let to = self.value(
-                    Op::PlaneTurn {
+                    SpatialOp::PlaneTurn {
                         base: b,
                         normal: n,
                         pivot: at,
@@ -127,7 +127,7 @@ impl Builder<'_, Spatial> {
                     self.word(axis)
                 );
                 let to = self.value(
-                    Op::PlaneAxisTurn {
+                    SpatialOp::PlaneAxisTurn {
                         base: b,
                         normal: n,
                         pivot: at,
@@ -191,7 +191,7 @@ impl Builder<'_, Spatial> {
                 .find(|s| s.out.is_some_and(|(o, _)| o == reg))
                 .map(|s| &s.op)
         };
-        let Some(Op::Plane { normal, .. }) = defined(q) else {
+        let Some(Op::Spatial(SpatialOp::Plane { normal, .. })) = defined(q) else {
             return None;
         };
         let Some(&Op::DirOf(m)) = defined(*normal) else {

@@ -5,7 +5,7 @@
 
 use super::{Rel, Spatial, Target};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Ty};
+use crate::plan::{Op, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
 
 impl Builder<'_, Spatial> {
@@ -55,11 +55,11 @@ impl Builder<'_, Spatial> {
                     self.name(known),
                     self.plane_words(base, normal, None)
                 );
-                let op = Op::MirrorPlane {
+                let op = Op::Spatial(SpatialOp::MirrorPlane {
                     point: at,
                     base: b,
                     normal: n,
-                };
+                });
                 let image = self.value(op, Ty::Point, words);
                 return self.move_point(free, Target::Point(image), r);
             }

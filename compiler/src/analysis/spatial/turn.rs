@@ -7,7 +7,7 @@
 use super::relation::{AngleValue, Length};
 use super::{Rel, Shape, Spatial, Trans, Turn};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Reach, Reg, RotationAxis, Ty};
+use crate::plan::{Op, Reach, Reg, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::{GeomId, GeomKind};
 
 impl Builder<'_, Spatial> {
@@ -37,7 +37,7 @@ impl Builder<'_, Spatial> {
             self.word(angle)
         );
         let to = self.value(
-            Op::ConeTurn {
+            SpatialOp::ConeTurn {
                 axis: ur,
                 angle,
                 dir: vr,
@@ -102,7 +102,7 @@ impl Builder<'_, Spatial> {
             self.word(angle)
         );
         let target = self.value(
-            Op::AngleTurn {
+            SpatialOp::AngleTurn {
                 u: ur,
                 v: vr,
                 axis,
@@ -120,7 +120,7 @@ impl Builder<'_, Spatial> {
     /// point of it (`base` itself, or the point its cluster pivots about, another point of the
     /// line), turned about that axis until it passes `length` from known point `p`: its
     /// direction at the angle from the direction to `p` whose sine is the distance over theirs
-    /// (`Op::PassingAngle`, keeping its sense), where its turn meets that cone (a branch).
+    /// (`SpatialOp::PassingAngle`, keeping its sense), where its turn meets that cone (a branch).
     pub(super) fn turn_line_past(
         &mut self,
         base: GeomId,
@@ -156,7 +156,7 @@ impl Builder<'_, Spatial> {
             self.word(d)
         );
         let angle = self.value(
-            Op::PassingAngle {
+            SpatialOp::PassingAngle {
                 from: through,
                 to,
                 d,
@@ -180,7 +180,7 @@ impl Builder<'_, Spatial> {
             self.word(d)
         );
         let target = self.value(
-            Op::AngleTurn {
+            SpatialOp::AngleTurn {
                 u: toward,
                 v: now,
                 axis,
@@ -308,14 +308,14 @@ impl Builder<'_, Spatial> {
                         self.word(axis),
                         self.word(target)
                     );
-                    let op = Op::TurnReaching {
+                    let op = Op::Spatial(SpatialOp::TurnReaching {
                         u: from,
                         v: target,
                         axis,
                         pivot,
                         reach,
                         screw,
-                    };
+                    });
                     Some(self.value(op, Ty::Scalar, words))
                 } else if let Some((x, x_target)) = also {
                     let words = format!(
@@ -324,11 +324,11 @@ impl Builder<'_, Spatial> {
                         self.word(target),
                         self.word(x_target)
                     );
-                    let op = Op::AngleAboutBoth {
+                    let op = Op::Spatial(SpatialOp::AngleAboutBoth {
                         u: [from, x],
                         v: [target, x_target],
                         axis,
-                    };
+                    });
                     Some(self.value(op, Ty::Scalar, words))
                 } else {
                     None
@@ -361,12 +361,12 @@ impl Builder<'_, Spatial> {
                     }
                 );
                 let op = match angle {
-                    Some(angle) => Op::RotateBy {
+                    Some(angle) => Op::Spatial(SpatialOp::RotateBy {
                         geoms,
                         pivot,
                         axis,
                         angle,
-                    },
+                    }),
                     None => Op::RotateDir {
                         geoms,
                         pivot,

@@ -9,10 +9,11 @@
 //! and the registers later pieces read. The store has a slice per kind of value, its slots
 //! chosen by the plan's types.
 
-use super::super::api::{self, Holds};
+use super::super::api::{self, Holds, Ty as ApiTy};
 use super::super::context::Context;
 use super::super::sketch::dimension_name;
-use crate::plan::{Op, Reg, Ty};
+use super::super::space::Space;
+use crate::plan::{Op, PlanarOp, Reg, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::collections::BTreeMap;
@@ -71,25 +72,21 @@ impl Slice {
         }
     }
 
-    /// The Rust type of its values in the plane, or in space (`d3`).
-    pub(super) fn rust(self, d3: bool) -> &'static str {
-        match (self, d3) {
-            (Slice::Frame, false) => "Frame2",
-            (Slice::Frame, true) => "Frame3",
-            (Slice::Scalar, _) => "f64",
-            (Slice::Point, false) => "Point2<f64>",
-            (Slice::Point, true) => "Point3<f64>",
-            (Slice::Vector, false) => "Vector2<f64>",
-            (Slice::Vector, true) => "Vector3<f64>",
-            (Slice::Line, false) => "Line",
-            (Slice::Line, true) => "Line3",
-            (Slice::Circle, false) => "Circle",
-            (Slice::Circle, true) => "Circle3",
-            (Slice::Conic, _) => "Conic",
-            (Slice::Plane, _) => "Plane",
-            (Slice::Sphere, _) => "Sphere",
-            (Slice::Cylinder, _) => "Cylinder",
-            (Slice::Torus, _) => "Torus",
+    /// The Rust type of its values in the model's space.
+    pub(super) fn rust(self, space: &dyn Space) -> &'static str {
+        let (line, circle) = space.line_circle();
+        match self {
+            Slice::Frame => space.rust(ApiTy::Frame),
+            Slice::Scalar => space.rust(ApiTy::Scalar),
+            Slice::Point => space.rust(ApiTy::Point),
+            Slice::Vector => space.rust(ApiTy::Vector),
+            Slice::Line => line,
+            Slice::Circle => circle,
+            Slice::Conic => "Conic",
+            Slice::Plane => "Plane",
+            Slice::Sphere => "Sphere",
+            Slice::Cylinder => "Cylinder",
+            Slice::Torus => "Torus",
         }
     }
 
@@ -340,16 +337,16 @@ fn model_order(g: GeomId) -> u32 {
 pub(in crate::codegen) fn generated_reads(op: &Op) -> Vec<Reg> {
     match op {
         Op::Intersect { a, b, .. } => vec![*a, *b],
-        Op::CircleThrough {
+        Op::Planar(PlanarOp::CircleThrough {
             center,
             through,
             radius,
-        }
-        | Op::SphereThrough {
+        })
+        | Op::Spatial(SpatialOp::SphereThrough {
             center,
             through,
             radius,
-        } => match radius {
+        }) => match radius {
             Some(_) => vec![*center],
             None => vec![*center, *through],
         },

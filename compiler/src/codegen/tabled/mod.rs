@@ -34,6 +34,7 @@ mod tables;
 use super::api::{self, Holds, Layout as ApiLayout, Ty as ApiTy};
 use super::context::Context;
 use super::lift::{self, Hole};
+use super::space::Space;
 use super::writer::{lit, Writer};
 use layout::{Layout, Slice, Work};
 use piece::{Handoff, Spelling};
@@ -141,11 +142,11 @@ pub(super) fn module(
     let mut strings = Strings::default();
     let mut tables = String::new();
     let mut w = Writer::default();
-    super::header(&mut w, &cx.file, cx.d3);
+    super::header(&mut w, &cx.file, cx.space);
     api::params(&mut w, cx);
     inputs(&mut w, &mut tables, &mut strings, cx, true);
     inputs(&mut w, &mut tables, &mut strings, cx, false);
-    store(&mut w, &layout, cx.d3);
+    store(&mut w, &layout, cx.space);
     solution(&mut w, &mut tables, &mut strings, cx, api, &layout);
     // The functions of the shapes, in two kinds, each numbered in solve order.
     let mut functions = Writer::default();
@@ -488,12 +489,12 @@ fn orders(tables: &mut String, order: &[(usize, usize)], shapes: &[Shape], numbe
 }
 
 /// The store: a slice per kind of value the pieces hand on.
-fn store(w: &mut Writer, layout: &Layout, d3: bool) {
+fn store(w: &mut Writer, layout: &Layout, space: &dyn Space) {
     w.line("/// Where the solve keeps what crosses its pieces: a slice per kind of value.");
     w.line("#[derive(Clone, Debug, PartialEq)]");
     w.open("struct Store {");
     for slice in layout.counts.keys() {
-        w.line(&format!("{}: Box<[{}]>,", slice.field(), slice.rust(d3)));
+        w.line(&format!("{}: Box<[{}]>,", slice.field(), slice.rust(space)));
     }
     w.close("}");
     w.line("");
@@ -647,7 +648,6 @@ fn solution(
     api: &ApiLayout,
     layout: &Layout,
 ) {
-    let d3 = cx.d3;
     w.line("/// The solved configuration of every geom the outputs need, read by dotted name (`point`,");
     w.line("/// `vector`, `scalar`, `frame`) or all of one kind in model order (`points`, ...). Made once");
     w.line(
@@ -687,7 +687,7 @@ fn solution(
             ApiTy::Vector => "vector",
             ApiTy::Scalar => "scalar",
         };
-        let rust = ty.rust(d3);
+        let rust = ty.rust(cx);
         let upper = what.to_uppercase();
         // Each value's accessor in its canonical form, hash-consed into shapes.
         let mut forms: HashMap<(String, Vec<lift::Column>), usize> = HashMap::default();
@@ -766,7 +766,7 @@ fn solution(
         w.open(&format!("fn {what}_at(&self, k: usize) -> {rust} {{"));
         w.line(&format!(
             "let Some(row) = access({ids}, {ks}, k) else {{ return {}; }};",
-            zero_of(ty, d3)
+            cx.space.zero(ty)
         ));
         w.open("match row.shape {");
         let count = renderings.len();
@@ -783,7 +783,7 @@ fn solution(
             w.close("}");
         }
         if count == 0 {
-            w.line(&format!("_ => {},", zero_of(ty, d3)));
+            w.line(&format!("_ => {},", cx.space.zero(ty)));
         }
         w.close("}");
         w.close("}");
@@ -888,17 +888,4 @@ fn accessor(cx: &Context<'_>, layout: &Layout, a: &api::Accessor, named: bool) -
     }
     out.push_str(&body);
     out
-}
-
-/// A value of type `ty` for an accessor past the end of its table.
-fn zero_of(ty: ApiTy, d3: bool) -> &'static str {
-    match (ty, d3) {
-        (ApiTy::Scalar, _) => "0.0",
-        (ApiTy::Frame, false) => "Frame2::default()",
-        (ApiTy::Frame, true) => "Frame3::default()",
-        (ApiTy::Point, false) => "Point2::origin()",
-        (ApiTy::Point, true) => "Point3::origin()",
-        (ApiTy::Vector, false) => "Vector2::zeros()",
-        (ApiTy::Vector, true) => "Vector3::zeros()",
-    }
 }

@@ -43,14 +43,7 @@ pub(super) struct Handoff {
 impl Handoff {
     pub(super) fn new(cx: &Context<'_>, layout: &Layout) -> Handoff {
         let seeds = (layout.worked.iter())
-            .map(|&g| {
-                let facts = if cx.d3 {
-                    cx.sketch_frame3(g).1
-                } else {
-                    cx.sketch_frame(g).1
-                };
-                (g, facts)
-            })
+            .map(|&g| (g, cx.sketch_frame(g).1))
             .collect();
         Handoff {
             regs: HashMap::default(),
@@ -114,11 +107,7 @@ fn sketch(s: &mut Solve<'_>, layout: &Layout, geoms: &[GeomId], comments: bool) 
     for &g in geoms {
         let geom = &cx.model.geoms[g];
         let name = s.names.fresh(&geom.name);
-        let (ctor, _) = if cx.d3 {
-            cx.sketch_frame3(g)
-        } else {
-            cx.sketch_frame(g)
-        };
+        let (ctor, _) = cx.sketch_frame(g);
         w.line(&format!("let {name} = {ctor};"));
         w.line(&format!(
             "store.frame[{}] = {name};",
@@ -156,10 +145,7 @@ fn sketch(s: &mut Solve<'_>, layout: &Layout, geoms: &[GeomId], comments: bool) 
             layout.held.get(&holds),
             crate::codegen::api::line_sketch(cx, g),
         ) {
-            let value = match cx.d3 {
-                true => cx.point_lit3(from),
-                false => cx.point_lit(from),
-            };
+            let value = cx.point_code(from);
             w.line(&format!(
                 "store.point[{}] = {value};",
                 lift::slot(slot.index)
@@ -168,10 +154,9 @@ fn sketch(s: &mut Solve<'_>, layout: &Layout, geoms: &[GeomId], comments: bool) 
         // The tolerance of run-time checks scales with the sketch of what the plan works on,
         // as the flat solve's does.
         if checked && cx.touched(g) {
-            let mut terms = vec![format!("{name}.origin.x"), format!("{name}.origin.y")];
-            if cx.d3 {
-                terms.push(format!("{name}.origin.z"));
-            }
+            let coordinates = cx.space.coordinates().iter();
+            let mut terms: Vec<String> =
+                coordinates.map(|x| format!("{name}.origin.{x}")).collect();
             terms.extend(dim);
             w.line(&format!(
                 "*tol_scale = tol_scale.max(gcs_runtime::tol::scale(&[{}]));",
