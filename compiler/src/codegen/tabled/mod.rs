@@ -141,7 +141,7 @@ pub(super) fn module(
     let mut strings = Strings::default();
     let mut tables = String::new();
     let mut w = Writer::default();
-    super::header(&mut w, &cx.file, cx.d3);
+    super::api::header(&mut w, &cx.file, cx.d3);
     api::params(&mut w, cx);
     inputs(&mut w, &mut tables, &mut strings, cx, true);
     inputs(&mut w, &mut tables, &mut strings, cx, false);
