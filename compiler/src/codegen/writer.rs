@@ -8,9 +8,9 @@ pub(super) struct Writer {
     pub(super) indent: usize,
     /// Comments are left out: a piece's canonical form (see `lift`) is its code alone.
     pub(super) no_comments: bool,
-    /// Where each line that is not blank starts in `out`, so that the text can be indented
-    /// again (put in a block) without reading it.
-    pub(super) starts: Vec<usize>,
+    /// Where each line starts in `out`, and whether it is blank: the text's lines are counted
+    /// and indented again (put in a block) without reading it.
+    pub(super) starts: Vec<(usize, bool)>,
 }
 
 impl Writer {
@@ -51,11 +51,11 @@ impl Writer {
     }
 
     pub(super) fn line(&mut self, text: &str) {
+        self.starts.push((self.out.len(), text.is_empty()));
         if text.is_empty() {
             self.out.push('\n');
             return;
         }
-        self.starts.push(self.out.len());
         for _ in 0..self.indent {
             self.out.push_str("    ");
         }
@@ -71,39 +71,48 @@ impl Writer {
         self.line(text);
     }
 
-    /// The text from byte `from` to `to` (a stretch of whole lines), with its line starts.
+    /// The number of lines written.
+    pub(super) fn lines(&self) -> usize {
+        self.starts.len()
+    }
+
+    /// The text from byte `from` to `to` (a stretch of whole lines), with its lines.
     pub(super) fn slice(&self, from: usize, to: usize) -> Writer {
         let (first, last) = (
-            self.starts.partition_point(|&s| s < from),
-            self.starts.partition_point(|&s| s < to),
+            self.starts.partition_point(|&(s, _)| s < from),
+            self.starts.partition_point(|&(s, _)| s < to),
         );
         Writer {
             out: self.out[from..to].to_string(),
             indent: self.indent,
             no_comments: self.no_comments,
-            starts: self.starts[first..last].iter().map(|s| s - from).collect(),
+            starts: (self.starts[first..last].iter())
+                .map(|&(s, blank)| (s - from, blank))
+                .collect(),
         }
     }
 
     /// Puts the lines of `other` in at byte `at`, a line start.
     pub(super) fn insert(&mut self, at: usize, other: &Writer) {
-        let k = self.starts.partition_point(|&s| s < at);
+        let k = self.starts.partition_point(|&(s, _)| s < at);
         let n = other.out.len();
-        for s in &mut self.starts[k..] {
+        for (s, _) in &mut self.starts[k..] {
             *s += n;
         }
-        let inserted = other.starts.iter().map(|s| s + at);
+        let inserted = other.starts.iter().map(|&(s, blank)| (s + at, blank));
         self.starts.splice(k..k, inserted);
         self.out.insert_str(at, &other.out);
     }
 
-    /// Appends the lines of `other`, each one level deeper (in a block).
+    /// Appends the lines of `other`, each but a blank one level deeper (in a block).
     pub(super) fn push_deeper(&mut self, other: &Writer) {
         let mut from = 0;
-        for &s in &other.starts {
+        for &(s, blank) in &other.starts {
             self.out.push_str(&other.out[from..s]);
-            self.starts.push(self.out.len());
-            self.out.push_str("    ");
+            self.starts.push((self.out.len(), blank));
+            if !blank {
+                self.out.push_str("    ");
+            }
             from = s;
         }
         self.out.push_str(&other.out[from..]);
@@ -112,7 +121,7 @@ impl Writer {
     /// Appends the lines of `other` as they are.
     pub(super) fn push(&mut self, other: &Writer) {
         let at = self.out.len();
-        self.starts.extend(other.starts.iter().map(|s| s + at));
+        (self.starts).extend(other.starts.iter().map(|&(s, blank)| (s + at, blank)));
         self.out.push_str(&other.out);
     }
 }
@@ -230,5 +239,30 @@ pub(super) fn linear(terms: &[(f64, String)]) -> String {
         "0.0".into()
     } else {
         code
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_are_kept_through_inserts_and_blocks() {
+        let mut w = Writer::at(1);
+        w.line("let a = 1.0;");
+        w.line("");
+        w.line("let c = a;");
+        let mut b = Writer::at(1);
+        b.line("let b = a;");
+        w.insert(w.starts[1].0, &b);
+        assert_eq!(
+            w.out,
+            "    let a = 1.0;\n    let b = a;\n\n    let c = a;\n"
+        );
+        assert_eq!(w.lines(), 4);
+        let mut block = Writer::at(1);
+        block.push_deeper(&w.slice(w.starts[1].0, w.out.len()));
+        assert_eq!(block.out, "        let b = a;\n\n        let c = a;\n");
+        assert_eq!(block.lines(), 3);
     }
 }
