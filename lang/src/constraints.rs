@@ -1,6 +1,7 @@
-//! The one table of constraints: for each, its argument forms, its value, the spaces it is
-//! valid in, and the degrees of freedom it nominally removes. The resolver checks every
-//! constraint against this table and nothing else.
+//! The one table of constraints ([`TABLE`]: for each, its argument forms, its value, the
+//! spaces it is valid in), against which the resolver checks every constraint and nothing
+//! else; and beside it, not in the table, [`ConstraintKind::nominal_dof`], the degrees of
+//! freedom a constraint nominally removes, which depend on its arguments and value.
 
 use crate::expr::Dim;
 use crate::model::{GeomKind, Space};
@@ -513,8 +514,9 @@ impl ConstraintKind {
                 _ => 1,
             },
             C::Angle => {
-                let straight = value
-                    .is_some_and(|v| v == 0.0 || (v.abs() - std::f64::consts::PI).abs() < 1e-12);
+                let straight = value.is_some_and(|v| {
+                    v == 0.0 || (v.abs() - std::f64::consts::PI).abs() < gcs_tol::ANGLE
+                });
                 if d3 && straight {
                     2
                 } else {

@@ -20,9 +20,6 @@ pub const RESERVED: &[&str] = &[
     "marker", "output", "deg", "rad", "pi",
 ];
 
-/// Tolerance for marker axes to count as orthogonal: |cos| of their angle.
-pub const ORTHOGONAL_TOL: f64 = 1e-9;
-
 /// Resolves a parsed file. `complete` is false when some statements were dropped for syntax
 /// errors: names they would have declared are then not reported as unknown.
 pub fn resolve(
@@ -1711,7 +1708,7 @@ impl<'a> Resolver<'a> {
                     let (nz, nx) = (norm(&z), norm(&x));
                     if nz > 0.0 && nx > 0.0 {
                         let cos = z.iter().zip(&x).map(|(a, b)| a * b).sum::<f64>() / (nz * nx);
-                        if cos.abs() > ORTHOGONAL_TOL {
+                        if cos.abs() > gcs_tol::ORTHOGONAL {
                             let deg = cos.clamp(-1.0, 1.0).acos().to_degrees();
                             let d = Diagnostic::error(span, "marker axes are not orthogonal")
                                 .with_label(format!(

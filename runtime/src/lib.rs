@@ -4,8 +4,8 @@
 //! accounting, named tolerances, and the outer iterations that solve for a plan's defaults
 //! (Newton with brackets, a trust region, and a scan for every root).
 //!
-//! Architecture invariants: this crate depends on nalgebra only; nothing in it panics on finite
-//! or non-finite input; nothing on a solve path allocates.
+//! Architecture invariants: this crate depends on nalgebra and `gcs-tol` (the tolerances) only;
+//! nothing in it panics on finite or non-finite input; nothing on a solve path allocates.
 #![deny(missing_docs)]
 
 pub mod check;
@@ -21,7 +21,8 @@ pub mod num;
 pub mod outer;
 pub mod poly;
 pub mod roots;
-pub mod tol;
+/// Every tolerance, by name (its own crate, so that the language's checks use them too).
+pub use gcs_tol as tol;
 
 pub use roots::{Contact, Intersection, Roots};
 

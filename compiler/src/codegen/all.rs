@@ -42,15 +42,18 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
     assemblies(w, capacity, one_angle, varied.is_empty());
     let carries = match (plan.branches.is_empty(), plan.defaults.is_empty()) {
         (false, false) => {
-            ", each with its branches (`Solution::branches`) and\n/// defaults (`Solution::defaults`)"
+            w.line("/// Every real assembly at `params`, each with its branches (`Solution::branches`) and");
+            "defaults (`Solution::defaults`)."
         }
-        (false, true) => ", each with its branches (`Solution::branches`)",
-        (true, false) => ", each with its defaults (`Solution::defaults`)",
-        (true, true) => "",
+        (false, true) => {
+            "Every real assembly at `params`, each with its branches (`Solution::branches`)."
+        }
+        (true, false) => {
+            "Every real assembly at `params`, each with its defaults (`Solution::defaults`)."
+        }
+        (true, true) => "Every real assembly at `params`.",
     };
-    for line in format!("/// Every real assembly at `params`{carries}.").lines() {
-        w.line(line);
-    }
+    w.line(&format!("/// {carries}"));
     w.line("/// Never panics, allocates nothing.");
     w.line("///");
     if !plan.branches.is_empty() {

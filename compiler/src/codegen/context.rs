@@ -13,6 +13,9 @@ use std::collections::BTreeSet;
 
 /// The read-only input of codegen.
 pub(super) struct Context<'a> {
+    /// How many `SolveError`s' code has been made: a step whose code grew one names its
+    /// constraint (see `facts::Made`).
+    pub(super) errors_made: std::cell::Cell<usize>,
     /// Each top-level geom's members whose local coordinates params set, once asked for
     /// ([`Context::param_members`]).
     pub(super) param_members_of: std::cell::RefCell<HashMap<GeomId, Vec<GeomId>>>,
@@ -43,7 +46,7 @@ pub(super) struct Context<'a> {
     pub(super) sketch3: Option<crate::config::Config<crate::config::D3>>,
     /// The step that defines each register.
     pub(super) defined_at: HashMap<Reg, usize>,
-    /// Nearest points of circles that only turns toward them read (`steps::turned_toward`).
+    /// Nearest points of circles that only turns toward them read ([`turned_toward`]).
     pub(super) turned_toward: HashSet<Reg>,
 }
 
@@ -109,8 +112,9 @@ impl<'a> Context<'a> {
         let defined_at = (plan.steps.iter().enumerate())
             .filter_map(|(i, s)| Some((s.out?.0, i)))
             .collect();
-        let turned_toward = super::steps::turned_toward(plan, &defined_at);
+        let turned_toward = turned_toward(plan, &defined_at);
         Context {
+            errors_made: Default::default(),
             param_members_of: Default::default(),
             turned_toward,
             space,
@@ -186,6 +190,7 @@ impl<'a> Context<'a> {
         kind: &str,
         magnitude: &str,
     ) -> String {
+        self.errors_made.set(self.errors_made.get() + 1);
         format!(
             "SolveError::new({}, {}, ErrorKind::{kind}, {magnitude})",
             lit(label),
@@ -282,4 +287,42 @@ impl PlanIndex {
         }
         ix
     }
+}
+
+/// The registers that are the nearest point of a circle (`Op::Nearest`) that only turns about
+/// the circle's centre read, each turning a point onto it (`RotatePoint`): a turn about the
+/// centre onto a point of a ray from the centre is the same turn wherever on the ray the point
+/// lies, so the turns can aim at the point itself, and the projection is not written. One pass
+/// over the plan.
+pub(super) fn turned_toward(
+    plan: &crate::plan::Plan,
+    defined_at: &HashMap<Reg, usize>,
+) -> HashSet<Reg> {
+    let defined = |reg: Reg| defined_at.get(&reg).map(|&i| &plan.steps[i].op);
+    // The centre of each nearest point of a circle, and whether every reader so far turns
+    // about it onto the point (none while nothing has read it).
+    let mut nearest: HashMap<Reg, (Reg, Option<bool>)> = HashMap::default();
+    for s in &plan.steps {
+        if let (Op::Nearest { locus, .. }, Some((r, _))) = (&s.op, s.out) {
+            if let Some(Op::Planar(
+                PlanarOp::Circle { center, .. } | PlanarOp::CircleThrough { center, .. },
+            )) = defined(*locus)
+            {
+                nearest.insert(r, (*center, None));
+            }
+        }
+    }
+    for s in &plan.steps {
+        for r in s.op.reads() {
+            if let Some((center, all)) = nearest.get_mut(&r) {
+                let turns_toward = matches!(&s.op, Op::RotatePoint { pivot, from, to, .. }
+                    if *to == r && *from != r && pivot == center);
+                *all = Some(all.unwrap_or(true) && turns_toward);
+            }
+        }
+    }
+    (nearest.into_iter())
+        .filter(|(_, (_, all))| *all == Some(true))
+        .map(|(r, _)| r)
+        .collect()
 }

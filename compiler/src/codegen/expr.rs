@@ -88,8 +88,8 @@ impl Context<'_> {
     /// negative one in parentheses, as `-2.0_f64.powf(p)` is `-(2.0_f64.powf(p))`).
     fn receiver(&self, e: ExprId) -> String {
         if let Some(v) = self.constant(e) {
-            let literal = typed_float(v);
-            return if literal.starts_with('-') {
+            let (literal, negative) = typed_float(v);
+            return if negative {
                 format!("({literal})")
             } else {
                 literal

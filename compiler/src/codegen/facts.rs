@@ -25,11 +25,10 @@
 //! interpreter's words (`config::SketchFault`), so that both report the same geom.
 
 use super::context::Context;
-use super::solve::Solve;
 use super::writer::float;
-use crate::plan::Reg;
+use crate::plan::{Op, Reg};
 use gcs_lang::expr::ExprId;
-use gcs_lang::model::{GeomId, Owner, Part};
+use gcs_lang::model::GeomId;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// A value of the generated code as codegen knows it: what it is decides what can be done
@@ -39,6 +38,8 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 pub(super) enum Value {
     /// A local of the solve, by name.
     Local(String),
+    /// Entry `k` of an iteration's trial, the array local `name`: `name[k]`.
+    Entry(String, usize),
     /// A param, by its index in model order and its field of `Params`.
     Param(usize, String),
     /// A default, by its index in the plan and its field of `Defaults`.
@@ -66,6 +67,7 @@ impl Value {
     pub(super) fn code(&self) -> String {
         match self {
             Value::Local(name) => name.clone(),
+            Value::Entry(name, k) => format!("{name}[{k}]"),
             Value::Param(index, field) => super::lift::param(*index, field),
             Value::Default(index, field) => super::lift::default(*index, field),
             Value::Scalar(v) => float(*v),
@@ -97,6 +99,7 @@ impl Value {
             (Value::Local(a), Value::Local(b))
             | (Value::Param(_, a), Value::Param(_, b))
             | (Value::Default(_, a), Value::Default(_, b)) => a == b,
+            (Value::Entry(a, i), Value::Entry(b, j)) => a == b && i == j,
             (Value::Scalar(a), Value::Scalar(b)) => same_bits(*a, *b),
             (Value::Point(ax, ay), Value::Point(bx, by))
             | (Value::Vector(ax, ay), Value::Vector(bx, by)) => {
@@ -117,6 +120,7 @@ impl Value {
         matches!(
             self,
             Value::Local(_)
+                | Value::Entry(..)
                 | Value::Param(..)
                 | Value::Default(..)
                 | Value::Scalar(_)
@@ -149,12 +153,143 @@ impl Value {
         matches!(self, Value::Point(x, y) if is_plus_zero(*x) && is_plus_zero(*y))
     }
 
-    /// The name of the local the value is, if it is one.
-    pub(super) fn local(&self) -> Option<&str> {
+    /// The code of the local the value is, if it is one (to name what derives from it).
+    pub(super) fn local(&self) -> Option<String> {
         match self {
-            Value::Local(name) => Some(name),
+            Value::Local(_) | Value::Entry(..) => Some(self.code()),
             _ => None,
         }
+    }
+
+    /// The local the value reads, if it is one: what the ledger notes as read.
+    pub(super) fn reads(&self) -> Option<&str> {
+        match self {
+            Value::Local(name) | Value::Entry(name, _) => Some(name),
+            _ => None,
+        }
+    }
+
+    /// The value as a key of [`Made`]: `None` for code that no key stands for.
+    fn key(&self) -> Option<ValueKey> {
+        let bits = |tag: u8, v: &[f64]| {
+            let mut b = [0u64; 3];
+            for (b, v) in b.iter_mut().zip(v) {
+                *b = v.to_bits();
+            }
+            Some(ValueKey::Bits(tag, b))
+        };
+        match self {
+            Value::Local(name) => Some(ValueKey::Local(name.clone(), None)),
+            Value::Entry(name, k) => Some(ValueKey::Local(name.clone(), Some(*k))),
+            Value::Param(i, _) => Some(ValueKey::Input(false, *i)),
+            Value::Default(i, _) => Some(ValueKey::Input(true, *i)),
+            Value::Scalar(v) => bits(0, &[*v]),
+            Value::Point(x, y) => bits(1, &[*x, *y]),
+            Value::Vector(x, y) => bits(2, &[*x, *y]),
+            Value::Point3(p) => bits(3, p),
+            Value::Vector3(v) => bits(4, v),
+            Value::Sketched(..) | Value::Expr(_) => None,
+        }
+    }
+}
+
+/// A [`Value`] as a key: equal keys are one value, written alike.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum ValueKey {
+    /// A local, or an entry of one.
+    Local(String, Option<usize>),
+    /// A param (`false`) or a default (`true`), by index.
+    Input(bool, usize),
+    /// A literal: its kind and its coordinates' bits.
+    Bits(u8, [u64; 3]),
+}
+
+/// What a value of locals alone is made from, so that one made twice is computed once: the
+/// plan's op (its kind and what it carries besides registers), the values it reads with what
+/// each is (`tag`, a locus's kind), and the constraint its code's error names, if it has one.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub(super) struct Made {
+    op: std::mem::Discriminant<Op>,
+    /// The kind of a space's own op (`Op::Planar`, `Op::Spatial`).
+    own: Option<OwnOp>,
+    residual: Option<std::mem::Discriminant<crate::plan::Residual>>,
+    fields: Vec<u64>,
+    operands: Vec<(ValueKey, u8)>,
+    fails: Option<gcs_lang::model::ConstraintId>,
+}
+
+/// The kind of an op of one space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum OwnOp {
+    Planar(std::mem::Discriminant<crate::plan::PlanarOp>),
+    Spatial(std::mem::Discriminant<crate::plan::SpatialOp>),
+}
+
+impl Made {
+    /// The key of `op` reading `operands` (each value with its tag), whose code names
+    /// constraint `fails` in an error; `None` when an operand has no key.
+    pub(super) fn new(
+        op: &Op,
+        operands: &[(&Value, u8)],
+        fails: Option<gcs_lang::model::ConstraintId>,
+    ) -> Option<Made> {
+        use crate::plan::{Residual, SpatialOp};
+        let own = match op {
+            Op::Planar(p) => Some(OwnOp::Planar(std::mem::discriminant(p))),
+            Op::Spatial(p) => Some(OwnOp::Spatial(std::mem::discriminant(p))),
+            _ => None,
+        };
+        let (residual, mut fields) = match op {
+            Op::Spatial(SpatialOp::Coordinate { axis, .. }) => (None, vec![u64::from(*axis)]),
+            Op::Spatial(SpatialOp::SurfaceParam { component, .. }) => {
+                (None, vec![u64::from(*component)])
+            }
+            Op::Spatial(SpatialOp::WorldAxis(k)) => (None, vec![u64::from(*k)]),
+            Op::Spatial(SpatialOp::SphereThrough { radius, .. }) => {
+                (None, radius.map(f64::to_bits).into_iter().collect())
+            }
+            Op::Spatial(SpatialOp::TurnReaching { reach, screw, .. }) => (
+                None,
+                vec![
+                    u64::from(matches!(reach, crate::plan::Reach::Helix(_))),
+                    u64::from(screw.is_some()),
+                ],
+            ),
+            Op::Line { offset, .. } => (None, vec![u64::from(offset.is_some())]),
+            Op::Error {
+                residual,
+                component,
+            } => {
+                let mut fields = match residual {
+                    Residual::CircleLine { side, gap, .. } => {
+                        vec![side.to_bits(), u64::from(gap.is_some())]
+                    }
+                    Residual::PointCircle { outside, gap, .. } => {
+                        vec![u64::from(*outside), u64::from(gap.is_some())]
+                    }
+                    Residual::CircleCircle { nesting, gap, .. } => {
+                        vec![*nesting as u64, u64::from(gap.is_some())]
+                    }
+                    Residual::Parallel { sense, .. } => vec![sense.to_bits()],
+                    _ => Vec::new(),
+                };
+                fields.push(u64::from(*component));
+                (Some(std::mem::discriminant(residual)), fields)
+            }
+            _ => (None, Vec::new()),
+        };
+        fields.push(operands.len() as u64);
+        let operands = (operands.iter())
+            .map(|(v, tag)| Some((v.key()?, *tag)))
+            .collect::<Option<Vec<_>>>()?;
+        Some(Made {
+            op: std::mem::discriminant(op),
+            own,
+            residual,
+            fields,
+            operands,
+            fails,
+        })
     }
 }
 
@@ -215,8 +350,9 @@ pub(super) struct Facts {
     /// the root reads it from that centre (`root_from_a`, `root_from_b`).
     pub(super) chord_roots: HashMap<Reg, ChordRoot>,
     /// In space, the local already holding each value computed from locals alone (reading no
-    /// frame), by its code: the same locus or point asked for twice is computed once.
-    pub(super) computed: HashMap<String, String>,
+    /// frame), by what it is made from: the same locus or point asked for twice is computed
+    /// once.
+    pub(super) computed: HashMap<Made, String>,
 }
 
 impl Facts {
@@ -273,7 +409,7 @@ pub(super) fn point_in(frame: impl FnOnce() -> String, origin: &Value, local: (f
 }
 
 /// The point `origin + v`; just `v` as a point when the origin is the literal zero.
-fn offset(origin: &Value, v: &str) -> Value {
+pub(super) fn offset(origin: &Value, v: &str) -> Value {
     Value::Expr(if origin.is_zero_point() {
         format!("Point2::from({v})")
     } else {
@@ -291,166 +427,5 @@ pub(super) fn direction_in(f: &str, local: (f64, f64)) -> String {
             float(x),
             float(y)
         ),
-    }
-}
-
-impl Solve<'_> {
-    /// The local of top-level geom `g`'s frame, noted as read: a frame is declared only when
-    /// noted, so ask for it only for code that is written.
-    pub(super) fn frame(&self, g: GeomId) -> String {
-        self.frame_reads.borrow_mut().insert(g);
-        self.frame_local(g)
-    }
-
-    /// The local of top-level geom `g`'s frame, to move it (moves are noted apart).
-    pub(super) fn frame_local(&self, g: GeomId) -> String {
-        match self.frames.get(&g) {
-            Some(frame) => frame.clone(),
-            None => self.undeclared("frame", g),
-        }
-    }
-
-    /// The local of geom `g`'s dimension.
-    pub(super) fn dim(&self, g: GeomId) -> String {
-        match self.dims.get(&g) {
-            Some(dim) => dim.clone(),
-            None => self.undeclared("dimension", g),
-        }
-    }
-
-    /// The panic of a plan that reads what the sketch does not declare: a bug in gcs.
-    #[cold]
-    fn undeclared(&self, what: &str, g: GeomId) -> ! {
-        panic!(
-            "bug in gcs: codegen reads the {what} of `{}`, which the solve does not declare",
-            self.cx.model.geoms[g].name
-        )
-    }
-
-    /// The origin of top-level geom `g`'s frame now: its known value, or a read of it.
-    fn origin(&self, g: GeomId) -> Value {
-        match self.facts.frames.get(&g).and_then(|f| f.origin.as_ref()) {
-            Some(o) => o.clone(),
-            None => Value::Expr(format!("{}.origin", self.frame(g))),
-        }
-    }
-
-    /// For a point of a frame not yet turned whose origin's value is known: that value and the
-    /// point's constant offset from it (the local coordinates themselves).
-    pub(super) fn offset_from_origin(&self, g: GeomId) -> Option<(Value, (f64, f64))> {
-        let m = self.cx.model;
-        let top = m.top_level_of(g);
-        let facts = self.facts.frames.get(&top)?;
-        let origin = facts.origin.as_ref().filter(|_| facts.identity)?;
-        let local = match m.geoms[g].owner {
-            Owner::Member(_) => self.local_value(g, true)?,
-            Owner::TopLevel => (0.0, 0.0),
-            Owner::Part(..) => return None,
-        };
-        Some((origin.clone(), local))
-    }
-
-    /// The vector from register `pivot` to register `from` when it is a constant: two points
-    /// read from unturned frames with one origin, or a point of one and that origin.
-    pub(super) fn constant_arm(&self, pivot: Reg, from: Reg) -> Option<(f64, f64)> {
-        let (origin, (fx, fy)) = self.facts.at_offset.get(&from)?;
-        let (px, py) = match self.facts.at_offset.get(&pivot) {
-            Some((o, local)) if o.same(origin, self.cx) => *local,
-            _ if self.facts.value(pivot).same(origin, self.cx) => (0.0, 0.0),
-            _ => return None,
-        };
-        Some((fx - px, fy - py))
-    }
-
-    /// The global position of a point feature, read from the frames now.
-    pub(super) fn point_value(&self, g: GeomId) -> Value {
-        let m = self.cx.model;
-        let top = m.top_level_of(g);
-        let identity = self.facts.frames.get(&top).is_some_and(|f| f.identity);
-        match m.geoms[g].owner {
-            Owner::Member(_) => match (identity, self.local_value(g, true)) {
-                (true, Some(local)) => self.unturned_point(top, local),
-                (true, None) => Value::Expr(format!(
-                    "{} + {}.coords",
-                    self.origin(top).code(),
-                    self.local_code(g, true)
-                )),
-                (false, Some(local)) => point_in(|| self.frame(top), &self.origin(top), local),
-                (false, None) => {
-                    // Set by params, but one coordinate may still be a literal zero.
-                    let (f, l) = (self.frame(top), self.local_code(g, true));
-                    match self.cx.zero_coordinate(g) {
-                        Some(1) => offset(&self.origin(top), &format!("{f}.x_axis() * {l}.x")),
-                        Some(0) => offset(&self.origin(top), &format!("{f}.y_axis() * {l}.y")),
-                        _ => Value::Expr(format!("{f}.point_to_global(&{l})")),
-                    }
-                }
-            },
-            Owner::Part(owner, Part::End) => {
-                let dim = self.dim(owner);
-                let origin = self.origin(top).code();
-                Value::Expr(if identity {
-                    format!("{origin} + Vector2::new({dim}, 0.0)")
-                } else {
-                    format!("{origin} + {}.x_axis() * {dim}", self.frame(top))
-                })
-            }
-            Owner::TopLevel | Owner::Part(..) => self.origin(top),
-        }
-    }
-
-    /// The point at constant local coordinates `local` of frame `top`, not turned yet: the
-    /// origin plus the local coordinates, a literal when the origin is one.
-    fn unturned_point(&self, top: GeomId, local: (f64, f64)) -> Value {
-        match (self.origin(top), local) {
-            (Value::Point(ox, oy), (x, y)) => Value::Point(ox + x, oy + y),
-            (origin, (0.0, 0.0)) => origin,
-            (origin, (x, y)) => Value::Expr(format!(
-                "{} + Vector2::new({}, {})",
-                origin.code(),
-                float(x),
-                float(y)
-            )),
-        }
-    }
-
-    /// The code of a member's local coordinates: the local that holds them, or their literal.
-    fn local_code(&self, g: GeomId, point: bool) -> String {
-        match self.locals.get(&g) {
-            Some(l) => l.clone(),
-            None => self.cx.local_literal(g, point).code(),
-        }
-    }
-
-    /// The global direction of a vector feature, read from the frames now.
-    pub(super) fn dir_value(&self, g: GeomId) -> Value {
-        let m = self.cx.model;
-        let top = m.top_level_of(g);
-        let identity = self.facts.frames.get(&top).is_some_and(|f| f.identity);
-        match m.geoms[g].owner {
-            Owner::Member(_) | Owner::Part(_, Part::AxisX) => {
-                match (identity, self.local_value(g, false)) {
-                    (true, Some((x, y))) => Value::Vector(x, y),
-                    (true, None) => Value::Local(self.local_code(g, false)),
-                    (false, Some(local)) => Value::Expr(direction_in(&self.frame(top), local)),
-                    (false, None) => Value::Expr(format!(
-                        "{}.vector_to_global(&{})",
-                        self.frame(top),
-                        self.local_code(g, false)
-                    )),
-                }
-            }
-            _ if identity => Value::Vector(1.0, 0.0),
-            _ => Value::Expr(format!("{}.x_axis()", self.frame(top))),
-        }
-    }
-
-    /// A member's local coordinates when they are a literal, `None` when params set them (a
-    /// local of the solve then holds them).
-    pub(super) fn local_value(&self, g: GeomId, point: bool) -> Option<(f64, f64)> {
-        if self.locals.contains_key(&g) {
-            return None;
-        }
-        Some(self.cx.literal_coords(g, point))
     }
 }

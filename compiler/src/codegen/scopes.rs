@@ -113,25 +113,32 @@ pub(super) fn field_by_field_eq(w: &mut Writer, name: &str, fields: &[String], e
     w.line("");
 }
 
-/// The solve's step groups, in order, as one text at `indent`: the groups themselves, or, past
+/// A group of the solve's steps: its code, and what the ledger holds of it (see `ledger`).
+pub(super) struct Group {
+    pub code: Writer,
+    /// The locals its top-level `let`s declare, in order.
+    pub lets: Vec<String>,
+    /// The locals its code reads.
+    pub reads: Vec<String>,
+}
+
+/// The solve's step groups, in order, at `indent`: the groups themselves, or, past
 /// [`FLAT_LETS`] `let`s at the top level, runs of groups each in a block of its own that ends
-/// with the locals it defines and `later` code (or a later block) reads.
-///
-/// A group's top-level `let`s are its lines at `indent` that start with `let`; what later code
-/// reads is judged by its identifiers outside comments and string literals.
-pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String {
-    let margin = "    ".repeat(indent);
-    let defined: Vec<Vec<&str>> = groups.iter().map(|g| top_level_lets(g, &margin)).collect();
-    let total: usize = defined.iter().map(Vec::len).sum();
+/// with the locals it defines and code after it reads (a later block, or `later`, the locals
+/// the code after the groups reads).
+pub(super) fn in_blocks(groups: &[Group], later: &[&str], indent: usize) -> Writer {
+    let mut w = Writer::at(indent);
+    let total: usize = groups.iter().map(|g| g.lets.len()).sum();
     if total <= FLAT_LETS {
-        return groups.concat();
+        groups.iter().for_each(|g| w.push(&g.code));
+        return w;
     }
     // Runs of whole groups, each closed once it holds `size` lets.
     let size = block_size(total);
     let mut runs = Vec::new();
     let (mut start, mut lets) = (0, 0);
-    for (i, d) in defined.iter().enumerate() {
-        lets += d.len();
+    for (i, g) in groups.iter().enumerate() {
+        lets += g.lets.len();
         if lets >= size || i + 1 == groups.len() {
             runs.push(start..i + 1);
             start = i + 1;
@@ -139,20 +146,19 @@ pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String
         }
     }
     // What each run hands on: its locals that code after it reads, found from the end back.
-    let mut read_after: HashSet<&str> = identifiers(later).into_iter().collect();
+    let mut read_after: HashSet<&str> = later.iter().copied().collect();
     let mut handed_on = vec![Vec::new(); runs.len()];
     for (k, run) in runs.iter().enumerate().rev() {
-        handed_on[k] = defined[run.clone()]
+        handed_on[k] = groups[run.clone()]
             .iter()
-            .flatten()
-            .copied()
+            .flat_map(|g| &g.lets)
+            .map(String::as_str)
             .filter(|name| read_after.contains(name))
             .collect::<Vec<_>>();
         for g in &groups[run.clone()] {
-            read_after.extend(identifiers(g));
+            read_after.extend(g.reads.iter().map(String::as_str));
         }
     }
-    let mut w = Writer::at(indent);
     for (run, out) in runs.iter().zip(&handed_on) {
         w.line("");
         w.line(match out.len() {
@@ -170,16 +176,7 @@ pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String
             Some(v) => w.open(&format!("let {v} = {{")),
         }
         for g in &groups[run.clone()] {
-            for line in g.lines() {
-                match line.is_empty() {
-                    true => w.out.push('\n'),
-                    false => {
-                        w.out.push_str("    ");
-                        w.out.push_str(line);
-                        w.out.push('\n');
-                    }
-                }
-            }
+            w.push_deeper(&g.code);
         }
         match &value {
             None => w.close("}"),
@@ -189,57 +186,7 @@ pub(super) fn in_blocks(groups: &[String], later: &str, indent: usize) -> String
             }
         }
     }
-    w.out
-}
-
-/// The names a text's top-level `let`s (lines at `margin` starting with `let`) bind, in order.
-fn top_level_lets<'t>(text: &'t str, margin: &str) -> Vec<&'t str> {
-    text.lines()
-        .filter_map(|line| line.strip_prefix(margin)?.strip_prefix("let "))
-        .map(|rest| {
-            let rest = rest.strip_prefix("mut ").unwrap_or(rest);
-            let end = rest
-                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-                .unwrap_or(rest.len());
-            &rest[..end]
-        })
-        .filter(|name| !name.is_empty() && *name != "_")
-        .collect()
-}
-
-/// The identifiers a text's code reads: its words outside comments and string literals (a
-/// value handed on that nothing reads would be an unused variable in the caller's crate).
-fn identifiers(text: &str) -> Vec<&str> {
-    let bytes = text.as_bytes();
-    let mut words = Vec::new();
-    let mut i = 0;
-    while i < bytes.len() {
-        match bytes[i] {
-            b'"' => {
-                i += 1;
-                while i < bytes.len() && bytes[i] != b'"' {
-                    i += if bytes[i] == b'\\' { 2 } else { 1 };
-                }
-                i += 1;
-            }
-            b'/' if bytes.get(i + 1) == Some(&b'/') => {
-                while i < bytes.len() && bytes[i] != b'\n' {
-                    i += 1;
-                }
-            }
-            c if c.is_ascii_alphanumeric() || c == b'_' => {
-                let start = i;
-                while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
-                    i += 1;
-                }
-                if !bytes[start].is_ascii_digit() {
-                    words.push(&text[start..i]);
-                }
-            }
-            _ => i += 1,
-        }
-    }
-    words
+    w
 }
 
 #[cfg(test)]
@@ -247,23 +194,32 @@ mod tests {
     use super::*;
 
     /// A group of `n` lets at indent 1: `let {prefix}_i = {prefix}_{i-1} + 1.0;`, the first
-    /// reading `input`.
-    fn group(prefix: &str, n: usize, input: &str) -> String {
-        let mut out = format!("\n    // {prefix}\n");
+    /// reading `input`, with what the ledger would hold of it.
+    fn group(prefix: &str, n: usize, input: &str) -> Group {
+        let mut code = Writer::at(1);
+        code.line("");
+        code.line(&format!("// {prefix}"));
+        let (mut lets, mut reads) = (Vec::new(), Vec::new());
         for i in 0..n {
             let from = match i {
                 0 => input.to_string(),
                 _ => format!("{prefix}_{}", i - 1),
             };
-            out.push_str(&format!("    let {prefix}_{i} = {from} + 1.0;\n"));
+            code.line(&format!("let {prefix}_{i} = {from} + 1.0;"));
+            lets.push(format!("{prefix}_{i}"));
+            reads.push(from);
         }
-        out
+        Group { code, lets, reads }
+    }
+
+    fn text(groups: &[Group]) -> String {
+        groups.iter().map(|g| g.code.out.as_str()).collect()
     }
 
     #[test]
     fn short_code_is_written_as_it_is() {
         let groups = vec![group("a", 10, "x"), group("b", 10, "a_9")];
-        assert_eq!(in_blocks(&groups, "b_9", 1), groups.concat());
+        assert_eq!(in_blocks(&groups, &["b_9"], 1).out, text(&groups));
         let mut w = Writer::at(1);
         let bindings = [Binding {
             mutable: true,
@@ -278,7 +234,7 @@ mod tests {
     fn long_code_hands_on_exactly_what_later_code_reads() {
         // 40 groups of 20 lets: 800 in all, so blocks of about 64 lets (4 groups), each reading
         // the last local of the group before; the tail reads the very last one.
-        let groups: Vec<String> = (0..40)
+        let groups: Vec<Group> = (0..40)
             .map(|k| {
                 let input = match k {
                     0 => "x".to_string(),
@@ -287,7 +243,7 @@ mod tests {
                 group(&format!("g{k}"), 20, &input)
             })
             .collect();
-        let text = in_blocks(&groups, "    Ok(g39_19)\n", 1);
+        let text = in_blocks(&groups, &["g39_19"], 1).out;
         // Ten blocks, each at the top level of the function.
         assert_eq!(text.matches("\n    let g").count(), 10, "{text}");
         assert_eq!(text.matches("\n    {\n").count(), 0);
@@ -302,7 +258,7 @@ mod tests {
         }
         // Every original line is kept, one level deeper.
         for g in &groups {
-            for line in g.lines().filter(|l| !l.is_empty()) {
+            for line in g.code.out.split('\n').filter(|l| !l.is_empty()) {
                 assert!(text.contains(&format!("    {line}\n")), "{line}");
             }
         }
@@ -310,25 +266,26 @@ mod tests {
 
     #[test]
     fn a_block_nothing_later_reads_from_hands_on_nothing() {
-        let groups: Vec<String> = (0..40).map(|k| group(&format!("g{k}"), 20, "x")).collect();
-        let text = in_blocks(&groups, "    Ok(())\n", 1);
+        let groups: Vec<Group> = (0..40).map(|k| group(&format!("g{k}"), 20, "x")).collect();
+        let text = in_blocks(&groups, &[], 1).out;
         assert_eq!(text.matches("\n    {\n").count(), 10, "{text}");
         assert!(!text.contains("\n    let g"), "{text}");
     }
 
     #[test]
     fn several_locals_are_handed_on_as_a_tuple() {
-        let mut groups: Vec<String> = (0..40).map(|k| group(&format!("g{k}"), 20, "x")).collect();
-        groups.push("\n    let y = g0_3 * g1_7;\n".to_string());
-        let text = in_blocks(&groups, "    Ok(y)\n", 1);
+        let mut groups: Vec<Group> = (0..40).map(|k| group(&format!("g{k}"), 20, "x")).collect();
+        let mut code = Writer::at(1);
+        code.line("");
+        code.line("let y = g0_3 * g1_7;");
+        groups.push(Group {
+            code,
+            lets: vec!["y".into()],
+            reads: vec!["g0_3".into(), "g1_7".into()],
+        });
+        let text = in_blocks(&groups, &["y"], 1).out;
         assert!(text.contains("    let (g0_3, g1_7) = {\n"), "{text}");
         assert!(text.contains("        (g0_3, g1_7)\n    };\n"));
-    }
-
-    #[test]
-    fn comments_and_strings_are_not_reads() {
-        let code = "let a = b + c_2; // d e\nf(\"g \\\" h\", i2) // \"j\n1.5e3";
-        assert_eq!(identifiers(code), ["let", "a", "b", "c_2", "f", "i2"]);
     }
 
     #[test]

@@ -14,9 +14,10 @@
 
 use super::api::{Holds, Layout};
 use super::context::Context;
-use super::facts::Facts;
+use super::facts::{Facts, Value};
+use super::ledger::Ledger;
 use super::names::Namer;
-use super::scopes::{self, Binding};
+use super::scopes::{self, Binding, Group};
 use super::sketch::dimension_name;
 use super::writer::{field_init, lit, Writer};
 use crate::plan::{DefaultId, Iteration, Op, Reg, Step};
@@ -49,23 +50,28 @@ pub(super) struct Solve<'a> {
     /// declared, and only a moved one is `mut`.
     pub(super) frame_reads: RefCell<HashSet<GeomId>>,
     pub(super) frame_writes: HashSet<GeomId>,
-    /// The code of each default an iteration varies, while its region is written (an entry
-    /// of the trial's array).
-    pub(super) iterated: HashMap<DefaultId, String>,
+    /// Each `let` and each read of a local written so far.
+    pub(super) ledger: RefCell<Ledger>,
+    /// Where the ledger was, and how many errors' code had been made, when the current step
+    /// began.
+    pub(super) step_start: (usize, usize),
+    /// The entry of the trial's array (the array's local and the index) each default an
+    /// iteration varies is, while its region is written.
+    pub(super) iterated: HashMap<DefaultId, (String, usize)>,
     /// Inside an iteration's trial: the array its closes write, and the next entry.
     pub(super) closing: Option<(String, usize)>,
     /// Writing an iterated region after it converged: its error functions are not written.
     pub(super) converged: bool,
     /// Registers only error functions read: not written once the iteration converged.
     pub(super) error_only: HashSet<Reg>,
-    /// The code of each default an iteration converged on (its trial's entry), for
+    /// The trial's entry each default an iteration converged on is, for
     /// `Solution::defaults`.
-    pub(super) converged_defaults: HashMap<DefaultId, String>,
+    pub(super) converged_defaults: HashMap<DefaultId, (String, usize)>,
     /// The directions near an iteration's start (`DirectionsNear`) of each angle it varies,
-    /// by the code of the angle's trial entry: declared before the iteration once a trial
-    /// turns the x axis by that angle, and used again where the region is written at the
-    /// angle converged to.
-    pub(super) trial_directions: HashMap<String, TrialDirections>,
+    /// by the angle's trial entry: declared before the iteration once a trial turns the x
+    /// axis by that angle, and used again where the region is written at the angle converged
+    /// to.
+    pub(super) trial_directions: HashMap<(String, usize), TrialDirections>,
     /// In space, frames declared with a value other than their sketch's: a frame whose
     /// moves were all computed here (see `FrameFacts::literal3`) starts where they left it.
     pub(super) declared_at: HashMap<GeomId, String>,
@@ -78,27 +84,6 @@ pub(super) struct TrialDirections {
     pub(super) name: String,
     /// Whether the trial read it (and so it is declared).
     pub(super) used: bool,
-}
-
-/// The locals `code` declares (`let name =`) and never reads.
-fn unread_locals(code: &str) -> Vec<String> {
-    let is_ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
-    let words: Vec<&str> = code
-        .split(|c: char| !is_ident(c))
-        .filter(|w| !w.is_empty())
-        .collect();
-    let mut out = Vec::new();
-    for line in code.lines() {
-        let Some(rest) = line.trim_start().strip_prefix("let ") else {
-            continue;
-        };
-        let rest = rest.strip_prefix("mut ").unwrap_or(rest);
-        let name: String = rest.chars().take_while(|&c| is_ident(c)).collect();
-        if !name.is_empty() && words.iter().filter(|w| **w == name).count() == 1 {
-            out.push(name);
-        }
-    }
-    out
 }
 
 /// Writes `solve`.
@@ -124,6 +109,8 @@ impl<'a> Solve<'a> {
             facts: Facts::default(),
             frame_reads: RefCell::new(HashSet::default()),
             frame_writes: HashSet::default(),
+            ledger: RefCell::default(),
+            step_start: (0, 0),
             iterated: HashMap::default(),
             closing: None,
             converged: false,
@@ -169,15 +156,17 @@ impl Solve<'_> {
         let tol = self.tolerance(&worked);
         let mut body = Writer::at(w.indent);
         let groups = self.steps_in_groups(&mut body);
+        let tail = self.ledger.borrow().mark();
         self.solution_init(&mut body, layout);
+        let ledger = self.ledger.borrow();
+        let later: Vec<&str> = ledger.reads(tail, ledger.mark()).collect();
         let bindings = self.bindings(decls);
         scopes::declare(w, &bindings);
         if let Some(tol) = tol {
             w.line(&tol);
         }
-        w.out
-            .push_str(&scopes::in_blocks(&groups, &body.out, body.indent));
-        w.out.push_str(&body.out);
+        w.push(&scopes::in_blocks(&groups, &later, body.indent));
+        w.push(&body);
         w.close("}");
     }
 
@@ -404,9 +393,9 @@ impl Solve<'_> {
     }
 
     /// Writes the plan's steps, each group up to the step that satisfies a constraint opened
-    /// with a comment quoting that constraint and its place in the file; returns each group's
-    /// text (so that a long solve can be put in blocks), taken out of `w`.
-    fn steps_in_groups(&mut self, w: &mut Writer) -> Vec<String> {
+    /// with a comment quoting that constraint and its place in the file; returns each group
+    /// (so that a long solve can be put in blocks), taken out of `w`.
+    fn steps_in_groups(&mut self, w: &mut Writer) -> Vec<Group> {
         let steps = &self.cx.plan.steps;
         let mut group_start = true;
         // Where the current group's code starts: a group whose steps all turn out to move
@@ -422,7 +411,7 @@ impl Solve<'_> {
                 self.converged = false;
             }
             if group_start {
-                group_starts.push(w.out.len());
+                group_starts.push((w.out.len(), self.ledger.borrow().mark()));
                 if let Some(end) = steps[i..].iter().find(|s| !s.satisfies.is_empty()) {
                     self.constraint_comments(w, end);
                 }
@@ -437,11 +426,20 @@ impl Solve<'_> {
                 group_start = true;
             }
         }
-        let text = std::mem::take(&mut w.out);
-        group_starts
-            .iter()
-            .zip(group_starts.iter().skip(1).chain([&text.len()]))
-            .map(|(&from, &to)| text[from..to].to_string())
+        let text = Writer {
+            out: std::mem::take(&mut w.out),
+            starts: std::mem::take(&mut w.starts),
+            ..Writer::at(w.indent)
+        };
+        let ledger = self.ledger.borrow();
+        let end = (text.out.len(), ledger.mark());
+        (group_starts.iter())
+            .zip(group_starts.iter().skip(1).chain([&end]))
+            .map(|(&(from, at), &(to, until))| Group {
+                code: text.slice(from, to),
+                lets: ledger.lets(at, until, text.indent),
+                reads: ledger.reads(at, until).map(str::to_string).collect(),
+            })
             .collect()
     }
 
@@ -480,17 +478,23 @@ impl Solve<'_> {
             closed.join(", "),
             if closed.len() == 1 { "s" } else { "" }
         ));
-        w.line(&format!("let mut {trial} = [{}];", start.join(", ")));
+        self.let_line(
+            w,
+            &format!("mut {trial}"),
+            &trial,
+            &format!("[{}]", start.join(", ")),
+        );
         // An angle's directions near its start, declared here once the trial reads them.
         let (directions_at, directions_indent) = (w.out.len(), w.indent);
+        let directions_mark = self.ledger.borrow().mark();
         for (k, d) in it.defaults.iter().enumerate() {
             if plan.defaults[d.0 as usize].is_angle() {
                 let name = (self.names).fresh(&format!("{}_directions", cx.defaults[d.0 as usize]));
                 let directions = TrialDirections { name, used: false };
-                self.trial_directions
-                    .insert(format!("{trial}[{k}]"), directions);
+                self.trial_directions.insert((trial.clone(), k), directions);
             }
         }
+        self.note_read(&trial);
         w.open(&format!(
             "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0), |{trial}, {errors}| {{",
             scale.join(", ")
@@ -503,50 +507,61 @@ impl Solve<'_> {
         // A dimension the region sets is bound anew where it is set (`set_dim`).
         let shadows_at = w.out.len();
         for (k, d) in it.defaults.iter().enumerate() {
-            self.iterated.insert(*d, format!("{trial}[{k}]"));
+            self.iterated.insert(*d, (trial.clone(), k));
         }
         self.closing = Some((errors.clone(), 0));
-        let body_at = w.out.len();
+        let body_at = self.ledger.borrow().mark();
         for i in it.start..it.end {
             self.step(w, i, &plan.steps[i]);
         }
         self.closing = None;
         // What the trial computes for the steps after the region only: not read here.
-        let unread = unread_locals(&w.out[body_at..]);
+        let unread = self.ledger.borrow().unread_since(body_at);
         if !unread.is_empty() {
             let refs: Vec<String> = unread.iter().map(|n| format!("&{n}")).collect();
             let refs = match refs.as_slice() {
                 [one] => one.clone(),
                 _ => format!("({})", refs.join(", ")),
             };
+            unread.iter().for_each(|n| self.note_read(n));
             w.line(&format!("let _ = {refs};"));
         }
         let written = std::mem::replace(&mut self.frame_writes, written_before);
         let mut shadows = Writer::at(w.indent);
         let mut written: Vec<GeomId> = written.into_iter().collect();
         written.sort();
+        let mut names = Vec::new();
         for g in &written {
             let f = self.frame(*g);
             self.frame_reads.borrow_mut().insert(*g);
             shadows.line(&format!("let mut {f} = {f};"));
+            names.push(f);
         }
+        self.ledger
+            .borrow_mut()
+            .declare_at(body_at, &names, shadows.indent);
         self.frame_writes.extend(written);
-        w.out.insert_str(shadows_at, &shadows.out);
+        w.insert(shadows_at, &shadows);
         w.line("Ok(())");
         w.close("})");
         let mut declared = Writer::at(directions_indent);
+        let mut names = Vec::new();
         for k in 0..it.defaults.len() {
-            match self.trial_directions.get(&format!("{trial}[{k}]")) {
+            match self.trial_directions.get(&(trial.clone(), k)) {
                 Some(TrialDirections { name, used: true }) => {
-                    declared.line(&format!("let {name} = DirectionsNear::new({trial}[{k}]);"))
+                    declared.line(&format!("let {name} = DirectionsNear::new({trial}[{k}]);"));
+                    names.push(name.clone());
                 }
                 Some(_) => {
-                    self.trial_directions.remove(&format!("{trial}[{k}]"));
+                    self.trial_directions.remove(&(trial.clone(), k));
                 }
                 None => {}
             }
         }
-        w.out.insert_str(directions_at, &declared.out);
+        self.ledger
+            .borrow_mut()
+            .declare_at(directions_mark, &names, directions_indent);
+        w.insert(directions_at, &declared);
         let first = &cx.model.constraints[closes[0]];
         w.open(".map_err(|failure| match failure {");
         w.line("gcs_runtime::iterate::Failure::Start(error) => error,");
@@ -559,6 +574,7 @@ impl Solve<'_> {
         // An angle converged to is reported in (-pi, pi]: a turn more is the same assembly.
         for (k, d) in it.defaults.iter().enumerate() {
             if plan.defaults[d.0 as usize].is_angle() {
+                self.note_read(&trial);
                 w.line(&format!(
                     "{trial}[{k}] = gcs_runtime::num::wrap_angle({trial}[{k}]);"
                 ));
@@ -592,8 +608,8 @@ impl Solve<'_> {
         self.facts = facts;
         self.deferred = deferred;
         for (k, d) in it.defaults.iter().enumerate() {
-            self.iterated.insert(*d, format!("{trial}[{k}]"));
-            self.converged_defaults.insert(*d, format!("{trial}[{k}]"));
+            self.iterated.insert(*d, (trial.clone(), k));
+            self.converged_defaults.insert(*d, (trial.clone(), k));
         }
         self.converged = true;
     }
@@ -672,8 +688,11 @@ impl Solve<'_> {
     fn field_value(&self, holds: Holds) -> String {
         match holds {
             Holds::Frame(g) => self.frame_value(g),
-            Holds::Dim(g) => self.dims[&g].clone(),
-            Holds::Local(f) => self.locals[&f].clone(),
+            Holds::Dim(g) => self.dim(g),
+            Holds::Local(f) => {
+                self.note_read(&self.locals[&f]);
+                self.locals[&f].clone()
+            }
             Holds::LineSketch(g) => match super::api::line_sketch(self.cx, g) {
                 Some(from) => self.cx.point_code(from),
                 None => unreachable!("only a line's sketch point is held"),
@@ -685,19 +704,52 @@ impl Solve<'_> {
     fn defaults_init(&self, w: &mut Writer) {
         if !self.cx.plan.defaults.is_empty() {
             let fields: Vec<String> = (self.cx.defaults.iter().enumerate())
-                .map(|(k, field)| {
-                    let value = (self.converged_defaults.get(&DefaultId(k as u32)))
-                        .cloned()
-                        .unwrap_or_else(|| format!("defaults.{field}"));
-                    field_init(field, &value).trim_end_matches(',').to_string()
-                })
+                .map(
+                    |(k, field)| match self.converged_defaults.get(&DefaultId(k as u32)) {
+                        Some((trial, k)) => {
+                            self.note_read(trial);
+                            format!("{field}: {trial}[{k}]")
+                        }
+                        None => format!("{field}: defaults.{field}"),
+                    },
+                )
                 .collect();
             w.line(&format!("defaults: Defaults {{ {} }},", fields.join(", ")));
         }
     }
 
-    /// The code of register `r`.
+    /// The code of register `r`, noted as read: ask for it only for code that is written.
     pub(super) fn r(&self, r: Reg) -> String {
-        self.facts.value(r).code()
+        self.code(self.facts.value(r))
+    }
+
+    /// The code of `v`, noted as read (see [`Solve::r`]).
+    pub(super) fn code(&self, v: &Value) -> String {
+        self.note(v);
+        v.code()
+    }
+
+    /// Notes a read of the local `v` is, if it is one.
+    pub(super) fn note(&self, v: &Value) {
+        if let Some(name) = v.reads() {
+            self.note_read(name);
+        }
+    }
+
+    /// Notes a read (or an assignment, or a move) of local `name`.
+    pub(super) fn note_read(&self, name: &str) {
+        self.ledger.borrow_mut().read(name);
+    }
+
+    /// `let {pattern} = {code};`, declaring `name`.
+    pub(super) fn let_line(&self, w: &mut Writer, pattern: &str, name: &str, code: &str) {
+        w.line(&format!("let {pattern} = {code};"));
+        self.ledger.borrow_mut().declare(name, w.indent);
+    }
+
+    /// `let {name} = {code};` for a local that the code of its own step goes on to read.
+    pub(super) fn let_read(&self, w: &mut Writer, name: &str, code: &str) {
+        self.let_line(w, name, name, code);
+        self.note_read(name);
     }
 }

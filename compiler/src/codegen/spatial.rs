@@ -26,7 +26,7 @@
 mod actions;
 mod residual;
 
-use super::facts::Value;
+use super::facts::{Made, Value};
 use super::sketch3::frame3;
 use super::solve::Solve;
 use super::writer::{float, lit, Writer};
@@ -175,7 +175,7 @@ impl Solve<'_> {
         call: &str,
     ) {
         let local = self.names.fresh(names.0);
-        w.line(&format!("let {local} = {call};"));
+        self.let_read(w, &local, call);
         self.fail_on_contact(w, c, &local, None);
         let code = format!("{local}.roots.get(0){}", self.or_degenerate(i));
         self.define(w, r, names.1, &code);
@@ -337,11 +337,8 @@ impl Solve<'_> {
                 constraint,
             } => {
                 let gap = self.names.fresh("gap");
-                w.line(&format!(
-                    "let {gap} = {}.distance(&{});",
-                    self.r(*locus),
-                    self.r(*point)
-                ));
+                let code = format!("{}.distance(&{})", self.r(*locus), self.r(*point));
+                self.let_read(w, &gap, &code);
                 w.open(&format!("if {gap}.is_nan() || {gap} > tol {{"));
                 w.line(&format!(
                     "return Err({});",
@@ -547,13 +544,14 @@ impl Solve<'_> {
                 constraint,
             } => {
                 let turns = self.names.fresh("turns");
-                w.line(&format!(
-                    "let {turns} = frame::turns_to_angle(&{}, &{}, &{}, {});",
+                let code = format!(
+                    "frame::turns_to_angle(&{}, &{}, &{}, {})",
                     self.r(*u),
                     self.r(*v),
                     self.r(*axis),
                     self.r(*angle)
-                ));
+                );
+                self.let_read(w, &turns, &code);
                 self.fail_on_contact(w, *constraint, &turns, None);
                 let code = self.root(&turns, *branch, *constraint);
                 self.define_pure(w, r, "turned", &code);
@@ -570,7 +568,7 @@ impl Solve<'_> {
                 let con = &m.constraints[*constraint];
                 let (label, text) = (lit(&con.name), lit(&con.text));
                 let len = self.names.fresh("reach");
-                w.line(&format!("let {len} = {cone}.0.norm();"));
+                self.let_read(w, &len, &format!("{cone}.0.norm()"));
                 w.open(&format!("if {len}.is_nan() || {len} <= 0.0 {{"));
                 w.line(&format!(
                     "return Err(SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0));"
@@ -603,19 +601,22 @@ impl Solve<'_> {
                 let con = &m.constraints[*constraint];
                 let (label, text) = (lit(&con.name), lit(&con.text));
                 let reach = self.names.fresh("reach");
-                w.line(&format!(
-                    "let {reach} = {cone}.0.try_normalize(0.0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0))?;"
+                self.let_read(w, &reach, &format!(
+                    "{cone}.0.try_normalize(0.0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::Degenerate, 0.0))?"
                 ));
                 let gap = self.names.fresh("gap");
-                w.line(&format!(
-                    "let {gap} = ({cone}.1.abs() - 1.0).max(0.0) * {cone}.0.norm();"
-                ));
+                self.let_read(
+                    w,
+                    &gap,
+                    &format!("({cone}.1.abs() - 1.0).max(0.0) * {cone}.0.norm()"),
+                );
                 let turns = self.names.fresh("turns");
-                w.line(&format!(
-                    "let {turns} = frame::turns_to_angle(&{reach}, &{}, &{}, {cone}.1.clamp(-1.0, 1.0).acos());",
+                let code = format!(
+                    "frame::turns_to_angle(&{reach}, &{}, &{}, {cone}.1.clamp(-1.0, 1.0).acos())",
                     self.r(*normal),
                     self.r(*axis)
-                ));
+                );
+                self.let_read(w, &turns, &code);
                 self.fail_on_contact(w, *constraint, &turns, Some(&gap));
                 w.open(&format!(
                     "if {gap} > gcs_runtime::tol::LENGTH_REL * (1.0 + {cone}.0.norm()) {{"
@@ -702,7 +703,8 @@ impl Solve<'_> {
                 offset,
             } => {
                 let n = self.names.fresh("normal");
-                w.line(&format!("let {n} = {};", self.unit3_of(i, *normal)));
+                let code = self.unit3_of(i, *normal);
+                self.let_read(w, &n, &code);
                 let at = match offset {
                     Some(o) => format!("({} + {n} * {})", self.r(*point), self.r(*o)),
                     None => self.r(*point),
@@ -830,16 +832,37 @@ impl Solve<'_> {
     /// already holds it when one does (the same locus built twice, for an action and for the
     /// check that the point it reached is on it).
     fn define_pure(&mut self, w: &mut Writer, r: Reg, name: &str, code: &str) {
-        if let Some(local) = self.facts.computed.get(code) {
+        let made = self.made(r);
+        if let Some(local) = made.as_ref().and_then(|m| self.facts.computed.get(m)) {
             let value = Value::Local(local.clone());
             self.facts.regs.insert(r, value);
             return;
         }
         self.define(w, r, name, code);
-        if let Value::Local(local) = self.facts.value(r) {
+        if let (Some(made), Value::Local(local)) = (made, self.facts.value(r)) {
             let local = local.clone();
-            self.facts.computed.insert(code.to_string(), local);
+            self.facts.computed.insert(made, local);
         }
+    }
+
+    /// What register `r`, of a value of locals alone, is made from (see [`Made`]): none when
+    /// its step declared a local of its own, which its code reads.
+    fn made(&self, r: Reg) -> Option<Made> {
+        let i = self.cx.defined_at[&r];
+        let (at, errors) = self.step_start;
+        if self.ledger.borrow().declares_since(at) {
+            return None;
+        }
+        let op = &self.cx.plan.steps[i].op;
+        let reads = op.reads();
+        // A register no step wrote (an intersection's `near`) is not in the code.
+        let operands: Vec<(&Value, u8)> = (reads.iter())
+            .filter_map(|x| Some((self.facts.regs.get(x)?, self.kind3(*x) as u8)))
+            .collect();
+        let fails = (self.cx.errors_made.get() > errors)
+            .then(|| self.cx.plan.constraint_of(i))
+            .flatten();
+        Made::new(op, &operands, fails)
     }
 
     /// The cone a turning plane's normal must lie on (see `frame::plane_cone`), in a local.
@@ -849,14 +872,15 @@ impl Solve<'_> {
         (base, normal, pivot, point, d): (Reg, Reg, Reg, Reg, Reg),
     ) -> String {
         let cone = self.names.fresh("cone");
-        w.line(&format!(
-            "let {cone} = frame::plane_cone(&{}, &{}, &{}, &{}, {});",
+        let code = format!(
+            "frame::plane_cone(&{}, &{}, &{}, &{}, {})",
             self.r(base),
             self.r(normal),
             self.r(pivot),
             self.r(point),
             self.r(d)
-        ));
+        );
+        self.let_read(w, &cone, &code);
         cone
     }
 
@@ -922,11 +946,8 @@ impl Solve<'_> {
         };
         let con = &self.cx.model.constraints[c];
         let meeting = self.names.fresh(&format!("{}_meeting", con.name));
-        w.line(&format!(
-            "let {meeting} = intersect3d::{f}(&{}, &{});",
-            self.r(a),
-            self.r(b)
-        ));
+        let code = format!("intersect3d::{f}(&{}, &{})", self.r(a), self.r(b));
+        self.let_read(w, &meeting, &code);
         self.fail_on_contact(w, c, &meeting, None);
         let code = if matches!(
             meet,

@@ -9,11 +9,11 @@ use super::writer::{float, linear, lit, Writer};
 use crate::plan::{BranchId, Meet, Op, PlanarOp, Reg, Residual, SpatialOp, Step};
 use gcs_lang::expr::{ExprId, ExprNode};
 use gcs_lang::model::{ConstraintId, GeomId};
-use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 impl Solve<'_> {
     /// Writes step `i` of the plan.
     pub(super) fn step(&mut self, w: &mut Writer, i: usize, step: &Step) {
+        self.step_start = (self.ledger.borrow().mark(), self.cx.errors_made.get());
         match &step.op {
             Op::Translate { geoms, from, to } => {
                 let space = self.cx.space;
@@ -102,7 +102,7 @@ impl Solve<'_> {
                 self.define(w, r, "minus", &code);
             }
             Op::DimOf(g) => {
-                let d = self.dim(*g);
+                let d = self.dim_local(*g);
                 self.facts.regs.insert(r, Value::Local(d));
             }
             Op::Sum(terms) => {
@@ -113,7 +113,7 @@ impl Solve<'_> {
                 // An input, like a param: `solve` checks it finite on entry. One an iteration
                 // varies is its trial's entry.
                 let value = match self.iterated.get(d) {
-                    Some(code) => Value::Local(code.clone()),
+                    Some((trial, k)) => Value::Entry(trial.clone(), *k),
                     None => Value::Default(d.0 as usize, self.cx.defaults[d.0 as usize].clone()),
                 };
                 self.facts.regs.insert(r, value);
@@ -409,7 +409,7 @@ impl Solve<'_> {
     /// `let {name} = {code};` for register `reg`.
     pub(super) fn define(&mut self, w: &mut Writer, reg: Reg, name: &str, code: &str) {
         let local = self.names.fresh(name);
-        w.line(&format!("let {local} = {code};"));
+        self.let_line(w, &local, &local, code);
         self.facts.regs.insert(reg, Value::Local(local));
     }
 
@@ -439,7 +439,7 @@ impl Solve<'_> {
     /// that value (a literal named `name` for what derives from it).
     pub(super) fn define_or_alias(&mut self, w: &mut Writer, reg: Reg, name: &str, value: Value) {
         if !value.is_atom() {
-            self.define(w, reg, name, &value.code());
+            self.define(w, reg, name, &self.code(&value));
             return;
         }
         if value.is_literal() {
@@ -451,8 +451,8 @@ impl Solve<'_> {
     /// A name derived from register `r`: `{name}{suffix}` after its local or the literal it
     /// names, else `fallback`.
     fn derived_name(&self, r: Reg, suffix: &str, fallback: &str) -> String {
-        let name = self.facts.literal_names.get(&r).map(String::as_str);
-        match name.or(self.facts.value(r).local()) {
+        let name = self.facts.literal_names.get(&r).cloned();
+        match name.or_else(|| self.facts.value(r).local()) {
             Some(name) => format!("{name}{suffix}"),
             None => fallback.to_string(),
         }
@@ -556,12 +556,19 @@ impl Solve<'_> {
         }
         // An iteration's trial angle: turned from the iteration's start (`DirectionsNear`).
         let near = match self.facts.value(angle) {
-            Value::Local(code) => self.trial_directions.get_mut(code).map(|t| {
-                t.used = true;
-                format!("{}.at({a})", t.name)
-            }),
+            Value::Entry(trial, k) => {
+                let key = (trial.clone(), *k);
+                self.trial_directions.get_mut(&key).map(|t| {
+                    t.used = true;
+                    t.name.clone()
+                })
+            }
             _ => None,
         };
+        let near = near.map(|name| {
+            self.note_read(&name);
+            format!("{name}.at({a})")
+        });
         let turned = near.unwrap_or_else(|| format!("direction_at({a})"));
         let code = if self.facts.value(dir).is_x_axis() {
             if self.facts.is_finite(angle) {
@@ -660,11 +667,8 @@ impl Solve<'_> {
     /// `point`, which must lie on `locus` within the tolerance.
     fn onto(&mut self, w: &mut Writer, r: Reg, locus: Reg, point: Reg, c: ConstraintId) {
         let gap = self.names.fresh("gap");
-        w.line(&format!(
-            "let {gap} = {}.residual({});",
-            self.r(locus),
-            self.r(point)
-        ));
+        let code = format!("{}.residual({})", self.r(locus), self.r(point));
+        self.let_read(w, &gap, &code);
         w.open(&format!("if {gap}.is_nan() || {gap} > tol {{"));
         w.line(&format!("return Err({});", self.inconsistent(c, &gap)));
         w.close("}");
@@ -707,11 +711,8 @@ impl Solve<'_> {
             ),
         };
         let meeting = self.names.fresh(&format!("{}_meeting", con.name));
-        w.line(&format!(
-            "let {meeting} = intersect2d::{f}(&{}, &{});",
-            self.r(a),
-            self.r(b)
-        ));
+        let code = format!("intersect2d::{f}(&{}, &{})", self.r(a), self.r(b));
+        self.let_read(w, &meeting, &code);
         w.open(&format!(
             "if let Some(e) = SolveError::from_contact({label}, {text}, {meeting}.contact) {{"
         ));
@@ -753,7 +754,7 @@ impl Solve<'_> {
         let index = self.branch_index(branch);
         let (o, b) = (self.r(pivot), self.r(base));
         let mut terms: Vec<String> = offset.map(|d| self.r(d)).into_iter().collect();
-        if b != o {
+        if !(self.facts.value(base)).same(self.facts.value(pivot), self.cx) {
             // The base's offset from the pivot turns with the line.
             terms.push(format!(
                 "gcs_runtime::locus2d::cross({}, {b} - {o})",
@@ -766,10 +767,11 @@ impl Solve<'_> {
             terms.join(" + ")
         };
         let lines = self.names.fresh(&format!("{}_lines", con.name));
-        w.line(&format!(
-            "let {lines} = intersect2d::passing_directions({o}, {}, {e});",
+        let code = format!(
+            "intersect2d::passing_directions({o}, {}, {e})",
             self.r(point)
-        ));
+        );
+        self.let_read(w, &lines, &code);
         w.open(&format!(
             "if let Some(e) = SolveError::from_contact({label}, {text}, {lines}.contact) {{"
         ));
@@ -808,7 +810,7 @@ impl Solve<'_> {
             return;
         }
         let local = self.names.fresh(&format!("{}_chord", con.name));
-        w.line(&format!("let {local} = {chord};"));
+        self.let_read(w, &local, &chord);
         self.define(w, r, &con.name, &format!("{local}{root}"));
         let center = |c: Reg| self.facts.circle_centers.get(&c).cloned();
         let kept = ChordRoot {
@@ -828,25 +830,28 @@ impl Solve<'_> {
             return;
         }
         let (f, t) = (from.code(), to.code());
-        let mut shift = None;
+        let mut shift: Option<String> = None;
         for &g in geoms {
             let frame = self.frame_local(g);
             let facts = self.facts.frames.entry(g).or_default();
-            if facts
-                .origin
-                .as_ref()
-                .is_some_and(|o| o.same(&from, self.cx))
-            {
+            let at_origin = (facts.origin.as_ref()).is_some_and(|o| o.same(&from, self.cx));
+            if at_origin {
                 // The point brought onto `to` is the origin: it lands there exactly.
                 facts.origin = Some(to.clone());
+                self.note(&to);
                 w.line(&format!("{frame}.place_origin(&{t});"));
             } else {
                 facts.origin = None;
-                let shift = shift.get_or_insert_with(|| {
-                    let name = self.names.fresh("shift");
-                    w.line(&format!("let {name} = {t} - {f};"));
-                    name
-                });
+                let shift = match &shift {
+                    Some(name) => name.clone(),
+                    None => {
+                        let name = self.names.fresh("shift");
+                        self.note(&to);
+                        self.note(&from);
+                        self.let_read(w, &name, &format!("{t} - {f}"));
+                        shift.insert(name).clone()
+                    }
+                };
                 w.line(&format!("{frame}.translate(&{shift});"));
             }
             self.frame_writes.insert(g);
@@ -873,6 +878,7 @@ impl Solve<'_> {
                 .iter()
                 .position(|c| c.as_ref().is_some_and(|c| c.same(pivot_value, self.cx)))?;
             let f = ["root_from_a", "root_from_b"][side];
+            self.note_read(&root.chord);
             Some(format!(
                 "{}.{f}({}).unwrap_or({t} - {p})",
                 root.chord, root.index
@@ -891,7 +897,7 @@ impl Solve<'_> {
             (Some(radius), Some((ax, ay))) if radius > 0.0 => {
                 let reach = self.names.fresh(&self.derived_name(to, "_reach", "reach"));
                 let code = from_chord.unwrap_or_else(|| format!("{t} - {p}"));
-                w.line(&format!("let {reach} = {code};"));
+                self.let_read(w, &reach, &code);
                 let k = 1.0 / (radius * radius);
                 let (kx, ky) = (ax * k, ay * k);
                 let c = linear(&[(kx, format!("{reach}.x")), (ky, format!("{reach}.y"))]);
@@ -938,7 +944,7 @@ impl Solve<'_> {
     fn rotate(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, code: &str) {
         let pivot = self.facts.value(pivot).clone();
         let turn = self.names.fresh("turn");
-        w.line(&format!("let {turn} = {code};"));
+        self.let_read(w, &turn, code);
         for &g in geoms {
             let frame = self.frame_local(g);
             let facts = self.facts.frames.entry(g).or_default();
@@ -946,18 +952,19 @@ impl Solve<'_> {
                 .origin
                 .as_ref()
                 .is_some_and(|o| o.same(&pivot, self.cx));
-            match (about_origin, facts.identity) {
+            let identity = facts.identity;
+            if !about_origin {
+                facts.origin = None;
+            }
+            facts.identity = false;
+            match (about_origin, identity) {
                 (true, true) => w.line(&format!("{frame}.set_rotation(&{turn});")),
                 (true, false) => w.line(&format!("{frame}.turn_by(&{turn});")),
                 (false, _) => {
-                    facts.origin = None;
-                    w.line(&format!(
-                        "{frame}.rotate_about_by(&{}, &{turn});",
-                        pivot.code()
-                    ));
+                    let pivot = self.code(&pivot);
+                    w.line(&format!("{frame}.rotate_about_by(&{pivot}, &{turn});"));
                 }
             }
-            facts.identity = false;
             self.frame_writes.insert(g);
         }
     }
@@ -987,11 +994,12 @@ impl Solve<'_> {
             w.line(&format!("return Err({error});"));
             w.close("}");
         }
-        let d = self.dim(g);
+        let d = self.dim_local(g);
         // Inside an iteration's trial, a binding of its own: the trial works on a copy.
         if self.deferred.remove(&g) || self.closing.is_some() {
-            w.line(&format!("let {d} = {v};"));
+            self.let_line(w, &d, &d, &v);
         } else {
+            self.note_read(&d);
             w.line(&format!("{d} = {v};"));
         }
     }
@@ -1000,7 +1008,7 @@ impl Solve<'_> {
     fn check(&mut self, w: &mut Writer, c: ConstraintId, residual: &Residual) {
         let residual = self.cx.space.residual_code(self, residual);
         let name = self.names.fresh("residual");
-        w.line(&format!("let {name} = {residual};"));
+        self.let_read(w, &name, &residual);
         w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
         w.line(&format!("return Err({});", self.inconsistent(c, &name)));
         w.close("}");
@@ -1008,11 +1016,13 @@ impl Solve<'_> {
 
     /// An error function of an iteration: with the defaults given, constraint `c` must close.
     fn close(&mut self, w: &mut Writer, c: ConstraintId, residual: Reg) {
-        if let Some((errors, k)) = self.closing.as_mut() {
+        if self.closing.is_some() {
             // Inside an iteration's trial: an error function it drives to zero.
-            let line = format!("{errors}[{k}] = {};", self.facts.value(residual).code());
-            *k += 1;
-            w.line(&line);
+            let value = self.r(residual);
+            if let Some((errors, k)) = self.closing.as_mut() {
+                w.line(&format!("{errors}[{k}] = {value};"));
+                *k += 1;
+            }
             return;
         }
         if self.converged {
@@ -1020,7 +1030,7 @@ impl Solve<'_> {
             return;
         }
         let name = self.names.fresh("closing");
-        w.line(&format!("let {name} = {}.abs();", self.r(residual)));
+        self.let_read(w, &name, &format!("{}.abs()", self.r(residual)));
         w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
         let con = &self.cx.model.constraints[c];
         w.line(&format!(
@@ -1048,42 +1058,4 @@ fn size_noun(model: &gcs_lang::Model, c: ConstraintId) -> &'static str {
         gcs_lang::constraints::ConstraintKind::Radius => "a radius",
         _ => "a distance",
     }
-}
-
-/// The registers that are the nearest point of a circle (`Op::Nearest`) that only turns about
-/// the circle's centre read, each turning a point onto it (`RotatePoint`): a turn about the
-/// centre onto a point of a ray from the centre is the same turn wherever on the ray the point
-/// lies, so the turns can aim at the point itself, and the projection is not written. One pass
-/// over the plan.
-pub(super) fn turned_toward(
-    plan: &crate::plan::Plan,
-    defined_at: &HashMap<Reg, usize>,
-) -> HashSet<Reg> {
-    let defined = |reg: Reg| defined_at.get(&reg).map(|&i| &plan.steps[i].op);
-    // The centre of each nearest point of a circle, and whether every reader so far turns
-    // about it onto the point (none while nothing has read it).
-    let mut nearest: HashMap<Reg, (Reg, Option<bool>)> = HashMap::default();
-    for s in &plan.steps {
-        if let (Op::Nearest { locus, .. }, Some((r, _))) = (&s.op, s.out) {
-            if let Some(Op::Planar(
-                PlanarOp::Circle { center, .. } | PlanarOp::CircleThrough { center, .. },
-            )) = defined(*locus)
-            {
-                nearest.insert(r, (*center, None));
-            }
-        }
-    }
-    for s in &plan.steps {
-        for r in s.op.reads() {
-            if let Some((center, all)) = nearest.get_mut(&r) {
-                let turns_toward = matches!(&s.op, Op::RotatePoint { pivot, from, to, .. }
-                    if *to == r && *from != r && pivot == center);
-                *all = Some(all.unwrap_or(true) && turns_toward);
-            }
-        }
-    }
-    (nearest.into_iter())
-        .filter(|(_, (_, all))| *all == Some(true))
-        .map(|(r, _)| r)
-        .collect()
 }

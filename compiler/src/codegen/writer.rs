@@ -8,6 +8,9 @@ pub(super) struct Writer {
     pub(super) indent: usize,
     /// Comments are left out: a piece's canonical form (see `lift`) is its code alone.
     pub(super) no_comments: bool,
+    /// Where each line starts in `out`, and whether it is blank: the text's lines are counted
+    /// and indented again (put in a block) without reading it.
+    pub(super) starts: Vec<(usize, bool)>,
 }
 
 impl Writer {
@@ -40,10 +43,15 @@ impl Writer {
             }
             line.push_str(word);
         }
-        self.line(&format!("/// {line}").trim_end());
+        // The words' own spaces at the end of the text are not written.
+        match line.trim_end() {
+            "" => self.line("///"),
+            line => self.line(&format!("/// {line}")),
+        }
     }
 
     pub(super) fn line(&mut self, text: &str) {
+        self.starts.push((self.out.len(), text.is_empty()));
         if text.is_empty() {
             self.out.push('\n');
             return;
@@ -62,11 +70,59 @@ impl Writer {
         self.indent = self.indent.saturating_sub(1);
         self.line(text);
     }
-    /// Takes back the last blank line, if the text ends with one.
-    pub(super) fn unblank(&mut self) {
-        if self.out.ends_with("\n\n") {
-            self.out.pop();
+
+    /// The number of lines written.
+    pub(super) fn lines(&self) -> usize {
+        self.starts.len()
+    }
+
+    /// The text from byte `from` to `to` (a stretch of whole lines), with its lines.
+    pub(super) fn slice(&self, from: usize, to: usize) -> Writer {
+        let (first, last) = (
+            self.starts.partition_point(|&(s, _)| s < from),
+            self.starts.partition_point(|&(s, _)| s < to),
+        );
+        Writer {
+            out: self.out[from..to].to_string(),
+            indent: self.indent,
+            no_comments: self.no_comments,
+            starts: (self.starts[first..last].iter())
+                .map(|&(s, blank)| (s - from, blank))
+                .collect(),
         }
+    }
+
+    /// Puts the lines of `other` in at byte `at`, a line start.
+    pub(super) fn insert(&mut self, at: usize, other: &Writer) {
+        let k = self.starts.partition_point(|&(s, _)| s < at);
+        let n = other.out.len();
+        for (s, _) in &mut self.starts[k..] {
+            *s += n;
+        }
+        let inserted = other.starts.iter().map(|&(s, blank)| (s + at, blank));
+        self.starts.splice(k..k, inserted);
+        self.out.insert_str(at, &other.out);
+    }
+
+    /// Appends the lines of `other`, each but a blank one level deeper (in a block).
+    pub(super) fn push_deeper(&mut self, other: &Writer) {
+        let mut from = 0;
+        for &(s, blank) in &other.starts {
+            self.out.push_str(&other.out[from..s]);
+            self.starts.push((self.out.len(), blank));
+            if !blank {
+                self.out.push_str("    ");
+            }
+            from = s;
+        }
+        self.out.push_str(&other.out[from..]);
+    }
+
+    /// Appends the lines of `other` as they are.
+    pub(super) fn push(&mut self, other: &Writer) {
+        let at = self.out.len();
+        (self.starts).extend(other.starts.iter().map(|&(s, blank)| (s + at, blank)));
+        self.out.push_str(&other.out);
     }
 }
 
@@ -92,10 +148,17 @@ pub(super) fn float(v: f64) -> String {
     super::lift::float(v, literal).unwrap_or_else(literal)
 }
 
-/// A float literal typed `f64`, as the receiver of a method must be: `2.0_f64.sqrt()`.
-pub(super) fn typed_float(v: f64) -> String {
-    let literal = || named_float(v).unwrap_or_else(|| format!("{}_f64", numeric_float(v)));
-    super::lift::float(v, literal).unwrap_or_else(literal)
+/// A float literal typed `f64`, as the receiver of a method must be: `2.0_f64.sqrt()`; and
+/// whether it is written as a negative literal (not as a row's datum), which as a receiver
+/// needs parentheses.
+pub(super) fn typed_float(v: f64) -> (String, bool) {
+    let written = std::cell::Cell::new(false);
+    let literal = || {
+        written.set(true);
+        named_float(v).unwrap_or_else(|| format!("{}_f64", numeric_float(v)))
+    };
+    let code = super::lift::float(v, literal).unwrap_or_else(literal);
+    (code, written.get() && v.is_finite() && v.is_sign_negative())
 }
 
 /// The float as a constant of `f64` or `std::f64::consts`, when it is one.
@@ -151,12 +214,8 @@ fn named_float(v: f64) -> Option<String> {
 
 /// A finite float in digits.
 fn numeric_float(v: f64) -> String {
-    let s = format!("{v:?}");
-    if s.contains('.') || s.contains('e') {
-        s
-    } else {
-        format!("{s}.0")
-    }
+    // `Debug` spells every finite float with a decimal point or an exponent.
+    format!("{v:?}")
 }
 
 /// Code for the sum of `coefficient * value` terms, leaving out the zero coefficients (the
@@ -180,5 +239,30 @@ pub(super) fn linear(terms: &[(f64, String)]) -> String {
         "0.0".into()
     } else {
         code
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_are_kept_through_inserts_and_blocks() {
+        let mut w = Writer::at(1);
+        w.line("let a = 1.0;");
+        w.line("");
+        w.line("let c = a;");
+        let mut b = Writer::at(1);
+        b.line("let b = a;");
+        w.insert(w.starts[1].0, &b);
+        assert_eq!(
+            w.out,
+            "    let a = 1.0;\n    let b = a;\n\n    let c = a;\n"
+        );
+        assert_eq!(w.lines(), 4);
+        let mut block = Writer::at(1);
+        block.push_deeper(&w.slice(w.starts[1].0, w.out.len()));
+        assert_eq!(block.out, "        let b = a;\n\n        let c = a;\n");
+        assert_eq!(block.lines(), 3);
     }
 }

@@ -37,11 +37,15 @@ impl Solve<'_> {
                 continue;
             }
             self.materialize(g);
-            let shift = local.get_or_insert_with(|| {
-                let name = self.names.fresh("shift");
-                w.line(&format!("let {name} = {} - {};", tv.code(), fv.code()));
-                name
-            });
+            let shift = match &local {
+                Some(name) => name,
+                None => {
+                    let name = self.names.fresh("shift");
+                    let code = format!("{} - {}", self.code(&tv), self.code(&fv));
+                    self.let_read(w, &name, &code);
+                    local.insert(name)
+                }
+            };
             let frame = self.frame_local(g);
             w.line(&format!("{frame}.translate(&{shift});"));
             self.frame_writes.insert(g);
@@ -93,11 +97,14 @@ impl Solve<'_> {
                     self.facts.frames.entry(g).or_default().literal3 = Some(f);
                     continue;
                 }
-                let turn = turn.get_or_insert_with(|| {
-                    let name = self.names.fresh("turn");
-                    w.line(&format!("let {name} = {};", rotation3(&q)));
-                    name
-                });
+                let turn = match &turn {
+                    Some(name) => name,
+                    None => {
+                        let name = self.names.fresh("turn");
+                        self.let_read(w, &name, &rotation3(&q));
+                        turn.insert(name)
+                    }
+                };
                 let frame = self.frame_local(g);
                 w.line(&format!(
                     "{frame}.rotate_about_by(&{c}, &{turn});",
@@ -129,7 +136,7 @@ impl Solve<'_> {
     /// Turns the frames of `geoms` about `pivot` by the rotation `code` computes, in a local.
     fn turn_frames(&mut self, w: &mut Writer, geoms: &[GeomId], pivot: Reg, code: &str) {
         let turn = self.names.fresh("turn");
-        w.line(&format!("let {turn} = {code};"));
+        self.let_read(w, &turn, code);
         let c = self.r(pivot);
         for &g in geoms {
             self.materialize(g);

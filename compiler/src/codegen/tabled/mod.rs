@@ -119,11 +119,11 @@ pub(super) fn module(
         });
         let sketch = matches!(piece.work, Work::Sketch(_));
         if !sketch {
-            lines += text.lines().count();
+            lines += text.lines();
         }
         let next = shapes.len();
         let columns = holes.iter().map(Hole::column).collect();
-        let n = *by_form.entry((sketch, text, columns)).or_insert(next);
+        let n = *by_form.entry((sketch, text.out, columns)).or_insert(next);
         if n == next {
             shapes.push(Shape {
                 sketch,
@@ -142,7 +142,7 @@ pub(super) fn module(
     let mut strings = Strings::default();
     let mut tables = String::new();
     let mut w = Writer::default();
-    super::header(&mut w, &cx.file, cx.space);
+    super::api::header(&mut w, &cx.file, cx.space);
     api::params(&mut w, cx);
     inputs(&mut w, &mut tables, &mut strings, cx, true);
     inputs(&mut w, &mut tables, &mut strings, cx, false);
@@ -245,8 +245,8 @@ fn float_entry(v: f64) -> String {
         "NaN" => "f64::NAN".into(),
         "inf" => "f64::INFINITY".into(),
         "-inf" => "f64::NEG_INFINITY".into(),
-        _ if s.contains('.') || s.contains('e') => s,
-        _ => format!("{s}.0"),
+        // `Debug` spells every finite float with a decimal point or an exponent.
+        _ => s,
     }
 }
 
@@ -278,7 +278,7 @@ fn function(
     (name, table): (&str, &str),
     shape: &Shape,
     pieces: &[layout::Piece],
-    code: &str,
+    code: &Writer,
 ) {
     let m = cx.model;
     let first = &pieces[shape.pieces[0]];
@@ -335,12 +335,8 @@ fn function(
     w.open(&format!(
         "fn {name}(store: &mut Store, params: &Params, p: &[f64], {fixed}, row: &Row<'_>){result} {{"
     ));
-    for line in code.lines() {
-        match line.strip_prefix("    ") {
-            Some(rest) => w.line(rest),
-            None => w.line(line),
-        }
-    }
+    // The code was written at the function's indent.
+    w.push(code);
     if !shape.sketch {
         w.line("Ok(())");
     }
@@ -690,7 +686,7 @@ fn solution(
         let rust = ty.rust(cx);
         let upper = what.to_uppercase();
         // Each value's accessor in its canonical form, hash-consed into shapes.
-        let mut forms: HashMap<(String, Vec<lift::Column>), usize> = HashMap::default();
+        let mut forms: HashMap<(Vec<String>, Vec<lift::Column>), usize> = HashMap::default();
         let mut shapes: Vec<(usize, Vec<Hole>)> = Vec::new();
         let mut values: Vec<(&str, usize, Vec<Hole>)> = Vec::new();
         let of_ty: Vec<&api::Accessor> = (accessors.iter())
@@ -777,7 +773,7 @@ fn solution(
                 n.to_string()
             };
             w.open(&format!("{arm} => {{"));
-            for line in code.lines() {
+            for line in code {
                 w.line(line);
             }
             w.close("}");
@@ -845,7 +841,7 @@ fn solution(
 
 /// The body of accessor `a` of a large model's solution: what it reads loaded from the store,
 /// then its value. In the canonical form (`named` false) the locals have fixed names.
-fn accessor(cx: &Context<'_>, layout: &Layout, a: &api::Accessor, named: bool) -> String {
+fn accessor(cx: &Context<'_>, layout: &Layout, a: &api::Accessor, named: bool) -> Vec<String> {
     let mut loads: Vec<(Holds, String)> = Vec::new();
     let mut read = |holds: Holds| -> Option<String> {
         let slot = match holds {
@@ -870,7 +866,7 @@ fn accessor(cx: &Context<'_>, layout: &Layout, a: &api::Accessor, named: bool) -
         Some(name)
     };
     let body = a.body(cx, &mut read);
-    let mut out = String::new();
+    let mut out = Vec::new();
     for (holds, name) in &loads {
         let (slice, index) = match *holds {
             Holds::Frame(g) => (Slice::Frame, layout.frame[&g]),
@@ -880,12 +876,12 @@ fn accessor(cx: &Context<'_>, layout: &Layout, a: &api::Accessor, named: bool) -
                 (s.slice, s.index)
             }
         };
-        out.push_str(&format!(
-            "let {name} = self.store.{}[{}];\n",
+        out.push(format!(
+            "let {name} = self.store.{}[{}];",
             slice.field(),
             lift::slot(index)
         ));
     }
-    out.push_str(&body);
+    out.push(body);
     out
 }

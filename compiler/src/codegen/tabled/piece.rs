@@ -81,7 +81,7 @@ pub(super) fn write(
     handoff: &mut Handoff,
     piece: &Piece,
     spelling: Spelling,
-) -> String {
+) -> Writer {
     let mut names = match spelling {
         Spelling::Canonical => Namer::numbered(),
         Spelling::Representative => Namer::default(),
@@ -99,7 +99,7 @@ pub(super) fn write(
 
 /// The sketch of `geoms`: each frame, dimension and local coordinates params set, stored for
 /// the steps and the solution, and their scale folded into the tolerance's (`tol_scale`).
-fn sketch(s: &mut Solve<'_>, layout: &Layout, geoms: &[GeomId], comments: bool) -> String {
+fn sketch(s: &mut Solve<'_>, layout: &Layout, geoms: &[GeomId], comments: bool) -> Writer {
     let cx = s.cx;
     let mut w = Writer::at(1);
     w.no_comments = !comments;
@@ -164,7 +164,7 @@ fn sketch(s: &mut Solve<'_>, layout: &Layout, geoms: &[GeomId], comments: bool) 
             ));
         }
     }
-    w.out
+    w
 }
 
 /// A run of groups of steps: the loads, the steps with their constraints' comments, the
@@ -176,7 +176,7 @@ fn steps(
     piece: &Piece,
     range: std::ops::Range<usize>,
     comments: bool,
-) -> String {
+) -> Writer {
     let cx = s.cx;
     let m = cx.model;
     // What the piece loads, named before its steps name anything.
@@ -327,7 +327,9 @@ fn steps(
             lift::slot(slot.index)
         ));
     }
-    decls.out + &body.out + &stores.out
+    decls.push(&body);
+    decls.push(&stores);
+    decls
 }
 
 /// A name for a register loaded from the store: after the feature it measures or the

@@ -1,4 +1,6 @@
-//! Named tolerances, in one place, scaled to the magnitude of the inputs.
+//! Named tolerances, in one place, scaled to the magnitude of the inputs: the runtime's
+//! (`gcs_runtime::tol`), and the language's checks of a model's constants. A crate of its own,
+//! with no dependency, so that `gcs-lang` uses them without depending on the runtime.
 //!
 //! Every comparison against "zero" in the kernel goes through this module, so that a model drawn
 //! in micrometres behaves exactly like the same model drawn in kilometres. A tolerance is always
@@ -11,6 +13,10 @@ pub const LENGTH_REL: f64 = 64.0 * f64::EPSILON;
 /// Absolute tolerance under which an angle (radians) or the sine of one is zero, and two unit
 /// vectors are parallel.
 pub const ANGLE: f64 = 1e-12;
+
+/// Absolute tolerance under which the cosine of the angle between a marker's two axes, as
+/// the model gives them, is zero: the axes are orthogonal.
+pub const ORTHOGONAL: f64 = 1e-9;
 
 /// Relative tolerance (times one plus the largest coordinate involved) under which a point
 /// given by the model's constants lies in a plane given by them: its height above the plane is
