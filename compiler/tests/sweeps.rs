@@ -399,3 +399,118 @@ fn inverted_slider_crank_with_offsets_is_closed_form_and_keeps_its_assembly() {
         last = Some(u);
     }
 }
+
+/// The common-tangent fragment on random inverted slider-cranks, each sketched assembled: a
+/// crank about `O`, a block pinned to its tip, a rocker pivoted at `B`, and a slot line at
+/// random offsets from both pins. At the sketch's crank angle the solve gives back the
+/// sketch's slot (the sketch's assembly, to rounding); a few degrees either side it solves
+/// with every constraint met and the slot moved continuously.
+#[test]
+fn random_inverted_slider_cranks_keep_their_sketched_slot() {
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % 1_000_000) as f64 / 1_000_000.0
+    };
+    let mut solved = 0;
+    for case in 0..40 {
+        let theta0 = 6.0 * next();
+        let crank = 0.5 + next();
+        let b = [2.0 + 2.0 * next(), -1.0 + 2.0 * next()];
+        let tip = [crank * theta0.cos(), crank * theta0.sin()];
+        // The slot: through a random point near the two pins, along a random direction.
+        let q = [b[0] * next(), -1.0 + 2.0 * next()];
+        let a = 6.0 * next();
+        let u = [a.cos(), a.sin()];
+        let (s_block, s_rocker) = (2.0 * next() - 1.0, 2.0 * next() - 1.0);
+        let on_slot = |s: f64| [q[0] + s * u[0], q[1] + s * u[1]];
+        let (m, r) = (on_slot(s_block), on_slot(s_rocker));
+        let text = format!(
+            "space 2d;
+param theta = {theta0};
+fixed point O = (0, 0);
+fixed point B = ({}, {});
+fixed vector X = (1, 0);
+body crank at (0, 0) {{ point o = (0, 0); point tip = ({crank}, 0); vector u = (1, 0); }}
+body L2 at ({}, {}) {{ point pin = (0, 0); marker m = ({}, {}) x ({}, {}); }}
+body L3 at ({}, {}) {{ point piv = (0, 0); marker s = ({}, {}) x ({}, {}); }}
+coincident(crank.o, O);
+drive: angle(X, crank.u) = theta;
+coincident(L2.pin, crank.tip);
+coincident(L3.piv, B);
+slide: prismatic(L2.m, L3.s);
+",
+            b[0],
+            b[1],
+            tip[0],
+            tip[1],
+            m[0] - tip[0],
+            m[1] - tip[1],
+            u[0],
+            u[1],
+            b[0],
+            b[1],
+            r[0] - b[0],
+            r[1] - b[1],
+            u[0],
+            u[1],
+        );
+        let (_, model, diags) = gcs_lang::load("isc.gcs", text.as_bytes());
+        assert!(
+            diags.iter().all(|d| !d.is_error()),
+            "case {case}: {diags:?}"
+        );
+        let model = model.expect("a model");
+        let analysis = analyse(&model).unwrap_or_else(|e| panic!("case {case}: {e}"));
+        assert!(analysis.plan.defaults.is_empty(), "case {case}: a default");
+        let branches: Vec<usize> = analysis.plan.branches.iter().map(|b| b.default).collect();
+        let theta = param(&model, "theta");
+        let mut params = model.default_params();
+        // The pins' offsets from the slot, as sketched: the slot exists while the crank's
+        // tip stays at least their difference from B (the common tangent of the circles
+        // about the pins, of those radii).
+        let (o_tip, o_b) = (cross(u, sub(tip, m)), cross(u, sub(b, m)));
+        let slot = |params: &[f64]| -> Option<P> {
+            let t = params[theta];
+            let tip = [crank * t.cos(), crank * t.sin()];
+            let gap = (o_tip - o_b).abs() - dist(tip, b);
+            match gcs_compiler::solve(&model, &analysis, params, &branches) {
+                Ok(s) => {
+                    assert!(
+                        gap <= 1e-9,
+                        "case {case}: solved where no slot exists ({gap})"
+                    );
+                    assert!(s.max_residual < 1e-12, "case {case}: {}", s.max_residual);
+                    let d = s.by_name().vector("L3.s.x").expect("the slot");
+                    Some([d[0], d[1]])
+                }
+                Err(e) => {
+                    assert_eq!(e.kind, ErrorKind::NoIntersection, "case {case}: {e}");
+                    assert!((e.magnitude - gap).abs() < 1e-9, "case {case}: {e} ({gap})");
+                    None
+                }
+            }
+        };
+        let at_sketch = slot(&params).unwrap_or_else(|| panic!("case {case}: the sketch"));
+        assert!(
+            dist(at_sketch, u) < 1e-9,
+            "case {case}: {at_sketch:?} against {u:?}"
+        );
+        let mut last = at_sketch;
+        for step in 1..=5 {
+            params[theta] = theta0 + (step as f64).to_radians();
+            let Some(now) = slot(&params) else {
+                break;
+            };
+            assert!(
+                dist(now, last) < 0.2,
+                "case {case}: the slot jumped at step {step}"
+            );
+            last = now;
+        }
+        solved += 1;
+    }
+    assert_eq!(solved, 40);
+}
