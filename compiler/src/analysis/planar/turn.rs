@@ -2,7 +2,9 @@
 //! they pass: a line to pass a point at a distance slides onto the parallel at that offset
 //! when its direction is known, or turns about its pivot (a branch); free to turn and move,
 //! it records the point ([`Pass`]) until a second one gives its direction, or its direction
-//! becomes known (`place_by_passes`).
+//! becomes known (`place_by_passes`). Two rockers whose lines must be one (a prismatic joint
+//! between them) turn onto a common tangent of the circles about their pivots
+//! (`common_line`).
 
 use super::relation::{AngleValue, Dir, Relation};
 use super::{
