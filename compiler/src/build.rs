@@ -191,6 +191,7 @@ impl Builder {
             }
         }
         codegen::generate_as(&compiled.model, &compiled.analysis.plan, self.form)
+            .map(String::from)
             .map_err(|why| failure(format!("cannot be laid out as tables: {why}"), "".into()))
     }
 }

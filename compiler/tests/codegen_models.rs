@@ -17,7 +17,7 @@ fn models() -> Vec<discover::Found> {
 fn generated(m: &discover::Found) -> String {
     let c = gcs_compiler::compile(&m.file_name(), m.text.as_bytes())
         .unwrap_or_else(|e| panic!("{}: {e:?}", m.relative()));
-    gcs_compiler::codegen::generate(&c.model, &c.analysis.plan)
+    gcs_compiler::codegen::generate(&c.model, &c.analysis.plan).into()
 }
 
 /// The names of the frames a solve declares: `let [mut] NAME = Frame2::...;`.

@@ -158,7 +158,7 @@ fn code_of(file: &str) -> String {
     let text = std::fs::read(&path).expect("family file");
     let model = gcs_lang::load(file, &text).1.expect("loads");
     let analysis = gcs_compiler::analyse(&model).expect("analysis");
-    gcs_compiler::codegen::generate(&model, &analysis.plan)
+    gcs_compiler::codegen::generate(&model, &analysis.plan).into()
 }
 
 #[test]

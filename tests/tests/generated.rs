@@ -256,7 +256,7 @@ fn generated_solvers_agree_with_the_interpreter() {
         if let (Ok(tabled), false) = (tabled, golden_is_tabled) {
             let module = cases.join(format!("tabled_{}.rs", m.stem));
             write(&module, &tabled);
-            solvers.push(("tabled", module, tabled));
+            solvers.push(("tabled", module, tabled.into()));
         }
         let case = cases.join(format!("run_{}.rs", m.stem));
         write(&case, &case_text(&Subject::of(&m), &solvers));
@@ -285,7 +285,10 @@ fn generated_solvers_agree_with_the_interpreter() {
             tol_growth: 100.0,
         };
         let case = cases.join(format!("run_{stem}.rs"));
-        write(&case, &case_text(&subject, &[("tabled", module, code)]));
+        write(
+            &case,
+            &case_text(&subject, &[("tabled", module, code.into())]),
+        );
         t.pass(case);
     }
     t.pass("trybuild/pass/*.rs");

@@ -6,18 +6,59 @@
 /// tables of a large model).
 pub const DATA: &str = "// The tables the code above reads: data, written one entry a line.";
 
-/// The module formatted by `rustfmt`, when a `rustfmt` is on the path (as it is wherever cargo
-/// is installed with its usual components); otherwise the module as generated. What follows
-/// a [`DATA`] line is left as written.
-pub fn format(code: &str) -> String {
-    match code.find(DATA) {
-        Some(at) => {
-            let mut out = format_all(&code[..at]);
-            out.push_str(&code[at..]);
-            out
-        }
-        None => format_all(code),
+/// A generated module: its text, and where its data tables start (recorded as they are
+/// written, so that formatting never looks for them in the text).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Module {
+    text: String,
+    tables_at: usize,
+}
+
+impl Module {
+    /// A module of code alone.
+    pub(super) fn code(text: String) -> Module {
+        let tables_at = text.len();
+        Module { text, tables_at }
     }
+
+    /// A module of `code` followed by its data tables `tables`, from a [`DATA`] line on.
+    pub(super) fn with_tables(code: String, tables: &str) -> Module {
+        let tables_at = code.len();
+        let mut text = code;
+        text.push_str(DATA);
+        text.push_str("\n\n");
+        text.push_str(tables);
+        Module { text, tables_at }
+    }
+}
+
+impl std::ops::Deref for Module {
+    type Target = str;
+    fn deref(&self) -> &str {
+        &self.text
+    }
+}
+
+impl std::fmt::Display for Module {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+impl From<Module> for String {
+    fn from(m: Module) -> String {
+        m.text
+    }
+}
+
+/// The module formatted by `rustfmt`, when a `rustfmt` is on the path (as it is wherever cargo
+/// is installed with its usual components); otherwise the module as generated. Its data
+/// tables are left as written.
+pub fn format(module: &Module) -> String {
+    let (code, tables) = module.text.split_at(module.tables_at);
+    let mut out = format_all(code);
+    out.push_str(tables);
+    out
 }
 
 /// The whole of `code` formatted by `rustfmt`.

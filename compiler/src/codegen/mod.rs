@@ -50,7 +50,7 @@ mod steps;
 mod tabled;
 mod writer;
 
-pub use format::format;
+pub use format::{format, Module};
 pub use names::{Clash, Namer};
 pub use tabled::Untabled;
 
@@ -62,7 +62,7 @@ use writer::Writer;
 /// The generated module for a model's plan, pruned to its `output` statements. The plan must
 /// be valid, as the pipeline's are: a register no step defines is a bug in gcs, and panics
 /// saying so rather than writing a made-up value.
-pub fn generate(model: &Model, plan: &Plan) -> String {
+pub fn generate(model: &Model, plan: &Plan) -> Module {
     let (plan, scope) = crate::prune::prune(model, plan);
     let cx = Context::new(model, &plan, &scope);
     let layout = api::Layout::new(&cx);
@@ -88,7 +88,7 @@ pub const TABLED_LINES: usize = tabled::TABLED_LINES;
 
 /// [`generate`] in the given form; `Form::Tabled` says why when the plan cannot be laid out
 /// as tables.
-pub fn generate_as(model: &Model, plan: &Plan, form: Form) -> Result<String, Untabled> {
+pub fn generate_as(model: &Model, plan: &Plan, form: Form) -> Result<Module, Untabled> {
     let (plan, scope) = crate::prune::prune(model, plan);
     let cx = Context::new(model, &plan, &scope);
     let layout = api::Layout::new(&cx);
@@ -103,7 +103,7 @@ pub fn generate_as(model: &Model, plan: &Plan, form: Form) -> Result<String, Unt
 }
 
 /// Tabled when the flat solve's steps would be [`TABLED_LINES`] lines or more, else flat.
-fn auto(cx: &Context<'_>, layout: &api::Layout) -> String {
+fn auto(cx: &Context<'_>, layout: &api::Layout) -> Module {
     if cx.plan.steps.len() >= tabled::TABLED_STEPS {
         if let Ok(Some(module)) = tabled::module(cx, layout, TABLED_LINES) {
             return module;
@@ -113,7 +113,7 @@ fn auto(cx: &Context<'_>, layout: &api::Layout) -> String {
 }
 
 /// The flat module: one straight `solve`.
-fn flat(cx: &Context<'_>, layout: &api::Layout) -> String {
+fn flat(cx: &Context<'_>, layout: &api::Layout) -> Module {
     let mut w = Writer::default();
     api::header(&mut w, &cx.file, cx.space);
     api::params(&mut w, cx);
@@ -123,7 +123,7 @@ fn flat(cx: &Context<'_>, layout: &api::Layout) -> String {
     solve::solve(&mut w, cx, layout);
     w.line("");
     all::solve_all(&mut w, cx);
-    w.out
+    Module::code(w.out)
 }
 
 /// The names of the model that become one identifier of the generated module's public API

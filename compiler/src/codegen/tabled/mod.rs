@@ -95,7 +95,7 @@ pub(super) fn module(
     cx: &Context<'_>,
     api: &ApiLayout,
     min_lines: usize,
-) -> Result<Option<String>, Untabled> {
+) -> Result<Option<super::format::Module>, Untabled> {
     if !cx.plan.iterations.is_empty() {
         let defaults = (cx.plan.iterations.iter())
             .flat_map(|it| cx.plan.varied(it))
@@ -231,11 +231,9 @@ pub(super) fn module(
     w.out.push_str(&functions.out);
     row_struct(&mut w);
     strings.write(&mut w, &mut tables);
-    // The tables last, after the line that tells `format` to leave them as written.
-    w.line(super::format::DATA);
-    w.line("");
-    w.out.push_str(&tables);
-    Ok(Some(w.out))
+    // The tables last, after the line that says they are data, which `format` leaves as
+    // written.
+    Ok(Some(super::format::Module::with_tables(w.out, &tables)))
 }
 
 /// A float of a table: the literal, always with a decimal point or exponent.
