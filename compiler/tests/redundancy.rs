@@ -580,3 +580,107 @@ fn redundant_sketcher_constraints_name_their_support() {
         assert!((failed[0].1 - size).abs() < 1e-12, "{failed:?}");
     }
 }
+
+/// A square not tied to anything, both widths dimensioned: its height is a free motion. The
+/// coincidence that closes it depends on the height's default on paper (the closing corner
+/// is placed after it), but moves with it along the very line it must lie on, so its error
+/// does not change: the default is a free motion (mobility 1), never an iteration on a length
+/// whose every value solves; any height solves, and an inconsistent second width is refused.
+#[test]
+fn a_check_a_default_moves_along_its_own_line_is_no_iteration() {
+    let square = |top: &str| {
+        format!(
+            "space 2d;
+segment s1 = (0.1, 0) -> (20, 0.2);
+segment s2 = (20, 0.2) -> (20.1, 19.8);
+segment s3 = (20.1, 19.8) -> (0, 20);
+segment s4 = (0, 20) -> (0.1, 0);
+coincident(s1.end, s2.start);
+coincident(s2.end, s3.start);
+coincident(s3.end, s4.start);
+coincident(s4.end, s1.start);
+horizontal(s1); horizontal(s3); vertical(s2); vertical(s4);
+length(s1) = 20;
+length(s3) = {top};
+"
+        )
+    };
+    let c = compiled(&square("20"));
+    let plan = &c.analysis.plan;
+    assert!(
+        plan.iterations.is_empty(),
+        "an iteration: {:?}",
+        plan.iterations
+    );
+    let free: Vec<&str> = (c.analysis.free_defaults().iter())
+        .map(|d| plan.defaults[d.0 as usize].name.as_str())
+        .collect();
+    assert_eq!(free, ["s2_length"]);
+    let at = |height: f64| {
+        let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+        let all = c.model.top_level().map(|(id, _)| id).collect();
+        gcs_compiler::solve_plan_with(
+            &c.model,
+            plan,
+            &all,
+            &c.model.default_params(),
+            &branches,
+            &[height],
+        )
+    };
+    for height in [5.0, 19.6, 40.0] {
+        let s = at(height).unwrap_or_else(|e| panic!("height {height}: {e}"));
+        assert!(
+            s.max_residual < 1e-12,
+            "height {height}: {}",
+            s.max_residual
+        );
+    }
+    // The second width 21: the coincidence's implied part is off by one, whatever the height.
+    let c = compiled(&square("21"));
+    assert!(c.analysis.plan.iterations.is_empty());
+    let errs = errors(&c);
+    assert_eq!(errs.len(), 1, "{errs:#?}");
+    assert!(
+        errs[0].message.contains("coincident_s3_end_s4_start"),
+        "{errs:#?}"
+    );
+}
+
+/// A closed profile of segments and fillet circles, its last corner's coincidences and
+/// tangencies left to close it: the default it takes is closed by the tangency it displaces,
+/// not by a point's distance from the line it was just slid along (zero for every value).
+#[test]
+fn a_closed_profile_closes_on_the_constraint_its_default_displaces() {
+    let c = compiled(
+        "space 2d;
+param r = 1;
+fixed point P = (1, 0);
+segment L0 = (1, 0) -> (5, 0);
+segment L1 = (6, 1) -> (6, 3);
+segment L2 = (5, 4) -> (1, 4);
+segment L3 = (0, 3) -> (0, 1);
+circle F1 = center (5, 1) radius 1;
+circle F2 = center (5, 3) radius 1;
+circle F3 = center (1, 3) radius 1;
+circle F0 = center (1, 1) radius 1;
+coincident(L0.start, P);
+horizontal(L0); vertical(L1); horizontal(L2); vertical(L3);
+radius(F1) = r; radius(F2) = r; radius(F3) = r; radius(F0) = r;
+on(L0.end, F1); on(L1.start, F1); tangent(L0, F1); tangent(L1, F1);
+on(L1.end, F2); on(L2.start, F2); tangent(L1, F2); tangent(L2, F2);
+on(L2.end, F3); on(L3.start, F3); tangent(L2, F3); tangent(L3, F3);
+on(L3.end, F0); on(L0.start, F0); tangent(L3, F0); tangent(L0, F0);
+length(L1) = 2; length(L2) = 4;
+",
+    );
+    let plan = &c.analysis.plan;
+    let closes: Vec<&str> = (plan.steps.iter())
+        .filter_map(|s| match s.op {
+            Op::Close { constraint, .. } => Some(c.model.constraints[constraint].name.as_str()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(closes, ["tangent_L2_F3"]);
+    assert!(errors(&c).is_empty(), "{:#?}", errors(&c));
+}
