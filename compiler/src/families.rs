@@ -697,7 +697,7 @@ pub fn random_mix(n: usize) -> String {
 }
 
 /// The next of a fixed pseudo-random sequence (xorshift64): the same on every machine.
-fn xorshift(seed: &mut u64) -> u64 {
+pub(crate) fn xorshift(seed: &mut u64) -> u64 {
     *seed ^= *seed << 13;
     *seed ^= *seed >> 7;
     *seed ^= *seed << 17;

@@ -105,10 +105,11 @@ fn moving_checks(model: &Model, plan: &Plan) -> Vec<Option<bool>> {
     let mut moved = |size: f64| -> Vec<f64> {
         (sketch.iter())
             .map(|x| {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
-                let sign = if seed & 1 == 0 { 1.0 } else { -1.0 };
+                let sign = if crate::families::xorshift(&mut seed) & 1 == 0 {
+                    1.0
+                } else {
+                    -1.0
+                };
                 x + sign * size * (1.0 + x.abs())
             })
             .collect()

@@ -93,8 +93,9 @@ pub fn solve_plan_with(
         .collect();
     s.iterations = iterations;
     s.grounded = plan.grounded.map(|g| model.geoms[g].name.clone());
-    s.max_residual = verify::max_residual_in(model, &s, params, scope);
-    off_by(model, &s, params, scope)?;
+    let residuals = verify::residuals_in(model, &s, params, scope);
+    s.max_residual = verify::max_residual(&residuals);
+    off_by(model, &s, &residuals)?;
     Ok(s)
 }
 
@@ -106,8 +107,7 @@ pub fn solve_plan_with(
 fn off_by(
     model: &gcs_lang::Model,
     s: &solution::Solution,
-    params: &[f64],
-    scope: &BTreeSet<GeomId>,
+    residuals: &[verify::Residual],
 ) -> Result<(), SolveError> {
     let size = (s.points.iter().flat_map(|(_, p)| p.iter()))
         .chain(s.scalars.iter().map(|(_, x)| x))
@@ -116,11 +116,7 @@ fn off_by(
     if s.max_residual.is_finite() && s.max_residual <= tol {
         return Ok(());
     }
-    let worst = (verify::residuals(model, s, params).into_iter())
-        .filter(|r| {
-            (model.constraints[r.constraint].args.iter())
-                .all(|a| scope.contains(&model.top_level_of(*a)))
-        })
+    let worst = (residuals.iter())
         .map(|r| {
             (
                 if r.value.is_nan() {

@@ -60,15 +60,15 @@ pub fn max_residual(residuals: &[Residual]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The largest residual of the constraints among the top-level geoms of `scope` (those a plan
-/// pruned to the model's outputs computes).
-pub fn max_residual_in(
+/// The residuals of the constraints among the top-level geoms of `scope` (those a plan pruned
+/// to the model's outputs computes).
+pub fn residuals_in(
     model: &Model,
     solution: &Solution,
     params: &[f64],
     scope: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
-) -> f64 {
-    let in_scope: Vec<Residual> = residuals(model, solution, params)
+) -> Vec<Residual> {
+    residuals(model, solution, params)
         .into_iter()
         .filter(|r| {
             model.constraints[r.constraint]
@@ -76,6 +76,15 @@ pub fn max_residual_in(
                 .iter()
                 .all(|a| scope.contains(&model.top_level_of(*a)))
         })
-        .collect();
-    max_residual(&in_scope)
+        .collect()
+}
+
+/// The largest residual of the constraints among the top-level geoms of `scope`.
+pub fn max_residual_in(
+    model: &Model,
+    solution: &Solution,
+    params: &[f64],
+    scope: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
+) -> f64 {
+    max_residual(&residuals_in(model, solution, params, scope))
 }

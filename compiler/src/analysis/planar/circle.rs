@@ -651,19 +651,8 @@ impl Builder<'_, Planar> {
             Ty::Vector,
             format!("the direction from {} to {}", self.word(c1), self.word(c2)),
         );
-        let quarter = self.value(
-            Op::Const(std::f64::consts::FRAC_PI_2),
-            Ty::Scalar,
-            "pi/2".into(),
-        );
-        let across = self.value(
-            PlanarOp::Rotated {
-                dir: towards,
-                angle: quarter,
-            },
-            Ty::Vector,
-            format!("{} turned by pi/2", self.word(towards)),
-        );
+        let words = format!("{} turned by pi/2", self.word(towards));
+        let across = self.quarter_turned(towards, 1.0, words);
         let apart = self.value(
             Op::Along {
                 from: c1,

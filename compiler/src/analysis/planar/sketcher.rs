@@ -561,19 +561,9 @@ impl Builder<'_, Planar> {
                 Ty::Vector,
                 format!("the direction from {pname} to {qname}"),
             );
-            let quarter = self.value(
-                Op::Const(sense * std::f64::consts::FRAC_PI_2),
-                Ty::Scalar,
-                if sense > 0.0 { "pi/2" } else { "-pi/2" }.into(),
-            );
-            let along = self.value(
-                PlanarOp::Rotated {
-                    dir: across,
-                    angle: quarter,
-                },
-                Ty::Vector,
-                format!("the direction of the perpendicular bisector of {pname} and {qname}"),
-            );
+            let words =
+                format!("the direction of the perpendicular bisector of {pname} and {qname}");
+            let along = self.quarter_turned(across, sense, words);
             if !self.turn(dir, along, &partial) {
                 return false;
             }

@@ -273,19 +273,8 @@ impl Builder<'_, Planar> {
         // left positive): what the common line's will be.
         let at = self.point(p);
         let axis = self.dir(Dir::Feature(ax));
-        let quarter = self.value(
-            Op::Const(std::f64::consts::FRAC_PI_2),
-            Ty::Scalar,
-            "a quarter turn".into(),
-        );
-        let left = self.value(
-            PlanarOp::Rotated {
-                dir: axis,
-                angle: quarter,
-            },
-            Ty::Vector,
-            format!("the left of {}", self.name(ax)),
-        );
+        let words = format!("the left of {}", self.name(ax));
+        let left = self.quarter_turned(axis, 1.0, words);
         let offset = self.value(
             Op::Along {
                 from: at,
@@ -302,6 +291,23 @@ impl Builder<'_, Planar> {
         );
         let name = self.word(pivot_p);
         self.turn_line_past_point(pivot_l, about, pivot_p, &name, base, dir, Some(offset), r)
+    }
+
+    /// Direction `dir` turned a quarter turn counter-clockwise (`sense` 1) or clockwise (-1).
+    pub(super) fn quarter_turned(&mut self, dir: Reg, sense: f64, words: String) -> Reg {
+        let quarter = self.value(
+            Op::Const(sense * std::f64::consts::FRAC_PI_2),
+            Ty::Scalar,
+            if sense > 0.0 { "pi/2" } else { "-pi/2" }.into(),
+        );
+        self.value(
+            PlanarOp::Rotated {
+                dir,
+                angle: quarter,
+            },
+            Ty::Vector,
+            words,
+        )
     }
 
     /// Turns the cluster of line (`base`, `dir`), which may only rotate about `pivot` (at
