@@ -606,6 +606,8 @@ impl<'m, G: Geometry> Builder<'m, G> {
             if !self.take_default() {
                 break;
             }
+            // A default changed the clusters: a linear stage may now take what it could not.
+            self.linear_first = true;
         }
         // A constraint a later step constructed in part is not redundant (`check`); read
         // before `close_iterations` renumbers the steps.

@@ -314,10 +314,13 @@ impl Solve<'_> {
                 let n = self.derived_name(*x, "_dir", "line_dir");
                 self.define(w, r, &n, &code);
             }
-            PlanarOp::Linear(system) => self.linear_system(w, i, r, system),
+            PlanarOp::Linear(system) => self.linear_system(w, r, system),
             PlanarOp::Unknown { of, index } => {
                 let code = format!("{}[{index}]", self.r(*of));
-                self.define(w, r, "change", &code);
+                let name = (self.unknown_names.get(of))
+                    .and_then(|names| names.get(*index as usize).cloned())
+                    .unwrap_or_else(|| "change".to_string());
+                self.define(w, r, &name, &code);
             }
             PlanarOp::Reversed(x) => {
                 let code = format!("{}.reversed()", self.r(*x));
@@ -423,7 +426,6 @@ impl Solve<'_> {
     fn linear_system(
         &mut self,
         w: &mut Writer,
-        i: usize,
         r: Reg,
         system: &crate::plan::LinearSystem,
     ) {
@@ -433,6 +435,16 @@ impl Solve<'_> {
         let n = system.unknowns as usize;
         let work = n * (system.tears.len() + 1);
         let shape = self.names.fresh("system");
+        w.comment(&format!(
+            "One linear system in the {n} slides and free lengths left (`gcs_runtime::linear`):"
+        ));
+        w.comment(&match system.tears.len() {
+            0 => "each pivot row gives one unknown from those before.".to_string(),
+            k => format!(
+                "each pivot row gives one unknown from those before, and the closures fix the \
+                 {k} torn."
+            ),
+        });
         w.line(&format!(
             "const {}: gcs_runtime::linear::Torn<'static> = gcs_runtime::linear::Torn {{",
             shape.to_uppercase()
@@ -507,7 +519,6 @@ impl Solve<'_> {
                 self.cx.error_of(*c, "Degenerate", "0.0")
             ));
         }
-        let _ = i;
         let local = self.names.fresh("changes");
         let code = format!(
             "{}.solve::<{n}, {work}>(&[{}], &[{}]).map_err(|singular| match singular.row {{ {} }})?",
@@ -518,6 +529,7 @@ impl Solve<'_> {
         );
         self.let_line(w, &local, &local, &code);
         self.facts.regs.insert(r, Value::Local(local));
+        self.unknown_names.insert(r, system.names.clone());
     }
 
     pub(super) fn define(&mut self, w: &mut Writer, reg: Reg, name: &str, code: &str) {

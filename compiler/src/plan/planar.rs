@@ -95,6 +95,8 @@ pub enum PlanarOp {
 pub struct LinearSystem {
     /// The number of unknowns.
     pub unknowns: u16,
+    /// Each unknown's name, an identifier (`bottom_dx`, `tl_slide`, `left_stretch`).
+    pub names: Vec<String>,
     /// The rows.
     pub rows: Vec<LinearRow>,
     /// The unknowns taken as parameters, fixed by the `closures`.

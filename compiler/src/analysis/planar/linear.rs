@@ -412,14 +412,18 @@ impl Builder<'_, Planar> {
         let mut slide_dir: BTreeMap<usize, Reg> = BTreeMap::new();
         let mut n: u16 = 0;
         let mut words: Vec<String> = Vec::new();
+        let mut names: Vec<String> = Vec::new();
         for &k in &clusters {
             let m = members[&k];
             let name = self.group_name(&self.clusters[k].geoms.clone());
+            let first_geom = self.clusters[k].geoms[0];
             first_unknown.insert(k, n);
             match m.motion {
                 Motion::Free => {
                     words.push(format!("the shift of {name} along x"));
                     words.push(format!("the shift of {name} along y"));
+                    names.push(format!("{}_dx", self.name(first_geom)));
+                    names.push(format!("{}_dy", self.name(first_geom)));
                     n += 2;
                 }
                 Motion::Slide { line, .. } => {
@@ -427,6 +431,7 @@ impl Builder<'_, Planar> {
                     let d = self.value(PlanarOp::LineDir(line), Ty::Vector, w);
                     slide_dir.insert(k, d);
                     words.push(format!("the slide of {name} along its line"));
+                    names.push(format!("{}_slide", self.name(first_geom)));
                     n += 1;
                 }
                 Motion::Still => {}
@@ -434,6 +439,7 @@ impl Builder<'_, Planar> {
             if let Some(seg) = m.length {
                 length_unknown.insert(k, n);
                 words.push(format!("the change of {}'s length", self.name(seg)));
+                names.push(format!("{}_stretch", self.name(seg)));
                 n += 1;
             }
         }
@@ -508,6 +514,7 @@ impl Builder<'_, Planar> {
             return false;
         };
         self.write_linear(
+            names,
             group,
             members,
             &clusters,
@@ -741,6 +748,7 @@ impl Builder<'_, Planar> {
     #[allow(clippy::too_many_arguments)]
     fn write_linear(
         &mut self,
+        names: Vec<String>,
         group: &[Candidate],
         members: &BTreeMap<usize, Member>,
         clusters: &[usize],
@@ -766,7 +774,7 @@ impl Builder<'_, Planar> {
                 left_over.insert(ci);
             }
         }
-        let names: Vec<String> = clusters
+        let cluster_names: Vec<String> = clusters
             .iter()
             .map(|&k| self.group_name(&self.clusters[k].geoms.clone()))
             .collect();
@@ -792,7 +800,7 @@ impl Builder<'_, Planar> {
             "{} keep their directions: their {} slides and free lengths make every relation left \
              between them linear ({}). Solve those {} equations as one linear system{}, and move \
              each there.",
-            names.join(", "),
+            cluster_names.join(", "),
             words.len(),
             listed,
             rows.len(),
@@ -806,6 +814,7 @@ impl Builder<'_, Planar> {
         self.work_for(leading);
         let system = LinearSystem {
             unknowns: words.len() as u16,
+            names,
             rows,
             tears: torn.tears,
             pivots: torn.pivots,
