@@ -423,12 +423,7 @@ impl Solve<'_> {
     /// Solves a linear stage's system (`gcs_runtime::linear`): its shape a constant, its
     /// coefficients and right-hand sides read from the directions and errors before it, a
     /// singular row an error naming that row's constraint.
-    fn linear_system(
-        &mut self,
-        w: &mut Writer,
-        r: Reg,
-        system: &crate::plan::LinearSystem,
-    ) {
+    fn linear_system(&mut self, w: &mut Writer, r: Reg, system: &crate::plan::LinearSystem) {
         use crate::plan::Coef;
         let (row_start, term_unknown) = system.shape();
         let list = |v: &mut dyn Iterator<Item = String>| v.collect::<Vec<_>>().join(", ");
