@@ -757,8 +757,9 @@ pub fn points(n: usize) -> String {
     s
 }
 
-/// A closed stair-step profile of `n` edges (at least 4, rounded up to even): from `P` it
-/// climbs `(n - 2) / 2` steps (right 4, up 3), then runs left and down back to `P`. Every
+/// A closed stair-step profile of `n` edges (at least 4, rounded up to even): from `P` it runs
+/// right along the bottom, climbs back over it by `(n - 2) / 2` steps (up 3, left 4), and runs
+/// down the left side back to `P`. Every
 /// segment is `horizontal` or `vertical`, every corner filleted by a circle of radius `r`
 /// (`radius`, `on` both segments' ends, `tangent` to both), `L0.start` on the fixed point `P`,
 /// and every edge's length given but the first's and the last's: the profile of SolveSpace's
@@ -785,15 +786,15 @@ pub struct StairSketch {
 pub fn stair_profile_sketched(n: usize, how: &StairSketch) -> String {
     let steps = n.max(4).div_ceil(2) - 1;
     let (a, b, r) = (4.0, 3.0, 0.5);
-    let mut corners = vec![(0.0f64, 0.0f64)];
-    let (mut x, mut y) = (0.0, 0.0);
+    // Right along the bottom, then up and left by steps back over it, then down to the start.
+    let (mut x, mut y) = (a * steps as f64, 0.0f64);
+    let mut corners = vec![(0.0f64, 0.0f64), (x, y)];
     for _ in 0..steps {
-        x += a;
-        corners.push((x, y));
         y += b;
         corners.push((x, y));
+        x -= a;
+        corners.push((x, y));
     }
-    corners.push((0.0, y));
     let m = corners.len();
     let dir = |i: usize| {
         let (p, q) = (corners[i % m], corners[(i + 1) % m]);

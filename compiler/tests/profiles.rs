@@ -142,7 +142,16 @@ fn a_profile_with_both_closing_lengths_is_redundant_not_degenerate() {
             closed: true,
             ..StairSketch::default()
         };
-        let text = stair_profile_sketched(n, &how).replace("length(L0) = 3;", "length(L0) = 3.5;");
+        let text: String = (stair_profile_sketched(n, &how).lines())
+            .map(|line| match line.strip_prefix("length(L0) = ") {
+                Some(v) => {
+                    let v: f64 = v.trim_end_matches(';').parse().expect("a length");
+                    format!("length(L0) = {};\n", v + 0.5)
+                }
+                None => format!("{line}\n"),
+            })
+            .collect();
+        assert!(text.contains("length(L0)"), "{n} edges: no first length");
         let c = compiled(&text);
         let e = solved(&c).expect_err("a closing length off by 0.5");
         assert_eq!(e.kind, ErrorKind::Inconsistent, "{n} edges: {e}");
