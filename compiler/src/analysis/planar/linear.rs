@@ -289,15 +289,18 @@ impl Builder<'_, Planar> {
                 }
             }
         }
-        let mut groups: Vec<(usize, Vec<Candidate>)> = Vec::new();
+        // In the order of their first relations.
+        let mut groups: Vec<Vec<Candidate>> = Vec::new();
+        let mut group_of: BTreeMap<usize, usize> = BTreeMap::new();
         for c in candidates {
             let root = find(&mut parent, c.clusters[0]);
-            match groups.iter_mut().find(|(r, _)| *r == root) {
-                Some((_, cs)) => cs.push(c),
-                None => groups.push((root, vec![c])),
-            }
+            let g = *group_of.entry(root).or_insert_with(|| {
+                groups.push(Vec::new());
+                groups.len() - 1
+            });
+            groups[g].push(c);
         }
-        for (_, group) in groups {
+        for group in groups {
             let cp = self.checkpoint();
             if self.solve_linear(&members, &group) {
                 return true;
@@ -407,6 +410,9 @@ impl Builder<'_, Planar> {
         let mut clusters: Vec<usize> = group.iter().flat_map(|c| c.clusters.clone()).collect();
         clusters.sort_unstable();
         clusters.dedup();
+        // In the order of their first geoms' names, so that the plan does not depend on the
+        // order of statements.
+        clusters.sort_by_cached_key(|&k| self.name(self.clusters[k].geoms[0]));
         let mut first_unknown: BTreeMap<usize, u16> = BTreeMap::new();
         let mut length_unknown: BTreeMap<usize, u16> = BTreeMap::new();
         let mut slide_dir: BTreeMap<usize, Reg> = BTreeMap::new();
