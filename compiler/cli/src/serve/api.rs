@@ -224,8 +224,19 @@ impl Api {
         let scope: BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
         let given = !r.default.is_empty();
         let (params, branches, defaults) = (&inputs.params, &inputs.branches, &inputs.defaults);
-        let shown = match shared::solve(model, plan, &scope, (params, branches, defaults), given) {
-            Ok(s) => s,
+        // The page gives every branch; a branch it does not is the sketch's, or changed (and
+        // then in the solution's `branches_changed`).
+        let held = shared::held(plan, &r.branch);
+        let solved = shared::solve(
+            model,
+            plan,
+            &scope,
+            (params, branches, defaults),
+            given,
+            &held,
+        );
+        let shown = match solved {
+            Ok(kept) => kept.solution,
             Err(e) => {
                 let errors = shared::failure(model, plan, params, defaults, branches.clone(), &e);
                 return json!({ "ok": false, "stage": "solve", "errors": errors });
