@@ -506,13 +506,9 @@ fn solve(
         eprintln!("error: {why}");
         return ExitCode::from(2);
     }
-    // The pipeline's warning of the sketch's branches at the default params: a plain solve
-    // says its own, at the params it solves with.
-    let hide: fn(&Diagnostic) -> bool = if all_solutions {
-        |_| false
-    } else {
-        gcs_compiler::report::is_sketch_branches
-    };
+    // The pipeline's warning of the sketch's branches at the default params: a solve says its
+    // own, at the params it solves with (every assembly lists its own `branches_changed`).
+    let hide = gcs_compiler::report::is_sketch_branches;
     with_analysis_hiding(path, color, hide, |c| {
         let (model, analysis) = (&c.model, &c.analysis);
         let shared::Inputs {
