@@ -267,16 +267,9 @@ pub fn solve_near_sketch(
     };
     let cost = plan.steps.len().saturating_mul(runs);
     let sketch = Solution::of_sketch(model, params, scope);
-    let Some(mut solution) = search.run(branches, &solve, cost, sketch) else {
+    let Some((used, mut solution)) = search.run(branches, &solve, cost, sketch) else {
         return Err(error);
     };
-    let used: Vec<usize> = (plan.branches.iter())
-        .map(|b| {
-            (solution.branches.iter())
-                .find(|(n, _)| *n == b.name)
-                .map_or(b.default, |(_, i)| *i)
-        })
-        .collect();
     solution.branches_changed = solution::BranchChange::of(plan, branches, &used);
     let changed: Vec<usize> = (0..plan.branches.len())
         .filter(|&b| branches[b] != used[b])
@@ -355,14 +348,14 @@ impl<'a> Search<'a> {
     /// Searches from `branches` (which fail) for a combination that `solve`s, in rounds: the
     /// branches the failures depend on, varied nearest the failure first; when none solves,
     /// those the failures of that round depend on too. The solution nearest `sketch` of the
-    /// first round that finds any. A solve runs about `cost` steps.
+    /// first round that finds any, with its branches. A solve runs about `cost` steps.
     fn run(
         &self,
         branches: &[usize],
         solve: &dyn Fn(&[usize]) -> Result<Solution, SolveError>,
         cost: usize,
         sketch: Option<Solution>,
-    ) -> Option<Solution> {
+    ) -> Option<(Vec<usize>, Solution)> {
         let mut budget = crate::plan::MAX_COMBINATIONS.min(SEARCH_STEPS / cost.max(1));
         if budget == 0 {
             return None;
@@ -373,7 +366,7 @@ impl<'a> Search<'a> {
             let mut order: Vec<usize> = varied.iter().copied().collect();
             order.sort_by_key(|&b| std::cmp::Reverse(self.step_of[b]));
             let combinations = crate::all::Combinations::new(self.plan, branches, &order);
-            let mut best: Option<(f64, Solution)> = None;
+            let mut best: Option<(f64, Vec<usize>, Solution)> = None;
             let mut more = BTreeSet::new();
             // Combination 0 is the one asked, which failed. A round the budget cuts short is
             // the last: what its failures depend on is not asked.
@@ -387,8 +380,8 @@ impl<'a> Search<'a> {
                 match solve(&tried) {
                     Ok(s) => {
                         let d = sketch.as_ref().map_or(0.0, |at| crate::all::motion(at, &s));
-                        if best.as_ref().is_none_or(|(b, _)| d < *b) {
-                            best = Some((d, s));
+                        if best.as_ref().is_none_or(|(b, _, _)| d < *b) {
+                            best = Some((d, tried, s));
                         }
                     }
                     Err(_) if best.is_none() && !last => {
@@ -398,8 +391,8 @@ impl<'a> Search<'a> {
                     Err(_) => {}
                 }
             }
-            if let Some((_, s)) = best {
-                return Some(s);
+            if let Some((_, tried, s)) = best {
+                return Some((tried, s));
             }
             let before = varied.len();
             varied.extend(more);
