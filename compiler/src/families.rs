@@ -46,11 +46,14 @@ pub enum Family {
     CircleSketch,
     /// [`random_mix`]: stages of every planar family, picked at random.
     RandomMix,
+    /// [`stair_profile`]: a closed stair-step profile of horizontal and vertical segments,
+    /// every corner filleted, closed by two free lengths (a linear stage).
+    StairProfile,
 }
 
 impl Family {
     /// Every family, in a fixed order.
-    pub const ALL: [Family; 12] = [
+    pub const ALL: [Family; 13] = [
         Family::FourBarChain,
         Family::SketchProfile,
         Family::ClosedProfile,
@@ -63,6 +66,7 @@ impl Family {
         Family::Strip,
         Family::CircleSketch,
         Family::RandomMix,
+        Family::StairProfile,
     ];
 
     /// The family's short name, as the command line and the reports spell it.
@@ -80,6 +84,7 @@ impl Family {
             Family::Strip => "strip",
             Family::CircleSketch => "circle_sketch",
             Family::RandomMix => "random_mix",
+            Family::StairProfile => "stair_profile",
         }
     }
 
@@ -103,6 +108,7 @@ impl Family {
             Family::Strip => strip(n),
             Family::CircleSketch => circle_sketch(n),
             Family::RandomMix => random_mix(n),
+            Family::StairProfile => stair_profile(n),
         }
     }
 
@@ -121,6 +127,7 @@ impl Family {
             Family::Strip => ("w", 0.9, 1.1),
             Family::CircleSketch => ("r", 0.8, 1.2),
             Family::RandomMix => ("theta", 0.0, std::f64::consts::TAU),
+            Family::StairProfile => ("r", 0.3, 0.7),
         }
     }
 }
@@ -746,6 +753,118 @@ pub fn points(n: usize) -> String {
         let _ = writeln!(s, "\npoint q{k} = ({k}.1, 0.1);");
         let _ = writeln!(s, "on(q{k}, axis);");
         let _ = writeln!(s, "distance(q{}, q{k}) = gap;", k - 1);
+    }
+    s
+}
+
+/// A closed stair-step profile of `n` edges (at least 4, rounded up to even): from `P` it
+/// climbs `(n - 2) / 2` steps (right 4, up 3), then runs left and down back to `P`. Every
+/// segment is `horizontal` or `vertical`, every corner filleted by a circle of radius `r`
+/// (`radius`, `on` both segments' ends, `tangent` to both), `L0.start` on the fixed point `P`,
+/// and every edge's length given but the first's and the last's: the profile of SolveSpace's
+/// and PlaneGCS's sketch benchmark. Its directions are all known once the segments are
+/// turned, so its closure is linear in the slides and the two free lengths: one linear stage.
+pub fn stair_profile(n: usize) -> String {
+    stair_profile_sketched(n, &StairSketch::default())
+}
+
+/// How [`stair_profile_sketched`] writes its sketch and dimensions.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StairSketch {
+    /// Every sketched point is moved by up to this much in x and in y (pseudo-randomly).
+    pub jitter: f64,
+    /// The seed of the moves.
+    pub seed: u64,
+    /// Whether the first and last edges' lengths are given too (consistent): two redundant
+    /// constraints.
+    pub closed: bool,
+}
+
+/// [`stair_profile`] with its sketch moved (as a user's drag leaves it) and, if asked, both
+/// closing lengths given.
+pub fn stair_profile_sketched(n: usize, how: &StairSketch) -> String {
+    let steps = n.max(4).div_ceil(2) - 1;
+    let (a, b, r) = (4.0, 3.0, 0.5);
+    let mut corners = vec![(0.0f64, 0.0f64)];
+    let (mut x, mut y) = (0.0, 0.0);
+    for _ in 0..steps {
+        x += a;
+        corners.push((x, y));
+        y += b;
+        corners.push((x, y));
+    }
+    corners.push((0.0, y));
+    let m = corners.len();
+    let dir = |i: usize| {
+        let (p, q) = (corners[i % m], corners[(i + 1) % m]);
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let l = (dx * dx + dy * dy).sqrt();
+        (dx / l, dy / l)
+    };
+    let mut seed = how.seed.wrapping_mul(2).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    let mut moved = |p: (f64, f64)| {
+        let mut jitter = || {
+            let u = (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64;
+            (2.0 * u - 1.0) * how.jitter
+        };
+        (p.0 + jitter(), p.1 + jitter())
+    };
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// A closed stair-step profile of {m} edges, every corner filleted; its first and last\n\
+         // lengths {}.",
+        if how.closed {
+            "given too (two redundant constraints)"
+        } else {
+            "left free: the profile closes them"
+        }
+    );
+    s.push_str("space 2d;\n\nparam r = 0.5;\n");
+    let start = (corners[0].0 + r * dir(0).0, corners[0].1 + r * dir(0).1);
+    let _ = writeln!(s, "fixed point P = ({}, {});", start.0, start.1);
+    for i in 0..m {
+        let d = dir(i);
+        let (p, q) = (corners[i], corners[(i + 1) % m]);
+        let from = moved((p.0 + r * d.0, p.1 + r * d.1));
+        let to = moved((q.0 - r * d.0, q.1 - r * d.1));
+        let _ = writeln!(
+            s,
+            "segment L{i} = ({:.6}, {:.6}) -> ({:.6}, {:.6});",
+            from.0, from.1, to.0, to.1
+        );
+    }
+    for (i, corner) in corners.iter().enumerate() {
+        // The fillet at corner i, between edge i - 1 and edge i.
+        let (d0, d1) = (dir(i + m - 1), dir(i));
+        let c = moved((
+            corner.0 - r * d0.0 + r * d1.0,
+            corner.1 - r * d0.1 + r * d1.1,
+        ));
+        let _ = writeln!(
+            s,
+            "circle F{i} = center ({:.6}, {:.6}) radius {r};",
+            c.0, c.1
+        );
+    }
+    s.push_str("coincident(L0.start, P);\n");
+    for i in 0..m {
+        let across = dir(i).1.abs() < 0.5;
+        let p = (i + m - 1) % m;
+        let _ = writeln!(
+            s,
+            "{}(L{i});\nradius(F{i}) = r;\non(L{p}.end, F{i}); on(L{i}.start, F{i}); \
+             tangent(L{p}, F{i}); tangent(L{i}, F{i});",
+            if across { "horizontal" } else { "vertical" }
+        );
+    }
+    for i in 0..m {
+        if (i == 0 || i + 1 == m) && !how.closed {
+            continue;
+        }
+        let (p, q) = (corners[i], corners[(i + 1) % m]);
+        let l = ((q.0 - p.0).powi(2) + (q.1 - p.1).powi(2)).sqrt() - 2.0 * r;
+        let _ = writeln!(s, "length(L{i}) = {l};");
     }
     s
 }

@@ -77,7 +77,8 @@ impl std::error::Error for AnalysisError {}
 /// invariants, and that only the constraints the analysis reports unsolved (or recorded) are
 /// left without a step.
 pub fn analyse(model: &Model) -> Result<Analysis, AnalysisError> {
-    let mut analysis = analysis::analyse(model, moving_checks).map_err(AnalysisError::Uncovered)?;
+    let mut analysis = analysis::analyse(model, moving_checks, crate::interp::sketch_values)
+        .map_err(AnalysisError::Uncovered)?;
     choose_branch_defaults(model, &mut analysis.plan);
     validate(model, &analysis).map_err(AnalysisError::Malformed)?;
     Ok(analysis)

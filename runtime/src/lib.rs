@@ -15,6 +15,7 @@ pub mod frame;
 pub mod intersect2d;
 pub mod intersect3d;
 pub mod iterate;
+pub mod linear;
 pub mod locus2d;
 pub mod locus3d;
 pub mod num;

@@ -41,6 +41,7 @@ use std::collections::{BTreeMap, BTreeSet};
 pub(super) fn analyse<G: Geometry>(
     model: &Model,
     moves: super::Moves,
+    values: super::Values,
 ) -> Result<Analysis, super::Unreadable> {
     let (mut rels, unsupported) = G::decompose(model)?;
     // Canonical order: by constraint name, then relation order within the constraint, so that
@@ -53,6 +54,7 @@ pub(super) fn analyse<G: Geometry>(
     mark_duplicates::<G>(&mut rels);
     let mut b = Builder::<G>::new(model);
     b.moves = Some(moves);
+    b.values = Some(values);
     b.run(rels);
     let mut unsolved = unsupported;
     let mut listed: BTreeSet<ConstraintId> = unsolved.iter().map(|u| u.constraint).collect();
@@ -166,7 +168,7 @@ enum Key {
 }
 
 /// Where a rollback returns to: the plan's steps, registers and branches.
-type Checkpoint = (usize, u32, usize);
+pub(crate) type Checkpoint = (usize, u32, usize);
 
 /// The analysis in progress: clusters and their records, the relations still pending, and
 /// the plan written so far.
@@ -176,6 +178,15 @@ pub(crate) struct Builder<'m, G: Geometry> {
     /// Which checks move with the defaults, asked once the plan is written (see
     /// [`super::analyse`]); none while a loop is solved on a temporary ground.
     pub(crate) moves: Option<super::Moves>,
+    /// What registers hold when the plan so far runs on the sketch (see [`super::analyse`]).
+    pub(crate) values: Option<super::Values>,
+    /// Whether relations a linear stage can take whole are left to it where action or locus
+    /// analysis would build them as a double root (a touching contact as the meeting of two
+    /// loci that touch): true until a linear stage finds nothing to take.
+    pub(crate) linear_first: bool,
+    /// Pairs of geoms a space's geometry marks once per model (the plane: each circle and
+    /// segment in a touching contact, the segment's end on the circle it touches).
+    pub(crate) pairs: std::rc::Rc<std::cell::OnceCell<HashSet<(GeomId, GeomId)>>>,
     pub(crate) plan: Plan,
     pub(crate) clusters: Vec<ClusterState<G::Record>>,
     /// The cluster of each top-level geom, by its index in the model's arena (0 for the
@@ -205,6 +216,9 @@ pub(crate) struct Builder<'m, G: Geometry> {
     redundant: Vec<ConstraintId>,
     /// For each constraint, a step that moves geoms for it ([`Builder::moved_for`]).
     moved: HashMap<ConstraintId, usize>,
+    /// Constraints a step solved together with others constructed in part (a linear stage's
+    /// rows), whichever constraint that step works for.
+    constructed: HashSet<ConstraintId>,
     /// The keys of the relations done so far: a duplicate waits for its key here.
     done: HashSet<RelKey<G::Relation>>,
     /// The clusters before the first default, once one is added.
@@ -250,6 +264,9 @@ impl<'m, G: Geometry> Builder<'m, G> {
         Builder {
             model,
             moves: None,
+            values: None,
+            linear_first: true,
+            pairs: Default::default(),
             plan: Plan::new(model.space),
             clusters,
             cluster_of,
@@ -270,6 +287,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             pending: Vec::new(),
             redundant: Vec::new(),
             moved: HashMap::default(),
+            constructed: HashSet::default(),
             done: HashSet::default(),
             undefaulted: None,
             working: None,
@@ -320,12 +338,13 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// was constructed, not only checked). The index kept may be stale after a rollback: the
     /// step at it is read to tell.
     fn moved_for(&self, c: ConstraintId) -> bool {
-        self.moved.get(&c).is_some_and(|&i| {
-            self.plan
-                .steps
-                .get(i)
-                .is_some_and(|s| s.works_for == Some(c) && !s.op.moves().is_empty())
-        })
+        self.constructed.contains(&c)
+            || self.moved.get(&c).is_some_and(|&i| {
+                self.plan
+                    .steps
+                    .get(i)
+                    .is_some_and(|s| s.works_for == Some(c) && !s.op.moves().is_empty())
+            })
     }
 
     /// Forgets the measurements of the features of top-level geom `top` (it moves).
@@ -574,12 +593,22 @@ impl<'m, G: Geometry> Builder<'m, G> {
             if !self.pending.is_empty() && self.group() {
                 continue;
             }
+            if !self.pending.is_empty() && G::linear(self) {
+                continue;
+            }
+            // Nothing for a linear stage: what was left to it goes back to action analysis.
+            if self.linear_first && !self.pending.is_empty() {
+                self.linear_first = false;
+                continue;
+            }
             if self.undefaulted.is_none() {
                 self.undefaulted = Some(self.clusters.clone());
             }
             if !self.take_default() {
                 break;
             }
+            // A default changed the clusters: a linear stage may now take what it could not.
+            self.linear_first = true;
         }
         // A constraint a later step constructed in part is not redundant (`check`); read
         // before `close_iterations` renumbers the steps.
@@ -1002,8 +1031,35 @@ impl<'m, G: Geometry> Builder<'m, G> {
         self.pending.retain(|_| keep.next().unwrap_or(false));
     }
 
+    /// Takes the pending relations at `indices` as satisfied together (by a linear stage):
+    /// they leave the pending list, and their keys are done. Returns them.
+    pub(crate) fn settle_pending(&mut self, indices: &BTreeSet<usize>) -> Vec<Rel<G::Relation>> {
+        let mut taken = Vec::with_capacity(indices.len());
+        let mut kept = Vec::with_capacity(self.pending.len());
+        for (i, r) in std::mem::take(&mut self.pending).into_iter().enumerate() {
+            if indices.contains(&i) {
+                self.done.insert(key::<G>(&r.relation));
+                taken.push(r);
+            } else {
+                kept.push(r);
+            }
+        }
+        self.pending = kept;
+        taken
+    }
+
+    /// Notes that constraint `c` was constructed (in part) by a step that works for another.
+    pub(crate) fn constructed(&mut self, c: ConstraintId) {
+        self.constructed.insert(c);
+    }
+
+    /// Sets the constraint the steps written next work for.
+    pub(crate) fn work_for(&mut self, c: Option<ConstraintId>) {
+        self.working = c;
+    }
+
     /// The clusters a relation involves.
-    fn clusters_of(&self, r: &Rel<G::Relation>) -> Vec<usize> {
+    pub(crate) fn clusters_of(&self, r: &Rel<G::Relation>) -> Vec<usize> {
         let mut ks: Vec<usize> = G::features(&r.relation)
             .into_iter()
             .map(|g| self.cluster(g))
@@ -1013,7 +1069,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
         ks
     }
 
-    fn checkpoint(&mut self) -> Checkpoint {
+    pub(crate) fn checkpoint(&mut self) -> Checkpoint {
         self.inserted.clear();
         (
             self.plan.steps.len(),
@@ -1023,7 +1079,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
     }
 
     /// Undoes the steps of a failed attempt, and forgets the registers they defined.
-    fn rollback(&mut self, (steps, regs, branches): Checkpoint) {
+    pub(crate) fn rollback(&mut self, (steps, regs, branches): Checkpoint) {
         if self.plan.steps.len() == steps {
             return;
         }
@@ -1080,28 +1136,38 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 }
             }
         }
-        let linked = |x: usize, y: usize| edges.contains(&(x.min(y), x.max(y)));
+        // A set's clusters by the place of their first geom's name: the order of their names.
         let key = |s: &Self, set: &[usize]| {
-            let mut names: Vec<String> = set
+            let mut ranks: Vec<u32> = set
                 .iter()
-                .map(|&k| s.name(s.clusters[k].geoms[0]))
+                .map(|&k| s.name_rank[geom_index(s.clusters[k].geoms[0])])
                 .collect();
-            names.sort();
-            names
+            ranks.sort_unstable();
+            ranks
         };
         // Chains first (SOLVE-RIGID-CHAINS), then loops up to the space's limit
         // (IDENTIFY-LOOPS over the free clusters numbered in name order).
         let mut sets: Vec<Vec<usize>> = edges.iter().map(|&(x, y)| vec![x, y]).collect();
         let mut order: Vec<usize> = free.clone();
-        order.sort_by_key(|&k| self.name(self.clusters[k].geoms[0]));
-        let adj: Vec<Vec<usize>> = order
-            .iter()
-            .map(|&x| (0..order.len()).filter(|&j| linked(x, order[j])).collect())
-            .collect();
+        order.sort_by_key(|&k| self.name_rank[geom_index(self.clusters[k].geoms[0])]);
+        // Each free cluster's neighbours, by place in `order`, in order: from the edges, not
+        // by asking every pair (a model with many free clusters asks here after every chain).
+        let place: HashMap<usize, usize> = order.iter().enumerate().map(|(j, &k)| (k, j)).collect();
+        let mut adj: Vec<Vec<usize>> = vec![Vec::new(); order.len()];
+        for &(x, y) in &edges {
+            if let (Some(&i), Some(&j)) = (place.get(&x), place.get(&y)) {
+                adj[i].push(j);
+                adj[j].push(i);
+            }
+        }
+        for next in &mut adj {
+            next.sort_unstable();
+            next.dedup();
+        }
         for l in super::loops::identify_loops(&adj, G::MAX_LOOP) {
             sets.push(l.into_iter().map(|i| order[i]).collect());
         }
-        sets.sort_by_key(|s| (s.len(), key(self, s)));
+        sets.sort_by_cached_key(|s| (s.len(), key(self, s)));
         for set in sets {
             let held: Vec<usize> = set
                 .iter()
@@ -1113,7 +1179,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 [one] => vec![*one],
                 _ => continue,
             };
-            grounds.sort_by_key(|&k| self.name(self.clusters[k].geoms[0]));
+            grounds.sort_by_key(|&k| self.name_rank[geom_index(self.clusters[k].geoms[0])]);
             for ground in grounds {
                 let mut trial = self.clone();
                 if trial.solve_group(&set, ground) {

@@ -125,6 +125,13 @@ pub(crate) trait Geometry: Sized + Clone {
     /// Grounds a model in which nothing is fixed, so that it is solved up to a rigid motion.
     fn ground(b: &mut Builder<'_, Self>);
 
+    /// The linear stage, when action, locus, chain and loop analysis are stuck: clusters whose
+    /// directions are all known and whose remaining relations are linear in their slides and
+    /// free lengths are solved together, as one linear system. Returns whether it solved any.
+    fn linear(_b: &mut Builder<'_, Self>) -> bool {
+        false
+    }
+
     /// Adds defaults (000, section 5.2.1) when nothing else applies: fixes one freedom of one
     /// cluster of the `candidates` (non-grounded clusters, fewest DOF first, then by name) at
     /// a default parameter with a geometric meaning (an angle about a pivot, a position along

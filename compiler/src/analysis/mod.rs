@@ -146,10 +146,13 @@ impl Unreadable {
 /// and `Onto`, by step, whether its residual moves with the defaults. A check that depends on
 /// a default only on paper (a point displaced along the very line it must lie on) then stays
 /// a check, and the default a free motion, rather than an iteration with nothing to close.
-pub(crate) fn analyse(model: &Model, moves: Moves) -> Result<Analysis, Unreadable> {
+///
+/// `values` runs the plan written so far on the sketch and reads registers: a linear stage
+/// asks it which coefficients of its system vanish there, to choose its pivots.
+pub(crate) fn analyse(model: &Model, moves: Moves, values: Values) -> Result<Analysis, Unreadable> {
     match model.space {
-        Space::D2 => driver::analyse::<planar::Planar>(model, moves),
-        Space::D3 => driver::analyse::<spatial::Spatial>(model, moves),
+        Space::D2 => driver::analyse::<planar::Planar>(model, moves, values),
+        Space::D3 => driver::analyse::<spatial::Spatial>(model, moves, values),
     }
 }
 
@@ -157,3 +160,9 @@ pub(crate) fn analyse(model: &Model, moves: Moves) -> Result<Analysis, Unreadabl
 /// an `Onto`'s gap changes when the defaults move (`None` where that is not known: the step is
 /// neither, or the plan does not run); see [`analyse`].
 pub(crate) type Moves = fn(&Model, &crate::plan::Plan) -> Vec<Option<bool>>;
+
+/// The values of registers of a plan being written, run on the sketch (each default at its
+/// least-motion value, each branch at the sketch's root): a scalar as `[x, 0]`, a point or a
+/// direction as its coordinates. `None` where the plan does not run.
+pub(crate) type Values =
+    fn(&Model, &crate::plan::Plan, &[crate::plan::Reg]) -> Option<Vec<[f64; 2]>>;

@@ -67,6 +67,8 @@ pub(super) struct Solve<'a> {
     /// The trial's entry each default an iteration converged on is, for
     /// `Solution::defaults`.
     pub(super) converged_defaults: HashMap<DefaultId, (String, usize)>,
+    /// The names of each linear system's unknowns, by the register of its answers.
+    pub(super) unknown_names: HashMap<Reg, Vec<String>>,
     /// The directions near an iteration's start (`DirectionsNear`) of each angle it varies,
     /// by the angle's trial entry: declared before the iteration once a trial turns the x
     /// axis by that angle, and used again where the region is written at the angle converged
@@ -116,6 +118,7 @@ impl<'a> Solve<'a> {
             converged: false,
             error_only: HashSet::default(),
             converged_defaults: HashMap::default(),
+            unknown_names: HashMap::default(),
             trial_directions: HashMap::default(),
             declared_at: HashMap::default(),
             tol_terms: RefCell::new(Vec::new()),

@@ -309,6 +309,19 @@ impl Solve<'_> {
                 through,
                 radius,
             } => self.circle_through(w, i, r, *center, *through, *radius),
+            PlanarOp::LineDir(x) => {
+                let code = format!("{}.dir()", self.r(*x));
+                let n = self.derived_name(*x, "_dir", "line_dir");
+                self.define(w, r, &n, &code);
+            }
+            PlanarOp::Linear(system) => self.linear_system(w, r, system),
+            PlanarOp::Unknown { of, index } => {
+                let code = format!("{}[{index}]", self.r(*of));
+                let name = (self.unknown_names.get(of))
+                    .and_then(|names| names.get(*index as usize).cloned())
+                    .unwrap_or_else(|| "change".to_string());
+                self.define(w, r, &name, &code);
+            }
             PlanarOp::Reversed(x) => {
                 let code = format!("{}.reversed()", self.r(*x));
                 let n = self.derived_name(*x, "_reversed", "reversed");
@@ -407,6 +420,113 @@ impl Solve<'_> {
     }
 
     /// `let {name} = {code};` for register `reg`.
+    /// Solves a linear stage's system (`gcs_runtime::linear`): its shape a constant, its
+    /// coefficients and right-hand sides read from the directions and errors before it, a
+    /// singular row an error naming that row's constraint.
+    fn linear_system(&mut self, w: &mut Writer, r: Reg, system: &crate::plan::LinearSystem) {
+        use crate::plan::Coef;
+        let (row_start, term_unknown) = system.shape();
+        let list = |v: &mut dyn Iterator<Item = String>| v.collect::<Vec<_>>().join(", ");
+        let n = system.unknowns as usize;
+        let work = n * (system.tears.len() + 1);
+        let shape = self.names.fresh("system");
+        w.comment(&format!(
+            "One linear system in the {n} slides and free lengths left (`gcs_runtime::linear`):"
+        ));
+        w.comment(&match system.tears.len() {
+            0 => "each pivot row gives one unknown from those before.".to_string(),
+            k => format!(
+                "each pivot row gives one unknown from those before, and the closures fix the \
+                 {k} torn."
+            ),
+        });
+        w.line(&format!(
+            "const {}: gcs_runtime::linear::Torn<'static> = gcs_runtime::linear::Torn {{",
+            shape.to_uppercase()
+        ));
+        w.line(&format!("unknowns: {n},"));
+        w.line(&format!(
+            "row_start: &[{}],",
+            list(&mut row_start.iter().map(u32::to_string))
+        ));
+        w.line(&format!(
+            "term_unknown: &[{}],",
+            list(&mut term_unknown.iter().map(u16::to_string))
+        ));
+        w.line(&format!(
+            "tears: &[{}],",
+            list(&mut system.tears.iter().map(u16::to_string))
+        ));
+        w.line(&format!(
+            "pivots: &[{}],",
+            list(&mut system.pivots.iter().map(|(a, b)| format!("({a}, {b})")))
+        ));
+        w.line(&format!(
+            "closures: &[{}],",
+            list(&mut system.closures.iter().map(u16::to_string))
+        ));
+        w.line("};");
+        let component = |s: &Self, v: Reg, x: bool| match s.facts.value(v) {
+            Value::Vector(a, b) => float(if x { *a } else { *b }),
+            _ => format!("{}.{}", s.r(v), if x { "x" } else { "y" }),
+        };
+        let mut coefs = Vec::new();
+        let mut rhs = Vec::new();
+        for row in &system.rows {
+            rhs.push(format!("-{}", self.r(row.error)));
+            for t in &row.terms {
+                let c = match t.coef {
+                    Coef::One => {
+                        coefs.push(float(t.scale));
+                        continue;
+                    }
+                    Coef::X(v) => component(self, v, true),
+                    Coef::Y(v) => component(self, v, false),
+                    Coef::Dot(a, b) => format!("{}.dot(&{})", self.r(a), self.r(b)),
+                    Coef::Cross(a, b) => format!("{}.perp(&{})", self.r(a), self.r(b)),
+                };
+                coefs.push(if t.scale == 1.0 {
+                    c
+                } else if t.scale == -1.0 {
+                    format!("-{c}")
+                } else {
+                    format!("{} * {c}", float(t.scale))
+                });
+            }
+        }
+        // A singular row names its own constraint.
+        let mut blame: Vec<(gcs_lang::model::ConstraintId, Vec<usize>)> = Vec::new();
+        for (k, row) in system.rows.iter().enumerate() {
+            match blame.iter_mut().find(|(c, _)| *c == row.constraint) {
+                Some((_, rows)) => rows.push(k),
+                None => blame.push((row.constraint, vec![k])),
+            }
+        }
+        let mut arms = Vec::new();
+        for (k, (c, rows)) in blame.iter().enumerate() {
+            let pattern = if k + 1 == blame.len() {
+                "_".to_string()
+            } else {
+                list(&mut rows.iter().map(usize::to_string)).replace(", ", " | ")
+            };
+            arms.push(format!(
+                "{pattern} => {},",
+                self.cx.error_of(*c, "Degenerate", "0.0")
+            ));
+        }
+        let local = self.names.fresh("changes");
+        let code = format!(
+            "{}.solve::<{n}, {work}>(&[{}], &[{}]).map_err(|singular| match singular.row {{ {} }})?",
+            shape.to_uppercase(),
+            coefs.join(", "),
+            rhs.join(", "),
+            arms.join(" ")
+        );
+        self.let_line(w, &local, &local, &code);
+        self.facts.regs.insert(r, Value::Local(local));
+        self.unknown_names.insert(r, system.names.clone());
+    }
+
     pub(super) fn define(&mut self, w: &mut Writer, reg: Reg, name: &str, code: &str) {
         let local = self.names.fresh(name);
         self.let_line(w, &local, &local, code);

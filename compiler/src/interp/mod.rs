@@ -78,6 +78,8 @@ enum Val {
     Sphere(Sphere),
     Cylinder(Cylinder),
     Torus(Torus),
+    /// The answers of the linear system step `.0` solved (in [`Machine::linear`]).
+    Xs(u32),
 }
 
 /// Runs `plan` with `params` (indexed like the model's params) and each default at its
@@ -382,6 +384,42 @@ pub fn residuals_at(
     }
 }
 
+/// The values of registers `regs` of a planar `plan` (one being written: no outer iterations
+/// yet) run on the sketch, each default at its least-motion value and each branch at its
+/// sketch root, a check that fails not stopping the run: a scalar as `[x, 0]`, a point or a
+/// direction as its coordinates, anything else NaN. `None` where the plan does not run. What
+/// the analysis asks of a system it is about to write (which of its coefficients vanish).
+pub fn sketch_values(model: &Model, plan: &Plan, regs: &[Reg]) -> Option<Vec<[f64; 2]>> {
+    if model.space != gcs_lang::model::Space::D2 {
+        return None;
+    }
+    let params = model.default_params();
+    let mut reached = vec![None; plan.defaults.len()];
+    let mut machine = Machine::<D2>::start(
+        model,
+        plan,
+        &params,
+        plan.sketch_defaults(),
+        &Choice::Nearest,
+        Some(&mut reached),
+    )
+    .ok()?;
+    machine.failed = Some(Vec::new());
+    machine
+        .execute(None::<&mut gcs_runtime::outer::Newton>)
+        .ok()?;
+    Some(
+        (regs.iter())
+            .map(|&r| match machine.get(r) {
+                Some(&Val::S(x)) => [x, 0.0],
+                Some(&Val::P(p)) => [p.x, p.y],
+                Some(&Val::V(v)) => [v.x, v.y],
+                _ => [f64::NAN; 2],
+            })
+            .collect(),
+    )
+}
+
 /// The index of the root nearest to the sketch's position of the moving feature, at each
 /// intersection of the plan run on the sketch with the default params: each branch
 /// variable's default. `None` where the run did not reach an intersection.
@@ -457,6 +495,8 @@ pub struct Machine<'a, 'r, S: Space> {
     /// When probing ([`residuals_at`]): each check's residual and each `Onto`'s gap by step,
     /// the run going on past them.
     probed: Option<Vec<(usize, f64)>>,
+    /// The answers of each linear system, by the step that solved it.
+    linear: Vec<Vec<f64>>,
 }
 
 /// The panic of a malformed plan: a bug in gcs, never an input's fault.
@@ -528,6 +568,7 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
             iterations: 0,
             failed: None,
             probed: None,
+            linear: Vec::new(),
         })
     }
 

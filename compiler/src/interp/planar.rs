@@ -46,6 +46,57 @@ impl Machine<'_, '_, D2> {
             v => malformed(r, "a conic", v),
         }
     }
+    /// Solves the linear system of step `i` (as generated code does, to the bit).
+    fn linear_system(
+        &mut self,
+        i: usize,
+        system: &crate::plan::LinearSystem,
+    ) -> Result<Val, SolveError> {
+        use crate::plan::Coef;
+        let mut coef = Vec::new();
+        let mut rhs = Vec::with_capacity(system.rows.len());
+        for row in &system.rows {
+            rhs.push(-self.s(row.error));
+            for t in &row.terms {
+                let c = match t.coef {
+                    Coef::One => 1.0,
+                    Coef::X(v) => self.v(v).x,
+                    Coef::Y(v) => self.v(v).y,
+                    Coef::Dot(a, b) => self.v(a).dot(&self.v(b)),
+                    Coef::Cross(a, b) => {
+                        let (a, b) = (self.v(a), self.v(b));
+                        a.x * b.y - a.y * b.x
+                    }
+                };
+                coef.push(t.scale * c);
+            }
+        }
+        let (row_start, term_unknown) = system.shape();
+        let torn = gcs_runtime::linear::Torn {
+            unknowns: system.unknowns as usize,
+            row_start: &row_start,
+            term_unknown: &term_unknown,
+            tears: &system.tears,
+            pivots: &system.pivots,
+            closures: &system.closures,
+        };
+        let n = system.unknowns as usize;
+        let mut forms = vec![0.0; n * (system.tears.len() + 1)];
+        let mut x = vec![0.0; n];
+        if let Err(s) = torn.solve_into(&coef, &rhs, &mut forms, &mut x) {
+            let c = system.rows.get(s.row).map(|r| r.constraint);
+            return Err(match c {
+                Some(c) => err(self.model, c, ErrorKind::Degenerate, 0.0),
+                None => self.degenerate(i),
+            });
+        }
+        if self.linear.len() <= i {
+            self.linear.resize(i + 1, Vec::new());
+        }
+        self.linear[i] = x;
+        Ok(Val::Xs(i as u32))
+    }
+
     /// Runs one step of a planar plan.
     fn step_planar(&mut self, i: usize, step: &Step) -> Result<(), SolveError> {
         let model = self.model;
@@ -223,6 +274,12 @@ impl Machine<'_, '_, D2> {
         let model = self.model;
         Ok(match op {
             PlanarOp::Reversed(x) => Val::L(self.line(*x).reversed()),
+            PlanarOp::LineDir(x) => Val::V(self.line(*x).dir()),
+            PlanarOp::Linear(system) => self.linear_system(i, system)?,
+            PlanarOp::Unknown { of, index } => match self.get(*of) {
+                Some(&Val::Xs(at)) => Val::S(self.linear[at as usize][*index as usize]),
+                v => malformed(*of, "a linear system's answers", v),
+            },
             PlanarOp::OffsetLine { line, by } => Val::L(self.line(*line).offset(self.s(*by))),
             PlanarOp::CentresLineLine { l1, a1, l2, a2 } => Val::L(
                 locus2d::centres_line_line(

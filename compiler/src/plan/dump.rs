@@ -206,6 +206,46 @@ impl Plan {
         let cname = |c: &ConstraintId| model.constraints[*c].name.clone();
         match op {
             PlanarOp::Reversed(x) => format!("reversed {}", r(x)),
+            PlanarOp::LineDir(x) => format!("line_dir {}", r(x)),
+            PlanarOp::Unknown { of, index } => format!("unknown {} of {}", index, r(of)),
+            PlanarOp::Linear(system) => {
+                use crate::plan::Coef;
+                let coef = |c: &Coef| match c {
+                    Coef::One => "1".to_string(),
+                    Coef::X(v) => format!("x({})", r(v)),
+                    Coef::Y(v) => format!("y({})", r(v)),
+                    Coef::Dot(a, b) => format!("dot({}, {})", r(a), r(b)),
+                    Coef::Cross(a, b) => format!("cross({}, {})", r(a), r(b)),
+                };
+                let rows: Vec<String> = (system.rows.iter())
+                    .map(|row| {
+                        let terms: Vec<String> = (row.terms.iter())
+                            .map(|t| {
+                                format!(
+                                    "{} {} x{}",
+                                    crate::plan::fmt_f64(t.scale),
+                                    coef(&t.coef),
+                                    t.unknown
+                                )
+                            })
+                            .collect();
+                        format!(
+                            "[{}: {} = -{}]",
+                            cname(&row.constraint),
+                            terms.join(" + "),
+                            r(&row.error)
+                        )
+                    })
+                    .collect();
+                format!(
+                    "linear {} unknowns {} tears {:?} pivots {:?} closures {:?}",
+                    system.unknowns,
+                    rows.join(" "),
+                    system.tears,
+                    system.pivots,
+                    system.closures
+                )
+            }
             PlanarOp::OffsetLine { line, by } => format!("offset_line {} by {}", r(line), r(by)),
             PlanarOp::CentresLineLine { l1, a1, l2, a2 } => {
                 format!("centres_line_line {} {} {} {}", r(l1), r(a1), r(l2), r(a2))

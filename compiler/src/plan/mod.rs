@@ -30,7 +30,7 @@ mod spatial;
 mod validate;
 
 pub use deps::{by_position, nearest, support_words, Deps, Slice, Support, Supporter, Walk, SHOWN};
-pub use planar::PlanarOp;
+pub use planar::{Coef, LinearRow, LinearSystem, LinearTerm, PlanarOp};
 pub use search::{grid, GRID, MAX_COMBINATIONS};
 pub use spatial::{HelixRegs, Reach, ScrewRegs, SpatialOp};
 pub use validate::Malformed;
@@ -77,13 +77,15 @@ pub enum Ty {
     Cylinder,
     /// A torus: the points at a distance from a circle of space.
     Torus,
+    /// The answers of a linear system (`PlanarOp::Linear`), read one by one.
+    Values,
 }
 
 impl Ty {
     /// Whether a value of this type exists in `space`.
     pub fn in_space(self, space: Space) -> bool {
         match self {
-            Ty::Conic => space == Space::D2,
+            Ty::Conic | Ty::Values => space == Space::D2,
             Ty::Plane | Ty::Sphere | Ty::Cylinder | Ty::Torus => space == Space::D3,
             _ => true,
         }

@@ -22,6 +22,8 @@ const POINT: Accepts = &[Ty::Point];
 const VECTOR: Accepts = &[Ty::Vector];
 const LINE: Accepts = &[Ty::Line];
 const CIRCLE: Accepts = &[Ty::Circle];
+/// A linear system's answers.
+const VALUES: Accepts = &[Ty::Values];
 /// What the nearest point of a locus is taken on.
 const NEAREST_LOCUS: Accepts = &[
     Ty::Line,
@@ -295,7 +297,17 @@ impl PlanarOp {
     pub fn operands(&self) -> Vec<(Reg, Accepts)> {
         match self {
             PlanarOp::Axis(..) => vec![],
-            PlanarOp::Reversed(x) => vec![(*x, LINE)],
+            PlanarOp::Reversed(x) | PlanarOp::LineDir(x) => vec![(*x, LINE)],
+            PlanarOp::Linear(system) => (system.rows.iter())
+                .flat_map(|row| {
+                    std::iter::once((row.error, SCALAR)).chain(
+                        (row.terms.iter())
+                            .flat_map(|t| t.coef.regs())
+                            .map(|r| (r, VECTOR)),
+                    )
+                })
+                .collect(),
+            PlanarOp::Unknown { of, .. } => vec![(*of, VALUES)],
             PlanarOp::OffsetLine { line, by } => vec![(*line, LINE), (*by, SCALAR)],
             PlanarOp::CentresLineLine { l1, a1, l2, a2 } => {
                 vec![(*l1, LINE), (*a1, SCALAR), (*l2, LINE), (*a2, SCALAR)]
@@ -344,11 +356,14 @@ impl PlanarOp {
     pub fn output(&self) -> Ty {
         match self {
             PlanarOp::AngleOf(_)
+            | PlanarOp::Unknown { .. }
             | PlanarOp::RadiusFromLine { .. }
             | PlanarOp::RadiusFromPoint { .. } => Ty::Scalar,
-            PlanarOp::Axis(..) | PlanarOp::Rotated { .. } | PlanarOp::PassingDir { .. } => {
-                Ty::Vector
-            }
+            PlanarOp::Axis(..)
+            | PlanarOp::Rotated { .. }
+            | PlanarOp::PassingDir { .. }
+            | PlanarOp::LineDir(_) => Ty::Vector,
+            PlanarOp::Linear(_) => Ty::Values,
             PlanarOp::Reversed(_)
             | PlanarOp::OffsetLine { .. }
             | PlanarOp::CentresLineLine { .. } => Ty::Line,
@@ -580,6 +595,7 @@ fn accepts(ty: Ty) -> Accepts {
         Ty::Sphere => &[Ty::Sphere],
         Ty::Cylinder => &[Ty::Cylinder],
         Ty::Torus => &[Ty::Torus],
+        Ty::Values => VALUES,
     }
 }
 

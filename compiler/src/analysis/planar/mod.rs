@@ -43,6 +43,7 @@ mod check;
 pub mod circle;
 mod defaults;
 mod ground;
+mod linear;
 mod locus;
 mod point;
 mod record;
@@ -101,7 +102,7 @@ impl Geometry for Planar {
     }
 
     fn action(b: &mut Builder<'_, Self>, r: &Rel) -> bool {
-        b.action(r)
+        b.no_double_root(r, |b, r| b.action(r))
     }
 
     fn implied(b: &Builder<'_, Self>, r: &Relation) -> bool {
@@ -109,7 +110,7 @@ impl Geometry for Planar {
     }
 
     fn locus(b: &mut Builder<'_, Self>, r: &Rel) -> bool {
-        b.locus(r)
+        b.no_double_root(r, |b, r| b.locus(r))
     }
 
     fn residual(b: &mut Builder<'_, Self>, relation: &Relation) -> Residual {
@@ -118,6 +119,10 @@ impl Geometry for Planar {
 
     fn ground(b: &mut Builder<'_, Self>) {
         b.ground_if_nothing_fixed();
+    }
+
+    fn linear(b: &mut Builder<'_, Self>) -> bool {
+        b.linear_stage()
     }
 
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {

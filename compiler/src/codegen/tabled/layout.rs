@@ -52,6 +52,7 @@ impl Slice {
             Ty::Sphere => Slice::Sphere,
             Ty::Cylinder => Slice::Cylinder,
             Ty::Torus => Slice::Torus,
+            Ty::Values => unreachable!("bug in gcs: a plan with a linear system is not tabled"),
         }
     }
 

@@ -60,6 +60,12 @@ pub enum Untabled {
         /// The defaults iterated, by name.
         defaults: Vec<String>,
     },
+    /// The plan solves a linear system (a closed profile whose directions are all known): its
+    /// rows are one system, not pieces a table can hold apart.
+    Linear {
+        /// The constraints of its first row.
+        constraint: String,
+    },
 }
 
 impl std::fmt::Display for Untabled {
@@ -74,6 +80,11 @@ impl std::fmt::Display for Untabled {
                     .map(|d| format!("`{d}`"))
                     .collect::<Vec<_>>()
                     .join(", ")
+            ),
+            Untabled::Linear { constraint } => write!(
+                f,
+                "its plan solves a linear system (from `{constraint}` on) as one step: only a \
+                 plan without one is laid out as tables"
             ),
         }
     }
@@ -102,6 +113,15 @@ pub(super) fn module(
             .map(str::to_string)
             .collect();
         return Err(Untabled::Iterates { defaults });
+    }
+    if let Some(system) = cx.plan.steps.iter().find_map(|s| match &s.op {
+        crate::plan::Op::Planar(crate::plan::PlanarOp::Linear(system)) => Some(system),
+        _ => None,
+    }) {
+        let constraint = (system.rows.first())
+            .map(|r| cx.model.constraints[r.constraint].name.clone())
+            .unwrap_or_default();
+        return Err(Untabled::Linear { constraint });
     }
     let mut layout = Layout::new(cx, api);
     let pieces = std::mem::take(&mut layout.pieces);
