@@ -21,7 +21,7 @@
 
 use crate::interp::{self, Choice};
 use crate::plan::{grid, Plan, MAX_COMBINATIONS};
-use crate::solution::Solution;
+use crate::solution::{BranchChange, Solution};
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use std::collections::BTreeSet;
@@ -74,7 +74,11 @@ pub fn solve_all(
     params: &[f64],
     defaults: &[f64],
 ) -> AllSolutions {
-    solve_all_of(model, plan, scope, params, defaults, None)
+    // A symmetric branch stays the sketch's: its other roots are the same assemblies turned.
+    let held: Vec<Option<usize>> = (plan.branches.iter())
+        .map(|b| b.symmetric.then_some(b.default))
+        .collect();
+    solve_all_of(model, plan, scope, params, defaults, &held)
 }
 
 /// The assembly an iterated plan returns when no defaults are given (DESIGN, "Which assembly
@@ -97,17 +101,10 @@ pub fn least_motion(
     let Some(sketch) = Solution::of_sketch(model, params, scope) else {
         return from_sketch;
     };
-    let motion = |s: &Solution| -> f64 {
-        (s.points.iter())
-            .filter_map(|(n, p)| {
-                let q = &sketch.points.iter().find(|(m, _)| m == n)?.1;
-                Some(p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum::<f64>())
-            })
-            .sum()
-    };
-    let found = solve_all_of(model, plan, scope, params, defaults, Some(branches));
+    let held: Vec<Option<usize>> = branches.iter().map(|&i| Some(i)).collect();
+    let found = solve_all_of(model, plan, scope, params, defaults, &held);
     let least = (found.solutions.into_iter())
-        .map(|s| (motion(&s), s))
+        .map(|s| (motion(&sketch, &s), s))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .map(|(_, s)| s);
     match least {
@@ -116,31 +113,93 @@ pub fn least_motion(
     }
 }
 
-/// [`solve_all`], on the branch combination `only` when given.
+/// How far `s` lies from `sketch` (both read over the same scope): the sum of the squared
+/// displacements of its points, the measure of least motion.
+pub fn motion(sketch: &Solution, s: &Solution) -> f64 {
+    let at = sketch.by_name();
+    (s.points.iter())
+        .filter_map(|(n, p)| {
+            let q = at.point(n)?;
+            Some(p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum::<f64>())
+        })
+        .sum()
+}
+
+/// The branch combinations a search tries: each branch held at an index or varied over its
+/// roots, the first varied varying fastest, counted from the index it starts at (combination
+/// 0 is the one it starts from). At most [`MAX_COMBINATIONS`] are tried.
+#[derive(Clone, Debug)]
+pub struct Combinations {
+    /// Where each branch starts, by the plan's branch order.
+    start: Vec<usize>,
+    /// The branches varied, in the order they vary (the first fastest), with their counts.
+    varied: Vec<(usize, usize)>,
+    /// How many combinations there are, if no more than [`MAX_COMBINATIONS`].
+    count: Option<usize>,
+}
+
+impl Combinations {
+    /// The combinations of `plan`'s branches that start at `start` and vary those of `varied`
+    /// (by branch index, in the order given) that have several roots.
+    pub fn new(plan: &Plan, start: &[usize], varied: &[usize]) -> Combinations {
+        let varied: Vec<(usize, usize)> = (varied.iter())
+            .map(|&b| (b, plan.branches[b].count))
+            .filter(|&(_, c)| c > 1)
+            .collect();
+        let count = (varied.iter())
+            .try_fold(1usize, |n, &(_, c)| n.checked_mul(c))
+            .filter(|&n| n <= MAX_COMBINATIONS);
+        Combinations {
+            start: start.to_vec(),
+            varied,
+            count,
+        }
+    }
+
+    /// Whether every combination is tried.
+    pub fn complete(&self) -> bool {
+        self.count.is_some()
+    }
+
+    /// How many are tried: every one, or the first [`MAX_COMBINATIONS`].
+    pub fn len(&self) -> usize {
+        self.count.unwrap_or(MAX_COMBINATIONS)
+    }
+
+    /// Whether there is none to try: never, the one it starts from is always there.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Combination `k`, in mixed radix: each varied branch at `(start + digit) % count`.
+    pub fn nth(&self, k: usize) -> Vec<usize> {
+        let mut rest = k;
+        let mut out = self.start.clone();
+        for &(b, c) in &self.varied {
+            out[b] = (out[b] + rest % c) % c;
+            rest /= c;
+        }
+        out
+    }
+}
+
+/// [`solve_all`], each branch held at its index where `held` gives one, and varied over its
+/// roots (from 0) where it does not.
 fn solve_all_of(
     model: &Model,
     plan: &Plan,
     scope: &BTreeSet<GeomId>,
     params: &[f64],
     defaults: &[f64],
-    only: Option<&[usize]>,
+    held: &[Option<usize>],
 ) -> AllSolutions {
-    // A symmetric branch stays the sketch's: its other roots are the same assemblies turned.
-    let counts: Vec<usize> = (plan.branches.iter())
-        .map(|b| if b.symmetric { 1 } else { b.count.max(1) })
-        .collect();
-    let combinations = counts
-        .iter()
-        .try_fold(1usize, |n, &c| n.checked_mul(c))
-        .filter(|&n| n <= MAX_COMBINATIONS);
+    let start: Vec<usize> = held.iter().map(|h| h.unwrap_or(0)).collect();
+    let free: Vec<usize> = (0..held.len()).filter(|&b| held[b].is_none()).collect();
+    let combinations = Combinations::new(plan, &start, &free);
+    let sketch: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
     let mut out = AllSolutions {
         solutions: Vec::new(),
-        complete: combinations.is_some(),
-    };
-    let total = if only.is_some() {
-        1
-    } else {
-        combinations.unwrap_or(MAX_COMBINATIONS)
+        complete: combinations.complete(),
     };
     let varied: Vec<usize> = (plan.iterations.iter())
         .flat_map(|it| it.defaults.iter().map(|d| d.0 as usize))
@@ -150,22 +209,8 @@ fn solve_all_of(
     if !varied.is_empty() && !one_angle {
         out.complete = false;
     }
-    for k in 0..total {
-        // Combination `k` in mixed radix, the first branch varying fastest.
-        let mut rest = k;
-        let branches: Vec<usize> = match only {
-            Some(given) => given.to_vec(),
-            None => (counts.iter().zip(&plan.branches))
-                .map(|(&c, b)| {
-                    if b.symmetric {
-                        return b.default;
-                    }
-                    let i = rest % c;
-                    rest /= c;
-                    i
-                })
-                .collect(),
-        };
+    for k in 0..combinations.len() {
+        let branches = combinations.nth(k);
         let (starts, truncated) =
             starts(model, plan, params, defaults, &branches, &varied, one_angle);
         if truncated {
@@ -173,8 +218,9 @@ fn solve_all_of(
         }
         for start in starts {
             let solved = crate::solve_plan_with(model, plan, scope, params, &branches, &start);
-            if let Ok(s) = solved {
+            if let Ok(mut s) = solved {
                 if !out.solutions.iter().any(|t| same_assembly(t, &s)) {
+                    s.branches_changed = BranchChange::of(plan, &sketch, &branches);
                     out.solutions.push(s);
                 }
             }

@@ -63,7 +63,13 @@ pub fn explain(model: &Model, plan: &Plan) -> String {
     if !branches.is_empty() {
         let _ = writeln!(out, "\nBranch variables:");
         for b in branches {
-            let _ = writeln!(out, "- {} (default {}, the sketch's):", b.name, b.default);
+            // Only a default the sketch reaches is the sketch's.
+            let whose = if b.from_sketch {
+                "the sketch's"
+            } else {
+                "the sketch does not reach it"
+            };
+            let _ = writeln!(out, "- {} (default {}, {whose}):", b.name, b.default);
             for (i, m) in b.meanings.iter().enumerate() {
                 let _ = writeln!(out, "    {i}: {m}");
             }

@@ -25,8 +25,8 @@ pub mod plan;
 pub mod prune;
 pub mod report;
 pub mod solution;
-mod solve;
+pub mod solve;
 pub mod verify;
 
 pub use pipeline::{analyse, compile, load};
-pub use solve::{solve, solve_plan, solve_plan_with};
+pub use solve::{solve, solve_near_sketch, solve_plan, solve_plan_with};

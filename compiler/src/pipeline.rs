@@ -132,10 +132,13 @@ fn moving_checks(model: &Model, plan: &Plan) -> Vec<Option<bool>> {
 }
 
 /// Sets each branch variable's default to the sketch's branch, and each default's sketch
-/// value to the one that moves nothing on the sketch (least motion).
+/// value to the one that moves nothing on the sketch (least motion). A branch whose
+/// intersection the run on the sketch does not reach keeps 0, and is not the sketch's
+/// ([`crate::plan::BranchVar::from_sketch`]).
 fn choose_branch_defaults(model: &Model, plan: &mut Plan) {
     let (chosen, reached) = crate::interp::sketch_choices(model, plan);
     for (b, index) in plan.branches.iter_mut().zip(chosen) {
+        b.from_sketch = index.is_some();
         if let Some(i) = index {
             b.default = i;
         }

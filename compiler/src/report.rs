@@ -118,10 +118,117 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
                 .map(|_| ())
         };
         if let Err(e) = solved {
-            out.extend(conflicts(model, &a.plan, &params, branches, e));
+            // The constraints may yet be met on other branches: then the model solves, and is
+            // told that the sketch's cannot be kept.
+            let all = a.plan.touched(model);
+            let (held, defaults) = (vec![false; branches.len()], a.plan.sketch_defaults());
+            let kept = crate::solve::solve_near_sketch(
+                model, &a.plan, &all, &params, &branches, &held, &defaults, false,
+            );
+            match kept {
+                Ok(kept) if kept.changed() => {
+                    let at = if model.params.is_empty() {
+                        ""
+                    } else {
+                        "with the default params"
+                    };
+                    out.push(sketch_branches(model, &a.plan, &kept, at))
+                }
+                _ => out.extend(conflicts(model, &a.plan, &params, branches, e)),
+            }
         }
     }
     out
+}
+
+/// The headline of [`sketch_branches`], by which a caller knows the diagnostic.
+pub const SKETCH_BRANCHES: &str = "the constraints cannot be met on the sketch's branches";
+
+/// Whether `d` is the warning of [`sketch_branches`] (`--deny sketch-branch` makes it an error).
+pub fn is_sketch_branches(d: &Diagnostic) -> bool {
+    d.message.starts_with(SKETCH_BRANCHES)
+}
+
+/// The warning of a solve that could not keep the sketch's branches ([`Kept`] with
+/// branches changed), `at` saying with what (`with the default params`; empty for a model
+/// without params): a label on each changed branch's constraint with the index taken, the
+/// sketch's, the meaning of the one taken and the point it places farthest from its sketch;
+/// notes with the error on the branches asked, how far each point the changed branches place
+/// lies from its sketch, and what to do.
+///
+/// [`Kept`]: crate::solve::Kept
+pub fn sketch_branches(
+    model: &Model,
+    plan: &Plan,
+    kept: &crate::solve::Kept,
+    at: &str,
+) -> Diagnostic {
+    /// The points listed in the note, farthest first; the rest are counted.
+    const LISTED: usize = 8;
+    let changed = &kept.solution.branches_changed;
+    let mut labels: Vec<(gcs_lang::Span, String)> = (changed.iter().zip(&kept.moved))
+        .map(|(c, m)| {
+            let from_sketch = (plan.branches.iter())
+                .find(|b| b.name == c.name)
+                .is_some_and(|b| b.from_sketch);
+            let was = if from_sketch {
+                format!("not the sketch's {}", c.sketch)
+            } else {
+                format!(
+                    "not its default {} (the sketch does not reach it)",
+                    c.sketch
+                )
+            };
+            let far = m.points.first().map_or_else(String::new, |(p, d)| {
+                format!("; {p} lies {} from its sketch", rounded(*d))
+            });
+            (
+                model.constraints[m.constraint].span,
+                format!("`{}` = {}, {was}: {}{far}", c.name, c.used, c.meaning),
+            )
+        })
+        .collect();
+    labels.sort_by_key(|(span, _)| span.start);
+    let n = changed.len();
+    let message = format!(
+        "{SKETCH_BRANCHES}{}{at}: {n} branch{} changed",
+        if at.is_empty() { "" } else { " " },
+        if n == 1 { "" } else { "es" }
+    );
+    let mut labels = labels.into_iter();
+    let (span, first) = labels.next().unwrap_or_default();
+    let mut d = Diagnostic::warning(span, message).with_label(first);
+    for (span, label) in labels {
+        d = d.with_secondary(span, label);
+    }
+    if let Some(e) = &kept.not_kept {
+        d = d.with_note(format!("on those branches, {e}"));
+    }
+    // Each point once, at its distance (the same whichever branch places it).
+    let mut seen = std::collections::HashSet::new();
+    let mut points: Vec<(&str, f64)> = (kept.moved.iter().flat_map(|m| &m.points))
+        .filter(|(p, _)| seen.insert(p.as_str()))
+        .map(|(p, far)| (p.as_str(), *far))
+        .collect();
+    points.sort_by(|a, b| b.1.total_cmp(&a.1));
+    if !points.is_empty() {
+        let listed: Vec<String> = (points.iter().take(LISTED))
+            .map(|(p, far)| format!("{p} {}", rounded(*far)))
+            .collect();
+        let more = points.len().saturating_sub(LISTED);
+        d = d.with_note(format!(
+            "solved on the branches nearest the sketch; the points the changed branches place lie from their sketch: {}{}",
+            listed.join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
+        ));
+    }
+    d.with_note(
+        "choose the branches with `--branch NAME=INDEX` (`gcs explain` says what each index means), or move the sketch to the assembly wanted; `--deny sketch-branch` makes this an error",
+    )
 }
 
 /// What a model that does not solve at the default params is told, after `first`, the error
@@ -407,9 +514,14 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
         if b.count > 1 {
             let _ = writeln!(
                 out,
-                "  branch {}: {} roots, sketch takes {}: {}{}",
+                "  branch {}: {} roots, {} {}: {}{}",
                 b.name,
                 b.count,
+                if b.from_sketch {
+                    "sketch takes"
+                } else {
+                    "the sketch does not reach it, default"
+                },
                 b.default,
                 b.meanings.get(b.default).cloned().unwrap_or_default(),
                 if b.symmetric {

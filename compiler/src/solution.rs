@@ -20,6 +20,11 @@ pub struct Solution {
     pub frames: Vec<(String, Vec<f64>, Vec<Vec<f64>>)>,
     /// The index of every branch variable.
     pub branches: Vec<(String, usize)>,
+    /// The branch variables whose index is not the sketch's (the plan's default), in branch
+    /// order: those a solve had to change because the constraints cannot be met on the
+    /// sketch's branches ([`crate::solve::solve_near_sketch`]), or, in a list of every
+    /// assembly, those on which that assembly differs from the sketch's. Empty when none.
+    pub branches_changed: Vec<BranchChange>,
     /// The value of every default: as given, or as the outer iteration converged to.
     pub defaults: Vec<(String, f64)>,
     /// The steps the outer iterations took (0 for a closed-form plan).
@@ -28,6 +33,35 @@ pub struct Solution {
     pub grounded: Option<String>,
     /// The largest constraint violation, measured by [`crate::verify`].
     pub max_residual: f64,
+}
+
+/// A branch variable on another index than the sketch's.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct BranchChange {
+    /// The branch variable's name.
+    pub name: String,
+    /// Its default: the sketch's index (0 where the sketch does not reach its intersection).
+    pub sketch: usize,
+    /// The index used.
+    pub used: usize,
+    /// The geometric meaning of the index used.
+    pub meaning: String,
+}
+
+impl BranchChange {
+    /// Every branch of `plan` whose index in `used` is not the one in `asked` (both by the
+    /// plan's branch order), in branch order, against its default.
+    pub fn of(plan: &crate::plan::Plan, asked: &[usize], used: &[usize]) -> Vec<BranchChange> {
+        (plan.branches.iter().zip(asked).zip(used))
+            .filter(|((_, a), u)| a != u)
+            .map(|((b, _), &i)| BranchChange {
+                name: b.name.clone(),
+                sketch: b.default,
+                used: i,
+                meaning: b.meanings.get(i).cloned().unwrap_or_default(),
+            })
+            .collect()
+    }
 }
 
 impl Solution {
@@ -242,6 +276,22 @@ impl Solution {
                 .collect(),
             false,
         );
+        if self.branches_changed.is_empty() {
+            o.push_str("  \"branches_changed\": [],\n");
+        } else {
+            let items: Vec<String> = (self.branches_changed.iter())
+                .map(|c| {
+                    format!(
+                        "    {{\"name\": {}, \"sketch\": {}, \"used\": {}, \"meaning\": {}}}",
+                        key(&c.name),
+                        c.sketch,
+                        c.used,
+                        key(&c.meaning)
+                    )
+                })
+                .collect();
+            let _ = writeln!(o, "  \"branches_changed\": [\n{}\n  ],", items.join(",\n"));
+        }
         section(
             &mut o,
             "defaults",

@@ -1,7 +1,12 @@
 //! Solving a model by running its plan in the interpreter: the whole plan ([`solve`]) or one
 //! pruned to some geoms ([`solve_plan`]), read back as a [`solution::Solution`] and measured
-//! by the verifier.
+//! by the verifier. These solve on the branches given, or fail.
+//!
+//! [`solve_near_sketch`] is `gcs solve`'s: on the sketch's branches (and those the user
+//! chose), or, when the constraints cannot be met on them, on the combination nearest the
+//! sketch, saying which branches it changed ([`Kept`]).
 
+use crate::solution::Solution;
 use crate::{analysis, config, interp, plan, solution, verify};
 use gcs_lang::model::GeomId;
 use gcs_runtime::error::SolveError;
@@ -139,5 +144,365 @@ fn off_by(
             ))
         }
         _ => Ok(()),
+    }
+}
+
+/// A solve that kept the branches asked, or says which it had to change
+/// ([`solve_near_sketch`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Kept {
+    /// The solution; its `branches_changed` lists the branches changed, empty when none.
+    pub solution: solution::Solution,
+    /// For each branch changed (in the order of `solution.branches_changed`): its constraint,
+    /// and the points it places, each with its distance from its sketch, farthest first.
+    pub moved: Vec<Moved>,
+    /// Why the branches asked were not kept: the error of the solve on them.
+    pub not_kept: Option<SolveError>,
+}
+
+/// What a changed branch places ([`Kept::moved`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Moved {
+    /// The constraint whose intersection the branch chooses.
+    pub constraint: gcs_lang::model::ConstraintId,
+    /// Every point whose solved position depends on the branch, with its distance from where
+    /// the sketch has it (at the params solved), farthest first.
+    pub points: Vec<(String, f64)>,
+}
+
+impl Kept {
+    /// Whether a branch was changed.
+    pub fn changed(&self) -> bool {
+        !self.solution.branches_changed.is_empty()
+    }
+
+    /// The point placed by a changed branch that lies farthest from its sketch, and how far.
+    pub fn farthest(&self) -> Option<(&str, f64)> {
+        (self.moved.iter())
+            .filter_map(|m| m.points.first())
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(n, d)| (n.as_str(), *d))
+    }
+}
+
+/// The most plan steps the search of [`solve_near_sketch`] runs, over every combination it
+/// tries: [`crate::plan::MAX_COMBINATIONS`] solves of a plan of 256 steps, fewer of a larger
+/// one, or of an iterated one solved for least motion (which scans every root: counted as
+/// [`crate::all::ANGLE_SAMPLES`] runs). A failed combination whose failure is asked for the
+/// branches it depends on counts twice.
+pub const SEARCH_STEPS: usize = 1 << 20;
+
+/// Whether another branch combination could avoid an error of this kind: an intersection
+/// whose loci miss or that lacks the root asked, a check that fails, a configuration that is
+/// degenerate or an iteration that does not close may all depend on the sides taken before.
+/// An invalid input, value, param or default does not.
+fn another_branch_may_avoid(kind: gcs_runtime::error::ErrorKind) -> bool {
+    use gcs_runtime::error::ErrorKind as K;
+    matches!(
+        kind,
+        K::NoIntersection | K::NoSuchBranch | K::Inconsistent | K::Degenerate | K::NoConvergence
+    )
+}
+
+/// Solves `plan` over `scope` on `branches` (indexed like the plan's) as `gcs solve` does: from
+/// `defaults` when `defaults_given`, else, for an iterated plan, the assembly that moves least
+/// from the sketch ([`crate::all::least_motion`]).
+///
+/// When that fails with an error another branch combination could avoid, the branches not
+/// `held` (those the caller did not choose: each at its default, the sketch's) are searched:
+/// first those the failing step depends on, the one nearest the failure varying fastest, then
+/// those the failures of that search depend on too. The search is bounded as
+/// `--all-solutions` bounds its own, and by the plan's size: at most
+/// [`crate::plan::MAX_COMBINATIONS`] solves, and at most about [`SEARCH_STEPS`] steps run in
+/// all (a plan of 20,000 steps is solved on 52 combinations, those nearest the failure), so
+/// that a large model that cannot be met on any branch still fails quickly. Of the combinations
+/// that solve in the first round that finds one, the one nearest the sketch
+/// ([`crate::all::motion`]; ties to the first tried) is returned, with the branches it changed
+/// (in its `branches_changed`) and how far the points they place lie from their sketch. A
+/// branch held is never changed, nor one whose roots are the same assembly turned
+/// (`symmetric`). When no combination tried solves, the error on the branches asked is
+/// returned unchanged.
+#[allow(clippy::too_many_arguments)]
+pub fn solve_near_sketch(
+    model: &gcs_lang::Model,
+    plan: &plan::Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    branches: &[usize],
+    held: &[bool],
+    defaults: &[f64],
+    defaults_given: bool,
+) -> Result<Kept, SolveError> {
+    let solve = |b: &[usize]| {
+        if defaults_given {
+            solve_plan_with(model, plan, scope, params, b, defaults)
+        } else {
+            crate::all::least_motion(model, plan, scope, params, b, defaults)
+        }
+    };
+    let error = match solve(branches) {
+        Ok(solution) => {
+            return Ok(Kept {
+                solution,
+                moved: Vec::new(),
+                not_kept: None,
+            })
+        }
+        Err(e) => e,
+    };
+    if !another_branch_may_avoid(error.kind) {
+        return Err(error);
+    }
+    let free: Vec<bool> = (plan.branches.iter().zip(held))
+        .map(|(b, &h)| !h && !b.symmetric && b.count > 1)
+        .chain(std::iter::repeat(false))
+        .take(plan.branches.len())
+        .collect();
+    let search = Search::new(model, plan, params, defaults, &free);
+    // The assembly that moves least is found among every root of the iteration: a scan.
+    let runs = if defaults_given || plan.iterations.is_empty() {
+        1
+    } else {
+        crate::all::ANGLE_SAMPLES as usize
+    };
+    let cost = plan.steps.len().saturating_mul(runs);
+    let sketch = Solution::of_sketch(model, params, scope);
+    let Some((used, mut solution)) = search.run(branches, &solve, cost, sketch) else {
+        return Err(error);
+    };
+    solution.branches_changed = solution::BranchChange::of(plan, branches, &used);
+    let changed: Vec<usize> = (0..plan.branches.len())
+        .filter(|&b| branches[b] != used[b])
+        .collect();
+    let moved = moved_points(model, plan, params, scope, &solution, &changed);
+    Ok(Kept {
+        solution,
+        moved,
+        not_kept: Some(error),
+    })
+}
+
+/// The search of [`solve_near_sketch`]: which branches each failure depends on.
+struct Search<'a> {
+    model: &'a gcs_lang::Model,
+    plan: &'a plan::Plan,
+    params: &'a [f64],
+    defaults: &'a [f64],
+    /// Whether each branch may be changed.
+    free: &'a [bool],
+    /// The step of each branch's intersection.
+    step_of: Vec<Option<usize>>,
+    deps: plan::Deps<'a>,
+}
+
+impl<'a> Search<'a> {
+    fn new(
+        model: &'a gcs_lang::Model,
+        plan: &'a plan::Plan,
+        params: &'a [f64],
+        defaults: &'a [f64],
+        free: &'a [bool],
+    ) -> Search<'a> {
+        let mut step_of = vec![None; plan.branches.len()];
+        for (i, s) in plan.steps.iter().enumerate() {
+            if let Some(slot) = branch_of(&s.op).and_then(|b| step_of.get_mut(b.0 as usize)) {
+                *slot = Some(i);
+            }
+        }
+        Search {
+            model,
+            plan,
+            params,
+            defaults,
+            free,
+            step_of,
+            deps: plan.deps(model),
+        }
+    }
+
+    /// The free branches the failures of a run on `branches` depend on: those of the steps in
+    /// the backward slice of each failed check and of the step that stopped it; every free
+    /// branch when no failure names its step (the verifier's, or one before the first step).
+    fn depended_on(&self, branches: &[usize]) -> BTreeSet<usize> {
+        let choice = interp::Choice::Given(branches.to_vec());
+        let audit = interp::audit(self.model, self.plan, self.params, self.defaults, &choice);
+        let steps: Vec<Option<usize>> = (audit.failed.iter().chain(&audit.stopped))
+            .map(|f| f.step)
+            .collect();
+        if steps.is_empty() || steps.iter().any(Option::is_none) {
+            return (0..self.free.len()).filter(|&b| self.free[b]).collect();
+        }
+        let mut walk = self.deps.walk();
+        for i in steps.into_iter().flatten() {
+            walk.take(i);
+        }
+        walk.run(|_, _| {});
+        let slice = walk.finish();
+        (slice.steps.iter())
+            .filter_map(|&i| branch_of(&self.plan.steps[i].op))
+            .map(|b| b.0 as usize)
+            .filter(|&b| self.free.get(b).copied().unwrap_or(false))
+            .collect()
+    }
+
+    /// Searches from `branches` (which fail) for a combination that `solve`s, in rounds: the
+    /// branches the failures depend on, varied nearest the failure first; when none solves,
+    /// those the failures of that round depend on too. The solution nearest `sketch` of the
+    /// first round that finds any, with its branches. A solve runs about `cost` steps.
+    fn run(
+        &self,
+        branches: &[usize],
+        solve: &dyn Fn(&[usize]) -> Result<Solution, SolveError>,
+        cost: usize,
+        sketch: Option<Solution>,
+    ) -> Option<(Vec<usize>, Solution)> {
+        let mut budget = crate::plan::MAX_COMBINATIONS.min(SEARCH_STEPS / cost.max(1));
+        if budget == 0 {
+            return None;
+        }
+        let mut varied = self.depended_on(branches);
+        loop {
+            // The branch nearest the failure (latest in the plan) varies fastest.
+            let mut order: Vec<usize> = varied.iter().copied().collect();
+            order.sort_by_key(|&b| std::cmp::Reverse(self.step_of[b]));
+            let combinations = crate::all::Combinations::new(self.plan, branches, &order);
+            let mut best: Option<(f64, Vec<usize>, Solution)> = None;
+            let mut more = BTreeSet::new();
+            // Combination 0 is the one asked, which failed. A round the budget cuts short is
+            // the last: what its failures depend on is not asked.
+            let last = combinations.len() > budget;
+            for k in 1..combinations.len() {
+                if budget == 0 {
+                    break;
+                }
+                budget -= 1;
+                let tried = combinations.nth(k);
+                match solve(&tried) {
+                    Ok(s) => {
+                        let d = sketch.as_ref().map_or(0.0, |at| crate::all::motion(at, &s));
+                        if best.as_ref().is_none_or(|(b, _, _)| d < *b) {
+                            best = Some((d, tried, s));
+                        }
+                    }
+                    Err(_) if best.is_none() && !last => {
+                        budget = budget.saturating_sub(1);
+                        more.extend(self.depended_on(&tried));
+                    }
+                    Err(_) => {}
+                }
+            }
+            if let Some((_, tried, s)) = best {
+                return Some((tried, s));
+            }
+            let before = varied.len();
+            varied.extend(more);
+            if varied.len() == before || budget == 0 {
+                return None;
+            }
+        }
+    }
+}
+
+/// The branch variable an op chooses a root by, if it does.
+fn branch_of(op: &plan::Op) -> Option<plan::BranchId> {
+    use plan::{Op, PlanarOp, SpatialOp};
+    match op {
+        Op::Intersect { branch, .. }
+        | Op::Planar(PlanarOp::PassingDir { branch, .. })
+        | Op::Spatial(SpatialOp::PlaneAxisTurn { branch, .. })
+        | Op::Spatial(SpatialOp::AngleTurn { branch, .. }) => Some(*branch),
+        _ => None,
+    }
+}
+
+/// For each of `changed` (branch indices), the points of `solution` whose position depends on
+/// it, with their distance from the sketch at `params`, farthest first. A step depends on the
+/// branch when it is the branch's intersection, reads a register that does, or measures a
+/// geom an earlier such step moved; an iterated region with such a step converges elsewhere,
+/// so every step that reads the defaults it varies depends on the branch too.
+fn moved_points(
+    model: &gcs_lang::Model,
+    plan: &plan::Plan,
+    params: &[f64],
+    scope: &BTreeSet<GeomId>,
+    solution: &Solution,
+    changed: &[usize],
+) -> Vec<Moved> {
+    let sketch = Solution::of_sketch(model, params, scope);
+    let at = sketch.as_ref().map(Solution::by_name);
+    let top: std::collections::HashMap<&str, GeomId> = (model.geoms.iter())
+        .map(|(id, g)| (g.name.as_str(), model.top_level_of(id)))
+        .collect();
+    // `S.start`, `C.center`, `L.point` are their geom's; a member's name is its own.
+    let geom_of = |name: &str| {
+        top.get(name)
+            .or_else(|| name.rsplit_once('.').and_then(|(g, _)| top.get(g)))
+            .copied()
+    };
+    changed
+        .iter()
+        .map(|&b| {
+            let placed = placed_by(model, plan, plan::BranchId(b as u32));
+            let mut points: Vec<(String, f64)> = (solution.points.iter())
+                .filter(|(n, _)| geom_of(n).is_some_and(|g| placed.contains(&g)))
+                .map(|(n, p)| {
+                    let d = (at.as_ref().and_then(|at| at.point(n))).map_or(f64::NAN, |q| {
+                        p.iter()
+                            .zip(q)
+                            .map(|(a, b)| (a - b) * (a - b))
+                            .sum::<f64>()
+                            .sqrt()
+                    });
+                    (n.clone(), d)
+                })
+                .collect();
+            points.sort_by(|a, b| b.1.total_cmp(&a.1));
+            Moved {
+                constraint: plan.branches[b].constraint,
+                points,
+            }
+        })
+        .collect()
+}
+
+/// The top-level geoms whose solved state depends on `branch` (see [`moved_points`]).
+fn placed_by(
+    model: &gcs_lang::Model,
+    plan: &plan::Plan,
+    branch: plan::BranchId,
+) -> BTreeSet<GeomId> {
+    let mut defaults: BTreeSet<plan::DefaultId> = BTreeSet::new();
+    loop {
+        let mut regs = vec![false; plan.regs as usize];
+        let mut geoms: BTreeSet<GeomId> = BTreeSet::new();
+        let mut steps = vec![false; plan.steps.len()];
+        for (i, s) in plan.steps.iter().enumerate() {
+            let depends = branch_of(&s.op) == Some(branch)
+                || matches!(s.op, plan::Op::Default(d) if defaults.contains(&d))
+                || s.op
+                    .reads()
+                    .iter()
+                    .any(|r| regs.get(r.0 as usize) == Some(&true))
+                || (s.op.measures()).is_some_and(|f| geoms.contains(&model.top_level_of(f)));
+            if depends {
+                steps[i] = true;
+                if let Some(slot) = s.out.and_then(|(r, _)| regs.get_mut(r.0 as usize)) {
+                    *slot = true;
+                }
+                geoms.extend(s.op.moves().iter().copied());
+            }
+        }
+        let before = defaults.len();
+        for it in &plan.iterations {
+            if steps
+                .get(it.start..it.end)
+                .is_some_and(|r| r.contains(&true))
+            {
+                defaults.extend(it.defaults.iter().copied());
+            }
+        }
+        if defaults.len() == before {
+            return geoms;
+        }
     }
 }

@@ -145,6 +145,7 @@ fn plan(model: &Model) -> Plan {
         count: 2,
         meanings: vec!["first along the ray".into(), "second".into()],
         default: 1,
+        from_sketch: true,
         symmetric: false,
     });
     plan.defaults.push(DefaultVar {

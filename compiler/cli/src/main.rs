@@ -68,7 +68,8 @@ enum Command {
         /// The .gcs file.
         file: PathBuf,
         /// Make a warning an error: `under-constrained` (a motion the constraints leave free,
-        /// held by a default).
+        /// held by a default) or `sketch-branch` (the constraints cannot be met on the sketch's
+        /// branches with the default params, and the solve takes others).
         #[arg(long, value_name = "WARNING")]
         deny: Vec<String>,
     },
@@ -96,6 +97,10 @@ enum Command {
         /// List every real assembly: each branch combination, and each root of an iteration.
         #[arg(long)]
         all_solutions: bool,
+        /// Make a warning an error: `sketch-branch` (the constraints cannot be met on the
+        /// sketch's branches, and the solve took others).
+        #[arg(long, value_name = "WARNING")]
+        deny: Vec<String>,
     },
     /// Draw the solved model as an SVG: bodies, points with their names, circles, lines,
     /// segments and planes, fixed geoms as ground; with `--sweep`, traced points' curves or an
@@ -230,12 +235,12 @@ fn main() -> ExitCode {
             json,
             all,
             all_solutions,
+            deny,
         } => solve(
             &file,
-            &set,
-            &branch,
-            &default,
+            (&set, &branch, &default),
             (json, all, all_solutions),
+            &deny,
             color,
         ),
         Command::Compile { file, output, form } => with_analysis(&file, color, |c| {
@@ -349,6 +354,15 @@ impl Stop {
 /// Reads a model and takes it through the pipeline (load, analyse, validate, report),
 /// printing its diagnostics.
 fn compile(path: &Path, color: termcolor::ColorChoice) -> Result<Compiled, Stop> {
+    compile_hiding(path, color, |_| false)
+}
+
+/// [`compile`], printing the diagnostics but those `hide` says a command says itself.
+fn compile_hiding(
+    path: &Path,
+    color: termcolor::ColorChoice,
+    hide: fn(&Diagnostic) -> bool,
+) -> Result<Compiled, Stop> {
     let name = path.display().to_string();
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
@@ -359,7 +373,15 @@ fn compile(path: &Path, color: termcolor::ColorChoice) -> Result<Compiled, Stop>
     };
     match gcs_compiler::compile(&name, &bytes) {
         Ok(c) => {
-            emit(&c.source, &c.diagnostics, color);
+            if c.diagnostics.iter().any(hide) {
+                let shown: Vec<Diagnostic> = (c.diagnostics.iter())
+                    .filter(|d| !hide(d))
+                    .cloned()
+                    .collect();
+                emit(&c.source, &shown, color);
+            } else {
+                emit(&c.source, &c.diagnostics, color);
+            }
             Ok(c)
         }
         Err(CompileError::Load(r)) => {
@@ -380,7 +402,17 @@ fn with_analysis(
     color: termcolor::ColorChoice,
     then: impl FnOnce(&Compiled) -> ExitCode,
 ) -> ExitCode {
-    match compile(path, color) {
+    with_analysis_hiding(path, color, |_| false, then)
+}
+
+/// [`with_analysis`], not printing the diagnostics `hide` says the command says itself.
+fn with_analysis_hiding(
+    path: &Path,
+    color: termcolor::ColorChoice,
+    hide: fn(&Diagnostic) -> bool,
+    then: impl FnOnce(&Compiled) -> ExitCode,
+) -> ExitCode {
+    match compile_hiding(path, color, hide) {
         Ok(c) if c.has_errors() => {
             eprintln!("error: could not solve `{}`", path.display());
             ExitCode::FAILURE
@@ -400,16 +432,84 @@ fn exit_without_freeing(c: Compiled) {
     std::mem::forget(c);
 }
 
-#[allow(clippy::too_many_arguments)]
+/// The warnings `--deny` makes errors, each for the commands that take it.
+const DENIABLE: [(&str, &str); 2] = [
+    ("under-constrained", "check"),
+    ("sketch-branch", "check and solve"),
+];
+
+/// The first of `deny` that `command` cannot make an error, said as an error.
+fn not_deniable(deny: &[String], command: &str) -> Option<String> {
+    let other = deny.iter().find(|d| {
+        !DENIABLE
+            .iter()
+            .any(|(w, by)| w == d && by.contains(command))
+    })?;
+    let names: Vec<&str> = (DENIABLE.iter())
+        .filter(|(_, by)| by.contains(command))
+        .map(|(w, _)| *w)
+        .collect();
+    Some(format!(
+        "`--deny {other}`: the warnings that can be denied are: {}",
+        names.join(", ")
+    ))
+}
+
+/// Prints the warning of a solve that could not keep the sketch's branches, if it changed
+/// one; with `deny`, then an error: whether that stops the command.
+fn changed_branches(
+    c: &Compiled,
+    plan: &gcs_compiler::plan::Plan,
+    kept: &gcs_compiler::solve::Kept,
+    (set, branch): (&[String], &[String]),
+    deny: bool,
+    color: termcolor::ColorChoice,
+) -> bool {
+    if !kept.changed() {
+        return false;
+    }
+    let given = if branch.is_empty() {
+        ""
+    } else {
+        "(and those given)"
+    };
+    let params = match (c.model.params.is_empty(), set.is_empty()) {
+        (true, _) => "",
+        (false, true) => "with the default params",
+        (false, false) => "with the params given",
+    };
+    let at = [given, params]
+        .iter()
+        .filter(|w| !w.is_empty())
+        .copied()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let warning = gcs_compiler::report::sketch_branches(&c.model, plan, kept, &at);
+    emit(&c.source, &[warning], color);
+    if deny {
+        eprintln!(
+            "error: `{}` cannot be solved on the sketch's branches, and `--deny sketch-branch` makes that an error",
+            c.source.name()
+        );
+    }
+    deny
+}
+
 fn solve(
     path: &Path,
-    set: &[String],
-    branch: &[String],
-    default: &[String],
+    (set, branch, default): (&[String], &[String], &[String]),
     (json, all, all_solutions): (bool, bool, bool),
+    deny: &[String],
     color: termcolor::ColorChoice,
 ) -> ExitCode {
-    with_analysis(path, color, |c| {
+    if let Some(why) = not_deniable(deny, "solve") {
+        eprintln!("error: {why}");
+        return ExitCode::from(2);
+    }
+    // The pipeline's warning of the sketch's branches at the default params: a solve says its
+    // own, at the params it solves with (every assembly lists its own `branches_changed`).
+    let hide = gcs_compiler::report::is_sketch_branches;
+    with_analysis_hiding(path, color, hide, |c| {
         let (model, analysis) = (&c.model, &c.analysis);
         let shared::Inputs {
             params,
@@ -497,9 +597,15 @@ fn solve(
             &scope,
             (&params, &chosen, &kept_defaults),
             !default.is_empty(),
+            &shared::held(plan, branch),
         );
         match solved {
-            Ok(solution) => {
+            Ok(kept) => {
+                let denied = deny.iter().any(|d| d == "sketch-branch");
+                if changed_branches(c, plan, &kept, (set, branch), denied, color) {
+                    return ExitCode::FAILURE;
+                }
+                let solution = kept.solution;
                 if json {
                     outln!("{}", solution.to_json());
                 } else {
@@ -547,7 +653,13 @@ fn draw(
             return ExitCode::from(2);
         }
     }
-    with_analysis(path, color, |c| {
+    // Drawn at one position, the model is solved as `gcs solve` solves it, and says so.
+    let hide: fn(&Diagnostic) -> bool = if drawn.sweep.is_some() {
+        |_| false
+    } else {
+        gcs_compiler::report::is_sketch_branches
+    };
+    with_analysis_hiding(path, color, hide, |c| {
         let (model, analysis) = (&c.model, &c.analysis);
         let view = match (model.space, drawn.view) {
             (_, None) => draw::View::default(),
@@ -591,10 +703,20 @@ fn draw(
         let given = !default.is_empty();
         let (shown, samples) = match &sweep {
             None => {
-                let solved =
-                    shared::solve(model, plan, &scope, (&params, &branches, &defaults), given);
+                let held = shared::held(plan, branch);
+                let solved = shared::solve(
+                    model,
+                    plan,
+                    &scope,
+                    (&params, &branches, &defaults),
+                    given,
+                    &held,
+                );
                 match solved {
-                    Ok(s) => (s, Vec::new()),
+                    Ok(kept) => {
+                        changed_branches(c, plan, &kept, (set, branch), false, color);
+                        (kept.solution, Vec::new())
+                    }
                     Err(e) => {
                         for line in shared::failure(model, plan, &params, &defaults, branches, &e) {
                             eprintln!("error: {line}");
@@ -781,12 +903,11 @@ fn bench(
 }
 
 fn check(path: &Path, deny: &[String], color: termcolor::ColorChoice) -> ExitCode {
-    if let Some(other) = deny.iter().find(|d| d.as_str() != "under-constrained") {
-        eprintln!(
-            "error: `--deny {other}`: the warnings that can be denied are: under-constrained"
-        );
+    if let Some(why) = not_deniable(deny, "check") {
+        eprintln!("error: {why}");
         return ExitCode::from(2);
     }
+    let denied = |w: &str| deny.iter().any(|d| d == w);
     match compile(path, color) {
         Ok(c) if c.has_errors() => {
             let name = path.display().to_string();
@@ -799,9 +920,17 @@ fn check(path: &Path, deny: &[String], color: termcolor::ColorChoice) -> ExitCod
                 gcs_compiler::report::check_report(&c.model, &c.analysis)
             );
             let mobility = c.analysis.free_defaults().len();
-            if mobility > 0 && !deny.is_empty() {
+            if mobility > 0 && denied("under-constrained") {
                 eprintln!(
                     "error: `{}` is under-constrained (mobility {mobility}), and `--deny under-constrained` makes that an error",
+                    path.display()
+                );
+                return ExitCode::FAILURE;
+            }
+            let changed = (c.diagnostics.iter()).any(gcs_compiler::report::is_sketch_branches);
+            if changed && denied("sketch-branch") {
+                eprintln!(
+                    "error: `{}` cannot be solved on the sketch's branches, and `--deny sketch-branch` makes that an error",
                     path.display()
                 );
                 return ExitCode::FAILURE;

@@ -5,7 +5,7 @@
 
 use gcs_compiler::analysis::Analysis;
 use gcs_compiler::plan::Plan;
-use gcs_compiler::solution::Solution;
+use gcs_compiler::solve::Kept;
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use gcs_runtime::error::SolveError;
@@ -115,20 +115,30 @@ fn listed(names: &[&str]) -> String {
     }
 }
 
+/// Which of `plan`'s branches `--branch NAME=INDEX` gives (by name, so that it holds for a
+/// pruned plan too): those a solve never changes.
+pub fn held(plan: &Plan, branch: &[String]) -> Vec<bool> {
+    let given: BTreeSet<&str> = (branch.iter())
+        .filter_map(|b| b.split_once('=').map(|(n, _)| n.trim()))
+        .collect();
+    (plan.branches.iter())
+        .map(|b| given.contains(b.name.as_str()))
+        .collect()
+}
+
 /// Solves `plan` over `scope` as `gcs solve` does: from the defaults given when `given`, else
-/// (an iterated plan) the assembly that moves least from the sketch.
+/// (an iterated plan) the assembly that moves least from the sketch; on the branches given,
+/// and where the constraints cannot be met on the sketch's, on the others nearest the sketch,
+/// saying which it changed (never one `held`: given by `--branch`).
 pub fn solve(
     model: &Model,
     plan: &Plan,
     scope: &BTreeSet<GeomId>,
     (params, branches, defaults): (&[f64], &[usize], &[f64]),
     given: bool,
-) -> Result<Solution, SolveError> {
-    if given {
-        gcs_compiler::solve_plan_with(model, plan, scope, params, branches, defaults)
-    } else {
-        gcs_compiler::all::least_motion(model, plan, scope, params, branches, defaults)
-    }
+    held: &[bool],
+) -> Result<Kept, SolveError> {
+    gcs_compiler::solve_near_sketch(model, plan, scope, params, branches, held, defaults, given)
 }
 
 /// Why a solve failed, one message a line (without the `error: ` the command line puts before

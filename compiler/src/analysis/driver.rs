@@ -492,6 +492,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             count: meanings.len(),
             meanings,
             default: 0,
+            from_sketch: false,
             symmetric: false,
         });
         id

@@ -432,24 +432,31 @@ pub fn sketch_branches(model: &Model, plan: &Plan) -> Vec<Option<usize>> {
 /// moves nothing there (least motion). `None` where the run did not reach it. A check that
 /// fails does not stop this run: it places nothing, and an inconsistent redundant constraint
 /// early in the plan must not leave every later branch and default without its sketch value
-/// (the model is reported inconsistent, and only that).
+/// (the model is reported inconsistent, and only that). A step that cannot be done on the
+/// sketch (loci that miss) stops it: the branches before it are the sketch's all the same.
 pub fn sketch_choices(model: &Model, plan: &Plan) -> (Vec<Option<usize>>, Vec<Option<f64>>) {
-    let mut reached = vec![None; plan.defaults.len()];
-    let run = in_space(model, |space| {
-        space.run(
-            model,
-            plan,
-            &model.default_params(),
-            plan.sketch_defaults(),
-            &Choice::Nearest,
-            Some(&mut reached),
-            None::<&mut gcs_runtime::outer::Newton>,
-        )
-    });
-    match run {
-        Ok((chosen, _)) => (chosen, reached),
-        Err(_) => (vec![None; plan.branches.len()], reached),
+    fn on_sketch<S: Space>(
+        model: &Model,
+        plan: &Plan,
+        reached: &mut Vec<Option<f64>>,
+    ) -> Vec<Option<usize>> {
+        let params = model.default_params();
+        let defaults = plan.sketch_defaults();
+        let choice = Choice::Nearest;
+        match Machine::<S>::start(model, plan, &params, defaults, &choice, Some(reached)) {
+            Ok(mut machine) => {
+                let _ = machine.execute(None::<&mut gcs_runtime::outer::Newton>);
+                std::mem::take(&mut machine.chosen)
+            }
+            Err(_) => vec![None; plan.branches.len()],
+        }
     }
+    let mut reached = vec![None; plan.defaults.len()];
+    let chosen = match model.space {
+        gcs_lang::model::Space::D2 => on_sketch::<D2>(model, plan, &mut reached),
+        gcs_lang::model::Space::D3 => on_sketch::<D3>(model, plan, &mut reached),
+    };
+    (chosen, reached)
 }
 
 /// What a space's interpreter adds to the machine: its steps.

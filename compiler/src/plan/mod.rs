@@ -103,8 +103,12 @@ pub struct BranchVar {
     pub count: usize,
     /// The geometric meaning of each index, in index order.
     pub meanings: Vec<String>,
-    /// The index the sketch has.
+    /// The index the sketch has, where [`BranchVar::from_sketch`]; else 0.
     pub default: usize,
+    /// Whether `default` is the sketch's: the root nearest the sketch, the plan run on the
+    /// sketch (`pipeline::analyse`). False where that run stops before this intersection (a
+    /// step before it fails on the sketch), and for a plan the pipeline has not seen.
+    pub from_sketch: bool,
     /// Whether its roots are one assembly turned as a whole: a root on the line or plane a
     /// model with nothing fixed is held by (`Plan::grounded_direction`, `grounded_plane`),
     /// whose other root is the sketch's turned half a turn. The search for every assembly

@@ -898,6 +898,7 @@ mod tests {
             count: 2,
             meanings: vec![],
             default: 0,
+            from_sketch: false,
             symmetric: false,
         });
         assert_eq!(

@@ -224,8 +224,19 @@ impl Api {
         let scope: BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
         let given = !r.default.is_empty();
         let (params, branches, defaults) = (&inputs.params, &inputs.branches, &inputs.defaults);
-        let shown = match shared::solve(model, plan, &scope, (params, branches, defaults), given) {
-            Ok(s) => s,
+        // The page gives every branch; a branch it does not is the sketch's, or changed (and
+        // then in the solution's `branches_changed`).
+        let held = shared::held(plan, &r.branch);
+        let solved = shared::solve(
+            model,
+            plan,
+            &scope,
+            (params, branches, defaults),
+            given,
+            &held,
+        );
+        let shown = match solved {
+            Ok(kept) => kept.solution,
             Err(e) => {
                 let errors = shared::failure(model, plan, params, defaults, branches.clone(), &e);
                 return json!({ "ok": false, "stage": "solve", "errors": errors });
@@ -357,8 +368,9 @@ fn located(source: &SourceFile, diags: &[Diagnostic]) -> Vec<Value> {
 }
 
 /// What the page makes controls of: each param with its sketch value and a slider's range
-/// (in degrees for an angle), each branch variable with the meaning of each index, each
-/// default with its meaning and sketch value, the points that can be traced, the views.
+/// (in degrees for an angle), each branch variable with the meaning of each index and its
+/// default (`from_sketch` when the sketch reaches it), each default with its meaning and
+/// sketch value, the points that can be traced, the views.
 fn controls(c: &Compiled) -> Value {
     let (model, plan) = (&c.model, &c.analysis.plan);
     let params: Vec<Value> = (model.params.iter())
@@ -385,6 +397,7 @@ fn controls(c: &Compiled) -> Value {
                 "name": b.name,
                 "count": b.count,
                 "default": b.default,
+                "from_sketch": b.from_sketch,
                 "meanings": b.meanings,
             })
         })
@@ -490,6 +503,10 @@ mod tests {
         assert_eq!(
             elbow["meanings"][1],
             "rocker.c to the right of the line from crank.b to D"
+        );
+        assert_eq!(
+            (elbow["default"].as_u64(), elbow["from_sketch"].as_bool()),
+            (Some(0), Some(true))
         );
         assert_eq!(controls["defaults"], json!([]));
         let points: Vec<&str> = (controls["points"].as_array().expect("points").iter())

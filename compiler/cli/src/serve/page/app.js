@@ -225,7 +225,9 @@ function branchControl(b) {
   const select = element("select", { id: `branch-${b.name}`, "data-branch": b.name, "aria-label": `branch ${b.name}` });
   for (let i = 0; i < b.count; i++) {
     const meaning = b.meanings[i] || "";
-    const option = element("option", { value: i, text: `${i}: ${meaning}${i === b.default ? " (sketch)" : ""}` });
+    // Only a default the sketch reaches is the sketch's.
+    const mark = i !== b.default ? "" : b.from_sketch ? " (sketch)" : " (default)";
+    const option = element("option", { value: i, text: `${i}: ${meaning}${mark}` });
     select.append(option);
   }
   select.value = page.branches.get(b.name);
