@@ -618,8 +618,8 @@ pub fn solve(
     // tangent(right, br) (rounded_rectangle.gcs:28)
     // tangent(top, tl) (rounded_rectangle.gcs:30)
     // tangent(top, tr) (rounded_rectangle.gcs:29)
-    let line_nearest_p_dir = line_nearest_p.dir();
     let line_p_2_offset_dir = line_p_2_offset.dir();
+    let line_nearest_p_dir = line_nearest_p.dir();
     let line_nearest_left_start_offset_dir = line_nearest_left_start_offset.dir();
     let bottom_end = Point2::new(1.0, 0.0) + bottom.x_axis() * bottom_length;
     let length = (nearest_br_center - bottom_end).dot(&bottom_dir_2);
@@ -661,19 +661,19 @@ pub fn solve(
         unknowns: 9,
         row_start: &[0, 2, 4, 6, 9, 12, 16, 19, 22, 26],
         term_unknown: &[
-            7, 0, 5, 6, 8, 5, 7, 1, 2, 8, 3, 4, 1, 2, 3, 4, 7, 1, 2, 8, 3, 4, 1, 2, 3, 4,
+            1, 0, 2, 3, 6, 2, 1, 4, 5, 6, 7, 8, 4, 5, 7, 8, 1, 4, 5, 6, 7, 8, 4, 5, 7, 8,
         ],
         tears: &[],
         pivots: &[
-            (3, 2),
-            (4, 3),
-            (8, 4),
-            (5, 1),
-            (7, 8),
-            (6, 7),
-            (2, 5),
+            (3, 5),
+            (4, 7),
+            (8, 8),
+            (5, 4),
+            (7, 6),
+            (6, 1),
+            (2, 2),
             (0, 0),
-            (1, 6),
+            (1, 3),
         ],
         closures: &[],
     };
@@ -769,14 +769,14 @@ pub fn solve(
             ),
         })?;
     let bottom_stretch = changes[0];
-    let right_dx = changes[1];
-    let right_dy = changes[2];
-    let top_dx = changes[3];
-    let top_dy = changes[4];
-    let left_slide = changes[5];
-    let left_stretch = changes[6];
-    let br_slide = changes[7];
-    let tl_slide = changes[8];
+    let br_slide = changes[1];
+    let left_slide = changes[2];
+    let left_stretch = changes[3];
+    let right_dx = changes[4];
+    let right_dy = changes[5];
+    let tl_slide = changes[6];
+    let top_dx = changes[7];
+    let top_dy = changes[8];
     let sum = bottom_length + bottom_stretch;
     if !gcs_runtime::num::is_finite(sum) {
         return Err(SolveError::new(
@@ -795,16 +795,8 @@ pub fn solve(
         ));
     }
     bottom_length = sum;
-    let point = Point2::new(0.0, 0.0);
-    let point_2 = Point2::new(right_dx, right_dy);
-    let shift = point_2 - point;
-    right.translate(&shift);
-    tr.translate(&shift);
-    let point_3 = Point2::new(top_dx, top_dy);
-    let shift_2 = point_3 - point;
-    top.translate(&shift_2);
-    let param = line_nearest_p.param_of(nearest_left_start);
-    let sum_2 = param + left_slide;
+    let param = line_p_2_offset.param_of(nearest_br_center);
+    let sum_2 = param + br_slide;
     if !gcs_runtime::num::is_finite(sum_2) {
         return Err(SolveError::new(
             "on_bottom_end_br",
@@ -813,9 +805,10 @@ pub fn solve(
             sum_2,
         ));
     }
-    let on_line_nearest_p = line_nearest_p.at(sum_2);
-    left.place_origin(&on_line_nearest_p);
-    let sum_3 = left_length + left_stretch;
+    let on_line_p_2_offset = line_p_2_offset.at(sum_2);
+    br.place_origin(&on_line_p_2_offset);
+    let param_2 = line_nearest_p.param_of(nearest_left_start);
+    let sum_3 = param_2 + left_slide;
     if !gcs_runtime::num::is_finite(sum_3) {
         return Err(SolveError::new(
             "on_bottom_end_br",
@@ -824,17 +817,9 @@ pub fn solve(
             sum_3,
         ));
     }
-    if sum_3 < 0.0 {
-        return Err(SolveError::new(
-            "on_bottom_end_br",
-            "on(bottom.end, br)",
-            ErrorKind::InvalidValue,
-            sum_3,
-        ));
-    }
-    left_length = sum_3;
-    let param_2 = line_p_2_offset.param_of(nearest_br_center);
-    let sum_4 = param_2 + br_slide;
+    let on_line_nearest_p = line_nearest_p.at(sum_3);
+    left.place_origin(&on_line_nearest_p);
+    let sum_4 = left_length + left_stretch;
     if !gcs_runtime::num::is_finite(sum_4) {
         return Err(SolveError::new(
             "on_bottom_end_br",
@@ -843,8 +828,20 @@ pub fn solve(
             sum_4,
         ));
     }
-    let on_line_p_2_offset = line_p_2_offset.at(sum_4);
-    br.place_origin(&on_line_p_2_offset);
+    if sum_4 < 0.0 {
+        return Err(SolveError::new(
+            "on_bottom_end_br",
+            "on(bottom.end, br)",
+            ErrorKind::InvalidValue,
+            sum_4,
+        ));
+    }
+    left_length = sum_4;
+    let point = Point2::new(0.0, 0.0);
+    let point_2 = Point2::new(right_dx, right_dy);
+    let shift = point_2 - point;
+    right.translate(&shift);
+    tr.translate(&shift);
     let param_3 = line_nearest_left_start_offset.param_of(nearest_tl_center);
     let sum_5 = param_3 + tl_slide;
     if !gcs_runtime::num::is_finite(sum_5) {
@@ -857,6 +854,9 @@ pub fn solve(
     }
     let on_line_nearest_left_start_offset = line_nearest_left_start_offset.at(sum_5);
     tl.place_origin(&on_line_nearest_left_start_offset);
+    let point_3 = Point2::new(top_dx, top_dy);
+    let shift_2 = point_3 - point;
+    top.translate(&shift_2);
 
     Ok(Solution {
         bottom,
