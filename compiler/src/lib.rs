@@ -19,6 +19,7 @@ pub mod draw;
 pub mod explain;
 pub mod families;
 pub mod interp;
+pub mod motion;
 pub mod nominal;
 pub mod pipeline;
 pub mod plan;

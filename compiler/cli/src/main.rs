@@ -101,6 +101,11 @@ enum Command {
         /// sketch's branches, and the solve took others).
         #[arg(long, value_name = "WARNING")]
         deny: Vec<String>,
+        /// How the motions the constraints leave free are chosen: `step` (each where it moves
+        /// nothing at its own step) or `global` (all together, to move the points least in
+        /// total from the sketch).
+        #[arg(long, value_name = "HOW", default_value = "step", value_parser = ["step", "global"])]
+        least_motion: String,
     },
     /// Draw the solved model as an SVG: bodies, points with their names, circles, lines,
     /// segments and planes, fixed geoms as ground; with `--sweep`, traced points' curves or an
@@ -236,11 +241,12 @@ fn main() -> ExitCode {
             all,
             all_solutions,
             deny,
+            least_motion,
         } => solve(
             &file,
             (&set, &branch, &default),
             (json, all, all_solutions),
-            &deny,
+            (&deny, least_motion == "global"),
             color,
         ),
         Command::Compile { file, output, form } => with_analysis(&file, color, |c| {
@@ -499,7 +505,7 @@ fn solve(
     path: &Path,
     (set, branch, default): (&[String], &[String], &[String]),
     (json, all, all_solutions): (bool, bool, bool),
-    deny: &[String],
+    (deny, global): (&[String], bool),
     color: termcolor::ColorChoice,
 ) -> ExitCode {
     if let Some(why) = not_deniable(deny, "solve") {
@@ -605,7 +611,17 @@ fn solve(
                 if changed_branches(c, plan, &kept, (set, branch), denied, color) {
                     return ExitCode::FAILURE;
                 }
-                let solution = kept.solution;
+                let mut solution = kept.solution;
+                if global {
+                    solution = match least_overall(model, plan, &scope, &params, &solution, default)
+                    {
+                        Ok(s) => s,
+                        Err(e) => {
+                            eprintln!("error: {e}");
+                            return ExitCode::FAILURE;
+                        }
+                    };
+                }
                 if json {
                     outln!("{}", solution.to_json());
                 } else {
@@ -621,6 +637,40 @@ fn solve(
             }
         }
     })
+}
+
+/// `--least-motion global`: the free defaults of `solution` (on its branches) chosen together
+/// to move the points least from the sketch, those given by `--default` kept.
+fn least_overall(
+    model: &gcs_lang::Model,
+    plan: &gcs_compiler::plan::Plan,
+    scope: &std::collections::BTreeSet<gcs_lang::model::GeomId>,
+    params: &[f64],
+    solution: &gcs_compiler::solution::Solution,
+    given: &[String],
+) -> Result<gcs_compiler::solution::Solution, gcs_runtime::error::SolveError> {
+    let branches: Vec<usize> = (plan.branches.iter())
+        .map(|b| {
+            (solution.branches.iter())
+                .find(|(n, _)| *n == b.name)
+                .map_or(b.default, |(_, i)| *i)
+        })
+        .collect();
+    let defaults: Vec<f64> = (plan.defaults.iter())
+        .map(|d| {
+            (solution.defaults.iter())
+                .find(|(n, _)| *n == d.name)
+                .map_or(d.sketch, |(_, v)| *v)
+        })
+        .collect();
+    let held: Vec<bool> = (plan.defaults.iter())
+        .map(|d| {
+            given
+                .iter()
+                .any(|g| g.split_once('=').is_some_and(|(n, _)| n.trim() == d.name))
+        })
+        .collect();
+    gcs_compiler::motion::globally_least(model, plan, scope, params, &branches, &defaults, &held)
 }
 
 /// What `gcs draw` draws beside the model: its sweep, traces, animation and view.
