@@ -316,7 +316,15 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
         ErrorKind::Inconsistent => format!("conflicting constraint: it is off by {m_words}"),
         ErrorKind::NoIntersection => format!("no assembly: the loci miss by {m}"),
         ErrorKind::InvalidValue => format!("an invalid value: {}", Shown(e.magnitude)),
-        ErrorKind::NoConvergence => format!("no assembly: the iteration stays {m} from closing it"),
+        ErrorKind::NoConvergence => {
+            format!("the iteration did not converge: it stays {m} from closing it")
+        }
+        ErrorKind::NoAssembly => format!(
+            "no assembly: over the whole turn of the iterated angle it stays at least {m} from closing"
+        ),
+        ErrorKind::NoAssemblyNear => format!(
+            "no assembly near where the iteration starts: it stays at least {m} from closing there"
+        ),
         ErrorKind::NoSuchBranch => "no root on the branch chosen".to_string(),
         _ => "a degenerate configuration".to_string(),
     };
@@ -358,6 +366,9 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
                     ErrorKind::NoIntersection => format!("its loci miss by {m}"),
                     ErrorKind::Inconsistent => format!("it is off by {m}"),
                     ErrorKind::NoConvergence => format!("it stays {m} from closing"),
+                    ErrorKind::NoAssembly | ErrorKind::NoAssemblyNear => {
+                        format!("it stays at least {m} from closing")
+                    }
                     _ => "it cannot be met".to_string(),
                 };
                 format!(

@@ -213,7 +213,9 @@ fn a_default_and_an_iterated_region_are_valid_and_read_by_every_back_end() {
         "pub p_angle: f64,",
         "/// `p_angle`: the angle of P about A; the sketch's value is",
         "(\"p_angle\", defaults.p_angle)",
-        "ErrorKind::NoConvergence",
+        // An angle's iteration that fails searches the whole turn for a root.
+        ".spanning(gcs_runtime::iterate::Span::Turn)",
+        ".map_err(|failure| failure.into_error(\"close\",",
     ] {
         assert!(code.contains(part), "no `{part}` in:\n{code}");
     }

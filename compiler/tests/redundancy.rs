@@ -480,7 +480,8 @@ fn every_redundant_check_of_the_test_model_names_its_support() {
 #[test]
 fn a_closure_that_cannot_close_names_what_it_builds_on() {
     // The triad six-bar with a third link too short to reach the platform: its iteration
-    // cannot close `j3`, and the error names the loop that `j3` closes.
+    // cannot close `j3` anywhere on the turn (no assembly), and the error names the loop that
+    // `j3` closes.
     let path = format!(
         "{}/../examples/triad_sixbar.gcs",
         env!("CARGO_MANIFEST_DIR")
@@ -495,7 +496,7 @@ fn a_closure_that_cannot_close_names_what_it_builds_on() {
     let stop = audit.stopped.expect("it does not close");
     assert_eq!(
         (&*stop.error.label, stop.error.kind),
-        ("j3", ErrorKind::NoConvergence)
+        ("j3", ErrorKind::NoAssembly)
     );
     let step = stop.step.expect("its last close");
     assert!(matches!(c.analysis.plan.steps[step].op, Op::Close { .. }));
@@ -519,7 +520,9 @@ fn a_closure_that_cannot_close_names_what_it_builds_on() {
     let errs = errors(&c);
     assert_eq!(errs.len(), 1, "{errs:#?}");
     assert!(
-        (errs[0].primary.message).starts_with("no assembly: the iteration stays "),
+        (errs[0].primary.message).starts_with(
+            "no assembly: over the whole turn of the iterated angle it stays at least "
+        ),
         "{errs:#?}"
     );
     assert_eq!(errs[0].secondary.len(), 7 + 4, "{errs:#?}");

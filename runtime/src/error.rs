@@ -24,8 +24,23 @@ pub enum ErrorKind {
     /// The configuration is degenerate (coincident or zero-size loci, a zero axis): the
     /// constraint does not determine the geom. The magnitude is the offending size, often 0.
     Degenerate,
-    /// An outer iteration did not converge: the magnitude is the residual it reached.
+    /// An outer iteration did not converge, and nothing more could be said: the magnitude is
+    /// the residual it reached. Where the iteration could tell why, it is
+    /// [`ErrorKind::NoAssembly`] or [`ErrorKind::NoAssemblyNear`] instead.
     NoConvergence,
+    /// An outer iteration over one default, an angle, found no value of it at which the
+    /// constraint it closes closes, over the whole turn: no assembly exists here with the
+    /// branches chosen and the other defaults as given (a default that parameterises a free
+    /// motion keeps its value). The magnitude is the smallest closing error found over the
+    /// turn: how far the constraint stays from closing.
+    NoAssembly,
+    /// An outer iteration came to a minimum of its closing errors that is not zero, near the
+    /// defaults it started from: the assembly it follows from there does not exist here (in a
+    /// sweep, the one followed ended at a fold between the last answer and here), though
+    /// another may, from other defaults. The magnitude is the errors' norm at that minimum
+    /// (the root of the sum of their squares; with one default, its one error): near there, no
+    /// value of the defaults brings the constraints closer to closing.
+    NoAssemblyNear,
     /// An input is invalid, such as a NaN or infinite parameter, or a sketch the params make
     /// non-finite: the magnitude is the value.
     InvalidInput,
@@ -165,7 +180,15 @@ impl fmt::Display for SolveError {
             ErrorKind::NoConvergence => {
                 write!(f, " cannot be met: the iteration did not converge, residual {m}")
             }
-                        ErrorKind::InvalidValue if self.magnitude.is_finite() => {
+            ErrorKind::NoAssembly => write!(
+                f,
+                " cannot be met: no assembly exists here with the branches and the other defaults given; over the whole turn of the angle the iteration varies, it stays at least {m} from closing"
+            ),
+            ErrorKind::NoAssemblyNear => write!(
+                f,
+                " cannot be met: the assembly followed from the defaults the iteration started from does not exist here; near them the constraints it closes stay at least {m} from closing (the least norm of their errors there)"
+            ),
+            ErrorKind::InvalidValue if self.magnitude.is_finite() => {
                 write!(f, " cannot be met: its value, {m}, is negative; a distance, a length or a radius is zero or more")
             }
             ErrorKind::InvalidValue => {
@@ -219,7 +242,10 @@ pub fn check_all_finite(params: &[(&'static str, f64)]) -> Result<(), SolveError
 ///    guesses from the residuals (or [`ErrorAccumulator::sum_squares`] for a minimizer) and
 ///    repeats, at most a bounded number of times;
 /// 4. on failure reports [`ErrorKind::NoConvergence`] for [`ErrorAccumulator::worst`] with
-///    magnitude [`ErrorAccumulator::max`].
+///    magnitude [`ErrorAccumulator::max`], or, where it can tell why,
+///    [`ErrorKind::NoAssembly`] (no root over an angle's turn) or
+///    [`ErrorKind::NoAssemblyNear`] (a minimum of the residuals that is not zero) with how far
+///    the constraints stay from closing.
 ///
 /// The key `K` names a constraint: `&'static str` labels in generated code, an index in the
 /// interpreter. Adding is a few flops; nothing allocates. A NaN residual counts as infinite, so
@@ -339,12 +365,42 @@ mod tests {
             owned.to_string(),
             "constraint `a` cannot be met: it is inconsistent with the constraints already met, by 2"
         );
-        for kind in [ErrorKind::Degenerate, ErrorKind::NoConvergence] {
+        for kind in [
+            ErrorKind::Degenerate,
+            ErrorKind::NoConvergence,
+            ErrorKind::NoAssembly,
+            ErrorKind::NoAssemblyNear,
+        ] {
             let s = SolveError::new("k", "t", kind, 1.0).to_string();
             assert!(s.starts_with("constraint `k` (t) cannot be met: "), "{s}");
         }
         let err: Box<dyn std::error::Error> = Box::new(e);
         assert!(err.to_string().contains("elbow"));
+    }
+
+    /// The three ways an outer iteration fails say three different things: that it did not
+    /// converge, that no assembly exists, that the one followed does not exist here.
+    #[test]
+    fn iterations_that_fail_say_why() {
+        let text = |kind, m| SolveError::new("leg4", "distance(p4, b4) = l4", kind, m).to_string();
+        assert_eq!(
+            text(ErrorKind::NoConvergence, 0.25),
+            "constraint `leg4` (distance(p4, b4) = l4) cannot be met: the iteration did not \
+             converge, residual 0.25"
+        );
+        assert_eq!(
+            text(ErrorKind::NoAssembly, 0.5),
+            "constraint `leg4` (distance(p4, b4) = l4) cannot be met: no assembly exists here \
+             with the branches and the other defaults given; over the whole turn of the \
+             angle the iteration varies, it stays at least 0.5 from closing"
+        );
+        assert_eq!(
+            text(ErrorKind::NoAssemblyNear, 0.0033),
+            "constraint `leg4` (distance(p4, b4) = l4) cannot be met: the assembly followed \
+             from the defaults the iteration started from does not exist here; near them the \
+             constraints it closes stay at least 0.0033 from closing (the least norm of their \
+             errors there)"
+        );
     }
 
     #[test]

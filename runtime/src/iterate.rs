@@ -50,6 +50,38 @@
 //!   with a NaN (or that infinite) residual, without a call (resp. after one call). A failing
 //!   trial point halves the step back toward the last good point; the budget of evaluations
 //!   ([`Settings::max_evaluations`]) bounds every loop, so nothing runs forever.
+//! - **What a failure says**: an iteration that ends without a root is then told, at a cost
+//!   only a failure pays (out of line, cold), as one of three:
+//!   1. [`Failure::NoAssembly`], no assembly at all: one default, an angle
+//!      ([`Settings::span`] is [`Span::Turn`]), whose error [`all_roots`] finds no root of
+//!      over the whole turn, on the grid of `outer::Scan`. Its magnitude is the smallest `|f|`
+//!      the scan found ([`RootScan::least`]). The claim is the scan's: what its documentation
+//!      says it cannot miss (in practice, a pair of roots closer than a sample spacing with
+//!      `|f|` above the tolerance between them). A length is not searched ([`Span`] says
+//!      why).
+//!   2. [`Failure::NoAssemblyNear`], no assembly near the start: the iteration stopped in the
+//!      valley of a local minimum of its closing errors whose bottom is not zero. From the
+//!      best point reached, Newton's method on the squared norm of the errors, with its exact
+//!      curvature from differences, finds the bottom, then again with differences sixteen
+//!      times shorter (`nonzero_minimum`): a bottom has a positive definite Hessian and a
+//!      Newton step that lowers the square by at most [`tol::MINIMUM_CONFIRM_REL`] of it, and
+//!      keeps at least half its height with the shorter steps (the corner of a magnitude's V,
+//!      a distance's root, which the differences straddle, looks like a bottom that falls
+//!      with the step: it is none). For one default, this also confirms (and polishes) a
+//!      valley the search settled in (`settle`), whose bottom its budget may have cut short.
+//!      Its magnitude is the errors' norm at the bottom, to about the last digits: near it, no
+//!      value of the defaults brings them closer to zero. This is the fold of a sweep: the
+//!      assembly followed meets another and both end, leaving a valley whose bottom rises
+//!      from zero as the params move on. Where the descent from the best point leads to
+//!      a root instead (another assembly, or the same one missed), or away over a slope, an
+//!      edge or past the budget, nothing is claimed, and no answer is taken from there: a
+//!      plain solve never jumps to another assembly.
+//!   3. [`Failure::NoConvergence`] otherwise, with the smallest largest-residual reached.
+//!
+//!   For several defaults no range is searched (a grid over several defaults would be costly
+//!   and still not a proof), so a failure is at most [`Failure::NoAssemblyNear`]. The test
+//!   for a minimum has a budget of its own, [`Settings::max_evaluations`] more, and the scan
+//!   that of [`all_roots`] (its samples, and the budget per refinement).
 //!
 //! # [`all_roots`]: every root of one default over an interval
 //!
@@ -140,8 +172,11 @@
 //!
 //! Nothing here allocates or panics, for any input.
 
+use std::borrow::Cow;
+
 use nalgebra::{SMatrix, SVector};
 
+use crate::error::{ErrorKind, SolveError};
 use crate::num::is_finite;
 use crate::tol;
 
@@ -165,6 +200,11 @@ const POLISH_GAIN: f64 = 0.5;
 /// The fewest samples [`all_roots`] takes: fewer could not tell a minimum from a slope.
 const MIN_SAMPLES: u32 = 8;
 
+/// The most Newton steps [`descend`] takes on the squared closing error (each within
+/// the budget too): from where an iteration stopped, in the valley of a minimum, Newton's
+/// method with the exact curvature reaches its bottom in a handful.
+const MINIMUM_STEPS: u32 = 16;
+
 /// How many times a refinement in [`all_roots`] splits off a failing stretch (each split
 /// refines the sides, which may split again): a bound on the work spent in a bracket that
 /// failing stretches riddle.
@@ -180,8 +220,35 @@ pub struct Settings {
     /// is taken. Zero polishes every answer.
     pub rounding: f64,
     /// At most this many evaluations of the residual function (each is one assembly of the
-    /// plan's region).
+    /// plan's region); a failure is then told by searches with budgets of their own (module
+    /// documentation, "What a failure says").
     pub max_evaluations: u32,
+    /// What the default of an iteration over one default ranges over, searched for a root
+    /// when the iteration fails (module documentation, "What a failure says"). Ignored for
+    /// several defaults.
+    pub span: Span,
+}
+
+/// The range of the one default of an iteration, which [`solve`] searches for a root when the
+/// iteration fails: none found is [`Failure::NoAssembly`].
+///
+/// Only an angle's range is searched. A length or a coordinate has no range of its own, and
+/// its error may vary on any scale (a screw's pitch sets it): no grid of a size fixed in
+/// advance sees every root. Measured: a screw of pitch 0.007 in a model of size 0.001, whose
+/// root 0.0003 from the start a grid of 720 samples over four of its scales either side
+/// stepped over, where "no assembly" would have been false. A length's failure is told near
+/// the start only.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Span {
+    /// Not an angle (or not said): a failure is not searched.
+    #[default]
+    Unknown,
+    /// An angle in radians: the whole turn, `[-pi, pi)`, periodic, on the grid of
+    /// [`crate::outer::Scan`] (so that a solve and `solve_all` agree on whether a root exists),
+    /// what the closing errors of the plans' angles are smooth on: trigonometric in the angle
+    /// through the plan's rotations, with the failing stretches and tangencies
+    /// [`all_roots`] finds the edges of.
+    Turn,
 }
 
 impl Default for Settings {
@@ -196,6 +263,7 @@ impl Default for Settings {
             tolerance: tol::OUTER_DEFAULT,
             rounding: 0.0,
             max_evaluations: 200,
+            span: Span::Unknown,
         }
     }
 }
@@ -210,6 +278,12 @@ impl Settings {
             rounding: tol::ROUNDING_REL * (1.0 + size),
             ..Self::default()
         }
+    }
+
+    /// These settings for an iteration over one default that ranges over `span`.
+    #[must_use]
+    pub const fn spanning(self, span: Span) -> Self {
+        Self { span, ..self }
     }
 }
 
@@ -229,14 +303,65 @@ pub struct Converged {
 pub enum Failure<E> {
     /// The assembly fails at the starting defaults: its error.
     Start(E),
-    /// No convergence within the budget: the smallest largest-residual reached, and steps
-    /// taken.
+    /// No convergence within the budget, and neither of the two failures below could be
+    /// told: the smallest largest-residual reached, and steps taken.
     NoConvergence {
         /// The smallest largest-residual magnitude reached (NaN when the start was not finite).
         residual: f64,
         /// Steps taken.
         iterations: u32,
     },
+    /// One default over a known [`Span`]: its error has no root over the whole range, so no
+    /// assembly exists (on the branches its region took).
+    NoAssembly {
+        /// The smallest residual magnitude found over the range: how far the assembly stays
+        /// from closing.
+        least: f64,
+        /// Steps taken before the search.
+        iterations: u32,
+    },
+    /// The iteration stopped in the valley of a local minimum of its closing errors whose
+    /// bottom is not zero: no assembly near the start (in a sweep, the one followed ended at a
+    /// fold), though one may exist elsewhere.
+    NoAssemblyNear {
+        /// The errors' norm (the root of the sum of their squares) at the minimum.
+        residual: f64,
+        /// Steps taken.
+        iterations: u32,
+    },
+}
+
+impl<E> Failure<E> {
+    /// The kind of error a failure other than [`Failure::Start`] is, and its magnitude.
+    pub fn kind(&self) -> Option<(ErrorKind, f64)> {
+        Some(match *self {
+            Failure::Start(_) => return None,
+            Failure::NoConvergence { residual, .. } => (ErrorKind::NoConvergence, residual),
+            Failure::NoAssembly { least, .. } => (ErrorKind::NoAssembly, least),
+            Failure::NoAssemblyNear { residual, .. } => (ErrorKind::NoAssemblyNear, residual),
+        })
+    }
+}
+
+impl Failure<SolveError> {
+    /// The error a solve reports for this failure: the assembly's own at the start, otherwise
+    /// the error of [`Failure::kind`] for the constraint `label` with source `text` (an
+    /// iteration's first close).
+    #[cold]
+    #[inline(never)]
+    pub fn into_error(
+        self,
+        label: impl Into<Cow<'static, str>>,
+        text: impl Into<Cow<'static, str>>,
+    ) -> SolveError {
+        let (kind, magnitude) = match self {
+            Failure::Start(error) => return error,
+            Failure::NoConvergence { residual, .. } => (ErrorKind::NoConvergence, residual),
+            Failure::NoAssembly { least, .. } => (ErrorKind::NoAssembly, least),
+            Failure::NoAssemblyNear { residual, .. } => (ErrorKind::NoAssemblyNear, residual),
+        };
+        SolveError::new(label, text, kind, magnitude)
+    }
 }
 
 /// Solves f(x) = 0 for x in R^N starting from `x` (overwritten with the answer, or with the best
@@ -249,14 +374,15 @@ pub enum Failure<E> {
 ///
 /// `f(x, r)` writes the N residuals into r, or returns Err when the plan cannot assemble at x
 /// (then the iteration backs off: shorter steps toward the last good point). See the module
-/// documentation for the methods.
+/// documentation for the methods, and for what a failure says ("Failures").
 pub fn solve<const N: usize, E>(
     x: &mut [f64; N],
     scale: &[f64; N],
     settings: &Settings,
     mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
 ) -> Result<Converged, Failure<E>> {
-    if N == 1 {
+    let start = *x;
+    let outcome = if N == 1 {
         let mut point = [0.0; N];
         let mut residual = [0.0; N];
         let mut root = x[0];
@@ -267,8 +393,219 @@ pub fn solve<const N: usize, E>(
         x[0] = root;
         outcome
     } else {
-        solve_system(x, scale, settings, f)
+        solve_system(x, scale, settings, &mut f)
+    };
+    match outcome {
+        Err(failure @ Failure::NoConvergence { .. }) => {
+            Err(classify(&start, x, scale, settings, &mut f, failure))
+        }
+        outcome => outcome,
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// What a failure says.
+
+/// Tells, of an iteration from `start` that stopped at `best` without converging (`failure`),
+/// whether no assembly exists at all (one default over a known span: no root over it), or none
+/// near the start (a minimum of the closing error that is not zero), else leaves it
+/// [`Failure::NoConvergence`]. Only a failure pays for this: out of line, and cold.
+#[cold]
+#[inline(never)]
+fn classify<const N: usize, E>(
+    start: &[f64; N],
+    best: &[f64; N],
+    scale: &[f64; N],
+    settings: &Settings,
+    f: &mut impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
+    failure: Failure<E>,
+) -> Failure<E> {
+    let Failure::NoConvergence {
+        residual,
+        iterations,
+    } = failure
+    else {
+        return failure;
+    };
+    // A start that is not finite, or whose residual is not: nothing to search from.
+    if !is_finite(residual) || start.iter().any(|v| !is_finite(*v)) {
+        return failure;
+    }
+    // One angle: its whole turn, for a root anywhere.
+    if N == 1 && settings.span == Span::Turn {
+        let (mut point, mut r) = ([0.0; N], [0.0; N]);
+        let pi = core::f64::consts::PI;
+        let samples = crate::outer::ANGLE_SAMPLES;
+        let scan: RootScan<1> = all_roots(-pi, pi, true, samples, settings, |t| {
+            point[0] = t;
+            f(&point, &mut r).map(|()| r[0])
+        });
+        if scan.is_empty() && is_finite(scan.least()) {
+            return Failure::NoAssembly {
+                least: scan.least(),
+                iterations,
+            };
+        }
+    }
+    // A minimum that is not zero where the iteration stopped, confirmed and found to the last
+    // digits (the scalar search's `settle` may have stopped at one already, but its bottom
+    // may be cut short by the search's budget, or be the corner of a magnitude's V that its
+    // minimization did not resolve: it is confirmed like any other).
+    let minimum = nonzero_minimum(best, scale, settings, |p: &[f64; N]| {
+        let mut r = [0.0; N];
+        f(p, &mut r).ok().map(|()| r)
+    });
+    match minimum {
+        Some(residual) => Failure::NoAssemblyNear {
+            residual,
+            iterations,
+        },
+        None => failure,
+    }
+}
+
+/// Whether `start`, where an iteration stopped short of a root, lies in the valley of a local
+/// minimum of the closing errors whose bottom is not zero: `Some(their norm there)`, the root of
+/// the sum of their squares, else `None` (a root, a slope, a saddle, an edge of the stretch where
+/// the assembly exists, or a budget spent before the bottom was found).
+///
+/// Newton's method on `phi = |r|^2 / 2` ([`descend`]) finds the bottom with differences of step
+/// [`tol::CURVATURE_STEP`], then again from there with steps sixteen times shorter: a smooth
+/// bottom is the same at both (to the last digits), while the corner of a magnitude's V (a
+/// distance, whose root is a kink) straddled by the differences looks like a bottom about a
+/// step's slope above zero, which the shorter steps see fall by about their ratio. A bottom
+/// that falls by more than half is no bottom: `None`. Both share the settings' budget. Out of
+/// line and cold: a failure's only.
+#[cold]
+#[inline(never)]
+fn nonzero_minimum<const N: usize>(
+    start: &[f64; N],
+    scale: &[f64; N],
+    settings: &Settings,
+    mut residuals: impl FnMut(&[f64; N]) -> Option<[f64; N]>,
+) -> Option<f64> {
+    let mut budget = Budget::new(settings.max_evaluations);
+    let mut s = SVector::<f64, N>::zeros();
+    for i in 0..N {
+        s[i] = sane_scale(scale[i], start[i]);
+    }
+    // The residuals at the point `y` (scaled); `None` where the assembly fails, one is not
+    // finite, or the budget is spent.
+    let mut at = |y: &SVector<f64, N>| -> Option<SVector<f64, N>> {
+        let x = y.component_mul(&s);
+        if !budget.take() || x.iter().any(|v| !is_finite(*v)) {
+            return None;
+        }
+        let r = residuals(&x.into())?;
+        r.iter().all(|v| is_finite(*v)).then(|| SVector::from(r))
+    };
+    let y = SVector::from(*start).component_div(&s);
+    let (y, coarse) = descend(y, tol::CURVATURE_STEP, settings.tolerance, &mut at)?;
+    let (_, fine) = descend(y, tol::CURVATURE_STEP / 16.0, settings.tolerance, &mut at)?;
+    (fine.norm() >= 0.5 * coarse.norm()).then(|| fine.norm())
+}
+
+/// Newton's method on `phi = |r|^2 / 2` from the point `y` (in variables divided by their
+/// scales), with the residuals `at` gives: the bottom of the valley it lies in and the residuals
+/// there, or `None` (see [`nonzero_minimum`]).
+///
+/// The gradient `J^T r` and the Hessian `J^T J + sum r_k H_k` (`H_k` the second derivatives of
+/// residual `k`) come from central differences of the residuals (steps `step` times
+/// `max(|y_i|, 1)`; the four points around each pair for a mixed derivative): `2 N^2 + 1`
+/// evaluations a step, [`MINIMUM_STEPS`] steps at most. The curvature is `phi`'s own, not the
+/// Gauss-Newton `J^T J`, which at a fold is singular in just the direction that matters; and
+/// both the gradient's and the curvature's errors from the differences are proportional to
+/// `|r|`, so that a smooth bottom is told from a slope however near zero it lies. A step must
+/// lower `phi` (halved up to six times), and is at most [`MAX_STEP`] scales long. The bottom
+/// is found where the Hessian is positive definite (a Cholesky factorisation exists) and
+/// Newton's step would lower `phi` by at most [`tol::MINIMUM_CONFIRM_REL`] of it; that step,
+/// one evaluation more, is kept if it is lower still, so that the residuals returned are the
+/// bottom's to about the last digits. It is a root instead, and `None`, when the largest
+/// residual falls within `tolerance` on the way.
+fn descend<const N: usize>(
+    mut y: SVector<f64, N>,
+    step: f64,
+    tolerance: f64,
+    at: &mut impl FnMut(&SVector<f64, N>) -> Option<SVector<f64, N>>,
+) -> Option<(SVector<f64, N>, SVector<f64, N>)> {
+    let mut r0 = at(&y)?;
+    for _ in 0..MINIMUM_STEPS {
+        if largest(r0.as_slice()) <= tolerance {
+            return None;
+        }
+        let p0 = 0.5 * r0.norm_squared();
+        let mut h = SVector::<f64, N>::zeros();
+        for i in 0..N {
+            h[i] = step * y[i].abs().max(1.0);
+        }
+        let along = |i: usize, k: f64| {
+            let mut d = SVector::<f64, N>::zeros();
+            d[i] = k * h[i];
+            d
+        };
+        let mut jacobian = SMatrix::<f64, N, N>::zeros();
+        let mut hessian = SMatrix::<f64, N, N>::zeros();
+        for i in 0..N {
+            let plus = at(&(y + along(i, 1.0)))?;
+            let minus = at(&(y + along(i, -1.0)))?;
+            jacobian.set_column(i, &((plus - minus) / (2.0 * h[i])));
+            let second = ((plus - r0) + (minus - r0)) / (h[i] * h[i]);
+            hessian[(i, i)] = r0.dot(&second);
+        }
+        for i in 0..N {
+            for j in i + 1..N {
+                let mut corners = [SVector::<f64, N>::zeros(); 4];
+                for (c, (a, b)) in
+                    corners
+                        .iter_mut()
+                        .zip([(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)])
+                {
+                    *c = at(&(y + along(i, a) + along(j, b)))?;
+                }
+                let second =
+                    ((corners[0] - corners[1]) - (corners[2] - corners[3])) / (4.0 * h[i] * h[j]);
+                let mixed = r0.dot(&second);
+                hessian[(i, j)] = mixed;
+                hessian[(j, i)] = mixed;
+            }
+        }
+        hessian += jacobian.transpose() * jacobian;
+        let gradient = jacobian.transpose() * r0;
+        let cholesky = hessian.cholesky()?;
+        let mut newton = -cholesky.solve(&gradient);
+        let decrease = -0.5 * gradient.dot(&newton);
+        if !is_finite(decrease) {
+            return None;
+        }
+        if decrease <= tol::MINIMUM_CONFIRM_REL * p0 {
+            // One more step takes the bottom to the last digits (Newton's convergence is
+            // quadratic), kept if it is lower.
+            let last = at(&(y + newton)).filter(|r| r.norm_squared() < r0.norm_squared());
+            return Some(match last {
+                Some(r) => (y + newton, r),
+                None => (y, r0),
+            });
+        }
+        let length = newton.norm();
+        if length > MAX_STEP {
+            newton *= MAX_STEP / length;
+        }
+        let mut accepted = false;
+        for _ in 0..6 {
+            if let Some(r) = at(&(y + newton)) {
+                if r.norm_squared() < r0.norm_squared() {
+                    (y, r0) = (y + newton, r);
+                    accepted = true;
+                    break;
+                }
+            }
+            newton *= 0.5;
+        }
+        if !accepted {
+            return None;
+        }
+    }
+    None
 }
 
 /// A count of evaluations against a limit.
@@ -1086,7 +1423,7 @@ fn solve_system<const N: usize, E>(
     x: &mut [f64; N],
     scale: &[f64; N],
     settings: &Settings,
-    mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
+    f: &mut impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
 ) -> Result<Converged, Failure<E>> {
     let mut budget = Budget::new(settings.max_evaluations);
     if x.iter().any(|v| !is_finite(*v)) || !budget.take() {
@@ -1373,6 +1710,7 @@ pub struct RootScan<const CAP: usize> {
     len: usize,
     truncated: bool,
     evaluations: u32,
+    least: f64,
 }
 
 impl<const CAP: usize> Default for RootScan<CAP> {
@@ -1392,6 +1730,7 @@ impl<const CAP: usize> RootScan<CAP> {
             len: 0,
             truncated: false,
             evaluations: 0,
+            least: f64::INFINITY,
         }
     }
 
@@ -1441,6 +1780,15 @@ impl<const CAP: usize> RootScan<CAP> {
     /// The evaluations of the function the scan made.
     pub fn evaluations(&self) -> u32 {
         self.evaluations
+    }
+
+    /// The smallest `|f|` the scan evaluated (infinite where `f` was defined nowhere): the
+    /// samples, the bottoms of the minima of `|f|` among them refined (rule 2), the edges of
+    /// failing stretches and the points of every refinement. Over an interval with no root,
+    /// how close to zero the function comes, to the sampling's resolution: a minimum between
+    /// two samples neither of which is a sampled minimum is seen only at those samples.
+    pub fn least(&self) -> f64 {
+        self.least
     }
 
     /// Adds a root, merging it with one closer than `same` (measured around the circle of
@@ -1637,7 +1985,11 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
         if !(t >= self.lo && t <= self.hi) {
             return None;
         }
-        (self.f)(t).filter(|v| is_finite(*v))
+        let value = (self.f)(t).filter(|v| is_finite(*v));
+        if let Some(v) = value {
+            self.scan.least = self.scan.least.min(v.abs());
+        }
+        value
     }
 
     /// `f` at `x` within `budget`; `Exhausted` when it is spent.

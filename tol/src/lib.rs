@@ -100,6 +100,20 @@ pub const SQRT_EPS: f64 = 1.490_116_119_384_765_6e-8;
 /// the locations around it, without iterating forever on one exactly at zero.
 pub const LOCATE_ABS: f64 = 1e-3;
 
+/// The step, in a default's scales (times `max(|y|, 1)` of the scaled default `y`), of the
+/// central differences that measure the slope and the curvature of an outer iteration's closing
+/// errors where it failed (`iterate`'s test for a minimum that is not zero): their truncation
+/// (`h^2` times the errors' third derivatives) and the rounding of a second difference
+/// (`eps / h^2` of the errors' size) are then both about `1e-8`. The test looks again with
+/// steps sixteen times shorter, where the rounding is still below `1e-5`.
+pub const CURVATURE_STEP: f64 = 1e-4;
+
+/// A minimum of an outer iteration's squared closing errors is found when Newton's step would
+/// lower their sum of squares by at most this fraction of it: their norm at the point is then
+/// within half of this, relatively, of their norm at the bottom; far above the precision of the
+/// differences' gradient there (whose error is proportional to the errors themselves).
+pub const MINIMUM_CONFIRM_REL: f64 = 1e-6;
+
 /// A step (or trust radius) at most this relative to the size of what it moves is at the
 /// rounding level, four units in the last place: it no longer changes the point, and an
 /// iteration stops there.

@@ -498,8 +498,16 @@ impl Solve<'_> {
             }
         }
         self.note_read(&trial);
+        // One angle's turn, searched for a root when its iteration fails (as the interpreter
+        // says it).
+        let span = match it.defaults.as_slice() {
+            [d] if plan.defaults[d.0 as usize].is_angle() => {
+                ".spanning(gcs_runtime::iterate::Span::Turn)"
+            }
+            _ => "",
+        };
         w.open(&format!(
-            "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0), |{trial}, {errors}| {{",
+            "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0){span}, |{trial}, {errors}| {{",
             scale.join(", ")
         ));
         // The trial works on copies of the frames the region moves: those its code writes,
@@ -566,14 +574,12 @@ impl Solve<'_> {
             .declare_at(directions_mark, &names, directions_indent);
         w.insert(directions_at, &declared);
         let first = &cx.model.constraints[closes[0]];
-        w.open(".map_err(|failure| match failure {");
-        w.line("gcs_runtime::iterate::Failure::Start(error) => error,");
+        // A failure other than the assembly's own at the start is named after the first close.
         w.line(&format!(
-            "gcs_runtime::iterate::Failure::NoConvergence {{ residual, .. }} => SolveError::new({}, {}, ErrorKind::NoConvergence, residual),",
+            ".map_err(|failure| failure.into_error({}, {}))?;",
             lit(&first.name),
             lit(&first.text)
         ));
-        w.close("})?;");
         // An angle converged to is reported in (-pi, pi]: a turn more is the same assembly.
         for (k, d) in it.defaults.iter().enumerate() {
             if plan.defaults[d.0 as usize].is_angle() {

@@ -587,9 +587,14 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
                         None => self.iterate(it, &mut gcs_runtime::outer::Newton),
                     };
                     outcome.map_err(|error| Failure {
-                        // An iteration that does not converge names its first close.
-                        step: (error.kind == ErrorKind::NoConvergence)
-                            .then(|| self.first_close(it)),
+                        // An iteration that fails (not at its start) names its first close.
+                        step: matches!(
+                            error.kind,
+                            ErrorKind::NoConvergence
+                                | ErrorKind::NoAssembly
+                                | ErrorKind::NoAssemblyNear
+                        )
+                        .then(|| self.first_close(it)),
                         error,
                     })?;
                     i = it.end;
@@ -645,7 +650,7 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
         it: &Iteration,
         outer: &mut O,
     ) -> Result<(), SolveError> {
-        use gcs_runtime::iterate::{self, Settings};
+        use gcs_runtime::iterate::{self, Settings, Span};
         let mut x = [0.0; N];
         let mut scale = [0.0; N];
         for (k, d) in it.defaults.iter().enumerate() {
@@ -658,7 +663,12 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
             };
         }
         let saved = (self.config.clone(), self.regs.clone(), self.chosen.clone());
-        let settings = Settings::for_size(self.scale);
+        // One angle's turn, searched for a root when its iteration fails.
+        let span = match it.defaults.as_slice() {
+            [d] if self.plan.defaults[d.0 as usize].is_angle() => Span::Turn,
+            _ => Span::Unknown,
+        };
+        let settings = Settings::for_size(self.scale).spanning(span);
         let outcome = outer.iterate(&mut x, &scale, &settings, |x: &[f64; N], r| {
             self.assemble(it, &saved, x, r)
         });
@@ -677,9 +687,10 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
             }
             Err(iterate::Failure::Start(e)) => Err(e),
             // Named after the iteration's first close, as generated code names it.
-            Err(iterate::Failure::NoConvergence { residual, .. }) => {
-                let step = self.first_close(it);
-                Err(self.error(step, ErrorKind::NoConvergence, residual))
+            Err(failure) => {
+                let (kind, magnitude) = (failure.kind())
+                    .unwrap_or_else(|| panic!("bug in gcs: a failure at the start has no kind"));
+                Err(self.error(self.first_close(it), kind, magnitude))
             }
         }
     }

@@ -494,15 +494,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "fh",
-                "distance(F, H) = 4.528",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("fh", "distance(F, H) = 4.528"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     trial[1] = gcs_runtime::num::wrap_angle(trial[1]);
     let on_circle_a_2_2 = circle_a_2.at(trial[0]);

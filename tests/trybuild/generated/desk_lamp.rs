@@ -288,15 +288,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "reach",
-                "distance(base, shade) = arm",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("reach", "distance(base, shade) = arm"))?;
     let on_surface_3 = cylinder.at([defaults.shade_angle, trial[0]]);
     let shift_5 = on_surface_3 - shade_origin;
     shade.translate(&shift_5);

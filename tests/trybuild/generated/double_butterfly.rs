@@ -423,7 +423,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         .iterate(
             &mut trial,
             &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
+                .spanning(gcs_runtime::iterate::Span::Turn),
             |trial, errors| {
                 let mut left = left;
                 let mut right = right;
@@ -551,15 +552,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "j4",
-                "coincident(link4.t, right.q)",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("j4", "coincident(link4.t, right.q)"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     let direction_3 = link1_angle_directions.at(trial[0]);
     let turn_6 = rotation_between_units(&direction, &direction_3);

@@ -488,7 +488,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         .iterate(
             &mut trial,
             &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
+                .spanning(gcs_runtime::iterate::Span::Turn),
             |trial, errors| {
                 let mut p3 = p3;
                 let mut p4 = p4;
@@ -651,15 +652,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "distance_p6_P4",
-                "distance(p6, P4) = -3/5",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("distance_p6_P4", "distance(p6, P4) = -3/5"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     let turn_5 = frame::rotation_about_axis(&direction_2, trial[0]);
     p3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_5);

@@ -653,7 +653,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         .iterate(
             &mut trial,
             &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
+                .spanning(gcs_runtime::iterate::Span::Turn),
             |trial, errors| {
                 let mut belt = belt;
                 let mut guard = guard;
@@ -795,15 +796,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "tangent_belt_idler",
-                "tangent(belt, idler)",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("tangent_belt_idler", "tangent(belt, idler)"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     let turn_8 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial[0]);
     belt.rotate_about_by(&belt_origin_2, &turn_8);

@@ -246,7 +246,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         .iterate(
             &mut trial,
             &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
+                .spanning(gcs_runtime::iterate::Span::Turn),
             |trial, errors| {
                 let mut grip = grip;
                 let on_surface = torus.at([defaults.grip_axis_angle, trial[0]]);
@@ -257,15 +258,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "on_grip_plate",
-                "on(grip, plate)",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("on_grip_plate", "on(grip, plate)"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     let on_surface_2 = torus.at([defaults.grip_axis_angle, trial[0]]);
     let shift_3 = on_surface_2 - grip_origin;

@@ -286,7 +286,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         .iterate(
             &mut trial,
             &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
+                .spanning(gcs_runtime::iterate::Span::Turn),
             |trial, errors| {
                 let mut platform = platform;
                 let on_circle_b1 = circle_b1.at(trial[0]);
@@ -355,15 +356,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "l3",
-                "distance(B3, platform.p3) = leg3",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("l3", "distance(B3, platform.p3) = leg3"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     let on_circle_b1_2 = circle_b1.at(trial[0]);
     platform.place_origin(&on_circle_b1_2);

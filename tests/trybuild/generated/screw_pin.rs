@@ -309,15 +309,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "touch",
-                "coincident(screw.pin, stop)",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("touch", "coincident(screw.pin, stop)"))?;
     let on_locus_2 = line.point + line.dir * trial[0];
     let shift_3 = on_locus_2 - screw_thread_2;
     screw.translate(&shift_3);

@@ -475,15 +475,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "leg4",
-                "distance(platform.p4, b4) = l4",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("leg4", "distance(platform.p4, b4) = l4"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     trial[1] = gcs_runtime::num::wrap_angle(trial[1]);
     trial[2] = gcs_runtime::num::wrap_angle(trial[2]);

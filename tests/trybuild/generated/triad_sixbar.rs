@@ -388,7 +388,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         .iterate(
             &mut trial,
             &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
+                .spanning(gcs_runtime::iterate::Span::Turn),
             |trial, errors| {
                 let mut link1 = link1;
                 let mut link2 = link2;
@@ -463,15 +464,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 Ok(())
             },
         )
-        .map_err(|failure| match failure {
-            gcs_runtime::iterate::Failure::Start(error) => error,
-            gcs_runtime::iterate::Failure::NoConvergence { residual, .. } => SolveError::new(
-                "j3",
-                "coincident(link3.p, platform.p3)",
-                ErrorKind::NoConvergence,
-                residual,
-            ),
-        })?;
+        .map_err(|failure| failure.into_error("j3", "coincident(link3.p, platform.p3)"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
     let direction_3 = link1_angle_directions.at(trial[0]);
     let turn_5 = rotation_between_units(&direction, &direction_3);

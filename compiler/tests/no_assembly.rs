@@ -1,0 +1,220 @@
+//! An outer iteration that fails says why: no assembly at all (`ErrorKind::NoAssembly`), none
+//! near where it started (`ErrorKind::NoAssemblyNear`: the assembly it follows ended), or, when
+//! it cannot tell, that it did not converge (`ErrorKind::NoConvergence`).
+//!
+//! Measured on the 3-RPR of `examples/rpr3.gcs`, whose plan iterates on one angle,
+//! `platform.p1_angle` (of `platform.p1` on its circle about `B1`), and closes `l3`, the
+//! distance from `B3` to `platform.p3`:
+//! - with `leg3` shorter than `platform.p3` ever comes to `B3` as `platform.p1` goes round (on
+//!   either branch of `l2`), no assembly exists: `NoAssembly` on `l3`, its magnitude the gap
+//!   between `leg3` and the nearest `platform.p3` comes, and its message says so;
+//! - with `leg3` just past a local maximum of that distance that is not the largest, a solve
+//!   started from the assembly near the maximum (a sweep's last answer) finds none near it:
+//!   `NoAssemblyNear`, its magnitude how far `leg3` is past the maximum; from the sketch,
+//!   other assemblies exist.
+//!
+//! The distance is computed here in closed form from the example's numbers (the circle of
+//! `platform.p1`, the circle-circle intersection that places `platform.p2` on branch `l2`, the
+//! platform's rigid triangle), never from the plan or the runtime.
+
+use gcs_compiler::analyse;
+use gcs_compiler::interp::{self, Choice};
+use gcs_lang::Model;
+use gcs_runtime::error::{ErrorKind, SolveError};
+use gcs_runtime::num::Shown;
+use std::f64::consts::PI;
+
+/// The example's numbers, which the closed form reads (checked against its text).
+const LEG1: f64 = 14.98;
+const LEG2: f64 = 15.38;
+const B2: [f64; 2] = [15.91, 0.0];
+const B3: [f64; 2] = [0.0, 10.0];
+/// `platform.p2` and `platform.p3` in the platform's frame, where `platform.p1` is the origin.
+const P2_X: f64 = 17.04;
+const P3: [f64; 2] = [15.940021741400596, 13.425362538233478];
+
+fn rpr3() -> Model {
+    let path = format!("{}/../examples/rpr3.gcs", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("read {path}: {e}"));
+    for part in [
+        "param leg1 = 14.98;",
+        "param leg2 = 15.38;",
+        "fixed point B1 = (0, 0);",
+        "fixed point B2 = (15.91, 0);",
+        "fixed point B3 = (0, 10);",
+        "point p1 = (0, 0);",
+        "point p2 = (17.04, 0);",
+        "point p3 = (15.940021741400596, 13.425362538233478);",
+    ] {
+        assert!(
+            text.contains(part),
+            "the example changed: update this test ({part})"
+        );
+    }
+    let (_, model, diags) = gcs_lang::load(&path, text.as_bytes());
+    model.unwrap_or_else(|| panic!("{diags:?}"))
+}
+
+/// The distance from `B3` to `platform.p3` with `platform.p1` at angle `t` on its circle about
+/// `B1`, and `platform.p2` on the circle about `B2` on branch `l2` (0: to the left of the line
+/// from `platform.p1` to `B2`, 1: to its right); `None` where the circles miss.
+fn reach(t: f64, l2: usize) -> Option<f64> {
+    let p1 = [LEG1 * t.cos(), LEG1 * t.sin()];
+    let (dx, dy) = (B2[0] - p1[0], B2[1] - p1[1]);
+    let d = dx.hypot(dy);
+    let along = (P2_X * P2_X - LEG2 * LEG2 + d * d) / (2.0 * d);
+    let across = (P2_X * P2_X - along * along).sqrt();
+    if across.is_nan() {
+        return None;
+    }
+    let (ux, uy) = (dx / d, dy / d);
+    let side = if l2 == 0 { 1.0 } else { -1.0 };
+    let p2 = [
+        p1[0] + along * ux - side * across * uy,
+        p1[1] + along * uy + side * across * ux,
+    ];
+    // The platform's x axis along p1 -> p2, its y axis a quarter turn on.
+    let (vx, vy) = ((p2[0] - p1[0]) / P2_X, (p2[1] - p1[1]) / P2_X);
+    let p3 = [
+        p1[0] + P3[0] * vx - P3[1] * vy,
+        p1[1] + P3[0] * vy + P3[1] * vx,
+    ];
+    Some((p3[0] - B3[0]).hypot(p3[1] - B3[1]))
+}
+
+/// The extremum of `reach` on branch `l2` (its least value with `sign` 1, its greatest with
+/// -1) within `[lo, hi]`, where it is defined throughout: a grid, then golden sections.
+fn extremum(l2: usize, lo: f64, hi: f64, sign: f64) -> (f64, f64) {
+    let g = |t: f64| sign * reach(t, l2).expect("defined on the bracket");
+    let n = 20_000;
+    let (mut best, mut at) = (f64::INFINITY, lo);
+    for i in 0..=n {
+        let t = lo + (hi - lo) * f64::from(i) / f64::from(n);
+        if g(t) < best {
+            (best, at) = (g(t), t);
+        }
+    }
+    let step = (hi - lo) / f64::from(n);
+    let (mut a, mut b) = ((at - step).max(lo), (at + step).min(hi));
+    while b - a > 1e-13 {
+        let (u, v) = (a + 0.382 * (b - a), a + 0.618 * (b - a));
+        if g(u) < g(v) {
+            b = v;
+        } else {
+            a = u;
+        }
+    }
+    let t = 0.5 * (a + b);
+    (t, sign * g(t))
+}
+
+/// The params of the example with `leg3` at `value`.
+fn params(model: &Model, value: f64) -> Vec<f64> {
+    let mut p = model.default_params();
+    let leg3 = model
+        .param_named("leg3")
+        .expect("leg3")
+        .into_raw()
+        .into_u32() as usize;
+    p[leg3] = value;
+    p
+}
+
+fn expect_error(kind: ErrorKind, run: Result<impl std::fmt::Debug, SolveError>) -> SolveError {
+    let e = run.expect_err("no assembly");
+    assert_eq!((e.label.as_ref(), e.kind), ("l3", kind), "{e}");
+    assert_eq!(e.text, "distance(B3, platform.p3) = leg3", "{e}");
+    e
+}
+
+/// `leg3 = 1`: `platform.p3` never comes nearer `B3` than 1.77 (branch 0 of `l2`) or 4.47
+/// (branch 1), both at a smooth minimum of the distance away from where the branch stops
+/// existing; on each branch the solve says no assembly exists, by the gap.
+#[test]
+fn a_leg_too_short_for_any_assembly_is_no_assembly_by_the_gap() {
+    let model = rpr3();
+    let a = analyse(&model).expect("analyse");
+    assert_eq!(a.plan.defaults.len(), 1);
+    assert!(a.plan.defaults[0].is_angle());
+    let params = params(&model, 1.0);
+    // The failing stretch of either branch lies within 0.09 of angle 0 (`platform.p1` too
+    // near `B2` for the circles to meet): each minimum is on the rest of the turn.
+    for (l2, lo, hi) in [(0, -1.0, -0.1), (1, -PI, -2.5)] {
+        let (at, nearest) = extremum(l2, lo, hi, 1.0);
+        assert!(at > lo + 0.01 && at < hi - 0.01, "a minimum inside: {at}");
+        let gap = nearest - 1.0;
+        let e = expect_error(
+            ErrorKind::NoAssembly,
+            gcs_compiler::solve(&model, &a, &params, &[l2]),
+        );
+        assert!(
+            (e.magnitude - gap).abs() <= 1e-9 * gap,
+            "branch {l2}: {} against the gap {gap}",
+            e.magnitude
+        );
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "constraint `l3` (distance(B3, platform.p3) = leg3) cannot be met: no assembly \
+                 exists here with the branches and the other defaults given; over the whole \
+                 turn of the angle the iteration varies, it stays at least {} from closing",
+                Shown(e.magnitude)
+            )
+        );
+        // `--all-solutions` lists none either.
+        let all = gcs_compiler::all::solve_all(
+            &model,
+            &a.plan,
+            &model.top_level().map(|(id, _)| id).collect(),
+            &params,
+            &a.plan.sketch_defaults(),
+        );
+        assert!(all.solutions.is_empty(), "{:?}", all.solutions.len());
+    }
+}
+
+/// On branch 1 of `l2` the distance has a local maximum of 28.27 near angle -0.38, below its
+/// largest, 38.05: with `leg3` 0.3 past it, the assembly a sweep followed up to `leg3` 0.5
+/// below it is gone (it met the other root of the maximum, at a fold), and the solve from its
+/// defaults says none exists near them, by how far `leg3` is past the maximum; from the sketch,
+/// the solve finds another assembly.
+#[test]
+fn a_leg_past_a_fold_is_no_assembly_near_the_start() {
+    let model = rpr3();
+    let a = analyse(&model).expect("analyse");
+    let choice = Choice::Given(vec![1]);
+    let (top, local_max) = extremum(1, -0.7, -0.2, -1.0);
+    assert!((top + 0.38).abs() < 0.01, "{top}");
+    let (_, largest) = extremum(1, 0.09, 0.5, -1.0);
+    assert!(largest > local_max + 5.0, "{largest} {local_max}");
+
+    // The assembly followed: on the left of the maximum, `leg3` 0.5 below it.
+    let before = params(&model, local_max - 0.5);
+    let run = interp::run_with(&model, &a.plan, &before, &[top - 0.2], &choice)
+        .expect("an assembly below the maximum");
+    let t = run.defaults[0];
+    assert!(t < top && t > top - 0.5, "{t}");
+    let d = reach(t, 1).expect("defined");
+    assert!((d - (local_max - 0.5)).abs() < 1e-9, "{d}");
+
+    // Past the maximum, from the assembly followed: none near it, by the excess over the maximum.
+    let past = params(&model, local_max + 0.3);
+    let e = expect_error(
+        ErrorKind::NoAssemblyNear,
+        interp::run_with(&model, &a.plan, &past, &[t], &choice),
+    );
+    assert!((e.magnitude - 0.3).abs() <= 1e-9, "{}", e.magnitude);
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "constraint `l3` (distance(B3, platform.p3) = leg3) cannot be met: the assembly \
+             followed from the defaults the iteration started from does not exist here; near \
+             them the constraints it closes stay at least {} from closing (the least norm of \
+             their errors there)",
+            Shown(e.magnitude)
+        )
+    );
+    // Elsewhere on the turn, assemblies exist: the solve from the sketch finds one.
+    let other = gcs_compiler::solve(&model, &a, &past, &[1]).expect("another assembly");
+    assert!(other.max_residual < 1e-9, "{}", other.max_residual);
+}
