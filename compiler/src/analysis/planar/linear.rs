@@ -459,7 +459,7 @@ impl Builder<'_, Planar> {
             for spec in &c.specs {
                 let row = self.row(
                     spec,
-                    c.rel.constraint,
+                    &c.rel,
                     members,
                     &first_unknown,
                     &length_unknown,
@@ -537,7 +537,7 @@ impl Builder<'_, Planar> {
     fn row(
         &mut self,
         spec: &Spec,
-        constraint: ConstraintId,
+        rel: &Rel,
         members: &BTreeMap<usize, Member>,
         first: &BTreeMap<usize, u16>,
         length: &BTreeMap<usize, u16>,
@@ -654,7 +654,7 @@ impl Builder<'_, Planar> {
                 )
             }
             Spec::OnLine { p, base, dir } => {
-                let residual = self.residual(&self.pending_relation_or(spec));
+                let residual = self.residual(&rel.relation);
                 let d = self.direction(dir);
                 let (mp, mb) = (motion(self, p), motion(self, base));
                 add(&mut terms, mp, 1.0, &cross(d));
@@ -674,7 +674,7 @@ impl Builder<'_, Planar> {
                 dir,
                 side,
             } => {
-                let residual = self.residual(&self.pending_relation_or(spec));
+                let residual = self.residual(&rel.relation);
                 let d = self.direction(dir);
                 let centre = model.point_feature(circle);
                 let (mc, mb) = (motion(self, centre), motion(self, base));
@@ -712,40 +712,9 @@ impl Builder<'_, Planar> {
             }
         };
         LinearRow {
-            constraint,
+            constraint: rel.constraint,
             error,
             terms,
-        }
-    }
-
-    /// The relation a one-row spec was made from, to measure its error as a check would.
-    fn pending_relation_or(&self, spec: &Spec) -> Relation {
-        let found = self.pending.iter().find(|r| match (*spec, &r.relation) {
-            (
-                Spec::OnLine { p, base, dir },
-                Relation::PointLine {
-                    p: q,
-                    base: b,
-                    dir: d,
-                    ..
-                },
-            ) => p == *q && base == *b && dir == *d,
-            (
-                Spec::Tangent {
-                    circle, base, dir, ..
-                },
-                Relation::CircleLine {
-                    circle: c,
-                    base: b,
-                    dir: d,
-                    ..
-                },
-            ) => circle == *c && base == *b && dir == *d,
-            _ => false,
-        });
-        match found {
-            Some(r) => r.relation.clone(),
-            None => unreachable!("bug in gcs: a linear row without its relation"),
         }
     }
 
@@ -765,7 +734,6 @@ impl Builder<'_, Planar> {
         first: &BTreeMap<usize, u16>,
         length: &BTreeMap<usize, u16>,
     ) -> bool {
-        let model = self.model;
         let used: BTreeSet<usize> = (torn.pivots.iter().map(|&(r, _)| r as usize))
             .chain(torn.closures.iter().map(|&r| r as usize))
             .collect();
@@ -956,7 +924,6 @@ impl Builder<'_, Planar> {
         self.work_for(None);
         // Rows left over are implied: checked, as any implied relation is.
         for (ci, rel) in taken.iter().enumerate() {
-            let _ = model;
             if left_over.contains(&ci) {
                 self.work_for(Some(rel.constraint));
                 self.check(rel);
