@@ -109,6 +109,7 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
         grounded: plan.grounded,
         grounded_direction: plan.grounded_direction,
         grounded_plane: plan.grounded_plane,
+        grounded_dof: plan.grounded_dof,
         ..Plan::new(plan.space)
     };
     for (i, step) in plan.steps.iter().enumerate() {

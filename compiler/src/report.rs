@@ -444,17 +444,53 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
             }
         }
     }
-    let status = if !free.is_empty() {
-        "under-constrained".to_string()
-    } else if !free_defaults.is_empty() {
+    // The placement a grounding holds is mobility too (what a sketcher counts as free), said
+    // apart from the motions the defaults hold.
+    let placement = a.plan.grounded_dof;
+    let mobility = placement + free_defaults.len();
+    // Equations the constraints state beyond the DOF they remove: the mobility found less
+    // the nominal count. A point that a one-DOF motion must reach (an `Onto`) meets a
+    // two-equation constraint with one freedom, and measures the other as its gap: where the
+    // count shows redundancy the checks do not account for, those are where it lies.
+    let excess = mobility as i64 - nominal.balance();
+    if free.is_empty() && excess > 0 {
+        for s in &a.plan.steps {
+            if let Op::Onto { constraint, .. } = s.op {
+                if !a.redundant.contains(&constraint) && !partly.contains(&constraint) {
+                    partly.push(constraint);
+                }
+            }
+        }
+    }
+    let redundancy = if free.is_empty() && excess > 0 {
         format!(
-            "under-constrained: mobility {}, each free motion held by a default at its sketch value",
-            free_defaults.len()
+            ", with redundant constraints ({excess} redundant equation{})",
+            if excess == 1 { "" } else { "s" }
         )
     } else if !a.redundant.is_empty() || !partly.is_empty() {
-        "well-constrained, with redundant constraints".to_string()
+        ", with redundant constraints".to_string()
     } else {
-        "well-constrained".to_string()
+        String::new()
+    };
+    let status = if !free.is_empty() {
+        "under-constrained".to_string()
+    } else if !free_defaults.is_empty() && placement > 0 {
+        format!(
+            "under-constrained{redundancy}: mobility {mobility}: {placement} of its placement, held where the sketch has it (nothing is fixed), and {} held by {} at {} sketch value",
+            free_defaults.len(),
+            if free_defaults.len() == 1 { "a default" } else { "defaults" },
+            if free_defaults.len() == 1 { "its" } else { "their" },
+        )
+    } else if !free_defaults.is_empty() {
+        format!(
+            "under-constrained{redundancy}: mobility {mobility}, each free motion held by a default at its sketch value"
+        )
+    } else if placement > 0 {
+        format!(
+            "well-constrained{redundancy} up to its placement: {placement} DOF held where the sketch has it (nothing is fixed)"
+        )
+    } else {
+        format!("well-constrained{redundancy}")
     };
     let _ = writeln!(out, "analysis: {status}");
     for d in &free_defaults {
@@ -511,11 +547,35 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
             model.line(con.span)
         );
     }
-    for c in &partly {
+    // The step that measures each part implied: its check, or the gap of its `Onto`.
+    let part_steps: Vec<usize> = (partly.iter())
+        .map(|&c| {
+            (a.plan.steps.iter())
+                .position(|s| match s.op {
+                    Op::Check { constraint, .. } | Op::Onto { constraint, .. } => constraint == c,
+                    _ => false,
+                })
+                .unwrap_or(usize::MAX)
+        })
+        .collect();
+    let found: Vec<usize> = part_steps
+        .iter()
+        .copied()
+        .filter(|&i| i != usize::MAX)
+        .collect();
+    let part_supports: HashMap<usize, Support> = found
+        .iter()
+        .copied()
+        .zip(a.plan.supports(model, &found))
+        .collect();
+    for (c, i) in partly.iter().zip(&part_steps) {
         let con = &model.constraints[*c];
+        let by = (part_supports.get(i))
+            .and_then(|s| support_words(model, s, con.span))
+            .unwrap_or_else(|| "the others".to_string());
         let _ = writeln!(
             out,
-            "  implied in part: {} ({}, line {}) is partly implied by the others; that part is kept as a run-time check",
+            "  implied in part: {} ({}, line {}) is partly implied by {by}; that part is kept as a run-time check",
             con.name,
             con.text,
             model.line(con.span)

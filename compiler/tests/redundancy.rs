@@ -687,3 +687,68 @@ length(L1) = 2; length(L2) = 4;
         .any(|s| matches!(s.op, Op::Planar(gcs_compiler::plan::PlanarOp::Linear(_)))));
     assert!(errors(&c).is_empty(), "{:#?}", errors(&c));
 }
+
+/// A square with nothing fixed, both widths dimensioned: its place (two translations: the
+/// horizontal and vertical constraints anchor its turn) and its height are free, and one of
+/// the four coincidences' equations is implied by the other width. SolveSpace reports 3 DOF.
+const SQUARE: &str = "space 2d;
+segment s1 = (0, 0) -> (20, 0);
+segment s2 = (20, 0) -> (20, 20);
+segment s3 = (20, 20) -> (0, 20);
+segment s4 = (0, 20) -> (0, 0);
+coincident(s1.end, s2.start); coincident(s2.end, s3.start);
+coincident(s3.end, s4.start); coincident(s4.end, s1.start);
+horizontal(s1); vertical(s2); horizontal(s3); vertical(s4);
+length(s1) = 20;
+length(s3) = 20;
+";
+
+#[test]
+fn a_doubly_dimensioned_square_has_mobility_three_and_one_redundancy() {
+    let c = compiled(SQUARE);
+    let plan = &c.analysis.plan;
+    assert!(
+        plan.iterations.is_empty(),
+        "a free motion is a default, never an iteration"
+    );
+    assert_eq!(
+        plan.grounded_dof, 2,
+        "only the place is grounded: the turn is anchored"
+    );
+    assert_eq!(c.analysis.free_defaults().len(), 1);
+    let report = gcs_compiler::report::check_report(&c.model, &c.analysis);
+    let status: Vec<&str> = (report.lines())
+        .skip_while(|l| !l.starts_with("analysis:"))
+        .collect();
+    expect![[r#"
+        analysis: under-constrained, with redundant constraints (1 redundant equation): mobility 3: 2 of its placement, held where the sketch has it (nothing is fixed), and 1 held by a default at its sketch value
+          default s2_length (sketch 20): the length of s2
+          implied in part: coincident_s3_end_s4_start (coincident(s3.end, s4.start), line 7) is partly implied by coincident_s1_end_s2_start, coincident_s2_end_s3_start, coincident_s4_end_s1_start, horizontal_s1, vertical_s2, horizontal_s3, vertical_s4, length_s1 and length_s3; that part is kept as a run-time check"#]]
+    .assert_eq(&status.join("\n"));
+    // Every height solves, and the square keeps its widths.
+    let all = c.model.top_level().map(|(id, _)| id).collect();
+    let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+    for h in [5.0, 20.0, 31.0] {
+        let params = c.model.default_params();
+        let s =
+            gcs_compiler::solve::solve_plan_with(&c.model, plan, &all, &params, &branches, &[h]);
+        let s = s.unwrap_or_else(|e| panic!("height {h}: {e}"));
+        assert!(
+            s.max_residual < 1e-12,
+            "height {h}: residual {}",
+            s.max_residual
+        );
+    }
+    // Widths of 20 and 25 conflict: the coincidence the other width implies in part is off
+    // by 5.
+    let c = compiled(&SQUARE.replace("length(s3) = 20", "length(s3) = 25"));
+    let a = audit(&c);
+    let f = (a.failed.first().or(a.stopped.as_ref())).expect("the widths conflict");
+    assert_eq!(f.error.kind, ErrorKind::Inconsistent);
+    assert_eq!(f.error.label, "coincident_s3_end_s4_start");
+    assert!(
+        (f.error.magnitude - 5.0).abs() < 1e-9,
+        "{}",
+        f.error.magnitude
+    );
+}

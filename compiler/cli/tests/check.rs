@@ -66,7 +66,9 @@ fn brick() {
               coincident_brick_b3_g3  coincident(brick.b3, g3)        3
 
             nominal DOF: 6 - 9 = -3
-            analysis: well-constrained
+            analysis: well-constrained, with redundant constraints (3 redundant equations)
+              implied in part: coincident_brick_b2_g2 (coincident(brick.b2, g2), line 12) is partly implied by coincident_brick_b1_g1 (with fixed g1 and fixed g2); that part is kept as a run-time check
+              implied in part: coincident_brick_b3_g3 (coincident(brick.b3, g3), line 13) is partly implied by coincident_brick_b1_g1 and coincident_brick_b2_g2 (with fixed g1, fixed g2 and fixed g3); that part is kept as a run-time check
         "#]],
     );
 }
@@ -120,9 +122,9 @@ fn slider_crank() {
               prismatic_slider_s_ground_rail  prismatic(slider.s, ground.rail)        5
 
             nominal DOF: 18 - 23 = -5
-            analysis: well-constrained, with redundant constraints
-              implied in part: revolute_arm_o_ground_o (revolute(arm.o, ground.o), line 14) is partly implied by the others; that part is kept as a run-time check
-              implied in part: revolute_rod_b_slider_pin (revolute(rod.b, slider.pin), line 17) is partly implied by the others; that part is kept as a run-time check
+            analysis: well-constrained, with redundant constraints (5 redundant equations)
+              implied in part: revolute_arm_o_ground_o (revolute(arm.o, ground.o), line 14) is partly implied by offset_x_ground_o_arm_o (with fixed ground); that part is kept as a run-time check
+              implied in part: revolute_rod_b_slider_pin (revolute(rod.b, slider.pin), line 17) is partly implied by revolute_arm_o_ground_o, offset_x_ground_o_arm_o, revolute_arm_tip_rod_a and prismatic_slider_s_ground_rail (with fixed ground); that part is kept as a run-time check
               branch revolute_rod_b_slider_pin: 2 roots, sketch takes 1: the second crossing, along the line
         "#]],
     );
@@ -133,41 +135,41 @@ fn points_planes() {
     check_example(
         "points_planes",
         expect![[r#"
-        examples/points_planes.gcs: space 3d, 0 params, 6 geoms, 12 constraints
+            examples/points_planes.gcs: space 3d, 0 params, 6 geoms, 12 constraints
 
-        geoms          DOF  left
-          p1    point    3     0
-          p2    point    3     0
-          P3    plane    3     0
-          P4    plane    3     0
-          p5    point    3     0
-          p6    point    3     0
+            geoms          DOF  left
+              p1    point    3     0
+              p2    point    3     0
+              P3    plane    3     0
+              P4    plane    3     0
+              p5    point    3     0
+              p6    point    3     0
 
-        constraints                                       removes
-          distance_p1_P3  distance(p1, P3) = 0                  1
-          distance_p1_P4  distance(p1, P4) = -5                 1
-          distance_p2_P4  distance(p2, P4) = -16/5              1
-          distance_p2_P3  distance(p2, P3) = 4                  1
-          distance_p1_p2  distance(p1, p2) = 5                  1
-          distance_p1_p5  distance(p1, p5) = 2 * sqrt(3)        1
-          distance_p5_P4  distance(p5, P4) = -11/5              1
-          distance_p6_P4  distance(p6, P4) = -3/5               1
-          distance_p2_p6  distance(p2, p6) = sqrt(19)           1
-          distance_p5_P3  distance(p5, P3) = 2                  1
-          distance_p6_P3  distance(p6, P3) = 1                  1
-          distance_p5_p6  distance(p5, p6) = 3 * sqrt(2)        1
+            constraints                                       removes
+              distance_p1_P3  distance(p1, P3) = 0                  1
+              distance_p1_P4  distance(p1, P4) = -5                 1
+              distance_p2_P4  distance(p2, P4) = -16/5              1
+              distance_p2_P3  distance(p2, P3) = 4                  1
+              distance_p1_p2  distance(p1, p2) = 5                  1
+              distance_p1_p5  distance(p1, p5) = 2 * sqrt(3)        1
+              distance_p5_P4  distance(p5, P4) = -11/5              1
+              distance_p6_P4  distance(p6, P4) = -3/5               1
+              distance_p2_p6  distance(p2, p6) = sqrt(19)           1
+              distance_p5_P3  distance(p5, P3) = 2                  1
+              distance_p6_P3  distance(p6, P3) = 1                  1
+              distance_p5_p6  distance(p5, p6) = 3 * sqrt(2)        1
 
-        nominal DOF: 18 - 12 = 6
-        grounded: p1 (nothing is fixed: it is held at its sketch placement, and the rest is solved relative to it)
-          and the direction from p1 to p2 is held as sketched (a point has no orientation of its own)
-          and the plane through p1, p2 and p5 as sketched
-        analysis: well-constrained
-          no closed form: iterates on P3_spin_angle until distance_p6_P4 closes
-          branch distance_p1_p2: 2 roots, sketch takes 1: where the line from p1 through p2 as sketched leaves the sphere about p1 of radius 5, along the line (the other root is the same assembly turned as a whole)
-          branch distance_p5_P3: 2 roots, sketch takes 1: the other crossing, second along that line (the other root is the same assembly turned as a whole)
-          branch distance_p5_P4: 2 roots, sketch takes 1: turned clockwise from there
-          branch distance_p6_P3: 2 roots, sketch takes 1: the other crossing, second along that line
-    "#]],
+            nominal DOF: 18 - 12 = 6
+            grounded: p1 (nothing is fixed: it is held at its sketch placement, and the rest is solved relative to it)
+              and the direction from p1 to p2 is held as sketched (a point has no orientation of its own)
+              and the plane through p1, p2 and p5 as sketched
+            analysis: well-constrained up to its placement: 6 DOF held where the sketch has it (nothing is fixed)
+              no closed form: iterates on P3_spin_angle until distance_p6_P4 closes
+              branch distance_p1_p2: 2 roots, sketch takes 1: where the line from p1 through p2 as sketched leaves the sphere about p1 of radius 5, along the line (the other root is the same assembly turned as a whole)
+              branch distance_p5_P3: 2 roots, sketch takes 1: the other crossing, second along that line (the other root is the same assembly turned as a whole)
+              branch distance_p5_P4: 2 roots, sketch takes 1: turned clockwise from there
+              branch distance_p6_P3: 2 roots, sketch takes 1: the other crossing, second along that line
+        "#]],
     );
 }
 
@@ -181,7 +183,7 @@ fn redundant_constraints_name_what_implies_them() {
         .collect();
     expect![[r#"
         tests/models/redundant_checks.gcs: space 2d, 9 params, 9 geoms, 17 constraints
-        analysis: well-constrained, with redundant constraints
+        analysis: well-constrained, with redundant constraints (11 redundant equations)
           redundant: q_r (radius(R) = rr, line 45) is implied by fixed R; it is kept as a run-time check
           redundant: c_flat (horizontal(s), line 31) is implied by a_start, b_end and d_long (with fixed A and fixed B); it is kept as a run-time check
           redundant: f_up (vertical(u), line 34) is implied by a_start, b_end, d_long and e_up (with fixed A and fixed B); it is kept as a run-time check

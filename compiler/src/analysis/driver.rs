@@ -577,7 +577,12 @@ impl<'m, G: Geometry> Builder<'m, G> {
         self.working = None;
         self.pending = others;
         if !self.model.top_level().any(|(_, g)| g.fixed) && !self.clusters.is_empty() {
+            let free = |b: &Self| b.clusters.iter().map(|c| c.record.dof()).sum::<usize>();
+            let before = free(self);
             G::ground(self);
+            // What the grounding holds: the placement's DOF, less any the constraints already
+            // anchor to the world (horizontal and vertical ones anchor the rotation).
+            self.plan.grounded_dof = before.saturating_sub(free(self));
         }
         // POSITION-ANALYSIS (000, Appendix A.3): action and locus analysis until stuck; then
         // the smallest rigid chain or loop is assembled on a temporary ground and rewritten as

@@ -527,6 +527,9 @@ pub struct Plan {
     /// In space, when the grounded geom has no orientation: the third point whose sketch
     /// plane with the two of `grounded_direction` is held too.
     pub grounded_plane: Option<GeomId>,
+    /// The DOF the grounding holds: a rigid placement's (3 in the plane, 6 in space), less
+    /// any the constraints anchor to the world; 0 when something is fixed.
+    pub grounded_dof: usize,
     /// The number of registers.
     pub regs: u32,
 }
@@ -557,6 +560,7 @@ impl Plan {
             grounded: None,
             grounded_direction: None,
             grounded_plane: None,
+            grounded_dof: 0,
             regs: 0,
         }
     }
