@@ -438,7 +438,12 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
     // of a planar mechanism modelled in space: its parallel axes).
     let mut partly: Vec<gcs_lang::model::ConstraintId> = Vec::new();
     for s in &a.plan.steps {
-        if let Op::Check { constraint, .. } = s.op {
+        if let Op::Check {
+            constraint,
+            guard: false,
+            ..
+        } = s.op
+        {
             if !a.redundant.contains(&constraint) && !partly.contains(&constraint) {
                 partly.push(constraint);
             }
@@ -552,7 +557,12 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
         .map(|&c| {
             (a.plan.steps.iter())
                 .position(|s| match s.op {
-                    Op::Check { constraint, .. } | Op::Onto { constraint, .. } => constraint == c,
+                    Op::Check {
+                        constraint,
+                        guard: false,
+                        ..
+                    }
+                    | Op::Onto { constraint, .. } => constraint == c,
                     _ => false,
                 })
                 .unwrap_or(usize::MAX)

@@ -114,3 +114,61 @@ fn every_relation_of_a_constraint_is_satisfied_or_checked() {
     assert_eq!(verdict(text), Some((ErrorKind::Inconsistent, 1.0)));
     assert_eq!(verdict(&text.replace("(2, 1) x", "(2, 0) x")), None);
 }
+
+/// An iterated region is guarded: once the plan has run, every relation of a constraint the
+/// region claims is measured again, so an iteration that closed on an error that does not
+/// measure what its default displaced is never an answer. Here the 3-RPR's closing error is
+/// made to close `l3` at `leg1`'s length instead of `leg3`'s: the iteration converges, and
+/// the guard refuses the result, naming `l3` with how far it is off.
+#[test]
+fn an_iteration_closed_on_the_wrong_error_is_refused_by_its_guard() {
+    use gcs_compiler::plan::{Op, Residual};
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/rpr3.gcs"))
+            .expect("rpr3.gcs");
+    let c = gcs_compiler::compile("rpr3.gcs", text.as_bytes()).expect("compiles");
+    let mut plan = c.analysis.plan.clone();
+    let guards = (plan.steps.iter())
+        .filter(|s| matches!(s.op, Op::Check { guard: true, .. }))
+        .count();
+    assert!(guards > 0, "the iterated region has guards");
+    // The register holding leg1's length (the plan's first size), and l3's closing error.
+    let leg1 = (plan.steps.iter())
+        .find(|s| matches!(s.op, Op::Size { .. }))
+        .and_then(|s| s.out)
+        .map(|(r, _)| r)
+        .expect("leg1's size");
+    let error = (plan.steps.iter_mut())
+        .find_map(|s| match &mut s.op {
+            Op::Error {
+                residual: Residual::PointPoint { d, .. },
+                ..
+            } => Some(d),
+            _ => None,
+        })
+        .expect("l3's closing error");
+    *error = Some(leg1);
+    let params = c.model.default_params();
+    let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+    let choice = gcs_compiler::interp::Choice::Given(branches);
+    let e =
+        gcs_compiler::interp::run_with(&c.model, &plan, &params, &plan.sketch_defaults(), &choice)
+            .expect_err("the guard refuses it");
+    assert_eq!(e.kind, ErrorKind::Inconsistent);
+    assert_eq!(e.label, "l3");
+    assert!(
+        (e.magnitude - (14.98 - 12.0)).abs() < 1e-9,
+        "{}",
+        e.magnitude
+    );
+    // The plan as analysed passes its guards.
+    let plan = &c.analysis.plan;
+    assert!(gcs_compiler::interp::run_with(
+        &c.model,
+        plan,
+        &params,
+        &plan.sketch_defaults(),
+        &choice
+    )
+    .is_ok());
+}

@@ -213,6 +213,8 @@ pub(crate) struct Builder<'m, G: Geometry> {
     /// The step defining each register, by register number.
     def_step: Vec<usize>,
     pub(crate) pending: Vec<Rel<G::Relation>>,
+    /// Every relation the analysis started with, for the guards of iterated regions.
+    relations: Vec<Rel<G::Relation>>,
     redundant: Vec<ConstraintId>,
     /// For each constraint, a step that moves geoms for it ([`Builder::moved_for`]).
     moved: HashMap<ConstraintId, usize>,
@@ -285,6 +287,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             inserted: Vec::new(),
             def_step: Vec::new(),
             pending: Vec::new(),
+            relations: Vec::new(),
             redundant: Vec::new(),
             moved: HashMap::default(),
             constructed: HashSet::default(),
@@ -551,6 +554,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             Op::Check {
                 constraint: r.constraint,
                 residual,
+                guard: false,
             },
             None,
             self.satisfies(r),
@@ -567,6 +571,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
     // ------------------------------------------------------------ the driver
 
     fn run(&mut self, rels: Vec<Rel<G::Relation>>) {
+        self.relations = rels.clone();
         // Unary constraints first (Appendix A.3): dimensions.
         let (dims, others): (Vec<_>, Vec<_>) =
             rels.into_iter().partition(|r| G::is_dimension(&r.relation));
@@ -810,6 +815,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             let Op::Check {
                 constraint,
                 residual,
+                ..
             } = &step.op
             else {
                 steps.push(step);
@@ -920,6 +926,43 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 }
             })
             .collect();
+        self.guard_iterations();
+    }
+
+    /// Guards the iterated regions: every relation of a constraint a region's steps satisfy
+    /// is measured again once the plan has run. A region's closing errors hold to the
+    /// iteration's tolerance and its other steps construct their relations exactly, so a
+    /// guard fails only where a closing error does not measure all that its default
+    /// displaced: a wrong plan, then never an answer (in the interpreter and in generated
+    /// code alike, as every check).
+    fn guard_iterations(&mut self) {
+        let mut claimed: BTreeSet<ConstraintId> = BTreeSet::new();
+        for it in &self.plan.iterations {
+            for s in &self.plan.steps[it.start..it.end] {
+                claimed.extend(s.satisfies.iter().copied());
+            }
+        }
+        let guarded: Vec<Rel<G::Relation>> = (self.relations.iter())
+            .filter(|r| claimed.contains(&r.constraint))
+            .cloned()
+            .collect();
+        for r in guarded {
+            let residual = G::residual(self, &r.relation);
+            let explain = format!(
+                "Guard: check that {} still holds once the iteration has closed.",
+                self.cname(r.constraint)
+            );
+            self.emit(
+                Op::Check {
+                    constraint: r.constraint,
+                    residual,
+                    guard: true,
+                },
+                None,
+                Vec::new(),
+                explain,
+            );
+        }
     }
 
     /// Declares a default named `name`, meaning `meaning`, whose least-motion value register

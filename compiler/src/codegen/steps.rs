@@ -49,6 +49,7 @@ impl Solve<'_> {
             Op::Check {
                 constraint,
                 residual,
+                ..
             } => self.check(w, *constraint, residual),
             Op::Close {
                 constraint,

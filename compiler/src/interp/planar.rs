@@ -245,6 +245,7 @@ impl Machine<'_, '_, D2> {
             Op::Check {
                 constraint,
                 residual,
+                ..
             } => {
                 let r = self.residual(residual);
                 return self.checked(i, *constraint, r);

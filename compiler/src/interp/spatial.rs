@@ -232,6 +232,7 @@ impl Machine<'_, '_, D3> {
             Op::Check {
                 constraint,
                 residual,
+                ..
             } => {
                 let r = self.residual3(residual);
                 return self.checked(i, *constraint, r);

@@ -165,7 +165,13 @@ impl Plan {
                 Op::Check {
                     constraint,
                     residual,
-                } => format!("check {} {}", cname(constraint), residual_text(residual)),
+                    guard,
+                } => format!(
+                    "{} {} {}",
+                    if *guard { "guard" } else { "check" },
+                    cname(constraint),
+                    residual_text(residual)
+                ),
                 Op::Default(id) => format!(
                     "default {}",
                     self.defaults

@@ -454,6 +454,10 @@ pub enum Op {
     Check {
         constraint: ConstraintId,
         residual: Residual,
+        /// A guard, not a redundancy: a relation of a constraint an iterated region claims,
+        /// re-measured once the plan has run, so that an iteration closed on an error that
+        /// does not measure all its default displaced is never an answer.
+        guard: bool,
     },
     /// The signed error of a relation already implied (zero when it holds): what a `Close`
     /// drives to zero. A coincidence has two, `component` 0 and 1 (x and y); others one.

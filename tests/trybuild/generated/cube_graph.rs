@@ -588,6 +588,78 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // gh: distance(G, H) = 4.571 (cube_graph.gcs:31)
     // Already true where the sketch puts the geoms: nothing moves.
+    let residual = check::point_point(on_circle_a_2_2, cd_2, 4.031);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "cd",
+            "distance(C, D) = 4.031",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let residual_2 = check::point_point(on_circle_a_2_2, eg_2, 3.048);
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "cg",
+            "distance(C, G) = 3.048",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
+    let residual_3 = check::point_point(cd_2, eh_2, 3.202);
+    if residual_3.is_nan() || residual_3 > tol {
+        return Err(SolveError::new(
+            "dh",
+            "distance(D, H) = 3.202",
+            ErrorKind::Inconsistent,
+            residual_3,
+        ));
+    }
+    let residual_4 = check::point_point(on_circle_a_3_2, ef_2, 4.528);
+    if residual_4.is_nan() || residual_4 > tol {
+        return Err(SolveError::new(
+            "ef",
+            "distance(E, F) = 4.528",
+            ErrorKind::Inconsistent,
+            residual_4,
+        ));
+    }
+    let residual_5 = check::point_point(on_circle_a_3_2, eg_2, 4.23);
+    if residual_5.is_nan() || residual_5 > tol {
+        return Err(SolveError::new(
+            "eg",
+            "distance(E, G) = 4.230",
+            ErrorKind::Inconsistent,
+            residual_5,
+        ));
+    }
+    let residual_6 = check::point_point(on_circle_a_3_2, eh_2, params.diagonal);
+    if residual_6.is_nan() || residual_6 > tol {
+        return Err(SolveError::new(
+            "eh",
+            "distance(E, H) = diagonal",
+            ErrorKind::Inconsistent,
+            residual_6,
+        ));
+    }
+    let residual_7 = check::point_point(ef_2, eh_2, 4.528);
+    if residual_7.is_nan() || residual_7 > tol {
+        return Err(SolveError::new(
+            "fh",
+            "distance(F, H) = 4.528",
+            ErrorKind::Inconsistent,
+            residual_7,
+        ));
+    }
+    let residual_8 = check::point_point(eg_2, eh_2, 4.571);
+    if residual_8.is_nan() || residual_8 > tol {
+        return Err(SolveError::new(
+            "gh",
+            "distance(G, H) = 4.571",
+            ErrorKind::Inconsistent,
+            residual_8,
+        ));
+    }
 
     Ok(Solution {
         ground,

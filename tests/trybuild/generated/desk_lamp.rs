@@ -292,6 +292,24 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let on_surface_3 = cylinder.at([defaults.shade_angle, trial[0]]);
     let shift_5 = on_surface_3 - shade_origin;
     shade.translate(&shift_5);
+    // reach: a distance is zero or more.
+    if params.arm < 0.0 {
+        return Err(SolveError::new(
+            "arm",
+            "distance(base, shade) = arm",
+            ErrorKind::InvalidParam,
+            params.arm,
+        ));
+    }
+    let residual = check::space::point_point(on_surface, on_surface_3, params.arm);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "reach",
+            "distance(base, shade) = arm",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
 
     Ok(Solution {
         desk: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),

@@ -671,6 +671,46 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         &right_q_2_reach,
     );
     link4.set_rotation(&turn_11);
+    let residual = check::point_point(left_hinge_2, left_hinge_2, 0.0);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "hinge",
+            "coincident(left.hinge, right.hinge)",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let residual_2 = check::point_point(link1_t_3, link1_t_3, 0.0);
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "j1",
+            "coincident(link1.t, left.p)",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
+    let link2_t = link2.point_to_global(&Point2::new(1.0, 2.0));
+    let left_q_3 = left.point_to_global(&Point2::new(-1.0, -2.0));
+    let residual_3 = check::point_point(link2_t, left_q_3, 0.0);
+    if residual_3.is_nan() || residual_3 > tol {
+        return Err(SolveError::new(
+            "j2",
+            "coincident(link2.t, left.q)",
+            ErrorKind::Inconsistent,
+            residual_3,
+        ));
+    }
+    let link3_t = link3.point_to_global(&Point2::new(-1.0, -2.0));
+    let right_p_3 = right.point_to_global(&Point2::new(2.0, 1.5));
+    let residual_4 = check::point_point(link3_t, right_p_3, 0.0);
+    if residual_4.is_nan() || residual_4 > tol {
+        return Err(SolveError::new(
+            "j3",
+            "coincident(link3.t, right.p)",
+            ErrorKind::Inconsistent,
+            residual_4,
+        ));
+    }
 
     Ok(Solution {
         g1,

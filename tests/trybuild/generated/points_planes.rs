@@ -812,7 +812,54 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     p6.translate(&shift_11);
 
     // distance(p6, P4) = -3/5 (points_planes.gcs:12)
-    // Already true where the sketch puts the geoms: nothing moves.
+    let p4_origin_5 = p4.origin;
+    let p4_normal_5 = p4.z_axis();
+    let residual = check::space::point_plane(distance_p5_p3_2, p3_origin_3, p3_normal_3, 2.0);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "distance_p5_P3",
+            "distance(p5, P3) = 2",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let residual_2 = check::space::point_plane(distance_p5_p3_2, p4_origin_5, p4_normal_5, -2.2);
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "distance_p5_P4",
+            "distance(p5, P4) = -11/5",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
+    let residual_3 =
+        check::space::point_point(distance_p5_p3_2, distance_p6_p3_2, 4.242640687119286);
+    if residual_3.is_nan() || residual_3 > tol {
+        return Err(SolveError::new(
+            "distance_p5_p6",
+            "distance(p5, p6) = 3 * sqrt(2)",
+            ErrorKind::Inconsistent,
+            residual_3,
+        ));
+    }
+    let residual_4 = check::space::point_plane(distance_p6_p3_2, p3_origin_3, p3_normal_3, 1.0);
+    if residual_4.is_nan() || residual_4 > tol {
+        return Err(SolveError::new(
+            "distance_p6_P3",
+            "distance(p6, P3) = 1",
+            ErrorKind::Inconsistent,
+            residual_4,
+        ));
+    }
+    let residual_5 = check::space::point_plane(distance_p6_p3_2, p4_origin_5, p4_normal_5, -0.6);
+    if residual_5.is_nan() || residual_5 > tol {
+        return Err(SolveError::new(
+            "distance_p6_P4",
+            "distance(p6, P4) = -3/5",
+            ErrorKind::Inconsistent,
+            residual_5,
+        ));
+    }
 
     Ok(Solution {
         p1: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),

@@ -931,7 +931,119 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     belt.translate(&shift_9);
 
     // tangent(belt, idler) (pulleys.gcs:19)
-    // Already true where the sketch puts the geoms: nothing moves.
+    let belt_dir_4 = belt.x_axis();
+    let guard_dir_5 = guard.x_axis();
+    let residual_2 = check::space::angle_between(
+        guard_dir_5,
+        Vector3::new(0.0, 0.6, 0.8),
+        std::f64::consts::FRAC_PI_2,
+    );
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "distance_guard_drive",
+            "distance(guard, drive) = gap",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
+    let residual_3 = check::space::point_plane(
+        nearest_7,
+        Point3::new(0.0, 0.0, 0.0),
+        Vector3::new(0.0, 0.6, 0.8),
+        0.0,
+    );
+    if residual_3.is_nan() || residual_3 > tol {
+        return Err(SolveError::new(
+            "distance_guard_drive",
+            "distance(guard, drive) = gap",
+            ErrorKind::Inconsistent,
+            residual_3,
+        ));
+    }
+    let sum_5 = drive_radius + params.gap;
+    if !gcs_runtime::num::is_finite(sum_5) {
+        return Err(SolveError::new(
+            "distance_guard_drive",
+            "distance(guard, drive) = gap",
+            ErrorKind::InvalidValue,
+            sum_5,
+        ));
+    }
+    let residual_4 =
+        check::space::point_line(Point3::new(0.0, 0.0, 0.0), nearest_7, guard_dir_5, sum_5);
+    if residual_4.is_nan() || residual_4 > tol {
+        return Err(SolveError::new(
+            "distance_guard_drive",
+            "distance(guard, drive) = gap",
+            ErrorKind::Inconsistent,
+            residual_4,
+        ));
+    }
+    let residual_5 =
+        check::space::angle_between(guard_dir_5, belt_dir_4, std::f64::consts::FRAC_PI_2);
+    if residual_5.is_nan() || residual_5 > tol {
+        return Err(SolveError::new(
+            "perpendicular_guard_belt",
+            "perpendicular(guard, belt)",
+            ErrorKind::Inconsistent,
+            residual_5,
+        ));
+    }
+    let residual_6 = check::space::angle_between(
+        belt_dir_4,
+        Vector3::new(0.0, 0.6, 0.8),
+        std::f64::consts::FRAC_PI_2,
+    );
+    if residual_6.is_nan() || residual_6 > tol {
+        return Err(SolveError::new(
+            "tangent_belt_drive",
+            "tangent(belt, drive)",
+            ErrorKind::Inconsistent,
+            residual_6,
+        ));
+    }
+    let residual_7 = check::space::point_plane(
+        nearest_8,
+        Point3::new(0.0, 0.0, 0.0),
+        Vector3::new(0.0, 0.6, 0.8),
+        0.0,
+    );
+    if residual_7.is_nan() || residual_7 > tol {
+        return Err(SolveError::new(
+            "tangent_belt_drive",
+            "tangent(belt, drive)",
+            ErrorKind::Inconsistent,
+            residual_7,
+        ));
+    }
+    let residual_8 = check::space::point_line(
+        Point3::new(0.0, 0.0, 0.0),
+        nearest_8,
+        belt_dir_4,
+        drive_radius,
+    );
+    if residual_8.is_nan() || residual_8 > tol {
+        return Err(SolveError::new(
+            "tangent_belt_drive",
+            "tangent(belt, drive)",
+            ErrorKind::Inconsistent,
+            residual_8,
+        ));
+    }
+    let residual_9 = check::space::point_line(
+        Point3::new(5.0, 0.8, -0.6),
+        nearest_8,
+        belt_dir_4,
+        idler_radius,
+    );
+    if residual_9.is_nan() || residual_9 > tol {
+        return Err(SolveError::new(
+            "tangent_belt_idler",
+            "tangent(belt, idler)",
+            ErrorKind::Inconsistent,
+            residual_9,
+        ));
+    }
 
     Ok(Solution {
         drive: Frame3::new(

@@ -263,6 +263,16 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let on_surface_2 = torus.at([defaults.grip_axis_angle, trial[0]]);
     let shift_3 = on_surface_2 - grip_origin;
     grip.translate(&shift_3);
+    let residual =
+        check::space::point_plane(on_surface_2, Point3::new(0.0, 0.0, 0.7), Vector3::z(), 0.0);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "on_grip_plate",
+            "on(grip, plate)",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
 
     Ok(Solution {
         rail: Frame3::new(Point3::new(0.0, 0.0, 1.0), UnitQuaternion::identity()),

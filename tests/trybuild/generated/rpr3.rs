@@ -406,7 +406,36 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     platform.turn_by(&turn_2);
 
     // l3: distance(B3, platform.p3) = leg3 (rpr3.gcs:23)
-    // Already true where the sketch puts the geoms: nothing moves.
+    let platform_p3_2 =
+        platform.point_to_global(&Point2::new(15.940021741400596, 13.425362538233477));
+    // l3: a distance is zero or more.
+    if params.leg3 < 0.0 {
+        return Err(SolveError::new(
+            "leg3",
+            "distance(B3, platform.p3) = leg3",
+            ErrorKind::InvalidParam,
+            params.leg3,
+        ));
+    }
+    let platform_p2_3 = on_circle_b1_2 + platform.x_axis() * 17.04;
+    let residual = check::point_point(Point2::new(15.91, 0.0), platform_p2_3, params.leg2);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "l2",
+            "distance(B2, platform.p2) = leg2",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let residual_2 = check::point_point(Point2::new(0.0, 10.0), platform_p3_2, params.leg3);
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "l3",
+            "distance(B3, platform.p3) = leg3",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
 
     Ok(Solution {
         platform,

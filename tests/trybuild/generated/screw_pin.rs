@@ -332,7 +332,46 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     screw.rotate_about_by(&on_locus_2, &turn_5);
 
     // touch: coincident(screw.pin, stop) (screw_pin.gcs:17)
-    // Already true where the sketch puts the geoms: nothing moves.
+    let screw_pin_2 = screw.point_to_global(&Point3::new(1.0, 0.0, 0.3));
+    let screw_thread_z_3 = screw.vector_to_global(&Vector3::z());
+    let residual_2 = check::space::parallel(Vector3::z(), screw_thread_z_3, 1.0);
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "helical_ground_nut_screw_thread",
+            "helical(ground.nut, screw.thread) = pitch",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
+    let screw_thread_x_3 = screw.vector_to_global(&Vector3::x());
+    let residual_3 = check::space::helix(
+        Vector3::z(),
+        Vector3::x(),
+        screw_thread_x_3,
+        on_locus_2 - Point3::new(0.0, 0.0, 0.0),
+        params.pitch,
+    );
+    if residual_3.is_nan() || residual_3 > tol {
+        return Err(SolveError::new(
+            "helical_ground_nut_screw_thread",
+            "helical(ground.nut, screw.thread) = pitch",
+            ErrorKind::Inconsistent,
+            residual_3,
+        ));
+    }
+    let residual_4 = check::space::point_point(
+        screw_pin_2,
+        Point3::new(0.5000000000000001, 0.8660254037844386, 0.3833333333333333),
+        0.0,
+    );
+    if residual_4.is_nan() || residual_4 > tol {
+        return Err(SolveError::new(
+            "touch",
+            "coincident(screw.pin, stop)",
+            ErrorKind::Inconsistent,
+            residual_4,
+        ));
+    }
 
     Ok(Solution {
         stop: Frame3::new(

@@ -564,13 +564,90 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     platform.translate(&shift_5);
 
     // leg4: distance(platform.p4, b4) = l4 (stewart.gcs:28)
-    // Already true where the sketch puts the geoms: nothing moves.
+    let platform_p4_2 = platform.point_to_global(&Point3::new(-1.0, 0.2, 0.0));
+    // leg4: a distance is zero or more.
+    if params.l4 < 0.0 {
+        return Err(SolveError::new(
+            "l4",
+            "distance(platform.p4, b4) = l4",
+            ErrorKind::InvalidParam,
+            params.l4,
+        ));
+    }
 
     // leg5: distance(platform.p5, b5) = l5 (stewart.gcs:29)
-    // Already true where the sketch puts the geoms: nothing moves.
+    let platform_p5_2 = platform.point_to_global(&Point3::new(-0.7, -0.8, 0.0));
+    // leg5: a distance is zero or more.
+    if params.l5 < 0.0 {
+        return Err(SolveError::new(
+            "l5",
+            "distance(platform.p5, b5) = l5",
+            ErrorKind::InvalidParam,
+            params.l5,
+        ));
+    }
 
     // leg6: distance(platform.p6, b6) = l6 (stewart.gcs:30)
-    // Already true where the sketch puts the geoms: nothing moves.
+    let platform_p6_2 = platform.point_to_global(&Point3::new(0.7, -0.8, 0.0));
+    // leg6: a distance is zero or more.
+    if params.l6 < 0.0 {
+        return Err(SolveError::new(
+            "l6",
+            "distance(platform.p6, b6) = l6",
+            ErrorKind::InvalidParam,
+            params.l6,
+        ));
+    }
+    let platform_p2_5 = platform.point_to_global(&Point3::new(0.3, 1.0, 0.0));
+    let residual =
+        check::space::point_point(platform_p2_5, Point3::new(1.0, 1.732, 0.0), params.l2);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "leg2",
+            "distance(platform.p2, b2) = l2",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let residual_2 = check::space::point_point(leg3_2, Point3::new(-1.0, 1.732, 0.0), params.l3);
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "leg3",
+            "distance(platform.p3, b3) = l3",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
+    let residual_3 =
+        check::space::point_point(platform_p4_2, Point3::new(-2.0, 0.0, 0.0), params.l4);
+    if residual_3.is_nan() || residual_3 > tol {
+        return Err(SolveError::new(
+            "leg4",
+            "distance(platform.p4, b4) = l4",
+            ErrorKind::Inconsistent,
+            residual_3,
+        ));
+    }
+    let residual_4 =
+        check::space::point_point(platform_p5_2, Point3::new(-1.0, -1.732, 0.0), params.l5);
+    if residual_4.is_nan() || residual_4 > tol {
+        return Err(SolveError::new(
+            "leg5",
+            "distance(platform.p5, b5) = l5",
+            ErrorKind::Inconsistent,
+            residual_4,
+        ));
+    }
+    let residual_5 =
+        check::space::point_point(platform_p6_2, Point3::new(1.0, -1.732, 0.0), params.l6);
+    if residual_5.is_nan() || residual_5 > tol {
+        return Err(SolveError::new(
+            "leg6",
+            "distance(platform.p6, b6) = l6",
+            ErrorKind::Inconsistent,
+            residual_5,
+        ));
+    }
 
     Ok(Solution {
         b1: Frame3::new(Point3::new(2.0, 0.0, 0.0), UnitQuaternion::identity()),

@@ -532,6 +532,26 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         &platform_p3_2_reach,
     );
     link3.set_rotation(&turn_8);
+    let residual = check::point_point(link1_p_2, link1_p_2, 0.0);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "j1",
+            "coincident(link1.p, platform.p1)",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let link2_p = Point2::new(2.0, -1.0) + link2.y_axis() * 3.5;
+    let platform_p2_3 = platform.point_to_global(&Point2::new(-1.0, -1.5));
+    let residual_2 = check::point_point(link2_p, platform_p2_3, 0.0);
+    if residual_2.is_nan() || residual_2 > tol {
+        return Err(SolveError::new(
+            "j2",
+            "coincident(link2.p, platform.p2)",
+            ErrorKind::Inconsistent,
+            residual_2,
+        ));
+    }
 
     Ok(Solution {
         crank,

@@ -614,6 +614,7 @@ impl Builder<'_, Planar> {
                 Op::Check {
                     constraint: r.constraint,
                     residual,
+                    guard: false,
                 },
                 None,
                 self.satisfies(r),

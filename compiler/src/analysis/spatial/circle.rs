@@ -212,6 +212,7 @@ impl Builder<'_, Spatial> {
                 Op::Check {
                     constraint: r.constraint,
                     residual,
+                    guard: false,
                 },
                 None,
                 Vec::new(),

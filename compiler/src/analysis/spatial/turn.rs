@@ -392,6 +392,7 @@ impl Builder<'_, Spatial> {
                     Op::Check {
                         constraint: r.constraint,
                         residual,
+                        guard: false,
                     },
                     None,
                     self.satisfies(r),
