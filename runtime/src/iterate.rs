@@ -45,7 +45,12 @@
 //! - **Failures**: a start where the assembly fails is first moved (one default) to the
 //!   nearest point where it does not, probed at `scale * 2^-12` up to half a scale on either
 //!   side (a sweep's last answer can lie just past the edge of the stretch where its assembly
-//!   exists, one step on); with none, it is [`Failure::Start`] with its error. A
+//!   exists, one step on). With none, or with several defaults, a start whose error is a
+//!   miss with a gap ([`Gap`]: two circles that miss by `d`, zero where they touch) descends
+//!   on that gap, by Newton's method with its gradient from differences, each step aimed a
+//!   tenth past where the gap closes and at most half a scale, to where the assembly exists,
+//!   and the iteration goes on from there; so it starts from any default whose loci can be
+//!   brought to meet. Otherwise it is [`Failure::Start`] with its error. A
 //!   non-finite start, or a non-finite residual at the start, is [`Failure::NoConvergence`]
 //!   with a NaN (or that infinite) residual, without a call (resp. after one call). A failing
 //!   trial point halves the step back toward the last good point; the budget of evaluations
@@ -375,7 +380,7 @@ impl Failure<SolveError> {
 /// `f(x, r)` writes the N residuals into r, or returns Err when the plan cannot assemble at x
 /// (then the iteration backs off: shorter steps toward the last good point). See the module
 /// documentation for the methods, and for what a failure says ("Failures").
-pub fn solve<const N: usize, E>(
+pub fn solve<const N: usize, E: Gap>(
     x: &mut [f64; N],
     scale: &[f64; N],
     settings: &Settings,
@@ -401,6 +406,127 @@ pub fn solve<const N: usize, E>(
         }
         outcome => outcome,
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// A start where the assembly fails.
+
+/// An assembly's error that may say how far its loci miss: a gap that closes continuously,
+/// zero where they touch (two circles that miss by `d` touch when moved `d` closer), so that
+/// an iteration started where its assembly fails can descend on it to where it exists.
+pub trait Gap {
+    /// The gap, if the error is a miss that closes continuously.
+    fn gap(&self) -> Option<f64> {
+        None
+    }
+}
+
+impl Gap for SolveError {
+    fn gap(&self) -> Option<f64> {
+        (self.kind == ErrorKind::NoIntersection
+            && is_finite(self.magnitude)
+            && self.magnitude > 0.0)
+            .then_some(self.magnitude)
+    }
+}
+
+impl Gap for () {}
+impl Gap for &str {}
+impl Gap for String {}
+
+/// At most this many steps of the descent on a start's gap ([`reach_assembly`]).
+const GAP_STEPS: usize = 40;
+
+/// From a start `x` where the assembly fails with a gap (`first`), the nearest stretch where
+/// it exists, by Newton's method on the gap: its gradient by forward differences, each step
+/// aimed a tenth past where the gap would close, at most half a scale per default, halved
+/// until the gap falls. The answer's residuals, with `x` moved there; else the last error.
+/// So an iteration starts from any default whose loci can be brought to meet (a sketch drawn
+/// where two circles miss), not only from one beside the stretch where they do.
+#[cold]
+#[inline(never)]
+fn reach_assembly<const N: usize, E: Gap>(
+    x: &mut [f64; N],
+    scale: &[f64; N],
+    budget: &mut Budget,
+    f: &mut impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
+    first: E,
+) -> Result<[f64; N], E> {
+    let mut r = [0.0; N];
+    let mut error = first;
+    let Some(mut gap) = error.gap() else {
+        return Err(error);
+    };
+    let usable = |r: &[f64; N]| r.iter().all(|v| is_finite(*v));
+    for _ in 0..GAP_STEPS {
+        let mut gradient = [0.0; N];
+        for i in 0..N {
+            let s = sane_scale(scale[i], x[i]);
+            let h = f64::EPSILON.sqrt() * x[i].abs().max(s);
+            let mut y = *x;
+            y[i] += h;
+            if !budget.take() {
+                return Err(error);
+            }
+            match f(&y, &mut r) {
+                Ok(()) if usable(&r) => {
+                    *x = y;
+                    return Ok(r);
+                }
+                Ok(()) => {}
+                Err(e) => {
+                    if let Some(g) = e.gap() {
+                        gradient[i] = (g - gap) / h;
+                    }
+                }
+            }
+        }
+        let norm2: f64 = gradient.iter().map(|g| g * g).sum();
+        if !(is_finite(norm2) && norm2 > 0.0) {
+            return Err(error);
+        }
+        let mut step = [0.0; N];
+        let mut shrink: f64 = 1.0;
+        for i in 0..N {
+            step[i] = -1.1 * gap * gradient[i] / norm2;
+            let bound = 0.5 * sane_scale(scale[i], x[i]);
+            if step[i].abs() > bound {
+                shrink = shrink.min(bound / step[i].abs());
+            }
+        }
+        let mut t = shrink;
+        let mut fell = false;
+        for _ in 0..20 {
+            let mut y = *x;
+            for i in 0..N {
+                y[i] += t * step[i];
+            }
+            if !budget.take() {
+                return Err(error);
+            }
+            match f(&y, &mut r) {
+                Ok(()) if usable(&r) => {
+                    *x = y;
+                    return Ok(r);
+                }
+                Ok(()) => {}
+                Err(e) => {
+                    if let Some(g) = e.gap().filter(|&g| g < gap) {
+                        *x = y;
+                        gap = g;
+                        error = e;
+                        fell = true;
+                        break;
+                    }
+                }
+            }
+            t *= 0.5;
+        }
+        if !fell {
+            return Err(error);
+        }
+    }
+    Err(error)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -804,7 +930,7 @@ impl Bracket {
 // One default.
 
 /// Solves a scalar equation: the `N = 1` case of [`solve`].
-fn solve_scalar<E>(
+fn solve_scalar<E: Gap>(
     x: &mut f64,
     scale: f64,
     settings: &Settings,
@@ -844,7 +970,18 @@ fn solve_scalar<E>(
                     *x = t;
                     v
                 }
-                None => return Err(Failure::Start(e)),
+                // None beside it: descend on the start's gap to where the assembly exists.
+                None => {
+                    let mut point = [*x];
+                    let mut g = |p: &[f64; 1], r: &mut [f64; 1]| f(p[0]).map(|v| r[0] = v);
+                    match reach_assembly(&mut point, &[s], &mut budget, &mut g, e) {
+                        Ok(r) => {
+                            *x = point[0];
+                            r[0]
+                        }
+                        Err(e) => return Err(Failure::Start(e)),
+                    }
+                }
             }
         }
     };
@@ -1419,7 +1556,7 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
 // Several defaults.
 
 /// Solves a square system: the `N != 1` case of [`solve`].
-fn solve_system<const N: usize, E>(
+fn solve_system<const N: usize, E: Gap>(
     x: &mut [f64; N],
     scale: &[f64; N],
     settings: &Settings,
@@ -1434,7 +1571,11 @@ fn solve_system<const N: usize, E>(
     }
     let mut r = [0.0; N];
     if let Err(e) = f(x, &mut r) {
-        return Err(Failure::Start(e));
+        // A start where the assembly fails: descend on its gap to where it exists.
+        match reach_assembly(x, scale, &mut budget, f, e) {
+            Ok(found) => r = found,
+            Err(e) => return Err(Failure::Start(e)),
+        }
     }
     let residual = largest(&r);
     if !is_finite(residual) {
@@ -2432,6 +2573,58 @@ fn valley(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An error that is a miss by `gap`, as two circles that do not meet report it.
+    fn miss(gap: f64) -> SolveError {
+        SolveError::new("c", "", ErrorKind::NoIntersection, gap)
+    }
+
+    /// A start where the assembly fails with a gap, further than the probe beside it reaches,
+    /// descends on the gap to where the assembly exists and then converges: with two defaults
+    /// (the assembly exists inside the unit disc, and misses by how far outside it a point
+    /// is) and with one (it exists below 1). An error with no gap is the start's error.
+    #[test]
+    fn a_start_where_the_assembly_fails_descends_on_its_gap() {
+        let settings = Settings::for_size(1.0);
+        let mut disc = |x: &[f64; 2], r: &mut [f64; 2]| {
+            let norm = (x[0] * x[0] + x[1] * x[1]).sqrt();
+            if norm > 1.0 {
+                return Err(miss(norm - 1.0));
+            }
+            r[0] = x[0] - 0.5;
+            r[1] = x[1] + 0.2 * x[0] - 0.1;
+            Ok(())
+        };
+        let mut x = [3.0, -4.0];
+        solve(&mut x, &[1.0, 1.0], &settings, &mut disc).expect("reaches the disc, then closes");
+        assert!((x[0] - 0.5).abs() < 1e-12 && x[1].abs() < 1e-12, "{x:?}");
+
+        let mut below = |x: &[f64; 1], r: &mut [f64; 1]| {
+            if x[0] > 1.0 {
+                return Err(miss(x[0] - 1.0));
+            }
+            r[0] = x[0] * x[0] - 0.09;
+            Ok(())
+        };
+        let mut x = [6.0];
+        solve(&mut x, &[1.0], &settings, &mut below).expect("reaches 1, then closes");
+        assert!((x[0] - 0.3).abs() < 1e-12, "{x:?}");
+
+        let mut degenerate = |x: &[f64; 2], r: &mut [f64; 2]| {
+            if x[0] > 1.0 {
+                return Err(SolveError::new("c", "", ErrorKind::Degenerate, 0.0));
+            }
+            r[0] = x[0];
+            r[1] = x[1];
+            Ok(())
+        };
+        let mut x = [3.0, 0.0];
+        let out = solve(&mut x, &[1.0, 1.0], &settings, &mut degenerate);
+        assert!(
+            matches!(&out, Err(Failure::Start(e)) if e.kind == ErrorKind::Degenerate),
+            "{out:?}"
+        );
+    }
 
     fn found(x: f64, residual: f64) -> Found {
         Found {

@@ -26,7 +26,7 @@ pub trait Outer {
     ///
     /// [`Failure`] when the iteration does not converge (or, for a [`Scan`], always: the scan
     /// ends the solve).
-    fn iterate<const N: usize, E>(
+    fn iterate<const N: usize, E: iterate::Gap>(
         &mut self,
         trial: &mut [f64; N],
         scale: &[f64; N],
@@ -41,7 +41,7 @@ pub struct Newton;
 
 impl Outer for Newton {
     #[inline(always)]
-    fn iterate<const N: usize, E>(
+    fn iterate<const N: usize, E: iterate::Gap>(
         &mut self,
         trial: &mut [f64; N],
         scale: &[f64; N],
@@ -84,7 +84,7 @@ impl Scan {
 }
 
 impl Outer for Scan {
-    fn iterate<const N: usize, E>(
+    fn iterate<const N: usize, E: iterate::Gap>(
         &mut self,
         _trial: &mut [f64; N],
         _scale: &[f64; N],

@@ -534,8 +534,10 @@ fn failing_start_is_reported_with_its_error() {
     assert_eq!(calls.get(), 25);
     assert_eq!(x, [2.0]);
     let mut x = [2.0, 1.0, 0.0];
-    let out = solve(&mut x, &[1.0; 3], &Settings::default(), |_, _| Err(7));
-    assert_eq!(out, Err(Failure::Start(7)));
+    let out = solve(&mut x, &[1.0; 3], &Settings::default(), |_, _| {
+        Err("no gap")
+    });
+    assert_eq!(out, Err(Failure::Start("no gap")));
     // A NaN residual at the start has no error to report.
     let out = solve(&mut [1.0], &[1.0], &Settings::default(), |_, r| {
         r[0] = f64::NAN;
