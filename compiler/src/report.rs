@@ -326,6 +326,9 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
             "no assembly near where the iteration starts: it stays at least {m} from closing there"
         ),
         ErrorKind::NoSuchBranch => "no root on the branch chosen".to_string(),
+        ErrorKind::CannotClose => {
+            format!("the profile cannot close: it would give a segment a length of {m}")
+        }
         _ => "a degenerate configuration".to_string(),
     };
     let message = if check {
@@ -334,6 +337,15 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
         format!("`{}` cannot be met with the default params", c.name)
     };
     let mut d = Diagnostic::error(c.span, message).with_label(what);
+    // The segment a profile that cannot close would reverse.
+    if let Some(Op::SetDim { geom, .. }) = (f.step.and_then(|i| plan.steps.get(i))).map(|s| &s.op) {
+        if e.kind == ErrorKind::CannotClose {
+            d = d.with_note(format!(
+                "closing the profile gives `{}` a length of {m}: it would run against its sketch's direction",
+                model.geoms[*geom].name
+            ));
+        }
+    }
     let support =
         support.filter(|_| !matches!(e.kind, ErrorKind::InvalidValue | ErrorKind::InvalidInput));
     if let Some(support) = support {
@@ -368,6 +380,9 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
                     ErrorKind::NoConvergence => format!("it stays {m} from closing"),
                     ErrorKind::NoAssembly | ErrorKind::NoAssemblyNear => {
                         format!("it stays at least {m} from closing")
+                    }
+                    ErrorKind::CannotClose => {
+                        format!("it would give a segment a length of {m}")
                     }
                     _ => "it cannot be met".to_string(),
                 };

@@ -604,3 +604,50 @@ twice: distance(A, C) = 2.5;
     );
     assert!((e.magnitude - 0.5).abs() < 1e-12, "{e}");
 }
+
+/// A profile that cannot close with its segments running as sketched says so: with the
+/// L profile's leg longer than its width, the top edge `s3` would need a length of
+/// 100 - 150 - 5 - 3 = -58 to reach the inner fillet, so `on_s3_end_F2` is refused as
+/// `CannotClose` with that length (not as a negative value of a constraint that has none).
+/// The same holds for a length a linear stage solves for: its error names the constraint
+/// whose row gives it, and generated code says the same (both ask `Plan::closing_length`).
+#[test]
+fn a_profile_that_cannot_close_says_so() {
+    let path = format!("{}/tests/models/l_profile.gcs", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("l_profile.gcs");
+    let c = gcs_compiler::compile("l_profile.gcs", text.as_bytes()).expect("compiles");
+    let branches = defaults(&c.analysis);
+    let mut params = c.model.default_params();
+    gcs_compiler::solve(&c.model, &c.analysis, &params, &branches).expect("leg 40 closes");
+    params[0] = 150.0;
+    let e = gcs_compiler::solve(&c.model, &c.analysis, &params, &branches)
+        .expect_err("leg 150 cannot close");
+    assert_eq!(e.kind, ErrorKind::CannotClose);
+    assert_eq!(e.label, "on_s3_end_F2");
+    assert!((e.magnitude + 58.0).abs() < 1e-9, "{}", e.magnitude);
+    assert!(e.to_string().contains("cannot close"), "{e}");
+
+    // A linear stage's lengths: every one of the rounded rectangle's is a closing length,
+    // named after the constraint of the row that gives it.
+    let c = gcs_compiler::compile(
+        "rr.gcs",
+        std::fs::read_to_string(format!(
+            "{}/../examples/sketches/rounded_rectangle.gcs",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .expect("rounded_rectangle.gcs")
+        .as_bytes(),
+    )
+    .expect("compiles");
+    let plan = &c.analysis.plan;
+    let named: Vec<&str> = (plan.steps.iter().enumerate())
+        .filter_map(|(i, s)| match s.op {
+            gcs_compiler::plan::Op::SetDim { value, .. } => {
+                plan.closing_length(value, plan.constraint_of(i))
+            }
+            _ => None,
+        })
+        .map(|k| c.model.constraints[k].name.as_str())
+        .collect();
+    assert_eq!(named, ["on_bottom_end_br", "on_top_start_tr"]);
+}

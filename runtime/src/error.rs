@@ -58,6 +58,11 @@ pub enum ErrorKind {
     /// The loci meet, but not in the chosen branch: the magnitude is how many real roots the
     /// intersection has. The solver never takes another branch instead.
     NoSuchBranch,
+    /// A profile cannot close with its segments running as sketched: the length a segment
+    /// needs to reach where its end must be (along its own direction, or from a linear stage
+    /// of free lengths) is negative, though a segment keeps the direction its sketch gives
+    /// it. The label is the constraint that gives that length; the magnitude is the length.
+    CannotClose,
 }
 
 /// The failure of a solve, naming the user's constraint.
@@ -200,6 +205,10 @@ impl fmt::Display for SolveError {
             ErrorKind::NoSuchBranch => write!(
                 f,
                 " cannot be met on the chosen branch: the loci meet in only {m} real point(s) here"
+            ),
+            ErrorKind::CannotClose => write!(
+                f,
+                " cannot be met: the profile it closes cannot close with its segments running as sketched; it would give one a length of {m} (its end behind its start), so the lengths it closes on do not fit"
             ),
         }
     }

@@ -1096,7 +1096,26 @@ impl Solve<'_> {
         let v = self.r(value);
         let known_good = self.facts.known_sizes.contains(&value)
             || matches!(self.facts.value(value), Value::Scalar(x) if x.is_finite() && *x >= 0.0);
-        if !known_good {
+        let closing = (!known_good)
+            .then(|| {
+                self.cx
+                    .plan
+                    .closing_length(value, self.cx.plan.constraint_of(i))
+            })
+            .flatten();
+        if let Some(c) = closing {
+            // A length a linear stage solves for: negative, the profile cannot close.
+            if !self.facts.is_finite(value) {
+                let error = self.cx.error(i, "InvalidValue", &v);
+                w.open(&format!("if !gcs_runtime::num::is_finite({v}) {{"));
+                w.line(&format!("return Err({error});"));
+                w.close("}");
+            }
+            let error = self.cx.error_of(c, "CannotClose", &v);
+            w.open(&format!("if {v} < 0.0 {{"));
+            w.line(&format!("return Err({error});"));
+            w.close("}");
+        } else if !known_good {
             let test = if self.facts.is_finite(value) {
                 format!("if {v} < 0.0 {{")
             } else {

@@ -775,6 +775,19 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
                     x,
                 ));
             }
+            // A length a linear stage solves for: the profile cannot close.
+            if let (true, Some(c)) = (
+                x.is_finite(),
+                self.plan.closing_length(value, self.plan.constraint_of(i)),
+            ) {
+                let c = &self.model.constraints[c];
+                return Err(SolveError::new(
+                    c.name.clone(),
+                    c.text.clone(),
+                    ErrorKind::CannotClose,
+                    x,
+                ));
+            }
             return Err(self.error(i, ErrorKind::InvalidValue, x));
         }
         self.config.dims.insert(g, x);

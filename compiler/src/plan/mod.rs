@@ -539,6 +539,42 @@ pub struct Plan {
 }
 
 impl Plan {
+    /// The constraint that closes a profile with the segment length register `r` holds: a
+    /// length measured along the segment's own direction to where its end must be (`Along`,
+    /// the step's constraint `c`), or its sketch's length plus an unknown of a linear stage
+    /// (the constraint of the row that gives it). A negative one means the profile cannot
+    /// close with its segments running as sketched
+    /// ([`gcs_runtime::error::ErrorKind::CannotClose`]). `None` for any other length. A scan:
+    /// only a failure asks.
+    pub fn closing_length(&self, r: Reg, c: Option<ConstraintId>) -> Option<ConstraintId> {
+        let def = |r: Reg| {
+            self.steps
+                .iter()
+                .find(|s| s.out.is_some_and(|(o, _)| o == r))
+        };
+        let terms = match &def(r)?.op {
+            Op::Along { .. } => return c,
+            Op::Sum(terms) => terms,
+            _ => return None,
+        };
+        terms.iter().find_map(|&(_, t)| {
+            let Op::Planar(PlanarOp::Unknown { of, index }) = def(t)?.op else {
+                return None;
+            };
+            let Op::Planar(PlanarOp::Linear(system)) = &def(of)?.op else {
+                return None;
+            };
+            let row = match system.pivots.iter().find(|(u, _)| *u == index) {
+                Some(&(_, row)) => row,
+                None => {
+                    let k = system.tears.iter().position(|&u| u == index)?;
+                    *system.closures.get(k)?
+                }
+            };
+            Some(system.rows.get(usize::from(row))?.constraint)
+        })
+    }
+
     /// The default whose given value register `r` holds: defined by [`Op::Default`] of a
     /// default no iteration varies (an iteration's trial values are its own to bound).
     pub fn given_default(&self, r: Reg) -> Option<DefaultId> {
