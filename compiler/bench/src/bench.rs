@@ -110,6 +110,9 @@ pub struct CompiledRun {
     pub ns: Vec<f64>,
     /// The solution of each sample, with its residual measured by [`gcs_compiler::verify`].
     pub solutions: Vec<Result<Solution, String>>,
+    /// Samples where a warm sweep found no assembly near the last answer (the one it followed
+    /// ended at a fold) and went on with the assembly nearest its last answer.
+    pub restarts: usize,
 }
 
 /// Repeats `solve` until about `budget_ns` have passed (at least once) and returns the time
@@ -180,6 +183,7 @@ pub fn interpreted(
         kind: "interpreted",
         ns,
         solutions,
+        restarts: 0,
     }
 }
 
@@ -231,6 +235,9 @@ pub struct Report {
     pub compiled_max_residual: f64,
     /// Samples where it returned an error.
     pub compiled_failures: usize,
+    /// Samples where its warm sweep went on with the assembly nearest its last answer, the one it followed
+    /// having ended at a fold ([`CompiledRun::restarts`]).
+    pub compiled_restarts: usize,
     /// Jumps of the compiled plan away from the assembly continuous with its previous answer.
     pub branch_flips: usize,
     /// The baseline.
@@ -458,9 +465,23 @@ fn run_with<B: Numeric>(
     // meet) the forward continuation may take either way, while the backward one, from a
     // regular configuration, is unique.
     let mut branch_flips = 0;
+    // The plan's configuration of the compiled answer at sample `k`: run from that answer's
+    // own defaults (a warm sweep's, which may follow another assembly than the sketch's).
+    let answer_config = |k: usize| {
+        let mut defaults = defaults.clone();
+        if let Some(s) = compiled_ok[k] {
+            for (d, value) in plan.defaults.iter().zip(defaults.iter_mut()) {
+                if let Some((_, v)) = s.defaults.iter().find(|(n, _)| *n == d.name) {
+                    *value = *v;
+                }
+            }
+        }
+        gcs_compiler::interp::run_in::<B::Space>(model, plan, &sweep.params[k], &defaults, &choice)
+            .ok()
+            .map(|r| r.config)
+    };
     let joined = |from: usize, to: usize, baseline: &mut B| -> bool {
-        let (Some(start), Some(answer)) = (plan_config(&sweep.params[from]), compiled_ok[to])
-        else {
+        let (Some(start), Some(answer)) = (answer_config(from), compiled_ok[to]) else {
             return true;
         };
         let mut x = baseline.unknowns_from_config(&sweep.params[from], &start);
@@ -534,6 +555,7 @@ fn run_with<B: Numeric>(
         compiled: compiled_timing,
         compiled_max_residual,
         compiled_failures: compiled.solutions.iter().filter(|s| s.is_err()).count(),
+        compiled_restarts: compiled.restarts,
         branch_flips,
         baseline: side,
         ratio,
@@ -606,7 +628,7 @@ impl Report {
                 "{{\"model\": \"{}\", \"samples\": {}, \"driver\": {}, \"range\": [{}, {}], ",
                 "\"ratio\": {}, \"branch_flips\": {}, ",
                 "\"compiled\": {{\"kind\": \"{}\", \"median_ns\": {}, \"p90_ns\": {}, ",
-                "\"max_residual\": {}, \"failures\": {}}}, ",
+                "\"max_residual\": {}, \"failures\": {}, \"restarts\": {}}}, ",
                 "\"baseline\": {{\"method\": \"newton\", \"start\": \"{}\", \"linear\": \"{}\", \"unknowns\": {}, ",
                 "\"equations\": {}, \"median_ns\": {}, \"p90_ns\": {}, \"max_residual\": {}, ",
                 "\"failures\": {}, \"branch_flips\": {}, \"cold_branch_flips\": {}}}, ",
@@ -628,6 +650,7 @@ impl Report {
             json_num(self.compiled.p90_ns),
             json_num(self.compiled_max_residual),
             self.compiled_failures,
+            self.compiled_restarts,
             if b.warm { "warm" } else { "cold" },
             if b.sparse { "sparse" } else { "dense" },
             b.size.0,
@@ -716,6 +739,14 @@ impl Report {
                 e.max_residual,
                 e.failures,
                 0,
+            );
+        }
+        if self.compiled_restarts > 0 {
+            let _ = writeln!(
+                s,
+                "\n  the compiled plan's warm sweep went on with the assembly nearest its last answer at {} sample{}, where the one it followed ended (a fold: no assembly near the last answer)",
+                self.compiled_restarts,
+                if self.compiled_restarts == 1 { "" } else { "s" }
             );
         }
         let _ = writeln!(

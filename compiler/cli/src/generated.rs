@@ -18,6 +18,9 @@ pub struct Sample {
     pub ns: f64,
     /// Points, vectors and scalars by dotted name; or the solve's error.
     pub values: Result<Values, String>,
+    /// Whether the warm solve found no assembly near the last answer's defaults (the one it
+    /// followed ended at a fold) and this answer is the sketch's, solved cold.
+    pub restarted: bool,
 }
 
 /// A generated solution's values by dotted name.
@@ -29,6 +32,8 @@ pub struct Values {
     pub vectors: Vec<(String, Vec<f64>)>,
     /// Dimensions.
     pub scalars: Vec<(String, f64)>,
+    /// The defaults the solve converged to, by name (a solver with defaults).
+    pub defaults: Vec<(String, f64)>,
 }
 
 /// The workspace this binary was built in, if its sources are still there.
@@ -40,8 +45,10 @@ fn workspace() -> Option<PathBuf> {
 
 /// The driver's main (its `time_per_call` repeats `gcs_bench::bench::time_per_call`: the
 /// driver depends on the runtime alone, as generated code does): reads param names, then one line of values per sample, on stdin; prints
-/// one line per sample: `ok NS` then `p NAME X Y`, `v NAME X Y`, `s NAME X` lines and `end`,
-/// or `err NS TEXT`.
+/// one line per sample: `ok NS` (`ok NS restart` when a warm sweep went on with the assembly
+/// nearest its last answer, the one it followed having ended at a fold), then `d` and the
+/// answer's defaults (a solver with defaults), `p NAME X Y`, `v NAME X Y`, `s NAME X` lines
+/// and `end`; or `err NS TEXT`.
 const DRIVER: &str = r#"
 use std::io::BufRead as _;
 use std::io::Write as _;
@@ -88,9 +95,12 @@ fn main() {
         }
         let defaults = solver::Defaults::default();
         SOLVE_TIMED
-        match solver::solve(&params, &branches, &defaults) {
+        let answer = solver::solve(&params, &branches, &defaults);
+        RESTART
+        match answer {
             Ok(s) => {
-                let _ = writeln!(out, "ok {ns}");
+                let _ = writeln!(out, "ok {ns}{}", if restarted { " restart" } else { "" });
+                DEFAULTS_LINE
                 // Every coordinate, in either space.
                 for (n, p) in s.points() {
                     let _ = write!(out, "p {n}");
@@ -148,19 +158,56 @@ pub fn run(
     );
     // A solver with defaults reports those it converged to: each sample starts from the last
     // answer's, as the baseline's Newton does (warm), and as a sweep that follows one assembly.
+    // Where that assembly ends (a fold: no assembly near the last answer), the sweep goes on
+    // with the assembly nearest the last answer, as a user's would, and says so.
     let driver = if code.contains("pub fn defaults(&self) -> Defaults") {
         DRIVER
+            .replace(
+                "DEFAULTS_LINE",
+                "let _ = writeln!(out, \"d {:?}\", s.defaults());",
+            )
+            .replace(
+                "RESTART",
+                "let mut restarted = false;
+        // The assembly followed ended (a fold): go on with the assembly nearest the last
+        // answer, of every one `solve_all` finds here.
+        let answer = match answer {
+            Err(e) if e.kind == gcs_runtime::error::ErrorKind::NoAssemblyNear => {
+                let all = solver::solve_all(&params, &defaults);
+                let far = |s: &solver::Solution| -> f64 {
+                    last.as_ref().map_or(0.0, |l: &Vec<f64>| {
+                        let here = s.points();
+                        let coords = here.iter().flat_map(|(_, p)| p.iter().copied());
+                        coords.zip(l).map(|(a, b)| (a - b) * (a - b)).sum()
+                    })
+                };
+                match all.iter().min_by(|a, b| far(a).total_cmp(&far(b))) {
+                    Some(nearest) => {
+                        restarted = true;
+                        Ok(*nearest)
+                    }
+                    None => Err(e),
+                }
+            }
+            answer => answer,
+        };",
+            )
             .replace(
                 "let defaults = solver::Defaults::default();",
                 "let defaults = warm;",
             )
-            .replace("Ok(s) => {", "Ok(s) => {\n                warm = s.defaults();")
+            .replace(
+                "Ok(s) => {",
+                "Ok(s) => {\n                warm = s.defaults();\n                last = Some(s.points().iter().flat_map(|(_, p)| p.iter().copied()).collect());",
+            )
             .replace(
                 "let mut branches = solver::Branches::default();",
-                "let mut branches = solver::Branches::default();\n    let mut warm = solver::Defaults::default();",
+                "let mut branches = solver::Branches::default();\n    let mut warm = solver::Defaults::default();\n    let mut last: Option<Vec<f64>> = None;",
             )
     } else {
-        DRIVER.to_string()
+        DRIVER
+            .replace("RESTART", "let restarted = false;")
+            .replace("DEFAULTS_LINE", "")
     };
     // What is timed: `solve`, or a tabled solver's `solve_into` on a `Solution` made once
     // (its storage allocated before, as a caller that solves again and again keeps it).
@@ -243,18 +290,38 @@ fn write_if_changed(path: &Path, text: &str) -> Result<(), String> {
 fn parse(out: &str, samples: usize) -> Result<Vec<Sample>, String> {
     let mut result = Vec::new();
     let mut current: Option<(f64, Values)> = None;
+    let mut restarted = false;
     let num = |s: Option<&str>| s.and_then(|v| v.parse::<f64>().ok()).unwrap_or(f64::NAN);
     for line in out.lines() {
         let mut words = line.split(' ');
         match words.next() {
-            Some("ok") => current = Some((num(words.next()), Values::default())),
+            Some("ok") => {
+                let ns = num(words.next());
+                restarted = words.next() == Some("restart");
+                current = Some((ns, Values::default()));
+            }
             Some("err") => {
                 let ns = num(words.next());
                 let text: Vec<&str> = words.collect();
                 result.push(Sample {
                     ns,
                     values: Err(text.join(" ")),
+                    restarted: false,
                 });
+            }
+            // `d Defaults { name: value, ... }`, the `Debug` form of the answer's defaults.
+            Some("d") => {
+                let Some((_, values)) = current.as_mut() else {
+                    return Err(format!("unexpected driver output: {line}"));
+                };
+                let rest = line.split_once('{').map_or("", |(_, r)| r);
+                for pair in rest.trim_end_matches('}').split(',') {
+                    if let Some((name, value)) = pair.split_once(':') {
+                        values
+                            .defaults
+                            .push((name.trim().to_string(), num(Some(value.trim()))));
+                    }
+                }
             }
             Some(kind @ ("p" | "v" | "s")) => {
                 let Some((_, values)) = current.as_mut() else {
@@ -275,6 +342,7 @@ fn parse(out: &str, samples: usize) -> Result<Vec<Sample>, String> {
                     result.push(Sample {
                         ns,
                         values: Ok(values),
+                        restarted,
                     });
                 }
             }

@@ -892,14 +892,17 @@ fn bench(
                         kind: "generated",
                         ns: Vec::new(),
                         solutions: Vec::new(),
+                        restarts: 0,
                     };
                     for (answer, params) in answers.into_iter().zip(&sweep.params) {
                         run.ns.push(answer.ns);
+                        run.restarts += usize::from(answer.restarted);
                         run.solutions.push(answer.values.map(|v| {
                             let mut s = gcs_compiler::solution::Solution {
                                 points: v.points,
                                 vectors: v.vectors,
                                 scalars: v.scalars,
+                                defaults: v.defaults,
                                 ..Default::default()
                             };
                             s.max_residual =

@@ -109,3 +109,27 @@ fn bench_writes_a_plot_and_text() {
         "{plot}"
     );
 }
+
+/// The generated solver's warm sweep of the Stewart platform: the assembly it follows from
+/// the sketch ends at a fold between l1 = 3.119 and 3.125 (no assembly near the last answer:
+/// `NoAssemblyNear`, measured in `compiler/bench/tests/stewart_fold.rs`). There the sweep goes
+/// on with the assembly nearest its last answer, of those `solve_all` finds, and says so: no
+/// sample fails, none flips, and the restarts are counted. This builds the generated solver
+/// (one cargo build, shared with `gcs bench`'s other models).
+#[test]
+fn a_warm_sweep_goes_on_past_a_fold_and_says_so() {
+    let out = Command::new(env!("CARGO_BIN_EXE_gcs"))
+        .arg("bench")
+        .arg(examples().join("stewart.gcs"))
+        .args(["--samples", "100", "--json"])
+        .env("GCS_BENCH_BUDGET_NS", "1")
+        .output()
+        .expect("gcs runs");
+    let json = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(json.contains("\"kind\": \"generated\""), "{json}");
+    assert_eq!(number(&json, Some("compiled"), "failures"), 0.0, "{json}");
+    assert_eq!(number(&json, None, "branch_flips"), 0.0, "{json}");
+    let restarts = number(&json, Some("compiled"), "restarts");
+    assert!((1.0..=3.0).contains(&restarts), "{json}");
+}
