@@ -1461,7 +1461,7 @@ impl Space for Spatial {
     const KNOWN_WRONG: &'static [Known] = KNOWN_WRONG;
     const TABLE: Table = Table {
         test: "construction3d",
-        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --release --test construction3d",
+        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-bench --release --test construction3d",
         file: "FRAGMENTS3D.md",
         title: "Plan fragment table and construction checker in space",
         members: "A body `P` has markers `m`, `n`, `k` and points `a`, `b`, `c` (`c` on `m`'s z \

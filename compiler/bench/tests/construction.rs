@@ -1151,7 +1151,7 @@ impl Space for Planar {
     const N_RANDOM: usize = 20;
     const TABLE: Table = Table {
         test: "construction",
-        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --test construction",
+        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-bench --test construction",
         file: "FRAGMENTS.md",
         title: "Plan fragment table and construction checker",
         members: "",
