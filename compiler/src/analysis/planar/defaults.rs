@@ -5,8 +5,9 @@
 //! position of a feature along the line, circle or conic it is on, the angle of a body about
 //! its pivot, the coordinates of a free point, the angle of a free direction, a lone line's
 //! angle and its offset across itself, a free dimension (a segment pinned at its end is sized
-//! from that end). The construction checker (`tests/construction.rs`) probes every state of
-//! its table for them: as many defaults as DOF left, least motion, and each effective.
+//! from that end). The construction checker (`compiler/bench/tests/construction.rs`) probes
+//! every state of its table for them: as many defaults as DOF left, least motion, and each
+//! effective.
 //! Its sketch value is what the plan measures there when it runs on the sketch, so that a
 //! default at its sketch value moves nothing (002's least motion): an under-constrained
 //! model solves to its sketch as far as the constraints allow. The driver then goes back to

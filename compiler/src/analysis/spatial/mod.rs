@@ -17,7 +17,7 @@
 //! Covered: bodies with markers and member points, points, vectors, lines, planes, segments
 //! and circles of space, fixed or moving, with every 3d constraint form of the language (the
 //! joints as the conjunctions [`relation`] makes of them). The 3d construction checker
-//! (`compiler/tests/construction3d.rs`, its table in `docs/FRAGMENTS3D.md`) lists what the
+//! (`compiler/bench/tests/construction3d.rs`, its table in `docs/FRAGMENTS3D.md`) lists what the
 //! analysis does for each state and form. A constraint the analysis cannot cover is reported
 //! per constraint as not analysed in 3d yet, never dropped.
 //!

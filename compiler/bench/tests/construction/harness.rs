@@ -7,6 +7,7 @@
 //! and the table's words. Each test file implements it and keeps only its space's cases; the
 //! method is described in their headers.
 
+use gcs_bench::baseline::{Method, Numeric, Options};
 use gcs_compiler::analyse;
 use gcs_compiler::analysis::Analysis;
 use gcs_compiler::plan::{DefaultVar, Op};
@@ -71,6 +72,8 @@ pub trait Space: Sized + 'static {
     /// What a state records of the motion its prefix leaves `P`, for tangent instances (`()`
     /// where `make` works it out from the prefix).
     type StateMotion: Copy + Send + Sync;
+    /// The space's numeric baseline (`gcs_bench::baseline::Baseline` or `Baseline3`).
+    type Baseline: Numeric;
 
     /// Every kind, in the table's order.
     const KINDS: &'static [Self::Kind];
@@ -80,6 +83,10 @@ pub trait Space: Sized + 'static {
     const OWN_MODES: &'static [Mode] = &[];
     /// The known causes of wrong runs.
     const KNOWN_WRONG: &'static [Known] = &[];
+    /// The known causes of degenerate refusals of valid sketches: instances refused as
+    /// degenerate where the baseline finds an isolated assembly near the sketch (see
+    /// `Judged::Near`).
+    const KNOWN_DEGENERATE: &'static [Known] = &[];
     /// The table's file and words.
     const TABLE: Table;
     /// Whether a state may take fewer defaults than `P`'s DOF (a relation pending at the first
@@ -117,6 +124,9 @@ pub trait Space: Sized + 'static {
     fn violations(v: &Solved<'_>) -> Vec<(f64, String)>;
     /// Whether a default is an angle (moved by 0.25 rad, not 0.25 of the size).
     fn angle_default(d: &DefaultVar) -> bool;
+    /// The space's numeric baseline of a model (`gcs_bench::baseline`), which judges the
+    /// instances the plans refuse as degenerate.
+    fn baseline(model: &Model) -> Result<Self::Baseline, String>;
 }
 
 /// A kind of the probed geom `P`.
@@ -133,7 +143,7 @@ pub trait ConstraintForm: Copy + Send + Sync {
 
 /// What sets one space's table apart: its file and words, and the parts the 2d table predates.
 pub struct Table {
-    /// The test, `compiler/tests/{test}.rs`.
+    /// The test, `compiler/bench/tests/{test}.rs`.
     pub test: &'static str,
     /// The command that writes the table.
     pub command: &'static str,
@@ -160,9 +170,10 @@ pub struct Table {
     pub detailed: bool,
 }
 
-/// A known cause of wrong runs: what the plans do wrong, the instance modes its wrong runs
-/// show in (`analysis` for a plan the analysis could not build), and the entries it makes
-/// wrong, by `kind | state | constraint form` as the table writes them.
+/// A known cause of wrong runs (or of degenerate refusals of valid sketches): what the plans
+/// do wrong, the instance modes its runs show in (`analysis` for a plan the analysis could not
+/// build), and the entries it affects, by `kind | state | constraint form` as the table writes
+/// them.
 #[allow(dead_code)] // the plane's checker knows none
 pub struct Known {
     pub why: &'static str,
@@ -632,6 +643,8 @@ struct Stats {
     inconsistent_accepted: Vec<String>,
     /// An example of an unsolved instance.
     unsolved_example: Option<String>,
+    /// The instances refused as degenerate, as the baseline judges them.
+    degenerate: Vec<Refusal>,
 }
 
 /// The near-degenerate modes, after the random instances: the new locus tangent to the motion
@@ -777,14 +790,14 @@ fn run_instance<S: Space>(
             };
             results.push((combo, verdict));
         }
-        Ok::<_, String>((claimed.contains(&z), results))
+        Ok::<_, String>((claimed.contains(&z), freedom(&a.plan), results))
     }));
     let failure = match outcome {
         Ok(Ok(x)) => Ok(x),
         Ok(Err(e)) => Err(format!("analysis failed: {e}")),
         Err(p) => Err(format!("panic: {}", panic_text(p))),
     };
-    let (claims_z, results) = match failure {
+    let (claims_z, free, results) = match failure {
         Ok(x) => x,
         Err(msg) => {
             stats.wrong.push((
@@ -840,6 +853,18 @@ fn run_instance<S: Space>(
         let e =
             first_err.unwrap_or_else(|| "Wrong (every run violated a claimed constraint)".into());
         let kind = e.split(' ').next().unwrap_or("").to_string();
+        if kind == "Degenerate" {
+            let judged = judge::<S>(&model, split, inst, free);
+            stats.degenerate.push(Refusal {
+                judged,
+                mode: mode.name(),
+                words: format!(
+                    "{entry_id}: seed {seed} ({}): {e}\n```gcs\n{}```",
+                    mode.name(),
+                    inst.text
+                ),
+            });
+        }
         *stats.unsolved.entry(kind).or_default() += 1;
         *stats.unsolved_modes.entry(mode.name()).or_default() += 1;
         if stats.unsolved_example.is_none() {
@@ -850,6 +875,222 @@ fn run_instance<S: Space>(
             ));
         }
     }
+}
+
+/// An instance no branch solved, the first error `Degenerate`.
+struct Refusal {
+    judged: Judged,
+    /// The instance's mode.
+    mode: String,
+    /// The entry, seed, mode and error, and the model.
+    words: String,
+}
+
+/// What the baseline makes of an instance the plans refused (its details are printed by
+/// `GCS_ENTRY`, through `Debug`).
+#[derive(Clone, Debug)]
+#[allow(dead_code)]
+enum Judged {
+    /// An isolated assembly, verified, whose every point and dimension lies within [`NEAR`]
+    /// of the instance's scale of the sketch (and every direction within `NEAR`): how far it
+    /// lies, relative to the scale.
+    Near(f64),
+    /// A verified assembly near the sketch among more assemblies around it than the plan has
+    /// free defaults to choose among them ([`freedom`]): a point on two coincident lines,
+    /// where the plan has none. The dimension of the assemblies around it, as [`dimension`]
+    /// measures it, and the plan's free defaults.
+    NotIsolated { dimension: usize, free: usize },
+    /// A verified assembly farther from the sketch.
+    Far(f64),
+    /// No verified assembly (neither method converged, or `verify` found a constraint off).
+    Unsolved(String),
+    /// The baseline cannot express the model.
+    Unexpressed(String),
+}
+
+/// How far from the sketch an assembly still counts as near it, relative to the instance's
+/// scale: half of it. A random sketch lies up to about the scale from the target it was
+/// moved from (a turn of up to 0.6 rad about a point up to the scale away, and a shift), and
+/// a near-degenerate one much closer; an assembly within half the scale is one the sketch
+/// points at, where a plan that reads its branches and defaults from the sketch should land.
+const NEAR: f64 = 0.5;
+
+/// How far [`dimension`] puts the baseline off an assembly: each unknown by up to this many
+/// of its units (what moves the solution by the instance's scale, or a direction by 1), and
+/// again by a tenth of that.
+const PUSH: f64 = 1e-3;
+
+/// The baseline's assembly from `x`, verified: Newton, then Levenberg-Marquardt, each to the
+/// checker's own tolerance ([`REL`] of the scale, rad for angles), the answer verified as a
+/// plan's is ([`Space::violations`], every constraint claimed). `Err` says why not.
+fn assemble<S: Space>(
+    b: &mut S::Baseline,
+    model: &Model,
+    split: &Model,
+    inst: &Instance,
+    x0: &[f64],
+) -> Result<(Vec<f64>, Solution), String> {
+    let params = model.default_params();
+    let claimed: Vec<ConstraintId> = model.constraints.iter().map(|(id, _)| id).collect();
+    let mut why = String::new();
+    for method in [Method::Newton, Method::LevenbergMarquardt] {
+        let mut x = x0.to_vec();
+        let opts = Options {
+            method,
+            tolerance: REL * inst.scale.min(1.0),
+            max_iterations: 200,
+            trace: false,
+        };
+        let out = b.solve(&params, &mut x, &opts);
+        let Some(sol) = b.solution(&params, &x) else {
+            let _ = write!(why, "{method:?}: no configuration; ");
+            continue;
+        };
+        let bad = S::violations(&Solved {
+            model,
+            split,
+            sol: &sol,
+            claimed: &claimed,
+            scale: inst.scale,
+        });
+        if bad.is_empty() {
+            return Ok((x, sol));
+        }
+        let words: Vec<String> = bad.into_iter().map(|b| b.1).collect();
+        let _ = write!(why, "{method:?}: {:?}, {}; ", out.stop, words.join(", "));
+    }
+    Err(why)
+}
+
+/// Whether the baseline finds an assembly near the sketch of `model`, isolated but for the
+/// `free` defaults of its plan (see [`Judged`]).
+fn judge<S: Space>(model: &Model, split: &Model, inst: &Instance, free: usize) -> Judged {
+    let mut b = match S::baseline(model) {
+        Ok(b) => b,
+        Err(e) => return Judged::Unexpressed(e),
+    };
+    let params = model.default_params();
+    let start = b.start_from_sketch(&params);
+    let Some(sketch) = b.solution(&params, &start) else {
+        return Judged::Unexpressed("the sketch is unusable".into());
+    };
+    let (x, sol) = match assemble::<S>(&mut b, model, split, inst, &start) {
+        Ok(found) => found,
+        Err(why) => return Judged::Unsolved(why),
+    };
+    let moved = distance(&sol, &sketch, inst.scale);
+    if moved > NEAR {
+        return Judged::Far(moved);
+    }
+    let dimension = dimension::<S>(&mut b, model, split, inst, &x, &sol);
+    if dimension > free {
+        return Judged::NotIsolated { dimension, free };
+    }
+    Judged::Near(moved)
+}
+
+/// The defaults a plan leaves free: those no iteration closes (one per `Close` step).
+fn freedom(plan: &gcs_compiler::plan::Plan) -> usize {
+    let closes = (plan.steps.iter())
+        .filter(|s| matches!(s.op, Op::Close { .. }))
+        .count();
+    plan.defaults.len().saturating_sub(closes)
+}
+
+/// The dimension of the assemblies around the assembly `x` (`sol`), as the baseline finds
+/// them: put off `x` along random directions, by [`PUSH`] and by a tenth of it, the baseline
+/// lands back on the assemblies. Where they form a continuum it lands off `sol` along it, about
+/// as far as it was put off (the drift shrinks tenfold with the push); at an isolated assembly
+/// it lands back on `sol` (to its tolerance, or to the square root of it at a double root), or
+/// on another isolated assembly nearby (a near-tangent pair), at a distance that does not
+/// shrink with the push. The drifts that shrink with the push, measured on the solution (every
+/// point and dimension relative to the scale, every direction), so that a geom's unknowns that
+/// nothing reads (where on a line its point lies) do not count, span the continuum's tangent
+/// space: their numerical rank is its dimension.
+fn dimension<S: Space>(
+    b: &mut S::Baseline,
+    model: &Model,
+    split: &Model,
+    inst: &Instance,
+    x: &[f64],
+    sol: &Solution,
+) -> usize {
+    let n = x.len();
+    let params = model.default_params();
+    let at = flat(sol, inst.scale);
+    // Each unknown's unit: what moves the solution by 1 (relative to the scale), measured by
+    // a small difference; an unknown that moves nothing (a line's point along it) is not
+    // pushed.
+    let largest = x.iter().fold(f64::MIN_POSITIVE, |m: f64, v| m.max(v.abs()));
+    let mut effect = vec![0.0; n];
+    for i in 0..n {
+        let h = 1e-7 * x[i].abs().max(1e-3 * largest);
+        let mut xi = x.to_vec();
+        xi[i] += h;
+        if let Some(s) = b.solution(&params, &xi) {
+            let d = flat(&s, inst.scale);
+            effect[i] = d
+                .iter()
+                .zip(&at)
+                .map(|(p, q)| (p - q) * (p - q))
+                .sum::<f64>()
+                .sqrt()
+                / h;
+        }
+    }
+    let strongest = effect.iter().fold(0.0, |m: f64, e| m.max(*e));
+    let unit: Vec<f64> = (effect.iter())
+        .map(|e| if *e > 1e-6 * strongest { 1.0 / e } else { 0.0 })
+        .collect();
+    let mut rng = Rng::new(n as u64);
+    let mut drifts: Vec<f64> = Vec::new();
+    let mut rows = 0;
+    for _ in 0..n + 2 {
+        let dir: Vec<f64> = (0..n)
+            .map(|_| rng.range(-1.0, 1.0) / (n as f64).sqrt())
+            .collect();
+        let mut land = |push: f64| {
+            let x0: Vec<f64> = (0..n).map(|i| x[i] + push * dir[i] * unit[i]).collect();
+            let (_, landed) = assemble::<S>(b, model, split, inst, &x0).ok()?;
+            let to = flat(&landed, inst.scale);
+            Some(
+                to.iter()
+                    .zip(&at)
+                    .map(|(t, a)| (t - a) / push)
+                    .collect::<Vec<f64>>(),
+            )
+        };
+        let (Some(far), Some(near)) = (land(PUSH), land(PUSH / 10.0)) else {
+            continue;
+        };
+        // In units of the push, a drift along a continuum is the same at both pushes.
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let gap: Vec<f64> = far.iter().zip(&near).map(|(a, b)| a - b).collect();
+        if norm(&far) > 1e-4 && norm(&gap) <= 0.6 * norm(&far) {
+            drifts.extend(&far);
+            rows += 1;
+        }
+    }
+    // Along a continuum most pushes have a part along it; one or two drifting with the push
+    // are a valley too flat for the push to tell (a double root of nearly concentric circles).
+    if 2 * rows < n + 2 {
+        return 0;
+    }
+    let m = nalgebra::DMatrix::from_row_slice(rows, at.len(), &drifts);
+    let sv = m.singular_values();
+    let top = sv.max();
+    sv.iter().filter(|s| **s > 0.05 * top).count()
+}
+
+/// A solution's values in one list: every point's coordinates and dimension relative to
+/// `scale`, every direction's components.
+fn flat(s: &Solution, scale: f64) -> Vec<f64> {
+    (s.points
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|x| x / scale)))
+    .chain(s.scalars.iter().map(|(_, x)| x / scale))
+    .chain(s.vectors.iter().flat_map(|(_, v)| v.iter().copied()))
+    .collect()
 }
 
 /// Inconsistent instances of a check entry: the plan must refuse them (a `SolveError`), never
@@ -936,6 +1177,19 @@ impl<S: Space> Row<S> {
     /// Its wrong runs that no known cause lists.
     fn unexpected(&self) -> usize {
         self.wrong_modes().iter().filter(|m| !self.known(m)).count()
+    }
+    /// Its degenerate refusals that the baseline solves near the sketch.
+    fn near_refusals(&self) -> Vec<&Refusal> {
+        (self.stats.iter())
+            .flat_map(|s| &s.degenerate)
+            .filter(|r| matches!(r.judged, Judged::Near(_)))
+            .collect()
+    }
+    /// Whether a degenerate refusal in `mode` is known.
+    fn known_degenerate(&self, mode: &str) -> bool {
+        S::KNOWN_DEGENERATE
+            .iter()
+            .any(|k| k.entries.contains(&self.key.as_str()) && k.modes.contains(&mode))
     }
     /// Its id, kind, state and constraint form, as the report's lists name it.
     fn named(&self) -> String {
@@ -1034,7 +1288,7 @@ pub fn check<S: Space>() {
     let elapsed = t0.elapsed().as_secs_f64();
     let report = report(&rows) + &defaults_report::<S>(&defaults);
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../docs")
+        .join("../../docs")
         .join(table.file);
     println!("{}- runtime {elapsed:.1} s", summary(&rows));
     if std::env::var("GCS_WRITE_FRAGMENTS").as_deref() == Ok("1") {
@@ -1078,6 +1332,34 @@ pub fn check<S: Space>() {
     assert!(
         stale.is_empty(),
         "entries in KNOWN_WRONG that are no longer wrong in its modes (remove them): {stale:?}"
+    );
+    let mut refused = 0;
+    for r in &rows {
+        for n in r.near_refusals() {
+            if !r.known_degenerate(&n.mode) {
+                refused += 1;
+                println!("VALID SKETCH REFUSED {} {}: {}", r.id, r.key, n.words);
+            }
+        }
+    }
+    let stale: Vec<String> = S::KNOWN_DEGENERATE
+        .iter()
+        .flat_map(|k| k.entries.iter().map(move |e| (k, e)))
+        .filter(|(k, e)| {
+            !rows.iter().any(|r| {
+                r.key == **e
+                    && (r.near_refusals().iter()).any(|n| k.modes.contains(&n.mode.as_str()))
+            })
+        })
+        .map(|(k, e)| format!("{e} ({})", k.modes.join(", ")))
+        .collect();
+    assert_eq!(
+        refused, 0,
+        "valid sketches refused as degenerate, not in KNOWN_DEGENERATE: see the VALID SKETCH REFUSED lines above"
+    );
+    assert!(
+        stale.is_empty(),
+        "entries in KNOWN_DEGENERATE whose valid sketches are no longer refused in its modes (remove them): {stale:?}"
     );
     for r in &defaults {
         for w in &r.wrong {
@@ -1192,6 +1474,37 @@ fn summary<S: Space>(rows: &[Row<S>]) -> String {
         inst - solved,
         unsolved
     );
+    let refusals: Vec<&Refusal> = stats.iter().flat_map(|s| &s.degenerate).collect();
+    let judged = |f: &dyn Fn(&Judged) -> bool| refusals.iter().filter(|r| f(&r.judged)).count();
+    let near: Vec<(&Row<S>, &Refusal)> = (rows.iter())
+        .flat_map(|r| r.near_refusals().into_iter().map(move |n| (r, n)))
+        .collect();
+    let known = near
+        .iter()
+        .filter(|(r, n)| r.known_degenerate(&n.mode))
+        .count();
+    let _ = writeln!(
+        o,
+        "- degenerate refusals (not solved by any branch, the first error `Degenerate`), judged by the baseline from the sketch: {}",
+        refusals.len()
+    );
+    let _ = writeln!(
+        o,
+        "  - degenerate refusals the baseline solves near the sketch (an isolated assembly, verified, within {NEAR} of the scale): {}{}",
+        near.len(),
+        if near.is_empty() {
+            String::new()
+        } else {
+            format!(", all of whose causes the test's KNOWN_DEGENERATE lists: {}", known == near.len())
+        }
+    );
+    let _ = writeln!(
+        o,
+        "  - with no isolated solution (near the sketch, a continuum of assemblies wider than the plan's free defaults): {}; an assembly farther from the sketch: {}; none found: {}",
+        judged(&|j| matches!(j, Judged::NotIsolated { .. })),
+        judged(&|j| matches!(j, Judged::Far(_))),
+        judged(&|j| matches!(j, Judged::Unsolved(_) | Judged::Unexpressed(_))),
+    );
     if table.detailed {
         let _ = writeln!(
             o,
@@ -1248,7 +1561,7 @@ fn report<S: Space>(rows: &[Row<S>]) -> String {
     let _ = writeln!(o, "# {}\n", table.title);
     let _ = writeln!(
         o,
-        "Generated by `compiler/tests/{}.rs` (`{}`); do not edit.\n\
+        "Generated by `compiler/bench/tests/{}.rs` (`{}`); do not edit.\n\
          Each entry probes one free geom `P` of a kind, brought into a state by a prefix of constraints with fixed geoms, \
          and one more constraint between a feature of `P` and a fixed geom. {}The outcome is what the analysis does for \
          that constraint; *before* and *after* are the signature (Kramer's `IR[...]`) and DOF of `P`'s cluster. \
@@ -1377,6 +1690,63 @@ fn report<S: Space>(rows: &[Row<S>]) -> String {
             }
         }
     }
+    let _ = writeln!(o, "\n## Degenerate refusals of valid sketches\n");
+    let _ = writeln!(
+        o,
+        "Every instance refused as degenerate (no branch solved it, the first error `Degenerate`) is given to the \
+         numeric baseline (`gcs_bench::baseline`: Newton, then Levenberg-Marquardt, on the raw equations) from its sketch. \
+         An assembly it finds, verified as a plan's answer is (every constraint, to 1e-12 relative), is *near the sketch* \
+         when every point and dimension lies within {NEAR} of the instance's scale of the sketch (and every direction \
+         within {NEAR}): a random sketch lies up to about the scale from the target it was moved from, a near-degenerate one \
+         much closer. It is *isolated* when the assemblies around it are no more than the plan's free defaults choose among: \
+         the baseline, put off it along random directions by {PUSH:e} and {:e} of each unknown's effect, lands back on it; \
+         along a continuum (a point on two coincident lines) it lands off it in proportion to the push, and the rank of \
+         those drifts is the continuum's dimension. An isolated assembly near the sketch of a refused instance is a valid \
+         sketch refused, listed here; the test fails on one its KNOWN_DEGENERATE does not list.\n",
+        PUSH / 10.0
+    );
+    let mut listed = 0;
+    for r in rows {
+        for n in r.near_refusals() {
+            let known = if r.known_degenerate(&n.mode) {
+                " (known)"
+            } else {
+                ""
+            };
+            let words = if listed < 5 {
+                n.words.replace('\n', "\n    ")
+            } else {
+                n.words.split("\n```").next().unwrap_or("").to_string()
+            };
+            listed += 1;
+            let moved = match n.judged {
+                Judged::Near(m) => m,
+                _ => f64::NAN,
+            };
+            let _ = writeln!(
+                o,
+                "- {}{known}, the baseline's assembly {moved:.1e} of the scale from the sketch: {words}",
+                r.named()
+            );
+        }
+    }
+    if listed == 0 {
+        let _ = writeln!(o, "None.");
+    }
+    for (i, k) in S::KNOWN_DEGENERATE.iter().enumerate() {
+        let _ = writeln!(
+            o,
+            "\nKnown cause {} (modes: {}; entries: {}). {}",
+            i + 1,
+            k.modes.join(", "),
+            k.entries
+                .iter()
+                .map(|e| format!("`{e}`"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            k.why
+        );
+    }
     let _ = writeln!(o, "\n## Checks that accept inconsistent instances\n");
     let _ = writeln!(
         o,
@@ -1469,7 +1839,7 @@ fn report<S: Space>(rows: &[Row<S>]) -> String {
     o
 }
 
-/// Debugging aid: `GCS_PROBE=model.gcs cargo test -p gcs-compiler --test construction --
+/// Debugging aid: `GCS_PROBE=model.gcs cargo test -p gcs-bench --test construction --
 /// --nocapture` (or `--release --test construction3d`) prints the plan of one model and its
 /// solve on every branch.
 fn probe() {
@@ -1507,7 +1877,7 @@ fn show(text: &str) {
     }
 }
 
-/// Debugging aid: `GCS_ENTRY=n GCS_INSTANCE=i cargo test -p gcs-compiler --test construction
+/// Debugging aid: `GCS_ENTRY=n GCS_INSTANCE=i cargo test -p gcs-bench --test construction
 /// -- --nocapture` (or `--release --test construction3d`) prints instance `i` of entry `n` (0
 /// the canonical one, 1 to `N_RANDOM` random, then the near-degenerate ones in [`degenerate`]'s
 /// order, 1000 and up inconsistent) with its plan and solves.
@@ -1528,6 +1898,11 @@ fn instance<S: Space>() {
     let inst = S::make(e, ((n as u64) << 32) | i as u64, mode);
     println!("{}: {}\n{}", e.key(), mode.name(), inst.text);
     show(&inst.text);
+    let model = load(&inst.text);
+    let split = inst.split_text.as_deref().map(load);
+    let free = analyse(&model).map_or(0, |a| freedom(&a.plan));
+    let judged = judge::<S>(&model, split.as_ref().unwrap_or(&model), &inst, free);
+    println!("the baseline: {judged:?}");
 }
 
 // ---------------------------------------------------------------- default fragments
@@ -1556,7 +1931,29 @@ struct DefaultRow<S: Space> {
 
 /// Every point, vector and scalar of `P` in a solution, by name.
 fn values_of_p(s: &Solution) -> Vec<(String, Vec<f64>)> {
-    let of_p = |n: &str| n == "P" || n.starts_with("P.");
+    values_where(s, |n| n == "P" || n.starts_with("P."))
+}
+
+/// How far apart two solutions of one model lie: the largest difference of a point's
+/// coordinate or a dimension relative to `scale`, or of a direction's component.
+fn distance(a: &Solution, b: &Solution, scale: f64) -> f64 {
+    let by = |x: &[(String, Vec<f64>)], y: &[(String, Vec<f64>)]| {
+        let mut d: f64 = 0.0;
+        for ((n, u), (m, v)) in x.iter().zip(y) {
+            assert_eq!(n, m, "two solutions of one model list the same values");
+            for (p, q) in u.iter().zip(v) {
+                d = d.max((p - q).abs());
+            }
+        }
+        d
+    };
+    let dims = (a.scalars.iter().zip(&b.scalars))
+        .map(|((_, x), (_, y))| (x - y).abs())
+        .fold(0.0, f64::max);
+    (by(&a.points, &b.points).max(dims) / scale).max(by(&a.vectors, &b.vectors))
+}
+
+fn values_where(s: &Solution, of_p: impl Fn(&str) -> bool) -> Vec<(String, Vec<f64>)> {
     (s.points.iter().chain(&s.vectors))
         .filter(|(n, _)| of_p(n))
         .cloned()

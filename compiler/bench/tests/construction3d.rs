@@ -110,6 +110,8 @@
 #[path = "construction/harness.rs"]
 mod harness;
 
+use gcs_bench::baseline::Baseline3;
+
 use gcs_compiler::plan::{DefaultVar, Op, RotationAxis, SpatialOp};
 use harness::{
     angular, ConstraintForm, GeomKind, Instance, Known, Mode, Out, Rng, Solved, Space, Statements,
@@ -133,6 +135,38 @@ const KNOWN_WRONG: &[Known] = &[
     // (`frame::signed_angle3_both`: offset_x, prismatic, and a helical joint on a body held
     // at a point), its point onto a line or plane, or its helix (`SpatialOp::TurnReaching`, on a
     // screw too: `runtime::fragment3::Screw`) decide such a turn with the z axis.
+];
+
+/// The valid sketches known to be refused as degenerate, by cause: instances no branch solves,
+/// the first error `Degenerate`, where the numeric baseline from the sketch finds an isolated
+/// assembly near it (`harness::Judged::Near`). The test fails on any other, and when a listed
+/// entry's sketch is no longer refused in the cause's modes.
+const KNOWN_DEGENERATE: &[Known] = &[
+    Known {
+        why: "The plan defaults the freedom the constraints fix and leaves the one they free to an \
+              intersection of parallel loci. After `in_line`, the analysis takes the place of `P.m` \
+              on its line as a default, then turns `P` about the axis through `P.m` along the marker's \
+              z, to bring `P.n` onto the marker's plane: the circle `P.n` sweeps lies in a plane \
+              parallel to the marker's, so it lies in it (coincident: `Degenerate`) or misses it \
+              (`NoIntersection`). Only where the default place puts `P.n` at the plane's height, the \
+              sketch at the target, is there an assembly, and then a turn about that axis that \
+              nothing fixes: the constraints fix the place (the height along the marker's z) and free \
+              the turn. The entry solves none of its random instances.",
+        modes: &["exact"],
+        entries: &["body | on a line (in_line) | planar(P.n, marker)"],
+    },
+    Known {
+        why: "The plan defaults the freedom the constraints fix and leaves the one they free to an \
+              intersection of parallel loci. After a planar joint, the analysis takes `P`'s turn about \
+              the joint's z as a default, then slides `P.m` onto the plane across the helix's axis at \
+              that turn's advance, which is parallel to the joint's plane where `P.m` already lies: the \
+              same plane (`Degenerate`) where the default turn is the target's, the sketch at the \
+              target, and a parallel one (`NoIntersection`) elsewhere. The joint fixes the advance, so \
+              the helix fixes the turn, and the translation in the joint's plane is free. The entry \
+              solves none of its random instances.",
+        modes: &["exact"],
+        entries: &["body | planar joint | helical(marker, P.m) = pitch"],
+    },
 ];
 
 // ---------------------------------------------------------------- small maths
@@ -1453,15 +1487,17 @@ struct Spatial;
 impl Space for Spatial {
     type Kind = Kind;
     type Form = Form;
+    type Baseline = Baseline3;
     type StateMotion = ();
 
     const KINDS: &'static [Kind] = &KINDS;
     const N_RANDOM: usize = 16;
     const OWN_MODES: &'static [Mode] = &[Mode::NearParallel, Mode::NearParallel, Mode::Coincident];
     const KNOWN_WRONG: &'static [Known] = KNOWN_WRONG;
+    const KNOWN_DEGENERATE: &'static [Known] = KNOWN_DEGENERATE;
     const TABLE: Table = Table {
         test: "construction3d",
-        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --release --test construction3d",
+        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-bench --release --test construction3d",
         file: "FRAGMENTS3D.md",
         title: "Plan fragment table and construction checker in space",
         members: "A body `P` has markers `m`, `n`, `k` and points `a`, `b`, `c` (`c` on `m`'s z \
@@ -1573,5 +1609,9 @@ impl Space for Spatial {
     fn angle_default(d: &DefaultVar) -> bool {
         let name = &d.name;
         name.ends_with("_angle") || name.ends_with("_spin") || name.contains("_turn_")
+    }
+
+    fn baseline(model: &gcs_lang::Model) -> Result<Baseline3, String> {
+        Baseline3::new(model)
     }
 }

@@ -52,6 +52,20 @@
 //! else is a *wrong fragment* and fails the test. A `SolveError` is never wrong, but an instance that no
 //! branch solves is reported as *not solved*.
 //!
+//! # Degenerate refusals
+//!
+//! An instance no branch solves whose first error is `Degenerate` is given to the numeric
+//! baseline (`gcs_bench::baseline`), which shares nothing with the plan: Newton, then
+//! Levenberg-Marquardt, from the instance's sketch, the answer verified as a plan's (every
+//! constraint to 1e-12 relative). If it finds an assembly within half the instance's scale of
+//! the sketch, the harness measures the dimension of the assemblies around it (the baseline put
+//! off it along random directions lands off it in proportion to the push only along a
+//! continuum); an assembly *isolated* but for the plan's free defaults is a valid sketch the plan
+//! refused, and fails the test unless the space's `KNOWN_DEGENERATE` lists its cause. A
+//! continuum wider than the plan's defaults (a point on two coincident lines, a line in a
+//! plane) has no isolated solution: the refusal stands, and is counted. That is why the
+//! checkers live in gcs-bench: gcs-compiler cannot depend on the baseline.
+//!
 //! Every plan comes from the pipeline's `analyse`, which validates it (`Plan::validate`, and
 //! that only the constraints reported unsolved or recorded have no step): a malformed plan
 //! panics there, and a panic is a wrong run.
@@ -75,6 +89,8 @@
 
 #[path = "construction/harness.rs"]
 mod harness;
+
+use gcs_bench::baseline::Baseline;
 
 use gcs_compiler::plan::{DefaultVar, Op, PlanarOp};
 use gcs_lang::constraints::ConstraintKind as CK;
@@ -1138,6 +1154,7 @@ struct Planar;
 impl Space for Planar {
     type Kind = Kind;
     type Form = Form;
+    type Baseline = Baseline;
     type StateMotion = Motion;
 
     const KINDS: &'static [Kind] = &[
@@ -1151,7 +1168,7 @@ impl Space for Planar {
     const N_RANDOM: usize = 20;
     const TABLE: Table = Table {
         test: "construction",
-        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-compiler --test construction",
+        command: "GCS_WRITE_FRAGMENTS=1 cargo test -p gcs-bench --test construction",
         file: "FRAGMENTS.md",
         title: "Plan fragment table and construction checker",
         members: "",
@@ -1240,5 +1257,9 @@ impl Space for Planar {
 
     fn angle_default(d: &DefaultVar) -> bool {
         d.is_angle()
+    }
+
+    fn baseline(model: &gcs_lang::Model) -> Result<Baseline, String> {
+        Baseline::new(model)
     }
 }
