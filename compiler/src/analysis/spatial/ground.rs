@@ -46,7 +46,8 @@ impl Builder<'_, Spatial> {
         // The first pending point-point relation from the held clusters to a free one.
         let next = |s: &Self, held: &[usize]| -> Option<(GeomId, GeomId)> {
             s.pending.iter().find_map(|r| {
-                let Relation::PointPoint { a, b, .. } = r.relation else {
+                // A coincidence has no direction (nor a plane): a zero vector.
+                let Relation::PointPoint { a, b, d: Some(_) } = r.relation else {
                     return None;
                 };
                 let (ka, kb) = (s.cluster(a), s.cluster(b));
