@@ -27,7 +27,11 @@ impl Builder<'_, Spatial> {
             }
         }
         if let Some((_, _, i)) = best {
+            // Held where the sketch places it, but not sized: a segment's length or a
+            // circle's radius is no part of a placement (as in the plane), and stays free.
+            let shape = self.clusters[i].record.shape;
             self.clusters[i].record.hold();
+            self.clusters[i].record.shape = shape;
             self.plan.grounded = Some(self.clusters[i].geoms[0]);
             if self.clusters[i].record.turn == Turn::None {
                 self.ground_turns(i);
