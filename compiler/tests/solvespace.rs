@@ -83,8 +83,12 @@ struct Expect {
     redundant: usize,
     /// The constraints whose removal makes the sketch consistent, each with its gap (where
     /// one is computed), and the constraints the error must name.
-    conflict: Option<(Vec<(String, f64)>, Vec<String>)>,
+    conflict: Option<Conflict>,
 }
+
+/// A conflict: each constraint whose removal makes the sketch consistent with its gap, and the
+/// constraints its error must name.
+type Conflict = (Vec<(String, f64)>, Vec<String>);
 
 fn expect_of(text: &str) -> Expect {
     let mut e = Expect::default();
@@ -132,7 +136,7 @@ fn sketches() -> Vec<(String, String)> {
         .map(|e| e.expect("an entry").path())
         .filter(|p| p.extension().is_some_and(|x| x == "gcs"))
         .map(|p| {
-            let name = p.file_name().unwrap().to_string_lossy().to_string();
+            let name = p.file_name().expect("a name").to_string_lossy().to_string();
             (name, std::fs::read_to_string(&p).expect("a file"))
         })
         .collect();
@@ -284,7 +288,7 @@ fn check_inner(name: &str, text: &str, e: &Expect) -> Vec<String> {
     let tol = 1e-9 * (1.0 + size(&s));
     let residual =
         gcs_compiler::verify::max_residual(&gcs_compiler::verify::residuals(model, &s, &params));
-    if !(residual <= tol) {
+    if residual.is_nan() || residual > tol {
         out.push(format!("residual {residual:e}"));
     }
     // SolveSpace moves nothing: the sketch is a solution.
