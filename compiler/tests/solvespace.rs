@@ -42,23 +42,13 @@ const KNOWN: &[(&str, &str)] = &[
         "refused: `w2` cannot be met with the default params (constraint `w2` (on(l4.end, XY)) \
          cannot be met: the configuration is degenerate (coincident or zero-size loci), size 0)",
     ),
-    // A circle through a point of a line it is tangent to, and two circles tangent where a
-    // point lies on both: the point's locus is tangent to the circle's, and the intersection
-    // of tangent loci is refused as degenerate where the tangency makes it a double root.
+    // A circle through a point of a line it is tangent to: the parabola of centres has its
+    // focus on its directrix (a ray), which the runtime's conics have no form for: refused as
+    // degenerate.
     (
         "arc_line_tangent_normal.gcs",
         "refused: `a4_s` cannot be met with the default params (constraint `a4_s` (on(a4_start, \
          a4)) cannot be met: the configuration is degenerate (coincident or zero-size loci), size 0)",
-    ),
-    (
-        "curve_curve_tangent_arc_arc.gcs",
-        "refused: `k2` cannot be met with the default params (constraint `k2` (tangent(a5, a4)) \
-         cannot be met: the configuration is degenerate (coincident or zero-size loci), size 0)",
-    ),
-    (
-        "issue_circles_tangent_on_both.gcs",
-        "refused: `k` cannot be met with the default params (constraint `k` (tangent(a, b)) \
-         cannot be met: the configuration is degenerate (coincident or zero-size loci), size 0)",
     ),
     // The second width is implied by the first (through the corners and the verticals), but
     // it is not reported: the projection that places l6's start on its line checks the other
