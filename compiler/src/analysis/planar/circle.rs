@@ -715,6 +715,9 @@ impl Builder<'_, Planar> {
     /// The locus of the centre of a circle of free radius under two fixed distances.
     fn centre_locus(&mut self, f1: Fd, f2: Fd, circle: GeomId) -> Locus {
         let name = self.name(circle);
+        if let Some(l) = self.tangent_at(f1, f2, &name) {
+            return l;
+        }
         if let (Fd::Point { at: c1, .. }, Fd::Point { at: c2, .. }) = (f1, f2) {
             if self.straight(f1, f2) {
                 return self.perpendicular_bisector(c1, c2, &name);
@@ -780,6 +783,110 @@ impl Builder<'_, Planar> {
                 ))
             }
         }
+    }
+
+    /// Through a point that lies on a known circle (an `on` constraint already met) and
+    /// tangent to that circle: the two fixed distances' conic degenerates (the hyperbola's foci
+    /// are as far apart as its difference of distances, the ellipse's as its sum) into the
+    /// line of the circle's centre and the point, the normal to the circle there, on which
+    /// every circle tangent to it at the point has its centre. `None` otherwise.
+    fn tangent_at(&mut self, f1: Fd, f2: Fd, name: &str) -> Option<Locus> {
+        let (Fd::Point { at: c1, b: b1, .. }, Fd::Point { at: c2, b: b2, .. }) = (f1, f2) else {
+            return None;
+        };
+        // Which is the point (offset zero) and which the circle's centre (offset its radius).
+        let (centre, radius, at) = if self.is_zero(b2) {
+            (c1, b1, c2)
+        } else if self.is_zero(b1) {
+            (c2, b2, c1)
+        } else {
+            return None;
+        };
+        let on_it = (self.model.constraints.iter()).any(|(_, c)| {
+            let [p, known] = c.args[..] else {
+                return false;
+            };
+            c.kind == gcs_lang::constraints::ConstraintKind::On
+                && self.model.geoms[known].kind == gcs_lang::model::GeomKind::Circle
+                && self.radius_of(radius) == Some(known)
+                && (self.model.part(known, Part::Center))
+                    .is_some_and(|k| self.point_known(k) && self.point(k) == centre)
+                && self.point_known(p)
+                && (self.point(p) == at || self.coincident_at(p, at))
+                && self.is_done(&Relation::PointCircle {
+                    p,
+                    circle: known,
+                    gap: None,
+                    outside: false,
+                })
+        });
+        if !on_it {
+            return None;
+        }
+        let towards = self.value(
+            Op::DirectionTo {
+                from: centre,
+                to: at,
+            },
+            Ty::Vector,
+            format!(
+                "the direction from {} to {}",
+                self.word(centre),
+                self.word(at)
+            ),
+        );
+        let words = format!(
+            "the normal at {} to the circle it lies on, where {name} is tangent",
+            self.word(at)
+        );
+        Some(Locus::Line(self.value(
+            Op::Line {
+                point: at,
+                dir: towards,
+                offset: None,
+            },
+            Ty::Line,
+            words,
+        )))
+    }
+
+    /// Whether register `r` holds the constant zero.
+    fn is_zero(&self, r: Reg) -> bool {
+        (self.plan.steps.iter().rev())
+            .find(|s| s.out.map(|(o, _)| o) == Some(r))
+            .is_some_and(|s| matches!(s.op, Op::Const(c) if c == 0.0))
+    }
+
+    /// Whether a point known at register `at` is made coincident with point `p` by a
+    /// `coincident` constraint already met.
+    fn coincident_at(&mut self, p: GeomId, at: Reg) -> bool {
+        let others: Vec<GeomId> = (self.model.constraints.iter())
+            .filter(|(_, c)| c.kind == gcs_lang::constraints::ConstraintKind::Coincident)
+            .filter_map(|(_, c)| match c.args[..] {
+                [a, b] if a == p => Some(b),
+                [a, b] if b == p => Some(a),
+                _ => None,
+            })
+            .collect();
+        others.into_iter().any(|q| {
+            self.point_known(q)
+                && self.point(q) == at
+                && self.is_done(&Relation::PointPoint {
+                    a: p,
+                    b: q,
+                    d: None,
+                })
+        })
+    }
+
+    /// The circle whose radius register `r` reads (`dim_of`), if it reads one.
+    fn radius_of(&self, r: Reg) -> Option<GeomId> {
+        (self.plan.steps.iter().rev())
+            .find(|s| s.out.map(|(o, _)| o) == Some(r))
+            .and_then(|s| match s.op {
+                Op::DimOf(g) => Some(g),
+                _ => None,
+            })
     }
 
     /// A circle whose centre has just become fixed: its radius follows from its first fixed

@@ -83,7 +83,9 @@ impl Builder<'_, Planar> {
         let held = |s: &Self, f: GeomId| s.cluster(f) == i;
         let mut pair = None;
         for r in &self.pending {
-            if let Relation::PointPoint { a, b, .. } = r.relation {
+            // A coincidence has no direction: the direction to a point held on the grounded
+            // one would be that of a zero vector.
+            if let Relation::PointPoint { a, b, d: Some(_) } = r.relation {
                 let (ka, kb) = (self.cluster(a), self.cluster(b));
                 if held(self, a) && kb != i && self.clusters[kb].record.pos == Pos::Free {
                     pair = Some((a, b));

@@ -27,7 +27,11 @@ impl Builder<'_, Spatial> {
             }
         }
         if let Some((_, _, i)) = best {
+            // Held where the sketch places it, but not sized: a segment's length or a
+            // circle's radius is no part of a placement (as in the plane), and stays free.
+            let shape = self.clusters[i].record.shape;
             self.clusters[i].record.hold();
+            self.clusters[i].record.shape = shape;
             self.plan.grounded = Some(self.clusters[i].geoms[0]);
             if self.clusters[i].record.turn == Turn::None {
                 self.ground_turns(i);
@@ -46,7 +50,8 @@ impl Builder<'_, Spatial> {
         // The first pending point-point relation from the held clusters to a free one.
         let next = |s: &Self, held: &[usize]| -> Option<(GeomId, GeomId)> {
             s.pending.iter().find_map(|r| {
-                let Relation::PointPoint { a, b, .. } = r.relation else {
+                // A coincidence has no direction (nor a plane): a zero vector.
+                let Relation::PointPoint { a, b, d: Some(_) } = r.relation else {
                     return None;
                 };
                 let (ka, kb) = (s.cluster(a), s.cluster(b));

@@ -249,8 +249,10 @@ impl Invariants for Record {
         trans + turn + length
     }
 
+    /// No free size: a segment or circle whose length or radius is still free is not rigid
+    /// (a group solved about it would freeze that size at the sketch's).
     fn rigid(&self) -> bool {
-        true
+        !self.shape.size_free()
     }
 
     fn loose(&self) -> bool {
