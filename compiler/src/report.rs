@@ -396,6 +396,67 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
     d.with_note(e.to_string())
 }
 
+/// What a model's constraints imply of each other, by count and by constraint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Implied {
+    /// Constraints implied in part: a relation a run-time check measures while another is
+    /// constructed, or (where the count shows redundancy the checks do not account for) the
+    /// half of a coincidence a one-DOF motion cannot reach, measured as its gap (an `Onto`).
+    /// [`Analysis::redundant`] lists the constraints implied whole.
+    pub partly: Vec<gcs_lang::model::ConstraintId>,
+    /// Equations stated beyond the DOF they remove: the mobility less the nominal DOF (0 when
+    /// a geom is left free, whose count says nothing).
+    pub excess: i64,
+    /// The mobility: the placement a grounding holds plus the free defaults.
+    pub mobility: usize,
+}
+
+/// [`Implied`] of an analysed model.
+pub fn implied(model: &Model, a: &Analysis) -> Implied {
+    let nominal = crate::nominal::count(model);
+    let mut partly: Vec<gcs_lang::model::ConstraintId> = Vec::new();
+    // Constraints implied in part: a relation checked, another constructed (a revolute joint
+    // of a planar mechanism modelled in space: its parallel axes). A guard is no redundancy.
+    for s in &a.plan.steps {
+        if let Op::Check {
+            constraint,
+            guard: false,
+            ..
+        } = s.op
+        {
+            if !a.redundant.contains(&constraint) && !partly.contains(&constraint) {
+                partly.push(constraint);
+            }
+        }
+    }
+    // The placement a grounding holds is mobility too (what a sketcher counts as free), said
+    // apart from the motions the defaults hold.
+    let mobility = a.plan.grounded_dof + a.free_defaults().len();
+    // A point that a one-DOF motion must reach (an `Onto`) meets a two-equation constraint
+    // with one freedom, and measures the other as its gap: where the count shows redundancy
+    // the checks do not account for, those are where it lies. (Elsewhere an `Onto` measures a
+    // tangency's double root, no redundant equation.)
+    let excess = if a.free_geoms().is_empty() {
+        mobility as i64 - nominal.balance()
+    } else {
+        0
+    };
+    if excess > 0 {
+        for s in &a.plan.steps {
+            if let Op::Onto { constraint, .. } = s.op {
+                if !a.redundant.contains(&constraint) && !partly.contains(&constraint) {
+                    partly.push(constraint);
+                }
+            }
+        }
+    }
+    Implied {
+        partly,
+        excess,
+        mobility,
+    }
+}
+
 /// The summary `gcs check` prints after a successful analysis.
 pub fn check_report(model: &Model, a: &Analysis) -> String {
     let nominal = crate::nominal::count(model);
@@ -449,40 +510,13 @@ pub fn check_report(model: &Model, a: &Analysis) -> String {
     }
     let free = a.free_geoms();
     let free_defaults = a.free_defaults();
-    // Constraints implied in part: a relation checked, another constructed (a revolute joint
-    // of a planar mechanism modelled in space: its parallel axes).
-    let mut partly: Vec<gcs_lang::model::ConstraintId> = Vec::new();
-    for s in &a.plan.steps {
-        if let Op::Check {
-            constraint,
-            guard: false,
-            ..
-        } = s.op
-        {
-            if !a.redundant.contains(&constraint) && !partly.contains(&constraint) {
-                partly.push(constraint);
-            }
-        }
-    }
-    // The placement a grounding holds is mobility too (what a sketcher counts as free), said
-    // apart from the motions the defaults hold.
+    let Implied {
+        partly,
+        excess,
+        mobility,
+    } = implied(model, a);
     let placement = a.plan.grounded_dof;
-    let mobility = placement + free_defaults.len();
-    // Equations the constraints state beyond the DOF they remove: the mobility found less
-    // the nominal count. A point that a one-DOF motion must reach (an `Onto`) meets a
-    // two-equation constraint with one freedom, and measures the other as its gap: where the
-    // count shows redundancy the checks do not account for, those are where it lies.
-    let excess = mobility as i64 - nominal.balance();
-    if free.is_empty() && excess > 0 {
-        for s in &a.plan.steps {
-            if let Op::Onto { constraint, .. } = s.op {
-                if !a.redundant.contains(&constraint) && !partly.contains(&constraint) {
-                    partly.push(constraint);
-                }
-            }
-        }
-    }
-    let redundancy = if free.is_empty() && excess > 0 {
+    let redundancy = if excess > 0 {
         format!(
             ", with redundant constraints ({excess} redundant equation{})",
             if excess == 1 { "" } else { "s" }

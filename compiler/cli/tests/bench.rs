@@ -126,7 +126,11 @@ fn a_warm_sweep_goes_on_past_a_fold_and_says_so() {
         .output()
         .expect("gcs runs");
     let json = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(json.contains("\"kind\": \"generated\""), "{json}");
     assert_eq!(number(&json, Some("compiled"), "failures"), 0.0, "{json}");
     assert_eq!(number(&json, None, "branch_flips"), 0.0, "{json}");
