@@ -468,7 +468,7 @@ pub fn solve(
             )
         })?;
     let length = (coincident_right_end_top_start - bottom_end).dot(&right_dir_2);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -476,15 +476,31 @@ pub fn solve(
             length,
         ));
     }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
+            ErrorKind::CannotClose,
+            length,
+        ));
+    }
     let right_length = length;
     let shift_3 = coincident_right_end_top_start - top_start;
     top.translate(&shift_3);
     let length_2 = (left_start - coincident_right_end_top_start).dot(&top_dir_2);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }
@@ -506,11 +522,19 @@ pub fn solve(
     let turn_5 = rotation_between_units(&diagonal_dir, &direction_2);
     diagonal.turn_by(&turn_5);
     let length_3 = (top_start_2 - Point2::new(0.0, 0.0)).dot(&direction_2);
-    if !gcs_runtime::num::is_finite(length_3) || length_3 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_3) {
         return Err(SolveError::new(
             "coincident_diagonal_end_top_start",
             "coincident(diagonal.end, top.start)",
             ErrorKind::InvalidValue,
+            length_3,
+        ));
+    }
+    if length_3 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_diagonal_end_top_start",
+            "coincident(diagonal.end, top.start)",
+            ErrorKind::CannotClose,
             length_3,
         ));
     }

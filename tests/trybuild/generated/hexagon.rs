@@ -509,7 +509,7 @@ pub fn solve(
                 )
             })?;
     let length = (coincident_s5_end_s6_start - s4_end).dot(&s5_dir_3);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_s5_end_s6_start",
             "coincident(s5.end, s6.start)",
@@ -517,15 +517,31 @@ pub fn solve(
             length,
         ));
     }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_s5_end_s6_start",
+            "coincident(s5.end, s6.start)",
+            ErrorKind::CannotClose,
+            length,
+        ));
+    }
     let s5_length = length;
     let shift_2 = coincident_s5_end_s6_start - s6_start;
     s6.translate(&shift_2);
     let length_2 = (Point2::new(0.0, 0.0) - coincident_s5_end_s6_start).dot(&s6_dir_2);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "coincident_s5_end_s6_start",
             "coincident(s5.end, s6.start)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_s5_end_s6_start",
+            "coincident(s5.end, s6.start)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }

@@ -415,11 +415,19 @@ pub fn solve(
     let turn_3 = rotation_between_units(&left_dir, &direction_2);
     left.turn_by(&turn_3);
     let length = (rise - Point2::new(0.0, 0.0)).dot(&direction_2);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_left_end_apex",
             "coincident(left.end, apex)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_left_end_apex",
+            "coincident(left.end, apex)",
+            ErrorKind::CannotClose,
             length,
         ));
     }
@@ -438,11 +446,19 @@ pub fn solve(
     let turn_4 = rotation_between_units(&right_dir, &direction_3);
     right.turn_by(&turn_4);
     let length_2 = (rise - base_end).dot(&direction_3);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "coincident_right_end_apex",
             "coincident(right.end, apex)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_right_end_apex",
+            "coincident(right.end, apex)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }

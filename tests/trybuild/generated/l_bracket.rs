@@ -519,7 +519,7 @@ pub fn solve(
                 )
             })?;
     let length = (coincident_s3_end_s4_start - s2_end).dot(&s3_dir_2);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_s3_end_s4_start",
             "coincident(s3.end, s4.start)",
@@ -527,15 +527,31 @@ pub fn solve(
             length,
         ));
     }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_s3_end_s4_start",
+            "coincident(s3.end, s4.start)",
+            ErrorKind::CannotClose,
+            length,
+        ));
+    }
     let s3_length = length;
     let shift_4 = coincident_s3_end_s4_start - s4_start;
     s4.translate(&shift_4);
     let length_2 = (s5_start - coincident_s3_end_s4_start).dot(&s4_dir_2);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "coincident_s3_end_s4_start",
             "coincident(s3.end, s4.start)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_s3_end_s4_start",
+            "coincident(s3.end, s4.start)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }

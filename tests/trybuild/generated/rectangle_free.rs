@@ -441,7 +441,7 @@ pub fn solve(
             )
         })?;
     let length = (coincident_right_end_top_start - bottom_end).dot(&right_dir_2);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -449,15 +449,31 @@ pub fn solve(
             length,
         ));
     }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
+            ErrorKind::CannotClose,
+            length,
+        ));
+    }
     let right_length = length;
     let shift_4 = coincident_right_end_top_start - top_start;
     top.translate(&shift_4);
     let length_2 = (left_start_2 - coincident_right_end_top_start).dot(&top_dir_2);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }

@@ -412,7 +412,7 @@ pub fn solve(
             )
         })?;
     let length = (coincident_top_end_left_start - right_end).dot(&top_dir_2);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
@@ -420,15 +420,31 @@ pub fn solve(
             length,
         ));
     }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_top_end_left_start",
+            "coincident(top.end, left.start)",
+            ErrorKind::CannotClose,
+            length,
+        ));
+    }
     let top_length = length;
     let shift_2 = coincident_top_end_left_start - left_start;
     left.translate(&shift_2);
     let length_2 = (Point2::new(0.0, 0.0) - coincident_top_end_left_start).dot(&left_dir_2);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_top_end_left_start",
+            "coincident(top.end, left.start)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }

@@ -317,11 +317,19 @@ pub fn solve(
     let turn = rotation_between_units(&s_dir, &direction);
     s.turn_by(&turn);
     let length = (b_2 - Point2::new(0.0, 0.0)).dot(&direction);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "b_end",
             "coincident(S.end, B)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "b_end",
+            "coincident(S.end, B)",
+            ErrorKind::CannotClose,
             length,
         ));
     }

@@ -362,11 +362,19 @@ pub fn solve(
     let turn_4 = rotation_between_units(&d_dir, &direction);
     d.rotate_about_by(&c_end, &turn_4);
     let length = (Point2::new(0.0, 0.0) - c_end).dot(&direction);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_c_end_d_start",
             "coincident(c.end, d.start)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_c_end_d_start",
+            "coincident(c.end, d.start)",
+            ErrorKind::CannotClose,
             length,
         ));
     }

@@ -790,7 +790,7 @@ pub fn solve(
         return Err(SolveError::new(
             "on_bottom_end_br",
             "on(bottom.end, br)",
-            ErrorKind::InvalidValue,
+            ErrorKind::CannotClose,
             sum,
         ));
     }
@@ -830,9 +830,9 @@ pub fn solve(
     }
     if sum_4 < 0.0 {
         return Err(SolveError::new(
-            "on_bottom_end_br",
-            "on(bottom.end, br)",
-            ErrorKind::InvalidValue,
+            "on_top_start_tr",
+            "on(top.start, tr)",
+            ErrorKind::CannotClose,
             sum_4,
         ));
     }

@@ -481,11 +481,19 @@ pub fn solve(
         ));
     }
     let length = (nearest_tangent_right_fillet - bottom_end).dot(&right_dir_2);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "on_right_end_fillet",
             "on(right.end, fillet)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "on_right_end_fillet",
+            "on(right.end, fillet)",
+            ErrorKind::CannotClose,
             length,
         ));
     }
@@ -522,11 +530,19 @@ pub fn solve(
     let shift_3 = nearest_tangent_right_fillet_2 - top_start;
     top.translate(&shift_3);
     let length_2 = (left_start - nearest_tangent_right_fillet_2).dot(&top_dir_2);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "on_top_start_fillet",
             "on(top.start, fillet)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "on_top_start_fillet",
+            "on(top.start, fillet)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }

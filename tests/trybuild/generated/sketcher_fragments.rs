@@ -496,11 +496,19 @@ pub fn solve(
     let turn = rotation_between_units(&s1_dir, &direction);
     s1.rotate_about_by(&reflected_o, &turn);
     let length = (Point2::new(0.0, 0.0) - reflected_o).dot(&direction);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "b1",
             "midpoint(M, s1)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "b1",
+            "midpoint(M, s1)",
+            ErrorKind::CannotClose,
             length,
         ));
     }
@@ -520,11 +528,19 @@ pub fn solve(
     let turn_2 = rotation_between_units(&s2_dir, &direction_2);
     s2.rotate_about_by(&reflected_e, &turn_2);
     let length_2 = (Point2::new(2.0, 7.0) - reflected_e).dot(&direction_2);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "b2",
             "coincident(s2.end, E)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "b2",
+            "coincident(s2.end, E)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }

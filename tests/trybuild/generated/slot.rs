@@ -506,11 +506,19 @@ pub fn solve(
         ));
     }
     let length = (nearest_o_2 - nearest_tangent_top_right_end).dot(&bottom_dir_4);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "on_bottom_end_left_end",
             "on(bottom.end, left_end)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "on_bottom_end_left_end",
+            "on(bottom.end, left_end)",
+            ErrorKind::CannotClose,
             length,
         ));
     }
@@ -544,11 +552,19 @@ pub fn solve(
         ));
     }
     let length_2 = (nearest_tangent_top_right_end_2 - nearest_o).dot(&top_dir_3);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "on_top_end_right_end",
             "on(top.end, right_end)",
             ErrorKind::InvalidValue,
+            length_2,
+        ));
+    }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "on_top_end_right_end",
+            "on(top.end, right_end)",
+            ErrorKind::CannotClose,
             length_2,
         ));
     }

@@ -209,11 +209,19 @@ pub fn solve(
     let turn = frame::rotation_between3(&strut_dir, &direction, &frame::perpendicular(&strut_dir));
     strut.rotate_about_by(&Point3::new(1.0, 2.0, 3.0), &turn);
     let length = (Point3::new(1.0, 2.0, 3.0) - top_origin).dot(&direction);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "b_start",
             "coincident(strut.start, top)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "b_start",
+            "coincident(strut.start, top)",
+            ErrorKind::CannotClose,
             length,
         ));
     }

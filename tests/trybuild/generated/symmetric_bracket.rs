@@ -490,11 +490,19 @@ pub fn solve(
     let turn_3 = rotation_between_units(&right_dir, &direction);
     right.turn_by(&turn_3);
     let length = (mirrored_left_end - base_end_2).dot(&direction);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "mirror_arm",
             "symmetric(left.end, right.end, axis)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "mirror_arm",
+            "symmetric(left.end, right.end, axis)",
+            ErrorKind::CannotClose,
             length,
         ));
     }

@@ -435,11 +435,19 @@ pub fn solve(
             )
         })?;
     let length = (coincident_right_end_top_start - base_end).dot(&right_dir_2);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_right_end_top_start",
+            "coincident(right.end, top.start)",
+            ErrorKind::CannotClose,
             length,
         ));
     }
@@ -487,7 +495,7 @@ pub fn solve(
             )
         })?;
     let length_2 = (coincident_top_end_left_start - coincident_right_end_top_start).dot(&top_dir_2);
-    if !gcs_runtime::num::is_finite(length_2) || length_2 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_2) {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
@@ -495,15 +503,31 @@ pub fn solve(
             length_2,
         ));
     }
+    if length_2 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_top_end_left_start",
+            "coincident(top.end, left.start)",
+            ErrorKind::CannotClose,
+            length_2,
+        ));
+    }
     let top_length = length_2;
     let shift_2 = coincident_top_end_left_start - left_start;
     left.translate(&shift_2);
     let length_3 = (Point2::new(0.0, 0.0) - coincident_top_end_left_start).dot(&left_dir_2);
-    if !gcs_runtime::num::is_finite(length_3) || length_3 < 0.0 {
+    if !gcs_runtime::num::is_finite(length_3) {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
             ErrorKind::InvalidValue,
+            length_3,
+        ));
+    }
+    if length_3 < 0.0 {
+        return Err(SolveError::new(
+            "coincident_top_end_left_start",
+            "coincident(top.end, left.start)",
+            ErrorKind::CannotClose,
             length_3,
         ));
     }

@@ -314,11 +314,19 @@ pub fn solve(
     let turn_3 = rotation_between_units(&s3_dir, &direction);
     s3.turn_by(&turn_3);
     let length = (s2_end - s1_end).dot(&direction);
-    if !gcs_runtime::num::is_finite(length) || length < 0.0 {
+    if !gcs_runtime::num::is_finite(length) {
         return Err(SolveError::new(
             "coincident_s3_end_s2_end",
             "coincident(s3.end, s2.end)",
             ErrorKind::InvalidValue,
+            length,
+        ));
+    }
+    if length < 0.0 {
+        return Err(SolveError::new(
+            "coincident_s3_end_s2_end",
+            "coincident(s3.end, s2.end)",
+            ErrorKind::CannotClose,
             length,
         ));
     }
