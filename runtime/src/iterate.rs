@@ -440,7 +440,7 @@ const GAP_STEPS: usize = 40;
 /// From a start `x` where the assembly fails with a gap (`first`), the nearest stretch where
 /// it exists, by Newton's method on the gap: its gradient by forward differences, each step
 /// aimed a tenth past where the gap would close, at most half a scale per default, halved
-/// until the gap falls. The answer's residuals, with `x` moved there; else the last error.
+/// until the gap falls. The answer's residuals, with `x` moved there; else the start's error.
 /// So an iteration starts from any default whose loci can be brought to meet (a sketch drawn
 /// where two circles miss), not only from one beside the stretch where they do.
 #[cold]
@@ -453,7 +453,9 @@ fn reach_assembly<const N: usize, E: Gap>(
     first: E,
 ) -> Result<[f64; N], E> {
     let mut r = [0.0; N];
-    let mut error = first;
+    // A descent that fails reports the start's own error: what the defaults given meet, the
+    // same in every build (a stalled descent's last gap depends on rounding).
+    let error = first;
     let Some(mut gap) = error.gap() else {
         return Err(error);
     };
@@ -514,7 +516,6 @@ fn reach_assembly<const N: usize, E: Gap>(
                     if let Some(g) = e.gap().filter(|&g| g < gap) {
                         *x = y;
                         gap = g;
-                        error = e;
                         fell = true;
                         break;
                     }

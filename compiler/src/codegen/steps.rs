@@ -1093,7 +1093,7 @@ impl Solve<'_> {
     /// Sets geom `g`'s dimension to register `value`, tested first unless it is known to be
     /// finite and non-negative; declared here when nothing read it before.
     fn set_dim(&mut self, w: &mut Writer, i: usize, g: GeomId, value: Reg) {
-        let v = self.r(value);
+        let mut v = self.r(value);
         let known_good = self.facts.known_sizes.contains(&value)
             || matches!(self.facts.value(value), Value::Scalar(x) if x.is_finite() && *x >= 0.0);
         let closing = (!known_good)
@@ -1111,10 +1111,12 @@ impl Solve<'_> {
                 w.line(&format!("return Err({error});"));
                 w.close("}");
             }
+            // Within rounding of zero, it is zero (as the interpreter takes it).
             let error = self.cx.error_of(c, "CannotClose", &v);
-            w.open(&format!("if {v} < 0.0 {{"));
+            w.open(&format!("if {v} < -tol {{"));
             w.line(&format!("return Err({error});"));
             w.close("}");
+            v = format!("{v}.max(0.0)");
         } else if !known_good {
             let test = if self.facts.is_finite(value) {
                 format!("if {v} < 0.0 {{")

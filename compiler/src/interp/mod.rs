@@ -763,7 +763,17 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
         g: gcs_lang::model::GeomId,
         value: Reg,
     ) -> Result<(), SolveError> {
-        let x = self.s(value);
+        let mut x = self.s(value);
+        // A closing length within rounding of zero is zero: the profile closes with that
+        // segment collapsed, whichever side of zero the arithmetic lands on.
+        if x < 0.0
+            && x >= -self.tol
+            && (self.plan)
+                .closing_length(value, self.plan.constraint_of(i))
+                .is_some()
+        {
+            x = 0.0;
+        }
         if !x.is_finite() || x < 0.0 {
             // A size given as a default is the default's fault, not the constraint's.
             if let Some(d) = self.plan.given_default(value) {

@@ -231,12 +231,24 @@ impl Builder<'_, Planar> {
     pub(super) fn linear_stage(&mut self) -> bool {
         let mut members: BTreeMap<usize, Member> = BTreeMap::new();
         let mut candidates = Vec::new();
+        // The (circle, direction) pairs a pending tangency makes touch, once for all.
+        let touching: HashSet<(GeomId, GeomId)> = (self.pending.iter())
+            .filter_map(|r| match r.relation {
+                Relation::CircleLine {
+                    circle,
+                    dir,
+                    gap: None,
+                    ..
+                } => Some((circle, dir)),
+                _ => None,
+            })
+            .collect();
         for index in 0..self.pending.len() {
             let rel = self.pending[index].clone();
             if rel.duplicate {
                 continue;
             }
-            let Some(specs) = self.specs(&rel.relation) else {
+            let Some(specs) = self.specs(&rel.relation, &touching) else {
                 continue;
             };
             let ks = self.clusters_of(&rel);
@@ -354,7 +366,11 @@ impl Builder<'_, Planar> {
     }
 
     /// The rows of a relation linear in the motions, or `None` when it is not.
-    fn specs(&self, relation: &Relation) -> Option<Vec<Spec>> {
+    fn specs(
+        &self,
+        relation: &Relation,
+        touching: &HashSet<(GeomId, GeomId)>,
+    ) -> Option<Vec<Spec>> {
         let model = self.model;
         Some(match *relation {
             Relation::PointPoint { a, b, d: None } => {
@@ -388,11 +404,8 @@ impl Builder<'_, Planar> {
                     return None;
                 };
                 let dir = model.dir_feature(seg)?;
-                let touches = self.record(circle).tangent.contains(&dir)
-                    || self.pending.iter().any(|r| {
-                        matches!(r.relation, Relation::CircleLine { circle: c, dir: d, gap: None, .. }
-                            if c == circle && d == dir)
-                    });
+                let touches =
+                    self.record(circle).tangent.contains(&dir) || touching.contains(&(circle, dir));
                 if !touches || self.record(circle).free_dim == Some(circle) {
                     return None;
                 }
