@@ -22,6 +22,7 @@ pub mod num;
 pub mod outer;
 pub mod poly;
 pub mod roots;
+pub mod turn3d;
 /// Every tolerance, by name (its own crate, so that the language's checks use them too).
 pub use gcs_tol as tol;
 
