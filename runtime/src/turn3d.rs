@@ -426,6 +426,9 @@ struct System {
     m1: [[f64; 2]; 2],
     m2: [[f64; 2]; 2],
     d: [f64; 2],
+    /// The magnitude of the equations' terms (their coefficients and the constants they were
+    /// computed from), in the units of `d`: what a tangency's tolerance is relative to.
+    scale: f64,
 }
 
 /// What [`System::solve`] finds.
@@ -534,7 +537,7 @@ impl System {
         Self {
             m1: self.m2,
             m2: self.m1,
-            d: self.d,
+            ..*self
         }
     }
 
@@ -600,12 +603,37 @@ impl System {
         let g = f.shifted(shift);
         let coeffs = g.quartic();
         let (roots, critical) = poly::roots_and_critical(&coeffs);
-        if roots.is_empty() {
-            // The nearest miss: the critical point of smallest |quartic| (then weighted back
-            // by `(1 + t²)²`, the function of the angle).
+        // A double root that rounding split into a complex pair: a critical point with no root
+        // between its neighbours, where the function's value is within what a miss of
+        // `TANGENT_REL * scale` in the equations' values makes of it (`|∂f/∂d| = 2 |w| |adj|`,
+        // with `|w| = |det|` at a root), the rounding there amplified by the elimination's
+        // conditioning.
+        let q = q1.max(q2);
+        let f_tol = 2.0 * det.abs() * frob2(&m).sqrt() * TANGENT_REL * self.scale * (0.5 / q);
+        let crit = critical.as_slice();
+        let mut found: Roots<RealRoot, 4> = roots;
+        for (i, c) in crit.iter().enumerate() {
+            let lo = if i > 0 {
+                crit[i - 1].x
+            } else {
+                f64::NEG_INFINITY
+            };
+            let hi = crit.get(i + 1).map_or(f64::INFINITY, |n| n.x);
+            if roots.as_slice().iter().any(|r| r.x >= lo && r.x <= hi) {
+                continue;
+            }
+            if f.at(shift + 2.0 * c.x.atan()).abs() <= f_tol {
+                found.push(RealRoot {
+                    x: c.x,
+                    multiple: true,
+                });
+            }
+        }
+        if found.is_empty() {
+            // The nearest miss: the critical point of smallest |f|.
             let mut t2 = shift + std::f64::consts::PI;
             let mut least = best;
-            for c in critical.as_slice() {
+            for c in crit {
                 let phi = shift + 2.0 * c.x.atan();
                 let v = f.at(phi).abs();
                 if v < least {
@@ -617,7 +645,7 @@ impl System {
             return Solved::Miss(unswap([first_of(t2), t2]));
         }
         let mut out: Roots<([f64; 2], bool), 4> = Roots::new();
-        for &RealRoot { x, multiple } in roots.as_slice() {
+        for &RealRoot { x, multiple } in found.as_slice() {
             let t2 = wrap(shift + 2.0 * x.atan());
             let mut t = [first_of(t2), t2];
             if !multiple {
@@ -746,8 +774,13 @@ pub fn four_terms(terms: &[[Term; 4]; 2], d: [f64; 2]) -> Intersection<[f64; 2],
         m1: [[0.0; 2]; 2],
         m2: [[0.0; 2]; 2],
         d: [0.0; 2],
+        scale: tol::scale(&d),
     };
     for (i, row) in terms.iter().enumerate() {
+        for term in row {
+            let t = h(term);
+            sys.scale = sys.scale.max(tol::scale(&[t.k, t.c, t.s]));
+        }
         let a = h(&row[0]).add(h(&row[1]));
         let b = h(&row[2]).add(h(&row[3]));
         sys.m1[i] = [a.c, a.s];
@@ -867,6 +900,7 @@ pub fn three_circles(
         m1: [la, ka],
         m2: [[-lb[0], -lb[1]], [-kb[0], -kb[1]]],
         d: [const_len, k.dot(&(fb - fa))],
+        scale: sc,
     };
     let meet = |t: [f64; 2]| {
         let pa = turn_point(first, t[0], a);

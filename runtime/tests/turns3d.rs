@@ -630,3 +630,557 @@ fn worst_errors_are_documented() {
         failed.first()
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// Near-degenerate families.
+
+/// A signed relative offset: zero, or of magnitude in [1e-16, 1e-6] (log-uniform).
+fn tiny() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        1 => Just(0.0),
+        6 => ((-16.0f64..-6.0), any::<bool>())
+            .prop_map(|(e, neg)| if neg { -(10f64.powf(e)) } else { 10f64.powf(e) }),
+    ]
+}
+
+/// The contact of a target a signed `gap` beyond the edge of reach (negative: inside), which
+/// rounding of the inputs moves by at most `noise`: a miss of at most the tolerance `t`
+/// touches (one double root), any overlap crosses (two roots close to the touching turn), a
+/// larger miss reports its gap.
+fn at_edge(x: &Intersection<f64, 2>, gap: f64, t: f64, noise: f64) -> Result<(), TestCaseError> {
+    let r = x.roots.as_slice();
+    match x.contact {
+        Contact::Tangent => {
+            prop_assert!(
+                gap >= -noise && gap <= t + noise,
+                "tangent at gap {:e} ({:e})",
+                gap,
+                t
+            );
+            prop_assert!(r.len() == 2 && r[0] == r[1], "{:?}", x);
+        }
+        Contact::Crossing => {
+            prop_assert!(gap <= noise, "crossing at gap {:e}", gap);
+            prop_assert_eq!(r.len(), 2);
+        }
+        Contact::Disjoint { gap: g } => {
+            prop_assert!(gap >= t - noise, "missing at gap {:e} ({:e})", gap, t);
+            prop_assert!((g - gap).abs() <= noise, "gap {:e} for {:e}", g, gap);
+        }
+        other => prop_assert!(false, "{:?}", other),
+    }
+    Ok(())
+}
+
+/// Rounding noise of inputs of magnitude `m`.
+fn noise(m: f64) -> f64 {
+    16.0 * f64::EPSILON * m
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// A point on or very near its axis: refused as on it, or turned with a residual at the
+    /// rounding of the inputs.
+    #[test]
+    fn sp1_point_near_the_axis(seed in any::<u64>(), e in -17.0f64..-3.0) {
+        let mut g = Rng(seed);
+        let s = g.scale();
+        let axis = g.axis(s);
+        let w = g.unit();
+        let p = axis.at(g.range(-1.0, 1.0) * s) + (w - axis.dir * axis.dir.dot(&w)) * (10f64.powf(e) * s);
+        let t = g.angle();
+        let q = rot(&axis, t, &p);
+        let m = mag(&[axis.point, p, q], &[]);
+        let x = turn_onto_point(&axis, &p, &q);
+        match x.contact {
+            Contact::ZeroRadius => prop_assert!(across(&axis, &p).norm() <= 1e-13 * m),
+            Contact::Crossing => {
+                let r = x.roots.as_slice()[0];
+                prop_assert!((rot(&axis, r, &p) - q).norm() <= RESIDUAL_REL * m);
+            }
+            other => prop_assert!(false, "{:?}", other),
+        }
+        // The sphere, plane and line through the turned point are reached likewise.
+        let y = turn_to_distance(&axis, &p, &axis.point, (q - axis.point).norm());
+        for &r in y.roots.as_slice() {
+            let err = ((rot(&axis, r, &p) - axis.point).norm() - (q - axis.point).norm()).abs();
+            prop_assert!(err <= RESIDUAL_REL * m, "{:e}", err);
+        }
+    }
+
+    /// A target off the orbit along the axis by `δ`: reached within the tangency tolerance,
+    /// a miss with gap `|δ|` beyond; the least-squares angle is the known one either way.
+    #[test]
+    fn sp1_target_off_the_orbit(seed in any::<u64>(), e in tiny()) {
+        let mut g = Rng(seed);
+        let s = g.scale();
+        let axis = g.axis(s);
+        let p = g.off_axis(&axis, s);
+        let t = g.angle();
+        let q = rot(&axis, t, &p) + axis.dir * (e * s);
+        let m = mag(&[axis.point, p, q], &[]);
+        let x = turn_onto_point(&axis, &p, &q);
+        let gap = (e * s).abs();
+        match x.contact {
+            Contact::Crossing => prop_assert!(gap <= TANGENT_REL * m + noise(m)),
+            Contact::Disjoint { gap: g } => {
+                prop_assert!(gap >= TANGENT_REL * m - noise(m));
+                prop_assert!((g - gap).abs() <= noise(m), "{:e} for {:e}", g, gap);
+            }
+            other => prop_assert!(false, "{:?}", other),
+        }
+        let n = nearest_turn(&axis, &p, &q).unwrap();
+        prop_assert!(adist(n.angle, t) <= ANGLE_TOL);
+        prop_assert!((n.miss - gap).abs() <= noise(m));
+    }
+
+    /// SP3 with the distance at, just inside and just outside the orbit's nearest and farthest
+    /// distances from the centre.
+    #[test]
+    fn sp3_edge_of_reach(seed in any::<u64>(), e in tiny(), far in any::<bool>()) {
+        let mut g = Rng(seed);
+        let s = g.scale();
+        let axis = g.axis(s);
+        let p = g.off_axis(&axis, s);
+        let q = g.off_axis(&axis, s);
+        let (r, rho) = (across(&axis, &p).norm(), across(&axis, &q).norm());
+        let h = axis.dir.dot(&(q - p));
+        let edge = if far { h.hypot(rho + r) } else { h.hypot(rho - r) };
+        prop_assume!(edge > 0.05 * s);
+        let d = edge + e * s;
+        let m = mag(&[axis.point, p, q], &[d]);
+        let x = turn_to_distance(&axis, &p, &q, d);
+        // Past the farthest distance, or short of the nearest, misses.
+        let gap = if far { e * s } else { -e * s };
+        at_edge(&x, gap, TANGENT_REL * m, noise(m))?;
+        // The touching turn: towards q's foot's direction (nearest) or away from it (farthest).
+        let toward = across(&axis, &q);
+        let te = {
+            let rp = across(&axis, &p);
+            axis.dir.dot(&rp.cross(&toward)).atan2(rp.dot(&toward)) + if far { PI } else { 0.0 }
+        };
+        for &root in x.roots.as_slice() {
+            prop_assert!(adist(root, te) <= 10.0 * (e.abs() / 0.05).sqrt() + 1e-6,
+                "root {} touching {}", root, te);
+            let err = ((rot(&axis, root, &p) - q).norm() - d).abs();
+            prop_assert!(err <= TANGENT_REL * m + RESIDUAL_REL * m, "{:e}", err);
+        }
+    }
+
+    /// SP4 with the plane at, just below and just above the orbit's highest point.
+    #[test]
+    fn sp4_edge_of_reach(seed in any::<u64>(), e in tiny()) {
+        let mut g = Rng(seed);
+        let s = g.scale();
+        let axis = g.axis(s);
+        let p = g.off_axis(&axis, s);
+        let n = g.unit();
+        let k = axis.dir;
+        let np = n - k * k.dot(&n);
+        prop_assume!(np.norm() > 0.05);
+        let r = across(&axis, &p).norm();
+        let centre = p - across(&axis, &p);
+        let top = n.dot(&centre.coords) + r * np.norm();
+        let plane = Plane::new(n, top + e * s);
+        let m = mag(&[axis.point, p], &[plane.offset]);
+        let x = turn_onto_plane(&axis, &p, &plane);
+        at_edge(&x, e * s, TANGENT_REL * m, noise(m))?;
+        let rp = across(&axis, &p);
+        let te = k.dot(&rp.cross(&np)).atan2(rp.dot(&np));
+        for &root in x.roots.as_slice() {
+            prop_assert!(adist(root, te) <= 10.0 * (e.abs() / 0.05).sqrt() + 1e-6);
+            let err = plane.signed_distance(&rot(&axis, root, &p)).abs();
+            prop_assert!(err <= TANGENT_REL * m + RESIDUAL_REL * m, "{:e}", err);
+        }
+    }
+
+    /// SP2 with parallel axes whose orbits (in one plane) touch, overlap a hair or miss one.
+    #[test]
+    fn sp2_parallel_orbits_touching(seed in any::<u64>(), e in tiny(), inner in any::<bool>()) {
+        let mut g = Rng(seed);
+        let s = g.scale();
+        let first = g.axis(s);
+        let (r1, r2) = (g.range(0.2, 1.0) * s, g.range(0.2, 1.0) * s);
+        prop_assume!(!inner || (r1 - r2).abs() > 0.05 * s);
+        let across_dir = {
+            let w = g.unit();
+            (w - first.dir * first.dir.dot(&w)).normalize()
+        };
+        let dist = if inner { (r1 - r2).abs() } else { r1 + r2 } + e * s;
+        let c2 = first.at(g.range(-1.0, 1.0) * s) + across_dir * r1;
+        let second = Line3::new(c2 + across_dir * (dist - r1), if g.f() < 0.5 { first.dir } else { -first.dir });
+        let height = first.dir * first.dir.dot(&(c2 - first.point));
+        let _ = height;
+        // p on the first orbit, q on the second, both in the plane through `c2` across the axes.
+        let p = rot(&first, g.angle(), &c2);
+        let q = rot(&second, g.angle(), &(second.point + across_dir * r2));
+        let m = mag(&[first.point, second.point, p, q], &[]);
+        let x = turns_meeting(&first, &p, &second, &q);
+        let gap = if inner { -e * s } else { e * s };
+        let t = TANGENT_REL * m;
+        let nz = noise(m) * 4.0;
+        match x.contact {
+            Contact::Tangent => prop_assert!(gap >= -nz && gap <= t + nz, "tangent at {:e}", gap),
+            Contact::Crossing => prop_assert!(gap <= nz, "crossing at {:e}", gap),
+            Contact::Disjoint { gap: gg } => {
+                prop_assert!(gap >= t - nz, "missing at {:e}", gap);
+                prop_assert!((gg - gap).abs() <= nz, "{:e} for {:e}", gg, gap);
+            }
+            other => prop_assert!(false, "{:?}", other),
+        }
+        for r in x.roots.as_slice() {
+            let err = (rot(&first, r[0], &p) - rot(&second, r[1], &q)).norm();
+            prop_assert!(err <= 2.0 * t + RESIDUAL_REL * m, "{:e}", err);
+        }
+    }
+}
+
+/// SP6 at a fold of its equations (where two solutions merge): the Jacobian's determinant is
+/// zero at `[θ1, θ2]`, by construction. The values there are reached in a double root (or two
+/// roots within the square root of rounding); moved a little across the fold, two close roots
+/// on one side, none near on the other.
+fn six_fold(seed: u64) -> Option<(Six, [f64; 2], Vector3<f64>)> {
+    let mut f = six(seed);
+    // The Jacobian's columns: the derivative of each term's height is its direction's dot
+    // with the axis crossed with the turned point's offset.
+    let dh = |term: &Term, a: f64| {
+        let y = rot(&term.axis, a, &term.point) - term.axis.point;
+        term.along.dot(&term.axis.dir.cross(&y))
+    };
+    let col = |t: [f64; 2], which: usize| {
+        let r = |row: &[Term; 4]| {
+            if which == 0 {
+                dh(&row[0], t[0]) + dh(&row[1], t[0])
+            } else {
+                dh(&row[2], t[1]) + dh(&row[3], t[1])
+            }
+        };
+        [r(&f.terms[0]), r(&f.terms[1])]
+    };
+    let t1 = f.t[0];
+    let j0 = col([t1, 0.0], 0);
+    // The second column is `α cos θ2 + β sin θ2`, per row.
+    let (al, be) = (col([t1, 0.0], 1), col([t1, PI / 2.0], 1));
+    let a = j0[0] * al[1] - j0[1] * al[0];
+    let b = j0[0] * be[1] - j0[1] * be[0];
+    if a.hypot(b) < 1e-3 * f.s * f.s {
+        return None;
+    }
+    let t2 = (-a).atan2(b);
+    f.t = [t1, t2];
+    f.d = six_value(&f.terms, f.t);
+    // The direction across the fold's image: normal to the Jacobian's (rank one) columns.
+    let c = if j0[0].hypot(j0[1]) > 1e-3 * f.s {
+        j0
+    } else {
+        col(f.t, 1)
+    };
+    if c[0].hypot(c[1]) <= 1e-3 * f.s {
+        return None;
+    }
+    let nrm = Vector3::new(-c[1], c[0], 0.0).normalize();
+    // A fold, not a cusp: the values curve across the image along the Jacobian's kernel.
+    let (c0, c1) = (j0, col(f.t, 1));
+    let n0 = c0[0] * c0[0] + c0[1] * c0[1];
+    let v = if n0 > 1e-6 * f.s * f.s {
+        let l = (c1[0] * c0[0] + c1[1] * c0[1]) / n0;
+        [l, -1.0]
+    } else {
+        [1.0, 0.0]
+    };
+    let h = 1e-3;
+    let at = |k: f64| six_value(&f.terms, [t1 + k * h * v[0], t2 + k * h * v[1]]);
+    let (p, z, m) = (at(1.0), at(0.0), at(-1.0));
+    let curve = ((p[0] + m[0] - 2.0 * z[0]) * nrm.x + (p[1] + m[1] - 2.0 * z[1]) * nrm.y) / (h * h);
+    if curve.abs() < 1e-2 * f.s {
+        return None;
+    }
+    Some((f, [t1, t2], nrm))
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn sp6_fold_is_a_double_root(seed in any::<u64>(), e in -11.0f64..-7.0) {
+        let fold = six_fold(seed);
+        prop_assume!(fold.is_some());
+        let (f, t, n) = fold.unwrap();
+        let near = |x: &Intersection<[f64; 2], 4>, within: f64| {
+            x.roots.as_slice().iter().filter(|r| adist(r[0], t[0]).max(adist(r[1], t[1])) <= within).count()
+        };
+        let x = four_terms(&f.terms, f.d);
+        let at = near(&x, 1e-5);
+        prop_assert!(at == 2, "{} roots near the fold: {:?} for {:?}", at, x, t);
+        // Two near roots are one double root, or a pair split by rounding.
+        let eps = 10f64.powf(e) * f.s;
+        let up = four_terms(&f.terms, [f.d[0] + n.x * eps, f.d[1] + n.y * eps]);
+        let down = four_terms(&f.terms, [f.d[0] - n.x * eps, f.d[1] - n.y * eps]);
+        // The pair moves away from the fold as the square root of the move (over the fold's
+        // curvature, which may be small): one side has two roots more than the other, and the
+        // fold itself as many as that side (the pair merged).
+        let (lu, ld) = (up.roots.len(), down.roots.len());
+        prop_assert!(lu.abs_diff(ld) == 2, "{} and {} roots: {:?} {:?}", lu, ld, up, down);
+        prop_assert_eq!(x.roots.len(), lu.max(ld));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The number of solutions against an independent count.
+
+/// The number of sign changes of `f` over a turn, sampled at `n` angles, each confirmed by
+/// bisection; `None` when a sampled local extremum of `|f|` is within `close` of zero (a
+/// near tangency the sampling cannot count).
+fn count_1d(f: impl Fn(f64) -> f64, n: usize, close: f64) -> Option<usize> {
+    let v: Vec<f64> = (0..n).map(|i| f(-PI + TAU * i as f64 / n as f64)).collect();
+    let mut count = 0;
+    for i in 0..n {
+        let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+        if b.abs() <= a.abs() && b.abs() <= c.abs() && b.abs() < close {
+            return None;
+        }
+        if (b < 0.0) != (c < 0.0) {
+            // Bisect to confirm a root in between.
+            let (mut lo, mut hi) = (
+                -PI + TAU * i as f64 / n as f64,
+                -PI + TAU * (i + 1) as f64 / n as f64,
+            );
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if (f(mid) < 0.0) == (f(lo) < 0.0) {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
+            }
+            if f(0.5 * (lo + hi)).abs() <= close {
+                count += 1;
+            }
+        }
+    }
+    Some(count)
+}
+
+/// The distinct solutions of two equations in two angles found by Newton's method from a
+/// `grid x grid` of starts; `None` when one of them is nearly singular (a near tangency).
+fn count_2d(f: impl Fn(f64, f64) -> [f64; 2], grid: usize, tol: f64) -> Option<usize> {
+    let mut found: Vec<[f64; 2]> = Vec::new();
+    let h = 1e-7;
+    for i in 0..grid {
+        for j in 0..grid {
+            let mut t = [
+                -PI + TAU * (i as f64 + 0.5) / grid as f64,
+                -PI + TAU * (j as f64 + 0.5) / grid as f64,
+            ];
+            let mut ok = false;
+            for _ in 0..40 {
+                let r = f(t[0], t[1]);
+                let (fa, fb) = (f(t[0] + h, t[1]), f(t[0], t[1] + h));
+                let j = [
+                    [(fa[0] - r[0]) / h, (fb[0] - r[0]) / h],
+                    [(fa[1] - r[1]) / h, (fb[1] - r[1]) / h],
+                ];
+                let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+                if det == 0.0 {
+                    break;
+                }
+                let d0 = (r[0] * j[1][1] - r[1] * j[0][1]) / det;
+                let d1 = (j[0][0] * r[1] - j[1][0] * r[0]) / det;
+                // Damped: at most a quarter turn per step.
+                let l = (d0.hypot(d1) / 0.8).max(1.0);
+                t = [t[0] - d0 / l, t[1] - d1 / l];
+                if d0.hypot(d1) < 1e-13 {
+                    ok = true;
+                    break;
+                }
+            }
+            let r = f(t[0], t[1]);
+            if !(ok || r[0].hypot(r[1]) <= tol) || r[0].hypot(r[1]) > tol {
+                continue;
+            }
+            let t = [wrap(t[0]), wrap(t[1])];
+            if !found
+                .iter()
+                .any(|u| adist(u[0], t[0]) < 1e-6 && adist(u[1], t[1]) < 1e-6)
+            {
+                found.push(t);
+            }
+        }
+    }
+    for t in &found {
+        if conditioning2(&f, t[0], t[1], 1.0) < 1e-4 {
+            return None;
+        }
+    }
+    Some(found.len())
+}
+
+fn wrap(t: f64) -> f64 {
+    let w = t.rem_euclid(TAU);
+    if w > PI {
+        w - TAU
+    } else {
+        w
+    }
+}
+
+/// An instance perturbed off its known solution, so that any number of solutions, none
+/// included, is counted.
+fn perturbed(g: &mut Rng, v: f64, s: f64) -> f64 {
+    v + g.range(-0.5, 0.5) * s
+}
+
+#[test]
+fn solution_counts_match_an_independent_count() {
+    let (mut compared, mut skipped) = ([0usize; 4], [0usize; 4]);
+    let mut histogram = [[0usize; 5]; 4];
+    for seed in 0..400u64 {
+        let mut g = Rng(seed ^ 0x5eed);
+        // SP3.
+        {
+            let s = g.scale();
+            let axis = g.axis(s);
+            let p = g.off_axis(&axis, s);
+            let q = g.point(s);
+            let d = g.range(0.05, 2.0) * s;
+            let x = turn_to_distance(&axis, &p, &q, d);
+            match count_1d(|t| (rot(&axis, t, &p) - q).norm() - d, 4096, 1e-6 * s) {
+                Some(c) => {
+                    assert_eq!(x.roots.len(), c, "SP3 seed {seed}: {x:?}");
+                    compared[0] += 1;
+                    histogram[0][c] += 1;
+                }
+                None => skipped[0] += 1,
+            }
+        }
+        // SP4.
+        {
+            let s = g.scale();
+            let axis = g.axis(s);
+            let p = g.off_axis(&axis, s);
+            let plane = Plane::new(g.unit(), g.range(-1.5, 1.5) * s);
+            let x = turn_onto_plane(&axis, &p, &plane);
+            match count_1d(
+                |t| plane.signed_distance(&rot(&axis, t, &p)),
+                4096,
+                1e-6 * s,
+            ) {
+                Some(c) => {
+                    assert_eq!(x.roots.len(), c, "SP4 seed {seed}: {x:?}");
+                    compared[1] += 1;
+                    histogram[1][c] += 1;
+                }
+                None => skipped[1] += 1,
+            }
+        }
+        // SP5, off its known solution.
+        {
+            let mut f = five(seed, AXES[seed as usize % 5]);
+            let s = f.s;
+            f.a = Point3::new(
+                perturbed(&mut g, f.a.x, s),
+                perturbed(&mut g, f.a.y, s),
+                f.a.z,
+            );
+            if across(&f.first, &f.a).norm() > 0.1 * s {
+                let x = three_circles(&f.first, &f.a, &f.second, &f.third, &f.b);
+                match count_2d(
+                    |a, b| {
+                        let v = five_reduced(&f, a, b);
+                        [v[0] / s, v[1] / s]
+                    },
+                    48,
+                    1e-10,
+                ) {
+                    Some(c) => {
+                        assert_eq!(x.roots.len(), c, "SP5 seed {seed}: {x:?}");
+                        compared[2] += 1;
+                        histogram[2][c] += 1;
+                    }
+                    None => skipped[2] += 1,
+                }
+            }
+        }
+        // SP6, off its known solution.
+        {
+            let mut f = six(seed);
+            let s = f.s;
+            f.d = [perturbed(&mut g, f.d[0], s), perturbed(&mut g, f.d[1], s)];
+            let x = four_terms(&f.terms, f.d);
+            let value = |a, b| {
+                let v = six_value(&f.terms, [a, b]);
+                [(v[0] - f.d[0]) / s, (v[1] - f.d[1]) / s]
+            };
+            match count_2d(value, 48, 1e-10) {
+                Some(c) => {
+                    assert_eq!(x.roots.len(), c, "SP6 seed {seed}: {x:?}");
+                    compared[3] += 1;
+                    histogram[3][c] += 1;
+                }
+                None => skipped[3] += 1,
+            }
+        }
+    }
+    eprintln!("compared (SP3, SP4, SP5, SP6) {compared:?}, skipped near tangency {skipped:?}, by count 0..4 {histogram:?}");
+    assert!(compared.iter().all(|&c| c >= 300), "{compared:?}");
+}
+
+#[test]
+fn non_finite_and_degenerate_inputs_give_no_roots() {
+    let z = Line3::new(Point3::origin(), Vector3::z());
+    let nan = Point3::new(f64::NAN, 0.0, 0.0);
+    let p = Point3::new(1.0, 0.0, 0.0);
+    assert!(turn_onto_point(&z, &nan, &p).roots.is_empty());
+    assert!(turn_to_distance(&z, &p, &p, f64::INFINITY).roots.is_empty());
+    assert!(turn_onto_plane(&z, &p, &Plane::new(Vector3::x(), f64::NAN))
+        .roots
+        .is_empty());
+    assert!(turns_meeting(&z, &p, &Line3::new(nan, Vector3::x()), &p)
+        .roots
+        .is_empty());
+    assert!(three_circles(&z, &p, &z, &z, &nan).roots.is_empty());
+    let t = Term {
+        axis: z,
+        point: p,
+        along: Vector3::x(),
+    };
+    assert!(four_terms(&[[t; 4]; 2], [f64::NAN, 0.0]).roots.is_empty());
+    assert!(nearest_turn(&z, &nan, &p).is_none());
+    // A zero axis, a point on its axis.
+    let zero = Line3::new(Point3::origin(), Vector3::zeros());
+    assert_eq!(turn_onto_point(&zero, &p, &p).contact, Contact::ZeroRadius);
+    assert_eq!(
+        turn_to_distance(&z, &Point3::new(0.0, 0.0, 2.0), &p, 1.0).contact,
+        Contact::ZeroRadius
+    );
+    assert_eq!(
+        three_circles(&z, &Point3::new(0.0, 0.0, 1.0), &z, &z, &p).contact,
+        Contact::ZeroRadius
+    );
+    // Three parallel axes: a planar problem, a continuum or nothing.
+    let (a2, a3) = (
+        Line3::new(Point3::new(2.0, 0.0, 0.0), Vector3::z()),
+        Line3::new(Point3::new(3.0, 1.0, 0.0), -Vector3::z()),
+    );
+    assert_eq!(
+        three_circles(&z, &p, &a2, &a3, &Point3::new(3.5, 1.0, 0.0)).contact,
+        Contact::Coincident
+    );
+    // Three axes through one point.
+    let (b2, b3) = (
+        Line3::new(Point3::origin(), Vector3::x()),
+        Line3::new(Point3::origin(), Vector3::new(0.0, 1.0, 1.0)),
+    );
+    assert_eq!(
+        three_circles(
+            &z,
+            &Point3::new(1.0, 0.0, 0.5),
+            &b2,
+            &b3,
+            &Point3::new(0.5, 0.0, 1.0)
+        )
+        .contact,
+        Contact::Coincident
+    );
+}
