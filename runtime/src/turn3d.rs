@@ -21,8 +21,11 @@
 //! - **Tangency** follows [`crate::intersect3d`]: a point whose orbit misses its target by at
 //!   most `TANGENT_REL * scale` touches it (one double root); any overlap, however small,
 //!   crosses in exact roots that merge continuously into the touching turn. The two-angle
-//!   problems ([`three_circles`], [`four_terms`]) reduce to a quartic whose double roots
-//!   [`crate::poly`] detects within rounding.
+//!   problems ([`three_circles`], [`four_terms`]) reduce to a quartic: a double root is one
+//!   that [`crate::poly`] finds multiple within rounding, or a pair that rounding made complex
+//!   where the equations miss a solution by at most `TANGENT_REL` times their scale (amplified
+//!   by the elimination's conditioning, see [`four_terms`]); it is returned at the quartic's
+//!   critical point, to about the square root of rounding, as double roots are.
 //! - **Branches** are numbered by a geometric order stated on each function. One-angle
 //!   problems order their two roots by the side of a reference direction fixed by the inputs
 //!   (counter-clockwise or clockwise from the orbit's point nearest the target), as the
@@ -695,9 +698,9 @@ impl System {
 }
 
 /// Sorts solutions by their first angle (then the second), ascending; a handful, by insertion.
-fn sort_by_first<const N: usize, T: Copy + Default>(roots: &mut Roots<(T, bool), N>)
+fn sort_by_first<const N: usize, T>(roots: &mut Roots<(T, bool), N>)
 where
-    T: AsRef<[f64]>,
+    T: Copy + Default + AsRef<[f64]>,
 {
     let mut items = [(T::default(), false); N];
     let n = roots.len();
@@ -748,8 +751,12 @@ pub struct Term {
 /// half the other (see the module's conventions), solved with every real root.
 ///
 /// - **Branch:** up to four solutions, ordered by `θ1` ascending in `(-π, π]` (then `θ2`).
-/// - `Crossing`: every root simple. `Tangent`: a double root (where two solutions merge), in two
-///   consecutive slots; the other solutions, if any, in the others.
+/// - `Crossing`: every root simple, each polished by Newton's method on the two equations.
+///   `Tangent`: a double root (where two solutions merge), in two consecutive slots; the other
+///   solutions, if any, in the others. A pair of solutions counts as merged when the equations'
+///   values miss them by at most `TANGENT_REL * scale / (2 c)`, with `scale` the largest term
+///   or value and `c` (at most `1/2`) the conditioning `|det| / |m|²` of the eliminated angle's
+///   coefficients.
 /// - `Disjoint { gap }`: no solution; `gap` is the size of the two equations' residual,
 ///   `hypot`, at the pair of angles the quartic comes nearest a root at (in the units of `d`:
 ///   lengths when the directions are unit).

@@ -730,7 +730,7 @@ proptest! {
             }
             other => prop_assert!(false, "{:?}", other),
         }
-        let n = nearest_turn(&axis, &p, &q).unwrap();
+        let n = nearest_turn(&axis, &p, &q).expect("p and q are off the axis");
         prop_assert!(adist(n.angle, t) <= ANGLE_TOL);
         prop_assert!((n.miss - gap).abs() <= noise(m));
     }
@@ -906,7 +906,7 @@ proptest! {
     fn sp6_fold_is_a_double_root(seed in any::<u64>(), e in -11.0f64..-7.0) {
         let fold = six_fold(seed);
         prop_assume!(fold.is_some());
-        let (f, t, n) = fold.unwrap();
+        let (f, t, n) = fold.expect("assumed");
         let near = |x: &Intersection<[f64; 2], 4>, within: f64| {
             x.roots.as_slice().iter().filter(|r| adist(r[0], t[0]).max(adist(r[1], t[1])) <= within).count()
         };
