@@ -607,12 +607,13 @@ impl System {
         let coeffs = g.quartic();
         let (roots, critical) = poly::roots_and_critical(&coeffs);
         // A double root that rounding split into a complex pair: a critical point with no root
-        // between its neighbours, where the function's value is within what a miss of
-        // `TANGENT_REL * scale` in the equations' values makes of it (`|∂f/∂d| = 2 |w| |adj|`,
-        // with `|w| = |det|` at a root), the rounding there amplified by the elimination's
-        // conditioning.
+        // between its neighbours where the equations, at the angles it gives, miss by at most
+        // `TANGENT_REL * scale` amplified by the elimination's conditioning. The function's
+        // value there is first compared with what such a miss makes of it
+        // (`|∂f/∂d| = 2 |w| |adj|`, with `|w| = |det|` at a root).
         let q = q1.max(q2);
-        let f_tol = 2.0 * det.abs() * frob2(&m).sqrt() * TANGENT_REL * self.scale * (0.5 / q);
+        let d_tol = TANGENT_REL * self.scale * (0.5 / q);
+        let f_tol = 2.0 * det.abs() * frob2(&m).sqrt() * d_tol;
         let crit = critical.as_slice();
         let mut found: Roots<RealRoot, 4> = roots;
         for (i, c) in crit.iter().enumerate() {
@@ -625,7 +626,13 @@ impl System {
             if roots.as_slice().iter().any(|r| r.x >= lo && r.x <= hi) {
                 continue;
             }
-            if f.at(shift + 2.0 * c.x.atan()).abs() <= f_tol {
+            let phi = shift + 2.0 * c.x.atan();
+            let missed = || {
+                let t2 = wrap(phi);
+                let r = sys.residual([first_of(t2), t2]);
+                r[0].hypot(r[1])
+            };
+            if f.at(phi).abs() <= f_tol && missed() <= d_tol {
                 found.push(RealRoot {
                     x: c.x,
                     multiple: true,

@@ -1184,3 +1184,84 @@ fn non_finite_and_degenerate_inputs_give_no_roots() {
         Contact::Coincident
     );
 }
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// SP2 with intersecting axes whose orbits, on one sphere about the axes' meeting point,
+    /// touch (the axes' angle is the sum of the orbits' angular radii), overlap a little or
+    /// miss a little: a miss is reported with a positive gap, an overlap meets in two points,
+    /// and any root found meets to the tangency tolerance.
+    #[test]
+    fn sp2_intersecting_orbits_touching(seed in any::<u64>(), e in tiny()) {
+        let mut g = Rng(seed);
+        let s = g.scale();
+        let o = g.point(s);
+        let k1 = g.unit();
+        let k2 = g.unit();
+        let gamma = k1.angle(&k2);
+        prop_assume!(gamma > 0.3 && gamma < PI - 0.3);
+        let a1 = g.range(0.1, gamma - 0.1);
+        let a2 = gamma - a1 + e;
+        let radius = g.range(0.3, 1.0) * s;
+        // A point at angular radius `a` from `k` on the sphere, turned anywhere about `k`.
+        let on = |k: &Vector3<f64>, a: f64, g: &mut Rng| {
+            let w = g.unit();
+            let u = (w - k * k.dot(&w)).normalize();
+            o + (k * a.cos() + u * a.sin()) * radius
+        };
+        let first = Line3::new(o + k1 * (g.range(-1.0, 1.0) * s), k1);
+        let second = Line3::new(o + k2 * (g.range(-1.0, 1.0) * s), k2);
+        let p = on(&k1, a1, &mut g);
+        let q = on(&k2, a2, &mut g);
+        let m = mag(&[first.point, second.point, p, q], &[]);
+        let x = turns_meeting(&first, &p, &second, &q);
+        let roots = x.roots.as_slice();
+        // The orbits' angular radii add up to the axes' angle plus `e`: they overlap by about
+        // `radius * e` (apart when negative).
+        let gap = -radius * e;
+        match x.contact {
+            Contact::Disjoint { gap: gg } => {
+                prop_assert!(gap > -noise(m) * 4.0, "missing at overlap {:e}", gap);
+                prop_assert!(gg >= 0.0 && gg <= 2.0 * gap.abs() + TANGENT_REL * m, "{:e} for {:e}", gg, gap);
+            }
+            Contact::Crossing | Contact::Tangent => {
+                prop_assert!(gap <= 2.0 * TANGENT_REL * m, "meeting at gap {:e}", gap);
+                prop_assert_eq!(roots.len(), 2);
+            }
+            other => prop_assert!(false, "{:?}", other),
+        }
+        for r in roots {
+            let err = (rot(&first, r[0], &p) - rot(&second, r[1], &q)).norm();
+            prop_assert!(err <= 2.0 * TANGENT_REL * m + RESIDUAL_REL * m, "{:e}", err);
+        }
+    }
+
+    /// SP5 with all three axes within `10^e` (relative) of one point, the spherical wrist's
+    /// degenerate case: either refused as degenerate, or every root found meets to rounding
+    /// over the near-degeneracy.
+    #[test]
+    fn sp5_axes_nearly_through_one_point(seed in any::<u64>(), e in -14.0f64..-4.0) {
+        let mut g = Rng(seed);
+        let s = g.scale();
+        let o = g.point(s);
+        let off = 10f64.powf(e) * s;
+        let axis = |g: &mut Rng| {
+            let k = g.unit();
+            Line3::new(o + k * (g.range(-1.0, 1.0) * s) + g.unit() * off, k)
+        };
+        let (first, second, third) = (axis(&mut g), axis(&mut g), axis(&mut g));
+        let b = g.off_axis(&third, s);
+        let t = [g.angle(), g.angle(), g.angle()];
+        let x0 = rot(&second, t[1], &rot(&third, t[2], &b));
+        let a = rot(&first, -t[0], &x0);
+        prop_assume!(across(&first, &a).norm() > 0.1 * s);
+        let m = mag(&[first.point, second.point, third.point, a, b], &[]);
+        let x = three_circles(&first, &a, &second, &third, &b);
+        for r in x.roots.as_slice() {
+            let err = (rot(&first, r[0], &a) - rot(&second, r[1], &rot(&third, r[2], &b))).norm();
+            // Rounding over the offset, relative: the elimination's conditioning.
+            prop_assert!(err <= 1e-13 * m / 10f64.powf(e), "{:e} at offset {:e}: {:?}", err / m, off, x);
+        }
+    }
+}
