@@ -608,12 +608,12 @@ impl System {
         let (roots, critical) = poly::roots_and_critical(&coeffs);
         // A double root that rounding split into a complex pair: a critical point with no root
         // between its neighbours where the equations, at the angles it gives, miss by at most
-        // `TANGENT_REL * scale` amplified by the elimination's conditioning. The function's
-        // value there is first compared with what such a miss makes of it
-        // (`|∂f/∂d| = 2 |w| |adj|`, with `|w| = |det|` at a root).
+        // `TANGENT_REL * scale`. The function's value there is first compared with what such a
+        // miss makes of it (`|∂f/∂d| = 2 |w| |adj|`, with `|w| = |det|` at a root), allowing
+        // for the rounding of the elimination, amplified by its conditioning.
         let q = q1.max(q2);
-        let d_tol = TANGENT_REL * self.scale * (0.5 / q);
-        let f_tol = 2.0 * det.abs() * frob2(&m).sqrt() * d_tol;
+        let d_tol = TANGENT_REL * self.scale;
+        let f_tol = 2.0 * det.abs() * frob2(&m).sqrt() * d_tol * (0.5 / q);
         let crit = critical.as_slice();
         let mut found: Roots<RealRoot, 4> = roots;
         for (i, c) in crit.iter().enumerate() {
@@ -660,6 +660,13 @@ impl System {
             let mut t = [first_of(t2), t2];
             if !multiple {
                 t = sys.polish(t);
+                // A root the equations miss by more than the tangency's tolerance, even
+                // polished, is the rounding of a quartic whose coefficients cancelled: near a
+                // continuum of solutions, where the elimination cannot be trusted.
+                let r = sys.residual(t);
+                if r[0].hypot(r[1]).partial_cmp(&d_tol) != Some(std::cmp::Ordering::Less) {
+                    return Solved::Degenerate;
+                }
             }
             let t = unswap([wrap(t[0]), wrap(t[1])]);
             out.push((t, multiple));
@@ -761,15 +768,16 @@ pub struct Term {
 /// - `Crossing`: every root simple, each polished by Newton's method on the two equations.
 ///   `Tangent`: a double root (where two solutions merge), in two consecutive slots; the other
 ///   solutions, if any, in the others. A pair of solutions counts as merged when the equations'
-///   values miss them by at most `TANGENT_REL * scale / (2 c)`, with `scale` the largest term
-///   or value and `c` (at most `1/2`) the conditioning `|det| / |m|²` of the eliminated angle's
-///   coefficients.
+///   values miss them by at most `TANGENT_REL * scale`, with `scale` the largest term or value.
+///   Every root returned meets the equations within that.
 /// - `Disjoint { gap }`: no solution; `gap` is the size of the two equations' residual,
 ///   `hypot`, at the pair of angles the quartic comes nearest a root at (in the units of `d`:
 ///   lengths when the directions are unit).
 /// - `Coincident`: neither angle can be eliminated (each angle's coefficients in the two
-///   equations are proportional, within [`tol::ANGLE`]): the solutions, if any, are a
-///   continuum or decouple; not solved here.
+///   equations are proportional, within [`tol::ANGLE`]), or the quartic's coefficients cancel
+///   so far that a root of it misses the equations by more than `TANGENT_REL * scale` even
+///   after polishing: the solutions, if any, are a continuum (or decouple), or nearly so; not
+///   solved here.
 /// - `ZeroRadius`: a zero axis.
 pub fn four_terms(terms: &[[Term; 4]; 2], d: [f64; 2]) -> Intersection<[f64; 2], 4> {
     for t in terms.iter().flatten() {
@@ -851,9 +859,10 @@ fn collect<T: Copy + Default, const N: usize>(
 /// - `Disjoint { gap }`: no solution; `gap` is how far the turned `a` misses the orbit about
 ///   `second` of the turned `b` ([`Nearest::miss`]) at the pair `θ1`, `θ3` nearest a solution
 ///   by the quartic: a miss that some turns leave, an upper bound of the smallest.
-/// - `Coincident`: neither `θ1` nor `θ3` can be eliminated: in particular all three axes
-///   parallel (a planar problem, whose solutions are a continuum or none), or all three through
-///   one point (both points then stay on spheres about it: a continuum or none).
+/// - `Coincident`: neither `θ1` nor `θ3` can be eliminated, or not reliably (as
+///   [`four_terms`]): in particular all three axes parallel (a planar problem, whose solutions
+///   are a continuum or none), or all three through one point or within about `1e-8` of the
+///   scale of one (both points then stay on spheres about it: a continuum or none).
 /// - `ZeroRadius`: a zero axis, or `a` on `first`, or `b` on `third`.
 ///
 /// Where a solution's meeting point lies on `second` (within `LENGTH_REL * scale`), `θ2` is

@@ -1238,8 +1238,7 @@ proptest! {
     }
 
     /// SP5 with all three axes within `10^e` (relative) of one point, the spherical wrist's
-    /// degenerate case: either refused as degenerate, or every root found meets to rounding
-    /// over the near-degeneracy.
+    /// degenerate case: either refused as degenerate, or every root found meets to rounding.
     #[test]
     fn sp5_axes_nearly_through_one_point(seed in any::<u64>(), e in -14.0f64..-4.0) {
         let mut g = Rng(seed);
@@ -1260,8 +1259,7 @@ proptest! {
         let x = three_circles(&first, &a, &second, &third, &b);
         for r in x.roots.as_slice() {
             let err = (rot(&first, r[0], &a) - rot(&second, r[1], &rot(&third, r[2], &b))).norm();
-            // Rounding over the offset, relative: the elimination's conditioning.
-            prop_assert!(err <= 1e-13 * m / 10f64.powf(e), "{:e} at offset {:e}: {:?}", err / m, off, x);
+            prop_assert!(err <= RESIDUAL_REL * m, "{:e} at offset {:e}: {:?}", err / m, off, x);
         }
     }
 }
