@@ -23,8 +23,8 @@
 //!   crosses in exact roots that merge continuously into the touching turn. The two-angle
 //!   problems ([`three_circles`], [`four_terms`]) reduce to a quartic: a double root is one
 //!   that [`crate::poly`] finds multiple within rounding, or a pair that rounding made complex
-//!   where the equations miss a solution by at most `TANGENT_REL` times their scale (amplified
-//!   by the elimination's conditioning, see [`four_terms`]); it is returned at the quartic's
+//!   where the equations miss a solution by at most `4 TANGENT_REL` times their scale (they sum
+//!   eight rounded terms, see [`four_terms`]); it is returned at the quartic's
 //!   critical point, to about the square root of rounding, as double roots are.
 //! - **Branches** are numbered by a geometric order stated on each function. One-angle
 //!   problems order their two roots by the side of a reference direction fixed by the inputs
@@ -518,6 +518,17 @@ impl Trig2 {
 /// (`φ = π`, `t` infinite) has the largest value is kept, so that no root is near it.
 const SHIFTS: usize = 8;
 
+/// How many times the tangency's tolerance (`TANGENT_REL * scale`) the two equations may miss
+/// a root of the quartic. Their values sum eight terms, each rounded (and each rounded again
+/// by the steps that built the inputs), so a solution's values carry several times a single
+/// locus's rounding: a pair of solutions that rounding made complex is one double root when
+/// the equations miss it by at most this many tolerances. A simple root polishes to a few ulps
+/// of the scale where the Jacobian is regular; one of a close pair at a fold, where it is
+/// singular and Newton's method stalls, to a few tens (39 measured). A simple root missing by
+/// more is no root: the quartic's coefficients cancelled (near a continuum of solutions), and
+/// the problem is reported degenerate.
+const QUARTIC_SLACK: f64 = 4.0;
+
 /// At most this many Newton steps on the two equations polish each simple solution.
 const POLISH_STEPS: usize = 3;
 
@@ -608,11 +619,11 @@ impl System {
         let (roots, critical) = poly::roots_and_critical(&coeffs);
         // A double root that rounding split into a complex pair: a critical point with no root
         // between its neighbours where the equations, at the angles it gives, miss by at most
-        // `TANGENT_REL * scale`. The function's value there is first compared with what such a
+        // `QUARTIC_SLACK * TANGENT_REL * scale`. The function's value there is first compared with what such a
         // miss makes of it (`|∂f/∂d| = 2 |w| |adj|`, with `|w| = |det|` at a root), allowing
         // for the rounding of the elimination, amplified by its conditioning.
         let q = q1.max(q2);
-        let d_tol = TANGENT_REL * self.scale;
+        let d_tol = QUARTIC_SLACK * TANGENT_REL * self.scale;
         let f_tol = 2.0 * det.abs() * frob2(&m).sqrt() * d_tol * (0.5 / q);
         let crit = critical.as_slice();
         let mut found: Roots<RealRoot, 4> = roots;
@@ -660,7 +671,7 @@ impl System {
             let mut t = [first_of(t2), t2];
             if !multiple {
                 t = sys.polish(t);
-                // A root the equations miss by more than the tangency's tolerance, even
+                // A root the equations miss by more than `QUARTIC_SLACK` tangency tolerances, even
                 // polished, is the rounding of a quartic whose coefficients cancelled: near a
                 // continuum of solutions, where the elimination cannot be trusted.
                 let r = sys.residual(t);
@@ -768,16 +779,21 @@ pub struct Term {
 /// - `Crossing`: every root simple, each polished by Newton's method on the two equations.
 ///   `Tangent`: a double root (where two solutions merge), in two consecutive slots; the other
 ///   solutions, if any, in the others. A pair of solutions counts as merged when the equations'
-///   values miss them by at most `TANGENT_REL * scale`, with `scale` the largest term or value.
-///   Every root returned meets the equations within that.
+///   values miss them by at most `4 TANGENT_REL * scale` (they sum eight rounded terms), with
+///   `scale` the largest term or value.
+///   A simple root is polished to a few ulps of the scale (a few tens for a close pair at a
+///   fold, where Newton's method stalls; at most `4 TANGENT_REL * scale`). Whether a close pair
+///   is one double root is decided, within rounding, on the quartic's coefficients: near a
+///   fold of ill-conditioned equations that rounding can amount to a miss of about `1e-11`
+///   of the scale.
 /// - `Disjoint { gap }`: no solution; `gap` is the size of the two equations' residual,
 ///   `hypot`, at the pair of angles the quartic comes nearest a root at (in the units of `d`:
 ///   lengths when the directions are unit).
 /// - `Coincident`: neither angle can be eliminated (each angle's coefficients in the two
 ///   equations are proportional, within [`tol::ANGLE`]), or the quartic's coefficients cancel
-///   so far that a root of it misses the equations by more than `TANGENT_REL * scale` even
-///   after polishing: the solutions, if any, are a continuum (or decouple), or nearly so; not
-///   solved here.
+///   so far that a root of it misses the equations by more than `4 TANGENT_REL * scale` even
+///   after polishing: the solutions, if any, are a continuum (or decouple), or nearly so; not solved
+///   here.
 /// - `ZeroRadius`: a zero axis.
 pub fn four_terms(terms: &[[Term; 4]; 2], d: [f64; 2]) -> Intersection<[f64; 2], 4> {
     for t in terms.iter().flatten() {

@@ -674,7 +674,7 @@ fn at_edge(x: &Intersection<f64, 2>, gap: f64, t: f64, noise: f64) -> Result<(),
 
 /// Rounding noise of inputs of magnitude `m`.
 fn noise(m: f64) -> f64 {
-    16.0 * f64::EPSILON * m
+    64.0 * f64::EPSILON * m
 }
 
 proptest! {
@@ -1260,6 +1260,79 @@ proptest! {
         for r in x.roots.as_slice() {
             let err = (rot(&first, r[0], &a) - rot(&second, r[1], &rot(&third, r[2], &b))).norm();
             prop_assert!(err <= RESIDUAL_REL * m, "{:e} at offset {:e}: {:?}", err / m, off, x);
+        }
+    }
+}
+
+/// The reduced equations' Jacobian determinant of SP5 at the known angles, in closed form:
+/// the derivative of a turned point's offset is the axis crossed with it.
+fn five_fold_det(f: &Five) -> f64 {
+    let o = f.second.point;
+    let k = f.second.dir;
+    let pa = rot(&f.first, f.t[0], &f.a);
+    let pb = rot(&f.third, f.t[2], &f.b);
+    let (u, v) = (pa - o, pb - o);
+    let du = f.first.dir.cross(&(pa - f.first.point));
+    let dv = f.third.dir.cross(&(pb - f.third.point));
+    let j = [
+        [u.dot(&du) / f.s, -v.dot(&dv) / f.s],
+        [k.dot(&du), -k.dot(&dv)],
+    ];
+    j[0][0] * j[1][1] - j[0][1] * j[1][0]
+}
+
+/// An SP5 instance at a fold: `θ2` chosen (by bisection on a sign change of the reduced
+/// Jacobian's determinant, as `a` follows it) where two solutions merge.
+fn five_at_fold(seed: u64) -> Option<Five> {
+    let base = five(seed, Axes::General);
+    let with = |t2: f64| {
+        let mut f = Five {
+            t: [base.t[0], t2, base.t[2]],
+            ..base
+        };
+        let x0 = rot(&f.second, t2, &rot(&f.third, f.t[2], &f.b));
+        f.a = rot(&f.first, -f.t[0], &x0);
+        f
+    };
+    let n = 64;
+    let at = |i: usize| -PI + TAU * i as f64 / n as f64;
+    let i = (0..n).find(|&i| {
+        (five_fold_det(&with(at(i))) < 0.0) != (five_fold_det(&with(at(i + 1))) < 0.0)
+    })?;
+    let (mut lo, mut hi) = (at(i), at(i + 1));
+    let sign_lo = five_fold_det(&with(lo)) < 0.0;
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if (five_fold_det(&with(mid)) < 0.0) == sign_lo {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let f = with(0.5 * (lo + hi));
+    (across(&f.first, &f.a).norm() > 0.1 * f.s).then_some(f)
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// SP5 at a fold (the target at the edge of what the chain reaches near that pose): the two
+    /// merging solutions are one double root, or two within the square root of rounding, never
+    /// none, never far apart. (That moving across the fold gains or loses the pair is checked
+    /// on SP6's folds, which share the quartic, where cusps are told apart.)
+    #[test]
+    fn sp5_fold_is_a_double_root(seed in any::<u64>()) {
+        let f = five_at_fold(seed);
+        prop_assume!(f.is_some());
+        let f = f.expect("assumed");
+        let x = three_circles(&f.first, &f.a, &f.second, &f.third, &f.b);
+        let near = x.roots.as_slice().iter()
+            .filter(|r| adist(r[0], f.t[0]).max(adist(r[2], f.t[2])) <= 1e-5)
+            .count();
+        prop_assert!(near == 2, "{} roots near the fold: {:?} for {:?}", near, x, f.t);
+        if x.contact == Contact::Tangent {
+            let r = x.roots.as_slice();
+            prop_assert!(r.windows(2).any(|w| w[0] == w[1]));
         }
     }
 }
