@@ -372,23 +372,34 @@ pub fn turn_onto_line(axis: &Line3, p: &Point3<f64>, line: &Line3) -> Intersecti
 /// of the carrier about `first` and `-θ2` of the carried body about `second` (in the carrier's
 /// pose at `θ1 = 0`) that take `q` onto `p`.
 ///
-/// - **Branch**, axes not parallel (the orbits in different planes; intersecting axes, whose
-///   orbits lie on one sphere about their meeting point, are the case that generally meets in
-///   two points): order of the meeting points along `first.dir × second.dir`, branch 0 first.
-///   With intersecting axes, branch 0 is the meeting point on the negative side of the plane
-///   of the axes (oriented by `first.dir × second.dir`), branch 1 on the positive side. A single
-///   meeting point fills both slots (`Tangent` when an orbit touches the other's plane there,
-///   `Crossing` when the orbits pass through each other's plane).
+/// Each crossing's angles are polished by Gauss-Newton steps on the turned points' miss.
+///
+/// - **Branch**, intersecting axes (not parallel, passing within `TANGENT_REL * scale` of each
+///   other; IK-Geo's case, which generally meets in two points): the orbits lie on spheres
+///   about the axes' meeting point `o`, which must be one, and the meeting points are where the
+///   line common to the orbits' planes crosses it, in closed form. Branch 0 is the meeting
+///   point on the negative side of the plane of the axes (oriented by
+///   `first.dir × second.dir`), branch 1 on the positive side. `Crossing` whenever the line
+///   cuts the sphere, however little; `Tangent` when it does not and the orbits are at most
+///   `TANGENT_REL * scale` apart (the double root, midway between the line's point nearest
+///   `o` and the sphere, in both slots). `Disjoint { gap }`: the spheres' radii
+///   differ by `gap` (`|p - o|` against `|q - o|`, more than the tolerance), or the orbits on
+///   the sphere are `gap` apart (the chord of the angle by which they miss).
+/// - **Branch**, skew axes (the orbits in different planes, which meet only by construction):
+///   order of the meeting points along `first.dir × second.dir`, branch 0 first, from
+///   [`circle_circle`]. A single meeting point fills both slots (`Tangent` when an orbit
+///   touches the other's plane there, `Crossing` when the orbits pass through each other's
+///   plane).
 /// - **Branch**, parallel axes with the orbits in one plane: branch 0 is the meeting point left
 ///   of the line from the first orbit's centre to the second's (seen from the tip of `first`'s
 ///   direction), branch 1 right of it; `Crossing`, or `Tangent` with the double root in both.
-/// - `Disjoint { gap }`: the orbits miss ([`circle_circle`]'s gap: across planes, a distance
+/// - `Disjoint { gap }`, skew or parallel axes: the orbits miss ([`circle_circle`]'s gap: across planes, a distance
 ///   between actual points of the two orbits, an upper bound of their distance). `Parallel {
 ///   gap }`: parallel axes, the orbits' planes `gap` apart. `Coincident`: the same orbit (every
 ///   `θ1` has a `θ2`). `ZeroRadius`: a zero axis, or `p` or `q` on its axis.
 ///
-/// Tolerances and accuracy are [`circle_circle`]'s: a meeting of orbits in different planes
-/// is decided with `TANGENT_REL * scale` both ways.
+/// With skew or parallel axes, tolerances and accuracy are [`circle_circle`]'s: a meeting of
+/// orbits in different planes is decided with `TANGENT_REL * scale` both ways.
 pub fn turns_meeting(
     first: &Line3,
     p: &Point3<f64>,
@@ -404,18 +415,159 @@ pub fn turns_meeting(
         Ok(c) => c,
         Err(contact) => return Intersection::none(contact),
     };
-    let i = circle_circle(&c1, &c2);
+    let i = match axes_meeting(first, second, &[p, q]) {
+        Some(o) => on_one_sphere(first, p, second, q, &o),
+        None => circle_circle(&c1, &c2),
+    };
     let (r1, r2) = (across(first, p), across(second, q));
     let mut roots = Roots::new();
     for x in i.roots.as_slice() {
-        roots.push([
+        let t = [
             angle_about(&first.dir, &r1, &(x - first.point)),
             angle_about(&second.dir, &r2, &(x - second.point)),
-        ]);
+        ];
+        roots.push(if i.contact == Contact::Crossing {
+            polish_meeting(first, p, second, q, t)
+        } else {
+            t
+        });
     }
     Intersection {
         roots,
         contact: i.contact,
+    }
+}
+
+/// Gauss-Newton steps (at most [`POLISH_STEPS`]) on the miss `turn(first, θ1, p) -
+/// turn(second, θ2, q)` from `t`, each kept only while it lowers the miss: the meeting point
+/// found from the orbits carries their construction's rounding, which the angles need not.
+fn polish_meeting(
+    first: &Line3,
+    p: &Point3<f64>,
+    second: &Line3,
+    q: &Point3<f64>,
+    mut t: [f64; 2],
+) -> [f64; 2] {
+    let miss = |t: [f64; 2]| turn_point(first, t[0], p) - turn_point(second, t[1], q);
+    let mut r = miss(t);
+    for _ in 0..POLISH_STEPS {
+        let j1 = first.dir.cross(&(turn_point(first, t[0], p) - first.point));
+        let j2 = -second
+            .dir
+            .cross(&(turn_point(second, t[1], q) - second.point));
+        // The normal equations of the 3x2 system.
+        let (a, b, c) = (j1.dot(&j1), j1.dot(&j2), j2.dot(&j2));
+        let (g1, g2) = (j1.dot(&r), j2.dot(&r));
+        let det = a.mul_add(c, -(b * b));
+        if det == 0.0 || det.is_nan() {
+            break;
+        }
+        let next = [
+            t[0] - (c * g1 - b * g2) / det,
+            t[1] - (a * g2 - b * g1) / det,
+        ];
+        let rn = miss(next);
+        if rn.norm().partial_cmp(&r.norm()) != Some(std::cmp::Ordering::Less) {
+            break;
+        }
+        t = [wrap(next[0]), wrap(next[1])];
+        r = rn;
+    }
+    t
+}
+
+/// The point where two axes meet: they are not parallel (the sine of their angle above
+/// [`tol::ANGLE`]) and pass within `TANGENT_REL * scale` of each other (the scale taking in
+/// `points` too); the midpoint of their nearest points.
+fn axes_meeting(a: &Line3, b: &Line3, points: &[&Point3<f64>]) -> Option<Point3<f64>> {
+    let n = a.dir.cross(&b.dir);
+    let sn = n.norm();
+    if sn <= ANGLE {
+        return None;
+    }
+    let mut sc = tol::scale(&[abs_max(&a.point.coords), abs_max(&b.point.coords)]);
+    for p in points {
+        sc = sc.max(abs_max(&p.coords));
+    }
+    let w = b.point - a.point;
+    if (w.dot(&n) / sn).abs() > TANGENT_REL * sc {
+        return None;
+    }
+    let n2 = sn * sn;
+    let ta = w.cross(&b.dir).dot(&n) / n2;
+    let tb = w.cross(&a.dir).dot(&n) / n2;
+    Some(a.at(ta) + (b.at(tb) - a.at(ta)) * 0.5)
+}
+
+/// Where the orbits of `p` about `first` and of `q` about `second`, axes meeting at `o`, meet:
+/// both lie on spheres about `o`, which must be one (their radii within the tangency
+/// tolerance), and in planes across the axes, whose common line meets that sphere in the
+/// points sought. Branch 0 is on the negative side of `first.dir × second.dir`.
+fn on_one_sphere(
+    first: &Line3,
+    p: &Point3<f64>,
+    second: &Line3,
+    q: &Point3<f64>,
+    o: &Point3<f64>,
+) -> Intersection<Point3<f64>, 2> {
+    let (k1, k2) = (first.dir, second.dir);
+    let sc = tol::scale(&[
+        abs_max(&first.point.coords),
+        abs_max(&second.point.coords),
+        abs_max(&p.coords),
+        abs_max(&q.coords),
+    ]);
+    let tt = TANGENT_REL * sc;
+    let (u, v) = (p - o, q - o);
+    let (ru, rv) = (u.norm(), v.norm());
+    if (ru - rv).abs() > tt {
+        return Intersection::none(Contact::Disjoint {
+            gap: (ru - rv).abs(),
+        });
+    }
+    let r = 0.5 * (ru + rv);
+    // The line common to the planes: `x = α k1 + β k2 + γ n` with `k1 · x = k1 · u` and
+    // `k2 · x = k2 · v`.
+    let n = k1.cross(&k2);
+    let n2 = n.norm_squared();
+    let c = k1.dot(&k2);
+    let (a1, a2) = (k1.dot(&u), k2.dot(&v));
+    let alpha = (a1 - c * a2) / n2;
+    let beta = (a2 - c * a1) / n2;
+    let foot = k1 * alpha + k2 * beta;
+    let m = foot.norm();
+    let g = m - r;
+    if g >= 0.0 {
+        // The distance between the orbits: the chord of the angle by which they miss on the
+        // sphere (apart, one within the other, or past each other's far side), from their
+        // angular radii `a1`, `a2` and the axes' angle `gamma`.
+        let ang = |k: &Vector3<f64>, w: &Vector3<f64>| k.cross(w).norm().atan2(k.dot(w));
+        let (a1, a2, gamma) = (ang(&k1, &u), ang(&k2, &v), n.norm().atan2(c));
+        let apart = (gamma - a1 - a2)
+            .max((a1 - a2).abs() - gamma)
+            .max(a1 + a2 + gamma - std::f64::consts::TAU);
+        let chord = 2.0 * r * (0.5 * apart).sin();
+        if chord > tt {
+            return Intersection::none(Contact::Disjoint { gap: chord });
+        }
+    }
+    let nh = n / n2.sqrt();
+    if g >= 0.0 {
+        // Touching: midway between the line's point nearest `o` and the sphere.
+        let t = if m > 0.0 {
+            o + foot * (0.5 * (1.0 + r / m))
+        } else {
+            o + foot
+        };
+        return Intersection {
+            roots: Roots::from_slice(&[t, t]),
+            contact: Contact::Tangent,
+        };
+    }
+    let h = ((r - m) * (r + m)).sqrt();
+    Intersection {
+        roots: Roots::from_slice(&[o + foot - nh * h, o + foot + nh * h]),
+        contact: Contact::Crossing,
     }
 }
 
@@ -673,9 +825,22 @@ impl System {
                 t = sys.polish(t);
                 // A root the equations miss by more than `QUARTIC_SLACK` tangency tolerances, even
                 // polished, is the rounding of a quartic whose coefficients cancelled: near a
-                // continuum of solutions, where the elimination cannot be trusted.
+                // continuum of solutions, where the elimination cannot be trusted. Unless it is
+                // one of a close pair at a fold (a critical point between it and a neighbour,
+                // where the function is within rounding of zero), where Newton's method stalls
+                // and the pair is kept as found if the equations miss it by at most
+                // `QUARTIC_SLACK` times more.
                 let r = sys.residual(t);
-                if r[0].hypot(r[1]).partial_cmp(&d_tol) != Some(std::cmp::Ordering::Less) {
+                let (miss, stall) = (r[0].hypot(r[1]), QUARTIC_SLACK * d_tol);
+                if miss.partial_cmp(&stall) != Some(std::cmp::Ordering::Less) {
+                    return Solved::Degenerate;
+                }
+                let missed = miss.partial_cmp(&d_tol) != Some(std::cmp::Ordering::Less);
+                if missed
+                    && !close_pair(roots.as_slice(), x, crit, |c| {
+                        f.at(shift + 2.0 * c.atan()).abs() <= f_tol
+                    })
+                {
                     return Solved::Degenerate;
                 }
             }
@@ -720,6 +885,18 @@ impl System {
         }
         t
     }
+}
+
+/// Whether the root `x` of `roots` (ascending) has a neighbour root with a critical point
+/// strictly between them at which `small` holds: the two are a close pair.
+fn close_pair(roots: &[RealRoot], x: f64, crit: &[RealRoot], small: impl Fn(f64) -> bool) -> bool {
+    let Some(i) = roots.iter().position(|r| r.x == x) else {
+        return false;
+    };
+    let between = |a: f64, b: f64| crit.iter().any(|c| c.x > a && c.x < b && small(c.x));
+    let before = i > 0 && between(roots[i - 1].x, x);
+    let after = roots.get(i + 1).is_some_and(|n| between(x, n.x));
+    before || after
 }
 
 /// Sorts solutions by their first angle (then the second), ascending; a handful, by insertion.
