@@ -8,10 +8,10 @@
 //! - **An axis** is a [`Line3`]: its `point` is the pivot, its `dir` the unit direction (as
 //!   [`Line3::new`] normalises it; a zero direction is degenerate). A turn by `θ` about it is
 //!   the rigid rotation that keeps the line fixed and turns every point **counter-clockwise by
-//!   `θ` seen from the tip of `dir`** ([`turn_point`]). Every angle returned is in `(-π, π]`,
+//!   `θ` seen from the tip of `dir`** ([`turn_point`]). Every angle returned is in `[-π, π]`,
 //!   and is measured from the pose given: `θ = 0` leaves a point where it is.
 //! - **Results** are [`Intersection`]s: the angles in a fixed-capacity [`crate::Roots`] (slot
-//!   `i` is branch `i`), with a [`Contact`]: `Crossing` (every slot a distinct, simple root),
+//!   `i` is branch `i`), with a [`Contact`]: `Crossing` (transversal roots),
 //!   `Tangent` (a double root, returned in each slot it merges, so that a branch stays defined
 //!   through the tangency), `Disjoint { gap }` (no root; `gap` is how far the point misses,
 //!   in length units), `ZeroRadius` (degenerate: a zero axis, or the point on its axis, whose
@@ -958,19 +958,19 @@ pub struct Term {
 ///   solutions, if any, in the others. A pair of solutions counts as merged when the equations'
 ///   values miss them by at most `4 TANGENT_REL * scale` (they sum eight rounded terms), with
 ///   `scale` the largest term or value.
-///   A simple root is polished to a few ulps of the scale (a few tens for a close pair at a
-///   fold, where Newton's method stalls; at most `4 TANGENT_REL * scale`). Whether a close pair
-///   is one double root is decided, within rounding, on the quartic's coefficients: near a
-///   fold of ill-conditioned equations that rounding can amount to a miss of about `1e-11`
-///   of the scale.
+///   A simple root is polished to a few ulps of the scale: at most `4 TANGENT_REL * scale`,
+///   or `16 TANGENT_REL * scale` for one of a close pair at a fold, where Newton's method
+///   stalls. Whether a close pair is one double root is decided, within rounding, on the
+///   quartic's coefficients: near a fold of ill-conditioned equations that rounding can amount
+///   to a miss of about `1e-11` of the scale.
 /// - `Disjoint { gap }`: no solution; `gap` is the size of the two equations' residual,
 ///   `hypot`, at the pair of angles the quartic comes nearest a root at (in the units of `d`:
 ///   lengths when the directions are unit).
 /// - `Coincident`: neither angle can be eliminated (each angle's coefficients in the two
 ///   equations are proportional, within [`tol::ANGLE`]), or the quartic's coefficients cancel
 ///   so far that a root of it misses the equations by more than `4 TANGENT_REL * scale` even
-///   after polishing: the solutions, if any, are a continuum (or decouple), or nearly so; not solved
-///   here.
+///   after polishing (16 for one of a close pair): the solutions, if any, are a continuum (or
+///   decouple), or nearly so; not solved here.
 /// - `ZeroRadius`: a zero axis.
 pub fn four_terms(terms: &[[Term; 4]; 2], d: [f64; 2]) -> Intersection<[f64; 2], 4> {
     for t in terms.iter().flatten() {
@@ -1054,8 +1054,10 @@ fn collect<T: Copy + Default, const N: usize>(
 ///   by the quartic: a miss that some turns leave, an upper bound of the smallest.
 /// - `Coincident`: neither `θ1` nor `θ3` can be eliminated, or not reliably (as
 ///   [`four_terms`]): in particular all three axes parallel (a planar problem, whose solutions
-///   are a continuum or none), or all three through one point or within about `1e-8` of the
-///   scale of one (both points then stay on spheres about it: a continuum or none).
+///   are a continuum or none), or all three through one point or within about `1e-8` to
+///   `1e-10` of the scale of one (both points then stay on spheres about it: a continuum or
+///   none; measured on random instances, a few percent are refused at `1e-8`, most at
+///   `1e-10`, all at `1e-14`).
 /// - `ZeroRadius`: a zero axis, or `a` on `first`, or `b` on `third`.
 ///
 /// Where a solution's meeting point lies on `second` (within `LENGTH_REL * scale`), `θ2` is

@@ -6,7 +6,13 @@
 //! against an independent count (dense sampling with bisection for one angle, Newton's method
 //! from a dense grid of starts for two).
 //!
-//! `worst_errors_are_documented` prints the worst errors measured over many seeded instances.
+//! `worst_errors_are_documented` prints the worst errors measured over 20,000 seeded instances
+//! of each subproblem (scales 1e-3 to 1e3). Measured: the known angle recovered to at most
+//! 1.3e-15 (SP1), 4e-14 (SP3, SP4, onto a line), 2.2e-13 (SP2: skew, intersecting, parallel
+//! axes), 4.3e-13 (SP5: general, axes 1-2 or 2-3 intersecting or parallel) and 1.3e-13 (SP6)
+//! where the problem is not ill-conditioned (a slope or singular-value ratio below 1e-2, 1 to
+//! 12 percent of instances, is left out of the angle's bound but not of the residual's); every
+//! root returned meets its equation to 2.9e-14 of the inputs' size at worst.
 
 use std::f64::consts::{PI, TAU};
 
