@@ -1,6 +1,7 @@
 //! The numeric kernel that generated gcs solvers call, and that the interpreter shares:
 //! frames and Kramer's actions, loci, the locus intersection table with branch selection, the
-//! closed-form solutions of the 3d plan fragments built on them, polynomial roots, error
+//! closed-form solutions of the 3d plan fragments built on them, the turns of bodies about
+//! known axes that bring their points onto loci (`turn3d`), polynomial roots, error
 //! accounting, named tolerances, and the outer iterations that solve for a plan's defaults
 //! (Newton with brackets, a trust region, and a scan for every root).
 //!
@@ -22,6 +23,7 @@ pub mod num;
 pub mod outer;
 pub mod poly;
 pub mod roots;
+pub mod turn3d;
 /// Every tolerance, by name (its own crate, so that the language's checks use them too).
 pub use gcs_tol as tol;
 

@@ -113,6 +113,8 @@ fn run_all() -> f64 {
         .roots
         .len() as f64;
     acc += cone.distance(&Point3::new(1.0, 1.0, 1.0));
+    // Bodies turning about known axes.
+    acc += turns(acc);
     // Error accounting.
     let mut errs: ErrorAccumulator = ErrorAccumulator::new();
     errs.add("loop", 1e-3);
@@ -130,6 +132,47 @@ fn run_all() -> f64 {
         acc += e.label.len() as f64;
     }
     black_box(acc)
+}
+
+/// Every subproblem of `turn3d`, once each.
+fn turns(seed: f64) -> f64 {
+    use gcs_runtime::turn3d::*;
+    let mut acc = 0.0;
+    let ax = |p: [f64; 3], d: [f64; 3]| Line3::new(Point3::from(p), Vector3::from(d));
+    let (a1, a2, a3) = (
+        ax([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+        ax([1.0, 0.0, 0.5], [0.0, 1.0, 0.0]),
+        ax([0.0, 2.0, 0.0], [1.0, 0.0, 1.0]),
+    );
+    let p = Point3::new(1.0, 0.5 + seed * 0.0, 0.3);
+    let q = Point3::new(-0.5, 1.0, 0.3);
+    acc += turn_onto_point(&a1, &p, &q)
+        .roots
+        .as_slice()
+        .iter()
+        .sum::<f64>();
+    acc += nearest_turn(&a1, &p, &q).map_or(0.0, |n| n.miss);
+    acc += turn_to_distance(&a1, &p, &q, 1.0).roots.len() as f64;
+    acc += turn_onto_plane(&a1, &p, &Plane::new(Vector3::x(), 0.2))
+        .roots
+        .len() as f64;
+    acc += turn_onto_line(&a1, &p, &a2).roots.len() as f64;
+    acc += turns_meeting(&a1, &p, &a2, &q).roots.len() as f64;
+    acc += three_circles(&a1, &p, &a2, &a3, &q).roots.len() as f64;
+    let t = Term {
+        axis: a1,
+        point: p,
+        along: Vector3::x(),
+    };
+    let u = Term {
+        axis: a2,
+        point: q,
+        along: Vector3::y(),
+    };
+    acc += four_terms(&[[t, u, u, t], [u, t, t, u]], [0.3, 0.1])
+        .roots
+        .len() as f64;
+    acc + turn_point(&a3, 0.4, &p).x
 }
 
 #[test]
