@@ -641,12 +641,7 @@ fn a_profile_that_cannot_close_says_so() {
     .expect("compiles");
     let plan = &c.analysis.plan;
     let named: Vec<&str> = (plan.steps.iter().enumerate())
-        .filter_map(|(i, s)| match s.op {
-            gcs_compiler::plan::Op::SetDim { value, .. } => {
-                plan.closing_length(value, plan.constraint_of(i))
-            }
-            _ => None,
-        })
+        .filter_map(|(i, _)| plan.closing_length(i))
         .map(|k| c.model.constraints[k].name.as_str())
         .collect();
     assert_eq!(named, ["on_bottom_end_br", "on_top_start_tr"]);

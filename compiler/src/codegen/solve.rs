@@ -158,6 +158,7 @@ impl Solve<'_> {
         let (worked, decls) = self.sketch(layout);
         let tol = self.tolerance(&worked);
         let mut body = Writer::at(w.indent);
+        self.cx.closing_tol.set(false);
         let groups = self.steps_in_groups(&mut body);
         let tail = self.ledger.borrow().mark();
         self.solution_init(&mut body, layout);
@@ -165,7 +166,8 @@ impl Solve<'_> {
         let later: Vec<&str> = ledger.reads(tail, ledger.mark()).collect();
         let bindings = self.bindings(decls);
         scopes::declare(w, &bindings);
-        if let Some(tol) = tol {
+        // Declared where a check reads it, or a closing length's check did.
+        if let Some(tol) = tol.filter(|_| self.checks_anything() || self.cx.closing_tol.get()) {
             w.line(&tol);
         }
         w.push(&scopes::in_blocks(&groups, &later, body.indent));
@@ -331,13 +333,23 @@ impl Solve<'_> {
         self.locals.insert(f, name);
     }
 
+    /// Whether the plan has a step that reads the run-time tolerance whatever it computes: a
+    /// check, a point that must lie on its locus, an iteration's close.
+    fn checks_anything(&self) -> bool {
+        let checked =
+            |s: &Step| matches!(s.op, Op::Check { .. } | Op::Onto { .. } | Op::Close { .. });
+        self.cx.plan.steps.iter().any(checked)
+    }
+
     /// The tolerance of run-time checks, relative to the scale of the geoms the plan works on
     /// as the interpreter measures it; none when nothing is checked. It reads the frames and
     /// dimensions, so it is declared after them.
     fn tolerance(&self, worked: &[GeomId]) -> Option<String> {
-        let checked =
-            |s: &Step| matches!(s.op, Op::Check { .. } | Op::Onto { .. } | Op::Close { .. });
-        if !self.cx.plan.steps.iter().any(checked) {
+        // A segment length a closure gives may be checked against it too.
+        let closing = |(i, s): (usize, &Step)| {
+            matches!(s.op, Op::SetDim { .. }) && self.cx.plan.closing_length(i).is_some()
+        };
+        if !self.checks_anything() && !self.cx.plan.steps.iter().enumerate().any(closing) {
             return None;
         }
         let mut terms = Vec::new();

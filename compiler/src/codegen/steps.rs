@@ -1097,11 +1097,7 @@ impl Solve<'_> {
         let known_good = self.facts.known_sizes.contains(&value)
             || matches!(self.facts.value(value), Value::Scalar(x) if x.is_finite() && *x >= 0.0);
         let closing = (!known_good)
-            .then(|| {
-                self.cx
-                    .plan
-                    .closing_length(value, self.cx.plan.constraint_of(i))
-            })
+            .then(|| self.cx.plan.closing_length(i))
             .flatten();
         if let Some(c) = closing {
             // A length a linear stage solves for: negative, the profile cannot close.
@@ -1113,6 +1109,7 @@ impl Solve<'_> {
             }
             // Within rounding of zero, it is zero (as the interpreter takes it).
             let error = self.cx.error_of(c, "CannotClose", &v);
+            self.cx.closing_tol.set(true);
             w.open(&format!("if {v} < -tol {{"));
             w.line(&format!("return Err({error});"));
             w.close("}");

@@ -766,12 +766,7 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
         let mut x = self.s(value);
         // A closing length within rounding of zero is zero: the profile closes with that
         // segment collapsed, whichever side of zero the arithmetic lands on.
-        if x < 0.0
-            && x >= -self.tol
-            && (self.plan)
-                .closing_length(value, self.plan.constraint_of(i))
-                .is_some()
-        {
+        if x < 0.0 && x >= -self.tol && self.plan.closing_length(i).is_some() {
             x = 0.0;
         }
         if !x.is_finite() || x < 0.0 {
@@ -786,10 +781,7 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
                 ));
             }
             // A length a linear stage solves for: the profile cannot close.
-            if let (true, Some(c)) = (
-                x.is_finite(),
-                self.plan.closing_length(value, self.plan.constraint_of(i)),
-            ) {
+            if let (true, Some(c)) = (x.is_finite(), self.plan.closing_length(i)) {
                 let c = &self.model.constraints[c];
                 return Err(SolveError::new(
                     c.name.clone(),

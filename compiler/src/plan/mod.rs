@@ -539,29 +539,34 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The constraint that closes a profile with the segment length register `r` holds: a
-    /// length measured along the segment's own direction to where its end must be (`Along`,
-    /// the step's constraint `c`), or its sketch's length plus an unknown of a linear stage
-    /// (the constraint of the row that gives it). A negative one means the profile cannot
-    /// close with its segments running as sketched
-    /// ([`gcs_runtime::error::ErrorKind::CannotClose`]). `None` for any other length. A scan:
-    /// only a failure asks.
-    pub fn closing_length(&self, r: Reg, c: Option<ConstraintId>) -> Option<ConstraintId> {
-        let def = |r: Reg| {
-            self.steps
-                .iter()
-                .find(|s| s.out.is_some_and(|(o, _)| o == r))
+    /// The constraint that closes a profile with the length step `i` (a `SetDim`) gives its
+    /// segment: a length measured along the segment's own direction to where its end must be
+    /// (`Along`: the step's own constraint), or its sketch's length plus an unknown of a linear
+    /// stage (the constraint of the row that gives it). A negative one means the profile
+    /// cannot close with its segments running as sketched
+    /// ([`gcs_runtime::error::ErrorKind::CannotClose`]). `None` for any other step or length.
+    /// Each value is looked for backwards from where it is read, which is near: a length's
+    /// own steps come just before it.
+    pub fn closing_length(&self, i: usize) -> Option<ConstraintId> {
+        let Op::SetDim { value, .. } = self.steps.get(i)?.op else {
+            return None;
         };
-        let terms = match &def(r)?.op {
-            Op::Along { .. } => return c,
+        let before = |at: usize, r: Reg| {
+            (self.steps[..at].iter().enumerate().rev())
+                .find(|(_, s)| s.out.is_some_and(|(o, _)| o == r))
+        };
+        let (at, def) = before(i, value)?;
+        let terms = match &def.op {
+            Op::Along { .. } => return self.constraint_of(i),
             Op::Sum(terms) => terms,
             _ => return None,
         };
         terms.iter().find_map(|&(_, t)| {
-            let Op::Planar(PlanarOp::Unknown { of, index }) = def(t)?.op else {
+            let (at, def) = before(at, t)?;
+            let Op::Planar(PlanarOp::Unknown { of, index }) = def.op else {
                 return None;
             };
-            let Op::Planar(PlanarOp::Linear(system)) = &def(of)?.op else {
+            let Op::Planar(PlanarOp::Linear(system)) = &before(at, of)?.1.op else {
                 return None;
             };
             let row = match system.pivots.iter().find(|(u, _)| *u == index) {

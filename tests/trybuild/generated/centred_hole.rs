@@ -326,6 +326,7 @@ pub fn solve(
         ("hole", params.hole),
     ])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let mut bottom = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(5.1, 0.1) - Point2::new(0.0, 0.0),
@@ -348,6 +349,30 @@ pub fn solve(
         Point2::new(5.0, 3.1) - Point2::new(0.0, 0.0),
     );
     let mut bore = Frame2::at(Point2::new(2.4, 1.6));
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                bottom.origin.x,
+                bottom.origin.y,
+                5.10098029794274,
+                right.origin.x,
+                right.origin.y,
+                3.0016662039607267,
+                top.origin.x,
+                top.origin.y,
+                top_length,
+                left.origin.x,
+                left.origin.y,
+                2.9017236257093817,
+                diagonal.origin.x,
+                diagonal.origin.y,
+                5.883026432033091,
+                bore.origin.x,
+                bore.origin.y,
+                0.5,
+            ]));
 
     // length(bottom) = width (centred_hole.gcs:27)
     // length_bottom: a length is zero or more.
@@ -476,7 +501,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -484,7 +509,7 @@ pub fn solve(
             length,
         ));
     }
-    let right_length = length;
+    let right_length = length.max(0.0);
     let shift_3 = coincident_right_end_top_start - top_start;
     top.translate(&shift_3);
     let length_2 = (left_start - coincident_right_end_top_start).dot(&top_dir_2);
@@ -496,7 +521,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -504,7 +529,7 @@ pub fn solve(
             length_2,
         ));
     }
-    top_length = length_2;
+    top_length = length_2.max(0.0);
 
     // coincident(diagonal.end, top.start) (centred_hole.gcs:30)
     let top_start_2 = top.origin;
@@ -530,7 +555,7 @@ pub fn solve(
             length_3,
         ));
     }
-    if length_3 < 0.0 {
+    if length_3 < -tol {
         return Err(SolveError::new(
             "coincident_diagonal_end_top_start",
             "coincident(diagonal.end, top.start)",
@@ -538,7 +563,7 @@ pub fn solve(
             length_3,
         ));
     }
-    let diagonal_length = length_3;
+    let diagonal_length = length_3.max(0.0);
 
     // midpoint(bore.center, diagonal) (centred_hole.gcs:31)
     let diagonal_end = Point2::new(0.0, 0.0) + diagonal.x_axis() * diagonal_length;

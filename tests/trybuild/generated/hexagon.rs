@@ -326,6 +326,7 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("side", params.side)])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let mut s1 = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(2.1, 0.1) - Point2::new(0.0, 0.0),
@@ -351,6 +352,30 @@ pub fn solve(
         Point2::new(0.0, 0.0) - Point2::new(-1.0, 1.7),
     );
     let mut s6_length = 1.972308292331602;
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                s1.origin.x,
+                s1.origin.y,
+                2.1023796041628637,
+                s2.origin.x,
+                s2.origin.y,
+                1.972308292331602,
+                s3.origin.x,
+                s3.origin.y,
+                2.0248456731316584,
+                s4.origin.x,
+                s4.origin.y,
+                2.0024984394500787,
+                s5.origin.x,
+                s5.origin.y,
+                1.972308292331602,
+                s6.origin.x,
+                s6.origin.y,
+                s6_length,
+            ]));
 
     // length(s1) = side (hexagon.gcs:29)
     // length_s1: a length is zero or more.
@@ -517,7 +542,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_s5_end_s6_start",
             "coincident(s5.end, s6.start)",
@@ -525,7 +550,7 @@ pub fn solve(
             length,
         ));
     }
-    let s5_length = length;
+    let s5_length = length.max(0.0);
     let shift_2 = coincident_s5_end_s6_start - s6_start;
     s6.translate(&shift_2);
     let length_2 = (Point2::new(0.0, 0.0) - coincident_s5_end_s6_start).dot(&s6_dir_2);
@@ -537,7 +562,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_s5_end_s6_start",
             "coincident(s5.end, s6.start)",
@@ -545,7 +570,7 @@ pub fn solve(
             length_2,
         ));
     }
-    s6_length = length_2;
+    s6_length = length_2.max(0.0);
 
     Ok(Solution {
         s1,

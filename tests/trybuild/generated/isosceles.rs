@@ -285,6 +285,7 @@ pub fn solve(
         ("height", params.height),
     ])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let floor = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(1.0, 0.0) - Point2::new(0.0, 0.0),
@@ -306,6 +307,27 @@ pub fn solve(
         Point2::new(2.0, 4.0) - Point2::new(2.0, -1.0),
     );
     let mut apex = Frame2::at(Point2::new(2.1, 3.1));
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                floor.origin.x,
+                floor.origin.y,
+                base.origin.x,
+                base.origin.y,
+                4.1012193308819755,
+                left.origin.x,
+                left.origin.y,
+                3.744329045369811,
+                right.origin.x,
+                right.origin.y,
+                3.605551275463989,
+                axis.origin.x,
+                axis.origin.y,
+                apex.origin.x,
+                apex.origin.y,
+            ]));
 
     // length(base) = base_length (isosceles.gcs:22)
     // length_base: a length is zero or more.
@@ -423,7 +445,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_left_end_apex",
             "coincident(left.end, apex)",
@@ -431,7 +453,7 @@ pub fn solve(
             length,
         ));
     }
-    let left_length = length;
+    let left_length = length.max(0.0);
 
     // coincident(right.end, apex) (isosceles.gcs:20)
     let right_dir = right.x_axis();
@@ -454,7 +476,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_right_end_apex",
             "coincident(right.end, apex)",
@@ -462,7 +484,7 @@ pub fn solve(
             length_2,
         ));
     }
-    let right_length = length_2;
+    let right_length = length_2.max(0.0);
 
     Ok(Solution {
         floor,

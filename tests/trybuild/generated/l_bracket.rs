@@ -345,6 +345,7 @@ pub fn solve(
         ("arm", params.arm),
     ])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let mut s1 = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(5.1, 0.1) - Point2::new(0.0, 0.0),
@@ -370,6 +371,30 @@ pub fn solve(
         Point2::new(0.1, 3.9),
         Point2::new(0.0, 0.0) - Point2::new(0.1, 3.9),
     );
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                s1.origin.x,
+                s1.origin.y,
+                5.10098029794274,
+                s2.origin.x,
+                s2.origin.y,
+                1.004987562112089,
+                s3.origin.x,
+                s3.origin.y,
+                3.705401462729781,
+                s4.origin.x,
+                s4.origin.y,
+                s4_length,
+                s5.origin.x,
+                s5.origin.y,
+                1.0198039027185568,
+                s6.origin.x,
+                s6.origin.y,
+                3.9012818406262317,
+            ]));
 
     // length(s1) = width (l_bracket.gcs:32)
     // length_s1: a length is zero or more.
@@ -527,7 +552,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_s3_end_s4_start",
             "coincident(s3.end, s4.start)",
@@ -535,7 +560,7 @@ pub fn solve(
             length,
         ));
     }
-    let s3_length = length;
+    let s3_length = length.max(0.0);
     let shift_4 = coincident_s3_end_s4_start - s4_start;
     s4.translate(&shift_4);
     let length_2 = (s5_start - coincident_s3_end_s4_start).dot(&s4_dir_2);
@@ -547,7 +572,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_s3_end_s4_start",
             "coincident(s3.end, s4.start)",
@@ -555,7 +580,7 @@ pub fn solve(
             length_2,
         ));
     }
-    s4_length = length_2;
+    s4_length = length_2.max(0.0);
 
     Ok(Solution {
         s1,

@@ -280,6 +280,7 @@ pub fn solve(
         ("skew", params.skew),
     ])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let mut bottom = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(4.2, 0.1) - Point2::new(0.0, 0.0),
@@ -297,6 +298,24 @@ pub fn solve(
         Point2::new(0.0, 0.0) - Point2::new(1.1, 1.8),
     );
     let mut left_length = 2.1095023109728985;
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                bottom.origin.x,
+                bottom.origin.y,
+                4.201190307520001,
+                right.origin.x,
+                right.origin.y,
+                2.01246117974981,
+                top.origin.x,
+                top.origin.y,
+                4.001249804748511,
+                left.origin.x,
+                left.origin.y,
+                left_length,
+            ]));
 
     // length(bottom) = a (parallelogram.gcs:24)
     // length_bottom: a length is zero or more.
@@ -412,7 +431,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
@@ -420,7 +439,7 @@ pub fn solve(
             length,
         ));
     }
-    let top_length = length;
+    let top_length = length.max(0.0);
     let shift_2 = coincident_top_end_left_start - left_start;
     left.translate(&shift_2);
     let length_2 = (Point2::new(0.0, 0.0) - coincident_top_end_left_start).dot(&left_dir_2);
@@ -432,7 +451,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
@@ -440,7 +459,7 @@ pub fn solve(
             length_2,
         ));
     }
-    left_length = length_2;
+    left_length = length_2.max(0.0);
 
     Ok(Solution {
         bottom,

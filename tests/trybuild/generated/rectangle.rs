@@ -272,6 +272,7 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("width", params.width), ("height", params.height)])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let mut bottom = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(4.2, 0.1) - Point2::new(0.0, 0.0),
@@ -289,6 +290,24 @@ pub fn solve(
         Point2::new(0.1, 3.1),
         Point2::new(0.0, 0.0) - Point2::new(0.1, 3.1),
     );
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                bottom.origin.x,
+                bottom.origin.y,
+                4.201190307520001,
+                right.origin.x,
+                right.origin.y,
+                2.80178514522438,
+                top.origin.x,
+                top.origin.y,
+                top_length,
+                left.origin.x,
+                left.origin.y,
+                3.1016124838541645,
+            ]));
 
     // h: length(left) = height (rectangle.gcs:27)
     // h: a length is zero or more.
@@ -402,7 +421,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -410,7 +429,7 @@ pub fn solve(
             length,
         ));
     }
-    let right_length = length;
+    let right_length = length.max(0.0);
     let shift_3 = coincident_right_end_top_start - top_start;
     top.translate(&shift_3);
     let length_2 = (left_start - coincident_right_end_top_start).dot(&top_dir_2);
@@ -422,7 +441,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -430,7 +449,7 @@ pub fn solve(
             length_2,
         ));
     }
-    top_length = length_2;
+    top_length = length_2.max(0.0);
 
     Ok(Solution {
         bottom,

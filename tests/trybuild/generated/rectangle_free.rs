@@ -306,6 +306,8 @@ pub fn solve(
         ("left_length", defaults.left_length),
     ])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
+    let x = Frame2::at(Point2::origin());
     let y = Frame2::from_cos_sin(Point2::origin(), 0.0, 1.0);
     let mut bottom = Frame2::along(
         Point2::new(0.0, 0.0),
@@ -325,6 +327,28 @@ pub fn solve(
         Point2::new(0.0, 0.0) - Point2::new(0.1, 3.1),
     );
     let mut left_length = 3.1016124838541645;
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                x.origin.x,
+                x.origin.y,
+                y.origin.x,
+                y.origin.y,
+                bottom.origin.x,
+                bottom.origin.y,
+                4.201190307520001,
+                right.origin.x,
+                right.origin.y,
+                2.80178514522438,
+                top.origin.x,
+                top.origin.y,
+                top_length,
+                left.origin.x,
+                left.origin.y,
+                left_length,
+            ]));
 
     // w: length(bottom) = width (rectangle_free.gcs:27)
     // w: a length is zero or more.
@@ -449,7 +473,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -457,7 +481,7 @@ pub fn solve(
             length,
         ));
     }
-    let right_length = length;
+    let right_length = length.max(0.0);
     let shift_4 = coincident_right_end_top_start - top_start;
     top.translate(&shift_4);
     let length_2 = (left_start_2 - coincident_right_end_top_start).dot(&top_dir_2);
@@ -469,7 +493,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -477,7 +501,7 @@ pub fn solve(
             length_2,
         ));
     }
-    top_length = length_2;
+    top_length = length_2.max(0.0);
 
     Ok(Solution {
         bottom,

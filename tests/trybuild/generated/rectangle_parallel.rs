@@ -287,6 +287,8 @@ pub fn solve(
         ("tilt", params.tilt),
     ])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
+    let x = Frame2::at(Point2::origin());
     let mut bottom = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(2.9, 1.0) - Point2::new(0.0, 0.0),
@@ -304,6 +306,26 @@ pub fn solve(
         Point2::new(0.0, 0.0) - Point2::new(-0.4, 1.5),
     );
     let mut left_length = 1.5524174696260025;
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                x.origin.x,
+                x.origin.y,
+                bottom.origin.x,
+                bottom.origin.y,
+                3.0675723300355937,
+                right.origin.x,
+                right.origin.y,
+                1.5811388300841898,
+                top.origin.x,
+                top.origin.y,
+                2.973213749463701,
+                left.origin.x,
+                left.origin.y,
+                left_length,
+            ]));
 
     // h: length(right) = height (rectangle_parallel.gcs:27)
     // h: a length is zero or more.
@@ -420,7 +442,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
@@ -428,7 +450,7 @@ pub fn solve(
             length,
         ));
     }
-    let top_length = length;
+    let top_length = length.max(0.0);
     let shift_2 = coincident_top_end_left_start - left_start;
     left.translate(&shift_2);
     let length_2 = (Point2::new(0.0, 0.0) - coincident_top_end_left_start).dot(&left_dir_2);
@@ -440,7 +462,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
@@ -448,7 +470,7 @@ pub fn solve(
             length_2,
         ));
     }
-    left_length = length_2;
+    left_length = length_2.max(0.0);
 
     Ok(Solution {
         bottom,

@@ -325,7 +325,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "b_end",
             "coincident(S.end, B)",
@@ -333,7 +333,7 @@ pub fn solve(
             length,
         ));
     }
-    let s_length = length;
+    let s_length = length.max(0.0);
 
     // c_mid: midpoint(M, S) (redundant_sketcher.gcs:23)
     let m_2 = Point2::new(2.0 + params.gap, 0.0);

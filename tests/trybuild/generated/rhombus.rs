@@ -256,6 +256,7 @@ pub fn solve(
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[("side", params.side), ("acute", params.acute)])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let mut a = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(3.1, 0.1) - Point2::new(0.0, 0.0),
@@ -273,6 +274,24 @@ pub fn solve(
         Point2::new(0.0, 0.0) - Point2::new(1.4, 2.5),
     );
     let mut d_length = 2.8653097563788807;
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                a.origin.x,
+                a.origin.y,
+                3.1016124838541645,
+                b.origin.x,
+                b.origin.y,
+                3.0016662039607267,
+                c.origin.x,
+                c.origin.y,
+                3.2062439083762793,
+                d.origin.x,
+                d.origin.y,
+                d_length,
+            ]));
 
     // length(a) = side (rhombus.gcs:20)
     // length_a: a length is zero or more.
@@ -370,7 +389,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_c_end_d_start",
             "coincident(c.end, d.start)",
@@ -378,7 +397,7 @@ pub fn solve(
             length,
         ));
     }
-    d_length = length;
+    d_length = length.max(0.0);
 
     Ok(Solution {
         a,

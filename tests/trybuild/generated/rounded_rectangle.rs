@@ -786,7 +786,7 @@ pub fn solve(
             sum,
         ));
     }
-    if sum < 0.0 {
+    if sum < -tol {
         return Err(SolveError::new(
             "on_bottom_end_br",
             "on(bottom.end, br)",
@@ -794,7 +794,7 @@ pub fn solve(
             sum,
         ));
     }
-    bottom_length = sum;
+    bottom_length = sum.max(0.0);
     let param = line_p_2_offset.param_of(nearest_br_center);
     let sum_2 = param + br_slide;
     if !gcs_runtime::num::is_finite(sum_2) {
@@ -828,7 +828,7 @@ pub fn solve(
             sum_4,
         ));
     }
-    if sum_4 < 0.0 {
+    if sum_4 < -tol {
         return Err(SolveError::new(
             "on_top_start_tr",
             "on(top.start, tr)",
@@ -836,7 +836,7 @@ pub fn solve(
             sum_4,
         ));
     }
-    left_length = sum_4;
+    left_length = sum_4.max(0.0);
     let point = Point2::new(0.0, 0.0);
     let point_2 = Point2::new(right_dx, right_dy);
     let shift = point_2 - point;

@@ -489,7 +489,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "on_right_end_fillet",
             "on(right.end, fillet)",
@@ -497,7 +497,7 @@ pub fn solve(
             length,
         ));
     }
-    let right_length = length;
+    let right_length = length.max(0.0);
 
     // on(top.start, fillet) (sketch_profile.gcs:27)
     let line_left_start_2 = Line::new(left_start, top_dir_2).ok_or_else(|| {
@@ -538,7 +538,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "on_top_start_fillet",
             "on(top.start, fillet)",
@@ -546,7 +546,7 @@ pub fn solve(
             length_2,
         ));
     }
-    top_length = length_2;
+    top_length = length_2.max(0.0);
 
     Ok(Solution {
         bottom,

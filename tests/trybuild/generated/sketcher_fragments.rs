@@ -504,7 +504,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "b1",
             "midpoint(M, s1)",
@@ -512,7 +512,7 @@ pub fn solve(
             length,
         ));
     }
-    s1_length = length;
+    s1_length = length.max(0.0);
 
     // b2: coincident(s2.end, E) (sketcher_fragments.gcs:37)
     let s2_dir = s2.x_axis();
@@ -536,7 +536,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "b2",
             "coincident(s2.end, E)",
@@ -544,7 +544,7 @@ pub fn solve(
             length_2,
         ));
     }
-    s2_length = length_2;
+    s2_length = length_2.max(0.0);
 
     // b3: equal(s3, s1) (sketcher_fragments.gcs:39)
     if !gcs_runtime::num::is_finite(s1_length) || s1_length < 0.0 {

@@ -514,7 +514,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "on_bottom_end_left_end",
             "on(bottom.end, left_end)",
@@ -522,7 +522,7 @@ pub fn solve(
             length,
         ));
     }
-    let bottom_length = length;
+    let bottom_length = length.max(0.0);
 
     // on(top.end, right_end) (slot.gcs:24)
     let line_nearest_o_2 = Line::new(nearest_o, top_dir_3).ok_or_else(|| {
@@ -560,7 +560,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "on_top_end_right_end",
             "on(top.end, right_end)",
@@ -568,7 +568,7 @@ pub fn solve(
             length_2,
         ));
     }
-    let top_length = length_2;
+    let top_length = length_2.max(0.0);
 
     Ok(Solution {
         left_end,

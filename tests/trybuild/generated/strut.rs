@@ -189,6 +189,20 @@ pub fn solve(
         )),
     );
     let mut strut_length = 1.5;
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                1.0,
+                2.0,
+                3.0,
+                top.origin.x,
+                top.origin.y,
+                top.origin.z,
+                0.0,
+                0.0,
+                0.0,
+                strut_length,
+            ]));
 
     // a_end: coincident(strut.end, base) (strut.gcs:9)
     let strut_end = strut.origin + strut.x_axis() * strut_length;
@@ -217,7 +231,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "b_start",
             "coincident(strut.start, top)",
@@ -225,7 +239,7 @@ pub fn solve(
             length,
         ));
     }
-    strut_length = length;
+    strut_length = length.max(0.0);
     let strut_end_2 = strut.origin + strut.x_axis() * strut_length;
     let shift_2 = Point3::new(1.0, 2.0, 3.0) - strut_end_2;
     strut.translate(&shift_2);

@@ -316,6 +316,8 @@ pub fn solve(
         ("inset", params.inset),
     ])?;
     // The sketch: where every geom starts.
+    let origin = Frame2::at(Point2::new(0.0, 0.0));
+    let x = Frame2::at(Point2::origin());
     let axis = Frame2::along(
         Point2::new(0.0, -1.0),
         Point2::new(0.0, 1.0) - Point2::new(0.0, -1.0),
@@ -334,6 +336,31 @@ pub fn solve(
     );
     let mut bolt_left = Frame2::at(Point2::new(-2.7, 1.3));
     let mut bolt_right = Frame2::at(Point2::new(2.9, 1.1));
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                origin.origin.x,
+                origin.origin.y,
+                x.origin.x,
+                x.origin.y,
+                axis.origin.x,
+                axis.origin.y,
+                base.origin.x,
+                base.origin.y,
+                8.002499609497024,
+                left.origin.x,
+                left.origin.y,
+                5.0803543183522155,
+                right.origin.x,
+                right.origin.y,
+                4.981967482832459,
+                bolt_left.origin.x,
+                bolt_left.origin.y,
+                0.5,
+                bolt_right.origin.x,
+                bolt_right.origin.y,
+                0.7,
+            ]));
 
     // length(base) = width (symmetric_bracket.gcs:25)
     // length_base: a length is zero or more.
@@ -498,7 +525,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "mirror_arm",
             "symmetric(left.end, right.end, axis)",
@@ -506,7 +533,7 @@ pub fn solve(
             length,
         ));
     }
-    let right_length = length;
+    let right_length = length.max(0.0);
 
     // mirror_hole: symmetric(bolt_left.center, bolt_right.center, axis) (symmetric_bracket.gcs:34)
     let line_axis_2 = Line::new(Point2::new(0.0, -1.0), axis_dir).ok_or_else(|| {

@@ -302,6 +302,7 @@ pub fn solve(
         ("lean", params.lean),
     ])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let floor = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(1.0, 0.0) - Point2::new(0.0, 0.0),
@@ -323,6 +324,26 @@ pub fn solve(
         Point2::new(0.0, 0.0) - Point2::new(0.8, 1.9),
     );
     let mut left_length = 2.0615528128088303;
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                floor.origin.x,
+                floor.origin.y,
+                base.origin.x,
+                base.origin.y,
+                6.100819617067857,
+                right.origin.x,
+                right.origin.y,
+                2.1931712199461306,
+                top.origin.x,
+                top.origin.y,
+                4.404543109109048,
+                left.origin.x,
+                left.origin.y,
+                left_length,
+            ]));
 
     // length(base) = base_length (trapezoid.gcs:26)
     // length_base: a length is zero or more.
@@ -443,7 +464,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_right_end_top_start",
             "coincident(right.end, top.start)",
@@ -451,7 +472,7 @@ pub fn solve(
             length,
         ));
     }
-    let right_length = length;
+    let right_length = length.max(0.0);
     top.place_origin(&coincident_right_end_top_start);
 
     // coincident(top.end, left.start) (trapezoid.gcs:20)
@@ -503,7 +524,7 @@ pub fn solve(
             length_2,
         ));
     }
-    if length_2 < 0.0 {
+    if length_2 < -tol {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
@@ -511,7 +532,7 @@ pub fn solve(
             length_2,
         ));
     }
-    let top_length = length_2;
+    let top_length = length_2.max(0.0);
     let shift_2 = coincident_top_end_left_start - left_start;
     left.translate(&shift_2);
     let length_3 = (Point2::new(0.0, 0.0) - coincident_top_end_left_start).dot(&left_dir_2);
@@ -523,7 +544,7 @@ pub fn solve(
             length_3,
         ));
     }
-    if length_3 < 0.0 {
+    if length_3 < -tol {
         return Err(SolveError::new(
             "coincident_top_end_left_start",
             "coincident(top.end, left.start)",
@@ -531,7 +552,7 @@ pub fn solve(
             length_3,
         ));
     }
-    left_length = length_3;
+    left_length = length_3.max(0.0);
 
     Ok(Solution {
         floor,

@@ -241,6 +241,7 @@ pub fn solve(
         ("gamma", params.gamma),
     ])?;
     // The sketch: where every geom starts.
+    let o = Frame2::at(Point2::new(0.0, 0.0));
     let mut s1 = Frame2::along(
         Point2::new(0.0, 0.0),
         Point2::new(3.1, 0.2) - Point2::new(0.0, 0.0),
@@ -253,6 +254,21 @@ pub fn solve(
         Point2::new(3.1, 0.2),
         Point2::new(1.2, 1.7) - Point2::new(3.1, 0.2),
     );
+    let tol = gcs_runtime::tol::CHECK_REL
+        * (1.0
+            + gcs_runtime::tol::scale(&[
+                o.origin.x,
+                o.origin.y,
+                s1.origin.x,
+                s1.origin.y,
+                3.1064449134018135,
+                s2.origin.x,
+                s2.origin.y,
+                2.080865204668481,
+                s3.origin.x,
+                s3.origin.y,
+                2.420743687382041,
+            ]));
 
     // length(s1) = a (triangle_sas.gcs:21)
     // length_s1: a length is zero or more.
@@ -322,7 +338,7 @@ pub fn solve(
             length,
         ));
     }
-    if length < 0.0 {
+    if length < -tol {
         return Err(SolveError::new(
             "coincident_s3_end_s2_end",
             "coincident(s3.end, s2.end)",
@@ -330,7 +346,7 @@ pub fn solve(
             length,
         ));
     }
-    let s3_length = length;
+    let s3_length = length.max(0.0);
 
     Ok(Solution {
         s1,
