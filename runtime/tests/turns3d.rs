@@ -31,9 +31,19 @@ const RESIDUAL_REL: f64 = 1e-12;
 /// the known angle is recovered only to rounding over the slope; the residual is still checked.
 const WELL_CONDITIONED: f64 = 1e-2;
 
+/// A tenth of the work in an unoptimised build (what the workspace's test command runs):
+/// the figures in this module's doc are measured in release, at the full counts.
+fn scaled(full: u64) -> u64 {
+    if cfg!(debug_assertions) {
+        (full / 10).max(1)
+    } else {
+        full
+    }
+}
+
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: 256,
+        cases: scaled(256) as u32,
         failure_persistence: None,
         ..ProptestConfig::default()
     }
@@ -592,7 +602,7 @@ proptest! {
 
 #[test]
 fn worst_errors_are_documented() {
-    let n = 20_000u64;
+    let n = scaled(20_000);
     type Case = (&'static str, Box<dyn Fn(u64) -> Result<Measured, String>>);
     let cases: Vec<Case> = vec![
         ("SP1", Box::new(sp1)),
@@ -1059,7 +1069,7 @@ fn perturbed(g: &mut Rng, v: f64, s: f64) -> f64 {
 fn solution_counts_match_an_independent_count() {
     let (mut compared, mut skipped) = ([0usize; 4], [0usize; 4]);
     let mut histogram = [[0usize; 5]; 4];
-    for seed in 0..400u64 {
+    for seed in 0..scaled(400) {
         let mut g = Rng(seed ^ 0x5eed);
         // SP3.
         {
@@ -1147,7 +1157,10 @@ fn solution_counts_match_an_independent_count() {
         }
     }
     eprintln!("compared (SP3, SP4, SP5, SP6) {compared:?}, skipped near tangency {skipped:?}, by count 0..4 {histogram:?}");
-    assert!(compared.iter().all(|&c| c >= 300), "{compared:?}");
+    assert!(
+        compared.iter().all(|&c| c as u64 >= scaled(300)),
+        "{compared:?}"
+    );
 }
 
 #[test]
