@@ -115,6 +115,23 @@ pub struct CompiledRun {
     pub restarts: usize,
 }
 
+/// How far a solution's points moved from the sketch's: the sum of their squared
+/// displacements (what least motion minimises; a radius is no point). Every point of `s` must
+/// be in `sketch`.
+pub fn squared_motion(sketch: &Solution, s: &Solution) -> f64 {
+    (s.points.iter())
+        .map(|(n, p)| {
+            let q = &sketch
+                .points
+                .iter()
+                .find(|(m, _)| m == n)
+                .expect("a point")
+                .1;
+            p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum::<f64>()
+        })
+        .sum()
+}
+
 /// Repeats `solve` until about `budget_ns` have passed (at least once) and returns the time
 /// of one call; the caller's closure should `black_box` what it computes.
 pub fn time_per_call(budget_ns: f64, mut solve: impl FnMut()) -> f64 {

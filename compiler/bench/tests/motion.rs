@@ -14,19 +14,7 @@ use gcs_bench::baseline::{Baseline, Method, Options};
 use gcs_compiler::solution::Solution;
 use std::collections::BTreeSet;
 
-fn motion(sketch: &Solution, s: &Solution) -> f64 {
-    (s.points.iter())
-        .map(|(n, p)| {
-            let q = &sketch
-                .points
-                .iter()
-                .find(|(m, _)| m == n)
-                .expect("a point")
-                .1;
-            p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum::<f64>()
-        })
-        .sum()
-}
+use gcs_bench::bench::squared_motion as motion;
 
 #[test]
 fn the_global_choice_moves_about_as_little_as_the_baseline() {

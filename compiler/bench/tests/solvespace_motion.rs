@@ -17,19 +17,7 @@ use std::collections::BTreeSet;
 /// Sketches on which the global choice moves more than 1.05x the baseline (file, and why).
 const KNOWN_OVER: &[&str] = &[];
 
-fn motion(sketch: &Solution, s: &Solution) -> f64 {
-    (s.points.iter())
-        .map(|(n, p)| {
-            let q = &sketch
-                .points
-                .iter()
-                .find(|(m, _)| m == n)
-                .expect("a point")
-                .1;
-            p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum::<f64>()
-        })
-        .sum()
-}
+use gcs_bench::bench::squared_motion as motion;
 
 /// A small deterministic generator (64-bit LCG), uniform in [-1, 1].
 struct Lcg(u64);
