@@ -519,6 +519,14 @@ impl<'m, G: Geometry> Builder<'m, G> {
         self.record(f).point_known(self.model, f)
     }
 
+    /// The relations constraint `c` decomposes into.
+    pub(crate) fn relations_of(&self, c: ConstraintId) -> Vec<G::Relation> {
+        (self.relations.iter())
+            .filter(|r| r.constraint == c)
+            .map(|r| r.relation.clone())
+            .collect()
+    }
+
     /// The constraints a step satisfying `r` satisfies: its constraint, on its last relation.
     pub(crate) fn satisfies(&self, r: &Rel<G::Relation>) -> Vec<ConstraintId> {
         if r.last {
@@ -609,6 +617,9 @@ impl<'m, G: Geometry> Builder<'m, G> {
             // Nothing for a linear stage: what was left to it goes back to action analysis.
             if self.linear_first && !self.pending.is_empty() {
                 self.linear_first = false;
+                continue;
+            }
+            if !self.pending.is_empty() && G::subchains(self) {
                 continue;
             }
             if self.undefaulted.is_none() {

@@ -132,6 +132,15 @@ pub(crate) trait Geometry: Sized + Clone {
         false
     }
 
+    /// Chains of clusters that are not rigid but keep an invariant between their ends (in
+    /// space, bodies joined by revolutes with parallel axes: a planar sub-chain keeps a plane
+    /// fixed in the body before it): when one end is partly fixed and the other holds a known
+    /// point, the invariant places the first end. Tried when action, locus, chain, loop and
+    /// linear analysis are stuck, before a default. Returns whether it placed one.
+    fn subchains(_b: &mut Builder<'_, Self>) -> bool {
+        false
+    }
+
     /// Adds defaults (000, section 5.2.1) when nothing else applies: fixes one freedom of one
     /// cluster of the `candidates` (non-grounded clusters, fewest DOF first, then by name) at
     /// a default parameter with a geometric meaning (an angle about a pivot, a position along

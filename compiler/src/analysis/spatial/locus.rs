@@ -3,7 +3,10 @@
 //! the sphere about its pivot, the circle about its axis, or the locus it is held on, moved
 //! with it (`shifted`). Two such points to coincide go where their loci meet (`locus`,
 //! `meet`): a root of the runtime's 3d intersection table, with a branch variable where there
-//! are two. The lines, planes and cylinders relations put a point on are built here too.
+//! are two. Two directions of clusters that each turn about a known axis, to be parallel (a
+//! wrist's middle joint), meet where their cones about those axes do (`turn.rs`,
+//! `parallel_about_two_axes`). The lines, planes and cylinders relations put a point on are
+//! built here too.
 
 use super::relation::{Length, Relation};
 use super::{Locus, Rel, Spatial, Target, Trans, Turn};
@@ -16,8 +19,12 @@ impl Builder<'_, Spatial> {
     /// lies on the locus its cluster's freedom sweeps (003's locus table): the pivot's sphere
     /// or the axis' circle, the line, circle, plane or sphere it is held on (moved with it);
     /// where the two loci meet is a pseudo-marker (a branch variable where two), to which
-    /// each cluster is then moved by action analysis.
+    /// each cluster is then moved by action analysis. Two parallel directions, each turning
+    /// about a known axis, meet on their cones in the same way.
     pub(super) fn locus(&mut self, r: &Rel) -> bool {
+        if let Relation::Parallel { u, v, sense } = r.relation {
+            return self.parallel_about_two_axes(u, v, sense, r);
+        }
         let Relation::PointPoint { a, b, d: None } = r.relation else {
             return false;
         };

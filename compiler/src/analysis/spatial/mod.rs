@@ -122,6 +122,7 @@ mod record;
 pub mod relation;
 mod size;
 mod sketcher;
+mod subchain;
 mod turn;
 
 use super::driver::Builder;
@@ -188,6 +189,10 @@ impl Geometry for Spatial {
 
     fn ground(b: &mut Builder<'_, Self>) {
         b.ground_if_nothing_fixed();
+    }
+
+    fn subchains(b: &mut Builder<'_, Self>) -> bool {
+        b.planar_subchain()
     }
 
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {

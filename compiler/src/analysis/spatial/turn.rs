@@ -116,6 +116,67 @@ impl Builder<'_, Spatial> {
         self.turn_onto(v, target, r, true)
     }
 
+    /// Directions `u` and `v` to be parallel (`v` along `sense * u`), each on a body that only
+    /// turns about a known axis (a wrist's middle joint between the joints before and after
+    /// it): `v` keeps its angle with its own axis, a constant of its body, so `u` must make
+    /// that angle with it. `u`'s body turns to where `u`'s cone about its axis meets that cone
+    /// (two turns, a branch: the wrist flipped or not), and `v`'s then turns onto it.
+    pub(super) fn parallel_about_two_axes(
+        &mut self,
+        u: GeomId,
+        v: GeomId,
+        sense: f64,
+        r: &Rel,
+    ) -> bool {
+        if self.together(u, v) || sense == 0.0 {
+            return false;
+        }
+        for (first, second) in [(u, v), (v, u)] {
+            let axis_feature = |b: &Self, g: GeomId| match b.record(g).turn {
+                Turn::Axis {
+                    feature: Some(f), ..
+                } if b.record(g).movable() => Some(f),
+                _ => None,
+            };
+            let (Some(_), Some(f)) = (axis_feature(self, first), axis_feature(self, second)) else {
+                continue;
+            };
+            // `second`'s angle with its body's axis, from the body's own geometry.
+            let model = self.model;
+            if model.top_level_of(f) != model.top_level_of(second) {
+                continue;
+            }
+            let (Some(a), Some(b)) = (super::local_dir(model, f), super::local_dir(model, second))
+            else {
+                continue;
+            };
+            let cos = super::dot(a, b) / (super::dot(a, a) * super::dot(b, b)).sqrt();
+            let beta = cos.clamp(-1.0, 1.0).acos();
+            let angle = if sense < 0.0 {
+                std::f64::consts::PI - beta
+            } else {
+                beta
+            };
+            let part = Rel {
+                last: false,
+                ..r.clone()
+            };
+            if !self.turn_to_angle(f, first, AngleValue::Const(angle), &part) {
+                continue;
+            }
+            // `second` then turns onto `first` (or its opposite), on its cone by construction.
+            let known = self.direction(first);
+            let target = if sense < 0.0 {
+                let words = format!("the opposite of {}", self.name(first));
+                self.value(SpatialOp::Opposite(known), Ty::Vector, words)
+            } else {
+                known
+            };
+            return self.turn_onto(second, target, r, true);
+        }
+        false
+    }
+
     /// A line (its point `base`, direction `dir`) that only turns about an axis through a known
     /// point of it (`base` itself, or the point its cluster pivots about, another point of the
     /// line), turned about that axis until it passes `length` from known point `p`: its

@@ -1,0 +1,322 @@
+//! Chains of bodies joined by revolute joints with parallel axes: planar sub-chains (issue 38,
+//! 003's loci of bodies turning about known axes).
+//!
+//! Bodies `C1 … Ck` joined to each other and to a body `C0` by revolute joints whose axes are
+//! all parallel move, relative to `C0`, in planes square to those axes: every point of `Ck`
+//! stays at a constant offset along them from `C0`'s joint, whatever the joints' angles. That
+//! offset is each body's own constant, the distance between its two joints along their axis,
+//! summed along the chain, so the sub-chain is a macro-geom whose invariant is a plane fixed in
+//! `C0`. When `Ck` holds a known point (a tool pinned to its target) and `C0` may only turn
+//! about a known axis (an arm's base), `C0` turns so that its plane passes through that point:
+//! a plane turned onto a point about an axis (IK-Geo's SP4), two roots, closed form. The chain
+//! itself is then an ordinary two-circle problem: action and locus analysis take it from there.
+//!
+//! This is degrees-of-freedom reasoning, not a pattern of robots: it needs the chain's
+//! revolutes still open, their axes parallel in each body between them (a constant of the body,
+//! so read from its local geometry), a rigid `Ck` pivoted at a known point, and `C0`'s turn not
+//! about the chain's own axis (then the plane would not move: a planar mechanism, which the
+//! rest of the analysis already solves).
+
+use super::{local_dir, parallel, Spatial, Trans, Turn};
+use crate::analysis::driver::Builder;
+use crate::analysis::geometry::Invariants;
+use crate::plan::{Op, Reg, RotationAxis, SpatialOp, Ty};
+use gcs_lang::constraints::ConstraintKind;
+use gcs_lang::model::{ConstraintId, GeomId, Part};
+
+/// A revolute joint still open: its constraint and its two markers.
+#[derive(Clone, Copy, Debug)]
+struct Joint {
+    constraint: ConstraintId,
+    markers: [GeomId; 2],
+}
+
+/// One link of a planar sub-chain, from the pivoted end towards `C0`: the joint, the marker
+/// of that joint on the body nearer the pivoted end, and the marker on the body nearer `C0`.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    joint: Joint,
+    near: GeomId,
+    far: GeomId,
+}
+
+/// The most joints a sub-chain holds: six revolutes make an arm.
+const MAX_JOINTS: usize = 6;
+
+impl Builder<'_, Spatial> {
+    /// Finds a planar sub-chain whose far body may only turn about a known axis and whose near
+    /// body is pivoted at a known point, and turns the far body so that the sub-chain's plane
+    /// passes through that point. Returns whether it did.
+    pub(super) fn planar_subchain(&mut self) -> bool {
+        let joints = self.open_revolutes();
+        if joints.is_empty() {
+            return false;
+        }
+        let mut ends: Vec<(usize, GeomId, Reg)> = (0..self.clusters.len())
+            .filter_map(|k| match self.clusters[k].record.trans {
+                Trans::Pivot { at, feature }
+                    if !self.clusters[k].geoms.is_empty()
+                        && self.clusters[k].record.rigid()
+                        && self.clusters[k].record.turn != Turn::Known =>
+                {
+                    Some((k, feature, at))
+                }
+                _ => None,
+            })
+            .collect();
+        ends.sort_by_key(|&(_, f, _)| self.name(f));
+        for (k, x, at) in ends {
+            let mut path = Vec::new();
+            let Some(chain) = self.chain_from(k, None, &joints, &mut path) else {
+                continue;
+            };
+            // A pivot on the first joint's axis is that joint's own point: the plane passes
+            // through it whatever the far body does, and the body before is the one pivoted.
+            let first = chain[0].near;
+            let on_own_axis = self
+                .z_of(first)
+                .is_some_and(|z| super::on_axis(self.model, first, z, x));
+            if !on_own_axis {
+                self.turn_onto_subchain_plane(x, at, &chain);
+                return true;
+            }
+        }
+        false
+    }
+
+    /// The revolute joints some relation of which is still pending, in name order.
+    fn open_revolutes(&self) -> Vec<Joint> {
+        let model = self.model;
+        let mut seen = std::collections::BTreeSet::new();
+        let mut joints: Vec<Joint> = (self.pending.iter())
+            .filter(|r| seen.insert(r.constraint))
+            .filter_map(|r| {
+                let c = &model.constraints[r.constraint];
+                match (c.kind, c.args.as_slice()) {
+                    (ConstraintKind::Revolute, &[a, b]) => Some(Joint {
+                        constraint: r.constraint,
+                        markers: [a, b],
+                    }),
+                    _ => None,
+                }
+            })
+            .collect();
+        joints.sort_by_key(|j| self.cname(j.constraint));
+        joints
+    }
+
+    /// The marker's z axis.
+    fn z_of(&self, marker: GeomId) -> Option<GeomId> {
+        self.model.part(marker, Part::AxisZ)
+    }
+
+    /// Walks from cluster `k` (entered through marker `entered`, none at the pivoted end) along
+    /// open revolutes with axes parallel in each body, to a cluster that may only turn about a
+    /// known axis across them. `path` holds the links so far; returns the whole chain.
+    fn chain_from(
+        &self,
+        k: usize,
+        entered: Option<GeomId>,
+        joints: &[Joint],
+        path: &mut Vec<Link>,
+    ) -> Option<Vec<Link>> {
+        if path.len() >= MAX_JOINTS {
+            return None;
+        }
+        let model = self.model;
+        for j in joints {
+            if path.iter().any(|l| l.joint.constraint == j.constraint) {
+                continue;
+            }
+            for (near, far) in [(j.markers[0], j.markers[1]), (j.markers[1], j.markers[0])] {
+                if self.cluster(near) != k || self.cluster(far) == k {
+                    continue;
+                }
+                // Within the body, the joint's axis is parallel to the one it was entered by.
+                if let Some(e) = entered {
+                    let same_body = model.top_level_of(e) == model.top_level_of(near);
+                    let axes = (self.z_of(e).and_then(|z| local_dir(model, z)))
+                        .zip(self.z_of(near).and_then(|z| local_dir(model, z)));
+                    if !same_body || !axes.is_some_and(|(u, v)| parallel(u, v)) {
+                        continue;
+                    }
+                }
+                let next = self.cluster(far);
+                if path.iter().any(|l| self.cluster(l.near) == next) {
+                    continue;
+                }
+                path.push(Link {
+                    joint: *j,
+                    near,
+                    far,
+                });
+                let rec = &self.clusters[next].record;
+                match (rec.trans, rec.turn) {
+                    // The far body: its turn's axis known and across the chain's.
+                    (
+                        Trans::Pivot { .. },
+                        Turn::Axis {
+                            feature: Some(f), ..
+                        },
+                    ) => {
+                        let across = model.top_level_of(f) == model.top_level_of(far)
+                            && (local_dir(model, f))
+                                .zip(self.z_of(far).and_then(|z| local_dir(model, z)))
+                                .is_some_and(|(u, v)| !parallel(u, v));
+                        if across {
+                            return Some(path.clone());
+                        }
+                    }
+                    _ if !rec.grounded() && rec.rigid() && rec.turn != Turn::Known => {
+                        if let Some(chain) = self.chain_from(next, Some(far), joints, path) {
+                            return Some(chain);
+                        }
+                    }
+                    _ => {}
+                }
+                path.pop();
+            }
+        }
+        None
+    }
+
+    /// The sign relating marker `m`'s z axis to marker `reference`'s, by the senses of the
+    /// joints' parallel relations (the sketch's) and of the bodies' parallel axes.
+    fn chain_senses(&self, chain: &[Link]) -> Vec<f64> {
+        use super::relation::Relation;
+        let model = self.model;
+        // From the far end: the far body's marker is the reference, sense 1.
+        let mut senses = vec![0.0; chain.len()];
+        let mut sense = 1.0;
+        for (i, l) in chain.iter().enumerate().rev() {
+            let (zn, zf) = (self.z_of(l.near), self.z_of(l.far));
+            // The joint's own sense: `v` along `sense * u`.
+            let joint = (self.relations_of(l.joint.constraint).into_iter()).find_map(|r| match r {
+                Relation::Parallel { u, v, sense } if Some(u) == zn && Some(v) == zf => Some(sense),
+                Relation::Parallel { u, v, sense } if Some(u) == zf && Some(v) == zn => Some(sense),
+                _ => None,
+            });
+            sense *= joint.filter(|s| *s != 0.0).unwrap_or(1.0);
+            senses[i] = sense;
+            // Into the next body towards the pivoted end: its two markers' axes.
+            if i > 0 {
+                let next = chain[i - 1].far;
+                let (u, v) = (
+                    zn.and_then(|z| local_dir(model, z)),
+                    self.z_of(next).and_then(|z| local_dir(model, z)),
+                );
+                if let (Some(u), Some(v)) = (u, v) {
+                    if super::dot(u, v) < 0.0 {
+                        sense = -sense;
+                    }
+                }
+            }
+        }
+        senses
+    }
+
+    /// Turns the chain's far body about its axis so that the plane its joint's axis fixes, at
+    /// the chain's offset, passes through the known point `at` of feature `x`.
+    fn turn_onto_subchain_plane(&mut self, x: GeomId, at: Reg, chain: &[Link]) {
+        let senses = self.chain_senses(chain);
+        // The offset along the axes from the far body's joint to `x`: each body's own, from
+        // the joint it is entered by to the next (or to `x`).
+        let mut terms = Vec::new();
+        for (i, l) in chain.iter().enumerate() {
+            let to = match i {
+                0 => at,
+                _ => self.point(chain[i - 1].far),
+            };
+            let (from, z) = (self.point(l.near), self.z_of(l.near));
+            let Some(z) = z else { continue };
+            let dir = self.direction(z);
+            let words = format!(
+                "how far {} is from {} along {}",
+                if i == 0 {
+                    self.name(x)
+                } else {
+                    self.name(chain[i - 1].far)
+                },
+                self.name(l.near),
+                self.name(z)
+            );
+            let along = self.value(Op::Along { from, dir, to }, Ty::Scalar, words);
+            terms.push((senses[i], along));
+        }
+        let last = *chain.last().expect("a chain has a joint");
+        let bodies: Vec<String> = (chain.iter().rev())
+            .map(|l| self.name(self.model.top_level_of(l.near)))
+            .collect();
+        let words = format!(
+            "the offset of {} along the axes of {}",
+            self.name(x),
+            bodies.join(", ")
+        );
+        let offset = self.value(Op::Sum(terms), Ty::Scalar, words);
+        let k = self.cluster(last.far);
+        let (Trans::Pivot { at: pivot, .. }, Turn::Axis { axis, .. }) =
+            (self.clusters[k].record.trans, self.clusters[k].record.turn)
+        else {
+            unreachable!("the chain ends at a body turning about an axis")
+        };
+        let z = self.z_of(last.far).expect("a revolute joins markers");
+        let (base, normal) = (self.point(last.far), self.direction(z));
+        let far = self.name(self.model.top_level_of(last.far));
+        let (xname, zname) = (self.name(x), self.name(z));
+        let meanings = vec![
+            format!(
+                "{far} turned counter-clockwise about {} from its turn nearest {xname}, the plane of {} square to {zname} through {xname}",
+                self.word(axis),
+                bodies.join(", ")
+            ),
+            "turned clockwise from there".to_string(),
+        ];
+        let branch = self.branch(last.joint.constraint, meanings);
+        let words = format!(
+            "the axis {zname} takes, turned about {}, for {xname} to be in the plane of {}",
+            self.word(axis),
+            bodies.join(", ")
+        );
+        let to = self.value(
+            SpatialOp::PlaneAxisTurn {
+                base,
+                normal,
+                pivot,
+                point: at,
+                d: offset,
+                axis,
+                branch,
+                constraint: last.joint.constraint,
+            },
+            Ty::Vector,
+            words,
+        );
+        let joints: Vec<String> = (chain.iter().rev())
+            .map(|l| self.cname(l.joint.constraint))
+            .collect();
+        let explain = format!(
+            "{} turn about parallel axes ({}): a planar sub-chain, which keeps {xname} in a plane square to {zname} at its offset along it. {far} may only turn about {}: turn it so that this plane passes through {xname}.",
+            bodies.join(", "),
+            joints.join(", "),
+            self.word(axis)
+        );
+        let geoms = self.clusters[k].geoms.clone();
+        self.work_for(Some(last.joint.constraint));
+        self.emit(
+            Op::RotateDir {
+                geoms,
+                pivot,
+                axis: RotationAxis::Along(axis),
+                from: normal,
+                to,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+        self.work_for(None);
+        let rec = &mut self.clusters[k].record;
+        rec.turn = Turn::Known;
+        rec.trans = Trans::Fixed;
+    }
+}

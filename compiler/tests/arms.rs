@@ -1,0 +1,350 @@
+//! Serial arms solved in closed form with every solution (issue 38): the 3R positioning arm of
+//! `examples/arm_3r.gcs` and the PUMA-like 6R of `examples/puma.gcs`.
+//!
+//! Each pose comes from random joint angles through forward kinematics written here, apart
+//! from the plan: the product of exponentials of the joints' screws, read from the numbers of
+//! the model's sketch below (each joint's point and axis), never from the compiler. Every
+//! solution the plan returns must reach the pose, be a distinct assembly, and one of them must
+//! be the arm the pose came from (each body's frame equal to the forward kinematics' at the
+//! random angles). How many solutions there are is counted here too, by the arm's geometry: the
+//! base's two turns that put the wrist centre in the plane of the shoulder and elbow (none
+//! when it is inside the cylinder of the shoulder's offset), the elbow's two (none beyond
+//! reach), and the wrist's two.
+
+use gcs_compiler::all::solve_all;
+use gcs_compiler::solution::Solution;
+use nalgebra::{Rotation3, Unit, Vector3};
+use std::collections::BTreeSet;
+
+/// A revolute joint in the sketch: a point of its axis and its direction.
+struct Joint {
+    point: [f64; 3],
+    axis: [f64; 3],
+}
+
+/// A serial arm as its sketch has it: the joints from the base, the bodies they turn (body
+/// `i` turned by joints `0..=i`), and the tool marker (point, z, x) on the last body.
+struct Arm {
+    file: &'static str,
+    joints: Vec<Joint>,
+    bodies: Vec<&'static str>,
+    tool: ([f64; 3], [f64; 3], [f64; 3]),
+    /// The params of the tool's target: its point, then (if any) its z and x axes.
+    params: Vec<&'static str>,
+    /// The shoulder's point, the offset along the shoulder's axis to the wrist centre, and the
+    /// upper arm's and the forearm's lengths (shoulder to elbow, elbow to wrist centre).
+    shoulder: ([f64; 3], f64, f64, f64),
+    /// The wrist centre's offset back from the tool's point along the tool's z axis, and
+    /// whether a wrist doubles the solutions.
+    wrist: (f64, bool),
+}
+
+fn v(a: [f64; 3]) -> Vector3<f64> {
+    Vector3::new(a[0], a[1], a[2])
+}
+
+/// The rigid motion of each body at joint angles `q`: rotation and translation.
+fn forward(arm: &Arm, q: &[f64]) -> Vec<(Rotation3<f64>, Vector3<f64>)> {
+    let mut out = Vec::new();
+    let (mut r, mut t) = (Rotation3::identity(), Vector3::zeros());
+    for (j, &angle) in arm.joints.iter().zip(q) {
+        // exp(xi q): a turn about the joint's sketch axis, composed after the joints before.
+        let c = v(j.point);
+        let turn = Rotation3::from_axis_angle(&Unit::new_normalize(v(j.axis)), angle);
+        let tj = c - turn * c;
+        // (r, t) . (turn, tj)
+        t += r * tj;
+        r *= turn;
+        out.push((r, t));
+    }
+    out
+}
+
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn angle(&mut self) -> f64 {
+        (2.0 * self.next() - 1.0) * std::f64::consts::PI
+    }
+}
+
+fn frame<'s>(s: &'s Solution, body: &str) -> (&'s [f64], &'s [Vec<f64>]) {
+    let (_, o, axes) = (s.frames.iter())
+        .find(|(n, _, _)| n == body)
+        .unwrap_or_else(|| panic!("no frame {body}"));
+    (o, axes)
+}
+
+/// Whether solution `s` has every body where the motions `fk` put it.
+fn is_arm(arm: &Arm, s: &Solution, fk: &[(Rotation3<f64>, Vector3<f64>)], tol: f64) -> bool {
+    arm.bodies.iter().zip(fk).all(|(body, (r, t))| {
+        let (o, axes) = frame(s, body);
+        (v([o[0], o[1], o[2]]) - t).norm() <= tol
+            && (0..3).all(|k| {
+                let e = r * Vector3::ith(k, 1.0);
+                (v([axes[k][0], axes[k][1], axes[k][2]]) - e).norm() <= tol
+            })
+    })
+}
+
+/// How many solutions the arm has for the tool's pose, by its geometry (module docs).
+fn count(arm: &Arm, tool_point: Vector3<f64>, tool_z: Vector3<f64>) -> usize {
+    let w = tool_point - arm.wrist.0 * tool_z;
+    let (s, offset, a, b) = arm.shoulder;
+    // The base turns about z through the origin; the shoulder is on that axis.
+    let rho = w.x.hypot(w.y);
+    if rho < offset.abs() {
+        return 0;
+    }
+    let reach = (rho * rho - offset * offset).sqrt();
+    let mut n = 0;
+    for side in [1.0, -1.0] {
+        // The wrist centre in the arm's plane: `side * reach` out, its height above the shoulder.
+        let d = (side * reach).hypot(w.z - s[2]);
+        if d < a + b && d > (a - b).abs() {
+            n += 2;
+        }
+    }
+    if arm.wrist.1 {
+        n * 2
+    } else {
+        n
+    }
+}
+
+/// The model, its plan and the params of a pose.
+struct Loaded {
+    compiled: gcs_compiler::pipeline::Compiled,
+    scope: BTreeSet<gcs_lang::model::GeomId>,
+}
+
+fn load(arm: &Arm) -> Loaded {
+    let path = format!("{}/../examples/{}", env!("CARGO_MANIFEST_DIR"), arm.file);
+    let text = std::fs::read_to_string(&path).expect("the example");
+    let compiled = gcs_compiler::compile(arm.file, text.as_bytes()).expect("compiles");
+    assert!(!compiled.has_errors(), "{:?}", compiled.diagnostics);
+    let scope = compiled.model.top_level().map(|(id, _)| id).collect();
+    Loaded { compiled, scope }
+}
+
+/// The params of the tool's pose at joint angles `q`, and that pose (point, z).
+fn pose_params(arm: &Arm, l: &Loaded, q: &[f64]) -> (Vec<f64>, Vector3<f64>, Vector3<f64>) {
+    let model = &l.compiled.model;
+    let fk = forward(arm, q);
+    let (r, t) = fk.last().expect("a body");
+    let (p0, z0, x0) = arm.tool;
+    let (p, z, x) = (r * v(p0) + t, r * v(z0), r * v(x0));
+    let mut params = model.default_params();
+    let values = [p.x, p.y, p.z, z.x, z.y, z.z, x.x, x.y, x.z];
+    for (name, value) in arm.params.iter().zip(values) {
+        let i = (model.params.iter())
+            .position(|(_, p)| p.name == *name)
+            .unwrap_or_else(|| panic!("no param {name}"));
+        params[i] = value;
+    }
+    (params, p, z)
+}
+
+fn check_arm(arm: &Arm, poses: usize, seed: u64) {
+    let l = load(arm);
+    let (model, plan) = (&l.compiled.model, &l.compiled.analysis.plan);
+    assert!(
+        plan.defaults.is_empty() && plan.iterations.is_empty(),
+        "{}: closed form, no default",
+        arm.file
+    );
+    let mut rng = Rng(seed);
+    let (mut total, mut solved) = (0, 0);
+    for _ in 0..poses {
+        let q: Vec<f64> = arm.joints.iter().map(|_| rng.angle()).collect();
+        let fk = forward(arm, &q);
+        let (params, p, z) = pose_params(arm, &l, &q);
+        let expected = count(arm, p, z);
+        let found = solve_all(model, plan, &l.scope, &params, &[]);
+        let reach = 2.0;
+        for s in &found.solutions {
+            assert!(
+                s.max_residual <= 1e-12 * reach,
+                "{}: q = {q:?}: a solution off by {}",
+                arm.file,
+                s.max_residual
+            );
+        }
+        for (i, a) in found.solutions.iter().enumerate() {
+            for b in &found.solutions[..i] {
+                let fb: Vec<_> = (arm.bodies.iter())
+                    .map(|n| {
+                        let (o, axes) = frame(b, n);
+                        (
+                            Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from_columns(&[
+                                v([axes[0][0], axes[0][1], axes[0][2]]),
+                                v([axes[1][0], axes[1][1], axes[1][2]]),
+                                v([axes[2][0], axes[2][1], axes[2][2]]),
+                            ])),
+                            v([o[0], o[1], o[2]]),
+                        )
+                    })
+                    .collect();
+                assert!(
+                    !is_arm(arm, a, &fb, 1e-9),
+                    "{}: q = {q:?}: a solution twice",
+                    arm.file
+                );
+            }
+        }
+        assert!(
+            found.solutions.iter().any(|s| is_arm(arm, s, &fk, 1e-8)),
+            "{}: q = {q:?}: the arm the pose came from is not among {} solutions",
+            arm.file,
+            found.solutions.len()
+        );
+        assert_eq!(
+            found.solutions.len(),
+            expected,
+            "{}: q = {q:?}: solutions",
+            arm.file
+        );
+        total += expected;
+        solved += found.solutions.len();
+    }
+    assert_eq!(total, solved);
+    eprintln!("{}: {solved} solutions over {poses} poses", arm.file);
+    // Every pose is reachable (it came from the arm): at least the arm it came from.
+    assert!(solved >= poses);
+}
+
+fn arm_3r() -> Arm {
+    Arm {
+        file: "arm_3r.gcs",
+        joints: vec![
+            Joint {
+                point: [0.0, 0.0, 0.0],
+                axis: [0.0, 0.0, 1.0],
+            },
+            Joint {
+                point: [0.0, 0.0, 0.5],
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: [0.3, 0.0, 0.9],
+                axis: [0.0, 1.0, 0.0],
+            },
+        ],
+        bodies: vec!["base_link", "upper_arm", "forearm"],
+        tool: ([0.7, 0.0, 0.6], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
+        params: vec!["tx", "ty", "tz"],
+        shoulder: ([0.0, 0.0, 0.5], 0.0, 0.5, (0.4f64 * 0.4 + 0.3 * 0.3).sqrt()),
+        wrist: (0.0, false),
+    }
+}
+
+fn puma() -> Arm {
+    let w = [0.4521, 0.15, 0.2282];
+    Arm {
+        file: "puma.gcs",
+        joints: vec![
+            Joint {
+                point: [0.0, 0.0, 0.0],
+                axis: [0.0, 0.0, 1.0],
+            },
+            Joint {
+                point: [0.0, 0.0, 0.66],
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: [0.4318, 0.15, 0.66],
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: w,
+                axis: [0.0, 0.0, -1.0],
+            },
+            Joint {
+                point: w,
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: w,
+                axis: [1.0, 0.0, 0.0],
+            },
+        ],
+        bodies: vec![
+            "trunk",
+            "upper_arm",
+            "forearm",
+            "wrist_roll",
+            "wrist_bend",
+            "tool",
+        ],
+        tool: ([0.5521, 0.15, 0.2282], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+        params: vec!["px", "py", "pz", "zx", "zy", "zz", "xx", "xy", "xz"],
+        shoulder: (
+            [0.0, 0.0, 0.66],
+            0.15,
+            0.4318,
+            (0.0203f64 * 0.0203 + 0.4318 * 0.4318).sqrt(),
+        ),
+        wrist: (0.1, true),
+    }
+}
+
+#[test]
+fn the_3r_arm_has_every_solution_in_closed_form_at_random_poses() {
+    check_arm(&arm_3r(), 1000, 0x3a3a_5eed);
+}
+
+#[test]
+fn the_puma_arm_has_every_solution_in_closed_form_at_random_poses() {
+    check_arm(&puma(), 1000, 0x9a9a_5eed);
+}
+
+/// Poses at and next to the PUMA's singularities: the wrist straight (q5 = 0), the elbow
+/// stretched, the wrist centre on the base's axis. Every solution returned must reach the
+/// pose; an error is an answer too, a wrong solution never is.
+#[test]
+fn the_puma_arm_gives_no_wrong_answer_near_its_singularities() {
+    let arm = puma();
+    let l = load(&arm);
+    let (model, plan) = (&l.compiled.model, &l.compiled.analysis.plan);
+    let mut rng = Rng(0x516a_5eed);
+    // The elbow's angle at which the forearm's wrist centre is furthest from the shoulder.
+    let stretched = (0.0203f64).atan2(0.4318) - std::f64::consts::FRAC_PI_2;
+    let (mut answered, mut refused) = (0, 0);
+    for i in 0..1000 {
+        let mut q: Vec<f64> = (0..6).map(|_| rng.angle()).collect();
+        let near = [0.0, 1e-13, -1e-10, 1e-7, 1e-4][i % 5];
+        match (i / 5) % 3 {
+            0 => q[4] = near,
+            1 => q[2] = stretched + near,
+            _ => {
+                // The wrist centre on the base's axis: the arm folded over the base.
+                q[4] = 0.7;
+            }
+        }
+        let (params, p, _) = pose_params(&arm, &l, &q);
+        let found = solve_all(model, plan, &l.scope, &params, &[]);
+        if found.solutions.is_empty() {
+            refused += 1;
+        } else {
+            answered += 1;
+        }
+        for s in &found.solutions {
+            let tcp = (s.points.iter())
+                .find(|(n, _)| n == "tool.tcp")
+                .expect("tcp");
+            let miss = (v([tcp.1[0], tcp.1[1], tcp.1[2]]) - p).norm();
+            assert!(
+                s.max_residual <= 1e-9 && miss <= 1e-9,
+                "q = {q:?}: a wrong answer, off by {} (tool {miss})",
+                s.max_residual
+            );
+        }
+    }
+    eprintln!("near singularities: {answered} answered, {refused} refused");
+}
