@@ -40,27 +40,25 @@ pub struct AllSolutions {
 }
 
 impl AllSolutions {
-    /// `{"solutions": [...]}`: each object as a plain solve prints it, with `"complete": false`
-    /// in each when the list is not known to be complete.
+    /// `{"complete": C, "solutions": [...]}`: whether the list is known to hold every real
+    /// assembly, and each assembly as a plain solve prints it.
     pub fn to_json(&self) -> String {
         let objects: Vec<String> = (self.solutions.iter())
             .map(|s| {
-                let json = s.to_json();
-                let body = if self.complete {
-                    json
-                } else {
-                    json.replacen("{\n", "{\n  \"complete\": false,\n", 1)
-                };
-                body.lines()
+                (s.to_json().lines())
                     .map(|l| format!("    {l}"))
                     .collect::<Vec<_>>()
                     .join("\n")
             })
             .collect();
         if objects.is_empty() {
-            "{\"solutions\": []}".to_string()
+            format!("{{\"complete\": {}, \"solutions\": []}}", self.complete)
         } else {
-            format!("{{\"solutions\": [\n{}\n]}}", objects.join(",\n"))
+            format!(
+                "{{\"complete\": {}, \"solutions\": [\n{}\n]}}",
+                self.complete,
+                objects.join(",\n")
+            )
         }
     }
 }

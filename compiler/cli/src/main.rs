@@ -572,6 +572,36 @@ fn solve(
             .collect();
         if all_solutions {
             let found = gcs_compiler::all::solve_all(model, plan, &scope, &params, &kept_defaults);
+            if found.solutions.is_empty() {
+                // No assembly: say why, as a plain solve on the sketch's branches does.
+                if json {
+                    outln!("{}", found.to_json());
+                }
+                eprintln!(
+                    "error: no real assembly{}",
+                    if found.complete {
+                        ""
+                    } else {
+                        " found (the search is not exhaustive)"
+                    }
+                );
+                let solved = shared::solve(
+                    model,
+                    plan,
+                    &scope,
+                    (&params, &chosen, &kept_defaults),
+                    !default.is_empty(),
+                    &shared::held(plan, branch),
+                );
+                if let Err(e) = solved {
+                    for line in
+                        shared::failure(model, plan, &params, &kept_defaults, chosen, &e)
+                    {
+                        eprintln!("error: {line}");
+                    }
+                }
+                return ExitCode::FAILURE;
+            }
             if json {
                 outln!("{}", found.to_json());
             } else {

@@ -168,3 +168,23 @@ g: distance(E, A) = gv;
         assert!((m - off).abs() < 1e-9, "{name}: {m}, not {off}: {stderr}");
     }
 }
+
+/// `--all-solutions` where no assembly exists (the 3R arm's target beyond its reach) is an
+/// error naming why, exit 1, and its JSON says the empty list is complete.
+#[test]
+fn all_solutions_with_none_is_an_error_naming_why() {
+    let model = "examples/arm_3r.gcs";
+    let (code, stdout, stderr) =
+        support::gcs(&["solve", "--all-solutions", "--set", "tx=3", model]);
+    assert_eq!(code, 1, "{stdout}");
+    assert!(stderr.contains("error: no real assembly\n"), "{stderr}");
+    assert!(
+        stderr.contains("`revolute_forearm_elbow_upper_arm_elbow`")
+            && stderr.contains("the loci miss by 2.00166"),
+        "{stderr}"
+    );
+    let (code, stdout, _) =
+        support::gcs(&["solve", "--all-solutions", "--json", "--set", "tx=3", model]);
+    assert_eq!(code, 1);
+    assert_eq!(stdout.trim(), "{\"complete\": true, \"solutions\": []}");
+}

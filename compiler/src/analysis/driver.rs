@@ -1107,6 +1107,25 @@ impl<'m, G: Geometry> Builder<'m, G> {
         taken
     }
 
+    /// Forgets the invariant positions measured of the geoms of cluster `k`: a step a space
+    /// writes is about to move it off them (and back).
+    pub(crate) fn forget_known(&mut self, k: usize) {
+        let model = self.model;
+        let geoms = &self.clusters[k].geoms;
+        self.known_points
+            .retain(|f, _| !geoms.contains(&model.top_level_of(*f)));
+    }
+
+    /// Makes cluster `from` part of cluster `into`, which keeps its record: a pair that a
+    /// space's step made rigid (a joint whose angle it fixed) moves as one from now on.
+    pub(crate) fn merge_clusters(&mut self, into: usize, from: usize) {
+        let geoms = std::mem::take(&mut self.clusters[from].geoms);
+        for &g in &geoms {
+            self.cluster_of[geom_index(g)] = into;
+        }
+        self.clusters[into].geoms.extend(geoms);
+    }
+
     /// Notes that constraint `c` was constructed (in part) by a step that works for another.
     pub(crate) fn constructed(&mut self, c: ConstraintId) {
         self.constructed.insert(c);
@@ -1236,6 +1255,9 @@ impl<'m, G: Geometry> Builder<'m, G> {
             let mut grounds = match held.as_slice() {
                 [] => set.clone(),
                 [one] => vec![*one],
+                [first, rest @ ..] if rest.iter().all(|&k| G::share_pivot(self, *first, k)) => {
+                    vec![*first]
+                }
                 _ => continue,
             };
             grounds.sort_by_key(|&k| self.name_rank[geom_index(self.clusters[k].geoms[0])]);

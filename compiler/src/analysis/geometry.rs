@@ -132,6 +132,13 @@ pub(crate) trait Geometry: Sized + Clone {
         false
     }
 
+    /// Whether partly fixed clusters `a` and `b` may each only turn about one and the same
+    /// known point: a rigid chain or loop of such clusters is then held by either, as one of
+    /// a single partly fixed cluster is (two links pinned at one joint and welded together).
+    fn share_pivot(_b: &Builder<'_, Self>, _a: usize, _other: usize) -> bool {
+        false
+    }
+
     /// Chains of clusters that are not rigid but keep an invariant between their ends (in
     /// space, bodies joined by revolutes with parallel axes: a planar sub-chain keeps a plane
     /// fixed in the body before it): when one end is partly fixed and the other holds a known

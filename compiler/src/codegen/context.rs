@@ -16,9 +16,11 @@ pub(super) struct Context<'a> {
     /// How many `SolveError`s' code has been made: a step whose code grew one names its
     /// constraint (see `facts::Made`).
     pub(super) errors_made: std::cell::Cell<usize>,
-    /// Whether a closing length's check read the run-time tolerance in the function being
-    /// written (a length within rounding of zero is zero), so that it declares `tol`.
-    pub(super) closing_tol: std::cell::Cell<bool>,
+    /// Whether the code written so far in the function being written reads the run-time
+    /// tolerance (a check, a point that must lie on its locus, an iteration's close, a closing
+    /// length), so that it declares `tol`: a point onto the locus it was intersected with is
+    /// not tested, so a plan's steps alone do not tell.
+    pub(super) reads_tol: std::cell::Cell<bool>,
     /// Each top-level geom's members whose local coordinates params set, once asked for
     /// ([`Context::param_members`]).
     pub(super) param_members_of: std::cell::RefCell<HashMap<GeomId, Vec<GeomId>>>,
@@ -118,7 +120,7 @@ impl<'a> Context<'a> {
         let turned_toward = turned_toward(plan, &defined_at);
         Context {
             errors_made: Default::default(),
-            closing_tol: Default::default(),
+            reads_tol: Default::default(),
             param_members_of: Default::default(),
             turned_toward,
             space,

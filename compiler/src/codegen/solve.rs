@@ -158,7 +158,7 @@ impl Solve<'_> {
         let (worked, decls) = self.sketch(layout);
         let tol = self.tolerance(&worked);
         let mut body = Writer::at(w.indent);
-        self.cx.closing_tol.set(false);
+        self.cx.reads_tol.set(false);
         let groups = self.steps_in_groups(&mut body);
         let tail = self.ledger.borrow().mark();
         self.solution_init(&mut body, layout);
@@ -166,8 +166,8 @@ impl Solve<'_> {
         let later: Vec<&str> = ledger.reads(tail, ledger.mark()).collect();
         let bindings = self.bindings(decls);
         scopes::declare(w, &bindings);
-        // Declared where a check reads it, or a closing length's check did.
-        if let Some(tol) = tol.filter(|_| self.checks_anything() || self.cx.closing_tol.get()) {
+        // Declared where the steps written read it.
+        if let Some(tol) = tol.filter(|_| self.cx.reads_tol.get()) {
             w.line(&tol);
         }
         w.push(&scopes::in_blocks(&groups, &later, body.indent));

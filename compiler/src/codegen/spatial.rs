@@ -339,6 +339,7 @@ impl Solve<'_> {
                 let gap = self.names.fresh("gap");
                 let code = format!("{}.distance(&{})", self.r(*locus), self.r(*point));
                 self.let_read(w, &gap, &code);
+                self.cx.reads_tol.set(true);
                 w.open(&format!("if {gap}.is_nan() || {gap} > tol {{"));
                 w.line(&format!(
                     "return Err({});",

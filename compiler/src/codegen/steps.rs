@@ -790,6 +790,7 @@ impl Solve<'_> {
         let gap = self.names.fresh("gap");
         let code = format!("{}.residual({})", self.r(locus), self.r(point));
         self.let_read(w, &gap, &code);
+        self.cx.reads_tol.set(true);
         w.open(&format!("if {gap}.is_nan() || {gap} > tol {{"));
         w.line(&format!("return Err({});", self.inconsistent(c, &gap)));
         w.close("}");
@@ -1109,7 +1110,7 @@ impl Solve<'_> {
             }
             // Within rounding of zero, it is zero (as the interpreter takes it).
             let error = self.cx.error_of(c, "CannotClose", &v);
-            self.cx.closing_tol.set(true);
+            self.cx.reads_tol.set(true);
             w.open(&format!("if {v} < -tol {{"));
             w.line(&format!("return Err({error});"));
             w.close("}");
@@ -1148,6 +1149,7 @@ impl Solve<'_> {
         let residual = self.cx.space.residual_code(self, residual);
         let name = self.names.fresh("residual");
         self.let_read(w, &name, &residual);
+        self.cx.reads_tol.set(true);
         w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
         w.line(&format!("return Err({});", self.inconsistent(c, &name)));
         w.close("}");
@@ -1170,6 +1172,7 @@ impl Solve<'_> {
         }
         let name = self.names.fresh("closing");
         self.let_read(w, &name, &format!("{}.abs()", self.r(residual)));
+        self.cx.reads_tol.set(true);
         w.open(&format!("if {name}.is_nan() || {name} > tol {{"));
         let con = &self.cx.model.constraints[c];
         w.line(&format!(

@@ -191,8 +191,12 @@ impl Geometry for Spatial {
         b.ground_if_nothing_fixed();
     }
 
+    fn share_pivot(b: &Builder<'_, Self>, a: usize, other: usize) -> bool {
+        b.share_pivot(a, other)
+    }
+
     fn subchains(b: &mut Builder<'_, Self>) -> bool {
-        b.planar_subchain()
+        b.planar_subchain() || b.pivoted_pair()
     }
 
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {

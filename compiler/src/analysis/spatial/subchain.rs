@@ -320,3 +320,232 @@ impl Builder<'_, Spatial> {
         rec.trans = Trans::Fixed;
     }
 }
+
+impl Builder<'_, Spatial> {
+    /// Two bodies that each only turn about a known point, joined by a revolute joint (an
+    /// arm's upper arm about its shoulder and forearm about its wrist centre, IK-Geo's SP3):
+    /// the distance between the two points depends on the joint's angle alone, so the joint
+    /// turns until it is the known one (two roots: elbow up or down), and the pair is then one
+    /// rigid body with two known points, which may only turn about the line through them.
+    /// Returns whether it placed such a pair.
+    pub(super) fn pivoted_pair(&mut self) -> bool {
+        let model = self.model;
+        for j in self.open_revolutes() {
+            let [m1, m2] = j.markers;
+            let (k1, k2) = (self.cluster(m1), self.cluster(m2));
+            if k1 == k2 {
+                continue;
+            }
+            let pivot = |b: &Self, k: usize| match (b.clusters[k].record.trans, b.clusters[k].record.turn) {
+                (Trans::Pivot { at, feature }, Turn::Free) if b.clusters[k].record.rigid() => {
+                    Some((at, feature))
+                }
+                _ => None,
+            };
+            let (Some((a, fa)), Some((b, fb))) = (pivot(self, k1), pivot(self, k2)) else {
+                continue;
+            };
+            // The distance must vary with the joint's angle: neither pivot on the joint's axis
+            // (where the body's own geometry tells; across the bodies of a macro-geom, a pivot
+            // that is on it is a degenerate configuration at run time).
+            let off_axis = |m: GeomId, f: GeomId| {
+                model.top_level_of(m) != model.top_level_of(f)
+                    || self
+                        .z_of(m)
+                        .is_some_and(|z| local_dir(model, z).is_some() && !super::on_axis(model, m, z, f))
+            };
+            if !off_axis(m1, fa) || !off_axis(m2, fb) {
+                continue;
+            }
+            let sense = (self.relations_of(j.constraint).into_iter())
+                .find_map(|r| match r {
+                    super::relation::Relation::Parallel { sense, .. } => Some(sense),
+                    _ => None,
+                })
+                .unwrap_or(1.0);
+            self.join_pivoted_pair(j, (k1, a, fa), (k2, b, fb), sense);
+            return true;
+        }
+        false
+    }
+
+    /// Assembles the second body of a pivoted pair on the first by joint `j`, turns the joint
+    /// so that the second pivot is at its distance from the first, and turns the pair about the
+    /// first pivot so that the second lands on its place.
+    fn join_pivoted_pair(
+        &mut self,
+        j: Joint,
+        (k1, a, fa): (usize, Reg, GeomId),
+        (k2, b, fb): (usize, Reg, GeomId),
+        sense: f64,
+    ) {
+        use super::{Locus, Target};
+        let [m1, m2] = j.markers;
+        let c = j.constraint;
+        let cname = self.cname(c);
+        // Both bodies leave their places on the way: nothing of them is invariant meanwhile.
+        self.forget_known(k1);
+        self.forget_known(k2);
+        self.clusters[k2].record.trans = Trans::Free;
+        self.work_for(Some(c));
+        let geoms2 = self.clusters[k2].geoms.clone();
+        let (n1, n2) = (self.group_name(&self.clusters[k1].geoms.clone()), self.group_name(&geoms2));
+        // The second body onto the joint: its marker onto the first's, its axis along it.
+        let (to, from) = (self.point(m1), self.point(m2));
+        let explain = format!(
+            "{n1} and {n2} each only turn about a known point ({}, {}), and {cname} joins them: assemble {n2} on {n1} by the joint, turn the joint until {} is at its distance from {}, then turn the pair about {} until {} is back in its place; the pair then moves as one body.\n   Translate {n2} so that {} lands on {}.",
+            self.name(fa),
+            self.name(fb),
+            self.name(fb),
+            self.name(fa),
+            self.name(fa),
+            self.name(fb),
+            self.name(m2),
+            self.name(m1)
+        );
+        self.emit(
+            Op::Translate {
+                geoms: geoms2.clone(),
+                from,
+                to,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+        let (z1, z2) = (self.z_of(m1).expect("a marker"), self.z_of(m2).expect("a marker"));
+        let axis1 = self.direction(z1);
+        let target = if sense < 0.0 {
+            let words = format!("the opposite of {}", self.name(z1));
+            self.value(SpatialOp::Opposite(axis1), Ty::Vector, words)
+        } else {
+            axis1
+        };
+        let from = self.direction(z2);
+        let explain = format!(
+            "Rotate {n2} about {} so that {} points along {} ({cname}).",
+            self.name(m1),
+            self.name(z2),
+            self.name(z1)
+        );
+        let pivot = self.point(m1);
+        self.emit(
+            Op::RotateDir {
+                geoms: geoms2.clone(),
+                pivot,
+                axis: RotationAxis::Shortest,
+                from,
+                to: target,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+        // The joint's angle: the second pivot's orbit about the joint meets the sphere about
+        // the first through the second's place.
+        let now = self.point(fb);
+        let orbit = self.orbit(pivot, axis1, fb, now);
+        let words = format!("the sphere about {} through {}'s place", self.name(fa), self.name(fb));
+        let sphere = self.value(
+            SpatialOp::SphereThrough {
+                center: a,
+                through: b,
+                radius: None,
+            },
+            Ty::Sphere,
+            words,
+        );
+        let rel = super::Rel {
+            relation: super::relation::Relation::PointPoint {
+                a: m1,
+                b: m2,
+                d: None,
+            },
+            constraint: c,
+            last: false,
+            duplicate: false,
+        };
+        let Some(Target::Point(meeting)) =
+            self.meet(Locus::Circle(orbit), Target::On(Locus::Sphere(sphere)), now, &rel)
+        else {
+            unreachable!("a circle meets a sphere at a point")
+        };
+        let explain = format!(
+            "Turn {n2} about the joint's axis so that {} is at its distance from {} ({cname}).",
+            self.name(fb),
+            self.name(fa)
+        );
+        self.emit(
+            Op::RotatePoint {
+                geoms: geoms2,
+                pivot,
+                axis: RotationAxis::Along(axis1),
+                from: now,
+                to: meeting,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+        // The pair turns about the first pivot until the second is back in its place.
+        let mut geoms = self.clusters[k1].geoms.clone();
+        geoms.extend(self.clusters[k2].geoms.iter().copied());
+        let words = format!("the direction from {} to {}", self.name(fa), self.name(fb));
+        let away = self.value(Op::DirectionTo { from: a, to: meeting }, Ty::Vector, words.clone());
+        let home = self.value(Op::DirectionTo { from: a, to: b }, Ty::Vector, format!("{words}'s place"));
+        let explain = format!(
+            "Rotate {n1} and {n2} together about {} so that {} is back in its place ({cname}); they may then only turn about the line through both.",
+            self.name(fa),
+            self.name(fb)
+        );
+        self.emit(
+            Op::RotateDir {
+                geoms,
+                pivot: a,
+                axis: RotationAxis::Shortest,
+                from: away,
+                to: home,
+            },
+            None,
+            vec![c],
+            explain,
+        );
+        self.work_for(None);
+        self.merge_clusters(k1, k2);
+        let rec = &mut self.clusters[k1].record;
+        rec.trans = Trans::Pivot { at: a, feature: fa };
+        rec.turn = Turn::Axis {
+            axis: home,
+            feature: None,
+        };
+        // The joint's relations hold by these steps.
+        let settled: std::collections::BTreeSet<usize> = (self.pending.iter().enumerate())
+            .filter(|(_, r)| r.constraint == c)
+            .map(|(i, _)| i)
+            .collect();
+        self.settle_pending(&settled);
+    }
+}
+
+impl Builder<'_, Spatial> {
+    /// Whether clusters `a` and `b` only turn, each about a known point, and it is the same
+    /// point: the same register, or one pivots at a point of the other that coincides with the
+    /// other's own pivot in its body.
+    pub(super) fn share_pivot(&self, a: usize, b: usize) -> bool {
+        let pivot = |k: usize| match (self.clusters[k].record.trans, self.clusters[k].record.turn) {
+            (Trans::Pivot { at, feature }, Turn::Free) => Some((at, feature)),
+            _ => None,
+        };
+        let (Some((at_a, fa)), Some((at_b, fb))) = (pivot(a), pivot(b)) else {
+            return false;
+        };
+        // `at` measured from a point of cluster `k` at its pivot `f`.
+        let on_pivot_of = |at: Reg, k: usize, f: GeomId| match self.def(at).map(|s| &s.op) {
+            Some(&Op::PointOf(g)) => {
+                self.cluster(g) == k && (g == f || self.model.constant_distance(g, f) == Some(0.0))
+            }
+            _ => false,
+        };
+        at_a == at_b || on_pivot_of(at_b, a, fa) || on_pivot_of(at_a, b, fb)
+    }
+}
