@@ -524,7 +524,8 @@ const MARKERS: &str = "space 3d;
      rv: revolute(B.m, A.m);
      pr: prismatic(B.m, A.m);
      cy: cylindrical(B.m, A.m);
-     pn: planar(B.m, A.m);";
+     pn: planar(B.m, A.m);
+     wd: weld(B.m, A.m);";
 
 /// A's marker at (1, 1, 0) with z up and x along X; B's `dz` above it, its x turned `turn`
 /// about z, its z as given.
@@ -671,6 +672,41 @@ fn joints_take_the_largest_of_their_conditions() {
     let s = set(s, "B.m", [1.05, 1.0, 0.0]);
     assert_near(residual(&m, &s, "rv"), 0.1);
     assert_near(residual(&m, &s, "pn"), 0.1);
+}
+
+#[test]
+fn a_weld_is_met_by_one_frame_only() {
+    let m = model(MARKERS);
+    // B's marker on A's, with A's axes.
+    assert_near(residual(&m, &markers(0.0, 0.0, Z), "wd"), 0.0);
+    // Up A's z axis by 0.3; x turned 0.2 about z; z tilted 0.1 (x still square to it).
+    assert_near(residual(&m, &markers(0.3, 0.0, Z), "wd"), 0.3);
+    assert_near(residual(&m, &markers(0.0, 0.2, Z), "wd"), 0.2);
+    assert_near(
+        residual(&m, &markers(0.0, 0.0, turned(Z, Y, 0.1)), "wd"),
+        0.1,
+    );
+    // The largest of them.
+    assert_near(residual(&m, &markers(0.3, 0.2, Z), "wd"), 0.3);
+    assert_near(residual(&m, &markers(0.1, 0.2, Z), "wd"), 0.2);
+    assert_near(
+        residual(&m, &markers(0.1, 0.0, turned(Z, Y, 0.15)), "wd"),
+        0.15,
+    );
+    // z opposite, x the same: a prismatic joint's axes (offset_x(0) in either sense), but
+    // not one frame: pi off.
+    let s = markers(0.0, 0.0, [0.0, 0.0, -1.0]);
+    assert_near(residual(&m, &s, "pr"), 0.0);
+    assert_near(residual(&m, &s, "wd"), PI);
+    // A missing axis or point fails rather than passes.
+    for name in ["B.m.x", "B.m.z"] {
+        let mut s = markers(0.0, 0.0, Z);
+        s.vectors.retain(|(n, _)| n != name);
+        assert!(residual(&m, &s, "wd").is_nan(), "{name}");
+    }
+    let mut s = markers(0.0, 0.0, Z);
+    s.points.retain(|(n, _)| n != "B.m");
+    assert!(residual(&m, &s, "wd").is_nan());
 }
 
 #[test]

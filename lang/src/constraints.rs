@@ -59,6 +59,8 @@ pub enum ConstraintKind {
     Spherical,
     /// `planar(m1, m2)`
     Planar,
+    /// `weld(m1, m2)`
+    Weld,
 }
 
 /// A class of argument a constraint accepts at one position.
@@ -462,6 +464,16 @@ pub static TABLE: &[ConstraintSpec] = &[
         spaces: Spaces::Only3d,
         meaning: "joint: in_plane + parallel_z",
     },
+    ConstraintSpec {
+        kind: ConstraintKind::Weld,
+        name: "weld",
+        forms: MARKERS,
+        form_spaces: &[],
+        symmetric: false,
+        value: ValueKind::None,
+        spaces: Spaces::Both,
+        meaning: "joint: coincident + offset_x(0): the frames coincide",
+    },
 ];
 
 /// The row for a constraint name.
@@ -568,6 +580,14 @@ impl ConstraintKind {
             }
             C::Cylindrical => 4,
             C::Planar => 3,
+            // Every freedom of one frame relative to the other.
+            C::Weld => {
+                if d3 {
+                    6
+                } else {
+                    3
+                }
+            }
         }
     }
 }
@@ -605,6 +625,7 @@ mod tests {
             C::Cylindrical,
             C::Spherical,
             C::Planar,
+            C::Weld,
         ];
         assert_eq!(all.len(), TABLE.len());
         for k in all {
@@ -655,6 +676,30 @@ mod tests {
             ConstraintKind::Symmetric.nominal_dof(Space::D3, &ppq, None),
             3
         );
+    }
+
+    #[test]
+    fn weld_is_a_coincidence_and_offset_x_0_of_two_markers_in_both_spaces() {
+        use GeomKind as K;
+        let w = ConstraintKind::Weld.spec();
+        assert_eq!(lookup("weld").map(|s| s.kind), Some(ConstraintKind::Weld));
+        assert_eq!(w.forms, &[&[A::Marker, A::Marker][..]][..]);
+        assert!(!w.forms[0].iter().any(|c| c.accepts(K::Point)));
+        assert!(w.form_spaces.is_empty() && !w.symmetric);
+        assert_eq!(w.value, ValueKind::None);
+        assert!(w.form_allows(0, Space::D2) && w.form_allows(0, Space::D3));
+        let mm = [K::Marker, K::Marker];
+        assert_eq!(ConstraintKind::Weld.nominal_dof(Space::D3, &mm, None), 6);
+        assert_eq!(ConstraintKind::Weld.nominal_dof(Space::D2, &mm, None), 3);
+        // As much as the coincidence and the offset_x(0) it stands for.
+        for space in [Space::D2, Space::D3] {
+            assert_eq!(
+                ConstraintKind::Weld.nominal_dof(space, &mm, None),
+                ConstraintKind::Coincident.nominal_dof(space, &mm, None)
+                    + ConstraintKind::OffsetX.nominal_dof(space, &mm, Some(0.0)),
+                "{space}"
+            );
+        }
     }
 
     #[test]

@@ -531,6 +531,40 @@ fn equal_of_points() {
 }
 
 #[test]
+fn weld_of_points() {
+    check(
+        "space 3d;\npoint P = (0, 0, 0);\npoint Q = (1, 0, 0);\nweld(P, Q);\n",
+        expect![[r#"
+            error: expected a marker, found a point
+              ┌─ model.gcs:4:6
+              │
+            4 │ weld(P, Q);
+              │      ^ `P` is a point
+              │
+              = `weld` accepts a marker and a marker
+
+        "#]],
+    );
+}
+
+#[test]
+fn weld_of_a_marker_and_a_point() {
+    check(
+        "space 2d;\nbody B { marker m = (0, 0) x (1, 0); }\npoint Q = (1, 0);\nweld(B.m, Q);\n",
+        expect![[r#"
+            error: expected a marker, found a point
+              ┌─ model.gcs:4:11
+              │
+            4 │ weld(B.m, Q);
+              │           ^ `Q` is a point
+              │
+              = `weld` accepts a marker and a marker
+
+        "#]],
+    );
+}
+
+#[test]
 fn equal_with_a_value() {
     check(
         "space 2d;\nsegment S = (0, 0) -> (1, 0);\nsegment T = (0, 1) -> (1, 1);\nequal(S, T) = 2;\n",

@@ -116,6 +116,7 @@ const TOKENS: &[&str] = &[
     "cylindrical",
     "spherical",
     "planar",
+    "weld",
     "param q = 1;",
     "point q = (0, 0);",
     "point q = (0, 0, 0);",

@@ -407,3 +407,35 @@ fn newton_is_scale_invariant_on_a_warm_four_bar_sweep() {
         }
     }
 }
+
+/// A part welded to a fixed seat (turned and moved), sketched elsewhere: the baseline's
+/// equations of `weld` take it where the plan does, and `verify` agrees.
+#[test]
+fn a_welded_part_lands_where_the_plan_puts_it() {
+    let model = load_text(
+        "weld.gcs",
+        "space 2d;
+         fixed body ground at (1, 2) rotated 30 deg { marker seat = (0.5, -0.3) x (0.6, 0.8); }
+         body part at (-3, 4) rotated -70 deg { marker m = (0.2, 0.1) x (1, 0);
+                                                point tip = (1.2, 0.6); }
+         weld(part.m, ground.seat);",
+    );
+    let analysis = analyse(&model).expect("analysis");
+    let planned = gcs_compiler::solve(&model, &analysis, &[], &[]).expect("the plan solves it");
+    for method in [Method::Newton, Method::LevenbergMarquardt] {
+        let mut b = Baseline::new(&model).expect("baseline");
+        assert_eq!(b.equations(), 2 + 1, "a coincidence and an angle");
+        let mut x = b.start_from_sketch(&[]);
+        let opts = Options {
+            method,
+            max_iterations: 100,
+            ..Options::default()
+        };
+        let out = b.solve(&[], &mut x, &opts);
+        assert!(out.converged, "{method:?}: {out:?}");
+        let (s, r) = read(&model, &b, &[], &x);
+        assert!(r <= 1e-10, "{method:?}: verify says {r:e}");
+        let d = difference(&s, &planned);
+        assert!(d <= 1e-9, "{method:?}: {d:e} from the plan's answer");
+    }
+}

@@ -634,3 +634,43 @@ fn the_3d_baseline_is_scale_invariant() {
         }
     }
 }
+
+/// A tool welded to a marker of a fixed cell (turned about a skew axis and moved), sketched
+/// elsewhere, with its marker's z axis within 17 degrees of the target's: the baseline's
+/// equations of `weld` take it where the plan does, and `verify` agrees.
+#[test]
+fn a_welded_tool_lands_where_the_plan_puts_it() {
+    let model = load_text(
+        "weld.gcs",
+        "space 3d;
+         fixed body cell at (1, -2, 0.5) rotated 35 deg about (1, 2, 3) {
+             marker target = (0.4, 1.2, -0.7) z (1, 1, 0) x (1, -1, 2);
+         }
+         body tool at (5, 3, -1) rotated -20 deg about (0, 1, 0) {
+             marker m = (0.1, 0.2, 0.3) z (0, 1, 0) x (1, 0, 0);
+             point tip = (0.5, 0, 1.5);
+         }
+         weld(tool.m, cell.target);",
+    );
+    let (planned, _) = interpreted(&model, &[]);
+    for method in [Method::Newton, Method::LevenbergMarquardt] {
+        let mut b = Baseline3::new(&model).expect("baseline");
+        assert_eq!(
+            b.equations(),
+            3 + 2 + 1,
+            "a coincidence, two tilts and a turn"
+        );
+        let mut x = b.start_from_sketch(&[]);
+        let opts = Options {
+            method,
+            max_iterations: 100,
+            ..Options::default()
+        };
+        let out = b.solve(&[], &mut x, &opts);
+        assert!(out.converged, "{method:?}: {out:?}");
+        let (s, r) = read(&model, &b, &[], &x);
+        assert!(r <= 1e-10 * size(&s), "{method:?}: verify says {r:e}");
+        let d = difference(&s, &planned);
+        assert!(d <= 1e-9, "{method:?}: {d:e} from the plan's answer");
+    }
+}

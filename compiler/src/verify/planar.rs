@@ -222,6 +222,21 @@ pub(super) fn residual(model: &Model, s: &ByName<'_>, c: &Constraint, value: f64
             let slant = dot(dir, sub(y, x)).abs();
             off.max(slant)
         }
+        // The frames coincide: the points, and the x axes at angle 0 (offset_x(0)).
+        (K::Weld, Some(a), Some(b)) => {
+            let (na, nb) = (&model.geoms[a].name, &model.geoms[b].name);
+            let (u, v) = (look.v(&format!("{na}.x")), look.v(&format!("{nb}.x")));
+            let (off, turn) = (
+                norm(sub(look.point_arg(a), look.point_arg(b))),
+                angle_off(u, v, 0.0),
+            );
+            // NaN if either is: `f64::max` would drop it, and a value missing must fail.
+            if off.is_nan() || turn.is_nan() {
+                f64::NAN
+            } else {
+                off.max(turn)
+            }
+        }
         (K::InLine, Some(a), Some(b)) => {
             let (base, dir) = look.line_arg(b);
             cross(dir, sub(look.point_arg(a), base)).abs()

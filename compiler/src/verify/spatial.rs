@@ -13,7 +13,7 @@
 //!   `[0, pi]`), as a turn by `a` about an axis is a turn by `-a` about the opposite one
 //!   ([`unsigned_angle_off`]);
 //! - two axes are parallel in either sense ([`parallel_off`]), as the sketch may have them
-//!   opposite.
+//!   opposite; but a weld's z axes in the same sense, its frames being one.
 
 use crate::solution::ByName;
 use gcs_lang::constraints::ConstraintKind as K;
@@ -91,6 +91,18 @@ fn perpendicular_off(u: V, v: V) -> f64 {
 /// `z`, its components along `x1` and `z × x1`.
 fn turn_about_off(z: V, x1: V, x2: V, target: f64) -> f64 {
     turn_off(dot(x1, x2), dot(z, cross(x1, x2)), target)
+}
+
+/// The largest of a constraint's errors, NaN if any is: `f64::max` drops a NaN, and a value
+/// missing must fail, not pass.
+fn largest(errors: &[f64]) -> f64 {
+    (errors.iter()).fold(0.0, |m: f64, &e| {
+        if m.is_nan() || e.is_nan() {
+            f64::NAN
+        } else {
+            m.max(e)
+        }
+    })
 }
 
 /// The distance from `p` to the line through `base` along the unit `dir`.
@@ -378,5 +390,15 @@ pub(super) fn residual(model: &Model, s: &ByName<'_>, c: &Constraint, value: f64
         K::Prismatic => in_line().max(offset_x(0.0)),
         K::Cylindrical => in_line().max(parallel_z()),
         K::Planar => in_plane().max(parallel_z()),
+        // The frames coincide: the points, and offset_x(0) with the z axes in the same sense
+        // (their angle, which is at least `parallel_off`'s: z axes opposite are pi off).
+        K::Weld => {
+            let ((z1, x1), (z2, x2)) = (look.axes(a), look.axes(b));
+            largest(&[
+                norm(sub(look.point_arg(a), look.point_arg(b))),
+                norm(cross(z1, z2)).atan2(dot(z1, z2)),
+                turn_about_off(z1, x1, x2, 0.0),
+            ])
+        }
     }
 }

@@ -678,6 +678,14 @@ impl Baseline {
                         d: b.n,
                     });
                 }
+                // The frames coincide: the points, and the x axes at angle 0.
+                (K::Weld, Some(x), Some(y)) => {
+                    let (a, bb) = (b.pt(x)?, b.pt(y)?);
+                    eqs.push(Eq::Diff { a, b: bb, y: false });
+                    eqs.push(Eq::Diff { a, b: bb, y: true });
+                    let (u, v) = (b.dir(x)?, b.dir(y)?);
+                    eqs.push(Eq::Angle { u, v, a: b.n });
+                }
                 (K::Prismatic, Some(x), Some(y)) => {
                     let (u, v) = (b.dir(x)?, b.dir(y)?);
                     eqs.push(Eq::Angle { u, v, a: b.n });

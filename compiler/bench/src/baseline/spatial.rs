@@ -1178,6 +1178,15 @@ impl Build<'_> {
                 self.in_plane(eqs, x, y()?)?;
                 self.parallel_z(eqs, x, y()?)?;
             }
+            // The frames coincide: the points, the z axes in the same sense, no turn.
+            K::Weld => {
+                let (a, b) = (self.pt(x)?, self.pt(y()?)?);
+                Self::coincident(eqs, a, b);
+                let (u, v) = (self.basis(x)?, self.dir(y()?)?);
+                Self::parallel(eqs, u, v, 1.0);
+                let zero = self.at(ORIGIN);
+                self.turn(eqs, x, y()?, zero, false)?;
+            }
             K::Horizontal | K::Vertical => {
                 return Err(format!("{}: horizontal and vertical are 2d only", bad()))
             }
@@ -2094,7 +2103,8 @@ mod tests {
         revolute(B.k, G.j);
         prismatic(G.k, B.j);
         cylindrical(B.k, G.j);
-        planar(G.j, B.k);";
+        planar(G.j, B.k);
+        weld(B.j, G.k);";
 
     /// The analytic Jacobian is the derivative of the equations: on random configurations of
     /// a model with every equation kind (random positions, directions, rotations, dimensions

@@ -227,6 +227,22 @@ pub fn decompose(model: &Model, sketch: &dyn SketchView) -> (Vec<Rel>, Vec<Unsup
                     d: None,
                 });
             }
+            // The frames coincide: the points, then the x axes at angle 0 (offset_x(0)).
+            (K::Weld, Some(a), Some(b)) => {
+                out.push(Relation::PointPoint {
+                    a: model.point_feature(a),
+                    b: model.point_feature(b),
+                    d: None,
+                });
+                match (model.part(a, Part::AxisX), model.part(b, Part::AxisX)) {
+                    (Some(u), Some(v)) => out.push(Relation::Angle {
+                        u: Dir::Feature(u),
+                        v: Dir::Feature(v),
+                        angle: AngleValue::Const(0.0),
+                    }),
+                    _ => missing("a weld needs two markers"),
+                }
+            }
             (K::Distance, Some(a), Some(b)) => match kinds {
                 (Some(ka), Some(kb)) if ka.is_pointlike() && kb.is_pointlike() => {
                     out.push(Relation::PointPoint { a, b, d: c.value });

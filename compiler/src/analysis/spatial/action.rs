@@ -372,7 +372,7 @@ impl Builder<'_, Spatial> {
         false
     }
 
-    /// A twist of `v` from `u` about `axis` by `angle` (offset_x, prismatic): the x axis not
+    /// A twist of `v` from `u` about `axis` by `angle` (offset_x, prismatic, weld): the x axis not
     /// known turned about the z axis to the known one turned by the angle.
     fn action_twist(
         &mut self,

@@ -12,7 +12,7 @@ use crate::plan::{HelixRegs, Op, Reach, Reg, ScrewRegs, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
 
 impl Builder<'_, Spatial> {
-    /// The x axis a joint's coupling of x axes (offset_x, prismatic: a [`Relation::Twist`] of
+    /// The x axis a joint's coupling of x axes (offset_x, prismatic, weld: a [`Relation::Twist`] of
     /// constraint `r`, still to come) gives the marker whose z axis `z` is being turned onto
     /// `z_target`: `(that x axis now, its target)`. A turn about an axis that takes the z axis
     /// onto its target also takes the x axis onto its own, so both decide the turn: a z axis
@@ -382,7 +382,7 @@ impl Builder<'_, Spatial> {
         Some((self.direction(xb), to))
     }
 
-    /// Where a twist (offset_x, prismatic) takes the moving marker's x axis: the known x axis
+    /// Where a twist (offset_x, prismatic, weld) takes the moving marker's x axis: the known x axis
     /// `g` (its direction in `x`) turned about `axis` by the angle `by` (the second marker's),
     /// or back by it (`back`: the first's).
     pub(super) fn twist_target(

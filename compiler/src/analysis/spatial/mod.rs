@@ -41,9 +41,9 @@
 //!   known direction turns it the least onto the cone (`SpatialOp::ConeTurn`), then about that
 //!   direction.
 //! - Turns a z axis cannot decide alone. A turn about an axis that must take a marker's z and x
-//!   axes to theirs (offset_x, prismatic, and a helical joint on a body held at a point, the x
-//!   axis' target at the advance where the z axis' turn takes the marker) reads its angle off both
-//!   (`SpatialOp::AngleAboutBoth`). One that must take a joint's point onto a line or a plane,
+//!   axes to theirs (offset_x, prismatic, weld, and a helical joint on a body held at a point, the
+//!   x axis' target at the advance where the z axis' turn takes the marker) reads its angle off
+//!   both (`SpatialOp::AngleAboutBoth`). One that must take a joint's point onto a line or a plane,
 //!   where the slide the cluster has left brings it home, refines its angle on the point too
 //!   (`SpatialOp::TurnReaching`; a helical joint's coupling likewise, `plan::Reach::Helix`; on a
 //!   screw, where the helix's slide for each trial turn carries the point or marker,

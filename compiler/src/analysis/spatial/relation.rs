@@ -4,9 +4,10 @@
 //! a direction (a vector, a marker's z or x axis, a line's `dir`, a plane's normal) that a
 //! geom carries. TLA's joints (003) are the conjunctions LANGUAGE.md gives them: a revolute
 //! joint is a coincidence and parallel z axes, a prismatic one a point on a line, parallel z
-//! axes and the x axes' twist about them, and so on; a constraint is satisfied when its last
-//! relation is. Choices the language leaves to the sketch (the sense of parallel axes) are
-//! read from the sketch here, once.
+//! axes and the x axes' twist about them, a weld a coincidence, z axes parallel in the same
+//! sense (not the sketch's: the frames coincide) and no twist, and so on; a constraint is
+//! satisfied when its last relation is. Choices the language leaves to the sketch (the sense
+//! of parallel axes) are read from the sketch here, once.
 //!
 //! Constraints are point-point, point-line, point-plane, parallel (the sense from the sketch;
 //! either, for two circles' planes), angle, twist and helix relations, and sizes
@@ -565,7 +566,7 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 }),
                 None => missing("in-plane needs a marker to give the plane"),
             },
-            (K::Revolute, Some(a), Some(b)) => out.push(Relation::PointPoint {
+            (K::Revolute | K::Weld, Some(a), Some(b)) => out.push(Relation::PointPoint {
                 a: point(a),
                 b: point(b),
                 d: None,
@@ -587,6 +588,11 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
             ) => match (direction(model, a), direction(model, b)) {
                 (Some(u), Some(v)) => out.push(parallel(u, v)),
                 _ => missing("a joint's z axes need two markers"),
+            },
+            // A weld's frames coincide: its z axes in the same sense, whatever the sketch.
+            (K::Weld, Some(a), Some(b)) => match (direction(model, a), direction(model, b)) {
+                (Some(u), Some(v)) => out.push(Relation::Parallel { u, v, sense: 1.0 }),
+                _ => missing("a weld's z axes need two markers"),
             },
             (K::Parallel, Some(a), Some(b)) => match (direction(model, a), direction(model, b)) {
                 (Some(u), Some(v)) => out.push(parallel(u, v)),
@@ -617,7 +623,8 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                 model.part(b, Part::AxisX)?,
             ))
         };
-        if let (K::Helical | K::Prismatic | K::OffsetX, Some(a), Some(b)) = (c.kind, a, b) {
+        if let (K::Helical | K::Prismatic | K::OffsetX | K::Weld, Some(a), Some(b)) = (c.kind, a, b)
+        {
             match (x_axes(a, b), c.kind, c.value) {
                 (Some((axis, u, v)), K::Helical, Some(pitch)) => out.push(Relation::Helix {
                     axis,
@@ -627,12 +634,14 @@ pub fn decompose(model: &Model, sketch: &Config<D3>) -> (Vec<Rel>, Vec<Unsupport
                     q: b,
                     pitch,
                 }),
-                (Some((axis, u, v)), K::Prismatic | K::OffsetX, _) => out.push(Relation::Twist {
-                    axis,
-                    u,
-                    v,
-                    angle: if c.kind == K::OffsetX { c.value } else { None },
-                }),
+                (Some((axis, u, v)), K::Prismatic | K::OffsetX | K::Weld, _) => {
+                    out.push(Relation::Twist {
+                        axis,
+                        u,
+                        v,
+                        angle: if c.kind == K::OffsetX { c.value } else { None },
+                    })
+                }
                 _ => missing("the coupling of x axes needs two markers (and a helix its pitch)"),
             }
         }
