@@ -298,7 +298,12 @@ fn check_arm(arm: &Arm, poses: usize, searched: usize, seed: u64) {
             found.solutions.len()
         );
         if let Some(c) = &arm.count {
-            assert_eq!(found.solutions.len(), count(c, p, z), "{}: q = {q:?}", arm.file);
+            assert_eq!(
+                found.solutions.len(),
+                count(c, p, z),
+                "{}: q = {q:?}",
+                arm.file
+            );
         }
         if pose < searched {
             let (r, _) = fk.last().expect("a body");
@@ -306,7 +311,10 @@ fn check_arm(arm: &Arm, poses: usize, searched: usize, seed: u64) {
             for qn in newton_solutions(arm, &target, &q, 40, &mut rng) {
                 by_newton += 1;
                 assert!(
-                    found.solutions.iter().any(|s| is_arm(arm, s, &forward(arm, &qn), 1e-6)),
+                    found
+                        .solutions
+                        .iter()
+                        .any(|s| is_arm(arm, s, &forward(arm, &qn), 1e-6)),
                     "{}: q = {q:?}: Newton's solution {qn:?} is not among the plan's {}",
                     arm.file,
                     found.solutions.len()
@@ -464,15 +472,44 @@ fn ur5() -> Arm {
     Arm {
         file: "ur5.gcs",
         joints: vec![
-            Joint { point: [0.0, 0.0, 0.0], axis: [0.0, 0.0, 1.0] },
-            Joint { point: [0.0, 0.0, 0.089159], axis: [0.0, 1.0, 0.0] },
-            Joint { point: [0.425, 0.0, 0.089159], axis: [0.0, 1.0, 0.0] },
-            Joint { point: w1, axis: [0.0, 1.0, 0.0] },
-            Joint { point: w2, axis: [0.0, 0.0, -1.0] },
-            Joint { point: w2, axis: [1.0, 0.0, 0.0] },
+            Joint {
+                point: [0.0, 0.0, 0.0],
+                axis: [0.0, 0.0, 1.0],
+            },
+            Joint {
+                point: [0.0, 0.0, 0.089159],
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: [0.425, 0.0, 0.089159],
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: w1,
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: w2,
+                axis: [0.0, 0.0, -1.0],
+            },
+            Joint {
+                point: w2,
+                axis: [1.0, 0.0, 0.0],
+            },
         ],
-        bodies: vec!["trunk", "upper_arm", "forearm", "wrist_1", "wrist_2", "wrist_3"],
-        tool: ([0.89955, 0.10915, -0.005491], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        bodies: vec![
+            "trunk",
+            "upper_arm",
+            "forearm",
+            "wrist_1",
+            "wrist_2",
+            "wrist_3",
+        ],
+        tool: (
+            [0.89955, 0.10915, -0.005491],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ),
         params: vec!["px", "py", "pz", "zx", "zy", "zz", "xx", "xy", "xz"],
         count: None,
         joint_params: Vec::new(),
@@ -484,14 +521,39 @@ fn irb6640() -> Arm {
     Arm {
         file: "irb6640.gcs",
         joints: vec![
-            Joint { point: [0.0, 0.0, 0.0], axis: [0.0, 0.0, 1.0] },
-            Joint { point: [0.32, 0.0, 0.78], axis: [0.0, 1.0, 0.0] },
-            Joint { point: [0.32, 0.0, 1.855], axis: [0.0, 1.0, 0.0] },
-            Joint { point: w, axis: [1.0, 0.0, 0.0] },
-            Joint { point: w, axis: [0.0, 1.0, 0.0] },
-            Joint { point: w, axis: [0.0, 0.0, -1.0] },
+            Joint {
+                point: [0.0, 0.0, 0.0],
+                axis: [0.0, 0.0, 1.0],
+            },
+            Joint {
+                point: [0.32, 0.0, 0.78],
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: [0.32, 0.0, 1.855],
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: w,
+                axis: [1.0, 0.0, 0.0],
+            },
+            Joint {
+                point: w,
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: w,
+                axis: [0.0, 0.0, -1.0],
+            },
         ],
-        bodies: vec!["trunk", "upper_arm", "forearm", "wrist_roll", "wrist_bend", "tool"],
+        bodies: vec![
+            "trunk",
+            "upper_arm",
+            "forearm",
+            "wrist_roll",
+            "wrist_bend",
+            "tool",
+        ],
         tool: ([1.4625, 0.0, 1.855], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]),
         params: vec!["px", "py", "pz", "zx", "zy", "zz", "xx", "xy", "xz"],
         count: None,
@@ -514,13 +576,34 @@ fn iiwa() -> Arm {
     Arm {
         file: "iiwa.gcs",
         joints: vec![
-            Joint { point: [0.0, 0.0, 0.0], axis: [0.0, 0.0, 1.0] },
-            Joint { point: s, axis: [0.0, 1.0, 0.0] },
-            Joint { point: s, axis: [0.0, 0.0, 1.0] },
-            Joint { point: [0.0, 0.0, 0.78], axis: [0.0, -1.0, 0.0] },
-            Joint { point: w, axis: [1.0, 0.0, 0.0] },
-            Joint { point: w, axis: [0.0, 1.0, 0.0] },
-            Joint { point: w, axis: [0.0, 0.0, -1.0] },
+            Joint {
+                point: [0.0, 0.0, 0.0],
+                axis: [0.0, 0.0, 1.0],
+            },
+            Joint {
+                point: s,
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: s,
+                axis: [0.0, 0.0, 1.0],
+            },
+            Joint {
+                point: [0.0, 0.0, 0.78],
+                axis: [0.0, -1.0, 0.0],
+            },
+            Joint {
+                point: w,
+                axis: [1.0, 0.0, 0.0],
+            },
+            Joint {
+                point: w,
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: w,
+                axis: [0.0, 0.0, -1.0],
+            },
         ],
         bodies: vec!["l1", "l2", "l3", "l4", "l5", "l6", "l7"],
         tool: ([0.4, 0.0, 0.594], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]),
@@ -533,4 +616,115 @@ fn iiwa() -> Arm {
 #[test]
 fn the_7_joint_arm_with_its_third_angle_given_has_every_solution_in_closed_form() {
     check_arm(&iiwa(), 1000, 30, 0x0007_5eed);
+}
+
+/// The Delta robot's geometry as `examples/delta.gcs` sketches it: base and platform radii,
+/// upper arm and forearm lengths.
+const DELTA: (f64, f64, f64, f64) = (0.2, 0.05, 0.3, 0.8);
+
+fn delta_model(name: &str) -> (gcs_lang::Model, gcs_compiler::analysis::Analysis) {
+    let path = format!("{}/../examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("the example");
+    let (_, model, diags) = gcs_lang::load(name, text.as_bytes());
+    assert!(diags.iter().all(|d| !d.is_error()), "{diags:?}");
+    let model = model.expect("a model");
+    let a = gcs_compiler::analyse(&model).expect("analysed");
+    assert!(a.unsolved.is_empty(), "{:?}", a.unsolved);
+    assert!(
+        a.plan.defaults.is_empty() && a.plan.iterations.is_empty(),
+        "{name}: closed form"
+    );
+    (model, a)
+}
+
+fn point_of(s: &Solution, name: &str) -> Vector3<f64> {
+    let p = &(s.points.iter())
+        .find(|(n, _)| n == name)
+        .expect("a point")
+        .1;
+    v([p[0], p[1], p[2]])
+}
+
+/// Arm `i`'s angle below the base's plane, read from its elbow.
+fn delta_angle(i: usize, elbow: Vector3<f64>) -> f64 {
+    let (r, _, a, _) = DELTA;
+    let phi = std::f64::consts::TAU * i as f64 / 3.0;
+    let radial = v([phi.cos(), phi.sin(), 0.0]);
+    let out = (elbow - r * radial).dot(&radial);
+    (-elbow.z / a).atan2(out / a)
+}
+
+/// The Delta robot's platform follows a closed path (a tilted circle) in 1-degree steps, each
+/// solved on its own on the sketch's branches: every forearm is its length from its elbow to
+/// the bit, each arm's angle moves by less than a degree a step (no flip), and the angles solve
+/// the forward model (`examples/delta_forward.gcs`) back to the same platform.
+#[test]
+fn the_delta_robot_follows_a_path_without_flips_inverse_and_forward() {
+    let (ik, a_ik) = delta_model("delta.gcs");
+    let (fk, a_fk) = delta_model("delta_forward.gcs");
+    let (_, rp, _, b) = DELTA;
+    let index = |m: &gcs_lang::Model, n: &str| {
+        (m.params.iter())
+            .position(|(_, p)| p.name == n)
+            .expect("a param")
+    };
+    let branches = |a: &gcs_compiler::analysis::Analysis| -> Vec<usize> {
+        a.plan.branches.iter().map(|b| b.default).collect()
+    };
+    let z0 = ik.default_params()[index(&ik, "z")];
+    let mut previous: Option<[f64; 3]> = None;
+    for step in 0..=360 {
+        let t = (step as f64).to_radians();
+        let centre = v([0.1 * t.cos(), 0.1 * t.sin(), z0 + 0.05 * (2.0 * t).sin()]);
+        let mut params = ik.default_params();
+        for (n, x) in ["x", "y", "z"].iter().zip(centre.iter()) {
+            params[index(&ik, n)] = *x;
+        }
+        let s = gcs_compiler::solve(&ik, &a_ik, &params, &branches(&a_ik))
+            .unwrap_or_else(|e| panic!("{step} deg: {e}"));
+        assert!(
+            s.max_residual <= 1e-12,
+            "{step} deg: off by {}",
+            s.max_residual
+        );
+        let mut angles = [0.0; 3];
+        for i in 0..3 {
+            let phi = std::f64::consts::TAU * i as f64 / 3.0;
+            let p = centre + rp * v([phi.cos(), phi.sin(), 0.0]);
+            let elbow = point_of(&s, &format!("arm{}.elbow", i + 1));
+            assert!(
+                ((elbow - p).norm() - b).abs() <= 1e-12,
+                "{step} deg: forearm {i}"
+            );
+            angles[i] = delta_angle(i, elbow);
+        }
+        if let Some(before) = previous {
+            for i in 0..3 {
+                assert!(
+                    (angles[i] - before[i]).abs() < 1f64.to_radians(),
+                    "{step} deg: arm {} flips from {} to {}",
+                    i + 1,
+                    before[i],
+                    angles[i]
+                );
+            }
+        }
+        previous = Some(angles);
+        // Forward: the arms' angles (the turn from the sketch's) give the platform back.
+        let mut forward = fk.default_params();
+        let sketch = [0.5; 3];
+        for i in 0..3 {
+            // offset_x is the turn about the hinge's axis from the sketch's elbow, which the
+            // sketch puts 0.5 rad below the base's plane; the hinge turns the arm down for a
+            // positive angle about its axis (-sin, cos, 0).
+            forward[index(&fk, &format!("t{}", i + 1))] = angles[i] - sketch[i];
+        }
+        let f = gcs_compiler::solve(&fk, &a_fk, &forward, &branches(&a_fk))
+            .unwrap_or_else(|e| panic!("{step} deg, forward: {e}"));
+        let c = point_of(&f, "platform.centre");
+        assert!(
+            (c - centre).norm() <= 1e-10,
+            "{step} deg: forward kinematics gives {c} for {centre}"
+        );
+    }
 }

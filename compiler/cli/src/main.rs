@@ -594,9 +594,7 @@ fn solve(
                     &shared::held(plan, branch),
                 );
                 if let Err(e) = solved {
-                    for line in
-                        shared::failure(model, plan, &params, &kept_defaults, chosen, &e)
-                    {
+                    for line in shared::failure(model, plan, &params, &kept_defaults, chosen, &e) {
                         eprintln!("error: {line}");
                     }
                 }

@@ -1256,7 +1256,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 [] => set.clone(),
                 [one] => vec![*one],
                 [first, rest @ ..] if rest.iter().all(|&k| G::share_pivot(self, *first, k)) => {
-                    vec![*first]
+                    held.clone()
                 }
                 _ => continue,
             };

@@ -78,6 +78,9 @@ impl Builder<'_, Spatial> {
     fn action_point_point(&mut self, a: GeomId, b: GeomId, d: Option<Length>, r: &Rel) -> bool {
         for (known, moving) in [(a, b), (b, a)] {
             if self.point_known(known) && !self.point_known(moving) {
+                if d.is_some() && self.pinned_later(moving) {
+                    return false;
+                }
                 let x = self.point(known);
                 let target = match d {
                     None => Target::Point(x),
@@ -97,6 +100,24 @@ impl Builder<'_, Spatial> {
             }
         }
         false
+    }
+
+    /// Whether the cluster of point `moving`, free to move, has a coincidence with a known
+    /// point still to come: it pins the cluster at that point (a pivot), which a distance taken
+    /// first would only put on a sphere, leaving a cluster no locus then reaches (an arm's rod
+    /// taken before its hinge). The distance waits; the coincidence moves the cluster, and
+    /// the distance is tried again.
+    fn pinned_later(&self, moving: GeomId) -> bool {
+        let k = self.cluster(moving);
+        if !self.clusters[k].record.loose() {
+            return false;
+        }
+        self.pending.iter().any(|p| match p.relation {
+            Relation::PointPoint { a, b, d: None } => [(a, b), (b, a)]
+                .iter()
+                .any(|&(x, y)| self.cluster(x) == k && self.cluster(y) != k && self.point_known(y)),
+            _ => false,
+        })
     }
 
     /// Point `p` at distance `l` from the line through `base` along `dir`: the point onto the

@@ -72,10 +72,28 @@ impl Builder<'_, Spatial> {
             };
             // A pivot on the first joint's axis is that joint's own point: the plane passes
             // through it whatever the far body does, and the body before is the one pivoted.
+            // Read in the body where both are in one; across the bodies of a macro-geom, on
+            // the sketch.
             let first = chain[0].near;
-            let on_own_axis = self
-                .z_of(first)
-                .is_some_and(|z| super::on_axis(self.model, first, z, x));
+            let on_own_axis = self.z_of(first).is_some_and(|z| {
+                if self.model.top_level_of(first) == self.model.top_level_of(x) {
+                    return super::on_axis(self.model, first, z, x);
+                }
+                let params = self.model.default_params();
+                let Ok(sketch) =
+                    crate::config::Config::<crate::config::D3>::from_sketch(self.model, &params)
+                else {
+                    return true;
+                };
+                let (p, q, d) = (
+                    sketch.point(self.model, first),
+                    sketch.point(self.model, x),
+                    sketch.dir(self.model, z),
+                );
+                let w = q - p;
+                let across = w - d * w.dot(&d) / d.dot(&d).max(f64::MIN_POSITIVE);
+                across.norm() <= gcs_runtime::tol::LENGTH_REL * (1.0 + w.norm())
+            });
             if !on_own_axis {
                 self.turn_onto_subchain_plane(x, at, &chain);
                 return true;
@@ -336,7 +354,10 @@ impl Builder<'_, Spatial> {
             if k1 == k2 {
                 continue;
             }
-            let pivot = |b: &Self, k: usize| match (b.clusters[k].record.trans, b.clusters[k].record.turn) {
+            let pivot = |b: &Self, k: usize| match (
+                b.clusters[k].record.trans,
+                b.clusters[k].record.turn,
+            ) {
                 (Trans::Pivot { at, feature }, Turn::Free) if b.clusters[k].record.rigid() => {
                     Some((at, feature))
                 }
@@ -350,9 +371,9 @@ impl Builder<'_, Spatial> {
             // that is on it is a degenerate configuration at run time).
             let off_axis = |m: GeomId, f: GeomId| {
                 model.top_level_of(m) != model.top_level_of(f)
-                    || self
-                        .z_of(m)
-                        .is_some_and(|z| local_dir(model, z).is_some() && !super::on_axis(model, m, z, f))
+                    || self.z_of(m).is_some_and(|z| {
+                        local_dir(model, z).is_some() && !super::on_axis(model, m, z, f)
+                    })
             };
             if !off_axis(m1, fa) || !off_axis(m2, fb) {
                 continue;
@@ -389,7 +410,10 @@ impl Builder<'_, Spatial> {
         self.clusters[k2].record.trans = Trans::Free;
         self.work_for(Some(c));
         let geoms2 = self.clusters[k2].geoms.clone();
-        let (n1, n2) = (self.group_name(&self.clusters[k1].geoms.clone()), self.group_name(&geoms2));
+        let (n1, n2) = (
+            self.group_name(&self.clusters[k1].geoms.clone()),
+            self.group_name(&geoms2),
+        );
         // The second body onto the joint: its marker onto the first's, its axis along it.
         let (to, from) = (self.point(m1), self.point(m2));
         let explain = format!(
@@ -413,7 +437,10 @@ impl Builder<'_, Spatial> {
             Vec::new(),
             explain,
         );
-        let (z1, z2) = (self.z_of(m1).expect("a marker"), self.z_of(m2).expect("a marker"));
+        let (z1, z2) = (
+            self.z_of(m1).expect("a marker"),
+            self.z_of(m2).expect("a marker"),
+        );
         let axis1 = self.direction(z1);
         let target = if sense < 0.0 {
             let words = format!("the opposite of {}", self.name(z1));
@@ -445,7 +472,11 @@ impl Builder<'_, Spatial> {
         // the first through the second's place.
         let now = self.point(fb);
         let orbit = self.orbit(pivot, axis1, fb, now);
-        let words = format!("the sphere about {} through {}'s place", self.name(fa), self.name(fb));
+        let words = format!(
+            "the sphere about {} through {}'s place",
+            self.name(fa),
+            self.name(fb)
+        );
         let sphere = self.value(
             SpatialOp::SphereThrough {
                 center: a,
@@ -465,9 +496,12 @@ impl Builder<'_, Spatial> {
             last: false,
             duplicate: false,
         };
-        let Some(Target::Point(meeting)) =
-            self.meet(Locus::Circle(orbit), Target::On(Locus::Sphere(sphere)), now, &rel)
-        else {
+        let Some(Target::Point(meeting)) = self.meet(
+            Locus::Circle(orbit),
+            Target::On(Locus::Sphere(sphere)),
+            now,
+            &rel,
+        ) else {
             unreachable!("a circle meets a sphere at a point")
         };
         let explain = format!(
@@ -491,8 +525,19 @@ impl Builder<'_, Spatial> {
         let mut geoms = self.clusters[k1].geoms.clone();
         geoms.extend(self.clusters[k2].geoms.iter().copied());
         let words = format!("the direction from {} to {}", self.name(fa), self.name(fb));
-        let away = self.value(Op::DirectionTo { from: a, to: meeting }, Ty::Vector, words.clone());
-        let home = self.value(Op::DirectionTo { from: a, to: b }, Ty::Vector, format!("{words}'s place"));
+        let away = self.value(
+            Op::DirectionTo {
+                from: a,
+                to: meeting,
+            },
+            Ty::Vector,
+            words.clone(),
+        );
+        let home = self.value(
+            Op::DirectionTo { from: a, to: b },
+            Ty::Vector,
+            format!("{words}'s place"),
+        );
         let explain = format!(
             "Rotate {n1} and {n2} together about {} so that {} is back in its place ({cname}); they may then only turn about the line through both.",
             self.name(fa),

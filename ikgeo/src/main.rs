@@ -1,0 +1,38 @@
+//! The check (`cargo run --release` in ikgeo/): for 1,000 random poses of each arm, ik-geo's
+//! and gcs's solution sets agree (see `gcs_ikgeo::check`). Exits 1 on any mismatch of the arms
+//! gcs solves in closed form; the two it iterates on are compared for information only.
+//! `cargo run --release -- N` compares N poses an arm.
+
+use gcs_ikgeo::arms::{IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, UR5};
+use gcs_ikgeo::check::{check, TOL};
+use gcs_ikgeo::{Irb6640, SphericalBot, ThreeParallelBot, Ur5};
+
+fn main() {
+    let n = std::env::args()
+        .nth(1)
+        .map(|s| s.parse().expect("a number of poses"))
+        .unwrap_or(1000);
+    println!("joint angles compared to {TOL:e} rad, {n} poses an arm");
+    println!("closed form (gcs: no default, no iteration):");
+    let closed = [check::<Ur5>(&UR5, n), check::<Irb6640>(&IRB6640, n)];
+    for r in &closed {
+        print!("{}", r.text());
+    }
+    println!("iterated (gcs: an outer iteration on the base's angle), for information:");
+    for r in [
+        check::<SphericalBot>(&SPHERICAL_BOT, n),
+        check::<ThreeParallelBot>(&THREE_PARALLEL_BOT, n),
+    ] {
+        print!("{}", r.text());
+    }
+    let failed: Vec<&str> = closed.iter().filter(|r| !r.agrees()).map(|r| r.arm).collect();
+    let mismatches: usize = closed
+        .iter()
+        .map(|r| r.ik_geo_unmatched + r.gcs_unmatched)
+        .sum();
+    println!("closed-form arms: {mismatches} mismatches");
+    if !failed.is_empty() {
+        eprintln!("mismatches on {}", failed.join(", "));
+        std::process::exit(1);
+    }
+}
