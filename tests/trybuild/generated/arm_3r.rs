@@ -342,7 +342,6 @@ pub fn solve(
     let mut base_link = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut upper_arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut forearm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
-    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // coincident(forearm.tip, ground.target) (arm_3r.gcs:29)
     let ground_target = ground.point_to_global(&ground_target_local);

@@ -604,14 +604,14 @@ pub fn solve(
     let mut wrist_roll = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut wrist_bend = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
-    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
-    // coincident(tool.tcp, ground.target) (puma.gcs:53)
+    // revolute(trunk.yaw, ground.base) (puma.gcs:47)
+    // Already true where the sketch puts the geoms: nothing moves.
+
+    // revolute(tool.flange, wrist_bend.flange) (puma.gcs:52)
     let ground_target = ground.point_to_global(&ground_target_local);
     let shift = ground_target - Point3::new(0.5521, 0.15, 0.2282);
     tool.translate(&shift);
-
-    // offset_x(ground.target, tool.tcp) = 0 (puma.gcs:54)
     let ground_target_z = ground.vector_to_global(&ground_target_z_local);
     let tool_tcp_z = tool.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
     let turn = frame::rotation_between3(
@@ -620,59 +620,42 @@ pub fn solve(
         &frame::perpendicular(&tool_tcp_z),
     );
     tool.rotate_about_by(&ground_target, &turn);
-    let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&ground_target_z, 0.0) * ground_target_x;
-    let tool_tcp_x = tool.vector_to_global(&Vector3::new(-2.220446049250313e-16, 0.0, 1.0));
-    let turn_2 = frame::rotation_about_axis(
-        &ground_target_z,
-        frame::signed_angle3(&tool_tcp_x, &turned, &ground_target_z),
-    );
-    tool.rotate_about_by(&ground_target, &turn_2);
-
-    // revolute(tool.flange, wrist_bend.flange) (puma.gcs:52)
     let tool_flange = tool.point_to_global(&Point3::new(0.4521, 0.15, 0.2282));
     let shift_2 = tool_flange - Point3::new(0.4521, 0.15, 0.2282);
     wrist_bend.translate(&shift_2);
     let tool_flange_z = tool.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
     let wrist_bend_flange_z =
         wrist_bend.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
-    let turn_3 = frame::rotation_between3(
+    let turn_2 = frame::rotation_between3(
         &wrist_bend_flange_z,
         &tool_flange_z,
         &frame::perpendicular(&wrist_bend_flange_z),
     );
-    wrist_bend.rotate_about_by(&tool_flange, &turn_3);
+    wrist_bend.rotate_about_by(&tool_flange, &turn_2);
 
-    // revolute(trunk.yaw, ground.base) (puma.gcs:47)
-    let ground_base = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
-    let shift_3 = ground_base - Point3::new(0.0, 0.0, 0.0);
-    trunk.translate(&shift_3);
-    let ground_base_z = ground.vector_to_global(&Vector3::z());
-    let trunk_yaw_z = trunk.vector_to_global(&Vector3::z());
-    let turn_4 = frame::rotation_between3(
-        &trunk_yaw_z,
-        &ground_base_z,
-        &frame::perpendicular(&trunk_yaw_z),
+    // weld(tool.tcp, ground.target) (puma.gcs:53)
+    let wrist_bend_bend = wrist_bend.point_to_global(&Point3::new(0.4521, 0.15, 0.2282));
+    let shift_3 = wrist_bend_bend - Point3::new(0.4521, 0.15, 0.2282);
+    wrist_roll.translate(&shift_3);
+    let wrist_roll_wrist = wrist_roll.point_to_global(&Point3::new(0.4521, 0.15, 0.2282));
+    let shift_4 = wrist_roll_wrist - Point3::new(0.4521, 0.15, 0.2282);
+    forearm.translate(&shift_4);
+    let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
+    let ground_target_x = ground.vector_to_global(&ground_target_x_local);
+    let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
+    let tool_tcp_x = tool.vector_to_global(&Vector3::new(-2.220446049250313e-16, 0.0, 1.0));
+    let turn_3 = frame::rotation_about_axis(
+        &ground_target_z,
+        frame::signed_angle3(&tool_tcp_x, &turned, &ground_target_z),
     );
-    trunk.rotate_about_by(&ground_base, &turn_4);
+    tool.rotate_about_by(&ground_target, &turn_3);
 
     // revolute(upper_arm.shoulder, trunk.shoulder) (puma.gcs:48)
-    let trunk_shoulder = trunk.point_to_global(&Point3::new(0.0, 0.0, 0.66));
-    let shift_4 = trunk_shoulder - Point3::new(0.0, 0.0, 0.66);
-    upper_arm.translate(&shift_4);
-    let wrist_bend_bend = wrist_bend.point_to_global(&Point3::new(0.4521, 0.15, 0.2282));
-    let shift_5 = wrist_bend_bend - Point3::new(0.4521, 0.15, 0.2282);
-    wrist_roll.translate(&shift_5);
-    let wrist_roll_wrist = wrist_roll.point_to_global(&Point3::new(0.4521, 0.15, 0.2282));
-    let shift_6 = wrist_roll_wrist - Point3::new(0.4521, 0.15, 0.2282);
-    forearm.translate(&shift_6);
     let forearm_elbow = forearm.point_to_global(&Point3::new(0.4318, 0.15, 0.66));
     let forearm_elbow_z = forearm.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let length = (wrist_roll_wrist - forearm_elbow).dot(&forearm_elbow_z);
-    let upper_arm_elbow = upper_arm.point_to_global(&Point3::new(0.4318, 0.15, 0.66));
-    let upper_arm_shoulder_z =
-        upper_arm.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
-    let length_2 = (upper_arm_elbow - trunk_shoulder).dot(&upper_arm_shoulder_z);
+    let length_2 = (Point3::new(0.4318, 0.15, 0.66) - Point3::new(0.0, 0.0, 0.66))
+        .dot(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let sum = length + length_2;
     if !gcs_runtime::num::is_finite(sum) {
         return Err(SolveError::new(
@@ -682,11 +665,10 @@ pub fn solve(
             sum,
         ));
     }
-    let trunk_shoulder_z = trunk.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let cone = frame::plane_cone(
-        &trunk_shoulder,
-        &trunk_shoulder_z,
-        &ground_base,
+        &Point3::new(0.0, 0.0, 0.66),
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+        &Point3::new(0.0, 0.0, 0.0),
         &wrist_roll_wrist,
         sum,
     );
@@ -701,8 +683,8 @@ pub fn solve(
     let gap = (cone.1.abs() - 1.0).max(0.0) * cone.0.norm();
     let turns = frame::turns_to_angle(
         &reach,
-        &trunk_shoulder_z,
-        &ground_base_z,
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+        &Vector3::z(),
         cone.1.clamp(-1.0, 1.0).acos(),
     );
     if let Some(mut e) = SolveError::from_contact(
@@ -734,28 +716,32 @@ pub fn solve(
                 turns.roots.len() as f64,
             )
         })?;
-    let turn_5 = frame::rotation_about_axis(
-        &ground_base_z,
-        frame::signed_angle3(&trunk_shoulder_z, &normal, &ground_base_z),
+    let turn_4 = frame::rotation_about_axis(
+        &Vector3::z(),
+        frame::signed_angle3(
+            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+            &normal,
+            &Vector3::z(),
+        ),
     );
-    trunk.rotate_about_by(&ground_base, &turn_5);
-    let trunk_shoulder_z_2 = trunk.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
-    let turn_6 = frame::rotation_between3(
-        &upper_arm_shoulder_z,
-        &trunk_shoulder_z_2,
-        &frame::perpendicular(&upper_arm_shoulder_z),
+    trunk.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
+    let trunk_shoulder_z = trunk.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+    let turn_5 = frame::rotation_between3(
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+        &trunk_shoulder_z,
+        &frame::perpendicular(&Vector3::new(0.0, 1.0, 2.220446049250313e-16)),
     );
-    upper_arm.rotate_about_by(&trunk_shoulder, &turn_6);
+    upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.66), &turn_5);
 
     // revolute(forearm.elbow, upper_arm.elbow) (puma.gcs:49)
     let upper_arm_elbow_z =
         upper_arm.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
-    let turn_7 = frame::rotation_between3(
+    let turn_6 = frame::rotation_between3(
         &forearm_elbow_z,
         &upper_arm_elbow_z,
         &frame::perpendicular(&forearm_elbow_z),
     );
-    forearm.rotate_about_by(&wrist_roll_wrist, &turn_7);
+    forearm.rotate_about_by(&wrist_roll_wrist, &turn_6);
 
     // revolute(wrist_roll.wrist, forearm.wrist) (puma.gcs:50)
     let forearm_elbow_2 = forearm.point_to_global(&Point3::new(0.4318, 0.15, 0.66));
@@ -771,10 +757,10 @@ pub fn solve(
         })?,
         &forearm_elbow_2,
     );
-    let upper_arm_elbow_2 = upper_arm.point_to_global(&Point3::new(0.4318, 0.15, 0.66));
+    let upper_arm_elbow = upper_arm.point_to_global(&Point3::new(0.4318, 0.15, 0.66));
     let orbit_2 = Circle3::orbit(
-        &trunk_shoulder,
-        &frame::unit3(&trunk_shoulder_z_2).ok_or_else(|| {
+        &Point3::new(0.0, 0.0, 0.66),
+        &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
             SolveError::new(
                 "revolute_forearm_elbow_upper_arm_elbow",
                 "revolute(forearm.elbow, upper_arm.elbow)",
@@ -782,7 +768,7 @@ pub fn solve(
                 0.0,
             )
         })?,
-        &upper_arm_elbow_2,
+        &upper_arm_elbow,
     );
     let revolute_forearm_elbow_upper_arm_elbow_meeting =
         intersect3d::circle_circle(&orbit, &orbit_2);
@@ -804,7 +790,7 @@ pub fn solve(
                 revolute_forearm_elbow_upper_arm_elbow_meeting.roots.len() as f64,
             )
         })?;
-    let turn_8 = frame::rotation_about_axis(
+    let turn_7 = frame::rotation_about_axis(
         &upper_arm_elbow_z,
         frame::signed_angle3(
             &(forearm_elbow_2 - wrist_roll_wrist),
@@ -812,24 +798,24 @@ pub fn solve(
             &upper_arm_elbow_z,
         ),
     );
-    forearm.rotate_about_by(&wrist_roll_wrist, &turn_8);
-    let turn_9 = frame::rotation_about_axis(
-        &trunk_shoulder_z_2,
+    forearm.rotate_about_by(&wrist_roll_wrist, &turn_7);
+    let turn_8 = frame::rotation_about_axis(
+        &trunk_shoulder_z,
         frame::signed_angle3(
-            &(upper_arm_elbow_2 - trunk_shoulder),
-            &(revolute_forearm_elbow_upper_arm_elbow - trunk_shoulder),
-            &trunk_shoulder_z_2,
+            &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.66)),
+            &(revolute_forearm_elbow_upper_arm_elbow - Point3::new(0.0, 0.0, 0.66)),
+            &trunk_shoulder_z,
         ),
     );
-    upper_arm.rotate_about_by(&trunk_shoulder, &turn_9);
+    upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.66), &turn_8);
     let forearm_wrist_z = forearm.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
     let wrist_roll_wrist_z = wrist_roll.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
-    let turn_10 = frame::rotation_between3(
+    let turn_9 = frame::rotation_between3(
         &wrist_roll_wrist_z,
         &forearm_wrist_z,
         &frame::perpendicular(&wrist_roll_wrist_z),
     );
-    wrist_roll.rotate_about_by(&wrist_bend_bend, &turn_10);
+    wrist_roll.rotate_about_by(&wrist_bend_bend, &turn_9);
 
     // revolute(wrist_bend.bend, wrist_roll.bend) (puma.gcs:51)
     let wrist_roll_wrist_z_2 = wrist_roll.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
@@ -861,20 +847,20 @@ pub fn solve(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_11 = frame::rotation_about_axis(
+    let turn_10 = frame::rotation_about_axis(
         &tool_flange_z,
         frame::signed_angle3(&wrist_bend_bend_z, &turned_2, &tool_flange_z),
     );
-    wrist_bend.rotate_about_by(&tool_flange, &turn_11);
+    wrist_bend.rotate_about_by(&tool_flange, &turn_10);
     let wrist_bend_bend_z_2 =
         wrist_bend.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let wrist_roll_bend_z =
         wrist_roll.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
-    let turn_12 = frame::rotation_about_axis(
+    let turn_11 = frame::rotation_about_axis(
         &forearm_wrist_z,
         frame::signed_angle3(&wrist_roll_bend_z, &wrist_bend_bend_z_2, &forearm_wrist_z),
     );
-    wrist_roll.rotate_about_by(&wrist_bend_bend, &turn_12);
+    wrist_roll.rotate_about_by(&wrist_bend_bend, &turn_11);
 
     Ok(Solution {
         ground,
