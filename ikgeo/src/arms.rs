@@ -219,7 +219,7 @@ pub struct Rng(pub u64);
 
 impl Rng {
     /// A number in [0, 1).
-    pub fn next(&mut self) -> f64 {
+    pub fn unit(&mut self) -> f64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
@@ -228,7 +228,7 @@ impl Rng {
 
     /// An angle in [-pi, pi).
     pub fn angle(&mut self) -> f64 {
-        (2.0 * self.next() - 1.0) * std::f64::consts::PI
+        (2.0 * self.unit() - 1.0) * std::f64::consts::PI
     }
 }
 

@@ -3,10 +3,10 @@
 //! return the same solution sets. Every exact ik-geo solution (ik-geo flags least-squares ones;
 //! those are skipped) must match one of gcs's to `TOL` in every joint angle (differences
 //! wrapped to (-pi, pi]), and every gcs solution one of ik-geo's. gcs's joint angles are read
-//! from its solved body frames (`gcs_angles`).
+//! from its solved body frames (`Angles`).
 
 use crate::arms::{self, Arm, Pose};
-use crate::{compare, gcs_angles, ik_geo_robot, ik_geo_solutions, pose_error, Gcs};
+use crate::{compare, ik_geo_robot, ik_geo_solutions, pose_error, Angles, Gcs};
 use std::fmt::Write as _;
 
 /// The tolerance on joint angles, radians.
@@ -14,7 +14,11 @@ pub const TOL: f64 = 1e-10;
 
 /// The seed of an arm's poses: the same in the check and the bench.
 pub fn seed(arm: &Arm) -> u64 {
-    0x9e37_79b9_7f4a_7c15 ^ arm.name.bytes().fold(0u64, |h, b| h.wrapping_mul(31) + b as u64)
+    0x9e37_79b9_7f4a_7c15
+        ^ arm
+            .name
+            .bytes()
+            .fold(0u64, |h, b| h.wrapping_mul(31) + b as u64)
 }
 
 /// The totals over one arm's poses.
@@ -54,6 +58,7 @@ pub struct Report {
 /// Compares both solvers over `n` poses of `arm`, whose generated solver is `G`.
 pub fn check<G: Gcs>(arm: &Arm, n: usize) -> Report {
     let robot = ik_geo_robot(arm);
+    let reader = Angles::new(arm);
     let mut r = Report {
         arm: arm.name,
         poses: n,
@@ -72,7 +77,7 @@ pub fn check<G: Gcs>(arm: &Arm, n: usize) -> Report {
         r.counts.2 += c.counts.2;
         r.worst_match = r.worst_match.max(c.worst_match);
         r.worst_axis = r.worst_axis.max(c.worst_axis);
-        let gcs_q: Vec<[f64; 6]> = all.iter().map(|l| gcs_angles(arm, l).0).collect();
+        let gcs_q: Vec<[f64; 6]> = all.iter().map(|l| reader.read(l).0).collect();
         for q in &gcs_q {
             r.worst_gcs_pose = r.worst_gcs_pose.max(pose_error(arm, q, pose));
         }
@@ -87,7 +92,7 @@ pub fn check<G: Gcs>(arm: &Arm, n: usize) -> Report {
         }
         if let Some(one) = G::one(&params) {
             r.one_found.0 += 1;
-            let q = gcs_angles(arm, &one).0;
+            let q = reader.read(&one).0;
             if ik.iter().any(|(p, _)| arms::angle_distance(p, &q) <= TOL) {
                 r.one_found.1 += 1;
             }
@@ -102,7 +107,14 @@ pub fn check<G: Gcs>(arm: &Arm, n: usize) -> Report {
     r
 }
 
-fn describe(out: &mut String, arm: &Arm, k: usize, pose: &Pose, ik: &[([f64; 6], bool)], gcs: &[[f64; 6]]) {
+fn describe(
+    out: &mut String,
+    arm: &Arm,
+    k: usize,
+    pose: &Pose,
+    ik: &[([f64; 6], bool)],
+    gcs: &[[f64; 6]],
+) {
     let fmt = |q: &[f64; 6]| {
         let v: Vec<String> = q.iter().map(|x| format!("{x:+.12}")).collect();
         v.join(", ")

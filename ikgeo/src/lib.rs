@@ -4,10 +4,11 @@
 //! what the check (`src/main.rs`) and the bench (`benches/ik.rs`) share: reading joint angles
 //! from gcs's solved body frames, and comparing solution sets.
 //!
-//! `ur5` and `irb6640` analyse in closed form (no default, no iteration); `spherical_bot` and
-//! `three_parallel_bot` do not (gcs iterates on the base's angle: their positioning is IK-Geo's
-//! subproblems 5 and 6, quartics that gcs's fragments do not cover), and are compiled and
-//! compared apart, for information.
+//! `ur5` and `irb6640` analyse in closed form (no default, no iteration). `spherical_bot` and
+//! `three_parallel_bot` do not: gcs finds no closed form for them (ik-geo solves their
+//! positioning by its subproblems 5 and 6, each a quartic) and iterates on the base's angle.
+//! They are compiled and compared too, for information, not timed: that iteration misses most
+//! of their solutions (`cargo run --release` counts them).
 
 pub mod arms;
 pub mod check;
@@ -27,7 +28,9 @@ pub mod irb6640 {
     gcs_runtime::include_solver!("ikgeo_irb6640");
 }
 
-/// The generated solver of `models/ikgeo_spherical_bot.gcs` (an outer iteration).
+/// The generated solver of `models/ikgeo_spherical_bot.gcs` (an outer iteration). Its code
+/// holds a sphere of radius 1.414213562373095 (the arm's), which clippy takes for `SQRT_2`.
+#[allow(clippy::approx_constant)]
 pub mod spherical_bot {
     gcs_runtime::include_solver!("ikgeo_spherical_bot");
 }
@@ -59,6 +62,9 @@ pub trait Gcs {
     fn time_all(params: &Self::Params) -> usize;
     /// `solve`, for timing: whether it found one.
     fn time_one(params: &Self::Params) -> bool;
+    /// `solve_all` and every solution's joint angles read from its frames ([`Angles`]), for
+    /// timing: the sum of the angles.
+    fn time_all_angles(angles: &Angles, params: &Self::Params) -> f64;
 }
 
 macro_rules! gcs_arm {
@@ -113,6 +119,13 @@ macro_rules! gcs_arm {
             fn time_one(params: &$m::Params) -> bool {
                 $m::solve(params, &Default::default(), &Default::default()).is_ok()
             }
+            #[inline]
+            fn time_all_angles(angles: &Angles, params: &$m::Params) -> f64 {
+                $m::solve_all(params, &Default::default())
+                    .iter()
+                    .map(|s| angles.read(&Self::links(s)).0.iter().sum::<f64>())
+                    .sum()
+            }
         }
     };
 }
@@ -142,14 +155,36 @@ pub fn ik_geo_solutions(robot: &Robot, pose: &Pose) -> Vec<([f64; 6], bool)> {
         .collect()
 }
 
-/// Joint angles from gcs's link rotations (each from the sketch): link `i`'s rotation from
-/// the zero configuration is the solved one times the sketch's, and the angle of link `i`
-/// relative to link `i - 1` is read about joint `i`'s axis. Also how far any relative rotation
-/// is from a turn about its joint's axis.
+/// Reads joint angles from gcs's link rotations (each from the sketch): link `i`'s rotation
+/// from the zero configuration is the solved one times the sketch's, and the angle of link
+/// `i` relative to link `i - 1` is read about joint `i`'s axis (`Arm::angles`).
+#[derive(Debug, Clone)]
+pub struct Angles {
+    arm: Arm,
+    sketch: [Matrix3<f64>; 6],
+}
+
+impl Angles {
+    /// The reader of `arm`'s angles, with its sketch's rotations computed once.
+    pub fn new(arm: &Arm) -> Angles {
+        let links = arm.links(&arm.sketch);
+        Angles {
+            arm: *arm,
+            sketch: std::array::from_fn(|i| links[i].r),
+        }
+    }
+
+    /// The joint angles, wrapped to (-pi, pi], and how far any relative rotation is from a
+    /// turn about its joint's axis.
+    pub fn read(&self, from_sketch: &[Matrix3<f64>; 6]) -> ([f64; 6], f64) {
+        let rotations: [Matrix3<f64>; 6] = std::array::from_fn(|i| from_sketch[i] * self.sketch[i]);
+        self.arm.angles(&rotations)
+    }
+}
+
+/// Joint angles from gcs's link rotations, as [`Angles::read`] reads them.
 pub fn gcs_angles(arm: &Arm, from_sketch: &[Matrix3<f64>; 6]) -> ([f64; 6], f64) {
-    let sketch = arm.links(&arm.sketch);
-    let rotations: [Matrix3<f64>; 6] = std::array::from_fn(|i| from_sketch[i] * sketch[i].r);
-    arm.angles(&rotations)
+    Angles::new(arm).read(from_sketch)
 }
 
 /// The tool's pose error of joint angles `q` against `pose`: the largest of the point's
@@ -182,10 +217,11 @@ pub fn compare(
     tol: f64,
 ) -> Compared {
     let mut c = Compared::default();
+    let reader = Angles::new(arm);
     let gcs: Vec<[f64; 6]> = gcs
         .iter()
         .map(|r| {
-            let (q, off) = gcs_angles(arm, r);
+            let (q, off) = reader.read(r);
             c.worst_axis = c.worst_axis.max(off);
             q
         })
@@ -193,7 +229,9 @@ pub fn compare(
     let exact: Vec<&[f64; 6]> = ik_geo.iter().filter(|s| !s.1).map(|s| &s.0).collect();
     c.counts = (exact.len(), ik_geo.len() - exact.len(), gcs.len());
     let nearest = |q: &[f64; 6], among: &mut dyn Iterator<Item = &[f64; 6]>| {
-        among.map(|p| angle_distance(p, q)).fold(f64::INFINITY, f64::min)
+        among
+            .map(|p| angle_distance(p, q))
+            .fold(f64::INFINITY, f64::min)
     };
     for q in &exact {
         let d = nearest(q, &mut gcs.iter());

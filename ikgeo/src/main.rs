@@ -25,7 +25,11 @@ fn main() {
     ] {
         print!("{}", r.text());
     }
-    let failed: Vec<&str> = closed.iter().filter(|r| !r.agrees()).map(|r| r.arm).collect();
+    let failed: Vec<&str> = closed
+        .iter()
+        .filter(|r| !r.agrees())
+        .map(|r| r.arm)
+        .collect();
     let mismatches: usize = closed
         .iter()
         .map(|r| r.ik_geo_unmatched + r.gcs_unmatched)

@@ -118,7 +118,10 @@ pub fn text(arm: &Arm, comment: &str) -> String {
         (p, r * h, r * square_to(h))
     };
     let tcp = links[5].point(arm.tool());
-    let (tz, tx) = (links[5].r.column(2).into_owned(), links[5].r.column(0).into_owned());
+    let (tz, tx) = (
+        links[5].r.column(2).into_owned(),
+        links[5].r.column(0).into_owned(),
+    );
     let mut s = String::new();
     for line in comment.lines() {
         let _ = writeln!(s, "// {line}");

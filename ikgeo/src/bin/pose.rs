@@ -5,7 +5,9 @@
 fn main() {
     let mut args = std::env::args().skip(1);
     let name = args.next().unwrap_or_else(|| "ur5".to_string());
-    let k: usize = args.next().map_or(0, |s| s.parse().expect("a pose's index"));
+    let k: usize = args
+        .next()
+        .map_or(0, |s| s.parse().expect("a pose's index"));
     let arm = gcs_ikgeo::arms::ARMS
         .iter()
         .find(|a| a.name == name)
