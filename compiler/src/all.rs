@@ -204,7 +204,7 @@ fn solve_all_of(
         .collect();
     let one_angle =
         plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
-    if !varied.is_empty() && !one_angle {
+    if !varied.is_empty() && !(one_angle && closes_signed(plan)) {
         out.complete = false;
     }
     for k in 0..combinations.len() {
@@ -225,6 +225,31 @@ fn solve_all_of(
         }
     }
     out
+}
+
+/// Whether every error an iteration closes changes sign across its roots, so that a scan
+/// brackets each: not a point's distance from a line or circle of space, nor a residual's
+/// magnitude, which only touch zero there (their roots are found as minima, with no promise
+/// that none is missed between two samples).
+fn closes_signed(plan: &Plan) -> bool {
+    use crate::plan::{Op, Ty, MAGNITUDE};
+    let def = |r: crate::plan::Reg| {
+        (plan.steps.iter()).find(|s| s.out.is_some_and(|(o, _)| o == r))
+    };
+    let ty = |r| def(r).and_then(|s| s.out).map(|(_, t)| t);
+    (plan.steps.iter()).all(|s| {
+        let Op::Close { residual, .. } = s.op else {
+            return true;
+        };
+        match def(residual).map(|d| &d.op) {
+            Some(Op::Implicit { locus, .. }) => {
+                plan.space != gcs_lang::model::Space::D3
+                    || !matches!(ty(*locus), Some(Ty::Line | Ty::Circle))
+            }
+            Some(Op::Error { component, .. }) => *component != MAGNITUDE,
+            _ => true,
+        }
+    })
 }
 
 /// Where to start the solves of one branch combination: the defaults given when nothing

@@ -208,13 +208,15 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
     w.line("pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;");
     w.line("");
     w.line("/// Whether two solutions are one assembly: every point and vector within a relative");
-    w.line("/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size).");
+    w.line("/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). Each list is");
+    w.line("/// built once, and the vectors only when the points agree (two assemblies mostly differ");
+    w.line("/// in their first points).");
     w.line("#[allow(dead_code)]");
     w.open("fn same_assembly(a: &Solution, b: &Solution) -> bool {");
-    w.line("let scale = 1.0 + a.points().iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
-    w.line("let same_points = a.points().iter().zip(&b.points()).all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale);");
-    w.line("let same_vectors = a.vectors().iter().zip(&b.vectors()).all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL);");
-    w.line("same_points && same_vectors");
+    w.line("let (pa, pb) = (a.points(), b.points());");
+    w.line("let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
+    w.line("pa.iter().zip(&pb).all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)");
+    w.line("    && a.vectors().iter().zip(&b.vectors()).all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)");
     w.close("}");
     w.line("");
 }
