@@ -12,7 +12,7 @@
 //! solve refuses what the whole plan refuses wherever the outputs depend on it (a check
 //! against a fixed stop guards the outputs). A pruned plan is validated in debug builds.
 
-use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan, PlanarOp, SpatialOp};
+use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan, SpatialOp};
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use std::collections::{BTreeSet, HashMap};
@@ -117,20 +117,20 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             continue;
         }
         let mut s = step.clone();
+        if let Some(branch) = s.op.branch_mut() {
+            let next = BranchId(branch_map.len() as u32);
+            let new = *branch_map.entry(*branch).or_insert(next);
+            if new == next {
+                out.branches.push(plan.branches[branch.0 as usize].clone());
+            }
+            *branch = new;
+        }
         match &mut s.op {
             Op::Translate { geoms: gs, .. }
             | Op::RotatePoint { geoms: gs, .. }
             | Op::RotateDir { geoms: gs, .. }
             | Op::Spatial(SpatialOp::RotateBy { geoms: gs, .. }) => {
                 gs.retain(|g| moved[i].contains(g));
-            }
-            Op::Intersect { branch, .. } | Op::Planar(PlanarOp::PassingDir { branch, .. }) => {
-                let next = BranchId(branch_map.len() as u32);
-                let new = *branch_map.entry(*branch).or_insert(next);
-                if new == next {
-                    out.branches.push(plan.branches[branch.0 as usize].clone());
-                }
-                *branch = new;
             }
             Op::Default(d) => {
                 let next = DefaultId(default_map.len() as u32);
