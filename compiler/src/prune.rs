@@ -1,11 +1,12 @@
 //! Pruning a plan to a model's `output` statements: only the steps the outputs depend on stay.
 //!
 //! A backward slice over the straight-line program. An output needs its top-level geom's final
-//! state; a measurement needs the state of the geom it reads at that point, so the actions
-//! before it; an action is kept for the geoms whose later state is read, and dropped after the
-//! last read of a geom that is not an output (a rocker need not be turned into place once the
-//! coupler has been placed from it). Only geoms the pruned plan places completely are reported;
-//! branch variables of pruned intersections disappear, and branches and defaults are
+//! state (a joint's value, `J.angle` or `J.travel`, the final states of the top-level geoms of
+//! its two markers); a measurement needs the state of the geom it reads at that point, so the
+//! actions before it; an action is kept for the geoms whose later state is read, and dropped
+//! after the last read of a geom that is not an output (a rocker need not be turned into place
+//! once the coupler has been placed from it). Only geoms the pruned plan places completely are
+//! reported; branch variables of pruned intersections disappear, and branches and defaults are
 //! renumbered and iterated regions moved to match.
 //!
 //! A check stays when every geom it measures is computed anyway or fixed, so that a pruned
@@ -26,10 +27,10 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
     }
     // One backward slice, from the outputs' final state: a geom is live while its state
     // after the current step is still read (by an output, or by a kept measurement or check).
-    let outputs: BTreeSet<GeomId> = model
-        .outputs
-        .iter()
-        .map(|o| model.top_level_of(o.geom))
+    // A joint's value is measured on its two markers: both bodies' final states.
+    let outputs: BTreeSet<GeomId> = (model.outputs.iter())
+        .flat_map(|o| model.output_geoms(o))
+        .map(|&g| model.top_level_of(g))
         .collect();
     let tops = |c: &gcs_lang::model::ConstraintId| -> Vec<GeomId> {
         model.constraints[*c]
