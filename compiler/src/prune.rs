@@ -1,18 +1,19 @@
 //! Pruning a plan to a model's `output` statements: only the steps the outputs depend on stay.
 //!
 //! A backward slice over the straight-line program. An output needs its top-level geom's final
-//! state; a measurement needs the state of the geom it reads at that point, so the actions
-//! before it; an action is kept for the geoms whose later state is read, and dropped after the
-//! last read of a geom that is not an output (a rocker need not be turned into place once the
-//! coupler has been placed from it). Only geoms the pruned plan places completely are reported;
-//! branch variables of pruned intersections disappear, and branches and defaults are
+//! state (a joint's value, `J.angle` or `J.travel`, the final states of the top-level geoms of
+//! its two markers); a measurement needs the state of the geom it reads at that point, so the
+//! actions before it; an action is kept for the geoms whose later state is read, and dropped
+//! after the last read of a geom that is not an output (a rocker need not be turned into place
+//! once the coupler has been placed from it). Only geoms the pruned plan places completely are
+//! reported; branch variables of pruned intersections disappear, and branches and defaults are
 //! renumbered and iterated regions moved to match.
 //!
 //! A check stays when every geom it measures is computed anyway or fixed, so that a pruned
 //! solve refuses what the whole plan refuses wherever the outputs depend on it (a check
 //! against a fixed stop guards the outputs). A pruned plan is validated in debug builds.
 
-use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan, PlanarOp, SpatialOp};
+use crate::plan::{BranchId, DefaultId, DefaultVar, Iteration, Op, Plan, SpatialOp};
 use gcs_lang::model::GeomId;
 use gcs_lang::Model;
 use std::collections::{BTreeSet, HashMap};
@@ -26,10 +27,10 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
     }
     // One backward slice, from the outputs' final state: a geom is live while its state
     // after the current step is still read (by an output, or by a kept measurement or check).
-    let outputs: BTreeSet<GeomId> = model
-        .outputs
-        .iter()
-        .map(|o| model.top_level_of(o.geom))
+    // A joint's value is measured on its two markers: both bodies' final states.
+    let outputs: BTreeSet<GeomId> = (model.outputs.iter())
+        .flat_map(|o| model.output_geoms(o))
+        .map(|&g| model.top_level_of(g))
         .collect();
     let tops = |c: &gcs_lang::model::ConstraintId| -> Vec<GeomId> {
         model.constraints[*c]
@@ -117,20 +118,20 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
             continue;
         }
         let mut s = step.clone();
+        if let Some(branch) = s.op.branch_mut() {
+            let next = BranchId(branch_map.len() as u32);
+            let new = *branch_map.entry(*branch).or_insert(next);
+            if new == next {
+                out.branches.push(plan.branches[branch.0 as usize].clone());
+            }
+            *branch = new;
+        }
         match &mut s.op {
             Op::Translate { geoms: gs, .. }
             | Op::RotatePoint { geoms: gs, .. }
             | Op::RotateDir { geoms: gs, .. }
             | Op::Spatial(SpatialOp::RotateBy { geoms: gs, .. }) => {
                 gs.retain(|g| moved[i].contains(g));
-            }
-            Op::Intersect { branch, .. } | Op::Planar(PlanarOp::PassingDir { branch, .. }) => {
-                let next = BranchId(branch_map.len() as u32);
-                let new = *branch_map.entry(*branch).or_insert(next);
-                if new == next {
-                    out.branches.push(plan.branches[branch.0 as usize].clone());
-                }
-                *branch = new;
             }
             Op::Default(d) => {
                 let next = DefaultId(default_map.len() as u32);

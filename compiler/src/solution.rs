@@ -1,9 +1,13 @@
 //! A solved configuration read by the model's names: every point, vector and dimension of every
-//! geom, and the frame of every body, as `gcs solve --json` prints them (DESIGN.md's contract).
+//! geom, the frame of every body, and the value of every joint the outputs name (`q1.angle`,
+//! measured on its solved markers by the runtime's `frame::joint_*`, as generated code measures
+//! it), as `gcs solve --json` prints them (DESIGN.md's contract).
 
 use crate::config::{Config, D3};
-use gcs_lang::model::{GeomKind, Owner, Part};
+use gcs_lang::constraints::JointValue;
+use gcs_lang::model::{ConstraintId, GeomId, GeomKind, Owner, Part};
 use gcs_lang::Model;
+use gcs_runtime::frame;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
@@ -14,7 +18,8 @@ pub struct Solution {
     pub points: Vec<(String, Vec<f64>)>,
     /// Unit vectors: vector geoms, members, `L.dir`, `S.dir`, marker axes.
     pub vectors: Vec<(String, Vec<f64>)>,
-    /// Dimensions: `G.radius`, `S.length`.
+    /// Dimensions: `G.radius`, `S.length`, `Q.offset`; then the joint values the outputs name
+    /// (`q1.angle`, `slide.travel`), in the order first named.
     pub scalars: Vec<(String, f64)>,
     /// Body frames: origin and axes.
     pub frames: Vec<(String, Vec<f64>, Vec<Vec<f64>>)>,
@@ -33,6 +38,25 @@ pub struct Solution {
     pub grounded: Option<String>,
     /// The largest constraint violation, measured by [`crate::verify`].
     pub max_residual: f64,
+}
+
+/// The joint values the outputs name whose two markers are both solved (their top-level geoms in
+/// `scope`): each one's name as written, its constraint and which value.
+fn joints<'m>(
+    model: &'m Model,
+    scope: &std::collections::BTreeSet<GeomId>,
+) -> Vec<(&'m str, ConstraintId, JointValue)> {
+    let mut joints = model.joint_outputs();
+    joints.retain(|&(_, c, _)| {
+        (model.constraints[c].args.iter()).all(|&a| scope.contains(&model.top_level_of(a)))
+    });
+    joints
+}
+
+/// A joint constraint's two arguments (markers; for `in_line`, a point or a marker first).
+fn marker_pair(model: &Model, c: ConstraintId) -> (GeomId, GeomId) {
+    let args = &model.constraints[c].args;
+    (args[0], args[1])
 }
 
 /// A branch variable on another index than the sketch's.
@@ -110,6 +134,20 @@ impl Solution {
                 _ => {}
             }
         }
+        for (name, c, value) in joints(model, scope) {
+            let (m1, m2) = marker_pair(model, c);
+            let x = |m: GeomId| model.part(m, Part::AxisX).map(|a| cfg.dir(model, a));
+            let v = match value {
+                JointValue::Angle => match (x(m1), x(m2)) {
+                    (Some(x1), Some(x2)) => frame::joint_angle2(x1, x2),
+                    _ => f64::NAN,
+                },
+                JointValue::Travel => x(m2).map_or(f64::NAN, |x2| {
+                    frame::joint_travel2(cfg.point(model, m1), cfg.point(model, m2), x2)
+                }),
+            };
+            s.scalars.push((name.to_string(), v));
+        }
         s
     }
 
@@ -173,6 +211,26 @@ impl Solution {
                 }
                 _ => {}
             }
+        }
+        for (name, c, value) in joints(model, scope) {
+            let (m1, m2) = marker_pair(model, c);
+            let axis = |m: GeomId, p: Part| model.part(m, p).map(|a| cfg.dir(model, a));
+            let v = match value {
+                JointValue::Angle => {
+                    match (
+                        axis(m1, Part::AxisZ),
+                        axis(m1, Part::AxisX),
+                        axis(m2, Part::AxisX),
+                    ) {
+                        (Some(z1), Some(x1), Some(x2)) => frame::joint_angle3(z1, x1, x2),
+                        _ => f64::NAN,
+                    }
+                }
+                JointValue::Travel => axis(m2, Part::AxisZ).map_or(f64::NAN, |z2| {
+                    frame::joint_travel3(cfg.point(model, m1), cfg.point(model, m2), z2)
+                }),
+            };
+            s.scalars.push((name.to_string(), v));
         }
         s
     }

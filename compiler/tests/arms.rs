@@ -728,3 +728,45 @@ fn the_delta_robot_follows_a_path_without_flips_inverse_and_forward() {
         );
     }
 }
+
+/// Pruned to an output, an arm's plan renumbers every branch it keeps, those of the turns onto
+/// a plane or a cone as well as the intersections: the pruned plan is valid and, on each of its
+/// branch combinations, places the tip where the whole plan does.
+#[test]
+fn an_arm_pruned_to_its_tip_keeps_its_branches_apart() {
+    let arm = arm_3r();
+    let path = format!("{}/../examples/{}", env!("CARGO_MANIFEST_DIR"), arm.file);
+    let text = std::fs::read_to_string(&path).expect("the example") + "output forearm.tip;\n";
+    let c = gcs_compiler::compile(arm.file, text.as_bytes()).expect("compiles");
+    let (model, whole) = (&c.model, &c.analysis.plan);
+    let (pruned, scope) = gcs_compiler::prune::prune(model, whole);
+    assert_eq!(pruned.validate(model), Ok(()));
+    assert!(pruned.branches.len() >= 2, "{:?}", pruned.branches);
+    let all: BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+    let tip = |s: &Solution| {
+        let p = s.by_name().point("forearm.tip").map(<[f64]>::to_vec);
+        p.expect("forearm.tip")
+    };
+    let params = model.default_params();
+    let start: Vec<usize> = pruned.branches.iter().map(|b| b.default).collect();
+    let varied: Vec<usize> = (0..start.len()).collect();
+    let combinations = gcs_compiler::all::Combinations::new(&pruned, &start, &varied);
+    assert_eq!(combinations.len(), 4);
+    for k in 0..combinations.len() {
+        let kept = combinations.nth(k);
+        // The same branches, by name, in the whole plan; the others at the sketch's.
+        let branches: Vec<usize> = (whole.branches.iter())
+            .map(|b| {
+                (pruned.branches.iter().zip(&kept))
+                    .find(|(p, _)| p.name == b.name)
+                    .map_or(b.default, |(_, &i)| i)
+            })
+            .collect();
+        let a = gcs_compiler::solve_plan(model, &pruned, &scope, &params, &kept);
+        let b = gcs_compiler::solve_plan(model, whole, &all, &params, &branches);
+        match (a, b) {
+            (Ok(a), Ok(b)) => assert_eq!(tip(&a), tip(&b), "branches {kept:?}"),
+            (a, b) => assert_eq!(a.err(), b.err(), "branches {kept:?}"),
+        }
+    }
+}

@@ -1,7 +1,8 @@
 //! The one table of constraints ([`TABLE`]: for each, its argument forms, its value, the
 //! spaces it is valid in), against which the resolver checks every constraint and nothing
 //! else; and beside it, not in the table, [`ConstraintKind::nominal_dof`], the degrees of
-//! freedom a constraint nominally removes, which depend on its arguments and value.
+//! freedom a constraint nominally removes, which depend on its arguments and value, and
+//! [`ConstraintKind::joint_values`], the values of a joint an `output` may name.
 
 use crate::expr::Dim;
 use crate::model::{GeomKind, Space};
@@ -476,6 +477,45 @@ pub static TABLE: &[ConstraintSpec] = &[
     },
 ];
 
+/// A value of a joint, measured on the solved markers of its constraint `J(m1, m2)` and named
+/// in `output` as `J.angle` or `J.travel` (docs/LANGUAGE.md, Outputs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum JointValue {
+    /// `J.angle`: the angle from m1's x axis to m2's, counter-clockwise about m1's z axis (in
+    /// 2d, in the plane), in (-pi, pi]: the value `offset_x(m1, m2)` would have.
+    Angle,
+    /// `J.travel`: the signed distance from m2's point to m1's along the axis the joint slides
+    /// along, m2's z axis (in 2d, its x axis).
+    Travel,
+}
+
+impl JointValue {
+    /// Every joint value.
+    pub const ALL: [JointValue; 2] = [JointValue::Angle, JointValue::Travel];
+
+    /// The word after the dot.
+    pub fn name(self) -> &'static str {
+        match self {
+            JointValue::Angle => "angle",
+            JointValue::Travel => "travel",
+        }
+    }
+
+    /// The value named by the word after the dot, if it names one.
+    pub fn named(word: &str) -> Option<JointValue> {
+        JointValue::ALL.into_iter().find(|v| v.name() == word)
+    }
+
+    /// The constraints whose joint has this value, in words: "a `revolute`, `cylindrical` or
+    /// `offset_x` joint".
+    pub fn joints_text(self) -> &'static str {
+        match self {
+            JointValue::Angle => "a `revolute`, `cylindrical` or `offset_x` joint",
+            JointValue::Travel => "a `prismatic`, `cylindrical` or `in_line` joint",
+        }
+    }
+}
+
 /// The row for a constraint name.
 pub fn lookup(name: &str) -> Option<&'static ConstraintSpec> {
     TABLE.iter().find(|s| s.name == name)
@@ -491,6 +531,19 @@ impl ConstraintKind {
     /// Its name in the language.
     pub fn name(self) -> &'static str {
         self.spec().name
+    }
+
+    /// The values of the joint it makes that an `output` may name (`J.angle`, `J.travel`):
+    /// the angle of `revolute`, `cylindrical` and `offset_x`, the travel of `prismatic`,
+    /// `cylindrical` and `in_line`; none for any other constraint.
+    pub fn joint_values(self) -> &'static [JointValue] {
+        use ConstraintKind as C;
+        match self {
+            C::Revolute | C::OffsetX => &[JointValue::Angle],
+            C::Prismatic | C::InLine => &[JointValue::Travel],
+            C::Cylindrical => &[JointValue::Angle, JointValue::Travel],
+            _ => &[],
+        }
     }
 
     /// The degrees of freedom the constraint removes when independent of the others, given
@@ -633,6 +686,26 @@ mod tests {
             assert_eq!(k.spec().kind, k);
             assert_eq!(lookup(k.name()).map(|s| s.kind), Some(k));
         }
+    }
+
+    /// The kinds a joint value belongs to, and the words that list them in diagnostics, say
+    /// the same: a joint left out of either would be refused, or listed, wrongly.
+    #[test]
+    fn joint_values_and_their_words_agree() {
+        let mut with_values = 0;
+        for spec in TABLE {
+            for v in JointValue::ALL {
+                let has = spec.kind.joint_values().contains(&v);
+                let listed = v.joints_text().contains(&format!("`{}`", spec.name));
+                assert_eq!(has, listed, "{} and .{}", spec.name, v.name());
+                with_values += usize::from(has);
+            }
+        }
+        assert_eq!(with_values, 6);
+        for v in JointValue::ALL {
+            assert_eq!(JointValue::named(v.name()), Some(v));
+        }
+        assert_eq!(JointValue::named("turn"), None);
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! outputs, in arenas with typed ids. It is immutable once built; later stages keep their own
 //! state in side tables keyed by these ids.
 
-use crate::constraints::{ConstraintKind, ConstraintSpec};
+use crate::constraints::{ConstraintKind, ConstraintSpec, JointValue};
 use crate::expr::{Dim, ExprId, Exprs, ParamId};
 use crate::source::{SourceFile, Span};
 use la_arena::{Arena, Idx};
@@ -304,13 +304,23 @@ impl Constraint {
 /// An `output` reference.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Output {
-    /// The geom it names (for `G.radius`, `S.length` and `Q.offset`, the geom holding the
-    /// dimension).
-    pub geom: GeomId,
-    /// The reference as written.
+    /// What it names.
+    pub of: OutputOf,
+    /// The reference as written, its words joined by dots (`crank.b`, `q1.angle`).
     pub path: String,
     /// Where.
     pub span: Span,
+}
+
+/// What an `output` names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputOf {
+    /// A geom, member or part; for `G.radius`, `S.length` and `Q.offset`, the geom holding the
+    /// dimension.
+    Geom(GeomId),
+    /// A value of joint constraint `J` (`J.angle`, `J.travel`), measured on its arguments:
+    /// the kind is one whose [`ConstraintKind::joint_values`] hold the value.
+    Joint(ConstraintId, JointValue),
 }
 
 /// A resolved `.gcs` model.
@@ -374,6 +384,27 @@ impl Model {
         self.geoms
             .iter()
             .filter(|(_, g)| g.owner == Owner::TopLevel)
+    }
+
+    /// The geoms output `o` needs solved: the geom it names, or the two arguments of its joint
+    /// (markers, or for `in_line` a point and a marker).
+    pub fn output_geoms<'a>(&'a self, o: &'a Output) -> &'a [GeomId] {
+        match &o.of {
+            OutputOf::Geom(g) => std::slice::from_ref(g),
+            OutputOf::Joint(c, _) => &self.constraints[*c].args,
+        }
+    }
+
+    /// The joint values the outputs name, each once, in the order first named: the value's
+    /// name as written (`q1.angle`), its constraint and which value.
+    pub fn joint_outputs(&self) -> Vec<(&str, ConstraintId, JointValue)> {
+        let mut seen = std::collections::HashSet::new();
+        (self.outputs.iter())
+            .filter_map(|o| match o.of {
+                OutputOf::Joint(c, v) if seen.insert((c, v)) => Some((o.path.as_str(), c, v)),
+                _ => None,
+            })
+            .collect()
     }
 
     /// The top-level geom that moves `id` (itself, its body, or its owner's owner).

@@ -5,7 +5,7 @@
 //! values: params' defaults (recursion, division by zero, NaN), units, zero vectors and marker
 //! axes. Every problem becomes a diagnostic; resolution goes on to find the next one.
 
-use crate::constraints::{self, ArgClass, ConstraintKind, ValueKind};
+use crate::constraints::{self, ArgClass, ConstraintKind, JointValue, ValueKind};
 use crate::diagnostic::Diagnostic;
 use crate::expr::{Dim, ExprId, ExprNode, Exprs, Func, ParamId};
 use crate::model::*;
@@ -46,6 +46,7 @@ pub fn resolve(
         vector_checks: Vec::new(),
         poisoned: HashSet::new(),
         refused: HashSet::new(),
+        joint_uses: Vec::new(),
     };
     r.header(file);
     r.declare(file);
@@ -139,6 +140,18 @@ struct Resolver<'a> {
     /// Names of top-level declarations refused for their kind (a plane in 2d, a marker
     /// outside a body): uses of them are not reported again.
     refused: HashSet<String>,
+    /// References that may name a joint's value (`J.angle`) where a geom or a number is
+    /// needed: reported once every constraint is named (see [`Resolver::joint_use`]).
+    joint_uses: Vec<(syntax::Path, JointUse)>,
+}
+
+/// Where a reference that may name a joint's value stands, other than in `output`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum JointUse {
+    /// A constraint's argument.
+    Argument,
+    /// An expression.
+    Expression,
 }
 
 impl<'a> Resolver<'a> {
@@ -432,6 +445,7 @@ impl<'a> Resolver<'a> {
     // ---------------------------------------------------------------- lowering
 
     fn lower(&mut self, file: &'a syntax::File) {
+        let mut outputs: Vec<&syntax::Path> = Vec::new();
         let syntaxes: Vec<(ParamId, Option<&syntax::Expr>)> = self.param_syntax.clone();
         for (id, e) in syntaxes {
             match e.and_then(|e| self.expr(e)) {
@@ -514,15 +528,22 @@ impl<'a> Resolver<'a> {
                 } => {
                     self.constraint(stmt, label.as_ref(), name, args, *args_span, value.as_ref());
                 }
-                StatementKind::Output { refs } => {
-                    for p in refs {
-                        self.output(p);
-                    }
-                }
+                // Resolved once every constraint is named: an output may name a joint's value
+                // by its constraint's derived name.
+                StatementKind::Output { refs } => outputs.extend(refs),
                 StatementKind::Space { .. } | StatementKind::Param { .. } => {}
             }
         }
         self.derive_names();
+        let constraints: HashMap<String, ConstraintId> = (self.constraints.iter())
+            .map(|(id, c)| (c.name.clone(), id))
+            .collect();
+        for p in outputs {
+            self.output(p, &constraints);
+        }
+        for (p, used) in std::mem::take(&mut self.joint_uses) {
+            self.joint_used(&p, used, &constraints);
+        }
     }
 
     /// The geom declared by this very name token (not a duplicate of it).
@@ -604,6 +625,14 @@ impl<'a> Resolver<'a> {
     }
 
     fn expr_path(&mut self, p: &syntax::Path) -> Option<ExprId> {
+        if self.joint_use(p, JointUse::Expression) {
+            return None;
+        }
+        self.expr_path_reported(p)
+    }
+
+    /// [`Resolver::expr_path`] without the deferral of a joint's value.
+    fn expr_path_reported(&mut self, p: &syntax::Path) -> Option<ExprId> {
         let dotted = p.dotted();
         if p.parts.len() == 1 {
             match self.top.get(&dotted) {
@@ -1278,7 +1307,78 @@ impl<'a> Resolver<'a> {
             self.push(d);
             return None;
         };
+        if self.joint_use(p, JointUse::Argument) {
+            return None;
+        }
         self.geom_path(p, "geom")
+    }
+
+    /// Whether `p` may name a joint's value (`J.angle`, `J.travel`: a word that names no
+    /// geom or param, then a joint value's word) where a geom or number is needed: then its
+    /// diagnostic waits until every constraint is named, and the caller treats it as
+    /// reported. A joint's value is an output only.
+    fn joint_use(&mut self, p: &syntax::Path, used: JointUse) -> bool {
+        let [first, last] = p.parts.as_slice() else {
+            return false;
+        };
+        let maybe = JointValue::named(&last.text).is_some()
+            && !self.top.contains_key(&first.text)
+            && !self.names.contains_key(&p.dotted());
+        if maybe {
+            self.joint_uses.push((p.clone(), used));
+        }
+        maybe
+    }
+
+    /// Reports a reference [`Resolver::joint_use`] held back: a joint's value where a geom or
+    /// a number is needed, or else what the reference would have been reported as.
+    fn joint_used(
+        &mut self,
+        p: &syntax::Path,
+        used: JointUse,
+        constraints: &HashMap<String, ConstraintId>,
+    ) {
+        let [first, last] = p.parts.as_slice() else {
+            return;
+        };
+        let dotted = p.dotted();
+        if constraints.contains_key(&first.text) {
+            let (what, label) = match used {
+                JointUse::Argument => (
+                    "an output, not a constraint argument",
+                    "constraint arguments are geoms, members or sub-geoms",
+                ),
+                JointUse::Expression => (
+                    "an output, not a number",
+                    "expressions may use params, numbers and `pi`",
+                ),
+            };
+            let d = Diagnostic::error(
+                p.span,
+                format!(
+                    "`{dotted}` is the {} of joint `{}`: {what}",
+                    last.text, first.text
+                ),
+            )
+            .with_label(label)
+            .with_note(format!(
+                "a joint's value is measured on the solved model: name it in `output {dotted};`"
+            ));
+            self.push(d);
+            return;
+        }
+        if self.labels.contains_key(&first.text) {
+            // A labelled constraint dropped for an error, which is reported already.
+            return;
+        }
+        match used {
+            JointUse::Argument => {
+                self.geom_path(p, "geom");
+            }
+            JointUse::Expression => {
+                self.expr_path_reported(p);
+            }
+        }
     }
 
     fn geom_path(&mut self, p: &syntax::Path, what: &str) -> Option<GeomId> {
@@ -1406,7 +1506,7 @@ impl<'a> Resolver<'a> {
         None
     }
 
-    fn output(&mut self, p: &syntax::Path) {
+    fn output(&mut self, p: &syntax::Path, constraints: &HashMap<String, ConstraintId>) {
         let dotted = p.dotted();
         // Dimensions are outputs of the geom that holds them.
         if let Some((prefix, last)) = dotted.rsplit_once('.') {
@@ -1419,7 +1519,7 @@ impl<'a> Resolver<'a> {
                         | (GeomKind::Plane, "offset")
                 ) {
                     self.outputs.push(Output {
-                        geom: g,
+                        of: OutputOf::Geom(g),
                         path: dotted,
                         span: p.span,
                     });
@@ -1427,13 +1527,119 @@ impl<'a> Resolver<'a> {
                 }
             }
         }
+        // A joint's value, `J.angle` or `J.travel`, where no geom has the name.
+        if let [first, last] = p.parts.as_slice() {
+            if !self.names.contains_key(&dotted) {
+                if let Some(&c) = constraints.get(&first.text) {
+                    if let Some(value) = self.joint_value(p, c, last) {
+                        self.outputs.push(Output {
+                            of: OutputOf::Joint(c, value),
+                            path: dotted,
+                            span: p.span,
+                        });
+                    }
+                    return;
+                }
+                let named =
+                    self.top.contains_key(&first.text) || self.refused.contains(&first.text);
+                if !named && JointValue::named(&last.text).is_some() {
+                    if self.complete && !self.labels.contains_key(&first.text) {
+                        self.unknown_joint(p, constraints);
+                    }
+                    return;
+                }
+            }
+        }
         if let Some(g) = self.geom_path(p, "geom or member") {
             self.outputs.push(Output {
-                geom: g,
+                of: OutputOf::Geom(g),
                 path: dotted,
                 span: p.span,
             });
         }
+    }
+
+    /// The value `last` names of joint constraint `c` (`p` is `J.last`), or its diagnostic: a
+    /// word that is no joint value, or a value this constraint's joint does not have.
+    fn joint_value(
+        &mut self,
+        p: &syntax::Path,
+        c: ConstraintId,
+        last: &syntax::Ident,
+    ) -> Option<JointValue> {
+        let con = &self.constraints[c];
+        let (name, kind, span) = (con.name.clone(), con.kind, con.span);
+        let has = kind.joint_values();
+        let values = |has: &[JointValue]| {
+            let each: Vec<String> = has
+                .iter()
+                .map(|v| format!("`{name}.{}`", v.name()))
+                .collect();
+            join_or(&each.iter().map(String::as_str).collect::<Vec<_>>())
+        };
+        let declared = format!("`{name}` is this `{}` constraint", kind.name());
+        let d = match JointValue::named(&last.text) {
+            Some(value) if has.contains(&value) => return Some(value),
+            Some(value) => {
+                let d = Diagnostic::error(
+                    p.span,
+                    format!(
+                        "`{name}` is a `{}` constraint, which has no {}",
+                        kind.name(),
+                        value.name()
+                    ),
+                )
+                .with_label(format!(
+                    "`.{}` is the value of {}",
+                    value.name(),
+                    value.joints_text()
+                ))
+                .with_secondary(span, declared);
+                if has.is_empty() {
+                    d
+                } else {
+                    d.with_note(format!("its joint has {}", values(has)))
+                }
+            }
+            None => {
+                let mut d =
+                    Diagnostic::error(last.span, format!("unknown joint value `{}`", last.text))
+                        .with_label("a joint's value is `.angle` or `.travel`")
+                        .with_secondary(span, declared);
+                let words = has.iter().map(|v| v.name());
+                if let Some(s) = suggest(&last.text, words) {
+                    d = d.with_note(format!("did you mean `{name}.{s}`?"));
+                } else if has.is_empty() {
+                    d = d.with_note(format!(
+                        "a `{}` constraint is not a joint with a value to output",
+                        kind.name()
+                    ));
+                } else {
+                    d = d.with_note(format!("its joint has {}", values(has)));
+                }
+                d
+            }
+        };
+        self.push(d);
+        None
+    }
+
+    /// The diagnostic of `J.angle` or `J.travel` where `J` names no constraint and no geom.
+    fn unknown_joint(&mut self, p: &syntax::Path, constraints: &HashMap<String, ConstraintId>) {
+        let (first, last) = (&p.parts[0], &p.parts[1]);
+        let mut d = Diagnostic::error(
+            first.span,
+            format!("unknown constraint `{}`", first.text),
+        )
+        .with_label("no constraint or geom has this name")
+        .with_note(format!(
+            "`.{}` names the value of a joint by its constraint's name: its label, or the name `gcs check` prints",
+            last.text
+        ));
+        if let Some(s) = suggest(&first.text, constraints.keys().map(String::as_str)) {
+            d = d.with_note(format!("did you mean `{s}.{}`?", last.text));
+        }
+        self.push(d);
     }
 
     /// Gives every unlabelled constraint a stable name derived from its statement; repeats

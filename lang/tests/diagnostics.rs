@@ -1782,3 +1782,173 @@ fn a_binary_file_is_not_echoed() {
     "#]],
     );
 }
+
+/// A 3d model for the joint-value tests: `q1` a revolute, `prismatic_b_m_ground_rail` an
+/// unlabelled prismatic, `fix` a coincidence.
+const JOINTS: &str = "space 3d;
+fixed body ground { marker m = (0, 0, 0) z (0, 0, 1) x (1, 0, 0); marker rail = (0, 0, 0) z (1, 0, 0) x (0, 1, 0); }
+body a { marker m = (0, 0, 0) z (0, 0, 1) x (1, 0, 0); marker s = (0, 0, 0) z (1, 0, 0) x (0, 1, 0); }
+body b { marker m = (1, 0, 0) z (0, 0, 1) x (1, 0, 0); }
+q1: revolute(a.m, ground.m);
+prismatic(b.m, ground.rail);
+fix: coincident(b.m, a.s);
+";
+
+#[test]
+fn joint_value_of_a_constraint_that_is_not_that_joint() {
+    check(
+        &format!("{JOINTS}output prismatic_b_m_ground_rail.angle;\n"),
+        expect![[r#"
+            error: `prismatic_b_m_ground_rail` is a `prismatic` constraint, which has no angle
+              ┌─ model.gcs:8:8
+              │
+            6 │ prismatic(b.m, ground.rail);
+              │ ---------------------------- `prismatic_b_m_ground_rail` is this `prismatic` constraint
+            7 │ fix: coincident(b.m, a.s);
+            8 │ output prismatic_b_m_ground_rail.angle;
+              │        ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^ `.angle` is the value of a `revolute`, `cylindrical` or `offset_x` joint
+              │
+              = its joint has `prismatic_b_m_ground_rail.travel`
+
+        "#]],
+    );
+    check(
+        &format!("{JOINTS}output fix.travel;\n"),
+        expect![[r#"
+        error: `fix` is a `coincident` constraint, which has no travel
+          ┌─ model.gcs:8:8
+          │
+        7 │ fix: coincident(b.m, a.s);
+          │ -------------------------- `fix` is this `coincident` constraint
+        8 │ output fix.travel;
+          │        ^^^^^^^^^^ `.travel` is the value of a `prismatic`, `cylindrical` or `in_line` joint
+
+    "#]],
+    );
+}
+
+#[test]
+fn joint_value_of_an_unknown_constraint() {
+    check(
+        &format!("{JOINTS}output q2.angle;\n"),
+        expect![[r#"
+        error: unknown constraint `q2`
+          ┌─ model.gcs:8:8
+          │
+        8 │ output q2.angle;
+          │        ^^ no constraint or geom has this name
+          │
+          = `.angle` names the value of a joint by its constraint's name: its label, or the name `gcs check` prints
+
+    "#]],
+    );
+    check(
+        &format!("{JOINTS}output prismatic_b_m_ground.travel;\n"),
+        expect![[r#"
+            error: unknown constraint `prismatic_b_m_ground`
+              ┌─ model.gcs:8:8
+              │
+            8 │ output prismatic_b_m_ground.travel;
+              │        ^^^^^^^^^^^^^^^^^^^^ no constraint or geom has this name
+              │
+              = `.travel` names the value of a joint by its constraint's name: its label, or the name `gcs check` prints
+              = did you mean `prismatic_b_m_ground_rail.travel`?
+
+        "#]],
+    );
+}
+
+#[test]
+fn unknown_joint_value() {
+    check(
+        &format!("{JOINTS}output q1.angel;\n"),
+        expect![[r#"
+        error: unknown joint value `angel`
+          ┌─ model.gcs:8:11
+          │
+        5 │ q1: revolute(a.m, ground.m);
+          │ ---------------------------- `q1` is this `revolute` constraint
+          ·
+        8 │ output q1.angel;
+          │           ^^^^^ a joint's value is `.angle` or `.travel`
+          │
+          = did you mean `q1.angle`?
+
+    "#]],
+    );
+    check(
+        &format!("{JOINTS}output q1.turn;\n"),
+        expect![[r#"
+        error: unknown joint value `turn`
+          ┌─ model.gcs:8:11
+          │
+        5 │ q1: revolute(a.m, ground.m);
+          │ ---------------------------- `q1` is this `revolute` constraint
+          ·
+        8 │ output q1.turn;
+          │           ^^^^ a joint's value is `.angle` or `.travel`
+          │
+          = its joint has `q1.angle`
+
+    "#]],
+    );
+    check(
+        &format!("{JOINTS}output fix.x;\n"),
+        expect![[r#"
+        error: unknown joint value `x`
+          ┌─ model.gcs:8:12
+          │
+        7 │ fix: coincident(b.m, a.s);
+          │ -------------------------- `fix` is this `coincident` constraint
+        8 │ output fix.x;
+          │            ^ a joint's value is `.angle` or `.travel`
+          │
+          = a `coincident` constraint is not a joint with a value to output
+
+    "#]],
+    );
+}
+
+#[test]
+fn joint_value_is_output_only() {
+    check(
+        &format!("{JOINTS}coincident(q1.angle, ground.m);\n"),
+        expect![[r#"
+            error: `q1.angle` is the angle of joint `q1`: an output, not a constraint argument
+              ┌─ model.gcs:8:12
+              │
+            8 │ coincident(q1.angle, ground.m);
+              │            ^^^^^^^^ constraint arguments are geoms, members or sub-geoms
+              │
+              = a joint's value is measured on the solved model: name it in `output q1.angle;`
+
+        "#]],
+    );
+    check(
+        &format!(
+            "{JOINTS}param p = prismatic_b_m_ground_rail.travel;\noffset_x(a.m, ground.m) = p;\n"
+        ),
+        expect![[r#"
+            error: `prismatic_b_m_ground_rail.travel` is the travel of joint `prismatic_b_m_ground_rail`: an output, not a number
+              ┌─ model.gcs:8:11
+              │
+            8 │ param p = prismatic_b_m_ground_rail.travel;
+              │           ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^ expressions may use params, numbers and `pi`
+              │
+              = a joint's value is measured on the solved model: name it in `output prismatic_b_m_ground_rail.travel;`
+
+        "#]],
+    );
+    // A name that is no constraint is reported as before.
+    check(
+        &format!("{JOINTS}coincident(q9.angle, ground.m);\n"),
+        expect![[r#"
+            error: unknown name `q9.angle`
+              ┌─ model.gcs:8:12
+              │
+            8 │ coincident(q9.angle, ground.m);
+              │            ^^^^^^^^ no geom has this name
+
+        "#]],
+    );
+}

@@ -14,7 +14,9 @@
 //!
 //! Measurements used to build actions live here too: [`signed_angle2`], [`signed_angle3`] and
 //! [`rotation_between3`] (rotate one vector onto another, the identity when their cross product
-//! vanishes, paper 000 footnote 6).
+//! vanishes, paper 000 footnote 6); and those a solved joint's value is read by
+//! ([`joint_angle3`], [`joint_travel3`] and their planar twins), which the interpreter and
+//! generated solvers share.
 //!
 //! Nothing here allocates or panics. Non-finite input (NaN, infinity) is not detected here: it
 //! propagates into the resulting frame as NaN or infinite components, which the solver's input
@@ -799,6 +801,38 @@ pub fn aligned(dir: &Vector3<f64>, near: &Vector3<f64>) -> Vector3<f64> {
     }
 }
 
+/// The angle of a joint in space (`J.angle` of `revolute`, `cylindrical` or `offset_x`): from
+/// the first marker's x axis `x1` to the second's `x2`, counter-clockwise about the first's z
+/// axis `z1` (the value `offset_x(m1, m2)` has), in (-pi, pi]. The axes are the markers' global
+/// unit axes; zero when `z1` is zero or an x axis lies along it.
+#[inline]
+pub fn joint_angle3(z1: Vector3<f64>, x1: Vector3<f64>, x2: Vector3<f64>) -> f64 {
+    crate::num::wrap_angle(signed_angle3(&x1, &x2, &z1))
+}
+
+/// The angle of a joint in the plane (`J.angle` of `revolute` or `offset_x`): from the first
+/// marker's x axis `x1` to the second's `x2`, counter-clockwise, in (-pi, pi].
+#[inline]
+pub fn joint_angle2(x1: Vector2<f64>, x2: Vector2<f64>) -> f64 {
+    crate::num::wrap_angle(signed_angle2(&x1, &x2))
+}
+
+/// The travel of a joint in space (`J.travel` of `prismatic`, `cylindrical` or `in_line`): the
+/// signed distance from the second marker's point `p2` to the first's `p1` along the second
+/// marker's unit z axis `z2`, the axis the joint slides along.
+#[inline]
+pub fn joint_travel3(p1: Point3<f64>, p2: Point3<f64>, z2: Vector3<f64>) -> f64 {
+    (p1 - p2).dot(&z2)
+}
+
+/// The travel of a joint in the plane (`J.travel` of `prismatic` or `in_line`): the signed
+/// distance from the second marker's point `p2` to the first's `p1` along the second marker's
+/// unit x axis `x2`, the axis the joint slides along in 2d.
+#[inline]
+pub fn joint_travel2(p1: Point2<f64>, p2: Point2<f64>, x2: Vector2<f64>) -> f64 {
+    (p1 - p2).dot(&x2)
+}
+
 /// The advance of a screw of `pitch` (per turn) whose turn is `turn` radians, the one nearest
 /// `now`: a turn and a whole number of turns more give the same screw, so the advance nearest
 /// where the screw is keeps it from jumping a pitch.
@@ -817,6 +851,32 @@ pub fn helix_turn(advance: f64, pitch: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A joint's angle is counter-clockwise about the first marker's z axis, in (-pi, pi]
+    /// (a half turn is pi, never -pi); its travel is signed along the second marker's axis.
+    #[test]
+    fn joint_values_keep_their_sense_and_range() {
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let (x, y, z) = (Vector3::x(), Vector3::y(), Vector3::z());
+        assert_eq!(joint_angle3(z, x, y), FRAC_PI_2);
+        assert_eq!(joint_angle3(-z, x, y), -FRAC_PI_2);
+        // The component of an x axis along z1 does not count.
+        assert!((joint_angle3(z, x, (y + z * 5.0).normalize()) - FRAC_PI_2).abs() < 1e-15);
+        assert_eq!(joint_angle3(z, x, -x), PI);
+        // A half turn whose sine is -0 is pi, not -pi.
+        let (u, v) = (Vector2::new(1.0, -0.0), Vector2::new(-1.0, -0.0));
+        assert_eq!(signed_angle2(&u, &v), -PI);
+        assert_eq!(joint_angle2(u, v), PI);
+        assert_eq!(
+            joint_angle2(Vector2::x(), Vector2::new(0.0, -1.0)),
+            -FRAC_PI_2
+        );
+        let (p1, p2) = (Point3::new(1.0, 2.0, 3.0), Point3::new(1.0, 7.0, 0.0));
+        assert_eq!(joint_travel3(p1, p2, y), -5.0);
+        assert_eq!(joint_travel3(p1, p2, -y), 5.0);
+        let (q1, q2) = (Point2::new(4.0, 1.0), Point2::new(1.0, 1.0));
+        assert_eq!(joint_travel2(q1, q2, Vector2::x()), 3.0);
+    }
 
     /// A turn far below the parallel tolerance is still made: each of a chain's rockers that
     /// barely moves must still take its joint exactly onto its target.

@@ -1,7 +1,9 @@
 //! The public API of the generated module: `Params`, `Branches` and `Defaults` (each `Default`
 //! from the file, with setters by the model's names), and `Solution` with accessors named after
-//! the model and every value by dotted name (`points()`, `vectors()`, `scalars()`). Everything
-//! a caller touches is here; how `solve` computes it is not.
+//! the model and every value by dotted name (`points()`, `vectors()`, `scalars()`; the joint
+//! values the outputs name, `q1.angle`, are scalars measured on the markers' frames by the
+//! runtime's `frame::joint_*`). Everything a caller touches is here; how `solve` computes it
+//! is not.
 //!
 //! One writer serves the three input structs. The `Solution`'s fields are one [`Layout`],
 //! each field saying what it holds (a frame, a dimension, local coordinates, or a line's
@@ -14,6 +16,7 @@ use super::names::{Clash, Namer};
 use super::scopes;
 use super::sketch::dimension_name;
 use super::writer::{float, lit, Writer};
+use gcs_lang::constraints::JointValue;
 use gcs_lang::model::{GeomId, GeomKind, Owner, Part, Sketch};
 use rustc_hash::FxHashMap as HashMap;
 
@@ -377,6 +380,14 @@ pub(super) enum Reads {
     MemberDir(GeomId),
     /// A line's base point: the foot of the perpendicular from its first sketch point.
     BasePoint,
+    /// A joint's value (`J.angle`, `J.travel`): the runtime's `frame::{function}` of what is
+    /// read of its markers, each value read of its own top-level geom (the angle in space of
+    /// the first marker's z and x axes and the second's x axis; the travel of the two points and
+    /// the second marker's sliding axis).
+    Joint {
+        function: &'static str,
+        args: Vec<(GeomId, Reads)>,
+    },
 }
 
 impl Accessor {
@@ -397,40 +408,57 @@ impl Accessor {
         cx: &Context<'_>,
         read: &mut dyn FnMut(Holds) -> Option<String>,
     ) -> String {
-        let g = self.geom;
-        if let Reads::Constant(value) = &self.reads {
-            return value.code();
+        value_code(cx, self.geom, &self.reads, read)
+    }
+}
+
+/// The code of what `reads` reads of top-level geom `g`, where `read` gives the code of what
+/// the solution holds.
+fn value_code(
+    cx: &Context<'_>,
+    g: GeomId,
+    reads: &Reads,
+    read: &mut dyn FnMut(Holds) -> Option<String>,
+) -> String {
+    match reads {
+        Reads::Constant(value) => return value.code(),
+        Reads::Joint { function, args } => {
+            let args: Vec<String> = (args.iter())
+                .map(|(g, reads)| value_code(cx, *g, reads, read))
+                .collect();
+            return format!("gcs_runtime::frame::{function}({})", args.join(", "));
         }
-        let frame = read(Holds::Frame(g)).unwrap_or_default();
-        let origin = format!("{frame}.origin");
-        let x_axis = format!("{frame}.x_axis()");
-        match &self.reads {
-            Reads::Constant(_) => unreachable!("written above"),
-            Reads::Frame => frame,
-            Reads::Origin => origin,
-            Reads::XAxis => x_axis,
-            Reads::ZAxis => format!("{frame}.z_axis()"),
-            Reads::PlaneOffset => format!("{frame}.z_axis().dot(&{frame}.origin.coords)"),
-            Reads::Dim => read(Holds::Dim(g)).unwrap_or_default(),
-            Reads::End => {
-                let dim = read(Holds::Dim(g)).unwrap_or_default();
-                format!("{origin} + {x_axis} * {dim}")
-            }
-            Reads::MemberPoint(f) => match read(Holds::Local(*f)) {
-                Some(local) => format!("{frame}.point_to_global(&{local})"),
-                None => cx.space.member_point(cx, &frame, &origin, *f),
-            },
-            Reads::MemberDir(f) => match read(Holds::Local(*f)) {
-                Some(local) => format!("{frame}.vector_to_global(&{local})"),
-                None => cx.space.member_dir(cx, &frame, *f),
-            },
-            Reads::BasePoint => {
-                // The foot of the perpendicular from the first sketch point: a literal, or the
-                // value that holds it when params set it.
-                let from = line_sketch(cx, g).unwrap_or(&[]);
-                let s = read(Holds::LineSketch(g)).unwrap_or_else(|| cx.point_code(from));
-                format!("{origin} + {x_axis} * ({s} - {origin}).dot(&{x_axis})")
-            }
+        _ => {}
+    }
+    let frame = read(Holds::Frame(g)).unwrap_or_default();
+    let origin = format!("{frame}.origin");
+    let x_axis = format!("{frame}.x_axis()");
+    match reads {
+        Reads::Constant(_) | Reads::Joint { .. } => unreachable!("written above"),
+        Reads::Frame => frame,
+        Reads::Origin => origin,
+        Reads::XAxis => x_axis,
+        Reads::ZAxis => format!("{frame}.z_axis()"),
+        Reads::PlaneOffset => format!("{frame}.z_axis().dot(&{frame}.origin.coords)"),
+        Reads::Dim => read(Holds::Dim(g)).unwrap_or_default(),
+        Reads::End => {
+            let dim = read(Holds::Dim(g)).unwrap_or_default();
+            format!("{origin} + {x_axis} * {dim}")
+        }
+        Reads::MemberPoint(f) => match read(Holds::Local(*f)) {
+            Some(local) => format!("{frame}.point_to_global(&{local})"),
+            None => cx.space.member_point(cx, &frame, &origin, *f),
+        },
+        Reads::MemberDir(f) => match read(Holds::Local(*f)) {
+            Some(local) => format!("{frame}.vector_to_global(&{local})"),
+            None => cx.space.member_dir(cx, &frame, *f),
+        },
+        Reads::BasePoint => {
+            // The foot of the perpendicular from the first sketch point: a literal, or the
+            // value that holds it when params set it.
+            let from = line_sketch(cx, g).unwrap_or(&[]);
+            let s = read(Holds::LineSketch(g)).unwrap_or_else(|| cx.point_code(from));
+            format!("{origin} + {x_axis} * ({s} - {origin}).dot(&{x_axis})")
         }
     }
 }
@@ -545,7 +573,106 @@ pub(super) fn accessors(
             out.push((a, identifier));
         }
     }
+    for a in joint_accessors(cx, layout) {
+        let identifier = names.fresh(&a.name);
+        out.push((a, identifier));
+    }
     (out, names.clashes().to_vec())
+}
+
+/// The accessors of the joint values the outputs name (`q1.angle`, `slide.travel`) whose two
+/// markers are solved, in the order first named: scalars, measured as the interpreter's
+/// `Solution` measures them, by the same runtime function.
+fn joint_accessors(cx: &Context<'_>, layout: &Layout) -> Vec<Accessor> {
+    let m = cx.model;
+    let d3 = m.space == gcs_lang::model::Space::D3;
+    let mut items = Vec::new();
+    for (name, c, value) in m.joint_outputs() {
+        let con = &m.constraints[c];
+        let (Some(&m1), Some(&m2)) = (con.args.first(), con.args.get(1)) else {
+            continue;
+        };
+        if !(con.args.iter()).all(|&a| cx.scope.contains(&m.top_level_of(a))) {
+            continue;
+        }
+        // What is read of a marker (or of `in_line`'s point): its point, or an axis.
+        let point = |f: GeomId| feature_read(cx, layout, f, false);
+        let axis =
+            |f: GeomId, part: Part| m.part(f, part).map(|a| feature_read(cx, layout, a, true));
+        let (n1, n2) = (&m.geoms[m1].name, &m.geoms[m2].name);
+        let (function, args, doc) = match value {
+            JointValue::Angle => {
+                let (function, axes) = if d3 {
+                    let axes = [
+                        axis(m1, Part::AxisZ),
+                        axis(m1, Part::AxisX),
+                        axis(m2, Part::AxisX),
+                    ];
+                    ("joint_angle3", axes.into_iter().collect::<Option<Vec<_>>>())
+                } else {
+                    let axes = [axis(m1, Part::AxisX), axis(m2, Part::AxisX)];
+                    ("joint_angle2", axes.into_iter().collect::<Option<Vec<_>>>())
+                };
+                let about = if d3 {
+                    format!("counter-clockwise about `{n1}`'s z axis")
+                } else {
+                    "counter-clockwise".to_string()
+                };
+                let doc = format!(
+                    "The angle of joint `{}` (`{}`, line {}): from `{n1}`'s x axis to `{n2}`'s, {about}, in (-pi, pi].",
+                    con.name,
+                    con.text,
+                    m.line(con.span)
+                );
+                (function, axes, doc)
+            }
+            JointValue::Travel => {
+                let (function, slide, along) = if d3 {
+                    ("joint_travel3", axis(m2, Part::AxisZ), "z")
+                } else {
+                    ("joint_travel2", axis(m2, Part::AxisX), "x")
+                };
+                let args = slide.map(|slide| vec![point(m1), point(m2), slide]);
+                let doc = format!(
+                    "The travel of joint `{}` (`{}`, line {}): the signed distance from `{n2}` to `{n1}` along `{n2}`'s {along} axis.",
+                    con.name,
+                    con.text,
+                    m.line(con.span)
+                );
+                (function, args, doc)
+            }
+        };
+        let Some(args) = args else {
+            continue;
+        };
+        let reads = Reads::Joint { function, args };
+        items.push(Accessor::new(
+            name,
+            doc,
+            Ty::Scalar,
+            m.top_level_of(m1),
+            reads,
+        ));
+    }
+    items
+}
+
+/// What an accessor reads of its top-level geom for feature `f`, as [`geom_accessors`] reads
+/// it: a marker's axis if `dir`; else a point: a constant, the top-level geom's origin (its own,
+/// a segment's start, a circle's centre), a segment's end, or a member at its local coordinates.
+fn feature_read(cx: &Context<'_>, layout: &Layout, f: GeomId, dir: bool) -> (GeomId, Reads) {
+    let g = cx.model.top_level_of(f);
+    let reads = match (dir, cx.model.geoms[f].owner) {
+        (true, _) => Reads::MemberDir(f),
+        (false, Owner::TopLevel) => match layout.constants.get(&g) {
+            Some(value) => Reads::Constant(value.clone()),
+            None => Reads::Origin,
+        },
+        (false, Owner::Member(_)) => Reads::MemberPoint(f),
+        (false, Owner::Part(_, Part::End)) => Reads::End,
+        (false, Owner::Part(..)) => Reads::Origin,
+    };
+    (g, reads)
 }
 
 /// The accessors of reported top-level geom `g` and of its members and parts, in model order:
@@ -650,13 +777,16 @@ fn dimension_accessor(name: &str, kind: GeomKind) -> Option<(String, &'static st
 }
 
 /// Every text an accessor could be named from, whatever the pruning keeps: each geom's name
-/// (members and parts have their own, `B.m`, `S.start`, `k.z`) and each dimension's accessor.
-/// The API's own names (`points`, ...) are in [`RESERVED_ACCESSORS`].
+/// (members and parts have their own, `B.m`, `S.start`, `k.z`), each dimension's accessor and
+/// each joint value the outputs name (`q1.angle`). The API's own names (`points`, ...) are in
+/// [`RESERVED_ACCESSORS`].
 pub(super) fn accessor_texts(model: &gcs_lang::Model) -> impl Iterator<Item = String> + '_ {
-    model.geoms.iter().flat_map(|(_, geom)| {
+    let geoms = model.geoms.iter().flat_map(|(_, geom)| {
         let dimension = dimension_accessor(&geom.name, geom.kind).map(|(name, _)| name);
         std::iter::once(geom.name.clone()).chain(dimension)
-    })
+    });
+    let joints = (model.joint_outputs().into_iter()).map(|(name, ..)| name.to_string());
+    geoms.chain(joints)
 }
 
 /// The accessors of `Solution` that the API itself has.

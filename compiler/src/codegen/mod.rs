@@ -188,8 +188,11 @@ fn clash_diagnostic(model: &Model, public: context::Public, c: &Clash) -> gcs_la
             Public::Branch => (model.constraints.iter())
                 .find(|(_, k)| k.name == name)
                 .map(|(_, k)| k.span),
-            // `G.radius` and `S.length` name their geom's dimension.
-            Public::Accessor => geom(name).or_else(|| geom(name.rsplit_once('.')?.0)),
+            // `G.radius` and `S.length` name their geom's dimension; `q1.angle` is the output
+            // that names a joint's value.
+            Public::Accessor => geom(name)
+                .or_else(|| geom(name.rsplit_once('.')?.0))
+                .or_else(|| Some(model.outputs.iter().find(|o| o.path == name)?.span)),
             Public::Default => None,
         };
         found.unwrap_or_default()

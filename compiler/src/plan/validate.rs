@@ -8,7 +8,7 @@
 //! constraint is satisfied twice. [`Plan::unsatisfied`] lists the constraints no step
 //! satisfies or checks, which the pipeline compares with what the analysis reports unsolved.
 
-use super::{Op, Plan, PlanarOp, Reg, Residual, RotationAxis, SpatialOp, Ty};
+use super::{BranchId, Op, Plan, PlanarOp, Reg, Residual, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::{ConstraintId, Space};
 use gcs_lang::Model;
 use std::collections::HashMap;
@@ -254,6 +254,33 @@ impl Op {
     /// The registers the operation reads.
     pub fn reads(&self) -> Vec<Reg> {
         self.operands().into_iter().map(|(r, _)| r).collect()
+    }
+
+    /// The branch variable whose root the operation takes, if it takes one: every op that
+    /// chooses among roots, said once (validation counts each branch's uses, pruning
+    /// renumbers them).
+    pub fn branch_mut(&mut self) -> Option<&mut BranchId> {
+        match self {
+            Op::Intersect { branch, .. }
+            | Op::Planar(PlanarOp::PassingDir { branch, .. })
+            | Op::Spatial(
+                SpatialOp::AngleTurn { branch, .. } | SpatialOp::PlaneAxisTurn { branch, .. },
+            ) => Some(branch),
+            _ => None,
+        }
+    }
+
+    /// The branch variable whose root the operation takes, if it takes one
+    /// ([`Op::branch_mut`]).
+    pub fn branch(&self) -> Option<BranchId> {
+        match self {
+            Op::Intersect { branch, .. }
+            | Op::Planar(PlanarOp::PassingDir { branch, .. })
+            | Op::Spatial(
+                SpatialOp::AngleTurn { branch, .. } | SpatialOp::PlaneAxisTurn { branch, .. },
+            ) => Some(*branch),
+            _ => None,
+        }
     }
 
     /// The type of the value it defines, if it defines one.
@@ -713,15 +740,7 @@ impl Plan {
             }
             _ => {}
         }
-        let branch = match op {
-            Op::Intersect { branch, .. }
-            | Op::Planar(PlanarOp::PassingDir { branch, .. })
-            | Op::Spatial(
-                SpatialOp::AngleTurn { branch, .. } | SpatialOp::PlaneAxisTurn { branch, .. },
-            ) => Some(*branch),
-            _ => None,
-        };
-        if let Some(branch) = branch {
+        if let Some(branch) = op.branch() {
             match branch_uses.get_mut(branch.0 as usize) {
                 Some(n) => *n += 1,
                 None => errors.push(format!("step {i} uses an undeclared branch")),

@@ -872,13 +872,22 @@ fn accessor(cx: &Context<'_>, layout: &Layout, a: &api::Accessor, named: bool) -
         if let Some((_, name)) = loads.iter().find(|(h, _)| *h == holds) {
             return Some(name.clone());
         }
-        let name = match (named, holds) {
+        let mut name: String = match (named, holds) {
             (true, Holds::Frame(g)) => super::names::Namer::snake(&cx.model.geoms[g].name),
             (_, Holds::Frame(_)) => "frame".into(),
             (_, Holds::Dim(_)) => "dim".into(),
             (_, Holds::Local(_)) => "local".into(),
             (_, Holds::LineSketch(_)) => "sketch".into(),
         };
+        // A joint's value reads two geoms' frames and locals: the second of a kind is `_2`.
+        let taken = |n: &str| loads.iter().any(|(_, l)| l == n);
+        if taken(&name) {
+            let base = name.clone();
+            name = (2..)
+                .map(|k| format!("{base}_{k}"))
+                .find(|n| !taken(n))
+                .unwrap_or(base);
+        }
         let _ = slot;
         loads.push((holds, name.clone()));
         Some(name)
