@@ -233,9 +233,8 @@ fn solve_all_of(
 /// that none is missed between two samples).
 fn closes_signed(plan: &Plan) -> bool {
     use crate::plan::{Op, Ty, MAGNITUDE};
-    let def = |r: crate::plan::Reg| {
-        (plan.steps.iter()).find(|s| s.out.is_some_and(|(o, _)| o == r))
-    };
+    let def =
+        |r: crate::plan::Reg| (plan.steps.iter()).find(|s| s.out.is_some_and(|(o, _)| o == r));
     let ty = |r| def(r).and_then(|s| s.out).map(|(_, t)| t);
     (plan.steps.iter()).all(|s| {
         let Op::Close { residual, .. } = s.op else {

@@ -468,7 +468,10 @@ fn the_puma_arm_gives_no_wrong_answer_near_its_singularities() {
 }
 
 fn ur5() -> Arm {
-    let (w1, w2) = ([0.81725, 0.10915, 0.089159], [0.81725, 0.10915, -0.005491]);
+    // The sketch's elbow bent (shoulder -0.5, elbow 1.0, first wrist joint -0.5 rad from the
+    // arm stretched along x).
+    let w1 = [0.717204348704907, 0.10915, 0.104860186389288];
+    let w2 = [0.717204348704907, 0.10915, 0.010210186389288];
     Arm {
         file: "ur5.gcs",
         joints: vec![
@@ -481,7 +484,7 @@ fn ur5() -> Arm {
                 axis: [0.0, 1.0, 0.0],
             },
             Joint {
-                point: [0.425, 0.0, 0.089159],
+                point: [0.372972588803408, 0.0, 0.292914853906786],
                 axis: [0.0, 1.0, 0.0],
             },
             Joint {
@@ -506,7 +509,7 @@ fn ur5() -> Arm {
             "wrist_3",
         ],
         tool: (
-            [0.89955, 0.10915, -0.005491],
+            [0.799504348704907, 0.10915, 0.010210186389288],
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
         ),

@@ -41,6 +41,13 @@ fn fixed_precision(text: &str) -> String {
         number.clear();
     };
     for c in text.chars() {
+        // Digits and dots inside a name (`wrist_1.z`) are the name's, not a number.
+        let in_name = number.is_empty()
+            && (out.chars().last()).is_some_and(|p| p.is_alphanumeric() || p == '_');
+        if in_name && (c.is_ascii_digit() || c == '.') {
+            out.push(c);
+            continue;
+        }
         let continues = c.is_ascii_digit()
             || c == '.'
             || ((c == 'e' || c == '-') && !number.is_empty())

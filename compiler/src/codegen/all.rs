@@ -209,7 +209,9 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
     w.line("");
     w.line("/// Whether two solutions are one assembly: every point and vector within a relative");
     w.line("/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). Each list is");
-    w.line("/// built once, and the vectors only when the points agree (two assemblies mostly differ");
+    w.line(
+        "/// built once, and the vectors only when the points agree (two assemblies mostly differ",
+    );
     w.line("/// in their first points).");
     w.line("#[allow(dead_code)]");
     w.open("fn same_assembly(a: &Solution, b: &Solution) -> bool {");
