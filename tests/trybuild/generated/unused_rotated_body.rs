@@ -280,24 +280,20 @@ pub const MAX_ASSEMBLIES: usize = 2;
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
 /// Whether two solutions are one assembly: every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size).
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). Each list is
+/// built once, and the vectors only when the points agree (two assemblies mostly differ
+/// in their first points).
 #[allow(dead_code)]
 fn same_assembly(a: &Solution, b: &Solution) -> bool {
-    let scale = 1.0
-        + a.points()
+    let (pa, pb) = (a.points(), b.points());
+    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+    pa.iter()
+        .zip(&pb)
+        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+        && a.vectors()
             .iter()
-            .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-    let same_points = a
-        .points()
-        .iter()
-        .zip(&b.points())
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale);
-    let same_vectors = a
-        .vectors()
-        .iter()
-        .zip(&b.vectors())
-        .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL);
-    same_points && same_vectors
+            .zip(&b.vectors())
+            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
 }
 
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).

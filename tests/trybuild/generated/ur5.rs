@@ -70,9 +70,9 @@ impl Default for Params {
     /// The values the model gives.
     fn default() -> Self {
         Params {
-            px: 0.89955,
+            px: 0.799504348704907,
             py: 0.10915,
-            pz: -0.005491,
+            pz: 0.010210186389288,
             zx: 1.0,
             zy: 0.0,
             zz: 0.0,
@@ -270,34 +270,34 @@ impl Solution {
     /// Axis `upper_arm.shoulder.z`.
     #[inline]
     pub fn upper_arm_shoulder_z(&self) -> Vector3<f64> {
-        self.upper_arm
-            .vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16))
+        self.upper_arm.vector_to_global(&Vector3::y())
     }
 
     /// Axis `upper_arm.shoulder.x`.
     #[inline]
     pub fn upper_arm_shoulder_x(&self) -> Vector3<f64> {
-        self.upper_arm.vector_to_global(&Vector3::x())
+        self.upper_arm
+            .vector_to_global(&Vector3::new(0.8775825618903728, 0.0, 0.4794255386042029))
     }
 
     /// Point `upper_arm.elbow`.
     #[inline]
     pub fn upper_arm_elbow(&self) -> Point3<f64> {
         self.upper_arm
-            .point_to_global(&Point3::new(0.425, 0.0, 0.089159))
+            .point_to_global(&Point3::new(0.372972588803408, 0.0, 0.292914853906786))
     }
 
     /// Axis `upper_arm.elbow.z`.
     #[inline]
     pub fn upper_arm_elbow_z(&self) -> Vector3<f64> {
-        self.upper_arm
-            .vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16))
+        self.upper_arm.vector_to_global(&Vector3::y())
     }
 
     /// Axis `upper_arm.elbow.x`.
     #[inline]
     pub fn upper_arm_elbow_x(&self) -> Vector3<f64> {
-        self.upper_arm.vector_to_global(&Vector3::x())
+        self.upper_arm
+            .vector_to_global(&Vector3::new(0.8775825618903728, 0.0, 0.4794255386042029))
     }
 
     /// The frame of body `forearm`: its origin and its axes.
@@ -310,40 +310,40 @@ impl Solution {
     #[inline]
     pub fn forearm_elbow(&self) -> Point3<f64> {
         self.forearm
-            .point_to_global(&Point3::new(0.425, 0.0, 0.089159))
+            .point_to_global(&Point3::new(0.372972588803408, 0.0, 0.292914853906786))
     }
 
     /// Axis `forearm.elbow.z`.
     #[inline]
     pub fn forearm_elbow_z(&self) -> Vector3<f64> {
-        self.forearm
-            .vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16))
+        self.forearm.vector_to_global(&Vector3::y())
     }
 
     /// Axis `forearm.elbow.x`.
     #[inline]
     pub fn forearm_elbow_x(&self) -> Vector3<f64> {
-        self.forearm.vector_to_global(&Vector3::x())
+        self.forearm
+            .vector_to_global(&Vector3::new(0.8775825618903728, 0.0, -0.4794255386042029))
     }
 
     /// Point `forearm.wrist1`.
     #[inline]
     pub fn forearm_wrist1(&self) -> Point3<f64> {
         self.forearm
-            .point_to_global(&Point3::new(0.81725, 0.10915, 0.089159))
+            .point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.104860186389288))
     }
 
     /// Axis `forearm.wrist1.z`.
     #[inline]
     pub fn forearm_wrist1_z(&self) -> Vector3<f64> {
-        self.forearm
-            .vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16))
+        self.forearm.vector_to_global(&Vector3::y())
     }
 
     /// Axis `forearm.wrist1.x`.
     #[inline]
     pub fn forearm_wrist1_x(&self) -> Vector3<f64> {
-        self.forearm.vector_to_global(&Vector3::x())
+        self.forearm
+            .vector_to_global(&Vector3::new(0.8775825618903728, 0.0, -0.4794255386042029))
     }
 
     /// The frame of body `wrist_1`: its origin and its axes.
@@ -356,7 +356,7 @@ impl Solution {
     #[inline]
     pub fn wrist_1_wrist1(&self) -> Point3<f64> {
         self.wrist_1
-            .point_to_global(&Point3::new(0.81725, 0.10915, 0.089159))
+            .point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.104860186389288))
     }
 
     /// Axis `wrist_1.wrist1.z`.
@@ -376,7 +376,7 @@ impl Solution {
     #[inline]
     pub fn wrist_1_wrist2(&self) -> Point3<f64> {
         self.wrist_1
-            .point_to_global(&Point3::new(0.81725, 0.10915, -0.005491))
+            .point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.010210186389288))
     }
 
     /// Axis `wrist_1.wrist2.z`.
@@ -401,7 +401,7 @@ impl Solution {
     #[inline]
     pub fn wrist_2_wrist2(&self) -> Point3<f64> {
         self.wrist_2
-            .point_to_global(&Point3::new(0.81725, 0.10915, -0.005491))
+            .point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.010210186389288))
     }
 
     /// Axis `wrist_2.wrist2.z`.
@@ -420,7 +420,7 @@ impl Solution {
     #[inline]
     pub fn wrist_2_wrist3(&self) -> Point3<f64> {
         self.wrist_2
-            .point_to_global(&Point3::new(0.81725, 0.10915, -0.005491))
+            .point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.010210186389288))
     }
 
     /// Axis `wrist_2.wrist3.z`.
@@ -445,7 +445,7 @@ impl Solution {
     #[inline]
     pub fn wrist_3_wrist3(&self) -> Point3<f64> {
         self.wrist_3
-            .point_to_global(&Point3::new(0.81725, 0.10915, -0.005491))
+            .point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.010210186389288))
     }
 
     /// Axis `wrist_3.wrist3.z`.
@@ -464,7 +464,7 @@ impl Solution {
     #[inline]
     pub fn wrist_3_tool(&self) -> Point3<f64> {
         self.wrist_3
-            .point_to_global(&Point3::new(0.89955, 0.10915, -0.005491))
+            .point_to_global(&Point3::new(0.799504348704907, 0.10915, 0.010210186389288))
     }
 
     /// Axis `wrist_3.tool.z`.
@@ -604,7 +604,7 @@ pub fn solve(
 
     // revolute(wrist_3.wrist3, wrist_2.wrist3) (ur5.gcs:51)
     let ground_target = ground.point_to_global(&ground_target_local);
-    let shift = ground_target - Point3::new(0.89955, 0.10915, -0.005491);
+    let shift = ground_target - Point3::new(0.799504348704907, 0.10915, 0.010210186389288);
     wrist_3.translate(&shift);
     let ground_target_z = ground.vector_to_global(&ground_target_z_local);
     let wrist_3_tool_z = wrist_3.vector_to_global(&Vector3::x());
@@ -614,11 +614,13 @@ pub fn solve(
         &frame::perpendicular(&wrist_3_tool_z),
     );
     wrist_3.rotate_about_by(&ground_target, &turn);
-    let wrist_3_wrist3 = wrist_3.point_to_global(&Point3::new(0.81725, 0.10915, -0.005491));
-    let shift_2 = wrist_3_wrist3 - Point3::new(0.81725, 0.10915, -0.005491);
+    let wrist_3_wrist3 =
+        wrist_3.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.010210186389288));
+    let shift_2 = wrist_3_wrist3 - Point3::new(0.717204348704907, 0.10915, 0.010210186389288);
     wrist_2.translate(&shift_2);
-    let wrist_2_wrist2 = wrist_2.point_to_global(&Point3::new(0.81725, 0.10915, -0.005491));
-    let shift_3 = wrist_2_wrist2 - Point3::new(0.81725, 0.10915, -0.005491);
+    let wrist_2_wrist2 =
+        wrist_2.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.010210186389288));
+    let shift_3 = wrist_2_wrist2 - Point3::new(0.717204348704907, 0.10915, 0.010210186389288);
     wrist_1.translate(&shift_3);
     let wrist_3_wrist3_z = wrist_3.vector_to_global(&Vector3::x());
     let wrist_2_wrist3_z = wrist_2.vector_to_global(&Vector3::x());
@@ -641,13 +643,16 @@ pub fn solve(
     wrist_3.rotate_about_by(&ground_target, &turn_3);
 
     // revolute(upper_arm.shoulder, trunk.shoulder) (ur5.gcs:47)
-    let wrist_1_wrist1 = wrist_1.point_to_global(&Point3::new(0.81725, 0.10915, 0.089159));
+    let wrist_1_wrist1 =
+        wrist_1.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.104860186389288));
     let wrist_1_wrist1_z = wrist_1.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let length = (wrist_2_wrist2 - wrist_1_wrist1).dot(&wrist_1_wrist1_z);
-    let length_2 = (Point3::new(0.81725, 0.10915, 0.089159) - Point3::new(0.425, 0.0, 0.089159))
-        .dot(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
-    let length_3 = (Point3::new(0.425, 0.0, 0.089159) - Point3::new(0.0, 0.0, 0.089159))
-        .dot(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+    let length_2 = (Point3::new(0.717204348704907, 0.10915, 0.104860186389288)
+        - Point3::new(0.372972588803408, 0.0, 0.292914853906786))
+    .dot(&Vector3::y());
+    let length_3 = (Point3::new(0.372972588803408, 0.0, 0.292914853906786)
+        - Point3::new(0.0, 0.0, 0.089159))
+    .dot(&Vector3::y());
     let sum = length + length_2 + length_3;
     if !gcs_runtime::num::is_finite(sum) {
         return Err(SolveError::new(
@@ -719,24 +724,23 @@ pub fn solve(
     trunk.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
     let trunk_shoulder_z = trunk.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let turn_5 = frame::rotation_between3(
-        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+        &Vector3::y(),
         &trunk_shoulder_z,
-        &frame::perpendicular(&Vector3::new(0.0, 1.0, 2.220446049250313e-16)),
+        &frame::perpendicular(&Vector3::y()),
     );
     upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.089159), &turn_5);
 
     // revolute(forearm.elbow, upper_arm.elbow) (ur5.gcs:48)
-    let upper_arm_elbow_z =
-        upper_arm.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+    let upper_arm_elbow_z = upper_arm.vector_to_global(&Vector3::y());
     let turn_6 = frame::rotation_between3(
-        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+        &Vector3::y(),
         &upper_arm_elbow_z,
-        &frame::perpendicular(&Vector3::new(0.0, 1.0, 2.220446049250313e-16)),
+        &frame::perpendicular(&Vector3::y()),
     );
     forearm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_6);
 
     // revolute(wrist_1.wrist1, forearm.wrist1) (ur5.gcs:49)
-    let forearm_wrist1_z = forearm.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+    let forearm_wrist1_z = forearm.vector_to_global(&Vector3::y());
     let turn_7 = frame::rotation_between3(
         &wrist_1_wrist1_z,
         &forearm_wrist1_z,
@@ -784,11 +788,14 @@ pub fn solve(
         frame::signed_angle3(&wrist_1_wrist2_z, &wrist_2_wrist2_z_2, &forearm_wrist1_z),
     );
     wrist_1.rotate_about_by(&wrist_2_wrist2, &turn_9);
-    let wrist_1_wrist1_2 = wrist_1.point_to_global(&Point3::new(0.81725, 0.10915, 0.089159));
-    let forearm_wrist1 = forearm.point_to_global(&Point3::new(0.81725, 0.10915, 0.089159));
+    let wrist_1_wrist1_2 =
+        wrist_1.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.104860186389288));
+    let forearm_wrist1 =
+        forearm.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.104860186389288));
     let shift_4 = wrist_1_wrist1_2 - forearm_wrist1;
     forearm.translate(&shift_4);
-    let forearm_elbow = forearm.point_to_global(&Point3::new(0.425, 0.0, 0.089159));
+    let forearm_elbow =
+        forearm.point_to_global(&Point3::new(0.372972588803408, 0.0, 0.292914853906786));
     let orbit = Circle3::orbit(
         &wrist_1_wrist1_2,
         &frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
@@ -801,7 +808,8 @@ pub fn solve(
         })?,
         &forearm_elbow,
     );
-    let upper_arm_elbow = upper_arm.point_to_global(&Point3::new(0.425, 0.0, 0.089159));
+    let upper_arm_elbow =
+        upper_arm.point_to_global(&Point3::new(0.372972588803408, 0.0, 0.292914853906786));
     let orbit_2 = Circle3::orbit(
         &Point3::new(0.0, 0.0, 0.089159),
         &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
@@ -878,24 +886,20 @@ pub const MAX_ASSEMBLIES: usize = 8;
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
 /// Whether two solutions are one assembly: every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size).
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). Each list is
+/// built once, and the vectors only when the points agree (two assemblies mostly differ
+/// in their first points).
 #[allow(dead_code)]
 fn same_assembly(a: &Solution, b: &Solution) -> bool {
-    let scale = 1.0
-        + a.points()
+    let (pa, pb) = (a.points(), b.points());
+    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+    pa.iter()
+        .zip(&pb)
+        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+        && a.vectors()
             .iter()
-            .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-    let same_points = a
-        .points()
-        .iter()
-        .zip(&b.points())
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale);
-    let same_vectors = a
-        .vectors()
-        .iter()
-        .zip(&b.vectors())
-        .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL);
-    same_points && same_vectors
+            .zip(&b.vectors())
+            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
 }
 
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
