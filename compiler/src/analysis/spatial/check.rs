@@ -215,7 +215,13 @@ impl Builder<'_, Spatial> {
         match angle {
             AngleValue::Expr(e) => self.expr(e),
             AngleValue::Const(c) => {
-                let words = crate::plan::fmt_f64(c);
+                // A whole number of degrees (a right angle, a body's own 90) reads as one.
+                let deg = c.to_degrees();
+                let words = if (deg - deg.round()).abs() <= 1e-9 {
+                    format!("{} degrees", deg.round())
+                } else {
+                    crate::plan::fmt_f64(c)
+                };
                 self.value(Op::Const(c), Ty::Scalar, words)
             }
         }
