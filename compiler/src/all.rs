@@ -204,7 +204,8 @@ fn solve_all_of(
         .collect();
     let one_angle =
         plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
-    if !varied.is_empty() && !(one_angle && closes_signed(plan)) {
+    let exhaustive = varied.is_empty() || (one_angle && closes_signed(plan));
+    if !exhaustive {
         out.complete = false;
     }
     for k in 0..combinations.len() {

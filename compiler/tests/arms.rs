@@ -691,7 +691,7 @@ fn the_delta_robot_follows_a_path_without_flips_inverse_and_forward() {
             s.max_residual
         );
         let mut angles = [0.0; 3];
-        for i in 0..3 {
+        for (i, angle) in angles.iter_mut().enumerate() {
             let phi = std::f64::consts::TAU * i as f64 / 3.0;
             let p = centre + rp * v([phi.cos(), phi.sin(), 0.0]);
             let elbow = point_of(&s, &format!("arm{}.elbow", i + 1));
@@ -699,7 +699,7 @@ fn the_delta_robot_follows_a_path_without_flips_inverse_and_forward() {
                 ((elbow - p).norm() - b).abs() <= 1e-12,
                 "{step} deg: forearm {i}"
             );
-            angles[i] = delta_angle(i, elbow);
+            *angle = delta_angle(i, elbow);
         }
         if let Some(before) = previous {
             for i in 0..3 {
