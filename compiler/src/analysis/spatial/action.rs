@@ -296,8 +296,7 @@ impl Builder<'_, Spatial> {
             if self.dir_known(known) && !self.dir_known(moving) {
                 let k = self.direction(known);
                 let target = if sense < 0.0 {
-                    let words = format!("the opposite of {}", self.name(known));
-                    self.value(SpatialOp::Opposite(k), Ty::Vector, words)
+                    self.in_sense(k, known, sense)
                 } else if sense == 0.0 {
                     // Either sense: the nearer (the least turn).
                     let now = self.direction(moving);

@@ -10,6 +10,16 @@ use crate::analysis::driver::Builder;
 use crate::plan::{Meet, Op, Reg, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::{GeomId, GeomKind};
 
+/// A plane of a cluster (through `base`, unit `normal`) to be at signed distance `d` from
+/// known point `point`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PlaneAtDistance {
+    pub(super) base: Reg,
+    pub(super) normal: Reg,
+    pub(super) point: Reg,
+    pub(super) d: Reg,
+}
+
 impl Builder<'_, Spatial> {
     /// A plane `q` (its normal `normal`) to be at signed distance `d` from known point `p`,
     /// its normal not known: free, it slides along its normal to that distance, and may then
@@ -121,48 +131,77 @@ impl Builder<'_, Spatial> {
                     ),
                     "turned clockwise from there".to_string(),
                 ];
-                let branch = self.branch(r.constraint, meanings);
                 let words = format!(
                     "the normal {qname} takes, turned about {}, to be at its distance from {pname}",
                     self.word(axis)
-                );
-                let to = self.value(
-                    SpatialOp::PlaneAxisTurn {
-                        base: b,
-                        normal: n,
-                        pivot: at,
-                        point: x,
-                        d: dist,
-                        axis,
-                        branch,
-                        constraint: r.constraint,
-                    },
-                    Ty::Vector,
-                    words,
                 );
                 let explain = format!(
                     "{qname} may only turn about {}: turn it so that {pname} is at its distance from it ({c}).",
                     self.word(axis)
                 );
-                self.emit(
-                    Op::RotateDir {
-                        geoms,
-                        pivot: at,
-                        axis: RotationAxis::Along(axis),
-                        from: n,
-                        to,
+                let satisfies = self.satisfies(r);
+                self.turn_plane_about_axis(
+                    k,
+                    PlaneAtDistance {
+                        base: b,
+                        normal: n,
+                        point: x,
+                        d: dist,
                     },
-                    None,
-                    self.satisfies(r),
-                    explain,
+                    (at, axis),
+                    (r.constraint, meanings, words),
+                    (satisfies, explain),
                 );
-                let rec = &mut self.clusters[k].record;
-                rec.turn = Turn::Known;
-                rec.trans = Trans::Fixed;
                 true
             }
             _ => false,
         }
+    }
+
+    /// Turns cluster `k`, which only turns about `axis` through `pivot`, so that `plane` (a
+    /// plane of it) is at its distance from its point: where that turn meets the cone of
+    /// normals that keep the distance (`SpatialOp::PlaneAxisTurn`), the root of a branch of
+    /// `constraint` with `meanings`, `words` naming the normal it takes. The cluster is then
+    /// fixed. Shared by a plane at a distance from a point and a planar sub-chain's plane.
+    pub(super) fn turn_plane_about_axis(
+        &mut self,
+        k: usize,
+        plane: PlaneAtDistance,
+        (pivot, axis): (Reg, Reg),
+        (constraint, meanings, words): (gcs_lang::model::ConstraintId, Vec<String>, String),
+        (satisfies, explain): (Vec<gcs_lang::model::ConstraintId>, String),
+    ) {
+        let branch = self.branch(constraint, meanings);
+        let to = self.value(
+            SpatialOp::PlaneAxisTurn {
+                base: plane.base,
+                normal: plane.normal,
+                pivot,
+                point: plane.point,
+                d: plane.d,
+                axis,
+                branch,
+                constraint,
+            },
+            Ty::Vector,
+            words,
+        );
+        let geoms = self.clusters[k].geoms.clone();
+        self.emit(
+            Op::RotateDir {
+                geoms,
+                pivot,
+                axis: RotationAxis::Along(axis),
+                from: plane.normal,
+                to,
+            },
+            None,
+            satisfies,
+            explain,
+        );
+        let rec = &mut self.clusters[k].record;
+        rec.turn = Turn::Known;
+        rec.trans = Trans::Fixed;
     }
 
     /// Whether a relation has turned direction `dir` square to direction `normal` (a line

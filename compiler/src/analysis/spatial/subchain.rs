@@ -17,6 +17,7 @@
 //! about the chain's own axis (then the plane would not move: a planar mechanism, which the
 //! rest of the analysis already solves).
 
+use super::plane::PlaneAtDistance;
 use super::{local_dir, parallel, Spatial, Trans, Turn};
 use crate::analysis::driver::Builder;
 use crate::analysis::geometry::Invariants;
@@ -198,23 +199,29 @@ impl Builder<'_, Spatial> {
         None
     }
 
+    /// The sense of revolute `c`'s z axes, the sketch's (its parallel relation's: one along
+    /// `sense` times the other): 1 or -1.
+    fn joint_sense(&self, c: ConstraintId) -> f64 {
+        use super::relation::Relation;
+        (self.relations_of(c).into_iter())
+            .find_map(|r| match r {
+                Relation::Parallel { sense, .. } if sense != 0.0 => Some(sense),
+                _ => None,
+            })
+            .unwrap_or(1.0)
+    }
+
     /// The sign relating marker `m`'s z axis to marker `reference`'s, by the senses of the
     /// joints' parallel relations (the sketch's) and of the bodies' parallel axes.
     fn chain_senses(&self, chain: &[Link]) -> Vec<f64> {
-        use super::relation::Relation;
         let model = self.model;
         // From the far end: the far body's marker is the reference, sense 1.
         let mut senses = vec![0.0; chain.len()];
         let mut sense = 1.0;
         for (i, l) in chain.iter().enumerate().rev() {
-            let (zn, zf) = (self.z_of(l.near), self.z_of(l.far));
-            // The joint's own sense: `v` along `sense * u`.
-            let joint = (self.relations_of(l.joint.constraint).into_iter()).find_map(|r| match r {
-                Relation::Parallel { u, v, sense } if Some(u) == zn && Some(v) == zf => Some(sense),
-                Relation::Parallel { u, v, sense } if Some(u) == zf && Some(v) == zn => Some(sense),
-                _ => None,
-            });
-            sense *= joint.filter(|s| *s != 0.0).unwrap_or(1.0);
+            let zn = self.z_of(l.near);
+            // The joint's own sense: one z axis along `sense` times the other.
+            sense *= self.joint_sense(l.joint.constraint);
             senses[i] = sense;
             // Into the next body towards the pivoted end: its two markers' axes.
             if i > 0 {
@@ -289,25 +296,10 @@ impl Builder<'_, Spatial> {
             ),
             "turned clockwise from there".to_string(),
         ];
-        let branch = self.branch(last.joint.constraint, meanings);
         let words = format!(
             "the axis {zname} takes, turned about {}, for {xname} to be in the plane of {}",
             self.word(axis),
             bodies.join(", ")
-        );
-        let to = self.value(
-            SpatialOp::PlaneAxisTurn {
-                base,
-                normal,
-                pivot,
-                point: at,
-                d: offset,
-                axis,
-                branch,
-                constraint: last.joint.constraint,
-            },
-            Ty::Vector,
-            words,
         );
         let joints: Vec<String> = (chain.iter().rev())
             .map(|l| self.cname(l.joint.constraint))
@@ -318,24 +310,20 @@ impl Builder<'_, Spatial> {
             joints.join(", "),
             self.word(axis)
         );
-        let geoms = self.clusters[k].geoms.clone();
         self.work_for(Some(last.joint.constraint));
-        self.emit(
-            Op::RotateDir {
-                geoms,
-                pivot,
-                axis: RotationAxis::Along(axis),
-                from: normal,
-                to,
+        self.turn_plane_about_axis(
+            k,
+            PlaneAtDistance {
+                base,
+                normal,
+                point: at,
+                d: offset,
             },
-            None,
-            Vec::new(),
-            explain,
+            (pivot, axis),
+            (last.joint.constraint, meanings, words),
+            (Vec::new(), explain),
         );
         self.work_for(None);
-        let rec = &mut self.clusters[k].record;
-        rec.turn = Turn::Known;
-        rec.trans = Trans::Fixed;
     }
 }
 
@@ -378,12 +366,7 @@ impl Builder<'_, Spatial> {
             if !off_axis(m1, fa) || !off_axis(m2, fb) {
                 continue;
             }
-            let sense = (self.relations_of(j.constraint).into_iter())
-                .find_map(|r| match r {
-                    super::relation::Relation::Parallel { sense, .. } => Some(sense),
-                    _ => None,
-                })
-                .unwrap_or(1.0);
+            let sense = self.joint_sense(j.constraint);
             self.join_pivoted_pair(j, (k1, a, fa), (k2, b, fb), sense);
             return true;
         }
@@ -442,12 +425,7 @@ impl Builder<'_, Spatial> {
             self.z_of(m2).expect("a marker"),
         );
         let axis1 = self.direction(z1);
-        let target = if sense < 0.0 {
-            let words = format!("the opposite of {}", self.name(z1));
-            self.value(SpatialOp::Opposite(axis1), Ty::Vector, words)
-        } else {
-            axis1
-        };
+        let target = self.in_sense(axis1, z1, sense);
         let from = self.direction(z2);
         let explain = format!(
             "Rotate {n2} about {} so that {} points along {} ({cname}).",

@@ -166,15 +166,21 @@ impl Builder<'_, Spatial> {
             }
             // `second` then turns onto `first` (or its opposite), on its cone by construction.
             let known = self.direction(first);
-            let target = if sense < 0.0 {
-                let words = format!("the opposite of {}", self.name(first));
-                self.value(SpatialOp::Opposite(known), Ty::Vector, words)
-            } else {
-                known
-            };
+            let target = self.in_sense(known, first, sense);
             return self.turn_onto(second, target, r, true);
         }
         false
+    }
+
+    /// Direction `dir`, the register of feature `of`, in `sense`: itself, or its opposite
+    /// for a negative sense (a parallel relation's or a joint's sketched sense).
+    pub(super) fn in_sense(&mut self, dir: Reg, of: GeomId, sense: f64) -> Reg {
+        if sense < 0.0 {
+            let words = format!("the opposite of {}", self.name(of));
+            self.value(SpatialOp::Opposite(dir), Ty::Vector, words)
+        } else {
+            dir
+        }
     }
 
     /// A line (its point `base`, direction `dir`) that only turns about an axis through a known
