@@ -41,14 +41,6 @@ const KNOWN: &[(&str, &str)] = &[
         "refused: `w2` cannot be met with the default params (constraint `w2` (on(l4.end, XY)) \
          cannot be met: the configuration is degenerate (coincident or zero-size loci), size 0)",
     ),
-    // A circle through a point of a line it is tangent to: the parabola of centres has its
-    // focus on its directrix (a ray), which the runtime's conics have no form for: refused as
-    // degenerate.
-    (
-        "arc_line_tangent_normal.gcs",
-        "refused: `a4_s` cannot be met with the default params (constraint `a4_s` (on(a4_start, \
-         a4)) cannot be met: the configuration is degenerate (coincident or zero-size loci), size 0)",
-    ),
 ];
 
 #[derive(Debug, Default)]

@@ -24,6 +24,11 @@ pub enum Fd {
         line: Reg,
         /// The gap.
         a: Reg,
+        /// The line's features, a point on it and its direction, by which
+        /// [`Builder::tangent_at_line`] tells a point constrained onto it.
+        base: GeomId,
+        /// See `base`.
+        dir: GeomId,
         /// The constraint it records.
         constraint: ConstraintId,
         /// Whether that is the constraint's last relation.
@@ -37,6 +42,8 @@ pub enum Fd {
         b: Reg,
         /// Which sense.
         plus: bool,
+        /// The point feature at `at`, if it is one (not a circle's centre).
+        p: Option<GeomId>,
         /// The constraint it records.
         constraint: ConstraintId,
         /// Whether that is the constraint's last relation.
@@ -143,6 +150,7 @@ impl Builder<'_, Planar> {
                         at,
                         b,
                         plus: true,
+                        p: Some(p),
                         constraint: r.constraint,
                         last: r.last,
                     };
@@ -358,6 +366,7 @@ impl Builder<'_, Planar> {
             let circle_known = self.record(circle).grounded();
             let on_line = self.line_point(base);
             let line_known = self.line_fixed(base, dir);
+            let line_base = base;
             let base = on_line.unwrap_or(base);
             let a = match gap {
                 Some(g) => self.expr(g),
@@ -387,6 +396,8 @@ impl Builder<'_, Planar> {
                 let fd = Fd::Line {
                     line,
                     a,
+                    base: line_base,
+                    dir,
                     constraint: r.constraint,
                     last: r.last,
                 };
@@ -456,6 +467,7 @@ impl Builder<'_, Planar> {
                     at,
                     b,
                     plus,
+                    p: None,
                     constraint: r.constraint,
                     last: r.last,
                 };
@@ -718,6 +730,9 @@ impl Builder<'_, Planar> {
         if let Some(l) = self.tangent_at(f1, f2, &name) {
             return l;
         }
+        if let Some(l) = self.tangent_at_line(f1, f2, &name) {
+            return l;
+        }
         if let (Fd::Point { at: c1, .. }, Fd::Point { at: c2, .. }) = (f1, f2) {
             if self.straight(f1, f2) {
                 return self.perpendicular_bisector(c1, c2, &name);
@@ -848,6 +863,104 @@ impl Builder<'_, Planar> {
             Ty::Line,
             words,
         )))
+    }
+
+    /// Through a point that lies on a known line (an end of the line's segment, or put on the
+    /// line by an `on` or a coincidence already met) and tangent to that line, the point and
+    /// the line at the same offset: the parabola of centres has its focus on its directrix
+    /// and degenerates into the normal to the line at the point, on which every circle
+    /// tangent to the line there has its centre. `None` otherwise.
+    fn tangent_at_line(&mut self, f1: Fd, f2: Fd, name: &str) -> Option<Locus> {
+        let (line, a, base, dir, at, b, p) = match (f1, f2) {
+            (
+                Fd::Line {
+                    line, a, base, dir, ..
+                },
+                Fd::Point {
+                    at,
+                    b,
+                    plus: true,
+                    p: Some(p),
+                    ..
+                },
+            )
+            | (
+                Fd::Point {
+                    at,
+                    b,
+                    plus: true,
+                    p: Some(p),
+                    ..
+                },
+                Fd::Line {
+                    line, a, base, dir, ..
+                },
+            ) => (line, a, base, dir, at, b, p),
+            _ => return None,
+        };
+        if !self.same_value(a, b) || !self.on_line(p, base, dir) {
+            return None;
+        }
+        let along = self.value(
+            PlanarOp::LineDir(line),
+            Ty::Vector,
+            format!("the direction of {}", self.word(line)),
+        );
+        // Turned to the line's left, where the circle is.
+        let words = format!("{} turned by pi/2", self.word(along));
+        let normal = self.quarter_turned(along, 1.0, words);
+        let words = format!(
+            "the normal at {} to {}, where {name} is tangent",
+            self.word(at),
+            self.word(line)
+        );
+        Some(Locus::Line(self.value(
+            Op::Line {
+                point: at,
+                dir: normal,
+                offset: None,
+            },
+            Ty::Line,
+            words,
+        )))
+    }
+
+    /// Whether point feature `p` lies on the line through `base` along `dir` whatever the
+    /// params: it is `base` or an end of the line's segment, or is put on the line by an `on`
+    /// already met, or is coincident with such a point by a `coincident` already met. (A
+    /// relation's key does not tell a zero distance from another, so the constraints are
+    /// read by kind.)
+    fn on_line(&self, p: GeomId, base: GeomId, dir: GeomId) -> bool {
+        use gcs_lang::constraints::ConstraintKind as K;
+        let lies = |q: GeomId| {
+            q == base
+                || self.end_of_segment(q).is_some_and(|(_, d)| d == dir)
+                || (self.model.constraints.iter()).any(|(_, c)| {
+                    c.kind == K::On
+                        && matches!(c.args[..], [x, l] if x == q
+                            && self.model.line_features(l) == Some((base, dir)))
+                        && self.is_done(&Relation::PointLine {
+                            p: q,
+                            base,
+                            dir,
+                            d: None,
+                        })
+                })
+        };
+        lies(p)
+            || (self.model.constraints.iter()).any(|(_, c)| {
+                let q = match c.args[..] {
+                    [x, y] if c.kind == K::Coincident && x == p => y,
+                    [x, y] if c.kind == K::Coincident && y == p => x,
+                    _ => return false,
+                };
+                lies(q)
+                    && self.is_done(&Relation::PointPoint {
+                        a: p,
+                        b: q,
+                        d: None,
+                    })
+            })
     }
 
     /// Whether register `r` holds the constant zero.
