@@ -44,12 +44,15 @@ impl Builder<'_, Spatial> {
         true
     }
 
-    /// The end of segment `seg` (of cluster `k`) that its record holds at a point, and where:
-    /// a new length keeps the start, so that end must be moved back.
-    pub(super) fn held_end(&self, k: usize, seg: GeomId) -> Option<(GeomId, Reg)> {
+    /// The end of segment `seg` (of cluster `k`) that its record holds at a point or on a
+    /// locus, and where it is: a new length keeps the start, so that end must be moved back
+    /// (else it leaves its locus).
+    pub(super) fn held_end(&mut self, k: usize, seg: GeomId) -> Option<(GeomId, Reg)> {
+        let end = self.model.part(seg, Part::End);
         match self.clusters[k].record.trans {
-            Trans::Pivot { at, feature } if Some(feature) == self.model.part(seg, Part::End) => {
-                Some((feature, at))
+            Trans::Pivot { at, feature } if Some(feature) == end => Some((feature, at)),
+            Trans::On { feature, .. } if Some(feature) == end => {
+                Some((feature, self.point(feature)))
             }
             _ => None,
         }
