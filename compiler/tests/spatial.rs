@@ -649,3 +649,75 @@ fn points_and_planes_have_every_real_solution_and_no_other() {
     }
     assert_eq!(found.solutions.len(), points_planes_count());
 }
+
+/// A segment with one end on a plane and the other on the same plane or a parallel one (a
+/// signed distance from it), from random sketches: the second end is reached by turning the
+/// segment about the first, which keeps its plane, and the segment is then left free to slide
+/// on the plane and turn about its normal, its defaults (length, that turn, the held end's two
+/// coordinates) the four DOF the two constraints leave. Before, the turn was left to defaults
+/// and the second end's locus, the first's plane moved with it, met the other plane only in
+/// itself: refused as degenerate. Every solve, at the sketch's defaults and at random others,
+/// is judged by `verify`, and by each end's signed distance from the plane computed here.
+#[test]
+fn a_segment_with_both_ends_on_parallel_planes_turns_about_their_normal() {
+    let mut rng = Rng(0x1f83_d9ab_fb41_bd6b);
+    for trial in 0..60 {
+        let n = [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ];
+        let offset = rng.range(-5.0, 5.0);
+        // Every third on the plane itself, the others at a distance from it.
+        let p: Vec<f64> = (0..6).map(|_| rng.range(-8.0, 8.0)).collect();
+        // Within the sketch's length, which the length default starts from.
+        let reach = 0.8 * norm(sub([p[0], p[1], p[2]], [p[3], p[4], p[5]]));
+        let h = if trial % 3 == 0 { 0.0 } else { rng.range(-reach, reach) };
+        let (first, second) = if trial % 2 == 0 { ("start", "end") } else { ("end", "start") };
+        let text = format!(
+            "space 3d;\nfixed plane P = normal ({}, {}, {}) offset {offset};\n\
+             segment S = ({}, {}, {}) -> ({}, {}, {});\n\
+             on(S.{first}, P);\ndistance(S.{second}, P) = {h};\n",
+            n[0], n[1], n[2], p[0], p[1], p[2], p[3], p[4], p[5]
+        );
+        let model = load_text("parallel.gcs", &text);
+        let a = analyse(&model).expect("analysed");
+        assert!(a.unsolved.is_empty(), "trial {trial}: {:?}\n{text}", a.unsolved);
+        assert_eq!(a.free_defaults().len(), 4, "trial {trial}\n{text}");
+        let unit = {
+            let l = norm(n);
+            [n[0] / l, n[1] / l, n[2] / l]
+        };
+        let height = |x: V| x[0] * unit[0] + x[1] * unit[1] + x[2] * unit[2] - offset;
+        let all: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+        let sketch = a.plan.sketch_defaults();
+        for run in 0..4 {
+            // The sketch's defaults, then others: a longer length, a turn and place.
+            let defaults: Vec<f64> = (sketch.iter().zip(&a.plan.defaults))
+                .map(|(&d, var)| match run {
+                    0 => d,
+                    _ if var.name.ends_with("_length") => d * rng.range(1.0, 2.0),
+                    _ => d + rng.range(-3.0, 3.0),
+                })
+                .collect();
+            let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
+            let s = gcs_compiler::solve::solve_plan_with(
+                &model, &a.plan, &all, &[], &branches, &defaults,
+            )
+            .unwrap_or_else(|e| panic!("trial {trial}, run {run}: {e}\n{text}"));
+            assert!(
+                s.max_residual <= 1e-12 * 30.0,
+                "trial {trial}, run {run}: residual {:e}\n{text}",
+                s.max_residual
+            );
+            let (h1, h2) = (
+                height(point(&s, &format!("S.{first}"))),
+                height(point(&s, &format!("S.{second}"))),
+            );
+            assert!(
+                h1.abs() <= 1e-12 * 30.0 && (h2 - h).abs() <= 1e-12 * 30.0,
+                "trial {trial}, run {run}: the ends at {h1:e} and {h2} from the plane\n{text}"
+            );
+        }
+    }
+}

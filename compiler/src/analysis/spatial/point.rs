@@ -6,7 +6,7 @@
 
 use super::{on_axis, Locus, Record, Rel, Shape, Spatial, Target, Trans, Turn};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Reg, RotationAxis, Ty};
+use crate::plan::{Op, Reg, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
 
 impl Builder<'_, Spatial> {
@@ -191,8 +191,110 @@ impl Builder<'_, Spatial> {
                 rec.trans = Trans::Fixed;
                 true
             }
+            // A segment free to turn, one end held on a plane, the other to a plane parallel
+            // to it: turned about the held end (which keeps its plane) onto where its sphere
+            // meets the other plane. Both ends then keep their planes as the segment slides
+            // on the first and turns about the planes' normal, all the turn left to it
+            // (turning about itself moves nothing); a shifted plane would only meet the other
+            // in the plane itself, or nowhere. A free length must not tilt the segment: so
+            // the same plane, or a segment whose length is set (a default gives it first).
+            (
+                Trans::On {
+                    feature: g,
+                    locus: Locus::Plane(held),
+                },
+                Target::On(Locus::Plane(onto)),
+            ) if rec.turn == Turn::Free && self.ends_of_one_segment(g, f) => {
+                let Some((normal, same)) = self.common_normal(held, onto) else {
+                    return false;
+                };
+                if !same && rec.shape.size_free() {
+                    return false;
+                }
+                let at = self.point(g);
+                let from = self.point(f);
+                let sphere = self.pivot_sphere(at, g, f, from);
+                let Some(Target::On(curve)) = self.meet(Locus::Sphere(sphere), target, from, r)
+                else {
+                    return false;
+                };
+                let words = format!("the point of {} nearest {fname}", self.word(curve.reg()));
+                let to = self.value(
+                    Op::Nearest {
+                        locus: curve.reg(),
+                        point: from,
+                    },
+                    Ty::Point,
+                    words,
+                );
+                let explain = format!(
+                    "{names} can only move {} on {}, and may rotate about it: rotate it about {} around the normal of the plane through {}, {fname} and {} so that {fname} reaches {} ({c}).",
+                    self.name(g),
+                    self.word(held),
+                    self.word(at),
+                    self.word(at),
+                    self.word(to),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::RotatePoint {
+                        geoms,
+                        pivot: at,
+                        axis: RotationAxis::Shortest,
+                        from,
+                        to,
+                    },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                self.clusters[k].record.turn = Turn::Axis {
+                    axis: normal,
+                    feature: None,
+                };
+                true
+            }
             _ => false,
         }
+    }
+
+    /// Whether point features `g` and `f` are the two ends of one segment.
+    fn ends_of_one_segment(&self, g: GeomId, f: GeomId) -> bool {
+        use gcs_lang::model::{Owner, Part};
+        match (&self.model.geoms[g].owner, &self.model.geoms[f].owner) {
+            (Owner::Part(s, a), Owner::Part(t, b)) => {
+                s == t
+                    && self.model.geoms[*s].kind == gcs_lang::model::GeomKind::Segment
+                    && matches!((a, b), (Part::Start, Part::End) | (Part::End, Part::Start))
+            }
+            _ => false,
+        }
+    }
+
+    /// The unit normal two plane registers share, when they are parallel by construction:
+    /// built with the same normal (or the same direction feature's), one possibly a plane
+    /// moved parallel to a plane so built; and whether they are one plane (built alike).
+    fn common_normal(&self, a: Reg, b: Reg) -> Option<(Reg, bool)> {
+        let normal = |mut p: Reg| loop {
+            match self.def(p)?.op {
+                Op::Spatial(SpatialOp::Plane { normal, .. }) => return Some(normal),
+                Op::Spatial(SpatialOp::ParallelPlane { plane, .. }) => p = plane,
+                _ => return None,
+            }
+        };
+        let (na, nb) = (normal(a)?, normal(b)?);
+        let feature = |n: Reg| match self.def(n).map(|s| &s.op) {
+            Some(Op::DirOf(g)) => Some(*g),
+            _ => None,
+        };
+        if na != nb && !feature(na).is_some_and(|g| feature(nb) == Some(g)) {
+            return None;
+        }
+        let built = |p: Reg| match self.def(p).map(|s| &s.op) {
+            Some(Op::Spatial(plane @ SpatialOp::Plane { .. })) => Some(plane.clone()),
+            _ => None,
+        };
+        Some((na, a == b || built(a).is_some_and(|x| built(b) == Some(x))))
     }
 
     /// Whether a record's turn is about an axis through its feature `g` on which `f` lies too,
