@@ -672,8 +672,16 @@ fn a_segment_with_both_ends_on_parallel_planes_turns_about_their_normal() {
         let p: Vec<f64> = (0..6).map(|_| rng.range(-8.0, 8.0)).collect();
         // Within the sketch's length, which the length default starts from.
         let reach = 0.8 * norm(sub([p[0], p[1], p[2]], [p[3], p[4], p[5]]));
-        let h = if trial % 3 == 0 { 0.0 } else { rng.range(-reach, reach) };
-        let (first, second) = if trial % 2 == 0 { ("start", "end") } else { ("end", "start") };
+        let h = if trial % 3 == 0 {
+            0.0
+        } else {
+            rng.range(-reach, reach)
+        };
+        let (first, second) = if trial % 2 == 0 {
+            ("start", "end")
+        } else {
+            ("end", "start")
+        };
         let text = format!(
             "space 3d;\nfixed plane P = normal ({}, {}, {}) offset {offset};\n\
              segment S = ({}, {}, {}) -> ({}, {}, {});\n\
@@ -682,7 +690,11 @@ fn a_segment_with_both_ends_on_parallel_planes_turns_about_their_normal() {
         );
         let model = load_text("parallel.gcs", &text);
         let a = analyse(&model).expect("analysed");
-        assert!(a.unsolved.is_empty(), "trial {trial}: {:?}\n{text}", a.unsolved);
+        assert!(
+            a.unsolved.is_empty(),
+            "trial {trial}: {:?}\n{text}",
+            a.unsolved
+        );
         assert_eq!(a.free_defaults().len(), 4, "trial {trial}\n{text}");
         let unit = {
             let l = norm(n);
@@ -702,7 +714,12 @@ fn a_segment_with_both_ends_on_parallel_planes_turns_about_their_normal() {
                 .collect();
             let branches: Vec<usize> = a.plan.branches.iter().map(|b| b.default).collect();
             let s = gcs_compiler::solve::solve_plan_with(
-                &model, &a.plan, &all, &[], &branches, &defaults,
+                &model,
+                &a.plan,
+                &all,
+                &[],
+                &branches,
+                &defaults,
             )
             .unwrap_or_else(|e| panic!("trial {trial}, run {run}: {e}\n{text}"));
             assert!(

@@ -70,7 +70,7 @@ fn a_circle_tangent_to_a_line_at_a_point_of_it_has_its_centre_on_the_normal() {
     for trial in 0..200 {
         let touch = touches[trial % touches.len()];
         // The centre's own line is met first or last.
-        let centre_first = (trial / touches.len()) % 2 == 0;
+        let centre_first = (trial / touches.len()).is_multiple_of(2);
         let a = rng.point(10.0);
         let len = rng.range(1.0, 10.0);
         let phi = rng.range(-std::f64::consts::PI, std::f64::consts::PI);

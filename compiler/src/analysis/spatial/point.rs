@@ -287,7 +287,8 @@ impl Builder<'_, Spatial> {
             Some(Op::DirOf(g)) => Some(*g),
             _ => None,
         };
-        if na != nb && !feature(na).is_some_and(|g| feature(nb) == Some(g)) {
+        let shared = na == nb || matches!((feature(na), feature(nb)), (Some(x), Some(y)) if x == y);
+        if !shared {
             return None;
         }
         let built = |p: Reg| match self.def(p).map(|s| &s.op) {
