@@ -63,6 +63,12 @@ pub enum ErrorKind {
     /// of free lengths) is negative, though a segment keeps the direction its sketch gives
     /// it. The label is the constraint that gives that length; the magnitude is the length.
     CannotClose,
+    /// An outer iteration started from the sketch's defaults closes here only in another
+    /// assembly mode than the sketch's (`crate::mode`): every root it found has the other
+    /// orientation, across a fold from the sketch's. The label is the iteration's first
+    /// close; the magnitude is how many such roots were found. Solving from other defaults
+    /// (a root of `solve_all`) takes one.
+    OtherMode,
 }
 
 /// The failure of a solve, naming the user's constraint.
@@ -209,6 +215,10 @@ impl fmt::Display for SolveError {
             ErrorKind::CannotClose => write!(
                 f,
                 " cannot be met: the profile it closes cannot close with its segments running as sketched; it would give one a length of {m} (its end behind its start), so the lengths it closes on do not fit"
+            ),
+            ErrorKind::OtherMode => write!(
+                f,
+                " cannot be met in the sketch's assembly mode: the iteration that closes it finds {m} closure(s) here, all in the other mode (across a fold from the sketch's); solve from other defaults to take one"
             ),
         }
     }

@@ -182,6 +182,7 @@ use std::borrow::Cow;
 use nalgebra::{SMatrix, SVector};
 
 use crate::error::{ErrorKind, SolveError};
+use crate::mode::Orientation;
 use crate::num::is_finite;
 use crate::tol;
 
@@ -232,6 +233,14 @@ pub struct Settings {
     /// when the iteration fails (module documentation, "What a failure says"). Ignored for
     /// several defaults.
     pub span: Span,
+    /// The orientation of the sketch's root to keep (the sketch's assembly mode,
+    /// [`crate::mode`]), for a solve from the sketch's defaults; `None` takes the root the
+    /// iteration reaches, whatever its orientation.
+    pub hold: Option<Orientation>,
+    /// Whether a failure is told apart (module documentation, "What a failure says"): false
+    /// for the many starts of a search for every assembly, where a start that fails costs
+    /// only its own iteration and says nothing anyone reads.
+    pub classify: bool,
 }
 
 /// The range of the one default of an iteration, which [`solve`] searches for a root when the
@@ -269,6 +278,8 @@ impl Default for Settings {
             rounding: 0.0,
             max_evaluations: 200,
             span: Span::Unknown,
+            hold: None,
+            classify: true,
         }
     }
 }
@@ -289,6 +300,22 @@ impl Settings {
     #[must_use]
     pub const fn spanning(self, span: Span) -> Self {
         Self { span, ..self }
+    }
+
+    /// These settings keeping the orientation `hold` (none: any root).
+    #[must_use]
+    pub const fn holding(self, hold: Option<Orientation>) -> Self {
+        Self { hold, ..self }
+    }
+
+    /// These settings for one start of many: no failure told, no mode held.
+    #[must_use]
+    pub const fn searching(self) -> Self {
+        Self {
+            hold: None,
+            classify: false,
+            ..self
+        }
     }
 }
 
@@ -334,6 +361,14 @@ pub enum Failure<E> {
         /// Steps taken.
         iterations: u32,
     },
+    /// The iteration held the sketch's orientation ([`Settings::hold`]) and found no root of
+    /// it, only roots of the other ([`crate::mode::keep`] says where it searched).
+    OtherMode {
+        /// The roots of the other orientation found (at least one).
+        others: u32,
+        /// Steps taken before the search.
+        iterations: u32,
+    },
 }
 
 impl<E> Failure<E> {
@@ -344,6 +379,7 @@ impl<E> Failure<E> {
             Failure::NoConvergence { residual, .. } => (ErrorKind::NoConvergence, residual),
             Failure::NoAssembly { least, .. } => (ErrorKind::NoAssembly, least),
             Failure::NoAssemblyNear { residual, .. } => (ErrorKind::NoAssemblyNear, residual),
+            Failure::OtherMode { others, .. } => (ErrorKind::OtherMode, f64::from(others)),
         })
     }
 }
@@ -364,6 +400,7 @@ impl Failure<SolveError> {
             Failure::NoConvergence { residual, .. } => (ErrorKind::NoConvergence, residual),
             Failure::NoAssembly { least, .. } => (ErrorKind::NoAssembly, least),
             Failure::NoAssemblyNear { residual, .. } => (ErrorKind::NoAssemblyNear, residual),
+            Failure::OtherMode { others, .. } => (ErrorKind::OtherMode, f64::from(others)),
         };
         SolveError::new(label, text, kind, magnitude)
     }
@@ -401,7 +438,37 @@ pub fn solve<const N: usize, E: Gap>(
         solve_system(x, scale, settings, &mut f)
     };
     match outcome {
-        Err(failure @ Failure::NoConvergence { .. }) => {
+        Ok(converged) => match settings.hold {
+            Some(want) => crate::mode::keep(want, &start, x, scale, settings, converged, &mut f),
+            None => Ok(converged),
+        },
+        Err(failure @ Failure::NoConvergence { .. }) if settings.classify => {
+            // Held from the sketch: a root of the sketch's mode elsewhere is the answer, and
+            // roots of the other mode only are said as such.
+            if let Some(want) = settings.hold {
+                let mut y = *x;
+                match crate::mode::search(want, &start, &mut y, scale, settings, &mut f) {
+                    Ok(residual) => {
+                        *x = y;
+                        let iterations = match failure {
+                            Failure::NoConvergence { iterations, .. } => iterations,
+                            _ => 0,
+                        };
+                        return Ok(Converged {
+                            iterations,
+                            evaluations: settings.max_evaluations,
+                            residual,
+                        });
+                    }
+                    Err(others) if others > 0 => {
+                        return Err(Failure::OtherMode {
+                            others,
+                            iterations: 0,
+                        })
+                    }
+                    Err(_) => {}
+                }
+            }
             Err(classify(&start, x, scale, settings, &mut f, failure))
         }
         outcome => outcome,
@@ -1557,7 +1624,7 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
 // Several defaults.
 
 /// Solves a square system: the `N != 1` case of [`solve`].
-fn solve_system<const N: usize, E: Gap>(
+pub(crate) fn solve_system<const N: usize, E: Gap>(
     x: &mut [f64; N],
     scale: &[f64; N],
     settings: &Settings,

@@ -19,6 +19,7 @@ pub mod iterate;
 pub mod linear;
 pub mod locus2d;
 pub mod locus3d;
+pub mod mode;
 pub mod num;
 pub mod outer;
 pub mod poly;

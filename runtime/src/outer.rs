@@ -52,6 +52,25 @@ impl Outer for Newton {
     }
 }
 
+/// Solves each iteration from its starting defaults as one start of many
+/// ([`Settings::searching`]): a failure is not told apart and no mode is held, since a search
+/// for every assembly reads neither, and pays the telling at every start that fails.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Search;
+
+impl Outer for Search {
+    #[inline(always)]
+    fn iterate<const N: usize, E: iterate::Gap>(
+        &mut self,
+        trial: &mut [f64; N],
+        scale: &[f64; N],
+        settings: &Settings,
+        f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
+    ) -> Result<Converged, Failure<E>> {
+        iterate::solve(trial, scale, &settings.searching(), f)
+    }
+}
+
 /// Lists every root of the first iteration's error over a turn of its default, an angle, and
 /// ends the solve there (with [`Failure::NoConvergence`] and no iterations taken).
 ///

@@ -223,6 +223,12 @@ pub fn is_zero(x: f64, scale: f64, rel: f64) -> bool {
     x.abs() <= rel * scale
 }
 
+/// Relative tolerance under which a pivot of a linear stage's system vanishes, next to the
+/// largest coefficient of its row (coefficients are dot and cross products of unit
+/// directions): a constraint that does not fix the slide or length it was to fix. Rounding
+/// leaves a structural zero near `1e-16`; a real near-parallel configuration stays far above.
+pub const LINEAR_PIVOT_REL: f64 = 1e-12;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -235,9 +241,3 @@ mod tests {
         assert!(!is_zero(1e-10, 1.0, LENGTH_REL));
     }
 }
-
-/// Relative tolerance under which a pivot of a linear stage's system vanishes, next to the
-/// largest coefficient of its row (coefficients are dot and cross products of unit
-/// directions): a constraint that does not fix the slide or length it was to fix. Rounding
-/// leaves a structural zero near `1e-16`; a real near-parallel configuration stays far above.
-pub const LINEAR_PIVOT_REL: f64 = 1e-12;
