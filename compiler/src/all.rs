@@ -80,10 +80,14 @@ pub fn solve_all(
 }
 
 /// The assembly an iterated plan returns when no defaults are given (DESIGN, "Which assembly
-/// an iterated plan returns"): among the real assemblies on `branches`, the one that moves the
-/// points least from the sketch (the smallest sum of squared displacements), so that the
-/// answer does not depend on which default the analysis chose. A plan without iterations has
-/// one assembly on given branches: the plan run.
+/// an iterated plan returns"): the sketch's assembly, followed from the model's params to
+/// `params` ([`followed_from_sketch`]), so that a cold solve lands where a sweep from the
+/// sketch would. Where that assembly ends on the way (a fold), among the real assemblies on
+/// `branches` in the sketch's assembly mode (each iteration's root of the orientation the
+/// sketch's has, [`gcs_runtime::mode`]), the one that moves the points least from the sketch
+/// ([`nearest_in_mode`]). With none in that mode, the solve from the sketch's defaults, which
+/// keeps the mode or says it has no assembly here. A plan without iterations has one assembly
+/// on given branches: the plan run.
 pub fn least_motion(
     model: &Model,
     plan: &Plan,
@@ -92,16 +96,225 @@ pub fn least_motion(
     branches: &[usize],
     defaults: &[f64],
 ) -> Result<Solution, gcs_runtime::error::SolveError> {
-    let from_sketch = crate::solve_plan_with(model, plan, scope, params, branches, defaults);
+    let held = vec![true; branches.len()];
+    sketch_assembly(model, plan, scope, params, branches, defaults, &held).map(|(s, _)| s)
+}
+
+/// [`least_motion`], where the sketch's assembly followed to `params` may go on along another
+/// root of an intersection whose branch is not `held` (by the plan's branch order): where that
+/// intersection's loci touch on the way (inside an iterated region, a sweep carries the
+/// assembly through the tangency onto the other root). The solution lists the branches so
+/// changed (`branches_changed`), with the error the assembly met on the branches asked.
+pub fn sketch_assembly(
+    model: &Model,
+    plan: &Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    branches: &[usize],
+    defaults: &[f64],
+    held: &[bool],
+) -> Result<(Solution, Option<gcs_runtime::error::SolveError>), gcs_runtime::error::SolveError> {
     if plan.iterations.is_empty() {
-        return from_sketch;
+        return crate::solve_plan_with(model, plan, scope, params, branches, defaults)
+            .map(|s| (s, None));
     }
+    if let Some(followed) =
+        followed_from_sketch(model, plan, scope, params, branches, defaults, held)
+    {
+        return Ok(followed);
+    }
+    nearest_in_mode(model, plan, scope, params, branches, defaults).map(|s| (s, None))
+}
+
+/// The steps of [`followed_from_sketch`]: the first and longest fraction of the way, and the
+/// shortest, below which the assembly is taken to end (a fold, or a step of the plan that
+/// cannot be done partway).
+const FIRST_STEP: f64 = 1.0 / 8.0;
+const LONGEST_STEP: f64 = 1.0 / 4.0;
+const SHORTEST_STEP: f64 = 1.0 / 4096.0;
+
+/// The sketch's assembly at the model's params (the one nearest the sketch,
+/// [`nearest_in_mode`]) followed along the straight path in param space to `params`: each
+/// step solved from the last one's defaults, as a sweep does, halved where it fails and
+/// lengthened where it solves. Where no step down to [`SHORTEST_STEP`] solves, the step is
+/// tried with each branch not `held` on another root: the assembly may go on there through a
+/// tangency of that intersection (the first failure is returned beside the solution). `None`
+/// where the assembly ends on the way, or is not found at the model's params.
+fn followed_from_sketch(
+    model: &Model,
+    plan: &Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    asked: &[usize],
+    defaults: &[f64],
+    held: &[bool],
+) -> Option<(Solution, Option<gcs_runtime::error::SolveError>)> {
+    let start = model.default_params();
+    let at_sketch = nearest_in_mode(model, plan, scope, &start, asked, defaults).ok()?;
+    if start.as_slice() == params {
+        return Some((at_sketch, None));
+    }
+    let mut branches = asked.to_vec();
+    let mut met: Option<gcs_runtime::error::SolveError> = None;
+    let along = |t: f64| -> Vec<f64> {
+        (start.iter().zip(params))
+            .map(|(a, b)| if t >= 1.0 { *b } else { a + t * (b - a) })
+            .collect()
+    };
+    // How far a step moved the defaults, each in its scale (a radian, the model's size).
+    let size = 1.0 + (start.iter().chain(params)).fold(0.0f64, |m, x| m.max(x.abs()));
+    let moved = |a: &[f64], b: &[f64]| {
+        (plan.defaults.iter().zip(a.iter().zip(b)))
+            .map(|(d, (x, y))| {
+                if d.is_angle() {
+                    gcs_runtime::num::wrap_angle(x - y).abs()
+                } else {
+                    (x - y).abs() / size
+                }
+            })
+            .fold(0.0f64, f64::max)
+    };
+    let mut last: Vec<f64> = at_sketch.defaults.iter().map(|(_, v)| *v).collect();
+    let (mut t, mut step) = (0.0f64, FIRST_STEP);
+    // One step from `last` on branches `b`: the solution and its defaults, unless it fails or
+    // moves the defaults far: then it has jumped to a neighbouring assembly, the one followed
+    // having ended or turned too fast for the step.
+    let try_step = |b: &[usize], next: f64, last: &[f64]| {
+        let solved = crate::solve_plan_with(model, plan, scope, &along(next), b, last);
+        match solved {
+            Ok(s) => {
+                let at: Vec<f64> = s.defaults.iter().map(|(_, v)| *v).collect();
+                if moved(&at, last) > LONGEST_MOVE {
+                    Err(None)
+                } else {
+                    Ok((s, at))
+                }
+            }
+            Err(e) => Err(Some(e)),
+        }
+    };
+    loop {
+        let mut next = (t + step).min(1.0);
+        // Each branch not held on each of its other roots, from the last answer or beside it
+        // (on the other root's side of a tangency its error is steep, a square root's, and
+        // Newton's method converges only from near enough): the first that goes on.
+        let flip = |branches: &[usize], at: f64| {
+            (0..branches.len())
+                .filter(|&b| !held.get(b).copied().unwrap_or(true))
+                .flat_map(|b| (0..plan.branches[b].count).map(move |i| (b, i)))
+                .filter(|&(b, i)| branches[b] != i)
+                .find_map(|(b, i)| {
+                    let mut other = branches.to_vec();
+                    other[b] = i;
+                    let beside = || {
+                        nearby(plan, &last).into_iter().find_map(|start| {
+                            let (s, found) = try_step(&other, at, &start).ok()?;
+                            (moved(&found, &last) <= LONGEST_MOVE).then_some((s, found))
+                        })
+                    };
+                    (try_step(&other, at, &last).ok())
+                        .or_else(beside)
+                        .map(|k| (other, k))
+                })
+        };
+        let taken = match try_step(&branches, next, &last) {
+            Ok(taken) => Some(taken),
+            Err(_) if step > SHORTEST_STEP => {
+                step *= 0.5;
+                continue;
+            }
+            Err(error) => {
+                // As short as steps go: the assembly goes on along another root past a
+                // tangency (just beyond the stall, or a little further: the stall may come
+                // before the tangency, where the error is too steep to follow), or ends.
+                let flipped = (0..=12).find_map(|k| {
+                    let further = (t + SHORTEST_STEP * f64::from(1u32 << k)).min(1.0);
+                    flip(&branches, further).map(|(b, taken)| (b, taken, further))
+                });
+                let (other, taken, further) = flipped?;
+                if met.is_none() {
+                    met = error;
+                }
+                branches = other;
+                next = further;
+                Some(taken)
+            }
+        };
+        let Some((mut s, at)) = taken else { continue };
+        if next >= 1.0 {
+            s.branches_changed = crate::solution::BranchChange::of(plan, asked, &branches);
+            return Some((s, met));
+        }
+        last = at;
+        t = next;
+        step = (2.0 * step).min(LONGEST_STEP);
+    }
+}
+
+/// Starts beside `last` (the defaults, by the plan's order): each iterated default moved by
+/// 1e-6 to 1e-2 of its scale (a radian, or its own size) either way, nearest first.
+fn nearby(plan: &Plan, last: &[f64]) -> Vec<Vec<f64>> {
+    let mut out = Vec::new();
+    for exponent in [6, 5, 4, 3, 2] {
+        for it in &plan.iterations {
+            for d in &it.defaults {
+                let d = d.0 as usize;
+                let scale = if plan.defaults[d].is_angle() {
+                    1.0
+                } else {
+                    1.0 + last[d].abs()
+                };
+                for sign in [1.0, -1.0] {
+                    let mut start = last.to_vec();
+                    start[d] += sign * scale * 10f64.powi(-exponent);
+                    out.push(start);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The most a step of [`followed_from_sketch`] may move a default, in its scale, before it is
+/// taken shorter: a tenth of a radian, a tenth of the model's size.
+const LONGEST_MOVE: f64 = 0.1;
+
+/// Among the real assemblies on `branches` at `params` in the sketch's assembly mode, the one
+/// that moves the points least from the sketch (the smallest sum of squared displacements), so
+/// that the answer does not depend on which default the analysis chose; with none, the solve
+/// from the sketch's defaults.
+fn nearest_in_mode(
+    model: &Model,
+    plan: &Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    branches: &[usize],
+    defaults: &[f64],
+) -> Result<Solution, gcs_runtime::error::SolveError> {
+    let from_sketch = crate::solve_plan_with(model, plan, scope, params, branches, defaults);
     let Some(sketch) = Solution::of_sketch(model, params, scope) else {
         return from_sketch;
     };
     let held: Vec<Option<usize>> = branches.iter().map(|&i| Some(i)).collect();
     let found = solve_all_of(model, plan, scope, params, defaults, &held);
-    let least = (found.solutions.into_iter())
+    let sketch_modes: Vec<_> = plan.iterations.iter().map(|it| it.mode).collect();
+    let in_mode = |s: &Solution| {
+        let at: Vec<f64> = s.defaults.iter().map(|(_, v)| *v).collect();
+        let modes = interp::modes_at(model, plan, params, &at, branches);
+        (sketch_modes.iter().zip(&modes)).all(|(want, got)| match (want, got) {
+            (Some(want), Some(got)) => want == got,
+            _ => true,
+        })
+    };
+    // The solve from the sketch keeps the sketch's mode by itself; it is a candidate too, so
+    // that a search from a grid that misses it cannot make the answer jump.
+    let mut candidates: Vec<Solution> = found.solutions.into_iter().filter(in_mode).collect();
+    if let Ok(s) = &from_sketch {
+        if !candidates.iter().any(|t| same_assembly(t, s)) {
+            candidates.push(s.clone());
+        }
+    }
+    let least = (candidates.into_iter())
         .map(|s| (motion(&sketch, &s), s))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .map(|(_, s)| s);
@@ -216,7 +429,8 @@ fn solve_all_of(
             out.complete = false;
         }
         for start in starts {
-            let solved = crate::solve_plan_with(model, plan, scope, params, &branches, &start);
+            let solved =
+                crate::solve::solve_plan_searching(model, plan, scope, params, &branches, &start);
             if let Ok(mut s) = solved {
                 if !out.solutions.iter().any(|t| same_assembly(t, &s)) {
                     s.branches_changed = BranchChange::of(plan, &sketch, &branches);

@@ -98,6 +98,12 @@ pub fn explain(model: &Model, plan: &Plan) -> String {
             closes.join(", "),
             if closes.len() == 1 { "s" } else { "" }
         );
+        if let Some(words) = it.mode_words() {
+            let _ = writeln!(
+                out,
+                "  From the sketch's defaults and branches it keeps the sketch's assembly mode ({words}), or says that mode has no assembly here; from other defaults it takes the root nearest them."
+            );
+        }
     }
     out
 }

@@ -80,6 +80,7 @@ pub fn analyse(model: &Model) -> Result<Analysis, AnalysisError> {
     let mut analysis = analysis::analyse(model, moving_checks, crate::interp::sketch_values)
         .map_err(AnalysisError::Uncovered)?;
     choose_branch_defaults(model, &mut analysis.plan);
+    choose_iteration_modes(model, &mut analysis.plan);
     validate(model, &analysis).map_err(AnalysisError::Malformed)?;
     Ok(analysis)
 }
@@ -147,6 +148,36 @@ fn choose_branch_defaults(model: &Model, plan: &mut Plan) {
         if let Some(x) = value.filter(|x| x.is_finite()) {
             d.sketch = x;
         }
+    }
+}
+
+/// Each iteration's assembly mode, which a solve from the sketch keeps: the orientation of its
+/// root in the sketch's assembly, the one that moves the sketch least at the model's params
+/// on the branches just chosen (DESIGN, "Which assembly an iterated plan returns"): the sketch
+/// itself where it is drawn assembled, the nearest assembly where it is drawn off.
+fn choose_iteration_modes(model: &Model, plan: &mut Plan) {
+    if plan.iterations.is_empty() {
+        return;
+    }
+    let scope: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+    let params = model.default_params();
+    let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+    let sketch = plan.sketch_defaults();
+    let Ok(assembly) = crate::all::least_motion(model, plan, &scope, &params, &branches, &sketch)
+    else {
+        return;
+    };
+    let at: Vec<f64> = assembly.defaults.iter().map(|(_, v)| *v).collect();
+    let modes = crate::interp::modes_at(model, plan, &params, &at, &branches);
+    for (it, mode) in plan.iterations.iter_mut().zip(modes) {
+        // Several angles turning one body (a rotation's three turns) reach each pose by two
+        // triples, whose Jacobians' determinants have opposite signs (the two charts differ
+        // by a reflection of the middle angle): there the orientation names no mode.
+        let geoms: Vec<_> = (it.defaults.iter())
+            .filter_map(|d| plan.defaults[d.0 as usize].geom)
+            .collect();
+        let one_chart = (geoms.iter().enumerate()).all(|(i, g)| !geoms[..i].contains(g));
+        it.mode = mode.filter(|_| one_chart);
     }
 }
 

@@ -160,14 +160,17 @@ pub fn prune(model: &Model, plan: &Plan) -> (Plan, BTreeSet<GeomId>) {
     for it in &plan.iterations {
         let (start, end) = (position[it.start], position[it.end]);
         if start < end {
+            let defaults: Vec<DefaultId> = (it.defaults.iter())
+                .filter_map(|d| default_map.get(d).copied())
+                .collect();
+            // An orientation is of the whole Jacobian: a region that lost a default has
+            // another one.
+            let mode = it.mode.filter(|_| defaults.len() == it.defaults.len());
             out.iterations.push(Iteration {
-                defaults: it
-                    .defaults
-                    .iter()
-                    .filter_map(|d| default_map.get(d).copied())
-                    .collect(),
+                defaults,
                 start,
                 end,
+                mode,
             });
         }
     }

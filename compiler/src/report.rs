@@ -326,6 +326,9 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
             "no assembly near where the iteration starts: it stays at least {m} from closing there"
         ),
         ErrorKind::NoSuchBranch => "no root on the branch chosen".to_string(),
+        ErrorKind::OtherMode => format!(
+            "no assembly in the sketch's mode: the {m} closure(s) found here are in the other, across a fold"
+        ),
         ErrorKind::CannotClose => {
             format!("the profile cannot close: it would give a segment a length of {m}")
         }
@@ -380,6 +383,9 @@ fn failure(model: &Model, plan: &Plan, f: &Failure, support: Option<&Support>) -
                     ErrorKind::NoConvergence => format!("it stays {m} from closing"),
                     ErrorKind::NoAssembly | ErrorKind::NoAssemblyNear => {
                         format!("it stays at least {m} from closing")
+                    }
+                    ErrorKind::OtherMode => {
+                        "it closes only in another assembly mode than the sketch's".to_string()
                     }
                     ErrorKind::CannotClose => {
                         format!("it would give a segment a length of {m}")

@@ -73,15 +73,49 @@ pub fn solve_plan_with(
     branches: &[usize],
     defaults: &[f64],
 ) -> Result<solution::Solution, SolveError> {
+    solve_plan_run(model, plan, scope, params, branches, defaults, false)
+}
+
+/// [`solve_plan_with`] as one start of many, as `solve_all` runs them
+/// ([`interp::run_searching_in`]): a failure not told apart, no mode held.
+pub fn solve_plan_searching(
+    model: &gcs_lang::Model,
+    plan: &plan::Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    branches: &[usize],
+    defaults: &[f64],
+) -> Result<solution::Solution, SolveError> {
+    solve_plan_run(model, plan, scope, params, branches, defaults, true)
+}
+
+/// [`solve_plan_with`], `searching` as [`solve_plan_searching`].
+fn solve_plan_run(
+    model: &gcs_lang::Model,
+    plan: &plan::Plan,
+    scope: &BTreeSet<GeomId>,
+    params: &[f64],
+    branches: &[usize],
+    defaults: &[f64],
+    searching: bool,
+) -> Result<solution::Solution, SolveError> {
     let choice = interp::Choice::Given(branches.to_vec());
     let (mut s, run_defaults, iterations) = match model.space {
         gcs_lang::model::Space::D2 => {
-            let run = interp::run_with(model, plan, params, defaults, &choice)?;
+            let run = if searching {
+                interp::run_searching_in::<config::D2>(model, plan, params, defaults, &choice)?
+            } else {
+                interp::run_in::<config::D2>(model, plan, params, defaults, &choice)?
+            };
             let s = solution::Solution::read(model, &run.config, scope);
             (s, run.defaults, run.iterations)
         }
         gcs_lang::model::Space::D3 => {
-            let run = interp::run_in::<config::D3>(model, plan, params, defaults, &choice)?;
+            let run = if searching {
+                interp::run_searching_in::<config::D3>(model, plan, params, defaults, &choice)?
+            } else {
+                interp::run_in::<config::D3>(model, plan, params, defaults, &choice)?
+            };
             let s = solution::Solution::read_space(model, &run.config, scope);
             (s, run.defaults, run.iterations)
         }
@@ -195,12 +229,22 @@ pub const SEARCH_STEPS: usize = 1 << 20;
 /// Whether another branch combination could avoid an error of this kind: an intersection
 /// whose loci miss or that lacks the root asked, a check that fails, a configuration that is
 /// degenerate or an iteration that does not close may all depend on the sides taken before.
-/// An invalid input, value, param or default does not.
+/// So may an iteration with no assembly on those branches, near its start or at all, or none
+/// in the sketch's mode: an assembly a sweep follows past the tangency of an intersection
+/// inside its region goes on along that intersection's other root, which the search finds and
+/// names (the branch changed). An invalid input, value, param or default does not.
 fn another_branch_may_avoid(kind: gcs_runtime::error::ErrorKind) -> bool {
     use gcs_runtime::error::ErrorKind as K;
     matches!(
         kind,
-        K::NoIntersection | K::NoSuchBranch | K::Inconsistent | K::Degenerate | K::NoConvergence
+        K::NoIntersection
+            | K::NoSuchBranch
+            | K::Inconsistent
+            | K::Degenerate
+            | K::NoConvergence
+            | K::NoAssembly
+            | K::NoAssemblyNear
+            | K::OtherMode
     )
 }
 
@@ -240,13 +284,28 @@ pub fn solve_near_sketch(
             crate::all::least_motion(model, plan, scope, params, b, defaults)
         }
     };
-    let error = match solve(branches) {
-        Ok(solution) => {
+    // Cold: the sketch's assembly followed to these params, which may go on through a
+    // tangency onto another root of a branch not held.
+    let first = if defaults_given {
+        solve(branches).map(|s| (s, None))
+    } else {
+        crate::all::sketch_assembly(model, plan, scope, params, branches, defaults, held)
+    };
+    let error = match first {
+        Ok((solution, not_kept)) => {
+            let changed: Vec<usize> = (0..plan.branches.len())
+                .filter(|&b| (solution.branches.get(b)).is_some_and(|(_, i)| *i != branches[b]))
+                .collect();
+            let moved = if changed.is_empty() {
+                Vec::new()
+            } else {
+                moved_points(model, plan, params, scope, &solution, &changed)
+            };
             return Ok(Kept {
                 solution,
-                moved: Vec::new(),
-                not_kept: None,
-            })
+                moved,
+                not_kept,
+            });
         }
         Err(e) => e,
     };

@@ -137,6 +137,7 @@ fn plan(model: &Model) -> Plan {
         defaults: vec![DefaultId(0)],
         start: 3,
         end: steps.len(),
+        mode: None,
     });
     plan.steps = steps;
     plan.branches.push(BranchVar {

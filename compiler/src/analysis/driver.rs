@@ -934,6 +934,8 @@ impl<'m, G: Geometry> Builder<'m, G> {
                     defaults,
                     start,
                     end,
+                    // The sketch's, once the plan is run on it (`pipeline::analyse`).
+                    mode: None,
                 }
             })
             .collect();

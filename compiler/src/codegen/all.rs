@@ -142,7 +142,10 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
                 "let start = Defaults {{ {field}: root, ..*defaults }};"
             ));
         }
-        w.open("if let Ok(s) = solve(params, &branches, &start) {");
+        w.line("// One start of many: a failure is not told apart, and no mode is held.");
+        w.open(
+            "if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {",
+        );
         w.line("found.push(s, same_assembly);");
         w.close("}");
         w.close("}");
@@ -180,7 +183,8 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
             ));
         }
     }
-    w.open("if let Ok(s) = solve(params, &branches, &start) {");
+    w.line("// One start of many: a failure is not told apart, and no mode is held.");
+    w.open("if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {");
     w.line("found.push(s, same_assembly);");
     w.close("}");
     w.close("}");

@@ -518,8 +518,40 @@ impl Solve<'_> {
             }
             _ => "",
         };
+        // From the sketch's own defaults and branches (a cold solve), the sketch's assembly
+        // mode is kept, as the interpreter keeps it.
+        let hold = match it.mode {
+            Some(mode) => {
+                let sketch: Vec<String> = (it.defaults.iter())
+                    .map(|d| super::writer::float(plan.defaults[d.0 as usize].sketch))
+                    .collect();
+                let branches = if cx.plan.branches.is_empty() {
+                    ""
+                } else {
+                    " && *branches == Branches::default()"
+                };
+                w.line(
+                    "// From the sketch's defaults and branches, the iteration keeps the sketch's",
+                );
+                w.line(&format!(
+                    "// assembly mode: {}.",
+                    it.mode_words().unwrap_or_default()
+                ));
+                let name = self.names.fresh("hold");
+                self.let_read(
+                    w,
+                    &name,
+                    &format!(
+                        "({trial} == [{}]{branches}).then_some(gcs_runtime::mode::Orientation::{mode:?})",
+                        sketch.join(", ")
+                    ),
+                );
+                format!(".holding({name})")
+            }
+            None => String::new(),
+        };
         w.open(&format!(
-            "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0){span}, |{trial}, {errors}| {{",
+            "outer.iterate(&mut {trial}, &[{}], &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0){span}{hold}, |{trial}, {errors}| {{",
             scale.join(", ")
         ));
         // The trial works on copies of the frames the region moves: those its code writes,

@@ -116,6 +116,26 @@ pub fn run_in<S: Space>(
     run_machine::<S>(model, plan, params, defaults.to_vec(), choice, None)
 }
 
+/// [`run_in`] as one start of many ([`gcs_runtime::outer::Search`]): an iteration that fails is
+/// not told apart, and none holds a mode, as a generated `solve_all` runs its starts.
+pub fn run_searching_in<S: Space>(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    choice: &Choice,
+) -> Result<Run<S>, SolveError> {
+    run_machine_with::<S>(
+        model,
+        plan,
+        params,
+        defaults.to_vec(),
+        choice,
+        None,
+        Some(&mut gcs_runtime::outer::Search),
+    )
+}
+
 /// Runs `plan` with `params` and `defaults` (indexed like the plan's defaults): each outer
 /// iteration starts from the defaults given and ends where its closes hold.
 pub fn run_with(
@@ -459,6 +479,56 @@ pub fn sketch_choices(model: &Model, plan: &Plan) -> (Vec<Option<usize>>, Vec<Op
     (chosen, reached)
 }
 
+/// The orientation of each of `plan`'s iterations (in order) at the root each reaches when the
+/// plan runs at `params` from `defaults` on `branches`: its assembly mode
+/// ([`gcs_runtime::mode`]). `None` for one whose root has none, and for those after a step that
+/// fails.
+pub fn modes_at(
+    model: &Model,
+    plan: &Plan,
+    params: &[f64],
+    defaults: &[f64],
+    branches: &[usize],
+) -> Vec<Option<gcs_runtime::mode::Orientation>> {
+    let mut orient = Orient::default();
+    let choice = Choice::Given(branches.to_vec());
+    let _ = in_space(model, |space| {
+        space.run(
+            model,
+            plan,
+            params,
+            defaults.to_vec(),
+            &choice,
+            None,
+            Some(&mut orient),
+        )
+    });
+    let mut modes = orient.modes;
+    modes.resize(plan.iterations.len(), None);
+    modes
+}
+
+/// Solves each outer iteration with no mode held, and records the orientation of the root it
+/// reaches.
+#[derive(Default)]
+struct Orient {
+    modes: Vec<Option<gcs_runtime::mode::Orientation>>,
+}
+
+impl Outer for Orient {
+    fn iterate<const N: usize, E: gcs_runtime::iterate::Gap>(
+        &mut self,
+        trial: &mut [f64; N],
+        scale: &[f64; N],
+        settings: &gcs_runtime::iterate::Settings,
+        mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), E>,
+    ) -> Result<gcs_runtime::iterate::Converged, gcs_runtime::iterate::Failure<E>> {
+        let converged = gcs_runtime::iterate::solve(trial, scale, &settings.holding(None), &mut f)?;
+        (self.modes).push(gcs_runtime::mode::orientation(trial, scale, &mut f));
+        Ok(converged)
+    }
+}
+
 /// What a space's interpreter adds to the machine: its steps.
 pub trait Space: Frames {
     /// Runs one step of the space's plan, keeping the value it defines in its register.
@@ -593,6 +663,7 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
                             ErrorKind::NoConvergence
                                 | ErrorKind::NoAssembly
                                 | ErrorKind::NoAssemblyNear
+                                | ErrorKind::OtherMode
                         )
                         .then(|| self.first_close(it)),
                         error,
@@ -668,7 +739,21 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
             [d] if self.plan.defaults[d.0 as usize].is_angle() => Span::Turn,
             _ => Span::Unknown,
         };
-        let settings = Settings::for_size(self.scale).spanning(span);
+        // From the sketch's own defaults on its branches (a cold solve), the sketch's assembly
+        // mode is kept, as generated code keeps it: an orientation is the sketch's on the
+        // sketch's branches only (another branch closes another function).
+        let sketch_branches = match self.choice {
+            Choice::Given(given) => {
+                (given.iter().zip(&self.plan.branches)).all(|(i, b)| *i == b.default)
+            }
+            Choice::Nearest => false,
+        };
+        let from_sketch = sketch_branches
+            && (it.defaults.iter().zip(&x))
+                .all(|(d, v)| *v == self.plan.defaults[d.0 as usize].sketch);
+        let settings = Settings::for_size(self.scale)
+            .spanning(span)
+            .holding(it.mode.filter(|_| from_sketch));
         let outcome = outer.iterate(&mut x, &scale, &settings, |x: &[f64; N], r| {
             self.assemble(it, &saved, x, r)
         });

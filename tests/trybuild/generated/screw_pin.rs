@@ -426,7 +426,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let mut start = *defaults;
         start.screw_thread_place =
             defaults.screw_thread_place + 1.5 * (2.0 * ((cell % 12) as f64 / 12.0) - 1.0);
-        if let Ok(s) = solve(params, &branches, &start) {
+        // One start of many: a failure is not told apart, and no mode is held.
+        if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
             found.push(s, same_assembly);
         }
     }

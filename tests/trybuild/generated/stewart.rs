@@ -716,7 +716,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                 -std::f64::consts::PI + 2.0 * std::f64::consts::PI * ((cell / 5 % 5) as f64 / 5.0);
             start.platform_z_angle =
                 -std::f64::consts::PI + 2.0 * std::f64::consts::PI * ((cell % 5) as f64 / 5.0);
-            if let Ok(s) = solve(params, &branches, &start) {
+            // One start of many: a failure is not told apart, and no mode is held.
+            if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
                 found.push(s, same_assembly);
             }
         }

@@ -384,12 +384,17 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     // No loop is rigid here: vary `link1_angle` until `j3` closes (an outer iteration).
     let mut trial = [defaults.link1_angle];
     let link1_angle_directions = DirectionsNear::new(trial[0]);
+    // From the sketch's defaults and branches, the iteration keeps the sketch's
+    // assembly mode: its closing error rising with its default.
+    let hold = (trial == [std::f64::consts::PI] && *branches == Branches::default())
+        .then_some(gcs_runtime::mode::Orientation::Positive);
     outer
         .iterate(
             &mut trial,
             &[1.0],
             &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
-                .spanning(gcs_runtime::iterate::Span::Turn),
+                .spanning(gcs_runtime::iterate::Span::Turn)
+                .holding(hold),
             |trial, errors| {
                 let mut link1 = link1;
                 let mut link2 = link2;
@@ -616,7 +621,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         }
         for &root in scan.roots() {
             let start = Defaults { link1_angle: root };
-            if let Ok(s) = solve(params, &branches, &start) {
+            // One start of many: a failure is not told apart, and no mode is held.
+            if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
                 found.push(s, same_assembly);
             }
         }
