@@ -443,7 +443,7 @@ impl Builder<'_, Spatial> {
             Trans::On {
                 locus: Locus::Plane(plane),
                 ..
-            } => self.across_turn_axis(&rec, plane),
+            } => self.across_turn_axis(rec, plane),
             _ => false,
         };
         along && !parallel_pending && across && self.cluster(v) == self.cluster(q)
