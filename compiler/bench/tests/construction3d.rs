@@ -142,31 +142,11 @@ const KNOWN_WRONG: &[Known] = &[
 /// assembly near it (`harness::Judged::Near`). The test fails on any other, and when a listed
 /// entry's sketch is no longer refused in the cause's modes.
 const KNOWN_DEGENERATE: &[Known] = &[
-    Known {
-        why: "The plan defaults the freedom the constraints fix and leaves the one they free to an \
-              intersection of parallel loci. After `in_line`, the analysis takes the place of `P.m` \
-              on its line as a default, then turns `P` about the axis through `P.m` along the marker's \
-              z, to bring `P.n` onto the marker's plane: the circle `P.n` sweeps lies in a plane \
-              parallel to the marker's, so it lies in it (coincident: `Degenerate`) or misses it \
-              (`NoIntersection`). Only where the default place puts `P.n` at the plane's height, the \
-              sketch at the target, is there an assembly, and then a turn about that axis that \
-              nothing fixes: the constraints fix the place (the height along the marker's z) and free \
-              the turn. The entry solves none of its random instances.",
-        modes: &["exact"],
-        entries: &["body | on a line (in_line) | planar(P.n, marker)"],
-    },
-    Known {
-        why: "The plan defaults the freedom the constraints fix and leaves the one they free to an \
-              intersection of parallel loci. After a planar joint, the analysis takes `P`'s turn about \
-              the joint's z as a default, then slides `P.m` onto the plane across the helix's axis at \
-              that turn's advance, which is parallel to the joint's plane where `P.m` already lies: the \
-              same plane (`Degenerate`) where the default turn is the target's, the sketch at the \
-              target, and a parallel one (`NoIntersection`) elsewhere. The joint fixes the advance, so \
-              the helix fixes the turn, and the translation in the joint's plane is free. The entry \
-              solves none of its random instances.",
-        modes: &["exact"],
-        entries: &["body | planar joint | helical(marker, P.m) = pitch"],
-    },
+    // Empty: the last causes (a plan that defaulted the freedom the constraints fix and left
+    // the one they free to an intersection of parallel loci: a body on a line with a point on
+    // a plane across its turn, a planar joint with a helical one) are gone. A point held on a
+    // line and turned about an axis slides to a plane across that axis (`move_point`), and a
+    // helix whose second marker's advance the record holds turns it (`advance_held`).
 ];
 
 // ---------------------------------------------------------------- small maths

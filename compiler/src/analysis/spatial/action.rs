@@ -421,6 +421,34 @@ impl Builder<'_, Spatial> {
         false
     }
 
+    /// Whether the advance along `axis` of point `q` (a helix's second marker, `v` its x axis)
+    /// is held by its cluster's record though `q` still moves: the cluster turns only about an
+    /// axis along the joint's z axes (its own z axis along the helix's held by the joint, not
+    /// pending), and slides only across it (held at a pivot, or in a plane square to the
+    /// axis). The advance then fixes the turn, which the helix takes, and leaves the slide.
+    fn advance_held(&self, axis: GeomId, (v, q): (GeomId, GeomId), r: &Rel) -> bool {
+        let Some(z) = self.model.part(q, gcs_lang::model::Part::AxisZ) else {
+            return false;
+        };
+        let rec = self.record(q);
+        let along = matches!(rec.turn, Turn::Axis { feature: Some(f), .. }
+            if f == z || super::same_direction(self.model, f, z));
+        let parallel_pending = self.pending.iter().any(|p| {
+            p.constraint == r.constraint
+                && matches!(p.relation, Relation::Parallel { u, v: w, .. }
+                    if [u, w].contains(&axis) || [u, w].contains(&z))
+        });
+        let across = match rec.trans {
+            Trans::Pivot { .. } | Trans::Fixed => true,
+            Trans::On {
+                locus: Locus::Plane(plane),
+                ..
+            } => self.across_turn_axis(rec, plane),
+            _ => false,
+        };
+        along && !parallel_pending && across && self.cluster(v) == self.cluster(q)
+    }
+
     /// A helical joint's coupling of turn and advance about `axis`: one side known, the other
     /// placed along the axis for its turn (the advance nearest where it is: the turns are a
     /// pitch apart), or turned about the axis for its advance.
@@ -484,8 +512,8 @@ impl Builder<'_, Spatial> {
             );
             return self.move_point(q, Target::On(Locus::Plane(plane)), r);
         }
-        if self.point_known(q) && !self.dir_known(v) {
-            // Placed along the axis: turn to that advance's angle.
+        if (self.point_known(q) || self.advance_held(axis, (v, q), r)) && !self.dir_known(v) {
+            // Placed along the axis, or held at its advance: turn to that advance's angle.
             let to = self.point(q);
             let words = format!("the advance of {qname} along {}", self.name(axis));
             let advance = self.value(

@@ -4,7 +4,7 @@
 //! pivot, the shortest turn onto where its sphere meets the target; about a pivot and an axis,
 //! the turn by the angle between perpendiculars. Each move updates the record (`placed`).
 
-use super::{on_axis, Locus, Record, Rel, Shape, Spatial, Target, Trans, Turn};
+use super::{on_axis, same_direction, Locus, Record, Rel, Shape, Spatial, Target, Trans, Turn};
 use crate::analysis::driver::Builder;
 use crate::plan::{Op, Reg, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::GeomId;
@@ -110,6 +110,42 @@ impl Builder<'_, Spatial> {
                     explain,
                 );
                 self.placed(k, f, to, met);
+                true
+            }
+            // Held on a line and turning about an axis through the held feature, onto a plane
+            // across that axis: the turn keeps f's height along the axis and the slide sets it,
+            // so the plane fixes the slide and leaves the turn (a turn onto the plane would
+            // sweep a circle parallel to it). Slide to where f's line meets the plane; the
+            // cluster then turns about the axis through the held feature, now still. A line
+            // across the axis is degenerate: it never changes the height.
+            (
+                Trans::On {
+                    feature: g,
+                    locus: Locus::Line(line),
+                },
+                Target::On(Locus::Plane(plane)),
+            ) if self.across_turn_axis(&rec, plane) => {
+                let from = self.point(f);
+                let own = self.shifted(Locus::Line(line), g, f);
+                let Some(Target::Point(to)) = self.meet(own, target, from, r) else {
+                    return false;
+                };
+                let explain = format!(
+                    "{names} can only move {} on {} and turn about an axis through it across {}: slide it so that {fname} reaches {} ({c}).",
+                    self.name(g),
+                    self.word(line),
+                    self.word(plane),
+                    self.word(to)
+                );
+                self.emit(
+                    Op::Translate { geoms, from, to },
+                    None,
+                    self.satisfies(r),
+                    explain,
+                );
+                let at = self.point(g);
+                self.clusters[k].record.trans = Trans::Pivot { at, feature: g };
+                self.insert_known(g, at);
                 true
             }
             // A segment of free length, one end held: the other end reaches a point by a turn
@@ -296,6 +332,56 @@ impl Builder<'_, Spatial> {
             _ => None,
         };
         Some((na, a == b || built(a).is_some_and(|x| built(b) == Some(x))))
+    }
+
+    /// Whether a record turns about an axis to which plane register `plane` is square by
+    /// construction (its normal a measure of the axis' direction), so that the turn keeps
+    /// every point's height over the plane.
+    pub(super) fn across_turn_axis(&self, rec: &Record, plane: Reg) -> bool {
+        let Turn::Axis { axis, feature } = rec.turn else {
+            return false;
+        };
+        let mut p = plane;
+        let normal = loop {
+            match self.def(p).map(|s| &s.op) {
+                Some(Op::Spatial(SpatialOp::Plane { normal, .. })) => break *normal,
+                Some(Op::Spatial(SpatialOp::ParallelPlane { plane, .. })) => p = *plane,
+                _ => return false,
+            }
+        };
+        self.parallel_by_construction(axis, normal)
+            || matches!((feature, self.dir_feature(normal)), (Some(a), Some(n))
+                if a == n || same_direction(self.model, a, n))
+    }
+
+    /// Whether direction registers `a` and `b` are parallel by construction: measures of one
+    /// direction feature (or of two parallel in one body), either possibly reversed or
+    /// aligned with another direction.
+    fn parallel_by_construction(&self, a: Reg, b: Reg) -> bool {
+        let (a, b) = (self.dir_root(a), self.dir_root(b));
+        a == b
+            || matches!((self.dir_feature(a), self.dir_feature(b)), (Some(x), Some(y))
+                if x == y || same_direction(self.model, x, y))
+    }
+
+    /// Direction register `d` with its reversals and alignments taken off.
+    fn dir_root(&self, mut d: Reg) -> Reg {
+        loop {
+            match self.def(d).map(|s| &s.op) {
+                Some(Op::Spatial(SpatialOp::Opposite(x)))
+                | Some(Op::Spatial(SpatialOp::Aligned { dir: x, .. })) => d = *x,
+                _ => return d,
+            }
+        }
+    }
+
+    /// The direction feature direction register `d` measures, through reversals and
+    /// alignments.
+    fn dir_feature(&self, d: Reg) -> Option<GeomId> {
+        match self.def(self.dir_root(d)).map(|s| &s.op) {
+            Some(Op::DirOf(g)) => Some(*g),
+            _ => None,
+        }
     }
 
     /// Whether a record's turn is about an axis through its feature `g` on which `f` lies too,
