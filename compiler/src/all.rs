@@ -217,8 +217,8 @@ fn followed_from_sketch(
                         .map(|k| (other, k))
                 })
         };
-        let taken = match try_step(&branches, next, &last) {
-            Ok(taken) => Some(taken),
+        let (mut s, at) = match try_step(&branches, next, &last) {
+            Ok(taken) => taken,
             Err(_) if step > SHORTEST_STEP => {
                 step *= 0.5;
                 continue;
@@ -237,10 +237,9 @@ fn followed_from_sketch(
                 }
                 branches = other;
                 next = further;
-                Some(taken)
+                taken
             }
         };
-        let Some((mut s, at)) = taken else { continue };
         if next >= 1.0 {
             s.branches_changed = crate::solution::BranchChange::of(plan, asked, &branches);
             return Some((s, met));
