@@ -2,9 +2,9 @@
 //! orientation of its closing errors' Jacobian at the sketch's root (`gcs_runtime::mode`).
 //!
 //! On the 3-RPR (`examples/rpr3.gcs`), one default, `platform.p1_angle`, closes `l3`: the
-//! distance from `B3` to `platform.p3`, a function `reach(t)` of the angle that the test
-//! computes itself (two circles, the platform's frame) and whose roots it finds by a dense
-//! grid, sharing nothing with the plan.
+//! distance from `B3` to `platform.p3`, a function `reach(t)` of the angle that the tests
+//! compute themselves (`common/rpr3.rs`: two circles, the platform's frame) and whose roots
+//! they find by a dense grid, sharing nothing with the plan.
 //!
 //! - `leg3` swept: every solve from the sketch's defaults lands on a root where `reach` has
 //!   the slope's sign of the sketch's mode, the one Newton's method reaches when it has, and
@@ -14,61 +14,17 @@
 //!   ways, and each sample solved cold from the sketch: the same assembly at every sample.
 
 use gcs_compiler::analyse;
-use gcs_lang::Model;
 use gcs_runtime::error::ErrorKind;
 use std::f64::consts::PI;
 
-const LEG1: f64 = 14.98;
-const LEG2: f64 = 15.38;
-const B2: [f64; 2] = [15.91, 0.0];
-const B3: [f64; 2] = [0.0, 10.0];
-const P2_X: f64 = 17.04;
-const P3: [f64; 2] = [15.940021741400596, 13.425362538233478];
+#[path = "common/rpr3.rs"]
+mod rpr3;
 
-fn rpr3() -> Model {
-    let path = format!("{}/../examples/rpr3.gcs", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("read {path}: {e}"));
-    for part in [
-        "param leg1 = 14.98;",
-        "param leg2 = 15.38;",
-        "fixed point B1 = (0, 0);",
-        "fixed point B2 = (15.91, 0);",
-        "fixed point B3 = (0, 10);",
-        "point p2 = (17.04, 0);",
-        "point p3 = (15.940021741400596, 13.425362538233478);",
-    ] {
-        assert!(
-            text.contains(part),
-            "the example changed: update this test ({part})"
-        );
-    }
-    let (_, model, diags) = gcs_lang::load(&path, text.as_bytes());
-    model.unwrap_or_else(|| panic!("{diags:?}"))
-}
+use rpr3::{model as rpr3, LEG1};
 
-/// The distance from `B3` to `platform.p3` with `platform.p1` at angle `t` on its circle about
-/// `B1` and `platform.p2` on the circle about `B2` to the left of the line from `platform.p1`
-/// to `B2` (branch 0 of `l2`, the sketch's); `None` where the circles miss.
+/// `rpr3::reach` on the sketch's branch of `l2`, 0.
 fn reach(t: f64) -> Option<f64> {
-    let p1 = [LEG1 * t.cos(), LEG1 * t.sin()];
-    let (dx, dy) = (B2[0] - p1[0], B2[1] - p1[1]);
-    let d = dx.hypot(dy);
-    let along = (P2_X * P2_X - LEG2 * LEG2 + d * d) / (2.0 * d);
-    let across = (P2_X * P2_X - along * along).sqrt();
-    if across.is_nan() {
-        return None;
-    }
-    let (ux, uy) = (dx / d, dy / d);
-    let p2 = [
-        p1[0] + along * ux - across * uy,
-        p1[1] + along * uy + across * ux,
-    ];
-    let (vx, vy) = ((p2[0] - p1[0]) / P2_X, (p2[1] - p1[1]) / P2_X);
-    let p3 = [
-        p1[0] + P3[0] * vx - P3[1] * vy,
-        p1[1] + P3[0] * vy + P3[1] * vx,
-    ];
-    Some((p3[0] - B3[0]).hypot(p3[1] - B3[1]))
+    rpr3::reach(t, 0)
 }
 
 /// A root of `reach(t) = leg3`: its angle and whether `reach` falls there.
