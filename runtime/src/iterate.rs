@@ -442,7 +442,10 @@ pub fn solve<const N: usize, E: Gap>(
             Some(want) => crate::mode::keep(want, &start, x, scale, settings, converged, &mut f),
             None => Ok(converged),
         },
-        Err(failure @ Failure::NoConvergence { .. }) if settings.classify => {
+        Err(Failure::NoConvergence {
+            residual,
+            iterations,
+        }) if settings.classify => {
             // Held from the sketch: a root of the sketch's mode elsewhere is the answer, and
             // roots of the other mode only are said as such.
             if let Some(want) = settings.hold {
@@ -450,10 +453,6 @@ pub fn solve<const N: usize, E: Gap>(
                 match crate::mode::search(want, &start, &mut y, scale, settings, &mut f) {
                     Ok(residual) => {
                         *x = y;
-                        let iterations = match failure {
-                            Failure::NoConvergence { iterations, .. } => iterations,
-                            _ => 0,
-                        };
                         return Ok(Converged {
                             iterations,
                             evaluations: settings.max_evaluations,
@@ -461,14 +460,15 @@ pub fn solve<const N: usize, E: Gap>(
                         });
                     }
                     Err(others) if others > 0 => {
-                        return Err(Failure::OtherMode {
-                            others,
-                            iterations: 0,
-                        })
+                        return Err(Failure::OtherMode { others, iterations })
                     }
                     Err(_) => {}
                 }
             }
+            let failure = Failure::NoConvergence {
+                residual,
+                iterations,
+            };
             Err(classify(&start, x, scale, settings, &mut f, failure))
         }
         outcome => outcome,

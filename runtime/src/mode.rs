@@ -257,11 +257,11 @@ fn keep_one<const N: usize, E>(
         point[0] = root;
         match orientation(&point, scale, f) {
             Some(o) if o == want => {
-                let mut d = (root - start[0]).abs();
-                if turn {
-                    d = d.rem_euclid(2.0 * pi);
-                    d = d.min(2.0 * pi - d);
-                }
+                let d = if turn {
+                    crate::num::wrap_angle(root - start[0]).abs()
+                } else {
+                    (root - start[0]).abs()
+                };
                 if best.is_none_or(|(_, nearest, _)| d < nearest) {
                     best = Some((root, d, scan.residual(i)));
                 }
