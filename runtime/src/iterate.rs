@@ -1344,6 +1344,13 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
         tol::SQRT_EPS * x.abs().max(self.scale)
     }
 
+    /// The shortest step taken back from a point where the assembly fails: a few units of
+    /// rounding at `x`, so that a root beside the edge of the stretch where it exists is
+    /// reached however close to that edge it lies.
+    fn edge_step(&self, x: f64) -> f64 {
+        4.0 * f64::EPSILON * x.abs().max(self.scale)
+    }
+
     /// Records a good point: the bracket, and the best point.
     fn record(&mut self, t: f64, ft: f64) {
         match &mut self.bracket {
@@ -1519,7 +1526,17 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
                         return Some(true);
                     }
                 }
-                Probe::Bad => {}
+                Probe::Bad => {
+                    // Past the edge of the stretch where the assembly exists: a root may lie
+                    // closer to that edge than any step the slope sets (where two circles of
+                    // the region come to touch, the root leaves through the edge), so the
+                    // step is halved toward it down to rounding.
+                    step *= 0.5;
+                    if step.abs() < self.edge_step(x) {
+                        return None;
+                    }
+                    continue;
+                }
                 Probe::Exhausted => return None,
             }
             step *= 0.5;
@@ -1539,7 +1556,6 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
             Some(step) if !stalled && bracket.contains(x + step) => x + step,
             _ => bracket.propose(),
         };
-        let min_step = self.min_step(x);
         loop {
             match self.probe(t) {
                 Probe::Good(ft) => {
@@ -1547,8 +1563,10 @@ impl<F: FnMut(f64) -> Option<f64>> Scalar<F> {
                     break;
                 }
                 Probe::Bad => {
+                    // Toward the base, down to rounding: as in `search_step`, the root may
+                    // hug the edge of the stretch where the assembly exists.
                     t = x + 0.5 * (t - x);
-                    if (t - x).abs() < min_step {
+                    if (t - x).abs() < self.edge_step(x) {
                         return None;
                     }
                 }

@@ -353,6 +353,30 @@ fn solve_backs_off_where_the_assembly_fails() {
     assert!(done.residual <= 1e-13);
 }
 
+proptest! {
+    #![proptest_config(config(256))]
+
+    /// A root hugging the edge of the stretch where the assembly exists, as where two circles
+    /// inside an iterated region come to touch: `f = a + c sqrt(edge - x)`, failing past the
+    /// edge, its root 1e-12 to 1e-6 inside it, far closer than the step a slope sets. From a
+    /// start well inside, the iteration reaches it by halving failing steps down to rounding.
+    #[test]
+    fn a_root_beside_the_edge_of_the_assembly_is_reached(
+        edge in -1.0f64..1.0,
+        exponent in 6.0f64..12.0,
+        c in 0.2f64..5.0,
+        inside in 1e-4f64..0.3,
+    ) {
+        let depth = 10f64.powf(-exponent);
+        let a = -c * depth.sqrt();
+        let f = |x: f64| if x > edge { Err(()) } else { Ok(a + c * (edge - x).sqrt()) };
+        let (x, out) = solve1(edge - inside, 1.0, f);
+        let done = out.map_err(|e| TestCaseError::fail(format!("{e:?} at {x}")))?;
+        prop_assert!(done.residual <= 1e-10, "{done:?}");
+        prop_assert!(x <= edge && (x - (edge - depth)).abs() <= 1e-3 * depth + 4e-16, "{x}");
+    }
+}
+
 #[test]
 fn nan_residuals_count_as_failures() {
     // NaN past 1, as an unguarded sqrt would give.
