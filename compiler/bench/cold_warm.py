@@ -4,8 +4,10 @@ sample nearest the param's sketch value outward both ways, each sample from the 
 defaults and branches, as a sweep does), and each sample solved cold (alone, from the sketch), with
 `gcs solve --json`. Prints per example the warm failures (where the assembly followed from the
 sketch ends), the cold failures, the cold failures that say the sketch's mode has no assembly
-there (`OtherMode`), and the samples where the cold solve lands on another assembly than the
-warm one (points apart by more than 1e-6 of the model's size). BENCHMARKS.md's
+there (`OtherMode`), the samples where the cold solve lands on another assembly than the
+warm one (points apart by more than 1e-6 of the model's size), the cold jumps between
+neighbouring samples, and of the cold answers where the warm sweep has none (past a fold where
+the sketch's assembly ends), how many do not say so (`"sketch_assembly_ended"`). BENCHMARKS.md's
 cold-against-warm row; run from the repository's root after `cargo build --release -p gcs-cli`:
 
     python3 compiler/bench/cold_warm.py [SAMPLES]
@@ -59,7 +61,7 @@ for path, param, lo, hi in cases:
             w, _ = solve(path, param, values[i], prev) if prev else (None, "")
             warm[i] = w
             prev = w
-    warm_fail = cold_fail = other_mode = differ = jumps = 0
+    warm_fail = cold_fail = other_mode = differ = jumps = unsaid = 0
     last = None
     for i, v in enumerate(values):
         cold, err = solve(path, param, v)
@@ -67,8 +69,9 @@ for path, param, lo, hi in cases:
         if cold is not None and last is not None and dist(cold, last) > 0.05: jumps += 1
         last = cold
         if warm[i] is None: warm_fail += 1
+        if warm[i] is None and cold is not None and not cold.get("sketch_assembly_ended") and not cold.get("branches_changed"): unsaid += 1
         if cold is None:
             cold_fail += 1
             if "sketch's assembly mode" in err or "sketch's mode" in err: other_mode += 1
         if warm[i] is not None and cold is not None and dist(warm[i], cold) > 1e-6: differ += 1
-    print(f"{path.split('/')[-1]:28} {param}: {N} samples; warm failures {warm_fail}, cold failures {cold_fail} ({other_mode} other mode), cold on another assembly than warm {differ}, cold jumps between samples {jumps}")
+    print(f"{path.split('/')[-1]:28} {param}: {N} samples; warm failures {warm_fail}, cold failures {cold_fail} ({other_mode} other mode), cold on another assembly than warm {differ}, cold jumps between samples {jumps}, cold past the warm sweep's end not saying so {unsaid}")

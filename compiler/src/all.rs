@@ -97,14 +97,26 @@ pub fn least_motion(
     defaults: &[f64],
 ) -> Result<Solution, gcs_runtime::error::SolveError> {
     let held = vec![true; branches.len()];
-    sketch_assembly(model, plan, scope, params, branches, defaults, &held).map(|(s, _)| s)
+    sketch_assembly(model, plan, scope, params, branches, defaults, &held).map(|f| f.solution)
+}
+
+/// The sketch's assembly at the params asked, as [`sketch_assembly`] finds it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Followed {
+    /// The solution. Where the assembly ended on the way, the assembly nearest the sketch in
+    /// the sketch's mode, which its `sketch_assembly_ended` says.
+    pub solution: Solution,
+    /// The tangencies the assembly passed on the way, each onto another root of a branch.
+    pub passed: Vec<Tangency>,
 }
 
 /// [`least_motion`], where the sketch's assembly followed to `params` may go on along another
 /// root of an intersection whose branch is not `held` (by the plan's branch order): where that
 /// intersection's loci touch on the way (inside an iterated region, a sweep carries the
 /// assembly through the tangency onto the other root). The solution lists the branches so
-/// changed (`branches_changed`), with the error the assembly met on the branches asked.
+/// changed (`branches_changed`); the tangencies passed say where each changed. Where the
+/// assembly ends on the way (a fold), the solution says where (`sketch_assembly_ended`): it
+/// is then another assembly, which no motion from the sketch reaches without passing the fold.
 pub fn sketch_assembly(
     model: &Model,
     plan: &Plan,
@@ -113,17 +125,37 @@ pub fn sketch_assembly(
     branches: &[usize],
     defaults: &[f64],
     held: &[bool],
-) -> Result<(Solution, Option<gcs_runtime::error::SolveError>), gcs_runtime::error::SolveError> {
+) -> Result<Followed, gcs_runtime::error::SolveError> {
+    let alone = |solution| Followed {
+        solution,
+        passed: Vec::new(),
+    };
     if plan.iterations.is_empty() {
-        return crate::solve_plan_with(model, plan, scope, params, branches, defaults)
-            .map(|s| (s, None));
+        return crate::solve_plan_with(model, plan, scope, params, branches, defaults).map(alone);
     }
-    if let Some(followed) =
-        followed_from_sketch(model, plan, scope, params, branches, defaults, held)
-    {
-        return Ok(followed);
-    }
-    nearest_in_mode(model, plan, scope, params, branches, defaults).map(|s| (s, None))
+    let ended = match followed_from_sketch(model, plan, scope, params, branches, defaults, held) {
+        Ok((solution, passed)) => return Ok(Followed { solution, passed }),
+        Err(ended) => ended,
+    };
+    let mut s = nearest_in_mode(model, plan, scope, params, branches, defaults)?;
+    s.sketch_assembly_ended = ended.map(|at| {
+        (model.params.iter().zip(at))
+            .map(|((_, p), v)| (p.name.clone(), v))
+            .collect()
+    });
+    Ok(alone(s))
+}
+
+/// Where the sketch's assembly, followed from the model's params ([`sketch_assembly`]), passed
+/// through a tangency of an intersection inside an iterated region and went on along its
+/// other root: the branch (by the plan's order), the root it left and the one it took, and the
+/// params where it did (the first point past the tangency that the following reached).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tangency {
+    pub branch: usize,
+    pub left: usize,
+    pub took: usize,
+    pub params: Vec<f64>,
 }
 
 /// The steps of [`followed_from_sketch`]: the first and longest fraction of the way, and the
@@ -138,8 +170,9 @@ const SHORTEST_STEP: f64 = 1.0 / 4096.0;
 /// step solved from the last one's defaults, as a sweep does, halved where it fails and
 /// lengthened where it solves. Where no step down to [`SHORTEST_STEP`] solves, the step is
 /// tried with each branch not `held` on another root: the assembly may go on there through a
-/// tangency of that intersection (the first failure is returned beside the solution). `None`
-/// where the assembly ends on the way, or is not found at the model's params.
+/// tangency of that intersection (each such [`Tangency`] is returned beside the solution).
+/// Where the assembly ends on the way, the params of the last point it reached; `Err(None)`
+/// where it is not found at the model's params.
 fn followed_from_sketch(
     model: &Model,
     plan: &Plan,
@@ -148,14 +181,20 @@ fn followed_from_sketch(
     asked: &[usize],
     defaults: &[f64],
     held: &[bool],
-) -> Option<(Solution, Option<gcs_runtime::error::SolveError>)> {
+) -> Result<(Solution, Vec<Tangency>), Option<Vec<f64>>> {
     let start = model.default_params();
-    let at_sketch = nearest_in_mode(model, plan, scope, &start, asked, defaults).ok()?;
+    // Found once by the pipeline, on the sketch's branches: else searched for here.
+    let stored = stored_assembly(plan, asked, defaults)
+        .and_then(|d| crate::solve_plan_with(model, plan, scope, &start, asked, &d).ok());
+    let at_sketch = match stored {
+        Some(s) => s,
+        None => nearest_in_mode(model, plan, scope, &start, asked, defaults).map_err(|_| None)?,
+    };
     if start.as_slice() == params {
-        return Some((at_sketch, None));
+        return Ok((at_sketch, Vec::new()));
     }
     let mut branches = asked.to_vec();
-    let mut met: Option<gcs_runtime::error::SolveError> = None;
+    let mut passed: Vec<Tangency> = Vec::new();
     let along = |t: f64| -> Vec<f64> {
         (start.iter().zip(params))
             .map(|(a, b)| if t >= 1.0 { *b } else { a + t * (b - a) })
@@ -223,7 +262,7 @@ fn followed_from_sketch(
                 step *= 0.5;
                 continue;
             }
-            Err(error) => {
+            Err(_) => {
                 // As short as steps go: the assembly goes on along another root past a
                 // tangency (just beyond the stall, or a little further: the stall may come
                 // before the tangency, where the error is too steep to follow), or ends.
@@ -231,9 +270,18 @@ fn followed_from_sketch(
                     let further = (t + SHORTEST_STEP * f64::from(1u32 << k)).min(1.0);
                     flip(&branches, further).map(|(b, taken)| (b, taken, further))
                 });
-                let (other, taken, further) = flipped?;
-                if met.is_none() {
-                    met = error;
+                let Some((other, taken, further)) = flipped else {
+                    return Err(Some(along(t)));
+                };
+                for (b, (&left, &took)) in branches.iter().zip(&other).enumerate() {
+                    if left != took {
+                        passed.push(Tangency {
+                            branch: b,
+                            left,
+                            took,
+                            params: along(further),
+                        });
+                    }
                 }
                 branches = other;
                 next = further;
@@ -242,12 +290,30 @@ fn followed_from_sketch(
         };
         if next >= 1.0 {
             s.branches_changed = crate::solution::BranchChange::of(plan, asked, &branches);
-            return Some((s, met));
+            return Ok((s, passed));
         }
         last = at;
         t = next;
         step = (2.0 * step).min(LONGEST_STEP);
     }
+}
+
+/// `defaults` with each iterated one at its value in the sketch's assembly at the model's
+/// params, as the pipeline stored it ([`crate::plan::DefaultVar::assembled`]), when the
+/// branches asked are the sketch's and every iterated default has one.
+fn stored_assembly(plan: &Plan, asked: &[usize], defaults: &[f64]) -> Option<Vec<f64>> {
+    let sketch_branches = (plan.branches.iter().zip(asked)).all(|(b, &a)| b.default == a);
+    if !sketch_branches || asked.len() != plan.branches.len() {
+        return None;
+    }
+    let mut out = defaults.to_vec();
+    for it in &plan.iterations {
+        for d in &it.defaults {
+            let d = d.0 as usize;
+            *out.get_mut(d)? = plan.defaults.get(d)?.assembled?;
+        }
+    }
+    Some(out)
 }
 
 /// Starts beside `last` (the defaults, by the plan's order): each iterated default moved by

@@ -169,6 +169,12 @@ fn choose_iteration_modes(model: &Model, plan: &mut Plan) {
     };
     let at: Vec<f64> = assembly.defaults.iter().map(|(_, v)| *v).collect();
     let modes = crate::interp::modes_at(model, plan, &params, &at, &branches);
+    let iterated: Vec<usize> = (plan.iterations.iter())
+        .flat_map(|it| it.defaults.iter().map(|d| d.0 as usize))
+        .collect();
+    for d in iterated {
+        plan.defaults[d].assembled = at.get(d).copied();
+    }
     for (it, mode) in plan.iterations.iter_mut().zip(modes) {
         // Several angles turning one body (a rotation's three turns) reach each pose by two
         // triples, whose Jacobians' determinants have opposite signs (the two charts differ

@@ -144,9 +144,96 @@ pub fn problems(model: &Model, a: &Analysis) -> Vec<Diagnostic> {
 /// The headline of [`sketch_branches`], by which a caller knows the diagnostic.
 pub const SKETCH_BRANCHES: &str = "the constraints cannot be met on the sketch's branches";
 
-/// Whether `d` is the warning of [`sketch_branches`] (`--deny sketch-branch` makes it an error).
+/// The headline of [`sketch_branches`] where the sketch's assembly, followed to the params
+/// given, passed a tangency onto another root ([`crate::solve::Kept::passed`]): the branches
+/// changed on the way, not because the sketch's could not be met.
+pub const SKETCH_BRANCHES_PASSED: &str =
+    "the sketch's assembly changes branches on its way to the params given";
+
+/// The headline of [`sketch_assembly_ended`].
+pub const SKETCH_ASSEMBLY_ENDED: &str = "the sketch's assembly ends on the way to the params given";
+
+/// Whether `d` is the warning of [`sketch_branches`] or [`sketch_assembly_ended`] (`--deny
+/// sketch-branch` makes either an error).
 pub fn is_sketch_branches(d: &Diagnostic) -> bool {
-    d.message.starts_with(SKETCH_BRANCHES)
+    [
+        SKETCH_BRANCHES,
+        SKETCH_BRANCHES_PASSED,
+        SKETCH_ASSEMBLY_ENDED,
+    ]
+    .iter()
+    .any(|h| d.message.starts_with(h))
+}
+
+/// The warning of a solve whose assembly is not the sketch's because the sketch's, followed
+/// from the model's params, ended on the way ([`crate::solution::Solution`]'s
+/// `sketch_assembly_ended`), on the first constraint the iteration closes: where it ended,
+/// what the solution is instead, and how far its points lie from their sketch. `None` when it
+/// did not end.
+pub fn sketch_assembly_ended(model: &Model, plan: &Plan, s: &Solution) -> Option<Diagnostic> {
+    /// The points listed, farthest first; the rest are counted.
+    const LISTED: usize = 4;
+    let at = s.sketch_assembly_ended.as_ref()?;
+    let sketch = model.default_params();
+    let near: Vec<String> = (at.iter().zip(&sketch))
+        .filter(|((_, v), s)| v != *s)
+        .map(|((name, v), _)| format!("{name} = {}", rounded(*v)))
+        .collect();
+    let near = if near.is_empty() {
+        String::new()
+    } else {
+        format!(" near {}", near.join(", "))
+    };
+    let closes = (plan.iterations.iter())
+        .flat_map(|it| plan.closes(it))
+        .next();
+    let span = closes.map_or(gcs_lang::Span::default(), |c| model.constraints[c].span);
+    let label = closes.map_or_else(String::new, |c| {
+        format!(
+            "`{}` closes by an iteration, whose assembly followed from the sketch comes to a fold{near}",
+            model.constraints[c].name
+        )
+    });
+    let mut d = Diagnostic::warning(span, SKETCH_ASSEMBLY_ENDED.to_string()).with_label(label);
+    d = d.with_note(format!(
+        "followed from the model's params as a sweep would follow it, the sketch's assembly comes{near} to where its closing errors stop closing: no step past there stays on it (a fold, where that assembly meets another and both end)"
+    ));
+    let drawn = Solution::of_sketch(model, &sketch, &plan.touched(model));
+    let by_name = drawn.as_ref().map(Solution::by_name);
+    let mut far: Vec<(&str, f64)> = match &by_name {
+        Some(at) => (s.points.iter())
+            .filter_map(|(n, p)| {
+                let q = at.point(n)?;
+                let d2: f64 = p.iter().zip(q.iter()).map(|(a, b)| (a - b) * (a - b)).sum();
+                Some((n.as_str(), d2.sqrt()))
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    far.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let listed: Vec<String> = (far.iter().take(LISTED))
+        .map(|(p, d)| format!("{p} {}", rounded(*d)))
+        .collect();
+    let more = far.len().saturating_sub(LISTED);
+    let points = if listed.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; its points lie from their sketch: {}{}",
+            listed.join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
+        )
+    };
+    d = d.with_note(format!(
+        "solved on the assembly nearest the sketch in the sketch's assembly mode, which no motion from the sketch reaches without passing that fold{points}"
+    ));
+    Some(d.with_note(
+        "give the defaults of the assembly wanted with `--default NAME=VALUE` (a sweep's last answer), or list every assembly with `--all-solutions`; `--deny sketch-branch` makes this an error",
+    ))
 }
 
 /// The warning of a solve that could not keep the sketch's branches ([`Kept`] with
@@ -190,11 +277,15 @@ pub fn sketch_branches(
         .collect();
     labels.sort_by_key(|(span, _)| span.start);
     let n = changed.len();
-    let message = format!(
-        "{SKETCH_BRANCHES}{}{at}: {n} branch{} changed",
-        if at.is_empty() { "" } else { " " },
-        if n == 1 { "" } else { "es" }
-    );
+    let plural = if n == 1 { "" } else { "es" };
+    let message = if kept.passed.is_empty() {
+        format!(
+            "{SKETCH_BRANCHES}{}{at}: {n} branch{plural} changed",
+            if at.is_empty() { "" } else { " " },
+        )
+    } else {
+        format!("{SKETCH_BRANCHES_PASSED}: {n} branch{plural} changed")
+    };
     let mut labels = labels.into_iter();
     let (span, first) = labels.next().unwrap_or_default();
     let mut d = Diagnostic::warning(span, message).with_label(first);
@@ -203,6 +294,9 @@ pub fn sketch_branches(
     }
     if let Some(e) = &kept.not_kept {
         d = d.with_note(format!("on those branches, {e}"));
+    }
+    for t in &kept.passed {
+        d = d.with_note(passed_tangency(model, plan, t));
     }
     // Each point once, at its distance (the same whichever branch places it).
     let mut seen = std::collections::HashSet::new();
@@ -269,6 +363,26 @@ fn conflicts(
 
 /// A magnitude as a diagnostic's label says it: six significant digits (`0.3`, not
 /// `0.2999999999999998`); its note has the exact value.
+/// The note of a tangency the sketch's assembly passed on its way to the params solved: which
+/// intersection, where (the params that differ from the model's), and which root it took.
+fn passed_tangency(model: &Model, plan: &Plan, t: &crate::all::Tangency) -> String {
+    let name = &plan.branches[t.branch].name;
+    let sketch = model.default_params();
+    let at: Vec<String> = (model.params.iter().zip(t.params.iter().zip(&sketch)))
+        .filter(|(_, (v, s))| v != s)
+        .map(|((_, p), (v, _))| format!("{} = {}", p.name, rounded(*v)))
+        .collect();
+    let at = if at.is_empty() {
+        String::new()
+    } else {
+        format!(", near {}", at.join(", "))
+    };
+    format!(
+        "the sketch's assembly, followed from the model's params to those given, comes to where the loci of `{name}` touch{at}: its root on `{name}` = {} ends there, and it goes on along `{name}` = {}",
+        t.left, t.took
+    )
+}
+
 fn rounded(x: f64) -> Shown {
     if !x.is_finite() || x == 0.0 {
         return Shown(x);

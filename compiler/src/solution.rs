@@ -30,6 +30,11 @@ pub struct Solution {
     /// sketch's branches ([`crate::solve::solve_near_sketch`]), or, in a list of every
     /// assembly, those on which that assembly differs from the sketch's. Empty when none.
     pub branches_changed: Vec<BranchChange>,
+    /// Where the sketch's assembly, followed from the model's params to those solved, ended
+    /// on the way (a fold: [`crate::all::sketch_assembly`]): every param (by name) at the
+    /// last point it reached. The solution is then another assembly, the one nearest the
+    /// sketch in the sketch's mode. `None` where it did not end, or was not followed.
+    pub sketch_assembly_ended: Option<Vec<(String, f64)>>,
     /// The value of every default: as given, or as the outer iteration converged to.
     pub defaults: Vec<(String, f64)>,
     /// The steps the outer iterations took (0 for a closed-form plan).
@@ -349,6 +354,15 @@ impl Solution {
                 })
                 .collect();
             let _ = writeln!(o, "  \"branches_changed\": [\n{}\n  ],", items.join(",\n"));
+        }
+        match &self.sketch_assembly_ended {
+            None => o.push_str("  \"sketch_assembly_ended\": null,\n"),
+            Some(at) => {
+                let items: Vec<String> = (at.iter())
+                    .map(|(k, v)| format!("{}: {}", key(k), num(*v)))
+                    .collect();
+                let _ = writeln!(o, "  \"sketch_assembly_ended\": {{{}}},", items.join(", "));
+            }
         }
         section(
             &mut o,

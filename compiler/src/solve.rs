@@ -190,8 +190,13 @@ pub struct Kept {
     /// For each branch changed (in the order of `solution.branches_changed`): its constraint,
     /// and the points it places, each with its distance from its sketch, farthest first.
     pub moved: Vec<Moved>,
-    /// Why the branches asked were not kept: the error of the solve on them.
+    /// Why the branches asked were not kept, when a search found others: the error of the
+    /// solve on them.
     pub not_kept: Option<SolveError>,
+    /// Where the sketch's assembly, followed from the model's params to those solved, passed
+    /// through a tangency inside an iterated region onto another root: why the branches it
+    /// lists changed, when it did ([`crate::all::sketch_assembly`]).
+    pub passed: Vec<crate::all::Tangency>,
 }
 
 /// What a changed branch places ([`Kept::moved`]).
@@ -208,6 +213,12 @@ impl Kept {
     /// Whether a branch was changed.
     pub fn changed(&self) -> bool {
         !self.solution.branches_changed.is_empty()
+    }
+
+    /// Whether the solution is not the sketch's assembly: a branch changed, or the assembly
+    /// followed from the sketch ended on the way (`sketch_assembly_ended`).
+    pub fn broken(&self) -> bool {
+        self.changed() || self.solution.sketch_assembly_ended.is_some()
     }
 
     /// The point placed by a changed branch that lies farthest from its sketch, and how far.
@@ -287,12 +298,13 @@ pub fn solve_near_sketch(
     // Cold: the sketch's assembly followed to these params, which may go on through a
     // tangency onto another root of a branch not held.
     let first = if defaults_given {
-        solve(branches).map(|s| (s, None))
+        solve(branches).map(|s| (s, Vec::new()))
     } else {
         crate::all::sketch_assembly(model, plan, scope, params, branches, defaults, held)
+            .map(|f| (f.solution, f.passed))
     };
     let error = match first {
-        Ok((solution, not_kept)) => {
+        Ok((solution, passed)) => {
             let changed: Vec<usize> = (0..plan.branches.len())
                 .filter(|&b| (solution.branches.get(b)).is_some_and(|(_, i)| *i != branches[b]))
                 .collect();
@@ -304,7 +316,8 @@ pub fn solve_near_sketch(
             return Ok(Kept {
                 solution,
                 moved,
-                not_kept,
+                not_kept: None,
+                passed,
             });
         }
         Err(e) => e,
@@ -338,6 +351,7 @@ pub fn solve_near_sketch(
         solution,
         moved,
         not_kept: Some(error),
+        passed: Vec::new(),
     })
 }
 

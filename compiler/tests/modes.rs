@@ -336,7 +336,10 @@ fn past_a_tangency_inside_the_region_the_assembly_goes_on_along_the_other_branch
 /// one continuous path of assemblies (no two neighbouring samples' angles more than 0.05 rad
 /// apart, where a jump to another assembly moves it by a radian or more), and past the
 /// tangency of `l2`'s circles the path goes on along `l2`'s other root, which the solution
-/// names as a changed branch.
+/// names as a changed branch, saying where it passed: between the last sample on the
+/// sketch's root and the first on the other, the same place from every sample past it. The
+/// samples include 15.5, where the root on the other side hugs the edge of the stretch where
+/// `l2`'s circles meet (within 1e-9 rad of it just past the tangency).
 #[test]
 fn a_cold_solve_follows_the_sketch_s_assembly_through_a_tangency() {
     let model = rpr3();
@@ -351,11 +354,16 @@ fn a_cold_solve_follows_the_sketch_s_assembly_through_a_tangency() {
     let sketch = plan.sketch_defaults();
     let mut previous: Option<f64> = None;
     let mut flipped = 0;
-    for i in 0..60 {
-        let value = 13.0 + 3.0 * f64::from(i) / 59.0;
+    let mut last_kept = f64::NEG_INFINITY;
+    let mut passed_at: Option<f64> = None;
+    let samples = (0..60).map(|i| 13.0 + 3.0 * f64::from(i) / 59.0);
+    for value in samples.chain([15.5, 15.373, 15.38]) {
         let mut params = model.default_params();
         params[leg1] = value;
-        let (s, _) = gcs_compiler::all::sketch_assembly(
+        let gcs_compiler::all::Followed {
+            solution: s,
+            passed,
+        } = gcs_compiler::all::sketch_assembly(
             &model,
             plan,
             &all,
@@ -366,15 +374,127 @@ fn a_cold_solve_follows_the_sketch_s_assembly_through_a_tangency() {
         )
         .unwrap_or_else(|e| panic!("leg1 {value}: {e}"));
         assert!(s.max_residual < 1e-9, "leg1 {value}: {}", s.max_residual);
+        assert_eq!(s.sketch_assembly_ended, None, "leg1 {value}");
         let t = s.defaults[0].1;
-        if let Some(p) = previous {
-            assert!(angle_apart(t, p) < 0.05, "leg1 {value}: {p} then {t}");
+        if value <= 16.0 {
+            if let Some(p) = previous {
+                assert!(angle_apart(t, p) < 0.05, "leg1 {value}: {p} then {t}");
+            }
+            previous = Some(t);
         }
-        previous = Some(t);
-        if let Some(change) = s.branches_changed.first() {
-            assert_eq!((change.name.as_str(), change.used), ("l2", 1));
-            flipped += 1;
+        match s.branches_changed.first() {
+            Some(change) => {
+                assert_eq!((change.name.as_str(), change.used), ("l2", 1));
+                assert_eq!(passed.len(), 1, "leg1 {value}: {passed:?}");
+                let (branch, left, took) = (passed[0].branch, passed[0].left, passed[0].took);
+                assert_eq!((branch, left, took), (0, 0, 1), "leg1 {value}");
+                let at = passed[0].params[leg1];
+                assert!(at <= value, "leg1 {value}: passed at {at}");
+                if let Some(p) = passed_at {
+                    assert!(
+                        (at - p).abs() < 0.01,
+                        "leg1 {value}: passed at {at}, else {p}"
+                    );
+                }
+                passed_at = Some(at);
+                flipped += 1;
+            }
+            None => {
+                assert!(passed.is_empty(), "leg1 {value}: {passed:?}");
+                last_kept = last_kept.max(value);
+            }
         }
     }
     assert!(flipped > 0, "the path never passed l2's tangency");
+    let at = passed_at.expect("passed");
+    assert!(
+        last_kept < at,
+        "kept the sketch's root at {last_kept}, past {at}"
+    );
+}
+
+/// Past a fold the sketch's assembly ends, and a cold solve says so. The Stewart platform's
+/// assembly, followed from the sketch's `l1` upward, ends at a fold (shown independently by
+/// `compiler/bench/tests/stewart_fold.rs`: the baseline's own Newton finds no assembly near
+/// the last answer past it). Here the fold is located by a warm sweep in steps of 0.002 from
+/// the sketch; a cold solve past it returns another assembly with `sketch_assembly_ended` at
+/// that fold (between the sweep's last answer and its first failure, or a step short of it), and
+/// the warning that says so; a cold solve
+/// short of the fold says nothing and lands where the warm sweep does.
+#[test]
+fn past_a_fold_a_cold_solve_says_the_sketch_s_assembly_ended() {
+    let path = format!("{}/../examples/stewart.gcs", env!("CARGO_MANIFEST_DIR"));
+    let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("read {path}: {e}"));
+    let (_, model, diags) = gcs_lang::load(&path, &bytes);
+    let model = model.unwrap_or_else(|| panic!("{diags:?}"));
+    let plan = analyse(&model).expect("analyses").plan;
+    let l1 = model.param_named("l1").expect("l1").into_raw().into_u32() as usize;
+    let sketch_l1 = model.default_params()[l1];
+    let all: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+    let branches: Vec<usize> = plan.branches.iter().map(|b| b.default).collect();
+    let choice = gcs_compiler::interp::Choice::Given(branches.clone());
+    // The warm sweep, from the sketch's assembly.
+    let mut params = model.default_params();
+    let mut warm = plan.sketch_defaults();
+    let mut warm_at = Vec::new();
+    let fold = loop {
+        params[l1] += 0.002;
+        assert!(params[l1] < sketch_l1 + 0.5, "no fold up to {}", params[l1]);
+        match gcs_compiler::interp::run_in::<gcs_compiler::config::D3>(
+            &model, &plan, &params, &warm, &choice,
+        ) {
+            Ok(run) => {
+                warm = run.defaults.clone();
+                warm_at.push((params[l1], run.defaults));
+            }
+            Err(_) => break params[l1] - 0.002,
+        }
+    };
+    let cold = |value: f64| {
+        let mut p = model.default_params();
+        p[l1] = value;
+        gcs_compiler::solve::solve_near_sketch(
+            &model,
+            &plan,
+            &all,
+            &p,
+            &branches,
+            &vec![false; branches.len()],
+            &plan.sketch_defaults(),
+            false,
+        )
+        .unwrap_or_else(|e| panic!("l1 {value}: {e}"))
+    };
+    let past = cold(fold + 0.1);
+    let ended = (past.solution.sketch_assembly_ended.as_ref()).expect("the assembly ended");
+    let at = ended.iter().find(|(n, _)| n == "l1").expect("l1").1;
+    // The warm sweep's last answer is at `fold`, its first failure a step on.
+    assert!(
+        at < fold + 0.002 && at >= fold - 0.004,
+        "ended at {at}, the warm sweep's last answer at {fold}"
+    );
+    let warning = gcs_compiler::report::sketch_assembly_ended(&model, &plan, &past.solution)
+        .expect("a warning");
+    assert!(gcs_compiler::report::is_sketch_branches(&warning));
+    assert!(
+        warning.notes.iter().any(|n| n.contains("near l1 = ")),
+        "{warning:?}"
+    );
+    // Short of the fold: the warm sweep's assembly, said to be the sketch's.
+    let (value, defaults) = &warm_at[warm_at.len() / 2];
+    let short = cold(*value);
+    assert_eq!(short.solution.sketch_assembly_ended, None, "l1 {value}");
+    assert!(gcs_compiler::report::sketch_assembly_ended(&model, &plan, &short.solution).is_none());
+    // The same pose (the platform's three angles reach each pose by two triples: compare
+    // the points).
+    let mut p = model.default_params();
+    p[l1] = *value;
+    let warm = gcs_compiler::solve::solve_plan_with(&model, &plan, &all, &p, &branches, defaults)
+        .expect("the warm answer");
+    let at = warm.by_name();
+    for (name, got) in &short.solution.points {
+        let want = at.point(name).expect("the same points");
+        let apart = (got.iter().zip(want)).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(apart < 1e-6, "l1 {value}: {name} {got:?}, warm {want:?}");
+    }
 }

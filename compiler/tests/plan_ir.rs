@@ -155,6 +155,7 @@ fn plan(model: &Model) -> Plan {
         sketch: 1f64.atan2(3.0),
         measure: None,
         geom: None,
+        assembled: None,
     });
     plan
 }

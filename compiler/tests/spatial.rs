@@ -738,3 +738,128 @@ fn a_segment_with_both_ends_on_parallel_planes_turns_about_their_normal() {
         }
     }
 }
+
+fn cross(a: V, b: V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn unit(a: V) -> V {
+    let l = norm(a);
+    [a[0] / l, a[1] / l, a[2] / l]
+}
+
+/// SolveSpace's skew-angle sketch, at random: a segment on each of two perpendicular planes
+/// (each end `on` its plane), at 90 deg to each other, one drawn along the other plane's
+/// normal. Each segment turns about its plane's normal, and one turn takes a default: given to
+/// the segment drawn along the other's normal, the other's turn cannot change the angle there
+/// (every turn keeps 90 deg), so the default goes to the other segment's turn, whichever is
+/// named first. Before, it went to the first by name and the sketch was refused as degenerate
+/// when that was the segment along the normal. Solved at the sketch's defaults and at others,
+/// each judged by the angle and the ends' heights computed here.
+#[test]
+fn two_turns_about_known_axes_default_the_one_that_leaves_the_angle_regular() {
+    let mut rng = Rng(0x5bd1_e995_0d2a_7c41);
+    let random = |rng: &mut Rng| [0; 3].map(|_| rng.range(-1.0, 1.0));
+    for trial in 0..40 {
+        let n1 = unit(random(&mut rng));
+        let n2 = unit(cross(n1, random(&mut rng)));
+        let (o1, o2) = (rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
+        // A point on both planes, and the planes' own directions.
+        let base = {
+            let line = cross(n1, n2);
+            let c = cross(line, n1);
+            // base = o1 n1 + t c, with base . n2 = o2.
+            let t = (o2 - o1 * dot(n1, n2)) / dot(c, n2);
+            [0, 1, 2].map(|i| o1 * n1[i] + t * c[i])
+        };
+        let along = |p: V, d: V, s: f64| [0, 1, 2].map(|i| p[i] + s * d[i]);
+        // One on plane P along Q's normal, the other on Q at a random turn; the first named
+        // (`a`) on even trials.
+        let a0 = along(base, cross(n1, n2), rng.range(-3.0, 3.0));
+        let a1 = along(a0, n2, rng.range(2.0, 6.0));
+        let in_q = unit(cross(n2, random(&mut rng)));
+        let b0 = along(along(base, n1, rng.range(-3.0, 3.0)), cross(n1, n2), 1.0);
+        let b1 = along(b0, in_q, rng.range(2.0, 6.0));
+        let (first, second) = if trial % 2 == 0 {
+            ("a", "b")
+        } else {
+            ("b", "a")
+        };
+        let f = |p: V| format!("({}, {}, {})", p[0], p[1], p[2]);
+        let text = format!(
+            "space 3d;\nfixed plane P = normal {} offset {o1};\nfixed plane Q = normal {} offset {o2};\n\
+             segment {first} = {} -> {};\nsegment {second} = {} -> {};\n\
+             on({first}.start, P);\non({first}.end, P);\non({second}.start, Q);\non({second}.end, Q);\n\
+             k: angle({second}, {first}) = 90 deg;\n",
+            f(n1),
+            f(n2),
+            f(a0),
+            f(a1),
+            f(b0),
+            f(b1)
+        );
+        let model = load_text("skew.gcs", &text);
+        let an = analyse(&model).expect("analysed");
+        assert!(
+            an.unsolved.is_empty(),
+            "trial {trial}: {:?}\n{text}",
+            an.unsolved
+        );
+        assert_eq!(an.free_defaults().len(), 7, "trial {trial}\n{text}");
+        let all: std::collections::BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+        let sketch = an.plan.sketch_defaults();
+        for run in 0..4 {
+            let defaults: Vec<f64> = (sketch.iter().zip(&an.plan.defaults))
+                .map(|(&d, var)| match run {
+                    0 => d,
+                    _ if var.name.ends_with("_length") => d * rng.range(0.5, 2.0),
+                    _ => d + rng.range(-2.0, 2.0),
+                })
+                .collect();
+            let branches: Vec<usize> = an.plan.branches.iter().map(|b| b.default).collect();
+            let s = gcs_compiler::solve::solve_plan_with(
+                &model,
+                &an.plan,
+                &all,
+                &[],
+                &branches,
+                &defaults,
+            )
+            .unwrap_or_else(|e| panic!("trial {trial}, run {run}: {e}\n{text}"));
+            assert!(
+                s.max_residual <= 1e-12 * 30.0,
+                "trial {trial}, run {run}: residual {:e}\n{text}",
+                s.max_residual
+            );
+            let (a0, a1) = (
+                point(&s, &format!("{first}.start")),
+                point(&s, &format!("{first}.end")),
+            );
+            let (b0, b1) = (
+                point(&s, &format!("{second}.start")),
+                point(&s, &format!("{second}.end")),
+            );
+            let (da, db) = (unit(sub(a1, a0)), unit(sub(b1, b0)));
+            assert!(
+                dot(da, db).abs() <= 1e-12,
+                "trial {trial}, run {run}: cos {:e}\n{text}",
+                dot(da, db)
+            );
+            for (p, n, o) in [(a0, n1, o1), (a1, n1, o1), (b0, n2, o2), (b1, n2, o2)] {
+                let h = dot(p, n) - o;
+                assert!(
+                    h.abs() <= 1e-12 * 30.0,
+                    "trial {trial}, run {run}: height {h:e}\n{text}"
+                );
+            }
+        }
+    }
+}

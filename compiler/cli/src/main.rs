@@ -471,6 +471,17 @@ fn changed_branches(
     deny: bool,
     color: termcolor::ColorChoice,
 ) -> bool {
+    if let Some(ended) = gcs_compiler::report::sketch_assembly_ended(&c.model, plan, &kept.solution)
+    {
+        emit(&c.source, &[ended], color);
+        if deny {
+            eprintln!(
+                "error: `{}` cannot be solved on the sketch's assembly, and `--deny sketch-branch` makes that an error",
+                c.source.name()
+            );
+            return true;
+        }
+    }
     if !kept.changed() {
         return false;
     }

@@ -692,6 +692,20 @@ impl<'m, G: Geometry> Builder<'m, G> {
             let Some(first) = first.map(|key| key.3) else {
                 return false;
             };
+            // One that would leave a pending relation degenerate on the sketch gives way to
+            // the next the pending relations involve, when that one would not.
+            let first = if G::default_leaves_degenerate(self, first) {
+                let mut keys: Vec<_> = (involved.iter())
+                    .filter(|&&k| k != first)
+                    .filter_map(|&k| self.default_key(&involved, k))
+                    .collect();
+                keys.sort();
+                (keys.into_iter().map(|key| key.3))
+                    .find(|&k| !G::default_leaves_degenerate(self, k))
+                    .unwrap_or(first)
+            } else {
+                first
+            };
             if G::default(self, &[first]) {
                 return true;
             }
@@ -994,6 +1008,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             geom: Some(self.model.top_level_of(geom)),
             sketch: 0.0,
             measure: Some(measure),
+            assembled: None,
         });
         self.value(Op::Default(id), Ty::Scalar, format!("default `{name}`"))
     }

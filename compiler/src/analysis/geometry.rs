@@ -154,4 +154,11 @@ pub(crate) trait Geometry: Sized + Clone {
     /// a locus, a position, a dimension), whose sketch value moves nothing. Returns whether it
     /// added one; the driver then goes back to action and locus analysis.
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool;
+
+    /// Whether the default [`Geometry::default`] would give cluster `k` leaves a pending
+    /// relation degenerate on the sketch (a turn the relation then needs cannot change what it
+    /// measures there): the driver then gives the default to the next cluster in its order.
+    fn default_leaves_degenerate(_b: &Builder<'_, Self>, _k: usize) -> bool {
+        false
+    }
 }

@@ -162,7 +162,7 @@ pub(crate) fn analyse(model: &Model, moves: Moves, values: Values) -> Result<Ana
 pub(crate) type Moves = fn(&Model, &crate::plan::Plan) -> Vec<Option<bool>>;
 
 /// The values of registers of a plan being written, run on the sketch (each default at its
-/// least-motion value, each branch at the sketch's root): a scalar as `[x, 0]`, a point or a
-/// direction as its coordinates. `None` where the plan does not run.
+/// least-motion value, each branch at the sketch's root): a scalar as `[x, 0, 0]`, a point or
+/// a direction as its coordinates (`z` 0 in the plane). `None` where the plan does not run.
 pub(crate) type Values =
-    fn(&Model, &crate::plan::Plan, &[crate::plan::Reg]) -> Option<Vec<[f64; 2]>>;
+    fn(&Model, &crate::plan::Plan, &[crate::plan::Reg]) -> Option<Vec<[f64; 3]>>;

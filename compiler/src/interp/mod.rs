@@ -404,40 +404,46 @@ pub fn residuals_at(
     }
 }
 
-/// The values of registers `regs` of a planar `plan` (one being written: no outer iterations
-/// yet) run on the sketch, each default at its least-motion value and each branch at its
-/// sketch root, a check that fails not stopping the run: a scalar as `[x, 0]`, a point or a
-/// direction as its coordinates, anything else NaN. `None` where the plan does not run. What
-/// the analysis asks of a system it is about to write (which of its coefficients vanish).
-pub fn sketch_values(model: &Model, plan: &Plan, regs: &[Reg]) -> Option<Vec<[f64; 2]>> {
-    if model.space != gcs_lang::model::Space::D2 {
-        return None;
-    }
-    let params = model.default_params();
-    let mut reached = vec![None; plan.defaults.len()];
-    let mut machine = Machine::<D2>::start(
-        model,
-        plan,
-        &params,
-        plan.sketch_defaults(),
-        &Choice::Nearest,
-        Some(&mut reached),
-    )
-    .ok()?;
-    machine.failed = Some(Vec::new());
-    machine
-        .execute(None::<&mut gcs_runtime::outer::Newton>)
+/// The values of registers `regs` of a `plan` being written (no outer iterations yet) run on
+/// the sketch, each default at its least-motion value and each branch at its sketch root, a
+/// check that fails not stopping the run: a scalar as `[x, 0, 0]`, a point or a direction as
+/// its coordinates (in the plane, `z` 0), anything else NaN. `None` where the plan does not
+/// run. What the analysis asks of a system it is about to write (which of its coefficients
+/// vanish), or of a default it is about to take (whether what follows is regular there).
+pub fn sketch_values(model: &Model, plan: &Plan, regs: &[Reg]) -> Option<Vec<[f64; 3]>> {
+    fn read<S: Space>(model: &Model, plan: &Plan, regs: &[Reg]) -> Option<Vec<[f64; 3]>> {
+        let params = model.default_params();
+        let mut reached = vec![None; plan.defaults.len()];
+        let mut machine = Machine::<S>::start(
+            model,
+            plan,
+            &params,
+            plan.sketch_defaults(),
+            &Choice::Nearest,
+            Some(&mut reached),
+        )
         .ok()?;
-    Some(
-        (regs.iter())
-            .map(|&r| match machine.get(r) {
-                Some(&Val::S(x)) => [x, 0.0],
-                Some(&Val::P(p)) => [p.x, p.y],
-                Some(&Val::V(v)) => [v.x, v.y],
-                _ => [f64::NAN; 2],
-            })
-            .collect(),
-    )
+        machine.failed = Some(Vec::new());
+        machine
+            .execute(None::<&mut gcs_runtime::outer::Newton>)
+            .ok()?;
+        Some(
+            (regs.iter())
+                .map(|&r| match machine.get(r) {
+                    Some(&Val::S(x)) => [x, 0.0, 0.0],
+                    Some(&Val::P(p)) => [p.x, p.y, 0.0],
+                    Some(&Val::V(v)) => [v.x, v.y, 0.0],
+                    Some(&Val::P3(p)) => [p.x, p.y, p.z],
+                    Some(&Val::V3(v)) => [v.x, v.y, v.z],
+                    _ => [f64::NAN; 3],
+                })
+                .collect(),
+        )
+    }
+    match model.space {
+        gcs_lang::model::Space::D2 => read::<D2>(model, plan, regs),
+        gcs_lang::model::Space::D3 => read::<D3>(model, plan, regs),
+    }
 }
 
 /// The index of the root nearest to the sketch's position of the moving feature, at each

@@ -131,6 +131,12 @@ pub struct DefaultVar {
     /// default moves nothing (least motion): the sketch value is read from it. Analysis only:
     /// pruning drops it.
     pub measure: Option<Reg>,
+    /// For a default an outer iteration varies: its value in the sketch's assembly at the
+    /// model's params on the sketch's branches (the real assembly that moves the points least
+    /// from the sketch, which sets the iteration's mode), found once by the pipeline so that a
+    /// cold solve follows that assembly from there without searching for it again. `None`
+    /// for a free motion's default, or where no assembly was found.
+    pub assembled: Option<f64>,
 }
 
 impl DefaultVar {

@@ -952,6 +952,7 @@ mod tests {
                 sketch: 0.5,
                 measure: None,
                 geom: None,
+                assembled: None,
             },
             DefaultVar {
                 name: "b".into(),
@@ -959,6 +960,7 @@ mod tests {
                 sketch: 0.0,
                 measure: None,
                 geom: None,
+                assembled: None,
             },
         ];
         assert_eq!(

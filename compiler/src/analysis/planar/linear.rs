@@ -497,9 +497,9 @@ impl Builder<'_, Planar> {
         let Some(values) = probe(model, &self.plan, &regs) else {
             return false;
         };
-        let at: BTreeMap<Reg, [f64; 2]> = regs.iter().copied().zip(values).collect();
+        let at: BTreeMap<Reg, [f64; 3]> = regs.iter().copied().zip(values).collect();
         let estimate = |c: &Coef| -> f64 {
-            let v = |r: &Reg| at.get(r).copied().unwrap_or([f64::NAN; 2]);
+            let v = |r: &Reg| at.get(r).copied().unwrap_or([f64::NAN; 3]);
             match c {
                 Coef::One => 1.0,
                 Coef::X(a) => v(a)[0],

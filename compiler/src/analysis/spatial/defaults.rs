@@ -11,6 +11,12 @@ use crate::analysis::driver::Builder;
 use crate::plan::{Op, Reg, SpatialOp, Ty};
 use gcs_lang::model::{GeomId, GeomKind, Part};
 
+/// How near parallel (one less the cosine) a direction and an axis are, on the sketch, for a
+/// turn about that axis to be taken as unable to change the angle to it
+/// ([`Builder::default_leaves_degenerate`]): the sketch's own rounding, well below any angle
+/// drawn on purpose.
+const PARALLEL_AT_SKETCH: f64 = 1e-9;
+
 impl Builder<'_, Spatial> {
     /// One default on cluster `k` (000, section 5.2.1), each with its geometric meaning and
     /// a sketch value that moves nothing (least motion): a feature's place along the line or
@@ -60,6 +66,74 @@ impl Builder<'_, Spatial> {
             // About a pivot, or a feature held on a plane or sphere: its turns first (the
             // feature stays on its locus), then what the constraints can do with them.
             (_, Turn::Free) if rec.shape == Shape::Body => self.orient(k),
+            _ => false,
+        }
+    }
+
+    /// Whether the default [`Self::default_on`] would give cluster `k`, a turn about its one
+    /// axis, leaves a pending angle (or parallel) relation degenerate at the sketch: one
+    /// between a direction of `k` and one of a cluster `j` that turns about an axis, where
+    /// `k`'s direction lies along `j`'s axis. Every turn of `j` then keeps the angle, so the
+    /// relation does not fix `j`'s turn; a default on `j` instead leaves `k` to turn to the
+    /// angle. What the choice of the cluster to default reads from the sketch (000 picks by
+    /// DOF, which cannot tell the two apart).
+    pub(super) fn default_leaves_degenerate(&self, k: usize) -> bool {
+        if !self.takes_spin(k) {
+            return false;
+        }
+        let pairs: Vec<(GeomId, Reg)> = (self.pending.iter())
+            .filter_map(|r| match r.relation {
+                Relation::Angle { u, v, .. } | Relation::Parallel { u, v, .. } => Some((u, v)),
+                _ => None,
+            })
+            .flat_map(|(u, v)| [(u, v), (v, u)])
+            .filter(|&(mine, other)| self.cluster(mine) == k && self.cluster(other) != k)
+            .filter_map(
+                |(mine, other)| match self.clusters[self.cluster(other)].record.turn {
+                    Turn::Axis { axis, .. } => Some((mine, axis)),
+                    _ => None,
+                },
+            )
+            .collect();
+        let Some(probe) = self.values else {
+            return false;
+        };
+        if pairs.is_empty() {
+            return false;
+        }
+        // Measuring `k`'s directions writes steps: on a copy, whose plan is only read.
+        let mut trial = self.clone();
+        let regs: Vec<Reg> = (pairs.iter())
+            .flat_map(|&(mine, axis)| [trial.direction(mine), axis])
+            .collect();
+        let Some(values) = probe(self.model, &trial.plan, &regs) else {
+            return false;
+        };
+        values.chunks(2).any(|pair| {
+            let (d, a) = (pair[0], pair[1]);
+            let dot = d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
+            let norms = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+                * (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            norms > 0.0 && dot.abs() >= (1.0 - PARALLEL_AT_SKETCH) * norms
+        })
+    }
+
+    /// Whether [`Self::default_on`] would give cluster `k` its turn about its one axis.
+    fn takes_spin(&self, k: usize) -> bool {
+        let rec = &self.clusters[k].record;
+        if !rec.movable() || (rec.shape.size_free() && !self.size_pending(k)) {
+            return false;
+        }
+        match (rec.trans, rec.turn) {
+            (_, Turn::Free) => false,
+            (
+                Trans::On {
+                    locus: Locus::Line(_) | Locus::Circle(_),
+                    ..
+                },
+                _,
+            ) => false,
+            (_, Turn::Axis { .. }) => true,
             _ => false,
         }
     }

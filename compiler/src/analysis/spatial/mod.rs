@@ -202,6 +202,10 @@ impl Geometry for Spatial {
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {
         candidates.iter().any(|&k| b.default_on(k))
     }
+
+    fn default_leaves_degenerate(b: &Builder<'_, Self>, k: usize) -> bool {
+        b.default_leaves_degenerate(k)
+    }
 }
 
 /// A member point's or marker's constant local coordinates in its body.
