@@ -358,12 +358,14 @@ proptest! {
 
     /// A root hugging the edge of the stretch where the assembly exists, as where two circles
     /// inside an iterated region come to touch: `f = a + c sqrt(edge - x)`, failing past the
-    /// edge, its root 1e-12 to 1e-6 inside it, far closer than the step a slope sets. From a
-    /// start well inside, the iteration reaches it by halving failing steps down to rounding.
+    /// edge, its root 1e-9 to 1e-6 inside it, far closer than the step a slope sets (the
+    /// 3-RPR's past `l2`'s tangency is about 1e-9 in). From a start well inside, the iteration
+    /// reaches it by halving failing steps down to rounding. Deeper roots are steeper than the
+    /// tolerance can resolve: at 1e-12 in, `f` changes by 2e-10 over one rounding of `x`.
     #[test]
     fn a_root_beside_the_edge_of_the_assembly_is_reached(
         edge in -1.0f64..1.0,
-        exponent in 6.0f64..12.0,
+        exponent in 6.0f64..9.0,
         c in 0.2f64..5.0,
         inside in 1e-4f64..0.3,
     ) {

@@ -487,10 +487,30 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// Declares a branch variable for an intersection that satisfies `constraint`: named
     /// after it, with the meaning of each of its `meanings.len()` roots. A single root still
     /// declares its (trivial) branch, so that every intersection is named.
+    ///
+    /// Names are unique: a constraint with a second intersection names it `NAME_2` (and so
+    /// on), except that a single root (a crossing, with nothing to choose) gives its name up
+    /// to a later intersection with several.
     pub(crate) fn branch(&mut self, constraint: ConstraintId, meanings: Vec<String>) -> BranchId {
+        let base = &self.model.constraints[constraint].name;
+        let free = |branches: &[BranchVar]| {
+            (2..)
+                .map(|k| format!("{base}_{k}"))
+                .find(|n| branches.iter().all(|b| &b.name != n))
+                .expect("a free name")
+        };
+        let mut name = base.clone();
+        if let Some(i) = self.plan.branches.iter().position(|b| &b.name == base) {
+            let renamed = free(&self.plan.branches);
+            if self.plan.branches[i].count == 1 && meanings.len() > 1 {
+                self.plan.branches[i].name = renamed;
+            } else {
+                name = renamed;
+            }
+        }
         let id = BranchId(self.plan.branches.len() as u32);
         self.plan.branches.push(BranchVar {
-            name: self.model.constraints[constraint].name.clone(),
+            name,
             constraint,
             count: meanings.len(),
             meanings,

@@ -407,7 +407,7 @@ pub fn residuals_at(
 /// The values of registers `regs` of a `plan` being written (no outer iterations yet) run on
 /// the sketch, each default at its least-motion value and each branch at its sketch root, a
 /// check that fails not stopping the run: a scalar as `[x, 0, 0]`, a point or a direction as
-/// its coordinates (in the plane, `z` 0), anything else NaN. `None` where the plan does not
+/// its coordinates (in the plane, `z` 0), a line of space as its direction, anything else NaN. `None` where the plan does not
 /// run. What the analysis asks of a system it is about to write (which of its coefficients
 /// vanish), or of a default it is about to take (whether what follows is regular there).
 pub fn sketch_values(model: &Model, plan: &Plan, regs: &[Reg]) -> Option<Vec<[f64; 3]>> {
@@ -435,6 +435,7 @@ pub fn sketch_values(model: &Model, plan: &Plan, regs: &[Reg]) -> Option<Vec<[f6
                     Some(&Val::V(v)) => [v.x, v.y, 0.0],
                     Some(&Val::P3(p)) => [p.x, p.y, p.z],
                     Some(&Val::V3(v)) => [v.x, v.y, v.z],
+                    Some(Val::L3(l)) => [l.dir.x, l.dir.y, l.dir.z],
                     _ => [f64::NAN; 3],
                 })
                 .collect(),

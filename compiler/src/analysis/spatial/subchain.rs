@@ -18,7 +18,7 @@
 //! rest of the analysis already solves).
 
 use super::plane::PlaneAtDistance;
-use super::{local_dir, parallel, Spatial, Trans, Turn};
+use super::{local_dir, parallel, Locus, Rel, Spatial, Target, Trans, Turn};
 use crate::analysis::driver::Builder;
 use crate::analysis::geometry::Invariants;
 use crate::plan::{Op, Reg, RotationAxis, SpatialOp, Ty};
@@ -100,7 +100,104 @@ impl Builder<'_, Spatial> {
                 return true;
             }
         }
+        self.subchain_onto_line(&joints)
+    }
+
+    /// Finds a planar sub-chain whose near body holds a point on a known line and whose far
+    /// body is known, and slides the near body along the line to where it crosses the plane
+    /// the sub-chain keeps that point in: square to the chain's axes at its offset from the far
+    /// body's joint, known with that body (a SCARA's quill: its axis, known from the tool,
+    /// crosses the arm's plane at the wrist). The near body is then pivoted there, and locus
+    /// analysis meets the chain's circles. A line that on the sketch runs along the plane
+    /// (square to the axes to 1e-3) is left: it need not cross it. Returns whether it slid one.
+    fn subchain_onto_line(&mut self, joints: &[Joint]) -> bool {
+        let mut ends: Vec<(usize, GeomId, Reg)> = (0..self.clusters.len())
+            .filter_map(|k| {
+                let c = &self.clusters[k];
+                match (c.record.trans, c.record.turn) {
+                    (
+                        Trans::On {
+                            feature,
+                            locus: Locus::Line(line),
+                        },
+                        turn,
+                    ) if !c.geoms.is_empty() && c.record.rigid() && turn != Turn::Known => {
+                        Some((k, feature, line))
+                    }
+                    _ => None,
+                }
+            })
+            .collect();
+        ends.sort_by_key(|&(_, f, _)| self.name(f));
+        for (k, x, line) in ends {
+            let mut path = Vec::new();
+            let Some(chain) = self.chain_to(k, None, joints, &mut path, true) else {
+                continue;
+            };
+            let last = *chain.last().expect("a chain has a joint");
+            let Some(z) = self.z_of(last.far) else {
+                continue;
+            };
+            if !self.crosses_on_sketch(line, z) {
+                continue;
+            }
+            let at = self.point(x);
+            let offset = self.subchain_offset(x, at, &chain);
+            let (base, normal) = (self.point(last.far), self.direction(z));
+            let bodies: Vec<String> = (chain.iter().rev())
+                .map(|l| self.name(self.model.top_level_of(l.near)))
+                .collect();
+            let words = format!(
+                "the plane square to {} that {} keeps to, {} turning about axes along it",
+                self.name(z),
+                self.name(x),
+                bodies.join(", ")
+            );
+            let plane = self.value(
+                SpatialOp::Plane {
+                    point: base,
+                    normal,
+                    offset: Some(offset),
+                },
+                Ty::Plane,
+                words,
+            );
+            // The step serves the chain's first joint, which it does not satisfy.
+            let first = chain[0].joint.constraint;
+            let Some(relation) = self.relations_of(first).into_iter().next() else {
+                continue;
+            };
+            let r = Rel {
+                relation,
+                constraint: first,
+                last: false,
+                duplicate: false,
+            };
+            self.work_for(Some(first));
+            let moved = self.move_point(x, Target::On(Locus::Plane(plane)), &r);
+            self.work_for(None);
+            if moved {
+                return true;
+            }
+        }
         false
+    }
+
+    /// Whether `line` crosses the planes square to direction feature `z` on the sketch: their
+    /// directions not square to within 1e-3. Read by running the plan so far on the sketch
+    /// (on a copy: measuring `z` writes a step).
+    fn crosses_on_sketch(&self, line: Reg, z: GeomId) -> bool {
+        let Some(probe) = self.values else {
+            return false;
+        };
+        let mut trial = self.clone();
+        let zr = trial.direction(z);
+        let Some(v) = probe(self.model, &trial.plan, &[line, zr]) else {
+            return false;
+        };
+        let (d, n) = (v[0], v[1]);
+        let norms = super::dot(d, d).sqrt() * super::dot(n, n).sqrt();
+        norms > 0.0 && super::dot(d, n).abs() >= 1e-3 * norms
     }
 
     /// The revolute joints some relation of which is still pending, in name order.
@@ -139,6 +236,20 @@ impl Builder<'_, Spatial> {
         joints: &[Joint],
         path: &mut Vec<Link>,
     ) -> Option<Vec<Link>> {
+        self.chain_to(k, entered, joints, path, false)
+    }
+
+    /// [`Self::chain_from`]; with `to_known`, to a cluster that is known (fixed, or placed
+    /// and oriented), or that turns only about an axis along the chain's through a known
+    /// point, instead: the sub-chain's plane is then known with it.
+    fn chain_to(
+        &self,
+        k: usize,
+        entered: Option<GeomId>,
+        joints: &[Joint],
+        path: &mut Vec<Link>,
+        to_known: bool,
+    ) -> Option<Vec<Link>> {
         if path.len() >= MAX_JOINTS {
             return None;
         }
@@ -170,6 +281,34 @@ impl Builder<'_, Spatial> {
                     far,
                 });
                 let rec = &self.clusters[next].record;
+                if to_known {
+                    // Known, or turning only about an axis along the chain's through a known
+                    // point: either way the plane square to that axis through `far` is known.
+                    let along = match (rec.trans, rec.turn) {
+                        (
+                            Trans::Pivot { .. },
+                            Turn::Axis {
+                                feature: Some(f), ..
+                            },
+                        ) => {
+                            model.top_level_of(f) == model.top_level_of(far)
+                                && (local_dir(model, f))
+                                    .zip(self.z_of(far).and_then(|z| local_dir(model, z)))
+                                    .is_some_and(|(u, v)| parallel(u, v))
+                        }
+                        _ => false,
+                    };
+                    if !rec.movable() || rec.grounded() || along {
+                        return Some(path.clone());
+                    }
+                    if rec.rigid() && rec.turn != Turn::Known {
+                        if let Some(chain) = self.chain_to(next, Some(far), joints, path, true) {
+                            return Some(chain);
+                        }
+                    }
+                    path.pop();
+                    continue;
+                }
                 match (rec.trans, rec.turn) {
                     // The far body: its turn's axis known and across the chain's.
                     (
@@ -187,7 +326,7 @@ impl Builder<'_, Spatial> {
                         }
                     }
                     _ if !rec.grounded() && rec.rigid() && rec.turn != Turn::Known => {
-                        if let Some(chain) = self.chain_from(next, Some(far), joints, path) {
+                        if let Some(chain) = self.chain_to(next, Some(far), joints, path, false) {
                             return Some(chain);
                         }
                     }
@@ -243,41 +382,11 @@ impl Builder<'_, Spatial> {
     /// Turns the chain's far body about its axis so that the plane its joint's axis fixes, at
     /// the chain's offset, passes through the known point `at` of feature `x`.
     fn turn_onto_subchain_plane(&mut self, x: GeomId, at: Reg, chain: &[Link]) {
-        let senses = self.chain_senses(chain);
-        // The offset along the axes from the far body's joint to `x`: each body's own, from
-        // the joint it is entered by to the next (or to `x`).
-        let mut terms = Vec::new();
-        for (i, l) in chain.iter().enumerate() {
-            let to = match i {
-                0 => at,
-                _ => self.point(chain[i - 1].far),
-            };
-            let (from, z) = (self.point(l.near), self.z_of(l.near));
-            let Some(z) = z else { continue };
-            let dir = self.direction(z);
-            let words = format!(
-                "how far {} is from {} along {}",
-                if i == 0 {
-                    self.name(x)
-                } else {
-                    self.name(chain[i - 1].far)
-                },
-                self.name(l.near),
-                self.name(z)
-            );
-            let along = self.value(Op::Along { from, dir, to }, Ty::Scalar, words);
-            terms.push((senses[i], along));
-        }
+        let offset = self.subchain_offset(x, at, chain);
         let last = *chain.last().expect("a chain has a joint");
         let bodies: Vec<String> = (chain.iter().rev())
             .map(|l| self.name(self.model.top_level_of(l.near)))
             .collect();
-        let words = format!(
-            "the offset of {} along the axes of {}",
-            self.name(x),
-            bodies.join(", ")
-        );
-        let offset = self.value(Op::Sum(terms), Ty::Scalar, words);
         let k = self.cluster(last.far);
         let (Trans::Pivot { at: pivot, .. }, Turn::Axis { axis, .. }) =
             (self.clusters[k].record.trans, self.clusters[k].record.turn)
@@ -324,6 +433,46 @@ impl Builder<'_, Spatial> {
             (Vec::new(), explain),
         );
         self.work_for(None);
+    }
+
+    /// The offset along the axes of `chain` of its near body's point `x` (at `at`) from the
+    /// far body's joint: each body's own, from the joint it is entered by to the next (or to
+    /// `x`), with the senses of their axes.
+    fn subchain_offset(&mut self, x: GeomId, at: Reg, chain: &[Link]) -> Reg {
+        let senses = self.chain_senses(chain);
+        // The offset along the axes from the far body's joint to `x`: each body's own, from
+        // the joint it is entered by to the next (or to `x`).
+        let mut terms = Vec::new();
+        for (i, l) in chain.iter().enumerate() {
+            let to = match i {
+                0 => at,
+                _ => self.point(chain[i - 1].far),
+            };
+            let (from, z) = (self.point(l.near), self.z_of(l.near));
+            let Some(z) = z else { continue };
+            let dir = self.direction(z);
+            let words = format!(
+                "how far {} is from {} along {}",
+                if i == 0 {
+                    self.name(x)
+                } else {
+                    self.name(chain[i - 1].far)
+                },
+                self.name(l.near),
+                self.name(z)
+            );
+            let along = self.value(Op::Along { from, dir, to }, Ty::Scalar, words);
+            terms.push((senses[i], along));
+        }
+        let bodies: Vec<String> = (chain.iter().rev())
+            .map(|l| self.name(self.model.top_level_of(l.near)))
+            .collect();
+        let words = format!(
+            "the offset of {} along the axes of {}",
+            self.name(x),
+            bodies.join(", ")
+        );
+        self.value(Op::Sum(terms), Ty::Scalar, words)
     }
 }
 
