@@ -774,20 +774,27 @@ fn an_arm_pruned_to_its_tip_keeps_its_branches_apart() {
     }
 }
 
-/// The SCARA arm (`examples/scara.gcs`) at 1,000 random poses from random joint values: its
-/// forward kinematics written here (the shoulder at the origin, the elbow 0.35 out at height
-/// 0.35, the quill's axis 0.30 further, the tool's point 0.25 below the quill's top, sliding
-/// with it; the heading the sum of the three turns). Both solutions (elbow left and right)
-/// reach the pose to 1e-12, each joint value it reports gives the pose back through the same
-/// forward kinematics, and the arm the pose came from is among them. Closed form: no default.
-#[test]
-fn the_scara_arm_has_both_solutions_in_closed_form_at_random_poses() {
-    let path = format!("{}/../examples/scara.gcs", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).expect("the example");
-    let compiled = gcs_compiler::compile("scara.gcs", text.as_bytes()).expect("compiles");
+/// A SCARA arm at 1,000 random poses from random joint values, through its forward kinematics
+/// written in the test (`forward`: the turns of the shoulder, the elbow and the roll and the
+/// lift, to the tool's point and heading, sharing nothing with the plan). Both solutions (elbow
+/// left and right) reach the pose to 1e-12, the joint values each reports (`joints`: two
+/// turns, the travel and the roll, by their output names) give the pose back through the same
+/// forward kinematics, and the arm the pose came from is among them (its elbow, `elbow` at the
+/// shoulder's turn). Closed form: no default.
+fn check_scara(
+    path: &str,
+    joints: [&str; 4],
+    forward: impl Fn(f64, f64, f64, f64) -> (Vector3<f64>, f64),
+    elbow: impl Fn(f64, f64) -> Vector3<f64>,
+) {
+    let text = std::fs::read_to_string(path).expect("the model");
+    let compiled = gcs_compiler::compile(path, text.as_bytes()).expect("compiles");
     assert!(!compiled.has_errors(), "{:?}", compiled.diagnostics);
     let (model, plan) = (&compiled.model, &compiled.analysis.plan);
-    assert!(plan.defaults.is_empty() && plan.iterations.is_empty());
+    assert!(
+        plan.defaults.is_empty() && plan.iterations.is_empty(),
+        "{path}"
+    );
     let scope: BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
     let param = |name: &str| {
         (model.params.iter())
@@ -795,14 +802,6 @@ fn the_scara_arm_has_both_solutions_in_closed_form_at_random_poses() {
             .unwrap_or_else(|| panic!("no param {name}"))
     };
     let (ipx, ipy, ipz, ih) = (param("px"), param("py"), param("pz"), param("heading"));
-    // The tool's point and heading at shoulder and elbow turns q1, q2, the quill's rise s
-    // and the roll q4.
-    let forward = |q1: f64, q2: f64, s: f64, q4: f64| {
-        let (elbow_x, elbow_y) = (0.35 * q1.cos(), 0.35 * q1.sin());
-        let x = elbow_x + 0.30 * (q1 + q2).cos();
-        let y = elbow_y + 0.30 * (q1 + q2).sin();
-        (Vector3::new(x, y, 0.1 + s), q1 + q2 + q4)
-    };
     let scalar = |s: &Solution, name: &str| {
         (s.scalars.iter())
             .find(|(n, _)| n == name)
@@ -812,42 +811,74 @@ fn the_scara_arm_has_both_solutions_in_closed_form_at_random_poses() {
     let mut rng = Rng(0x5ca2_a5ee);
     let mut solutions = 0;
     for _ in 0..1000 {
-        let (q1, q2, q4) = (rng.angle(), rng.angle(), rng.angle());
-        let s = 0.4 * rng.angle() / std::f64::consts::PI * 0.5;
-        let (p, heading) = forward(q1, q2, s, q4);
+        let (qa, qb, qc) = (rng.angle(), rng.angle(), rng.angle());
+        let rise = 0.2 * rng.angle() / std::f64::consts::PI;
+        let (p, heading) = forward(qa, qb, rise, qc);
         let mut params = model.default_params();
         (params[ipx], params[ipy], params[ipz], params[ih]) = (p.x, p.y, p.z, heading);
         let found = solve_all(model, plan, &scope, &params, &[]);
-        assert_eq!(found.solutions.len(), 2, "q = {q1}, {q2}, {s}, {q4}");
+        assert_eq!(found.solutions.len(), 2, "{path}: {qa}, {qb}, {rise}, {qc}");
         let mut from = false;
         for sol in &found.solutions {
-            assert!(sol.max_residual <= 1e-12, "{}", sol.max_residual);
+            assert!(sol.max_residual <= 1e-12, "{path}: {}", sol.max_residual);
             let tcp = point_of(sol, "tool.tcp");
-            assert!((tcp - p).norm() <= 1e-12, "tcp {tcp:?}, target {p:?}");
-            // The joint values reported give the pose back (the travel is the quill's drop:
-            // from the quill's marker to the forearm's, along the forearm's axis).
-            let (r1, r2, t3, r4) = (
-                scalar(sol, "q1.angle"),
-                scalar(sol, "q2.angle"),
-                scalar(sol, "d3.travel"),
-                scalar(sol, "q4.angle"),
+            assert!(
+                (tcp - p).norm() <= 1e-12,
+                "{path}: tcp {tcp:?}, target {p:?}"
             );
-            let (back, h) = forward(r1, r2, -t3, r4);
+            // The joint values reported give the pose back; a travel is measured from the
+            // child's marker to the parent's, so the rise is its negative.
+            let [a, b, t, c] = joints.map(|j| scalar(sol, j));
+            let (back, h) = forward(a, b, -t, c);
             let turn = (h - heading + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
                 - std::f64::consts::PI;
             assert!(
                 (back - p).norm() <= 1e-12 && turn.abs() <= 1e-12,
-                "joints {r1} {r2} {t3} {r4} give {back:?} at {h}, not {p:?} at {heading}"
+                "{path}: joints {a} {b} {t} {c} give {back:?} at {h}, not {p:?} at {heading}"
             );
-            let elbow = point_of(sol, "upper_arm.elbow");
-            let want = Vector3::new(0.35 * q1.cos(), 0.35 * q1.sin(), 0.35);
-            from |= (elbow - want).norm() <= 1e-9;
+            from |= (point_of(sol, "upper_arm.elbow") - elbow(qa, rise)).norm() <= 1e-9;
         }
         assert!(
             from,
-            "q = {q1}, {q2}: the arm the pose came from is not a solution"
+            "{path}: {qa}, {qb}: the arm the pose came from is not a solution"
         );
         solutions += found.solutions.len();
     }
-    eprintln!("scara: {solutions} solutions over 1000 poses");
+    eprintln!("{path}: {solutions} solutions over 1000 poses");
+}
+
+/// The tool's point and heading of a SCARA whose shoulder's axis is the z axis, with an upper
+/// arm of 0.35 and a forearm of 0.30, the tool's point at height `tcp` raised by `rise`, at
+/// turns `qa`, `qb`, `qc`.
+fn scara_forward(tcp: f64) -> impl Fn(f64, f64, f64, f64) -> (Vector3<f64>, f64) {
+    move |qa, qb, rise, qc| {
+        let x = 0.35 * qa.cos() + 0.30 * (qa + qb).cos();
+        let y = 0.35 * qa.sin() + 0.30 * (qa + qb).sin();
+        (Vector3::new(x, y, tcp + rise), qa + qb + qc)
+    }
+}
+
+/// The SCARA of `examples/scara.gcs`: the quill slides at the forearm's end (the tool's point
+/// 0.1 high at the sketch), the upper arm at height 0.35.
+#[test]
+fn the_scara_arm_has_both_solutions_in_closed_form_at_random_poses() {
+    check_scara(
+        &format!("{}/../examples/scara.gcs", env!("CARGO_MANIFEST_DIR")),
+        ["q1.angle", "q2.angle", "d3.travel", "q4.angle"],
+        scara_forward(0.1),
+        |qa, _| Vector3::new(0.35 * qa.cos(), 0.35 * qa.sin(), 0.35),
+    );
+}
+
+/// A SCARA lifted at its base (`tests/models/scara_lift.gcs`): the column slides, carrying the
+/// arm at height 0.4 (the tool's point 0.3 high at the sketch); the column's travel is the
+/// first joint value.
+#[test]
+fn a_scara_lifted_at_its_base_has_both_solutions_in_closed_form_at_random_poses() {
+    check_scara(
+        &format!("{}/tests/models/scara_lift.gcs", env!("CARGO_MANIFEST_DIR")),
+        ["q2.angle", "q3.angle", "d1.travel", "q4.angle"],
+        scara_forward(0.3),
+        |qa, rise| Vector3::new(0.35 * qa.cos(), 0.35 * qa.sin(), 0.4 + rise),
+    );
 }

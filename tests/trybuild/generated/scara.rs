@@ -67,10 +67,10 @@ impl Default for Params {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
     /// `q2_2`:
-    /// - 0: where the line through quill.slide along quill.slide.z and the plane square to upper_arm.elbow.z that forearm.quill keeps to, forearm turning about axes along it meet
+    /// - 0: where the line through quill.slide along quill.slide.z moved with forearm.elbow and the plane square to forearm.elbow.z where forearm.elbow must be for upper_arm.shoulder, upper_arm turning about axes along it, to reach its place meet
     pub q2_2: u8,
     /// `q2`:
-    /// - 0: the crossing of the circle upper_arm.elbow sweeps about the axis through ground.base along ground.base.z and the circle forearm.elbow sweeps about the axis through where the line through quill.slide along quill.slide.z crosses the plane square to upper_arm.elbow.z that forearm.quill keeps to, forearm turning about axes along it along upper_arm.elbow.z to the left of the line of their centres, seen down the first's axis (or first along the line their planes share)
+    /// - 0: the crossing of the circle upper_arm.elbow sweeps about the axis through ground.base along ground.base.z and the circle forearm.elbow sweeps about the axis through forearm.quill along upper_arm.elbow.z to the left of the line of their centres, seen down the first's axis (or first along the line their planes share)
     /// - 1: the other crossing
     pub q2: u8,
 }
@@ -544,10 +544,7 @@ pub fn solve(
     tool.rotate_about_by(&ground_target, &turn);
 
     // d3: prismatic(forearm.quill, quill.slide) (scara.gcs:36)
-    let forearm_quill = forearm.point_to_global(&Point3::new(0.65, 0.0, 0.35));
-    let forearm_elbow = forearm.point_to_global(&Point3::new(0.35, 0.0, 0.35));
-    let forearm_elbow_z = forearm.vector_to_global(&Vector3::z());
-    let length = (forearm_quill - forearm_elbow).dot(&forearm_elbow_z);
+    let length = (Point3::new(0.0, 0.0, 0.0) - Point3::new(0.35, 0.0, 0.35)).dot(&Vector3::z());
     let sum = length;
     if !gcs_runtime::num::is_finite(sum) {
         return Err(SolveError::new(
@@ -557,9 +554,28 @@ pub fn solve(
             sum,
         ));
     }
-    let normal = Vector3::z();
-    let plane = Plane::from_point_normal(&(Point3::new(0.35, 0.0, 0.35) + normal * sum), &normal);
-    let q2_meeting = intersect3d::line_plane(&line, &plane);
+    let forearm_elbow_z = forearm.vector_to_global(&Vector3::z());
+    let sum_2 = -sum;
+    if !gcs_runtime::num::is_finite(sum_2) {
+        return Err(SolveError::new(
+            "q2",
+            "revolute(upper_arm.elbow, forearm.elbow)",
+            ErrorKind::InvalidValue,
+            sum_2,
+        ));
+    }
+    let normal = frame::unit3(&forearm_elbow_z).ok_or_else(|| {
+        SolveError::new(
+            "q2",
+            "revolute(upper_arm.elbow, forearm.elbow)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let plane = Plane::from_point_normal(&(Point3::new(0.0, 0.0, 0.0) + normal * sum_2), &normal);
+    let forearm_elbow = forearm.point_to_global(&Point3::new(0.35, 0.0, 0.35));
+    let line_2 = Line3::new(forearm_elbow, line.dir);
+    let q2_meeting = intersect3d::line_plane(&line_2, &plane);
     if let Some(e) = SolveError::from_contact(
         "q2",
         "revolute(upper_arm.elbow, forearm.elbow)",
@@ -575,15 +591,16 @@ pub fn solve(
             q2_meeting.roots.len() as f64,
         )
     })?;
-    let shift_4 = q2 - forearm_quill;
+    let shift_4 = q2 - forearm_elbow;
     forearm.translate(&shift_4);
+    let forearm_quill = forearm.point_to_global(&Point3::new(0.65, 0.0, 0.35));
     let orbit = Circle3::orbit(
         &Point3::new(0.0, 0.0, 0.0),
         &Vector3::z(),
         &Point3::new(0.35, 0.0, 0.35),
     );
     let forearm_elbow_2 = forearm.point_to_global(&Point3::new(0.35, 0.0, 0.35));
-    let orbit_2 = Circle3::orbit(&q2, &Vector3::z(), &forearm_elbow_2);
+    let orbit_2 = Circle3::orbit(&forearm_quill, &Vector3::z(), &forearm_elbow_2);
     let q2_meeting_2 = intersect3d::circle_circle(&orbit, &orbit_2);
     if let Some(e) = SolveError::from_contact(
         "q2",
@@ -614,9 +631,13 @@ pub fn solve(
     upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
     let turn_3 = frame::rotation_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(&(forearm_elbow_2 - q2), &(q2_2 - q2), &Vector3::z()),
+        frame::signed_angle3(
+            &(forearm_elbow_2 - forearm_quill),
+            &(q2_2 - forearm_quill),
+            &Vector3::z(),
+        ),
     );
-    forearm.rotate_about_by(&q2, &turn_3);
+    forearm.rotate_about_by(&forearm_quill, &turn_3);
     let forearm_quill_z = forearm.vector_to_global(&Vector3::z());
     let forearm_quill_x = forearm.vector_to_global(&Vector3::x());
     let turned_2 = frame::rotation_about_axis(&forearm_quill_z, 0.0) * forearm_quill_x;

@@ -95,12 +95,83 @@ impl Builder<'_, Spatial> {
                 let across = w - d * w.dot(&d) / d.dot(&d).max(f64::MIN_POSITIVE);
                 across.norm() <= gcs_runtime::tol::LENGTH_REL * (1.0 + w.norm())
             });
-            if !on_own_axis {
+            let last = *chain.last().expect("a chain has a joint");
+            let slides = matches!(
+                self.clusters[self.cluster(last.far)].record.trans,
+                Trans::On { .. }
+            );
+            if slides {
+                if self.slide_onto_subchain_plane(x, at, &chain) {
+                    return true;
+                }
+            } else if !on_own_axis {
                 self.turn_onto_subchain_plane(x, at, &chain);
                 return true;
             }
         }
         self.subchain_onto_line(&joints)
+    }
+
+    /// Slides the chain's far body along the known line it is held on so that the plane its
+    /// joint's axis fixes, at the chain's offset, passes through the known point `at` of
+    /// feature `x` (a SCARA lifted at its base: the column slides until the arm's plane
+    /// reaches the wrist). Returns whether it could.
+    fn slide_onto_subchain_plane(&mut self, x: GeomId, at: Reg, chain: &[Link]) -> bool {
+        let last = *chain.last().expect("a chain has a joint");
+        let Some(z) = self.z_of(last.far) else {
+            return false;
+        };
+        let Trans::On {
+            locus: Locus::Line(line),
+            ..
+        } = self.clusters[self.cluster(last.far)].record.trans
+        else {
+            return false;
+        };
+        if !self.crosses_on_sketch(line, z) {
+            return false;
+        }
+        let offset = self.subchain_offset(x, at, chain);
+        let normal = self.direction(z);
+        let bodies: Vec<String> = (chain.iter().rev())
+            .map(|l| self.name(self.model.top_level_of(l.near)))
+            .collect();
+        let (xname, zname, far) = (self.name(x), self.name(z), self.name(last.far));
+        let back = self.value(
+            Op::Sum(vec![(-1.0, offset)]),
+            Ty::Scalar,
+            format!(
+                "minus the offset of {xname} along the axes of {}",
+                bodies.join(", ")
+            ),
+        );
+        let words = format!(
+            "the plane square to {zname} where {far} must be for {xname}, {} turning about axes along it, to reach its place",
+            bodies.join(", ")
+        );
+        let plane = self.value(
+            SpatialOp::Plane {
+                point: at,
+                normal,
+                offset: Some(back),
+            },
+            Ty::Plane,
+            words,
+        );
+        let c = last.joint.constraint;
+        let Some(relation) = self.relations_of(c).into_iter().next() else {
+            return false;
+        };
+        let r = Rel {
+            relation,
+            constraint: c,
+            last: false,
+            duplicate: false,
+        };
+        self.work_for(Some(c));
+        let moved = self.move_point(last.far, Target::On(Locus::Plane(plane)), &r);
+        self.work_for(None);
+        moved
     }
 
     /// Finds a planar sub-chain whose near body holds a point on a known line and whose far
@@ -309,7 +380,30 @@ impl Builder<'_, Spatial> {
                     path.pop();
                     continue;
                 }
+                // Turning only about an axis along the chain's (or not at all): the plane square
+                // to it through `far` keeps its tilt.
+                let keeps_tilt = match rec.turn {
+                    Turn::Known => true,
+                    Turn::Axis {
+                        feature: Some(f), ..
+                    } => {
+                        model.top_level_of(f) == model.top_level_of(far)
+                            && (local_dir(model, f))
+                                .zip(self.z_of(far).and_then(|z| local_dir(model, z)))
+                                .is_some_and(|(u, v)| parallel(u, v))
+                    }
+                    _ => false,
+                };
                 match (rec.trans, rec.turn) {
+                    // The far body slides on a known line, keeping its tilt: it slides the
+                    // plane onto the pivot.
+                    (
+                        Trans::On {
+                            locus: Locus::Line(_),
+                            ..
+                        },
+                        _,
+                    ) if keeps_tilt && rec.rigid() => return Some(path.clone()),
                     // The far body: its turn's axis known and across the chain's.
                     (
                         Trans::Pivot { .. },
