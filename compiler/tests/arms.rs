@@ -882,3 +882,83 @@ fn a_scara_lifted_at_its_base_has_both_solutions_in_closed_form_at_random_poses(
         |qa, rise| Vector3::new(0.35 * qa.cos(), 0.35 * qa.sin(), 0.4 + rise),
     );
 }
+
+/// The PUMA-like arm with its tool's pose from six params (`tests/models/puma_rotation_vector.gcs`):
+/// the point, and the orientation as a rotation vector on the target body's `rotated` (the
+/// angle its length, the axis its direction). At 1,000 random poses from random joint angles
+/// (the rotation vector of the tool's frame read by nalgebra, apart from the plan): as many
+/// solutions as the geometric count, each with the tool's point and axes on the target's to
+/// 1e-12 (the target on the pose to 1e-9, the rotation vector's round trip), and the arm the
+/// pose came from among them.
+#[test]
+fn a_pose_from_a_point_and_a_rotation_vector_has_every_solution() {
+    let arm = puma();
+    let path = format!(
+        "{}/tests/models/puma_rotation_vector.gcs",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).expect("the model");
+    let compiled = gcs_compiler::compile(&path, text.as_bytes()).expect("compiles");
+    assert!(!compiled.has_errors(), "{:?}", compiled.diagnostics);
+    let (model, plan) = (&compiled.model, &compiled.analysis.plan);
+    assert!(plan.defaults.is_empty() && plan.iterations.is_empty());
+    let scope: BTreeSet<_> = model.top_level().map(|(id, _)| id).collect();
+    let index = |name: &str| {
+        (model.params.iter())
+            .position(|(_, p)| p.name == name)
+            .unwrap_or_else(|| panic!("no param {name}"))
+    };
+    let names = ["px", "py", "pz", "rx", "ry", "rz"].map(index);
+    let axis = |s: &Solution, name: &str| {
+        let a = &(s.vectors.iter()).find(|(n, _)| n == name).expect(name).1;
+        v([a[0], a[1], a[2]])
+    };
+    let mut rng = Rng(0x70a5_e5ee);
+    let mut solutions = 0;
+    for _ in 0..1000 {
+        let q: Vec<f64> = (0..6).map(|_| rng.angle()).collect();
+        let fk = forward(&arm, &q);
+        let (r, t) = fk.last().expect("a body");
+        let (p0, z0, x0) = arm.tool;
+        let (p, z, x) = (r * v(p0) + t, r * v(z0), r * v(x0));
+        // The target's frame carries its marker's z (0, 0, 1) to z and x (1, 0, 0) to x.
+        let goal = Rotation3::from_basis_unchecked(&[x, z.cross(&x), z]);
+        let turn = goal.scaled_axis();
+        let mut params = model.default_params();
+        for (i, value) in names.iter().zip([p.x, p.y, p.z, turn.x, turn.y, turn.z]) {
+            params[*i] = value;
+        }
+        let found = solve_all(model, plan, &scope, &params, &[]);
+        let want = count(arm.count.as_ref().expect("a count"), p, z);
+        assert_eq!(found.solutions.len(), want, "q = {q:?}");
+        for s in &found.solutions {
+            let (tp, tz, tx) = (
+                point_of(s, "tool.tcp"),
+                axis(s, "tool.tcp.z"),
+                axis(s, "tool.tcp.x"),
+            );
+            // On the target as gcs reads it from the params, to the solve's accuracy; the
+            // target on the pose the params came from, to the rotation vector's round trip
+            // (nalgebra's axis near a half turn loses digits: 4e-11 seen).
+            let (gp, gz, gx) = (
+                point_of(s, "goal.target"),
+                axis(s, "goal.target.z"),
+                axis(s, "goal.target.x"),
+            );
+            assert!(
+                (tp - gp).norm() <= 1e-12 && (tz - gz).norm() <= 1e-12 && (tx - gx).norm() <= 1e-12,
+                "q = {q:?}: the tool at {tp:?} {tz:?} {tx:?}, the target at {gp:?} {gz:?} {gx:?}"
+            );
+            assert!(
+                (gp - p).norm() <= 1e-12 && (gz - z).norm() <= 1e-9 && (gx - x).norm() <= 1e-9,
+                "q = {q:?}: the target at {gp:?} {gz:?} {gx:?}, not {p:?} {z:?} {x:?}"
+            );
+        }
+        assert!(
+            found.solutions.iter().any(|s| is_arm(&arm, s, &fk, 1e-8)),
+            "q = {q:?}: the arm the pose came from is not among the solutions"
+        );
+        solutions += found.solutions.len();
+    }
+    eprintln!("puma, pose from a rotation vector: {solutions} solutions over 1000 poses");
+}
