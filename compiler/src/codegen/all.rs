@@ -39,7 +39,8 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
     } else {
         CAPACITY
     };
-    assemblies(w, capacity, one_angle, varied.is_empty());
+    let point = super::api::Ty::Point.rust(cx);
+    assemblies(w, capacity, one_angle, varied.is_empty(), point);
     let carries = match (plan.branches.is_empty(), plan.defaults.is_empty()) {
         (false, false) => {
             w.line("/// Every real assembly at `params`, each with its branches (`Solution::branches`) and");
@@ -80,6 +81,8 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
     w.line("#[allow(dead_code)]");
     w.open("pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {");
     w.line(&format!("let mut found = Assemblies::new({complete});"));
+    w.line("// The points of each solution listed, computed once (`keep`).");
+    w.line("let mut kept = [None; MAX_ASSEMBLIES];");
     let each = |w: &mut Writer| combination_body(w, cx, &varied, one_angle);
     if combinations == 1 {
         w.line("let branches = Branches::default();");
@@ -122,7 +125,7 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
     let plan = cx.plan;
     if varied.is_empty() {
         w.open("if let Ok(s) = solve(params, &branches, defaults) {");
-        w.line("found.push(s, same_assembly);");
+        w.line("keep(&mut found, &mut kept, s.points(), s);");
         w.close("}");
         return;
     }
@@ -146,7 +149,7 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
         w.open(
             "if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {",
         );
-        w.line("found.push(s, same_assembly);");
+        w.line("keep(&mut found, &mut kept, s.points(), s);");
         w.close("}");
         w.close("}");
         return;
@@ -185,14 +188,14 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
     }
     w.line("// One start of many: a failure is not told apart, and no mode is held.");
     w.open("if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {");
-    w.line("found.push(s, same_assembly);");
+    w.line("keep(&mut found, &mut kept, s.points(), s);");
     w.close("}");
     w.close("}");
 }
 
 /// `MAX_ASSEMBLIES`, `Assemblies` (the runtime's list of this module's `Solution`) and
 /// `same_assembly`, the rule the list keeps each assembly once by.
-fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
+fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool, point: &str) {
     w.line(
         "/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.",
     );
@@ -211,18 +214,43 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool) {
     w.line("#[allow(dead_code)]");
     w.line("pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;");
     w.line("");
-    w.line("/// Whether two solutions are one assembly: every point and vector within a relative");
-    w.line("/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). Each list is");
     w.line(
-        "/// built once, and the vectors only when the points agree (two assemblies mostly differ",
+        "/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and",
+    );
+    w.line(
+        "/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's",
+    );
+    w.line(
+        "/// size). The vectors are read only when the points agree (two assemblies mostly differ",
     );
     w.line("/// in their first points).");
     w.line("#[allow(dead_code)]");
-    w.open("fn same_assembly(a: &Solution, b: &Solution) -> bool {");
-    w.line("let (pa, pb) = (a.points(), b.points());");
+    w.open(&format!(
+        "fn same_assembly<const P: usize>(pa: &[(&'static str, {point}); P], pb: &[(&'static str, {point}); P], a: &Solution, b: &Solution) -> bool {{"
+    ));
     w.line("let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
-    w.line("pa.iter().zip(&pb).all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)");
+    w.line("pa.iter().zip(pb).all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)");
     w.line("    && a.vectors().iter().zip(&b.vectors()).all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)");
+    w.close("}");
+    w.line("");
+    w.line("/// Adds `s`, whose points are `points`, to `found` unless the list has its assembly");
+    w.line(
+        "/// already (`same_assembly`); `kept` holds the points of each solution listed, by its",
+    );
+    w.line("/// place in the list, so that each solution's points are computed once, not once per");
+    w.line("/// pair compared.");
+    w.line("#[allow(dead_code)]");
+    w.open(&format!(
+        "fn keep<const P: usize>(found: &mut Assemblies, kept: &mut [Option<[(&'static str, {point}); P]>; MAX_ASSEMBLIES], points: [(&'static str, {point}); P], s: Solution) {{"
+    ));
+    w.line("let listed = found.iter().zip(kept.iter()).any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));");
+    w.open("if listed {");
+    w.line("return;");
+    w.close("}");
+    w.open("if let Some(slot) = kept.get_mut(found.len()) {");
+    w.line("*slot = Some(points);");
+    w.close("}");
+    w.line("found.push(s, |_, _| false);");
     w.close("}");
     w.line("");
 }

@@ -290,21 +290,49 @@ pub const MAX_ASSEMBLIES: usize = 2;
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
-/// Whether two solutions are one assembly: every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). Each list is
-/// built once, and the vectors only when the points agree (two assemblies mostly differ
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size). The vectors are read only when the points agree (two assemblies mostly differ
 /// in their first points).
 #[allow(dead_code)]
-fn same_assembly(a: &Solution, b: &Solution) -> bool {
-    let (pa, pb) = (a.points(), b.points());
+fn same_assembly<const P: usize>(
+    pa: &[(&'static str, Point2<f64>); P],
+    pb: &[(&'static str, Point2<f64>); P],
+    a: &Solution,
+    b: &Solution,
+) -> bool {
     let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
-        .zip(&pb)
+        .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
         && a.vectors()
             .iter()
             .zip(&b.vectors())
             .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+}
+
+/// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
+/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
+/// place in the list, so that each solution's points are computed once, not once per
+/// pair compared.
+#[allow(dead_code)]
+fn keep<const P: usize>(
+    found: &mut Assemblies,
+    kept: &mut [Option<[(&'static str, Point2<f64>); P]>; MAX_ASSEMBLIES],
+    points: [(&'static str, Point2<f64>); P],
+    s: Solution,
+) {
+    let listed = found
+        .iter()
+        .zip(kept.iter())
+        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    if listed {
+        return;
+    }
+    if let Some(slot) = kept.get_mut(found.len()) {
+        *slot = Some(points);
+    }
+    found.push(s, |_, _| false);
 }
 
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
@@ -315,12 +343,14 @@ fn same_assembly(a: &Solution, b: &Solution) -> bool {
 #[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
+    // The points of each solution listed, computed once (`keep`).
+    let mut kept = [None; MAX_ASSEMBLIES];
     for combination in 0..2usize {
         let branches = Branches {
             tangent_run_small: (combination % 2) as u8,
         };
         if let Ok(s) = solve(params, &branches, defaults) {
-            found.push(s, same_assembly);
+            keep(&mut found, &mut kept, s.points(), s);
         }
     }
     found
