@@ -214,6 +214,12 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool, po
     w.line("#[allow(dead_code)]");
     w.line("pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;");
     w.line("");
+    w.line("/// A solution's points by name, as `Solution::points` gives them.");
+    w.line("#[allow(dead_code)]");
+    w.line(&format!(
+        "type NamedPoints<const P: usize> = [(&'static str, {point}); P];"
+    ));
+    w.line("");
     w.line(
         "/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and",
     );
@@ -225,9 +231,9 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool, po
     );
     w.line("/// in their first points).");
     w.line("#[allow(dead_code)]");
-    w.open(&format!(
-        "fn same_assembly<const P: usize>(pa: &[(&'static str, {point}); P], pb: &[(&'static str, {point}); P], a: &Solution, b: &Solution) -> bool {{"
-    ));
+    w.open(
+        "fn same_assembly<const P: usize>(pa: &NamedPoints<P>, pb: &NamedPoints<P>, a: &Solution, b: &Solution) -> bool {",
+    );
     w.line("let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
     w.line("pa.iter().zip(pb).all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)");
     w.line("    && a.vectors().iter().zip(&b.vectors()).all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)");
@@ -240,9 +246,9 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool, po
     w.line("/// place in the list, so that each solution's points are computed once, not once per");
     w.line("/// pair compared.");
     w.line("#[allow(dead_code)]");
-    w.open(&format!(
-        "fn keep<const P: usize>(found: &mut Assemblies, kept: &mut [Option<[(&'static str, {point}); P]>; MAX_ASSEMBLIES], points: [(&'static str, {point}); P], s: Solution) {{"
-    ));
+    w.open(
+        "fn keep<const P: usize>(found: &mut Assemblies, kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES], points: NamedPoints<P>, s: Solution) {",
+    );
     w.line("let listed = found.iter().zip(kept.iter()).any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));");
     w.open("if listed {");
     w.line("return;");

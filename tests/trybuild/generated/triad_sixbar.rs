@@ -581,14 +581,18 @@ pub const MAX_ASSEMBLIES: usize = 64;
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
+/// A solution's points by name, as `Solution::points` gives them.
+#[allow(dead_code)]
+type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
+
 /// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
 /// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
 /// size). The vectors are read only when the points agree (two assemblies mostly differ
 /// in their first points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &[(&'static str, Point2<f64>); P],
-    pb: &[(&'static str, Point2<f64>); P],
+    pa: &NamedPoints<P>,
+    pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
@@ -609,8 +613,8 @@ fn same_assembly<const P: usize>(
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<[(&'static str, Point2<f64>); P]>; MAX_ASSEMBLIES],
-    points: [(&'static str, Point2<f64>); P],
+    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    points: NamedPoints<P>,
     s: Solution,
 ) {
     let listed = found
