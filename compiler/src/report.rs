@@ -174,16 +174,8 @@ pub fn sketch_assembly_ended(model: &Model, plan: &Plan, s: &Solution) -> Option
     /// The points listed, farthest first; the rest are counted.
     const LISTED: usize = 4;
     let at = s.sketch_assembly_ended.as_ref()?;
-    let sketch = model.default_params();
-    let near: Vec<String> = (at.iter().zip(&sketch))
-        .filter(|((_, v), s)| v != *s)
-        .map(|((name, v), _)| format!("{name} = {}", rounded(*v)))
-        .collect();
-    let near = if near.is_empty() {
-        String::new()
-    } else {
-        format!(" near {}", near.join(", "))
-    };
+    let values: Vec<f64> = at.iter().map(|(_, v)| *v).collect();
+    let near = params_moved(model, &values).map_or(String::new(), |p| format!(" near {p}"));
     let closes = (plan.iterations.iter())
         .flat_map(|it| plan.closes(it))
         .next();
@@ -198,7 +190,7 @@ pub fn sketch_assembly_ended(model: &Model, plan: &Plan, s: &Solution) -> Option
     d = d.with_note(format!(
         "followed from the model's params as a sweep would follow it, the sketch's assembly comes{near} to where its closing errors stop closing: no step past there stays on it (a fold, where that assembly meets another and both end)"
     ));
-    let drawn = Solution::of_sketch(model, &sketch, &plan.touched(model));
+    let drawn = Solution::of_sketch(model, &model.default_params(), &plan.touched(model));
     let by_name = drawn.as_ref().map(Solution::by_name);
     let mut far: Vec<(&str, f64)> = match &by_name {
         Some(at) => (s.points.iter())
@@ -367,20 +359,23 @@ fn conflicts(
 /// intersection, where (the params that differ from the model's), and which root it took.
 fn passed_tangency(model: &Model, plan: &Plan, t: &crate::all::Tangency) -> String {
     let name = &plan.branches[t.branch].name;
-    let sketch = model.default_params();
-    let at: Vec<String> = (model.params.iter().zip(t.params.iter().zip(&sketch)))
-        .filter(|(_, (v, s))| v != s)
-        .map(|((_, p), (v, _))| format!("{} = {}", p.name, rounded(*v)))
-        .collect();
-    let at = if at.is_empty() {
-        String::new()
-    } else {
-        format!(", near {}", at.join(", "))
-    };
+    let at = params_moved(model, &t.params).map_or(String::new(), |p| format!(", near {p}"));
     format!(
         "the sketch's assembly, followed from the model's params to those given, comes to where the loci of `{name}` touch{at}: its root on `{name}` = {} ends there, and it goes on along `{name}` = {}",
         t.left, t.took
     )
+}
+
+/// The params whose value in `at` (indexed like the model's) is not the model's own, each
+/// `name = value`: where on the way from the model's params a followed assembly was. `None`
+/// when none moved.
+fn params_moved(model: &Model, at: &[f64]) -> Option<String> {
+    let sketch = model.default_params();
+    let moved: Vec<String> = (model.params.iter().zip(at.iter().zip(&sketch)))
+        .filter(|(_, (v, s))| v != s)
+        .map(|((_, p), (v, _))| format!("{} = {}", p.name, rounded(*v)))
+        .collect();
+    (!moved.is_empty()).then(|| moved.join(", "))
 }
 
 fn rounded(x: f64) -> Shown {

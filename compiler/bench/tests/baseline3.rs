@@ -193,6 +193,7 @@ fn every_3d_example_follows_the_interpreter_from_a_warm_start() {
     let mut report = String::new();
     for (name, model) in &examples() {
         let params = model.default_params();
+        let redundant = redundant(model);
         let (_, at_start) = interpreted(model, &params);
         let moved = nudge(model, &params);
         let (answer, _) = interpreted(model, &moved);
@@ -221,7 +222,7 @@ fn every_3d_example_follows_the_interpreter_from_a_warm_start() {
                 // its family (verified above all the same).
                 // Redundant equations: Newton stalls linearly near the answer, to 1e-7.
                 assert!(
-                    diff <= 1e-9 || free_motion(model) || (diff <= 1e-7 && redundant(model)),
+                    diff <= 1e-9 || free_motion(model) || (diff <= 1e-7 && redundant),
                     "{name} {method:?} {linear:?}: {diff:e} from the interpreter's answer"
                 );
                 let _ = writeln!(
@@ -429,6 +430,7 @@ fn every_3d_example_solves_from_a_jiggled_sketch() {
     let mut report = String::new();
     for (name, model) in &examples() {
         let params = model.default_params();
+        let redundant = redundant(model);
         let mut its = Vec::new();
         for method in [Method::Newton, Method::LevenbergMarquardt] {
             let mut b = Baseline3::new(model).expect("baseline");
@@ -445,7 +447,7 @@ fn every_3d_example_solves_from_a_jiggled_sketch() {
                 let out = b.solve(&params, &mut x, &opts);
                 // Redundant equations: Newton may stall just above its tolerance (verified
                 // below all the same).
-                let stalled = out.max_residual <= 1e-10 && redundant(model);
+                let stalled = out.max_residual <= 1e-10 && redundant;
                 assert!(
                     out.converged || stalled,
                     "{name} {method:?} trial {trial}: {out:?}"

@@ -95,27 +95,11 @@ impl Builder<'_, Spatial> {
                 },
             )
             .collect();
-        let Some(probe) = self.values else {
-            return false;
-        };
         if pairs.is_empty() {
             return false;
         }
-        // Measuring `k`'s directions writes steps: on a copy, whose plan is only read.
-        let mut trial = self.clone();
-        let regs: Vec<Reg> = (pairs.iter())
-            .flat_map(|&(mine, axis)| [trial.direction(mine), axis])
-            .collect();
-        let Some(values) = probe(self.model, &trial.plan, &regs) else {
-            return false;
-        };
-        values.chunks(2).any(|pair| {
-            let (d, a) = (pair[0], pair[1]);
-            let dot = d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
-            let norms = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
-                * (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-            norms > 0.0 && dot.abs() >= (1.0 - PARALLEL_AT_SKETCH) * norms
-        })
+        (self.sketch_cosines(&pairs).unwrap_or_default().iter())
+            .any(|&c| c >= 1.0 - PARALLEL_AT_SKETCH)
     }
 
     /// Whether [`Self::default_on`] would give cluster `k` its turn about its one axis.

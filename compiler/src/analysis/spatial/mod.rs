@@ -208,6 +208,35 @@ impl Geometry for Spatial {
     }
 }
 
+impl Builder<'_, Spatial> {
+    /// For each pair of a direction feature and a register holding a direction (or a line),
+    /// the absolute cosine of their angle when the plan written so far runs on the sketch
+    /// (NaN where either has no length there). Measuring the features writes steps, so it is
+    /// done on a copy whose plan is only read. `None` where the plan does not run. What a
+    /// choice the analysis is about to make reads of the sketch (whether what follows is
+    /// regular there).
+    pub(super) fn sketch_cosines(&self, pairs: &[(GeomId, Reg)]) -> Option<Vec<f64>> {
+        let probe = self.values?;
+        let mut trial = self.clone();
+        let regs: Vec<Reg> = (pairs.iter())
+            .flat_map(|&(g, r)| [trial.direction(g), r])
+            .collect();
+        let values = probe(self.model, &trial.plan, &regs)?;
+        Some(
+            (values.chunks(2))
+                .map(|pair| {
+                    let norms = dot(pair[0], pair[0]).sqrt() * dot(pair[1], pair[1]).sqrt();
+                    if norms > 0.0 {
+                        dot(pair[0], pair[1]).abs() / norms
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect(),
+        )
+    }
+}
+
 /// A member point's or marker's constant local coordinates in its body.
 fn local_point(model: &Model, f: GeomId) -> Option<[f64; 3]> {
     let g = &model.geoms[f];

@@ -133,9 +133,7 @@ impl Builder<'_, Spatial> {
         }
         let offset = self.subchain_offset(x, at, chain);
         let normal = self.direction(z);
-        let bodies: Vec<String> = (chain.iter().rev())
-            .map(|l| self.name(self.model.top_level_of(l.near)))
-            .collect();
+        let bodies = self.chain_bodies(chain);
         let (xname, zname, far) = (self.name(x), self.name(z), self.name(last.far));
         let back = self.value(
             Op::Sum(vec![(-1.0, offset)]),
@@ -159,14 +157,8 @@ impl Builder<'_, Spatial> {
             words,
         );
         let c = last.joint.constraint;
-        let Some(relation) = self.relations_of(c).into_iter().next() else {
+        let Some(r) = self.serving(c) else {
             return false;
-        };
-        let r = Rel {
-            relation,
-            constraint: c,
-            last: false,
-            duplicate: false,
         };
         self.work_for(Some(c));
         let moved = self.move_point(last.far, Target::On(Locus::Plane(plane)), &r);
@@ -215,9 +207,7 @@ impl Builder<'_, Spatial> {
             let at = self.point(x);
             let offset = self.subchain_offset(x, at, &chain);
             let (base, normal) = (self.point(last.far), self.direction(z));
-            let bodies: Vec<String> = (chain.iter().rev())
-                .map(|l| self.name(self.model.top_level_of(l.near)))
-                .collect();
+            let bodies = self.chain_bodies(&chain);
             let words = format!(
                 "the plane square to {} that {} keeps to, {} turning about axes along it",
                 self.name(z),
@@ -235,14 +225,8 @@ impl Builder<'_, Spatial> {
             );
             // The step serves the chain's first joint, which it does not satisfy.
             let first = chain[0].joint.constraint;
-            let Some(relation) = self.relations_of(first).into_iter().next() else {
+            let Some(r) = self.serving(first) else {
                 continue;
-            };
-            let r = Rel {
-                relation,
-                constraint: first,
-                last: false,
-                duplicate: false,
             };
             self.work_for(Some(first));
             let moved = self.move_point(x, Target::On(Locus::Plane(plane)), &r);
@@ -258,17 +242,44 @@ impl Builder<'_, Spatial> {
     /// directions not square to within 1e-3. Read by running the plan so far on the sketch
     /// (on a copy: measuring `z` writes a step).
     fn crosses_on_sketch(&self, line: Reg, z: GeomId) -> bool {
-        let Some(probe) = self.values else {
-            return false;
-        };
-        let mut trial = self.clone();
-        let zr = trial.direction(z);
-        let Some(v) = probe(self.model, &trial.plan, &[line, zr]) else {
-            return false;
-        };
-        let (d, n) = (v[0], v[1]);
-        let norms = super::dot(d, d).sqrt() * super::dot(n, n).sqrt();
-        norms > 0.0 && super::dot(d, n).abs() >= 1e-3 * norms
+        (self.sketch_cosines(&[(z, line)])).is_some_and(|c| c[0] >= 1e-3)
+    }
+
+    /// The bodies of `chain`'s links, from the far end: how its words name the sub-chain.
+    fn chain_bodies(&self, chain: &[Link]) -> Vec<String> {
+        (chain.iter().rev())
+            .map(|l| self.name(self.model.top_level_of(l.near)))
+            .collect()
+    }
+
+    /// A relation of joint `c` for a step that serves it without satisfying it (the step's
+    /// words and its branch name the joint).
+    fn serving(&self, c: ConstraintId) -> Option<Rel> {
+        let relation = self.relations_of(c).into_iter().next()?;
+        Some(Rel {
+            relation,
+            constraint: c,
+            last: false,
+            duplicate: false,
+        })
+    }
+
+    /// Whether a cluster whose record turns as `turn` turns only about an axis along the
+    /// joint axis of its marker `far` (the feature of its axis parallel to `far`'s z, read in
+    /// the body): planes square to the chain's axes then keep their tilt.
+    fn turns_along(&self, turn: Turn, far: GeomId) -> bool {
+        let model = self.model;
+        match turn {
+            Turn::Axis {
+                feature: Some(f), ..
+            } => {
+                model.top_level_of(f) == model.top_level_of(far)
+                    && (local_dir(model, f))
+                        .zip(self.z_of(far).and_then(|z| local_dir(model, z)))
+                        .is_some_and(|(u, v)| parallel(u, v))
+            }
+            _ => false,
+        }
     }
 
     /// The revolute joints some relation of which is still pending, in name order.
@@ -355,20 +366,8 @@ impl Builder<'_, Spatial> {
                 if to_known {
                     // Known, or turning only about an axis along the chain's through a known
                     // point: either way the plane square to that axis through `far` is known.
-                    let along = match (rec.trans, rec.turn) {
-                        (
-                            Trans::Pivot { .. },
-                            Turn::Axis {
-                                feature: Some(f), ..
-                            },
-                        ) => {
-                            model.top_level_of(f) == model.top_level_of(far)
-                                && (local_dir(model, f))
-                                    .zip(self.z_of(far).and_then(|z| local_dir(model, z)))
-                                    .is_some_and(|(u, v)| parallel(u, v))
-                        }
-                        _ => false,
-                    };
+                    let along =
+                        matches!(rec.trans, Trans::Pivot { .. }) && self.turns_along(rec.turn, far);
                     if !rec.movable() || rec.grounded() || along {
                         return Some(path.clone());
                     }
@@ -382,18 +381,7 @@ impl Builder<'_, Spatial> {
                 }
                 // Turning only about an axis along the chain's (or not at all): the plane square
                 // to it through `far` keeps its tilt.
-                let keeps_tilt = match rec.turn {
-                    Turn::Known => true,
-                    Turn::Axis {
-                        feature: Some(f), ..
-                    } => {
-                        model.top_level_of(f) == model.top_level_of(far)
-                            && (local_dir(model, f))
-                                .zip(self.z_of(far).and_then(|z| local_dir(model, z)))
-                                .is_some_and(|(u, v)| parallel(u, v))
-                    }
-                    _ => false,
-                };
+                let keeps_tilt = rec.turn == Turn::Known || self.turns_along(rec.turn, far);
                 match (rec.trans, rec.turn) {
                     // The far body slides on a known line, keeping its tilt: it slides the
                     // plane onto the pivot.
@@ -478,9 +466,7 @@ impl Builder<'_, Spatial> {
     fn turn_onto_subchain_plane(&mut self, x: GeomId, at: Reg, chain: &[Link]) {
         let offset = self.subchain_offset(x, at, chain);
         let last = *chain.last().expect("a chain has a joint");
-        let bodies: Vec<String> = (chain.iter().rev())
-            .map(|l| self.name(self.model.top_level_of(l.near)))
-            .collect();
+        let bodies = self.chain_bodies(chain);
         let k = self.cluster(last.far);
         let (Trans::Pivot { at: pivot, .. }, Turn::Axis { axis, .. }) =
             (self.clusters[k].record.trans, self.clusters[k].record.turn)
@@ -558,9 +544,7 @@ impl Builder<'_, Spatial> {
             let along = self.value(Op::Along { from, dir, to }, Ty::Scalar, words);
             terms.push((senses[i], along));
         }
-        let bodies: Vec<String> = (chain.iter().rev())
-            .map(|l| self.name(self.model.top_level_of(l.near)))
-            .collect();
+        let bodies = self.chain_bodies(chain);
         let words = format!(
             "the offset of {} along the axes of {}",
             self.name(x),
