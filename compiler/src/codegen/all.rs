@@ -7,16 +7,17 @@
 //! `solve_all`: the interpreter would only list the assemblies of its first combinations, and
 //! a module of a large model is no place for a loop that cannot finish its search.
 
+use super::api::Layout;
 use super::context::Context;
 use super::writer::{float, Writer};
-use crate::plan::{grid, MAX_COMBINATIONS};
+use crate::plan::{grid, BranchId, MAX_COMBINATIONS};
 
 /// The most assemblies a generated list holds: a scan's roots, or one per branch combination.
 const CAPACITY: usize = gcs_runtime::outer::MAX_ROOTS;
 
 /// Writes `MAX_ASSEMBLIES`, `Assemblies` and `solve_all`, when the model's branch combinations
 /// can all be tried.
-pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
+pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     let plan = cx.plan;
     // As the interpreter's search: a symmetric branch stays the sketch's (`Branches::default`).
     let counts: Vec<usize> = (plan.branches.iter())
@@ -40,7 +41,20 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
         CAPACITY
     };
     let point = super::api::Ty::Point.rust(cx);
-    assemblies(w, capacity, one_angle, varied.is_empty(), point);
+    // Closed form with branches to vary: the plan's steps as one tree (`fork`).
+    let forked: rustc_hash::FxHashSet<BranchId> = (counts.iter().enumerate())
+        .filter(|&(_, &c)| c > 1)
+        .map(|(k, _)| BranchId(k as u32))
+        .collect();
+    let tree = (varied.is_empty() && !forked.is_empty())
+        .then(|| super::fork::tree(cx, layout, forked, w.indent + 2))
+        .flatten();
+    assemblies(
+        w,
+        (cx, layout),
+        (capacity, one_angle, varied.is_empty()),
+        point,
+    );
     let carries = match (plan.branches.is_empty(), plan.defaults.is_empty()) {
         (false, false) => {
             w.line("/// Every real assembly at `params`, each with its branches (`Solution::branches`) and");
@@ -57,7 +71,10 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
     w.line(&format!("/// {carries}"));
     w.line("/// Never panics, allocates nothing.");
     w.line("///");
-    if !plan.branches.is_empty() {
+    if tree.is_some() {
+        w.line("/// The plan's steps are one tree: where a branch variable's root is taken, each of its");
+        w.line("/// roots is taken in turn, the steps before it solved once for all of them.");
+    } else if !plan.branches.is_empty() {
         w.line("/// Each combination of the branch variables is solved.");
     }
     if one_angle {
@@ -77,6 +94,24 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>) {
         w.line("/// a search that is not known to find every assembly, as `Assemblies::is_complete` says.");
     } else {
         w.line("/// The plan has no outer iteration: each combination has at most one assembly.");
+    }
+    if let Some(tree) = tree {
+        // A closure a branch's root's steps are in, so that `?` ends that root's only.
+        w.line("#[allow(dead_code, clippy::redundant_closure_call)]");
+        w.open("pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {");
+        w.line(&format!("let mut found = Assemblies::new({complete});"));
+        w.line("// The points of each solution listed, computed once (`keep`).");
+        w.line("let mut kept = [None; MAX_ASSEMBLIES];");
+        w.line("let branches = &Branches::default();");
+        w.comment("A failure before the first branch's root is taken: no assembly.");
+        w.open("let _ = (|| -> Result<(), SolveError> {");
+        w.line("let _ = (params, branches, defaults);");
+        w.push(&tree);
+        w.line("Ok(())");
+        w.close("})();");
+        w.line("found");
+        w.close("}");
+        return;
     }
     w.line("#[allow(dead_code)]");
     w.open("pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {");
@@ -195,7 +230,12 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
 
 /// `MAX_ASSEMBLIES`, `Assemblies` (the runtime's list of this module's `Solution`) and
 /// `same_assembly`, the rule the list keeps each assembly once by.
-fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool, point: &str) {
+fn assemblies(
+    w: &mut Writer,
+    (cx, layout): (&Context<'_>, &Layout),
+    (capacity, one_angle, closed): (usize, bool, bool),
+    point: &str,
+) {
     w.line(
         "/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.",
     );
@@ -220,43 +260,72 @@ fn assemblies(w: &mut Writer, capacity: usize, one_angle: bool, closed: bool, po
         "type NamedPoints<const P: usize> = [(&'static str, {point}); P];"
     ));
     w.line("");
-    w.line(
-        "/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and",
-    );
-    w.line(
-        "/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's",
-    );
-    w.line(
-        "/// size). The vectors are read only when the points agree (two assemblies mostly differ",
-    );
-    w.line("/// in their first points).");
+    w.line("/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the");
+    w.line("/// largest coordinate of `pa` (plus one): every point and vector within a relative");
+    w.line("/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read");
+    w.line("/// only when the points agree (two assemblies mostly differ in their points).");
     w.line("#[allow(dead_code)]");
     w.open(
-        "fn same_assembly<const P: usize>(pa: &NamedPoints<P>, pb: &NamedPoints<P>, a: &Solution, b: &Solution) -> bool {",
+        "fn same_assembly<const P: usize>((pa, scale): &(NamedPoints<P>, f64), pb: &NamedPoints<P>, a: &Solution, b: &Solution) -> bool {",
     );
-    w.line("let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
     w.line("pa.iter().zip(pb).all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)");
-    w.line("    && a.vectors().iter().zip(&b.vectors()).all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)");
+    w.line("    && same_vectors(a, b)");
     w.close("}");
     w.line("");
+    same_vectors(w, cx, layout);
     w.line("/// Adds `s`, whose points are `points`, to `found` unless the list has its assembly");
-    w.line(
-        "/// already (`same_assembly`); `kept` holds the points of each solution listed, by its",
-    );
-    w.line("/// place in the list, so that each solution's points are computed once, not once per");
-    w.line("/// pair compared.");
+    w.line("/// already (`same_assembly`); `kept` holds the points of each solution listed and their");
+    w.line("/// scale, by its place in the list, so that each is computed once, not once per pair");
+    w.line("/// compared.");
     w.line("#[allow(dead_code)]");
     w.open(
-        "fn keep<const P: usize>(found: &mut Assemblies, kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES], points: NamedPoints<P>, s: Solution) {",
+        "fn keep<const P: usize>(found: &mut Assemblies, kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES], points: NamedPoints<P>, s: Solution) {",
     );
     w.line("let listed = found.iter().zip(kept.iter()).any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));");
     w.open("if listed {");
     w.line("return;");
     w.close("}");
     w.open("if let Some(slot) = kept.get_mut(found.len()) {");
-    w.line("*slot = Some(points);");
+    w.line("let scale = 1.0 + points.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
+    w.line("*slot = Some((points, scale));");
     w.close("}");
     w.line("found.push(s, |_, _| false);");
+    w.close("}");
+    w.line("");
+}
+
+/// `same_vectors`: whether two solutions' vectors agree within `SAME_ASSEMBLY_REL`, read one
+/// at a time until two differ, the last declared first (a chain's far links, which the most
+/// branches move: two assemblies of an arm whose points agree differ in its wrist's axes).
+fn same_vectors(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
+    let vectors: Vec<String> = (super::api::accessors(cx, layout).0.into_iter())
+        .filter(|(a, _)| a.ty == super::api::Ty::Vector)
+        .map(|(_, accessor)| accessor)
+        .collect();
+    w.line("/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,");
+    w.line("/// read one at a time until two differ, the last declared first (a chain's far links,");
+    w.line("/// which the most branches move).");
+    w.line("#[allow(dead_code)]");
+    if vectors.is_empty() {
+        w.open("fn same_vectors(_: &Solution, _: &Solution) -> bool {");
+        w.line("true");
+        w.close("}");
+        w.line("");
+        return;
+    }
+    w.open("fn same_vectors(a: &Solution, b: &Solution) -> bool {");
+    w.line(&format!(
+        "let near = |u: {}, v: {}| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;",
+        super::api::Ty::Vector.rust(cx),
+        super::api::Ty::Vector.rust(cx)
+    ));
+    // A statement each, not one `&&` chain, which rustc would recurse through.
+    for v in vectors.iter().rev() {
+        w.open(&format!("if !near(a.{v}(), b.{v}()) {{"));
+        w.line("return false;");
+        w.close("}");
+    }
+    w.line("true");
     w.close("}");
     w.line("");
 }

@@ -35,6 +35,7 @@ mod context;
 mod expr;
 mod facts;
 mod features;
+mod fork;
 mod format;
 mod ledger;
 mod lift;
@@ -122,7 +123,7 @@ fn flat(cx: &Context<'_>, layout: &api::Layout) -> Module {
     api::solution(&mut w, cx, layout);
     solve::solve(&mut w, cx, layout);
     w.line("");
-    all::solve_all(&mut w, cx);
+    all::solve_all(&mut w, cx, layout);
     Module::code(w.out)
 }
 

@@ -15,6 +15,7 @@
 use super::api::{Holds, Layout};
 use super::context::Context;
 use super::facts::{Facts, Value};
+use super::fork::Forking;
 use super::ledger::Ledger;
 use super::names::Namer;
 use super::scopes::{self, Binding, Group};
@@ -29,6 +30,7 @@ use std::cell::RefCell;
 /// whether the frame is read or moved, or any other, with its Rust type.
 enum Decl {
     Frame(GeomId, Binding),
+    Dim(GeomId, Binding),
     Value(Binding, &'static str),
 }
 
@@ -79,7 +81,12 @@ pub(super) struct Solve<'a> {
     pub(super) declared_at: HashMap<GeomId, String>,
     /// The terms of the tolerance's scale, a list for each geom, when it is not a literal.
     pub(super) tol_terms: RefCell<Vec<Vec<String>>>,
+    /// Writing `solve_all` as one tree of the plan, not `solve`.
+    pub(super) forking: Option<Forking>,
+    /// Dimensions the steps assign (`d = v;`), not bind anew: their declaration is `mut`.
+    pub(super) dims_assigned: HashSet<GeomId>,
 }
+
 
 /// The local of an angle's [`gcs_runtime::frame::DirectionsNear`] in an iteration.
 pub(super) struct TrialDirections {
@@ -122,6 +129,8 @@ impl<'a> Solve<'a> {
             trial_directions: HashMap::default(),
             declared_at: HashMap::default(),
             tol_terms: RefCell::new(Vec::new()),
+            forking: None,
+            dims_assigned: HashSet::default(),
         }
     }
 }
@@ -175,6 +184,38 @@ impl Solve<'_> {
         w.close("}");
     }
 
+    /// The body of `solve_all`'s outer closure written as one tree of the plan (see
+    /// `fork`): the entry checks, the sketch, the steps with a loop over the roots of each
+    /// branch variable where its root is taken, and each leaf's solution kept. None when
+    /// the steps are too many `let`s to write flat (`scopes::FLAT_LETS`): nested in loops
+    /// and closures they could not be put in blocks.
+    pub(super) fn write_tree(&mut self, indent: usize, layout: &Layout) -> Option<Writer> {
+        let mut w = Writer::at(indent);
+        self.check_params(&mut w);
+        self.check_sketches(&mut w);
+        w.line("// The sketch: where every geom starts.");
+        let (worked, decls) = self.sketch(layout);
+        let tol = self.tolerance(&worked);
+        let mut steps = Writer::at(indent);
+        self.cx.reads_tol.set(false);
+        let groups = self.steps_in_groups(&mut steps);
+        if groups.iter().map(|g| g.lets.len()).sum::<usize>() > scopes::FLAT_LETS {
+            return None;
+        }
+        // The groups' code is the steps' text from its start, where the forks' copies go.
+        let mut body = Writer::at(steps.indent);
+        groups.iter().for_each(|g| body.push(&g.code));
+        self.solution_init(&mut body, layout);
+        self.close_forks(&mut body);
+        let bindings = self.bindings(decls);
+        scopes::declare(&mut w, &bindings);
+        if let Some(tol) = tol.filter(|_| self.cx.reads_tol.get()) {
+            w.line(&tol);
+        }
+        w.push(&body);
+        Some(w)
+    }
+
     /// The geoms the solve works on (every geom the plan reads or moves, and those the
     /// solution reports but for constants), and their sketch's declarations.
     fn sketch(&mut self, layout: &Layout) -> (Vec<GeomId>, Vec<Decl>) {
@@ -220,6 +261,17 @@ impl Solve<'_> {
                         frame_ty,
                     ))
                 }
+                // In `solve_all`'s tree a dimension set after a fork is bound anew there.
+                Decl::Dim(g, binding) => Some((
+                    Binding {
+                        mutable: match self.forking {
+                            Some(_) => self.dims_assigned.contains(&g),
+                            None => binding.mutable,
+                        },
+                        ..binding
+                    },
+                    "f64",
+                )),
                 Decl::Value(binding, ty) => Some((binding, ty)),
             })
             .collect()
@@ -301,13 +353,13 @@ impl Solve<'_> {
         if self.cx.dim_set_before_read(g) {
             self.deferred.insert(g);
         } else {
-            decls.push(Decl::Value(
+            decls.push(Decl::Dim(
+                g,
                 Binding {
                     mutable: self.cx.dim_set(g),
                     name: name.clone(),
                     value: self.cx.sketch_dim_declared(g),
                 },
-                "f64",
             ));
         }
         self.dims.insert(g, name);
@@ -687,10 +739,15 @@ impl Solve<'_> {
         }
     }
 
-    /// `Ok(Solution { .. })`: each field from the local of what it holds.
+    /// `Ok(Solution { .. })`: each field from the local of what it holds; in `solve_all`'s
+    /// tree, the solution kept in the list (`keep`).
     fn solution_init(&self, w: &mut Writer, layout: &Layout) {
         w.line("");
-        w.open("Ok(Solution {");
+        if self.forking.is_some() {
+            w.open("let solution = Solution {");
+        } else {
+            w.open("Ok(Solution {");
+        }
         for field in &layout.fields {
             let local = self.field_value(field.holds);
             w.line(&field_init(&field.name, &local));
@@ -699,7 +756,12 @@ impl Solve<'_> {
             w.line("branches: *branches,");
         }
         self.defaults_init(w);
-        w.close("})");
+        if self.forking.is_some() {
+            w.close("};");
+            w.line("keep(&mut found, &mut kept, solution.points(), solution);");
+        } else {
+            w.close("})");
+        }
     }
 
     /// The code of frame `g`'s value now: its literal while it is known to the bit (in space),

@@ -555,6 +555,7 @@ impl Solve<'_> {
                 self.let_read(w, &turns, &code);
                 self.fail_on_contact(w, *constraint, &turns, None);
                 let code = self.root(&turns, *branch, *constraint);
+                self.fork(w, *branch);
                 self.define_pure(w, r, "turned", &code);
             }
             SpatialOp::PlaneTurn {
@@ -627,6 +628,7 @@ impl Solve<'_> {
                 ));
                 w.close("}");
                 let code = self.root(&turns, *branch, *constraint);
+                self.fork(w, *branch);
                 self.define_pure(w, r, "normal", &code);
             }
             SpatialOp::MirrorPlane {
@@ -960,6 +962,7 @@ impl Solve<'_> {
                 "{meeting}.roots.get(0).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 0.0))?"
             )
         } else {
+            self.fork(w, branch);
             self.root(&meeting, branch, c)
         };
         let name = con.name.clone();

@@ -822,7 +822,7 @@ impl Solve<'_> {
         let (label, text) = (lit(&con.name), lit(&con.text));
         let index = self.branch_index(branch);
         let f = match meet {
-            Meet::CircleCircle => return self.circle_circle(w, r, (a, b), index, c),
+            Meet::CircleCircle => return self.circle_circle(w, r, (a, b), (index, branch), c),
             Meet::LineCircle => "line_circle",
             Meet::LineLine => "line_line",
             Meet::CircleConic => "circle_conic",
@@ -843,6 +843,7 @@ impl Solve<'_> {
         let code = format!(
             "{meeting}.branch({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, {meeting}.roots.len() as f64))?"
         );
+        self.fork(w, branch);
         self.define(w, r, &con.name, &code);
     }
 
@@ -902,6 +903,7 @@ impl Solve<'_> {
         let code = format!(
             "{lines}.branch({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, {lines}.roots.len() as f64))?"
         );
+        self.fork(w, branch);
         self.facts.unit_dirs.insert(r);
         self.define(w, r, &format!("{}_dir", con.name), &code);
     }
@@ -914,7 +916,7 @@ impl Solve<'_> {
         w: &mut Writer,
         r: Reg,
         (a, b): (Reg, Reg),
-        index: String,
+        (index, branch): (String, BranchId),
         c: ConstraintId,
     ) {
         let con = &self.cx.model.constraints[c];
@@ -927,13 +929,19 @@ impl Solve<'_> {
         let root = format!(
             ".root({index}).ok_or_else(|| SolveError::new({label}, {text}, ErrorKind::NoSuchBranch, 2.0))?"
         );
-        if !self.cx.rotated_onto.contains(&r) {
+        // In `solve_all`'s tree the chord is found once, before the loop over its roots.
+        let forks = self.forking.is_some();
+        if !self.cx.rotated_onto.contains(&r) && !forks {
             self.define(w, r, &con.name, &format!("{chord}{root}"));
             return;
         }
         let local = self.names.fresh(&format!("{}_chord", con.name));
         self.let_read(w, &local, &chord);
+        self.fork(w, branch);
         self.define(w, r, &con.name, &format!("{local}{root}"));
+        if !self.cx.rotated_onto.contains(&r) {
+            return;
+        }
         let center = |c: Reg| self.facts.circle_centers.get(&c).cloned();
         let kept = ChordRoot {
             chord: local,
@@ -1136,9 +1144,11 @@ impl Solve<'_> {
         }
         let d = self.dim_local(g);
         // Inside an iteration's trial, a binding of its own: the trial works on a copy.
-        if self.deferred.remove(&g) || self.closing.is_some() {
+        // So too in a fork of `solve_all`'s tree: each root sets its own.
+        if self.deferred.remove(&g) || self.closing.is_some() || self.in_fork() {
             self.let_line(w, &d, &d, &v);
         } else {
+            self.dims_assigned.insert(g);
             self.note_read(&d);
             w.line(&format!("{d} = {v};"));
         }

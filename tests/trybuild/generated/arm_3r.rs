@@ -545,35 +545,77 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.forearm_elbow_x(), b.forearm_elbow_x()) {
+        return false;
+    }
+    if !near(a.forearm_elbow_z(), b.forearm_elbow_z()) {
+        return false;
+    }
+    if !near(a.upper_arm_elbow_x(), b.upper_arm_elbow_x()) {
+        return false;
+    }
+    if !near(a.upper_arm_elbow_z(), b.upper_arm_elbow_z()) {
+        return false;
+    }
+    if !near(a.upper_arm_shoulder_x(), b.upper_arm_shoulder_x()) {
+        return false;
+    }
+    if !near(a.upper_arm_shoulder_z(), b.upper_arm_shoulder_z()) {
+        return false;
+    }
+    if !near(a.base_link_shoulder_x(), b.base_link_shoulder_x()) {
+        return false;
+    }
+    if !near(a.base_link_shoulder_z(), b.base_link_shoulder_z()) {
+        return false;
+    }
+    if !near(a.base_link_yaw_x(), b.base_link_yaw_x()) {
+        return false;
+    }
+    if !near(a.base_link_yaw_z(), b.base_link_yaw_z()) {
+        return false;
+    }
+    if !near(a.ground_base_x(), b.ground_base_x()) {
+        return false;
+    }
+    if !near(a.ground_base_z(), b.ground_base_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -585,7 +627,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -593,21 +639,251 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..4usize {
-        let branches = Branches {
-            revolute_upper_arm_shoulder_base_link_shoulder: (combination % 2) as u8,
-            revolute_forearm_elbow_upper_arm_elbow: (combination / 2 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("tx", params.tx),
+            ("ty", params.ty),
+            ("tz", params.tz),
+        ])?;
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_target_local = Point3::new(params.tx, params.ty, params.tz);
+        let mut base_link = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut upper_arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut forearm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+
+        // coincident(forearm.tip, ground.target) (arm_3r.gcs:29)
+        let ground_target = ground.point_to_global(&ground_target_local);
+        let shift = ground_target - Point3::new(0.7, 0.0, 0.6);
+        forearm.translate(&shift);
+
+        // revolute(base_link.yaw, ground.base) (arm_3r.gcs:26)
+        let ground_base = ground.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let shift_2 = ground_base - Point3::new(0.0, 0.0, 0.0);
+        base_link.translate(&shift_2);
+        let ground_base_z = ground.vector_to_global(&Vector3::z());
+        let base_link_yaw_z = base_link.vector_to_global(&Vector3::z());
+        let turn = frame::rotation_between3(
+            &base_link_yaw_z,
+            &ground_base_z,
+            &frame::perpendicular(&base_link_yaw_z),
+        );
+        base_link.rotate_about_by(&ground_base, &turn);
+
+        // revolute(upper_arm.shoulder, base_link.shoulder) (arm_3r.gcs:27)
+        let base_link_shoulder = base_link.point_to_global(&Point3::new(0.0, 0.0, 0.5));
+        let shift_3 = base_link_shoulder - Point3::new(0.0, 0.0, 0.5);
+        upper_arm.translate(&shift_3);
+        let forearm_elbow = forearm.point_to_global(&Point3::new(0.3, 0.0, 0.9));
+        let forearm_elbow_z =
+            forearm.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+        let length = (ground_target - forearm_elbow).dot(&forearm_elbow_z);
+        let upper_arm_elbow = upper_arm.point_to_global(&Point3::new(0.3, 0.0, 0.9));
+        let upper_arm_shoulder_z =
+            upper_arm.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+        let length_2 = (upper_arm_elbow - base_link_shoulder).dot(&upper_arm_shoulder_z);
+        let sum = length + length_2;
+        if !gcs_runtime::num::is_finite(sum) {
+            return Err(SolveError::new(
+                "revolute_upper_arm_shoulder_base_link_shoulder",
+                "revolute(upper_arm.shoulder, base_link.shoulder)",
+                ErrorKind::InvalidValue,
+                sum,
+            ));
         }
-    }
+        let base_link_shoulder_z =
+            base_link.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+        let cone = frame::plane_cone(
+            &base_link_shoulder,
+            &base_link_shoulder_z,
+            &ground_base,
+            &ground_target,
+            sum,
+        );
+        let reach = cone.0.try_normalize(0.0).ok_or_else(|| {
+            SolveError::new(
+                "revolute_upper_arm_shoulder_base_link_shoulder",
+                "revolute(upper_arm.shoulder, base_link.shoulder)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let gap = (cone.1.abs() - 1.0).max(0.0) * cone.0.norm();
+        let turns = frame::turns_to_angle(
+            &reach,
+            &base_link_shoulder_z,
+            &ground_base_z,
+            cone.1.clamp(-1.0, 1.0).acos(),
+        );
+        if let Some(mut e) = SolveError::from_contact(
+            "revolute_upper_arm_shoulder_base_link_shoulder",
+            "revolute(upper_arm.shoulder, base_link.shoulder)",
+            turns.contact,
+        ) {
+            e.magnitude = e.magnitude.max(gap);
+            return Err(e);
+        }
+        if gap > gcs_runtime::tol::LENGTH_REL * (1.0 + cone.0.norm()) {
+            return Err(SolveError::new(
+                "revolute_upper_arm_shoulder_base_link_shoulder",
+                "revolute(upper_arm.shoulder, base_link.shoulder)",
+                ErrorKind::NoIntersection,
+                gap,
+            ));
+        }
+
+        // Each root of `revolute(upper_arm.shoulder, base_link.shoulder)` in turn (`revolute_upper_arm_shoulder_base_link_shoulder`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                revolute_upper_arm_shoulder_base_link_shoulder: root,
+                ..*branches
+            };
+            let mut base_link = base_link;
+            let mut upper_arm = upper_arm;
+            let mut forearm = forearm;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let normal = turns
+                    .roots
+                    .get(usize::from(
+                        branches.revolute_upper_arm_shoulder_base_link_shoulder,
+                    ))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_upper_arm_shoulder_base_link_shoulder",
+                            "revolute(upper_arm.shoulder, base_link.shoulder)",
+                            ErrorKind::NoSuchBranch,
+                            turns.roots.len() as f64,
+                        )
+                    })?;
+                let turn_2 = frame::rotation_about_axis(
+                    &ground_base_z,
+                    frame::signed_angle3(&base_link_shoulder_z, &normal, &ground_base_z),
+                );
+                base_link.rotate_about_by(&ground_base, &turn_2);
+                let base_link_shoulder_z_2 =
+                    base_link.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+                let turn_3 = frame::rotation_between3(
+                    &upper_arm_shoulder_z,
+                    &base_link_shoulder_z_2,
+                    &frame::perpendicular(&upper_arm_shoulder_z),
+                );
+                upper_arm.rotate_about_by(&base_link_shoulder, &turn_3);
+
+                // revolute(forearm.elbow, upper_arm.elbow) (arm_3r.gcs:28)
+                let upper_arm_elbow_z =
+                    upper_arm.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+                let turn_4 = frame::rotation_between3(
+                    &forearm_elbow_z,
+                    &upper_arm_elbow_z,
+                    &frame::perpendicular(&forearm_elbow_z),
+                );
+                forearm.rotate_about_by(&ground_target, &turn_4);
+                let forearm_elbow_2 = forearm.point_to_global(&Point3::new(0.3, 0.0, 0.9));
+                let orbit = Circle3::orbit(
+                    &ground_target,
+                    &frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_forearm_elbow_upper_arm_elbow",
+                            "revolute(forearm.elbow, upper_arm.elbow)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?,
+                    &forearm_elbow_2,
+                );
+                let upper_arm_elbow_2 = upper_arm.point_to_global(&Point3::new(0.3, 0.0, 0.9));
+                let orbit_2 = Circle3::orbit(
+                    &base_link_shoulder,
+                    &frame::unit3(&base_link_shoulder_z_2).ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_forearm_elbow_upper_arm_elbow",
+                            "revolute(forearm.elbow, upper_arm.elbow)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?,
+                    &upper_arm_elbow_2,
+                );
+                let revolute_forearm_elbow_upper_arm_elbow_meeting =
+                    intersect3d::circle_circle(&orbit, &orbit_2);
+                if let Some(e) = SolveError::from_contact(
+                    "revolute_forearm_elbow_upper_arm_elbow",
+                    "revolute(forearm.elbow, upper_arm.elbow)",
+                    revolute_forearm_elbow_upper_arm_elbow_meeting.contact,
+                ) {
+                    return Err(e);
+                }
+
+                // Each root of `revolute(forearm.elbow, upper_arm.elbow)` in turn (`revolute_forearm_elbow_upper_arm_elbow`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        revolute_forearm_elbow_upper_arm_elbow: root,
+                        ..*branches
+                    };
+                    let mut upper_arm = upper_arm;
+                    let mut forearm = forearm;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let revolute_forearm_elbow_upper_arm_elbow =
+                            revolute_forearm_elbow_upper_arm_elbow_meeting
+                                .roots
+                                .get(usize::from(branches.revolute_forearm_elbow_upper_arm_elbow))
+                                .ok_or_else(|| {
+                                    SolveError::new(
+                                        "revolute_forearm_elbow_upper_arm_elbow",
+                                        "revolute(forearm.elbow, upper_arm.elbow)",
+                                        ErrorKind::NoSuchBranch,
+                                        revolute_forearm_elbow_upper_arm_elbow_meeting.roots.len()
+                                            as f64,
+                                    )
+                                })?;
+                        let turn_5 = frame::rotation_about_axis(
+                            &upper_arm_elbow_z,
+                            frame::signed_angle3(
+                                &(forearm_elbow_2 - ground_target),
+                                &(revolute_forearm_elbow_upper_arm_elbow - ground_target),
+                                &upper_arm_elbow_z,
+                            ),
+                        );
+                        forearm.rotate_about_by(&ground_target, &turn_5);
+                        let turn_6 = frame::rotation_about_axis(
+                            &base_link_shoulder_z_2,
+                            frame::signed_angle3(
+                                &(upper_arm_elbow_2 - base_link_shoulder),
+                                &(revolute_forearm_elbow_upper_arm_elbow - base_link_shoulder),
+                                &base_link_shoulder_z_2,
+                            ),
+                        );
+                        upper_arm.rotate_about_by(&base_link_shoulder, &turn_6);
+
+                        let solution = Solution {
+                            ground,
+                            ground_target_local,
+                            base_link,
+                            upper_arm,
+                            forearm,
+                            branches: *branches,
+                        };
+                        keep(&mut found, &mut kept, solution.points(), solution);
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -340,35 +340,56 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.rod_base_x(), b.rod_base_x()) {
+        return false;
+    }
+    if !near(a.rod_base_z(), b.rod_base_z()) {
+        return false;
+    }
+    if !near(a.ground_pivot_x(), b.ground_pivot_x()) {
+        return false;
+    }
+    if !near(a.ground_pivot_z(), b.ground_pivot_z()) {
+        return false;
+    }
+    if !near(a.hoop_normal(), b.hoop_normal()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -380,7 +401,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -388,20 +413,120 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            slide: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("theta", params.theta), ("gap", params.gap)])?;
+        // The sketch: where every geom starts.
+        let hoop_radius = 3.0;
+        let mut rod = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut bead = Frame3::new(Point3::new(2.0, 1.0, 1.0), UnitQuaternion::identity());
+        let tol = 4e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // on(bead, hoop) (bead_on_hoop.gcs:12)
+        let circle = Circle3::new(
+            Point3::new(0.0, 0.0, 2.0),
+            Vector3::new(0.0, std::f64::consts::FRAC_1_SQRT_2, 0.7071067811865475),
+            hoop_radius,
+        );
+        let nearest = circle.nearest(&Point3::new(2.0, 1.0, 1.0)).ok_or_else(|| {
+            SolveError::new("on_bead_hoop", "on(bead, hoop)", ErrorKind::Degenerate, 0.0)
+        })?;
+        let shift = nearest - Point3::new(2.0, 1.0, 1.0);
+        bead.translate(&shift);
+
+        // revolute(rod.base, ground.pivot) (bead_on_hoop.gcs:10)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // swing: offset_x(ground.pivot, rod.base) = theta (bead_on_hoop.gcs:11)
+        let residual = check::space::parallel(Vector3::z(), Vector3::z(), 1.0);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "swing",
+                "offset_x(ground.pivot, rod.base) = theta",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
         }
-    }
+        let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
+        let turn = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
+        );
+        rod.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+
+        // slide: distance(bead, rod.tip) = gap (bead_on_hoop.gcs:13)
+        let rod_tip = rod.point_to_global(&Point3::new(2.0, 0.0, 3.0));
+        // slide: a distance is zero or more.
+        if params.gap < 0.0 {
+            return Err(SolveError::new(
+                "gap",
+                "distance(bead, rod.tip) = gap",
+                ErrorKind::InvalidParam,
+                params.gap,
+            ));
+        }
+        let sphere = Sphere::new(rod_tip, params.gap);
+        let bead_origin = bead.origin;
+        let slide_meeting = intersect3d::circle_sphere(&circle, &sphere);
+        if let Some(e) = SolveError::from_contact(
+            "slide",
+            "distance(bead, rod.tip) = gap",
+            slide_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `distance(bead, rod.tip) = gap` in turn (`slide`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { slide: root };
+            let mut bead = bead;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let slide = slide_meeting
+                    .roots
+                    .get(usize::from(branches.slide))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "slide",
+                            "distance(bead, rod.tip) = gap",
+                            ErrorKind::NoSuchBranch,
+                            slide_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let shift_2 = slide - bead_origin;
+                bead.translate(&shift_2);
+
+                let solution = Solution {
+                    hoop: Frame3::new(
+                        Point3::new(0.0, 0.0, 2.0),
+                        UnitQuaternion::new_unchecked(Quaternion::new(
+                            0.9238795325112867,
+                            -0.3826834323650898,
+                            0.0,
+                            0.0,
+                        )),
+                    ),
+                    hoop_radius,
+                    ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+                    rod,
+                    bead,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

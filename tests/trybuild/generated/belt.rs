@@ -294,35 +294,44 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.run_dir(), b.run_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -334,7 +343,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -342,20 +355,127 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            tangent_run_small: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("big_radius", params.big_radius)])?;
+        // The sketch of `big` depends on params: is it usable?
+        if params.big_radius < 0.0 {
+            return Err(SolveError::new(
+                "big",
+                "its centre or radius is not finite, or the radius is negative",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-    }
+        // The sketch: where every geom starts.
+        let small = Frame2::at(Point2::new(0.0, 0.0));
+        let small_radius = 1.0;
+        let big = Frame2::at(Point2::new(6.0, 1.0));
+        let big_radius = params.big_radius;
+        let run = Frame2::along(
+            Point2::new(0.0, 1.0),
+            Point2::new(6.0, 3.0) - Point2::new(0.0, 1.0),
+        );
+
+        // tangent(run, small) (belt.gcs:12)
+        let sum = -big_radius;
+        if !gcs_runtime::num::is_finite(sum) {
+            return Err(SolveError::new(
+                "tangent_run_small",
+                "tangent(run, small)",
+                ErrorKind::InvalidValue,
+                sum,
+            ));
+        }
+        let sum_2 = -small_radius;
+        if !gcs_runtime::num::is_finite(sum_2) {
+            return Err(SolveError::new(
+                "tangent_run_small",
+                "tangent(run, small)",
+                ErrorKind::InvalidValue,
+                sum_2,
+            ));
+        }
+        let sum_3 = sum_2 - sum;
+        if !gcs_runtime::num::is_finite(sum_3) {
+            return Err(SolveError::new(
+                "tangent_run_small",
+                "tangent(run, small)",
+                ErrorKind::InvalidValue,
+                sum_3,
+            ));
+        }
+        let run_dir = run.x_axis();
+        let tangent_run_small_lines =
+            intersect2d::passing_directions(Point2::new(6.0, 1.0), Point2::new(0.0, 0.0), sum_3);
+        if let Some(e) = SolveError::from_contact(
+            "tangent_run_small",
+            "tangent(run, small)",
+            tangent_run_small_lines.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `tangent(run, small)` in turn (`tangent_run_small`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                tangent_run_small: root,
+            };
+            let mut run = run;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let tangent_run_small_dir = tangent_run_small_lines
+                    .branch(usize::from(branches.tangent_run_small))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "tangent_run_small",
+                            "tangent(run, small)",
+                            ErrorKind::NoSuchBranch,
+                            tangent_run_small_lines.roots.len() as f64,
+                        )
+                    })?;
+                let turn = rotation_between_units(&run_dir, &tangent_run_small_dir);
+                run.turn_by(&turn);
+
+                // tangent(run, big) (belt.gcs:13)
+                let run_dir_2 = run.x_axis();
+                let minus = -sum;
+                let line_big_center = Line::new(Point2::new(6.0, 1.0), run_dir_2)
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "tangent_run_big",
+                            "tangent(run, big)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?
+                    .offset(minus);
+                let nearest_run_point = line_big_center.nearest(Point2::new(0.0, 1.0));
+                run.place_origin(&nearest_run_point);
+
+                let solution = Solution {
+                    small,
+                    small_radius,
+                    big,
+                    big_radius,
+                    run,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

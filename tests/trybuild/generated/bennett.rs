@@ -671,35 +671,89 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.rocker_end_x(), b.rocker_end_x()) {
+        return false;
+    }
+    if !near(a.rocker_end_z(), b.rocker_end_z()) {
+        return false;
+    }
+    if !near(a.rocker_start_x(), b.rocker_start_x()) {
+        return false;
+    }
+    if !near(a.rocker_start_z(), b.rocker_start_z()) {
+        return false;
+    }
+    if !near(a.coupler_end_x(), b.coupler_end_x()) {
+        return false;
+    }
+    if !near(a.coupler_end_z(), b.coupler_end_z()) {
+        return false;
+    }
+    if !near(a.coupler_start_x(), b.coupler_start_x()) {
+        return false;
+    }
+    if !near(a.coupler_start_z(), b.coupler_start_z()) {
+        return false;
+    }
+    if !near(a.crank_end_x(), b.crank_end_x()) {
+        return false;
+    }
+    if !near(a.crank_end_z(), b.crank_end_z()) {
+        return false;
+    }
+    if !near(a.crank_start_x(), b.crank_start_x()) {
+        return false;
+    }
+    if !near(a.crank_start_z(), b.crank_start_z()) {
+        return false;
+    }
+    if !near(a.ground_j4_x(), b.ground_j4_x()) {
+        return false;
+    }
+    if !near(a.ground_j4_z(), b.ground_j4_z()) {
+        return false;
+    }
+    if !near(a.ground_j1_x(), b.ground_j1_x()) {
+        return false;
+    }
+    if !near(a.ground_j1_z(), b.ground_j1_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -711,7 +765,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -719,20 +777,334 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            revolute_rocker_start_coupler_end: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("theta", params.theta),
+            ("a", params.a),
+            ("b", params.b),
+        ])?;
+        // The sketch of `ground.j4` depends on params: is it usable?
+        if frame::rotation_zx(
+            &Vector3::new(0.0, 0.8660254037844386, 0.5000000000000001),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .is_none()
+        {
+            return Err(SolveError::new(
+                "ground.j4",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-    }
+        // The sketch of `crank.end` depends on params: is it usable?
+        if frame::rotation_zx(
+            &Vector3::new(0.0, -0.49999999999999994, 0.8660254037844387),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .is_none()
+        {
+            return Err(SolveError::new(
+                "crank.end",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
+        }
+        // The sketch of `coupler.end` depends on params: is it usable?
+        if frame::rotation_zx(
+            &Vector3::new(0.0, -0.8660254037844386, 0.5000000000000001),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .is_none()
+        {
+            return Err(SolveError::new(
+                "coupler.end",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
+        }
+        // The sketch of `rocker.end` depends on params: is it usable?
+        if frame::rotation_zx(
+            &Vector3::new(0.0, -0.49999999999999994, 0.8660254037844387),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .is_none()
+        {
+            return Err(SolveError::new(
+                "rocker.end",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
+        }
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_j4_local = Point3::new(-params.b, 0.0, 0.0);
+        let ground_j4_z_local = frame::rotation_zx(
+            &Vector3::new(0.0, 0.8660254037844386, 0.5000000000000001),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let ground_j4_x_local = frame::rotation_zx(
+            &Vector3::new(0.0, 0.8660254037844386, 0.5000000000000001),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let mut crank = Frame3::new(
+            Point3::new(0.0, 0.0, 0.0),
+            UnitQuaternion::new_unchecked(Quaternion::new(
+                0.9396926207859084,
+                0.0,
+                0.0,
+                0.3420201433256687,
+            )),
+        );
+        let crank_end_local = Point3::new(params.a, 0.0, 0.0);
+        let crank_end_z_local = frame::rotation_zx(
+            &Vector3::new(0.0, -0.49999999999999994, 0.8660254037844387),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let crank_end_x_local = frame::rotation_zx(
+            &Vector3::new(0.0, -0.49999999999999994, 0.8660254037844387),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let mut coupler = Frame3::new(
+            Point3::new(0.766044443118978, 0.642787609686539, 0.0),
+            UnitQuaternion::new_unchecked(Quaternion::new(
+                0.20760946442429806,
+                -0.1198633801716825,
+                0.22939064540996335,
+                -0.9433509485730512,
+            )),
+        );
+        let coupler_end_local = Point3::new(params.b, 0.0, 0.0);
+        let coupler_end_z_local = frame::rotation_zx(
+            &Vector3::new(0.0, -0.8660254037844386, 0.5000000000000001),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let coupler_end_x_local = frame::rotation_zx(
+            &Vector3::new(0.0, -0.8660254037844386, 0.5000000000000001),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let mut rocker = Frame3::new(
+            Point3::new(-0.766928187157669, -0.130899128693244, 0.226723941563196),
+            UnitQuaternion::new_unchecked(Quaternion::new(
+                0.09337743248343297,
+                -0.09337743248343196,
+                0.25655238723487717,
+                0.9574665439636465,
+            )),
+        );
+        let rocker_end_local = Point3::new(params.a, 0.0, 0.0);
+        let rocker_end_z_local = frame::rotation_zx(
+            &Vector3::new(0.0, -0.49999999999999994, 0.8660254037844387),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let rocker_end_x_local = frame::rotation_zx(
+            &Vector3::new(0.0, -0.49999999999999994, 0.8660254037844387),
+            &Vector3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let tol = 1.766928187157669e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // input: offset_x(ground.j1, crank.start) = theta (bennett.gcs:28)
+        let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
+        let turn = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(
+                &Vector3::new(0.7660444431189781, 0.6427876096865394, 0.0),
+                &turned,
+                &Vector3::z(),
+            ),
+        );
+        crank.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+
+        // revolute(coupler.start, crank.end) (bennett.gcs:29)
+        let crank_end_z = crank.vector_to_global(&crank_end_z_local);
+        let turn_2 = frame::rotation_between3(
+            &Vector3::new(0.321393804843271, -0.3830222215594887, 0.8660254037844384),
+            &crank_end_z,
+            &frame::perpendicular(&Vector3::new(
+                0.321393804843271,
+                -0.3830222215594887,
+                0.8660254037844384,
+            )),
+        );
+        coupler.rotate_about_by(
+            &Point3::new(0.766044443118978, 0.642787609686539, 0.0),
+            &turn_2,
+        );
+
+        // revolute(crank.start, ground.j1) (bennett.gcs:27)
+        let crank_start = crank.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let shift = Point3::new(0.0, 0.0, 0.0) - crank_start;
+        crank.translate(&shift);
+        let crank_end = crank.point_to_global(&crank_end_local);
+        let coupler_start = coupler.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let shift_2 = crank_end - coupler_start;
+        coupler.translate(&shift_2);
+        let crank_start_z = crank.vector_to_global(&Vector3::z());
+        let residual = check::space::parallel(crank_start_z, Vector3::z(), 1.0);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "revolute_crank_start_ground_j1",
+                "revolute(crank.start, ground.j1)",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
+        }
+
+        // revolute(ground.j4, rocker.end) (bennett.gcs:31)
+        let ground_j4 = ground.point_to_global(&ground_j4_local);
+        let rocker_end = rocker.point_to_global(&rocker_end_local);
+        let shift_3 = ground_j4 - rocker_end;
+        rocker.translate(&shift_3);
+        let ground_j4_z = ground.vector_to_global(&ground_j4_z_local);
+        let rocker_end_z = rocker.vector_to_global(&rocker_end_z_local);
+        let turn_3 = frame::rotation_between3(
+            &rocker_end_z,
+            &ground_j4_z,
+            &frame::perpendicular(&rocker_end_z),
+        );
+        rocker.rotate_about_by(&ground_j4, &turn_3);
+
+        // revolute(rocker.start, coupler.end) (bennett.gcs:30)
+        let rocker_start = rocker.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let orbit = Circle3::orbit(
+            &ground_j4,
+            &frame::unit3(&ground_j4_z).ok_or_else(|| {
+                SolveError::new(
+                    "revolute_rocker_start_coupler_end",
+                    "revolute(rocker.start, coupler.end)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+            &rocker_start,
+        );
+        let coupler_end = coupler.point_to_global(&coupler_end_local);
+        let orbit_2 = Circle3::orbit(
+            &crank_end,
+            &frame::unit3(&crank_end_z).ok_or_else(|| {
+                SolveError::new(
+                    "revolute_rocker_start_coupler_end",
+                    "revolute(rocker.start, coupler.end)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+            &coupler_end,
+        );
+        let revolute_rocker_start_coupler_end_meeting =
+            intersect3d::circle_circle(&orbit, &orbit_2);
+        if let Some(e) = SolveError::from_contact(
+            "revolute_rocker_start_coupler_end",
+            "revolute(rocker.start, coupler.end)",
+            revolute_rocker_start_coupler_end_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `revolute(rocker.start, coupler.end)` in turn (`revolute_rocker_start_coupler_end`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                revolute_rocker_start_coupler_end: root,
+            };
+            let mut coupler = coupler;
+            let mut rocker = rocker;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let revolute_rocker_start_coupler_end = revolute_rocker_start_coupler_end_meeting
+                    .roots
+                    .get(usize::from(branches.revolute_rocker_start_coupler_end))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_rocker_start_coupler_end",
+                            "revolute(rocker.start, coupler.end)",
+                            ErrorKind::NoSuchBranch,
+                            revolute_rocker_start_coupler_end_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let turn_4 = frame::rotation_about_axis(
+                    &ground_j4_z,
+                    frame::signed_angle3(
+                        &(rocker_start - ground_j4),
+                        &(revolute_rocker_start_coupler_end - ground_j4),
+                        &ground_j4_z,
+                    ),
+                );
+                rocker.rotate_about_by(&ground_j4, &turn_4);
+                let turn_5 = frame::rotation_about_axis(
+                    &crank_end_z,
+                    frame::signed_angle3(
+                        &(coupler_end - crank_end),
+                        &(revolute_rocker_start_coupler_end - crank_end),
+                        &crank_end_z,
+                    ),
+                );
+                coupler.rotate_about_by(&crank_end, &turn_5);
+                let rocker_start_z = rocker.vector_to_global(&Vector3::z());
+                let coupler_end_z = coupler.vector_to_global(&coupler_end_z_local);
+                let residual_2 = check::space::parallel(rocker_start_z, coupler_end_z, 1.0);
+                if residual_2.is_nan() || residual_2 > tol {
+                    return Err(SolveError::new(
+                        "revolute_rocker_start_coupler_end",
+                        "revolute(rocker.start, coupler.end)",
+                        ErrorKind::Inconsistent,
+                        residual_2,
+                    ));
+                }
+
+                let solution = Solution {
+                    ground,
+                    ground_j4_local,
+                    ground_j4_z_local,
+                    ground_j4_x_local,
+                    crank,
+                    crank_end_local,
+                    crank_end_z_local,
+                    crank_end_x_local,
+                    coupler,
+                    coupler_end_local,
+                    coupler_end_z_local,
+                    coupler_end_x_local,
+                    rocker,
+                    rocker_end_local,
+                    rocker_end_z_local,
+                    rocker_end_x_local,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

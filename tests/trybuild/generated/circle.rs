@@ -328,35 +328,47 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.ls_dir(), b.ls_dir()) {
+        return false;
+    }
+    if !near(a.l_dir(), b.l_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -368,7 +380,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -376,20 +392,136 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..4usize {
-        let branches = Branches {
-            meet: (combination % 4) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        // The sketch: where every geom starts.
+        let c = Frame2::at(Point2::new(0.0, 0.0));
+        let c_radius = 2.0;
+        let l = Frame2::along(
+            Point2::new(-10.0, -4.0),
+            Point2::new(10.0, -4.0) - Point2::new(-10.0, -4.0),
+        );
+        let mut ls = Frame2::along(
+            Point2::new(5.0, 3.0),
+            Point2::new(8.0, 3.0) - Point2::new(5.0, 3.0),
+        );
+        let g = Frame2::at(Point2::new(3.0, 0.0));
+
+        // length(Ls) = 3 (circle.gcs:8)
+        let ls_length = 3.0;
+
+        // coincident(Ls.start, P) (circle.gcs:9)
+        ls.place_origin(&Point2::new(6.0, 3.0));
+
+        // meet: coincident(Ls.end, G.center) (circle.gcs:10)
+        let l_dir = l.x_axis();
+        let line_l = Line::new(Point2::new(-10.0, -4.0), l_dir).ok_or_else(|| {
+            SolveError::new(
+                "meet",
+                "coincident(Ls.end, G.center)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let parabola = Conic::Parabola(
+            locus2d::centres_line_circle(
+                &line_l,
+                0.0,
+                Point2::new(0.0, 0.0),
+                Sense::Plus,
+                c_radius,
+            )
+            .ok_or_else(|| {
+                SolveError::new(
+                    "meet",
+                    "coincident(Ls.end, G.center)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+        );
+        let ls_end = Point2::new(6.0, 3.0) + ls.x_axis() * ls_length;
+        let circle_p_ls_end = Circle::new(
+            Point2::new(6.0, 3.0),
+            (ls_end - Point2::new(6.0, 3.0)).norm(),
+        )
+        .ok_or_else(|| {
+            SolveError::new(
+                "meet",
+                "coincident(Ls.end, G.center)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let meet_meeting = intersect2d::circle_conic(&circle_p_ls_end, &parabola);
+        if let Some(e) =
+            SolveError::from_contact("meet", "coincident(Ls.end, G.center)", meet_meeting.contact)
+        {
+            return Err(e);
         }
-    }
+
+        // Each root of `coincident(Ls.end, G.center)` in turn (`meet`), the steps above shared by all.
+        for root in 0..4u8 {
+            let branches = &Branches { meet: root };
+            let mut ls = ls;
+            let mut g = g;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let meet = meet_meeting
+                    .branch(usize::from(branches.meet))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "meet",
+                            "coincident(Ls.end, G.center)",
+                            ErrorKind::NoSuchBranch,
+                            meet_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let turn = rotation_between2(
+                    &(ls_end - Point2::new(6.0, 3.0)),
+                    &(meet - Point2::new(6.0, 3.0)),
+                );
+                ls.turn_by(&turn);
+                g.place_origin(&meet);
+
+                // tangent(C, G) (circle.gcs:12)
+                // tangent(L, G) (circle.gcs:11)
+                let radius = (meet - Point2::new(0.0, 0.0)).norm() - c_radius;
+                if !gcs_runtime::num::is_finite(radius) || radius < 0.0 {
+                    return Err(SolveError::new(
+                        "tangent_C_G",
+                        "tangent(C, G)",
+                        ErrorKind::InvalidValue,
+                        radius,
+                    ));
+                }
+                let g_radius = radius;
+
+                let solution = Solution {
+                    c,
+                    c_radius,
+                    l,
+                    ls,
+                    ls_length,
+                    g,
+                    g_radius,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

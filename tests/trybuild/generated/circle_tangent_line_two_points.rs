@@ -299,35 +299,44 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.ground_dir(), b.ground_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -339,7 +348,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -347,20 +360,140 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            tangent_ground_arc: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("b_x", params.b_x)])?;
+        // The sketch: where every geom starts.
+        let b = Frame2::at(Point2::new(params.b_x, 2.0));
+        let ground = Frame2::along(
+            Point2::new(0.0, 0.0),
+            Point2::new(5.0, 0.0) - Point2::new(0.0, 0.0),
+        );
+        let arc = Frame2::at(Point2::new(2.0, 1.2));
+
+        // on(A, arc) (circle_tangent_line_two_points.gcs:13)
+        // on(B, arc) (circle_tangent_line_two_points.gcs:14)
+        // tangent(ground, arc) (circle_tangent_line_two_points.gcs:15)
+        let b_2 = Point2::new(params.b_x, 2.0);
+        let direction = (b_2 - Point2::new(1.0, 1.5))
+            .try_normalize(0.0)
+            .ok_or_else(|| {
+                SolveError::new(
+                    "tangent_ground_arc",
+                    "tangent(ground, arc)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let direction_turned =
+            rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * direction;
+        let length = (b_2 - Point2::new(1.0, 1.5)).dot(&direction);
+        let sum = -0.5 * length;
+        if !gcs_runtime::num::is_finite(sum) {
+            return Err(SolveError::new(
+                "tangent_ground_arc",
+                "tangent(ground, arc)",
+                ErrorKind::InvalidValue,
+                sum,
+            ));
         }
-    }
+        let line_a = Line::new(Point2::new(1.0, 1.5), direction_turned)
+            .ok_or_else(|| {
+                SolveError::new(
+                    "tangent_ground_arc",
+                    "tangent(ground, arc)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?
+            .offset(sum);
+        let ground_dir = ground.x_axis();
+        let line_ground = Line::new(Point2::new(0.0, 0.0), ground_dir).ok_or_else(|| {
+            SolveError::new(
+                "tangent_ground_arc",
+                "tangent(ground, arc)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let parabola = Conic::Parabola(
+            locus2d::centres_line_circle(
+                &line_ground,
+                0.0,
+                Point2::new(1.0, 1.5),
+                Sense::Plus,
+                0.0,
+            )
+            .ok_or_else(|| {
+                SolveError::new(
+                    "tangent_ground_arc",
+                    "tangent(ground, arc)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+        );
+        let tangent_ground_arc_meeting = intersect2d::line_conic(&line_a, &parabola);
+        if let Some(e) = SolveError::from_contact(
+            "tangent_ground_arc",
+            "tangent(ground, arc)",
+            tangent_ground_arc_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `tangent(ground, arc)` in turn (`tangent_ground_arc`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                tangent_ground_arc: root,
+            };
+            let mut arc = arc;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let tangent_ground_arc = tangent_ground_arc_meeting
+                    .branch(usize::from(branches.tangent_ground_arc))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "tangent_ground_arc",
+                            "tangent(ground, arc)",
+                            ErrorKind::NoSuchBranch,
+                            tangent_ground_arc_meeting.roots.len() as f64,
+                        )
+                    })?;
+                arc.place_origin(&tangent_ground_arc);
+                let radius = (tangent_ground_arc - Point2::new(1.0, 1.5)).norm() - 0.0;
+                if !gcs_runtime::num::is_finite(radius) || radius < 0.0 {
+                    return Err(SolveError::new(
+                        "on_A_arc",
+                        "on(A, arc)",
+                        ErrorKind::InvalidValue,
+                        radius,
+                    ));
+                }
+                let arc_radius = radius;
+
+                let solution = Solution {
+                    b,
+                    ground,
+                    arc,
+                    arc_radius,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

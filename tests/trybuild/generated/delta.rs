@@ -720,35 +720,89 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.platform_centre_x(), b.platform_centre_x()) {
+        return false;
+    }
+    if !near(a.platform_centre_z(), b.platform_centre_z()) {
+        return false;
+    }
+    if !near(a.arm3_base_x(), b.arm3_base_x()) {
+        return false;
+    }
+    if !near(a.arm3_base_z(), b.arm3_base_z()) {
+        return false;
+    }
+    if !near(a.arm2_base_x(), b.arm2_base_x()) {
+        return false;
+    }
+    if !near(a.arm2_base_z(), b.arm2_base_z()) {
+        return false;
+    }
+    if !near(a.arm1_base_x(), b.arm1_base_x()) {
+        return false;
+    }
+    if !near(a.arm1_base_z(), b.arm1_base_z()) {
+        return false;
+    }
+    if !near(a.ground_b3_x(), b.ground_b3_x()) {
+        return false;
+    }
+    if !near(a.ground_b3_z(), b.ground_b3_z()) {
+        return false;
+    }
+    if !near(a.ground_b2_x(), b.ground_b2_x()) {
+        return false;
+    }
+    if !near(a.ground_b2_z(), b.ground_b2_z()) {
+        return false;
+    }
+    if !near(a.ground_b1_x(), b.ground_b1_x()) {
+        return false;
+    }
+    if !near(a.ground_b1_z(), b.ground_b1_z()) {
+        return false;
+    }
+    if !near(a.ground_centre_x(), b.ground_centre_x()) {
+        return false;
+    }
+    if !near(a.ground_centre_z(), b.ground_centre_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -760,7 +814,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -768,22 +826,346 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..8usize {
-        let branches = Branches {
-            distance_arm1_elbow_platform_p1: (combination % 2) as u8,
-            distance_arm2_elbow_platform_p2: (combination / 2 % 2) as u8,
-            distance_arm3_elbow_platform_p3: (combination / 4 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("x", params.x),
+            ("y", params.y),
+            ("z", params.z),
+            ("forearm", params.forearm),
+        ])?;
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_target_local = Point3::new(params.x, params.y, params.z);
+        let mut arm1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let arm2 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let arm3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut platform = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+
+        // coincident(platform.centre, ground.target) (delta.gcs:42)
+        let ground_target = ground.point_to_global(&ground_target_local);
+        let shift = ground_target - Point3::new(0.0, 0.0, -0.828812307881);
+        platform.translate(&shift);
+
+        // offset_x(ground.centre, platform.centre) = 0 (delta.gcs:41)
+        let ground_centre_z = ground.vector_to_global(&Vector3::z());
+        let platform_centre_z = platform.vector_to_global(&Vector3::z());
+        let turn = frame::rotation_between3(
+            &platform_centre_z,
+            &ground_centre_z,
+            &frame::perpendicular(&platform_centre_z),
+        );
+        platform.rotate_about_by(&ground_target, &turn);
+        let ground_centre_x = ground.vector_to_global(&Vector3::x());
+        let turned = frame::rotation_about_axis(&ground_centre_z, 0.0) * ground_centre_x;
+        let platform_centre_x = platform.vector_to_global(&Vector3::x());
+        let turn_2 = frame::rotation_about_axis(
+            &ground_centre_z,
+            frame::signed_angle3(&platform_centre_x, &turned, &ground_centre_z),
+        );
+        platform.rotate_about_by(&ground_target, &turn_2);
+
+        // revolute(arm1.base, ground.b1) (delta.gcs:35)
+        let ground_b1 = ground.point_to_global(&Point3::new(0.2, 0.0, 0.0));
+        let shift_2 = ground_b1 - Point3::new(0.2, 0.0, 0.0);
+        arm1.translate(&shift_2);
+        let ground_b1_z = ground.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+        let arm1_base_z = arm1.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+        let turn_3 = frame::rotation_between3(
+            &arm1_base_z,
+            &ground_b1_z,
+            &frame::perpendicular(&arm1_base_z),
+        );
+        arm1.rotate_about_by(&ground_b1, &turn_3);
+
+        // distance(arm1.elbow, platform.p1) = forearm (delta.gcs:36)
+        let platform_p1 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
+        // distance_arm1_elbow_platform_p1: a distance is zero or more.
+        if params.forearm < 0.0 {
+            return Err(SolveError::new(
+                "forearm",
+                "distance(arm1.elbow, platform.p1) = forearm",
+                ErrorKind::InvalidParam,
+                params.forearm,
+            ));
         }
-    }
+        let sphere = Sphere::new(platform_p1, params.forearm);
+        let arm1_elbow = arm1.point_to_global(&Point3::new(0.463274768567, 0.0, -0.143827661581));
+        let orbit = Circle3::orbit(
+            &ground_b1,
+            &frame::unit3(&ground_b1_z).ok_or_else(|| {
+                SolveError::new(
+                    "distance_arm1_elbow_platform_p1",
+                    "distance(arm1.elbow, platform.p1) = forearm",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+            &arm1_elbow,
+        );
+        let distance_arm1_elbow_platform_p1_meeting = intersect3d::circle_sphere(&orbit, &sphere);
+        if let Some(e) = SolveError::from_contact(
+            "distance_arm1_elbow_platform_p1",
+            "distance(arm1.elbow, platform.p1) = forearm",
+            distance_arm1_elbow_platform_p1_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `distance(arm1.elbow, platform.p1) = forearm` in turn (`distance_arm1_elbow_platform_p1`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                distance_arm1_elbow_platform_p1: root,
+                ..*branches
+            };
+            let mut arm1 = arm1;
+            let mut arm2 = arm2;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let distance_arm1_elbow_platform_p1 = distance_arm1_elbow_platform_p1_meeting
+                    .roots
+                    .get(usize::from(branches.distance_arm1_elbow_platform_p1))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "distance_arm1_elbow_platform_p1",
+                            "distance(arm1.elbow, platform.p1) = forearm",
+                            ErrorKind::NoSuchBranch,
+                            distance_arm1_elbow_platform_p1_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let turn_4 = frame::rotation_about_axis(
+                    &ground_b1_z,
+                    frame::signed_angle3(
+                        &(arm1_elbow - ground_b1),
+                        &(distance_arm1_elbow_platform_p1 - ground_b1),
+                        &ground_b1_z,
+                    ),
+                );
+                arm1.rotate_about_by(&ground_b1, &turn_4);
+
+                // revolute(arm2.base, ground.b2) (delta.gcs:37)
+                let ground_b2 = ground.point_to_global(&Point3::new(-0.1, 0.173205080757, 0.0));
+                let shift_3 = ground_b2 - Point3::new(-0.1, 0.173205080757, 0.0);
+                arm2.translate(&shift_3);
+                let ground_b2_z = ground.vector_to_global(&Vector3::new(
+                    -0.866025403784329,
+                    -0.50000000000019,
+                    0.0,
+                ));
+                let arm2_base_z = arm2.vector_to_global(&Vector3::new(
+                    -0.866025403784329,
+                    -0.50000000000019,
+                    0.0,
+                ));
+                let turn_5 = frame::rotation_between3(
+                    &arm2_base_z,
+                    &ground_b2_z,
+                    &frame::perpendicular(&arm2_base_z),
+                );
+                arm2.rotate_about_by(&ground_b2, &turn_5);
+
+                // distance(arm2.elbow, platform.p2) = forearm (delta.gcs:38)
+                let platform_p2 = platform.point_to_global(&Point3::new(
+                    -0.025,
+                    0.0433012701892,
+                    -0.828812307881,
+                ));
+                // distance_arm2_elbow_platform_p2: a distance is zero or more.
+                if params.forearm < 0.0 {
+                    return Err(SolveError::new(
+                        "forearm",
+                        "distance(arm2.elbow, platform.p2) = forearm",
+                        ErrorKind::InvalidParam,
+                        params.forearm,
+                    ));
+                }
+                let sphere_2 = Sphere::new(platform_p2, params.forearm);
+                let arm2_elbow = arm2.point_to_global(&Point3::new(
+                    -0.231637384284,
+                    0.401207718511,
+                    -0.143827661581,
+                ));
+                let orbit_2 = Circle3::orbit(
+                    &ground_b2,
+                    &frame::unit3(&ground_b2_z).ok_or_else(|| {
+                        SolveError::new(
+                            "distance_arm2_elbow_platform_p2",
+                            "distance(arm2.elbow, platform.p2) = forearm",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?,
+                    &arm2_elbow,
+                );
+                let distance_arm2_elbow_platform_p2_meeting =
+                    intersect3d::circle_sphere(&orbit_2, &sphere_2);
+                if let Some(e) = SolveError::from_contact(
+                    "distance_arm2_elbow_platform_p2",
+                    "distance(arm2.elbow, platform.p2) = forearm",
+                    distance_arm2_elbow_platform_p2_meeting.contact,
+                ) {
+                    return Err(e);
+                }
+
+                // Each root of `distance(arm2.elbow, platform.p2) = forearm` in turn (`distance_arm2_elbow_platform_p2`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        distance_arm2_elbow_platform_p2: root,
+                        ..*branches
+                    };
+                    let mut arm2 = arm2;
+                    let mut arm3 = arm3;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let distance_arm2_elbow_platform_p2 =
+                            distance_arm2_elbow_platform_p2_meeting
+                                .roots
+                                .get(usize::from(branches.distance_arm2_elbow_platform_p2))
+                                .ok_or_else(|| {
+                                    SolveError::new(
+                                        "distance_arm2_elbow_platform_p2",
+                                        "distance(arm2.elbow, platform.p2) = forearm",
+                                        ErrorKind::NoSuchBranch,
+                                        distance_arm2_elbow_platform_p2_meeting.roots.len() as f64,
+                                    )
+                                })?;
+                        let turn_6 = frame::rotation_about_axis(
+                            &ground_b2_z,
+                            frame::signed_angle3(
+                                &(arm2_elbow - ground_b2),
+                                &(distance_arm2_elbow_platform_p2 - ground_b2),
+                                &ground_b2_z,
+                            ),
+                        );
+                        arm2.rotate_about_by(&ground_b2, &turn_6);
+
+                        // revolute(arm3.base, ground.b3) (delta.gcs:39)
+                        let ground_b3 =
+                            ground.point_to_global(&Point3::new(-0.1, -0.173205080757, 0.0));
+                        let shift_4 = ground_b3 - Point3::new(-0.1, -0.173205080757, 0.0);
+                        arm3.translate(&shift_4);
+                        let ground_b3_z = ground.vector_to_global(&Vector3::new(
+                            0.866025403784329,
+                            -0.50000000000019,
+                            0.0,
+                        ));
+                        let arm3_base_z = arm3.vector_to_global(&Vector3::new(
+                            0.866025403784329,
+                            -0.50000000000019,
+                            0.0,
+                        ));
+                        let turn_7 = frame::rotation_between3(
+                            &arm3_base_z,
+                            &ground_b3_z,
+                            &frame::perpendicular(&arm3_base_z),
+                        );
+                        arm3.rotate_about_by(&ground_b3, &turn_7);
+
+                        // distance(arm3.elbow, platform.p3) = forearm (delta.gcs:40)
+                        let platform_p3 = platform.point_to_global(&Point3::new(
+                            -0.025,
+                            -0.0433012701892,
+                            -0.828812307881,
+                        ));
+                        // distance_arm3_elbow_platform_p3: a distance is zero or more.
+                        if params.forearm < 0.0 {
+                            return Err(SolveError::new(
+                                "forearm",
+                                "distance(arm3.elbow, platform.p3) = forearm",
+                                ErrorKind::InvalidParam,
+                                params.forearm,
+                            ));
+                        }
+                        let sphere_3 = Sphere::new(platform_p3, params.forearm);
+                        let arm3_elbow = arm3.point_to_global(&Point3::new(
+                            -0.231637384284,
+                            -0.401207718511,
+                            -0.143827661581,
+                        ));
+                        let orbit_3 = Circle3::orbit(
+                            &ground_b3,
+                            &frame::unit3(&ground_b3_z).ok_or_else(|| {
+                                SolveError::new(
+                                    "distance_arm3_elbow_platform_p3",
+                                    "distance(arm3.elbow, platform.p3) = forearm",
+                                    ErrorKind::Degenerate,
+                                    0.0,
+                                )
+                            })?,
+                            &arm3_elbow,
+                        );
+                        let distance_arm3_elbow_platform_p3_meeting =
+                            intersect3d::circle_sphere(&orbit_3, &sphere_3);
+                        if let Some(e) = SolveError::from_contact(
+                            "distance_arm3_elbow_platform_p3",
+                            "distance(arm3.elbow, platform.p3) = forearm",
+                            distance_arm3_elbow_platform_p3_meeting.contact,
+                        ) {
+                            return Err(e);
+                        }
+
+                        // Each root of `distance(arm3.elbow, platform.p3) = forearm` in turn (`distance_arm3_elbow_platform_p3`), the steps above shared by all.
+                        for root in 0..2u8 {
+                            let branches = &Branches {
+                                distance_arm3_elbow_platform_p3: root,
+                                ..*branches
+                            };
+                            let mut arm3 = arm3;
+                            // A failure ends this root's assemblies only.
+                            let _ = (|| -> Result<(), SolveError> {
+                                let distance_arm3_elbow_platform_p3 =
+                                    distance_arm3_elbow_platform_p3_meeting
+                                        .roots
+                                        .get(usize::from(branches.distance_arm3_elbow_platform_p3))
+                                        .ok_or_else(|| {
+                                            SolveError::new(
+                                                "distance_arm3_elbow_platform_p3",
+                                                "distance(arm3.elbow, platform.p3) = forearm",
+                                                ErrorKind::NoSuchBranch,
+                                                distance_arm3_elbow_platform_p3_meeting.roots.len()
+                                                    as f64,
+                                            )
+                                        })?;
+                                let turn_8 = frame::rotation_about_axis(
+                                    &ground_b3_z,
+                                    frame::signed_angle3(
+                                        &(arm3_elbow - ground_b3),
+                                        &(distance_arm3_elbow_platform_p3 - ground_b3),
+                                        &ground_b3_z,
+                                    ),
+                                );
+                                arm3.rotate_about_by(&ground_b3, &turn_8);
+
+                                let solution = Solution {
+                                    ground,
+                                    ground_target_local,
+                                    arm1,
+                                    arm2,
+                                    arm3,
+                                    platform,
+                                    branches: *branches,
+                                };
+                                keep(&mut found, &mut kept, solution.points(), solution);
+                                Ok(())
+                            })();
+                        }
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -697,35 +697,89 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.platform_centre_x(), b.platform_centre_x()) {
+        return false;
+    }
+    if !near(a.platform_centre_z(), b.platform_centre_z()) {
+        return false;
+    }
+    if !near(a.arm3_base_x(), b.arm3_base_x()) {
+        return false;
+    }
+    if !near(a.arm3_base_z(), b.arm3_base_z()) {
+        return false;
+    }
+    if !near(a.arm2_base_x(), b.arm2_base_x()) {
+        return false;
+    }
+    if !near(a.arm2_base_z(), b.arm2_base_z()) {
+        return false;
+    }
+    if !near(a.arm1_base_x(), b.arm1_base_x()) {
+        return false;
+    }
+    if !near(a.arm1_base_z(), b.arm1_base_z()) {
+        return false;
+    }
+    if !near(a.ground_b3_x(), b.ground_b3_x()) {
+        return false;
+    }
+    if !near(a.ground_b3_z(), b.ground_b3_z()) {
+        return false;
+    }
+    if !near(a.ground_b2_x(), b.ground_b2_x()) {
+        return false;
+    }
+    if !near(a.ground_b2_z(), b.ground_b2_z()) {
+        return false;
+    }
+    if !near(a.ground_b1_x(), b.ground_b1_x()) {
+        return false;
+    }
+    if !near(a.ground_b1_z(), b.ground_b1_z()) {
+        return false;
+    }
+    if !near(a.ground_centre_x(), b.ground_centre_x()) {
+        return false;
+    }
+    if !near(a.ground_centre_z(), b.ground_centre_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -737,7 +791,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -745,21 +803,286 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            distance_arm3_elbow_platform_p3: (combination % 2) as u8,
-            ..Branches::default()
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("t1", params.t1),
+            ("t2", params.t2),
+            ("t3", params.t3),
+            ("forearm", params.forearm),
+        ])?;
+        // The sketch: where every geom starts.
+        let mut arm1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut arm2 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut arm3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut platform = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // offset_x(ground.b1, arm1.base) = t1 (delta_forward.gcs:34)
+        let turned =
+            frame::rotation_about_axis(&Vector3::new(0.0, 1.0, 2.220446049250313e-16), params.t1)
+                * Vector3::x();
+        let turn = frame::rotation_about_axis(
+            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+            frame::signed_angle3(
+                &Vector3::x(),
+                &turned,
+                &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+            ),
+        );
+        arm1.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+
+        // offset_x(ground.b2, arm2.base) = t2 (delta_forward.gcs:37)
+        let turned_2 = frame::rotation_about_axis(
+            &Vector3::new(-0.866025403784329, -0.50000000000019, 0.0),
+            params.t2,
+        ) * Vector3::new(-0.5000000000001901, 0.866025403784329, 0.0);
+        let turn_2 = frame::rotation_about_axis(
+            &Vector3::new(-0.866025403784329, -0.50000000000019, 0.0),
+            frame::signed_angle3(
+                &Vector3::new(-0.5000000000001901, 0.866025403784329, 0.0),
+                &turned_2,
+                &Vector3::new(-0.866025403784329, -0.50000000000019, 0.0),
+            ),
+        );
+        arm2.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+
+        // offset_x(ground.b3, arm3.base) = t3 (delta_forward.gcs:40)
+        let turned_3 = frame::rotation_about_axis(
+            &Vector3::new(0.866025403784329, -0.50000000000019, 0.0),
+            params.t3,
+        ) * Vector3::new(-0.5000000000001901, -0.866025403784329, 0.0);
+        let turn_3 = frame::rotation_about_axis(
+            &Vector3::new(0.866025403784329, -0.50000000000019, 0.0),
+            frame::signed_angle3(
+                &Vector3::new(-0.5000000000001901, -0.866025403784329, 0.0),
+                &turned_3,
+                &Vector3::new(0.866025403784329, -0.50000000000019, 0.0),
+            ),
+        );
+        arm3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_3);
+
+        // offset_x(ground.centre, platform.centre) = 0 (delta_forward.gcs:42)
+        let turned_4 = frame::rotation_about_axis(&Vector3::z(), 0.0) * Vector3::x();
+        let turn_4 = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(&Vector3::x(), &turned_4, &Vector3::z()),
+        );
+        platform.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
+
+        // distance(arm1.elbow, platform.p1) = forearm (delta_forward.gcs:35)
+        let arm1_base = arm1.point_to_global(&Point3::new(0.2, 0.0, 0.0));
+        let shift = Point3::new(0.2, 0.0, 0.0) - arm1_base;
+        arm1.translate(&shift);
+        let arm1_elbow = arm1.point_to_global(&Point3::new(0.463274768567, 0.0, -0.143827661581));
+        // distance_arm1_elbow_platform_p1: a distance is zero or more.
+        if params.forearm < 0.0 {
+            return Err(SolveError::new(
+                "forearm",
+                "distance(arm1.elbow, platform.p1) = forearm",
+                ErrorKind::InvalidParam,
+                params.forearm,
+            ));
         }
-    }
+        let sphere = Sphere::new(arm1_elbow, params.forearm);
+        let platform_p1 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
+        let nearest = sphere.nearest(&platform_p1).ok_or_else(|| {
+            SolveError::new(
+                "distance_arm1_elbow_platform_p1",
+                "distance(arm1.elbow, platform.p1) = forearm",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let shift_2 = nearest - platform_p1;
+        platform.translate(&shift_2);
+
+        // revolute(arm1.base, ground.b1) (delta_forward.gcs:33)
+        let arm1_base_z = arm1.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+        let residual = check::space::parallel(
+            arm1_base_z,
+            Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+            1.0,
+        );
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "revolute_arm1_base_ground_b1",
+                "revolute(arm1.base, ground.b1)",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
+        }
+
+        // distance(arm2.elbow, platform.p2) = forearm (delta_forward.gcs:38)
+        let arm2_base = arm2.point_to_global(&Point3::new(-0.1, 0.173205080757, 0.0));
+        let shift_3 = Point3::new(-0.1, 0.173205080757, 0.0) - arm2_base;
+        arm2.translate(&shift_3);
+        let arm2_elbow = arm2.point_to_global(&Point3::new(
+            -0.231637384284,
+            0.401207718511,
+            -0.143827661581,
+        ));
+        // distance_arm2_elbow_platform_p2: a distance is zero or more.
+        if params.forearm < 0.0 {
+            return Err(SolveError::new(
+                "forearm",
+                "distance(arm2.elbow, platform.p2) = forearm",
+                ErrorKind::InvalidParam,
+                params.forearm,
+            ));
+        }
+        let sphere_2 = Sphere::new(arm2_elbow, params.forearm);
+        let platform_p2 =
+            platform.point_to_global(&Point3::new(-0.025, 0.0433012701892, -0.828812307881));
+        let platform_p1_2 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
+        let sphere_moved = sphere.shifted(&(platform_p2 - platform_p1_2));
+        let distance_arm2_elbow_platform_p2_meeting =
+            intersect3d::sphere_sphere(&sphere_moved, &sphere_2);
+        if let Some(e) = SolveError::from_contact(
+            "distance_arm2_elbow_platform_p2",
+            "distance(arm2.elbow, platform.p2) = forearm",
+            distance_arm2_elbow_platform_p2_meeting.contact,
+        ) {
+            return Err(e);
+        }
+        let distance_arm2_elbow_platform_p2 = distance_arm2_elbow_platform_p2_meeting
+            .roots
+            .get(0)
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_arm2_elbow_platform_p2",
+                    "distance(arm2.elbow, platform.p2) = forearm",
+                    ErrorKind::NoSuchBranch,
+                    0.0,
+                )
+            })?;
+        let nearest_2 = distance_arm2_elbow_platform_p2
+            .nearest(&platform_p2)
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_arm2_elbow_platform_p2",
+                    "distance(arm2.elbow, platform.p2) = forearm",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let shift_4 = nearest_2 - platform_p2;
+        platform.translate(&shift_4);
+
+        // revolute(arm2.base, ground.b2) (delta_forward.gcs:36)
+        let arm2_base_z =
+            arm2.vector_to_global(&Vector3::new(-0.866025403784329, -0.50000000000019, 0.0));
+        let residual_2 = check::space::parallel(
+            arm2_base_z,
+            Vector3::new(-0.866025403784329, -0.50000000000019, 0.0),
+            1.0,
+        );
+        if residual_2.is_nan() || residual_2 > tol {
+            return Err(SolveError::new(
+                "revolute_arm2_base_ground_b2",
+                "revolute(arm2.base, ground.b2)",
+                ErrorKind::Inconsistent,
+                residual_2,
+            ));
+        }
+
+        // distance(arm3.elbow, platform.p3) = forearm (delta_forward.gcs:41)
+        let arm3_base = arm3.point_to_global(&Point3::new(-0.1, -0.173205080757, 0.0));
+        let shift_5 = Point3::new(-0.1, -0.173205080757, 0.0) - arm3_base;
+        arm3.translate(&shift_5);
+        let arm3_elbow = arm3.point_to_global(&Point3::new(
+            -0.231637384284,
+            -0.401207718511,
+            -0.143827661581,
+        ));
+        // distance_arm3_elbow_platform_p3: a distance is zero or more.
+        if params.forearm < 0.0 {
+            return Err(SolveError::new(
+                "forearm",
+                "distance(arm3.elbow, platform.p3) = forearm",
+                ErrorKind::InvalidParam,
+                params.forearm,
+            ));
+        }
+        let sphere_3 = Sphere::new(arm3_elbow, params.forearm);
+        let platform_p3 =
+            platform.point_to_global(&Point3::new(-0.025, -0.0433012701892, -0.828812307881));
+        let platform_p2_2 =
+            platform.point_to_global(&Point3::new(-0.025, 0.0433012701892, -0.828812307881));
+        let circle_moved = distance_arm2_elbow_platform_p2.shifted(&(platform_p3 - platform_p2_2));
+        let distance_arm3_elbow_platform_p3_meeting =
+            intersect3d::circle_sphere(&circle_moved, &sphere_3);
+        if let Some(e) = SolveError::from_contact(
+            "distance_arm3_elbow_platform_p3",
+            "distance(arm3.elbow, platform.p3) = forearm",
+            distance_arm3_elbow_platform_p3_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `distance(arm3.elbow, platform.p3) = forearm` in turn (`distance_arm3_elbow_platform_p3`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                distance_arm3_elbow_platform_p3: root,
+                ..*branches
+            };
+            let mut platform = platform;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let distance_arm3_elbow_platform_p3 = distance_arm3_elbow_platform_p3_meeting
+                    .roots
+                    .get(usize::from(branches.distance_arm3_elbow_platform_p3))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "distance_arm3_elbow_platform_p3",
+                            "distance(arm3.elbow, platform.p3) = forearm",
+                            ErrorKind::NoSuchBranch,
+                            distance_arm3_elbow_platform_p3_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let shift_6 = distance_arm3_elbow_platform_p3 - platform_p3;
+                platform.translate(&shift_6);
+
+                // revolute(arm3.base, ground.b3) (delta_forward.gcs:39)
+                let arm3_base_z =
+                    arm3.vector_to_global(&Vector3::new(0.866025403784329, -0.50000000000019, 0.0));
+                let residual_3 = check::space::parallel(
+                    arm3_base_z,
+                    Vector3::new(0.866025403784329, -0.50000000000019, 0.0),
+                    1.0,
+                );
+                if residual_3.is_nan() || residual_3 > tol {
+                    return Err(SolveError::new(
+                        "revolute_arm3_base_ground_b3",
+                        "revolute(arm3.base, ground.b3)",
+                        ErrorKind::Inconsistent,
+                        residual_3,
+                    ));
+                }
+
+                let solution = Solution {
+                    ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+                    arm1,
+                    arm2,
+                    arm3,
+                    platform,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -387,35 +387,50 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.left_dir(), b.left_dir()) {
+        return false;
+    }
+    if !near(a.right_dir(), b.right_dir()) {
+        return false;
+    }
+    if !near(a.base_dir(), b.base_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -427,7 +442,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -435,20 +454,170 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            coincident_right_end_left_start: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("side", params.side)])?;
+        // The sketch: where every geom starts.
+        let mut base = Frame2::along(
+            Point2::new(0.0, 0.0),
+            Point2::new(3.1, 0.1) - Point2::new(0.0, 0.0),
+        );
+        let mut right = Frame2::along(
+            Point2::new(3.1, 0.1),
+            Point2::new(1.4, 2.7) - Point2::new(3.1, 0.1),
+        );
+        let mut left = Frame2::along(
+            Point2::new(1.4, 2.7),
+            Point2::new(0.0, 0.0) - Point2::new(1.4, 2.7),
+        );
+        let mut left_length = 3.04138126514911;
+
+        // length(base) = side (equilateral.gcs:17)
+        // length_base: a length is zero or more.
+        if params.side < 0.0 {
+            return Err(SolveError::new(
+                "side",
+                "length(base) = side",
+                ErrorKind::InvalidParam,
+                params.side,
+            ));
         }
-    }
+        let base_length = params.side;
+
+        // coincident(base.start, O) (equilateral.gcs:12)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // coincident(left.end, base.start) (equilateral.gcs:15)
+        let left_end = Point2::new(1.4, 2.7) + left.x_axis() * left_length;
+        let shift = Point2::new(0.0, 0.0) - left_end;
+        left.translate(&shift);
+
+        // equal(base, left) (equilateral.gcs:19)
+        if !gcs_runtime::num::is_finite(base_length) || base_length < 0.0 {
+            return Err(SolveError::new(
+                "equal_base_left",
+                "equal(base, left)",
+                ErrorKind::InvalidValue,
+                base_length,
+            ));
+        }
+        left_length = base_length;
+        let left_end_2 = left.origin + left.x_axis() * left_length;
+        let shift_2 = Point2::new(0.0, 0.0) - left_end_2;
+        left.translate(&shift_2);
+
+        // equal(base, right) (equilateral.gcs:18)
+        if !gcs_runtime::num::is_finite(base_length) || base_length < 0.0 {
+            return Err(SolveError::new(
+                "equal_base_right",
+                "equal(base, right)",
+                ErrorKind::InvalidValue,
+                base_length,
+            ));
+        }
+        let right_length = base_length;
+
+        // horizontal(base) (equilateral.gcs:16)
+        let base_dir = base.x_axis();
+        let turn = rotation_between_units(&base_dir, &Vector2::new(1.0, 0.0));
+        base.turn_by(&turn);
+
+        // coincident(base.end, right.start) (equilateral.gcs:13)
+        let base_end = Point2::new(0.0, 0.0) + base.x_axis() * base_length;
+        right.place_origin(&base_end);
+
+        // coincident(right.end, left.start) (equilateral.gcs:14)
+        let right_end = base_end + right.x_axis() * right_length;
+        let circle_base_end_right_end = Circle::new(base_end, (right_end - base_end).norm())
+            .ok_or_else(|| {
+                SolveError::new(
+                    "coincident_right_end_left_start",
+                    "coincident(right.end, left.start)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let left_start = left.origin;
+        let circle_o_left_start = Circle::new(
+            Point2::new(0.0, 0.0),
+            (left_start - Point2::new(0.0, 0.0)).norm(),
+        )
+        .ok_or_else(|| {
+            SolveError::new(
+                "coincident_right_end_left_start",
+                "coincident(right.end, left.start)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let coincident_right_end_left_start_chord =
+            intersect2d::circle_circle_chord(&circle_base_end_right_end, &circle_o_left_start)
+                .map_err(|miss| {
+                    SolveError::from_miss(
+                        "coincident_right_end_left_start",
+                        "coincident(right.end, left.start)",
+                        miss,
+                    )
+                })?;
+
+        // Each root of `coincident(right.end, left.start)` in turn (`coincident_right_end_left_start`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                coincident_right_end_left_start: root,
+            };
+            let mut right = right;
+            let mut left = left;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let coincident_right_end_left_start = coincident_right_end_left_start_chord
+                    .root(usize::from(branches.coincident_right_end_left_start))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "coincident_right_end_left_start",
+                            "coincident(right.end, left.start)",
+                            ErrorKind::NoSuchBranch,
+                            2.0,
+                        )
+                    })?;
+                let turn_2 = rotation_between2(
+                    &(right_end - base_end),
+                    &coincident_right_end_left_start_chord
+                        .root_from_a(usize::from(branches.coincident_right_end_left_start))
+                        .unwrap_or(coincident_right_end_left_start - base_end),
+                );
+                right.turn_by(&turn_2);
+                let turn_3 = rotation_between2(
+                    &(left_start - Point2::new(0.0, 0.0)),
+                    &coincident_right_end_left_start_chord
+                        .root_from_b(usize::from(branches.coincident_right_end_left_start))
+                        .unwrap_or(coincident_right_end_left_start - Point2::new(0.0, 0.0)),
+                );
+                left.rotate_about_by(&Point2::new(0.0, 0.0), &turn_3);
+
+                let solution = Solution {
+                    base,
+                    base_length,
+                    right,
+                    right_length,
+                    left,
+                    left_length,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -384,35 +384,47 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.crank1_u(), b.crank1_u()) {
+        return false;
+    }
+    if !near(a.x(), b.x()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -424,7 +436,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -433,20 +449,133 @@ fn keep<const P: usize>(
 /// defaults (`Solution::defaults`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            tip: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("theta1", params.theta1),
+            ("crank2_angle", defaults.crank2_angle),
+        ])?;
+        // The sketch: where every geom starts.
+        let mut crank1 = Frame2::at(Point2::new(0.0, 0.0));
+        let mut crank2 = Frame2::at(Point2::new(4.0, 0.0));
+        let mut link1 = Frame2::at(Point2::new(0.75, 1.3));
+        let mut link2 = Frame2::at(Point2::new(3.25, 1.3));
+
+        // coincident(crank1.a, A) (fivebar_one_drive.gcs:17)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // coincident(crank2.e, E) (fivebar_one_drive.gcs:18)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // drive1: angle(X, crank1.u) = theta1 (fivebar_one_drive.gcs:19)
+        let x_dir_turned = direction_at(params.theta1);
+        let turn = rotation_from_x_unit(&x_dir_turned);
+        crank1.set_rotation(&turn);
+
+        // coincident(crank1.b, link1.b) (fivebar_one_drive.gcs:20)
+        let crank1_b = Point2::from(crank1.x_axis() * 1.5);
+        link1.place_origin(&crank1_b);
+
+        // coincident(crank2.d, link2.d) (fivebar_one_drive.gcs:21)
+        let direction = (Point2::new(5.5, 0.0) - Point2::new(4.0, 0.0))
+            .try_normalize(0.0)
+            .ok_or_else(|| {
+                SolveError::new(
+                    "coincident_crank2_d_link2_d",
+                    "coincident(crank2.d, link2.d)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let direction_2 = direction_at(defaults.crank2_angle);
+        let turn_2 = rotation_between_units(&direction, &direction_2);
+        crank2.set_rotation(&turn_2);
+        let crank2_d = Point2::new(4.0, 0.0) + crank2.x_axis() * 1.5;
+        link2.place_origin(&crank2_d);
+
+        // tip: coincident(link1.p, link2.p) (fivebar_one_drive.gcs:22)
+        let link1_p = crank1_b + Vector2::new(1.4, 2.2);
+        let circle_crank1_b = Circle::new(crank1_b, 2.6076809620810595).ok_or_else(|| {
+            SolveError::new(
+                "tip",
+                "coincident(link1.p, link2.p)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let link2_p = crank2_d + Vector2::new(-1.1, 2.2);
+        let circle_crank2_d = Circle::new(crank2_d, 2.459674775249769).ok_or_else(|| {
+            SolveError::new(
+                "tip",
+                "coincident(link1.p, link2.p)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let tip_chord = intersect2d::circle_circle_chord(&circle_crank1_b, &circle_crank2_d)
+            .map_err(|miss| SolveError::from_miss("tip", "coincident(link1.p, link2.p)", miss))?;
+
+        // Each root of `coincident(link1.p, link2.p)` in turn (`tip`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { tip: root };
+            let mut link1 = link1;
+            let mut link2 = link2;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let tip = tip_chord.root(usize::from(branches.tip)).ok_or_else(|| {
+                    SolveError::new(
+                        "tip",
+                        "coincident(link1.p, link2.p)",
+                        ErrorKind::NoSuchBranch,
+                        2.0,
+                    )
+                })?;
+                let tip_reach = tip_chord
+                    .root_from_a(usize::from(branches.tip))
+                    .unwrap_or(tip - crank1_b);
+                let turn_3 = rotation_on_circle_from(
+                    tip_reach.x * 0.20588235294117646 + tip_reach.y * 0.3235294117647059,
+                    tip_reach.y * 0.20588235294117646 + tip_reach.x * -0.3235294117647059,
+                    &(link1_p - crank1_b),
+                    &tip_reach,
+                );
+                link1.set_rotation(&turn_3);
+                let tip_reach_2 = tip_chord
+                    .root_from_b(usize::from(branches.tip))
+                    .unwrap_or(tip - crank2_d);
+                let turn_4 = rotation_on_circle_from(
+                    tip_reach_2.x * -0.18181818181818177 + tip_reach_2.y * 0.36363636363636354,
+                    tip_reach_2.y * -0.18181818181818177 + tip_reach_2.x * -0.36363636363636354,
+                    &(link2_p - crank2_d),
+                    &tip_reach_2,
+                );
+                link2.set_rotation(&turn_4);
+
+                let solution = Solution {
+                    crank1,
+                    crank2,
+                    link1,
+                    link2,
+                    branches: *branches,
+                    defaults: Defaults {
+                        crank2_angle: defaults.crank2_angle,
+                    },
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
         }
-    }
+        Ok(())
+    })();
     found
 }

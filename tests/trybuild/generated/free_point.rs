@@ -283,35 +283,44 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.base_dir(), b.base_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -323,7 +332,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -332,20 +345,105 @@ fn keep<const P: usize>(
 /// defaults (`Solution::defaults`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            width: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("width", params.width),
+            ("C_angle", defaults.c_angle),
+        ])?;
+        // The sketch: where every geom starts.
+        let base = Frame2::along(
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 0.0) - Point2::new(0.0, 0.0),
+        );
+        let mut b = Frame2::at(Point2::new(3.8, 0.2));
+        let c = Frame2::at(Point2::new(2.1, 2.9));
+
+        // on(B, base) (free_point.gcs:13)
+        let base_dir = base.x_axis();
+        let line_base = Line::new(Point2::new(0.0, 0.0), base_dir).ok_or_else(|| {
+            SolveError::new("on_B_base", "on(B, base)", ErrorKind::Degenerate, 0.0)
+        })?;
+        let nearest_b = line_base.nearest(Point2::new(3.8, 0.2));
+        b.place_origin(&nearest_b);
+
+        // width: distance(A, B) = width (free_point.gcs:14)
+        // width: a distance is zero or more.
+        if params.width < 0.0 {
+            return Err(SolveError::new(
+                "width",
+                "distance(A, B) = width",
+                ErrorKind::InvalidParam,
+                params.width,
+            ));
         }
-    }
+        let circle_a = Circle::new(Point2::new(0.0, 0.0), params.width).ok_or_else(|| {
+            SolveError::new(
+                "width",
+                "distance(A, B) = width",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let width_meeting = intersect2d::line_circle(&line_base, &circle_a);
+        if let Some(e) =
+            SolveError::from_contact("width", "distance(A, B) = width", width_meeting.contact)
+        {
+            return Err(e);
+        }
+
+        // Each root of `distance(A, B) = width` in turn (`width`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { width: root };
+            let mut b = b;
+            let mut c = c;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let width = width_meeting
+                    .branch(usize::from(branches.width))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "width",
+                            "distance(A, B) = width",
+                            ErrorKind::NoSuchBranch,
+                            width_meeting.roots.len() as f64,
+                        )
+                    })?;
+                b.place_origin(&width);
+
+                // side: distance(B, C) = 3 (free_point.gcs:15)
+                let circle_width = Circle::new(width, 3.0).ok_or_else(|| {
+                    SolveError::new("side", "distance(B, C) = 3", ErrorKind::Degenerate, 0.0)
+                })?;
+                let nearest_c = circle_width.nearest(Point2::new(2.1, 2.9));
+                c.place_origin(&nearest_c);
+                let on_circle_width = circle_width.at(defaults.c_angle);
+                c.place_origin(&on_circle_width);
+
+                let solution = Solution {
+                    base,
+                    b,
+                    c,
+                    branches: *branches,
+                    defaults: Defaults {
+                        c_angle: defaults.c_angle,
+                    },
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -936,35 +936,137 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.l7_tool_x(), b.l7_tool_x()) {
+        return false;
+    }
+    if !near(a.l7_tool_z(), b.l7_tool_z()) {
+        return false;
+    }
+    if !near(a.l7_j7_x(), b.l7_j7_x()) {
+        return false;
+    }
+    if !near(a.l7_j7_z(), b.l7_j7_z()) {
+        return false;
+    }
+    if !near(a.l6_j7_x(), b.l6_j7_x()) {
+        return false;
+    }
+    if !near(a.l6_j7_z(), b.l6_j7_z()) {
+        return false;
+    }
+    if !near(a.l6_j6_x(), b.l6_j6_x()) {
+        return false;
+    }
+    if !near(a.l6_j6_z(), b.l6_j6_z()) {
+        return false;
+    }
+    if !near(a.l5_j6_x(), b.l5_j6_x()) {
+        return false;
+    }
+    if !near(a.l5_j6_z(), b.l5_j6_z()) {
+        return false;
+    }
+    if !near(a.l5_j5_x(), b.l5_j5_x()) {
+        return false;
+    }
+    if !near(a.l5_j5_z(), b.l5_j5_z()) {
+        return false;
+    }
+    if !near(a.l4_j5_x(), b.l4_j5_x()) {
+        return false;
+    }
+    if !near(a.l4_j5_z(), b.l4_j5_z()) {
+        return false;
+    }
+    if !near(a.l4_j4_x(), b.l4_j4_x()) {
+        return false;
+    }
+    if !near(a.l4_j4_z(), b.l4_j4_z()) {
+        return false;
+    }
+    if !near(a.l3_j4_x(), b.l3_j4_x()) {
+        return false;
+    }
+    if !near(a.l3_j4_z(), b.l3_j4_z()) {
+        return false;
+    }
+    if !near(a.l3_j3_x(), b.l3_j3_x()) {
+        return false;
+    }
+    if !near(a.l3_j3_z(), b.l3_j3_z()) {
+        return false;
+    }
+    if !near(a.l2_j3_x(), b.l2_j3_x()) {
+        return false;
+    }
+    if !near(a.l2_j3_z(), b.l2_j3_z()) {
+        return false;
+    }
+    if !near(a.l2_j2_x(), b.l2_j2_x()) {
+        return false;
+    }
+    if !near(a.l2_j2_z(), b.l2_j2_z()) {
+        return false;
+    }
+    if !near(a.l1_j2_x(), b.l1_j2_x()) {
+        return false;
+    }
+    if !near(a.l1_j2_z(), b.l1_j2_z()) {
+        return false;
+    }
+    if !near(a.l1_j1_x(), b.l1_j1_x()) {
+        return false;
+    }
+    if !near(a.l1_j1_z(), b.l1_j1_z()) {
+        return false;
+    }
+    if !near(a.ground_target_x(), b.ground_target_x()) {
+        return false;
+    }
+    if !near(a.ground_target_z(), b.ground_target_z()) {
+        return false;
+    }
+    if !near(a.ground_base_x(), b.ground_base_x()) {
+        return false;
+    }
+    if !near(a.ground_base_z(), b.ground_base_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -976,7 +1078,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -984,22 +1090,424 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..8usize {
-        let branches = Branches {
-            revolute_l4_j4_l3_j4: (combination % 2) as u8,
-            revolute_l2_j2_l1_j2: (combination / 2 % 2) as u8,
-            revolute_l6_j6_l5_j6: (combination / 4 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("px", params.px),
+            ("py", params.py),
+            ("pz", params.pz),
+            ("zx", params.zx),
+            ("zy", params.zy),
+            ("zz", params.zz),
+            ("xx", params.xx),
+            ("xy", params.xy),
+            ("xz", params.xz),
+            ("q3", params.q3),
+        ])?;
+        // The sketch of `ground.target` depends on params: is it usable?
+        if frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .is_none()
+        {
+            return Err(SolveError::new(
+                "ground.target",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-    }
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_target_local = Point3::new(params.px, params.py, params.pz);
+        let ground_target_z_local = frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let ground_target_x_local = frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let l1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut l2 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut l3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut l4 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut l5 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut l6 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut l7 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // revolute(l1.j1, ground.base) (iiwa.gcs:51)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // revolute(l7.j7, l6.j7) (iiwa.gcs:58)
+        let ground_target = ground.point_to_global(&ground_target_local);
+        let shift = ground_target - Point3::new(0.4, 0.0, 0.594);
+        l7.translate(&shift);
+        let ground_target_z = ground.vector_to_global(&ground_target_z_local);
+        let l7_tool_z = l7.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
+        let turn = frame::rotation_between3(
+            &l7_tool_z,
+            &ground_target_z,
+            &frame::perpendicular(&l7_tool_z),
+        );
+        l7.rotate_about_by(&ground_target, &turn);
+        let l7_j7 = l7.point_to_global(&Point3::new(0.4, 0.0, 0.78));
+        let shift_2 = l7_j7 - Point3::new(0.4, 0.0, 0.78);
+        l6.translate(&shift_2);
+        let l6_j6 = l6.point_to_global(&Point3::new(0.4, 0.0, 0.78));
+        let shift_3 = l6_j6 - Point3::new(0.4, 0.0, 0.78);
+        l5.translate(&shift_3);
+        let l5_j5 = l5.point_to_global(&Point3::new(0.4, 0.0, 0.78));
+        let shift_4 = l5_j5 - Point3::new(0.4, 0.0, 0.78);
+        l4.translate(&shift_4);
+        let l7_j7_z = l7.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
+        let l6_j7_z = l6.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
+        let turn_2 = frame::rotation_between3(&l6_j7_z, &l7_j7_z, &frame::perpendicular(&l6_j7_z));
+        l6.rotate_about_by(&l7_j7, &turn_2);
+
+        // weld(l7.tool, ground.target) (iiwa.gcs:59)
+        let l7_tool_z_2 = l7.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
+        let ground_target_x = ground.vector_to_global(&ground_target_x_local);
+        let turned = frame::rotation_about_axis(&l7_tool_z_2, -0.0) * ground_target_x;
+        let l7_tool_x = l7.vector_to_global(&Vector3::x());
+        let turn_3 = frame::rotation_about_axis(
+            &ground_target_z,
+            frame::signed_angle3(&l7_tool_x, &turned, &ground_target_z),
+        );
+        l7.rotate_about_by(&ground_target, &turn_3);
+
+        // offset_x(l2.j3, l3.j3) = q3 (iiwa.gcs:54)
+        let turned_2 = frame::rotation_about_axis(&Vector3::z(), params.q3) * Vector3::x();
+        let turn_4 = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(&Vector3::x(), &turned_2, &Vector3::z()),
+        );
+        l3.rotate_about_by(&Point3::new(0.0, 0.0, 0.36), &turn_4);
+
+        // revolute(l3.j3, l2.j3) (iiwa.gcs:53)
+        let l3_j3_z = l3.vector_to_global(&Vector3::z());
+        let residual = check::space::parallel(l3_j3_z, Vector3::z(), 1.0);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "revolute_l3_j3_l2_j3",
+                "revolute(l3.j3, l2.j3)",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
+        }
+
+        // revolute(l4.j4, l3.j4) (iiwa.gcs:55)
+        let l4_j4 = l4.point_to_global(&Point3::new(0.0, 0.0, 0.78));
+        let l3_j4 = l3.point_to_global(&Point3::new(0.0, 0.0, 0.78));
+        let shift_5 = l4_j4 - l3_j4;
+        l2.translate(&shift_5);
+        l3.translate(&shift_5);
+        let l4_j4_z = l4.vector_to_global(&Vector3::new(0.0, -1.0, 2.220446049250313e-16));
+        let l3_j4_z = l3.vector_to_global(&Vector3::new(0.0, -1.0, 2.220446049250313e-16));
+        let turn_5 = frame::rotation_between3(&l3_j4_z, &l4_j4_z, &frame::perpendicular(&l3_j4_z));
+        l2.rotate_about_by(&l4_j4, &turn_5);
+        l3.rotate_about_by(&l4_j4, &turn_5);
+        let l2_j2 = l2.point_to_global(&Point3::new(0.0, 0.0, 0.36));
+        let orbit = Circle3::orbit(
+            &l4_j4,
+            &frame::unit3(&l4_j4_z).ok_or_else(|| {
+                SolveError::new(
+                    "revolute_l4_j4_l3_j4",
+                    "revolute(l4.j4, l3.j4)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+            &l2_j2,
+        );
+        let sphere = Sphere::new(l5_j5, (Point3::new(0.0, 0.0, 0.36) - l5_j5).norm());
+        let revolute_l4_j4_l3_j4_meeting = intersect3d::circle_sphere(&orbit, &sphere);
+        if let Some(e) = SolveError::from_contact(
+            "revolute_l4_j4_l3_j4",
+            "revolute(l4.j4, l3.j4)",
+            revolute_l4_j4_l3_j4_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `revolute(l4.j4, l3.j4)` in turn (`revolute_l4_j4_l3_j4`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                revolute_l4_j4_l3_j4: root,
+                ..*branches
+            };
+            let mut l2 = l2;
+            let mut l3 = l3;
+            let mut l4 = l4;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let revolute_l4_j4_l3_j4 = revolute_l4_j4_l3_j4_meeting
+                    .roots
+                    .get(usize::from(branches.revolute_l4_j4_l3_j4))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_l4_j4_l3_j4",
+                            "revolute(l4.j4, l3.j4)",
+                            ErrorKind::NoSuchBranch,
+                            revolute_l4_j4_l3_j4_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let turn_6 = frame::rotation_about_axis(
+                    &l4_j4_z,
+                    frame::signed_angle3(
+                        &(l2_j2 - l4_j4),
+                        &(revolute_l4_j4_l3_j4 - l4_j4),
+                        &l4_j4_z,
+                    ),
+                );
+                l2.rotate_about_by(&l4_j4, &turn_6);
+                l3.rotate_about_by(&l4_j4, &turn_6);
+                let direction = frame::unit3(&(revolute_l4_j4_l3_j4 - l5_j5)).ok_or_else(|| {
+                    SolveError::new(
+                        "revolute_l4_j4_l3_j4",
+                        "revolute(l4.j4, l3.j4)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let direction_2 =
+                    frame::unit3(&(Point3::new(0.0, 0.0, 0.36) - l5_j5)).ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_l4_j4_l3_j4",
+                            "revolute(l4.j4, l3.j4)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let turn_7 = frame::rotation_between3(
+                    &direction,
+                    &direction_2,
+                    &frame::perpendicular(&direction),
+                );
+                l4.rotate_about_by(&l5_j5, &turn_7);
+                l2.rotate_about_by(&l5_j5, &turn_7);
+                l3.rotate_about_by(&l5_j5, &turn_7);
+
+                // revolute(l2.j2, l1.j2) (iiwa.gcs:52)
+                let l2_j2_2 = l2.point_to_global(&Point3::new(0.0, 0.0, 0.36));
+                let l2_j2_z = l2.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+                let length = (l5_j5 - l2_j2_2).dot(&l2_j2_z);
+                let sum = length;
+                if !gcs_runtime::num::is_finite(sum) {
+                    return Err(SolveError::new(
+                        "revolute_l2_j2_l1_j2",
+                        "revolute(l2.j2, l1.j2)",
+                        ErrorKind::InvalidValue,
+                        sum,
+                    ));
+                }
+                let cone = frame::plane_cone(
+                    &Point3::new(0.0, 0.0, 0.36),
+                    &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                    &Point3::new(0.0, 0.0, 0.0),
+                    &l5_j5,
+                    sum,
+                );
+                let reach = cone.0.try_normalize(0.0).ok_or_else(|| {
+                    SolveError::new(
+                        "revolute_l2_j2_l1_j2",
+                        "revolute(l2.j2, l1.j2)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let gap = (cone.1.abs() - 1.0).max(0.0) * cone.0.norm();
+                let turns = frame::turns_to_angle(
+                    &reach,
+                    &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                    &Vector3::z(),
+                    cone.1.clamp(-1.0, 1.0).acos(),
+                );
+                if let Some(mut e) = SolveError::from_contact(
+                    "revolute_l2_j2_l1_j2",
+                    "revolute(l2.j2, l1.j2)",
+                    turns.contact,
+                ) {
+                    e.magnitude = e.magnitude.max(gap);
+                    return Err(e);
+                }
+                if gap > gcs_runtime::tol::LENGTH_REL * (1.0 + cone.0.norm()) {
+                    return Err(SolveError::new(
+                        "revolute_l2_j2_l1_j2",
+                        "revolute(l2.j2, l1.j2)",
+                        ErrorKind::NoIntersection,
+                        gap,
+                    ));
+                }
+
+                // Each root of `revolute(l2.j2, l1.j2)` in turn (`revolute_l2_j2_l1_j2`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        revolute_l2_j2_l1_j2: root,
+                        ..*branches
+                    };
+                    let mut l1 = l1;
+                    let mut l2 = l2;
+                    let mut l3 = l3;
+                    let mut l4 = l4;
+                    let mut l5 = l5;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let normal = turns
+                            .roots
+                            .get(usize::from(branches.revolute_l2_j2_l1_j2))
+                            .ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_l2_j2_l1_j2",
+                                    "revolute(l2.j2, l1.j2)",
+                                    ErrorKind::NoSuchBranch,
+                                    turns.roots.len() as f64,
+                                )
+                            })?;
+                        let turn_8 = frame::rotation_about_axis(
+                            &Vector3::z(),
+                            frame::signed_angle3(
+                                &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                                &normal,
+                                &Vector3::z(),
+                            ),
+                        );
+                        l1.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_8);
+                        let l1_j2_z =
+                            l1.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+                        let turn_9 = frame::rotation_about_axis(
+                            &direction_2,
+                            frame::signed_angle3(&l2_j2_z, &l1_j2_z, &direction_2),
+                        );
+                        l4.rotate_about_by(&l5_j5, &turn_9);
+                        l2.rotate_about_by(&l5_j5, &turn_9);
+                        l3.rotate_about_by(&l5_j5, &turn_9);
+                        let l2_j2_z_2 =
+                            l2.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+                        let residual_2 = check::space::parallel(l2_j2_z_2, l1_j2_z, 1.0);
+                        if residual_2.is_nan() || residual_2 > tol {
+                            return Err(SolveError::new(
+                                "revolute_l2_j2_l1_j2",
+                                "revolute(l2.j2, l1.j2)",
+                                ErrorKind::Inconsistent,
+                                residual_2,
+                            ));
+                        }
+
+                        // revolute(l5.j5, l4.j5) (iiwa.gcs:56)
+                        let l4_j5_z =
+                            l4.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
+                        let l5_j5_z =
+                            l5.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
+                        let turn_10 = frame::rotation_between3(
+                            &l5_j5_z,
+                            &l4_j5_z,
+                            &frame::perpendicular(&l5_j5_z),
+                        );
+                        l5.rotate_about_by(&l6_j6, &turn_10);
+
+                        // revolute(l6.j6, l5.j6) (iiwa.gcs:57)
+                        let l5_j5_z_2 =
+                            l5.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
+                        let l6_j6_z =
+                            l6.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+                        let turns_2 = frame::turns_to_angle(
+                            &l5_j5_z_2,
+                            &l6_j6_z,
+                            &l7_j7_z,
+                            std::f64::consts::FRAC_PI_2,
+                        );
+                        if let Some(e) = SolveError::from_contact(
+                            "revolute_l6_j6_l5_j6",
+                            "revolute(l6.j6, l5.j6)",
+                            turns_2.contact,
+                        ) {
+                            return Err(e);
+                        }
+
+                        // Each root of `revolute(l6.j6, l5.j6)` in turn (`revolute_l6_j6_l5_j6`), the steps above shared by all.
+                        for root in 0..2u8 {
+                            let branches = &Branches {
+                                revolute_l6_j6_l5_j6: root,
+                                ..*branches
+                            };
+                            let mut l5 = l5;
+                            let mut l6 = l6;
+                            // A failure ends this root's assemblies only.
+                            let _ = (|| -> Result<(), SolveError> {
+                                let turned_3 = turns_2
+                                    .roots
+                                    .get(usize::from(branches.revolute_l6_j6_l5_j6))
+                                    .ok_or_else(|| {
+                                        SolveError::new(
+                                            "revolute_l6_j6_l5_j6",
+                                            "revolute(l6.j6, l5.j6)",
+                                            ErrorKind::NoSuchBranch,
+                                            turns_2.roots.len() as f64,
+                                        )
+                                    })?;
+                                let turn_11 = frame::rotation_about_axis(
+                                    &l7_j7_z,
+                                    frame::signed_angle3(&l6_j6_z, &turned_3, &l7_j7_z),
+                                );
+                                l6.rotate_about_by(&l7_j7, &turn_11);
+                                let l6_j6_z_2 = l6.vector_to_global(&Vector3::new(
+                                    0.0,
+                                    1.0,
+                                    2.220446049250313e-16,
+                                ));
+                                let l5_j6_z = l5.vector_to_global(&Vector3::new(
+                                    0.0,
+                                    1.0,
+                                    2.220446049250313e-16,
+                                ));
+                                let turn_12 = frame::rotation_about_axis(
+                                    &l4_j5_z,
+                                    frame::signed_angle3(&l5_j6_z, &l6_j6_z_2, &l4_j5_z),
+                                );
+                                l5.rotate_about_by(&l6_j6, &turn_12);
+
+                                let solution = Solution {
+                                    ground,
+                                    ground_target_local,
+                                    ground_target_z_local,
+                                    ground_target_x_local,
+                                    l1,
+                                    l2,
+                                    l3,
+                                    l4,
+                                    l5,
+                                    l6,
+                                    l7,
+                                    branches: *branches,
+                                };
+                                keep(&mut found, &mut kept, solution.points(), solution);
+                                Ok(())
+                            })();
+                        }
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -473,35 +473,47 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.crank_u(), b.crank_u()) {
+        return false;
+    }
+    if !near(a.x(), b.x()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -513,7 +525,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -521,24 +537,329 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..32usize {
-        let branches = Branches {
-            distance_crank_tip_lower: (combination % 2) as u8,
-            up: (combination / 2 % 2) as u8,
-            apex: (combination / 4 % 2) as u8,
-            distance_top_knee: (combination / 8 % 2) as u8,
-            stride: (combination / 16 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
+        // The sketch: where every geom starts.
+        let mut crank = Frame2::at(Point2::origin());
+        let upper = Frame2::at(Point2::new(-24.0135, 31.2721));
+        let mut lower = Frame2::at(Point2::new(-26.9521, -45.5152));
+        let mut top = Frame2::at(Point2::new(-74.7944, 8.1432));
+        let knee = Frame2::at(Point2::new(-59.2315, -28.0529));
+        let foot = Frame2::at(Point2::new(-43.1601, -91.7569));
+
+        // coincident(crank.o, O) (jansen_leg.gcs:19)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // distance(B, top) = 40.1 (jansen_leg.gcs:25)
+        let circle_b = Circle::new(Point2::new(-38.0, -7.8), 40.1).ok_or_else(|| {
+            SolveError::new(
+                "distance_B_top",
+                "distance(B, top) = 40.1",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_top = circle_b.nearest(Point2::new(-74.7944, 8.1432));
+        top.place_origin(&nearest_top);
+
+        // down: distance(B, lower) = 39.3 (jansen_leg.gcs:24)
+        let circle_b_2 = Circle::new(Point2::new(-38.0, -7.8), 39.3).ok_or_else(|| {
+            SolveError::new(
+                "down",
+                "distance(B, lower) = 39.3",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_lower = circle_b_2.nearest(Point2::new(-26.9521, -45.5152));
+        lower.place_origin(&nearest_lower);
+
+        // drive: angle(X, crank.u) = theta (jansen_leg.gcs:20)
+        let x_dir_turned = direction_at(params.theta);
+        let turn = rotation_from_x_unit(&x_dir_turned);
+        crank.set_rotation(&turn);
+
+        // distance(crank.tip, lower) = 61.9 (jansen_leg.gcs:23)
+        let crank_tip = Point2::from(crank.x_axis() * 15.0);
+        let circle_crank_tip = Circle::new(crank_tip, 61.9).ok_or_else(|| {
+            SolveError::new(
+                "distance_crank_tip_lower",
+                "distance(crank.tip, lower) = 61.9",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let distance_crank_tip_lower_chord =
+            intersect2d::circle_circle_chord(&circle_b_2, &circle_crank_tip).map_err(|miss| {
+                SolveError::from_miss(
+                    "distance_crank_tip_lower",
+                    "distance(crank.tip, lower) = 61.9",
+                    miss,
+                )
+            })?;
+
+        // Each root of `distance(crank.tip, lower) = 61.9` in turn (`distance_crank_tip_lower`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                distance_crank_tip_lower: root,
+                ..*branches
+            };
+            let mut upper = upper;
+            let mut lower = lower;
+            let mut knee = knee;
+            let mut foot = foot;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let distance_crank_tip_lower = distance_crank_tip_lower_chord
+                    .root(usize::from(branches.distance_crank_tip_lower))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "distance_crank_tip_lower",
+                            "distance(crank.tip, lower) = 61.9",
+                            ErrorKind::NoSuchBranch,
+                            2.0,
+                        )
+                    })?;
+                lower.place_origin(&distance_crank_tip_lower);
+
+                // bend: distance(lower, knee) = 36.7 (jansen_leg.gcs:28)
+                let circle_distance_crank_tip_lower = Circle::new(distance_crank_tip_lower, 36.7)
+                    .ok_or_else(|| {
+                    SolveError::new(
+                        "bend",
+                        "distance(lower, knee) = 36.7",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let nearest_knee =
+                    circle_distance_crank_tip_lower.nearest(Point2::new(-59.2315, -28.0529));
+                knee.place_origin(&nearest_knee);
+
+                // distance(crank.tip, upper) = 50 (jansen_leg.gcs:21)
+                let circle_crank_tip_2 = Circle::new(crank_tip, 50.0).ok_or_else(|| {
+                    SolveError::new(
+                        "distance_crank_tip_upper",
+                        "distance(crank.tip, upper) = 50",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let nearest_upper = circle_crank_tip_2.nearest(Point2::new(-24.0135, 31.2721));
+                upper.place_origin(&nearest_upper);
+
+                // distance(lower, foot) = 49 (jansen_leg.gcs:29)
+                let circle_distance_crank_tip_lower_2 = Circle::new(distance_crank_tip_lower, 49.0)
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "distance_lower_foot",
+                            "distance(lower, foot) = 49",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let nearest_foot =
+                    circle_distance_crank_tip_lower_2.nearest(Point2::new(-43.1601, -91.7569));
+                foot.place_origin(&nearest_foot);
+
+                // up: distance(B, upper) = 41.5 (jansen_leg.gcs:22)
+                let circle_b_3 = Circle::new(Point2::new(-38.0, -7.8), 41.5).ok_or_else(|| {
+                    SolveError::new(
+                        "up",
+                        "distance(B, upper) = 41.5",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let up_chord = intersect2d::circle_circle_chord(&circle_crank_tip_2, &circle_b_3)
+                    .map_err(|miss| {
+                    SolveError::from_miss("up", "distance(B, upper) = 41.5", miss)
+                })?;
+
+                // Each root of `distance(B, upper) = 41.5` in turn (`up`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        up: root,
+                        ..*branches
+                    };
+                    let mut upper = upper;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let up = up_chord.root(usize::from(branches.up)).ok_or_else(|| {
+                            SolveError::new(
+                                "up",
+                                "distance(B, upper) = 41.5",
+                                ErrorKind::NoSuchBranch,
+                                2.0,
+                            )
+                        })?;
+                        upper.place_origin(&up);
+
+                        // apex: distance(upper, top) = 55.8 (jansen_leg.gcs:26)
+                        let circle_up = Circle::new(up, 55.8).ok_or_else(|| {
+                            SolveError::new(
+                                "apex",
+                                "distance(upper, top) = 55.8",
+                                ErrorKind::Degenerate,
+                                0.0,
+                            )
+                        })?;
+                        let apex_chord = intersect2d::circle_circle_chord(&circle_b, &circle_up)
+                            .map_err(|miss| {
+                                SolveError::from_miss("apex", "distance(upper, top) = 55.8", miss)
+                            })?;
+
+                        // Each root of `distance(upper, top) = 55.8` in turn (`apex`), the steps above shared by all.
+                        for root in 0..2u8 {
+                            let branches = &Branches {
+                                apex: root,
+                                ..*branches
+                            };
+                            let mut top = top;
+                            // A failure ends this root's assemblies only.
+                            let _ = (|| -> Result<(), SolveError> {
+                                let apex = apex_chord.root(usize::from(branches.apex)).ok_or_else(
+                                    || {
+                                        SolveError::new(
+                                            "apex",
+                                            "distance(upper, top) = 55.8",
+                                            ErrorKind::NoSuchBranch,
+                                            2.0,
+                                        )
+                                    },
+                                )?;
+                                top.place_origin(&apex);
+
+                                // distance(top, knee) = 39.4 (jansen_leg.gcs:27)
+                                let circle_apex = Circle::new(apex, 39.4).ok_or_else(|| {
+                                    SolveError::new(
+                                        "distance_top_knee",
+                                        "distance(top, knee) = 39.4",
+                                        ErrorKind::Degenerate,
+                                        0.0,
+                                    )
+                                })?;
+                                let distance_top_knee_chord = intersect2d::circle_circle_chord(
+                                    &circle_distance_crank_tip_lower,
+                                    &circle_apex,
+                                )
+                                .map_err(|miss| {
+                                    SolveError::from_miss(
+                                        "distance_top_knee",
+                                        "distance(top, knee) = 39.4",
+                                        miss,
+                                    )
+                                })?;
+
+                                // Each root of `distance(top, knee) = 39.4` in turn (`distance_top_knee`), the steps above shared by all.
+                                for root in 0..2u8 {
+                                    let branches = &Branches {
+                                        distance_top_knee: root,
+                                        ..*branches
+                                    };
+                                    let mut knee = knee;
+                                    // A failure ends this root's assemblies only.
+                                    let _ = (|| -> Result<(), SolveError> {
+                                        let distance_top_knee = distance_top_knee_chord
+                                            .root(usize::from(branches.distance_top_knee))
+                                            .ok_or_else(|| {
+                                                SolveError::new(
+                                                    "distance_top_knee",
+                                                    "distance(top, knee) = 39.4",
+                                                    ErrorKind::NoSuchBranch,
+                                                    2.0,
+                                                )
+                                            })?;
+                                        knee.place_origin(&distance_top_knee);
+
+                                        // stride: distance(knee, foot) = 65.7 (jansen_leg.gcs:30)
+                                        let circle_distance_top_knee =
+                                            Circle::new(distance_top_knee, 65.7).ok_or_else(
+                                                || {
+                                                    SolveError::new(
+                                                        "stride",
+                                                        "distance(knee, foot) = 65.7",
+                                                        ErrorKind::Degenerate,
+                                                        0.0,
+                                                    )
+                                                },
+                                            )?;
+                                        let stride_chord = intersect2d::circle_circle_chord(
+                                            &circle_distance_crank_tip_lower_2,
+                                            &circle_distance_top_knee,
+                                        )
+                                        .map_err(|miss| {
+                                            SolveError::from_miss(
+                                                "stride",
+                                                "distance(knee, foot) = 65.7",
+                                                miss,
+                                            )
+                                        })?;
+
+                                        // Each root of `distance(knee, foot) = 65.7` in turn (`stride`), the steps above shared by all.
+                                        for root in 0..2u8 {
+                                            let branches = &Branches {
+                                                stride: root,
+                                                ..*branches
+                                            };
+                                            let mut foot = foot;
+                                            // A failure ends this root's assemblies only.
+                                            let _ = (|| -> Result<(), SolveError> {
+                                                let stride = stride_chord
+                                                    .root(usize::from(branches.stride))
+                                                    .ok_or_else(|| {
+                                                        SolveError::new(
+                                                            "stride",
+                                                            "distance(knee, foot) = 65.7",
+                                                            ErrorKind::NoSuchBranch,
+                                                            2.0,
+                                                        )
+                                                    })?;
+                                                foot.place_origin(&stride);
+
+                                                let solution = Solution {
+                                                    crank,
+                                                    upper,
+                                                    lower,
+                                                    top,
+                                                    knee,
+                                                    foot,
+                                                    branches: *branches,
+                                                };
+                                                keep(
+                                                    &mut found,
+                                                    &mut kept,
+                                                    solution.points(),
+                                                    solution,
+                                                );
+                                                Ok(())
+                                            })(
+                                            );
+                                        }
+                                        Ok(())
+                                    })();
+                                }
+                                Ok(())
+                            })();
+                        }
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
         }
-    }
+        Ok(())
+    })();
     found
 }

@@ -451,35 +451,59 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.slider_s_x(), b.slider_s_x()) {
+        return false;
+    }
+    if !near(a.crank_tip_x(), b.crank_tip_x()) {
+        return false;
+    }
+    if !near(a.crank_o_x(), b.crank_o_x()) {
+        return false;
+    }
+    if !near(a.ground_back_x(), b.ground_back_x()) {
+        return false;
+    }
+    if !near(a.ground_rail_x(), b.ground_rail_x()) {
+        return false;
+    }
+    if !near(a.ground_o_x(), b.ground_o_x()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -491,7 +515,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -499,21 +527,187 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..4usize {
-        let branches = Branches {
-            distance_crank_tip_p: (combination % 2) as u8,
-            slide: (combination / 2 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("phi", params.phi),
+            ("r", params.r),
+            ("l", params.l),
+        ])?;
+        // The sketch: where every geom starts.
+        let ground = Frame2::at(Point2::origin());
+        let mut crank = Frame2::at(Point2::origin());
+        let crank_tip_local = Point2::new(params.r, 0.0);
+        let crank_tip_x_local = Vector2::new(1.0, 0.0).normalize();
+        let mut p = Frame2::at(Point2::new(5.2, 0.0));
+        let slider = Frame2::at(Point2::new(-3.0, 0.0));
+
+        // drive: offset_x(ground.o, crank.o) = phi (joint_values_planar.gcs:18)
+        let ground_o_x_dir_turned = direction_at(params.phi);
+        let turn = rotation_from_x_unit(&ground_o_x_dir_turned);
+        crank.set_rotation(&turn);
+
+        // in_line(P, ground.rail) (joint_values_planar.gcs:19)
+        let line_ground_rail = Line::new(Point2::new(0.0, 0.0), Vector2::new(1.0, 0.0))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "in_line_P_ground_rail",
+                    "in_line(P, ground.rail)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let nearest_p = line_ground_rail.nearest(Point2::new(5.2, 0.0));
+        p.place_origin(&nearest_p);
+
+        // pivot: revolute(crank.o, ground.o) (joint_values_planar.gcs:17)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // distance(crank.tip, P) = l (joint_values_planar.gcs:20)
+        let crank_tip = Point2::from(crank.x_axis() * crank_tip_local.x);
+        // distance_crank_tip_P: a distance is zero or more.
+        if params.l < 0.0 {
+            return Err(SolveError::new(
+                "l",
+                "distance(crank.tip, P) = l",
+                ErrorKind::InvalidParam,
+                params.l,
+            ));
         }
-    }
+        let circle_crank_tip = Circle::new(crank_tip, params.l).ok_or_else(|| {
+            SolveError::new(
+                "distance_crank_tip_P",
+                "distance(crank.tip, P) = l",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let distance_crank_tip_p_meeting =
+            intersect2d::line_circle(&line_ground_rail, &circle_crank_tip);
+        if let Some(e) = SolveError::from_contact(
+            "distance_crank_tip_P",
+            "distance(crank.tip, P) = l",
+            distance_crank_tip_p_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `distance(crank.tip, P) = l` in turn (`distance_crank_tip_p`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                distance_crank_tip_p: root,
+                ..*branches
+            };
+            let mut p = p;
+            let mut slider = slider;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let distance_crank_tip_p = distance_crank_tip_p_meeting
+                    .branch(usize::from(branches.distance_crank_tip_p))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "distance_crank_tip_P",
+                            "distance(crank.tip, P) = l",
+                            ErrorKind::NoSuchBranch,
+                            distance_crank_tip_p_meeting.roots.len() as f64,
+                        )
+                    })?;
+                p.place_origin(&distance_crank_tip_p);
+
+                // distance(crank.tip, slider.s) = l (joint_values_planar.gcs:22)
+                // distance_crank_tip_slider_s: a distance is zero or more.
+                if params.l < 0.0 {
+                    return Err(SolveError::new(
+                        "l",
+                        "distance(crank.tip, slider.s) = l",
+                        ErrorKind::InvalidParam,
+                        params.l,
+                    ));
+                }
+                let circle_crank_tip_2 = Circle::new(crank_tip, params.l).ok_or_else(|| {
+                    SolveError::new(
+                        "distance_crank_tip_slider_s",
+                        "distance(crank.tip, slider.s) = l",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let nearest_slider_s = circle_crank_tip_2.nearest(Point2::new(-3.0, 0.0));
+                slider.place_origin(&nearest_slider_s);
+
+                // slide: prismatic(slider.s, ground.back) (joint_values_planar.gcs:21)
+                let line_ground_back = Line::new(Point2::new(0.0, 0.0), Vector2::new(-1.0, 0.0))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "slide",
+                            "prismatic(slider.s, ground.back)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let slide_meeting =
+                    intersect2d::line_circle(&line_ground_back, &circle_crank_tip_2);
+                if let Some(e) = SolveError::from_contact(
+                    "slide",
+                    "prismatic(slider.s, ground.back)",
+                    slide_meeting.contact,
+                ) {
+                    return Err(e);
+                }
+
+                // Each root of `prismatic(slider.s, ground.back)` in turn (`slide`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        slide: root,
+                        ..*branches
+                    };
+                    let mut slider = slider;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let slide = slide_meeting
+                            .branch(usize::from(branches.slide))
+                            .ok_or_else(|| {
+                                SolveError::new(
+                                    "slide",
+                                    "prismatic(slider.s, ground.back)",
+                                    ErrorKind::NoSuchBranch,
+                                    slide_meeting.roots.len() as f64,
+                                )
+                            })?;
+                        slider.place_origin(&slide);
+                        let turn_2 = rotation_between_units(
+                            &Vector2::new(-1.0, 0.0),
+                            &Vector2::new(-1.0, 0.0),
+                        );
+                        slider.set_rotation(&turn_2);
+
+                        let solution = Solution {
+                            ground,
+                            crank,
+                            crank_tip_local,
+                            crank_tip_x_local,
+                            p,
+                            slider,
+                            branches: *branches,
+                        };
+                        keep(&mut found, &mut kept, solution.points(), solution);
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

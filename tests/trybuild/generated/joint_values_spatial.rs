@@ -846,35 +846,107 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.collar_m_x(), b.collar_m_x()) {
+        return false;
+    }
+    if !near(a.collar_m_z(), b.collar_m_z()) {
+        return false;
+    }
+    if !near(a.slider_pin_x(), b.slider_pin_x()) {
+        return false;
+    }
+    if !near(a.slider_pin_z(), b.slider_pin_z()) {
+        return false;
+    }
+    if !near(a.slider_s_x(), b.slider_s_x()) {
+        return false;
+    }
+    if !near(a.slider_s_z(), b.slider_s_z()) {
+        return false;
+    }
+    if !near(a.rod_b_x(), b.rod_b_x()) {
+        return false;
+    }
+    if !near(a.rod_b_z(), b.rod_b_z()) {
+        return false;
+    }
+    if !near(a.rod_a_x(), b.rod_a_x()) {
+        return false;
+    }
+    if !near(a.rod_a_z(), b.rod_a_z()) {
+        return false;
+    }
+    if !near(a.arm_tip_x(), b.arm_tip_x()) {
+        return false;
+    }
+    if !near(a.arm_tip_z(), b.arm_tip_z()) {
+        return false;
+    }
+    if !near(a.arm_o_x(), b.arm_o_x()) {
+        return false;
+    }
+    if !near(a.arm_o_z(), b.arm_o_z()) {
+        return false;
+    }
+    if !near(a.ground_level_x(), b.ground_level_x()) {
+        return false;
+    }
+    if !near(a.ground_level_z(), b.ground_level_z()) {
+        return false;
+    }
+    if !near(a.ground_axis_x(), b.ground_axis_x()) {
+        return false;
+    }
+    if !near(a.ground_axis_z(), b.ground_axis_z()) {
+        return false;
+    }
+    if !near(a.ground_rail_x(), b.ground_rail_x()) {
+        return false;
+    }
+    if !near(a.ground_rail_z(), b.ground_rail_z()) {
+        return false;
+    }
+    if !near(a.ground_o_x(), b.ground_o_x()) {
+        return false;
+    }
+    if !near(a.ground_o_z(), b.ground_o_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -886,7 +958,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -894,22 +970,366 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..4usize {
-        let branches = Branches {
-            distance_p_collar_m: (combination % 2) as u8,
-            pin: (combination / 2 % 2) as u8,
-            ..Branches::default()
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("phi", params.phi),
+            ("theta", params.theta),
+            ("h", params.h),
+            ("d", params.d),
+        ])?;
+        // The sketch of `ground.level` depends on params: is it usable?
+        if !gcs_runtime::num::is_finite(params.h - 3.0)
+            || frame::rotation_zx(&Vector3::new(0.0, 0.0, 1.0), &Vector3::new(1.0, 0.0, 0.0))
+                .is_none()
+        {
+            return Err(SolveError::new(
+                "ground.level",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-    }
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_level_local = Point3::new(0.0, 0.0, params.h - 3.0);
+        let ground_level_z_local =
+            frame::rotation_zx(&Vector3::new(0.0, 0.0, 1.0), &Vector3::new(1.0, 0.0, 0.0))
+                .unwrap_or_else(UnitQuaternion::identity)
+                * Vector3::z();
+        let ground_level_x_local =
+            frame::rotation_zx(&Vector3::new(0.0, 0.0, 1.0), &Vector3::new(1.0, 0.0, 0.0))
+                .unwrap_or_else(UnitQuaternion::identity)
+                * Vector3::x();
+        let mut arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let rod = Frame3::new(Point3::new(3.0, 0.0, 0.0), UnitQuaternion::identity());
+        let slider = Frame3::new(Point3::new(7.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut collar = Frame3::new(Point3::new(0.1, 0.2, -2.7), UnitQuaternion::identity());
+        let mut p = Frame3::new(Point3::new(0.0, 0.0, -1.0), UnitQuaternion::identity());
+        let tol = 8e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // crank: revolute(arm.o, ground.o) (joint_values_spatial.gcs:22)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // cyl: cylindrical(collar.m, ground.axis) (joint_values_spatial.gcs:27)
+        let line = Line3::new(Point3::new(0.0, 0.0, -3.0), Vector3::z());
+        let nearest = line.closest(&Point3::new(0.1, 0.2, -2.7));
+        let shift = nearest - Point3::new(0.1, 0.2, -2.7);
+        collar.translate(&shift);
+        let collar_m = collar.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let collar_m_z = collar.vector_to_global(&Vector3::z());
+        let turn = frame::rotation_between3(
+            &collar_m_z,
+            &Vector3::z(),
+            &frame::perpendicular(&collar_m_z),
+        );
+        collar.rotate_about_by(&collar_m, &turn);
+
+        // drive: offset_x(ground.o, arm.o) = phi (joint_values_spatial.gcs:23)
+        let residual = check::space::parallel(Vector3::z(), Vector3::z(), 1.0);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "drive",
+                "offset_x(ground.o, arm.o) = phi",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
+        }
+        let turned = frame::rotation_about_axis(&Vector3::z(), params.phi) * Vector3::x();
+        let turn_2 = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
+        );
+        arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+
+        // in_line(P, ground.axis) (joint_values_spatial.gcs:30)
+        let nearest_2 = line.closest(&Point3::new(0.0, 0.0, -1.0));
+        let shift_2 = nearest_2 - Point3::new(0.0, 0.0, -1.0);
+        p.translate(&shift_2);
+
+        // in_plane(collar.m, ground.level) (joint_values_spatial.gcs:29)
+        let ground_level = ground.point_to_global(&ground_level_local);
+        let ground_level_z = ground.vector_to_global(&ground_level_z_local);
+        let normal = frame::unit3(&ground_level_z).ok_or_else(|| {
+            SolveError::new(
+                "in_plane_collar_m_ground_level",
+                "in_plane(collar.m, ground.level)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let plane = Plane::from_point_normal(&ground_level, &normal);
+        let collar_m_2 = collar.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let in_plane_collar_m_ground_level_meeting = intersect3d::line_plane(&line, &plane);
+        if let Some(e) = SolveError::from_contact(
+            "in_plane_collar_m_ground_level",
+            "in_plane(collar.m, ground.level)",
+            in_plane_collar_m_ground_level_meeting.contact,
+        ) {
+            return Err(e);
+        }
+        let in_plane_collar_m_ground_level = in_plane_collar_m_ground_level_meeting
+            .roots
+            .get(0)
+            .ok_or_else(|| {
+                SolveError::new(
+                    "in_plane_collar_m_ground_level",
+                    "in_plane(collar.m, ground.level)",
+                    ErrorKind::NoSuchBranch,
+                    in_plane_collar_m_ground_level_meeting.roots.len() as f64,
+                )
+            })?;
+        let shift_3 = in_plane_collar_m_ground_level - collar_m_2;
+        collar.translate(&shift_3);
+
+        // distance(P, collar.m) = d (joint_values_spatial.gcs:31)
+        // distance_P_collar_m: a distance is zero or more.
+        if params.d < 0.0 {
+            return Err(SolveError::new(
+                "d",
+                "distance(P, collar.m) = d",
+                ErrorKind::InvalidParam,
+                params.d,
+            ));
+        }
+        let sphere = Sphere::new(in_plane_collar_m_ground_level, params.d);
+        let p_origin = p.origin;
+        let distance_p_collar_m_meeting = intersect3d::line_sphere(&line, &sphere);
+        if let Some(e) = SolveError::from_contact(
+            "distance_P_collar_m",
+            "distance(P, collar.m) = d",
+            distance_p_collar_m_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `distance(P, collar.m) = d` in turn (`distance_p_collar_m`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                distance_p_collar_m: root,
+                ..*branches
+            };
+            let mut rod = rod;
+            let mut slider = slider;
+            let mut collar = collar;
+            let mut p = p;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let distance_p_collar_m = distance_p_collar_m_meeting
+                    .roots
+                    .get(usize::from(branches.distance_p_collar_m))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "distance_P_collar_m",
+                            "distance(P, collar.m) = d",
+                            ErrorKind::NoSuchBranch,
+                            distance_p_collar_m_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let shift_4 = distance_p_collar_m - p_origin;
+                p.translate(&shift_4);
+
+                // offset_x(ground.axis, collar.m) = theta (joint_values_spatial.gcs:28)
+                let collar_m_z_2 = collar.vector_to_global(&Vector3::z());
+                let residual_2 = check::space::parallel(Vector3::z(), collar_m_z_2, 1.0);
+                if residual_2.is_nan() || residual_2 > tol {
+                    return Err(SolveError::new(
+                        "offset_x_ground_axis_collar_m",
+                        "offset_x(ground.axis, collar.m) = theta",
+                        ErrorKind::Inconsistent,
+                        residual_2,
+                    ));
+                }
+                let ground_axis_x = ground.vector_to_global(&Vector3::x());
+                let turned_2 =
+                    frame::rotation_about_axis(&Vector3::z(), params.theta) * ground_axis_x;
+                let collar_m_x = collar.vector_to_global(&Vector3::x());
+                let turn_3 = frame::rotation_about_axis(
+                    &Vector3::z(),
+                    frame::signed_angle3(&collar_m_x, &turned_2, &Vector3::z()),
+                );
+                collar.rotate_about_by(&in_plane_collar_m_ground_level, &turn_3);
+
+                // revolute(arm.tip, rod.a) (joint_values_spatial.gcs:24)
+                let arm_tip = arm.point_to_global(&Point3::new(3.0, 0.0, 0.0));
+                let shift_5 = arm_tip - Point3::new(3.0, 0.0, 0.0);
+                rod.translate(&shift_5);
+                let arm_tip_z = arm.vector_to_global(&Vector3::z());
+                let rod_a_z = rod.vector_to_global(&Vector3::z());
+                let turn_4 =
+                    frame::rotation_between3(&rod_a_z, &arm_tip_z, &frame::perpendicular(&rod_a_z));
+                rod.rotate_about_by(&arm_tip, &turn_4);
+
+                // pin: revolute(rod.b, slider.pin) (joint_values_spatial.gcs:25)
+                let rod_b_z = rod.vector_to_global(&Vector3::z());
+                let turn_5 = frame::rotation_between3(
+                    &Vector3::z(),
+                    &rod_b_z,
+                    &frame::perpendicular(&Vector3::z()),
+                );
+                slider.rotate_about_by(&Point3::new(7.0, 0.0, 0.0), &turn_5);
+
+                // slide: prismatic(slider.s, ground.rail) (joint_values_spatial.gcs:26)
+                let ground_rail = ground.point_to_global(&Point3::new(5.0, 0.0, 0.0));
+                let ground_rail_z = ground.vector_to_global(&Vector3::x());
+                let line_2 = Line3::new(
+                    ground_rail,
+                    frame::unit3(&ground_rail_z).ok_or_else(|| {
+                        SolveError::new(
+                            "slide",
+                            "prismatic(slider.s, ground.rail)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?,
+                );
+                let slider_s = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+                let nearest_3 = line_2.closest(&slider_s);
+                let shift_6 = nearest_3 - slider_s;
+                slider.translate(&shift_6);
+                let ground_rail_x = ground.vector_to_global(&Vector3::y());
+                let turned_3 = frame::rotation_about_axis(&ground_rail_z, -0.0) * ground_rail_x;
+                let slider_s_x = slider.vector_to_global(&Vector3::y());
+                let slider_s_2 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+                let slider_s_z = slider.vector_to_global(&Vector3::x());
+                let angle = frame::signed_angle3_both(
+                    [&slider_s_z, &slider_s_x],
+                    [&ground_rail_z, &turned_3],
+                    &rod_b_z,
+                );
+                let turn_6 = frame::rotation_about_axis(&rod_b_z, angle);
+                slider.rotate_about_by(&slider_s_2, &turn_6);
+                let slider_s_z_2 = slider.vector_to_global(&Vector3::x());
+                let residual_3 = check::space::parallel(slider_s_z_2, ground_rail_z, 1.0);
+                if residual_3.is_nan() || residual_3 > tol {
+                    return Err(SolveError::new(
+                        "slide",
+                        "prismatic(slider.s, ground.rail)",
+                        ErrorKind::Inconsistent,
+                        residual_3,
+                    ));
+                }
+                let slider_s_x_2 = slider.vector_to_global(&Vector3::y());
+                let residual_4 =
+                    check::space::twist(slider_s_z_2, slider_s_x_2, ground_rail_x, 0.0);
+                if residual_4.is_nan() || residual_4 > tol {
+                    return Err(SolveError::new(
+                        "slide",
+                        "prismatic(slider.s, ground.rail)",
+                        ErrorKind::Inconsistent,
+                        residual_4,
+                    ));
+                }
+                let rod_b = rod.point_to_global(&Point3::new(4.0, 0.0, 0.0));
+                let orbit = Circle3::orbit(
+                    &arm_tip,
+                    &frame::unit3(&arm_tip_z).ok_or_else(|| {
+                        SolveError::new(
+                            "pin",
+                            "revolute(rod.b, slider.pin)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?,
+                    &rod_b,
+                );
+                let slider_pin = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+                let line_3 = Line3::new(slider_pin, line_2.dir);
+                let pin_meeting = intersect3d::line_circle(&line_3, &orbit);
+                if let Some(e) = SolveError::from_contact(
+                    "pin",
+                    "revolute(rod.b, slider.pin)",
+                    pin_meeting.contact,
+                ) {
+                    return Err(e);
+                }
+
+                // Each root of `revolute(rod.b, slider.pin)` in turn (`pin`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        pin: root,
+                        ..*branches
+                    };
+                    let mut rod = rod;
+                    let mut slider = slider;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let pin = pin_meeting
+                            .roots
+                            .get(usize::from(branches.pin))
+                            .ok_or_else(|| {
+                                SolveError::new(
+                                    "pin",
+                                    "revolute(rod.b, slider.pin)",
+                                    ErrorKind::NoSuchBranch,
+                                    pin_meeting.roots.len() as f64,
+                                )
+                            })?;
+                        let gap = orbit.distance(&pin);
+                        if gap.is_nan() || gap > tol {
+                            return Err(SolveError::new(
+                                "pin",
+                                "revolute(rod.b, slider.pin)",
+                                ErrorKind::Inconsistent,
+                                gap,
+                            ));
+                        }
+                        let gap_2 = orbit.distance(&pin);
+                        if gap_2.is_nan() || gap_2 > tol {
+                            return Err(SolveError::new(
+                                "pin",
+                                "revolute(rod.b, slider.pin)",
+                                ErrorKind::Inconsistent,
+                                gap_2,
+                            ));
+                        }
+                        let turn_7 = frame::rotation_about_axis(
+                            &arm_tip_z,
+                            frame::signed_angle3(&(rod_b - arm_tip), &(pin - arm_tip), &arm_tip_z),
+                        );
+                        rod.rotate_about_by(&arm_tip, &turn_7);
+                        let gap_3 = line_3.distance(&pin);
+                        if gap_3.is_nan() || gap_3 > tol {
+                            return Err(SolveError::new(
+                                "pin",
+                                "revolute(rod.b, slider.pin)",
+                                ErrorKind::Inconsistent,
+                                gap_3,
+                            ));
+                        }
+                        let shift_7 = pin - slider_pin;
+                        slider.translate(&shift_7);
+
+                        let solution = Solution {
+                            ground,
+                            ground_level_local,
+                            ground_level_z_local,
+                            ground_level_x_local,
+                            arm,
+                            rod,
+                            slider,
+                            collar,
+                            p,
+                            branches: *branches,
+                        };
+                        keep(&mut found, &mut kept, solution.points(), solution);
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

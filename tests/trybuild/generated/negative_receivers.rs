@@ -232,35 +232,39 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(_: &Solution, _: &Solution) -> bool {
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -272,7 +276,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -280,20 +288,93 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            reach: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("p", params.p), ("q", params.q)])?;
+        // The sketch: where every geom starts.
+        let mut b = Frame2::at(Point2::new(1.0, 0.5));
+
+        // lift: distance(C, B) = 5 + min(-1, q) + 1 (negative_receivers.gcs:14)
+        let value = 5.0 + (-1.0_f64).min(params.q) + 1.0;
+        // lift: a distance is zero or more.
+        if !gcs_runtime::num::is_finite(value) || value < 0.0 {
+            return Err(SolveError::new(
+                "lift",
+                "distance(C, B) = 5 + min(-1, q) + 1",
+                ErrorKind::InvalidValue,
+                value,
+            ));
         }
-    }
+        let circle_c = Circle::new(Point2::new(0.0, 3.0), value).ok_or_else(|| {
+            SolveError::new(
+                "lift",
+                "distance(C, B) = 5 + min(-1, q) + 1",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_b = circle_c.nearest(Point2::new(1.0, 0.5));
+        b.place_origin(&nearest_b);
+
+        // reach: distance(A, B) = (-2)^p (negative_receivers.gcs:13)
+        let value_2 = (-2.0_f64).powf(params.p);
+        // reach: a distance is zero or more.
+        if !gcs_runtime::num::is_finite(value_2) || value_2 < 0.0 {
+            return Err(SolveError::new(
+                "reach",
+                "distance(A, B) = (-2)^p",
+                ErrorKind::InvalidValue,
+                value_2,
+            ));
+        }
+        let circle_a = Circle::new(Point2::new(0.0, 0.0), value_2).ok_or_else(|| {
+            SolveError::new(
+                "reach",
+                "distance(A, B) = (-2)^p",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let reach_chord = intersect2d::circle_circle_chord(&circle_c, &circle_a)
+            .map_err(|miss| SolveError::from_miss("reach", "distance(A, B) = (-2)^p", miss))?;
+
+        // Each root of `distance(A, B) = (-2)^p` in turn (`reach`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { reach: root };
+            let mut b = b;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let reach = reach_chord
+                    .root(usize::from(branches.reach))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "reach",
+                            "distance(A, B) = (-2)^p",
+                            ErrorKind::NoSuchBranch,
+                            2.0,
+                        )
+                    })?;
+                b.place_origin(&reach);
+
+                let solution = Solution {
+                    b,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

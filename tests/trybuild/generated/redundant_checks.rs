@@ -636,35 +636,50 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.u(), b.u()) {
+        return false;
+    }
+    if !near(a.s_dir(), b.s_dir()) {
+        return false;
+    }
+    if !near(a.top_dir(), b.top_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -676,7 +691,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -684,20 +703,366 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            i_p: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("w", params.w),
+            ("h", params.h),
+            ("len", params.len),
+            ("k", params.k),
+            ("qy", params.qy),
+            ("below", params.below),
+            ("ap", params.ap),
+            ("rr", params.rr),
+            ("gap", params.gap),
+        ])?;
+        // The sketch of `top` depends on params: is it usable?
+        if (Point2::new(params.w, params.h) - Point2::new(0.0, params.h)).norm() == 0.0 {
+            return Err(SolveError::new(
+                "top",
+                "its two points coincide or are not finite",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-    }
+        // The sketch: where every geom starts.
+        let a = Frame2::at(Point2::new(0.0, 0.0));
+        let b = Frame2::at(Point2::new(params.w, 0.0));
+        let q = Frame2::at(Point2::new(2.0, params.qy));
+        let top = Frame2::along(
+            Point2::new(0.0, params.h),
+            Point2::new(params.w, params.h) - Point2::new(0.0, params.h),
+        );
+        let r = Frame2::at(Point2::new(params.w, params.h));
+        let r_radius = 1.2360679774997898;
+        let mut s = Frame2::along(
+            Point2::new(0.0, 0.2),
+            Point2::new(3.8, 0.1) - Point2::new(0.0, 0.2),
+        );
+        let k = Frame2::at(Point2::new(2.0, 2.2));
+        let mut u = Frame2::from_cos_sin(Point2::origin(), 0.09950371902099893, 0.9950371902099893);
+        let mut p = Frame2::at(Point2::new(2.9, 1.1));
+        let tol = gcs_runtime::tol::CHECK_REL
+            * (1.0
+                + gcs_runtime::tol::scale(&[
+                    a.origin.x,
+                    a.origin.y,
+                    b.origin.x,
+                    b.origin.y,
+                    q.origin.x,
+                    q.origin.y,
+                    top.origin.x,
+                    top.origin.y,
+                    r.origin.x,
+                    r.origin.y,
+                    r_radius,
+                    s.origin.x,
+                    s.origin.y,
+                    3.8013155617496426,
+                    k.origin.x,
+                    k.origin.y,
+                    0.9,
+                    u.origin.x,
+                    u.origin.y,
+                    p.origin.x,
+                    p.origin.y,
+                ]));
+
+        // d_long: length(s) = len (redundant_checks.gcs:32)
+        // d_long: a length is zero or more.
+        if params.len < 0.0 {
+            return Err(SolveError::new(
+                "len",
+                "length(s) = len",
+                ErrorKind::InvalidParam,
+                params.len,
+            ));
+        }
+        let s_length = params.len;
+
+        // k_radius: radius(K) = k (redundant_checks.gcs:39)
+        // k_radius: a radius is zero or more.
+        if params.k < 0.0 {
+            return Err(SolveError::new(
+                "k",
+                "radius(K) = k",
+                ErrorKind::InvalidParam,
+                params.k,
+            ));
+        }
+        let k_radius = params.k;
+
+        // q_r: radius(R) = rr (redundant_checks.gcs:45)
+        // q_r: a radius is zero or more.
+        if params.rr < 0.0 {
+            return Err(SolveError::new(
+                "rr",
+                "radius(R) = rr",
+                ErrorKind::InvalidParam,
+                params.rr,
+            ));
+        }
+        let residual = check::dimension(r_radius, params.rr);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "q_r",
+                "radius(R) = rr",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
+        }
+
+        // a_start: coincident(s.start, A) (redundant_checks.gcs:29)
+        s.place_origin(&Point2::new(0.0, 0.0));
+
+        // b_end: coincident(s.end, B) (redundant_checks.gcs:30)
+        let b_2 = Point2::new(params.w, 0.0);
+        let s_end = Point2::new(0.0, 0.0) + s.x_axis() * s_length;
+        let circle_a_s_end = Circle::new(
+            Point2::new(0.0, 0.0),
+            (s_end - Point2::new(0.0, 0.0)).norm(),
+        )
+        .ok_or_else(|| {
+            SolveError::new("b_end", "coincident(s.end, B)", ErrorKind::Degenerate, 0.0)
+        })?;
+        let gap = circle_a_s_end.residual(b_2);
+        if gap.is_nan() || gap > tol {
+            return Err(SolveError::new(
+                "b_end",
+                "coincident(s.end, B)",
+                ErrorKind::Inconsistent,
+                gap,
+            ));
+        }
+        let turn = rotation_between2(
+            &(s_end - Point2::new(0.0, 0.0)),
+            &(b_2 - Point2::new(0.0, 0.0)),
+        );
+        s.turn_by(&turn);
+
+        // c_flat: horizontal(s) (redundant_checks.gcs:31)
+        let s_dir = s.x_axis();
+        let residual_2 = check::angle(Vector2::new(1.0, 0.0), s_dir, 0.0);
+        if residual_2.is_nan() || residual_2 > tol {
+            return Err(SolveError::new(
+                "c_flat",
+                "horizontal(s)",
+                ErrorKind::Inconsistent,
+                residual_2,
+            ));
+        }
+
+        // e_up: perpendicular(s, u) (redundant_checks.gcs:33)
+        let s_dir_turned = rotation_from_x_unit(&Vector2::new(6.123233995736766e-17, 1.0)) * s_dir;
+        let u_dir = u.x_axis();
+        let turn_2 = rotation_between_units(&u_dir, &s_dir_turned);
+        u.turn_by(&turn_2);
+
+        // f_up: vertical(u) (redundant_checks.gcs:34)
+        let u_dir_2 = u.x_axis();
+        let residual_3 = check::angle(Vector2::new(0.0, 1.0), u_dir_2, 0.0);
+        if residual_3.is_nan() || residual_3 > tol {
+            return Err(SolveError::new(
+                "f_up",
+                "vertical(u)",
+                ErrorKind::Inconsistent,
+                residual_3,
+            ));
+        }
+
+        // h_p: distance(P, s) = h - 1 (redundant_checks.gcs:36)
+        let value = params.h - 1.0;
+        if !gcs_runtime::num::is_finite(value) {
+            return Err(SolveError::new(
+                "h_p",
+                "distance(P, s) = h - 1",
+                ErrorKind::InvalidValue,
+                value,
+            ));
+        }
+        let line_a = Line::new(Point2::new(0.0, 0.0), s_dir)
+            .ok_or_else(|| {
+                SolveError::new("h_p", "distance(P, s) = h - 1", ErrorKind::Degenerate, 0.0)
+            })?
+            .offset(value);
+        let nearest_p = line_a.nearest(Point2::new(2.9, 1.1));
+        p.place_origin(&nearest_p);
+
+        // i_p: distance(P, B) = sqrt(4 + (h - 1)^2) (redundant_checks.gcs:37)
+        let value_2 = (4.0 + (params.h - 1.0).powf(2.0)).sqrt();
+        // i_p: a distance is zero or more.
+        if !gcs_runtime::num::is_finite(value_2) || value_2 < 0.0 {
+            return Err(SolveError::new(
+                "i_p",
+                "distance(P, B) = sqrt(4 + (h - 1)^2)",
+                ErrorKind::InvalidValue,
+                value_2,
+            ));
+        }
+        let circle_b_2 = Circle::new(b_2, value_2).ok_or_else(|| {
+            SolveError::new(
+                "i_p",
+                "distance(P, B) = sqrt(4 + (h - 1)^2)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let i_p_meeting = intersect2d::line_circle(&line_a, &circle_b_2);
+        if let Some(e) = SolveError::from_contact(
+            "i_p",
+            "distance(P, B) = sqrt(4 + (h - 1)^2)",
+            i_p_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `distance(P, B) = sqrt(4 + (h - 1)^2)` in turn (`i_p`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { i_p: root };
+            let mut k = k;
+            let mut p = p;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let i_p = i_p_meeting
+                    .branch(usize::from(branches.i_p))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "i_p",
+                            "distance(P, B) = sqrt(4 + (h - 1)^2)",
+                            ErrorKind::NoSuchBranch,
+                            i_p_meeting.roots.len() as f64,
+                        )
+                    })?;
+                p.place_origin(&i_p);
+
+                // g_centre: coincident(K.center, P) (redundant_checks.gcs:35)
+                k.place_origin(&i_p);
+
+                // j_top: tangent(top, K) (redundant_checks.gcs:38)
+                let top_2 = Point2::new(0.0, params.h);
+                let top_dir = top.x_axis();
+                let residual_4 = check::circle_line(i_p, k_radius, top_2, top_dir, 0.0, -1.0);
+                if residual_4.is_nan() || residual_4 > tol {
+                    return Err(SolveError::new(
+                        "j_top",
+                        "tangent(top, K)",
+                        ErrorKind::Inconsistent,
+                        residual_4,
+                    ));
+                }
+
+                // l_off: distance(P, R) = gap (redundant_checks.gcs:40)
+                let r_center = Point2::new(params.w, params.h);
+                // l_off: a distance is zero or more.
+                if params.gap < 0.0 {
+                    return Err(SolveError::new(
+                        "gap",
+                        "distance(P, R) = gap",
+                        ErrorKind::InvalidParam,
+                        params.gap,
+                    ));
+                }
+                let residual_5 = check::point_circle(i_p, r_center, r_radius, params.gap, true);
+                if residual_5.is_nan() || residual_5 > tol {
+                    return Err(SolveError::new(
+                        "l_off",
+                        "distance(P, R) = gap",
+                        ErrorKind::Inconsistent,
+                        residual_5,
+                    ));
+                }
+
+                // m_r: tangent(R, K) (redundant_checks.gcs:41)
+                let residual_6 = check::circle_circle(
+                    r_center,
+                    r_radius,
+                    i_p,
+                    k_radius,
+                    0.0,
+                    check::Nesting::Apart,
+                );
+                if residual_6.is_nan() || residual_6 > tol {
+                    return Err(SolveError::new(
+                        "m_r",
+                        "tangent(R, K)",
+                        ErrorKind::Inconsistent,
+                        residual_6,
+                    ));
+                }
+
+                // n_ap: distance(P, A) = ap (redundant_checks.gcs:42)
+                // n_ap: a distance is zero or more.
+                if params.ap < 0.0 {
+                    return Err(SolveError::new(
+                        "ap",
+                        "distance(P, A) = ap",
+                        ErrorKind::InvalidParam,
+                        params.ap,
+                    ));
+                }
+                let residual_7 = check::point_point(i_p, Point2::new(0.0, 0.0), params.ap);
+                if residual_7.is_nan() || residual_7 > tol {
+                    return Err(SolveError::new(
+                        "n_ap",
+                        "distance(P, A) = ap",
+                        ErrorKind::Inconsistent,
+                        residual_7,
+                    ));
+                }
+
+                // o_q: coincident(P, Q) (redundant_checks.gcs:43)
+                let q_2 = Point2::new(2.0, params.qy);
+                let residual_8 = check::point_point(i_p, q_2, 0.0);
+                if residual_8.is_nan() || residual_8 > tol {
+                    return Err(SolveError::new(
+                        "o_q",
+                        "coincident(P, Q)",
+                        ErrorKind::Inconsistent,
+                        residual_8,
+                    ));
+                }
+
+                // p_below: distance(P, top) = below (redundant_checks.gcs:44)
+                let residual_9 = check::point_line(i_p, top_2, top_dir, params.below);
+                if residual_9.is_nan() || residual_9 > tol {
+                    return Err(SolveError::new(
+                        "p_below",
+                        "distance(P, top) = below",
+                        ErrorKind::Inconsistent,
+                        residual_9,
+                    ));
+                }
+
+                let solution = Solution {
+                    b,
+                    q,
+                    top,
+                    top_sketch: Point2::new(0.0, params.h),
+                    r,
+                    r_radius,
+                    s,
+                    s_length,
+                    k,
+                    k_radius,
+                    u,
+                    p,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

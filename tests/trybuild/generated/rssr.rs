@@ -425,35 +425,65 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.rocker_base_x(), b.rocker_base_x()) {
+        return false;
+    }
+    if !near(a.rocker_base_z(), b.rocker_base_z()) {
+        return false;
+    }
+    if !near(a.crank_base_x(), b.crank_base_x()) {
+        return false;
+    }
+    if !near(a.crank_base_z(), b.crank_base_z()) {
+        return false;
+    }
+    if !near(a.ground_rocker_axis_x(), b.ground_rocker_axis_x()) {
+        return false;
+    }
+    if !near(a.ground_rocker_axis_z(), b.ground_rocker_axis_z()) {
+        return false;
+    }
+    if !near(a.ground_crank_axis_x(), b.ground_crank_axis_x()) {
+        return false;
+    }
+    if !near(a.ground_crank_axis_z(), b.ground_crank_axis_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -465,7 +495,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -474,20 +508,138 @@ fn keep<const P: usize>(
 /// defaults (`Solution::defaults`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            spherical_coupler_b_rocker_tip: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("theta", params.theta),
+            ("coupler_spin_angle", defaults.coupler_spin_angle),
+        ])?;
+        // The sketch: where every geom starts.
+        let mut crank = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut coupler = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let rocker = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // input: offset_x(ground.crank_axis, crank.base) = theta (rssr.gcs:23)
+        let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
+        let turn = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
+        );
+        crank.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+
+        // revolute(crank.base, ground.crank_axis) (rssr.gcs:22)
+        let crank_base = crank.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let shift = Point3::new(0.0, 0.0, 0.0) - crank_base;
+        crank.translate(&shift);
+        let crank_base_z = crank.vector_to_global(&Vector3::z());
+        let residual = check::space::parallel(crank_base_z, Vector3::z(), 1.0);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "revolute_crank_base_ground_crank_axis",
+                "revolute(crank.base, ground.crank_axis)",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
         }
-    }
+
+        // revolute(rocker.base, ground.rocker_axis) (rssr.gcs:25)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // spherical(coupler.a, crank.tip) (rssr.gcs:24)
+        let crank_tip = crank.point_to_global(&Point3::new(1.0, 0.0, 0.0));
+        let shift_2 = crank_tip - Point3::new(1.0, 0.0, 0.0);
+        coupler.translate(&shift_2);
+
+        // spherical(coupler.b, rocker.tip) (rssr.gcs:26)
+        let coupler_b = coupler.point_to_global(&Point3::new(4.0, 1.0, 3.0));
+        let sphere = Sphere::new(crank_tip, 4.358898943540674);
+        let orbit = Circle3::orbit(
+            &Point3::new(4.0, 1.0, 1.0),
+            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+            &Point3::new(4.0, 1.0, 3.0),
+        );
+        let spherical_coupler_b_rocker_tip_meeting = intersect3d::circle_sphere(&orbit, &sphere);
+        if let Some(e) = SolveError::from_contact(
+            "spherical_coupler_b_rocker_tip",
+            "spherical(coupler.b, rocker.tip)",
+            spherical_coupler_b_rocker_tip_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `spherical(coupler.b, rocker.tip)` in turn (`spherical_coupler_b_rocker_tip`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                spherical_coupler_b_rocker_tip: root,
+            };
+            let mut coupler = coupler;
+            let mut rocker = rocker;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let spherical_coupler_b_rocker_tip = spherical_coupler_b_rocker_tip_meeting
+                    .roots
+                    .get(usize::from(branches.spherical_coupler_b_rocker_tip))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "spherical_coupler_b_rocker_tip",
+                            "spherical(coupler.b, rocker.tip)",
+                            ErrorKind::NoSuchBranch,
+                            spherical_coupler_b_rocker_tip_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let turn_2 = frame::rotation_between3(
+                    &(coupler_b - crank_tip),
+                    &(spherical_coupler_b_rocker_tip - crank_tip),
+                    &frame::perpendicular(&(coupler_b - crank_tip)),
+                );
+                coupler.rotate_about_by(&crank_tip, &turn_2);
+                let direction = frame::unit3(&(spherical_coupler_b_rocker_tip - crank_tip))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "spherical_coupler_b_rocker_tip",
+                            "spherical(coupler.b, rocker.tip)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let turn_3 = frame::rotation_about_axis(
+                    &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                    frame::signed_angle3(
+                        &(Point3::new(4.0, 1.0, 3.0) - Point3::new(4.0, 1.0, 1.0)),
+                        &(spherical_coupler_b_rocker_tip - Point3::new(4.0, 1.0, 1.0)),
+                        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                    ),
+                );
+                rocker.rotate_about_by(&Point3::new(4.0, 1.0, 1.0), &turn_3);
+                let turn_4 = frame::rotation_about_axis(&direction, defaults.coupler_spin_angle);
+                coupler.rotate_about_by(&crank_tip, &turn_4);
+
+                let solution = Solution {
+                    ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+                    crank,
+                    coupler,
+                    rocker,
+                    branches: *branches,
+                    defaults: Defaults {
+                        coupler_spin_angle: defaults.coupler_spin_angle,
+                    },
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

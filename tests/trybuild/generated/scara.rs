@@ -674,35 +674,101 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.tool_tcp_x(), b.tool_tcp_x()) {
+        return false;
+    }
+    if !near(a.tool_tcp_z(), b.tool_tcp_z()) {
+        return false;
+    }
+    if !near(a.tool_roll_x(), b.tool_roll_x()) {
+        return false;
+    }
+    if !near(a.tool_roll_z(), b.tool_roll_z()) {
+        return false;
+    }
+    if !near(a.quill_roll_x(), b.quill_roll_x()) {
+        return false;
+    }
+    if !near(a.quill_roll_z(), b.quill_roll_z()) {
+        return false;
+    }
+    if !near(a.quill_slide_x(), b.quill_slide_x()) {
+        return false;
+    }
+    if !near(a.quill_slide_z(), b.quill_slide_z()) {
+        return false;
+    }
+    if !near(a.forearm_quill_x(), b.forearm_quill_x()) {
+        return false;
+    }
+    if !near(a.forearm_quill_z(), b.forearm_quill_z()) {
+        return false;
+    }
+    if !near(a.forearm_elbow_x(), b.forearm_elbow_x()) {
+        return false;
+    }
+    if !near(a.forearm_elbow_z(), b.forearm_elbow_z()) {
+        return false;
+    }
+    if !near(a.upper_arm_elbow_x(), b.upper_arm_elbow_x()) {
+        return false;
+    }
+    if !near(a.upper_arm_elbow_z(), b.upper_arm_elbow_z()) {
+        return false;
+    }
+    if !near(a.upper_arm_shoulder_x(), b.upper_arm_shoulder_x()) {
+        return false;
+    }
+    if !near(a.upper_arm_shoulder_z(), b.upper_arm_shoulder_z()) {
+        return false;
+    }
+    if !near(a.ground_target_x(), b.ground_target_x()) {
+        return false;
+    }
+    if !near(a.ground_target_z(), b.ground_target_z()) {
+        return false;
+    }
+    if !near(a.ground_base_x(), b.ground_base_x()) {
+        return false;
+    }
+    if !near(a.ground_base_z(), b.ground_base_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -714,7 +780,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -722,21 +792,247 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            q2: (combination % 2) as u8,
-            ..Branches::default()
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("px", params.px),
+            ("py", params.py),
+            ("pz", params.pz),
+            ("heading", params.heading),
+        ])?;
+        // The sketch of `ground.target` depends on params: is it usable?
+        if !gcs_runtime::num::is_finite(params.heading.cos())
+            || !gcs_runtime::num::is_finite(params.heading.sin())
+            || frame::rotation_zx(
+                &Vector3::new(0.0, 0.0, 1.0),
+                &Vector3::new(params.heading.cos(), params.heading.sin(), 0.0),
+            )
+            .is_none()
+        {
+            return Err(SolveError::new(
+                "ground.target",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-    }
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_target_local = Point3::new(params.px, params.py, params.pz);
+        let ground_target_z_local = frame::rotation_zx(
+            &Vector3::new(0.0, 0.0, 1.0),
+            &Vector3::new(params.heading.cos(), params.heading.sin(), 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let ground_target_x_local = frame::rotation_zx(
+            &Vector3::new(0.0, 0.0, 1.0),
+            &Vector3::new(params.heading.cos(), params.heading.sin(), 0.0),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let upper_arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut forearm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut quill = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // q1: revolute(ground.base, upper_arm.shoulder) (scara.gcs:34)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // q2: revolute(upper_arm.elbow, forearm.elbow) (scara.gcs:35)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // q4: revolute(quill.roll, tool.roll) (scara.gcs:37)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // weld(tool.tcp, ground.target) (scara.gcs:38)
+        let ground_target = ground.point_to_global(&ground_target_local);
+        let shift = ground_target - Point3::new(0.65, 0.0, 0.1);
+        tool.translate(&shift);
+        let tool_roll = tool.point_to_global(&Point3::new(0.65, 0.0, 0.15));
+        let shift_2 = tool_roll - Point3::new(0.65, 0.0, 0.15);
+        quill.translate(&shift_2);
+        let quill_slide = quill.point_to_global(&Point3::new(0.65, 0.0, 0.35));
+        let quill_slide_z = quill.vector_to_global(&Vector3::z());
+        let line = Line3::new(
+            quill_slide,
+            frame::unit3(&quill_slide_z).ok_or_else(|| {
+                SolveError::new(
+                    "weld_tool_tcp_ground_target",
+                    "weld(tool.tcp, ground.target)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+        );
+        let nearest = line.closest(&Point3::new(0.65, 0.0, 0.35));
+        let shift_3 = nearest - Point3::new(0.65, 0.0, 0.35);
+        forearm.translate(&shift_3);
+        let tool_tcp_z = tool.vector_to_global(&Vector3::z());
+        let ground_target_z = ground.vector_to_global(&ground_target_z_local);
+        let residual = check::space::parallel(tool_tcp_z, ground_target_z, 1.0);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "weld_tool_tcp_ground_target",
+                "weld(tool.tcp, ground.target)",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
+        }
+        let ground_target_x = ground.vector_to_global(&ground_target_x_local);
+        let turned = frame::rotation_about_axis(&tool_tcp_z, -0.0) * ground_target_x;
+        let tool_tcp_x = tool.vector_to_global(&Vector3::x());
+        let turn = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(&tool_tcp_x, &turned, &Vector3::z()),
+        );
+        tool.rotate_about_by(&ground_target, &turn);
+
+        // d3: prismatic(forearm.quill, quill.slide) (scara.gcs:36)
+        let length = (Point3::new(0.0, 0.0, 0.0) - Point3::new(0.35, 0.0, 0.35)).dot(&Vector3::z());
+        let sum = length;
+        if !gcs_runtime::num::is_finite(sum) {
+            return Err(SolveError::new(
+                "q2",
+                "revolute(upper_arm.elbow, forearm.elbow)",
+                ErrorKind::InvalidValue,
+                sum,
+            ));
+        }
+        let forearm_elbow_z = forearm.vector_to_global(&Vector3::z());
+        let sum_2 = -sum;
+        if !gcs_runtime::num::is_finite(sum_2) {
+            return Err(SolveError::new(
+                "q2",
+                "revolute(upper_arm.elbow, forearm.elbow)",
+                ErrorKind::InvalidValue,
+                sum_2,
+            ));
+        }
+        let normal = frame::unit3(&forearm_elbow_z).ok_or_else(|| {
+            SolveError::new(
+                "q2",
+                "revolute(upper_arm.elbow, forearm.elbow)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let plane =
+            Plane::from_point_normal(&(Point3::new(0.0, 0.0, 0.0) + normal * sum_2), &normal);
+        let forearm_elbow = forearm.point_to_global(&Point3::new(0.35, 0.0, 0.35));
+        let line_2 = Line3::new(forearm_elbow, line.dir);
+        let q2_meeting = intersect3d::line_plane(&line_2, &plane);
+        if let Some(e) = SolveError::from_contact(
+            "q2",
+            "revolute(upper_arm.elbow, forearm.elbow)",
+            q2_meeting.contact,
+        ) {
+            return Err(e);
+        }
+        let q2 = q2_meeting.roots.get(0).ok_or_else(|| {
+            SolveError::new(
+                "q2",
+                "revolute(upper_arm.elbow, forearm.elbow)",
+                ErrorKind::NoSuchBranch,
+                q2_meeting.roots.len() as f64,
+            )
+        })?;
+        let shift_4 = q2 - forearm_elbow;
+        forearm.translate(&shift_4);
+        let forearm_quill = forearm.point_to_global(&Point3::new(0.65, 0.0, 0.35));
+        let orbit = Circle3::orbit(
+            &Point3::new(0.0, 0.0, 0.0),
+            &Vector3::z(),
+            &Point3::new(0.35, 0.0, 0.35),
+        );
+        let forearm_elbow_2 = forearm.point_to_global(&Point3::new(0.35, 0.0, 0.35));
+        let orbit_2 = Circle3::orbit(&forearm_quill, &Vector3::z(), &forearm_elbow_2);
+        let q2_meeting_2 = intersect3d::circle_circle(&orbit, &orbit_2);
+        if let Some(e) = SolveError::from_contact(
+            "q2",
+            "revolute(upper_arm.elbow, forearm.elbow)",
+            q2_meeting_2.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `revolute(upper_arm.elbow, forearm.elbow)` in turn (`q2`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                q2: root,
+                ..*branches
+            };
+            let mut upper_arm = upper_arm;
+            let mut forearm = forearm;
+            let mut quill = quill;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let q2_2 = q2_meeting_2
+                    .roots
+                    .get(usize::from(branches.q2))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "q2",
+                            "revolute(upper_arm.elbow, forearm.elbow)",
+                            ErrorKind::NoSuchBranch,
+                            q2_meeting_2.roots.len() as f64,
+                        )
+                    })?;
+                let turn_2 = frame::rotation_about_axis(
+                    &Vector3::z(),
+                    frame::signed_angle3(
+                        &(Point3::new(0.35, 0.0, 0.35) - Point3::new(0.0, 0.0, 0.0)),
+                        &(q2_2 - Point3::new(0.0, 0.0, 0.0)),
+                        &Vector3::z(),
+                    ),
+                );
+                upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+                let turn_3 = frame::rotation_about_axis(
+                    &Vector3::z(),
+                    frame::signed_angle3(
+                        &(forearm_elbow_2 - forearm_quill),
+                        &(q2_2 - forearm_quill),
+                        &Vector3::z(),
+                    ),
+                );
+                forearm.rotate_about_by(&forearm_quill, &turn_3);
+                let forearm_quill_z = forearm.vector_to_global(&Vector3::z());
+                let forearm_quill_x = forearm.vector_to_global(&Vector3::x());
+                let turned_2 = frame::rotation_about_axis(&forearm_quill_z, 0.0) * forearm_quill_x;
+                let quill_slide_x = quill.vector_to_global(&Vector3::x());
+                let turn_4 = frame::rotation_about_axis(
+                    &Vector3::z(),
+                    frame::signed_angle3(&quill_slide_x, &turned_2, &Vector3::z()),
+                );
+                quill.rotate_about_by(&tool_roll, &turn_4);
+
+                let solution = Solution {
+                    ground,
+                    ground_target_local,
+                    ground_target_z_local,
+                    ground_target_x_local,
+                    upper_arm,
+                    forearm,
+                    quill,
+                    tool,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

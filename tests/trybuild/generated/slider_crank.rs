@@ -437,35 +437,77 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.slider_pin_x(), b.slider_pin_x()) {
+        return false;
+    }
+    if !near(a.slider_pin_z(), b.slider_pin_z()) {
+        return false;
+    }
+    if !near(a.slider_s_x(), b.slider_s_x()) {
+        return false;
+    }
+    if !near(a.slider_s_z(), b.slider_s_z()) {
+        return false;
+    }
+    if !near(a.arm_tip_x(), b.arm_tip_x()) {
+        return false;
+    }
+    if !near(a.arm_tip_z(), b.arm_tip_z()) {
+        return false;
+    }
+    if !near(a.arm_o_x(), b.arm_o_x()) {
+        return false;
+    }
+    if !near(a.arm_o_z(), b.arm_o_z()) {
+        return false;
+    }
+    if !near(a.ground_rail_x(), b.ground_rail_x()) {
+        return false;
+    }
+    if !near(a.ground_rail_z(), b.ground_rail_z()) {
+        return false;
+    }
+    if !near(a.ground_o_x(), b.ground_o_x()) {
+        return false;
+    }
+    if !near(a.ground_o_z(), b.ground_o_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -477,7 +519,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -485,20 +531,168 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            revolute_rod_b_slider_pin: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("phi", params.phi)])?;
+        // The sketch: where every geom starts.
+        let mut arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut rod = Frame3::new(Point3::new(3.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut slider = Frame3::new(Point3::new(7.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 8e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // offset_x(ground.o, arm.o) = phi (slider_crank.gcs:15)
+        let turned = frame::rotation_about_axis(&Vector3::z(), params.phi) * Vector3::x();
+        let turn = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
+        );
+        arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+
+        // prismatic(slider.s, ground.rail) (slider_crank.gcs:18)
+        let line = Line3::new(Point3::new(5.0, 0.0, 0.0), Vector3::x());
+        let nearest = line.closest(&Point3::new(7.0, 0.0, 0.0));
+        let shift = nearest - Point3::new(7.0, 0.0, 0.0);
+        slider.translate(&shift);
+        let slider_s = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let slider_s_z = slider.vector_to_global(&Vector3::x());
+        let turn_2 = frame::rotation_between3(
+            &slider_s_z,
+            &Vector3::x(),
+            &frame::perpendicular(&slider_s_z),
+        );
+        slider.rotate_about_by(&slider_s, &turn_2);
+        let slider_s_z_2 = slider.vector_to_global(&Vector3::x());
+        let turned_2 = frame::rotation_about_axis(&slider_s_z_2, -0.0) * Vector3::y();
+        let slider_s_2 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let slider_s_x = slider.vector_to_global(&Vector3::y());
+        let turn_3 = frame::rotation_about_axis(
+            &Vector3::x(),
+            frame::signed_angle3(&slider_s_x, &turned_2, &Vector3::x()),
+        );
+        slider.rotate_about_by(&slider_s_2, &turn_3);
+
+        // revolute(arm.o, ground.o) (slider_crank.gcs:14)
+        let arm_o = arm.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let shift_2 = Point3::new(0.0, 0.0, 0.0) - arm_o;
+        arm.translate(&shift_2);
+        let arm_o_z = arm.vector_to_global(&Vector3::z());
+        let residual = check::space::parallel(arm_o_z, Vector3::z(), 1.0);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "revolute_arm_o_ground_o",
+                "revolute(arm.o, ground.o)",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
         }
-    }
+
+        // revolute(arm.tip, rod.a) (slider_crank.gcs:16)
+        let arm_tip = arm.point_to_global(&Point3::new(3.0, 0.0, 0.0));
+        let shift_3 = arm_tip - Point3::new(3.0, 0.0, 0.0);
+        rod.translate(&shift_3);
+        let arm_tip_z = arm.vector_to_global(&Vector3::z());
+        let rod_a_z = rod.vector_to_global(&Vector3::z());
+        let turn_4 =
+            frame::rotation_between3(&rod_a_z, &arm_tip_z, &frame::perpendicular(&rod_a_z));
+        rod.rotate_about_by(&arm_tip, &turn_4);
+
+        // revolute(rod.b, slider.pin) (slider_crank.gcs:17)
+        let rod_b_z = rod.vector_to_global(&Vector3::z());
+        let slider_pin_z = slider.vector_to_global(&Vector3::z());
+        let residual_2 = check::space::parallel(rod_b_z, slider_pin_z, 1.0);
+        if residual_2.is_nan() || residual_2 > tol {
+            return Err(SolveError::new(
+                "revolute_rod_b_slider_pin",
+                "revolute(rod.b, slider.pin)",
+                ErrorKind::Inconsistent,
+                residual_2,
+            ));
+        }
+        let rod_b = rod.point_to_global(&Point3::new(4.0, 0.0, 0.0));
+        let orbit = Circle3::orbit(
+            &arm_tip,
+            &frame::unit3(&arm_tip_z).ok_or_else(|| {
+                SolveError::new(
+                    "revolute_rod_b_slider_pin",
+                    "revolute(rod.b, slider.pin)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+            &rod_b,
+        );
+        let slider_pin = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let line_2 = Line3::new(slider_pin, line.dir);
+        let revolute_rod_b_slider_pin_meeting = intersect3d::line_circle(&line_2, &orbit);
+        if let Some(e) = SolveError::from_contact(
+            "revolute_rod_b_slider_pin",
+            "revolute(rod.b, slider.pin)",
+            revolute_rod_b_slider_pin_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `revolute(rod.b, slider.pin)` in turn (`revolute_rod_b_slider_pin`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                revolute_rod_b_slider_pin: root,
+            };
+            let mut slider = slider;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let revolute_rod_b_slider_pin = revolute_rod_b_slider_pin_meeting
+                    .roots
+                    .get(usize::from(branches.revolute_rod_b_slider_pin))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_rod_b_slider_pin",
+                            "revolute(rod.b, slider.pin)",
+                            ErrorKind::NoSuchBranch,
+                            revolute_rod_b_slider_pin_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let gap = orbit.distance(&revolute_rod_b_slider_pin);
+                if gap.is_nan() || gap > tol {
+                    return Err(SolveError::new(
+                        "revolute_rod_b_slider_pin",
+                        "revolute(rod.b, slider.pin)",
+                        ErrorKind::Inconsistent,
+                        gap,
+                    ));
+                }
+                let gap_2 = line_2.distance(&revolute_rod_b_slider_pin);
+                if gap_2.is_nan() || gap_2 > tol {
+                    return Err(SolveError::new(
+                        "revolute_rod_b_slider_pin",
+                        "revolute(rod.b, slider.pin)",
+                        ErrorKind::Inconsistent,
+                        gap_2,
+                    ));
+                }
+                let shift_4 = revolute_rod_b_slider_pin - slider_pin;
+                slider.translate(&shift_4);
+
+                let solution = Solution {
+                    ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+                    arm,
+                    slider,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

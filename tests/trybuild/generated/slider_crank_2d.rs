@@ -357,35 +357,59 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.slider_pin_x(), b.slider_pin_x()) {
+        return false;
+    }
+    if !near(a.slider_s_x(), b.slider_s_x()) {
+        return false;
+    }
+    if !near(a.crank_tip_x(), b.crank_tip_x()) {
+        return false;
+    }
+    if !near(a.crank_o_x(), b.crank_o_x()) {
+        return false;
+    }
+    if !near(a.ground_rail_x(), b.ground_rail_x()) {
+        return false;
+    }
+    if !near(a.ground_o_x(), b.ground_o_x()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -397,7 +421,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -405,20 +433,120 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            stroke: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("phi", params.phi),
+            ("crank_len", params.crank_len),
+            ("rod_len", params.rod_len),
+        ])?;
+        // The sketch: where every geom starts.
+        let ground = Frame2::at(Point2::origin());
+        let mut crank = Frame2::at(Point2::new(0.0, 0.0));
+        let crank_tip_local = Point2::new(params.crank_len, 0.0);
+        let crank_tip_x_local = Vector2::new(1.0, 0.0).normalize();
+        let mut rod = Frame2::at(Point2::new(1.5, 0.0));
+        let rod_b_local = Point2::new(params.rod_len, 0.0);
+        let mut slider = Frame2::at(Point2::new(5.2, 0.0));
+
+        // drive: offset_x(ground.o, crank.o) = phi (slider_crank_2d.gcs:15)
+        let ground_o_x_dir_turned = direction_at(params.phi);
+        let turn = rotation_from_x_unit(&ground_o_x_dir_turned);
+        crank.set_rotation(&turn);
+
+        // prismatic(slider.s, ground.rail) (slider_crank_2d.gcs:18)
+        let line_ground_rail = Line::new(Point2::new(0.0, 0.0), Vector2::new(1.0, 0.0))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "prismatic_slider_s_ground_rail",
+                    "prismatic(slider.s, ground.rail)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let nearest_slider_s = line_ground_rail.nearest(Point2::new(5.2, 0.0));
+        slider.place_origin(&nearest_slider_s);
+        let turn_2 = rotation_from_x(&Vector2::new(1.0, 0.0));
+        slider.set_rotation(&turn_2);
+
+        // revolute(crank.o, ground.o) (slider_crank_2d.gcs:14)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // revolute(crank.tip, rod.a) (slider_crank_2d.gcs:16)
+        let crank_tip = Point2::from(crank.x_axis() * crank_tip_local.x);
+        rod.place_origin(&crank_tip);
+
+        // stroke: revolute(rod.b, slider.pin) (slider_crank_2d.gcs:17)
+        let rod_b = crank_tip + rod_b_local.coords;
+        let circle_crank_tip_rod_b = Circle::new(crank_tip, (rod_b - crank_tip).norm())
+            .ok_or_else(|| {
+                SolveError::new(
+                    "stroke",
+                    "revolute(rod.b, slider.pin)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let parallel_nearest_slider_s = Line::new(nearest_slider_s, line_ground_rail.dir())
+            .ok_or_else(|| {
+                SolveError::new(
+                    "stroke",
+                    "revolute(rod.b, slider.pin)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let stroke_meeting =
+            intersect2d::line_circle(&parallel_nearest_slider_s, &circle_crank_tip_rod_b);
+        if let Some(e) = SolveError::from_contact(
+            "stroke",
+            "revolute(rod.b, slider.pin)",
+            stroke_meeting.contact,
+        ) {
+            return Err(e);
         }
-    }
+
+        // Each root of `revolute(rod.b, slider.pin)` in turn (`stroke`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { stroke: root };
+            let mut slider = slider;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let stroke = stroke_meeting
+                    .branch(usize::from(branches.stroke))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "stroke",
+                            "revolute(rod.b, slider.pin)",
+                            ErrorKind::NoSuchBranch,
+                            stroke_meeting.roots.len() as f64,
+                        )
+                    })?;
+                slider.place_origin(&stroke);
+
+                let solution = Solution {
+                    ground,
+                    crank,
+                    crank_tip_local,
+                    crank_tip_x_local,
+                    slider,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

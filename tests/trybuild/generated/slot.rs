@@ -596,35 +596,47 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.bottom_dir(), b.bottom_dir()) {
+        return false;
+    }
+    if !near(a.top_dir(), b.top_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -636,7 +648,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -644,20 +660,380 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            tangent_top_right_end: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("width", params.width)])?;
+        // The sketch: where every geom starts.
+        let o = Frame2::at(Point2::new(0.0, 0.0));
+        let left_end = Frame2::at(Point2::new(0.0, 0.0));
+        let mut right_end = Frame2::at(Point2::new(5.1, 0.1));
+        let mut top = Frame2::along(
+            Point2::new(0.1, 1.0),
+            Point2::new(5.0, 1.1) - Point2::new(0.1, 1.0),
+        );
+        let mut bottom = Frame2::along(
+            Point2::new(5.0, -0.9),
+            Point2::new(0.0, -1.1) - Point2::new(5.0, -0.9),
+        );
+        let tol = gcs_runtime::tol::CHECK_REL
+            * (1.0
+                + gcs_runtime::tol::scale(&[
+                    o.origin.x,
+                    o.origin.y,
+                    left_end.origin.x,
+                    left_end.origin.y,
+                    1.1,
+                    right_end.origin.x,
+                    right_end.origin.y,
+                    0.9,
+                    top.origin.x,
+                    top.origin.y,
+                    4.901020301937139,
+                    bottom.origin.x,
+                    bottom.origin.y,
+                    5.0039984012787215,
+                ]));
+
+        // radius(left_end) = width / 2 (slot.gcs:15)
+        let value = params.width / 2.0;
+        // radius_left_end: a radius is zero or more.
+        if !gcs_runtime::num::is_finite(value) || value < 0.0 {
+            return Err(SolveError::new(
+                "radius_left_end",
+                "radius(left_end) = width / 2",
+                ErrorKind::InvalidValue,
+                value,
+            ));
         }
-    }
+        let left_end_radius = value;
+
+        // coincident(left_end.center, O) (slot.gcs:14)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // horizontal(bottom) (slot.gcs:17)
+        let bottom_dir = bottom.x_axis();
+        let turn = rotation_between_units(&bottom_dir, &Vector2::new(-1.0, 1.2246467991473532e-16));
+        bottom.turn_by(&turn);
+
+        // horizontal(top) (slot.gcs:16)
+        let top_dir = top.x_axis();
+        let turn_2 = rotation_between_units(&top_dir, &Vector2::new(1.0, 0.0));
+        top.turn_by(&turn_2);
+
+        // on(top.start, left_end) (slot.gcs:22)
+        if left_end_radius < 0.0 {
+            return Err(SolveError::new(
+                "on_top_start_left_end",
+                "on(top.start, left_end)",
+                ErrorKind::NoIntersection,
+                -left_end_radius,
+            ));
+        }
+        let circle_o = Circle::new(Point2::new(0.0, 0.0), left_end_radius).ok_or_else(|| {
+            SolveError::new(
+                "on_top_start_left_end",
+                "on(top.start, left_end)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_top_start = circle_o.nearest(Point2::new(0.1, 1.0));
+        top.place_origin(&nearest_top_start);
+
+        // span: distance(left_end.center, right_end.center) = 5 (slot.gcs:26)
+        let circle_o_2 = Circle::new(Point2::new(0.0, 0.0), 5.0).ok_or_else(|| {
+            SolveError::new(
+                "span",
+                "distance(left_end.center, right_end.center) = 5",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_right_end_center = circle_o_2.nearest(Point2::new(5.1, 0.1));
+        right_end.place_origin(&nearest_right_end_center);
+
+        // tangent(bottom, left_end) (slot.gcs:19)
+        let sum = -left_end_radius;
+        if !gcs_runtime::num::is_finite(sum) {
+            return Err(SolveError::new(
+                "tangent_bottom_left_end",
+                "tangent(bottom, left_end)",
+                ErrorKind::InvalidValue,
+                sum,
+            ));
+        }
+        let bottom_dir_2 = bottom.x_axis();
+        let minus = -sum;
+        let line_o = Line::new(Point2::new(0.0, 0.0), bottom_dir_2)
+            .ok_or_else(|| {
+                SolveError::new(
+                    "tangent_bottom_left_end",
+                    "tangent(bottom, left_end)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?
+            .offset(minus);
+        let nearest_bottom_start = line_o.nearest(Point2::new(5.0, -0.9));
+        bottom.place_origin(&nearest_bottom_start);
+
+        // tangent(top, left_end) (slot.gcs:18)
+        let bottom_dir_3 = bottom.x_axis();
+        let line_nearest_bottom_start =
+            Line::new(nearest_bottom_start, bottom_dir_3).ok_or_else(|| {
+                SolveError::new(
+                    "tangent_top_left_end",
+                    "tangent(top, left_end)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let line_nearest_bottom_start_reversed = line_nearest_bottom_start.reversed();
+        let sum_2 = -left_end_radius;
+        if !gcs_runtime::num::is_finite(sum_2) {
+            return Err(SolveError::new(
+                "tangent_top_left_end",
+                "tangent(top, left_end)",
+                ErrorKind::InvalidValue,
+                sum_2,
+            ));
+        }
+        let top_dir_2 = top.x_axis();
+        let minus_2 = -sum_2;
+        let line_o_2 = Line::new(Point2::new(0.0, 0.0), top_dir_2)
+            .ok_or_else(|| {
+                SolveError::new(
+                    "tangent_top_left_end",
+                    "tangent(top, left_end)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?
+            .offset(minus_2);
+        let nearest_o = line_o_2.nearest(Point2::new(0.0, 0.0));
+        let gap = circle_o.residual(nearest_o);
+        if gap.is_nan() || gap > tol {
+            return Err(SolveError::new(
+                "tangent_top_left_end",
+                "tangent(top, left_end)",
+                ErrorKind::Inconsistent,
+                gap,
+            ));
+        }
+        top.place_origin(&nearest_o);
+
+        // tangent(bottom, right_end) (slot.gcs:21)
+        // tangent(top, right_end) (slot.gcs:20)
+        let top_dir_3 = top.x_axis();
+        let line_nearest_o = Line::new(nearest_o, top_dir_3).ok_or_else(|| {
+            SolveError::new(
+                "tangent_top_right_end",
+                "tangent(top, right_end)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let line_nearest_o_reversed = line_nearest_o.reversed();
+        let bisector = locus2d::centres_line_line(
+            &line_nearest_bottom_start_reversed,
+            0.0,
+            &line_nearest_o_reversed,
+            0.0,
+        )
+        .ok_or_else(|| {
+            SolveError::new(
+                "tangent_top_right_end",
+                "tangent(top, right_end)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let tangent_top_right_end_meeting = intersect2d::line_circle(&bisector, &circle_o_2);
+        if let Some(e) = SolveError::from_contact(
+            "tangent_top_right_end",
+            "tangent(top, right_end)",
+            tangent_top_right_end_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `tangent(top, right_end)` in turn (`tangent_top_right_end`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                tangent_top_right_end: root,
+            };
+            let mut right_end = right_end;
+            let mut bottom = bottom;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let tangent_top_right_end = tangent_top_right_end_meeting
+                    .branch(usize::from(branches.tangent_top_right_end))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "tangent_top_right_end",
+                            "tangent(top, right_end)",
+                            ErrorKind::NoSuchBranch,
+                            tangent_top_right_end_meeting.roots.len() as f64,
+                        )
+                    })?;
+                right_end.place_origin(&tangent_top_right_end);
+                let radius =
+                    line_nearest_bottom_start_reversed.signed_distance(tangent_top_right_end) - 0.0;
+                if !gcs_runtime::num::is_finite(radius) || radius < 0.0 {
+                    return Err(SolveError::new(
+                        "tangent_bottom_right_end",
+                        "tangent(bottom, right_end)",
+                        ErrorKind::InvalidValue,
+                        radius,
+                    ));
+                }
+                let right_end_radius = radius;
+
+                // on(bottom.start, right_end) (slot.gcs:25)
+                let line_nearest_bottom_start_2 = Line::new(nearest_bottom_start, bottom_dir_3)
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "on_bottom_start_right_end",
+                            "on(bottom.start, right_end)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let nearest_tangent_top_right_end =
+                    line_nearest_bottom_start_2.nearest(tangent_top_right_end);
+                let gap_2 = line_o.residual(nearest_tangent_top_right_end);
+                if gap_2.is_nan() || gap_2 > tol {
+                    return Err(SolveError::new(
+                        "on_bottom_start_right_end",
+                        "on(bottom.start, right_end)",
+                        ErrorKind::Inconsistent,
+                        gap_2,
+                    ));
+                }
+                bottom.place_origin(&nearest_tangent_top_right_end);
+
+                // on(bottom.end, left_end) (slot.gcs:23)
+                let bottom_dir_4 = bottom.x_axis();
+                let line_nearest_tangent_top_right_end =
+                    Line::new(nearest_tangent_top_right_end, bottom_dir_4).ok_or_else(|| {
+                        SolveError::new(
+                            "on_bottom_end_left_end",
+                            "on(bottom.end, left_end)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let nearest_o_2 = line_nearest_tangent_top_right_end.nearest(Point2::new(0.0, 0.0));
+                let line_nearest_tangent_top_right_end_2 =
+                    Line::new(nearest_tangent_top_right_end, bottom_dir_4).ok_or_else(|| {
+                        SolveError::new(
+                            "on_bottom_end_left_end",
+                            "on(bottom.end, left_end)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let gap_3 = line_nearest_tangent_top_right_end_2.residual(nearest_o_2);
+                if gap_3.is_nan() || gap_3 > tol {
+                    return Err(SolveError::new(
+                        "on_bottom_end_left_end",
+                        "on(bottom.end, left_end)",
+                        ErrorKind::Inconsistent,
+                        gap_3,
+                    ));
+                }
+                let length = (nearest_o_2 - nearest_tangent_top_right_end).dot(&bottom_dir_4);
+                if !gcs_runtime::num::is_finite(length) {
+                    return Err(SolveError::new(
+                        "on_bottom_end_left_end",
+                        "on(bottom.end, left_end)",
+                        ErrorKind::InvalidValue,
+                        length,
+                    ));
+                }
+                if length < -tol {
+                    return Err(SolveError::new(
+                        "on_bottom_end_left_end",
+                        "on(bottom.end, left_end)",
+                        ErrorKind::CannotClose,
+                        length,
+                    ));
+                }
+                let bottom_length = length.max(0.0);
+
+                // on(top.end, right_end) (slot.gcs:24)
+                let line_nearest_o_2 = Line::new(nearest_o, top_dir_3).ok_or_else(|| {
+                    SolveError::new(
+                        "on_top_end_right_end",
+                        "on(top.end, right_end)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let nearest_tangent_top_right_end_2 =
+                    line_nearest_o_2.nearest(tangent_top_right_end);
+                let line_nearest_o_3 = Line::new(nearest_o, top_dir_3).ok_or_else(|| {
+                    SolveError::new(
+                        "on_top_end_right_end",
+                        "on(top.end, right_end)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let gap_4 = line_nearest_o_3.residual(nearest_tangent_top_right_end_2);
+                if gap_4.is_nan() || gap_4 > tol {
+                    return Err(SolveError::new(
+                        "on_top_end_right_end",
+                        "on(top.end, right_end)",
+                        ErrorKind::Inconsistent,
+                        gap_4,
+                    ));
+                }
+                let length_2 = (nearest_tangent_top_right_end_2 - nearest_o).dot(&top_dir_3);
+                if !gcs_runtime::num::is_finite(length_2) {
+                    return Err(SolveError::new(
+                        "on_top_end_right_end",
+                        "on(top.end, right_end)",
+                        ErrorKind::InvalidValue,
+                        length_2,
+                    ));
+                }
+                if length_2 < -tol {
+                    return Err(SolveError::new(
+                        "on_top_end_right_end",
+                        "on(top.end, right_end)",
+                        ErrorKind::CannotClose,
+                        length_2,
+                    ));
+                }
+                let top_length = length_2.max(0.0);
+
+                let solution = Solution {
+                    left_end,
+                    left_end_radius,
+                    right_end,
+                    right_end_radius,
+                    top,
+                    top_length,
+                    bottom,
+                    bottom_length,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -481,35 +481,89 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.rocker_tip_x(), b.rocker_tip_x()) {
+        return false;
+    }
+    if !near(a.rocker_tip_z(), b.rocker_tip_z()) {
+        return false;
+    }
+    if !near(a.rocker_base_x(), b.rocker_base_x()) {
+        return false;
+    }
+    if !near(a.rocker_base_z(), b.rocker_base_z()) {
+        return false;
+    }
+    if !near(a.coupler_b_x(), b.coupler_b_x()) {
+        return false;
+    }
+    if !near(a.coupler_b_z(), b.coupler_b_z()) {
+        return false;
+    }
+    if !near(a.coupler_a_x(), b.coupler_a_x()) {
+        return false;
+    }
+    if !near(a.coupler_a_z(), b.coupler_a_z()) {
+        return false;
+    }
+    if !near(a.crank_tip_x(), b.crank_tip_x()) {
+        return false;
+    }
+    if !near(a.crank_tip_z(), b.crank_tip_z()) {
+        return false;
+    }
+    if !near(a.crank_base_x(), b.crank_base_x()) {
+        return false;
+    }
+    if !near(a.crank_base_z(), b.crank_base_z()) {
+        return false;
+    }
+    if !near(a.ground_rocker_axis_x(), b.ground_rocker_axis_x()) {
+        return false;
+    }
+    if !near(a.ground_rocker_axis_z(), b.ground_rocker_axis_z()) {
+        return false;
+    }
+    if !near(a.ground_crank_axis_x(), b.ground_crank_axis_x()) {
+        return false;
+    }
+    if !near(a.ground_crank_axis_z(), b.ground_crank_axis_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -521,7 +575,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -529,20 +587,164 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            revolute_coupler_b_rocker_tip: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
+        // The sketch: where every geom starts.
+        let mut crank = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut coupler = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let rocker = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // input: offset_x(ground.crank_axis, crank.base) = theta (spherical_fourbar.gcs:22)
+        let turned = frame::rotation_about_axis(&Vector3::z(), params.theta) * Vector3::x();
+        let turn = frame::rotation_about_axis(
+            &Vector3::z(),
+            frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
+        );
+        crank.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+
+        // revolute(coupler.a, crank.tip) (spherical_fourbar.gcs:23)
+        let crank_tip_z = crank.vector_to_global(&Vector3::new(0.6, 0.0, 0.8));
+        let turn_2 = frame::rotation_between3(
+            &Vector3::new(0.6, 0.0, 0.8),
+            &crank_tip_z,
+            &frame::perpendicular(&Vector3::new(0.6, 0.0, 0.8)),
+        );
+        coupler.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+
+        // revolute(crank.base, ground.crank_axis) (spherical_fourbar.gcs:21)
+        let crank_base = crank.point_to_global(&Point3::new(0.0, 0.0, 0.0));
+        let shift = Point3::new(0.0, 0.0, 0.0) - crank_base;
+        crank.translate(&shift);
+        let crank_tip = crank.point_to_global(&Point3::new(0.6, 0.0, 0.8));
+        let coupler_a = coupler.point_to_global(&Point3::new(0.6, 0.0, 0.8));
+        let shift_2 = crank_tip - coupler_a;
+        coupler.translate(&shift_2);
+        let crank_base_z = crank.vector_to_global(&Vector3::z());
+        let residual = check::space::parallel(crank_base_z, Vector3::z(), 1.0);
+        if residual.is_nan() || residual > tol {
+            return Err(SolveError::new(
+                "revolute_crank_base_ground_crank_axis",
+                "revolute(crank.base, ground.crank_axis)",
+                ErrorKind::Inconsistent,
+                residual,
+            ));
         }
-    }
+
+        // revolute(rocker.base, ground.rocker_axis) (spherical_fourbar.gcs:24)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // revolute(coupler.b, rocker.tip) (spherical_fourbar.gcs:25)
+        let coupler_b =
+            coupler.point_to_global(&Point3::new(std::f64::consts::FRAC_1_SQRT_2, 0.5, 0.5));
+        let orbit = Circle3::orbit(
+            &crank_tip,
+            &frame::unit3(&crank_tip_z).ok_or_else(|| {
+                SolveError::new(
+                    "revolute_coupler_b_rocker_tip",
+                    "revolute(coupler.b, rocker.tip)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+            &coupler_b,
+        );
+        let orbit_2 = Circle3::orbit(
+            &Point3::new(0.0, 0.0, 0.0),
+            &Vector3::x(),
+            &Point3::new(std::f64::consts::FRAC_1_SQRT_2, 0.5, 0.5),
+        );
+        let revolute_coupler_b_rocker_tip_meeting = intersect3d::circle_circle(&orbit, &orbit_2);
+        if let Some(e) = SolveError::from_contact(
+            "revolute_coupler_b_rocker_tip",
+            "revolute(coupler.b, rocker.tip)",
+            revolute_coupler_b_rocker_tip_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `revolute(coupler.b, rocker.tip)` in turn (`revolute_coupler_b_rocker_tip`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                revolute_coupler_b_rocker_tip: root,
+            };
+            let mut coupler = coupler;
+            let mut rocker = rocker;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let revolute_coupler_b_rocker_tip = revolute_coupler_b_rocker_tip_meeting
+                    .roots
+                    .get(usize::from(branches.revolute_coupler_b_rocker_tip))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_coupler_b_rocker_tip",
+                            "revolute(coupler.b, rocker.tip)",
+                            ErrorKind::NoSuchBranch,
+                            revolute_coupler_b_rocker_tip_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let turn_3 = frame::rotation_about_axis(
+                    &crank_tip_z,
+                    frame::signed_angle3(
+                        &(coupler_b - crank_tip),
+                        &(revolute_coupler_b_rocker_tip - crank_tip),
+                        &crank_tip_z,
+                    ),
+                );
+                coupler.rotate_about_by(&crank_tip, &turn_3);
+                let turn_4 = frame::rotation_about_axis(
+                    &Vector3::x(),
+                    frame::signed_angle3(
+                        &(Point3::new(std::f64::consts::FRAC_1_SQRT_2, 0.5, 0.5)
+                            - Point3::new(0.0, 0.0, 0.0)),
+                        &(revolute_coupler_b_rocker_tip - Point3::new(0.0, 0.0, 0.0)),
+                        &Vector3::x(),
+                    ),
+                );
+                rocker.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
+                let coupler_b_z = coupler.vector_to_global(&Vector3::new(
+                    0.7071067811865477,
+                    0.5,
+                    0.4999999999999999,
+                ));
+                let rocker_tip_z = rocker.vector_to_global(&Vector3::new(
+                    0.7071067811865477,
+                    0.5,
+                    0.4999999999999999,
+                ));
+                let residual_2 = check::space::parallel(coupler_b_z, rocker_tip_z, 1.0);
+                if residual_2.is_nan() || residual_2 > tol {
+                    return Err(SolveError::new(
+                        "revolute_coupler_b_rocker_tip",
+                        "revolute(coupler.b, rocker.tip)",
+                        ErrorKind::Inconsistent,
+                        residual_2,
+                    ));
+                }
+
+                let solution = Solution {
+                    ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+                    crank,
+                    coupler,
+                    rocker,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

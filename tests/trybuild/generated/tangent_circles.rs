@@ -280,35 +280,44 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.axle_dir(), b.axle_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -320,7 +329,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -328,20 +341,112 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            touch: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("wheel_radius", params.wheel_radius)])?;
+        // The sketch: where every geom starts.
+        let drum = Frame2::at(Point2::new(0.0, 0.0));
+        let drum_radius = 2.0;
+        let axle = Frame2::along(
+            Point2::new(-5.0, 1.5),
+            Point2::new(5.0, 1.5) - Point2::new(-5.0, 1.5),
+        );
+        let mut wheel = Frame2::at(Point2::new(2.5, 1.6));
+
+        // radius(wheel) = wheel_radius (tangent_circles.gcs:12)
+        // radius_wheel: a radius is zero or more.
+        if params.wheel_radius < 0.0 {
+            return Err(SolveError::new(
+                "wheel_radius",
+                "radius(wheel) = wheel_radius",
+                ErrorKind::InvalidParam,
+                params.wheel_radius,
+            ));
         }
-    }
+        let wheel_radius = params.wheel_radius;
+
+        // on(wheel.center, axle) (tangent_circles.gcs:14)
+        let axle_dir = axle.x_axis();
+        let line_axle = Line::new(Point2::new(-5.0, 1.5), axle_dir).ok_or_else(|| {
+            SolveError::new(
+                "on_wheel_center_axle",
+                "on(wheel.center, axle)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_wheel_center = line_axle.nearest(Point2::new(2.5, 1.6));
+        wheel.place_origin(&nearest_wheel_center);
+
+        // touch: tangent(drum, wheel) (tangent_circles.gcs:13)
+        let sum = wheel_radius + drum_radius;
+        if !gcs_runtime::num::is_finite(sum) {
+            return Err(SolveError::new(
+                "touch",
+                "tangent(drum, wheel)",
+                ErrorKind::InvalidValue,
+                sum,
+            ));
+        }
+        if sum < 0.0 {
+            return Err(SolveError::new(
+                "touch",
+                "tangent(drum, wheel)",
+                ErrorKind::NoIntersection,
+                -sum,
+            ));
+        }
+        let circle_drum_center = Circle::new(Point2::new(0.0, 0.0), sum).ok_or_else(|| {
+            SolveError::new("touch", "tangent(drum, wheel)", ErrorKind::Degenerate, 0.0)
+        })?;
+        let touch_meeting = intersect2d::line_circle(&line_axle, &circle_drum_center);
+        if let Some(e) =
+            SolveError::from_contact("touch", "tangent(drum, wheel)", touch_meeting.contact)
+        {
+            return Err(e);
+        }
+
+        // Each root of `tangent(drum, wheel)` in turn (`touch`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { touch: root };
+            let mut wheel = wheel;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let touch = touch_meeting
+                    .branch(usize::from(branches.touch))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "touch",
+                            "tangent(drum, wheel)",
+                            ErrorKind::NoSuchBranch,
+                            touch_meeting.roots.len() as f64,
+                        )
+                    })?;
+                wheel.place_origin(&touch);
+
+                let solution = Solution {
+                    drum,
+                    drum_radius,
+                    axle,
+                    wheel,
+                    wheel_radius,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -730,35 +730,59 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.link10_u(), b.link10_u()) {
+        return false;
+    }
+    if !near(a.link7_u(), b.link7_u()) {
+        return false;
+    }
+    if !near(a.link4_u(), b.link4_u()) {
+        return false;
+    }
+    if !near(a.link3_u(), b.link3_u()) {
+        return false;
+    }
+    if !near(a.crank_u(), b.crank_u()) {
+        return false;
+    }
+    if !near(a.ground_x(), b.ground_x()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -770,7 +794,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -778,22 +806,356 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..8usize {
-        let branches = Branches {
-            coincident_link8_b_link9_a: (combination % 2) as u8,
-            coincident_link5_b_link8_a: (combination / 2 % 2) as u8,
-            close: (combination / 4 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("theta1", params.theta1),
+            ("theta2", params.theta2),
+            ("theta3", params.theta3),
+        ])?;
+        // The sketch: where every geom starts.
+        let ground = Frame2::at(Point2::origin());
+        let mut crank = Frame2::at(Point2::origin());
+        let mut link3 = Frame2::at(Point2::origin());
+        let mut link4 = Frame2::at(Point2::origin());
+        let link5 = Frame2::at(Point2::origin());
+        let link6 = Frame2::at(Point2::origin());
+        let mut link7 = Frame2::at(Point2::origin());
+        let link10 = Frame2::at(Point2::origin());
+        let link8 = Frame2::at(Point2::origin());
+        let mut link9 = Frame2::at(Point2::origin());
+
+        // coincident(crank.o, ground.o1) (tenbar.gcs:22)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // coincident(link6.a, ground.o6) (tenbar.gcs:35)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // drive1: angle(ground.x, crank.u) = theta1 (tenbar.gcs:23)
+        let ground_x_dir_turned = direction_at(params.theta1);
+        let turn = rotation_between_units(
+            &Vector2::new(0.5000001748438417, 0.8660253028382761),
+            &ground_x_dir_turned,
+        );
+        crank.set_rotation(&turn);
+
+        // coincident(link3.a, crank.tip) (tenbar.gcs:24)
+        let crank_tip = crank.point_to_global(&Point2::new(0.75, 1.299038));
+        let shift = crank_tip - Point2::new(0.75, 1.299038);
+        link3.translate(&shift);
+
+        // coincident(link7.b, link10.a) (tenbar.gcs:27)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // drive3: angle(link7.u, link10.u) = theta3 (tenbar.gcs:28)
+        let minus = -params.theta3;
+        let link10_u_dir_turned = rotation_from_x_unit(&direction_at(minus))
+            * Vector2::new(-0.9191450300180579, -0.3939192985791677);
+        let turn_2 = rotation_between_units(
+            &Vector2::new(-0.9701425001453318, -0.24253562503633294),
+            &link10_u_dir_turned,
+        );
+        link7.rotate_about_by(&Point2::new(6.2, 1.8), &turn_2);
+
+        // coincident(link3.b, link4.a) (tenbar.gcs:25)
+        let link3_b = link3.origin + Vector2::new(3.212019, 1.733159);
+        let shift_2 = link3_b - Point2::new(3.212019, 1.733159);
+        link4.translate(&shift_2);
+
+        // drive2: angle(link3.u, link4.u) = theta2 (tenbar.gcs:26)
+        let link3_u_dir_turned = rotation_from_x_unit(&direction_at(params.theta2))
+            * Vector2::new(0.9848077908426045, 0.17364796311995495);
+        let turn_3 = rotation_between_units(
+            &Vector2::new(0.7129333647431632, 0.7012317858140715),
+            &link3_u_dir_turned,
+        );
+        link4.rotate_about_by(&link3_b, &turn_3);
+
+        // coincident(link10.c, link8.c) (tenbar.gcs:34)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // coincident(link9.b, link7.a) (tenbar.gcs:33)
+        let link7_a = link7.point_to_global(&Point2::new(7.8, 2.2));
+        let shift_3 = link7_a - Point2::new(7.8, 2.2);
+        link9.translate(&shift_3);
+
+        // coincident(link8.b, link9.a) (tenbar.gcs:32)
+        let circle_link10_c =
+            Circle::new(Point2::new(7.0, 3.8), 1.4866068747318508).ok_or_else(|| {
+                SolveError::new(
+                    "coincident_link8_b_link9_a",
+                    "coincident(link8.b, link9.a)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let link9_a = link9.origin + Vector2::new(6.5, 5.2);
+        let circle_link7_a = Circle::new(link7_a, 3.269556544854363).ok_or_else(|| {
+            SolveError::new(
+                "coincident_link8_b_link9_a",
+                "coincident(link8.b, link9.a)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let coincident_link8_b_link9_a_chord =
+            intersect2d::circle_circle_chord(&circle_link10_c, &circle_link7_a).map_err(
+                |miss| {
+                    SolveError::from_miss(
+                        "coincident_link8_b_link9_a",
+                        "coincident(link8.b, link9.a)",
+                        miss,
+                    )
+                },
+            )?;
+
+        // Each root of `coincident(link8.b, link9.a)` in turn (`coincident_link8_b_link9_a`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                coincident_link8_b_link9_a: root,
+                ..*branches
+            };
+            let mut link5 = link5;
+            let mut link7 = link7;
+            let mut link10 = link10;
+            let mut link8 = link8;
+            let mut link9 = link9;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let coincident_link8_b_link9_a = coincident_link8_b_link9_a_chord
+                    .root(usize::from(branches.coincident_link8_b_link9_a))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "coincident_link8_b_link9_a",
+                            "coincident(link8.b, link9.a)",
+                            ErrorKind::NoSuchBranch,
+                            2.0,
+                        )
+                    })?;
+                let coincident_link8_b_link9_a_reach = coincident_link8_b_link9_a_chord
+                    .root_from_a(usize::from(branches.coincident_link8_b_link9_a))
+                    .unwrap_or(coincident_link8_b_link9_a - Point2::new(7.0, 3.8));
+                let turn_4 = rotation_on_circle_from(
+                    coincident_link8_b_link9_a_reach.x * -0.22624434389140263
+                        + coincident_link8_b_link9_a_reach.y * 0.6334841628959276,
+                    coincident_link8_b_link9_a_reach.y * -0.22624434389140263
+                        + coincident_link8_b_link9_a_reach.x * -0.6334841628959276,
+                    &(Point2::new(6.5, 5.2) - Point2::new(7.0, 3.8)),
+                    &coincident_link8_b_link9_a_reach,
+                );
+                link8.rotate_about_by(&Point2::new(7.0, 3.8), &turn_4);
+                let turn_5 = rotation_on_circle(
+                    &(link9_a - link7_a),
+                    &coincident_link8_b_link9_a_chord
+                        .root_from_b(usize::from(branches.coincident_link8_b_link9_a))
+                        .unwrap_or(coincident_link8_b_link9_a - link7_a),
+                    3.269556544854363,
+                );
+                link9.rotate_about_by(&link7_a, &turn_5);
+
+                // coincident(link4.p, link5.a) (tenbar.gcs:29)
+                let link4_p = link4.point_to_global(&Point2::new(4.5, 3.0));
+                let shift_4 = link4_p - Point2::new(4.5, 3.0);
+                link5.translate(&shift_4);
+
+                // coincident(link4.q, link10.b) (tenbar.gcs:30)
+                let link4_q = link4.point_to_global(&Point2::new(4.8, 1.2));
+                let shift_5 = link4_q - Point2::new(4.8, 1.2);
+                link10.translate(&shift_5);
+                link7.translate(&shift_5);
+                link8.translate(&shift_5);
+                link9.translate(&shift_5);
+
+                // coincident(link5.b, link8.a) (tenbar.gcs:31)
+                let link5_b = link5.origin + Vector2::new(5.6, 4.2);
+                let circle_link4_p = Circle::new(link4_p, 1.6278820596099706).ok_or_else(|| {
+                    SolveError::new(
+                        "coincident_link5_b_link8_a",
+                        "coincident(link5.b, link8.a)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let link8_a = link8.point_to_global(&Point2::new(5.6, 4.2));
+                let circle_link4_q_link8_a = Circle::new(link4_q, (link8_a - link4_q).norm())
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "coincident_link5_b_link8_a",
+                            "coincident(link5.b, link8.a)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let coincident_link5_b_link8_a_chord =
+                    intersect2d::circle_circle_chord(&circle_link4_p, &circle_link4_q_link8_a)
+                        .map_err(|miss| {
+                            SolveError::from_miss(
+                                "coincident_link5_b_link8_a",
+                                "coincident(link5.b, link8.a)",
+                                miss,
+                            )
+                        })?;
+
+                // Each root of `coincident(link5.b, link8.a)` in turn (`coincident_link5_b_link8_a`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        coincident_link5_b_link8_a: root,
+                        ..*branches
+                    };
+                    let mut link5 = link5;
+                    let mut link7 = link7;
+                    let mut link10 = link10;
+                    let mut link8 = link8;
+                    let mut link9 = link9;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let coincident_link5_b_link8_a = coincident_link5_b_link8_a_chord
+                            .root(usize::from(branches.coincident_link5_b_link8_a))
+                            .ok_or_else(|| {
+                                SolveError::new(
+                                    "coincident_link5_b_link8_a",
+                                    "coincident(link5.b, link8.a)",
+                                    ErrorKind::NoSuchBranch,
+                                    2.0,
+                                )
+                            })?;
+                        let turn_6 = rotation_on_circle(
+                            &(link5_b - link4_p),
+                            &coincident_link5_b_link8_a_chord
+                                .root_from_a(usize::from(branches.coincident_link5_b_link8_a))
+                                .unwrap_or(coincident_link5_b_link8_a - link4_p),
+                            1.6278820596099706,
+                        );
+                        link5.rotate_about_by(&link4_p, &turn_6);
+                        let turn_7 = rotation_between2(
+                            &(link8_a - link4_q),
+                            &coincident_link5_b_link8_a_chord
+                                .root_from_b(usize::from(branches.coincident_link5_b_link8_a))
+                                .unwrap_or(coincident_link5_b_link8_a - link4_q),
+                        );
+                        link10.rotate_about_by(&link4_q, &turn_7);
+                        link7.rotate_about_by(&link4_q, &turn_7);
+                        link8.rotate_about_by(&link4_q, &turn_7);
+                        link9.rotate_about_by(&link4_q, &turn_7);
+
+                        // close: coincident(link5.c, link6.b) (tenbar.gcs:36)
+                        let link5_c = link5.point_to_global(&Point2::new(6.8, 2.6));
+                        let circle_crank_tip_link5_c =
+                            Circle::new(crank_tip, (link5_c - crank_tip).norm()).ok_or_else(
+                                || {
+                                    SolveError::new(
+                                        "close",
+                                        "coincident(link5.c, link6.b)",
+                                        ErrorKind::Degenerate,
+                                        0.0,
+                                    )
+                                },
+                            )?;
+                        let circle_ground_o6 =
+                            Circle::new(Point2::new(6.0, 0.0), 2.7202941017470885).ok_or_else(
+                                || {
+                                    SolveError::new(
+                                        "close",
+                                        "coincident(link5.c, link6.b)",
+                                        ErrorKind::Degenerate,
+                                        0.0,
+                                    )
+                                },
+                            )?;
+                        let close_chord = intersect2d::circle_circle_chord(
+                            &circle_crank_tip_link5_c,
+                            &circle_ground_o6,
+                        )
+                        .map_err(|miss| {
+                            SolveError::from_miss("close", "coincident(link5.c, link6.b)", miss)
+                        })?;
+
+                        // Each root of `coincident(link5.c, link6.b)` in turn (`close`), the steps above shared by all.
+                        for root in 0..2u8 {
+                            let branches = &Branches {
+                                close: root,
+                                ..*branches
+                            };
+                            let mut link3 = link3;
+                            let mut link4 = link4;
+                            let mut link5 = link5;
+                            let mut link6 = link6;
+                            let mut link7 = link7;
+                            let mut link10 = link10;
+                            let mut link8 = link8;
+                            let mut link9 = link9;
+                            // A failure ends this root's assemblies only.
+                            let _ = (|| -> Result<(), SolveError> {
+                                let close = close_chord
+                                    .root(usize::from(branches.close))
+                                    .ok_or_else(|| {
+                                        SolveError::new(
+                                            "close",
+                                            "coincident(link5.c, link6.b)",
+                                            ErrorKind::NoSuchBranch,
+                                            2.0,
+                                        )
+                                    })?;
+                                let turn_8 = rotation_between2(
+                                    &(link5_c - crank_tip),
+                                    &close_chord
+                                        .root_from_a(usize::from(branches.close))
+                                        .unwrap_or(close - crank_tip),
+                                );
+                                link3.rotate_about_by(&crank_tip, &turn_8);
+                                link4.rotate_about_by(&crank_tip, &turn_8);
+                                link10.rotate_about_by(&crank_tip, &turn_8);
+                                link7.rotate_about_by(&crank_tip, &turn_8);
+                                link8.rotate_about_by(&crank_tip, &turn_8);
+                                link9.rotate_about_by(&crank_tip, &turn_8);
+                                link5.rotate_about_by(&crank_tip, &turn_8);
+                                let close_reach = close_chord
+                                    .root_from_b(usize::from(branches.close))
+                                    .unwrap_or(close - Point2::new(6.0, 0.0));
+                                let turn_9 = rotation_on_circle_from(
+                                    close_reach.x * 0.10810810810810809
+                                        + close_reach.y * 0.35135135135135137,
+                                    close_reach.y * 0.10810810810810809
+                                        + close_reach.x * -0.35135135135135137,
+                                    &(Point2::new(6.8, 2.6) - Point2::new(6.0, 0.0)),
+                                    &close_reach,
+                                );
+                                link6.rotate_about_by(&Point2::new(6.0, 0.0), &turn_9);
+
+                                let solution = Solution {
+                                    ground,
+                                    crank,
+                                    link3,
+                                    link4,
+                                    link5,
+                                    link6,
+                                    link7,
+                                    link10,
+                                    link8,
+                                    link9,
+                                    branches: *branches,
+                                };
+                                keep(&mut found, &mut kept, solution.points(), solution);
+                                Ok(())
+                            })();
+                        }
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
         }
-    }
+        Ok(())
+    })();
     found
 }

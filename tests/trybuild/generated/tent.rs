@@ -362,35 +362,50 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.ridge_dir(), b.ridge_dir()) {
+        return false;
+    }
+    if !near(a.middle_normal(), b.middle_normal()) {
+        return false;
+    }
+    if !near(a.ground_normal(), b.ground_normal()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -402,7 +417,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -410,21 +429,153 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            on_left_stake_ground: (combination % 2) as u8,
-            ..Branches::default()
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("rope", params.rope)])?;
+        // The sketch: where every geom starts.
+        let ridge_length = 3.0;
+        let mut top = Frame3::new(Point3::new(0.2, 0.1, 1.9), UnitQuaternion::identity());
+        let mut left_stake = Frame3::new(Point3::new(-1.2, 2.1, 0.3), UnitQuaternion::identity());
+        let right_stake = Frame3::new(Point3::new(1.3, 2.0, -0.2), UnitQuaternion::identity());
+
+        // distance(left_stake, ridge.start) = 2.2 (tent.gcs:15)
+        let sphere = Sphere::new(Point3::new(-1.5, 0.0, 2.0), 2.2);
+        let nearest = sphere
+            .nearest(&Point3::new(-1.2, 2.1, 0.3))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_left_stake_ridge_start",
+                    "distance(left_stake, ridge.start) = 2.2",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let shift = nearest - Point3::new(-1.2, 2.1, 0.3);
+        left_stake.translate(&shift);
+
+        // midpoint(top, ridge) (tent.gcs:12)
+        let midpoint = locus3d::midpoint(Point3::new(-1.5, 0.0, 2.0), Point3::new(1.5, 0.0, 2.0));
+        let shift_2 = midpoint - Point3::new(0.2, 0.1, 1.9);
+        top.translate(&shift_2);
+
+        // guy: distance(left_stake, top) = rope (tent.gcs:14)
+        // guy: a distance is zero or more.
+        if params.rope < 0.0 {
+            return Err(SolveError::new(
+                "rope",
+                "distance(left_stake, top) = rope",
+                ErrorKind::InvalidParam,
+                params.rope,
+            ));
         }
-    }
+        let sphere_2 = Sphere::new(midpoint, params.rope);
+        let left_stake_origin = left_stake.origin;
+        let guy_meeting = intersect3d::sphere_sphere(&sphere, &sphere_2);
+        if let Some(e) = SolveError::from_contact(
+            "guy",
+            "distance(left_stake, top) = rope",
+            guy_meeting.contact,
+        ) {
+            return Err(e);
+        }
+        let guy = guy_meeting.roots.get(0).ok_or_else(|| {
+            SolveError::new(
+                "guy",
+                "distance(left_stake, top) = rope",
+                ErrorKind::NoSuchBranch,
+                0.0,
+            )
+        })?;
+        let nearest_2 = guy.nearest(&left_stake_origin).ok_or_else(|| {
+            SolveError::new(
+                "guy",
+                "distance(left_stake, top) = rope",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let shift_3 = nearest_2 - left_stake_origin;
+        left_stake.translate(&shift_3);
+
+        // on(left_stake, ground) (tent.gcs:13)
+        let normal = Vector3::z();
+        let plane = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal);
+        let left_stake_origin_2 = left_stake.origin;
+        let on_left_stake_ground_meeting = intersect3d::circle_plane(&guy, &plane);
+        if let Some(e) = SolveError::from_contact(
+            "on_left_stake_ground",
+            "on(left_stake, ground)",
+            on_left_stake_ground_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `on(left_stake, ground)` in turn (`on_left_stake_ground`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                on_left_stake_ground: root,
+                ..*branches
+            };
+            let mut left_stake = left_stake;
+            let mut right_stake = right_stake;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let on_left_stake_ground = on_left_stake_ground_meeting
+                    .roots
+                    .get(usize::from(branches.on_left_stake_ground))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "on_left_stake_ground",
+                            "on(left_stake, ground)",
+                            ErrorKind::NoSuchBranch,
+                            on_left_stake_ground_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let shift_4 = on_left_stake_ground - left_stake_origin_2;
+                left_stake.translate(&shift_4);
+
+                // symmetric(left_stake, right_stake, middle) (tent.gcs:16)
+                let mirrored = locus3d::mirror(
+                    Point3::new(0.0, 0.0, 0.0),
+                    Vector3::new(1.0, 0.0, 2.220446049250313e-16),
+                    on_left_stake_ground,
+                );
+                let shift_5 = mirrored - Point3::new(1.3, 2.0, -0.2);
+                right_stake.translate(&shift_5);
+
+                let solution = Solution {
+                    ground: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+                    middle: Frame3::new(
+                        Point3::new(0.0, 0.0, 0.0),
+                        UnitQuaternion::new_unchecked(Quaternion::new(
+                            std::f64::consts::FRAC_1_SQRT_2,
+                            0.0,
+                            0.7071067811865475,
+                            0.0,
+                        )),
+                    ),
+                    ridge: Frame3::new(Point3::new(-1.5, 0.0, 2.0), UnitQuaternion::identity()),
+                    ridge_length,
+                    top,
+                    left_stake,
+                    right_stake,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -398,35 +398,39 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(_: &Solution, _: &Solution) -> bool {
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -438,7 +442,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -446,21 +454,231 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            distance_c_d: (combination % 2) as u8,
-            ..Branches::default()
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        // The sketch: where every geom starts.
+        let mut b = Frame3::new(Point3::new(3.0, 0.2, 0.1), UnitQuaternion::identity());
+        let mut c = Frame3::new(Point3::new(1.2, 2.6, -0.2), UnitQuaternion::identity());
+        let mut d = Frame3::new(Point3::new(1.1, 0.9, 2.4), UnitQuaternion::identity());
+
+        // distance(a, b) = 3 (tetrahedron.gcs:9)
+        let direction = frame::unit3(&(Point3::new(3.0, 0.2, 0.1) - Point3::new(0.0, 0.0, 0.0)))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_a_b",
+                    "distance(a, b) = 3",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let line = Line3::new(
+            Point3::new(0.0, 0.0, 0.0),
+            frame::unit3(&direction).ok_or_else(|| {
+                SolveError::new(
+                    "distance_a_b",
+                    "distance(a, b) = 3",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+        );
+        let normal = frame::unit3(
+            &(Point3::new(3.0, 0.2, 0.1) - Point3::new(0.0, 0.0, 0.0))
+                .cross(&(Point3::new(1.2, 2.6, -0.2) - Point3::new(0.0, 0.0, 0.0))),
+        )
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_a_b",
+                "distance(a, b) = 3",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let normal_2 = frame::unit3(&normal).ok_or_else(|| {
+            SolveError::new(
+                "distance_a_b",
+                "distance(a, b) = 3",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let plane = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal_2);
+        let sphere = Sphere::new(Point3::new(0.0, 0.0, 0.0), 3.0);
+        let distance_a_b_meeting = intersect3d::line_sphere(&line, &sphere);
+        if let Some(e) = SolveError::from_contact(
+            "distance_a_b",
+            "distance(a, b) = 3",
+            distance_a_b_meeting.contact,
+        ) {
+            return Err(e);
         }
-    }
+        let distance_a_b = distance_a_b_meeting
+            .roots
+            .get(usize::from(branches.distance_a_b))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_a_b",
+                    "distance(a, b) = 3",
+                    ErrorKind::NoSuchBranch,
+                    distance_a_b_meeting.roots.len() as f64,
+                )
+            })?;
+        let shift = distance_a_b - Point3::new(3.0, 0.2, 0.1);
+        b.translate(&shift);
+
+        // distance(a, c) = 3 (tetrahedron.gcs:10)
+        let distance_a_c_meeting = intersect3d::sphere_plane(&sphere, &plane);
+        if let Some(e) = SolveError::from_contact(
+            "distance_a_c",
+            "distance(a, c) = 3",
+            distance_a_c_meeting.contact,
+        ) {
+            return Err(e);
+        }
+        let distance_a_c = distance_a_c_meeting.roots.get(0).ok_or_else(|| {
+            SolveError::new(
+                "distance_a_c",
+                "distance(a, c) = 3",
+                ErrorKind::NoSuchBranch,
+                0.0,
+            )
+        })?;
+        let nearest = distance_a_c
+            .nearest(&Point3::new(1.2, 2.6, -0.2))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_a_c",
+                    "distance(a, c) = 3",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let shift_2 = nearest - Point3::new(1.2, 2.6, -0.2);
+        c.translate(&shift_2);
+
+        // distance(a, d) = 3 (tetrahedron.gcs:12)
+        let nearest_2 = sphere.nearest(&Point3::new(1.1, 0.9, 2.4)).ok_or_else(|| {
+            SolveError::new(
+                "distance_a_d",
+                "distance(a, d) = 3",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let shift_3 = nearest_2 - Point3::new(1.1, 0.9, 2.4);
+        d.translate(&shift_3);
+
+        // distance(b, c) = 3 (tetrahedron.gcs:11)
+        let sphere_2 = Sphere::new(distance_a_b, 3.0);
+        let c_origin = c.origin;
+        let distance_b_c_meeting = intersect3d::circle_sphere(&distance_a_c, &sphere_2);
+        if let Some(e) = SolveError::from_contact(
+            "distance_b_c",
+            "distance(b, c) = 3",
+            distance_b_c_meeting.contact,
+        ) {
+            return Err(e);
+        }
+        let distance_b_c = distance_b_c_meeting
+            .roots
+            .get(usize::from(branches.distance_b_c))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_b_c",
+                    "distance(b, c) = 3",
+                    ErrorKind::NoSuchBranch,
+                    distance_b_c_meeting.roots.len() as f64,
+                )
+            })?;
+        let shift_4 = distance_b_c - c_origin;
+        c.translate(&shift_4);
+
+        // distance(b, d) = 3 (tetrahedron.gcs:13)
+        let d_origin = d.origin;
+        let distance_b_d_meeting = intersect3d::sphere_sphere(&sphere, &sphere_2);
+        if let Some(e) = SolveError::from_contact(
+            "distance_b_d",
+            "distance(b, d) = 3",
+            distance_b_d_meeting.contact,
+        ) {
+            return Err(e);
+        }
+        let distance_b_d = distance_b_d_meeting.roots.get(0).ok_or_else(|| {
+            SolveError::new(
+                "distance_b_d",
+                "distance(b, d) = 3",
+                ErrorKind::NoSuchBranch,
+                0.0,
+            )
+        })?;
+        let nearest_3 = distance_b_d.nearest(&d_origin).ok_or_else(|| {
+            SolveError::new(
+                "distance_b_d",
+                "distance(b, d) = 3",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let shift_5 = nearest_3 - d_origin;
+        d.translate(&shift_5);
+
+        // distance(c, d) = 3 (tetrahedron.gcs:14)
+        let sphere_3 = Sphere::new(distance_b_c, 3.0);
+        let d_origin_2 = d.origin;
+        let distance_c_d_meeting = intersect3d::circle_sphere(&distance_b_d, &sphere_3);
+        if let Some(e) = SolveError::from_contact(
+            "distance_c_d",
+            "distance(c, d) = 3",
+            distance_c_d_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `distance(c, d) = 3` in turn (`distance_c_d`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                distance_c_d: root,
+                ..*branches
+            };
+            let mut d = d;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let distance_c_d = distance_c_d_meeting
+                    .roots
+                    .get(usize::from(branches.distance_c_d))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "distance_c_d",
+                            "distance(c, d) = 3",
+                            ErrorKind::NoSuchBranch,
+                            distance_c_d_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let shift_6 = distance_c_d - d_origin_2;
+                d.translate(&shift_6);
+
+                let solution = Solution {
+                    a: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+                    b,
+                    c,
+                    d,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -245,35 +245,50 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.sight(), b.sight()) {
+        return false;
+    }
+    if !near(a.y(), b.y()) {
+        return false;
+    }
+    if !near(a.x(), b.x()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -285,7 +300,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -293,20 +312,99 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            b: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("alpha", params.alpha), ("beta", params.beta)])?;
+        // The sketch: where every geom starts.
+        let mut sight = Frame3::new(
+            Point3::new(0.0, 0.0, 0.0),
+            UnitQuaternion::new_unchecked(Quaternion::new(
+                0.8071696734162104,
+                0.0,
+                -0.5005899393008211,
+                0.31286871206301314,
+            )),
+        );
+
+        // a: angle(X, sight) = alpha (two_angle_direction.gcs:10)
+        let turned = frame::plane_turn(
+            &Vector3::x(),
+            f64::cos(params.alpha),
+            &Vector3::new(0.30304576336566325, 0.5050762722761054, 0.8081220356417687),
+        );
+        let turn = frame::rotation_between3(
+            &Vector3::new(0.30304576336566325, 0.5050762722761054, 0.8081220356417687),
+            &turned,
+            &frame::perpendicular(&Vector3::new(
+                0.30304576336566325,
+                0.5050762722761054,
+                0.8081220356417687,
+            )),
+        );
+        sight.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
+
+        // b: angle(Y, sight) = beta (two_angle_direction.gcs:11)
+        let sight_dir = sight.x_axis();
+        let turns = frame::turns_to_angle(
+            &Vector3::new(2.220446049250313e-16, 1.0, 0.0),
+            &sight_dir,
+            &Vector3::x(),
+            params.beta,
+        );
+        if let Some(e) = SolveError::from_contact("b", "angle(Y, sight) = beta", turns.contact) {
+            return Err(e);
         }
-    }
+
+        // Each root of `angle(Y, sight) = beta` in turn (`b`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { b: root };
+            let mut sight = sight;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let turned_2 = turns.roots.get(usize::from(branches.b)).ok_or_else(|| {
+                    SolveError::new(
+                        "b",
+                        "angle(Y, sight) = beta",
+                        ErrorKind::NoSuchBranch,
+                        turns.roots.len() as f64,
+                    )
+                })?;
+                let sight_origin = sight.origin;
+                let turn_2 = frame::rotation_about_axis(
+                    &Vector3::x(),
+                    frame::signed_angle3(&sight_dir, &turned_2, &Vector3::x()),
+                );
+                sight.rotate_about_by(&sight_origin, &turn_2);
+
+                let solution = Solution {
+                    x: Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity()),
+                    y: Frame3::new(
+                        Point3::new(0.0, 0.0, 0.0),
+                        UnitQuaternion::new_unchecked(Quaternion::new(
+                            std::f64::consts::FRAC_1_SQRT_2,
+                            0.0,
+                            0.0,
+                            0.7071067811865475,
+                        )),
+                    ),
+                    sight,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

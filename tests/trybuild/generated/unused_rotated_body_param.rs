@@ -287,35 +287,47 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.crank_u(), b.crank_u()) {
+        return false;
+    }
+    if !near(a.x(), b.x()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -327,7 +339,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -335,20 +351,96 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            elbow: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("theta", params.theta), ("phi", params.phi)])?;
+        // The sketch: where every geom starts.
+        let mut crank = Frame2::at(Point2::new(0.0, 0.0));
+        let mut coupler = Frame2::at(Point2::new(1.5, 0.0));
+
+        // coincident(crank.a, A) (unused_rotated_body_param.gcs:17)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // coincident(rocker.d, D) (unused_rotated_body_param.gcs:21)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // drive: angle(X, crank.u) = theta (unused_rotated_body_param.gcs:18)
+        let x_dir_turned = direction_at(params.theta);
+        let turn = rotation_from_x_unit(&x_dir_turned);
+        crank.set_rotation(&turn);
+
+        // coincident(crank.b, coupler.b) (unused_rotated_body_param.gcs:19)
+        let crank_b = Point2::from(crank.x_axis() * 1.5);
+        coupler.place_origin(&crank_b);
+        let coupler_c = crank_b + Vector2::new(4.0, 0.0);
+        let circle_crank_b = Circle::new(crank_b, 4.0).ok_or_else(|| {
+            SolveError::new(
+                "elbow",
+                "coincident(coupler.c, rocker.c)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let circle_d = Circle::new(Point2::new(4.0, 0.0), 3.0).ok_or_else(|| {
+            SolveError::new(
+                "elbow",
+                "coincident(coupler.c, rocker.c)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let elbow_chord =
+            intersect2d::circle_circle_chord(&circle_crank_b, &circle_d).map_err(|miss| {
+                SolveError::from_miss("elbow", "coincident(coupler.c, rocker.c)", miss)
+            })?;
+
+        // Each root of `coincident(coupler.c, rocker.c)` in turn (`elbow`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { elbow: root };
+            let mut coupler = coupler;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let elbow = elbow_chord
+                    .root(usize::from(branches.elbow))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "elbow",
+                            "coincident(coupler.c, rocker.c)",
+                            ErrorKind::NoSuchBranch,
+                            2.0,
+                        )
+                    })?;
+                let elbow_reach = elbow_chord
+                    .root_from_a(usize::from(branches.elbow))
+                    .unwrap_or(elbow - crank_b);
+                let turn_2 = rotation_on_circle_from(
+                    elbow_reach.x * 0.25,
+                    elbow_reach.y * 0.25,
+                    &(coupler_c - crank_b),
+                    &elbow_reach,
+                );
+                coupler.set_rotation(&turn_2);
+
+                let solution = Solution {
+                    crank,
+                    coupler,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
         }
-    }
+        Ok(())
+    })();
     found
 }

@@ -889,35 +889,125 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.wrist_3_tool_x(), b.wrist_3_tool_x()) {
+        return false;
+    }
+    if !near(a.wrist_3_tool_z(), b.wrist_3_tool_z()) {
+        return false;
+    }
+    if !near(a.wrist_3_wrist3_x(), b.wrist_3_wrist3_x()) {
+        return false;
+    }
+    if !near(a.wrist_3_wrist3_z(), b.wrist_3_wrist3_z()) {
+        return false;
+    }
+    if !near(a.wrist_2_wrist3_x(), b.wrist_2_wrist3_x()) {
+        return false;
+    }
+    if !near(a.wrist_2_wrist3_z(), b.wrist_2_wrist3_z()) {
+        return false;
+    }
+    if !near(a.wrist_2_wrist2_x(), b.wrist_2_wrist2_x()) {
+        return false;
+    }
+    if !near(a.wrist_2_wrist2_z(), b.wrist_2_wrist2_z()) {
+        return false;
+    }
+    if !near(a.wrist_1_wrist2_x(), b.wrist_1_wrist2_x()) {
+        return false;
+    }
+    if !near(a.wrist_1_wrist2_z(), b.wrist_1_wrist2_z()) {
+        return false;
+    }
+    if !near(a.wrist_1_wrist1_x(), b.wrist_1_wrist1_x()) {
+        return false;
+    }
+    if !near(a.wrist_1_wrist1_z(), b.wrist_1_wrist1_z()) {
+        return false;
+    }
+    if !near(a.forearm_wrist1_x(), b.forearm_wrist1_x()) {
+        return false;
+    }
+    if !near(a.forearm_wrist1_z(), b.forearm_wrist1_z()) {
+        return false;
+    }
+    if !near(a.forearm_elbow_x(), b.forearm_elbow_x()) {
+        return false;
+    }
+    if !near(a.forearm_elbow_z(), b.forearm_elbow_z()) {
+        return false;
+    }
+    if !near(a.upper_arm_elbow_x(), b.upper_arm_elbow_x()) {
+        return false;
+    }
+    if !near(a.upper_arm_elbow_z(), b.upper_arm_elbow_z()) {
+        return false;
+    }
+    if !near(a.upper_arm_shoulder_x(), b.upper_arm_shoulder_x()) {
+        return false;
+    }
+    if !near(a.upper_arm_shoulder_z(), b.upper_arm_shoulder_z()) {
+        return false;
+    }
+    if !near(a.trunk_shoulder_x(), b.trunk_shoulder_x()) {
+        return false;
+    }
+    if !near(a.trunk_shoulder_z(), b.trunk_shoulder_z()) {
+        return false;
+    }
+    if !near(a.trunk_yaw_x(), b.trunk_yaw_x()) {
+        return false;
+    }
+    if !near(a.trunk_yaw_z(), b.trunk_yaw_z()) {
+        return false;
+    }
+    if !near(a.ground_target_x(), b.ground_target_x()) {
+        return false;
+    }
+    if !near(a.ground_target_z(), b.ground_target_z()) {
+        return false;
+    }
+    if !near(a.ground_base_x(), b.ground_base_x()) {
+        return false;
+    }
+    if !near(a.ground_base_z(), b.ground_base_z()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -929,7 +1019,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -937,22 +1031,416 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..8usize {
-        let branches = Branches {
-            revolute_upper_arm_shoulder_trunk_shoulder: (combination % 2) as u8,
-            revolute_wrist_2_wrist2_wrist_1_wrist2: (combination / 2 % 2) as u8,
-            revolute_forearm_elbow_upper_arm_elbow: (combination / 4 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("px", params.px),
+            ("py", params.py),
+            ("pz", params.pz),
+            ("zx", params.zx),
+            ("zy", params.zy),
+            ("zz", params.zz),
+            ("xx", params.xx),
+            ("xy", params.xy),
+            ("xz", params.xz),
+        ])?;
+        // The sketch of `ground.target` depends on params: is it usable?
+        if frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .is_none()
+        {
+            return Err(SolveError::new(
+                "ground.target",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-    }
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_target_local = Point3::new(params.px, params.py, params.pz);
+        let ground_target_z_local = frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let ground_target_x_local = frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let trunk = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let upper_arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let forearm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut wrist_1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut wrist_2 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut wrist_3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+
+        // revolute(trunk.yaw, ground.base) (ur5.gcs:46)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // revolute(wrist_3.wrist3, wrist_2.wrist3) (ur5.gcs:51)
+        let ground_target = ground.point_to_global(&ground_target_local);
+        let shift = ground_target - Point3::new(0.799504348704907, 0.10915, 0.010210186389288);
+        wrist_3.translate(&shift);
+        let ground_target_z = ground.vector_to_global(&ground_target_z_local);
+        let wrist_3_tool_z = wrist_3.vector_to_global(&Vector3::x());
+        let turn = frame::rotation_between3(
+            &wrist_3_tool_z,
+            &ground_target_z,
+            &frame::perpendicular(&wrist_3_tool_z),
+        );
+        wrist_3.rotate_about_by(&ground_target, &turn);
+        let wrist_3_wrist3 =
+            wrist_3.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.010210186389288));
+        let shift_2 = wrist_3_wrist3 - Point3::new(0.717204348704907, 0.10915, 0.010210186389288);
+        wrist_2.translate(&shift_2);
+        let wrist_2_wrist2 =
+            wrist_2.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.010210186389288));
+        let shift_3 = wrist_2_wrist2 - Point3::new(0.717204348704907, 0.10915, 0.010210186389288);
+        wrist_1.translate(&shift_3);
+        let wrist_3_wrist3_z = wrist_3.vector_to_global(&Vector3::x());
+        let wrist_2_wrist3_z = wrist_2.vector_to_global(&Vector3::x());
+        let turn_2 = frame::rotation_between3(
+            &wrist_2_wrist3_z,
+            &wrist_3_wrist3_z,
+            &frame::perpendicular(&wrist_2_wrist3_z),
+        );
+        wrist_2.rotate_about_by(&wrist_3_wrist3, &turn_2);
+
+        // weld(wrist_3.tool, ground.target) (ur5.gcs:52)
+        let wrist_3_tool_z_2 = wrist_3.vector_to_global(&Vector3::x());
+        let ground_target_x = ground.vector_to_global(&ground_target_x_local);
+        let turned = frame::rotation_about_axis(&wrist_3_tool_z_2, -0.0) * ground_target_x;
+        let wrist_3_tool_x = wrist_3.vector_to_global(&Vector3::y());
+        let turn_3 = frame::rotation_about_axis(
+            &ground_target_z,
+            frame::signed_angle3(&wrist_3_tool_x, &turned, &ground_target_z),
+        );
+        wrist_3.rotate_about_by(&ground_target, &turn_3);
+
+        // revolute(upper_arm.shoulder, trunk.shoulder) (ur5.gcs:47)
+        let wrist_1_wrist1 =
+            wrist_1.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.104860186389288));
+        let wrist_1_wrist1_z =
+            wrist_1.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+        let length = (wrist_2_wrist2 - wrist_1_wrist1).dot(&wrist_1_wrist1_z);
+        let length_2 = (Point3::new(0.717204348704907, 0.10915, 0.104860186389288)
+            - Point3::new(0.372972588803408, 0.0, 0.292914853906786))
+        .dot(&Vector3::y());
+        let length_3 = (Point3::new(0.372972588803408, 0.0, 0.292914853906786)
+            - Point3::new(0.0, 0.0, 0.089159))
+        .dot(&Vector3::y());
+        let sum = length + length_2 + length_3;
+        if !gcs_runtime::num::is_finite(sum) {
+            return Err(SolveError::new(
+                "revolute_upper_arm_shoulder_trunk_shoulder",
+                "revolute(upper_arm.shoulder, trunk.shoulder)",
+                ErrorKind::InvalidValue,
+                sum,
+            ));
+        }
+        let cone = frame::plane_cone(
+            &Point3::new(0.0, 0.0, 0.089159),
+            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+            &Point3::new(0.0, 0.0, 0.0),
+            &wrist_2_wrist2,
+            sum,
+        );
+        let reach = cone.0.try_normalize(0.0).ok_or_else(|| {
+            SolveError::new(
+                "revolute_upper_arm_shoulder_trunk_shoulder",
+                "revolute(upper_arm.shoulder, trunk.shoulder)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let gap = (cone.1.abs() - 1.0).max(0.0) * cone.0.norm();
+        let turns = frame::turns_to_angle(
+            &reach,
+            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+            &Vector3::z(),
+            cone.1.clamp(-1.0, 1.0).acos(),
+        );
+        if let Some(mut e) = SolveError::from_contact(
+            "revolute_upper_arm_shoulder_trunk_shoulder",
+            "revolute(upper_arm.shoulder, trunk.shoulder)",
+            turns.contact,
+        ) {
+            e.magnitude = e.magnitude.max(gap);
+            return Err(e);
+        }
+        if gap > gcs_runtime::tol::LENGTH_REL * (1.0 + cone.0.norm()) {
+            return Err(SolveError::new(
+                "revolute_upper_arm_shoulder_trunk_shoulder",
+                "revolute(upper_arm.shoulder, trunk.shoulder)",
+                ErrorKind::NoIntersection,
+                gap,
+            ));
+        }
+
+        // Each root of `revolute(upper_arm.shoulder, trunk.shoulder)` in turn (`revolute_upper_arm_shoulder_trunk_shoulder`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                revolute_upper_arm_shoulder_trunk_shoulder: root,
+                ..*branches
+            };
+            let mut trunk = trunk;
+            let mut upper_arm = upper_arm;
+            let mut forearm = forearm;
+            let mut wrist_1 = wrist_1;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let normal = turns
+                    .roots
+                    .get(usize::from(
+                        branches.revolute_upper_arm_shoulder_trunk_shoulder,
+                    ))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_upper_arm_shoulder_trunk_shoulder",
+                            "revolute(upper_arm.shoulder, trunk.shoulder)",
+                            ErrorKind::NoSuchBranch,
+                            turns.roots.len() as f64,
+                        )
+                    })?;
+                let turn_4 = frame::rotation_about_axis(
+                    &Vector3::z(),
+                    frame::signed_angle3(
+                        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                        &normal,
+                        &Vector3::z(),
+                    ),
+                );
+                trunk.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
+                let trunk_shoulder_z =
+                    trunk.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+                let turn_5 = frame::rotation_between3(
+                    &Vector3::y(),
+                    &trunk_shoulder_z,
+                    &frame::perpendicular(&Vector3::y()),
+                );
+                upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.089159), &turn_5);
+
+                // revolute(forearm.elbow, upper_arm.elbow) (ur5.gcs:48)
+                let upper_arm_elbow_z = upper_arm.vector_to_global(&Vector3::y());
+                let turn_6 = frame::rotation_between3(
+                    &Vector3::y(),
+                    &upper_arm_elbow_z,
+                    &frame::perpendicular(&Vector3::y()),
+                );
+                forearm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_6);
+
+                // revolute(wrist_1.wrist1, forearm.wrist1) (ur5.gcs:49)
+                let forearm_wrist1_z = forearm.vector_to_global(&Vector3::y());
+                let turn_7 = frame::rotation_between3(
+                    &wrist_1_wrist1_z,
+                    &forearm_wrist1_z,
+                    &frame::perpendicular(&wrist_1_wrist1_z),
+                );
+                wrist_1.rotate_about_by(&wrist_2_wrist2, &turn_7);
+
+                // revolute(wrist_2.wrist2, wrist_1.wrist2) (ur5.gcs:50)
+                let wrist_1_wrist1_z_2 =
+                    wrist_1.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
+                let wrist_2_wrist2_z = wrist_2.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
+                let turns_2 = frame::turns_to_angle(
+                    &wrist_1_wrist1_z_2,
+                    &wrist_2_wrist2_z,
+                    &wrist_3_wrist3_z,
+                    std::f64::consts::FRAC_PI_2,
+                );
+                if let Some(e) = SolveError::from_contact(
+                    "revolute_wrist_2_wrist2_wrist_1_wrist2",
+                    "revolute(wrist_2.wrist2, wrist_1.wrist2)",
+                    turns_2.contact,
+                ) {
+                    return Err(e);
+                }
+
+                // Each root of `revolute(wrist_2.wrist2, wrist_1.wrist2)` in turn (`revolute_wrist_2_wrist2_wrist_1_wrist2`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        revolute_wrist_2_wrist2_wrist_1_wrist2: root,
+                        ..*branches
+                    };
+                    let mut forearm = forearm;
+                    let mut wrist_1 = wrist_1;
+                    let mut wrist_2 = wrist_2;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let turned_2 = turns_2
+                            .roots
+                            .get(usize::from(branches.revolute_wrist_2_wrist2_wrist_1_wrist2))
+                            .ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_wrist_2_wrist2_wrist_1_wrist2",
+                                    "revolute(wrist_2.wrist2, wrist_1.wrist2)",
+                                    ErrorKind::NoSuchBranch,
+                                    turns_2.roots.len() as f64,
+                                )
+                            })?;
+                        let turn_8 = frame::rotation_about_axis(
+                            &wrist_3_wrist3_z,
+                            frame::signed_angle3(&wrist_2_wrist2_z, &turned_2, &wrist_3_wrist3_z),
+                        );
+                        wrist_2.rotate_about_by(&wrist_3_wrist3, &turn_8);
+                        let wrist_2_wrist2_z_2 =
+                            wrist_2.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
+                        let wrist_1_wrist2_z =
+                            wrist_1.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
+                        let turn_9 = frame::rotation_about_axis(
+                            &forearm_wrist1_z,
+                            frame::signed_angle3(
+                                &wrist_1_wrist2_z,
+                                &wrist_2_wrist2_z_2,
+                                &forearm_wrist1_z,
+                            ),
+                        );
+                        wrist_1.rotate_about_by(&wrist_2_wrist2, &turn_9);
+                        let wrist_1_wrist1_2 = wrist_1.point_to_global(&Point3::new(
+                            0.717204348704907,
+                            0.10915,
+                            0.104860186389288,
+                        ));
+                        let forearm_wrist1 = forearm.point_to_global(&Point3::new(
+                            0.717204348704907,
+                            0.10915,
+                            0.104860186389288,
+                        ));
+                        let shift_4 = wrist_1_wrist1_2 - forearm_wrist1;
+                        forearm.translate(&shift_4);
+                        let forearm_elbow = forearm.point_to_global(&Point3::new(
+                            0.372972588803408,
+                            0.0,
+                            0.292914853906786,
+                        ));
+                        let orbit = Circle3::orbit(
+                            &wrist_1_wrist1_2,
+                            &frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_forearm_elbow_upper_arm_elbow",
+                                    "revolute(forearm.elbow, upper_arm.elbow)",
+                                    ErrorKind::Degenerate,
+                                    0.0,
+                                )
+                            })?,
+                            &forearm_elbow,
+                        );
+                        let upper_arm_elbow = upper_arm.point_to_global(&Point3::new(
+                            0.372972588803408,
+                            0.0,
+                            0.292914853906786,
+                        ));
+                        let orbit_2 = Circle3::orbit(
+                            &Point3::new(0.0, 0.0, 0.089159),
+                            &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_forearm_elbow_upper_arm_elbow",
+                                    "revolute(forearm.elbow, upper_arm.elbow)",
+                                    ErrorKind::Degenerate,
+                                    0.0,
+                                )
+                            })?,
+                            &upper_arm_elbow,
+                        );
+                        let revolute_forearm_elbow_upper_arm_elbow_meeting =
+                            intersect3d::circle_circle(&orbit, &orbit_2);
+                        if let Some(e) = SolveError::from_contact(
+                            "revolute_forearm_elbow_upper_arm_elbow",
+                            "revolute(forearm.elbow, upper_arm.elbow)",
+                            revolute_forearm_elbow_upper_arm_elbow_meeting.contact,
+                        ) {
+                            return Err(e);
+                        }
+
+                        // Each root of `revolute(forearm.elbow, upper_arm.elbow)` in turn (`revolute_forearm_elbow_upper_arm_elbow`), the steps above shared by all.
+                        for root in 0..2u8 {
+                            let branches = &Branches {
+                                revolute_forearm_elbow_upper_arm_elbow: root,
+                                ..*branches
+                            };
+                            let mut upper_arm = upper_arm;
+                            let mut forearm = forearm;
+                            // A failure ends this root's assemblies only.
+                            let _ = (|| -> Result<(), SolveError> {
+                                let revolute_forearm_elbow_upper_arm_elbow =
+                                    revolute_forearm_elbow_upper_arm_elbow_meeting
+                                        .roots
+                                        .get(usize::from(
+                                            branches.revolute_forearm_elbow_upper_arm_elbow,
+                                        ))
+                                        .ok_or_else(|| {
+                                            SolveError::new(
+                                                "revolute_forearm_elbow_upper_arm_elbow",
+                                                "revolute(forearm.elbow, upper_arm.elbow)",
+                                                ErrorKind::NoSuchBranch,
+                                                revolute_forearm_elbow_upper_arm_elbow_meeting
+                                                    .roots
+                                                    .len()
+                                                    as f64,
+                                            )
+                                        })?;
+                                let turn_10 = frame::rotation_about_axis(
+                                    &upper_arm_elbow_z,
+                                    frame::signed_angle3(
+                                        &(forearm_elbow - wrist_1_wrist1_2),
+                                        &(revolute_forearm_elbow_upper_arm_elbow
+                                            - wrist_1_wrist1_2),
+                                        &upper_arm_elbow_z,
+                                    ),
+                                );
+                                forearm.rotate_about_by(&wrist_1_wrist1_2, &turn_10);
+                                let turn_11 = frame::rotation_about_axis(
+                                    &trunk_shoulder_z,
+                                    frame::signed_angle3(
+                                        &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),
+                                        &(revolute_forearm_elbow_upper_arm_elbow
+                                            - Point3::new(0.0, 0.0, 0.089159)),
+                                        &trunk_shoulder_z,
+                                    ),
+                                );
+                                upper_arm
+                                    .rotate_about_by(&Point3::new(0.0, 0.0, 0.089159), &turn_11);
+
+                                let solution = Solution {
+                                    ground,
+                                    ground_target_local,
+                                    ground_target_z_local,
+                                    ground_target_x_local,
+                                    trunk,
+                                    upper_arm,
+                                    forearm,
+                                    wrist_1,
+                                    wrist_2,
+                                    wrist_3,
+                                    branches: *branches,
+                                };
+                                keep(&mut found, &mut kept, solution.points(), solution);
+                                Ok(())
+                            })();
+                        }
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

@@ -303,35 +303,47 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.rim_normal(), b.rim_normal()) {
+        return false;
+    }
+    if !near(a.axle(), b.axle()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -343,7 +355,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -351,20 +367,128 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..2usize {
-        let branches = Branches {
-            on_valve_rim: (combination % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("r", params.r), ("reach", params.reach)])?;
+        // The sketch: where every geom starts.
+        let mut valve = Frame3::new(Point3::new(1.5, 2.3, 2.9), UnitQuaternion::identity());
+
+        // centred: coincident(rim.center, hub) (wheel_rim.gcs:17)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // distance(valve, sensor) = reach (wheel_rim.gcs:26)
+        // distance_valve_sensor: a distance is zero or more.
+        if params.reach < 0.0 {
+            return Err(SolveError::new(
+                "reach",
+                "distance(valve, sensor) = reach",
+                ErrorKind::InvalidParam,
+                params.reach,
+            ));
         }
-    }
+        let sphere = Sphere::new(Point3::new(1.6, 2.5, 3.2), params.reach);
+        let nearest = sphere.nearest(&Point3::new(1.5, 2.3, 2.9)).ok_or_else(|| {
+            SolveError::new(
+                "distance_valve_sensor",
+                "distance(valve, sensor) = reach",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let shift = nearest - Point3::new(1.5, 2.3, 2.9);
+        valve.translate(&shift);
+
+        // size: radius(rim) = r (wheel_rim.gcs:19)
+        // size: a radius is zero or more.
+        if params.r < 0.0 {
+            return Err(SolveError::new(
+                "r",
+                "radius(rim) = r",
+                ErrorKind::InvalidParam,
+                params.r,
+            ));
+        }
+        let rim_radius = params.r;
+
+        // square: parallel(rim.normal, axle) (wheel_rim.gcs:18)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // on(valve, rim) (wheel_rim.gcs:25)
+        let circle = Circle3::new(
+            Point3::new(1.0, 2.0, 3.0),
+            Vector3::new(0.20628424925175853, 0.3094263738776381, 0.9282791216329142),
+            rim_radius,
+        );
+        let valve_origin = valve.origin;
+        let on_valve_rim_meeting = intersect3d::circle_sphere(&circle, &sphere);
+        if let Some(e) = SolveError::from_contact(
+            "on_valve_rim",
+            "on(valve, rim)",
+            on_valve_rim_meeting.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `on(valve, rim)` in turn (`on_valve_rim`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches { on_valve_rim: root };
+            let mut valve = valve;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let on_valve_rim = on_valve_rim_meeting
+                    .roots
+                    .get(usize::from(branches.on_valve_rim))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "on_valve_rim",
+                            "on(valve, rim)",
+                            ErrorKind::NoSuchBranch,
+                            on_valve_rim_meeting.roots.len() as f64,
+                        )
+                    })?;
+                let shift_2 = on_valve_rim - valve_origin;
+                valve.translate(&shift_2);
+
+                let solution = Solution {
+                    hub: Frame3::new(Point3::new(1.0, 2.0, 3.0), UnitQuaternion::identity()),
+                    sensor: Frame3::new(Point3::new(1.6, 2.5, 3.2), UnitQuaternion::identity()),
+                    axle: Frame3::new(
+                        Point3::new(0.0, 0.0, 0.0),
+                        UnitQuaternion::new_unchecked(Quaternion::new(
+                            0.776622253496434,
+                            0.0,
+                            -0.5976387603199015,
+                            0.1992129201066338,
+                        )),
+                    ),
+                    rim: Frame3::new(
+                        Point3::new(1.0, 2.0, 3.0),
+                        UnitQuaternion::new_unchecked(Quaternion::new(
+                            0.9819027994076243,
+                            -0.15783537332514372,
+                            0.10463476530702145,
+                            -0.002540340907796026,
+                        )),
+                    ),
+                    rim_radius,
+                    valve,
+                    branches: *branches,
+                };
+                keep(&mut found, &mut kept, solution.points(), solution);
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

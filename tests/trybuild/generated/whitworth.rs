@@ -446,35 +446,56 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.block_guide_x(), b.block_guide_x()) {
+        return false;
+    }
+    if !near(a.rocker_slot_x(), b.rocker_slot_x()) {
+        return false;
+    }
+    if !near(a.crank_u(), b.crank_u()) {
+        return false;
+    }
+    if !near(a.ram_line_dir(), b.ram_line_dir()) {
+        return false;
+    }
+    if !near(a.x(), b.x()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -486,7 +507,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -494,21 +519,177 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..4usize {
-        let branches = Branches {
-            slide: (combination % 2) as u8,
-            coincident_link_b_ram: (combination / 2 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("theta", params.theta)])?;
+        // The sketch: where every geom starts.
+        let ram_line = Frame2::along(
+            Point2::new(-5.0, 3.0),
+            Point2::new(5.0, 3.0) - Point2::new(-5.0, 3.0),
+        );
+        let mut crank = Frame2::at(Point2::new(0.0, 0.0));
+        let rocker = Frame2::at(Point2::new(0.0, -2.0));
+        let mut block = Frame2::at(Point2::new(0.5, 0.9));
+        let link = Frame2::at(Point2::new(1.6, 2.0));
+        let mut ram = Frame2::at(Point2::new(3.1, 3.0));
+
+        // coincident(crank.o, O) (whitworth.gcs:19)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // coincident(rocker.o, B) (whitworth.gcs:21)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // drive: angle(X, crank.u) = theta (whitworth.gcs:20)
+        let x_dir_turned = direction_at(params.theta);
+        let turn = rotation_from_x_unit(&x_dir_turned);
+        crank.set_rotation(&turn);
+
+        // on(ram, ram_line) (whitworth.gcs:26)
+        let ram_line_dir = ram_line.x_axis();
+        let line_ram_line = Line::new(Point2::new(-5.0, 3.0), ram_line_dir).ok_or_else(|| {
+            SolveError::new(
+                "on_ram_ram_line",
+                "on(ram, ram_line)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_ram = line_ram_line.nearest(Point2::new(3.1, 3.0));
+        ram.place_origin(&nearest_ram);
+
+        // pin: coincident(block.pin, crank.tip) (whitworth.gcs:22)
+        let crank_tip = Point2::from(crank.x_axis() * 1.0);
+        block.place_origin(&crank_tip);
+
+        // coincident(link.a, rocker.top) (whitworth.gcs:24)
+        let slide_lines = intersect2d::passing_directions(Point2::new(0.0, -2.0), crank_tip, 0.0);
+        if let Some(e) = SolveError::from_contact(
+            "slide",
+            "prismatic(block.guide, rocker.slot)",
+            slide_lines.contact,
+        ) {
+            return Err(e);
         }
-    }
+
+        // Each root of `prismatic(block.guide, rocker.slot)` in turn (`slide`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                slide: root,
+                ..*branches
+            };
+            let mut rocker = rocker;
+            let mut block = block;
+            let mut link = link;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let slide_dir =
+                    slide_lines
+                        .branch(usize::from(branches.slide))
+                        .ok_or_else(|| {
+                            SolveError::new(
+                                "slide",
+                                "prismatic(block.guide, rocker.slot)",
+                                ErrorKind::NoSuchBranch,
+                                slide_lines.roots.len() as f64,
+                            )
+                        })?;
+                let turn_2 = rotation_between_units(
+                    &Vector2::new(0.37139067635410367, 0.9284766908852592),
+                    &slide_dir,
+                );
+                rocker.set_rotation(&turn_2);
+                let rocker_top = rocker.point_to_global(&Point2::new(1.6, 4.0));
+                link.place_origin(&rocker_top);
+
+                // slide: prismatic(block.guide, rocker.slot) (whitworth.gcs:23)
+                let rocker_slot_x_dir =
+                    rocker.vector_to_global(&Vector2::new(0.37139067635410367, 0.9284766908852592));
+                let turn_3 = rotation_between_units(
+                    &Vector2::new(0.37139067635410367, 0.9284766908852592),
+                    &rocker_slot_x_dir,
+                );
+                block.set_rotation(&turn_3);
+
+                // coincident(link.b, ram) (whitworth.gcs:25)
+                let link_b = rocker_top + Vector2::new(1.5, 1.0);
+                let circle_rocker_top =
+                    Circle::new(rocker_top, 1.8027756377319946).ok_or_else(|| {
+                        SolveError::new(
+                            "coincident_link_b_ram",
+                            "coincident(link.b, ram)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?;
+                let coincident_link_b_ram_meeting =
+                    intersect2d::line_circle(&line_ram_line, &circle_rocker_top);
+                if let Some(e) = SolveError::from_contact(
+                    "coincident_link_b_ram",
+                    "coincident(link.b, ram)",
+                    coincident_link_b_ram_meeting.contact,
+                ) {
+                    return Err(e);
+                }
+
+                // Each root of `coincident(link.b, ram)` in turn (`coincident_link_b_ram`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        coincident_link_b_ram: root,
+                        ..*branches
+                    };
+                    let mut link = link;
+                    let mut ram = ram;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let coincident_link_b_ram = coincident_link_b_ram_meeting
+                            .branch(usize::from(branches.coincident_link_b_ram))
+                            .ok_or_else(|| {
+                                SolveError::new(
+                                    "coincident_link_b_ram",
+                                    "coincident(link.b, ram)",
+                                    ErrorKind::NoSuchBranch,
+                                    coincident_link_b_ram_meeting.roots.len() as f64,
+                                )
+                            })?;
+                        let coincident_link_b_ram_reach = coincident_link_b_ram - rocker_top;
+                        let turn_4 = rotation_on_circle_from(
+                            coincident_link_b_ram_reach.x * 0.46153846153846156
+                                + coincident_link_b_ram_reach.y * 0.3076923076923077,
+                            coincident_link_b_ram_reach.y * 0.46153846153846156
+                                + coincident_link_b_ram_reach.x * -0.3076923076923077,
+                            &(link_b - rocker_top),
+                            &coincident_link_b_ram_reach,
+                        );
+                        link.set_rotation(&turn_4);
+                        ram.place_origin(&coincident_link_b_ram);
+
+                        let solution = Solution {
+                            ram_line,
+                            crank,
+                            rocker,
+                            block,
+                            link,
+                            ram,
+                            branches: *branches,
+                        };
+                        keep(&mut found, &mut kept, solution.points(), solution);
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }

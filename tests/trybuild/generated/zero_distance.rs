@@ -313,35 +313,44 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point2<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size). The vectors are read only when the points agree (two assemblies mostly differ
-/// in their first points).
+/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
+/// largest coordinate of `pa` (plus one): every point and vector within a relative
+/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
+/// only when the points agree (two assemblies mostly differ in their points).
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    pa: &NamedPoints<P>,
+    (pa, scale): &(NamedPoints<P>, f64),
     pb: &NamedPoints<P>,
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    let scale = 1.0 + pa.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
     pa.iter()
         .zip(pb)
         .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
-        && a.vectors()
-            .iter()
-            .zip(&b.vectors())
-            .all(|((_, u), (_, v))| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL)
+        && same_vectors(a, b)
+}
+
+/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
+/// read one at a time until two differ, the last declared first (a chain's far links,
+/// which the most branches move).
+#[allow(dead_code)]
+fn same_vectors(a: &Solution, b: &Solution) -> bool {
+    let near =
+        |u: Vector2<f64>, v: Vector2<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
+    if !near(a.base_dir(), b.base_dir()) {
+        return false;
+    }
+    true
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, by its
-/// place in the list, so that each solution's points are computed once, not once per
-/// pair compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed and their
+/// scale, by its place in the list, so that each is computed once, not once per pair
+/// compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<NamedPoints<P>>; MAX_ASSEMBLIES],
+    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
@@ -353,7 +362,11 @@ fn keep<const P: usize>(
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        *slot = Some(points);
+        let scale = 1.0
+            + points
+                .iter()
+                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
+        *slot = Some((points, scale));
     }
     found.push(s, |_, _| false);
 }
@@ -361,21 +374,149 @@ fn keep<const P: usize>(
 /// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
 /// The plan has no outer iteration: each combination has at most one assembly.
-#[allow(dead_code)]
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..4usize {
-        let branches = Branches {
-            distance_d_f: (combination % 2) as u8,
-            on_b_base: (combination / 2 % 2) as u8,
-        };
-        if let Ok(s) = solve(params, &branches, defaults) {
-            keep(&mut found, &mut kept, s.points(), s);
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[("c", params.c), ("e", params.e)])?;
+        // The sketch: where every geom starts.
+        let base = Frame2::along(
+            Point2::new(0.0, 0.0),
+            Point2::new(10.0, 0.0) - Point2::new(0.0, 0.0),
+        );
+        let mut b = Frame2::at(Point2::new(5.0, 1.0));
+        let mut f = Frame2::at(Point2::new(2.5, 0.5));
+
+        // distance(A, B) = c (zero_distance.gcs:18)
+        // distance_A_B: a distance is zero or more.
+        if params.c < 0.0 {
+            return Err(SolveError::new(
+                "c",
+                "distance(A, B) = c",
+                ErrorKind::InvalidParam,
+                params.c,
+            ));
         }
-    }
+        let circle_a = Circle::new(Point2::new(3.0, 0.0), params.c).ok_or_else(|| {
+            SolveError::new(
+                "distance_A_B",
+                "distance(A, B) = c",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_b = circle_a.nearest(Point2::new(5.0, 1.0));
+        b.place_origin(&nearest_b);
+
+        // distance(C, F) = 5 (zero_distance.gcs:20)
+        let circle_c = Circle::new(Point2::new(0.0, 4.0), 5.0).ok_or_else(|| {
+            SolveError::new(
+                "distance_C_F",
+                "distance(C, F) = 5",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let nearest_f = circle_c.nearest(Point2::new(2.5, 0.5));
+        f.place_origin(&nearest_f);
+
+        // distance(D, F) = e (zero_distance.gcs:19)
+        // distance_D_F: a distance is zero or more.
+        if params.e < 0.0 {
+            return Err(SolveError::new(
+                "e",
+                "distance(D, F) = e",
+                ErrorKind::InvalidParam,
+                params.e,
+            ));
+        }
+        let circle_d = Circle::new(Point2::new(3.0, 0.0), params.e).ok_or_else(|| {
+            SolveError::new(
+                "distance_D_F",
+                "distance(D, F) = e",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+        let distance_d_f_chord = intersect2d::circle_circle_chord(&circle_c, &circle_d)
+            .map_err(|miss| SolveError::from_miss("distance_D_F", "distance(D, F) = e", miss))?;
+
+        // Each root of `distance(D, F) = e` in turn (`distance_d_f`), the steps above shared by all.
+        for root in 0..2u8 {
+            let branches = &Branches {
+                distance_d_f: root,
+                ..*branches
+            };
+            let mut f = f;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let distance_d_f = distance_d_f_chord
+                    .root(usize::from(branches.distance_d_f))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "distance_D_F",
+                            "distance(D, F) = e",
+                            ErrorKind::NoSuchBranch,
+                            2.0,
+                        )
+                    })?;
+                f.place_origin(&distance_d_f);
+
+                // on(B, base) (zero_distance.gcs:17)
+                let base_dir = base.x_axis();
+                let line_base = Line::new(Point2::new(0.0, 0.0), base_dir).ok_or_else(|| {
+                    SolveError::new("on_B_base", "on(B, base)", ErrorKind::Degenerate, 0.0)
+                })?;
+                let on_b_base_meeting = intersect2d::line_circle(&line_base, &circle_a);
+                if let Some(e) =
+                    SolveError::from_contact("on_B_base", "on(B, base)", on_b_base_meeting.contact)
+                {
+                    return Err(e);
+                }
+
+                // Each root of `on(B, base)` in turn (`on_b_base`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        on_b_base: root,
+                        ..*branches
+                    };
+                    let mut b = b;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let on_b_base = on_b_base_meeting
+                            .branch(usize::from(branches.on_b_base))
+                            .ok_or_else(|| {
+                            SolveError::new(
+                                "on_B_base",
+                                "on(B, base)",
+                                ErrorKind::NoSuchBranch,
+                                on_b_base_meeting.roots.len() as f64,
+                            )
+                        })?;
+                        b.place_origin(&on_b_base);
+
+                        let solution = Solution {
+                            base,
+                            b,
+                            f,
+                            branches: *branches,
+                        };
+                        keep(&mut found, &mut kept, solution.points(), solution);
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
+        }
+        Ok(())
+    })();
     found
 }
