@@ -347,6 +347,67 @@ pub fn rotation_about_axis(axis: &Vector3<f64>, angle: f64) -> UnitQuaternion<f6
     }
 }
 
+/// The rotation about `axis` that turns the projection of `u` across it onto the direction of
+/// the projection of `v`: `rotation_about_axis(axis, signed_angle3(u, v, axis))` to rounding,
+/// without the angle (no `atan2`, no `sin_cos`). The identity when `axis` or a projection is
+/// zero; a NaN quaternion when an input has a NaN.
+#[inline]
+pub fn turn_about_axis(
+    axis: &Vector3<f64>,
+    u: &Vector3<f64>,
+    v: &Vector3<f64>,
+) -> UnitQuaternion<f64> {
+    let n = axis.norm();
+    if n.is_nan() {
+        return nan_rotation();
+    }
+    if n <= 0.0 {
+        return UnitQuaternion::identity();
+    }
+    let a = axis / n;
+    let (sin, cos) = turn_across(&a, u, v);
+    rotation_by_sin_cos(&a, sin, cos)
+}
+
+/// The rotation about the unit `a` by the angle whose sine and cosine are `sin` and `cos`
+/// times one positive factor. The half angle's cosine and sine are, to a common factor,
+/// `(r + cos, sin)` on the near half turn and `(sin, r - cos)` on the far one (`r` the
+/// factor): each form adds numbers of one sign, so neither cancels, and no angle is taken.
+/// The scalar part is kept non-negative, as `from_axis_angle` has it for angles in
+/// `[-pi, pi]`. The identity when both are zero (`atan2(0, 0)`); NaN when either is.
+#[inline]
+fn rotation_by_sin_cos(a: &Vector3<f64>, sin: f64, cos: f64) -> UnitQuaternion<f64> {
+    let m = sin.abs().max(cos.abs());
+    if sin.is_nan() || cos.is_nan() {
+        return nan_rotation();
+    }
+    if m <= 0.0 {
+        return UnitQuaternion::identity();
+    }
+    // Scaled to at most one, so that the squares cannot overflow.
+    let (s, c) = (sin / m, cos / m);
+    let r = (s * s + c * c).sqrt();
+    let (mut w, mut k) = if c >= 0.0 { (r + c, s) } else { (s, r - c) };
+    if w < 0.0 {
+        (w, k) = (-w, -k);
+    }
+    let h = (w * w + k * k).sqrt();
+    let (w, k) = (w / h, k / h);
+    UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(w, a.x * k, a.y * k, a.z * k))
+}
+
+/// The rotation of a NaN input: every component NaN, as `from_axis_angle` gives for a NaN
+/// angle, so that it reaches the solution's checks instead of passing as a turn.
+#[cold]
+fn nan_rotation() -> UnitQuaternion<f64> {
+    UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(
+        f64::NAN,
+        f64::NAN,
+        f64::NAN,
+        f64::NAN,
+    ))
+}
+
 /// The signed counter-clockwise angle from `u` to `v`, in `[-pi, pi]`. Zero when either vector
 /// is zero; NaN when either has a NaN component.
 #[inline]
@@ -435,7 +496,7 @@ pub fn rotation_between3(
     let sin = cross.norm();
     let cos = uh.dot(&vh);
     if sin > tol::ANGLE || (sin > 0.0 && cos > 0.0) {
-        return UnitQuaternion::from_axis_angle(&Unit::new_unchecked(cross / sin), sin.atan2(cos));
+        return rotation_by_sin_cos(&(cross / sin), sin, cos);
     }
     if cos.is_nan() || cos >= 0.0 {
         // Parallel to the last bit, or NaN: identity (footnote 6).
@@ -651,13 +712,9 @@ pub fn turns_to_angle(
     angle: f64,
 ) -> crate::Intersection<Vector3<f64>, 2> {
     use crate::{Contact, Intersection, Roots};
-    if !(u
-        .iter()
-        .chain(v.iter())
-        .chain(axis.iter())
-        .all(|x| x.is_finite())
-        && angle.is_finite())
-    {
+    // Each vector's test written out: a chain of iterators is not optimised to it.
+    let finite = |w: &Vector3<f64>| w.x.is_finite() && w.y.is_finite() && w.z.is_finite();
+    if !(finite(u) && finite(v) && finite(axis) && angle.is_finite()) {
         return Intersection::none(Contact::Disjoint { gap: f64::NAN });
     }
     let along = axis * axis.dot(v);
@@ -669,13 +726,32 @@ pub fn turns_to_angle(
         return Intersection::none(Contact::ZeroRadius);
     }
     let c = angle.cos() - u.dot(&along);
+    // Well inside the reachable angles (an angle is at least as far from another as its
+    // cosine is), the two crossings need no angle: `phi0 +- delta` from the cosines and sines
+    // of `phi0` (`(a, b) / r`) and of `delta` (`c / r`), without `atan2`, `acos` or `sin_cos`.
+    let (base, ratio) = (u.dot(&along), c / r);
+    let inside = base.abs() + r <= 1.0
+        && r * (1.0 - ratio) > 2.0 * tol::ANGLE
+        && r * (1.0 + ratio) > 2.0 * tol::ANGLE;
+    if inside && (0.0..=std::f64::consts::PI).contains(&angle) {
+        let (cos0, sin0) = (a / r, b / r);
+        let sin_delta = ((1.0 - ratio) * (1.0 + ratio)).sqrt();
+        let (cc, ss) = (cos0 * ratio, sin0 * sin_delta);
+        let (sc, cs) = (sin0 * ratio, cos0 * sin_delta);
+        return Intersection {
+            roots: Roots::from_slice(&[
+                along + across * (cc - ss) + side * (sc + cs),
+                along + across * (cc + ss) + side * (sc - cs),
+            ]),
+            contact: Contact::Crossing,
+        };
+    }
     let at = |phi: f64| -> Vector3<f64> {
         let (s, co) = phi.sin_cos();
         along + across * co + side * s
     };
     let phi0 = b.atan2(a);
     // The reachable angles run from the nearest (cosine base + r) to the farthest (base - r).
-    let base = u.dot(&along);
     let (nearest, farthest) = (
         (base + r).clamp(-1.0, 1.0).acos(),
         (base - r).clamp(-1.0, 1.0).acos(),
@@ -685,7 +761,6 @@ pub fn turns_to_angle(
         let gap = (nearest - target).max(target - farthest);
         return Intersection::none(Contact::Disjoint { gap });
     }
-    let ratio = c / r;
     if ratio >= 1.0
         || ratio <= -1.0
         || (target - nearest).abs() <= tol::ANGLE
@@ -893,6 +968,56 @@ mod tests {
         }
     }
     use std::f64::consts::PI;
+
+    proptest::proptest! {
+        /// A turn from its sine and cosine is the turn by its angle, to rounding: random
+        /// vectors, and turns near none and near a half turn either way, the vectors nearly
+        /// along the axis.
+        #[test]
+        fn a_turn_about_an_axis_needs_no_angle(
+            axis in proptest::array::uniform3(-2.0f64..2.0),
+            u in proptest::array::uniform3(-3.0f64..3.0),
+            angle in proptest::prop_oneof![
+                -PI..PI,
+                -1e-9f64..1e-9,
+                (PI - 1e-9)..PI,
+                -PI..(-PI + 1e-9),
+            ],
+            along in proptest::prop_oneof![0.0f64..1.0, (1.0 - 1e-9)..1.0],
+        ) {
+            let axis = Vector3::from(axis);
+            proptest::prop_assume!(axis.norm() > 1e-3);
+            let a = axis.normalize();
+            let across = Vector3::from(u) - a * a.dot(&Vector3::from(u));
+            proptest::prop_assume!(across.norm() > 1e-3);
+            // `u` as far along the axis as `along` says, its part across turned by `angle`.
+            let u = a * along * 3.0 + across.normalize() * (1.0 - along);
+            let v = rotation_about_axis(&a, angle) * u * 1.7;
+            let by_angle = rotation_about_axis(&axis, signed_angle3(&u, &v, &axis));
+            let by_sin_cos = turn_about_axis(&axis, &u, &v);
+            let w = Vector3::new(0.4, -1.1, 2.3);
+            let (p, q) = (by_angle * w, by_sin_cos * w);
+            proptest::prop_assert!((p - q).norm() <= 8.0 * f64::EPSILON * w.norm(), "{p:?} vs {q:?}");
+            proptest::prop_assert!(by_sin_cos.w >= 0.0);
+            proptest::prop_assert!((by_sin_cos.into_inner().norm() - 1.0).abs() <= 4.0 * f64::EPSILON);
+        }
+    }
+
+    /// The cases `signed_angle3` makes zero are the identity, and a NaN is a NaN rotation.
+    #[test]
+    fn a_turn_about_a_zero_axis_or_of_a_vector_along_it_is_none() {
+        let (x, z) = (Vector3::x(), Vector3::z());
+        assert_eq!(turn_about_axis(&Vector3::zeros(), &x, &z), UnitQuaternion::identity());
+        assert_eq!(turn_about_axis(&z, &z, &x), UnitQuaternion::identity());
+        assert!(turn_about_axis(&z, &Vector3::new(f64::NAN, 0.0, 0.0), &x).w.is_nan());
+        assert!(turn_about_axis(&Vector3::new(0.0, f64::NAN, 1.0), &x, &x).w.is_nan());
+        // A half turn, either way: the rotation by pi.
+        let half = turn_about_axis(&z, &x, &-x);
+        assert!((half * x + x).norm() <= 4.0 * f64::EPSILON);
+        // Huge vectors do not overflow the turn.
+        let big = turn_about_axis(&z, &(x * 1e150), &(Vector3::y() * 1e150));
+        assert!((big * x - Vector3::y()).norm() <= 4.0 * f64::EPSILON);
+    }
 
     fn close3(a: &Point3<f64>, b: &Point3<f64>, eps: f64) -> bool {
         (a - b).norm() <= eps
@@ -1183,6 +1308,47 @@ mod tests {
             let touch = turns_to_angle(&u, &v, &z, std::f64::consts::FRAC_PI_6);
             assert_eq!(touch.contact, Contact::Tangent);
             assert!(turns_to_angle(&u, &z, &z, 1.0).contact == Contact::ZeroRadius);
+        }
+
+        proptest::proptest! {
+            /// The crossings well inside the reachable angles (taken without an angle) are
+            /// the turns by `phi0 +- delta`, to rounding, on their branches: random cones, and
+            /// angles near either end of the reach.
+            #[test]
+            fn crossings_inside_the_reach_are_the_turns_by_their_angles(
+                axis in proptest::array::uniform3(-1.0f64..1.0),
+                u in proptest::array::uniform3(-1.0f64..1.0),
+                v in proptest::array::uniform3(-1.0f64..1.0),
+                t in proptest::prop_oneof![0.0f64..1.0, 0.0f64..1e-9, (1.0 - 1e-9)..1.0],
+            ) {
+                let (axis, u, v) = (Vector3::from(axis), Vector3::from(u), Vector3::from(v));
+                proptest::prop_assume!(axis.norm() > 1e-2 && u.norm() > 1e-2 && v.norm() > 1e-2);
+                let (axis, u, v) = (axis.normalize(), u.normalize(), v.normalize());
+                let along = axis * axis.dot(&v);
+                let (across, side) = (v - along, axis.cross(&(v - along)));
+                let (a, b) = (u.dot(&across), u.dot(&side));
+                let r = a.hypot(b);
+                proptest::prop_assume!(across.norm() > 1e-2 && r > 1e-2);
+                let base = u.dot(&along);
+                let (lo, hi) = ((base + r).clamp(-1.0, 1.0).acos(), (base - r).clamp(-1.0, 1.0).acos());
+                let angle = lo + (hi - lo) * t;
+                let i = turns_to_angle(&u, &v, &axis, angle);
+                let delta = ((angle.cos() - base) / r).clamp(-1.0, 1.0).acos();
+                let phi0 = b.atan2(a);
+                if i.contact == Contact::Crossing {
+                    for (k, phi) in [phi0 + delta, phi0 - delta].into_iter().enumerate() {
+                        let (s, c) = phi.sin_cos();
+                        let expected = along + across * c + side * s;
+                        let root = i.roots.get(k).expect("a crossing has two roots");
+                        // `acos` near either end of its range loses digits the sines keep.
+                        let slack = 1e-12 / (1.0 - (delta / std::f64::consts::PI - 0.5).abs() * 2.0).max(1e-4);
+                        proptest::prop_assert!((root - expected).norm() <= slack, "{k}: {root:?} vs {expected:?}");
+                        proptest::prop_assert!((u.dot(&root) - angle.cos()).abs() <= 1e-14);
+                    }
+                } else {
+                    proptest::prop_assert_eq!(i.contact, Contact::Tangent);
+                }
+            }
         }
     }
 }

@@ -260,34 +260,45 @@ fn assemblies(
         "type NamedPoints<const P: usize> = [(&'static str, {point}); P];"
     ));
     w.line("");
-    w.line("/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the");
-    w.line("/// largest coordinate of `pa` (plus one): every point and vector within a relative");
-    w.line("/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read");
-    w.line("/// only when the points agree (two assemblies mostly differ in their points).");
+    let dims = cx.space.coordinates().len();
+    w.line("/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,");
+    w.line("/// plus one) and the sum of their coordinates.");
+    w.line("#[allow(dead_code)]");
+    w.line("type Kept<const P: usize> = (NamedPoints<P>, f64, f64);");
+    w.line("");
+    w.line("/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and");
+    w.line("/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's");
+    w.line("/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates");
+    w.line("/// may differ are not compared further; the vectors are read only when the points agree.");
     w.line("#[allow(dead_code)]");
     w.open(
-        "fn same_assembly<const P: usize>((pa, scale): &(NamedPoints<P>, f64), pb: &NamedPoints<P>, a: &Solution, b: &Solution) -> bool {",
+        "fn same_assembly<const P: usize>((pa, scale, sum_a): &Kept<P>, (pb, sum_b): (&NamedPoints<P>, f64), a: &Solution, b: &Solution) -> bool {",
     );
-    w.line("pa.iter().zip(pb).all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)");
+    w.line("let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;");
+    w.line(&format!(
+        "(sum_a - sum_b).abs() <= ({dims} * P + 1) as f64 * tol"
+    ));
+    w.line("    && pa.iter().zip(pb).all(|((_, p), (_, q))| (p - q).amax() <= tol)");
     w.line("    && same_vectors(a, b)");
     w.close("}");
     w.line("");
     same_vectors(w, cx, layout);
     w.line("/// Adds `s`, whose points are `points`, to `found` unless the list has its assembly");
-    w.line("/// already (`same_assembly`); `kept` holds the points of each solution listed and their");
-    w.line("/// scale, by its place in the list, so that each is computed once, not once per pair");
-    w.line("/// compared.");
+    w.line("/// already (`same_assembly`); `kept` holds the points of each solution listed, with their");
+    w.line("/// scale and sum, by its place in the list, so that each is computed once, not once per");
+    w.line("/// pair compared.");
     w.line("#[allow(dead_code)]");
     w.open(
-        "fn keep<const P: usize>(found: &mut Assemblies, kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES], points: NamedPoints<P>, s: Solution) {",
+        "fn keep<const P: usize>(found: &mut Assemblies, kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES], points: NamedPoints<P>, s: Solution) {",
     );
-    w.line("let listed = found.iter().zip(kept.iter()).any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));");
+    w.line("let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();");
+    w.line("let listed = found.iter().zip(kept.iter()).any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, (&points, sum), t, &s)));");
     w.open("if listed {");
     w.line("return;");
     w.close("}");
     w.open("if let Some(slot) = kept.get_mut(found.len()) {");
     w.line("let scale = 1.0 + points.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
-    w.line("*slot = Some((points, scale));");
+    w.line("*slot = Some((points, scale, sum));");
     w.close("}");
     w.line("found.push(s, |_, _| false);");
     w.close("}");

@@ -110,7 +110,7 @@ impl Machine<'_, '_, D3> {
             }
             RotationAxis::Along(a) => {
                 let a = self.v3(a);
-                frame::rotation_about_axis(&a, frame::signed_angle3(&from, &to, &a))
+                frame::turn_about_axis(&a, &from, &to)
             }
             RotationAxis::Normal => {
                 panic!("bug in gcs: a rotation about the plane's normal reached the spatial interpreter")

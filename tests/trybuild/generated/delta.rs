@@ -475,10 +475,7 @@ pub fn solve(
     let ground_centre_x = ground.vector_to_global(&Vector3::x());
     let turned = frame::rotation_about_axis(&ground_centre_z, 0.0) * ground_centre_x;
     let platform_centre_x = platform.vector_to_global(&Vector3::x());
-    let turn_2 = frame::rotation_about_axis(
-        &ground_centre_z,
-        frame::signed_angle3(&platform_centre_x, &turned, &ground_centre_z),
-    );
+    let turn_2 = frame::turn_about_axis(&ground_centre_z, &platform_centre_x, &turned);
     platform.rotate_about_by(&ground_target, &turn_2);
 
     // revolute(arm1.base, ground.b1) (delta.gcs:35)
@@ -538,13 +535,10 @@ pub fn solve(
                 distance_arm1_elbow_platform_p1_meeting.roots.len() as f64,
             )
         })?;
-    let turn_4 = frame::rotation_about_axis(
+    let turn_4 = frame::turn_about_axis(
         &ground_b1_z,
-        frame::signed_angle3(
-            &(arm1_elbow - ground_b1),
-            &(distance_arm1_elbow_platform_p1 - ground_b1),
-            &ground_b1_z,
-        ),
+        &(arm1_elbow - ground_b1),
+        &(distance_arm1_elbow_platform_p1 - ground_b1),
     );
     arm1.rotate_about_by(&ground_b1, &turn_4);
 
@@ -612,13 +606,10 @@ pub fn solve(
                 distance_arm2_elbow_platform_p2_meeting.roots.len() as f64,
             )
         })?;
-    let turn_6 = frame::rotation_about_axis(
+    let turn_6 = frame::turn_about_axis(
         &ground_b2_z,
-        frame::signed_angle3(
-            &(arm2_elbow - ground_b2),
-            &(distance_arm2_elbow_platform_p2 - ground_b2),
-            &ground_b2_z,
-        ),
+        &(arm2_elbow - ground_b2),
+        &(distance_arm2_elbow_platform_p2 - ground_b2),
     );
     arm2.rotate_about_by(&ground_b2, &turn_6);
 
@@ -686,13 +677,10 @@ pub fn solve(
                 distance_arm3_elbow_platform_p3_meeting.roots.len() as f64,
             )
         })?;
-    let turn_8 = frame::rotation_about_axis(
+    let turn_8 = frame::turn_about_axis(
         &ground_b3_z,
-        frame::signed_angle3(
-            &(arm3_elbow - ground_b3),
-            &(distance_arm3_elbow_platform_p3 - ground_b3),
-            &ground_b3_z,
-        ),
+        &(arm3_elbow - ground_b3),
+        &(distance_arm3_elbow_platform_p3 - ground_b3),
     );
     arm3.rotate_about_by(&ground_b3, &turn_8);
 
@@ -720,20 +708,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -796,20 +792,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -818,7 +815,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }
@@ -869,10 +866,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let ground_centre_x = ground.vector_to_global(&Vector3::x());
         let turned = frame::rotation_about_axis(&ground_centre_z, 0.0) * ground_centre_x;
         let platform_centre_x = platform.vector_to_global(&Vector3::x());
-        let turn_2 = frame::rotation_about_axis(
-            &ground_centre_z,
-            frame::signed_angle3(&platform_centre_x, &turned, &ground_centre_z),
-        );
+        let turn_2 = frame::turn_about_axis(&ground_centre_z, &platform_centre_x, &turned);
         platform.rotate_about_by(&ground_target, &turn_2);
 
         // revolute(arm1.base, ground.b1) (delta.gcs:35)
@@ -943,13 +937,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             distance_arm1_elbow_platform_p1_meeting.roots.len() as f64,
                         )
                     })?;
-                let turn_4 = frame::rotation_about_axis(
+                let turn_4 = frame::turn_about_axis(
                     &ground_b1_z,
-                    frame::signed_angle3(
-                        &(arm1_elbow - ground_b1),
-                        &(distance_arm1_elbow_platform_p1 - ground_b1),
-                        &ground_b1_z,
-                    ),
+                    &(arm1_elbow - ground_b1),
+                    &(distance_arm1_elbow_platform_p1 - ground_b1),
                 );
                 arm1.rotate_about_by(&ground_b1, &turn_4);
 
@@ -1039,13 +1030,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                         distance_arm2_elbow_platform_p2_meeting.roots.len() as f64,
                                     )
                                 })?;
-                        let turn_6 = frame::rotation_about_axis(
+                        let turn_6 = frame::turn_about_axis(
                             &ground_b2_z,
-                            frame::signed_angle3(
-                                &(arm2_elbow - ground_b2),
-                                &(distance_arm2_elbow_platform_p2 - ground_b2),
-                                &ground_b2_z,
-                            ),
+                            &(arm2_elbow - ground_b2),
+                            &(distance_arm2_elbow_platform_p2 - ground_b2),
                         );
                         arm2.rotate_about_by(&ground_b2, &turn_6);
 
@@ -1136,13 +1124,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                                     as f64,
                                             )
                                         })?;
-                                let turn_8 = frame::rotation_about_axis(
+                                let turn_8 = frame::turn_about_axis(
                                     &ground_b3_z,
-                                    frame::signed_angle3(
-                                        &(arm3_elbow - ground_b3),
-                                        &(distance_arm3_elbow_platform_p3 - ground_b3),
-                                        &ground_b3_z,
-                                    ),
+                                    &(arm3_elbow - ground_b3),
+                                    &(distance_arm3_elbow_platform_p3 - ground_b3),
                                 );
                                 arm3.rotate_about_by(&ground_b3, &turn_8);
 

@@ -76,7 +76,7 @@ pub struct Defaults {
     pub base_u: f64,
     /// `base_v`: the second coordinate of base on plane desk; the sketch's value is -0.3.
     pub base_v: f64,
-    /// `shade_angle`: the angle of shade on the cylinder of radius 1.5 about the line through cable along cable.dir; the sketch's value is 0.3217505543966421.
+    /// `shade_angle`: the angle of shade on the cylinder of radius 1.5 about the line through cable along cable.dir; the sketch's value is 0.321750554396642.
     pub shade_angle: f64,
     /// `shade_height`: the height of shade on the cylinder of radius 1.5 about the line through cable along cable.dir; the sketch's value is 3.4999999999999996.
     pub shade_height: f64,
@@ -103,7 +103,7 @@ impl Default for Defaults {
         Defaults {
             base_u: 0.2,
             base_v: -0.3,
-            shade_angle: 0.3217505543966421,
+            shade_angle: 0.321750554396642,
             shade_height: 3.4999999999999996,
         }
     }
@@ -231,7 +231,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let cylinder = Cylinder::new(
         Line3::new(
             Point3::new(3.0, 1.0, 0.0),
-            Vector3::new(2.220446049250313e-16, 0.0, 1.0),
+            Vector3::new(2.2204460492503136e-16, 0.0, 1.0),
         ),
         1.5,
     );
@@ -320,7 +320,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         cable: Frame3::new(
             Point3::new(3.0, 1.0, 0.0),
             UnitQuaternion::new_unchecked(Quaternion::new(
-                std::f64::consts::FRAC_1_SQRT_2,
+                0.7071067811865475,
                 0.0,
                 -0.7071067811865475,
                 0.0,
@@ -350,20 +350,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -384,20 +392,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -406,7 +415,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }

@@ -677,18 +677,12 @@ pub fn solve(
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
     let turned = frame::rotation_about_axis(&l7_tool_z_2, -0.0) * ground_target_x;
     let l7_tool_x = l7.vector_to_global(&Vector3::x());
-    let turn_3 = frame::rotation_about_axis(
-        &ground_target_z,
-        frame::signed_angle3(&l7_tool_x, &turned, &ground_target_z),
-    );
+    let turn_3 = frame::turn_about_axis(&ground_target_z, &l7_tool_x, &turned);
     l7.rotate_about_by(&ground_target, &turn_3);
 
     // offset_x(l2.j3, l3.j3) = q3 (iiwa.gcs:54)
     let turned_2 = frame::rotation_about_axis(&Vector3::z(), params.q3) * Vector3::x();
-    let turn_4 = frame::rotation_about_axis(
-        &Vector3::z(),
-        frame::signed_angle3(&Vector3::x(), &turned_2, &Vector3::z()),
-    );
+    let turn_4 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned_2);
     l3.rotate_about_by(&Point3::new(0.0, 0.0, 0.36), &turn_4);
 
     // revolute(l3.j3, l2.j3) (iiwa.gcs:53)
@@ -747,10 +741,8 @@ pub fn solve(
                 revolute_l4_j4_l3_j4_meeting.roots.len() as f64,
             )
         })?;
-    let turn_6 = frame::rotation_about_axis(
-        &l4_j4_z,
-        frame::signed_angle3(&(l2_j2 - l4_j4), &(revolute_l4_j4_l3_j4 - l4_j4), &l4_j4_z),
-    );
+    let turn_6 =
+        frame::turn_about_axis(&l4_j4_z, &(l2_j2 - l4_j4), &(revolute_l4_j4_l3_j4 - l4_j4));
     l2.rotate_about_by(&l4_j4, &turn_6);
     l3.rotate_about_by(&l4_j4, &turn_6);
     let direction = frame::unit3(&(revolute_l4_j4_l3_j4 - l5_j5)).ok_or_else(|| {
@@ -837,20 +829,14 @@ pub fn solve(
                 turns.roots.len() as f64,
             )
         })?;
-    let turn_8 = frame::rotation_about_axis(
+    let turn_8 = frame::turn_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(
-            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
-            &normal,
-            &Vector3::z(),
-        ),
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+        &normal,
     );
     l1.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_8);
     let l1_j2_z = l1.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
-    let turn_9 = frame::rotation_about_axis(
-        &direction_2,
-        frame::signed_angle3(&l2_j2_z, &l1_j2_z, &direction_2),
-    );
+    let turn_9 = frame::turn_about_axis(&direction_2, &l2_j2_z, &l1_j2_z);
     l4.rotate_about_by(&l5_j5, &turn_9);
     l2.rotate_about_by(&l5_j5, &turn_9);
     l3.rotate_about_by(&l5_j5, &turn_9);
@@ -894,17 +880,11 @@ pub fn solve(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_11 = frame::rotation_about_axis(
-        &l7_j7_z,
-        frame::signed_angle3(&l6_j6_z, &turned_3, &l7_j7_z),
-    );
+    let turn_11 = frame::turn_about_axis(&l7_j7_z, &l6_j6_z, &turned_3);
     l6.rotate_about_by(&l7_j7, &turn_11);
     let l6_j6_z_2 = l6.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let l5_j6_z = l5.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
-    let turn_12 = frame::rotation_about_axis(
-        &l4_j5_z,
-        frame::signed_angle3(&l5_j6_z, &l6_j6_z_2, &l4_j5_z),
-    );
+    let turn_12 = frame::turn_about_axis(&l4_j5_z, &l5_j6_z, &l6_j6_z_2);
     l5.rotate_about_by(&l6_j6, &turn_12);
 
     Ok(Solution {
@@ -936,20 +916,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -1060,20 +1048,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -1082,7 +1071,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }
@@ -1186,18 +1175,12 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
         let turned = frame::rotation_about_axis(&l7_tool_z_2, -0.0) * ground_target_x;
         let l7_tool_x = l7.vector_to_global(&Vector3::x());
-        let turn_3 = frame::rotation_about_axis(
-            &ground_target_z,
-            frame::signed_angle3(&l7_tool_x, &turned, &ground_target_z),
-        );
+        let turn_3 = frame::turn_about_axis(&ground_target_z, &l7_tool_x, &turned);
         l7.rotate_about_by(&ground_target, &turn_3);
 
         // offset_x(l2.j3, l3.j3) = q3 (iiwa.gcs:54)
         let turned_2 = frame::rotation_about_axis(&Vector3::z(), params.q3) * Vector3::x();
-        let turn_4 = frame::rotation_about_axis(
-            &Vector3::z(),
-            frame::signed_angle3(&Vector3::x(), &turned_2, &Vector3::z()),
-        );
+        let turn_4 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned_2);
         l3.rotate_about_by(&Point3::new(0.0, 0.0, 0.36), &turn_4);
 
         // revolute(l3.j3, l2.j3) (iiwa.gcs:53)
@@ -1268,13 +1251,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             revolute_l4_j4_l3_j4_meeting.roots.len() as f64,
                         )
                     })?;
-                let turn_6 = frame::rotation_about_axis(
+                let turn_6 = frame::turn_about_axis(
                     &l4_j4_z,
-                    frame::signed_angle3(
-                        &(l2_j2 - l4_j4),
-                        &(revolute_l4_j4_l3_j4 - l4_j4),
-                        &l4_j4_z,
-                    ),
+                    &(l2_j2 - l4_j4),
+                    &(revolute_l4_j4_l3_j4 - l4_j4),
                 );
                 l2.rotate_about_by(&l4_j4, &turn_6);
                 l3.rotate_about_by(&l4_j4, &turn_6);
@@ -1380,21 +1360,15 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     turns.roots.len() as f64,
                                 )
                             })?;
-                        let turn_8 = frame::rotation_about_axis(
+                        let turn_8 = frame::turn_about_axis(
                             &Vector3::z(),
-                            frame::signed_angle3(
-                                &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
-                                &normal,
-                                &Vector3::z(),
-                            ),
+                            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                            &normal,
                         );
                         l1.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_8);
                         let l1_j2_z =
                             l1.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
-                        let turn_9 = frame::rotation_about_axis(
-                            &direction_2,
-                            frame::signed_angle3(&l2_j2_z, &l1_j2_z, &direction_2),
-                        );
+                        let turn_9 = frame::turn_about_axis(&direction_2, &l2_j2_z, &l1_j2_z);
                         l4.rotate_about_by(&l5_j5, &turn_9);
                         l2.rotate_about_by(&l5_j5, &turn_9);
                         l3.rotate_about_by(&l5_j5, &turn_9);
@@ -1462,10 +1436,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                             turns_2.roots.len() as f64,
                                         )
                                     })?;
-                                let turn_11 = frame::rotation_about_axis(
-                                    &l7_j7_z,
-                                    frame::signed_angle3(&l6_j6_z, &turned_3, &l7_j7_z),
-                                );
+                                let turn_11 = frame::turn_about_axis(&l7_j7_z, &l6_j6_z, &turned_3);
                                 l6.rotate_about_by(&l7_j7, &turn_11);
                                 let l6_j6_z_2 = l6.vector_to_global(&Vector3::new(
                                     0.0,
@@ -1477,10 +1448,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     1.0,
                                     2.220446049250313e-16,
                                 ));
-                                let turn_12 = frame::rotation_about_axis(
-                                    &l4_j5_z,
-                                    frame::signed_angle3(&l5_j6_z, &l6_j6_z_2, &l4_j5_z),
-                                );
+                                let turn_12 =
+                                    frame::turn_about_axis(&l4_j5_z, &l5_j6_z, &l6_j6_z_2);
                                 l5.rotate_about_by(&l6_j6, &turn_12);
 
                                 let solution = Solution {

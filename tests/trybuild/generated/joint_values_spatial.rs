@@ -584,10 +584,7 @@ pub fn solve(
         ));
     }
     let turned = frame::rotation_about_axis(&Vector3::z(), params.phi) * Vector3::x();
-    let turn_2 = frame::rotation_about_axis(
-        &Vector3::z(),
-        frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
-    );
+    let turn_2 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned);
     arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
 
     // in_line(P, ground.axis) (joint_values_spatial.gcs:30)
@@ -678,10 +675,7 @@ pub fn solve(
     let ground_axis_x = ground.vector_to_global(&Vector3::x());
     let turned_2 = frame::rotation_about_axis(&Vector3::z(), params.theta) * ground_axis_x;
     let collar_m_x = collar.vector_to_global(&Vector3::x());
-    let turn_3 = frame::rotation_about_axis(
-        &Vector3::z(),
-        frame::signed_angle3(&collar_m_x, &turned_2, &Vector3::z()),
-    );
+    let turn_3 = frame::turn_about_axis(&Vector3::z(), &collar_m_x, &turned_2);
     collar.rotate_about_by(&in_plane_collar_m_ground_level, &turn_3);
 
     // revolute(arm.tip, rod.a) (joint_values_spatial.gcs:24)
@@ -802,10 +796,7 @@ pub fn solve(
             gap_2,
         ));
     }
-    let turn_7 = frame::rotation_about_axis(
-        &arm_tip_z,
-        frame::signed_angle3(&(rod_b - arm_tip), &(pin - arm_tip), &arm_tip_z),
-    );
+    let turn_7 = frame::turn_about_axis(&arm_tip_z, &(rod_b - arm_tip), &(pin - arm_tip));
     rod.rotate_about_by(&arm_tip, &turn_7);
     let gap_3 = line_3.distance(&pin);
     if gap_3.is_nan() || gap_3 > tol {
@@ -846,20 +837,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -940,20 +939,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -962,7 +962,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }
@@ -1046,10 +1046,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             ));
         }
         let turned = frame::rotation_about_axis(&Vector3::z(), params.phi) * Vector3::x();
-        let turn_2 = frame::rotation_about_axis(
-            &Vector3::z(),
-            frame::signed_angle3(&Vector3::x(), &turned, &Vector3::z()),
-        );
+        let turn_2 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned);
         arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
 
         // in_line(P, ground.axis) (joint_values_spatial.gcs:30)
@@ -1154,10 +1151,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                 let turned_2 =
                     frame::rotation_about_axis(&Vector3::z(), params.theta) * ground_axis_x;
                 let collar_m_x = collar.vector_to_global(&Vector3::x());
-                let turn_3 = frame::rotation_about_axis(
-                    &Vector3::z(),
-                    frame::signed_angle3(&collar_m_x, &turned_2, &Vector3::z()),
-                );
+                let turn_3 = frame::turn_about_axis(&Vector3::z(), &collar_m_x, &turned_2);
                 collar.rotate_about_by(&in_plane_collar_m_ground_level, &turn_3);
 
                 // revolute(arm.tip, rod.a) (joint_values_spatial.gcs:24)
@@ -1293,9 +1287,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                 gap_2,
                             ));
                         }
-                        let turn_7 = frame::rotation_about_axis(
+                        let turn_7 = frame::turn_about_axis(
                             &arm_tip_z,
-                            frame::signed_angle3(&(rod_b - arm_tip), &(pin - arm_tip), &arm_tip_z),
+                            &(rod_b - arm_tip),
+                            &(pin - arm_tip),
                         );
                         rod.rotate_about_by(&arm_tip, &turn_7);
                         let gap_3 = line_3.distance(&pin);

@@ -187,8 +187,8 @@ pub fn solve(
         UnitQuaternion::new_unchecked(Quaternion::new(
             0.9128709291752768,
             0.0,
-            -0.18257418583505539,
-            0.36514837167011077,
+            -0.18257418583505533,
+            0.36514837167011066,
         )),
     );
 
@@ -196,15 +196,15 @@ pub fn solve(
     let turned = frame::plane_turn(
         &Vector3::x(),
         f64::cos(params.alpha),
-        &Vector3::new(0.6666666666666666, 0.6666666666666666, 0.3333333333333333),
+        &Vector3::new(0.6666666666666667, 0.6666666666666665, 0.33333333333333326),
     );
     let turn = frame::rotation_between3(
-        &Vector3::new(0.6666666666666666, 0.6666666666666666, 0.3333333333333333),
+        &Vector3::new(0.6666666666666667, 0.6666666666666665, 0.33333333333333326),
         &turned,
         &frame::perpendicular(&Vector3::new(
-            0.6666666666666666,
-            0.6666666666666666,
-            0.3333333333333333,
+            0.6666666666666667,
+            0.6666666666666665,
+            0.33333333333333326,
         )),
     );
     sight.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
@@ -212,7 +212,7 @@ pub fn solve(
     // b: angle(Y, sight) = beta (line_on_cone.gcs:12)
     let sight_dir = sight.x_axis();
     let turns = frame::turns_to_angle(
-        &Vector3::new(2.220446049250313e-16, 1.0, 0.0),
+        &Vector3::new(2.220446049250313e-16, 0.9999999999999998, 0.0),
         &sight_dir,
         &Vector3::x(),
         params.beta,
@@ -229,10 +229,7 @@ pub fn solve(
         )
     })?;
     let sight_origin = sight.origin;
-    let turn_2 = frame::rotation_about_axis(
-        &Vector3::x(),
-        frame::signed_angle3(&sight_dir, &turned_2, &Vector3::x()),
-    );
+    let turn_2 = frame::turn_about_axis(&Vector3::x(), &sight_dir, &turned_2);
     sight.rotate_about_by(&sight_origin, &turn_2);
 
     // through: on(A, sight) (line_on_cone.gcs:13)
@@ -254,7 +251,7 @@ pub fn solve(
         y: Frame3::new(
             Point3::new(0.0, 0.0, 0.0),
             UnitQuaternion::new_unchecked(Quaternion::new(
-                std::f64::consts::FRAC_1_SQRT_2,
+                0.7071067811865475,
                 0.0,
                 0.0,
                 0.7071067811865475,
@@ -278,20 +275,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -315,20 +320,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -337,7 +343,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }
@@ -364,8 +370,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             UnitQuaternion::new_unchecked(Quaternion::new(
                 0.9128709291752768,
                 0.0,
-                -0.18257418583505539,
-                0.36514837167011077,
+                -0.18257418583505533,
+                0.36514837167011066,
             )),
         );
 
@@ -373,15 +379,15 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let turned = frame::plane_turn(
             &Vector3::x(),
             f64::cos(params.alpha),
-            &Vector3::new(0.6666666666666666, 0.6666666666666666, 0.3333333333333333),
+            &Vector3::new(0.6666666666666667, 0.6666666666666665, 0.33333333333333326),
         );
         let turn = frame::rotation_between3(
-            &Vector3::new(0.6666666666666666, 0.6666666666666666, 0.3333333333333333),
+            &Vector3::new(0.6666666666666667, 0.6666666666666665, 0.33333333333333326),
             &turned,
             &frame::perpendicular(&Vector3::new(
-                0.6666666666666666,
-                0.6666666666666666,
-                0.3333333333333333,
+                0.6666666666666667,
+                0.6666666666666665,
+                0.33333333333333326,
             )),
         );
         sight.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn);
@@ -389,7 +395,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         // b: angle(Y, sight) = beta (line_on_cone.gcs:12)
         let sight_dir = sight.x_axis();
         let turns = frame::turns_to_angle(
-            &Vector3::new(2.220446049250313e-16, 1.0, 0.0),
+            &Vector3::new(2.220446049250313e-16, 0.9999999999999998, 0.0),
             &sight_dir,
             &Vector3::x(),
             params.beta,
@@ -413,10 +419,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     )
                 })?;
                 let sight_origin = sight.origin;
-                let turn_2 = frame::rotation_about_axis(
-                    &Vector3::x(),
-                    frame::signed_angle3(&sight_dir, &turned_2, &Vector3::x()),
-                );
+                let turn_2 = frame::turn_about_axis(&Vector3::x(), &sight_dir, &turned_2);
                 sight.rotate_about_by(&sight_origin, &turn_2);
 
                 // through: on(A, sight) (line_on_cone.gcs:13)
@@ -438,7 +441,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     y: Frame3::new(
                         Point3::new(0.0, 0.0, 0.0),
                         UnitQuaternion::new_unchecked(Quaternion::new(
-                            std::f64::consts::FRAC_1_SQRT_2,
+                            0.7071067811865475,
                             0.0,
                             0.0,
                             0.7071067811865475,

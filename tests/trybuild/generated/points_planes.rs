@@ -261,9 +261,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let mut p2 = Frame3::new(Point3::new(3.0, 0.0, 4.0), UnitQuaternion::identity());
     let mut p3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut p4 = Frame3::new(
-        Point3::new(3.0, 4.0, 5.551115123125783e-16),
+        Point3::new(2.999999999999999, 3.9999999999999996, 5.551115123125783e-16),
         UnitQuaternion::new_unchecked(Quaternion::new(
-            std::f64::consts::FRAC_1_SQRT_2,
+            0.7071067811865475,
             -0.565685424949238,
             0.42426406871192845,
             0.0,
@@ -323,11 +323,16 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     p3.translate(&shift);
 
     // distance(p1, P4) = -5 (points_planes.gcs:10)
-    let normal_4 = Vector3::new(0.6, 0.8, 1.1102230246251565e-16);
+    let normal_4 = Vector3::new(0.6, 0.8, 1.1102230246251568e-16);
     let plane_3 =
         Plane::from_point_normal(&(Point3::new(0.0, 0.0, 0.0) + normal_4 * 5.0), &normal_4);
-    let nearest_2 = plane_3.project(&Point3::new(3.0, 4.0, 5.551115123125783e-16));
-    let shift_2 = nearest_2 - Point3::new(3.0, 4.0, 5.551115123125783e-16);
+    let nearest_2 = plane_3.project(&Point3::new(
+        2.999999999999999,
+        3.9999999999999996,
+        5.551115123125783e-16,
+    ));
+    let shift_2 =
+        nearest_2 - Point3::new(2.999999999999999, 3.9999999999999996, 5.551115123125783e-16);
     p4.translate(&shift_2);
 
     // distance(p1, p2) = 5 (points_planes.gcs:11)
@@ -586,10 +591,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                             turns.roots.len() as f64,
                         )
                     })?;
-                let turn_4 = frame::rotation_about_axis(
-                    &direction_3,
-                    frame::signed_angle3(&p4_normal_2, &normal_8, &direction_3),
-                );
+                let turn_4 = frame::turn_about_axis(&direction_3, &p4_normal_2, &normal_8);
                 p4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
                 let sphere_4 = Sphere::new(distance_p5_p3, 4.242640687119286);
                 let p6_origin = p6.origin;
@@ -747,10 +749,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_6 = frame::rotation_about_axis(
-        &direction_3,
-        frame::signed_angle3(&p4_normal_4, &normal_11, &direction_3),
-    );
+    let turn_6 = frame::turn_about_axis(&direction_3, &p4_normal_4, &normal_11);
     p4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_6);
 
     // distance(p5, p6) = 3 * sqrt(2) (points_planes.gcs:13)
@@ -894,20 +893,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -928,20 +935,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -950,7 +958,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }

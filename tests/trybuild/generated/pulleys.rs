@@ -357,14 +357,14 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             0.9982176211846098,
             -0.0,
             0.03580738851625501,
-            0.04774318468834002,
+            0.04774318468834001,
         )),
     );
     let mut roller = Frame3::new(
         Point3::new(2.5, -1.8, 1.35),
         UnitQuaternion::new_unchecked(Quaternion::new(
             0.9486832980505138,
-            -0.31622776601683794,
+            -0.3162277660168379,
             0.0,
             0.0,
         )),
@@ -372,10 +372,10 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let mut arm = Frame3::new(
         Point3::new(2.0, -2.4, 1.8),
         UnitQuaternion::new_unchecked(Quaternion::new(
-            0.9749198589359945,
+            0.9749198589359944,
             -0.0,
             0.1478583010798564,
-            0.16634058871483848,
+            0.16634058871483845,
         )),
     );
     let mut guard = Frame3::new(Point3::new(0.0, -1.5, 1.1), UnitQuaternion::identity());
@@ -414,14 +414,14 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // length(arm) = 3 (pulleys.gcs:26)
     let turned = frame::plane_turn(
-        &Vector3::new(0.0, 0.6, 0.8),
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
         f64::cos(std::f64::consts::FRAC_PI_2),
         &Vector3::x(),
     );
     let turn =
         frame::rotation_between3(&Vector3::x(), &turned, &frame::perpendicular(&Vector3::x()));
     guard.rotate_about_by(&Point3::new(0.0, -1.5, 1.1), &turn);
-    let normal = Vector3::new(0.0, 0.6, 0.8);
+    let normal = Vector3::new(0.0, 0.5999999999999999, 0.8);
     let plane = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal);
     let guard_origin = guard.origin;
     let nearest = plane.project(&guard_origin);
@@ -434,24 +434,24 @@ fn assemble<O: gcs_runtime::outer::Outer>(
 
     // tangent(arm, idler) (pulleys.gcs:27)
     let turned_2 = frame::plane_turn(
-        &Vector3::new(0.0, 0.6, 0.8),
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
         f64::cos(std::f64::consts::FRAC_PI_2),
-        &Vector3::new(0.900937462695559, 0.32433748657040123, -0.28829998806257884),
+        &Vector3::new(0.900937462695559, 0.3243374865704011, -0.2882999880625788),
     );
     let turn_2 = frame::rotation_between3(
-        &Vector3::new(0.900937462695559, 0.32433748657040123, -0.28829998806257884),
+        &Vector3::new(0.900937462695559, 0.3243374865704011, -0.2882999880625788),
         &turned_2,
         &frame::perpendicular(&Vector3::new(
             0.900937462695559,
-            0.32433748657040123,
-            -0.28829998806257884,
+            0.3243374865704011,
+            -0.2882999880625788,
         )),
     );
     arm.rotate_about_by(&Point3::new(2.0, -2.4, 1.8), &turn_2);
     let residual = check::space::point_plane(
         Point3::new(2.0, -2.4, 1.8),
         Point3::new(5.0, 0.8, -0.6),
-        Vector3::new(0.0, 0.6, 0.8),
+        Vector3::new(0.0, 0.5999999999999999, 0.8),
         0.0,
     );
     if residual.is_nan() || residual > tol {
@@ -494,7 +494,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let turns = frame::turns_to_angle(
         &direction,
         &arm_dir,
-        &Vector3::new(0.0, 0.6, 0.8),
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
         passing_angle,
     );
     if let Some(e) =
@@ -513,47 +513,43 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 turns.roots.len() as f64,
             )
         })?;
-    let turn_3 = frame::rotation_about_axis(
-        &Vector3::new(0.0, 0.6, 0.8),
-        frame::signed_angle3(&arm_dir, &turned_3, &Vector3::new(0.0, 0.6, 0.8)),
+    let turn_3 = frame::turn_about_axis(
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
+        &arm_dir,
+        &turned_3,
     );
     arm.rotate_about_by(&Point3::new(2.0, -2.4, 1.8), &turn_3);
 
     // tangent(roller, drive) (pulleys.gcs:22)
     let turned_4 = frame::plane_turn(
-        &Vector3::new(0.0, 0.6, 0.8),
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
         f64::cos(std::f64::consts::FRAC_PI_2),
-        &Vector3::new(
-            0.9928768384869221,
-            0.09531617649474451,
-            -0.07148713237105839,
-        ),
+        &Vector3::new(0.9928768384869221, 0.0953161764947445, -0.07148713237105839),
     );
     let turn_4 = frame::rotation_between3(
-        &Vector3::new(
-            0.9928768384869221,
-            0.09531617649474451,
-            -0.07148713237105839,
-        ),
+        &Vector3::new(0.9928768384869221, 0.0953161764947445, -0.07148713237105839),
         &turned_4,
         &frame::perpendicular(&Vector3::new(
             0.9928768384869221,
-            0.09531617649474451,
+            0.0953161764947445,
             -0.07148713237105839,
         )),
     );
     belt.rotate_about_by(&Point3::new(0.0, 0.8, -0.6), &turn_4);
-    let normal_2 = Vector3::new(0.0, 0.6, 0.8);
+    let normal_2 = Vector3::new(0.0, 0.5999999999999999, 0.8);
     let plane_2 = Plane::from_point_normal(&Point3::new(0.0, 0.0, 0.0), &normal_2);
     let belt_origin = belt.origin;
     let nearest_2 = plane_2.project(&belt_origin);
     let shift_2 = nearest_2 - belt_origin;
     belt.translate(&shift_2);
-    let aligned = frame::aligned(&Vector3::new(0.0, 0.6, 0.8), &Vector3::new(0.0, 0.6, 0.8));
+    let aligned = frame::aligned(
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
+    );
     let turn_5 = frame::rotation_between3(
-        &Vector3::new(0.0, 0.6, 0.8),
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
         &aligned,
-        &frame::perpendicular(&Vector3::new(0.0, 0.6, 0.8)),
+        &frame::perpendicular(&Vector3::new(0.0, 0.5999999999999999, 0.8)),
     );
     roller.rotate_about_by(&Point3::new(2.5, -1.8, 1.35), &turn_5);
     let roller_normal = roller.z_axis();
@@ -663,14 +659,17 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             |trial, errors| {
                 let mut belt = belt;
                 let mut guard = guard;
-                let turn_6 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial[0]);
+                let turn_6 = frame::rotation_about_axis(
+                    &Vector3::new(0.0, 0.5999999999999999, 0.8),
+                    trial[0],
+                );
                 belt.rotate_about_by(&belt_origin_2, &turn_6);
                 let belt_dir = belt.x_axis();
                 let guard_dir = guard.x_axis();
                 let turns_2 = frame::turns_to_angle(
                     &belt_dir,
                     &guard_dir,
-                    &Vector3::new(0.0, 0.6, 0.8),
+                    &Vector3::new(0.0, 0.5999999999999999, 0.8),
                     std::f64::consts::FRAC_PI_2,
                 );
                 if let Some(e) = SolveError::from_contact(
@@ -692,9 +691,10 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                         )
                     })?;
                 let guard_origin_2 = guard.origin;
-                let turn_7 = frame::rotation_about_axis(
-                    &Vector3::new(0.0, 0.6, 0.8),
-                    frame::signed_angle3(&guard_dir, &turned_5, &Vector3::new(0.0, 0.6, 0.8)),
+                let turn_7 = frame::turn_about_axis(
+                    &Vector3::new(0.0, 0.5999999999999999, 0.8),
+                    &guard_dir,
+                    &turned_5,
                 );
                 guard.rotate_about_by(&guard_origin_2, &turn_7);
                 let guard_dir_2 = guard.x_axis();
@@ -803,14 +803,14 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         )
         .map_err(|failure| failure.into_error("tangent_belt_idler", "tangent(belt, idler)"))?;
     trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
-    let turn_8 = frame::rotation_about_axis(&Vector3::new(0.0, 0.6, 0.8), trial[0]);
+    let turn_8 = frame::rotation_about_axis(&Vector3::new(0.0, 0.5999999999999999, 0.8), trial[0]);
     belt.rotate_about_by(&belt_origin_2, &turn_8);
     let belt_dir_3 = belt.x_axis();
     let guard_dir_3 = guard.x_axis();
     let turns_3 = frame::turns_to_angle(
         &belt_dir_3,
         &guard_dir_3,
-        &Vector3::new(0.0, 0.6, 0.8),
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
         std::f64::consts::FRAC_PI_2,
     );
     if let Some(e) = SolveError::from_contact(
@@ -832,9 +832,10 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             )
         })?;
     let guard_origin_4 = guard.origin;
-    let turn_9 = frame::rotation_about_axis(
-        &Vector3::new(0.0, 0.6, 0.8),
-        frame::signed_angle3(&guard_dir_3, &turned_6, &Vector3::new(0.0, 0.6, 0.8)),
+    let turn_9 = frame::turn_about_axis(
+        &Vector3::new(0.0, 0.5999999999999999, 0.8),
+        &guard_dir_3,
+        &turned_6,
     );
     guard.rotate_about_by(&guard_origin_4, &turn_9);
 
@@ -940,7 +941,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let guard_dir_5 = guard.x_axis();
     let residual_2 = check::space::angle_between(
         guard_dir_5,
-        Vector3::new(0.0, 0.6, 0.8),
+        Vector3::new(0.0, 0.5999999999999999, 0.8),
         std::f64::consts::FRAC_PI_2,
     );
     if residual_2.is_nan() || residual_2 > tol {
@@ -954,7 +955,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let residual_3 = check::space::point_plane(
         nearest_7,
         Point3::new(0.0, 0.0, 0.0),
-        Vector3::new(0.0, 0.6, 0.8),
+        Vector3::new(0.0, 0.5999999999999999, 0.8),
         0.0,
     );
     if residual_3.is_nan() || residual_3 > tol {
@@ -996,7 +997,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     }
     let residual_6 = check::space::angle_between(
         belt_dir_4,
-        Vector3::new(0.0, 0.6, 0.8),
+        Vector3::new(0.0, 0.5999999999999999, 0.8),
         std::f64::consts::FRAC_PI_2,
     );
     if residual_6.is_nan() || residual_6 > tol {
@@ -1010,7 +1011,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let residual_7 = check::space::point_plane(
         nearest_8,
         Point3::new(0.0, 0.0, 0.0),
-        Vector3::new(0.0, 0.6, 0.8),
+        Vector3::new(0.0, 0.5999999999999999, 0.8),
         0.0,
     );
     if residual_7.is_nan() || residual_7 > tol {
@@ -1055,7 +1056,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             Point3::new(0.0, 0.0, 0.0),
             UnitQuaternion::new_unchecked(Quaternion::new(
                 0.9486832980505138,
-                -0.31622776601683794,
+                -0.3162277660168379,
                 0.0,
                 0.0,
             )),
@@ -1065,7 +1066,7 @@ fn assemble<O: gcs_runtime::outer::Outer>(
             Point3::new(5.0, 0.8, -0.6),
             UnitQuaternion::new_unchecked(Quaternion::new(
                 0.9486832980505138,
-                -0.31622776601683794,
+                -0.3162277660168379,
                 0.0,
                 0.0,
             )),
@@ -1099,20 +1100,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -1145,20 +1154,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -1167,7 +1177,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }

@@ -537,10 +537,7 @@ pub fn solve(
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
     let turned = frame::rotation_about_axis(&tool_tcp_z, -0.0) * ground_target_x;
     let tool_tcp_x = tool.vector_to_global(&Vector3::x());
-    let turn = frame::rotation_about_axis(
-        &Vector3::z(),
-        frame::signed_angle3(&tool_tcp_x, &turned, &Vector3::z()),
-    );
+    let turn = frame::turn_about_axis(&Vector3::z(), &tool_tcp_x, &turned);
     tool.rotate_about_by(&ground_target, &turn);
 
     // d3: prismatic(forearm.quill, quill.slide) (scara.gcs:36)
@@ -620,32 +617,23 @@ pub fn solve(
                 q2_meeting_2.roots.len() as f64,
             )
         })?;
-    let turn_2 = frame::rotation_about_axis(
+    let turn_2 = frame::turn_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(
-            &(Point3::new(0.35, 0.0, 0.35) - Point3::new(0.0, 0.0, 0.0)),
-            &(q2_2 - Point3::new(0.0, 0.0, 0.0)),
-            &Vector3::z(),
-        ),
+        &(Point3::new(0.35, 0.0, 0.35) - Point3::new(0.0, 0.0, 0.0)),
+        &(q2_2 - Point3::new(0.0, 0.0, 0.0)),
     );
     upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
-    let turn_3 = frame::rotation_about_axis(
+    let turn_3 = frame::turn_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(
-            &(forearm_elbow_2 - forearm_quill),
-            &(q2_2 - forearm_quill),
-            &Vector3::z(),
-        ),
+        &(forearm_elbow_2 - forearm_quill),
+        &(q2_2 - forearm_quill),
     );
     forearm.rotate_about_by(&forearm_quill, &turn_3);
     let forearm_quill_z = forearm.vector_to_global(&Vector3::z());
     let forearm_quill_x = forearm.vector_to_global(&Vector3::x());
     let turned_2 = frame::rotation_about_axis(&forearm_quill_z, 0.0) * forearm_quill_x;
     let quill_slide_x = quill.vector_to_global(&Vector3::x());
-    let turn_4 = frame::rotation_about_axis(
-        &Vector3::z(),
-        frame::signed_angle3(&quill_slide_x, &turned_2, &Vector3::z()),
-    );
+    let turn_4 = frame::turn_about_axis(&Vector3::z(), &quill_slide_x, &turned_2);
     quill.rotate_about_by(&tool_roll, &turn_4);
 
     Ok(Solution {
@@ -674,20 +662,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -762,20 +758,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -784,7 +781,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }
@@ -893,10 +890,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
         let turned = frame::rotation_about_axis(&tool_tcp_z, -0.0) * ground_target_x;
         let tool_tcp_x = tool.vector_to_global(&Vector3::x());
-        let turn = frame::rotation_about_axis(
-            &Vector3::z(),
-            frame::signed_angle3(&tool_tcp_x, &turned, &Vector3::z()),
-        );
+        let turn = frame::turn_about_axis(&Vector3::z(), &tool_tcp_x, &turned);
         tool.rotate_about_by(&ground_target, &turn);
 
         // d3: prismatic(forearm.quill, quill.slide) (scara.gcs:36)
@@ -989,32 +983,23 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             q2_meeting_2.roots.len() as f64,
                         )
                     })?;
-                let turn_2 = frame::rotation_about_axis(
+                let turn_2 = frame::turn_about_axis(
                     &Vector3::z(),
-                    frame::signed_angle3(
-                        &(Point3::new(0.35, 0.0, 0.35) - Point3::new(0.0, 0.0, 0.0)),
-                        &(q2_2 - Point3::new(0.0, 0.0, 0.0)),
-                        &Vector3::z(),
-                    ),
+                    &(Point3::new(0.35, 0.0, 0.35) - Point3::new(0.0, 0.0, 0.0)),
+                    &(q2_2 - Point3::new(0.0, 0.0, 0.0)),
                 );
                 upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
-                let turn_3 = frame::rotation_about_axis(
+                let turn_3 = frame::turn_about_axis(
                     &Vector3::z(),
-                    frame::signed_angle3(
-                        &(forearm_elbow_2 - forearm_quill),
-                        &(q2_2 - forearm_quill),
-                        &Vector3::z(),
-                    ),
+                    &(forearm_elbow_2 - forearm_quill),
+                    &(q2_2 - forearm_quill),
                 );
                 forearm.rotate_about_by(&forearm_quill, &turn_3);
                 let forearm_quill_z = forearm.vector_to_global(&Vector3::z());
                 let forearm_quill_x = forearm.vector_to_global(&Vector3::x());
                 let turned_2 = frame::rotation_about_axis(&forearm_quill_z, 0.0) * forearm_quill_x;
                 let quill_slide_x = quill.vector_to_global(&Vector3::x());
-                let turn_4 = frame::rotation_about_axis(
-                    &Vector3::z(),
-                    frame::signed_angle3(&quill_slide_x, &turned_2, &Vector3::z()),
-                );
+                let turn_4 = frame::turn_about_axis(&Vector3::z(), &quill_slide_x, &turned_2);
                 quill.rotate_about_by(&tool_roll, &turn_4);
 
                 let solution = Solution {

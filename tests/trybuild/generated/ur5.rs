@@ -636,10 +636,7 @@ pub fn solve(
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
     let turned = frame::rotation_about_axis(&wrist_3_tool_z_2, -0.0) * ground_target_x;
     let wrist_3_tool_x = wrist_3.vector_to_global(&Vector3::y());
-    let turn_3 = frame::rotation_about_axis(
-        &ground_target_z,
-        frame::signed_angle3(&wrist_3_tool_x, &turned, &ground_target_z),
-    );
+    let turn_3 = frame::turn_about_axis(&ground_target_z, &wrist_3_tool_x, &turned);
     wrist_3.rotate_about_by(&ground_target, &turn_3);
 
     // revolute(upper_arm.shoulder, trunk.shoulder) (ur5.gcs:47)
@@ -713,13 +710,10 @@ pub fn solve(
                 turns.roots.len() as f64,
             )
         })?;
-    let turn_4 = frame::rotation_about_axis(
+    let turn_4 = frame::turn_about_axis(
         &Vector3::z(),
-        frame::signed_angle3(
-            &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
-            &normal,
-            &Vector3::z(),
-        ),
+        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+        &normal,
     );
     trunk.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
     let trunk_shoulder_z = trunk.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
@@ -776,17 +770,11 @@ pub fn solve(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_8 = frame::rotation_about_axis(
-        &wrist_3_wrist3_z,
-        frame::signed_angle3(&wrist_2_wrist2_z, &turned_2, &wrist_3_wrist3_z),
-    );
+    let turn_8 = frame::turn_about_axis(&wrist_3_wrist3_z, &wrist_2_wrist2_z, &turned_2);
     wrist_2.rotate_about_by(&wrist_3_wrist3, &turn_8);
     let wrist_2_wrist2_z_2 = wrist_2.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
     let wrist_1_wrist2_z = wrist_1.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
-    let turn_9 = frame::rotation_about_axis(
-        &forearm_wrist1_z,
-        frame::signed_angle3(&wrist_1_wrist2_z, &wrist_2_wrist2_z_2, &forearm_wrist1_z),
-    );
+    let turn_9 = frame::turn_about_axis(&forearm_wrist1_z, &wrist_1_wrist2_z, &wrist_2_wrist2_z_2);
     wrist_1.rotate_about_by(&wrist_2_wrist2, &turn_9);
     let wrist_1_wrist1_2 =
         wrist_1.point_to_global(&Point3::new(0.717204348704907, 0.10915, 0.104860186389288));
@@ -842,22 +830,16 @@ pub fn solve(
                 revolute_forearm_elbow_upper_arm_elbow_meeting.roots.len() as f64,
             )
         })?;
-    let turn_10 = frame::rotation_about_axis(
+    let turn_10 = frame::turn_about_axis(
         &upper_arm_elbow_z,
-        frame::signed_angle3(
-            &(forearm_elbow - wrist_1_wrist1_2),
-            &(revolute_forearm_elbow_upper_arm_elbow - wrist_1_wrist1_2),
-            &upper_arm_elbow_z,
-        ),
+        &(forearm_elbow - wrist_1_wrist1_2),
+        &(revolute_forearm_elbow_upper_arm_elbow - wrist_1_wrist1_2),
     );
     forearm.rotate_about_by(&wrist_1_wrist1_2, &turn_10);
-    let turn_11 = frame::rotation_about_axis(
+    let turn_11 = frame::turn_about_axis(
         &trunk_shoulder_z,
-        frame::signed_angle3(
-            &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),
-            &(revolute_forearm_elbow_upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),
-            &trunk_shoulder_z,
-        ),
+        &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),
+        &(revolute_forearm_elbow_upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),
     );
     upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.089159), &turn_11);
 
@@ -889,20 +871,28 @@ pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 #[allow(dead_code)]
 type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
 
-/// Whether two solutions are one assembly, `pa` and `pb` their points and `scale` the
-/// largest coordinate of `pa` (plus one): every point and vector within a relative
-/// `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's size). The vectors are read
-/// only when the points agree (two assemblies mostly differ in their points).
+/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
+/// plus one) and the sum of their coordinates.
+#[allow(dead_code)]
+type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
+
+/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
+/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
+/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
+/// may differ are not compared further; the vectors are read only when the points agree.
 #[allow(dead_code)]
 fn same_assembly<const P: usize>(
-    (pa, scale): &(NamedPoints<P>, f64),
-    pb: &NamedPoints<P>,
+    (pa, scale, sum_a): &Kept<P>,
+    (pb, sum_b): (&NamedPoints<P>, f64),
     a: &Solution,
     b: &Solution,
 ) -> bool {
-    pa.iter()
-        .zip(pb)
-        .all(|((_, p), (_, q))| (p - q).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL * scale)
+    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
+    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
+        && pa
+            .iter()
+            .zip(pb)
+            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
         && same_vectors(a, b)
 }
 
@@ -1001,20 +991,21 @@ fn same_vectors(a: &Solution, b: &Solution) -> bool {
 }
 
 /// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed and their
-/// scale, by its place in the list, so that each is computed once, not once per pair
-/// compared.
+/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
+/// scale and sum, by its place in the list, so that each is computed once, not once per
+/// pair compared.
 #[allow(dead_code)]
 fn keep<const P: usize>(
     found: &mut Assemblies,
-    kept: &mut [Option<(NamedPoints<P>, f64)>; MAX_ASSEMBLIES],
+    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
     points: NamedPoints<P>,
     s: Solution,
 ) {
-    let listed = found
-        .iter()
-        .zip(kept.iter())
-        .any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, &points, t, &s)));
+    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
+    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
+        k.as_ref()
+            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+    });
     if listed {
         return;
     }
@@ -1023,7 +1014,7 @@ fn keep<const P: usize>(
             + points
                 .iter()
                 .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale));
+        *slot = Some((points, scale, sum));
     }
     found.push(s, |_, _| false);
 }
@@ -1127,10 +1118,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
         let turned = frame::rotation_about_axis(&wrist_3_tool_z_2, -0.0) * ground_target_x;
         let wrist_3_tool_x = wrist_3.vector_to_global(&Vector3::y());
-        let turn_3 = frame::rotation_about_axis(
-            &ground_target_z,
-            frame::signed_angle3(&wrist_3_tool_x, &turned, &ground_target_z),
-        );
+        let turn_3 = frame::turn_about_axis(&ground_target_z, &wrist_3_tool_x, &turned);
         wrist_3.rotate_about_by(&ground_target, &turn_3);
 
         // revolute(upper_arm.shoulder, trunk.shoulder) (ur5.gcs:47)
@@ -1218,13 +1206,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             turns.roots.len() as f64,
                         )
                     })?;
-                let turn_4 = frame::rotation_about_axis(
+                let turn_4 = frame::turn_about_axis(
                     &Vector3::z(),
-                    frame::signed_angle3(
-                        &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
-                        &normal,
-                        &Vector3::z(),
-                    ),
+                    &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                    &normal,
                 );
                 trunk.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
                 let trunk_shoulder_z =
@@ -1294,22 +1279,17 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     turns_2.roots.len() as f64,
                                 )
                             })?;
-                        let turn_8 = frame::rotation_about_axis(
-                            &wrist_3_wrist3_z,
-                            frame::signed_angle3(&wrist_2_wrist2_z, &turned_2, &wrist_3_wrist3_z),
-                        );
+                        let turn_8 =
+                            frame::turn_about_axis(&wrist_3_wrist3_z, &wrist_2_wrist2_z, &turned_2);
                         wrist_2.rotate_about_by(&wrist_3_wrist3, &turn_8);
                         let wrist_2_wrist2_z_2 =
                             wrist_2.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
                         let wrist_1_wrist2_z =
                             wrist_1.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
-                        let turn_9 = frame::rotation_about_axis(
+                        let turn_9 = frame::turn_about_axis(
                             &forearm_wrist1_z,
-                            frame::signed_angle3(
-                                &wrist_1_wrist2_z,
-                                &wrist_2_wrist2_z_2,
-                                &forearm_wrist1_z,
-                            ),
+                            &wrist_1_wrist2_z,
+                            &wrist_2_wrist2_z_2,
                         );
                         wrist_1.rotate_about_by(&wrist_2_wrist2, &turn_9);
                         let wrist_1_wrist1_2 = wrist_1.point_to_global(&Point3::new(
@@ -1395,24 +1375,17 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                                     as f64,
                                             )
                                         })?;
-                                let turn_10 = frame::rotation_about_axis(
+                                let turn_10 = frame::turn_about_axis(
                                     &upper_arm_elbow_z,
-                                    frame::signed_angle3(
-                                        &(forearm_elbow - wrist_1_wrist1_2),
-                                        &(revolute_forearm_elbow_upper_arm_elbow
-                                            - wrist_1_wrist1_2),
-                                        &upper_arm_elbow_z,
-                                    ),
+                                    &(forearm_elbow - wrist_1_wrist1_2),
+                                    &(revolute_forearm_elbow_upper_arm_elbow - wrist_1_wrist1_2),
                                 );
                                 forearm.rotate_about_by(&wrist_1_wrist1_2, &turn_10);
-                                let turn_11 = frame::rotation_about_axis(
+                                let turn_11 = frame::turn_about_axis(
                                     &trunk_shoulder_z,
-                                    frame::signed_angle3(
-                                        &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),
-                                        &(revolute_forearm_elbow_upper_arm_elbow
-                                            - Point3::new(0.0, 0.0, 0.089159)),
-                                        &trunk_shoulder_z,
-                                    ),
+                                    &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),
+                                    &(revolute_forearm_elbow_upper_arm_elbow
+                                        - Point3::new(0.0, 0.0, 0.089159)),
                                 );
                                 upper_arm
                                     .rotate_about_by(&Point3::new(0.0, 0.0, 0.089159), &turn_11);

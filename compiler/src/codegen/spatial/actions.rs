@@ -77,7 +77,7 @@ impl Solve<'_> {
             }
             RotationAxis::Along(a) => {
                 let a = self.r(a);
-                format!("frame::rotation_about_axis(&{a}, frame::signed_angle3(&{f}, &{t}, &{a}))")
+                format!("frame::turn_about_axis(&{a}, &{f}, &{t})")
             }
             RotationAxis::Normal => {
                 panic!("bug in gcs: a rotation about the plane's normal reached the spatial code generator")
@@ -172,7 +172,7 @@ impl Solve<'_> {
             RotationAxis::Shortest => rt::rotation_between3(&f, &t, &rt::perpendicular(&f)),
             RotationAxis::Along(a) => {
                 let a = vector(a)?;
-                rt::rotation_about_axis(&a, rt::signed_angle3(&f, &t, &a))
+                rt::turn_about_axis(&a, &f, &t)
             }
             RotationAxis::Normal => return None,
         })
