@@ -378,7 +378,7 @@ impl<'a> Search<'a> {
     ) -> Search<'a> {
         let mut step_of = vec![None; plan.branches.len()];
         for (i, s) in plan.steps.iter().enumerate() {
-            if let Some(slot) = branch_of(&s.op).and_then(|b| step_of.get_mut(b.0 as usize)) {
+            if let Some(slot) = s.op.branch().and_then(|b| step_of.get_mut(b.0 as usize)) {
                 *slot = Some(i);
             }
         }
@@ -412,7 +412,7 @@ impl<'a> Search<'a> {
         walk.run(|_, _| {});
         let slice = walk.finish();
         (slice.steps.iter())
-            .filter_map(|&i| branch_of(&self.plan.steps[i].op))
+            .filter_map(|&i| self.plan.steps[i].op.branch())
             .map(|b| b.0 as usize)
             .filter(|&b| self.free.get(b).copied().unwrap_or(false))
             .collect()
@@ -473,18 +473,6 @@ impl<'a> Search<'a> {
                 return None;
             }
         }
-    }
-}
-
-/// The branch variable an op chooses a root by, if it does.
-fn branch_of(op: &plan::Op) -> Option<plan::BranchId> {
-    use plan::{Op, PlanarOp, SpatialOp};
-    match op {
-        Op::Intersect { branch, .. }
-        | Op::Planar(PlanarOp::PassingDir { branch, .. })
-        | Op::Spatial(SpatialOp::PlaneAxisTurn { branch, .. })
-        | Op::Spatial(SpatialOp::AngleTurn { branch, .. }) => Some(*branch),
-        _ => None,
     }
 }
 
@@ -550,7 +538,7 @@ fn placed_by(
         let mut geoms: BTreeSet<GeomId> = BTreeSet::new();
         let mut steps = vec![false; plan.steps.len()];
         for (i, s) in plan.steps.iter().enumerate() {
-            let depends = branch_of(&s.op) == Some(branch)
+            let depends = s.op.branch() == Some(branch)
                 || matches!(s.op, plan::Op::Default(d) if defaults.contains(&d))
                 || s.op
                     .reads()
