@@ -1007,10 +1007,17 @@ mod tests {
     #[test]
     fn a_turn_about_a_zero_axis_or_of_a_vector_along_it_is_none() {
         let (x, z) = (Vector3::x(), Vector3::z());
-        assert_eq!(turn_about_axis(&Vector3::zeros(), &x, &z), UnitQuaternion::identity());
+        assert_eq!(
+            turn_about_axis(&Vector3::zeros(), &x, &z),
+            UnitQuaternion::identity()
+        );
         assert_eq!(turn_about_axis(&z, &z, &x), UnitQuaternion::identity());
-        assert!(turn_about_axis(&z, &Vector3::new(f64::NAN, 0.0, 0.0), &x).w.is_nan());
-        assert!(turn_about_axis(&Vector3::new(0.0, f64::NAN, 1.0), &x, &x).w.is_nan());
+        assert!(turn_about_axis(&z, &Vector3::new(f64::NAN, 0.0, 0.0), &x)
+            .w
+            .is_nan());
+        assert!(turn_about_axis(&Vector3::new(0.0, f64::NAN, 1.0), &x, &x)
+            .w
+            .is_nan());
         // A half turn, either way: the rotation by pi.
         let half = turn_about_axis(&z, &x, &-x);
         assert!((half * x + x).norm() <= 4.0 * f64::EPSILON);

@@ -266,10 +266,18 @@ fn assemblies(
     w.line("#[allow(dead_code)]");
     w.line("type Kept<const P: usize> = (NamedPoints<P>, f64, f64);");
     w.line("");
-    w.line("/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and");
-    w.line("/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's");
-    w.line("/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates");
-    w.line("/// may differ are not compared further; the vectors are read only when the points agree.");
+    w.line(
+        "/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and",
+    );
+    w.line(
+        "/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's",
+    );
+    w.line(
+        "/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates",
+    );
+    w.line(
+        "/// may differ are not compared further; the vectors are read only when the points agree.",
+    );
     w.line("#[allow(dead_code)]");
     w.open(
         "fn same_assembly<const P: usize>((pa, scale, sum_a): &Kept<P>, (pb, sum_b): (&NamedPoints<P>, f64), a: &Solution, b: &Solution) -> bool {",
@@ -285,7 +293,9 @@ fn assemblies(
     same_vectors(w, cx, layout);
     w.line("/// Adds `s`, whose points are `points`, to `found` unless the list has its assembly");
     w.line("/// already (`same_assembly`); `kept` holds the points of each solution listed, with their");
-    w.line("/// scale and sum, by its place in the list, so that each is computed once, not once per");
+    w.line(
+        "/// scale and sum, by its place in the list, so that each is computed once, not once per",
+    );
     w.line("/// pair compared.");
     w.line("#[allow(dead_code)]");
     w.open(
@@ -314,7 +324,9 @@ fn same_vectors(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         .map(|(_, accessor)| accessor)
         .collect();
     w.line("/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,");
-    w.line("/// read one at a time until two differ, the last declared first (a chain's far links,");
+    w.line(
+        "/// read one at a time until two differ, the last declared first (a chain's far links,",
+    );
     w.line("/// which the most branches move).");
     w.line("#[allow(dead_code)]");
     if vectors.is_empty() {

@@ -87,7 +87,6 @@ pub(super) struct Solve<'a> {
     pub(super) dims_assigned: HashSet<GeomId>,
 }
 
-
 /// The local of an angle's [`gcs_runtime::frame::DirectionsNear`] in an iteration.
 pub(super) struct TrialDirections {
     pub(super) name: String,
