@@ -337,10 +337,9 @@ fn same_vectors(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         return;
     }
     w.open("fn same_vectors(a: &Solution, b: &Solution) -> bool {");
+    let ty = super::api::Ty::Vector.rust(cx);
     w.line(&format!(
-        "let near = |u: {}, v: {}| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;",
-        super::api::Ty::Vector.rust(cx),
-        super::api::Ty::Vector.rust(cx)
+        "let near = |u: {ty}, v: {ty}| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;"
     ));
     // A statement each, not one `&&` chain, which rustc would recurse through.
     for v in vectors.iter().rev() {

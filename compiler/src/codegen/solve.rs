@@ -160,27 +160,43 @@ impl Solve<'_> {
             w.open("fn assemble<O: gcs_runtime::outer::Outer>(params: &Params, branches: &Branches, defaults: &Defaults, outer: &mut O) -> Result<Solution, SolveError> {");
         }
         w.line("let _ = (params, branches, defaults);");
+        let (decls, tol, groups, mut body) = self.entry_and_steps(w, layout);
+        let tail = self.ledger.borrow().mark();
+        self.solution_init(&mut body, layout);
+        let ledger = self.ledger.borrow();
+        let later: Vec<&str> = ledger.reads(tail, ledger.mark()).collect();
+        self.declarations(w, decls, tol);
+        w.push(&scopes::in_blocks(&groups, &later, body.indent));
+        w.push(&body);
+        w.close("}");
+    }
+
+    /// The entry checks and the sketch's comment, written to `w`; the sketch's declarations,
+    /// the tolerance's and the plan's steps in groups, each still to be written, and the
+    /// writer the steps were taken out of, at the indent they end at.
+    fn entry_and_steps(
+        &mut self,
+        w: &mut Writer,
+        layout: &Layout,
+    ) -> (Vec<Decl>, Option<String>, Vec<Group>, Writer) {
         self.check_params(w);
         self.check_sketches(w);
         w.line("// The sketch: where every geom starts.");
         let (worked, decls) = self.sketch(layout);
         let tol = self.tolerance(&worked);
-        let mut body = Writer::at(w.indent);
+        let mut steps = Writer::at(w.indent);
         self.cx.reads_tol.set(false);
-        let groups = self.steps_in_groups(&mut body);
-        let tail = self.ledger.borrow().mark();
-        self.solution_init(&mut body, layout);
-        let ledger = self.ledger.borrow();
-        let later: Vec<&str> = ledger.reads(tail, ledger.mark()).collect();
-        let bindings = self.bindings(decls);
-        scopes::declare(w, &bindings);
-        // Declared where the steps written read it.
+        let groups = self.steps_in_groups(&mut steps);
+        (decls, tol, groups, steps)
+    }
+
+    /// The sketch's declarations, now that the steps are written, and the tolerance where the
+    /// steps written read it.
+    fn declarations(&self, w: &mut Writer, decls: Vec<Decl>, tol: Option<String>) {
+        scopes::declare(w, &self.bindings(decls));
         if let Some(tol) = tol.filter(|_| self.cx.reads_tol.get()) {
             w.line(&tol);
         }
-        w.push(&scopes::in_blocks(&groups, &later, body.indent));
-        w.push(&body);
-        w.close("}");
     }
 
     /// The body of `solve_all`'s outer closure written as one tree of the plan (see
@@ -190,14 +206,7 @@ impl Solve<'_> {
     /// and closures they could not be put in blocks.
     pub(super) fn write_tree(&mut self, indent: usize, layout: &Layout) -> Option<Writer> {
         let mut w = Writer::at(indent);
-        self.check_params(&mut w);
-        self.check_sketches(&mut w);
-        w.line("// The sketch: where every geom starts.");
-        let (worked, decls) = self.sketch(layout);
-        let tol = self.tolerance(&worked);
-        let mut steps = Writer::at(indent);
-        self.cx.reads_tol.set(false);
-        let groups = self.steps_in_groups(&mut steps);
+        let (decls, tol, groups, steps) = self.entry_and_steps(&mut w, layout);
         if groups.iter().map(|g| g.lets.len()).sum::<usize>() > scopes::FLAT_LETS {
             return None;
         }
@@ -206,11 +215,7 @@ impl Solve<'_> {
         groups.iter().for_each(|g| body.push(&g.code));
         self.solution_init(&mut body, layout);
         self.close_forks(&mut body);
-        let bindings = self.bindings(decls);
-        scopes::declare(&mut w, &bindings);
-        if let Some(tol) = tol.filter(|_| self.cx.reads_tol.get()) {
-            w.line(&tol);
-        }
+        self.declarations(&mut w, decls, tol);
         w.push(&body);
         Some(w)
     }
