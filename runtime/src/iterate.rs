@@ -121,10 +121,22 @@
 //!    tangent there. This relies on the residual at the last defined point being within the
 //!    tolerance of its limit, which holds for the kernel's intersections (a tangency within
 //!    [`crate::tol::TANGENT_REL`] meets in one double root) but not for a function with a
-//!    square-root singularity computed without such a snap. The ends of a non-periodic
-//!    interval are treated alike. A failing stretch between two defined samples, met by a
-//!    refinement of a sign change, is split off the same way: its edges are found from both
-//!    sides, and each side is refined on its own (up to four nested splits).
+//!    square-root singularity computed without such a snap. Such an edge, where `|f|` has
+//!    fallen to a sixteenth or less of its value at the sample beside it with the same sign
+//!    (an error that reaches zero as a square root does at a tangency, whose last defined
+//!    point lies in the tangency's band), is a boundary root too: a start that the solve
+//!    from it confirms or not, as every root is. The ends of a non-periodic interval are
+//!    treated alike. A failing stretch between two defined samples, met by a refinement of a
+//!    sign change, is split off the same way: its edges are found from both sides, and each
+//!    side is refined on its own (up to four nested splits); so is one met by the
+//!    minimization of rule 2 (a stretch narrower than the grid inside a valley of `|f|`).
+//! 5. **A window between failing samples**: where the function fails with a gap ([`Gap`]:
+//!    loci that miss by it), a failing sample whose gap is a local minimum of the sampled
+//!    gaps between two failing samples is refined by Brent's minimization of the gap over
+//!    the two spacings around it. If it meets a point where `f` is defined (the loci meet
+//!    over a stretch narrower than the grid), the stretch's edges are found by bisection and
+//!    the stretch is swept on a grid of its own of 16 samples by these same rules (windows
+//!    inside it too, two deep).
 //!
 //! Roots closer than `1e-9 (hi - lo)` (across the wrap when periodic) are one root, the one
 //! with the smaller residual. Each refinement uses at most [`Settings::max_evaluations`]
@@ -153,7 +165,8 @@
 //!   slope, or next to a third root's sign change); more generally, any dip of `f` through
 //!   zero between two samples of the same sign neither of which is such a minimum (also when
 //!   one of the two sign changes lies inside a failing stretch that no sample hits); a defined
-//!   stretch lying strictly between two failing samples; roots a refinement would reach only
+//!   stretch lying strictly between two failing samples, unless their failures have gaps
+//!   that dip toward it (rule 5), and then the roots its own grid misses; roots a refinement would reach only
 //!   through more than four nested failing stretches. With rounding, also a root where `f` is
 //!   so steep that no double near it has `|f| <= tolerance` (it is then no root at this
 //!   tolerance).
@@ -606,7 +619,7 @@ fn reach_assembly<const N: usize, E: Gap>(
 /// [`Failure::NoConvergence`]. Only a failure pays for this: out of line, and cold.
 #[cold]
 #[inline(never)]
-fn classify<const N: usize, E>(
+fn classify<const N: usize, E: Gap>(
     start: &[f64; N],
     best: &[f64; N],
     scale: &[f64; N],
@@ -2089,7 +2102,7 @@ struct Found {
 /// `samples` evaluations on a uniform grid first (at least 8). An interval that is not finite
 /// or not increasing (`hi <= lo`) has no roots. The method, and exactly which roots it finds,
 /// are in the module documentation.
-pub fn all_roots<const CAP: usize, E>(
+pub fn all_roots<const CAP: usize, E: Gap>(
     lo: f64,
     hi: f64,
     periodic: bool,
@@ -2104,7 +2117,7 @@ pub fn all_roots<const CAP: usize, E>(
     }
     let n = samples.max(MIN_SAMPLES);
     let mut sweep = Sweep {
-        f: |t: f64| f(t).ok(),
+        f: |t: f64| f(t).map_err(|e| e.gap()),
         lo,
         hi,
         span,
@@ -2117,6 +2130,7 @@ pub fn all_roots<const CAP: usize, E>(
         pushed: 0,
         first: None,
         second: None,
+        nested: 0,
     };
     let intervals = if periodic { n } else { n - 1 };
     for i in 0..n {
@@ -2125,8 +2139,8 @@ pub fn all_roots<const CAP: usize, E>(
         } else {
             lo + span * (f64::from(i) / f64::from(intervals))
         };
-        let value = sweep.eval(x);
-        sweep.push_sample(Node::sample(x, value));
+        let node = sweep.sample(x);
+        sweep.push_sample(node);
     }
     if periodic {
         sweep.close_the_circle();
@@ -2147,17 +2161,8 @@ struct Node {
     /// A dip across zero within the tolerance, reported as one double root: the sign changes
     /// on either side are not roots of their own.
     shallow_dip: bool,
-}
-
-impl Node {
-    fn sample(x: f64, f: Option<f64>) -> Self {
-        Self {
-            x,
-            f,
-            boundary: false,
-            shallow_dip: false,
-        }
-    }
+    /// Where the function fails with a gap ([`Gap`]): how far its loci miss.
+    gap: Option<f64>,
 }
 
 /// What a minimization of `sign * f` found.
@@ -2192,13 +2197,45 @@ struct Sweep<'a, F, const CAP: usize> {
     /// known.
     first: Option<Node>,
     second: Option<Node>,
+    /// How many sweeps of windows this one is inside ([`Self::gap_window`]).
+    nested: u32,
 }
 
-impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
+/// How many times smaller `|f|` at the last defined point before a failing stretch must be
+/// than at the sample beside it for that edge to be taken as a root ([`Sweep::classify`]).
+const EDGE_FALL: f64 = 16.0;
+
+/// The samples of a window found between two failing samples ([`Sweep::gap_window`]).
+const WINDOW_SAMPLES: u32 = 16;
+
+/// How deep windows are searched inside windows.
+const MAX_NESTED: u32 = 2;
+
+impl<F: FnMut(f64) -> Result<f64, Option<f64>>, const CAP: usize> Sweep<'_, F, CAP> {
     /// `f` at `x` (mapped into `[lo, hi]` when periodic: a turn on, or back, and clamped
     /// against the rounding of that), `None` where it fails or is not finite, and outside
     /// `[lo, hi]`.
     fn eval(&mut self, x: f64) -> Option<f64> {
+        self.eval_or_gap(x).ok()
+    }
+
+    /// A grid sample at `x`: its value, or where it fails, its gap if it has one.
+    fn sample(&mut self, x: f64) -> Node {
+        let (f, gap) = match self.eval_or_gap(x) {
+            Ok(v) => (Some(v), None),
+            Err(gap) => (None, gap),
+        };
+        Node {
+            x,
+            f,
+            boundary: false,
+            shallow_dip: false,
+            gap,
+        }
+    }
+
+    /// [`Self::eval`], and where `f` fails, its gap if it has one (finite and positive).
+    fn eval_or_gap(&mut self, x: f64) -> Result<f64, Option<f64>> {
         let t = if !self.periodic {
             x
         } else if x >= self.hi {
@@ -2210,13 +2247,16 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
         };
         self.scan.evaluations = self.scan.evaluations.saturating_add(1);
         if !(t >= self.lo && t <= self.hi) {
-            return None;
+            return Err(None);
         }
-        let value = (self.f)(t).filter(|v| is_finite(*v));
-        if let Some(v) = value {
-            self.scan.least = self.scan.least.min(v.abs());
+        match (self.f)(t) {
+            Ok(v) if is_finite(v) => {
+                self.scan.least = self.scan.least.min(v.abs());
+                Ok(v)
+            }
+            Ok(_) => Err(None),
+            Err(gap) => Err(gap.filter(|g| is_finite(*g) && *g > 0.0)),
         }
-        value
     }
 
     /// `f` at `x` within `budget`; `Exhausted` when it is spent.
@@ -2350,6 +2390,7 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
             f: Some(value),
             boundary: true,
             shallow_dip: false,
+            gap: None,
         }
     }
 
@@ -2357,6 +2398,9 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
     /// root at a boundary or an end, a local minimum of `|f|` (refined), a shallow dip.
     fn classify(&mut self, left: Option<Node>, centre: Node, right: Option<Node>) -> Node {
         let Some(fc) = centre.f else {
+            if let (Some(left), Some(right)) = (left, right) {
+                self.gap_window(left, centre, right);
+            }
             return centre;
         };
         let left = left.and_then(|n| n.f.map(|v| (n.x, v)));
@@ -2370,6 +2414,16 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
         let run_end = left.is_none() || right.is_none();
         if run_end && fc.abs() <= tolerance {
             self.record(centre.x, fc.abs(), false, centre.boundary);
+        } else if run_end && centre.boundary {
+            // Where the assembly ends at a tangency of its loci, `f` may reach zero there as a
+            // square root does, steeply: its last defined point, in the tangency's tolerance
+            // band, is then further from zero than the tolerance. A fall of `EDGE_FALL` times
+            // from the sample beside it makes the edge a root to be confirmed by a solve from
+            // it (as every root is).
+            let beside = left.or(right).map_or(0.0, |(_, v)| v);
+            if beside * fc > 0.0 && beside.abs() >= EDGE_FALL * fc.abs() {
+                self.record(centre.x, fc.abs(), false, true);
+            }
         }
         let same_and_above = |v: f64, strict: bool| {
             v * fc > 0.0
@@ -2385,7 +2439,27 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
         if is_minimum {
             let (a, fa) = left.unwrap_or((centre.x, fc));
             let (b, fb) = right.unwrap_or((centre.x, fc));
-            match self.minimize(a, b, centre.x, fc, fc.signum()) {
+            let (valley, bad) = self.minimize_seeing(a, b, centre.x, fc, fc.signum());
+            // The valley's bottom may be a failing stretch narrower than the grid (loci that
+            // stop meeting between two samples): its edges are roots where `f` reaches zero
+            // there, as at any boundary.
+            if let (Valley::Bottom { g, .. }, Some(bad), false) = (valley, bad, run_end) {
+                if g > tolerance && a < bad && bad < b {
+                    let near = if bad < centre.x {
+                        (a, fa)
+                    } else {
+                        (centre.x, fc)
+                    };
+                    let far = if bad < centre.x {
+                        (centre.x, fc)
+                    } else {
+                        (b, fb)
+                    };
+                    self.hidden_stretch(near, bad, far);
+                    return centre;
+                }
+            }
+            match valley {
                 Valley::Crossing { x, f } => {
                     for (u, fu, v, fv) in [(a, fa, x, f), (x, f, b, fb)] {
                         self.refine(u, fu, v, fv, 0);
@@ -2525,6 +2599,139 @@ impl<F: FnMut(f64) -> Option<f64>, const CAP: usize> Sweep<'_, F, CAP> {
                 }
                 self.refine(x, fx, edge.x, fe, depth + 1);
             }
+        }
+    }
+
+    /// A failing sample whose gap is a local minimum of the sampled gaps, between two failing
+    /// samples: the loci may meet between them over a stretch narrower than the grid (a
+    /// circle that grazes a sphere as the default turns), which no sample hits. Brent's
+    /// minimization of the gap over the two spacings looks for a point where `f` is defined;
+    /// from one, the stretch's edges are found by bisection and the stretch is swept on a
+    /// grid of its own ([`WINDOW_SAMPLES`]), so that its roots are found as the grid's are.
+    fn gap_window(&mut self, left: Node, centre: Node, right: Node) {
+        let (Some(gl), Some(gc), Some(gr)) = (left.gap, centre.gap, right.gap) else {
+            return;
+        };
+        if self.nested >= MAX_NESTED || !(gl > gc && gr >= gc) {
+            return;
+        }
+        let mut budget = Budget::new(self.limit);
+        let abs_tol = tol::LOCATE_ABS * tol::SQRT_EPS * self.span;
+        let mut inside: Option<(f64, f64)> = None;
+        // A defined point ends the search: it counts as far below zero.
+        let found = valley(left.x, right.x, (centre.x, gc), 1.0, 0.0, abs_tol, |u| {
+            if !budget.take() {
+                return Probe::Exhausted;
+            }
+            match self.eval_or_gap(u) {
+                Ok(v) => {
+                    inside = Some((u, v));
+                    Probe::Good(f64::NEG_INFINITY)
+                }
+                Err(Some(g)) => Probe::Good(g),
+                Err(None) => Probe::Bad,
+            }
+        });
+        let (Valley::Crossing { .. }, Some((x, v))) = (found, inside) else {
+            return;
+        };
+        let (l, r) = (self.boundary(x, v, left.x), self.boundary(x, v, right.x));
+        // In the periodic scan's own range, where the windows' roots are recorded.
+        let shift = if self.periodic && r.x > self.hi {
+            -self.span
+        } else {
+            0.0
+        };
+        let (lo, hi) = (l.x + shift, r.x + shift);
+        if hi.partial_cmp(&lo) != Some(core::cmp::Ordering::Greater) {
+            if let Some(f) = l.f.filter(|f| f.abs() <= self.tolerance) {
+                self.record(l.x, f.abs(), true, true);
+            }
+            return;
+        }
+        let (periodic, span, outer) = (self.periodic, self.span, (self.lo, self.hi));
+        let f = &mut self.f;
+        // The outer scan's function, a turn on or back where the window crosses its end; of
+        // one type at every depth (`dyn`), so that windows in windows instantiate nothing new.
+        let mut wrapped = |t: f64| {
+            let t = if periodic && t > outer.1 {
+                t - span
+            } else if periodic && t < outer.0 {
+                t + span
+            } else {
+                t
+            };
+            f(t)
+        };
+        let wrapped: &mut dyn FnMut(f64) -> Result<f64, Option<f64>> = &mut wrapped;
+        let mut window = Sweep {
+            f: wrapped,
+            lo,
+            hi,
+            span: hi - lo,
+            periodic: false,
+            tolerance: self.tolerance,
+            limit: self.limit,
+            scan: &mut *self.scan,
+            before: None,
+            centre: None,
+            pushed: 0,
+            first: None,
+            second: None,
+            nested: self.nested + 1,
+        };
+        let intervals = WINDOW_SAMPLES - 1;
+        for i in 0..WINDOW_SAMPLES {
+            let x = if i == intervals {
+                hi
+            } else {
+                lo + (hi - lo) * (f64::from(i) / f64::from(intervals))
+            };
+            let mut node = window.sample(x);
+            node.boundary = i == 0 || i == intervals;
+            window.push_sample(node);
+        }
+        window.finish();
+    }
+
+    /// [`Self::minimize`], and a point where `f` failed on the way, if one did.
+    fn minimize_seeing(
+        &mut self,
+        a: f64,
+        b: f64,
+        x0: f64,
+        f0: f64,
+        sign: f64,
+    ) -> (Valley, Option<f64>) {
+        let mut budget = Budget::new(self.limit);
+        let abs_tol = tol::LOCATE_ABS * tol::SQRT_EPS * self.span;
+        let tolerance = self.tolerance;
+        let mut bad = None;
+        let found = valley(a, b, (x0, f0), sign, tolerance, abs_tol, |u| {
+            let p = self.probe(&mut budget, u);
+            if matches!(p, Probe::Bad) && bad.is_none() {
+                bad = Some(u);
+            }
+            p
+        });
+        (found, bad)
+    }
+
+    /// A failing stretch around `bad` between defined points `near` and `far` (each `(x, f)`)
+    /// that no grid sample hit: its edges are found by bisection from both sides, each is a
+    /// boundary root if its `|f|` is within the tolerance (or falls steeply to it, as at a
+    /// tangency), and each side with a sign change of its own is refined.
+    fn hidden_stretch(&mut self, near: (f64, f64), bad: f64, far: (f64, f64)) {
+        for (x, fx) in [near, far] {
+            let edge = self.boundary(x, fx, bad);
+            let Some(fe) = edge.f else {
+                continue;
+            };
+            let steep = fx * fe > 0.0 && fx.abs() >= EDGE_FALL * fe.abs();
+            if fe.abs() <= self.tolerance || steep {
+                self.record(edge.x, fe.abs(), false, true);
+            }
+            self.refine(x, fx, edge.x, fe, 1);
         }
     }
 

@@ -223,7 +223,7 @@ pub(crate) fn search<const N: usize, E: Gap>(
 
 /// [`keep`] with one default: `Ok(residual)` with `x` at the nearest root of orientation
 /// `want`, else `Err(roots of the other orientation found)`.
-fn keep_one<const N: usize, E>(
+fn keep_one<const N: usize, E: Gap>(
     want: Orientation,
     start: &[f64; N],
     x: &mut [f64; N],

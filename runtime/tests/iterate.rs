@@ -1292,3 +1292,96 @@ fn a_budget_short_of_a_root_stays_no_convergence() {
         );
     }
 }
+
+/// Fails where two loci miss, with the gap they miss by: an assembly's error outside its
+/// stretch.
+fn missing(gap: f64) -> SolveError {
+    SolveError::new("c", "", ErrorKind::NoIntersection, gap)
+}
+
+/// Loci that meet only over a stretch narrower than the grid's spacing (a circle grazing a
+/// sphere as the default turns), with two roots inside: the failing samples' gaps dip toward
+/// it, and the window between them is found and swept, wherever it sits between the samples.
+#[test]
+fn a_window_narrower_than_the_grid_is_found_by_its_gaps() {
+    let spacing = TAU / 64.0;
+    for k in 0..40 {
+        let c = -3.0 + 6.0 * f64::from(k) / 40.0 + 0.013 * f64::from(k % 7);
+        let w = 0.15 * spacing;
+        let (r1, r2) = (c - 0.5 * w, c + 0.3 * w);
+        let scan: RootScan<8> = all_roots(-PI, PI, true, 64, &Settings::default(), |t| {
+            let d = num_wrap(t - c).abs();
+            if d >= w {
+                Err(missing(d - w + 1e-3))
+            } else {
+                Ok((t - r1) * (t - r2))
+            }
+        });
+        assert_eq!(scan.roots().len(), 2, "window at {c}: {scan:?}");
+        assert!((scan.roots()[0] - r1).abs() <= 1e-12, "{scan:?}");
+        assert!((scan.roots()[1] - r2).abs() <= 1e-12, "{scan:?}");
+    }
+}
+
+/// The same window without gaps (a failure that says nothing of how far): not found, as the
+/// module documentation says; an empty scan, no invented root.
+#[test]
+fn a_window_between_failures_without_gaps_stays_unseen() {
+    let spacing = TAU / 64.0;
+    let (c, w) = (0.4 + 0.37 * spacing, 0.15 * spacing);
+    let scan: RootScan<8> = all_roots(-PI, PI, true, 64, &Settings::default(), |t| {
+        if (t - c).abs() >= w {
+            Err(())
+        } else {
+            Ok((t - c) * (t - c - 0.1 * w))
+        }
+    });
+    assert!(scan.is_empty(), "{scan:?}");
+}
+
+/// A failing stretch narrower than the grid, between samples where `f` keeps its sign, and
+/// `f` reaching zero at both its edges as a square root does (two branches that merge where
+/// the loci stop meeting): both edges are roots, flagged as boundaries.
+#[test]
+fn edges_of_a_hidden_stretch_where_f_falls_to_zero_are_roots() {
+    let spacing = 3.0 / 31.0;
+    for k in 0..20 {
+        let c = -1.0 + 2.0 * f64::from(k) / 20.0 + 0.011 * f64::from(k % 5);
+        let w = 0.2 * spacing;
+        let scan: RootScan<8> = all_roots(-1.5, 1.5, false, 32, &Settings::default(), |x| {
+            let d = (x - c).abs() - w;
+            if d <= 0.0 {
+                Err(())
+            } else {
+                Ok(-(d.sqrt()) * (1.0 + x * x))
+            }
+        });
+        assert_eq!(scan.roots().len(), 2, "stretch at {c}: {scan:?}");
+        for (i, edge) in [c - w, c + w].into_iter().enumerate() {
+            assert!((scan.roots()[i] - edge).abs() <= 1e-9, "{edge}: {scan:?}");
+            assert!(scan.is_boundary(i), "{scan:?}");
+        }
+    }
+}
+
+/// A hidden stretch whose edges `f` does not approach zero at (the loci stop meeting, and
+/// the error stays away from zero): no root.
+#[test]
+fn edges_of_a_hidden_stretch_away_from_zero_are_no_roots() {
+    let spacing = 3.0 / 31.0;
+    let (c, w) = (0.3 + 0.41 * spacing, 0.2 * spacing);
+    let scan: RootScan<8> = all_roots(-1.5, 1.5, false, 32, &Settings::default(), |x| {
+        let d = (x - c).abs() - w;
+        if d <= 0.0 {
+            Err(())
+        } else {
+            Ok(-(0.5 + d.sqrt()) * (1.0 + x * x))
+        }
+    });
+    assert!(scan.is_empty(), "{scan:?}");
+}
+
+/// `x` wrapped to (-pi, pi].
+fn num_wrap(x: f64) -> f64 {
+    gcs_runtime::num::wrap_angle(x)
+}
