@@ -312,6 +312,13 @@ pub mod space {
         w.cross(&v).norm().atan2(w.dot(&v))
     }
 
+    /// Unit `u` and unit `v` make the same angle with unit `axis` (a turn about `axis` can
+    /// take one onto the other): how far apart their components along it are.
+    #[inline]
+    pub fn cone(axis: V3, u: V3, v: V3) -> f64 {
+        (u - v).dot(&axis).abs()
+    }
+
     /// A helix: the angle from unit `u` to unit `v` about unit `axis` is `2pi s / pitch`, `s`
     /// the advance `offset . axis`: how far `v` is from `u` turned so, in radians (modulo a
     /// turn, as [`twist`] measures it).

@@ -337,6 +337,29 @@ impl<'m, G: Geometry> Builder<'m, G> {
         reg
     }
 
+    /// Whether any of registers `regs` depends on a default taken so far: read from one, or
+    /// measured on a geom a step that read one moved (as `close_iterations` traces it).
+    pub(crate) fn depends_on_default(&self, regs: &[Reg]) -> bool {
+        let model = self.model;
+        let mut reg_deps = vec![false; self.plan.regs as usize];
+        let mut moved: HashMap<GeomId, bool> = HashMap::default();
+        for step in &self.plan.steps {
+            let mut dep = matches!(step.op, Op::Default(_))
+                || step.op.reads().iter().any(|r| reg_deps[r.0 as usize]);
+            if let Some(f) = step.op.measures() {
+                dep |= moved.get(&model.top_level_of(f)).copied().unwrap_or(false);
+            }
+            for g in step.op.moves() {
+                *moved.entry(*g).or_default() |= dep;
+            }
+            if let Some((r, _)) = step.out {
+                reg_deps[r.0 as usize] = dep;
+            }
+        }
+        regs.iter()
+            .any(|r| reg_deps.get(r.0 as usize).copied().unwrap_or(false))
+    }
+
     /// Whether a step of the plan so far moves geoms for constraint `c` (one of its relations
     /// was constructed, not only checked). The index kept may be stale after a rollback: the
     /// step at it is read to tell.
@@ -780,12 +803,39 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// The defaults so closed are varied by outer iterations, over the steps from the first
     /// such default to its last close (overlapping regions merge); the others parameterize a
     /// free motion (case (a)). A check no open default explains stays a check.
+    ///
+    /// A point met on its own locus (the meeting of that locus with another) is on it
+    /// wherever the meeting exists: its distance from the locus is zero or undefined, no
+    /// error to close. Such a step is passed over for a later check its default displaced (a
+    /// turn's cone, two circles' common plane), unless none closes that default.
     fn close_iterations(&mut self) {
-        use crate::plan::{DefaultId, Iteration, Residual};
         if self.plan.defaults.is_empty() {
             return;
         }
+        let mut trial = self.clone();
+        if trial.close_iterations_with(true) {
+            *self = trial;
+        } else {
+            self.close_iterations_with(false);
+        }
+    }
+
+    /// [`Builder::close_iterations`]; with `past_own_locus`, a point met on its own locus is
+    /// passed over. Returns whether every default so passed over is closed by a later step.
+    fn close_iterations_with(&mut self, past_own_locus: bool) -> bool {
+        use crate::plan::{DefaultId, Iteration, Residual};
         let model = self.model;
+        // What each register holds, by the steps that define them.
+        let defs: HashMap<Reg, Op> = (self.plan.steps.iter())
+            .filter_map(|s| s.out.map(|(r, _)| (r, s.op.clone())))
+            .collect();
+        let same_locus =
+            |a: Reg, b: Reg| a == b || defs.get(&a).is_some_and(|d| defs.get(&b) == Some(d));
+        let met_on = |locus: Reg, point: Reg| match defs.get(&point) {
+            Some(Op::Intersect { a, b, .. }) => same_locus(*a, locus) || same_locus(*b, locus),
+            _ => false,
+        };
+        let mut passed_over: BTreeSet<u32> = BTreeSet::new();
         // The defaults each register and each top-level geom's placement depend on.
         let mut reg_deps: Vec<BTreeSet<u32>> = vec![BTreeSet::new(); self.plan.regs as usize];
         let mut geom_deps: HashMap<GeomId, BTreeSet<u32>> = HashMap::default();
@@ -835,6 +885,11 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 Some(&d),
             ) = (&step.op, displaced.difference(&closed).last())
             {
+                if past_own_locus && met_on(*locus, *point) {
+                    passed_over.insert(d);
+                    steps.push(step);
+                    continue;
+                }
                 closed.insert(d);
                 let (locus, point, constraint) = (*locus, *point, *constraint);
                 steps.push(Step {
@@ -935,6 +990,9 @@ impl<'m, G: Geometry> Builder<'m, G> {
             }
             self.redundant.retain(|c| *c != constraint);
         }
+        if !passed_over.is_subset(&closed) {
+            return false;
+        }
         self.plan.steps = steps;
         self.plan.regs = regs;
         for (i, s) in self.plan.steps.iter().enumerate() {
@@ -974,6 +1032,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             })
             .collect();
         self.guard_iterations();
+        true
     }
 
     /// Guards the iterated regions: every relation of a constraint a region's steps satisfy

@@ -114,6 +114,7 @@ impl Solve<'_> {
             Residual::PointPlane { .. }
             | Residual::Parallel { .. }
             | Residual::Twist { .. }
+            | Residual::Cone { .. }
             | Residual::AngleBetween { .. }
             | Residual::OnCircle { .. }
             | Residual::MirrorPlane { .. }

@@ -531,6 +531,7 @@ impl Machine<'_, '_, D2> {
             Residual::PointPlane { .. }
             | Residual::Parallel { .. }
             | Residual::Twist { .. }
+            | Residual::Cone { .. }
             | Residual::AngleBetween { .. }
             | Residual::OnCircle { .. }
             | Residual::MirrorPlane { .. }

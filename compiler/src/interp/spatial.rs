@@ -746,6 +746,7 @@ impl Machine<'_, '_, D3> {
                 let image = locus3d::mirror(self.p3(base), self.v3(normal), self.p3(p));
                 (self.p3(q) - image)[usize::from(component.min(2))]
             }
+            Residual::Cone { axis, u, v } => (self.v3(u) - self.v3(v)).dot(&self.v3(axis)),
             _ => self.residual3(residual),
         }
     }
@@ -783,6 +784,7 @@ impl Machine<'_, '_, D3> {
             Residual::Twist { axis, u, v, angle } => {
                 c::twist(self.v3(axis), self.v3(u), self.v3(v), self.s(angle))
             }
+            Residual::Cone { axis, u, v } => c::cone(self.v3(axis), self.v3(u), self.v3(v)),
             Residual::Helix {
                 axis,
                 u,

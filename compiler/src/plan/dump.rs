@@ -699,5 +699,6 @@ fn residual_text(residual: &Residual) -> String {
         Residual::Twist { axis, u, v, angle } => {
             format!("twist {} {} {} about {}", r(u), r(v), r(angle), r(axis))
         }
+        Residual::Cone { axis, u, v } => format!("cone {} {} about {}", r(u), r(v), r(axis)),
     }
 }

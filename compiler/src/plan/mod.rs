@@ -358,6 +358,9 @@ pub enum Residual {
     },
     /// In space: the unsigned angle between directions `u` and `v` is `angle`.
     AngleBetween { u: Reg, v: Reg, angle: Reg },
+    /// In space: unit directions `u` and `v` make the same angle with unit `axis`, as a turn
+    /// about `axis` needs to take one onto the other. Its error is `(u - v) . axis`, signed.
+    Cone { axis: Reg, u: Reg, v: Reg },
     /// In space: the angle from `u` to `v` counter-clockwise about `axis` is `2pi s / pitch`
     /// (modulo a turn), `s` the advance `(q - p) . axis` (a helical joint).
     Helix {

@@ -174,6 +174,9 @@ impl Residual {
                 (*q, POINT),
                 (*pitch, SCALAR),
             ]),
+            Residual::Cone { axis, u, v } => {
+                out.extend([(*axis, VECTOR), (*u, VECTOR), (*v, VECTOR)])
+            }
             Residual::Twist { axis, u, v, angle } => out.extend([
                 (*axis, VECTOR),
                 (*u, VECTOR),

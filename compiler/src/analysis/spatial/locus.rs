@@ -279,6 +279,9 @@ impl Builder<'_, Spatial> {
             ],
             _ => vec![format!("where {wa} and {wb} meet")],
         };
+        if meet == Meet::CircleCircle {
+            self.check_coplanar_orbits(a, b, r);
+        }
         let branch = self.branch(r.constraint, meanings);
         if held {
             self.plan.branches[branch.0 as usize].symmetric = true;
@@ -322,6 +325,94 @@ impl Builder<'_, Spatial> {
             Some(curve) => Target::On(curve),
             None => Target::Point(x),
         })
+    }
+
+    /// Two circles of space meet only by accident, unless their planes are one: two orbits
+    /// about axes the model keeps parallel (a planar sub-chain's joints, each body's axes
+    /// parallel in it and every revolute keeping its two parallel) lie in parallel planes,
+    /// which must be one plane for them to meet. That is one equation. Where a default
+    /// displaced it (the sub-chain's plane turned with an arm's base), it is measured signed
+    /// before the circles are met, the distance of the second circle's point from the
+    /// first's plane, and closes the iteration: a scan of the default's turn brackets every
+    /// root, while the circles' meeting exists only at the roots.
+    fn check_coplanar_orbits(&mut self, a: Reg, b: Reg, r: &Rel) {
+        let orbit = |k: Reg| match self.def(k).map(|s| &s.op) {
+            Some(Op::Spatial(SpatialOp::Orbit { axis, through, .. })) => Some((*axis, *through)),
+            _ => None,
+        };
+        let (Some((axis_a, through_a)), Some((axis_b, through_b))) = (orbit(a), orbit(b)) else {
+            return;
+        };
+        let feature = |k: Reg| match self.def(k).map(|s| &s.op) {
+            Some(Op::DirOf(g)) => Some(*g),
+            _ => None,
+        };
+        let (Some(fa), Some(fb)) = (feature(axis_a), feature(axis_b)) else {
+            return;
+        };
+        // With no default under them, the plan met the plane's equation already (a sub-chain's
+        // plane turned onto its point): the circles are coplanar by construction.
+        if !self.depends_on_default(&[a, b]) || !self.kept_parallel(fa, fb) {
+            return;
+        }
+        let explain = format!(
+            "Check that {} and {} lie in one plane, square to their parallel axes ({}).",
+            self.word(a),
+            self.word(b),
+            self.cname(r.constraint)
+        );
+        self.emit(
+            Op::Check {
+                constraint: r.constraint,
+                residual: crate::plan::Residual::PointPlane {
+                    p: through_b,
+                    base: through_a,
+                    normal: axis_a,
+                    d: None,
+                },
+                guard: false,
+            },
+            None,
+            Vec::new(),
+            explain,
+        );
+    }
+
+    /// Whether the model keeps unit direction features `a` and `b` (marker axes) parallel
+    /// whatever it does: linked by parallel relations (a revolute's axes, a `parallel`
+    /// constraint) and by axes parallel within one body.
+    fn kept_parallel(&self, a: GeomId, b: GeomId) -> bool {
+        use super::relation::Relation;
+        let model = self.model;
+        let is_axis = |g: GeomId| matches!(model.geoms[g].owner, gcs_lang::model::Owner::Part(..));
+        if !is_axis(a) || !is_axis(b) {
+            return false;
+        }
+        let links: Vec<(GeomId, GeomId)> = (model.constraints.iter())
+            .flat_map(|(c, _)| self.relations_of(c))
+            .filter_map(|r| match r {
+                Relation::Parallel { u, v, .. } => Some((u, v)),
+                _ => None,
+            })
+            .collect();
+        let joined = |x: GeomId, y: GeomId| x == y || super::same_direction(model, x, y);
+        let mut reached = vec![a];
+        let mut grew = true;
+        while grew {
+            if reached.iter().any(|&x| joined(x, b)) {
+                return true;
+            }
+            grew = false;
+            for &(u, v) in &links {
+                let has_u = reached.iter().any(|&x| joined(x, u));
+                let has_v = reached.iter().any(|&x| joined(x, v));
+                if has_u != has_v {
+                    reached.push(if has_u { v } else { u });
+                    grew = true;
+                }
+            }
+        }
+        false
     }
 
     /// The cylinder of radius `length` about the line through known point `at` along known

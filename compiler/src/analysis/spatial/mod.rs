@@ -297,7 +297,7 @@ fn parallel(a: [f64; 3], b: [f64; 3]) -> bool {
 }
 
 /// Whether direction features `a` and `b` of one body are parallel in it, whatever it does.
-fn same_direction(model: &Model, a: GeomId, b: GeomId) -> bool {
+pub(super) fn same_direction(model: &Model, a: GeomId, b: GeomId) -> bool {
     model.top_level_of(a) == model.top_level_of(b)
         && matches!((local_dir(model, a), local_dir(model, b)), (Some(u), Some(v)) if parallel(u, v))
 }

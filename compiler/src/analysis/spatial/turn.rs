@@ -7,7 +7,7 @@
 use super::relation::{AngleValue, Length};
 use super::{Rel, Shape, Spatial, Trans, Turn};
 use crate::analysis::driver::Builder;
-use crate::plan::{Op, Reach, Reg, RotationAxis, SpatialOp, Ty};
+use crate::plan::{Op, Reach, Reg, Residual, RotationAxis, SpatialOp, Ty};
 use gcs_lang::model::{GeomId, GeomKind};
 
 impl Builder<'_, Spatial> {
@@ -451,6 +451,31 @@ impl Builder<'_, Spatial> {
                 self.turned(k);
                 if across {
                     return true;
+                }
+                // Under a default, how far `v` is off the target's cone about the axis, signed
+                // (a turn about the axis keeps it): the error that closes the iteration (as
+                // `close_iterations` makes it), where the relation's own residual, an angle,
+                // only touches zero at the roots.
+                if self.depends_on_default(&[from, target, axis]) {
+                    let explain = format!(
+                        "... and check that {vname} and {} make the same angle with {} ({c}).",
+                        self.word(target),
+                        self.word(axis)
+                    );
+                    self.emit(
+                        Op::Check {
+                            constraint: r.constraint,
+                            residual: Residual::Cone {
+                                axis,
+                                u: from,
+                                v: target,
+                            },
+                            guard: false,
+                        },
+                        None,
+                        Vec::new(),
+                        explain,
+                    );
                 }
                 // The turn about the axis reaches the target only on the axis' cone: measure.
                 let residual = self.residual(&r.relation);

@@ -21,6 +21,9 @@ impl Solve<'_> {
                 let d = d.as_ref().map_or_else(|| "0.0".to_string(), r);
                 format!("({} - {}).dot(&{}) - {d}", r(p), r(base), r(normal))
             }
+            Residual::Cone { axis, u, v } => {
+                format!("({} - {}).dot(&{})", r(u), r(v), r(axis))
+            }
             Residual::OnCircle {
                 p,
                 centre,
@@ -130,6 +133,9 @@ impl Solve<'_> {
                 r(p),
                 r(d)
             ),
+            Residual::Cone { axis, u, v } => {
+                format!("check::space::cone({}, {}, {})", r(axis), r(u), r(v))
+            }
             Residual::Twist { axis, u, v, angle } => format!(
                 "check::space::twist({}, {}, {}, {})",
                 r(axis),
