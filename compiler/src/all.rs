@@ -482,8 +482,7 @@ fn solve_all_of(
         .collect();
     let one_angle =
         plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
-    let exhaustive = varied.is_empty() || (one_angle && closes_signed(plan));
-    if !exhaustive {
+    if !exhaustive(plan) {
         out.complete = false;
     }
     for k in 0..combinations.len() {
@@ -505,6 +504,19 @@ fn solve_all_of(
         }
     }
     out
+}
+
+/// Whether a search over `plan`'s branches and iterations finds every real assembly: with no
+/// iteration (every combination of branches is tried), or with one iteration over one angle
+/// whose error changes sign across its roots ([`closes_signed`]), which a scan of the turn
+/// brackets. The generated `solve_all` says the same of its list.
+pub(crate) fn exhaustive(plan: &Plan) -> bool {
+    let varied: Vec<usize> = (plan.iterations.iter())
+        .flat_map(|it| it.defaults.iter().map(|d| d.0 as usize))
+        .collect();
+    let one_angle =
+        plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
+    varied.is_empty() || (one_angle && closes_signed(plan))
 }
 
 /// Whether every error an iteration closes changes sign across its roots, so that a scan

@@ -34,7 +34,8 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         .collect();
     let one_angle =
         plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
-    let complete = varied.is_empty() || one_angle;
+    // As the interpreter's: a scan of a turn is complete only where it brackets every root.
+    let complete = crate::all::exhaustive(plan);
     let capacity = if varied.is_empty() {
         combinations.min(CAPACITY)
     } else {
@@ -85,6 +86,12 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         ));
         w.line("/// and the plan solved from each root; the runtime's `outer::Scan` says which roots a scan");
         w.line("/// finds. The other defaults (free motions) keep the values given, which every assembly shares.");
+        if !complete {
+            w.line("/// The error is a distance in space, which touches zero at its roots without changing");
+            w.line(
+                "/// sign: a scan does not bracket them, and the list is not known to be complete.",
+            );
+        }
     } else if !varied.is_empty() {
         w.line(&format!(
             "/// Where the plan iterates, it is solved from a grid of {} values of each default it",
