@@ -133,7 +133,13 @@ struct Loaded {
 }
 
 fn load(arm: &Arm) -> Loaded {
-    let path = format!("{}/../examples/{}", env!("CARGO_MANIFEST_DIR"), arm.file);
+    // An example, or (a path with a directory) a file of the repository.
+    let dir = if arm.file.contains('/') {
+        ""
+    } else {
+        "examples/"
+    };
+    let path = format!("{}/../{dir}{}", env!("CARGO_MANIFEST_DIR"), arm.file);
     let text = std::fs::read_to_string(&path).expect("the example");
     let compiled = gcs_compiler::compile(arm.file, text.as_bytes()).expect("compiles");
     assert!(!compiled.has_errors(), "{:?}", compiled.diagnostics);
@@ -259,20 +265,43 @@ fn newton_solutions(
 /// poses) among them.
 fn check_arm(arm: &Arm, poses: usize, searched: usize, seed: u64) {
     let l = load(arm);
-    let (model, plan) = (&l.compiled.model, &l.compiled.analysis.plan);
+    let plan = &l.compiled.analysis.plan;
     assert!(
         plan.defaults.is_empty() && plan.iterations.is_empty(),
         "{}: closed form, no default",
         arm.file
     );
+    check_solutions(arm, &l, poses, searched, seed);
+}
+
+/// [`check_arm`] for an arm without a closed form here: one iteration over one angle, whose
+/// scan of the turn finds every root, so that the list says it is complete at every pose.
+fn check_iterated_arm(arm: &Arm, poses: usize, searched: usize, seed: u64) {
+    let l = load(arm);
+    let plan = &l.compiled.analysis.plan;
+    assert!(
+        plan.iterations.len() == 1 && plan.iterations[0].defaults.len() == 1,
+        "{}: one iteration over one default",
+        arm.file
+    );
+    check_solutions(arm, &l, poses, searched, seed);
+}
+
+fn check_solutions(arm: &Arm, l: &Loaded, poses: usize, searched: usize, seed: u64) {
+    let (model, plan) = (&l.compiled.model, &l.compiled.analysis.plan);
     let mut rng = Rng(seed);
     let mut solved = 0;
     let mut by_newton = 0;
     for pose in 0..poses {
         let q: Vec<f64> = arm.joints.iter().map(|_| rng.angle()).collect();
         let fk = forward(arm, &q);
-        let (params, p, z) = pose_params(arm, &l, &q);
-        let found = solve_all(model, plan, &l.scope, &params, &[]);
+        let (params, p, z) = pose_params(arm, l, &q);
+        let found = solve_all(model, plan, &l.scope, &params, &plan.sketch_defaults());
+        assert!(
+            found.complete,
+            "{}: q = {q:?}: a list not complete",
+            arm.file
+        );
         let reach = 2.0;
         for s in &found.solutions {
             assert!(
@@ -562,6 +591,120 @@ fn irb6640() -> Arm {
         count: None,
         joint_params: Vec::new(),
     }
+}
+
+/// ik-geo's `spherical_bot`: three joints in general position, then a spherical wrist
+/// (`ikgeo/models/`, written from ik-geo's kinematics by `ikgeo/src/model.rs`).
+fn spherical_bot() -> Arm {
+    let w = [3.0140918058755215, 0.6044084883852824, 2.6160971379033464];
+    Arm {
+        file: "ikgeo/models/ikgeo_spherical_bot.gcs",
+        joints: vec![
+            Joint {
+                point: [0.0, 0.0, 0.0],
+                axis: [0.0, 1.0, 0.0],
+            },
+            Joint {
+                point: [1.2508566957869456, 0.0, 0.6598162824642664],
+                axis: [0.29552020666133955, 0.0, 0.955336489125606],
+            },
+            Joint {
+                point: [2.384763546042489, 0.479425538604203, 1.3558093915376417],
+                axis: [-0.45801271084729195, 0.8775825618903728, 0.1416799342470381],
+            },
+            Joint {
+                point: w,
+                axis: [0.8588136164503541, 0.3956869717073036, 0.3253782300962491],
+            },
+            Joint {
+                point: w,
+                axis: [-0.5119651088617578, 0.6403687314197659, 0.5725553380486538],
+            },
+            Joint {
+                point: w,
+                axis: [0.5195978843864277, 0.761627557357866, -0.38722280719792224],
+            },
+        ],
+        bodies: vec!["link_1", "link_2", "link_3", "link_4", "link_5", "tool"],
+        tool: (
+            [3.533689690261949, 1.3660360457431486, 2.2288743307054237],
+            [0.502191669841866, 0.09442095516838785, 0.8595860689695519],
+            [0.5195978843864277, 0.761627557357866, -0.38722280719792224],
+        ),
+        params: vec!["px", "py", "pz", "zx", "zy", "zz", "xx", "xy", "xz"],
+        count: None,
+        joint_params: Vec::new(),
+    }
+}
+
+/// ik-geo's `three_parallel_bot`: a base that yaws, three parallel axes, then two joints; no
+/// two axes meet.
+fn three_parallel_bot() -> Arm {
+    let x = [0.955336489125606, 0.29552020666133955, 0.0];
+    Arm {
+        file: "ikgeo/models/ikgeo_three_parallel_bot.gcs",
+        joints: vec![
+            Joint {
+                point: [0.0, 0.0, 1.0],
+                axis: [0.0, 0.0, 1.0],
+            },
+            Joint {
+                point: [-0.29552020666133955, 0.955336489125606, 1.0],
+                axis: x,
+            },
+            Joint {
+                point: [-0.5215465279109626, 1.6860181390611182, 0.355782312762309],
+                axis: x,
+            },
+            Joint {
+                point: [-0.7937386632063939, 2.5659413153423762, 0.7452006550709593],
+                axis: x,
+            },
+            Joint {
+                point: [-1.0877824997582497, 3.5165051012644395, 0.6453672384241314],
+                axis: [
+                    -0.029502791919178206,
+                    0.09537450575679446,
+                    0.9950041652780259,
+                ],
+            },
+            Joint {
+                point: [-1.5233060583428908, 4.854559680694705, 0.5041965177223234],
+                axis: [
+                    0.45465520451603747,
+                    0.8877836323483186,
+                    -0.07161610950691187,
+                ],
+            },
+        ],
+        bodies: vec!["link_1", "link_2", "link_3", "link_4", "link_5", "tool"],
+        tool: (
+            [-1.0686508538268533, 5.742343313043024, 0.4325804082154112],
+            [0.3194780674340925, -0.08749802872751081, 0.9435453668994287],
+            [
+                0.45465520451603747,
+                0.8877836323483186,
+                -0.07161610950691187,
+            ],
+        ),
+        params: vec!["px", "py", "pz", "zx", "zy", "zz", "xx", "xy", "xz"],
+        count: None,
+        joint_params: Vec::new(),
+    }
+}
+
+/// The scan of the base's turn finds every solution (a signed closing error: the cone of the
+/// third joint's axis; the common plane of the parallel joints' circles), each reaching the
+/// pose to 1e-12, the arm the pose came from among them, and every solution a Newton search
+/// finds.
+#[test]
+fn the_spherical_bot_has_every_solution_from_a_scan_of_its_base() {
+    check_iterated_arm(&spherical_bot(), 120, 8, 0x5b07_5eed);
+}
+
+#[test]
+fn the_three_parallel_bot_has_every_solution_from_a_scan_of_its_base() {
+    check_iterated_arm(&three_parallel_bot(), 120, 8, 0x3b07_5eed);
 }
 
 #[test]
