@@ -12,6 +12,9 @@ use std::fmt::Write as _;
 /// The tolerance on joint angles, radians.
 pub const TOL: f64 = 1e-10;
 
+/// A pose error this small is a solution to machine precision (the arms' reach is about 3).
+pub const EXACT_POSE: f64 = 1e-12;
+
 /// The seed of an arm's poses: the same in the check and the bench.
 pub fn seed(arm: &Arm) -> u64 {
     0x9e37_79b9_7f4a_7c15
@@ -51,8 +54,16 @@ pub struct Report {
     pub one_found: (usize, usize),
     /// Poses whose drawing joint angles are among gcs's solutions.
     pub drawn_found: usize,
-    /// The first few mismatched poses, described.
+    /// The first few mismatched poses, described: those whose solution counts differ first.
     pub examples: String,
+    /// How many of `examples` are poses whose solution counts differ.
+    pub counted_examples: usize,
+    /// Of ik-geo's unmatched exact solutions, those that miss the pose by more than
+    /// [`EXACT_POSE`]: a root ik-geo found only roughly, which gcs may have found exactly.
+    pub ik_geo_unmatched_rough: usize,
+    /// Of gcs's unmatched solutions, those that reach the pose to [`EXACT_POSE`] (by this
+    /// crate's forward kinematics, apart from both solvers): solutions ik-geo did not return.
+    pub gcs_unmatched_exact: usize,
 }
 
 /// Compares both solvers over `n` poses of `arm`, whose generated solver is `G`.
@@ -84,6 +95,20 @@ pub fn check<G: Gcs>(arm: &Arm, n: usize) -> Report {
         for (q, _) in ik.iter().filter(|s| !s.1) {
             r.worst_ik_geo_pose = r.worst_ik_geo_pose.max(pose_error(arm, q, pose));
         }
+        let unmatched = |q: &[f64; 6], among: &mut dyn Iterator<Item = &[f64; 6]>| {
+            among.fold(true, |u, p| u && arms::angle_distance(p, q) > TOL)
+        };
+        for (q, _) in ik.iter().filter(|s| !s.1) {
+            if unmatched(q, &mut gcs_q.iter()) && pose_error(arm, q, pose) > EXACT_POSE {
+                r.ik_geo_unmatched_rough += 1;
+            }
+        }
+        for q in &gcs_q {
+            if unmatched(q, &mut ik.iter().map(|s| &s.0)) && pose_error(arm, q, pose) <= EXACT_POSE
+            {
+                r.gcs_unmatched_exact += 1;
+            }
+        }
         if gcs_q
             .iter()
             .any(|q| arms::angle_distance(q, &pose.q) <= TOL)
@@ -99,7 +124,14 @@ pub fn check<G: Gcs>(arm: &Arm, n: usize) -> Report {
         }
         if c.ik_geo_unmatched + c.gcs_unmatched > 0 {
             r.mismatched_poses += 1;
-            if r.mismatched_poses <= 3 {
+            // Poses where the counts differ first: a root one side missed, not two answers
+            // to a pose that differ past `TOL`.
+            if c.counts.0 != c.counts.2 && r.counted_examples < 3 {
+                r.counted_examples += 1;
+                let mut s = String::new();
+                describe(&mut s, arm, k, pose, &ik, &gcs_q);
+                r.examples.insert_str(0, &s);
+            } else if r.mismatched_poses <= 3 {
                 describe(&mut r.examples, arm, k, pose, &ik, &gcs_q);
             }
         }
@@ -152,6 +184,11 @@ impl Report {
             s,
             "{}: {} poses, {} with different solution sets; ik-geo exact solutions unmatched {}, gcs solutions unmatched {}",
             self.arm, self.poses, self.mismatched_poses, self.ik_geo_unmatched, self.gcs_unmatched
+        );
+        let _ = writeln!(
+            s,
+            "  of those: ik-geo's missing the pose by more than {EXACT_POSE:e} {}, gcs's reaching it to {EXACT_POSE:e} {}",
+            self.ik_geo_unmatched_rough, self.gcs_unmatched_exact
         );
         let _ = writeln!(
             s,
