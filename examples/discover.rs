@@ -35,16 +35,20 @@ pub enum Folder {
     Families,
     /// `tests/models/`: models that only tests use.
     TestModels,
+    /// `ikgeo/models/`: ik-geo's arms, written by `ikgeo/src/model.rs` for the comparison with
+    /// ik-geo; the workspace's tests use them as test models.
+    Arms,
 }
 
 #[allow(dead_code)]
 impl Folder {
     /// Every folder, in the order their models are listed.
-    pub const ALL: [Folder; 4] = [
+    pub const ALL: [Folder; 5] = [
         Folder::Examples,
         Folder::Sketches,
         Folder::Families,
         Folder::TestModels,
+        Folder::Arms,
     ];
 
     /// Whether its models are examples: `examples/` and `examples/sketches/`.
@@ -59,6 +63,7 @@ impl Folder {
             Folder::Sketches => "examples/sketches",
             Folder::Families => "examples/families",
             Folder::TestModels => "tests/models",
+            Folder::Arms => "ikgeo/models",
         }
     }
 }

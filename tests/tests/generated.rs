@@ -1,5 +1,6 @@
 //! The generated solvers: `gcs compile`'s output for every model the analysis covers, of the
-//! examples (`examples/`) and of the test models (`tests/models/`), is golden
+//! examples (`examples/`), of the test models (`tests/models/`) and of ik-geo's arms
+//! (`ikgeo/models/`), is golden
 //! (`tests/trybuild/generated/<stem>.rs`), and trybuild compiles each one and runs a driver
 //! that compares it with the interpreter and re-checks every constraint
 //! (`tests/trybuild/driver.rs`), with the model's tabled module beside it in the same binary;
@@ -35,7 +36,8 @@ fn models() -> Vec<discover::Found> {
     discover::models(root().parent().expect("the workspace"))
         .into_iter()
         .filter(|m| {
-            (m.folder.is_example() || m.folder == discover::Folder::TestModels) && m.is_analysed()
+            let tested = [discover::Folder::TestModels, discover::Folder::Arms];
+            (m.folder.is_example() || tested.contains(&m.folder)) && m.is_analysed()
         })
         .collect()
 }
@@ -94,7 +96,7 @@ fn every_golden_belongs_to_a_model() {
         let stem = name.strip_suffix(".rs").unwrap_or(&name);
         assert!(
             models.iter().any(|m| m.stem == stem),
-            "trybuild/generated/{name} has no model the analysis covers in examples/ or tests/models/"
+            "trybuild/generated/{name} has no model the analysis covers in examples/, tests/models/ or ikgeo/models/"
         );
     }
 }
