@@ -2455,7 +2455,7 @@ impl<F: FnMut(f64) -> Result<f64, Option<f64>>, const CAP: usize> Sweep<'_, F, C
                     } else {
                         (b, fb)
                     };
-                    self.hidden_stretch(near, bad, far);
+                    self.split(near, bad, far, 0);
                     return centre;
                 }
             }
@@ -2585,16 +2585,18 @@ impl<F: FnMut(f64) -> Result<f64, Option<f64>>, const CAP: usize> Sweep<'_, F, C
         }
     }
 
-    /// A sign change between `near` and `far` with a failing point `bad` between them: the
-    /// failing stretch's edges are found from both sides (by bisection, as between samples),
-    /// each is a boundary root if its `|f|` is within the tolerance, and each side with a sign
-    /// change of its own is refined. (The sign may also change across the stretch, where there
-    /// is no root.)
+    /// A failing point `bad` between defined points `near` and `far` (each `(x, f)`; a sign
+    /// change a refinement met, or a valley's bottom no sample hit): the failing stretch's
+    /// edges are found from both sides (by bisection, as between samples), each is a boundary
+    /// root if its `|f|` is within the tolerance or falls steeply to it ([`EDGE_FALL`], as at
+    /// a tangency), and each side with a sign change of its own is refined. (The sign may also
+    /// change across the stretch, where there is no root.)
     fn split(&mut self, near: (f64, f64), bad: f64, far: (f64, f64), depth: u32) {
         for (x, fx) in [near, far] {
             let edge = self.boundary(x, fx, bad);
             if let Some(fe) = edge.f {
-                if fe.abs() <= self.tolerance {
+                let steep = fx * fe > 0.0 && fx.abs() >= EDGE_FALL * fe.abs();
+                if fe.abs() <= self.tolerance || steep {
                     self.record(edge.x, fe.abs(), false, true);
                 }
                 self.refine(x, fx, edge.x, fe, depth + 1);
@@ -2717,33 +2719,10 @@ impl<F: FnMut(f64) -> Result<f64, Option<f64>>, const CAP: usize> Sweep<'_, F, C
         (found, bad)
     }
 
-    /// A failing stretch around `bad` between defined points `near` and `far` (each `(x, f)`)
-    /// that no grid sample hit: its edges are found by bisection from both sides, each is a
-    /// boundary root if its `|f|` is within the tolerance (or falls steeply to it, as at a
-    /// tangency), and each side with a sign change of its own is refined.
-    fn hidden_stretch(&mut self, near: (f64, f64), bad: f64, far: (f64, f64)) {
-        for (x, fx) in [near, far] {
-            let edge = self.boundary(x, fx, bad);
-            let Some(fe) = edge.f else {
-                continue;
-            };
-            let steep = fx * fe > 0.0 && fx.abs() >= EDGE_FALL * fe.abs();
-            if fe.abs() <= self.tolerance || steep {
-                self.record(edge.x, fe.abs(), false, true);
-            }
-            self.refine(x, fx, edge.x, fe, 1);
-        }
-    }
-
     /// The bottom of the valley of `sign * f` over `[a, b]` from `x0` where `f = f0`: see
     /// [`valley`].
     fn minimize(&mut self, a: f64, b: f64, x0: f64, f0: f64, sign: f64) -> Valley {
-        let mut budget = Budget::new(self.limit);
-        let abs_tol = tol::LOCATE_ABS * tol::SQRT_EPS * self.span;
-        let tolerance = self.tolerance;
-        valley(a, b, (x0, f0), sign, tolerance, abs_tol, |u| {
-            self.probe(&mut budget, u)
-        })
+        self.minimize_seeing(a, b, x0, f0, sign).0
     }
 }
 
