@@ -485,10 +485,19 @@ fn solve_all_of(
     if !exhaustive(plan) {
         out.complete = false;
     }
+    // One scan serves every value of the branches its iteration does not see.
+    let scanned = scanned_branches(plan);
+    let mut scans: std::collections::HashMap<Vec<usize>, (Vec<Vec<f64>>, bool)> =
+        std::collections::HashMap::new();
     for k in 0..combinations.len() {
         let branches = combinations.nth(k);
-        let (starts, truncated) =
-            starts(model, plan, params, defaults, &branches, &varied, one_angle);
+        let key: Vec<usize> = (branches.iter().zip(&scanned))
+            .map(|(&b, &seen)| if seen || !one_angle { b } else { usize::MAX })
+            .collect();
+        let (starts, truncated) = scans
+            .entry(key)
+            .or_insert_with(|| starts(model, plan, params, defaults, &branches, &varied, one_angle))
+            .clone();
         if truncated {
             out.complete = false;
         }
@@ -504,6 +513,21 @@ fn solve_all_of(
         }
     }
     out
+}
+
+/// For each of `plan`'s branch variables, whether a scan of its first iteration sees it: a
+/// step before the iteration's region ends takes its root. One that no such step takes
+/// changes nothing the scan measures, so one scan serves all its values (here and in the
+/// generated `solve_all`).
+pub(crate) fn scanned_branches(plan: &Plan) -> Vec<bool> {
+    let end = plan.iterations.first().map_or(0, |it| it.end);
+    let mut seen = vec![false; plan.branches.len()];
+    for s in plan.steps.iter().take(end) {
+        if let Some(slot) = s.op.branch().and_then(|b| seen.get_mut(b.0 as usize)) {
+            *slot = true;
+        }
+    }
+    seen
 }
 
 /// Whether a search over `plan`'s branches and iterations finds every real assembly: with no

@@ -126,7 +126,37 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     w.line("// The points of each solution listed, computed once (`keep`).");
     w.line("let mut kept = [None; MAX_ASSEMBLIES];");
     let each = |w: &mut Writer| combination_body(w, cx, &varied, one_angle);
-    if combinations == 1 {
+    // One scan serves every value of the branches its iteration does not see
+    // (`all::scanned_branches`), as in the interpreter: those vary inside, over the roots.
+    let scanned = crate::all::scanned_branches(plan);
+    let unseen: Vec<usize> = (0..counts.len())
+        .filter(|&b| counts[b] > 1 && !scanned[b])
+        .collect();
+    if one_angle && !unseen.is_empty() {
+        let seen: Vec<usize> = (0..counts.len())
+            .filter(|&b| counts[b] > 1 && scanned[b])
+            .collect();
+        let count_of = |set: &[usize]| set.iter().map(|&b| counts[b]).product::<usize>();
+        let (outer, inner) = (count_of(&seen), count_of(&unseen));
+        if outer > 1 {
+            w.open(&format!("for scanned in 0..{outer}usize {{"));
+        }
+        w.line(&format!(
+            "let branches = {};",
+            branches_of(cx, &counts, &seen, "scanned", "Branches::default()")
+        ));
+        scan_lines(w);
+        w.open(&format!("for combination in 0..{inner}usize {{"));
+        w.line(&format!(
+            "let branches = {};",
+            branches_of(cx, &counts, &unseen, "combination", "branches")
+        ));
+        roots_loop(w, cx, &varied);
+        w.close("}");
+        if outer > 1 {
+            w.close("}");
+        }
+    } else if combinations == 1 {
         w.line("let branches = Branches::default();");
         each(w);
     } else {
@@ -162,6 +192,62 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     w.close("}");
 }
 
+/// `Branches` with the branch variables of `set` (by index, `counts` each) read from `index`
+/// in mixed radix, the first varying fastest, and the others from `base`.
+fn branches_of(
+    cx: &Context<'_>,
+    counts: &[usize],
+    set: &[usize],
+    index: &str,
+    base: &str,
+) -> String {
+    let mut stride = 1;
+    let mut fields = Vec::new();
+    for &b in set {
+        let count = counts[b];
+        let digit = if stride == 1 {
+            format!("{index} % {count}")
+        } else {
+            format!("{index} / {stride} % {count}")
+        };
+        fields.push(format!("{}: ({digit}) as u8", cx.branches[b]));
+        stride *= count;
+    }
+    if fields.is_empty() {
+        base.to_string()
+    } else {
+        format!("Branches {{ {}, ..{base} }}", fields.join(", "))
+    }
+}
+
+/// The scan of the outer iteration's turn on `branches`, its roots in `scan`.
+fn scan_lines(w: &mut Writer) {
+    w.line("let mut scan = gcs_runtime::outer::Scan::default();");
+    w.line("// The scan ends this solve at the iteration, with the roots listed.");
+    w.line("let _ = assemble(params, &branches, defaults, &mut scan);");
+    w.open("if scan.truncated() {");
+    w.line("found.mark_incomplete();");
+    w.close("}");
+}
+
+/// The solve from each root of `scan` on `branches`, each kept in `found`.
+fn roots_loop(w: &mut Writer, cx: &Context<'_>, varied: &[usize]) {
+    let field = &cx.defaults[varied[0]];
+    w.open("for &root in scan.roots() {");
+    if cx.plan.defaults.len() == 1 {
+        w.line(&format!("let start = Defaults {{ {field}: root }};"));
+    } else {
+        w.line(&format!(
+            "let start = Defaults {{ {field}: root, ..*defaults }};"
+        ));
+    }
+    w.line("// One start of many: a failure is not told apart, and no mode is held.");
+    w.open("if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {");
+    w.line("keep(&mut found, &mut kept, s.points(), s);");
+    w.close("}");
+    w.close("}");
+}
+
 /// The solves of one combination `branches`, each kept in `found`.
 fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angle: bool) {
     let plan = cx.plan;
@@ -172,28 +258,8 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
         return;
     }
     if one_angle {
-        let field = &cx.defaults[varied[0]];
-        w.line("let mut scan = gcs_runtime::outer::Scan::default();");
-        w.line("// The scan ends this solve at the iteration, with the roots listed.");
-        w.line("let _ = assemble(params, &branches, defaults, &mut scan);");
-        w.open("if scan.truncated() {");
-        w.line("found.mark_incomplete();");
-        w.close("}");
-        w.open("for &root in scan.roots() {");
-        if plan.defaults.len() == 1 {
-            w.line(&format!("let start = Defaults {{ {field}: root }};"));
-        } else {
-            w.line(&format!(
-                "let start = Defaults {{ {field}: root, ..*defaults }};"
-            ));
-        }
-        w.line("// One start of many: a failure is not told apart, and no mode is held.");
-        w.open(
-            "if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {",
-        );
-        w.line("keep(&mut found, &mut kept, s.points(), s);");
-        w.close("}");
-        w.close("}");
+        scan_lines(w);
+        roots_loop(w, cx, varied);
         return;
     }
     // The interpreter's grid, in its order: the first default varied slowest, at most

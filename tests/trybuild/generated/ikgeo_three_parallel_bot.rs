@@ -1418,10 +1418,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for combination in 0..4usize {
+    for scanned in 0..2usize {
         let branches = Branches {
-            revolute_link_5_j5_link_4_j5: (combination % 2) as u8,
-            revolute_link_3_j3_link_2_j3: (combination / 2 % 2) as u8,
+            revolute_link_5_j5_link_4_j5: (scanned % 2) as u8,
+            ..Branches::default()
         };
         let mut scan = gcs_runtime::outer::Scan::default();
         // The scan ends this solve at the iteration, with the roots listed.
@@ -1429,13 +1429,20 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         if scan.truncated() {
             found.mark_incomplete();
         }
-        for &root in scan.roots() {
-            let start = Defaults {
-                link_1_spin_angle: root,
+        for combination in 0..2usize {
+            let branches = Branches {
+                revolute_link_3_j3_link_2_j3: (combination % 2) as u8,
+                ..branches
             };
-            // One start of many: a failure is not told apart, and no mode is held.
-            if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {
-                keep(&mut found, &mut kept, s.points(), s);
+            for &root in scan.roots() {
+                let start = Defaults {
+                    link_1_spin_angle: root,
+                };
+                // One start of many: a failure is not told apart, and no mode is held.
+                if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search)
+                {
+                    keep(&mut found, &mut kept, s.points(), s);
+                }
             }
         }
     }
