@@ -15,6 +15,10 @@ pub const TOL: f64 = 1e-10;
 /// A pose error this small is a solution to machine precision (the arms' reach is about 3).
 pub const EXACT_POSE: f64 = 1e-12;
 
+/// How far apart (in joint angles) two solutions of a near-singular pose may be and still be
+/// one root found to different accuracy (the scanned arms' worst matched pair is 5.3e-10).
+pub const NEAR: f64 = 1e-7;
+
 /// The seed of an arm's poses: the same in the check and the bench.
 pub fn seed(arm: &Arm) -> u64 {
     0x9e37_79b9_7f4a_7c15
@@ -64,6 +68,11 @@ pub struct Report {
     /// Of gcs's unmatched solutions, those that reach the pose to [`EXACT_POSE`] (by this
     /// crate's forward kinematics, apart from both solvers): solutions ik-geo did not return.
     pub gcs_unmatched_exact: usize,
+    /// ik-geo's exact solutions that reach the pose to [`EXACT_POSE`] with no gcs solution
+    /// within [`NEAR`]: a root gcs missed (not one found by both to different accuracy).
+    pub gcs_missed: usize,
+    /// gcs's solutions that miss the pose by more than [`EXACT_POSE`]: wrong answers.
+    pub gcs_wrong: usize,
 }
 
 /// Compares both solvers over `n` poses of `arm`, whose generated solver is `G`.
@@ -99,14 +108,22 @@ pub fn check<G: Gcs>(arm: &Arm, n: usize) -> Report {
             among.fold(true, |u, p| u && arms::angle_distance(p, q) > TOL)
         };
         for (q, _) in ik.iter().filter(|s| !s.1) {
-            if unmatched(q, &mut gcs_q.iter()) && pose_error(arm, q, pose) > EXACT_POSE {
+            let exact = pose_error(arm, q, pose) <= EXACT_POSE;
+            if unmatched(q, &mut gcs_q.iter()) && !exact {
                 r.ik_geo_unmatched_rough += 1;
+            }
+            let near = gcs_q.iter().any(|p| arms::angle_distance(p, q) <= NEAR);
+            if exact && !near {
+                r.gcs_missed += 1;
             }
         }
         for q in &gcs_q {
-            if unmatched(q, &mut ik.iter().map(|s| &s.0)) && pose_error(arm, q, pose) <= EXACT_POSE
-            {
+            let exact = pose_error(arm, q, pose) <= EXACT_POSE;
+            if unmatched(q, &mut ik.iter().map(|s| &s.0)) && exact {
                 r.gcs_unmatched_exact += 1;
+            }
+            if !exact {
+                r.gcs_wrong += 1;
             }
         }
         if gcs_q
@@ -172,6 +189,13 @@ fn describe(
 }
 
 impl Report {
+    /// Whether gcs missed no solution ik-geo found to machine precision and gave no wrong one:
+    /// the check of the scanned arms, whose roots near a singular pose the two sides find to
+    /// different accuracy.
+    pub fn nothing_missed_or_wrong(&self) -> bool {
+        self.gcs_missed == 0 && self.gcs_wrong == 0
+    }
+
     /// Whether both sets agreed at every pose.
     pub fn agrees(&self) -> bool {
         self.ik_geo_unmatched == 0 && self.gcs_unmatched == 0
@@ -187,8 +211,8 @@ impl Report {
         );
         let _ = writeln!(
             s,
-            "  of those: ik-geo's missing the pose by more than {EXACT_POSE:e} {}, gcs's reaching it to {EXACT_POSE:e} {}",
-            self.ik_geo_unmatched_rough, self.gcs_unmatched_exact
+            "  of those: ik-geo's missing the pose by more than {EXACT_POSE:e} {}, gcs's reaching it to {EXACT_POSE:e} {}; ik-geo's reaching it with no gcs solution within {NEAR:e} (missed by gcs) {}; gcs's missing it (wrong) {}",
+            self.ik_geo_unmatched_rough, self.gcs_unmatched_exact, self.gcs_missed, self.gcs_wrong
         );
         let _ = writeln!(
             s,

@@ -1,10 +1,11 @@
 //! `cargo test --release` in ikgeo/: the models in `models/` are what `src/model.rs` writes,
 //! this crate's forward kinematics is ik-geo's, and over 1,000 random poses of each arm gcs
-//! solves in closed form, ik-geo's and gcs's solution sets agree (`gcs_ikgeo::check`).
+//! solves in closed form, ik-geo's and gcs's solution sets agree (`gcs_ikgeo::check`); for the
+//! two it scans, gcs misses no solution ik-geo finds to machine precision and gives no wrong one.
 
-use gcs_ikgeo::arms::{self, ARMS, IRB6640, UR5};
+use gcs_ikgeo::arms::{self, ARMS, IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, UR5};
 use gcs_ikgeo::check::check;
-use gcs_ikgeo::{ik_geo_robot, model, Irb6640, Ur5};
+use gcs_ikgeo::{ik_geo_robot, model, Irb6640, SphericalBot, ThreeParallelBot, Ur5};
 
 #[test]
 fn the_models_are_what_the_writer_writes() {
@@ -42,5 +43,18 @@ fn gcs_and_ik_geo_find_the_same_solutions() {
         assert!(r.agrees(), "{}", r.text());
         assert_eq!(r.incomplete, 0, "{}", r.arm);
         assert_eq!(r.drawn_found, r.poses, "{}", r.arm);
+    }
+}
+
+#[test]
+fn the_scanned_arms_miss_nothing_and_answer_nothing_wrong() {
+    let reports = [
+        check::<SphericalBot>(&SPHERICAL_BOT, 300),
+        check::<ThreeParallelBot>(&THREE_PARALLEL_BOT, 300),
+    ];
+    for r in &reports {
+        print!("{}", r.text());
+        assert!(r.nothing_missed_or_wrong(), "{}", r.text());
+        assert_eq!(r.incomplete, 0, "{}", r.arm);
     }
 }
