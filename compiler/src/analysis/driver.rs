@@ -340,6 +340,10 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// Whether any of registers `regs` depends on a default taken so far: read from one, or
     /// measured on a geom a step that read one moved (as `close_iterations` traces it).
     pub(crate) fn depends_on_default(&self, regs: &[Reg]) -> bool {
+        // Most plans take no default: nothing to trace.
+        if self.plan.defaults.is_empty() {
+            return false;
+        }
         let model = self.model;
         let mut reg_deps = vec![false; self.plan.regs as usize];
         let mut moved: HashMap<GeomId, bool> = HashMap::default();
