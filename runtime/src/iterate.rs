@@ -123,9 +123,11 @@
 //!    [`crate::tol::TANGENT_REL`] meets in one double root) but not for a function with a
 //!    square-root singularity computed without such a snap. Such an edge, where `|f|` has
 //!    fallen to a sixteenth or less of its value at the sample beside it with the same sign
-//!    (an error that reaches zero as a square root does at a tangency, whose last defined
-//!    point lies in the tangency's band), is a boundary root too: a start that the solve
-//!    from it confirms or not, as every root is. The ends of a non-periodic interval are
+//!    and `f / sqrt(d)` (`d` the distance from the edge) agrees within a factor of two at
+//!    `1e-6` and `1e-4` of the way to that sample (an error that reaches zero as a square root
+//!    does at a tangency, whose last defined point lies in the tangency's band; one that only
+//!    comes near zero differs tenfold), is a boundary root too: a start that the solve from
+//!    it confirms or not, as every root is. The ends of a non-periodic interval are
 //!    treated alike. A failing stretch between two defined samples, met by a refinement of a
 //!    sign change, is split off the same way: its edges are found from both sides, and each
 //!    side is refined on its own (up to four nested splits); so is one met by the
@@ -2202,7 +2204,8 @@ struct Sweep<'a, F, const CAP: usize> {
 }
 
 /// How many times smaller `|f|` at the last defined point before a failing stretch must be
-/// than at the sample beside it for that edge to be taken as a root ([`Sweep::classify`]).
+/// than at the sample beside it for that edge to be tested as a square root's zero
+/// ([`Sweep::square_root_edge`]).
 const EDGE_FALL: f64 = 16.0;
 
 /// The samples of a window found between two failing samples ([`Sweep::gap_window`]).
@@ -2416,13 +2419,12 @@ impl<F: FnMut(f64) -> Result<f64, Option<f64>>, const CAP: usize> Sweep<'_, F, C
             self.record(centre.x, fc.abs(), false, centre.boundary);
         } else if run_end && centre.boundary {
             // Where the assembly ends at a tangency of its loci, `f` may reach zero there as a
-            // square root does, steeply: its last defined point, in the tangency's tolerance
-            // band, is then further from zero than the tolerance. A fall of `EDGE_FALL` times
-            // from the sample beside it makes the edge a root to be confirmed by a solve from
-            // it (as every root is).
-            let beside = left.or(right).map_or(0.0, |(_, v)| v);
-            if beside * fc > 0.0 && beside.abs() >= EDGE_FALL * fc.abs() {
-                self.record(centre.x, fc.abs(), false, true);
+            // square root does: its last defined point, in the tangency's tolerance band, is
+            // then further from zero than the tolerance (`Self::square_root_edge`).
+            if let Some(beside) = left.or(right) {
+                if self.square_root_edge((centre.x, fc), beside) {
+                    self.record(centre.x, fc.abs(), false, true);
+                }
             }
         }
         let same_and_above = |v: f64, strict: bool| {
@@ -2585,6 +2587,31 @@ impl<F: FnMut(f64) -> Result<f64, Option<f64>>, const CAP: usize> Sweep<'_, F, C
         }
     }
 
+    /// Whether `f` reaches zero at `edge` (the last defined point before a failing stretch,
+    /// `(x, f)`) as a square root does, from the defined point `beside` on the same side: `|f|`
+    /// falls by [`EDGE_FALL`] or more from `beside` to the edge, keeping its sign, and
+    /// `f / sqrt(d)`, `d` the distance from the edge, is the same to within a factor of two at
+    /// `1e-4` and `1e-6` of the way to `beside` (where a function that only comes near zero,
+    /// `f0 + s d` with `f0` not zero, has it ten times larger at the nearer point). Such an
+    /// edge is a root for the solve from it to confirm, as every root is.
+    fn square_root_edge(&mut self, (xe, fe): (f64, f64), (xb, fb): (f64, f64)) -> bool {
+        if !(fb * fe > 0.0 && fb.abs() >= EDGE_FALL * fe.abs()) {
+            return false;
+        }
+        let at = |t: f64| xe + (xb - xe) * t;
+        let (near, far) = (1e-6, 1e-4);
+        let (Some(f_near), Some(f_far)) = (self.eval(at(near)), self.eval(at(far))) else {
+            return false;
+        };
+        if !(f_near * fe > 0.0 && f_far * fe > 0.0) {
+            return false;
+        }
+        // f / sqrt(d) at each, d in units of the whole distance (the ratio does not depend
+        // on them).
+        let ratio = (f_near / near.sqrt()) / (f_far / far.sqrt());
+        (0.5..=2.0).contains(&ratio)
+    }
+
     /// A failing point `bad` between defined points `near` and `far` (each `(x, f)`; a sign
     /// change a refinement met, or a valley's bottom no sample hit): the failing stretch's
     /// edges are found from both sides (by bisection, as between samples), each is a boundary
@@ -2595,8 +2622,7 @@ impl<F: FnMut(f64) -> Result<f64, Option<f64>>, const CAP: usize> Sweep<'_, F, C
         for (x, fx) in [near, far] {
             let edge = self.boundary(x, fx, bad);
             if let Some(fe) = edge.f {
-                let steep = fx * fe > 0.0 && fx.abs() >= EDGE_FALL * fe.abs();
-                if fe.abs() <= self.tolerance || steep {
+                if fe.abs() <= self.tolerance || self.square_root_edge((edge.x, fe), (x, fx)) {
                     self.record(edge.x, fe.abs(), false, true);
                 }
                 self.refine(x, fx, edge.x, fe, depth + 1);
