@@ -477,11 +477,7 @@ fn solve_all_of(
         solutions: Vec::new(),
         complete: combinations.complete(),
     };
-    let varied: Vec<usize> = (plan.iterations.iter())
-        .flat_map(|it| it.defaults.iter().map(|d| d.0 as usize))
-        .collect();
-    let one_angle =
-        plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
+    let (varied, one_angle) = varied_defaults(plan);
     if !exhaustive(plan) {
         out.complete = false;
     }
@@ -530,16 +526,23 @@ pub(crate) fn scanned_branches(plan: &Plan) -> Vec<bool> {
     seen
 }
 
-/// Whether a search over `plan`'s branches and iterations finds every real assembly: with no
-/// iteration (every combination of branches is tried), or with one iteration over one angle
-/// whose error changes sign across its roots ([`closes_signed`]), which a scan of the turn
-/// brackets. The generated `solve_all` says the same of its list.
-pub(crate) fn exhaustive(plan: &Plan) -> bool {
+/// The defaults `plan`'s iterations vary (by index), and whether they are one angle of one
+/// iteration: a search scans its turn (otherwise it starts from a grid).
+pub(crate) fn varied_defaults(plan: &Plan) -> (Vec<usize>, bool) {
     let varied: Vec<usize> = (plan.iterations.iter())
         .flat_map(|it| it.defaults.iter().map(|d| d.0 as usize))
         .collect();
     let one_angle =
         plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
+    (varied, one_angle)
+}
+
+/// Whether a search over `plan`'s branches and iterations finds every real assembly: with no
+/// iteration (every combination of branches is tried), or with one iteration over one angle
+/// whose error changes sign across its roots ([`closes_signed`]), which a scan of the turn
+/// brackets. The generated `solve_all` says the same of its list.
+pub(crate) fn exhaustive(plan: &Plan) -> bool {
+    let (varied, one_angle) = varied_defaults(plan);
     varied.is_empty() || (one_angle && closes_signed(plan))
 }
 

@@ -344,24 +344,13 @@ impl<'m, G: Geometry> Builder<'m, G> {
         if self.plan.defaults.is_empty() {
             return false;
         }
-        let model = self.model;
-        let mut reg_deps = vec![false; self.plan.regs as usize];
-        let mut moved: HashMap<GeomId, bool> = HashMap::default();
+        let mut reg_deps = vec![BTreeSet::new(); self.plan.regs as usize];
+        let mut geom_deps = HashMap::default();
         for step in &self.plan.steps {
-            let mut dep = matches!(step.op, Op::Default(_))
-                || step.op.reads().iter().any(|r| reg_deps[r.0 as usize]);
-            if let Some(f) = step.op.measures() {
-                dep |= moved.get(&model.top_level_of(f)).copied().unwrap_or(false);
-            }
-            for g in step.op.moves() {
-                *moved.entry(*g).or_default() |= dep;
-            }
-            if let Some((r, _)) = step.out {
-                reg_deps[r.0 as usize] = dep;
-            }
+            trace_defaults(self.model, step, &mut reg_deps, &mut geom_deps);
         }
         regs.iter()
-            .any(|r| reg_deps.get(r.0 as usize).copied().unwrap_or(false))
+            .any(|r| reg_deps.get(r.0 as usize).is_some_and(|d| !d.is_empty()))
     }
 
     /// Whether a step of the plan so far moves geoms for constraint `c` (one of its relations
@@ -852,28 +841,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
         // error to close, whatever it depends on on paper.
         let moving = self.moves.map(|f| f(model, &self.plan)).unwrap_or_default();
         for (i, step) in std::mem::take(&mut self.plan.steps).into_iter().enumerate() {
-            let mut deps: BTreeSet<u32> = BTreeSet::new();
-            for r in step.op.reads() {
-                deps.extend(reg_deps[r.0 as usize].iter().copied());
-            }
-            if let Op::Default(d) = step.op {
-                deps.insert(d.0);
-            }
-            // What depends on what, as the plan says it (`plan/deps.rs`).
-            if let Some(g) =
-                (step.op.measures()).and_then(|f| geom_deps.get(&model.top_level_of(f)))
-            {
-                deps.extend(g.iter().copied());
-            }
-            for g in step.op.moves() {
-                geom_deps
-                    .entry(*g)
-                    .or_default()
-                    .extend(deps.iter().copied());
-            }
-            if let Some((r, _)) = step.out {
-                reg_deps[r.0 as usize] = deps.clone();
-            }
+            let deps = trace_defaults(model, &step, &mut reg_deps, &mut geom_deps);
             let displaced = match moving.get(i) {
                 Some(Some(false)) => BTreeSet::new(),
                 _ => deps,
@@ -1412,4 +1380,36 @@ impl<'m, G: Geometry> Builder<'m, G> {
             .retain(|f, _| !geoms.contains(&model.top_level_of(*f)));
         true
     }
+}
+
+/// The defaults `step` depends on, traced forward as the plan says what depends on what
+/// (`plan/deps.rs`): those of the registers it reads, a default it takes, and those the
+/// top-level geom it measures was moved by; recorded for the register it defines and the
+/// geoms it moves. Shared by `close_iterations` and `depends_on_default`.
+fn trace_defaults(
+    model: &Model,
+    step: &Step,
+    reg_deps: &mut [BTreeSet<u32>],
+    geom_deps: &mut HashMap<GeomId, BTreeSet<u32>>,
+) -> BTreeSet<u32> {
+    let mut deps: BTreeSet<u32> = BTreeSet::new();
+    for r in step.op.reads() {
+        deps.extend(reg_deps[r.0 as usize].iter().copied());
+    }
+    if let Op::Default(d) = step.op {
+        deps.insert(d.0);
+    }
+    if let Some(g) = (step.op.measures()).and_then(|f| geom_deps.get(&model.top_level_of(f))) {
+        deps.extend(g.iter().copied());
+    }
+    for g in step.op.moves() {
+        geom_deps
+            .entry(*g)
+            .or_default()
+            .extend(deps.iter().copied());
+    }
+    if let Some((r, _)) = step.out {
+        reg_deps[r.0 as usize] = deps.clone();
+    }
+    deps
 }

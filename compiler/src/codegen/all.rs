@@ -29,11 +29,7 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     else {
         return;
     };
-    let varied: Vec<usize> = (plan.iterations.iter())
-        .flat_map(|it| it.defaults.iter().map(|d| d.0 as usize))
-        .collect();
-    let one_angle =
-        plan.iterations.len() == 1 && varied.len() == 1 && plan.defaults[varied[0]].is_angle();
+    let (varied, one_angle) = crate::all::varied_defaults(plan);
     // As the interpreter's: a scan of a turn is complete only where it brackets every root.
     let complete = crate::all::exhaustive(plan);
     let capacity = if varied.is_empty() {
@@ -161,29 +157,10 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         each(w);
     } else {
         w.open(&format!("for combination in 0..{combinations}usize {{"));
-        // `combination` in mixed radix, the first branch variable varying fastest.
-        let mut stride = 1;
-        let mut fields = Vec::new();
-        for (&count, field) in counts.iter().zip(&cx.branches) {
-            if count == 1 {
-                continue;
-            }
-            let digit = if stride == 1 {
-                format!("combination % {count}")
-            } else {
-                format!("combination / {stride} % {count}")
-            };
-            fields.push(format!("{field}: ({digit}) as u8"));
-            stride *= count;
-        }
-        let rest = if fields.len() < counts.len() {
-            ", ..Branches::default()"
-        } else {
-            ""
-        };
+        let all: Vec<usize> = (0..counts.len()).filter(|&b| counts[b] > 1).collect();
         w.line(&format!(
-            "let branches = Branches {{ {}{rest} }};",
-            fields.join(", ")
+            "let branches = {};",
+            branches_of(cx, &counts, &all, "combination", "Branches::default()")
         ));
         each(w);
         w.close("}");
@@ -193,7 +170,8 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
 }
 
 /// `Branches` with the branch variables of `set` (by index, `counts` each) read from `index`
-/// in mixed radix, the first varying fastest, and the others from `base`.
+/// in mixed radix, the first varying fastest, and the others from `base` (none left when
+/// `set` is every branch variable).
 fn branches_of(
     cx: &Context<'_>,
     counts: &[usize],
@@ -215,6 +193,8 @@ fn branches_of(
     }
     if fields.is_empty() {
         base.to_string()
+    } else if set.len() == counts.len() {
+        format!("Branches {{ {} }}", fields.join(", "))
     } else {
         format!("Branches {{ {}, ..{base} }}", fields.join(", "))
     }
