@@ -1372,9 +1372,55 @@ proptest! {
             .filter(|r| adist(r[0], f.t[0]).max(adist(r[2], f.t[2])) <= 1e-5)
             .count();
         prop_assert!(near == 2, "{} roots near the fold: {:?} for {:?}", near, x, f.t);
+        // Each root closes the chain to rounding, the pair as well as a simple root: the
+        // polish on the chain's own miss, where the quartic's equations stall.
+        let m = mag(&[f.first.point, f.second.point, f.third.point, f.a, f.b], &[]);
+        for r in x.roots.as_slice() {
+            let miss = five_meet(&f, *r).norm() / m;
+            prop_assert!(miss <= 32.0 * f64::EPSILON, "a miss of {:e} at the fold: {:?}", miss, x);
+        }
         if x.contact == Contact::Tangent {
             let r = x.roots.as_slice();
             prop_assert!(r.windows(2).any(|w| w[0] == w[1]));
         }
+    }
+}
+
+/// SP5 with two solutions 7.5e-5 rad apart (ik-geo's `spherical_bot` at a pose near a fold of
+/// its position chain, pose 512 of `ikgeo/`'s check): the quartic's equations polish them
+/// only to about 1e-12 of the scale; the chain's own miss closes them to rounding.
+#[test]
+fn sp5_close_pair_closes_the_chain_to_rounding() {
+    let first = Line3::new(Point3::origin(), Vector3::y());
+    let second = Line3::new(
+        Point3::new(1.2508566957869456, 0.0, 0.6598162824642664),
+        Vector3::new(0.29552020666133955, 0.0, 0.955336489125606),
+    );
+    let third = Line3::new(
+        Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417),
+        Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
+    );
+    let b = Point3::new(3.0140918058755215, 0.6044084883852824, 2.6160971379033464);
+    // The wrist centre the arm's joints 0.607404982304, 1.484462083358, -1.570559101268 put
+    // it at, from the sketch's 0.3, 0.5, -0.6.
+    let a = rot(
+        &first,
+        0.607404982304 - 0.3,
+        &rot(
+            &second,
+            1.484462083358 - 0.5,
+            &rot(&third, -1.570559101268 + 0.6, &b),
+        ),
+    );
+    let x = three_circles(&first, &a, &second, &third, &b);
+    let m = mag(&[first.point, second.point, third.point, a, b], &[]);
+    assert_eq!(x.roots.len(), 4, "{x:?}");
+    for r in x.roots.as_slice() {
+        let miss = (rot(&first, r[0], &a) - rot(&second, r[1], &rot(&third, r[2], &b))).norm();
+        assert!(
+            miss <= 8.0 * f64::EPSILON * m,
+            "a miss of {:e}: {x:?}",
+            miss / m
+        );
     }
 }

@@ -399,6 +399,37 @@ impl Solve<'_> {
             SpatialOp::RotateBy { .. } => {
                 panic!("bug in gcs: step {i} defines a value by a rotation")
             }
+            SpatialOp::ThreeCircles {
+                first,
+                a,
+                second,
+                third,
+                b,
+                branch,
+                constraint,
+                ..
+            } => {
+                let axis = |s: &Self, [p, d]: [Reg; 2]| {
+                    format!("Line3::new({}, {})", s.r(p), s.unit3_of(i, d))
+                };
+                let found = self.names.fresh("three_circles");
+                let code = format!(
+                    "gcs_runtime::turn3d::three_circles(&{}, &{}, &{}, &{}, &{})",
+                    axis(self, *first),
+                    self.r(*a),
+                    axis(self, *second),
+                    axis(self, *third),
+                    self.r(*b)
+                );
+                self.let_read(w, &found, &code);
+                self.fail_on_contact(w, *constraint, &found, None);
+                let code = self.root(&found, *branch, *constraint);
+                self.fork(w, *branch);
+                let names = ["first_angle", "second_angle", "third_angle"];
+                self.unknown_names
+                    .insert(r, names.iter().map(|n| n.to_string()).collect());
+                self.define(w, r, "angles", &code);
+            }
             SpatialOp::Opposite(d) => {
                 let code = format!("-{}", self.r(*d));
                 self.define_pure(w, r, "opposite", &code);

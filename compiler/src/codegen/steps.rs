@@ -110,6 +110,13 @@ impl Solve<'_> {
                 let code = self.sum(terms);
                 self.define_finite(w, i, r, "sum", &code);
             }
+            Op::Unknown { of, index } => {
+                let code = format!("{}[{index}]", self.r(*of));
+                let name = (self.unknown_names.get(of))
+                    .and_then(|names| names.get(*index as usize).cloned())
+                    .unwrap_or_else(|| "change".to_string());
+                self.define(w, r, &name, &code);
+            }
             Op::Default(d) => {
                 // An input, like a param: `solve` checks it finite on entry. One an iteration
                 // varies is its trial's entry.
@@ -278,6 +285,7 @@ impl Solve<'_> {
             | Op::Neg(_)
             | Op::DimOf(_)
             | Op::Sum(_)
+            | Op::Unknown { .. }
             | Op::Default(_) => unreachable!("bug in gcs: step {i}'s scalar is written by `value`"),
         }
     }
@@ -316,13 +324,6 @@ impl Solve<'_> {
                 self.define(w, r, &n, &code);
             }
             PlanarOp::Linear(system) => self.linear_system(w, r, system),
-            PlanarOp::Unknown { of, index } => {
-                let code = format!("{}[{index}]", self.r(*of));
-                let name = (self.unknown_names.get(of))
-                    .and_then(|names| names.get(*index as usize).cloned())
-                    .unwrap_or_else(|| "change".to_string());
-                self.define(w, r, &name, &code);
-            }
             PlanarOp::Reversed(x) => {
                 let code = format!("{}.reversed()", self.r(*x));
                 let n = self.derived_name(*x, "_reversed", "reversed");

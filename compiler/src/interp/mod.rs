@@ -971,6 +971,10 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
                 let sum = terms.iter().map(|(k, r)| k * self.s(*r)).sum();
                 Val::S(self.finite(i, sum)?)
             }
+            Op::Unknown { of, index } => match self.get(*of) {
+                Some(&Val::Xs(at)) => Val::S(self.linear[at as usize][*index as usize]),
+                v => malformed(*of, "a step's answers", v),
+            },
             _ => return Ok(None),
         }))
     }

@@ -260,7 +260,10 @@ impl Machine<'_, '_, D2> {
             | Op::Default(_)
             | Op::Neg(_)
             | Op::DimOf(_)
-            | Op::Sum(_) => unreachable!("bug in gcs: step {i}'s scalar was evaluated above"),
+            | Op::Sum(_)
+            | Op::Unknown { .. } => {
+                unreachable!("bug in gcs: step {i}'s scalar was evaluated above")
+            }
             Op::Planar(op) => self.planar(i, op)?,
             Op::Spatial(_) => {
                 unreachable!("bug in gcs: step {i} is an operation of space in a planar plan")
@@ -277,10 +280,6 @@ impl Machine<'_, '_, D2> {
             PlanarOp::Reversed(x) => Val::L(self.line(*x).reversed()),
             PlanarOp::LineDir(x) => Val::V(self.line(*x).dir()),
             PlanarOp::Linear(system) => self.linear_system(i, system)?,
-            PlanarOp::Unknown { of, index } => match self.get(*of) {
-                Some(&Val::Xs(at)) => Val::S(self.linear[at as usize][*index as usize]),
-                v => malformed(*of, "a linear system's answers", v),
-            },
             PlanarOp::OffsetLine { line, by } => Val::L(self.line(*line).offset(self.s(*by))),
             PlanarOp::CentresLineLine { l1, a1, l2, a2 } => Val::L(
                 locus2d::centres_line_line(

@@ -10,7 +10,7 @@ use gcs_runtime::error::{ErrorKind, SolveError};
 use gcs_runtime::locus3d::{
     self, Circle3, Cylinder, Line3, Locus3, Plane, Shift, Sphere, Surface, Torus,
 };
-use gcs_runtime::{check, fragment3, frame, intersect3d, Contact, Roots};
+use gcs_runtime::{check, fragment3, frame, intersect3d, turn3d, Contact, Roots};
 use nalgebra::UnitQuaternion;
 
 impl Space for D3 {
@@ -277,7 +277,10 @@ impl Machine<'_, '_, D3> {
             | Op::Default(_)
             | Op::Neg(_)
             | Op::DimOf(_)
-            | Op::Sum(_) => unreachable!("bug in gcs: step {i}'s scalar was evaluated above"),
+            | Op::Sum(_)
+            | Op::Unknown { .. } => {
+                unreachable!("bug in gcs: step {i}'s scalar was evaluated above")
+            }
         };
         self.store(step, value);
         Ok(())
@@ -574,6 +577,56 @@ impl Machine<'_, '_, D3> {
             } => {
                 let a = self.unit(i, self.v3(*axis))?;
                 Val::C3(Circle3::orbit(&self.p3(*pivot), &a, &self.p3(*through)))
+            }
+            SpatialOp::ThreeCircles {
+                first,
+                a,
+                second,
+                third,
+                b,
+                near,
+                branch,
+                constraint,
+            } => {
+                let axis = |m: &Self, [p, d]: [Reg; 2]| -> Result<Line3, SolveError> {
+                    Ok(Line3::new(m.p3(p), m.unit(i, m.v3(d))?))
+                };
+                let (l1, l2, l3) = (
+                    axis(self, *first)?,
+                    axis(self, *second)?,
+                    axis(self, *third)?,
+                );
+                let found = turn3d::three_circles(&l1, &self.p3(*a), &l2, &l3, &self.p3(*b));
+                if let Some(e) = SolveError::from_contact("", "", found.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                // The root that leaves the chain's two joints nearest where they are (the
+                // second's pivot) and were (the third's, before the chain was assembled).
+                let (second_now, third_was) = (l2.point, self.p3(*near));
+                let moved = |&[t1, t2, _]: &[f64; 3]| {
+                    let second_to = turn3d::turn_point(&l1, -t1, &second_now);
+                    let third_to =
+                        turn3d::turn_point(&l1, -t1, &turn3d::turn_point(&l2, t2, &l3.point));
+                    (second_to - second_now).norm() + (third_to - third_was).norm()
+                };
+                let index = self.choose(*branch, |_| {
+                    (found.roots.as_slice().iter().enumerate())
+                        .min_by(|(_, x), (_, y)| moved(x).total_cmp(&moved(y)))
+                        .map(|(k, _)| k)
+                });
+                let angles = found.roots.get(index).ok_or_else(|| {
+                    err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoSuchBranch,
+                        found.roots.len() as f64,
+                    )
+                })?;
+                if self.linear.len() <= i {
+                    self.linear.resize(i + 1, Vec::new());
+                }
+                self.linear[i] = angles.to_vec();
+                Val::Xs(i as u32)
             }
             SpatialOp::RotateBy {
                 geoms,

@@ -86,6 +86,7 @@ impl Plan {
                         .collect::<Vec<_>>()
                         .join(" ")
                 ),
+                Op::Unknown { of, index } => format!("unknown {} of {}", index, r(of)),
                 Op::Along { from, dir, to } => format!("along {} {} {}", r(from), r(dir), r(to)),
                 Op::DirectionTo { from, to } => format!("direction_to {} {}", r(from), r(to)),
                 Op::PointOf(g) => format!("point_of {}", name(g)),
@@ -217,7 +218,6 @@ impl Plan {
         match op {
             PlanarOp::Reversed(x) => format!("reversed {}", r(x)),
             PlanarOp::LineDir(x) => format!("line_dir {}", r(x)),
-            PlanarOp::Unknown { of, index } => format!("unknown {} of {}", index, r(of)),
             PlanarOp::Linear(system) => {
                 use crate::plan::Coef;
                 let coef = |c: &Coef| match c {
@@ -569,6 +569,29 @@ impl Plan {
             SpatialOp::TurnedAbout { dir, axis, angle } => {
                 format!("turned {} about {} by {}", r(dir), r(axis), r(angle))
             }
+            SpatialOp::ThreeCircles {
+                first,
+                a,
+                second,
+                third,
+                b,
+                near,
+                branch,
+                constraint,
+            } => format!(
+                "three_circles {} about {} {} meets {} about {} {} then {} {} near {} branch {} for {}",
+                r(a),
+                r(&first[0]),
+                r(&first[1]),
+                r(b),
+                r(&third[0]),
+                r(&third[1]),
+                r(&second[0]),
+                r(&second[1]),
+                r(near),
+                self.branches[branch.0 as usize].name,
+                cname(constraint)
+            ),
             SpatialOp::RotateBy {
                 geoms,
                 pivot,

@@ -77,7 +77,8 @@ pub enum Ty {
     Cylinder,
     /// A torus: the points at a distance from a circle of space.
     Torus,
-    /// The answers of a linear system (`PlanarOp::Linear`), read one by one.
+    /// Several answers of one step (a linear system's, `PlanarOp::Linear`; the three-circle
+    /// problem's angles, `SpatialOp::ThreeCircles`), read one by one (`Op::Unknown`).
     Values,
 }
 
@@ -85,7 +86,7 @@ impl Ty {
     /// Whether a value of this type exists in `space`.
     pub fn in_space(self, space: Space) -> bool {
         match self {
-            Ty::Conic | Ty::Values => space == Space::D2,
+            Ty::Conic => space == Space::D2,
             Ty::Plane | Ty::Sphere | Ty::Cylinder | Ty::Torus => space == Space::D3,
             _ => true,
         }
@@ -405,6 +406,9 @@ pub enum Op {
     DimOf(GeomId),
     /// A linear combination of scalars.
     Sum(Vec<(f64, Reg)>),
+    /// Answer `index` of a step's several answers `of` (`Ty::Values`): an unknown of a
+    /// linear system, or an angle of the three-circle problem.
+    Unknown { of: Reg, index: u16 },
     /// The signed distance from point `from` to point `to` along direction `dir`.
     Along { from: Reg, dir: Reg, to: Reg },
     /// The unit direction from point `from` to point `to`.
@@ -594,7 +598,7 @@ impl Plan {
         };
         terms.iter().find_map(|&(_, t)| {
             let (at, def) = before(at, t)?;
-            let Op::Planar(PlanarOp::Unknown { of, index }) = def.op else {
+            let Op::Unknown { of, index } = def.op else {
                 return None;
             };
             let Op::Planar(PlanarOp::Linear(system)) = &before(at, of)?.1.op else {

@@ -70,8 +70,6 @@ pub enum PlanarOp {
     /// vertical segments with fillets. The answers of the system (`Ty::Values`), solved by
     /// `gcs_runtime::linear`, or an error naming the constraint whose row is singular.
     Linear(Box<LinearSystem>),
-    /// Unknown `index` of a linear system's answers `of`.
-    Unknown { of: Reg, index: u16 },
     /// The direction of line (`base`, `dir`) once its cluster has turned about `pivot` until the
     /// line passes `point` at signed distance `offset` (absent: through it; positive: `point`
     /// to the line's left): the root of `branch` (0: `point` ahead of the pivot along the

@@ -194,6 +194,23 @@ pub enum SpatialOp {
     Coordinate { point: Reg, axis: u8 },
     /// The point with coordinates `x`, `y` and `z`.
     PointAt { x: Reg, y: Reg, z: Reg },
+    /// The three-circle problem (IK-Geo's SP5, `runtime::turn3d::three_circles`): the angles
+    /// `[θ1, θ2, θ3]` (`Ty::Values`) with `turn(first, θ1, a) = turn(second, θ2,
+    /// turn(third, θ3, b))`, each axis a pivot and a unit direction, `third` in its pose at
+    /// `θ2 = 0`: the root of `branch` (up to four, by `θ1` ascending), or an error naming
+    /// `constraint`. A chain of a body turning about a known axis, a free body and a body
+    /// pivoted at a known point, joined by two revolutes. The sketch's branch is the root that
+    /// leaves `second`'s pivot and `third`'s (at `near` in the sketch) nearest where they were.
+    ThreeCircles {
+        first: [Reg; 2],
+        a: Reg,
+        second: [Reg; 2],
+        third: [Reg; 2],
+        b: Reg,
+        near: Reg,
+        branch: BranchId,
+        constraint: ConstraintId,
+    },
     /// Rotates `geoms` rigidly by `angle` about the line through `pivot` along the
     /// unit `axis` (a turn whose angle an earlier step measured, from more than one pair).
     RotateBy {

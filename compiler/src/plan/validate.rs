@@ -207,6 +207,7 @@ impl Op {
             | Op::DimOf(_) => vec![],
             Op::Neg(x) => vec![(*x, SCALAR)],
             Op::Sum(terms) => terms.iter().map(|t| (t.1, SCALAR)).collect(),
+            Op::Unknown { of, .. } => vec![(*of, VALUES)],
             Op::Along { from, dir, to } => vec![(*from, POINT), (*dir, VECTOR), (*to, POINT)],
             Op::DirectionTo { from, to } => vec![(*from, POINT), (*to, POINT)],
             Op::Midpoint { a, b } => vec![(*a, POINT), (*b, POINT)],
@@ -267,7 +268,9 @@ impl Op {
             Op::Intersect { branch, .. }
             | Op::Planar(PlanarOp::PassingDir { branch, .. })
             | Op::Spatial(
-                SpatialOp::AngleTurn { branch, .. } | SpatialOp::PlaneAxisTurn { branch, .. },
+                SpatialOp::AngleTurn { branch, .. }
+                | SpatialOp::PlaneAxisTurn { branch, .. }
+                | SpatialOp::ThreeCircles { branch, .. },
             ) => Some(branch),
             _ => None,
         }
@@ -280,7 +283,9 @@ impl Op {
             Op::Intersect { branch, .. }
             | Op::Planar(PlanarOp::PassingDir { branch, .. })
             | Op::Spatial(
-                SpatialOp::AngleTurn { branch, .. } | SpatialOp::PlaneAxisTurn { branch, .. },
+                SpatialOp::AngleTurn { branch, .. }
+                | SpatialOp::PlaneAxisTurn { branch, .. }
+                | SpatialOp::ThreeCircles { branch, .. },
             ) => Some(*branch),
             _ => None,
         }
@@ -296,6 +301,7 @@ impl Op {
             | Op::Neg(_)
             | Op::DimOf(_)
             | Op::Sum(_)
+            | Op::Unknown { .. }
             | Op::Along { .. }
             | Op::LocusParam { .. }
             | Op::Error { .. }
@@ -337,7 +343,6 @@ impl PlanarOp {
                     )
                 })
                 .collect(),
-            PlanarOp::Unknown { of, .. } => vec![(*of, VALUES)],
             PlanarOp::OffsetLine { line, by } => vec![(*line, LINE), (*by, SCALAR)],
             PlanarOp::CentresLineLine { l1, a1, l2, a2 } => {
                 vec![(*l1, LINE), (*a1, SCALAR), (*l2, LINE), (*a2, SCALAR)]
@@ -386,7 +391,6 @@ impl PlanarOp {
     pub fn output(&self) -> Ty {
         match self {
             PlanarOp::AngleOf(_)
-            | PlanarOp::Unknown { .. }
             | PlanarOp::RadiusFromLine { .. }
             | PlanarOp::RadiusFromPoint { .. } => Ty::Scalar,
             PlanarOp::Axis(..)
@@ -569,6 +573,25 @@ impl SpatialOp {
             SpatialOp::RotateBy {
                 pivot, axis, angle, ..
             } => vec![(*pivot, POINT), (*axis, VECTOR), (*angle, SCALAR)],
+            SpatialOp::ThreeCircles {
+                first,
+                a,
+                second,
+                third,
+                b,
+                near,
+                ..
+            } => vec![
+                (first[0], POINT),
+                (first[1], VECTOR),
+                (*a, POINT),
+                (second[0], POINT),
+                (second[1], VECTOR),
+                (third[0], POINT),
+                (third[1], VECTOR),
+                (*b, POINT),
+                (*near, POINT),
+            ],
             SpatialOp::TurnedAbout { dir, axis, angle } => {
                 vec![(*dir, VECTOR), (*axis, VECTOR), (*angle, SCALAR)]
             }
@@ -607,6 +630,7 @@ impl SpatialOp {
             SpatialOp::PointAt { .. }
             | SpatialOp::MirrorPlane { .. }
             | SpatialOp::SurfacePoint { .. } => Ty::Point,
+            SpatialOp::ThreeCircles { .. } => Ty::Values,
             SpatialOp::RotateBy { .. } => return None,
         })
     }

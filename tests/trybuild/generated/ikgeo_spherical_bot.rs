@@ -87,8 +87,10 @@ impl Default for Params {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
     /// `revolute_link_3_j3_link_2_j3`:
-    /// - 0: the crossing of the circle link_2.j3 sweeps about the axis through link_1.j2 along link_1.j2.z with the sphere about link_4.j4 through link_3.j3 counter-clockwise of the sphere's centre about the circle's axis
-    /// - 1: the other crossing, clockwise of it
+    /// - 0: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the largest of the four the chain has
+    /// - 1: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the second largest of the four the chain has
+    /// - 2: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the third largest of the four the chain has
+    /// - 3: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the smallest of the four the chain has
     pub revolute_link_3_j3_link_2_j3: u8,
     /// `revolute_link_5_j5_link_4_j5`:
     /// - 0: link_5.j5.z turned counter-clockwise about tool.j6.z from its turn nearest link_4.j4.z
@@ -119,31 +121,16 @@ impl Default for Branches {
     }
 }
 
-/// The degrees of freedom the analysis had to default: where an iteration starts, or the value of a motion the constraints leave free.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Defaults {
-    /// `link_1_spin_angle`: the turn of link_1 about ground.base.z, from where the constraints leave it; the sketch's value is 0.0.
-    pub link_1_spin_angle: f64,
-}
+/// Values of the degrees of freedom the analysis had to default (none for this model).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Defaults {}
 
 #[allow(dead_code)]
 impl Defaults {
     /// Sets the default called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
-        match name {
-            "link_1_spin_angle" => self.link_1_spin_angle = value,
-            _ => return false,
-        }
-        true
-    }
-}
-
-impl Default for Defaults {
-    /// The sketch's values.
-    fn default() -> Self {
-        Defaults {
-            link_1_spin_angle: 0.0,
-        }
+        let _ = (name, value);
+        false
     }
 }
 
@@ -162,7 +149,6 @@ pub struct Solution {
     link_5: Frame3,
     tool: Frame3,
     branches: Branches,
-    defaults: Defaults,
 }
 
 #[allow(dead_code)]
@@ -171,13 +157,6 @@ impl Solution {
     #[inline]
     pub fn branches(&self) -> Branches {
         self.branches
-    }
-
-    /// The defaults this assembly has: as given, or as the outer iteration converged to.
-    /// Pass them to the next solve of a sweep to follow this assembly.
-    #[inline]
-    pub fn defaults(&self) -> Defaults {
-        self.defaults
     }
 
     /// The frame of body `ground`: its origin and its axes.
@@ -662,18 +641,6 @@ pub fn solve(
     branches: &Branches,
     defaults: &Defaults,
 ) -> Result<Solution, SolveError> {
-    assemble(params, branches, defaults, &mut gcs_runtime::outer::Newton)
-}
-
-/// The plan's steps, each outer iteration driven by `outer`: solved to the assembly
-/// nearest its start (`solve`), or scanned for every root (`solve_all`).
-#[inline]
-fn assemble<O: gcs_runtime::outer::Outer>(
-    params: &Params,
-    branches: &Branches,
-    defaults: &Defaults,
-    outer: &mut O,
-) -> Result<Solution, SolveError> {
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[
         ("px", params.px),
@@ -685,7 +652,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         ("xx", params.xx),
         ("xy", params.xy),
         ("xz", params.xz),
-        ("link_1_spin_angle", defaults.link_1_spin_angle),
     ])?;
     // The sketch of `ground.target` depends on params: is it usable?
     if frame::rotation_zx(
@@ -722,7 +688,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let mut link_4 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut link_5 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
-    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // revolute(link_1.j1, ground.base) (ikgeo_spherical_bot.gcs:47)
     // Already true where the sketch puts the geoms: nothing moves.
@@ -801,214 +766,57 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     link_5.rotate_about_by(&tool_j6, &turn_3);
 
     // revolute(link_2.j2, link_1.j2) (ikgeo_spherical_bot.gcs:48)
-
-    // No loop is rigid here: vary `link_1_spin_angle` until `revolute_link_3_j3_link_2_j3` closes (an outer iteration).
-    let mut trial = [defaults.link_1_spin_angle];
-    outer
-        .iterate(
-            &mut trial,
-            &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
-                .spanning(gcs_runtime::iterate::Span::Turn),
-            |trial, errors| {
-                let mut link_1 = link_1;
-                let mut link_2 = link_2;
-                let mut link_3 = link_3;
-                let turn_4 = frame::rotation_about_axis(
-                    &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
-                    trial[0],
-                );
-                link_1.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
-                let link_1_j2 = link_1.point_to_global(&Point3::new(
-                    1.2508566957869456,
-                    0.0,
-                    0.6598162824642664,
-                ));
-                let shift_5 = link_1_j2 - Point3::new(1.2508566957869456, 0.0, 0.6598162824642664);
-                link_2.translate(&shift_5);
-                let link_1_j2_z = link_1.vector_to_global(&Vector3::new(
-                    0.29552020666133955,
-                    0.0,
-                    0.955336489125606,
-                ));
-                let link_2_j2_z = link_2.vector_to_global(&Vector3::new(
-                    0.29552020666133955,
-                    0.0,
-                    0.955336489125606,
-                ));
-                let turn_5 = frame::rotation_between3(
-                    &link_2_j2_z,
-                    &link_1_j2_z,
-                    &frame::perpendicular(&link_2_j2_z),
-                );
-                link_2.rotate_about_by(&link_1_j2, &turn_5);
-                let link_3_j3 = link_3.point_to_global(&Point3::new(
-                    2.384763546042489,
-                    0.479425538604203,
-                    1.3558093915376417,
-                ));
-                let sphere = Sphere::new(link_4_j4, 1.414213562373095);
-                let link_2_j3 = link_2.point_to_global(&Point3::new(
-                    2.384763546042489,
-                    0.479425538604203,
-                    1.3558093915376417,
-                ));
-                let orbit = Circle3::orbit(
-                    &link_1_j2,
-                    &frame::unit3(&link_1_j2_z).ok_or_else(|| {
-                        SolveError::new(
-                            "revolute_link_3_j3_link_2_j3",
-                            "revolute(link_3.j3, link_2.j3)",
-                            ErrorKind::Degenerate,
-                            0.0,
-                        )
-                    })?,
-                    &link_2_j3,
-                );
-                let revolute_link_3_j3_link_2_j3_meeting =
-                    intersect3d::circle_sphere(&orbit, &sphere);
-                if let Some(e) = SolveError::from_contact(
-                    "revolute_link_3_j3_link_2_j3",
-                    "revolute(link_3.j3, link_2.j3)",
-                    revolute_link_3_j3_link_2_j3_meeting.contact,
-                ) {
-                    return Err(e);
-                }
-                let revolute_link_3_j3_link_2_j3 = revolute_link_3_j3_link_2_j3_meeting
-                    .roots
-                    .get(usize::from(branches.revolute_link_3_j3_link_2_j3))
-                    .ok_or_else(|| {
-                        SolveError::new(
-                            "revolute_link_3_j3_link_2_j3",
-                            "revolute(link_3.j3, link_2.j3)",
-                            ErrorKind::NoSuchBranch,
-                            revolute_link_3_j3_link_2_j3_meeting.roots.len() as f64,
-                        )
-                    })?;
-                let turn_6 = frame::rotation_between3(
-                    &(link_3_j3 - link_4_j4),
-                    &(revolute_link_3_j3_link_2_j3 - link_4_j4),
-                    &frame::perpendicular(&(link_3_j3 - link_4_j4)),
-                );
-                link_3.rotate_about_by(&link_4_j4, &turn_6);
-                let direction = frame::unit3(&(revolute_link_3_j3_link_2_j3 - link_4_j4))
-                    .ok_or_else(|| {
-                        SolveError::new(
-                            "revolute_link_3_j3_link_2_j3",
-                            "revolute(link_3.j3, link_2.j3)",
-                            ErrorKind::Degenerate,
-                            0.0,
-                        )
-                    })?;
-                let turn_7 = frame::turn_about_axis(
-                    &link_1_j2_z,
-                    &(link_2_j3 - link_1_j2),
-                    &(revolute_link_3_j3_link_2_j3 - link_1_j2),
-                );
-                link_2.rotate_about_by(&link_1_j2, &turn_7);
-                let link_2_j3_z = link_2.vector_to_global(&Vector3::new(
-                    -0.458012710847292,
-                    0.8775825618903728,
-                    0.14167993424703806,
-                ));
-                let link_3_j3_z = link_3.vector_to_global(&Vector3::new(
-                    -0.458012710847292,
-                    0.8775825618903728,
-                    0.14167993424703806,
-                ));
-                let link_3_j3_2 = link_3.point_to_global(&Point3::new(
-                    2.384763546042489,
-                    0.479425538604203,
-                    1.3558093915376417,
-                ));
-                let link_2_j3_2 = link_2.point_to_global(&Point3::new(
-                    2.384763546042489,
-                    0.479425538604203,
-                    1.3558093915376417,
-                ));
-                let line = Line3::new(
-                    link_2_j3_2,
-                    frame::unit3(&direction).ok_or_else(|| {
-                        SolveError::new(
-                            "revolute_link_3_j3_link_2_j3",
-                            "revolute(link_3.j3, link_2.j3)",
-                            ErrorKind::Degenerate,
-                            0.0,
-                        )
-                    })?,
-                );
-                let angle = fragment3::turn_reaching_line(
-                    [&link_3_j3_z, &link_2_j3_z],
-                    (&link_4_j4, &direction),
-                    &link_3_j3_2,
-                    &line,
-                    None,
-                );
-                let turn_8 = frame::rotation_about_axis(&direction, angle);
-                link_3.rotate_about_by(&link_4_j4, &turn_8);
-                let error = (link_3_j3_z - link_2_j3_z).dot(&direction);
-                errors[0] = error;
-                Ok(())
-            },
-        )
-        .map_err(|failure| {
-            failure.into_error(
-                "revolute_link_3_j3_link_2_j3",
-                "revolute(link_3.j3, link_2.j3)",
-            )
-        })?;
-    trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
-    let turn_9 =
-        frame::rotation_about_axis(&Vector3::new(0.0, 1.0, 2.220446049250313e-16), trial[0]);
-    link_1.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_9);
-    let link_1_j2_2 =
-        link_1.point_to_global(&Point3::new(1.2508566957869456, 0.0, 0.6598162824642664));
-    let shift_6 = link_1_j2_2 - Point3::new(1.2508566957869456, 0.0, 0.6598162824642664);
-    link_2.translate(&shift_6);
-    let link_1_j2_z_2 =
-        link_1.vector_to_global(&Vector3::new(0.29552020666133955, 0.0, 0.955336489125606));
-    let link_2_j2_z_2 =
-        link_2.vector_to_global(&Vector3::new(0.29552020666133955, 0.0, 0.955336489125606));
-    let turn_10 = frame::rotation_between3(
-        &link_2_j2_z_2,
-        &link_1_j2_z_2,
-        &frame::perpendicular(&link_2_j2_z_2),
-    );
-    link_2.rotate_about_by(&link_1_j2_2, &turn_10);
-
     // revolute(link_3.j3, link_2.j3) (ikgeo_spherical_bot.gcs:49)
-    let link_3_j3_3 = link_3.point_to_global(&Point3::new(
+    let link_3_j3 = link_3.point_to_global(&Point3::new(
         2.384763546042489,
         0.479425538604203,
         1.3558093915376417,
     ));
-    let sphere_2 = Sphere::new(link_4_j4, 1.414213562373095);
-    let link_2_j3_3 = link_2.point_to_global(&Point3::new(
-        2.384763546042489,
-        0.479425538604203,
-        1.3558093915376417,
+    let shift_5 = Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417) - link_3_j3;
+    link_3.translate(&shift_5);
+    let link_3_j3_z = link_3.vector_to_global(&Vector3::new(
+        -0.458012710847292,
+        0.8775825618903728,
+        0.14167993424703806,
     ));
-    let orbit_2 = Circle3::orbit(
-        &link_1_j2_2,
-        &frame::unit3(&link_1_j2_z_2).ok_or_else(|| {
-            SolveError::new(
-                "revolute_link_3_j3_link_2_j3",
-                "revolute(link_3.j3, link_2.j3)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
-        &link_2_j3_3,
+    let turn_4 = frame::rotation_between3(
+        &link_3_j3_z,
+        &Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
+        &frame::perpendicular(&link_3_j3_z),
     );
-    let revolute_link_3_j3_link_2_j3_meeting_2 = intersect3d::circle_sphere(&orbit_2, &sphere_2);
+    link_3.rotate_about_by(
+        &Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417),
+        &turn_4,
+    );
+    let link_3_j4 = link_3.point_to_global(&Point3::new(
+        3.0140918058755215,
+        0.6044084883852824,
+        2.6160971379033464,
+    ));
+    let three_circles = gcs_runtime::turn3d::three_circles(
+        &Line3::new(
+            Point3::new(0.0, 0.0, 0.0),
+            Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+        ),
+        &link_4_j4,
+        &Line3::new(
+            Point3::new(1.2508566957869456, 0.0, 0.6598162824642664),
+            Vector3::new(0.29552020666133955, 0.0, 0.955336489125606),
+        ),
+        &Line3::new(
+            Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417),
+            Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
+        ),
+        &link_3_j4,
+    );
     if let Some(e) = SolveError::from_contact(
         "revolute_link_3_j3_link_2_j3",
         "revolute(link_3.j3, link_2.j3)",
-        revolute_link_3_j3_link_2_j3_meeting_2.contact,
+        three_circles.contact,
     ) {
         return Err(e);
     }
-    let revolute_link_3_j3_link_2_j3_2 = revolute_link_3_j3_link_2_j3_meeting_2
+    let angles = three_circles
         .roots
         .get(usize::from(branches.revolute_link_3_j3_link_2_j3))
         .ok_or_else(|| {
@@ -1016,84 +824,37 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 "revolute_link_3_j3_link_2_j3",
                 "revolute(link_3.j3, link_2.j3)",
                 ErrorKind::NoSuchBranch,
-                revolute_link_3_j3_link_2_j3_meeting_2.roots.len() as f64,
+                three_circles.roots.len() as f64,
             )
         })?;
-    let turn_11 = frame::rotation_between3(
-        &(link_3_j3_3 - link_4_j4),
-        &(revolute_link_3_j3_link_2_j3_2 - link_4_j4),
-        &frame::perpendicular(&(link_3_j3_3 - link_4_j4)),
+    let first_angle = angles[0];
+    let second_angle = angles[1];
+    let third_angle = angles[2];
+    let minus = -first_angle;
+    let turn_5 = frame::rotation_about_axis(
+        &Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
+        third_angle,
     );
-    link_3.rotate_about_by(&link_4_j4, &turn_11);
-    let direction_2 =
-        frame::unit3(&(revolute_link_3_j3_link_2_j3_2 - link_4_j4)).ok_or_else(|| {
-            SolveError::new(
-                "revolute_link_3_j3_link_2_j3",
-                "revolute(link_3.j3, link_2.j3)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
-    let turn_12 = frame::turn_about_axis(
-        &link_1_j2_z_2,
-        &(link_2_j3_3 - link_1_j2_2),
-        &(revolute_link_3_j3_link_2_j3_2 - link_1_j2_2),
+    link_3.rotate_about_by(
+        &Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417),
+        &turn_5,
     );
-    link_2.rotate_about_by(&link_1_j2_2, &turn_12);
-    let link_2_j3_z_2 = link_2.vector_to_global(&Vector3::new(
-        -0.458012710847292,
-        0.8775825618903728,
-        0.14167993424703806,
-    ));
-    let link_3_j3_z_2 = link_3.vector_to_global(&Vector3::new(
-        -0.458012710847292,
-        0.8775825618903728,
-        0.14167993424703806,
-    ));
-    let link_3_j3_4 = link_3.point_to_global(&Point3::new(
-        2.384763546042489,
-        0.479425538604203,
-        1.3558093915376417,
-    ));
-    let link_2_j3_4 = link_2.point_to_global(&Point3::new(
-        2.384763546042489,
-        0.479425538604203,
-        1.3558093915376417,
-    ));
-    let line_2 = Line3::new(
-        link_2_j3_4,
-        frame::unit3(&direction_2).ok_or_else(|| {
-            SolveError::new(
-                "revolute_link_3_j3_link_2_j3",
-                "revolute(link_3.j3, link_2.j3)",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?,
+    let turn_6 = frame::rotation_about_axis(
+        &Vector3::new(0.29552020666133955, 0.0, 0.955336489125606),
+        second_angle,
     );
-    let angle_2 = fragment3::turn_reaching_line(
-        [&link_3_j3_z_2, &link_2_j3_z_2],
-        (&link_4_j4, &direction_2),
-        &link_3_j3_4,
-        &line_2,
-        None,
+    link_2.rotate_about_by(
+        &Point3::new(1.2508566957869456, 0.0, 0.6598162824642664),
+        &turn_6,
     );
-    let turn_13 = frame::rotation_about_axis(&direction_2, angle_2);
-    link_3.rotate_about_by(&link_4_j4, &turn_13);
-    let link_3_j3_z_3 = link_3.vector_to_global(&Vector3::new(
-        -0.458012710847292,
-        0.8775825618903728,
-        0.14167993424703806,
-    ));
-    let residual = check::space::parallel(link_3_j3_z_3, link_2_j3_z_2, 1.0);
-    if residual.is_nan() || residual > tol {
-        return Err(SolveError::new(
-            "revolute_link_3_j3_link_2_j3",
-            "revolute(link_3.j3, link_2.j3)",
-            ErrorKind::Inconsistent,
-            residual,
-        ));
-    }
+    link_3.rotate_about_by(
+        &Point3::new(1.2508566957869456, 0.0, 0.6598162824642664),
+        &turn_6,
+    );
+    let turn_7 = frame::rotation_about_axis(&Vector3::new(0.0, 1.0, 2.220446049250313e-16), minus);
+    link_1.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_7);
+    link_2.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_7);
+    link_3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_7);
 
     // revolute(link_4.j4, link_3.j4) (ikgeo_spherical_bot.gcs:50)
     let link_3_j4_z = link_3.vector_to_global(&Vector3::new(
@@ -1106,12 +867,12 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         0.3956869717073037,
         0.3253782300962489,
     ));
-    let turn_14 = frame::rotation_between3(
+    let turn_8 = frame::rotation_between3(
         &link_4_j4_z,
         &link_3_j4_z,
         &frame::perpendicular(&link_4_j4_z),
     );
-    link_4.rotate_about_by(&link_5_j5, &turn_14);
+    link_4.rotate_about_by(&link_5_j5, &turn_8);
 
     // revolute(link_5.j5, link_4.j5) (ikgeo_spherical_bot.gcs:51)
     let link_4_j4_z_2 = link_4.vector_to_global(&Vector3::new(
@@ -1143,8 +904,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 turns.roots.len() as f64,
             )
         })?;
-    let turn_15 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
-    link_5.rotate_about_by(&tool_j6, &turn_15);
+    let turn_9 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
+    link_5.rotate_about_by(&tool_j6, &turn_9);
     let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
         -0.5119651088617578,
         0.6403687314197659,
@@ -1155,28 +916,8 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         0.6403687314197659,
         0.5725553380486539,
     ));
-    let turn_16 = frame::turn_about_axis(&link_3_j4_z, &link_4_j5_z, &link_5_j5_z_2);
-    link_4.rotate_about_by(&link_5_j5, &turn_16);
-    let residual_2 = check::space::point_point(link_1_j2_2, link_1_j2_2, 0.0);
-    if residual_2.is_nan() || residual_2 > tol {
-        return Err(SolveError::new(
-            "revolute_link_2_j2_link_1_j2",
-            "revolute(link_2.j2, link_1.j2)",
-            ErrorKind::Inconsistent,
-            residual_2,
-        ));
-    }
-    let link_2_j2_z_3 =
-        link_2.vector_to_global(&Vector3::new(0.29552020666133955, 0.0, 0.955336489125606));
-    let residual_3 = check::space::parallel(link_2_j2_z_3, link_1_j2_z_2, 1.0);
-    if residual_3.is_nan() || residual_3 > tol {
-        return Err(SolveError::new(
-            "revolute_link_2_j2_link_1_j2",
-            "revolute(link_2.j2, link_1.j2)",
-            ErrorKind::Inconsistent,
-            residual_3,
-        ));
-    }
+    let turn_10 = frame::turn_about_axis(&link_3_j4_z, &link_4_j5_z, &link_5_j5_z_2);
+    link_4.rotate_about_by(&link_5_j5, &turn_10);
 
     Ok(Solution {
         ground,
@@ -1190,19 +931,15 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         link_5,
         tool,
         branches: *branches,
-        defaults: Defaults {
-            link_1_spin_angle: trial[0],
-        },
     })
 }
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
 #[allow(dead_code)]
-pub const MAX_ASSEMBLIES: usize = 64;
+pub const MAX_ASSEMBLIES: usize = 8;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found. It is complete
-/// when every branch combination was solved, its iteration's error scanned over a turn,
-/// and neither the scan nor the list overflowed.
+/// when every branch combination was solved in closed form and the list did not overflow.
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
@@ -1358,46 +1095,354 @@ fn keep<const P: usize>(
     found.push(s, |_, _| false);
 }
 
-/// Every real assembly at `params`, each with its branches (`Solution::branches`) and
-/// defaults (`Solution::defaults`).
+/// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
-/// The outer iteration's error is scanned over a whole turn of `link_1_spin_angle`,
-/// and the plan solved from each root; the runtime's `outer::Scan` says which roots a scan
-/// finds. The other defaults (free motions) keep the values given, which every assembly shares.
-#[allow(dead_code)]
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
+/// The plan has no outer iteration: each combination has at most one assembly.
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for scanned in 0..2usize {
-        let branches = Branches {
-            revolute_link_3_j3_link_2_j3: (scanned % 2) as u8,
-            ..Branches::default()
-        };
-        let mut scan = gcs_runtime::outer::Scan::default();
-        // The scan ends this solve at the iteration, with the roots listed.
-        let _ = assemble(params, &branches, defaults, &mut scan);
-        if scan.truncated() {
-            found.mark_incomplete();
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("px", params.px),
+            ("py", params.py),
+            ("pz", params.pz),
+            ("zx", params.zx),
+            ("zy", params.zy),
+            ("zz", params.zz),
+            ("xx", params.xx),
+            ("xy", params.xy),
+            ("xz", params.xz),
+        ])?;
+        // The sketch of `ground.target` depends on params: is it usable?
+        if frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .is_none()
+        {
+            return Err(SolveError::new(
+                "ground.target",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-        for combination in 0..2usize {
-            let branches = Branches {
-                revolute_link_5_j5_link_4_j5: (combination % 2) as u8,
-                ..branches
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_target_local = Point3::new(params.px, params.py, params.pz);
+        let ground_target_z_local = frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let ground_target_x_local = frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let link_1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let link_2 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut link_3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut link_4 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut link_5 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+
+        // revolute(link_1.j1, ground.base) (ikgeo_spherical_bot.gcs:47)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // weld(tool.tcp, ground.target) (ikgeo_spherical_bot.gcs:53)
+        let ground_target = ground.point_to_global(&ground_target_local);
+        let shift =
+            ground_target - Point3::new(3.533689690261949, 1.3660360457431486, 2.2288743307054237);
+        tool.translate(&shift);
+        let ground_target_z = ground.vector_to_global(&ground_target_z_local);
+        let tool_tcp_z = tool.vector_to_global(&Vector3::new(
+            0.5021916698418661,
+            0.09442095516838787,
+            0.859586068969552,
+        ));
+        let turn = frame::rotation_between3(
+            &tool_tcp_z,
+            &ground_target_z,
+            &frame::perpendicular(&tool_tcp_z),
+        );
+        tool.rotate_about_by(&ground_target, &turn);
+        let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
+            0.5021916698418661,
+            0.09442095516838787,
+            0.859586068969552,
+        ));
+        let ground_target_x = ground.vector_to_global(&ground_target_x_local);
+        let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
+        let tool_tcp_x = tool.vector_to_global(&Vector3::new(
+            0.5195978843864275,
+            0.761627557357866,
+            -0.3872228071979223,
+        ));
+        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+        tool.rotate_about_by(&ground_target, &turn_2);
+
+        // revolute(tool.j6, link_5.j6) (ikgeo_spherical_bot.gcs:52)
+        let tool_j6 = tool.point_to_global(&Point3::new(
+            3.0140918058755215,
+            0.6044084883852824,
+            2.6160971379033464,
+        ));
+        let shift_2 =
+            tool_j6 - Point3::new(3.0140918058755215, 0.6044084883852824, 2.6160971379033464);
+        link_5.translate(&shift_2);
+        let link_5_j5 = link_5.point_to_global(&Point3::new(
+            3.0140918058755215,
+            0.6044084883852824,
+            2.6160971379033464,
+        ));
+        let shift_3 =
+            link_5_j5 - Point3::new(3.0140918058755215, 0.6044084883852824, 2.6160971379033464);
+        link_4.translate(&shift_3);
+        let link_4_j4 = link_4.point_to_global(&Point3::new(
+            3.0140918058755215,
+            0.6044084883852824,
+            2.6160971379033464,
+        ));
+        let shift_4 =
+            link_4_j4 - Point3::new(3.0140918058755215, 0.6044084883852824, 2.6160971379033464);
+        link_3.translate(&shift_4);
+        let tool_j6_z = tool.vector_to_global(&Vector3::new(
+            0.5195978843864277,
+            0.7616275573578658,
+            -0.38722280719792224,
+        ));
+        let link_5_j6_z = link_5.vector_to_global(&Vector3::new(
+            0.5195978843864277,
+            0.7616275573578658,
+            -0.38722280719792224,
+        ));
+        let turn_3 = frame::rotation_between3(
+            &link_5_j6_z,
+            &tool_j6_z,
+            &frame::perpendicular(&link_5_j6_z),
+        );
+        link_5.rotate_about_by(&tool_j6, &turn_3);
+
+        // revolute(link_2.j2, link_1.j2) (ikgeo_spherical_bot.gcs:48)
+        // revolute(link_3.j3, link_2.j3) (ikgeo_spherical_bot.gcs:49)
+        let link_3_j3 = link_3.point_to_global(&Point3::new(
+            2.384763546042489,
+            0.479425538604203,
+            1.3558093915376417,
+        ));
+        let shift_5 =
+            Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417) - link_3_j3;
+        link_3.translate(&shift_5);
+        let link_3_j3_z = link_3.vector_to_global(&Vector3::new(
+            -0.458012710847292,
+            0.8775825618903728,
+            0.14167993424703806,
+        ));
+        let turn_4 = frame::rotation_between3(
+            &link_3_j3_z,
+            &Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
+            &frame::perpendicular(&link_3_j3_z),
+        );
+        link_3.rotate_about_by(
+            &Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417),
+            &turn_4,
+        );
+        let link_3_j4 = link_3.point_to_global(&Point3::new(
+            3.0140918058755215,
+            0.6044084883852824,
+            2.6160971379033464,
+        ));
+        let three_circles = gcs_runtime::turn3d::three_circles(
+            &Line3::new(
+                Point3::new(0.0, 0.0, 0.0),
+                Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+            ),
+            &link_4_j4,
+            &Line3::new(
+                Point3::new(1.2508566957869456, 0.0, 0.6598162824642664),
+                Vector3::new(0.29552020666133955, 0.0, 0.955336489125606),
+            ),
+            &Line3::new(
+                Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417),
+                Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
+            ),
+            &link_3_j4,
+        );
+        if let Some(e) = SolveError::from_contact(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            three_circles.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `revolute(link_3.j3, link_2.j3)` in turn (`revolute_link_3_j3_link_2_j3`), the steps above shared by all.
+        for root in 0..4u8 {
+            let branches = &Branches {
+                revolute_link_3_j3_link_2_j3: root,
+                ..*branches
             };
-            for &root in scan.roots() {
-                let start = Defaults {
-                    link_1_spin_angle: root,
-                };
-                // One start of many: a failure is not told apart, and no mode is held.
-                if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search)
-                {
-                    keep(&mut found, &mut kept, s.points(), s);
+            let mut link_1 = link_1;
+            let mut link_2 = link_2;
+            let mut link_3 = link_3;
+            let mut link_4 = link_4;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let angles = three_circles
+                    .roots
+                    .get(usize::from(branches.revolute_link_3_j3_link_2_j3))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_link_3_j3_link_2_j3",
+                            "revolute(link_3.j3, link_2.j3)",
+                            ErrorKind::NoSuchBranch,
+                            three_circles.roots.len() as f64,
+                        )
+                    })?;
+                let first_angle = angles[0];
+                let second_angle = angles[1];
+                let third_angle = angles[2];
+                let minus = -first_angle;
+                let turn_5 = frame::rotation_about_axis(
+                    &Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
+                    third_angle,
+                );
+                link_3.rotate_about_by(
+                    &Point3::new(2.384763546042489, 0.479425538604203, 1.3558093915376417),
+                    &turn_5,
+                );
+                let turn_6 = frame::rotation_about_axis(
+                    &Vector3::new(0.29552020666133955, 0.0, 0.955336489125606),
+                    second_angle,
+                );
+                link_2.rotate_about_by(
+                    &Point3::new(1.2508566957869456, 0.0, 0.6598162824642664),
+                    &turn_6,
+                );
+                link_3.rotate_about_by(
+                    &Point3::new(1.2508566957869456, 0.0, 0.6598162824642664),
+                    &turn_6,
+                );
+                let turn_7 = frame::rotation_about_axis(
+                    &Vector3::new(0.0, 1.0, 2.220446049250313e-16),
+                    minus,
+                );
+                link_1.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_7);
+                link_2.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_7);
+                link_3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_7);
+
+                // revolute(link_4.j4, link_3.j4) (ikgeo_spherical_bot.gcs:50)
+                let link_3_j4_z = link_3.vector_to_global(&Vector3::new(
+                    0.8588136164503541,
+                    0.3956869717073037,
+                    0.3253782300962489,
+                ));
+                let link_4_j4_z = link_4.vector_to_global(&Vector3::new(
+                    0.8588136164503541,
+                    0.3956869717073037,
+                    0.3253782300962489,
+                ));
+                let turn_8 = frame::rotation_between3(
+                    &link_4_j4_z,
+                    &link_3_j4_z,
+                    &frame::perpendicular(&link_4_j4_z),
+                );
+                link_4.rotate_about_by(&link_5_j5, &turn_8);
+
+                // revolute(link_5.j5, link_4.j5) (ikgeo_spherical_bot.gcs:51)
+                let link_4_j4_z_2 = link_4.vector_to_global(&Vector3::new(
+                    0.8588136164503541,
+                    0.3956869717073037,
+                    0.3253782300962489,
+                ));
+                let link_5_j5_z = link_5.vector_to_global(&Vector3::new(
+                    -0.5119651088617578,
+                    0.6403687314197659,
+                    0.5725553380486539,
+                ));
+                let turns = frame::turns_to_angle(
+                    &link_4_j4_z_2,
+                    &link_5_j5_z,
+                    &tool_j6_z,
+                    1.5707963267948968,
+                );
+                if let Some(e) = SolveError::from_contact(
+                    "revolute_link_5_j5_link_4_j5",
+                    "revolute(link_5.j5, link_4.j5)",
+                    turns.contact,
+                ) {
+                    return Err(e);
                 }
-            }
+
+                // Each root of `revolute(link_5.j5, link_4.j5)` in turn (`revolute_link_5_j5_link_4_j5`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        revolute_link_5_j5_link_4_j5: root,
+                        ..*branches
+                    };
+                    let mut link_4 = link_4;
+                    let mut link_5 = link_5;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let turned_2 = turns
+                            .roots
+                            .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
+                            .ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_link_5_j5_link_4_j5",
+                                    "revolute(link_5.j5, link_4.j5)",
+                                    ErrorKind::NoSuchBranch,
+                                    turns.roots.len() as f64,
+                                )
+                            })?;
+                        let turn_9 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
+                        link_5.rotate_about_by(&tool_j6, &turn_9);
+                        let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
+                            -0.5119651088617578,
+                            0.6403687314197659,
+                            0.5725553380486539,
+                        ));
+                        let link_4_j5_z = link_4.vector_to_global(&Vector3::new(
+                            -0.5119651088617578,
+                            0.6403687314197659,
+                            0.5725553380486539,
+                        ));
+                        let turn_10 =
+                            frame::turn_about_axis(&link_3_j4_z, &link_4_j5_z, &link_5_j5_z_2);
+                        link_4.rotate_about_by(&link_5_j5, &turn_10);
+
+                        let solution = Solution {
+                            ground,
+                            ground_target_local,
+                            ground_target_z_local,
+                            ground_target_x_local,
+                            link_1,
+                            link_2,
+                            link_3,
+                            link_4,
+                            link_5,
+                            tool,
+                            branches: *branches,
+                        };
+                        keep(&mut found, &mut kept, solution.points(), solution);
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
         }
-    }
+        Ok(())
+    })();
     found
 }

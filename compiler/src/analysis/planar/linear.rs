@@ -816,7 +816,7 @@ impl Builder<'_, Planar> {
         let unknowns: Vec<Reg> = (words.iter().enumerate())
             .map(|(i, w)| {
                 self.value(
-                    PlanarOp::Unknown {
+                    Op::Unknown {
                         of: solved,
                         index: i as u16,
                     },

@@ -123,6 +123,7 @@ pub mod relation;
 mod size;
 mod sketcher;
 mod subchain;
+mod three_circles;
 mod turn;
 
 use super::driver::Builder;
@@ -196,7 +197,7 @@ impl Geometry for Spatial {
     }
 
     fn subchains(b: &mut Builder<'_, Self>) -> bool {
-        b.planar_subchain() || b.pivoted_pair()
+        b.planar_subchain() || b.pivoted_pair() || b.three_circle_chain()
     }
 
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {

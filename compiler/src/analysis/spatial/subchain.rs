@@ -27,9 +27,9 @@ use gcs_lang::model::{ConstraintId, GeomId, Part};
 
 /// A revolute joint still open: its constraint and its two markers.
 #[derive(Clone, Copy, Debug)]
-struct Joint {
-    constraint: ConstraintId,
-    markers: [GeomId; 2],
+pub(super) struct Joint {
+    pub(super) constraint: ConstraintId,
+    pub(super) markers: [GeomId; 2],
 }
 
 /// One link of a planar sub-chain, from the pivoted end towards `C0`: the joint, the marker
@@ -283,7 +283,7 @@ impl Builder<'_, Spatial> {
     }
 
     /// The revolute joints some relation of which is still pending, in name order.
-    fn open_revolutes(&self) -> Vec<Joint> {
+    pub(super) fn open_revolutes(&self) -> Vec<Joint> {
         let model = self.model;
         let mut seen = std::collections::BTreeSet::new();
         let mut joints: Vec<Joint> = (self.pending.iter())
@@ -304,7 +304,7 @@ impl Builder<'_, Spatial> {
     }
 
     /// The marker's z axis.
-    fn z_of(&self, marker: GeomId) -> Option<GeomId> {
+    pub(super) fn z_of(&self, marker: GeomId) -> Option<GeomId> {
         self.model.part(marker, Part::AxisZ)
     }
 
@@ -422,7 +422,7 @@ impl Builder<'_, Spatial> {
 
     /// The sense of revolute `c`'s z axes, the sketch's (its parallel relation's: one along
     /// `sense` times the other): 1 or -1.
-    fn joint_sense(&self, c: ConstraintId) -> f64 {
+    pub(super) fn joint_sense(&self, c: ConstraintId) -> f64 {
         use super::relation::Relation;
         (self.relations_of(c).into_iter())
             .find_map(|r| match r {

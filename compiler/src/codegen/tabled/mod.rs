@@ -66,6 +66,12 @@ pub enum Untabled {
         /// The constraints of its first row.
         constraint: String,
     },
+    /// The plan solves a three-circle problem (`SpatialOp::ThreeCircles`): one step with three
+    /// answers, which a table's slices of one type each cannot hold.
+    ThreeCircles {
+        /// The constraint whose branch it takes.
+        constraint: String,
+    },
 }
 
 impl std::fmt::Display for Untabled {
@@ -85,6 +91,11 @@ impl std::fmt::Display for Untabled {
                 f,
                 "its plan solves a linear system (from `{constraint}` on) as one step: only a \
                  plan without one is laid out as tables"
+            ),
+            Untabled::ThreeCircles { constraint } => write!(
+                f,
+                "its plan solves the three-circle problem of `{constraint}` as one step with \
+                 three answers: only a plan without one is laid out as tables"
             ),
         }
     }
@@ -122,6 +133,15 @@ pub(super) fn module(
             .map(|r| cx.model.constraints[r.constraint].name.clone())
             .unwrap_or_default();
         return Err(Untabled::Linear { constraint });
+    }
+    if let Some(c) = cx.plan.steps.iter().find_map(|s| match &s.op {
+        crate::plan::Op::Spatial(crate::plan::SpatialOp::ThreeCircles { constraint, .. }) => {
+            Some(*constraint)
+        }
+        _ => None,
+    }) {
+        let constraint = cx.model.constraints[c].name.clone();
+        return Err(Untabled::ThreeCircles { constraint });
     }
     let mut layout = Layout::new(cx, api);
     let pieces = std::mem::take(&mut layout.pieces);
