@@ -632,15 +632,19 @@ struct Trig2 {
 impl Trig2 {
     #[inline]
     fn at(&self, phi: f64) -> f64 {
-        let (s, c) = sin_cos(phi);
+        self.at_sin_cos(sin_cos(phi))
+    }
+
+    /// The value at the angle whose sine and cosine are `(s, c)`.
+    #[inline]
+    fn at_sin_cos(&self, (s, c): (f64, f64)) -> f64 {
         let (s2, c2) = (2.0 * s * c, (c - s) * (c + s));
         self.a0 + self.a1 * c + self.b1 * s + self.a2 * c2 + self.b2 * s2
     }
 
-    /// The same function of `ψ = φ - shift`.
+    /// The same function of `ψ = φ - shift`, the shift's sine and cosine `(s, c)`.
     #[inline]
-    fn shifted(&self, shift: f64) -> Self {
-        let (s, c) = sin_cos(shift);
+    fn shifted(&self, (s, c): (f64, f64)) -> Self {
         let (s2, c2) = (2.0 * s * c, (c - s) * (c + s));
         Self {
             a0: self.a0,
@@ -670,6 +674,21 @@ impl Trig2 {
 /// (`φ = π`, `t` infinite) has the largest value is kept, so that no root is near it.
 const SHIFTS: usize = 8;
 
+/// The sines and cosines of the [`SHIFTS`] shifts, `k π / 4`, exact where they are 0 or 1.
+const SHIFT_SIN_COS: [(f64, f64); SHIFTS] = {
+    const H: f64 = std::f64::consts::FRAC_1_SQRT_2;
+    [
+        (0.0, 1.0),
+        (H, H),
+        (1.0, 0.0),
+        (H, -H),
+        (0.0, -1.0),
+        (-H, -H),
+        (-1.0, 0.0),
+        (-H, H),
+    ]
+};
+
 /// How many times the tangency's tolerance (`TANGENT_REL * scale`) the two equations may miss
 /// a root of the quartic. Their values sum eight terms, each rounded (and each rounded again
 /// by the steps that built the inputs), so a solution's values carry several times a single
@@ -688,8 +707,12 @@ impl System {
     /// The residuals of both equations at `[θ1, θ2]`.
     #[inline]
     fn residual(&self, t: [f64; 2]) -> [f64; 2] {
-        let (s1, c1) = sin_cos(t[0]);
-        let (s2, c2) = sin_cos(t[1]);
+        self.residual_at(sin_cos(t[0]), sin_cos(t[1]))
+    }
+
+    /// [`Self::residual`] from the angles' sines and cosines.
+    #[inline]
+    fn residual_at(&self, (s1, c1): (f64, f64), (s2, c2): (f64, f64)) -> [f64; 2] {
         let r = |i: usize| {
             self.m1[i][0] * c1 + self.m1[i][1] * s1 + self.m2[i][0] * c2 + self.m2[i][1] * s2
                 - self.d[i]
@@ -756,17 +779,18 @@ impl System {
             (w[1] * det).atan2(w[0] * det)
         };
         // The shift whose excluded angle has the largest |f|.
-        let mut shift = 0.0;
+        let mut chosen = 0;
         let mut best = -1.0;
-        for i in 0..SHIFTS {
-            let s = std::f64::consts::TAU * (i as f64) / (SHIFTS as f64);
-            let v = f.at(s + std::f64::consts::PI).abs();
+        for (i, &(s, c)) in SHIFT_SIN_COS.iter().enumerate() {
+            // At `shift + π`: the sine and cosine negated.
+            let v = f.at_sin_cos((-s, -c)).abs();
             if v > best {
                 best = v;
-                shift = s;
+                chosen = i;
             }
         }
-        let g = f.shifted(shift);
+        let shift = std::f64::consts::TAU * (chosen as f64) / (SHIFTS as f64);
+        let g = f.shifted(SHIFT_SIN_COS[chosen]);
         let coeffs = g.quartic();
         let (roots, critical) = poly::roots_and_critical(&coeffs);
         // A double root that rounding split into a complex pair: a critical point with no root
@@ -822,7 +846,8 @@ impl System {
             let t2 = wrap(shift + 2.0 * x.atan());
             let mut t = [first_of(t2), t2];
             if !multiple {
-                t = sys.polish(t);
+                let (polished, r) = sys.polish(t);
+                t = polished;
                 // A root the equations miss by more than `QUARTIC_SLACK` tangency tolerances, even
                 // polished, is the rounding of a quartic whose coefficients cancelled: near a
                 // continuum of solutions, where the elimination cannot be trusted. Unless it is
@@ -830,7 +855,6 @@ impl System {
                 // where the function is within rounding of zero), where Newton's method stalls
                 // and the pair is kept as found if the equations miss it by at most
                 // `QUARTIC_SLACK` times more.
-                let r = sys.residual(t);
                 let (miss, stall) = (r[0].hypot(r[1]), QUARTIC_SLACK * d_tol);
                 if miss.partial_cmp(&stall) != Some(std::cmp::Ordering::Less) {
                     return Solved::Degenerate;
@@ -856,12 +880,12 @@ impl System {
 
     /// Newton's method on both equations from `t`, keeping a step only while it lowers the
     /// residual.
-    fn polish(&self, mut t: [f64; 2]) -> [f64; 2] {
-        let norm = |r: [f64; 2]| r[0].hypot(r[1]);
-        let mut r = self.residual(t);
+    fn polish(&self, mut t: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+        let norm2 = |r: [f64; 2]| r[0] * r[0] + r[1] * r[1];
+        let (mut sc1, mut sc2) = (sin_cos(t[0]), sin_cos(t[1]));
+        let mut r = self.residual_at(sc1, sc2);
         for _ in 0..POLISH_STEPS {
-            let (s1, c1) = sin_cos(t[0]);
-            let (s2, c2) = sin_cos(t[1]);
+            let ((s1, c1), (s2, c2)) = (sc1, sc2);
             let j = |i: usize| {
                 [
                     -self.m1[i][0] * s1 + self.m1[i][1] * c1,
@@ -876,14 +900,14 @@ impl System {
             let d0 = (r[0] * j1[1] - r[1] * j0[1]) / det;
             let d1 = (j0[0] * r[1] - j1[0] * r[0]) / det;
             let next = [t[0] - d0, t[1] - d1];
-            let rn = self.residual(next);
-            if norm(rn).partial_cmp(&norm(r)) != Some(std::cmp::Ordering::Less) {
+            let (n1, n2) = (sin_cos(next[0]), sin_cos(next[1]));
+            let rn = self.residual_at(n1, n2);
+            if norm2(rn).partial_cmp(&norm2(r)) != Some(std::cmp::Ordering::Less) {
                 break;
             }
-            t = next;
-            r = rn;
+            (t, r, sc1, sc2) = (next, rn, n1, n2);
         }
-        t
+        (t, r)
     }
 }
 
@@ -1140,7 +1164,8 @@ pub fn three_circles(
         Solved::Roots(roots) => collect(&roots, |t| {
             let (pa, pb) = meet(t);
             let t2 = nearest_turn(second, &pb, &pa).map_or(0.0, |n| n.angle);
-            polish_three(first, a, second, third, b, [t[0], t2, t[1]], sc)
+            let met = (pa, turn_point(second, t2, &pb));
+            polish_three(first, a, second, third, b, [t[0], t2, t[1]], met, sc)
         }),
     }
 }
@@ -1150,7 +1175,9 @@ pub fn three_circles(
 /// The quartic's equations are a difference of squared lengths and a height: near a fold
 /// (two roots close together) their polish stalls with the points a few thousand ulps of the
 /// scale apart, which this one closes to rounding. A step is kept only while it lowers the
-/// miss, and none is tried once the miss is within a few ulps of `scale`.
+/// miss, and none is tried once the miss is within a few ulps of `scale`. `(p1, p2)` are the
+/// two sides at `t`.
+#[allow(clippy::too_many_arguments)]
 fn polish_three(
     first: &Line3,
     a: &Point3<f64>,
@@ -1158,6 +1185,7 @@ fn polish_three(
     third: &Line3,
     b: &Point3<f64>,
     mut t: [f64; 3],
+    (mut p1, mut p2): (Point3<f64>, Point3<f64>),
     scale: f64,
 ) -> [f64; 3] {
     let turned = |t: &[f64; 3]| {
@@ -1165,7 +1193,6 @@ fn polish_three(
         let p2 = turn_point(second, t[1], &turn_point(third, t[2], b));
         (p1, p2)
     };
-    let (mut p1, mut p2) = turned(&t);
     let mut miss = (p1 - p2).norm();
     let good = 4.0 * f64::EPSILON * scale;
     for _ in 0..POLISH_STEPS {
