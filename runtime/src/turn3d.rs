@@ -47,7 +47,8 @@
 //! - [`three_circles`] (SP5): a point on a body turning about one axis meets a point carried by
 //!   two turns in series about two more: three angles, a quartic.
 //! - [`four_terms`] (SP6): two angles, each turning two points, whose heights along given
-//!   directions add to two given values: a quartic.
+//!   directions add to two given values: a quartic. [`planar_chain_ends`] writes a planar
+//!   sub-chain between two bodies turning about known axes as one.
 //!
 //! Nothing here allocates or panics.
 
@@ -1058,6 +1059,63 @@ fn collect<T: Copy + Default, const N: usize>(
         roots: out,
         contact,
     }
+}
+
+/// SP6 for a planar sub-chain between two bodies turning about known axes (an arm with three
+/// parallel axes in the middle): the angles `[θ1, θ2]` of the first body's turn about `first`
+/// and of the far joint about `joint`, at which the chain closes.
+///
+/// The chain's parallel axes are `h` in the first body, its joint's point `base` (both in the
+/// pose at `θ1 = 0`), and `far` in the chain's last body (in its pose at `θ2 = 0`, on the far
+/// body, which turns about `joint` relative to it: `far` turns with the last body by `θ2`).
+/// The far body only turns about `last`, a known axis through a known point of it. A turn
+/// about `last` keeps the angle of a direction with it and the height along `h` of the point
+/// `last` turns about, so the chain closes where (1) the chain's axis in the last body makes
+/// the angle with `last` that the first body's `h` does (`sense` relates the two: the last
+/// body's is `sense` times the first's), and (2) `last`'s point is at its height along `h`
+/// from `base`: `offset` (the chain's, from `base` to `joint`'s point) plus that of `last`'s
+/// point from `joint`'s, measured in the far body. Each equation is a term in each angle:
+/// [`four_terms`], every real root.
+///
+/// - **Branch:** up to four solutions, ordered by `θ1` ascending in `(-π, π]` (then `θ2`).
+/// - Contacts as [`four_terms`]'s; `Disjoint { gap }` in lengths, the two equations' miss.
+#[allow(clippy::too_many_arguments)]
+pub fn planar_chain_ends(
+    first: &Line3,
+    h: &Vector3<f64>,
+    base: &Point3<f64>,
+    joint: &Line3,
+    far: &Vector3<f64>,
+    last: &Line3,
+    offset: f64,
+    sense: f64,
+) -> Intersection<[f64; 2], 4> {
+    let origin = Point3::origin();
+    let about = |axis: &Line3| Line3::new(origin, axis.dir);
+    let term = |axis: &Line3, point: &Vector3<f64>, along: Vector3<f64>| Term {
+        axis: about(axis),
+        point: Point3::from(*point),
+        along,
+    };
+    let none = Term {
+        axis: about(first),
+        point: origin,
+        along: Vector3::zeros(),
+    };
+    let k = last.dir;
+    // The far body's vector from the joint's point to `last`'s: its height along the chain's
+    // axis is measured in the far body, where the last body's `far` turns by `θ2`.
+    let reach = last.point - joint.point;
+    let terms = [
+        [term(first, h, k), none, term(joint, far, -sense * k), none],
+        [
+            term(first, h, last.point - first.point),
+            none,
+            term(joint, far, -sense * reach),
+            none,
+        ],
+    ];
+    four_terms(&terms, [0.0, offset + h.dot(&(base - first.point))])
 }
 
 /// SP5, the three-circle problem: the angles `[θ1, θ2, θ3]` at which `a`, turning by `θ1`

@@ -1424,3 +1424,86 @@ fn sp5_close_pair_closes_the_chain_to_rounding() {
         );
     }
 }
+
+/// A planar sub-chain's ends closed at the angles it was built at: a first body turning about
+/// `first` with the chain's axis `h`, a far body turning about `last`, the chain's last body on
+/// it by a joint, its axis `far` made to lie along `sense · h` at a random turn of the far body,
+/// and the offset the chain must have. Built with nalgebra's rotations, apart from the solver.
+fn planar_chain_at(
+    seed: u64,
+) -> (
+    Line3,
+    Vector3<f64>,
+    Point3<f64>,
+    Line3,
+    Vector3<f64>,
+    Line3,
+    f64,
+    f64,
+    [f64; 2],
+) {
+    let mut g = Rng(seed);
+    let s = g.scale();
+    let (first, h, base) = (g.axis(s), g.unit(), g.point(s));
+    let (joint, last) = (g.axis(s), g.axis(s));
+    let sense = if g.f() < 0.5 { 1.0 } else { -1.0 };
+    let (t1, t2, t6) = (g.angle(), g.angle(), g.angle());
+    let turn = |axis: &Line3, t: f64, v: &Vector3<f64>| {
+        Rotation3::from_axis_angle(&Unit::new_normalize(axis.dir), t) * v
+    };
+    // The chain's axis at the answer, and the last body's axis that lies along it there: the
+    // far body turned by `t6` about `last`, the joint by `t2`.
+    let h_at = turn(&first, t1, &h);
+    let far = turn(&joint, -t2, &turn(&last, -t6, &(sense * h_at)));
+    // The offset: from the first body's joint point to the joint's point along `h`, at the answer.
+    let base_at = rot(&first, t1, &base);
+    let joint_at = rot(&last, t6, &joint.point);
+    let offset = h_at.dot(&(joint_at - base_at));
+    (first, h, base, joint, far, last, offset, sense, [t1, t2])
+}
+
+/// SP6 on a planar sub-chain's ends: the angles it was built at are among the roots, and every
+/// root closes both of the chain's conditions (the axes' angle with `last`, `last`'s point at
+/// its height) to rounding.
+#[test]
+fn planar_chain_ends_finds_the_angles_it_was_built_at() {
+    let mut found = 0;
+    for seed in 0..400u64 {
+        let (first, h, base, joint, far, last, offset, sense, t) = planar_chain_at(seed);
+        let x = planar_chain_ends(&first, &h, &base, &joint, &far, &last, offset, sense);
+        if matches!(x.contact, Contact::Coincident) {
+            continue;
+        }
+        let m = mag(&[first.point, base, joint.point, last.point], &[offset]);
+        let turn = |axis: &Line3, t: f64, v: &Vector3<f64>| {
+            Rotation3::from_axis_angle(&Unit::new_normalize(axis.dir), t) * v
+        };
+        for r in x.roots.as_slice() {
+            let h_at = turn(&first, r[0], &h);
+            let angle = last.dir.dot(&h_at) - sense * last.dir.dot(&turn(&joint, r[1], &far));
+            assert!(
+                angle.abs() <= 1e-12,
+                "seed {seed}: the axes' angle off by {angle:e}"
+            );
+            let reach = last.point - joint.point;
+            let height = h_at.dot(&(last.point - rot(&first, r[0], &base)))
+                - sense * turn(&joint, r[1], &far).dot(&reach)
+                - offset;
+            assert!(
+                height.abs() <= 1e-12 * m,
+                "seed {seed}: the height off by {:e}",
+                height / m
+            );
+        }
+        let near = |r: &[f64; 2]| adist(r[0], t[0]).max(adist(r[1], t[1]));
+        let best = x
+            .roots
+            .as_slice()
+            .iter()
+            .map(near)
+            .fold(f64::INFINITY, f64::min);
+        assert!(best <= 1e-7, "seed {seed}: {t:?} not among {x:?}");
+        found += 1;
+    }
+    assert!(found >= 390, "only {found} of 400 instances solved");
+}

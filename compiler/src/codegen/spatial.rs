@@ -430,6 +430,42 @@ impl Solve<'_> {
                     .insert(r, names.iter().map(|n| n.to_string()).collect());
                 self.define(w, r, "angles", &code);
             }
+            SpatialOp::PlanarChainEnds {
+                first,
+                h,
+                base,
+                joint,
+                far,
+                last,
+                offset,
+                sense,
+                branch,
+                constraint,
+            } => {
+                let axis = |s: &Self, [p, d]: [Reg; 2]| {
+                    format!("Line3::new({}, {})", s.r(p), s.unit3_of(i, d))
+                };
+                let found = self.names.fresh("chain_ends");
+                let code = format!(
+                    "gcs_runtime::turn3d::planar_chain_ends(&{}, &{}, &{}, &{}, &{}, &{}, {}, {})",
+                    axis(self, *first),
+                    self.r(*h),
+                    self.r(*base),
+                    axis(self, *joint),
+                    self.r(*far),
+                    axis(self, *last),
+                    self.r(*offset),
+                    float(*sense)
+                );
+                self.let_read(w, &found, &code);
+                self.fail_on_contact(w, *constraint, &found, None);
+                let code = self.root(&found, *branch, *constraint);
+                self.fork(w, *branch);
+                let names = ["base_angle", "joint_angle"];
+                self.unknown_names
+                    .insert(r, names.iter().map(|n| n.to_string()).collect());
+                self.define(w, r, "angles", &code);
+            }
             SpatialOp::Opposite(d) => {
                 let code = format!("-{}", self.r(*d));
                 self.define_pure(w, r, "opposite", &code);

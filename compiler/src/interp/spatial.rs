@@ -628,6 +628,58 @@ impl Machine<'_, '_, D3> {
                 self.linear[i] = angles.to_vec();
                 Val::Xs(i as u32)
             }
+            SpatialOp::PlanarChainEnds {
+                first,
+                h,
+                base,
+                joint,
+                far,
+                last,
+                offset,
+                sense,
+                branch,
+                constraint,
+            } => {
+                let axis = |m: &Self, [p, d]: [Reg; 2]| -> Result<Line3, SolveError> {
+                    Ok(Line3::new(m.p3(p), m.unit(i, m.v3(d))?))
+                };
+                let (l1, lj, l6) = (axis(self, *first)?, axis(self, *joint)?, axis(self, *last)?);
+                let found = turn3d::planar_chain_ends(
+                    &l1,
+                    &self.v3(*h),
+                    &self.p3(*base),
+                    &lj,
+                    &self.v3(*far),
+                    &l6,
+                    self.s(*offset),
+                    *sense,
+                );
+                if let Some(e) = SolveError::from_contact("", "", found.contact) {
+                    return Err(err(model, *constraint, e.kind, e.magnitude));
+                }
+                // The least turn of both from where they are.
+                let index = self.choose(*branch, |_| {
+                    (found.roots.as_slice().iter().enumerate())
+                        .min_by(|(_, x), (_, y)| {
+                            let turn = |t: &[f64; 2]| t[0].abs() + t[1].abs();
+                            turn(x).total_cmp(&turn(y))
+                        })
+                        .map(|(k, _)| k)
+                });
+                let angles = found.roots.get(index).ok_or_else(|| {
+                    err(
+                        model,
+                        *constraint,
+                        ErrorKind::NoSuchBranch,
+                        found.roots.len() as f64,
+                    )
+                })?;
+                if self.linear.len() <= i {
+                    self.linear.resize(i + 1, Vec::new());
+                }
+                self.linear[i] = angles.to_vec();
+                Val::Xs(i as u32)
+            }
             SpatialOp::RotateBy {
                 geoms,
                 pivot,

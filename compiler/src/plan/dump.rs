@@ -592,6 +592,33 @@ impl Plan {
                 self.branches[branch.0 as usize].name,
                 cname(constraint)
             ),
+            SpatialOp::PlanarChainEnds {
+                first,
+                h,
+                base,
+                joint,
+                far,
+                last,
+                offset,
+                sense,
+                branch,
+                constraint,
+            } => format!(
+                "planar_chain_ends {} {} about {} {} to {} about {} {} then {} {} offset {} sense {} branch {} for {}",
+                r(h),
+                r(base),
+                r(&first[0]),
+                r(&first[1]),
+                r(far),
+                r(&joint[0]),
+                r(&joint[1]),
+                r(&last[0]),
+                r(&last[1]),
+                r(offset),
+                fmt_f64(*sense),
+                self.branches[branch.0 as usize].name,
+                cname(constraint)
+            ),
             SpatialOp::RotateBy {
                 geoms,
                 pivot,

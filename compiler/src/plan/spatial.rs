@@ -211,6 +211,25 @@ pub enum SpatialOp {
         branch: BranchId,
         constraint: ConstraintId,
     },
+    /// SP6 for a planar sub-chain between two bodies turning about known axes
+    /// (`runtime::turn3d::planar_chain_ends`): the angles `[θ1, θ2]` (`Ty::Values`) of the first
+    /// body's turn about `first` and of the joint `joint` between the chain's last body and the
+    /// far body, which turns about `last`; `h` and `base` the chain's axis and joint point in the
+    /// first body, `far` its axis in the last body (`sense` times the first's), `offset` its
+    /// offset along the axes. The root of `branch` (up to four, by `θ1` ascending), or an error
+    /// naming `constraint`. The sketch's branch is the root of least turn of both.
+    PlanarChainEnds {
+        first: [Reg; 2],
+        h: Reg,
+        base: Reg,
+        joint: [Reg; 2],
+        far: Reg,
+        last: [Reg; 2],
+        offset: Reg,
+        sense: f64,
+        branch: BranchId,
+        constraint: ConstraintId,
+    },
     /// Rotates `geoms` rigidly by `angle` about the line through `pivot` along the
     /// unit `axis` (a turn whose angle an earlier step measured, from more than one pair).
     RotateBy {

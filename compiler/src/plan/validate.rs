@@ -270,7 +270,8 @@ impl Op {
             | Op::Spatial(
                 SpatialOp::AngleTurn { branch, .. }
                 | SpatialOp::PlaneAxisTurn { branch, .. }
-                | SpatialOp::ThreeCircles { branch, .. },
+                | SpatialOp::ThreeCircles { branch, .. }
+                | SpatialOp::PlanarChainEnds { branch, .. },
             ) => Some(branch),
             _ => None,
         }
@@ -285,7 +286,8 @@ impl Op {
             | Op::Spatial(
                 SpatialOp::AngleTurn { branch, .. }
                 | SpatialOp::PlaneAxisTurn { branch, .. }
-                | SpatialOp::ThreeCircles { branch, .. },
+                | SpatialOp::ThreeCircles { branch, .. }
+                | SpatialOp::PlanarChainEnds { branch, .. },
             ) => Some(*branch),
             _ => None,
         }
@@ -592,6 +594,27 @@ impl SpatialOp {
                 (*b, POINT),
                 (*near, POINT),
             ],
+            SpatialOp::PlanarChainEnds {
+                first,
+                h,
+                base,
+                joint,
+                far,
+                last,
+                offset,
+                ..
+            } => vec![
+                (first[0], POINT),
+                (first[1], VECTOR),
+                (*h, VECTOR),
+                (*base, POINT),
+                (joint[0], POINT),
+                (joint[1], VECTOR),
+                (*far, VECTOR),
+                (last[0], POINT),
+                (last[1], VECTOR),
+                (*offset, SCALAR),
+            ],
             SpatialOp::TurnedAbout { dir, axis, angle } => {
                 vec![(*dir, VECTOR), (*axis, VECTOR), (*angle, SCALAR)]
             }
@@ -630,7 +653,7 @@ impl SpatialOp {
             SpatialOp::PointAt { .. }
             | SpatialOp::MirrorPlane { .. }
             | SpatialOp::SurfacePoint { .. } => Ty::Point,
-            SpatialOp::ThreeCircles { .. } => Ty::Values,
+            SpatialOp::ThreeCircles { .. } | SpatialOp::PlanarChainEnds { .. } => Ty::Values,
             SpatialOp::RotateBy { .. } => return None,
         })
     }

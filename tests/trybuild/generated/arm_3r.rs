@@ -342,6 +342,7 @@ pub fn solve(
     let mut base_link = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut upper_arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut forearm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // coincident(forearm.tip, ground.target) (arm_3r.gcs:29)
     let ground_target = ground.point_to_global(&ground_target_local);
@@ -468,6 +469,25 @@ pub fn solve(
         &forearm_elbow_2,
     );
     let upper_arm_elbow_2 = upper_arm.point_to_global(&Point3::new(0.3, 0.0, 0.9));
+    let normal_2 = frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
+        SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let plane = Plane::from_point_normal(&forearm_elbow_2, &normal_2);
+    let gap_2 = plane.distance(&upper_arm_elbow_2);
+    if gap_2.is_nan() || gap_2 > tol {
+        return Err(SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Inconsistent,
+            gap_2,
+        ));
+    }
+    let nearest = plane.project(&upper_arm_elbow_2);
     let orbit_2 = Circle3::orbit(
         &base_link_shoulder,
         &frame::unit3(&base_link_shoulder_z_2).ok_or_else(|| {
@@ -478,7 +498,7 @@ pub fn solve(
                 0.0,
             )
         })?,
-        &upper_arm_elbow_2,
+        &nearest,
     );
     let revolute_forearm_elbow_upper_arm_elbow_meeting =
         intersect3d::circle_circle(&orbit, &orbit_2);
@@ -506,6 +526,27 @@ pub fn solve(
         &(revolute_forearm_elbow_upper_arm_elbow - ground_target),
     );
     forearm.rotate_about_by(&ground_target, &turn_5);
+    let orbit_3 = Circle3::orbit(
+        &base_link_shoulder,
+        &frame::unit3(&base_link_shoulder_z_2).ok_or_else(|| {
+            SolveError::new(
+                "revolute_forearm_elbow_upper_arm_elbow",
+                "revolute(forearm.elbow, upper_arm.elbow)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?,
+        &upper_arm_elbow_2,
+    );
+    let gap_3 = orbit_3.distance(&revolute_forearm_elbow_upper_arm_elbow);
+    if gap_3.is_nan() || gap_3 > tol {
+        return Err(SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Inconsistent,
+            gap_3,
+        ));
+    }
     let turn_6 = frame::turn_about_axis(
         &base_link_shoulder_z_2,
         &(upper_arm_elbow_2 - base_link_shoulder),
@@ -662,6 +703,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let mut base_link = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut upper_arm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut forearm = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
         // coincident(forearm.tip, ground.target) (arm_3r.gcs:29)
         let ground_target = ground.point_to_global(&ground_target_local);
@@ -801,6 +843,25 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     &forearm_elbow_2,
                 );
                 let upper_arm_elbow_2 = upper_arm.point_to_global(&Point3::new(0.3, 0.0, 0.9));
+                let normal_2 = frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
+                    SolveError::new(
+                        "revolute_forearm_elbow_upper_arm_elbow",
+                        "revolute(forearm.elbow, upper_arm.elbow)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let plane = Plane::from_point_normal(&forearm_elbow_2, &normal_2);
+                let gap_2 = plane.distance(&upper_arm_elbow_2);
+                if gap_2.is_nan() || gap_2 > tol {
+                    return Err(SolveError::new(
+                        "revolute_forearm_elbow_upper_arm_elbow",
+                        "revolute(forearm.elbow, upper_arm.elbow)",
+                        ErrorKind::Inconsistent,
+                        gap_2,
+                    ));
+                }
+                let nearest = plane.project(&upper_arm_elbow_2);
                 let orbit_2 = Circle3::orbit(
                     &base_link_shoulder,
                     &frame::unit3(&base_link_shoulder_z_2).ok_or_else(|| {
@@ -811,7 +872,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             0.0,
                         )
                     })?,
-                    &upper_arm_elbow_2,
+                    &nearest,
                 );
                 let revolute_forearm_elbow_upper_arm_elbow_meeting =
                     intersect3d::circle_circle(&orbit, &orbit_2);
@@ -852,6 +913,27 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             &(revolute_forearm_elbow_upper_arm_elbow - ground_target),
                         );
                         forearm.rotate_about_by(&ground_target, &turn_5);
+                        let orbit_3 = Circle3::orbit(
+                            &base_link_shoulder,
+                            &frame::unit3(&base_link_shoulder_z_2).ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_forearm_elbow_upper_arm_elbow",
+                                    "revolute(forearm.elbow, upper_arm.elbow)",
+                                    ErrorKind::Degenerate,
+                                    0.0,
+                                )
+                            })?,
+                            &upper_arm_elbow_2,
+                        );
+                        let gap_3 = orbit_3.distance(&revolute_forearm_elbow_upper_arm_elbow);
+                        if gap_3.is_nan() || gap_3 > tol {
+                            return Err(SolveError::new(
+                                "revolute_forearm_elbow_upper_arm_elbow",
+                                "revolute(forearm.elbow, upper_arm.elbow)",
+                                ErrorKind::Inconsistent,
+                                gap_3,
+                            ));
+                        }
                         let turn_6 = frame::turn_about_axis(
                             &base_link_shoulder_z_2,
                             &(upper_arm_elbow_2 - base_link_shoulder),

@@ -678,6 +678,7 @@ pub fn solve(
     let mut link_4 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut link_5 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // revolute(link_1.j1, ground.base) (ikgeo_irb6640.gcs:47)
     // Already true where the sketch puts the geoms: nothing moves.
@@ -879,6 +880,25 @@ pub fn solve(
         0.21827852930315492,
         1.7701405685531015,
     ));
+    let normal_2 = frame::unit3(&link_2_j3_z).ok_or_else(|| {
+        SolveError::new(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let plane = Plane::from_point_normal(&link_3_j3_2, &normal_2);
+    let gap_2 = plane.distance(&link_2_j3);
+    if gap_2.is_nan() || gap_2 > tol {
+        return Err(SolveError::new(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            ErrorKind::Inconsistent,
+            gap_2,
+        ));
+    }
+    let nearest = plane.project(&link_2_j3);
     let orbit_2 = Circle3::orbit(
         &link_1_j2,
         &frame::unit3(&link_1_j2_z).ok_or_else(|| {
@@ -889,7 +909,7 @@ pub fn solve(
                 0.0,
             )
         })?,
-        &link_2_j3,
+        &nearest,
     );
     let revolute_link_3_j3_link_2_j3_meeting = intersect3d::circle_circle(&orbit, &orbit_2);
     if let Some(e) = SolveError::from_contact(
@@ -916,6 +936,27 @@ pub fn solve(
         &(revolute_link_3_j3_link_2_j3 - link_4_j4),
     );
     link_3.rotate_about_by(&link_4_j4, &turn_7);
+    let orbit_3 = Circle3::orbit(
+        &link_1_j2,
+        &frame::unit3(&link_1_j2_z).ok_or_else(|| {
+            SolveError::new(
+                "revolute_link_3_j3_link_2_j3",
+                "revolute(link_3.j3, link_2.j3)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?,
+        &link_2_j3,
+    );
+    let gap_3 = orbit_3.distance(&revolute_link_3_j3_link_2_j3);
+    if gap_3.is_nan() || gap_3 > tol {
+        return Err(SolveError::new(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            ErrorKind::Inconsistent,
+            gap_3,
+        ));
+    }
     let turn_8 = frame::turn_about_axis(
         &link_1_j2_z,
         &(link_2_j3 - link_1_j2),
@@ -1226,6 +1267,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let mut link_4 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut link_5 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
         // revolute(link_1.j1, ground.base) (ikgeo_irb6640.gcs:47)
         // Already true where the sketch puts the geoms: nothing moves.
@@ -1453,6 +1495,25 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     0.21827852930315492,
                     1.7701405685531015,
                 ));
+                let normal_2 = frame::unit3(&link_2_j3_z).ok_or_else(|| {
+                    SolveError::new(
+                        "revolute_link_3_j3_link_2_j3",
+                        "revolute(link_3.j3, link_2.j3)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let plane = Plane::from_point_normal(&link_3_j3_2, &normal_2);
+                let gap_2 = plane.distance(&link_2_j3);
+                if gap_2.is_nan() || gap_2 > tol {
+                    return Err(SolveError::new(
+                        "revolute_link_3_j3_link_2_j3",
+                        "revolute(link_3.j3, link_2.j3)",
+                        ErrorKind::Inconsistent,
+                        gap_2,
+                    ));
+                }
+                let nearest = plane.project(&link_2_j3);
                 let orbit_2 = Circle3::orbit(
                     &link_1_j2,
                     &frame::unit3(&link_1_j2_z).ok_or_else(|| {
@@ -1463,7 +1524,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             0.0,
                         )
                     })?,
-                    &link_2_j3,
+                    &nearest,
                 );
                 let revolute_link_3_j3_link_2_j3_meeting =
                     intersect3d::circle_circle(&orbit, &orbit_2);
@@ -1503,6 +1564,27 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             &(revolute_link_3_j3_link_2_j3 - link_4_j4),
                         );
                         link_3.rotate_about_by(&link_4_j4, &turn_7);
+                        let orbit_3 = Circle3::orbit(
+                            &link_1_j2,
+                            &frame::unit3(&link_1_j2_z).ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_link_3_j3_link_2_j3",
+                                    "revolute(link_3.j3, link_2.j3)",
+                                    ErrorKind::Degenerate,
+                                    0.0,
+                                )
+                            })?,
+                            &link_2_j3,
+                        );
+                        let gap_3 = orbit_3.distance(&revolute_link_3_j3_link_2_j3);
+                        if gap_3.is_nan() || gap_3 > tol {
+                            return Err(SolveError::new(
+                                "revolute_link_3_j3_link_2_j3",
+                                "revolute(link_3.j3, link_2.j3)",
+                                ErrorKind::Inconsistent,
+                                gap_3,
+                            ));
+                        }
                         let turn_8 = frame::turn_about_axis(
                             &link_1_j2_z,
                             &(link_2_j3 - link_1_j2),

@@ -87,8 +87,10 @@ impl Default for Params {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
     /// `revolute_link_5_j5_link_4_j5`:
-    /// - 0: link_5.j5.z turned counter-clockwise about tool.j6.z from its turn nearest link_4.j4.z
-    /// - 1: turned clockwise from there
+    /// - 0: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the largest of the chain's (up to four)
+    /// - 1: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the second largest of the chain's (up to four)
+    /// - 2: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the third largest of the chain's (up to four)
+    /// - 3: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the smallest of the chain's (up to four)
     pub revolute_link_5_j5_link_4_j5: u8,
     /// `revolute_link_3_j3_link_2_j3`:
     /// - 0: the crossing of the circle link_3.j3 sweeps about the axis through link_4.j4 along link_2.j3.z and the circle link_2.j3 sweeps about the axis through link_1.j2 along link_1.j2.z to the left of the line of their centres, seen down the first's axis (or first along the line their planes share)
@@ -119,31 +121,16 @@ impl Default for Branches {
     }
 }
 
-/// The degrees of freedom the analysis had to default: where an iteration starts, or the value of a motion the constraints leave free.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Defaults {
-    /// `link_1_spin_angle`: the turn of link_1 about ground.base.z, from where the constraints leave it; the sketch's value is 0.0.
-    pub link_1_spin_angle: f64,
-}
+/// Values of the degrees of freedom the analysis had to default (none for this model).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Defaults {}
 
 #[allow(dead_code)]
 impl Defaults {
     /// Sets the default called `name` (as in the model); `false` when there is none.
     pub fn set(&mut self, name: &str, value: f64) -> bool {
-        match name {
-            "link_1_spin_angle" => self.link_1_spin_angle = value,
-            _ => return false,
-        }
-        true
-    }
-}
-
-impl Default for Defaults {
-    /// The sketch's values.
-    fn default() -> Self {
-        Defaults {
-            link_1_spin_angle: 0.0,
-        }
+        let _ = (name, value);
+        false
     }
 }
 
@@ -162,7 +149,6 @@ pub struct Solution {
     link_5: Frame3,
     tool: Frame3,
     branches: Branches,
-    defaults: Defaults,
 }
 
 #[allow(dead_code)]
@@ -171,13 +157,6 @@ impl Solution {
     #[inline]
     pub fn branches(&self) -> Branches {
         self.branches
-    }
-
-    /// The defaults this assembly has: as given, or as the outer iteration converged to.
-    /// Pass them to the next solve of a sweep to follow this assembly.
-    #[inline]
-    pub fn defaults(&self) -> Defaults {
-        self.defaults
     }
 
     /// The frame of body `ground`: its origin and its axes.
@@ -636,18 +615,6 @@ pub fn solve(
     branches: &Branches,
     defaults: &Defaults,
 ) -> Result<Solution, SolveError> {
-    assemble(params, branches, defaults, &mut gcs_runtime::outer::Newton)
-}
-
-/// The plan's steps, each outer iteration driven by `outer`: solved to the assembly
-/// nearest its start (`solve`), or scanned for every root (`solve_all`).
-#[inline]
-fn assemble<O: gcs_runtime::outer::Outer>(
-    params: &Params,
-    branches: &Branches,
-    defaults: &Defaults,
-    outer: &mut O,
-) -> Result<Solution, SolveError> {
     let _ = (params, branches, defaults);
     gcs_runtime::error::check_all_finite(&[
         ("px", params.px),
@@ -659,7 +626,6 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         ("xx", params.xx),
         ("xy", params.xy),
         ("xz", params.xz),
-        ("link_1_spin_angle", defaults.link_1_spin_angle),
     ])?;
     // The sketch of `ground.target` depends on params: is it usable?
     if frame::rotation_zx(
@@ -758,261 +724,97 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     );
     link_5.rotate_about_by(&tool_j6, &turn_3);
 
-    // revolute(link_2.j2, link_1.j2) (ikgeo_three_parallel_bot.gcs:48)
-
-    // No loop is rigid here: vary `link_1_spin_angle` until `revolute_link_3_j3_link_2_j3` closes (an outer iteration).
-    let mut trial = [defaults.link_1_spin_angle];
-    // From the sketch's defaults and branches, the iteration keeps the sketch's
-    // assembly mode: its closing error falling as its default rises.
-    let hold = (trial == [0.0] && *branches == Branches::default())
-        .then_some(gcs_runtime::mode::Orientation::Negative);
-    outer
-        .iterate(
-            &mut trial,
-            &[1.0],
-            &gcs_runtime::iterate::Settings::for_size(tol / gcs_runtime::tol::CHECK_REL - 1.0)
-                .spanning(gcs_runtime::iterate::Span::Turn)
-                .holding(hold),
-            |trial, errors| {
-                let mut link_1 = link_1;
-                let mut link_2 = link_2;
-                let mut link_3 = link_3;
-                let mut link_4 = link_4;
-                let mut link_5 = link_5;
-                let turn_4 = frame::rotation_about_axis(&Vector3::z(), trial[0]);
-                link_1.rotate_about_by(&Point3::new(0.0, 0.0, 1.0), &turn_4);
-                let link_1_j2 = link_1.point_to_global(&Point3::new(
-                    -0.29552020666133955,
-                    0.955336489125606,
-                    1.0,
-                ));
-                let shift_3 = link_1_j2 - Point3::new(-0.29552020666133955, 0.955336489125606, 1.0);
-                link_2.translate(&shift_3);
-                let link_1_j2_z = link_1.vector_to_global(&Vector3::new(
-                    0.9553364891256061,
-                    0.2955202066613396,
-                    0.0,
-                ));
-                let link_2_j2_z = link_2.vector_to_global(&Vector3::new(
-                    0.9553364891256061,
-                    0.2955202066613396,
-                    0.0,
-                ));
-                let turn_5 = frame::rotation_between3(
-                    &link_2_j2_z,
-                    &link_1_j2_z,
-                    &frame::perpendicular(&link_2_j2_z),
-                );
-                link_2.rotate_about_by(&link_1_j2, &turn_5);
-                let link_2_j3_z = link_2.vector_to_global(&Vector3::new(
-                    0.9553364891256061,
-                    0.2955202066613396,
-                    0.0,
-                ));
-                let turn_6 = frame::rotation_between3(
-                    &Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0),
-                    &link_2_j3_z,
-                    &frame::perpendicular(&Vector3::new(
-                        0.9553364891256061,
-                        0.2955202066613396,
-                        0.0,
-                    )),
-                );
-                link_3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_6);
-                let link_3_j4_z = link_3.vector_to_global(&Vector3::new(
-                    0.9553364891256061,
-                    0.2955202066613396,
-                    0.0,
-                ));
-                let turn_7 = frame::rotation_between3(
-                    &Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0),
-                    &link_3_j4_z,
-                    &frame::perpendicular(&Vector3::new(
-                        0.9553364891256061,
-                        0.2955202066613396,
-                        0.0,
-                    )),
-                );
-                link_4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_7);
-                let link_4_j4_z = link_4.vector_to_global(&Vector3::new(
-                    0.9553364891256061,
-                    0.2955202066613396,
-                    0.0,
-                ));
-                let link_5_j5_z = link_5.vector_to_global(&Vector3::new(
-                    -0.029502791919178206,
-                    0.09537450575679446,
-                    0.9950041652780258,
-                ));
-                let turns = frame::turns_to_angle(
-                    &link_4_j4_z,
-                    &link_5_j5_z,
-                    &tool_j6_z,
-                    std::f64::consts::FRAC_PI_2,
-                );
-                if let Some(e) = SolveError::from_contact(
-                    "revolute_link_5_j5_link_4_j5",
-                    "revolute(link_5.j5, link_4.j5)",
-                    turns.contact,
-                ) {
-                    return Err(e);
-                }
-                let turned_2 = turns
-                    .roots
-                    .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
-                    .ok_or_else(|| {
-                        SolveError::new(
-                            "revolute_link_5_j5_link_4_j5",
-                            "revolute(link_5.j5, link_4.j5)",
-                            ErrorKind::NoSuchBranch,
-                            turns.roots.len() as f64,
-                        )
-                    })?;
-                let turn_8 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
-                link_5.rotate_about_by(&tool_j6, &turn_8);
-                let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
-                    -0.029502791919178206,
-                    0.09537450575679446,
-                    0.9950041652780258,
-                ));
-                let link_4_origin = link_4.origin;
-                let link_4_j5_z = link_4.vector_to_global(&Vector3::new(
-                    -0.029502791919178206,
-                    0.09537450575679446,
-                    0.9950041652780258,
-                ));
-                let turn_9 = frame::turn_about_axis(&link_3_j4_z, &link_4_j5_z, &link_5_j5_z_2);
-                link_4.rotate_about_by(&link_4_origin, &turn_9);
-                let link_5_j5 = link_5.point_to_global(&Point3::new(
-                    -1.0877824997582497,
-                    3.5165051012644395,
-                    0.6453672384241314,
-                ));
-                let link_4_j5 = link_4.point_to_global(&Point3::new(
-                    -1.0877824997582497,
-                    3.5165051012644395,
-                    0.6453672384241314,
-                ));
-                let shift_4 = link_5_j5 - link_4_j5;
-                link_4.translate(&shift_4);
-                let link_4_j4 = link_4.point_to_global(&Point3::new(
-                    -0.7937386632063939,
-                    2.5659413153423762,
-                    0.7452006550709593,
-                ));
-                let link_3_j4 = link_3.point_to_global(&Point3::new(
-                    -0.7937386632063939,
-                    2.5659413153423762,
-                    0.7452006550709593,
-                ));
-                let shift_5 = link_4_j4 - link_3_j4;
-                link_3.translate(&shift_5);
-                let link_3_j3 = link_3.point_to_global(&Point3::new(
-                    -0.5215465279109626,
-                    1.6860181390611182,
-                    0.355782312762309,
-                ));
-                let orbit = Circle3::orbit(
-                    &link_4_j4,
-                    &frame::unit3(&link_2_j3_z).ok_or_else(|| {
-                        SolveError::new(
-                            "revolute_link_3_j3_link_2_j3",
-                            "revolute(link_3.j3, link_2.j3)",
-                            ErrorKind::Degenerate,
-                            0.0,
-                        )
-                    })?,
-                    &link_3_j3,
-                );
-                let link_2_j3 = link_2.point_to_global(&Point3::new(
-                    -0.5215465279109626,
-                    1.6860181390611182,
-                    0.355782312762309,
-                ));
-                let orbit_2 = Circle3::orbit(
-                    &link_1_j2,
-                    &frame::unit3(&link_1_j2_z).ok_or_else(|| {
-                        SolveError::new(
-                            "revolute_link_3_j3_link_2_j3",
-                            "revolute(link_3.j3, link_2.j3)",
-                            ErrorKind::Degenerate,
-                            0.0,
-                        )
-                    })?,
-                    &link_2_j3,
-                );
-                let error = (link_2_j3 - link_3_j3).dot(&link_2_j3_z) - 0.0;
-                errors[0] = error;
-                let _ = (&orbit, &orbit_2);
-                Ok(())
-            },
-        )
-        .map_err(|failure| {
-            failure.into_error(
-                "revolute_link_3_j3_link_2_j3",
-                "revolute(link_3.j3, link_2.j3)",
-            )
-        })?;
-    trial[0] = gcs_runtime::num::wrap_angle(trial[0]);
-    let turn_10 = frame::rotation_about_axis(&Vector3::z(), trial[0]);
-    link_1.rotate_about_by(&Point3::new(0.0, 0.0, 1.0), &turn_10);
-    let link_1_j2_2 =
-        link_1.point_to_global(&Point3::new(-0.29552020666133955, 0.955336489125606, 1.0));
-    let shift_6 = link_1_j2_2 - Point3::new(-0.29552020666133955, 0.955336489125606, 1.0);
-    link_2.translate(&shift_6);
-    let link_1_j2_z_2 =
-        link_1.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let link_2_j2_z_2 =
-        link_2.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let turn_11 = frame::rotation_between3(
-        &link_2_j2_z_2,
-        &link_1_j2_z_2,
-        &frame::perpendicular(&link_2_j2_z_2),
-    );
-    link_2.rotate_about_by(&link_1_j2_2, &turn_11);
-
-    // revolute(link_3.j3, link_2.j3) (ikgeo_three_parallel_bot.gcs:49)
-    let link_2_j3_z_2 =
-        link_2.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let turn_12 = frame::rotation_between3(
-        &Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0),
-        &link_2_j3_z_2,
-        &frame::perpendicular(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0)),
-    );
-    link_3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_12);
-
-    // revolute(link_4.j4, link_3.j4) (ikgeo_three_parallel_bot.gcs:50)
-    let link_3_j4_z_2 =
-        link_3.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let turn_13 = frame::rotation_between3(
-        &Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0),
-        &link_3_j4_z_2,
-        &frame::perpendicular(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0)),
-    );
-    link_4.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_13);
-
     // revolute(link_5.j5, link_4.j5) (ikgeo_three_parallel_bot.gcs:51)
-    let link_4_j4_z_2 =
-        link_4.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let link_5_j5_z_3 = link_5.vector_to_global(&Vector3::new(
+    let link_5_j5 = link_5.point_to_global(&Point3::new(
+        -1.0877824997582497,
+        3.5165051012644395,
+        0.6453672384241314,
+    ));
+    let shift_3 =
+        link_5_j5 - Point3::new(-1.0877824997582497, 3.5165051012644395, 0.6453672384241314);
+    link_4.translate(&shift_3);
+    let link_5_j5_z = link_5.vector_to_global(&Vector3::new(
         -0.029502791919178206,
         0.09537450575679446,
         0.9950041652780258,
     ));
-    let turns_2 = frame::turns_to_angle(
-        &link_4_j4_z_2,
-        &link_5_j5_z_3,
-        &tool_j6_z,
-        std::f64::consts::FRAC_PI_2,
+    let link_4_j5_z = link_4.vector_to_global(&Vector3::new(
+        -0.029502791919178206,
+        0.09537450575679446,
+        0.9950041652780258,
+    ));
+    let turn_4 = frame::rotation_between3(
+        &link_4_j5_z,
+        &link_5_j5_z,
+        &frame::perpendicular(&link_4_j5_z),
+    );
+    link_4.rotate_about_by(&link_5_j5, &turn_4);
+    let link_4_j4_z =
+        link_4.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let length = (Point3::new(-0.5215465279109626, 1.6860181390611182, 0.355782312762309)
+        - Point3::new(-0.29552020666133955, 0.955336489125606, 1.0))
+    .dot(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let length_2 = (Point3::new(-0.7937386632063939, 2.5659413153423762, 0.7452006550709593)
+        - Point3::new(-0.5215465279109626, 1.6860181390611182, 0.355782312762309))
+    .dot(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let link_4_j4 = link_4.point_to_global(&Point3::new(
+        -0.7937386632063939,
+        2.5659413153423762,
+        0.7452006550709593,
+    ));
+    let link_4_j5 = link_4.point_to_global(&Point3::new(
+        -1.0877824997582497,
+        3.5165051012644395,
+        0.6453672384241314,
+    ));
+    let length_3 = (link_4_j5 - link_4_j4).dot(&link_4_j4_z);
+    let sum = length + length_2 + length_3;
+    if !gcs_runtime::num::is_finite(sum) {
+        return Err(SolveError::new(
+            "revolute_link_5_j5_link_4_j5",
+            "revolute(link_5.j5, link_4.j5)",
+            ErrorKind::InvalidValue,
+            sum,
+        ));
+    }
+    let chain_ends = gcs_runtime::turn3d::planar_chain_ends(
+        &Line3::new(Point3::new(0.0, 0.0, 1.0), Vector3::z()),
+        &Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0),
+        &Point3::new(-0.29552020666133955, 0.955336489125606, 1.0),
+        &Line3::new(
+            link_5_j5,
+            frame::unit3(&link_5_j5_z).ok_or_else(|| {
+                SolveError::new(
+                    "revolute_link_5_j5_link_4_j5",
+                    "revolute(link_5.j5, link_4.j5)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+        ),
+        &link_4_j4_z,
+        &Line3::new(
+            tool_j6,
+            frame::unit3(&tool_j6_z).ok_or_else(|| {
+                SolveError::new(
+                    "revolute_link_5_j5_link_4_j5",
+                    "revolute(link_5.j5, link_4.j5)",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?,
+        ),
+        sum,
+        1.0,
     );
     if let Some(e) = SolveError::from_contact(
         "revolute_link_5_j5_link_4_j5",
         "revolute(link_5.j5, link_4.j5)",
-        turns_2.contact,
+        chain_ends.contact,
     ) {
         return Err(e);
     }
-    let turned_3 = turns_2
+    let angles = chain_ends
         .roots
         .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
         .ok_or_else(|| {
@@ -1020,56 +822,81 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 "revolute_link_5_j5_link_4_j5",
                 "revolute(link_5.j5, link_4.j5)",
                 ErrorKind::NoSuchBranch,
-                turns_2.roots.len() as f64,
+                chain_ends.roots.len() as f64,
             )
         })?;
-    let turn_14 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z_3, &turned_3);
-    link_5.rotate_about_by(&tool_j6, &turn_14);
-    let link_5_j5_z_4 = link_5.vector_to_global(&Vector3::new(
-        -0.029502791919178206,
-        0.09537450575679446,
-        0.9950041652780258,
-    ));
-    let link_4_origin_2 = link_4.origin;
-    let link_4_j5_z_2 = link_4.vector_to_global(&Vector3::new(
-        -0.029502791919178206,
-        0.09537450575679446,
-        0.9950041652780258,
-    ));
-    let turn_15 = frame::turn_about_axis(&link_3_j4_z_2, &link_4_j5_z_2, &link_5_j5_z_4);
-    link_4.rotate_about_by(&link_4_origin_2, &turn_15);
-    let link_5_j5_2 = link_5.point_to_global(&Point3::new(
-        -1.0877824997582497,
-        3.5165051012644395,
-        0.6453672384241314,
-    ));
-    let link_4_j5_2 = link_4.point_to_global(&Point3::new(
-        -1.0877824997582497,
-        3.5165051012644395,
-        0.6453672384241314,
-    ));
-    let shift_7 = link_5_j5_2 - link_4_j5_2;
-    link_4.translate(&shift_7);
+    let base_angle = angles[0];
+    let joint_angle = angles[1];
+    let turn_5 = frame::rotation_about_axis(&Vector3::z(), base_angle);
+    link_1.rotate_about_by(&Point3::new(0.0, 0.0, 1.0), &turn_5);
+    let turn_6 = frame::rotation_about_axis(&link_5_j5_z, joint_angle);
+    link_4.rotate_about_by(&link_5_j5, &turn_6);
+    let link_1_j2_z =
+        link_1.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let link_4_j4_z_2 =
+        link_4.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let turn_7 = frame::turn_about_axis(&tool_j6_z, &link_4_j4_z_2, &link_1_j2_z);
+    link_5.rotate_about_by(&tool_j6, &turn_7);
+    link_4.rotate_about_by(&tool_j6, &turn_7);
+
+    // revolute(link_2.j2, link_1.j2) (ikgeo_three_parallel_bot.gcs:48)
+    let link_1_j2 =
+        link_1.point_to_global(&Point3::new(-0.29552020666133955, 0.955336489125606, 1.0));
+    let shift_4 = link_1_j2 - Point3::new(-0.29552020666133955, 0.955336489125606, 1.0);
+    link_2.translate(&shift_4);
+    let link_2_j2_z =
+        link_2.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let turn_8 = frame::rotation_between3(
+        &link_2_j2_z,
+        &link_1_j2_z,
+        &frame::perpendicular(&link_2_j2_z),
+    );
+    link_2.rotate_about_by(&link_1_j2, &turn_8);
+
+    // revolute(link_3.j3, link_2.j3) (ikgeo_three_parallel_bot.gcs:49)
+    let link_2_j3_z =
+        link_2.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let turn_9 = frame::rotation_between3(
+        &Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0),
+        &link_2_j3_z,
+        &frame::perpendicular(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0)),
+    );
+    link_3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_9);
+
+    // revolute(link_4.j4, link_3.j4) (ikgeo_three_parallel_bot.gcs:50)
     let link_4_j4_2 = link_4.point_to_global(&Point3::new(
         -0.7937386632063939,
         2.5659413153423762,
         0.7452006550709593,
     ));
-    let link_3_j4_2 = link_3.point_to_global(&Point3::new(
+    let link_3_j4 = link_3.point_to_global(&Point3::new(
         -0.7937386632063939,
         2.5659413153423762,
         0.7452006550709593,
     ));
-    let shift_8 = link_4_j4_2 - link_3_j4_2;
-    link_3.translate(&shift_8);
-    let link_3_j3_2 = link_3.point_to_global(&Point3::new(
+    let shift_5 = link_4_j4_2 - link_3_j4;
+    link_3.translate(&shift_5);
+    let link_4_j4_z_3 =
+        link_4.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let link_3_j4_z =
+        link_3.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+    let residual = check::space::parallel(link_4_j4_z_3, link_3_j4_z, 1.0);
+    if residual.is_nan() || residual > tol {
+        return Err(SolveError::new(
+            "revolute_link_4_j4_link_3_j4",
+            "revolute(link_4.j4, link_3.j4)",
+            ErrorKind::Inconsistent,
+            residual,
+        ));
+    }
+    let link_3_j3 = link_3.point_to_global(&Point3::new(
         -0.5215465279109626,
         1.6860181390611182,
         0.355782312762309,
     ));
-    let orbit_3 = Circle3::orbit(
+    let orbit = Circle3::orbit(
         &link_4_j4_2,
-        &frame::unit3(&link_2_j3_z_2).ok_or_else(|| {
+        &frame::unit3(&link_2_j3_z).ok_or_else(|| {
             SolveError::new(
                 "revolute_link_3_j3_link_2_j3",
                 "revolute(link_3.j3, link_2.j3)",
@@ -1077,16 +904,35 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 0.0,
             )
         })?,
-        &link_3_j3_2,
+        &link_3_j3,
     );
-    let link_2_j3_2 = link_2.point_to_global(&Point3::new(
+    let link_2_j3 = link_2.point_to_global(&Point3::new(
         -0.5215465279109626,
         1.6860181390611182,
         0.355782312762309,
     ));
-    let orbit_4 = Circle3::orbit(
-        &link_1_j2_2,
-        &frame::unit3(&link_1_j2_z_2).ok_or_else(|| {
+    let normal = frame::unit3(&link_2_j3_z).ok_or_else(|| {
+        SolveError::new(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let plane = Plane::from_point_normal(&link_3_j3, &normal);
+    let gap = plane.distance(&link_2_j3);
+    if gap.is_nan() || gap > tol {
+        return Err(SolveError::new(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            ErrorKind::Inconsistent,
+            gap,
+        ));
+    }
+    let nearest = plane.project(&link_2_j3);
+    let orbit_2 = Circle3::orbit(
+        &link_1_j2,
+        &frame::unit3(&link_1_j2_z).ok_or_else(|| {
             SolveError::new(
                 "revolute_link_3_j3_link_2_j3",
                 "revolute(link_3.j3, link_2.j3)",
@@ -1094,9 +940,9 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 0.0,
             )
         })?,
-        &link_2_j3_2,
+        &nearest,
     );
-    let revolute_link_3_j3_link_2_j3_meeting = intersect3d::circle_circle(&orbit_3, &orbit_4);
+    let revolute_link_3_j3_link_2_j3_meeting = intersect3d::circle_circle(&orbit, &orbit_2);
     if let Some(e) = SolveError::from_contact(
         "revolute_link_3_j3_link_2_j3",
         "revolute(link_3.j3, link_2.j3)",
@@ -1115,115 +961,39 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 revolute_link_3_j3_link_2_j3_meeting.roots.len() as f64,
             )
         })?;
-    let turn_16 = frame::turn_about_axis(
-        &link_2_j3_z_2,
-        &(link_3_j3_2 - link_4_j4_2),
+    let turn_10 = frame::turn_about_axis(
+        &link_2_j3_z,
+        &(link_3_j3 - link_4_j4_2),
         &(revolute_link_3_j3_link_2_j3 - link_4_j4_2),
     );
-    link_3.rotate_about_by(&link_4_j4_2, &turn_16);
-    let turn_17 = frame::turn_about_axis(
-        &link_1_j2_z_2,
-        &(link_2_j3_2 - link_1_j2_2),
-        &(revolute_link_3_j3_link_2_j3 - link_1_j2_2),
+    link_3.rotate_about_by(&link_4_j4_2, &turn_10);
+    let orbit_3 = Circle3::orbit(
+        &link_1_j2,
+        &frame::unit3(&link_1_j2_z).ok_or_else(|| {
+            SolveError::new(
+                "revolute_link_3_j3_link_2_j3",
+                "revolute(link_3.j3, link_2.j3)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?,
+        &link_2_j3,
     );
-    link_2.rotate_about_by(&link_1_j2_2, &turn_17);
-    let residual = check::space::point_point(link_1_j2_2, link_1_j2_2, 0.0);
-    if residual.is_nan() || residual > tol {
-        return Err(SolveError::new(
-            "revolute_link_2_j2_link_1_j2",
-            "revolute(link_2.j2, link_1.j2)",
-            ErrorKind::Inconsistent,
-            residual,
-        ));
-    }
-    let link_2_j2_z_3 =
-        link_2.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let residual_2 = check::space::parallel(link_2_j2_z_3, link_1_j2_z_2, 1.0);
-    if residual_2.is_nan() || residual_2 > tol {
-        return Err(SolveError::new(
-            "revolute_link_2_j2_link_1_j2",
-            "revolute(link_2.j2, link_1.j2)",
-            ErrorKind::Inconsistent,
-            residual_2,
-        ));
-    }
-    let link_3_j3_3 = link_3.point_to_global(&Point3::new(
-        -0.5215465279109626,
-        1.6860181390611182,
-        0.355782312762309,
-    ));
-    let link_2_j3_3 = link_2.point_to_global(&Point3::new(
-        -0.5215465279109626,
-        1.6860181390611182,
-        0.355782312762309,
-    ));
-    let residual_3 = check::space::point_point(link_3_j3_3, link_2_j3_3, 0.0);
-    if residual_3.is_nan() || residual_3 > tol {
+    let gap_2 = orbit_3.distance(&revolute_link_3_j3_link_2_j3);
+    if gap_2.is_nan() || gap_2 > tol {
         return Err(SolveError::new(
             "revolute_link_3_j3_link_2_j3",
             "revolute(link_3.j3, link_2.j3)",
             ErrorKind::Inconsistent,
-            residual_3,
+            gap_2,
         ));
     }
-    let link_3_j3_z =
-        link_3.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let link_2_j3_z_3 =
-        link_2.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let residual_4 = check::space::parallel(link_3_j3_z, link_2_j3_z_3, 1.0);
-    if residual_4.is_nan() || residual_4 > tol {
-        return Err(SolveError::new(
-            "revolute_link_3_j3_link_2_j3",
-            "revolute(link_3.j3, link_2.j3)",
-            ErrorKind::Inconsistent,
-            residual_4,
-        ));
-    }
-    let residual_5 = check::space::point_point(link_4_j4_2, link_4_j4_2, 0.0);
-    if residual_5.is_nan() || residual_5 > tol {
-        return Err(SolveError::new(
-            "revolute_link_4_j4_link_3_j4",
-            "revolute(link_4.j4, link_3.j4)",
-            ErrorKind::Inconsistent,
-            residual_5,
-        ));
-    }
-    let link_4_j4_z_3 =
-        link_4.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let link_3_j4_z_3 =
-        link_3.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let residual_6 = check::space::parallel(link_4_j4_z_3, link_3_j4_z_3, 1.0);
-    if residual_6.is_nan() || residual_6 > tol {
-        return Err(SolveError::new(
-            "revolute_link_4_j4_link_3_j4",
-            "revolute(link_4.j4, link_3.j4)",
-            ErrorKind::Inconsistent,
-            residual_6,
-        ));
-    }
-    let residual_7 = check::space::point_point(link_5_j5_2, link_5_j5_2, 0.0);
-    if residual_7.is_nan() || residual_7 > tol {
-        return Err(SolveError::new(
-            "revolute_link_5_j5_link_4_j5",
-            "revolute(link_5.j5, link_4.j5)",
-            ErrorKind::Inconsistent,
-            residual_7,
-        ));
-    }
-    let link_4_j5_z_3 = link_4.vector_to_global(&Vector3::new(
-        -0.029502791919178206,
-        0.09537450575679446,
-        0.9950041652780258,
-    ));
-    let residual_8 = check::space::parallel(link_5_j5_z_4, link_4_j5_z_3, 1.0);
-    if residual_8.is_nan() || residual_8 > tol {
-        return Err(SolveError::new(
-            "revolute_link_5_j5_link_4_j5",
-            "revolute(link_5.j5, link_4.j5)",
-            ErrorKind::Inconsistent,
-            residual_8,
-        ));
-    }
+    let turn_11 = frame::turn_about_axis(
+        &link_1_j2_z,
+        &(link_2_j3 - link_1_j2),
+        &(revolute_link_3_j3_link_2_j3 - link_1_j2),
+    );
+    link_2.rotate_about_by(&link_1_j2, &turn_11);
 
     Ok(Solution {
         ground,
@@ -1237,19 +1007,15 @@ fn assemble<O: gcs_runtime::outer::Outer>(
         link_5,
         tool,
         branches: *branches,
-        defaults: Defaults {
-            link_1_spin_angle: trial[0],
-        },
     })
 }
 
 /// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.
 #[allow(dead_code)]
-pub const MAX_ASSEMBLIES: usize = 64;
+pub const MAX_ASSEMBLIES: usize = 8;
 
 /// Every real assembly [`solve_all`] found, each once, in the order found. It is complete
-/// when every branch combination was solved, its iteration's error scanned over a turn,
-/// and neither the scan nor the list overflowed.
+/// when every branch combination was solved in closed form and the list did not overflow.
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
@@ -1405,46 +1171,473 @@ fn keep<const P: usize>(
     found.push(s, |_, _| false);
 }
 
-/// Every real assembly at `params`, each with its branches (`Solution::branches`) and
-/// defaults (`Solution::defaults`).
+/// Every real assembly at `params`, each with its branches (`Solution::branches`).
 /// Never panics, allocates nothing.
 ///
-/// Each combination of the branch variables is solved.
-/// The outer iteration's error is scanned over a whole turn of `link_1_spin_angle`,
-/// and the plan solved from each root; the runtime's `outer::Scan` says which roots a scan
-/// finds. The other defaults (free motions) keep the values given, which every assembly shares.
-#[allow(dead_code)]
+/// The plan's steps are one tree: where a branch variable's root is taken, each of its
+/// roots is taken in turn, the steps before it solved once for all of them.
+/// The plan has no outer iteration: each combination has at most one assembly.
+#[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
     // The points of each solution listed, computed once (`keep`).
     let mut kept = [None; MAX_ASSEMBLIES];
-    for scanned in 0..2usize {
-        let branches = Branches {
-            revolute_link_5_j5_link_4_j5: (scanned % 2) as u8,
-            ..Branches::default()
-        };
-        let mut scan = gcs_runtime::outer::Scan::default();
-        // The scan ends this solve at the iteration, with the roots listed.
-        let _ = assemble(params, &branches, defaults, &mut scan);
-        if scan.truncated() {
-            found.mark_incomplete();
+    let branches = &Branches::default();
+    // A failure before the first branch's root is taken: no assembly.
+    let _ = (|| -> Result<(), SolveError> {
+        let _ = (params, branches, defaults);
+        gcs_runtime::error::check_all_finite(&[
+            ("px", params.px),
+            ("py", params.py),
+            ("pz", params.pz),
+            ("zx", params.zx),
+            ("zy", params.zy),
+            ("zz", params.zz),
+            ("xx", params.xx),
+            ("xy", params.xy),
+            ("xz", params.xz),
+        ])?;
+        // The sketch of `ground.target` depends on params: is it usable?
+        if frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .is_none()
+        {
+            return Err(SolveError::new(
+                "ground.target",
+                "its point or axis is not finite or zero",
+                ErrorKind::InvalidInput,
+                f64::NAN,
+            ));
         }
-        for combination in 0..2usize {
-            let branches = Branches {
-                revolute_link_3_j3_link_2_j3: (combination % 2) as u8,
-                ..branches
+        // The sketch: where every geom starts.
+        let ground = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let ground_target_local = Point3::new(params.px, params.py, params.pz);
+        let ground_target_z_local = frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::z();
+        let ground_target_x_local = frame::rotation_zx(
+            &Vector3::new(params.zx, params.zy, params.zz),
+            &Vector3::new(params.xx, params.xy, params.xz),
+        )
+        .unwrap_or_else(UnitQuaternion::identity)
+            * Vector3::x();
+        let link_1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let link_2 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let link_3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut link_4 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut link_5 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
+
+        // revolute(link_1.j1, ground.base) (ikgeo_three_parallel_bot.gcs:47)
+        // Already true where the sketch puts the geoms: nothing moves.
+
+        // weld(tool.tcp, ground.target) (ikgeo_three_parallel_bot.gcs:53)
+        let ground_target = ground.point_to_global(&ground_target_local);
+        let shift =
+            ground_target - Point3::new(-1.0686508538268533, 5.742343313043024, 0.4325804082154112);
+        tool.translate(&shift);
+        let ground_target_z = ground.vector_to_global(&ground_target_z_local);
+        let tool_tcp_z = tool.vector_to_global(&Vector3::new(
+            0.31947806743409246,
+            -0.08749802872751081,
+            0.9435453668994285,
+        ));
+        let turn = frame::rotation_between3(
+            &tool_tcp_z,
+            &ground_target_z,
+            &frame::perpendicular(&tool_tcp_z),
+        );
+        tool.rotate_about_by(&ground_target, &turn);
+        let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
+            0.31947806743409246,
+            -0.08749802872751081,
+            0.9435453668994285,
+        ));
+        let ground_target_x = ground.vector_to_global(&ground_target_x_local);
+        let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
+        let tool_tcp_x = tool.vector_to_global(&Vector3::new(
+            0.45465520451603747,
+            0.8877836323483184,
+            -0.0716161095069117,
+        ));
+        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+        tool.rotate_about_by(&ground_target, &turn_2);
+
+        // revolute(tool.j6, link_5.j6) (ikgeo_three_parallel_bot.gcs:52)
+        let tool_j6 = tool.point_to_global(&Point3::new(
+            -1.5233060583428908,
+            4.854559680694705,
+            0.5041965177223234,
+        ));
+        let shift_2 =
+            tool_j6 - Point3::new(-1.5233060583428908, 4.854559680694705, 0.5041965177223234);
+        link_5.translate(&shift_2);
+        let tool_j6_z = tool.vector_to_global(&Vector3::new(
+            0.4546552045160374,
+            0.8877836323483183,
+            -0.07161610950691166,
+        ));
+        let link_5_j6_z = link_5.vector_to_global(&Vector3::new(
+            0.4546552045160374,
+            0.8877836323483183,
+            -0.07161610950691166,
+        ));
+        let turn_3 = frame::rotation_between3(
+            &link_5_j6_z,
+            &tool_j6_z,
+            &frame::perpendicular(&link_5_j6_z),
+        );
+        link_5.rotate_about_by(&tool_j6, &turn_3);
+
+        // revolute(link_5.j5, link_4.j5) (ikgeo_three_parallel_bot.gcs:51)
+        let link_5_j5 = link_5.point_to_global(&Point3::new(
+            -1.0877824997582497,
+            3.5165051012644395,
+            0.6453672384241314,
+        ));
+        let shift_3 =
+            link_5_j5 - Point3::new(-1.0877824997582497, 3.5165051012644395, 0.6453672384241314);
+        link_4.translate(&shift_3);
+        let link_5_j5_z = link_5.vector_to_global(&Vector3::new(
+            -0.029502791919178206,
+            0.09537450575679446,
+            0.9950041652780258,
+        ));
+        let link_4_j5_z = link_4.vector_to_global(&Vector3::new(
+            -0.029502791919178206,
+            0.09537450575679446,
+            0.9950041652780258,
+        ));
+        let turn_4 = frame::rotation_between3(
+            &link_4_j5_z,
+            &link_5_j5_z,
+            &frame::perpendicular(&link_4_j5_z),
+        );
+        link_4.rotate_about_by(&link_5_j5, &turn_4);
+        let link_4_j4_z =
+            link_4.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+        let length = (Point3::new(-0.5215465279109626, 1.6860181390611182, 0.355782312762309)
+            - Point3::new(-0.29552020666133955, 0.955336489125606, 1.0))
+        .dot(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+        let length_2 = (Point3::new(-0.7937386632063939, 2.5659413153423762, 0.7452006550709593)
+            - Point3::new(-0.5215465279109626, 1.6860181390611182, 0.355782312762309))
+        .dot(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
+        let link_4_j4 = link_4.point_to_global(&Point3::new(
+            -0.7937386632063939,
+            2.5659413153423762,
+            0.7452006550709593,
+        ));
+        let link_4_j5 = link_4.point_to_global(&Point3::new(
+            -1.0877824997582497,
+            3.5165051012644395,
+            0.6453672384241314,
+        ));
+        let length_3 = (link_4_j5 - link_4_j4).dot(&link_4_j4_z);
+        let sum = length + length_2 + length_3;
+        if !gcs_runtime::num::is_finite(sum) {
+            return Err(SolveError::new(
+                "revolute_link_5_j5_link_4_j5",
+                "revolute(link_5.j5, link_4.j5)",
+                ErrorKind::InvalidValue,
+                sum,
+            ));
+        }
+        let chain_ends = gcs_runtime::turn3d::planar_chain_ends(
+            &Line3::new(Point3::new(0.0, 0.0, 1.0), Vector3::z()),
+            &Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0),
+            &Point3::new(-0.29552020666133955, 0.955336489125606, 1.0),
+            &Line3::new(
+                link_5_j5,
+                frame::unit3(&link_5_j5_z).ok_or_else(|| {
+                    SolveError::new(
+                        "revolute_link_5_j5_link_4_j5",
+                        "revolute(link_5.j5, link_4.j5)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?,
+            ),
+            &link_4_j4_z,
+            &Line3::new(
+                tool_j6,
+                frame::unit3(&tool_j6_z).ok_or_else(|| {
+                    SolveError::new(
+                        "revolute_link_5_j5_link_4_j5",
+                        "revolute(link_5.j5, link_4.j5)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?,
+            ),
+            sum,
+            1.0,
+        );
+        if let Some(e) = SolveError::from_contact(
+            "revolute_link_5_j5_link_4_j5",
+            "revolute(link_5.j5, link_4.j5)",
+            chain_ends.contact,
+        ) {
+            return Err(e);
+        }
+
+        // Each root of `revolute(link_5.j5, link_4.j5)` in turn (`revolute_link_5_j5_link_4_j5`), the steps above shared by all.
+        for root in 0..4u8 {
+            let branches = &Branches {
+                revolute_link_5_j5_link_4_j5: root,
+                ..*branches
             };
-            for &root in scan.roots() {
-                let start = Defaults {
-                    link_1_spin_angle: root,
-                };
-                // One start of many: a failure is not told apart, and no mode is held.
-                if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search)
-                {
-                    keep(&mut found, &mut kept, s.points(), s);
+            let mut link_1 = link_1;
+            let mut link_2 = link_2;
+            let mut link_3 = link_3;
+            let mut link_4 = link_4;
+            let mut link_5 = link_5;
+            // A failure ends this root's assemblies only.
+            let _ = (|| -> Result<(), SolveError> {
+                let angles = chain_ends
+                    .roots
+                    .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
+                    .ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_link_5_j5_link_4_j5",
+                            "revolute(link_5.j5, link_4.j5)",
+                            ErrorKind::NoSuchBranch,
+                            chain_ends.roots.len() as f64,
+                        )
+                    })?;
+                let base_angle = angles[0];
+                let joint_angle = angles[1];
+                let turn_5 = frame::rotation_about_axis(&Vector3::z(), base_angle);
+                link_1.rotate_about_by(&Point3::new(0.0, 0.0, 1.0), &turn_5);
+                let turn_6 = frame::rotation_about_axis(&link_5_j5_z, joint_angle);
+                link_4.rotate_about_by(&link_5_j5, &turn_6);
+                let link_1_j2_z = link_1.vector_to_global(&Vector3::new(
+                    0.9553364891256061,
+                    0.2955202066613396,
+                    0.0,
+                ));
+                let link_4_j4_z_2 = link_4.vector_to_global(&Vector3::new(
+                    0.9553364891256061,
+                    0.2955202066613396,
+                    0.0,
+                ));
+                let turn_7 = frame::turn_about_axis(&tool_j6_z, &link_4_j4_z_2, &link_1_j2_z);
+                link_5.rotate_about_by(&tool_j6, &turn_7);
+                link_4.rotate_about_by(&tool_j6, &turn_7);
+
+                // revolute(link_2.j2, link_1.j2) (ikgeo_three_parallel_bot.gcs:48)
+                let link_1_j2 = link_1.point_to_global(&Point3::new(
+                    -0.29552020666133955,
+                    0.955336489125606,
+                    1.0,
+                ));
+                let shift_4 = link_1_j2 - Point3::new(-0.29552020666133955, 0.955336489125606, 1.0);
+                link_2.translate(&shift_4);
+                let link_2_j2_z = link_2.vector_to_global(&Vector3::new(
+                    0.9553364891256061,
+                    0.2955202066613396,
+                    0.0,
+                ));
+                let turn_8 = frame::rotation_between3(
+                    &link_2_j2_z,
+                    &link_1_j2_z,
+                    &frame::perpendicular(&link_2_j2_z),
+                );
+                link_2.rotate_about_by(&link_1_j2, &turn_8);
+
+                // revolute(link_3.j3, link_2.j3) (ikgeo_three_parallel_bot.gcs:49)
+                let link_2_j3_z = link_2.vector_to_global(&Vector3::new(
+                    0.9553364891256061,
+                    0.2955202066613396,
+                    0.0,
+                ));
+                let turn_9 = frame::rotation_between3(
+                    &Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0),
+                    &link_2_j3_z,
+                    &frame::perpendicular(&Vector3::new(
+                        0.9553364891256061,
+                        0.2955202066613396,
+                        0.0,
+                    )),
+                );
+                link_3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_9);
+
+                // revolute(link_4.j4, link_3.j4) (ikgeo_three_parallel_bot.gcs:50)
+                let link_4_j4_2 = link_4.point_to_global(&Point3::new(
+                    -0.7937386632063939,
+                    2.5659413153423762,
+                    0.7452006550709593,
+                ));
+                let link_3_j4 = link_3.point_to_global(&Point3::new(
+                    -0.7937386632063939,
+                    2.5659413153423762,
+                    0.7452006550709593,
+                ));
+                let shift_5 = link_4_j4_2 - link_3_j4;
+                link_3.translate(&shift_5);
+                let link_4_j4_z_3 = link_4.vector_to_global(&Vector3::new(
+                    0.9553364891256061,
+                    0.2955202066613396,
+                    0.0,
+                ));
+                let link_3_j4_z = link_3.vector_to_global(&Vector3::new(
+                    0.9553364891256061,
+                    0.2955202066613396,
+                    0.0,
+                ));
+                let residual = check::space::parallel(link_4_j4_z_3, link_3_j4_z, 1.0);
+                if residual.is_nan() || residual > tol {
+                    return Err(SolveError::new(
+                        "revolute_link_4_j4_link_3_j4",
+                        "revolute(link_4.j4, link_3.j4)",
+                        ErrorKind::Inconsistent,
+                        residual,
+                    ));
                 }
-            }
+                let link_3_j3 = link_3.point_to_global(&Point3::new(
+                    -0.5215465279109626,
+                    1.6860181390611182,
+                    0.355782312762309,
+                ));
+                let orbit = Circle3::orbit(
+                    &link_4_j4_2,
+                    &frame::unit3(&link_2_j3_z).ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_link_3_j3_link_2_j3",
+                            "revolute(link_3.j3, link_2.j3)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?,
+                    &link_3_j3,
+                );
+                let link_2_j3 = link_2.point_to_global(&Point3::new(
+                    -0.5215465279109626,
+                    1.6860181390611182,
+                    0.355782312762309,
+                ));
+                let normal = frame::unit3(&link_2_j3_z).ok_or_else(|| {
+                    SolveError::new(
+                        "revolute_link_3_j3_link_2_j3",
+                        "revolute(link_3.j3, link_2.j3)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let plane = Plane::from_point_normal(&link_3_j3, &normal);
+                let gap = plane.distance(&link_2_j3);
+                if gap.is_nan() || gap > tol {
+                    return Err(SolveError::new(
+                        "revolute_link_3_j3_link_2_j3",
+                        "revolute(link_3.j3, link_2.j3)",
+                        ErrorKind::Inconsistent,
+                        gap,
+                    ));
+                }
+                let nearest = plane.project(&link_2_j3);
+                let orbit_2 = Circle3::orbit(
+                    &link_1_j2,
+                    &frame::unit3(&link_1_j2_z).ok_or_else(|| {
+                        SolveError::new(
+                            "revolute_link_3_j3_link_2_j3",
+                            "revolute(link_3.j3, link_2.j3)",
+                            ErrorKind::Degenerate,
+                            0.0,
+                        )
+                    })?,
+                    &nearest,
+                );
+                let revolute_link_3_j3_link_2_j3_meeting =
+                    intersect3d::circle_circle(&orbit, &orbit_2);
+                if let Some(e) = SolveError::from_contact(
+                    "revolute_link_3_j3_link_2_j3",
+                    "revolute(link_3.j3, link_2.j3)",
+                    revolute_link_3_j3_link_2_j3_meeting.contact,
+                ) {
+                    return Err(e);
+                }
+
+                // Each root of `revolute(link_3.j3, link_2.j3)` in turn (`revolute_link_3_j3_link_2_j3`), the steps above shared by all.
+                for root in 0..2u8 {
+                    let branches = &Branches {
+                        revolute_link_3_j3_link_2_j3: root,
+                        ..*branches
+                    };
+                    let mut link_2 = link_2;
+                    let mut link_3 = link_3;
+                    // A failure ends this root's assemblies only.
+                    let _ = (|| -> Result<(), SolveError> {
+                        let revolute_link_3_j3_link_2_j3 = revolute_link_3_j3_link_2_j3_meeting
+                            .roots
+                            .get(usize::from(branches.revolute_link_3_j3_link_2_j3))
+                            .ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_link_3_j3_link_2_j3",
+                                    "revolute(link_3.j3, link_2.j3)",
+                                    ErrorKind::NoSuchBranch,
+                                    revolute_link_3_j3_link_2_j3_meeting.roots.len() as f64,
+                                )
+                            })?;
+                        let turn_10 = frame::turn_about_axis(
+                            &link_2_j3_z,
+                            &(link_3_j3 - link_4_j4_2),
+                            &(revolute_link_3_j3_link_2_j3 - link_4_j4_2),
+                        );
+                        link_3.rotate_about_by(&link_4_j4_2, &turn_10);
+                        let orbit_3 = Circle3::orbit(
+                            &link_1_j2,
+                            &frame::unit3(&link_1_j2_z).ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_link_3_j3_link_2_j3",
+                                    "revolute(link_3.j3, link_2.j3)",
+                                    ErrorKind::Degenerate,
+                                    0.0,
+                                )
+                            })?,
+                            &link_2_j3,
+                        );
+                        let gap_2 = orbit_3.distance(&revolute_link_3_j3_link_2_j3);
+                        if gap_2.is_nan() || gap_2 > tol {
+                            return Err(SolveError::new(
+                                "revolute_link_3_j3_link_2_j3",
+                                "revolute(link_3.j3, link_2.j3)",
+                                ErrorKind::Inconsistent,
+                                gap_2,
+                            ));
+                        }
+                        let turn_11 = frame::turn_about_axis(
+                            &link_1_j2_z,
+                            &(link_2_j3 - link_1_j2),
+                            &(revolute_link_3_j3_link_2_j3 - link_1_j2),
+                        );
+                        link_2.rotate_about_by(&link_1_j2, &turn_11);
+
+                        let solution = Solution {
+                            ground,
+                            ground_target_local,
+                            ground_target_z_local,
+                            ground_target_x_local,
+                            link_1,
+                            link_2,
+                            link_3,
+                            link_4,
+                            link_5,
+                            tool,
+                            branches: *branches,
+                        };
+                        keep(&mut found, &mut kept, solution.points(), solution);
+                        Ok(())
+                    })();
+                }
+                Ok(())
+            })();
         }
-    }
+        Ok(())
+    })();
     found
 }

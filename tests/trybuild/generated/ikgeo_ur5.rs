@@ -668,6 +668,7 @@ pub fn solve(
     let mut link_4 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut link_5 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // revolute(link_1.j1, ground.base) (ikgeo_ur5.gcs:47)
     // Already true where the sketch puts the geoms: nothing moves.
@@ -926,6 +927,25 @@ pub fn solve(
         0.11144210400601204,
         0.3629515170760187,
     ));
+    let normal_2 = frame::unit3(&link_2_j3_z).ok_or_else(|| {
+        SolveError::new(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let plane = Plane::from_point_normal(&link_3_j3, &normal_2);
+    let gap_2 = plane.distance(&link_2_j3);
+    if gap_2.is_nan() || gap_2 > tol {
+        return Err(SolveError::new(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            ErrorKind::Inconsistent,
+            gap_2,
+        ));
+    }
+    let nearest = plane.project(&link_2_j3);
     let orbit_2 = Circle3::orbit(
         &Point3::new(0.0, 0.0, 0.089159),
         &frame::unit3(&link_1_j2_z).ok_or_else(|| {
@@ -936,7 +956,7 @@ pub fn solve(
                 0.0,
             )
         })?,
-        &link_2_j3,
+        &nearest,
     );
     let revolute_link_3_j3_link_2_j3_meeting = intersect3d::circle_circle(&orbit, &orbit_2);
     if let Some(e) = SolveError::from_contact(
@@ -963,6 +983,27 @@ pub fn solve(
         &(revolute_link_3_j3_link_2_j3 - link_4_j4_2),
     );
     link_3.rotate_about_by(&link_4_j4_2, &turn_10);
+    let orbit_3 = Circle3::orbit(
+        &Point3::new(0.0, 0.0, 0.089159),
+        &frame::unit3(&link_1_j2_z).ok_or_else(|| {
+            SolveError::new(
+                "revolute_link_3_j3_link_2_j3",
+                "revolute(link_3.j3, link_2.j3)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?,
+        &link_2_j3,
+    );
+    let gap_3 = orbit_3.distance(&revolute_link_3_j3_link_2_j3);
+    if gap_3.is_nan() || gap_3 > tol {
+        return Err(SolveError::new(
+            "revolute_link_3_j3_link_2_j3",
+            "revolute(link_3.j3, link_2.j3)",
+            ErrorKind::Inconsistent,
+            gap_3,
+        ));
+    }
     let turn_11 = frame::turn_about_axis(
         &link_1_j2_z,
         &(link_2_j3 - Point3::new(0.0, 0.0, 0.089159)),
@@ -1207,6 +1248,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let mut link_4 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut link_5 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
         // revolute(link_1.j1, ground.base) (ikgeo_ur5.gcs:47)
         // Already true where the sketch puts the geoms: nothing moves.
@@ -1511,6 +1553,25 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             0.11144210400601204,
                             0.3629515170760187,
                         ));
+                        let normal_2 = frame::unit3(&link_2_j3_z).ok_or_else(|| {
+                            SolveError::new(
+                                "revolute_link_3_j3_link_2_j3",
+                                "revolute(link_3.j3, link_2.j3)",
+                                ErrorKind::Degenerate,
+                                0.0,
+                            )
+                        })?;
+                        let plane = Plane::from_point_normal(&link_3_j3, &normal_2);
+                        let gap_2 = plane.distance(&link_2_j3);
+                        if gap_2.is_nan() || gap_2 > tol {
+                            return Err(SolveError::new(
+                                "revolute_link_3_j3_link_2_j3",
+                                "revolute(link_3.j3, link_2.j3)",
+                                ErrorKind::Inconsistent,
+                                gap_2,
+                            ));
+                        }
+                        let nearest = plane.project(&link_2_j3);
                         let orbit_2 = Circle3::orbit(
                             &Point3::new(0.0, 0.0, 0.089159),
                             &frame::unit3(&link_1_j2_z).ok_or_else(|| {
@@ -1521,7 +1582,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     0.0,
                                 )
                             })?,
-                            &link_2_j3,
+                            &nearest,
                         );
                         let revolute_link_3_j3_link_2_j3_meeting =
                             intersect3d::circle_circle(&orbit, &orbit_2);
@@ -1562,6 +1623,27 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     &(revolute_link_3_j3_link_2_j3 - link_4_j4_2),
                                 );
                                 link_3.rotate_about_by(&link_4_j4_2, &turn_10);
+                                let orbit_3 = Circle3::orbit(
+                                    &Point3::new(0.0, 0.0, 0.089159),
+                                    &frame::unit3(&link_1_j2_z).ok_or_else(|| {
+                                        SolveError::new(
+                                            "revolute_link_3_j3_link_2_j3",
+                                            "revolute(link_3.j3, link_2.j3)",
+                                            ErrorKind::Degenerate,
+                                            0.0,
+                                        )
+                                    })?,
+                                    &link_2_j3,
+                                );
+                                let gap_3 = orbit_3.distance(&revolute_link_3_j3_link_2_j3);
+                                if gap_3.is_nan() || gap_3 > tol {
+                                    return Err(SolveError::new(
+                                        "revolute_link_3_j3_link_2_j3",
+                                        "revolute(link_3.j3, link_2.j3)",
+                                        ErrorKind::Inconsistent,
+                                        gap_3,
+                                    ));
+                                }
                                 let turn_11 = frame::turn_about_axis(
                                     &link_1_j2_z,
                                     &(link_2_j3 - Point3::new(0.0, 0.0, 0.089159)),

@@ -604,6 +604,7 @@ pub fn solve(
     let mut wrist_roll = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut wrist_bend = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // revolute(trunk.yaw, ground.base) (puma.gcs:47)
     // Already true where the sketch puts the geoms: nothing moves.
@@ -752,6 +753,25 @@ pub fn solve(
         &forearm_elbow_2,
     );
     let upper_arm_elbow = upper_arm.point_to_global(&Point3::new(0.4318, 0.15, 0.66));
+    let normal_2 = frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
+        SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let plane = Plane::from_point_normal(&forearm_elbow_2, &normal_2);
+    let gap_2 = plane.distance(&upper_arm_elbow);
+    if gap_2.is_nan() || gap_2 > tol {
+        return Err(SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Inconsistent,
+            gap_2,
+        ));
+    }
+    let nearest = plane.project(&upper_arm_elbow);
     let orbit_2 = Circle3::orbit(
         &Point3::new(0.0, 0.0, 0.66),
         &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
@@ -762,7 +782,7 @@ pub fn solve(
                 0.0,
             )
         })?,
-        &upper_arm_elbow,
+        &nearest,
     );
     let revolute_forearm_elbow_upper_arm_elbow_meeting =
         intersect3d::circle_circle(&orbit, &orbit_2);
@@ -790,6 +810,27 @@ pub fn solve(
         &(revolute_forearm_elbow_upper_arm_elbow - wrist_roll_wrist),
     );
     forearm.rotate_about_by(&wrist_roll_wrist, &turn_7);
+    let orbit_3 = Circle3::orbit(
+        &Point3::new(0.0, 0.0, 0.66),
+        &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
+            SolveError::new(
+                "revolute_forearm_elbow_upper_arm_elbow",
+                "revolute(forearm.elbow, upper_arm.elbow)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?,
+        &upper_arm_elbow,
+    );
+    let gap_3 = orbit_3.distance(&revolute_forearm_elbow_upper_arm_elbow);
+    if gap_3.is_nan() || gap_3 > tol {
+        return Err(SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Inconsistent,
+            gap_3,
+        ));
+    }
     let turn_8 = frame::turn_about_axis(
         &trunk_shoulder_z,
         &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.66)),
@@ -1082,6 +1123,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let mut wrist_roll = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut wrist_bend = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut tool = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
         // revolute(trunk.yaw, ground.base) (puma.gcs:47)
         // Already true where the sketch puts the geoms: nothing moves.
@@ -1244,6 +1286,25 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     &forearm_elbow_2,
                 );
                 let upper_arm_elbow = upper_arm.point_to_global(&Point3::new(0.4318, 0.15, 0.66));
+                let normal_2 = frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
+                    SolveError::new(
+                        "revolute_forearm_elbow_upper_arm_elbow",
+                        "revolute(forearm.elbow, upper_arm.elbow)",
+                        ErrorKind::Degenerate,
+                        0.0,
+                    )
+                })?;
+                let plane = Plane::from_point_normal(&forearm_elbow_2, &normal_2);
+                let gap_2 = plane.distance(&upper_arm_elbow);
+                if gap_2.is_nan() || gap_2 > tol {
+                    return Err(SolveError::new(
+                        "revolute_forearm_elbow_upper_arm_elbow",
+                        "revolute(forearm.elbow, upper_arm.elbow)",
+                        ErrorKind::Inconsistent,
+                        gap_2,
+                    ));
+                }
+                let nearest = plane.project(&upper_arm_elbow);
                 let orbit_2 = Circle3::orbit(
                     &Point3::new(0.0, 0.0, 0.66),
                     &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
@@ -1254,7 +1315,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             0.0,
                         )
                     })?,
-                    &upper_arm_elbow,
+                    &nearest,
                 );
                 let revolute_forearm_elbow_upper_arm_elbow_meeting =
                     intersect3d::circle_circle(&orbit, &orbit_2);
@@ -1296,6 +1357,27 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             &(revolute_forearm_elbow_upper_arm_elbow - wrist_roll_wrist),
                         );
                         forearm.rotate_about_by(&wrist_roll_wrist, &turn_7);
+                        let orbit_3 = Circle3::orbit(
+                            &Point3::new(0.0, 0.0, 0.66),
+                            &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
+                                SolveError::new(
+                                    "revolute_forearm_elbow_upper_arm_elbow",
+                                    "revolute(forearm.elbow, upper_arm.elbow)",
+                                    ErrorKind::Degenerate,
+                                    0.0,
+                                )
+                            })?,
+                            &upper_arm_elbow,
+                        );
+                        let gap_3 = orbit_3.distance(&revolute_forearm_elbow_upper_arm_elbow);
+                        if gap_3.is_nan() || gap_3 > tol {
+                            return Err(SolveError::new(
+                                "revolute_forearm_elbow_upper_arm_elbow",
+                                "revolute(forearm.elbow, upper_arm.elbow)",
+                                ErrorKind::Inconsistent,
+                                gap_3,
+                            ));
+                        }
                         let turn_8 = frame::turn_about_axis(
                             &trunk_shoulder_z,
                             &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.66)),

@@ -597,7 +597,19 @@ pub fn solve(
         &Point3::new(0.35, 0.0, 0.35),
     );
     let forearm_elbow_2 = forearm.point_to_global(&Point3::new(0.35, 0.0, 0.35));
-    let orbit_2 = Circle3::orbit(&forearm_quill, &Vector3::z(), &forearm_elbow_2);
+    let normal_2 = Vector3::z();
+    let plane_2 = Plane::from_point_normal(&Point3::new(0.35, 0.0, 0.35), &normal_2);
+    let gap = plane_2.distance(&forearm_elbow_2);
+    if gap.is_nan() || gap > tol {
+        return Err(SolveError::new(
+            "q2",
+            "revolute(upper_arm.elbow, forearm.elbow)",
+            ErrorKind::Inconsistent,
+            gap,
+        ));
+    }
+    let nearest_2 = plane_2.project(&forearm_elbow_2);
+    let orbit_2 = Circle3::orbit(&forearm_quill, &Vector3::z(), &nearest_2);
     let q2_meeting_2 = intersect3d::circle_circle(&orbit, &orbit_2);
     if let Some(e) = SolveError::from_contact(
         "q2",
@@ -623,6 +635,16 @@ pub fn solve(
         &(q2_2 - Point3::new(0.0, 0.0, 0.0)),
     );
     upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+    let orbit_3 = Circle3::orbit(&forearm_quill, &Vector3::z(), &forearm_elbow_2);
+    let gap_2 = orbit_3.distance(&q2_2);
+    if gap_2.is_nan() || gap_2 > tol {
+        return Err(SolveError::new(
+            "q2",
+            "revolute(upper_arm.elbow, forearm.elbow)",
+            ErrorKind::Inconsistent,
+            gap_2,
+        ));
+    }
     let turn_3 = frame::turn_about_axis(
         &Vector3::z(),
         &(forearm_elbow_2 - forearm_quill),
@@ -951,7 +973,19 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             &Point3::new(0.35, 0.0, 0.35),
         );
         let forearm_elbow_2 = forearm.point_to_global(&Point3::new(0.35, 0.0, 0.35));
-        let orbit_2 = Circle3::orbit(&forearm_quill, &Vector3::z(), &forearm_elbow_2);
+        let normal_2 = Vector3::z();
+        let plane_2 = Plane::from_point_normal(&Point3::new(0.35, 0.0, 0.35), &normal_2);
+        let gap = plane_2.distance(&forearm_elbow_2);
+        if gap.is_nan() || gap > tol {
+            return Err(SolveError::new(
+                "q2",
+                "revolute(upper_arm.elbow, forearm.elbow)",
+                ErrorKind::Inconsistent,
+                gap,
+            ));
+        }
+        let nearest_2 = plane_2.project(&forearm_elbow_2);
+        let orbit_2 = Circle3::orbit(&forearm_quill, &Vector3::z(), &nearest_2);
         let q2_meeting_2 = intersect3d::circle_circle(&orbit, &orbit_2);
         if let Some(e) = SolveError::from_contact(
             "q2",
@@ -989,6 +1023,16 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     &(q2_2 - Point3::new(0.0, 0.0, 0.0)),
                 );
                 upper_arm.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_2);
+                let orbit_3 = Circle3::orbit(&forearm_quill, &Vector3::z(), &forearm_elbow_2);
+                let gap_2 = orbit_3.distance(&q2_2);
+                if gap_2.is_nan() || gap_2 > tol {
+                    return Err(SolveError::new(
+                        "q2",
+                        "revolute(upper_arm.elbow, forearm.elbow)",
+                        ErrorKind::Inconsistent,
+                        gap_2,
+                    ));
+                }
                 let turn_3 = frame::turn_about_axis(
                     &Vector3::z(),
                     &(forearm_elbow_2 - forearm_quill),

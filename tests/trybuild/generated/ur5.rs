@@ -598,6 +598,7 @@ pub fn solve(
     let mut wrist_1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut wrist_2 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
     let mut wrist_3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+    let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
     // revolute(trunk.yaw, ground.base) (ur5.gcs:46)
     // Already true where the sketch puts the geoms: nothing moves.
@@ -798,6 +799,25 @@ pub fn solve(
     );
     let upper_arm_elbow =
         upper_arm.point_to_global(&Point3::new(0.372972588803408, 0.0, 0.292914853906786));
+    let normal_2 = frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
+        SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Degenerate,
+            0.0,
+        )
+    })?;
+    let plane = Plane::from_point_normal(&forearm_elbow, &normal_2);
+    let gap_2 = plane.distance(&upper_arm_elbow);
+    if gap_2.is_nan() || gap_2 > tol {
+        return Err(SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Inconsistent,
+            gap_2,
+        ));
+    }
+    let nearest = plane.project(&upper_arm_elbow);
     let orbit_2 = Circle3::orbit(
         &Point3::new(0.0, 0.0, 0.089159),
         &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
@@ -808,7 +828,7 @@ pub fn solve(
                 0.0,
             )
         })?,
-        &upper_arm_elbow,
+        &nearest,
     );
     let revolute_forearm_elbow_upper_arm_elbow_meeting =
         intersect3d::circle_circle(&orbit, &orbit_2);
@@ -836,6 +856,27 @@ pub fn solve(
         &(revolute_forearm_elbow_upper_arm_elbow - wrist_1_wrist1_2),
     );
     forearm.rotate_about_by(&wrist_1_wrist1_2, &turn_10);
+    let orbit_3 = Circle3::orbit(
+        &Point3::new(0.0, 0.0, 0.089159),
+        &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
+            SolveError::new(
+                "revolute_forearm_elbow_upper_arm_elbow",
+                "revolute(forearm.elbow, upper_arm.elbow)",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?,
+        &upper_arm_elbow,
+    );
+    let gap_3 = orbit_3.distance(&revolute_forearm_elbow_upper_arm_elbow);
+    if gap_3.is_nan() || gap_3 > tol {
+        return Err(SolveError::new(
+            "revolute_forearm_elbow_upper_arm_elbow",
+            "revolute(forearm.elbow, upper_arm.elbow)",
+            ErrorKind::Inconsistent,
+            gap_3,
+        ));
+    }
     let turn_11 = frame::turn_about_axis(
         &trunk_shoulder_z,
         &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),
@@ -1080,6 +1121,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let mut wrist_1 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut wrist_2 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
         let mut wrist_3 = Frame3::new(Point3::new(0.0, 0.0, 0.0), UnitQuaternion::identity());
+        let tol = 1e-9; // CHECK_REL * (1 + scale), of the sketch's constants
 
         // revolute(trunk.yaw, ground.base) (ur5.gcs:46)
         // Already true where the sketch puts the geoms: nothing moves.
@@ -1326,6 +1368,25 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             0.0,
                             0.292914853906786,
                         ));
+                        let normal_2 = frame::unit3(&upper_arm_elbow_z).ok_or_else(|| {
+                            SolveError::new(
+                                "revolute_forearm_elbow_upper_arm_elbow",
+                                "revolute(forearm.elbow, upper_arm.elbow)",
+                                ErrorKind::Degenerate,
+                                0.0,
+                            )
+                        })?;
+                        let plane = Plane::from_point_normal(&forearm_elbow, &normal_2);
+                        let gap_2 = plane.distance(&upper_arm_elbow);
+                        if gap_2.is_nan() || gap_2 > tol {
+                            return Err(SolveError::new(
+                                "revolute_forearm_elbow_upper_arm_elbow",
+                                "revolute(forearm.elbow, upper_arm.elbow)",
+                                ErrorKind::Inconsistent,
+                                gap_2,
+                            ));
+                        }
+                        let nearest = plane.project(&upper_arm_elbow);
                         let orbit_2 = Circle3::orbit(
                             &Point3::new(0.0, 0.0, 0.089159),
                             &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
@@ -1336,7 +1397,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     0.0,
                                 )
                             })?,
-                            &upper_arm_elbow,
+                            &nearest,
                         );
                         let revolute_forearm_elbow_upper_arm_elbow_meeting =
                             intersect3d::circle_circle(&orbit, &orbit_2);
@@ -1381,6 +1442,28 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     &(revolute_forearm_elbow_upper_arm_elbow - wrist_1_wrist1_2),
                                 );
                                 forearm.rotate_about_by(&wrist_1_wrist1_2, &turn_10);
+                                let orbit_3 = Circle3::orbit(
+                                    &Point3::new(0.0, 0.0, 0.089159),
+                                    &frame::unit3(&trunk_shoulder_z).ok_or_else(|| {
+                                        SolveError::new(
+                                            "revolute_forearm_elbow_upper_arm_elbow",
+                                            "revolute(forearm.elbow, upper_arm.elbow)",
+                                            ErrorKind::Degenerate,
+                                            0.0,
+                                        )
+                                    })?,
+                                    &upper_arm_elbow,
+                                );
+                                let gap_3 =
+                                    orbit_3.distance(&revolute_forearm_elbow_upper_arm_elbow);
+                                if gap_3.is_nan() || gap_3 > tol {
+                                    return Err(SolveError::new(
+                                        "revolute_forearm_elbow_upper_arm_elbow",
+                                        "revolute(forearm.elbow, upper_arm.elbow)",
+                                        ErrorKind::Inconsistent,
+                                        gap_3,
+                                    ));
+                                }
                                 let turn_11 = frame::turn_about_axis(
                                     &trunk_shoulder_z,
                                     &(upper_arm_elbow - Point3::new(0.0, 0.0, 0.089159)),

@@ -279,9 +279,11 @@ impl Builder<'_, Spatial> {
             ],
             _ => vec![format!("where {wa} and {wb} meet")],
         };
-        if meet == Meet::CircleCircle {
-            self.check_coplanar_orbits(a, b, r);
-        }
+        let b = if meet == Meet::CircleCircle {
+            self.coplanar_orbits(a, b, r)
+        } else {
+            b
+        };
         let branch = self.branch(r.constraint, meanings);
         if held {
             self.plan.branches[branch.0 as usize].symmetric = true;
@@ -335,25 +337,77 @@ impl Builder<'_, Spatial> {
     /// before the circles are met, the distance of the second circle's point from the
     /// first's plane, and closes the iteration: a scan of the default's turn brackets every
     /// root, while the circles' meeting exists only at the roots.
-    fn check_coplanar_orbits(&mut self, a: Reg, b: Reg, r: &Rel) {
+    ///
+    /// With no default under them, the plan met the plane's equation already (a sub-chain's
+    /// plane turned onto its point, a chain's ends closed): the circles are coplanar by
+    /// construction, to the rounding of the steps that made them. Near a singular pose that
+    /// rounding is amplified past the tolerance two circles of space meet with (a turn about an
+    /// axis that the chain's axis is nearly along): so the second circle is taken in the first's
+    /// plane, its point brought onto it, which must be within the checks' tolerance.
+    ///
+    /// Returns the second circle to meet.
+    fn coplanar_orbits(&mut self, a: Reg, b: Reg, r: &Rel) -> Reg {
         let orbit = |k: Reg| match self.def(k).map(|s| &s.op) {
-            Some(Op::Spatial(SpatialOp::Orbit { axis, through, .. })) => Some((*axis, *through)),
+            Some(Op::Spatial(SpatialOp::Orbit {
+                pivot,
+                axis,
+                through,
+            })) => Some((*pivot, *axis, *through)),
             _ => None,
         };
-        let (Some((axis_a, through_a)), Some((axis_b, through_b))) = (orbit(a), orbit(b)) else {
-            return;
+        let (Some((_, axis_a, through_a)), Some((pivot_b, axis_b, through_b))) =
+            (orbit(a), orbit(b))
+        else {
+            return b;
         };
         let feature = |k: Reg| match self.def(k).map(|s| &s.op) {
             Some(Op::DirOf(g)) => Some(*g),
             _ => None,
         };
         let (Some(fa), Some(fb)) = (feature(axis_a), feature(axis_b)) else {
-            return;
+            return b;
         };
-        // With no default under them, the plan met the plane's equation already (a sub-chain's
-        // plane turned onto its point): the circles are coplanar by construction.
-        if !self.depends_on_default(&[a, b]) || !self.kept_parallel(fa, fb) {
-            return;
+        if !self.kept_parallel(fa, fb) {
+            return b;
+        }
+        if !self.depends_on_default(&[a, b]) {
+            let (wa, wb) = (self.word(a), self.word(b));
+            let plane = self.value(
+                SpatialOp::Plane {
+                    point: through_a,
+                    normal: axis_a,
+                    offset: None,
+                },
+                Ty::Plane,
+                format!("the plane of {wa}"),
+            );
+            let words = self.word(through_b);
+            let on = self.value(
+                Op::Onto {
+                    locus: plane,
+                    point: through_b,
+                    constraint: r.constraint,
+                },
+                Ty::Point,
+                words.clone(),
+            );
+            let moved = self.value(
+                Op::Nearest {
+                    locus: plane,
+                    point: on,
+                },
+                Ty::Point,
+                format!("{words} in the plane of {wa}"),
+            );
+            return self.value(
+                SpatialOp::Orbit {
+                    pivot: pivot_b,
+                    axis: axis_b,
+                    through: moved,
+                },
+                Ty::Circle,
+                format!("{wb}, in the plane of {wa}"),
+            );
         }
         let explain = format!(
             "Check that {} and {} lie in one plane, square to their parallel axes ({}).",
@@ -376,6 +430,7 @@ impl Builder<'_, Spatial> {
             Vec::new(),
             explain,
         );
+        b
     }
 
     /// Whether the model keeps unit direction features `a` and `b` (marker axes) parallel

@@ -110,6 +110,7 @@
 //! `Geometry` impl and a body's constant geometry (its local points and directions).
 
 mod action;
+mod chain_ends;
 mod check;
 mod circle;
 mod defaults;
@@ -197,7 +198,10 @@ impl Geometry for Spatial {
     }
 
     fn subchains(b: &mut Builder<'_, Self>) -> bool {
-        b.planar_subchain() || b.pivoted_pair() || b.three_circle_chain()
+        b.planar_subchain()
+            || b.pivoted_pair()
+            || b.three_circle_chain()
+            || b.planar_chain_between_turns()
     }
 
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {

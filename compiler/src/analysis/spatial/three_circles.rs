@@ -329,7 +329,7 @@ impl Builder<'_, Spatial> {
 
     /// Rotates `geoms` about the joint's marker `at` so that their marker's z axis `z` points
     /// along the other marker's, `axis` (in the sense of the joint `c`'s parallel relation).
-    fn align_joint(
+    pub(super) fn align_joint(
         &mut self,
         geoms: &[GeomId],
         (at, z_at, axis): (GeomId, GeomId, Reg),

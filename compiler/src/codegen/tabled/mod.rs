@@ -66,8 +66,9 @@ pub enum Untabled {
         /// The constraints of its first row.
         constraint: String,
     },
-    /// The plan solves a three-circle problem (`SpatialOp::ThreeCircles`): one step with three
-    /// answers, which a table's slices of one type each cannot hold.
+    /// The plan solves a three-circle problem (`SpatialOp::ThreeCircles`) or a planar
+    /// sub-chain's ends (`SpatialOp::PlanarChainEnds`): one step with several answers, which a
+    /// table's slices of one type each cannot hold.
     ThreeCircles {
         /// The constraint whose branch it takes.
         constraint: String,
@@ -94,8 +95,8 @@ impl std::fmt::Display for Untabled {
             ),
             Untabled::ThreeCircles { constraint } => write!(
                 f,
-                "its plan solves the three-circle problem of `{constraint}` as one step with \
-                 three answers: only a plan without one is laid out as tables"
+                "its plan solves a chain of turns (from `{constraint}` on) as one step with \
+                 several answers: only a plan without one is laid out as tables"
             ),
         }
     }
@@ -135,9 +136,10 @@ pub(super) fn module(
         return Err(Untabled::Linear { constraint });
     }
     if let Some(c) = cx.plan.steps.iter().find_map(|s| match &s.op {
-        crate::plan::Op::Spatial(crate::plan::SpatialOp::ThreeCircles { constraint, .. }) => {
-            Some(*constraint)
-        }
+        crate::plan::Op::Spatial(
+            crate::plan::SpatialOp::ThreeCircles { constraint, .. }
+            | crate::plan::SpatialOp::PlanarChainEnds { constraint, .. },
+        ) => Some(*constraint),
         _ => None,
     }) {
         let constraint = cx.model.constraints[c].name.clone();
