@@ -1425,23 +1425,24 @@ fn sp5_close_pair_closes_the_chain_to_rounding() {
     }
 }
 
+/// An instance of [`planar_chain_ends`] and the angles it was built at.
+struct Chain {
+    first: Line3,
+    h: Vector3<f64>,
+    base: Point3<f64>,
+    joint: Line3,
+    far: Vector3<f64>,
+    last: Line3,
+    offset: f64,
+    sense: f64,
+    t: [f64; 2],
+}
+
 /// A planar sub-chain's ends closed at the angles it was built at: a first body turning about
 /// `first` with the chain's axis `h`, a far body turning about `last`, the chain's last body on
 /// it by a joint, its axis `far` made to lie along `sense · h` at a random turn of the far body,
 /// and the offset the chain must have. Built with nalgebra's rotations, apart from the solver.
-fn planar_chain_at(
-    seed: u64,
-) -> (
-    Line3,
-    Vector3<f64>,
-    Point3<f64>,
-    Line3,
-    Vector3<f64>,
-    Line3,
-    f64,
-    f64,
-    [f64; 2],
-) {
+fn planar_chain_at(seed: u64) -> Chain {
     let mut g = Rng(seed);
     let s = g.scale();
     let (first, h, base) = (g.axis(s), g.unit(), g.point(s));
@@ -1459,7 +1460,17 @@ fn planar_chain_at(
     let base_at = rot(&first, t1, &base);
     let joint_at = rot(&last, t6, &joint.point);
     let offset = h_at.dot(&(joint_at - base_at));
-    (first, h, base, joint, far, last, offset, sense, [t1, t2])
+    Chain {
+        first,
+        h,
+        base,
+        joint,
+        far,
+        last,
+        offset,
+        sense,
+        t: [t1, t2],
+    }
 }
 
 /// SP6 on a planar sub-chain's ends: the angles it was built at are among the roots, and every
@@ -1469,7 +1480,17 @@ fn planar_chain_at(
 fn planar_chain_ends_finds_the_angles_it_was_built_at() {
     let mut found = 0;
     for seed in 0..400u64 {
-        let (first, h, base, joint, far, last, offset, sense, t) = planar_chain_at(seed);
+        let Chain {
+            first,
+            h,
+            base,
+            joint,
+            far,
+            last,
+            offset,
+            sense,
+            t,
+        } = planar_chain_at(seed);
         let x = planar_chain_ends(&first, &h, &base, &joint, &far, &last, offset, sense);
         if matches!(x.contact, Contact::Coincident) {
             continue;
