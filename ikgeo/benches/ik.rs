@@ -1,6 +1,7 @@
 //! gcs's generated arm solvers against ik-geo 0.1.2 (`cargo bench` in ikgeo/).
 //!
-//! For each arm gcs solves in closed form (`ur5`, `irb6640`), the same N = 1,000 poses (random
+//! For each of ik-geo's four arms (`ur5`, `irb6640`, `spherical_bot`, `three_parallel_bot`, all
+//! in closed form in gcs), the same N = 1,000 poses (random
 //! joint angles through this crate's forward kinematics, written from ik-geo's `h` and `p`
 //! apart from both solvers; the check's poses), and per pose:
 //!
@@ -17,11 +18,6 @@
 //! printed: each round's ik-geo time over the gcs side's, the median over the rounds with its
 //! quartiles. One more side there, `gcs_solve_all + angles`, adds reading the joint angles
 //! from gcs's frames, which is what a caller wanting ik-geo's output pays.
-//!
-//! `spherical_bot` and `three_parallel_bot`, which gcs solves by scanning the base's turn (an
-//! outer iteration over one angle, not a closed form: ik-geo's subproblems 5 and 6, quartics,
-//! are not constructions of gcs yet), are timed interleaved only, over 20 rounds (every pose
-//! once a side).
 
 use criterion::Criterion;
 use gcs_ikgeo::arms::{Arm, Pose, IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, UR5};
@@ -173,6 +169,8 @@ fn main() {
     let mut c = Criterion::default().configure_from_args();
     bench_arm::<Ur5>(&mut c, &UR5);
     bench_arm::<Irb6640>(&mut c, &IRB6640);
+    bench_arm::<SphericalBot>(&mut c, &SPHERICAL_BOT);
+    bench_arm::<ThreeParallelBot>(&mut c, &THREE_PARALLEL_BOT);
     c.final_summary();
     // Criterion's filter, if any (a word that is neither an option nor a number).
     let words: Vec<String> = std::env::args()
@@ -193,12 +191,10 @@ fn main() {
     if wanted(IRB6640.name) {
         interleaved::<Irb6640>(&IRB6640, ROUNDS);
     }
-    // Scanned, about a thousand times slower: every pose once a side.
-    let scanned = N / BLOCK;
     if wanted(SPHERICAL_BOT.name) {
-        interleaved::<SphericalBot>(&SPHERICAL_BOT, scanned);
+        interleaved::<SphericalBot>(&SPHERICAL_BOT, ROUNDS);
     }
     if wanted(THREE_PARALLEL_BOT.name) {
-        interleaved::<ThreeParallelBot>(&THREE_PARALLEL_BOT, scanned);
+        interleaved::<ThreeParallelBot>(&THREE_PARALLEL_BOT, ROUNDS);
     }
 }

@@ -16,7 +16,7 @@ pub const TOL: f64 = 1e-10;
 pub const EXACT_POSE: f64 = 1e-12;
 
 /// How far apart (in joint angles) two solutions of a near-singular pose may be and still be
-/// one root found to different accuracy (the scanned arms' worst matched pair is 5.3e-10).
+/// one root found to different accuracy (the quartic arms' worst matched pair is 9.5e-11).
 pub const NEAR: f64 = 1e-7;
 
 /// The seed of an arm's poses: the same in the check and the bench.
@@ -190,8 +190,8 @@ fn describe(
 
 impl Report {
     /// Whether gcs missed no solution ik-geo found to machine precision and gave no wrong one:
-    /// the check of the scanned arms, whose roots near a singular pose the two sides find to
-    /// different accuracy.
+    /// the check of the quartic arms, whose roots near a fold the two sides find to different
+    /// accuracy.
     pub fn nothing_missed_or_wrong(&self) -> bool {
         self.gcs_missed == 0 && self.gcs_wrong == 0
     }

@@ -4,12 +4,10 @@
 //! what the check (`src/main.rs`) and the bench (`benches/ik.rs`) share: reading joint angles
 //! from gcs's solved body frames, and comparing solution sets.
 //!
-//! `ur5` and `irb6640` analyse in closed form (no default, no iteration). `spherical_bot` and
-//! `three_parallel_bot` do not: gcs finds no closed form for them (ik-geo solves their
-//! positioning by its subproblems 5 and 6, each a quartic) and iterates on the base's angle.
-//! They are compiled and compared too, for information: a scan of the base's turn finds their
-//! solutions (`cargo run --release` counts them), hundreds of times slower than ik-geo's
-//! closed forms (`cargo bench -- bot`).
+//! All four analyse in closed form (no default, no iteration): `ur5` and `irb6640` by circles
+//! and spheres (a planar sub-chain's plane, a pivoted pair, a spherical wrist), `spherical_bot`
+//! by the three-circle problem and `three_parallel_bot` by a planar sub-chain's ends (ik-geo's
+//! subproblems 5 and 6, each a quartic).
 
 pub mod arms;
 pub mod check;

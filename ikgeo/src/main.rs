@@ -1,8 +1,10 @@
 //! The check (`cargo run --release` in ikgeo/): for 1,000 random poses of each arm, ik-geo's
-//! and gcs's solution sets agree (see `gcs_ikgeo::check`). Exits 1 on any mismatch of the arms
-//! gcs solves in closed form, and, for the two it scans (where the two sides find a root of a
-//! near-singular pose to different accuracy), on a solution ik-geo finds to machine precision
-//! that gcs has nothing within `NEAR` of, or a gcs solution that misses its pose.
+//! and gcs's solution sets agree (see `gcs_ikgeo::check`). gcs solves all four in closed form.
+//! Exits 1 on any mismatch of the two arms whose steps are circles and spheres (UR5, IRB 6640),
+//! and, for the two whose position chain is a quartic (subproblems 5 and 6, where near a fold
+//! the two sides find a root to different accuracy: ik-geo's own solutions there miss their
+//! pose by up to 4e-7), on a solution ik-geo finds to machine precision that gcs has nothing
+//! within `NEAR` of, or a gcs solution that misses its pose.
 //! `cargo run --release -- N` compares N poses an arm.
 
 use gcs_ikgeo::arms::{IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, UR5};
@@ -15,17 +17,17 @@ fn main() {
         .map(|s| s.parse().expect("a number of poses"))
         .unwrap_or(1000);
     println!("joint angles compared to {TOL:e} rad, {n} poses an arm");
-    println!("closed form (gcs: no default, no iteration):");
+    println!("closed form, circles and spheres (gcs: no default, no iteration):");
     let closed = [check::<Ur5>(&UR5, n), check::<Irb6640>(&IRB6640, n)];
     for r in &closed {
         print!("{}", r.text());
     }
-    println!("scanned (gcs: an outer iteration on the base's angle):");
-    let scanned = [
+    println!("closed form, a quartic (gcs: the three-circle problem; a planar sub-chain's ends):");
+    let quartic = [
         check::<SphericalBot>(&SPHERICAL_BOT, n),
         check::<ThreeParallelBot>(&THREE_PARALLEL_BOT, n),
     ];
-    for r in &scanned {
+    for r in &quartic {
         print!("{}", r.text());
     }
     let failed: Vec<&str> = closed
@@ -37,18 +39,18 @@ fn main() {
         .iter()
         .map(|r| r.ik_geo_unmatched + r.gcs_unmatched)
         .sum();
-    println!("closed-form arms: {mismatches} mismatches");
-    let missed: usize = scanned.iter().map(|r| r.gcs_missed + r.gcs_wrong).sum();
-    println!("scanned arms: {missed} solutions missed or wrong");
-    let failed_scan: Vec<&str> = (scanned.iter())
+    println!("circles and spheres: {mismatches} mismatches");
+    let missed: usize = quartic.iter().map(|r| r.gcs_missed + r.gcs_wrong).sum();
+    println!("quartic arms: {missed} solutions missed or wrong");
+    let failed_quartic: Vec<&str> = (quartic.iter())
         .filter(|r| !r.nothing_missed_or_wrong())
         .map(|r| r.arm)
         .collect();
-    if !failed.is_empty() || !failed_scan.is_empty() {
+    if !failed.is_empty() || !failed_quartic.is_empty() {
         eprintln!(
             "mismatches on {}; missed or wrong on {}",
             failed.join(", "),
-            failed_scan.join(", ")
+            failed_quartic.join(", ")
         );
         std::process::exit(1);
     }

@@ -1,7 +1,8 @@
 //! `cargo test --release` in ikgeo/: the models in `models/` are what `src/model.rs` writes,
 //! this crate's forward kinematics is ik-geo's, and over 1,000 random poses of each arm gcs
-//! solves in closed form, ik-geo's and gcs's solution sets agree (`gcs_ikgeo::check`); for the
-//! two it scans, gcs misses no solution ik-geo finds to machine precision and gives no wrong one.
+//! solves by circles and spheres, ik-geo's and gcs's solution sets agree (`gcs_ikgeo::check`);
+//! for the two whose position chain is a quartic, gcs misses no solution ik-geo finds to machine
+//! precision and gives no wrong one.
 
 use gcs_ikgeo::arms::{self, ARMS, IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, UR5};
 use gcs_ikgeo::check::check;
@@ -47,7 +48,7 @@ fn gcs_and_ik_geo_find_the_same_solutions() {
 }
 
 #[test]
-fn the_scanned_arms_miss_nothing_and_answer_nothing_wrong() {
+fn the_quartic_arms_miss_nothing_and_answer_nothing_wrong() {
     let reports = [
         check::<SphericalBot>(&SPHERICAL_BOT, 300),
         check::<ThreeParallelBot>(&THREE_PARALLEL_BOT, 300),
