@@ -1,4 +1,4 @@
-//! Compiles the four arm models of `models/` into solver modules in `OUT_DIR`, which
+//! Compiles the five arm models of `models/` into solver modules in `OUT_DIR`, which
 //! `src/lib.rs` brings in with `gcs_runtime::include_solver!`.
 
 fn main() -> Result<(), gcs_compiler::build::BuildError> {
@@ -7,5 +7,6 @@ fn main() -> Result<(), gcs_compiler::build::BuildError> {
         "models/ikgeo_irb6640.gcs",
         "models/ikgeo_spherical_bot.gcs",
         "models/ikgeo_three_parallel_bot.gcs",
+        "models/ikgeo_two_parallel_bot.gcs",
     ])
 }

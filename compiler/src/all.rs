@@ -540,10 +540,28 @@ pub(crate) fn varied_defaults(plan: &Plan) -> (Vec<usize>, bool) {
 /// Whether a search over `plan`'s branches and iterations finds every real assembly: with no
 /// iteration (every combination of branches is tried), or with one iteration over one angle
 /// whose error changes sign across its roots ([`closes_signed`]), which a scan of the turn
-/// brackets. The generated `solve_all` says the same of its list.
+/// brackets, on branches that follow their roots continuously along it ([`branches_follow`]).
+/// The generated `solve_all` says the same of its list.
 pub(crate) fn exhaustive(plan: &Plan) -> bool {
     let (varied, one_angle) = varied_defaults(plan);
-    varied.is_empty() || (one_angle && closes_signed(plan))
+    varied.is_empty() || (one_angle && closes_signed(plan) && branches_follow(plan))
+}
+
+/// Whether every branch taken inside an iteration names the same root as the iterated angle
+/// turns: not a quartic's roots in the order of their first angle
+/// (`SpatialOp::ThreeCircles`, `SpatialOp::PlanarChainEnds`), which two roots swap where
+/// their first angles cross (or one wraps past a half turn). The scan of one branch then
+/// jumps from one root's error to the other's, and a root near the jump can be missed.
+fn branches_follow(plan: &Plan) -> bool {
+    use crate::plan::{Op, SpatialOp};
+    (plan.iterations.iter()).all(|it| {
+        (plan.steps[it.start..it.end].iter()).all(|s| {
+            !matches!(
+                s.op,
+                Op::Spatial(SpatialOp::ThreeCircles { .. } | SpatialOp::PlanarChainEnds { .. })
+            )
+        })
+    })
 }
 
 /// Whether every error an iteration closes changes sign across its roots, so that a scan

@@ -1,7 +1,8 @@
 //! gcs's generated arm solvers against ik-geo 0.1.2 (`cargo bench` in ikgeo/).
 //!
-//! For each of ik-geo's four arms (`ur5`, `irb6640`, `spherical_bot`, `three_parallel_bot`, all
-//! in closed form in gcs), the same N = 1,000 poses (random
+//! For each of ik-geo's arms (`ur5`, `irb6640`, `spherical_bot`, `three_parallel_bot`, all in
+//! closed form in gcs; `two_parallel_bot`, searched on both sides and timed interleaved only,
+//! every pose once a side), the same N = 1,000 poses (random
 //! joint angles through this crate's forward kinematics, written from ik-geo's `h` and `p`
 //! apart from both solvers; the check's poses), and per pose:
 //!
@@ -20,9 +21,13 @@
 //! from gcs's frames, which is what a caller wanting ik-geo's output pays.
 
 use criterion::Criterion;
-use gcs_ikgeo::arms::{Arm, Pose, IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, UR5};
+use gcs_ikgeo::arms::{
+    Arm, Pose, IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, TWO_PARALLEL_BOT, UR5,
+};
 use gcs_ikgeo::check::seed;
-use gcs_ikgeo::{ik_geo_robot, Angles, Gcs, Irb6640, SphericalBot, ThreeParallelBot, Ur5};
+use gcs_ikgeo::{
+    ik_geo_robot, Angles, Gcs, Irb6640, SphericalBot, ThreeParallelBot, TwoParallelBot, Ur5,
+};
 use ik_geo::robot::IKSolver;
 use std::hint::black_box;
 use std::time::Instant;
@@ -196,5 +201,9 @@ fn main() {
     }
     if wanted(THREE_PARALLEL_BOT.name) {
         interleaved::<ThreeParallelBot>(&THREE_PARALLEL_BOT, ROUNDS);
+    }
+    // A search on both sides, each about a thousand times slower: every pose once a side.
+    if wanted(TWO_PARALLEL_BOT.name) {
+        interleaved::<TwoParallelBot>(&TWO_PARALLEL_BOT, N / BLOCK);
     }
 }

@@ -91,8 +91,34 @@ pub const THREE_PARALLEL_BOT: Arm = Arm {
     sketch: [0.3, -0.7, 1.1, -0.5, 0.8, 0.4],
 };
 
-/// The four arms, in the order the bench and the check report them.
-pub const ARMS: [Arm; 4] = [UR5, IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT];
+/// `TwoParallelBot::get_kin()`: two parallel axes and otherwise general, with no closed form
+/// (`Robot::two_parallel`, ik-geo's search over the base's angle).
+pub const TWO_PARALLEL_BOT: Arm = Arm {
+    name: "two_parallel_bot",
+    h: [
+        EZ,
+        EX,
+        EX,
+        EZ,
+        EX,
+        [
+            std::f64::consts::FRAC_1_SQRT_2,
+            0.0,
+            std::f64::consts::FRAC_1_SQRT_2,
+        ],
+    ],
+    p: [EZ, EY, EY, EY, EY, EY, EZ],
+    sketch: [0.3, -0.7, 1.1, -0.5, 0.8, 0.4],
+};
+
+/// The five arms, in the order the bench and the check report them.
+pub const ARMS: [Arm; 5] = [
+    UR5,
+    IRB6640,
+    SPHERICAL_BOT,
+    THREE_PARALLEL_BOT,
+    TWO_PARALLEL_BOT,
+];
 
 /// A vector of nalgebra (ik-geo's version) from an array.
 pub fn v(a: [f64; 3]) -> Vector3<f64> {

@@ -4,10 +4,11 @@
 //! what the check (`src/main.rs`) and the bench (`benches/ik.rs`) share: reading joint angles
 //! from gcs's solved body frames, and comparing solution sets.
 //!
-//! All four analyse in closed form (no default, no iteration): `ur5` and `irb6640` by circles
+//! Four analyse in closed form (no default, no iteration): `ur5` and `irb6640` by circles
 //! and spheres (a planar sub-chain's plane, a pivoted pair, a spherical wrist), `spherical_bot`
 //! by the three-circle problem and `three_parallel_bot` by a planar sub-chain's ends (ik-geo's
-//! subproblems 5 and 6, each a quartic).
+//! subproblems 5 and 6, each a quartic). `two_parallel_bot` has no closed form: one default,
+//! the last joint's turn, which `solve_all` scans, subproblem 6 inside.
 
 pub mod arms;
 pub mod check;
@@ -27,16 +28,23 @@ pub mod irb6640 {
     gcs_runtime::include_solver!("ikgeo_irb6640");
 }
 
-/// The generated solver of `models/ikgeo_spherical_bot.gcs` (an outer iteration). Its code
-/// holds a sphere of radius 1.414213562373095 (the arm's), which clippy takes for `SQRT_2`.
+/// The generated solver of `models/ikgeo_spherical_bot.gcs` (the three-circle problem). Its
+/// code may hold a length of 1.414213562373095 (the arm's), which clippy takes for `SQRT_2`.
 #[allow(clippy::approx_constant)]
 pub mod spherical_bot {
     gcs_runtime::include_solver!("ikgeo_spherical_bot");
 }
 
-/// The generated solver of `models/ikgeo_three_parallel_bot.gcs` (an outer iteration).
+/// The generated solver of `models/ikgeo_three_parallel_bot.gcs` (a planar sub-chain's ends).
 pub mod three_parallel_bot {
     gcs_runtime::include_solver!("ikgeo_three_parallel_bot");
+}
+
+/// The generated solver of `models/ikgeo_two_parallel_bot.gcs` (an outer iteration: a scan of
+/// the last joint's turn).
+#[allow(clippy::approx_constant)]
+pub mod two_parallel_bot {
+    gcs_runtime::include_solver!("ikgeo_two_parallel_bot");
 }
 
 /// A rotation of gcs's frames (nalgebra of gcs-runtime) as ik-geo's nalgebra has it.
@@ -133,6 +141,7 @@ gcs_arm!(Ur5, ur5);
 gcs_arm!(Irb6640, irb6640);
 gcs_arm!(SphericalBot, spherical_bot);
 gcs_arm!(ThreeParallelBot, three_parallel_bot);
+gcs_arm!(TwoParallelBot, two_parallel_bot);
 
 /// ik-geo's solver of an arm, by its name.
 pub fn ik_geo_robot(arm: &Arm) -> Robot {
@@ -141,6 +150,7 @@ pub fn ik_geo_robot(arm: &Arm) -> Robot {
         "irb6640" => ik_geo::robot::irb6640(),
         "spherical_bot" => ik_geo::robot::spherical_bot(),
         "three_parallel_bot" => ik_geo::robot::three_parallel_bot(),
+        "two_parallel_bot" => ik_geo::robot::two_parallel_bot(),
         other => panic!("no ik-geo arm {other}"),
     }
 }

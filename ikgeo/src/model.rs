@@ -179,6 +179,11 @@ pub fn comment(arm: &Arm) -> String {
              joints; no two axes meet. ik-geo solves it by `three_parallel` (its subproblem 6,\n\
              a quartic)."
         }
+        "two_parallel_bot" => {
+            "ik-geo's `two_parallel_bot()`: two parallel axes, the others in general position: no\n\
+             closed form. ik-geo solves it by `two_parallel`, a search over the base's angle\n\
+             with its subproblem 6 inside."
+        }
         _ => "An arm of ik-geo.",
     };
     let q: Vec<String> = arm.sketch.iter().map(|x| x.to_string()).collect();

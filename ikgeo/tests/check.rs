@@ -4,9 +4,13 @@
 //! for the two whose position chain is a quartic, gcs misses no solution ik-geo finds to machine
 //! precision and gives no wrong one.
 
-use gcs_ikgeo::arms::{self, ARMS, IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, UR5};
+use gcs_ikgeo::arms::{
+    self, ARMS, IRB6640, SPHERICAL_BOT, THREE_PARALLEL_BOT, TWO_PARALLEL_BOT, UR5,
+};
 use gcs_ikgeo::check::check;
-use gcs_ikgeo::{ik_geo_robot, model, Irb6640, SphericalBot, ThreeParallelBot, Ur5};
+use gcs_ikgeo::{
+    ik_geo_robot, model, Irb6640, SphericalBot, ThreeParallelBot, TwoParallelBot, Ur5,
+};
 
 #[test]
 fn the_models_are_what_the_writer_writes() {
@@ -48,7 +52,7 @@ fn gcs_and_ik_geo_find_the_same_solutions() {
 }
 
 #[test]
-fn the_quartic_arms_miss_nothing_and_answer_nothing_wrong() {
+fn the_quartic_and_searched_arms_miss_nothing_and_answer_nothing_wrong() {
     let reports = [
         check::<SphericalBot>(&SPHERICAL_BOT, 300),
         check::<ThreeParallelBot>(&THREE_PARALLEL_BOT, 300),
@@ -58,4 +62,11 @@ fn the_quartic_arms_miss_nothing_and_answer_nothing_wrong() {
         assert!(r.nothing_missed_or_wrong(), "{}", r.text());
         assert_eq!(r.incomplete, 0, "{}", r.arm);
     }
+    // Searched: no list claims completeness, none is wrong, and the drawn arm is found at
+    // nearly every pose.
+    let r = check::<TwoParallelBot>(&TWO_PARALLEL_BOT, 100);
+    print!("{}", r.text());
+    assert!(r.nothing_missed_or_wrong(), "{}", r.text());
+    assert_eq!(r.incomplete, r.poses, "{}", r.arm);
+    assert!(r.drawn_found >= r.poses - 2, "{}", r.text());
 }

@@ -170,6 +170,9 @@ enum Key {
 /// Where a rollback returns to: the plan's steps, registers and branches.
 pub(crate) type Checkpoint = (usize, u32, usize);
 
+/// The most clusters tied for a default that [`Builder::look_ahead`] tries besides the first.
+const LOOK_AHEAD_TIES: usize = 3;
+
 /// The analysis in progress: clusters and their records, the relations still pending, and
 /// the plan written so far.
 #[derive(Clone)]
@@ -643,21 +646,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
         // outer iteration ([`Builder::close_iterations`]), and one that displaces none
         // parameterizes a free motion.
         loop {
-            self.fixpoint(None);
-            if !self.pending.is_empty() && self.group() {
-                continue;
-            }
-            if !self.pending.is_empty() && G::linear(self) {
-                continue;
-            }
-            // Nothing for a linear stage: what was left to it goes back to action analysis.
-            if self.linear_first && !self.pending.is_empty() {
-                self.linear_first = false;
-                continue;
-            }
-            if !self.pending.is_empty() && G::subchains(self) {
-                continue;
-            }
+            self.stage();
             if self.undefaulted.is_none() {
                 self.undefaulted = Some(self.clusters.clone());
             }
@@ -675,6 +664,83 @@ impl<'m, G: Geometry> Builder<'m, G> {
             .filter(|&c| !self.moved_for(c))
             .collect();
         self.close_iterations();
+    }
+
+    /// Action, locus, chain, loop, linear and sub-chain analysis until none applies: one stage
+    /// of POSITION-ANALYSIS, between two defaults.
+    fn stage(&mut self) {
+        loop {
+            self.fixpoint(None);
+            if !self.pending.is_empty() && self.group() {
+                continue;
+            }
+            if !self.pending.is_empty() && G::linear(self) {
+                continue;
+            }
+            // Nothing for a linear stage: what was left to it goes back to action analysis.
+            if self.linear_first && !self.pending.is_empty() {
+                self.linear_first = false;
+                continue;
+            }
+            if !self.pending.is_empty() && G::subchains(self) {
+                continue;
+            }
+            break;
+        }
+    }
+
+    /// How many relations stay pending after cluster `k` takes a default and the stage after
+    /// it runs, on a copy; `None` when `k` takes none.
+    fn left_after_default(&self, k: usize) -> Option<usize> {
+        let mut trial = self.clone();
+        if !G::default(&mut trial, &[k]) {
+            return None;
+        }
+        trial.linear_first = true;
+        trial.stage();
+        Some(trial.pending.len())
+    }
+
+    /// Of the clusters tied with `first` for a default (involved in a pending relation, one
+    /// freedom each, [`Geometry::LOOK_AHEAD`]), the one whose default lets the next stage
+    /// settle the most pending relations, when it settles more than `first`'s: an arm whose
+    /// base and tool ends both turn about known axes closes with one default at the right
+    /// end and needs three at the other. At most [`LOOK_AHEAD_TIES`] are tried, each one stage
+    /// on a copy.
+    fn look_ahead(&self, first: usize, involved: &BTreeSet<usize>) -> usize {
+        if !G::LOOK_AHEAD {
+            return first;
+        }
+        let Some(key) = self.default_key(involved, first) else {
+            return first;
+        };
+        if key.1 != 1 {
+            return first;
+        }
+        let mut tied: Vec<_> = (involved.iter())
+            .filter(|&&k| k != first)
+            .filter_map(|&k| self.default_key(involved, k))
+            .filter(|other| (other.0, other.1) == (key.0, key.1))
+            .collect();
+        if tied.is_empty() {
+            return first;
+        }
+        tied.sort();
+        let Some(mut least) = self.left_after_default(first) else {
+            return first;
+        };
+        let mut best = first;
+        for other in tied.into_iter().take(LOOK_AHEAD_TIES) {
+            if least == 0 {
+                break;
+            }
+            if let Some(left) = self.left_after_default(other.3) {
+                if left < least {
+                    (least, best) = (left, other.3);
+                }
+            }
+        }
+        best
     }
 
     /// The order in which clusters may take a default: not grounded, in the order Kramer picks
@@ -742,6 +808,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             } else {
                 first
             };
+            let first = self.look_ahead(first, &involved);
             if G::default(self, &[first]) {
                 return true;
             }
@@ -872,7 +939,68 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 let explain = format!(
                     "{cname} is what `{name}` displaced: how far its point is from its locus closes the iteration on `{name}`."
                 );
-                let error = Op::Implicit { locus, point };
+                // An orbit whose plane the model keeps the point in: its sphere's signed
+                // distance, with a guard on the plane (see `Geometry::kept_in_orbit_plane`).
+                let in_plane = match (defs.get(&locus), defs.get(&point)) {
+                    (
+                        Some(Op::Spatial(crate::plan::SpatialOp::Orbit {
+                            pivot,
+                            axis,
+                            through,
+                        })),
+                        Some(Op::PointOf(g)),
+                    ) => match defs.get(axis) {
+                        Some(Op::DirOf(f)) if G::kept_in_orbit_plane(self, *f, *g) => {
+                            Some((*pivot, *axis, *through))
+                        }
+                        _ => None,
+                    },
+                    _ => None,
+                };
+                let error = match in_plane {
+                    Some((pivot, axis, through)) => {
+                        let mut define = |op: Op, ty: Ty| {
+                            let r = Reg(regs);
+                            regs += 1;
+                            steps.push(Step {
+                                op,
+                                out: Some((r, ty)),
+                                satisfies: Vec::new(),
+                                works_for: Some(constraint),
+                                explain: String::new(),
+                            });
+                            r
+                        };
+                        let line = define(
+                            Op::Line {
+                                point: pivot,
+                                dir: axis,
+                                offset: None,
+                            },
+                            Ty::Line,
+                        );
+                        let center = define(
+                            Op::Nearest {
+                                locus: line,
+                                point: through,
+                            },
+                            Ty::Point,
+                        );
+                        let sphere = define(
+                            Op::Spatial(crate::plan::SpatialOp::SphereThrough {
+                                center,
+                                through,
+                                radius: None,
+                            }),
+                            Ty::Sphere,
+                        );
+                        Op::Implicit {
+                            locus: sphere,
+                            point,
+                        }
+                    }
+                    None => Op::Implicit { locus, point },
+                };
                 error_and_close(
                     &mut steps,
                     &mut regs,
@@ -882,6 +1010,27 @@ impl<'m, G: Geometry> Builder<'m, G> {
                     explain,
                 );
                 spans.entry(d).or_insert((usize::MAX, 0)).1 = steps.len();
+                if let Some((_, axis, through)) = in_plane {
+                    let explain = format!(
+                        "Guard: check that {cname} has its point in its locus' plane once the iteration has closed."
+                    );
+                    steps.push(Step {
+                        op: Op::Check {
+                            constraint,
+                            residual: Residual::PointPlane {
+                                p: point,
+                                base: through,
+                                normal: axis,
+                                d: None,
+                            },
+                            guard: true,
+                        },
+                        out: None,
+                        satisfies: Vec::new(),
+                        works_for: Some(constraint),
+                        explain,
+                    });
+                }
                 continue;
             }
             let Op::Check {

@@ -155,6 +155,20 @@ pub(crate) trait Geometry: Sized + Clone {
     /// added one; the driver then goes back to action and locus analysis.
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool;
 
+    /// Whether a point (feature `point`) that a one-DOF turn about the axis feature `axis` must
+    /// bring onto its orbit is kept in the orbit's plane by the model (in space: a joint's axis
+    /// through the point kept parallel to the orbit's, as in a planar sub-chain). Its distance
+    /// from the orbit's sphere is then a signed closing error, which a scan brackets, where its
+    /// distance from the circle only touches zero; a guard checks the plane at the answer.
+    fn kept_in_orbit_plane(_b: &Builder<'_, Self>, _axis: GeomId, _point: GeomId) -> bool {
+        false
+    }
+
+    /// Whether the driver looks one stage ahead when several clusters of one freedom tie for a
+    /// default: in space, which of an arm's two ends turning about known axes takes it decides
+    /// whether the chains between them close with one default (`subchains`) or need three.
+    const LOOK_AHEAD: bool = false;
+
     /// Whether the default [`Geometry::default`] would give cluster `k` leaves a pending
     /// relation degenerate on the sketch (a turn the relation then needs cannot change what it
     /// measures there): the driver then gives the default to the next cluster in its order.

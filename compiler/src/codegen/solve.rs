@@ -704,15 +704,23 @@ impl Solve<'_> {
                 Op::Error { .. } | Op::Implicit { .. } | Op::Close { .. }
             ) || unwritten_nearest(s).is_some()
         };
-        let read_elsewhere: HashSet<Reg> = (plan.steps.iter())
-            .filter(|s| !is_error(s))
-            .flat_map(|s| s.op.reads())
-            .chain(plan.steps.iter().filter_map(unwritten_nearest))
-            .collect();
+        // A register is the errors' alone when every step that reads it is an error, or
+        // defines a register that is (a closing error's locus, made for it: a sphere about an
+        // orbit's centre on its axis). Readers come after what they read: one pass backwards.
+        let mut only: HashMap<Reg, bool> = HashMap::default();
+        for s in plan.steps.iter().rev() {
+            let feeds = is_error(s) || s.out.is_some_and(|(r, _)| only.get(&r) == Some(&true));
+            for r in s.op.reads() {
+                *only.entry(r).or_insert(true) &= feeds;
+            }
+        }
+        for r in plan.steps.iter().filter_map(unwritten_nearest) {
+            only.insert(r, false);
+        }
         self.error_only = (plan.steps[it.start..it.end].iter())
-            .filter(|s| is_error(s))
-            .flat_map(|s| s.op.reads())
-            .filter(|r| !read_elsewhere.contains(r))
+            .filter(|s| is_error(s) || s.out.is_some_and(|(r, _)| only.get(&r) == Some(&true)))
+            .flat_map(|s| s.op.reads().into_iter().chain(s.out.map(|(r, _)| r)))
+            .filter(|r| only.get(r) == Some(&true))
             .collect();
         self.facts = facts;
         self.deferred = deferred;

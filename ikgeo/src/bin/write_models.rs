@@ -1,4 +1,4 @@
-//! Writes the four arm models into `models/` (see `gcs_ikgeo::model`).
+//! Writes the five arm models into `models/` (see `gcs_ikgeo::model`).
 
 fn main() -> std::io::Result<()> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models");

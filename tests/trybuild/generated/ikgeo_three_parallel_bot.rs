@@ -876,19 +876,6 @@ pub fn solve(
     ));
     let shift_5 = link_4_j4_2 - link_3_j4;
     link_3.translate(&shift_5);
-    let link_4_j4_z_3 =
-        link_4.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let link_3_j4_z =
-        link_3.vector_to_global(&Vector3::new(0.9553364891256061, 0.2955202066613396, 0.0));
-    let residual = check::space::parallel(link_4_j4_z_3, link_3_j4_z, 1.0);
-    if residual.is_nan() || residual > tol {
-        return Err(SolveError::new(
-            "revolute_link_4_j4_link_3_j4",
-            "revolute(link_4.j4, link_3.j4)",
-            ErrorKind::Inconsistent,
-            residual,
-        ));
-    }
     let link_3_j3 = link_3.point_to_global(&Point3::new(
         -0.5215465279109626,
         1.6860181390611182,
@@ -1480,25 +1467,6 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                 ));
                 let shift_5 = link_4_j4_2 - link_3_j4;
                 link_3.translate(&shift_5);
-                let link_4_j4_z_3 = link_4.vector_to_global(&Vector3::new(
-                    0.9553364891256061,
-                    0.2955202066613396,
-                    0.0,
-                ));
-                let link_3_j4_z = link_3.vector_to_global(&Vector3::new(
-                    0.9553364891256061,
-                    0.2955202066613396,
-                    0.0,
-                ));
-                let residual = check::space::parallel(link_4_j4_z_3, link_3_j4_z, 1.0);
-                if residual.is_nan() || residual > tol {
-                    return Err(SolveError::new(
-                        "revolute_link_4_j4_link_3_j4",
-                        "revolute(link_4.j4, link_3.j4)",
-                        ErrorKind::Inconsistent,
-                        residual,
-                    ));
-                }
                 let link_3_j3 = link_3.point_to_global(&Point3::new(
                     -0.5215465279109626,
                     1.6860181390611182,

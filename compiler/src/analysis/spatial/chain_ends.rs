@@ -20,6 +20,12 @@
 //! about its axis until `D`'s chain axis is along `A`'s. `A`, `D` and `E` are then known;
 //! `B` and `C` then only turn about the known joints at the chain's ends, and their meeting is
 //! two circles in the chain's plane (locus analysis, the elbow's branch).
+//!
+//! With two free bodies (`B`, then `D`) the chain has one equation over: `B` must reach from
+//! `A`'s joint to `D`'s, and its point turned about the one lands on its orbit where the
+//! other's is, its distance from that orbit's sphere a signed error (the model keeps it in the
+//! orbit's plane). That is what closes a general arm's one default (its last joint's turn,
+//! chosen by the driver's look-ahead): a one-dimensional search, subproblem 6 at each step.
 
 use super::subchain::Joint;
 use super::{local_dir, parallel, Spatial, Trans, Turn};
@@ -36,7 +42,9 @@ struct Step {
     to: GeomId,
 }
 
-/// The free bodies between the chain's ends: three, for its degrees of freedom to balance.
+/// The most free bodies between the chain's ends: three balance its degrees of freedom; two
+/// leave one equation over, the closing error of a default elsewhere (a general arm's
+/// one-dimensional search), met when the first of the two is joined to both ends.
 const CHAIN_BODIES: usize = 3;
 
 impl Builder<'_, Spatial> {
@@ -45,7 +53,7 @@ impl Builder<'_, Spatial> {
     /// whether it did.
     pub(super) fn planar_chain_between_turns(&mut self) -> bool {
         let joints = self.open_revolutes();
-        if joints.len() < CHAIN_BODIES + 1 {
+        if joints.len() < 3 {
             return false;
         }
         let mut ends: Vec<usize> = (0..self.clusters.len())
@@ -74,7 +82,7 @@ impl Builder<'_, Spatial> {
     }
 
     /// Walks from cluster `k` (entered by marker `entered`; none at `A`) along open revolutes:
-    /// through free rigid bodies whose joints' axes are parallel in each, then, after
+    /// through free rigid bodies whose joints' axes are parallel in each, then, after two or
     /// [`CHAIN_BODIES`] of them, by a joint across the chain's axes to a cluster that only turns
     /// about a known axis. `path` holds the steps so far; returns them all.
     fn walk_parallel(
@@ -126,17 +134,18 @@ impl Builder<'_, Spatial> {
                     from,
                     to,
                 });
-                if bodies < CHAIN_BODIES {
+                if along && bodies < CHAIN_BODIES {
                     // Into the next free body of the chain, by a joint along the chain's axes.
                     let rec = &self.clusters[next].record;
                     let free = rec.rigid() && rec.trans == Trans::Free && rec.turn == Turn::Free;
                     let new = !path[..bodies].iter().any(|s| self.cluster(s.from) == next);
-                    if along && free && new {
+                    if free && new {
                         if let Some(steps) = self.walk_parallel(next, Some(to), joints, path) {
                             return Some(steps);
                         }
                     }
                 } else if !along
+                    && bodies >= 2
                     && self.turns_about_known_axis(next)
                     && next != self.cluster(path[0].from)
                 {
@@ -171,10 +180,11 @@ impl Builder<'_, Spatial> {
             unreachable!("the chain's ends turn about known axes")
         };
         let z = |b: &Self, m: GeomId| b.z_of(m).expect("a revolute joins markers");
-        // The sense of each free body's entering axis against `A`'s, and of `D`'s.
-        let mut senses = Vec::with_capacity(CHAIN_BODIES);
+        // The free bodies, and the sense of each one's entering axis against `A`'s.
+        let n = steps.len() - 1;
+        let mut senses = Vec::with_capacity(n);
         let mut sense = 1.0;
-        for (i, s) in steps[..CHAIN_BODIES].iter().enumerate() {
+        for (i, s) in steps[..n].iter().enumerate() {
             if i > 0 {
                 // Through the body between: its entering axis against the one it leaves by.
                 let (e, f) = (steps[i - 1].to, s.from);
@@ -203,7 +213,7 @@ impl Builder<'_, Spatial> {
         let names: Vec<String> = (steps.iter())
             .map(|s| self.cname(s.joint.constraint))
             .collect();
-        let bodies: Vec<String> = (steps[..CHAIN_BODIES].iter())
+        let bodies: Vec<String> = (steps[..n].iter())
             .map(|s| self.name(model.top_level_of(s.to)))
             .collect();
         let (a_word, e_word) = (self.word(a1), self.word(ae));
@@ -214,7 +224,7 @@ impl Builder<'_, Spatial> {
         let explain = format!(
             "{} turn about parallel axes ({}): a planar sub-chain. {na} may only turn about {a_word}, {ne} only about {e_word}, and {cname} joins the chain to {ne} across its axes: the chain closes where its axis makes the same angle with {e_word} seen from both ends, and {ne}'s pivot is at its height along that axis. Assemble {nd} on {ne} by the joint at any angle, find {na}'s turn and the joint's angle that close it (a quartic: up to four assemblies), turn both by them, and turn {ne} about its axis until the chain's axes agree.\n   Translate {nd} so that {} lands on {}.",
             bodies.join(", "),
-            names[..CHAIN_BODIES].join(", "),
+            names[..n].join(", "),
             self.name(last.from),
             self.name(last.to)
         );
@@ -238,15 +248,15 @@ impl Builder<'_, Spatial> {
             self.direction(z(self, first_joint)),
             self.point(first_joint),
         );
-        let d_entry = steps[CHAIN_BODIES - 1].to;
+        let d_entry = steps[n - 1].to;
         let far = self.direction(z(self, d_entry));
         let joint_at = self.point(last.to);
         // The chain's offset along its axes from `A`'s joint to the joint with `E`: each free
         // body's own, from the joint it is entered by to the one it leaves by.
-        let mut terms = Vec::with_capacity(CHAIN_BODIES);
-        for i in 0..CHAIN_BODIES {
+        let mut terms = Vec::with_capacity(n);
+        for i in 0..n {
             let entry = steps[i].to;
-            let exit = if i + 1 < CHAIN_BODIES {
+            let exit = if i + 1 < n {
                 steps[i + 1].from
             } else {
                 last.from
@@ -287,7 +297,7 @@ impl Builder<'_, Spatial> {
                 far,
                 last: [pe, ae],
                 offset,
-                sense: senses[CHAIN_BODIES - 1],
+                sense: senses[n - 1],
                 branch,
                 constraint: c,
             },
@@ -329,11 +339,14 @@ impl Builder<'_, Spatial> {
             Vec::new(),
             explain,
         );
-        // `E` with `D` about its axis, until `D`'s chain axis is along `A`'s.
+        // `E` with `D` about its axis, until `D`'s chain axis is along `A`'s: the turn that
+        // aligns the chain's last axis with its first, which the joint `D` is entered by
+        // carries (its parallel axes then hold by construction, not by redundancy).
+        let entering = steps[n - 1].joint.constraint;
         let mut both = ge;
         both.extend(gd);
         let target = self.direction(z(self, first_joint));
-        let to = self.in_sense(target, z(self, first_joint), senses[CHAIN_BODIES - 1]);
+        let to = self.in_sense(target, z(self, first_joint), senses[n - 1]);
         let from = self.direction(z(self, d_entry));
         let explain = format!(
             "Rotate {ne} and {nd} together about {e_word} so that {} points along {} ({cname}); the chain's ends are then known.",
@@ -357,11 +370,23 @@ impl Builder<'_, Spatial> {
         let rec = &mut self.clusters[ke].record;
         rec.trans = Trans::Fixed;
         rec.turn = Turn::Known;
-        // The joint `D`–`E` holds by these steps.
+        // The joint `D`–`E` holds by these steps; so do the parallel axes of the joint `D` is
+        // entered by, once the chain's other bodies are turned onto the axes of the joints
+        // before them (each body's axes parallel in it): no check, no redundancy.
         let settled: std::collections::BTreeSet<usize> = (self.pending.iter().enumerate())
-            .filter(|(_, r)| r.constraint == c)
+            .filter(|(_, r)| {
+                r.constraint == c
+                    || (r.constraint == entering
+                        && matches!(r.relation, super::relation::Relation::Parallel { .. }))
+            })
             .map(|(i, _)| i)
             .collect();
-        self.settle_pending(&settled);
+        let taken = self.settle_pending(&settled);
+        // The last of the entering joint's relations to be met now says it is met.
+        if taken.iter().any(|r| r.constraint == entering && r.last) {
+            if let Some(r) = (self.pending.iter_mut().rev()).find(|r| r.constraint == entering) {
+                r.last = true;
+            }
+        }
     }
 }

@@ -433,6 +433,13 @@ impl Builder<'_, Spatial> {
         b
     }
 
+    /// See [`crate::analysis::geometry::Geometry::kept_in_orbit_plane`]: `point` is a marker
+    /// whose z axis the model keeps parallel to `axis`.
+    pub(super) fn kept_in_orbit_plane(&self, axis: GeomId, point: GeomId) -> bool {
+        self.z_of(point)
+            .is_some_and(|z| self.kept_parallel(axis, z))
+    }
+
     /// Whether the model keeps unit direction features `a` and `b` (marker axes) parallel
     /// whatever it does: linked by parallel relations (a revolute's axes, a `parallel`
     /// constraint) and by axes parallel within one body.

@@ -204,6 +204,12 @@ impl Geometry for Spatial {
             || b.planar_chain_between_turns()
     }
 
+    const LOOK_AHEAD: bool = true;
+
+    fn kept_in_orbit_plane(b: &Builder<'_, Self>, axis: GeomId, point: GeomId) -> bool {
+        b.kept_in_orbit_plane(axis, point)
+    }
+
     fn default(b: &mut Builder<'_, Self>, candidates: &[usize]) -> bool {
         candidates.iter().any(|&k| b.default_on(k))
     }
