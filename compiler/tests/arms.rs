@@ -1195,3 +1195,62 @@ fn a_pose_from_a_point_and_a_rotation_vector_has_every_solution() {
     }
     eprintln!("puma, pose from a rotation vector: {solutions} solutions over 1000 poses");
 }
+
+/// The turn of the arm's base body about its joint's axis, from the sketch, in (-pi, pi].
+fn base_turn(arm: &Arm, s: &Solution) -> f64 {
+    let (r, _) = motions(arm, s)[0];
+    let a = v(arm.joints[0].axis).normalize();
+    let e = a
+        .cross(&Vector3::x())
+        .try_normalize(1e-9)
+        .unwrap_or_else(|| a.cross(&Vector3::y()).normalize());
+    let turned = r * e;
+    a.dot(&e.cross(&turned)).atan2(e.dot(&turned))
+}
+
+/// The quartic branches read as their meanings say: by the base's counter-clockwise turn from
+/// where it was, the three-circle problem's largest first (its first angle is the target's turn,
+/// the base's backwards) and the planar sub-chain's ends' smallest first.
+#[test]
+fn the_quartic_branches_order_the_base_turns_as_their_meanings_say() {
+    for (arm, branch, ascending) in [
+        (spherical_bot(), "revolute_link_3_j3_link_2_j3", false),
+        (three_parallel_bot(), "revolute_link_5_j5_link_4_j5", true),
+    ] {
+        let l = load(&arm);
+        let (model, plan) = (&l.compiled.model, &l.compiled.analysis.plan);
+        let mut rng = Rng(0x0b5e_55ed);
+        let mut compared = 0;
+        for _ in 0..60 {
+            let q: Vec<f64> = arm.joints.iter().map(|_| rng.angle()).collect();
+            let (params, _, _) = pose_params(&arm, &l, &q);
+            let found = solve_all(model, plan, &l.scope, &params, &plan.sketch_defaults());
+            let mut turns: Vec<(usize, f64)> = (found.solutions.iter())
+                .map(|s| {
+                    let k = (s.branches.iter())
+                        .find(|(n, _)| n == branch)
+                        .map(|&(_, k)| k)
+                        .expect("the quartic's branch");
+                    (k, base_turn(&arm, s))
+                })
+                .collect();
+            turns.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+            for w in turns.windows(2) {
+                let ((k0, t0), (k1, t1)) = (w[0], w[1]);
+                if k0 == k1 {
+                    // The same root: the same base turn, whatever the later branches.
+                    assert!((t0 - t1).abs() <= 1e-9, "{}: {turns:?}", arm.file);
+                    continue;
+                }
+                compared += 1;
+                let ordered = if ascending { t0 < t1 } else { t0 > t1 };
+                assert!(ordered, "{}: q = {q:?}: {turns:?}", arm.file);
+            }
+        }
+        assert!(
+            compared > 20,
+            "{}: only {compared} pairs compared",
+            arm.file
+        );
+    }
+}

@@ -87,10 +87,10 @@ impl Default for Params {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
     /// `revolute_link_3_j3_link_2_j3`:
-    /// - 0: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the largest of the four the chain has
-    /// - 1: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the second largest of the four the chain has
-    /// - 2: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the third largest of the four the chain has
-    /// - 3: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the smallest of the four the chain has
+    /// - 0: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the largest of the chain's (up to four)
+    /// - 1: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the second largest of the chain's (up to four)
+    /// - 2: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the third largest of the chain's (up to four)
+    /// - 3: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the smallest of the chain's (up to four)
     pub revolute_link_3_j3_link_2_j3: u8,
     /// `revolute_link_5_j5_link_4_j5`:
     /// - 0: link_5.j5.z turned counter-clockwise about tool.j6.z from its turn nearest link_4.j4.z

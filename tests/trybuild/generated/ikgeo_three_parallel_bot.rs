@@ -87,10 +87,10 @@ impl Default for Params {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
     /// `revolute_link_5_j5_link_4_j5`:
-    /// - 0: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the largest of the chain's (up to four)
-    /// - 1: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the second largest of the chain's (up to four)
-    /// - 2: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the third largest of the chain's (up to four)
-    /// - 3: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the smallest of the chain's (up to four)
+    /// - 0: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the smallest of the chain's (up to four)
+    /// - 1: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the second smallest of the chain's (up to four)
+    /// - 2: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the third smallest of the chain's (up to four)
+    /// - 3: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the largest of the chain's (up to four)
     pub revolute_link_5_j5_link_4_j5: u8,
     /// `revolute_link_3_j3_link_2_j3`:
     /// - 0: the crossing of the circle link_3.j3 sweeps about the axis through link_4.j4 along link_2.j3.z and the circle link_2.j3 sweeps about the axis through link_1.j2 along link_1.j2.z to the left of the line of their centres, seen down the first's axis (or first along the line their planes share)

@@ -87,10 +87,10 @@ impl Default for Params {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Branches {
     /// `revolute_link_4_j4_link_3_j4`:
-    /// - 0: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the largest of the chain's (up to four)
-    /// - 1: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the second largest of the chain's (up to four)
-    /// - 2: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the third largest of the chain's (up to four)
-    /// - 3: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the smallest of the chain's (up to four)
+    /// - 0: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the smallest of the chain's (up to four)
+    /// - 1: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the second smallest of the chain's (up to four)
+    /// - 2: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the third smallest of the chain's (up to four)
+    /// - 3: the assembly whose counter-clockwise turn of link_1 about ground.base.z from where it was (in (-180°, 180°]) is the largest of the chain's (up to four)
     pub revolute_link_4_j4_link_3_j4: u8,
 }
 

@@ -280,7 +280,7 @@ impl Builder<'_, Spatial> {
             bodies.join(", ")
         );
         let offset = self.value(Op::Sum(terms), Ty::Scalar, words);
-        let meanings: Vec<String> = ["largest", "second largest", "third largest", "smallest"]
+        let meanings: Vec<String> = ["smallest", "second smallest", "third smallest", "largest"]
             .iter()
             .map(|rank| {
                 format!("the assembly whose counter-clockwise turn of {na} about {a_word} from where it was (in (-180°, 180°]) is the {rank} of the chain's (up to four)")

@@ -237,7 +237,7 @@ impl Builder<'_, Spatial> {
         let meanings: Vec<String> = ["largest", "second largest", "third largest", "smallest"]
             .iter()
             .map(|rank| {
-                format!("the assembly whose counter-clockwise turn of {na} about {axis_word} from where it was (in (-180°, 180°]) is the {rank} of the four the chain has")
+                format!("the assembly whose counter-clockwise turn of {na} about {axis_word} from where it was (in (-180°, 180°]) is the {rank} of the chain's (up to four)")
             })
             .collect();
         let branch = self.branch(c2, meanings);
