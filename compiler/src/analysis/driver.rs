@@ -173,6 +173,9 @@ pub(crate) type Checkpoint = (usize, u32, usize);
 /// The most clusters tied for a default that [`Builder::look_ahead`] tries besides the first.
 const LOOK_AHEAD_TIES: usize = 3;
 
+/// The most defaults [`Builder::look_ahead`] tries on a copy over one analysis.
+const LOOK_AHEAD_BUDGET: usize = 32;
+
 /// The analysis in progress: clusters and their records, the relations still pending, and
 /// the plan written so far.
 #[derive(Clone)]
@@ -235,6 +238,10 @@ pub(crate) struct Builder<'m, G: Geometry> {
     /// Once no relation is pending, the clusters that may take a default in their order: a
     /// default then changes its own cluster only, so the order is kept, not sorted again.
     idle_order: Option<std::collections::BinaryHeap<std::cmp::Reverse<(usize, u32, usize)>>>,
+    /// How many more defaults [`Builder::look_ahead`] may try on a copy: a bound on its work,
+    /// each trial a copy and one stage, so that analysis stays linear in a model's size
+    /// however many ties it meets (an arm meets one or two).
+    look_aheads_left: usize,
 }
 
 /// A geom's index in the model's arena.
@@ -299,6 +306,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
             working: None,
             name_rank: std::rc::Rc::new(name_ranks(model)),
             idle_order: None,
+            look_aheads_left: LOOK_AHEAD_BUDGET,
         }
     }
 
@@ -706,9 +714,9 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// settle the most pending relations, when it settles more than `first`'s: an arm whose
     /// base and tool ends both turn about known axes closes with one default at the right
     /// end and needs three at the other. At most [`LOOK_AHEAD_TIES`] are tried, each one stage
-    /// on a copy.
-    fn look_ahead(&self, first: usize, involved: &BTreeSet<usize>) -> usize {
-        if !G::LOOK_AHEAD {
+    /// on a copy, and [`LOOK_AHEAD_BUDGET`] over the analysis.
+    fn look_ahead(&mut self, first: usize, involved: &BTreeSet<usize>) -> usize {
+        if !G::LOOK_AHEAD || self.look_aheads_left == 0 {
             return first;
         }
         let Some(key) = self.default_key(involved, first) else {
@@ -726,14 +734,16 @@ impl<'m, G: Geometry> Builder<'m, G> {
             return first;
         }
         tied.sort();
+        self.look_aheads_left -= 1;
         let Some(mut least) = self.left_after_default(first) else {
             return first;
         };
         let mut best = first;
         for other in tied.into_iter().take(LOOK_AHEAD_TIES) {
-            if least == 0 {
+            if least == 0 || self.look_aheads_left == 0 {
                 break;
             }
+            self.look_aheads_left -= 1;
             if let Some(left) = self.left_after_default(other.3) {
                 if left < least {
                     (least, best) = (left, other.3);
