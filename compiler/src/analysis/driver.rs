@@ -1317,6 +1317,19 @@ impl<'m, G: Geometry> Builder<'m, G> {
         self.pending.retain(|_| keep.next().unwrap_or(false));
     }
 
+    /// [`Builder::settle_pending`] of every pending relation `settled` says: those a step of
+    /// a space's own (a chain closed at once) satisfied.
+    pub(crate) fn settle_where(
+        &mut self,
+        settled: impl Fn(&Rel<G::Relation>) -> bool,
+    ) -> Vec<Rel<G::Relation>> {
+        let indices: BTreeSet<usize> = (self.pending.iter().enumerate())
+            .filter(|(_, r)| settled(r))
+            .map(|(i, _)| i)
+            .collect();
+        self.settle_pending(&indices)
+    }
+
     /// Takes the pending relations at `indices` as satisfied together (by a linear stage):
     /// they leave the pending list, and their keys are done. Returns them.
     pub(crate) fn settle_pending(&mut self, indices: &BTreeSet<usize>) -> Vec<Rel<G::Relation>> {

@@ -409,26 +409,17 @@ impl Solve<'_> {
                 constraint,
                 ..
             } => {
-                let axis = |s: &Self, [p, d]: [Reg; 2]| {
-                    format!("Line3::new({}, {})", s.r(p), s.unit3_of(i, d))
-                };
                 let found = self.names.fresh("three_circles");
                 let code = format!(
                     "gcs_runtime::turn3d::three_circles(&{}, &{}, &{}, &{}, &{})",
-                    axis(self, *first),
+                    self.axis_line(i, *first),
                     self.r(*a),
-                    axis(self, *second),
-                    axis(self, *third),
+                    self.axis_line(i, *second),
+                    self.axis_line(i, *third),
                     self.r(*b)
                 );
-                self.let_read(w, &found, &code);
-                self.fail_on_contact(w, *constraint, &found, None);
-                let code = self.root(&found, *branch, *constraint);
-                self.fork(w, *branch);
                 let names = ["first_angle", "second_angle", "third_angle"];
-                self.unknown_names
-                    .insert(r, names.iter().map(|n| n.to_string()).collect());
-                self.define(w, r, "angles", &code);
+                self.angles_of(w, r, (&found, &code), (*branch, *constraint), &names);
             }
             SpatialOp::PlanarChainEnds {
                 first,
@@ -442,29 +433,20 @@ impl Solve<'_> {
                 branch,
                 constraint,
             } => {
-                let axis = |s: &Self, [p, d]: [Reg; 2]| {
-                    format!("Line3::new({}, {})", s.r(p), s.unit3_of(i, d))
-                };
                 let found = self.names.fresh("chain_ends");
                 let code = format!(
                     "gcs_runtime::turn3d::planar_chain_ends(&{}, &{}, &{}, &{}, &{}, &{}, {}, {})",
-                    axis(self, *first),
+                    self.axis_line(i, *first),
                     self.r(*h),
                     self.r(*base),
-                    axis(self, *joint),
+                    self.axis_line(i, *joint),
                     self.r(*far),
-                    axis(self, *last),
+                    self.axis_line(i, *last),
                     self.r(*offset),
                     float(*sense)
                 );
-                self.let_read(w, &found, &code);
-                self.fail_on_contact(w, *constraint, &found, None);
-                let code = self.root(&found, *branch, *constraint);
-                self.fork(w, *branch);
                 let names = ["base_angle", "joint_angle"];
-                self.unknown_names
-                    .insert(r, names.iter().map(|n| n.to_string()).collect());
-                self.define(w, r, "angles", &code);
+                self.angles_of(w, r, (&found, &code), (*branch, *constraint), &names);
             }
             SpatialOp::Opposite(d) => {
                 let code = format!("-{}", self.r(*d));
@@ -974,6 +956,30 @@ impl Solve<'_> {
         }
         w.line("return Err(e);");
         w.close("}");
+    }
+
+    /// The axis through the point in `pivot` along the direction in `dir`, made unit.
+    fn axis_line(&self, i: usize, [pivot, dir]: [Reg; 2]) -> String {
+        format!("Line3::new({}, {})", self.r(pivot), self.unit3_of(i, dir))
+    }
+
+    /// Defines `r`, the angles of a chain of turns: the root of `branch` of what `code` finds
+    /// (in local `found`), or the error of `c`; `solve_all`'s tree forks there. `names` are
+    /// the angles' locals, read by `Op::Unknown`.
+    fn angles_of(
+        &mut self,
+        w: &mut Writer,
+        r: Reg,
+        (found, code): (&str, &str),
+        (branch, c): (BranchId, ConstraintId),
+        names: &[&str],
+    ) {
+        self.let_read(w, found, code);
+        self.fail_on_contact(w, c, found, None);
+        let root = self.root(found, branch, c);
+        self.fork(w, branch);
+        (self.unknown_names).insert(r, names.iter().map(|n| n.to_string()).collect());
+        self.define(w, r, "angles", &root);
     }
 
     /// The root of `branch` of intersection `local`, or the error of constraint `c` that the

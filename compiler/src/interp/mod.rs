@@ -942,6 +942,15 @@ impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
 
 impl<'a, 'r, S: Space> Machine<'a, 'r, S> {
     /// The value of a scalar step, the same in every space; `None` for any other step.
+    /// Step `i`'s several answers (`Ty::Values`), kept for `Op::Unknown` to read.
+    fn answers(&mut self, i: usize, values: Vec<f64>) -> Val {
+        if self.linear.len() <= i {
+            self.linear.resize(i + 1, Vec::new());
+        }
+        self.linear[i] = values;
+        Val::Xs(i as u32)
+    }
+
     fn scalar(&mut self, i: usize, op: &Op) -> Result<Option<Val>, SolveError> {
         let model = self.model;
         Ok(Some(match op {

@@ -90,11 +90,7 @@ impl Machine<'_, '_, D2> {
                 None => self.degenerate(i),
             });
         }
-        if self.linear.len() <= i {
-            self.linear.resize(i + 1, Vec::new());
-        }
-        self.linear[i] = x;
-        Ok(Val::Xs(i as u32))
+        Ok(self.answers(i, x))
     }
 
     /// Runs one step of a planar plan.

@@ -100,6 +100,44 @@ impl Machine<'_, '_, D3> {
         }
     }
 
+    /// The axis through the point in `pivot` along the direction in `dir`, made unit.
+    fn axis(&self, i: usize, [pivot, dir]: [Reg; 2]) -> Result<Line3, SolveError> {
+        Ok(Line3::new(self.p3(pivot), self.unit(i, self.v3(dir))?))
+    }
+
+    /// The angles of a chain of turns (`found`) that `branch` takes, or that move the chain
+    /// least by `moved` on the sketch, as step `i`'s answers; an error naming `constraint` when
+    /// there are none.
+    fn angles_of<const K: usize, const N: usize>(
+        &mut self,
+        i: usize,
+        found: &gcs_runtime::Intersection<[f64; K], N>,
+        (branch, constraint): (crate::plan::BranchId, ConstraintId),
+        moved: impl Fn(&[f64; K]) -> f64,
+    ) -> Result<Val, SolveError>
+    where
+        [f64; K]: Default,
+    {
+        let model = self.model;
+        if let Some(e) = SolveError::from_contact("", "", found.contact) {
+            return Err(err(model, constraint, e.kind, e.magnitude));
+        }
+        let index = self.choose(branch, |_| {
+            (found.roots.as_slice().iter().enumerate())
+                .min_by(|(_, x), (_, y)| moved(x).total_cmp(&moved(y)))
+                .map(|(k, _)| k)
+        });
+        let angles = found.roots.get(index).ok_or_else(|| {
+            err(
+                model,
+                constraint,
+                ErrorKind::NoSuchBranch,
+                found.roots.len() as f64,
+            )
+        })?;
+        Ok(self.answers(i, angles.to_vec()))
+    }
+
     /// The rotation about `axis` that takes `from` (a vector from the pivot, or a direction) to
     /// `to`: the shortest one, or the one about the axis in a register by the angle between
     /// the two's components across it.
@@ -588,18 +626,12 @@ impl Machine<'_, '_, D3> {
                 branch,
                 constraint,
             } => {
-                let axis = |m: &Self, [p, d]: [Reg; 2]| -> Result<Line3, SolveError> {
-                    Ok(Line3::new(m.p3(p), m.unit(i, m.v3(d))?))
-                };
                 let (l1, l2, l3) = (
-                    axis(self, *first)?,
-                    axis(self, *second)?,
-                    axis(self, *third)?,
+                    self.axis(i, *first)?,
+                    self.axis(i, *second)?,
+                    self.axis(i, *third)?,
                 );
                 let found = turn3d::three_circles(&l1, &self.p3(*a), &l2, &l3, &self.p3(*b));
-                if let Some(e) = SolveError::from_contact("", "", found.contact) {
-                    return Err(err(model, *constraint, e.kind, e.magnitude));
-                }
                 // The root that leaves the chain's two joints nearest where they are (the
                 // second's pivot) and were (the third's, before the chain was assembled).
                 let (second_now, third_was) = (l2.point, self.p3(*near));
@@ -609,24 +641,7 @@ impl Machine<'_, '_, D3> {
                         turn3d::turn_point(&l1, -t1, &turn3d::turn_point(&l2, t2, &l3.point));
                     (second_to - second_now).norm() + (third_to - third_was).norm()
                 };
-                let index = self.choose(*branch, |_| {
-                    (found.roots.as_slice().iter().enumerate())
-                        .min_by(|(_, x), (_, y)| moved(x).total_cmp(&moved(y)))
-                        .map(|(k, _)| k)
-                });
-                let angles = found.roots.get(index).ok_or_else(|| {
-                    err(
-                        model,
-                        *constraint,
-                        ErrorKind::NoSuchBranch,
-                        found.roots.len() as f64,
-                    )
-                })?;
-                if self.linear.len() <= i {
-                    self.linear.resize(i + 1, Vec::new());
-                }
-                self.linear[i] = angles.to_vec();
-                Val::Xs(i as u32)
+                self.angles_of(i, &found, (*branch, *constraint), moved)?
             }
             SpatialOp::PlanarChainEnds {
                 first,
@@ -640,10 +655,11 @@ impl Machine<'_, '_, D3> {
                 branch,
                 constraint,
             } => {
-                let axis = |m: &Self, [p, d]: [Reg; 2]| -> Result<Line3, SolveError> {
-                    Ok(Line3::new(m.p3(p), m.unit(i, m.v3(d))?))
-                };
-                let (l1, lj, l6) = (axis(self, *first)?, axis(self, *joint)?, axis(self, *last)?);
+                let (l1, lj, l6) = (
+                    self.axis(i, *first)?,
+                    self.axis(i, *joint)?,
+                    self.axis(i, *last)?,
+                );
                 let found = turn3d::planar_chain_ends(
                     &l1,
                     &self.v3(*h),
@@ -654,31 +670,9 @@ impl Machine<'_, '_, D3> {
                     self.s(*offset),
                     *sense,
                 );
-                if let Some(e) = SolveError::from_contact("", "", found.contact) {
-                    return Err(err(model, *constraint, e.kind, e.magnitude));
-                }
                 // The least turn of both from where they are.
-                let index = self.choose(*branch, |_| {
-                    (found.roots.as_slice().iter().enumerate())
-                        .min_by(|(_, x), (_, y)| {
-                            let turn = |t: &[f64; 2]| t[0].abs() + t[1].abs();
-                            turn(x).total_cmp(&turn(y))
-                        })
-                        .map(|(k, _)| k)
-                });
-                let angles = found.roots.get(index).ok_or_else(|| {
-                    err(
-                        model,
-                        *constraint,
-                        ErrorKind::NoSuchBranch,
-                        found.roots.len() as f64,
-                    )
-                })?;
-                if self.linear.len() <= i {
-                    self.linear.resize(i + 1, Vec::new());
-                }
-                self.linear[i] = angles.to_vec();
-                Val::Xs(i as u32)
+                let turn = |t: &[f64; 2]| t[0].abs() + t[1].abs();
+                self.angles_of(i, &found, (*branch, *constraint), turn)?
             }
             SpatialOp::RotateBy {
                 geoms,

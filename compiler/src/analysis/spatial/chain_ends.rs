@@ -280,12 +280,7 @@ impl Builder<'_, Spatial> {
             bodies.join(", ")
         );
         let offset = self.value(Op::Sum(terms), Ty::Scalar, words);
-        let meanings: Vec<String> = ["smallest", "second smallest", "third smallest", "largest"]
-            .iter()
-            .map(|rank| {
-                format!("the assembly whose counter-clockwise turn of {na} about {a_word} from where it was (in (-180°, 180°]) is the {rank} of the chain's (up to four)")
-            })
-            .collect();
+        let meanings = super::three_circles::turn_ranks(&na, &a_word, true);
         let branch = self.branch(c, meanings);
         let words = format!("{na}'s turn and the angle of {cname} that close the chain");
         let angles = self.value(
@@ -373,15 +368,11 @@ impl Builder<'_, Spatial> {
         // The joint `D`–`E` holds by these steps; so do the parallel axes of the joint `D` is
         // entered by, once the chain's other bodies are turned onto the axes of the joints
         // before them (each body's axes parallel in it): no check, no redundancy.
-        let settled: std::collections::BTreeSet<usize> = (self.pending.iter().enumerate())
-            .filter(|(_, r)| {
-                r.constraint == c
-                    || (r.constraint == entering
-                        && matches!(r.relation, super::relation::Relation::Parallel { .. }))
-            })
-            .map(|(i, _)| i)
-            .collect();
-        let taken = self.settle_pending(&settled);
+        let taken = self.settle_where(|r| {
+            r.constraint == c
+                || (r.constraint == entering
+                    && matches!(r.relation, super::relation::Relation::Parallel { .. }))
+        });
         // The last of the entering joint's relations to be met now says it is met.
         if taken.iter().any(|r| r.constraint == entering && r.last) {
             if let Some(r) = (self.pending.iter_mut().rev()).find(|r| r.constraint == entering) {

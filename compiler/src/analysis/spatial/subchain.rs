@@ -593,8 +593,7 @@ impl Builder<'_, Spatial> {
             if !off_axis(m1, fa) || !off_axis(m2, fb) {
                 continue;
             }
-            let sense = self.joint_sense(j.constraint);
-            self.join_pivoted_pair(j, (k1, a, fa), (k2, b, fb), sense);
+            self.join_pivoted_pair(j, (k1, a, fa), (k2, b, fb));
             return true;
         }
         false
@@ -608,7 +607,6 @@ impl Builder<'_, Spatial> {
         j: Joint,
         (k1, a, fa): (usize, Reg, GeomId),
         (k2, b, fb): (usize, Reg, GeomId),
-        sense: f64,
     ) {
         use super::{Locus, Target};
         let [m1, m2] = j.markers;
@@ -652,27 +650,8 @@ impl Builder<'_, Spatial> {
             self.z_of(m2).expect("a marker"),
         );
         let axis1 = self.direction(z1);
-        let target = self.in_sense(axis1, z1, sense);
-        let from = self.direction(z2);
-        let explain = format!(
-            "Rotate {n2} about {} so that {} points along {} ({cname}).",
-            self.name(m1),
-            self.name(z2),
-            self.name(z1)
-        );
+        self.align_joint(&geoms2, (m1, z1, axis1), z2, c);
         let pivot = self.point(m1);
-        self.emit(
-            Op::RotateDir {
-                geoms: geoms2.clone(),
-                pivot,
-                axis: RotationAxis::Shortest,
-                from,
-                to: target,
-            },
-            None,
-            Vec::new(),
-            explain,
-        );
         // The joint's angle: the second pivot's orbit about the joint meets the sphere about
         // the first through the second's place.
         let now = self.point(fb);
@@ -769,11 +748,7 @@ impl Builder<'_, Spatial> {
             feature: None,
         };
         // The joint's relations hold by these steps.
-        let settled: std::collections::BTreeSet<usize> = (self.pending.iter().enumerate())
-            .filter(|(_, r)| r.constraint == c)
-            .map(|(i, _)| i)
-            .collect();
-        self.settle_pending(&settled);
+        self.settle_where(|r| r.constraint == c);
     }
 }
 

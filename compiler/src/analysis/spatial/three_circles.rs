@@ -234,12 +234,7 @@ impl Builder<'_, Spatial> {
         // The three angles.
         let (second_at, third_at) = (self.point(a.marker), self.point(b.far));
         let b_point = self.point(c.feature);
-        let meanings: Vec<String> = ["largest", "second largest", "third largest", "smallest"]
-            .iter()
-            .map(|rank| {
-                format!("the assembly whose counter-clockwise turn of {na} about {axis_word} from where it was (in (-180°, 180°]) is the {rank} of the chain's (up to four)")
-            })
-            .collect();
+        let meanings = turn_ranks(&na, &axis_word, false);
         let branch = self.branch(c2, meanings);
         let words = format!(
             "the angles of {na}'s turn, {cname1} and {cname2} that bring {fc} back to its place"
@@ -320,11 +315,7 @@ impl Builder<'_, Spatial> {
         rec.trans = Trans::Fixed;
         rec.turn = Turn::Known;
         // Both joints' relations hold by these steps.
-        let settled: std::collections::BTreeSet<usize> = (self.pending.iter().enumerate())
-            .filter(|(_, r)| r.constraint == c1 || r.constraint == c2)
-            .map(|(i, _)| i)
-            .collect();
-        self.settle_pending(&settled);
+        self.settle_where(|r| r.constraint == c1 || r.constraint == c2);
     }
 
     /// Rotates `geoms` about the joint's marker `at` so that their marker's z axis `z` points
@@ -361,4 +352,19 @@ impl Builder<'_, Spatial> {
             explain,
         );
     }
+}
+
+/// The meanings of a quartic's four roots ordered by the turn of `body` about `axis` from where
+/// it was: the smallest first where `ascending`, else the largest.
+pub(super) fn turn_ranks(body: &str, axis: &str, ascending: bool) -> Vec<String> {
+    let ranks = if ascending {
+        ["smallest", "second smallest", "third smallest", "largest"]
+    } else {
+        ["largest", "second largest", "third largest", "smallest"]
+    };
+    (ranks.iter())
+        .map(|rank| {
+            format!("the assembly whose counter-clockwise turn of {body} about {axis} from where it was (in (-180°, 180°]) is the {rank} of the chain's (up to four)")
+        })
+        .collect()
 }
