@@ -1,5 +1,6 @@
 //! Serial arms solved in closed form with every solution (issue 38): the 3R positioning arm of
-//! `examples/arm_3r.gcs` and the PUMA-like 6R of `examples/puma.gcs`.
+//! `examples/arm_3r.gcs`, the PUMA-like 6R of `examples/puma.gcs`, UR5, IRB 6640, a 7-joint
+//! arm, a SCARA, a Delta robot, and ik-geo's test arms.
 //!
 //! Each pose comes from random joint angles through forward kinematics written here, apart
 //! from the plan: the product of exponentials of the joints' screws, read from the numbers of
@@ -10,6 +11,10 @@
 //! base's two turns that put the wrist centre in the plane of the shoulder and elbow (none
 //! when it is inside the cylinder of the shoulder's offset), the elbow's two (none beyond
 //! reach), and the wrist's two.
+//!
+//! Near singularities (`check_near_singularities`), every arm is posed where its Jacobian loses
+//! rank, found by the determinant's sign along one joint's turn rather than by naming the
+//! singularity, and next to it: no solution returned may be wrong.
 
 use gcs_compiler::all::solve_all;
 use gcs_compiler::solution::Solution;
@@ -1253,4 +1258,172 @@ fn the_quartic_branches_order_the_base_turns_as_their_meanings_say() {
             arm.file
         );
     }
+}
+
+/// The Jacobian of the tool's pose in the joints that are not params, at joint angles `q`:
+/// a column per joint, the tool point's velocity (and, where the pose fixes the tool's axes,
+/// the angular velocity) of a unit turn about the joint's axis as the joints before it place it.
+fn jacobian(arm: &Arm, q: &[f64]) -> nalgebra::DMatrix<f64> {
+    let fk = forward(arm, q);
+    let (r, t) = fk.last().expect("a body");
+    let tool = r * v(arm.tool.0) + t;
+    let free: Vec<usize> = (0..arm.joints.len())
+        .filter(|j| !arm.joint_params.iter().any(|(k, _)| k == j))
+        .collect();
+    let rows = if arm.params.len() == 9 { 6 } else { 3 };
+    let mut jac = nalgebra::DMatrix::zeros(rows, free.len());
+    for (c, &k) in free.iter().enumerate() {
+        let (rb, tb) = if k == 0 {
+            (Rotation3::identity(), Vector3::zeros())
+        } else {
+            fk[k - 1]
+        };
+        let axis = rb * v(arm.joints[k].axis).normalize();
+        let point = rb * v(arm.joints[k].point) + tb;
+        let velocity = axis.cross(&(tool - point));
+        for i in 0..3 {
+            jac[(i, c)] = velocity[i];
+            if rows == 6 {
+                jac[(i + 3, c)] = axis[i];
+            }
+        }
+    }
+    jac
+}
+
+/// A singular configuration on the turn of joint `k` from `q`: the first angle past `q`'s,
+/// counter-clockwise, where the Jacobian's determinant changes sign (bisected to rounding);
+/// none when it keeps its sign over the whole turn.
+fn singular_on_turn(arm: &Arm, q: &[f64], k: usize) -> Option<f64> {
+    let det = |a: f64| {
+        let mut at = q.to_vec();
+        at[k] = a;
+        jacobian(arm, &at).determinant()
+    };
+    let samples = 48;
+    let step = std::f64::consts::TAU / samples as f64;
+    let (mut lo, mut f_lo) = (q[k], det(q[k]));
+    for i in 1..=samples {
+        let hi = q[k] + i as f64 * step;
+        let f_hi = det(hi);
+        if f_lo == 0.0 {
+            return Some(lo);
+        }
+        if f_lo.signum() != f_hi.signum() {
+            let mut hi = hi;
+            for _ in 0..64 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                let f = det(mid);
+                if f == 0.0 {
+                    return Some(mid);
+                }
+                if f.signum() == f_lo.signum() {
+                    (lo, f_lo) = (mid, f);
+                } else {
+                    hi = mid;
+                }
+            }
+            return Some(0.5 * (lo + hi));
+        }
+        (lo, f_lo) = (hi, f_hi);
+    }
+    None
+}
+
+/// Poses at and next to an arm's singular configurations, found here by the Jacobian's rank
+/// and not named (a wrist straight, an elbow stretched, a wrist centre on the base's axis,
+/// whichever the arm has): random joint angles, one joint turned to where the determinant of
+/// the Jacobian changes sign, then moved off it by 0, 1e-13, -1e-10, 1e-7, 1e-4 or -1e-3.
+/// A typed error (no solution) is an answer; a wrong solution never is. Every solution
+/// returned must reach the tool's pose to 1e-9 of the arm's reach, and close its joints to
+/// the square root of rounding: at a fold two roots meet, and a root there is fixed only to
+/// that (a joint off by `d` misses by about `d²`). Off a singularity by 1e-3, the arm the pose
+/// came from must be among the solutions; nearer, a fold's two roots may be one within the
+/// tolerance a pose is met to (1e-12 leaves a joint near a fold free by about 1e-6, which a
+/// second fold downstream can magnify), and one root stands for both. The arm is compared to
+/// 1e-6: 1e-3 from a fold, a quartic's pair of roots places the bodies to about 3e-8.
+fn check_near_singularities(arm: &Arm, poses: usize, seed: u64) {
+    let l = load(arm);
+    let (model, plan) = (&l.compiled.model, &l.compiled.analysis.plan);
+    let mut rng = Rng(seed);
+    let free: Vec<usize> = (0..arm.joints.len())
+        .filter(|j| !arm.joint_params.iter().any(|(k, _)| k == j))
+        .collect();
+    let reach = 2.0;
+    let offsets = [0.0, 1e-13, -1e-10, 1e-7, 1e-4, -1e-3];
+    let (mut answered, mut refused, mut singular_joints) = (0, 0, BTreeSet::new());
+    for i in 0..poses {
+        let (q, k) = loop {
+            let mut q: Vec<f64> = arm.joints.iter().map(|_| rng.angle()).collect();
+            let k = free[(rng.next() * free.len() as f64) as usize % free.len()];
+            if let Some(a) = singular_on_turn(arm, &q, k) {
+                q[k] = a + offsets[i % offsets.len()];
+                break (q, k);
+            }
+        };
+        singular_joints.insert(k);
+        let fk = forward(arm, &q);
+        let (params, p, _) = pose_params(arm, &l, &q);
+        let (r, _) = fk.last().expect("a body");
+        let (z, x) = (r * v(arm.tool.1), r * v(arm.tool.2));
+        let found = solve_all(model, plan, &l.scope, &params, &plan.sketch_defaults());
+        if found.solutions.is_empty() {
+            refused += 1;
+        } else {
+            answered += 1;
+        }
+        for s in &found.solutions {
+            let (rs, ts) = *motions(arm, s).last().expect("a body");
+            let mut miss = (rs * v(arm.tool.0) + ts - p).norm();
+            if arm.params.len() == 9 {
+                miss = miss
+                    .max((rs * v(arm.tool.1) - z).norm())
+                    .max((rs * v(arm.tool.2) - x).norm());
+            }
+            assert!(
+                s.max_residual <= f64::EPSILON.sqrt() * reach && miss <= 1e-9 * reach,
+                "{}: q = {q:?} (joint {k} singular, off by {}): a wrong answer, its residual {}, the tool off by {miss}",
+                arm.file,
+                offsets[i % offsets.len()],
+                s.max_residual
+            );
+        }
+        if offsets[i % offsets.len()] == -1e-3 {
+            assert!(
+                found.solutions.iter().any(|s| is_arm(arm, s, &fk, 1e-6)),
+                "{}: q = {q:?}: 1e-3 off a singularity of joint {k}, the arm the pose came from is not among {} solutions",
+                arm.file,
+                found.solutions.len()
+            );
+        }
+    }
+    eprintln!(
+        "{}: near singularities of joints {singular_joints:?}: {answered} answered, {refused} refused",
+        arm.file
+    );
+}
+
+/// One test an arm, so that the arms run side by side.
+macro_rules! near_singularities {
+    ($($test:ident: $arm:expr, $seed:expr;)*) => {
+        $(
+            #[test]
+            fn $test() {
+                check_near_singularities(&$arm, 1000, $seed);
+            }
+        )*
+    };
+}
+
+near_singularities! {
+    the_3r_arm_gives_no_wrong_answer_near_its_singularities: arm_3r(), 0x3a3a_0001;
+    the_puma_arm_gives_no_wrong_answer_near_any_singularity: puma(), 0x9a9a_0001;
+    the_ur5_arm_gives_no_wrong_answer_near_its_singularities: ur5(), 0x0405_0001;
+    the_irb6640_arm_gives_no_wrong_answer_near_its_singularities: irb6640(), 0x6640_0001;
+    the_spherical_bot_gives_no_wrong_answer_near_its_singularities: spherical_bot(), 0x5b07_0001;
+    the_three_parallel_bot_gives_no_wrong_answer_near_its_singularities: three_parallel_bot(), 0x3b07_0001;
+    the_7_joint_arm_gives_no_wrong_answer_near_its_singularities: iiwa(), 0x0007_0001;
 }

@@ -113,6 +113,24 @@ impl Frame2 {
         Vector2::new(-self.rotation.im, self.rotation.re)
     }
 
+    /// Whether two frames place a body alike: origins within `length_tol` and rotations
+    /// within [`tol::SAME_ASSEMBLY_REL`], componentwise. The duplicate test of a
+    /// generated `solve_all`: a body's frame in place of all its markers' points and axes.
+    #[inline]
+    pub fn same_placement(&self, other: &Frame2, length_tol: f64) -> bool {
+        let near = |a: f64, b: f64| (a - b).abs() <= tol::SAME_ASSEMBLY_REL;
+        (self.origin - other.origin).amax() <= length_tol
+            && near(self.rotation.re, other.rotation.re)
+            && near(self.rotation.im, other.rotation.im)
+    }
+
+    /// The sum of what [`Frame2::same_placement`] compares: two frames it calls alike differ
+    /// here by at most 4 times its largest tolerance.
+    #[inline]
+    pub fn placement_sum(&self) -> f64 {
+        self.origin.coords.sum() + self.rotation.re + self.rotation.im
+    }
+
     /// Global position of a member point given in local coordinates.
     #[inline]
     pub fn point_to_global(&self, local: &Point2<f64>) -> Point2<f64> {
@@ -244,6 +262,27 @@ impl Frame3 {
     #[inline]
     pub fn z_axis(&self) -> Vector3<f64> {
         self.rotation * Vector3::z()
+    }
+
+    /// Whether two frames place a body alike: origins within `length_tol` and rotations
+    /// within [`tol::SAME_ASSEMBLY_REL`], componentwise, a quaternion and its
+    /// negative being one rotation. The duplicate test of a generated `solve_all`: a body's
+    /// frame in place of all its markers' points and axes (a turn by `d` moves a quaternion
+    /// by at most `d / 2`, and a unit axis by at most `d`).
+    #[inline]
+    pub fn same_placement(&self, other: &Frame3, length_tol: f64) -> bool {
+        let (p, q) = (self.rotation.coords, other.rotation.coords);
+        (self.origin - other.origin).amax() <= length_tol
+            && ((p - q).amax() <= tol::SAME_ASSEMBLY_REL
+                || (p + q).amax() <= tol::SAME_ASSEMBLY_REL)
+    }
+
+    /// The sum of what [`Frame3::same_placement`] compares, the rotation's by the absolute
+    /// values of its components (which a quaternion and its negative share): two frames it
+    /// calls alike differ here by at most 7 times its largest tolerance.
+    #[inline]
+    pub fn placement_sum(&self) -> f64 {
+        self.origin.coords.sum() + self.rotation.coords.abs().sum()
     }
 
     /// Global position of a member point given in local coordinates.
@@ -1001,6 +1040,59 @@ mod tests {
             proptest::prop_assert!(by_sin_cos.w >= 0.0);
             proptest::prop_assert!((by_sin_cos.into_inner().norm() - 1.0).abs() <= 4.0 * f64::EPSILON);
         }
+    }
+
+    proptest::proptest! {
+        /// Two frames are one placement exactly when their points and axes agree: a frame
+        /// and itself with its quaternion negated (one rotation) are alike; moved by a turn
+        /// or a shift of rounding size they stay alike, by a thousand times the tolerance they
+        /// do not; and the sum `keep` screens by differs between alike frames by no more than
+        /// its bound.
+        #[test]
+        fn same_placement_is_one_placement_whatever_the_quaternion_sign(
+            origin in proptest::array::uniform3(-5.0f64..5.0),
+            axis in proptest::array::uniform3(-1.0f64..1.0),
+            angle in -PI..PI,
+            nudge in proptest::array::uniform3(-1.0f64..1.0),
+            flip in proptest::bool::ANY,
+        ) {
+            let axis = Vector3::from(axis);
+            proptest::prop_assume!(axis.norm() > 1e-3);
+            let rotation = rotation_about_axis(&axis, angle);
+            let a = Frame3::new(Point3::from(origin), rotation);
+            let q = if flip { -rotation.into_inner() } else { rotation.into_inner() };
+            let b = Frame3::new(a.origin, UnitQuaternion::new_unchecked(q));
+            let tol = tol::SAME_ASSEMBLY_REL * (1.0 + a.origin.coords.amax());
+            proptest::prop_assert!(a.same_placement(&b, tol));
+            proptest::prop_assert!((a.placement_sum() - b.placement_sum()).abs() <= 1e-15 * 8.0);
+            let nudge = Vector3::from(nudge);
+            proptest::prop_assume!(nudge.norm() > 1e-3);
+            for (size, alike) in [(1e-13, true), (1e-6, false)] {
+                let turned = rotation_about_axis(&nudge, size) * rotation;
+                let near = Frame3::new(a.origin + nudge * size, turned);
+                proptest::prop_assert_eq!(a.same_placement(&near, tol), alike, "{}", size);
+                if alike {
+                    proptest::prop_assert!((a.placement_sum() - near.placement_sum()).abs() <= 7.0 * tol);
+                }
+                // A turn alone, and a shift alone, are each told apart.
+                let shifted = Frame3::new(a.origin + nudge.normalize() * size, rotation);
+                proptest::prop_assert_eq!(a.same_placement(&shifted, tol), alike);
+                let turned_only = Frame3::new(a.origin, rotation_about_axis(&nudge, size) * rotation);
+                proptest::prop_assert_eq!(a.same_placement(&turned_only, tol), alike);
+            }
+        }
+    }
+
+    /// In the plane a frame's rotation has one form: alike to rounding, told apart past it.
+    #[test]
+    fn same_placement_in_the_plane() {
+        let a = Frame2::new(Point2::new(1.0, -2.0), 2.5);
+        let tol = tol::SAME_ASSEMBLY_REL * 3.0;
+        assert!(a.same_placement(&Frame2::new(a.origin, 2.5 + 1e-14), tol));
+        assert!(!a.same_placement(&Frame2::new(a.origin, 2.5 + 1e-6), tol));
+        assert!(!a.same_placement(&Frame2::new(a.origin + Vector2::new(0.0, 1e-6), 2.5), tol));
+        assert!(!a.same_placement(&Frame2::new(a.origin, 2.5 - 2.0 * PI + 1e-6), tol));
+        assert!(a.same_placement(&Frame2::new(a.origin, 2.5 - 2.0 * PI), tol));
     }
 
     /// The cases `signed_angle3` makes zero are the identity, and a NaN is a NaN rotation.

@@ -37,7 +37,6 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     } else {
         CAPACITY
     };
-    let point = super::api::Ty::Point.rust(cx);
     // Closed form with branches to vary: the plan's steps as one tree (`fork`).
     let forked: rustc_hash::FxHashSet<BranchId> = (counts.iter().enumerate())
         .filter(|&(_, &c)| c > 1)
@@ -46,12 +45,7 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     let tree = (varied.is_empty() && !forked.is_empty())
         .then(|| super::fork::tree(cx, layout, forked, w.indent + 2))
         .flatten();
-    assemblies(
-        w,
-        (cx, layout),
-        (capacity, one_angle, varied.is_empty()),
-        point,
-    );
+    assemblies(w, (cx, layout), (capacity, one_angle, varied.is_empty()));
     let carries = match (plan.branches.is_empty(), plan.defaults.is_empty()) {
         (false, false) => {
             w.line("/// Every real assembly at `params`, each with its branches (`Solution::branches`) and");
@@ -103,8 +97,8 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
         w.line("#[allow(dead_code, clippy::redundant_closure_call)]");
         w.open("pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {");
         w.line(&format!("let mut found = Assemblies::new({complete});"));
-        w.line("// The points of each solution listed, computed once (`keep`).");
-        w.line("let mut kept = [None; MAX_ASSEMBLIES];");
+        w.line("// The sum and scale of each solution listed, computed once (`keep`).");
+        w.line("let mut kept = [(0.0, 0.0); MAX_ASSEMBLIES];");
         w.line("let branches = &Branches::default();");
         w.comment("A failure before the first branch's root is taken: no assembly.");
         w.open("let _ = (|| -> Result<(), SolveError> {");
@@ -119,8 +113,8 @@ pub(super) fn solve_all(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
     w.line("#[allow(dead_code)]");
     w.open("pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {");
     w.line(&format!("let mut found = Assemblies::new({complete});"));
-    w.line("// The points of each solution listed, computed once (`keep`).");
-    w.line("let mut kept = [None; MAX_ASSEMBLIES];");
+    w.line("// The sum and scale of each solution listed, computed once (`keep`).");
+    w.line("let mut kept = [(0.0, 0.0); MAX_ASSEMBLIES];");
     let each = |w: &mut Writer| combination_body(w, cx, &varied, one_angle);
     // One scan serves every value of the branches its iteration does not see
     // (`all::scanned_branches`), as in the interpreter: those vary inside, over the roots.
@@ -223,7 +217,7 @@ fn roots_loop(w: &mut Writer, cx: &Context<'_>, varied: &[usize]) {
     }
     w.line("// One start of many: a failure is not told apart, and no mode is held.");
     w.open("if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {");
-    w.line("keep(&mut found, &mut kept, s.points(), s);");
+    w.line("keep(&mut found, &mut kept, s);");
     w.close("}");
     w.close("}");
 }
@@ -233,7 +227,7 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
     let plan = cx.plan;
     if varied.is_empty() {
         w.open("if let Ok(s) = solve(params, &branches, defaults) {");
-        w.line("keep(&mut found, &mut kept, s.points(), s);");
+        w.line("keep(&mut found, &mut kept, s);");
         w.close("}");
         return;
     }
@@ -276,7 +270,7 @@ fn combination_body(w: &mut Writer, cx: &Context<'_>, varied: &[usize], one_angl
     }
     w.line("// One start of many: a failure is not told apart, and no mode is held.");
     w.open("if let Ok(s) = assemble(params, &branches, &start, &mut gcs_runtime::outer::Search) {");
-    w.line("keep(&mut found, &mut kept, s.points(), s);");
+    w.line("keep(&mut found, &mut kept, s);");
     w.close("}");
     w.close("}");
 }
@@ -287,7 +281,6 @@ fn assemblies(
     w: &mut Writer,
     (cx, layout): (&Context<'_>, &Layout),
     (capacity, one_angle, closed): (usize, bool, bool),
-    point: &str,
 ) {
     w.line(
         "/// The most assemblies [`solve_all`] lists; past it, the list says it is not complete.",
@@ -307,100 +300,203 @@ fn assemblies(
     w.line("#[allow(dead_code)]");
     w.line("pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;");
     w.line("");
-    w.line("/// A solution's points by name, as `Solution::points` gives them.");
+    let compared = Compared::new(cx, layout);
+    w.line(
+        "/// What `keep` holds of a solution listed: the sum of what `same_assembly` compares, and",
+    );
+    w.line("/// the scale of its points (their largest coordinate, plus one).");
     w.line("#[allow(dead_code)]");
+    w.line("type Kept = (f64, f64);");
+    w.line("");
+    compared.fingerprint(w);
+    compared.same_assembly(w, cx);
+    w.line("/// Adds `s` to `found` unless the list has its assembly already (`same_assembly`);");
+    w.line(
+        "/// `kept` holds the sum and scale of each solution listed (`fingerprint`), by its place",
+    );
+    w.line(
+        "/// in the list. Two whose sums differ by more than all they compare may differ are not",
+    );
+    w.line("/// compared further.");
+    w.line("#[allow(dead_code)]");
+    w.open("fn keep(found: &mut Assemblies, kept: &mut [Kept; MAX_ASSEMBLIES], s: Solution) {");
+    w.line("let (sum, scale) = fingerprint(&s);");
+    w.open("let listed = found.iter().zip(kept.iter()).any(|(t, &(sum_t, scale_t))| {");
+    w.line("let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale_t;");
     w.line(&format!(
-        "type NamedPoints<const P: usize> = [(&'static str, {point}); P];"
+        "(sum_t - sum).abs() <= {}.0 * tol && same_assembly(t, &s, tol)",
+        compared.coordinates(cx).max(1)
     ));
-    w.line("");
-    let dims = cx.space.coordinates().len();
-    w.line("/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,");
-    w.line("/// plus one) and the sum of their coordinates.");
-    w.line("#[allow(dead_code)]");
-    w.line("type Kept<const P: usize> = (NamedPoints<P>, f64, f64);");
-    w.line("");
-    w.line(
-        "/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and",
-    );
-    w.line(
-        "/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's",
-    );
-    w.line(
-        "/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates",
-    );
-    w.line(
-        "/// may differ are not compared further; the vectors are read only when the points agree.",
-    );
-    w.line("#[allow(dead_code)]");
-    w.open(
-        "fn same_assembly<const P: usize>((pa, scale, sum_a): &Kept<P>, (pb, sum_b): (&NamedPoints<P>, f64), a: &Solution, b: &Solution) -> bool {",
-    );
-    w.line("let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;");
-    w.line(&format!(
-        "(sum_a - sum_b).abs() <= ({dims} * P + 1) as f64 * tol"
-    ));
-    w.line("    && pa.iter().zip(pb).all(|((_, p), (_, q))| (p - q).amax() <= tol)");
-    w.line("    && same_vectors(a, b)");
-    w.close("}");
-    w.line("");
-    same_vectors(w, cx, layout);
-    w.line("/// Adds `s`, whose points are `points`, to `found` unless the list has its assembly");
-    w.line("/// already (`same_assembly`); `kept` holds the points of each solution listed, with their");
-    w.line(
-        "/// scale and sum, by its place in the list, so that each is computed once, not once per",
-    );
-    w.line("/// pair compared.");
-    w.line("#[allow(dead_code)]");
-    w.open(
-        "fn keep<const P: usize>(found: &mut Assemblies, kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES], points: NamedPoints<P>, s: Solution) {",
-    );
-    w.line("let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();");
-    w.line("let listed = found.iter().zip(kept.iter()).any(|(t, k)| k.as_ref().is_some_and(|k| same_assembly(k, (&points, sum), t, &s)));");
+    w.close("});");
     w.open("if listed {");
     w.line("return;");
     w.close("}");
     w.open("if let Some(slot) = kept.get_mut(found.len()) {");
-    w.line("let scale = 1.0 + points.iter().fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));");
-    w.line("*slot = Some((points, scale, sum));");
+    w.line("*slot = (sum, scale);");
     w.close("}");
     w.line("found.push(s, |_, _| false);");
     w.close("}");
     w.line("");
 }
 
-/// `same_vectors`: whether two solutions' vectors agree within `SAME_ASSEMBLY_REL`, read one
-/// at a time until two differ, the last declared first (a chain's far links, which the most
-/// branches move: two assemblies of an arm whose points agree differ in its wrist's axes).
-fn same_vectors(w: &mut Writer, cx: &Context<'_>, layout: &Layout) {
-    let vectors: Vec<String> = (super::api::accessors(cx, layout).0.into_iter())
-        .filter(|(a, _)| a.ty == super::api::Ty::Vector)
-        .map(|(_, accessor)| accessor)
-        .collect();
-    w.line("/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,");
-    w.line(
-        "/// read one at a time until two differ, the last declared first (a chain's far links,",
-    );
-    w.line("/// which the most branches move).");
-    w.line("#[allow(dead_code)]");
-    if vectors.is_empty() {
-        w.open("fn same_vectors(_: &Solution, _: &Solution) -> bool {");
+/// What the duplicate test of `solve_all`'s list compares, by accessor: a body by its frame
+/// (its origin and rotation), not by all its markers' points and axes, which the frame
+/// places; any other geom by its points and directions. Constants, which every solution
+/// shares, are not read. The interpreter's rule ([`crate::all`]) compares the points and
+/// axes themselves: both say two assemblies are one when they agree to within rounding.
+struct Compared {
+    frames: Vec<String>,
+    points: Vec<String>,
+    vectors: Vec<String>,
+}
+
+impl Compared {
+    fn new(cx: &Context<'_>, layout: &Layout) -> Compared {
+        use super::api::{Reads, Ty};
+        let mut compared = Compared {
+            frames: Vec::new(),
+            points: Vec::new(),
+            vectors: Vec::new(),
+        };
+        for (a, accessor) in super::api::accessors(cx, layout).0 {
+            let body = cx.model.geoms[a.geom].kind == gcs_lang::model::GeomKind::Body;
+            match a.ty {
+                _ if matches!(a.reads, Reads::Constant(_)) => {}
+                Ty::Frame if body => compared.frames.push(accessor),
+                Ty::Point if !body => compared.points.push(accessor),
+                Ty::Vector if !body => compared.vectors.push(accessor),
+                _ => {}
+            }
+        }
+        compared
+    }
+
+    /// How many numbers are compared: a frame's origin and rotation (a quaternion's four
+    /// components in space, a unit complex's two in the plane), each point's and vector's
+    /// coordinates.
+    fn coordinates(&self, cx: &Context<'_>) -> usize {
+        let dims = cx.space.coordinates().len();
+        let rotation = if dims == 3 { 4 } else { 2 };
+        self.frames.len() * (dims + rotation) + (self.points.len() + self.vectors.len()) * dims
+    }
+
+    /// `fingerprint`: a solution's sum of what is compared (a rotation's by the absolute
+    /// values of its components) and its scale.
+    fn fingerprint(&self, w: &mut Writer) {
+        w.line("/// The sum of what `same_assembly` compares of `s`, and the scale of its points.");
+        w.line("#[allow(dead_code)]");
+        if self.frames.is_empty() && self.points.is_empty() && self.vectors.is_empty() {
+            w.open("fn fingerprint(_: &Solution) -> Kept {");
+            w.line("(0.0, 1.0)");
+            w.close("}");
+            w.line("");
+            return;
+        }
+        w.open("fn fingerprint(s: &Solution) -> Kept {");
+        w.line("let mut sum = 0.0;");
+        let sized = !self.frames.is_empty() || !self.points.is_empty();
+        if sized {
+            w.line("let mut size = 0.0f64;");
+        }
+        // A loop over the accessors of a kind, or for one, its statements alone (clippy
+        // would call a loop over one element a mistake).
+        let each = |w: &mut Writer, names: &[String], var: &str, body: &[&str]| {
+            if let [one] = names {
+                w.line(&format!("let {var} = s.{one}();"));
+                body.iter().for_each(|line| w.line(line));
+                return;
+            }
+            let list = (names.iter())
+                .map(|n| format!("s.{n}()"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            w.open(&format!("for {var} in [{list}] {{"));
+            body.iter().for_each(|line| w.line(line));
+            w.close("}");
+        };
+        if !self.frames.is_empty() {
+            let body = [
+                "sum += f.placement_sum();",
+                "size = size.max(f.origin.coords.amax());",
+            ];
+            each(w, &self.frames, "f", &body);
+        }
+        if !self.points.is_empty() {
+            let body = [
+                "sum += p.coords.sum();",
+                "size = size.max(p.coords.amax());",
+            ];
+            each(w, &self.points, "p", &body);
+        }
+        if !self.vectors.is_empty() {
+            each(w, &self.vectors, "v", &["sum += v.sum();"]);
+        }
+        if sized {
+            w.line("(sum, 1.0 + size)");
+        } else {
+            w.line("(sum, 1.0)");
+        }
+        w.close("}");
+        w.line("");
+    }
+
+    /// `same_assembly`: whether two solutions agree in every frame, point and vector, read one
+    /// at a time until two differ, the last declared first (a chain's far links, which the
+    /// most branches move).
+    fn same_assembly(&self, w: &mut Writer, cx: &Context<'_>) {
+        use super::api::Ty;
+        w.line("/// Whether two solutions are one assembly: every body's frame, point and vector within");
+        w.line("/// a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (`tol` for positions, of the model's");
+        w.line("/// size), read one at a time until two differ, the last declared first (a chain's far");
+        w.line("/// links, which the most branches move).");
+        w.line("#[allow(dead_code)]");
+        if self.frames.is_empty() && self.points.is_empty() && self.vectors.is_empty() {
+            w.open("fn same_assembly(_: &Solution, _: &Solution, _: f64) -> bool {");
+            w.line("true");
+            w.close("}");
+            w.line("");
+            return;
+        }
+        // Positions read `tol`; directions and rotations their own `SAME_ASSEMBLY_REL`.
+        let tol = if self.frames.is_empty() && self.points.is_empty() {
+            "_"
+        } else {
+            "tol"
+        };
+        w.open(&format!(
+            "fn same_assembly(a: &Solution, b: &Solution, {tol}: f64) -> bool {{"
+        ));
+        if !self.points.is_empty() {
+            let ty = Ty::Point.rust(cx);
+            w.line(&format!(
+                "let at = |p: {ty}, q: {ty}| (p - q).amax() <= tol;"
+            ));
+        }
+        if !self.vectors.is_empty() {
+            let ty = Ty::Vector.rust(cx);
+            w.line(&format!(
+                "let near = |u: {ty}, v: {ty}| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;"
+            ));
+        }
+        // A statement each, not one `&&` chain, which rustc would recurse through; the
+        // frames first (a body's frame says most), each kind the last declared first.
+        for f in self.frames.iter().rev() {
+            w.open(&format!("if !a.{f}().same_placement(&b.{f}(), tol) {{"));
+            w.line("return false;");
+            w.close("}");
+        }
+        for p in self.points.iter().rev() {
+            w.open(&format!("if !at(a.{p}(), b.{p}()) {{"));
+            w.line("return false;");
+            w.close("}");
+        }
+        for v in self.vectors.iter().rev() {
+            w.open(&format!("if !near(a.{v}(), b.{v}()) {{"));
+            w.line("return false;");
+            w.close("}");
+        }
         w.line("true");
         w.close("}");
         w.line("");
-        return;
     }
-    w.open("fn same_vectors(a: &Solution, b: &Solution) -> bool {");
-    let ty = super::api::Ty::Vector.rust(cx);
-    w.line(&format!(
-        "let near = |u: {ty}, v: {ty}| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;"
-    ));
-    // A statement each, not one `&&` chain, which rustc would recurse through.
-    for v in vectors.iter().rev() {
-        w.open(&format!("if !near(a.{v}(), b.{v}()) {{"));
-        w.line("return false;");
-        w.close("}");
-    }
-    w.line("true");
-    w.close("}");
-    w.line("");
 }

@@ -770,7 +770,7 @@ impl Solve<'_> {
         self.defaults_init(w);
         if self.forking.is_some() {
             w.close("};");
-            w.line("keep(&mut found, &mut kept, solution.points(), solution);");
+            w.line("keep(&mut found, &mut kept, solution);");
         } else {
             w.close("})");
         }

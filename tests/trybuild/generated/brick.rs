@@ -256,68 +256,64 @@ pub const MAX_ASSEMBLIES: usize = 1;
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
-/// A solution's points by name, as `Solution::points` gives them.
+/// What `keep` holds of a solution listed: the sum of what `same_assembly` compares, and
+/// the scale of its points (their largest coordinate, plus one).
 #[allow(dead_code)]
-type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
+type Kept = (f64, f64);
 
-/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
-/// plus one) and the sum of their coordinates.
+/// The sum of what `same_assembly` compares of `s`, and the scale of its points.
 #[allow(dead_code)]
-type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
-
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
-/// may differ are not compared further; the vectors are read only when the points agree.
-#[allow(dead_code)]
-fn same_assembly<const P: usize>(
-    (pa, scale, sum_a): &Kept<P>,
-    (pb, sum_b): (&NamedPoints<P>, f64),
-    a: &Solution,
-    b: &Solution,
-) -> bool {
-    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
-    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
-        && pa
-            .iter()
-            .zip(pb)
-            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
-        && same_vectors(a, b)
+fn fingerprint(s: &Solution) -> Kept {
+    let mut sum = 0.0;
+    let mut size = 0.0f64;
+    let f = s.brick();
+    sum += f.placement_sum();
+    size = size.max(f.origin.coords.amax());
+    for p in [s.g1(), s.g2(), s.g3()] {
+        sum += p.coords.sum();
+        size = size.max(p.coords.amax());
+    }
+    (sum, 1.0 + size)
 }
 
-/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
-/// read one at a time until two differ, the last declared first (a chain's far links,
-/// which the most branches move).
+/// Whether two solutions are one assembly: every body's frame, point and vector within
+/// a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (`tol` for positions, of the model's
+/// size), read one at a time until two differ, the last declared first (a chain's far
+/// links, which the most branches move).
 #[allow(dead_code)]
-fn same_vectors(_: &Solution, _: &Solution) -> bool {
+fn same_assembly(a: &Solution, b: &Solution, tol: f64) -> bool {
+    let at = |p: Point3<f64>, q: Point3<f64>| (p - q).amax() <= tol;
+    if !a.brick().same_placement(&b.brick(), tol) {
+        return false;
+    }
+    if !at(a.g3(), b.g3()) {
+        return false;
+    }
+    if !at(a.g2(), b.g2()) {
+        return false;
+    }
+    if !at(a.g1(), b.g1()) {
+        return false;
+    }
     true
 }
 
-/// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
-/// scale and sum, by its place in the list, so that each is computed once, not once per
-/// pair compared.
+/// Adds `s` to `found` unless the list has its assembly already (`same_assembly`);
+/// `kept` holds the sum and scale of each solution listed (`fingerprint`), by its place
+/// in the list. Two whose sums differ by more than all they compare may differ are not
+/// compared further.
 #[allow(dead_code)]
-fn keep<const P: usize>(
-    found: &mut Assemblies,
-    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
-    points: NamedPoints<P>,
-    s: Solution,
-) {
-    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
-    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
-        k.as_ref()
-            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+fn keep(found: &mut Assemblies, kept: &mut [Kept; MAX_ASSEMBLIES], s: Solution) {
+    let (sum, scale) = fingerprint(&s);
+    let listed = found.iter().zip(kept.iter()).any(|(t, &(sum_t, scale_t))| {
+        let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale_t;
+        (sum_t - sum).abs() <= 16.0 * tol && same_assembly(t, &s, tol)
     });
     if listed {
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        let scale = 1.0
-            + points
-                .iter()
-                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale, sum));
+        *slot = (sum, scale);
     }
     found.push(s, |_, _| false);
 }
@@ -329,11 +325,11 @@ fn keep<const P: usize>(
 #[allow(dead_code)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
-    // The points of each solution listed, computed once (`keep`).
-    let mut kept = [None; MAX_ASSEMBLIES];
+    // The sum and scale of each solution listed, computed once (`keep`).
+    let mut kept = [(0.0, 0.0); MAX_ASSEMBLIES];
     let branches = Branches::default();
     if let Ok(s) = solve(params, &branches, defaults) {
-        keep(&mut found, &mut kept, s.points(), s);
+        keep(&mut found, &mut kept, s);
     }
     found
 }

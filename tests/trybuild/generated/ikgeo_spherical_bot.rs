@@ -943,154 +943,77 @@ pub const MAX_ASSEMBLIES: usize = 8;
 #[allow(dead_code)]
 pub type Assemblies = gcs_runtime::outer::Assemblies<Solution, MAX_ASSEMBLIES>;
 
-/// A solution's points by name, as `Solution::points` gives them.
+/// What `keep` holds of a solution listed: the sum of what `same_assembly` compares, and
+/// the scale of its points (their largest coordinate, plus one).
 #[allow(dead_code)]
-type NamedPoints<const P: usize> = [(&'static str, Point3<f64>); P];
+type Kept = (f64, f64);
 
-/// What `keep` holds of a solution listed: its points, their scale (the largest coordinate,
-/// plus one) and the sum of their coordinates.
+/// The sum of what `same_assembly` compares of `s`, and the scale of its points.
 #[allow(dead_code)]
-type Kept<const P: usize> = (NamedPoints<P>, f64, f64);
-
-/// Whether two solutions are one assembly, `pa` and `pb` their points: every point and
-/// vector within a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (points of the model's
-/// size, `scale`). Two whose coordinates' sums differ by more than all their coordinates
-/// may differ are not compared further; the vectors are read only when the points agree.
-#[allow(dead_code)]
-fn same_assembly<const P: usize>(
-    (pa, scale, sum_a): &Kept<P>,
-    (pb, sum_b): (&NamedPoints<P>, f64),
-    a: &Solution,
-    b: &Solution,
-) -> bool {
-    let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale;
-    (sum_a - sum_b).abs() <= (3 * P + 1) as f64 * tol
-        && pa
-            .iter()
-            .zip(pb)
-            .all(|((_, p), (_, q))| (p - q).amax() <= tol)
-        && same_vectors(a, b)
+fn fingerprint(s: &Solution) -> Kept {
+    let mut sum = 0.0;
+    let mut size = 0.0f64;
+    for f in [
+        s.ground(),
+        s.link_1(),
+        s.link_2(),
+        s.link_3(),
+        s.link_4(),
+        s.link_5(),
+        s.tool(),
+    ] {
+        sum += f.placement_sum();
+        size = size.max(f.origin.coords.amax());
+    }
+    (sum, 1.0 + size)
 }
 
-/// Whether the vectors of two solutions agree within `gcs_runtime::tol::SAME_ASSEMBLY_REL`,
-/// read one at a time until two differ, the last declared first (a chain's far links,
-/// which the most branches move).
+/// Whether two solutions are one assembly: every body's frame, point and vector within
+/// a relative `gcs_runtime::tol::SAME_ASSEMBLY_REL` (`tol` for positions, of the model's
+/// size), read one at a time until two differ, the last declared first (a chain's far
+/// links, which the most branches move).
 #[allow(dead_code)]
-fn same_vectors(a: &Solution, b: &Solution) -> bool {
-    let near =
-        |u: Vector3<f64>, v: Vector3<f64>| (u - v).amax() <= gcs_runtime::tol::SAME_ASSEMBLY_REL;
-    if !near(a.tool_tcp_x(), b.tool_tcp_x()) {
+fn same_assembly(a: &Solution, b: &Solution, tol: f64) -> bool {
+    if !a.tool().same_placement(&b.tool(), tol) {
         return false;
     }
-    if !near(a.tool_tcp_z(), b.tool_tcp_z()) {
+    if !a.link_5().same_placement(&b.link_5(), tol) {
         return false;
     }
-    if !near(a.tool_j6_x(), b.tool_j6_x()) {
+    if !a.link_4().same_placement(&b.link_4(), tol) {
         return false;
     }
-    if !near(a.tool_j6_z(), b.tool_j6_z()) {
+    if !a.link_3().same_placement(&b.link_3(), tol) {
         return false;
     }
-    if !near(a.link_5_j6_x(), b.link_5_j6_x()) {
+    if !a.link_2().same_placement(&b.link_2(), tol) {
         return false;
     }
-    if !near(a.link_5_j6_z(), b.link_5_j6_z()) {
+    if !a.link_1().same_placement(&b.link_1(), tol) {
         return false;
     }
-    if !near(a.link_5_j5_x(), b.link_5_j5_x()) {
-        return false;
-    }
-    if !near(a.link_5_j5_z(), b.link_5_j5_z()) {
-        return false;
-    }
-    if !near(a.link_4_j5_x(), b.link_4_j5_x()) {
-        return false;
-    }
-    if !near(a.link_4_j5_z(), b.link_4_j5_z()) {
-        return false;
-    }
-    if !near(a.link_4_j4_x(), b.link_4_j4_x()) {
-        return false;
-    }
-    if !near(a.link_4_j4_z(), b.link_4_j4_z()) {
-        return false;
-    }
-    if !near(a.link_3_j4_x(), b.link_3_j4_x()) {
-        return false;
-    }
-    if !near(a.link_3_j4_z(), b.link_3_j4_z()) {
-        return false;
-    }
-    if !near(a.link_3_j3_x(), b.link_3_j3_x()) {
-        return false;
-    }
-    if !near(a.link_3_j3_z(), b.link_3_j3_z()) {
-        return false;
-    }
-    if !near(a.link_2_j3_x(), b.link_2_j3_x()) {
-        return false;
-    }
-    if !near(a.link_2_j3_z(), b.link_2_j3_z()) {
-        return false;
-    }
-    if !near(a.link_2_j2_x(), b.link_2_j2_x()) {
-        return false;
-    }
-    if !near(a.link_2_j2_z(), b.link_2_j2_z()) {
-        return false;
-    }
-    if !near(a.link_1_j2_x(), b.link_1_j2_x()) {
-        return false;
-    }
-    if !near(a.link_1_j2_z(), b.link_1_j2_z()) {
-        return false;
-    }
-    if !near(a.link_1_j1_x(), b.link_1_j1_x()) {
-        return false;
-    }
-    if !near(a.link_1_j1_z(), b.link_1_j1_z()) {
-        return false;
-    }
-    if !near(a.ground_target_x(), b.ground_target_x()) {
-        return false;
-    }
-    if !near(a.ground_target_z(), b.ground_target_z()) {
-        return false;
-    }
-    if !near(a.ground_base_x(), b.ground_base_x()) {
-        return false;
-    }
-    if !near(a.ground_base_z(), b.ground_base_z()) {
+    if !a.ground().same_placement(&b.ground(), tol) {
         return false;
     }
     true
 }
 
-/// Adds `s`, whose points are `points`, to `found` unless the list has its assembly
-/// already (`same_assembly`); `kept` holds the points of each solution listed, with their
-/// scale and sum, by its place in the list, so that each is computed once, not once per
-/// pair compared.
+/// Adds `s` to `found` unless the list has its assembly already (`same_assembly`);
+/// `kept` holds the sum and scale of each solution listed (`fingerprint`), by its place
+/// in the list. Two whose sums differ by more than all they compare may differ are not
+/// compared further.
 #[allow(dead_code)]
-fn keep<const P: usize>(
-    found: &mut Assemblies,
-    kept: &mut [Option<Kept<P>>; MAX_ASSEMBLIES],
-    points: NamedPoints<P>,
-    s: Solution,
-) {
-    let sum: f64 = points.iter().map(|(_, p)| p.coords.sum()).sum();
-    let listed = found.iter().zip(kept.iter()).any(|(t, k)| {
-        k.as_ref()
-            .is_some_and(|k| same_assembly(k, (&points, sum), t, &s))
+fn keep(found: &mut Assemblies, kept: &mut [Kept; MAX_ASSEMBLIES], s: Solution) {
+    let (sum, scale) = fingerprint(&s);
+    let listed = found.iter().zip(kept.iter()).any(|(t, &(sum_t, scale_t))| {
+        let tol = gcs_runtime::tol::SAME_ASSEMBLY_REL * scale_t;
+        (sum_t - sum).abs() <= 49.0 * tol && same_assembly(t, &s, tol)
     });
     if listed {
         return;
     }
     if let Some(slot) = kept.get_mut(found.len()) {
-        let scale = 1.0
-            + points
-                .iter()
-                .fold(0.0f64, |m, (_, p)| m.max(p.coords.amax()));
-        *slot = Some((points, scale, sum));
+        *slot = (sum, scale);
     }
     found.push(s, |_, _| false);
 }
@@ -1104,8 +1027,8 @@ fn keep<const P: usize>(
 #[allow(dead_code, clippy::redundant_closure_call)]
 pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
     let mut found = Assemblies::new(true);
-    // The points of each solution listed, computed once (`keep`).
-    let mut kept = [None; MAX_ASSEMBLIES];
+    // The sum and scale of each solution listed, computed once (`keep`).
+    let mut kept = [(0.0, 0.0); MAX_ASSEMBLIES];
     let branches = &Branches::default();
     // A failure before the first branch's root is taken: no assembly.
     let _ = (|| -> Result<(), SolveError> {
@@ -1435,7 +1358,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             tool,
                             branches: *branches,
                         };
-                        keep(&mut found, &mut kept, solution.points(), solution);
+                        keep(&mut found, &mut kept, solution);
                         Ok(())
                     })();
                 }
