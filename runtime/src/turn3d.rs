@@ -1042,7 +1042,7 @@ pub fn four_terms(terms: &[[Term; 4]; 2], d: [f64; 2]) -> Intersection<[f64; 2],
 /// The roots of a solve, mapped, with their contact: `Tangent` when any is double.
 fn collect<T: Copy + Default, const N: usize>(
     roots: &Roots<([f64; 2], bool), N>,
-    map: impl Fn([f64; 2]) -> T,
+    mut map: impl FnMut([f64; 2]) -> T,
 ) -> Intersection<T, N> {
     let mut out = Roots::new();
     let mut tangent = false;
@@ -1153,6 +1153,22 @@ pub fn three_circles(
     third: &Line3,
     b: &Point3<f64>,
 ) -> Intersection<[f64; 3], 4> {
+    three_circles_polishing(first, a, second, third, b, None)
+}
+
+/// [`three_circles`] for a caller that reads one root, `only` (every root when `None`): only
+/// that root is polished on the chain's own miss, which is most of the work. The others are
+/// the quartic's, in the same slots (the order is the quartic's, before any polish), and
+/// close their two equations as [`four_terms`] leaves them, not the chain to rounding. Root
+/// `only` is the same, to the bit, as [`three_circles`]'s.
+pub fn three_circles_polishing(
+    first: &Line3,
+    a: &Point3<f64>,
+    second: &Line3,
+    third: &Line3,
+    b: &Point3<f64>,
+    only: Option<usize>,
+) -> Intersection<[f64; 3], 4> {
     if !(finite_axis(first)
         && finite_axis(second)
         && finite_axis(third)
@@ -1219,12 +1235,20 @@ pub fn three_circles(
             };
             Intersection::none(Contact::Disjoint { gap })
         }
-        Solved::Roots(roots) => collect(&roots, |t| {
-            let (pa, pb) = meet(t);
-            let t2 = nearest_turn(second, &pb, &pa).map_or(0.0, |n| n.angle);
-            let met = (pa, turn_point(second, t2, &pb));
-            polish_three(first, a, second, third, b, [t[0], t2, t[1]], met, sc)
-        }),
+        Solved::Roots(roots) => {
+            let mut slot = 0;
+            collect(&roots, |t| {
+                let (pa, pb) = meet(t);
+                let t2 = nearest_turn(second, &pb, &pa).map_or(0.0, |n| n.angle);
+                let read = only.is_none_or(|k| k == slot);
+                slot += 1;
+                if !read {
+                    return [t[0], t2, t[1]].map(wrap);
+                }
+                let met = (pa, turn_point(second, t2, &pb));
+                polish_three(first, a, second, third, b, [t[0], t2, t[1]], met, sc)
+            })
+        }
     }
 }
 

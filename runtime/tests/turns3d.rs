@@ -598,6 +598,20 @@ proptest! {
 
     #[test]
     fn sp6_recovers_the_angles(seed in any::<u64>()) { check(sp6(seed))?; }
+
+    /// A caller reading one root of SP5 (`three_circles_polishing`, which polishes only it)
+    /// gets that root to the bit, in the same slot, with the same count and contact.
+    #[test]
+    fn sp5_one_root_alone_is_as_among_all(seed in any::<u64>(), how in 0usize..5) {
+        let f = five(seed, AXES[how]);
+        let x = three_circles(&f.first, &f.a, &f.second, &f.third, &f.b);
+        for k in 0..x.roots.len() {
+            let one = three_circles_polishing(&f.first, &f.a, &f.second, &f.third, &f.b, Some(k));
+            prop_assert_eq!(one.roots.len(), x.roots.len());
+            prop_assert_eq!(one.roots.as_slice()[k], x.roots.as_slice()[k]);
+            prop_assert_eq!(format!("{:?}", one.contact), format!("{:?}", x.contact));
+        }
+    }
 }
 
 #[test]

@@ -88,6 +88,12 @@ impl Solve<'_> {
         w.open("let _ = (|| -> Result<(), SolveError> {");
     }
 
+    /// Whether `solve_all`'s tree takes every root of `branch`: an op whose roots cost apiece
+    /// (a quartic's polished) works out all of them, not only the branch's.
+    pub(super) fn varies(&self, branch: BranchId) -> bool {
+        (self.forking.as_ref()).is_some_and(|f| f.varied.contains(&branch))
+    }
+
     /// Whether a fork is open: a dimension set here is bound anew, as each root's own.
     pub(super) fn in_fork(&self) -> bool {
         (self.forking.as_ref()).is_some_and(|f| !f.forked.is_empty())

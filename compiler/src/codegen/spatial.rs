@@ -410,8 +410,14 @@ impl Solve<'_> {
                 ..
             } => {
                 let found = self.names.fresh("three_circles");
+                // Only the root read is polished, unless `solve_all`'s tree reads them all.
+                let only = if self.varies(*branch) {
+                    "None".to_string()
+                } else {
+                    format!("Some({})", self.branch_index(*branch))
+                };
                 let code = format!(
-                    "gcs_runtime::turn3d::three_circles(&{}, &{}, &{}, &{}, &{})",
+                    "gcs_runtime::turn3d::three_circles_polishing(&{}, &{}, &{}, &{}, &{}, {only})",
                     self.axis_line(i, *first),
                     self.r(*a),
                     self.axis_line(i, *second),

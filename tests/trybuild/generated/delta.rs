@@ -473,9 +473,8 @@ pub fn solve(
     );
     platform.rotate_about_by(&ground_target, &turn);
     let ground_centre_x = ground.vector_to_global(&Vector3::x());
-    let turned = frame::rotation_about_axis(&ground_centre_z, 0.0) * ground_centre_x;
     let platform_centre_x = platform.vector_to_global(&Vector3::x());
-    let turn_2 = frame::turn_about_axis(&ground_centre_z, &platform_centre_x, &turned);
+    let turn_2 = frame::turn_about_axis(&ground_centre_z, &platform_centre_x, &ground_centre_x);
     platform.rotate_about_by(&ground_target, &turn_2);
 
     // revolute(arm1.base, ground.b1) (delta.gcs:35)
@@ -809,9 +808,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         );
         platform.rotate_about_by(&ground_target, &turn);
         let ground_centre_x = ground.vector_to_global(&Vector3::x());
-        let turned = frame::rotation_about_axis(&ground_centre_z, 0.0) * ground_centre_x;
         let platform_centre_x = platform.vector_to_global(&Vector3::x());
-        let turn_2 = frame::turn_about_axis(&ground_centre_z, &platform_centre_x, &turned);
+        let turn_2 = frame::turn_about_axis(&ground_centre_z, &platform_centre_x, &ground_centre_x);
         platform.rotate_about_by(&ground_target, &turn_2);
 
         // revolute(arm1.base, ground.b1) (delta.gcs:35)

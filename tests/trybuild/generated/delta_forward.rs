@@ -478,9 +478,7 @@ pub fn solve(
     arm3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_3);
 
     // offset_x(ground.centre, platform.centre) = 0 (delta_forward.gcs:42)
-    let turned_4 = frame::rotation_about_axis(&Vector3::z(), 0.0) * Vector3::x();
-    let turn_4 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned_4);
-    platform.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
+    // Already true where the sketch puts the geoms: nothing moves.
 
     // distance(arm1.elbow, platform.p1) = forearm (delta_forward.gcs:35)
     let arm1_base = arm1.point_to_global(&Point3::new(0.2, 0.0, 0.0));
@@ -497,16 +495,17 @@ pub fn solve(
         ));
     }
     let sphere = Sphere::new(arm1_elbow, params.forearm);
-    let platform_p1 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
-    let nearest = sphere.nearest(&platform_p1).ok_or_else(|| {
-        SolveError::new(
-            "distance_arm1_elbow_platform_p1",
-            "distance(arm1.elbow, platform.p1) = forearm",
-            ErrorKind::Degenerate,
-            0.0,
-        )
-    })?;
-    let shift_2 = nearest - platform_p1;
+    let nearest = sphere
+        .nearest(&Point3::new(0.05, 0.0, -0.828812307881))
+        .ok_or_else(|| {
+            SolveError::new(
+                "distance_arm1_elbow_platform_p1",
+                "distance(arm1.elbow, platform.p1) = forearm",
+                ErrorKind::Degenerate,
+                0.0,
+            )
+        })?;
+    let shift_2 = nearest - Point3::new(0.05, 0.0, -0.828812307881);
     platform.translate(&shift_2);
 
     // revolute(arm1.base, ground.b1) (delta_forward.gcs:33)
@@ -546,8 +545,8 @@ pub fn solve(
     let sphere_2 = Sphere::new(arm2_elbow, params.forearm);
     let platform_p2 =
         platform.point_to_global(&Point3::new(-0.025, 0.0433012701892, -0.828812307881));
-    let platform_p1_2 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
-    let sphere_moved = sphere.shifted(&(platform_p2 - platform_p1_2));
+    let platform_p1 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
+    let sphere_moved = sphere.shifted(&(platform_p2 - platform_p1));
     let distance_arm2_elbow_platform_p2_meeting =
         intersect3d::sphere_sphere(&sphere_moved, &sphere_2);
     if let Some(e) = SolveError::from_contact(
@@ -806,9 +805,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         arm3.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_3);
 
         // offset_x(ground.centre, platform.centre) = 0 (delta_forward.gcs:42)
-        let turned_4 = frame::rotation_about_axis(&Vector3::z(), 0.0) * Vector3::x();
-        let turn_4 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned_4);
-        platform.rotate_about_by(&Point3::new(0.0, 0.0, 0.0), &turn_4);
+        // Already true where the sketch puts the geoms: nothing moves.
 
         // distance(arm1.elbow, platform.p1) = forearm (delta_forward.gcs:35)
         let arm1_base = arm1.point_to_global(&Point3::new(0.2, 0.0, 0.0));
@@ -825,16 +822,17 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             ));
         }
         let sphere = Sphere::new(arm1_elbow, params.forearm);
-        let platform_p1 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
-        let nearest = sphere.nearest(&platform_p1).ok_or_else(|| {
-            SolveError::new(
-                "distance_arm1_elbow_platform_p1",
-                "distance(arm1.elbow, platform.p1) = forearm",
-                ErrorKind::Degenerate,
-                0.0,
-            )
-        })?;
-        let shift_2 = nearest - platform_p1;
+        let nearest = sphere
+            .nearest(&Point3::new(0.05, 0.0, -0.828812307881))
+            .ok_or_else(|| {
+                SolveError::new(
+                    "distance_arm1_elbow_platform_p1",
+                    "distance(arm1.elbow, platform.p1) = forearm",
+                    ErrorKind::Degenerate,
+                    0.0,
+                )
+            })?;
+        let shift_2 = nearest - Point3::new(0.05, 0.0, -0.828812307881);
         platform.translate(&shift_2);
 
         // revolute(arm1.base, ground.b1) (delta_forward.gcs:33)
@@ -874,8 +872,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let sphere_2 = Sphere::new(arm2_elbow, params.forearm);
         let platform_p2 =
             platform.point_to_global(&Point3::new(-0.025, 0.0433012701892, -0.828812307881));
-        let platform_p1_2 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
-        let sphere_moved = sphere.shifted(&(platform_p2 - platform_p1_2));
+        let platform_p1 = platform.point_to_global(&Point3::new(0.05, 0.0, -0.828812307881));
+        let sphere_moved = sphere.shifted(&(platform_p2 - platform_p1));
         let distance_arm2_elbow_platform_p2_meeting =
             intersect3d::sphere_sphere(&sphere_moved, &sphere_2);
         if let Some(e) = SolveError::from_contact(

@@ -673,16 +673,14 @@ pub fn solve(
     l6.rotate_about_by(&l7_j7, &turn_2);
 
     // weld(l7.tool, ground.target) (iiwa.gcs:59)
-    let l7_tool_z_2 = l7.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&l7_tool_z_2, -0.0) * ground_target_x;
     let l7_tool_x = l7.vector_to_global(&Vector3::x());
-    let turn_3 = frame::turn_about_axis(&ground_target_z, &l7_tool_x, &turned);
+    let turn_3 = frame::turn_about_axis(&ground_target_z, &l7_tool_x, &ground_target_x);
     l7.rotate_about_by(&ground_target, &turn_3);
 
     // offset_x(l2.j3, l3.j3) = q3 (iiwa.gcs:54)
-    let turned_2 = frame::rotation_about_axis(&Vector3::z(), params.q3) * Vector3::x();
-    let turn_4 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned_2);
+    let turned = frame::rotation_about_axis(&Vector3::z(), params.q3) * Vector3::x();
+    let turn_4 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned);
     l3.rotate_about_by(&Point3::new(0.0, 0.0, 0.36), &turn_4);
 
     // revolute(l3.j3, l2.j3) (iiwa.gcs:53)
@@ -869,7 +867,7 @@ pub fn solve(
     ) {
         return Err(e);
     }
-    let turned_3 = turns_2
+    let turned_2 = turns_2
         .roots
         .get(usize::from(branches.revolute_l6_j6_l5_j6))
         .ok_or_else(|| {
@@ -880,7 +878,7 @@ pub fn solve(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_11 = frame::turn_about_axis(&l7_j7_z, &l6_j6_z, &turned_3);
+    let turn_11 = frame::turn_about_axis(&l7_j7_z, &l6_j6_z, &turned_2);
     l6.rotate_about_by(&l7_j7, &turn_11);
     let l6_j6_z_2 = l6.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
     let l5_j6_z = l5.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
@@ -1086,16 +1084,14 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         l6.rotate_about_by(&l7_j7, &turn_2);
 
         // weld(l7.tool, ground.target) (iiwa.gcs:59)
-        let l7_tool_z_2 = l7.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-        let turned = frame::rotation_about_axis(&l7_tool_z_2, -0.0) * ground_target_x;
         let l7_tool_x = l7.vector_to_global(&Vector3::x());
-        let turn_3 = frame::turn_about_axis(&ground_target_z, &l7_tool_x, &turned);
+        let turn_3 = frame::turn_about_axis(&ground_target_z, &l7_tool_x, &ground_target_x);
         l7.rotate_about_by(&ground_target, &turn_3);
 
         // offset_x(l2.j3, l3.j3) = q3 (iiwa.gcs:54)
-        let turned_2 = frame::rotation_about_axis(&Vector3::z(), params.q3) * Vector3::x();
-        let turn_4 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned_2);
+        let turned = frame::rotation_about_axis(&Vector3::z(), params.q3) * Vector3::x();
+        let turn_4 = frame::turn_about_axis(&Vector3::z(), &Vector3::x(), &turned);
         l3.rotate_about_by(&Point3::new(0.0, 0.0, 0.36), &turn_4);
 
         // revolute(l3.j3, l2.j3) (iiwa.gcs:53)
@@ -1340,7 +1336,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             let mut l6 = l6;
                             // A failure ends this root's assemblies only.
                             let _ = (|| -> Result<(), SolveError> {
-                                let turned_3 = turns_2
+                                let turned_2 = turns_2
                                     .roots
                                     .get(usize::from(branches.revolute_l6_j6_l5_j6))
                                     .ok_or_else(|| {
@@ -1351,7 +1347,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                             turns_2.roots.len() as f64,
                                         )
                                     })?;
-                                let turn_11 = frame::turn_about_axis(&l7_j7_z, &l6_j6_z, &turned_3);
+                                let turn_11 = frame::turn_about_axis(&l7_j7_z, &l6_j6_z, &turned_2);
                                 l6.rotate_about_by(&l7_j7, &turn_11);
                                 let l6_j6_z_2 = l6.vector_to_global(&Vector3::new(
                                     0.0,

@@ -700,19 +700,13 @@ pub fn solve(
         &frame::perpendicular(&tool_tcp_z),
     );
     tool.rotate_about_by(&ground_target, &turn);
-    let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-        0.5823590409284812,
-        0.15359716622514163,
-        0.7982893322451865,
-    ));
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
     let tool_tcp_x = tool.vector_to_global(&Vector3::new(
         0.6014998552233268,
         0.5791700551290658,
         -0.5502362868878349,
     ));
-    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
     tool.rotate_about_by(&ground_target, &turn_2);
 
     // revolute(tool.j6, link_5.j6) (ikgeo_irb6640.gcs:52)
@@ -1004,7 +998,7 @@ pub fn solve(
     ) {
         return Err(e);
     }
-    let turned_2 = turns_2
+    let turned = turns_2
         .roots
         .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
         .ok_or_else(|| {
@@ -1015,7 +1009,7 @@ pub fn solve(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_10 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
+    let turn_10 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned);
     link_5.rotate_about_by(&tool_j6, &turn_10);
     let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
         -0.3503364588118941,
@@ -1212,19 +1206,13 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             &frame::perpendicular(&tool_tcp_z),
         );
         tool.rotate_about_by(&ground_target, &turn);
-        let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-            0.5823590409284812,
-            0.15359716622514163,
-            0.7982893322451865,
-        ));
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-        let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
         let tool_tcp_x = tool.vector_to_global(&Vector3::new(
             0.6014998552233268,
             0.5791700551290658,
             -0.5502362868878349,
         ));
-        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
         tool.rotate_about_by(&ground_target, &turn_2);
 
         // revolute(tool.j6, link_5.j6) (ikgeo_irb6640.gcs:52)
@@ -1566,7 +1554,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             let mut link_5 = link_5;
                             // A failure ends this root's assemblies only.
                             let _ = (|| -> Result<(), SolveError> {
-                                let turned_2 = turns_2
+                                let turned = turns_2
                                     .roots
                                     .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
                                     .ok_or_else(|| {
@@ -1578,7 +1566,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                         )
                                     })?;
                                 let turn_10 =
-                                    frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
+                                    frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned);
                                 link_5.rotate_about_by(&tool_j6, &turn_10);
                                 let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
                                     -0.3503364588118941,

@@ -709,19 +709,13 @@ pub fn solve(
         &frame::perpendicular(&tool_tcp_z),
     );
     tool.rotate_about_by(&ground_target, &turn);
-    let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-        0.5021916698418661,
-        0.09442095516838787,
-        0.859586068969552,
-    ));
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
     let tool_tcp_x = tool.vector_to_global(&Vector3::new(
         0.5195978843864275,
         0.761627557357866,
         -0.3872228071979223,
     ));
-    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
     tool.rotate_about_by(&ground_target, &turn_2);
 
     // revolute(tool.j6, link_5.j6) (ikgeo_spherical_bot.gcs:52)
@@ -793,7 +787,7 @@ pub fn solve(
         0.6044084883852824,
         2.6160971379033464,
     ));
-    let three_circles = gcs_runtime::turn3d::three_circles(
+    let three_circles = gcs_runtime::turn3d::three_circles_polishing(
         &Line3::new(
             Point3::new(0.0, 0.0, 0.0),
             Vector3::new(0.0, 1.0, 2.220446049250313e-16),
@@ -808,6 +802,7 @@ pub fn solve(
             Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
         ),
         &link_3_j4,
+        Some(usize::from(branches.revolute_link_3_j3_link_2_j3)),
     );
     if let Some(e) = SolveError::from_contact(
         "revolute_link_3_j3_link_2_j3",
@@ -893,7 +888,7 @@ pub fn solve(
     ) {
         return Err(e);
     }
-    let turned_2 = turns
+    let turned = turns
         .roots
         .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
         .ok_or_else(|| {
@@ -904,7 +899,7 @@ pub fn solve(
                 turns.roots.len() as f64,
             )
         })?;
-    let turn_9 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
+    let turn_9 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned);
     link_5.rotate_about_by(&tool_j6, &turn_9);
     let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
         -0.5119651088617578,
@@ -1100,19 +1095,13 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             &frame::perpendicular(&tool_tcp_z),
         );
         tool.rotate_about_by(&ground_target, &turn);
-        let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-            0.5021916698418661,
-            0.09442095516838787,
-            0.859586068969552,
-        ));
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-        let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
         let tool_tcp_x = tool.vector_to_global(&Vector3::new(
             0.5195978843864275,
             0.761627557357866,
             -0.3872228071979223,
         ));
-        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
         tool.rotate_about_by(&ground_target, &turn_2);
 
         // revolute(tool.j6, link_5.j6) (ikgeo_spherical_bot.gcs:52)
@@ -1186,7 +1175,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             0.6044084883852824,
             2.6160971379033464,
         ));
-        let three_circles = gcs_runtime::turn3d::three_circles(
+        let three_circles = gcs_runtime::turn3d::three_circles_polishing(
             &Line3::new(
                 Point3::new(0.0, 0.0, 0.0),
                 Vector3::new(0.0, 1.0, 2.220446049250313e-16),
@@ -1201,6 +1190,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                 Vector3::new(-0.458012710847292, 0.8775825618903728, 0.14167993424703806),
             ),
             &link_3_j4,
+            None,
         );
         if let Some(e) = SolveError::from_contact(
             "revolute_link_3_j3_link_2_j3",
@@ -1318,7 +1308,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     let mut link_5 = link_5;
                     // A failure ends this root's assemblies only.
                     let _ = (|| -> Result<(), SolveError> {
-                        let turned_2 = turns
+                        let turned = turns
                             .roots
                             .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
                             .ok_or_else(|| {
@@ -1329,7 +1319,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     turns.roots.len() as f64,
                                 )
                             })?;
-                        let turn_9 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
+                        let turn_9 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned);
                         link_5.rotate_about_by(&tool_j6, &turn_9);
                         let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
                             -0.5119651088617578,

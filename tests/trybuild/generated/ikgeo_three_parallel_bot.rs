@@ -684,19 +684,13 @@ pub fn solve(
         &frame::perpendicular(&tool_tcp_z),
     );
     tool.rotate_about_by(&ground_target, &turn);
-    let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-        0.31947806743409246,
-        -0.08749802872751081,
-        0.9435453668994285,
-    ));
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
     let tool_tcp_x = tool.vector_to_global(&Vector3::new(
         0.45465520451603747,
         0.8877836323483184,
         -0.0716161095069117,
     ));
-    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
     tool.rotate_about_by(&ground_target, &turn_2);
 
     // revolute(tool.j6, link_5.j6) (ikgeo_three_parallel_bot.gcs:52)
@@ -1164,19 +1158,13 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             &frame::perpendicular(&tool_tcp_z),
         );
         tool.rotate_about_by(&ground_target, &turn);
-        let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-            0.31947806743409246,
-            -0.08749802872751081,
-            0.9435453668994285,
-        ));
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-        let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
         let tool_tcp_x = tool.vector_to_global(&Vector3::new(
             0.45465520451603747,
             0.8877836323483184,
             -0.0716161095069117,
         ));
-        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
         tool.rotate_about_by(&ground_target, &turn_2);
 
         // revolute(tool.j6, link_5.j6) (ikgeo_three_parallel_bot.gcs:52)

@@ -734,19 +734,13 @@ fn assemble<O: gcs_runtime::outer::Outer>(
     let shift_2 =
         tool_j6 - Point3::new(-0.33936552488745964, 3.8496616184425987, 1.9857733668766029);
     link_5.translate(&shift_2);
-    let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-        -0.10051687550480902,
-        -0.9869204131705398,
-        0.12603355031911845,
-    ));
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
     let tool_tcp_x = tool.vector_to_global(&Vector3::new(
         0.9923744875055992,
         -0.09036764034572364,
         0.08382461527704858,
     ));
-    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
     tool.rotate_about_by(&ground_target, &turn_2);
 
     // revolute(tool.j6, link_5.j6) (ikgeo_two_parallel_bot.gcs:52)

@@ -690,19 +690,13 @@ pub fn solve(
         &frame::perpendicular(&tool_tcp_z),
     );
     tool.rotate_about_by(&ground_target, &turn);
-    let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-        0.2526061255346566,
-        -0.21427152387798087,
-        0.9435453668994285,
-    ));
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
     let tool_tcp_x = tool.vector_to_global(&Vector3::new(
         0.8423849603184854,
         -0.4310386353536154,
         -0.32340883330811615,
     ));
-    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+    let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
     tool.rotate_about_by(&ground_target, &turn_2);
 
     // revolute(tool.j6, link_5.j6) (ikgeo_ur5.gcs:52)
@@ -868,7 +862,7 @@ pub fn solve(
     ) {
         return Err(e);
     }
-    let turned_2 = turns_2
+    let turned = turns_2
         .roots
         .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
         .ok_or_else(|| {
@@ -879,7 +873,7 @@ pub fn solve(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_8 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
+    let turn_8 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned);
     link_5.rotate_about_by(&tool_j6, &turn_8);
     let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
         0.09537450575679444,
@@ -1193,19 +1187,13 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             &frame::perpendicular(&tool_tcp_z),
         );
         tool.rotate_about_by(&ground_target, &turn);
-        let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(
-            0.2526061255346566,
-            -0.21427152387798087,
-            0.9435453668994285,
-        ));
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-        let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
         let tool_tcp_x = tool.vector_to_global(&Vector3::new(
             0.8423849603184854,
             -0.4310386353536154,
             -0.32340883330811615,
         ));
-        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+        let turn_2 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
         tool.rotate_about_by(&ground_target, &turn_2);
 
         // revolute(tool.j6, link_5.j6) (ikgeo_ur5.gcs:52)
@@ -1416,7 +1404,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     let mut link_5 = link_5;
                     // A failure ends this root's assemblies only.
                     let _ = (|| -> Result<(), SolveError> {
-                        let turned_2 = turns_2
+                        let turned = turns_2
                             .roots
                             .get(usize::from(branches.revolute_link_5_j5_link_4_j5))
                             .ok_or_else(|| {
@@ -1427,7 +1415,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     turns_2.roots.len() as f64,
                                 )
                             })?;
-                        let turn_8 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned_2);
+                        let turn_8 = frame::turn_about_axis(&tool_j6_z, &link_5_j5_z, &turned);
                         link_5.rotate_about_by(&tool_j6, &turn_8);
                         let link_5_j5_z_2 = link_5.vector_to_global(&Vector3::new(
                             0.09537450575679444,

@@ -715,13 +715,12 @@ pub fn solve(
     let shift_6 = nearest_3 - slider_s;
     slider.translate(&shift_6);
     let ground_rail_x = ground.vector_to_global(&Vector3::y());
-    let turned_3 = frame::rotation_about_axis(&ground_rail_z, -0.0) * ground_rail_x;
     let slider_s_x = slider.vector_to_global(&Vector3::y());
     let slider_s_2 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let slider_s_z = slider.vector_to_global(&Vector3::x());
     let angle = frame::signed_angle3_both(
         [&slider_s_z, &slider_s_x],
-        [&ground_rail_z, &turned_3],
+        [&ground_rail_z, &ground_rail_x],
         &rod_b_z,
     );
     let turn_6 = frame::rotation_about_axis(&rod_b_z, angle);
@@ -1126,13 +1125,12 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                 let shift_6 = nearest_3 - slider_s;
                 slider.translate(&shift_6);
                 let ground_rail_x = ground.vector_to_global(&Vector3::y());
-                let turned_3 = frame::rotation_about_axis(&ground_rail_z, -0.0) * ground_rail_x;
                 let slider_s_x = slider.vector_to_global(&Vector3::y());
                 let slider_s_2 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
                 let slider_s_z = slider.vector_to_global(&Vector3::x());
                 let angle = frame::signed_angle3_both(
                     [&slider_s_z, &slider_s_x],
-                    [&ground_rail_z, &turned_3],
+                    [&ground_rail_z, &ground_rail_x],
                     &rod_b_z,
                 );
                 let turn_6 = frame::rotation_about_axis(&rod_b_z, angle);

@@ -641,11 +641,9 @@ pub fn solve(
     let wrist_roll_wrist = wrist_roll.point_to_global(&Point3::new(0.4521, 0.15, 0.2282));
     let shift_4 = wrist_roll_wrist - Point3::new(0.4521, 0.15, 0.2282);
     forearm.translate(&shift_4);
-    let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
     let tool_tcp_x = tool.vector_to_global(&Vector3::new(-2.220446049250313e-16, 0.0, 1.0));
-    let turn_3 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+    let turn_3 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
     tool.rotate_about_by(&ground_target, &turn_3);
 
     // revolute(upper_arm.shoulder, trunk.shoulder) (puma.gcs:48)
@@ -863,7 +861,7 @@ pub fn solve(
     ) {
         return Err(e);
     }
-    let turned_2 = turns_2
+    let turned = turns_2
         .roots
         .get(usize::from(
             branches.revolute_wrist_bend_bend_wrist_roll_bend,
@@ -876,7 +874,7 @@ pub fn solve(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_10 = frame::turn_about_axis(&tool_flange_z, &wrist_bend_bend_z, &turned_2);
+    let turn_10 = frame::turn_about_axis(&tool_flange_z, &wrist_bend_bend_z, &turned);
     wrist_bend.rotate_about_by(&tool_flange, &turn_10);
     let wrist_bend_bend_z_2 =
         wrist_bend.vector_to_global(&Vector3::new(0.0, 1.0, 2.220446049250313e-16));
@@ -1083,11 +1081,9 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         let wrist_roll_wrist = wrist_roll.point_to_global(&Point3::new(0.4521, 0.15, 0.2282));
         let shift_4 = wrist_roll_wrist - Point3::new(0.4521, 0.15, 0.2282);
         forearm.translate(&shift_4);
-        let tool_tcp_z_2 = tool.vector_to_global(&Vector3::new(1.0, 0.0, 2.220446049250313e-16));
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-        let turned = frame::rotation_about_axis(&tool_tcp_z_2, -0.0) * ground_target_x;
         let tool_tcp_x = tool.vector_to_global(&Vector3::new(-2.220446049250313e-16, 0.0, 1.0));
-        let turn_3 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &turned);
+        let turn_3 = frame::turn_about_axis(&ground_target_z, &tool_tcp_x, &ground_target_x);
         tool.rotate_about_by(&ground_target, &turn_3);
 
         // revolute(upper_arm.shoulder, trunk.shoulder) (puma.gcs:48)
@@ -1351,7 +1347,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                             // A failure ends this root's assemblies only.
                             let _ =
                                 (|| -> Result<(), SolveError> {
-                                    let turned_2 = turns_2
+                                    let turned = turns_2
                                         .roots
                                         .get(usize::from(
                                             branches.revolute_wrist_bend_bend_wrist_roll_bend,
@@ -1367,7 +1363,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                     let turn_10 = frame::turn_about_axis(
                                         &tool_flange_z,
                                         &wrist_bend_bend_z,
-                                        &turned_2,
+                                        &turned,
                                     );
                                     wrist_bend.rotate_about_by(&tool_flange, &turn_10);
                                     let wrist_bend_bend_z_2 = wrist_bend.vector_to_global(

@@ -535,9 +535,8 @@ pub fn solve(
         ));
     }
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&tool_tcp_z, -0.0) * ground_target_x;
     let tool_tcp_x = tool.vector_to_global(&Vector3::x());
-    let turn = frame::turn_about_axis(&Vector3::z(), &tool_tcp_x, &turned);
+    let turn = frame::turn_about_axis(&Vector3::z(), &tool_tcp_x, &ground_target_x);
     tool.rotate_about_by(&ground_target, &turn);
 
     // d3: prismatic(forearm.quill, quill.slide) (scara.gcs:36)
@@ -651,11 +650,9 @@ pub fn solve(
         &(q2_2 - forearm_quill),
     );
     forearm.rotate_about_by(&forearm_quill, &turn_3);
-    let forearm_quill_z = forearm.vector_to_global(&Vector3::z());
     let forearm_quill_x = forearm.vector_to_global(&Vector3::x());
-    let turned_2 = frame::rotation_about_axis(&forearm_quill_z, 0.0) * forearm_quill_x;
     let quill_slide_x = quill.vector_to_global(&Vector3::x());
-    let turn_4 = frame::turn_about_axis(&Vector3::z(), &quill_slide_x, &turned_2);
+    let turn_4 = frame::turn_about_axis(&Vector3::z(), &quill_slide_x, &forearm_quill_x);
     quill.rotate_about_by(&tool_roll, &turn_4);
 
     Ok(Solution {
@@ -843,9 +840,8 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             ));
         }
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-        let turned = frame::rotation_about_axis(&tool_tcp_z, -0.0) * ground_target_x;
         let tool_tcp_x = tool.vector_to_global(&Vector3::x());
-        let turn = frame::turn_about_axis(&Vector3::z(), &tool_tcp_x, &turned);
+        let turn = frame::turn_about_axis(&Vector3::z(), &tool_tcp_x, &ground_target_x);
         tool.rotate_about_by(&ground_target, &turn);
 
         // d3: prismatic(forearm.quill, quill.slide) (scara.gcs:36)
@@ -972,11 +968,10 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     &(q2_2 - forearm_quill),
                 );
                 forearm.rotate_about_by(&forearm_quill, &turn_3);
-                let forearm_quill_z = forearm.vector_to_global(&Vector3::z());
                 let forearm_quill_x = forearm.vector_to_global(&Vector3::x());
-                let turned_2 = frame::rotation_about_axis(&forearm_quill_z, 0.0) * forearm_quill_x;
                 let quill_slide_x = quill.vector_to_global(&Vector3::x());
-                let turn_4 = frame::turn_about_axis(&Vector3::z(), &quill_slide_x, &turned_2);
+                let turn_4 =
+                    frame::turn_about_axis(&Vector3::z(), &quill_slide_x, &forearm_quill_x);
                 quill.rotate_about_by(&tool_roll, &turn_4);
 
                 let solution = Solution {

@@ -370,10 +370,9 @@ pub fn solve(
         &frame::perpendicular(&platform_base_z),
     );
     platform.rotate_about_by(&platform_base, &turn_4);
-    let turned_2 = frame::rotation_about_axis(&Vector3::z(), 0.0) * Vector3::x();
     let platform_base_2 = platform.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let platform_base_x = platform.vector_to_global(&Vector3::x());
-    let turn_5 = frame::turn_about_axis(&Vector3::z(), &platform_base_x, &turned_2);
+    let turn_5 = frame::turn_about_axis(&Vector3::z(), &platform_base_x, &Vector3::x());
     platform.rotate_about_by(&platform_base_2, &turn_5);
 
     // planar(platform.base, screw.top) (screw_jack.gcs:23)

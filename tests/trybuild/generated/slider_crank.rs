@@ -312,11 +312,9 @@ pub fn solve(
         &frame::perpendicular(&slider_s_z),
     );
     slider.rotate_about_by(&slider_s, &turn_2);
-    let slider_s_z_2 = slider.vector_to_global(&Vector3::x());
-    let turned_2 = frame::rotation_about_axis(&slider_s_z_2, -0.0) * Vector3::y();
     let slider_s_2 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
     let slider_s_x = slider.vector_to_global(&Vector3::y());
-    let turn_3 = frame::turn_about_axis(&Vector3::x(), &slider_s_x, &turned_2);
+    let turn_3 = frame::turn_about_axis(&Vector3::x(), &slider_s_x, &Vector3::y());
     slider.rotate_about_by(&slider_s_2, &turn_3);
 
     // revolute(arm.o, ground.o) (slider_crank.gcs:14)
@@ -522,11 +520,9 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
             &frame::perpendicular(&slider_s_z),
         );
         slider.rotate_about_by(&slider_s, &turn_2);
-        let slider_s_z_2 = slider.vector_to_global(&Vector3::x());
-        let turned_2 = frame::rotation_about_axis(&slider_s_z_2, -0.0) * Vector3::y();
         let slider_s_2 = slider.point_to_global(&Point3::new(0.0, 0.0, 0.0));
         let slider_s_x = slider.vector_to_global(&Vector3::y());
-        let turn_3 = frame::turn_about_axis(&Vector3::x(), &slider_s_x, &turned_2);
+        let turn_3 = frame::turn_about_axis(&Vector3::x(), &slider_s_x, &Vector3::y());
         slider.rotate_about_by(&slider_s_2, &turn_3);
 
         // revolute(arm.o, ground.o) (slider_crank.gcs:14)

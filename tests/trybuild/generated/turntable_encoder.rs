@@ -244,10 +244,6 @@ pub fn solve(
     // Already true where the sketch puts the geoms: nothing moves.
 
     // index: offset_x(ground.pin, table.rim) = 0 deg (turntable_encoder.gcs:20)
-    let turned = frame::rotation_about_axis(
-        &Vector3::new(0.3213938048432696, 0.38302222155948895, 0.8660254037844387),
-        0.0,
-    ) * Vector3::new(0.5566703992264195, 0.6634139481689384, -0.5);
     let angle = frame::signed_angle3_both(
         [
             &Vector3::new(0.46984631039295416, 0.17101007166283433, 0.8660254037844387),
@@ -259,7 +255,7 @@ pub fn solve(
         ],
         [
             &Vector3::new(0.3213938048432696, 0.38302222155948895, 0.8660254037844387),
-            &turned,
+            &Vector3::new(0.5566703992264195, 0.6634139481689384, -0.5),
         ],
         &Vector3::z(),
     );

@@ -633,11 +633,9 @@ pub fn solve(
     wrist_2.rotate_about_by(&wrist_3_wrist3, &turn_2);
 
     // weld(wrist_3.tool, ground.target) (ur5.gcs:52)
-    let wrist_3_tool_z_2 = wrist_3.vector_to_global(&Vector3::x());
     let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-    let turned = frame::rotation_about_axis(&wrist_3_tool_z_2, -0.0) * ground_target_x;
     let wrist_3_tool_x = wrist_3.vector_to_global(&Vector3::y());
-    let turn_3 = frame::turn_about_axis(&ground_target_z, &wrist_3_tool_x, &turned);
+    let turn_3 = frame::turn_about_axis(&ground_target_z, &wrist_3_tool_x, &ground_target_x);
     wrist_3.rotate_about_by(&ground_target, &turn_3);
 
     // revolute(upper_arm.shoulder, trunk.shoulder) (ur5.gcs:47)
@@ -760,7 +758,7 @@ pub fn solve(
     ) {
         return Err(e);
     }
-    let turned_2 = turns_2
+    let turned = turns_2
         .roots
         .get(usize::from(branches.revolute_wrist_2_wrist2_wrist_1_wrist2))
         .ok_or_else(|| {
@@ -771,7 +769,7 @@ pub fn solve(
                 turns_2.roots.len() as f64,
             )
         })?;
-    let turn_8 = frame::turn_about_axis(&wrist_3_wrist3_z, &wrist_2_wrist2_z, &turned_2);
+    let turn_8 = frame::turn_about_axis(&wrist_3_wrist3_z, &wrist_2_wrist2_z, &turned);
     wrist_2.rotate_about_by(&wrist_3_wrist3, &turn_8);
     let wrist_2_wrist2_z_2 = wrist_2.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
     let wrist_1_wrist2_z = wrist_1.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));
@@ -1079,11 +1077,9 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
         wrist_2.rotate_about_by(&wrist_3_wrist3, &turn_2);
 
         // weld(wrist_3.tool, ground.target) (ur5.gcs:52)
-        let wrist_3_tool_z_2 = wrist_3.vector_to_global(&Vector3::x());
         let ground_target_x = ground.vector_to_global(&ground_target_x_local);
-        let turned = frame::rotation_about_axis(&wrist_3_tool_z_2, -0.0) * ground_target_x;
         let wrist_3_tool_x = wrist_3.vector_to_global(&Vector3::y());
-        let turn_3 = frame::turn_about_axis(&ground_target_z, &wrist_3_tool_x, &turned);
+        let turn_3 = frame::turn_about_axis(&ground_target_z, &wrist_3_tool_x, &ground_target_x);
         wrist_3.rotate_about_by(&ground_target, &turn_3);
 
         // revolute(upper_arm.shoulder, trunk.shoulder) (ur5.gcs:47)
@@ -1233,7 +1229,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                     let mut wrist_2 = wrist_2;
                     // A failure ends this root's assemblies only.
                     let _ = (|| -> Result<(), SolveError> {
-                        let turned_2 = turns_2
+                        let turned = turns_2
                             .roots
                             .get(usize::from(branches.revolute_wrist_2_wrist2_wrist_1_wrist2))
                             .ok_or_else(|| {
@@ -1245,7 +1241,7 @@ pub fn solve_all(params: &Params, defaults: &Defaults) -> Assemblies {
                                 )
                             })?;
                         let turn_8 =
-                            frame::turn_about_axis(&wrist_3_wrist3_z, &wrist_2_wrist2_z, &turned_2);
+                            frame::turn_about_axis(&wrist_3_wrist3_z, &wrist_2_wrist2_z, &turned);
                         wrist_2.rotate_about_by(&wrist_3_wrist3, &turn_8);
                         let wrist_2_wrist2_z_2 =
                             wrist_2.vector_to_global(&Vector3::new(0.0, 0.0, -1.0));

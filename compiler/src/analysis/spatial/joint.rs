@@ -392,6 +392,16 @@ impl Builder<'_, Spatial> {
         by: Reg,
         back: bool,
     ) -> Reg {
+        // No twist (a weld's, an offset written as a constant zero): the known x axis itself.
+        let exprs = &self.model.exprs;
+        let zero = match self.def(by).map(|s| &s.op) {
+            Some(Op::Const(c)) => *c == 0.0,
+            Some(Op::Expr(e)) => exprs.is_constant(*e) && exprs.eval(*e, &[]) == 0.0,
+            _ => false,
+        };
+        if zero {
+            return x;
+        }
         let angle = if back {
             let words = format!("minus {}", self.word(by));
             self.value(Op::Neg(by), Ty::Scalar, words)
