@@ -21,7 +21,9 @@
 //! `Onto`s) a default displaced: each becomes an `Op::Error` and an `Op::Close` of an
 //! `Iteration` region that varies the default. A coincidence, midpoint or mirror image with
 //! more coordinates than open defaults closes one default by the distance it is off by
-//! (`plan::MAGNITUDE`). A default that displaces nothing parameterizes a free motion
+//! (`plan::MAGNITUDE`); a point on a line of space that two open defaults displaced closes
+//! both by its offset across the line, two signed coordinates (a cylindrical robot's column
+//! turn and carriage place). A default that displaces nothing parameterizes a free motion
 //! (`Analysis::free_defaults`, the mobility); `Analysis::undefaulted` keeps the clusters as the
 //! constraints alone left them.
 //!
@@ -869,10 +871,11 @@ impl<'m, G: Geometry> Builder<'m, G> {
     /// Case (b) of 000, section 5.2.1: a run-time check that depends on a default is a
     /// constraint that the default displaced. Taking the checks in plan order, each becomes the
     /// error function of the latest default it depends on that no earlier one closes (a
-    /// coincidence closes two): `Op::Error` measures it signed, `Op::Close` drives it to zero.
-    /// The defaults so closed are varied by outer iterations, over the steps from the first
-    /// such default to its last close (overlapping regions merge); the others parameterize a
-    /// free motion (case (a)). A check no open default explains stays a check.
+    /// coincidence closes two, and so does a point on a line of space): `Op::Error` measures
+    /// it signed, `Op::Close` drives it to zero. The defaults so closed are varied by outer
+    /// iterations, over the steps from the first such default to its last close (overlapping
+    /// regions merge); the others parameterize a free motion (case (a)). A check no open
+    /// default explains stays a check.
     ///
     /// A point met on its own locus (the meeting of that locus with another) is on it
     /// wherever the meeting exists: its distance from the locus is zero or undefined, no
@@ -1065,6 +1068,39 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 _ => 1,
             };
             let open: Vec<u32> = displaced.difference(&closed).copied().collect();
+            // A point on a line of space is two equations: with two open defaults displacing
+            // it (a cylindrical robot's column turn and carriage place), its offset across the
+            // line, two signed coordinates, closes both.
+            if let (Residual::PointLine { d: None, .. }, [.., d0, d1]) = (residual, open.as_slice())
+            {
+                if self.model.space == gcs_lang::model::Space::D3 {
+                    let (constraint, residual) = (*constraint, residual.clone());
+                    let cname = self.cname(constraint);
+                    for (component, d) in [(1u8, *d1), (2, *d0)] {
+                        closed.insert(d);
+                        let name = &self.plan.defaults[d as usize].name;
+                        let explain = format!(
+                            "{cname} is what `{name}` displaced: its point's offset across its line{} closes the iteration on `{name}`.",
+                            if component == 1 { "" } else { ", the other way" }
+                        );
+                        let error = Op::Error {
+                            residual: residual.clone(),
+                            component,
+                        };
+                        let satisfies = if component == 2 {
+                            step.satisfies.clone()
+                        } else {
+                            Vec::new()
+                        };
+                        error_and_close(
+                            &mut steps, &mut regs, error, constraint, satisfies, explain,
+                        );
+                        spans.entry(d).or_insert((usize::MAX, 0)).1 = steps.len();
+                    }
+                    self.redundant.retain(|c| *c != constraint);
+                    continue;
+                }
+            }
             // A coincidence (or a midpoint, a mirror image) one default displaced, whose
             // coordinates are more equations than it has defaults: the distance it is off by
             // closes the iteration (zero there, and every coordinate with it; unsigned,

@@ -837,6 +837,22 @@ impl Machine<'_, '_, D3> {
                 dir,
                 d: Some(d),
             } => (self.p3(p) - self.p3(base)).cross(&self.v3(dir)).norm() - self.s(d),
+            // On the line: the offset across it, one signed coordinate (`Op::Error`).
+            Residual::PointLine {
+                p,
+                base,
+                dir,
+                d: None,
+            } if component == 1 || component == 2 => {
+                let dir = self.v3(dir).normalize();
+                let across = frame::perpendicular(&dir);
+                let axis = if component == 1 {
+                    across
+                } else {
+                    dir.cross(&across)
+                };
+                (self.p3(p) - self.p3(base)).dot(&axis)
+            }
             Residual::Midpoint { p, a, b } => {
                 let v = locus3d::midpoint(self.p3(a), self.p3(b)) - self.p3(p);
                 v[usize::from(component.min(2))]

@@ -495,7 +495,11 @@ pub enum Op {
         guard: bool,
     },
     /// The signed error of a relation already implied (zero when it holds): what a `Close`
-    /// drives to zero. A coincidence has two, `component` 0 and 1 (x and y); others one.
+    /// drives to zero. A coincidence has two, `component` 0 and 1 (x and y); others one. A
+    /// point on a line of space (`Residual::PointLine` at no distance) has, besides its
+    /// distance (0), its offset across the line as two signed coordinates: 1 along
+    /// `runtime::frame::perpendicular` of the line's direction, 2 along the direction
+    /// crossed with that.
     /// [`MAGNITUDE`] is its residual instead, the unsigned distance a coincidence, a midpoint
     /// or a mirror image is off by: the one error of such a relation one default displaced.
     Error { residual: Residual, component: u8 },

@@ -50,6 +50,21 @@ impl Solve<'_> {
                 r(dir),
                 r(d)
             ),
+            // On the line: the offset across it, one signed coordinate (`Op::Error`).
+            Residual::PointLine {
+                p,
+                base,
+                dir,
+                d: None,
+            } if component == 1 || component == 2 => {
+                let across = format!("frame::perpendicular(&{}.normalize())", r(dir));
+                let axis = if component == 1 {
+                    across
+                } else {
+                    format!("{}.normalize().cross(&{across})", r(dir))
+                };
+                format!("({} - {}).dot(&{axis})", r(p), r(base))
+            }
             Residual::Midpoint { p, a, b } => format!(
                 "(locus3d::midpoint({}, {}) - {})[{}]",
                 r(a),
