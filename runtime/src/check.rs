@@ -261,6 +261,18 @@ pub mod space {
         ((p - base).cross(&dir).norm() - d).abs()
     }
 
+    /// `p`'s offset across the line through `base` along `dir`: its two signed coordinates
+    /// along `frame::perpendicular` of the unit direction and along the direction crossed
+    /// with that (both zero on the line). Where a point on a line closes two defaults of an
+    /// iteration, these are its two errors.
+    #[inline]
+    pub fn across_line(p: P3, base: P3, dir: V3) -> [f64; 2] {
+        let dir = dir.normalize();
+        let across = crate::frame::perpendicular(&dir);
+        let w = p - base;
+        [w.dot(&across), w.dot(&dir.cross(&across))]
+    }
+
     /// The signed distance of `p` from the plane through `base` with unit `normal` is `d`.
     #[inline]
     pub fn point_plane(p: P3, base: P3, normal: V3, d: f64) -> f64 {

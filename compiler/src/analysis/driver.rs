@@ -1070,37 +1070,11 @@ impl<'m, G: Geometry> Builder<'m, G> {
             let open: Vec<u32> = displaced.difference(&closed).copied().collect();
             // A point on a line of space is two equations: with two open defaults displacing
             // it (a cylindrical robot's column turn and carriage place), its offset across the
-            // line, two signed coordinates, closes both.
-            if let (Residual::PointLine { d: None, .. }, [.., d0, d1]) = (residual, open.as_slice())
-            {
-                if self.model.space == gcs_lang::model::Space::D3 {
-                    let (constraint, residual) = (*constraint, residual.clone());
-                    let cname = self.cname(constraint);
-                    for (component, d) in [(1u8, *d1), (2, *d0)] {
-                        closed.insert(d);
-                        let name = &self.plan.defaults[d as usize].name;
-                        let explain = format!(
-                            "{cname} is what `{name}` displaced: its point's offset across its line{} closes the iteration on `{name}`.",
-                            if component == 1 { "" } else { ", the other way" }
-                        );
-                        let error = Op::Error {
-                            residual: residual.clone(),
-                            component,
-                        };
-                        let satisfies = if component == 2 {
-                            step.satisfies.clone()
-                        } else {
-                            Vec::new()
-                        };
-                        error_and_close(
-                            &mut steps, &mut regs, error, constraint, satisfies, explain,
-                        );
-                        spans.entry(d).or_insert((usize::MAX, 0)).1 = steps.len();
-                    }
-                    self.redundant.retain(|c| *c != constraint);
-                    continue;
-                }
-            }
+            // line, two signed coordinates (`Op::Error` components 1 and 2), closes both.
+            let across_line = matches!(residual, Residual::PointLine { d: None, .. })
+                && self.model.space == gcs_lang::model::Space::D3
+                && open.len() >= 2;
+            let (components, first) = if across_line { (2, 1) } else { (components, 0) };
             // A coincidence (or a midpoint, a mirror image) one default displaced, whose
             // coordinates are more equations than it has defaults: the distance it is off by
             // closes the iteration (zero there, and every coordinate with it; unsigned,
@@ -1133,10 +1107,10 @@ impl<'m, G: Geometry> Builder<'m, G> {
             let cname = self.cname(constraint);
             for (component, &d) in open.iter().rev().take(components.into()).enumerate() {
                 closed.insert(d);
-                let words = if components > 1 {
-                    [" along x", " along y", " along z"][component]
-                } else {
-                    ""
+                let words = match (across_line, components) {
+                    (true, _) => [" across its line", " across its line, the other way"][component],
+                    (false, 1) => "",
+                    (false, _) => [" along x", " along y", " along z"][component],
                 };
                 let last = component + 1 == usize::from(components);
                 let name = &self.plan.defaults[d as usize].name;
@@ -1145,7 +1119,7 @@ impl<'m, G: Geometry> Builder<'m, G> {
                 );
                 let error = Op::Error {
                     residual: residual.clone(),
-                    component: component as u8,
+                    component: first + component as u8,
                 };
                 let satisfies = if last {
                     step.satisfies.clone()

@@ -371,6 +371,11 @@ impl Compared {
         compared
     }
 
+    /// Whether nothing is compared: every solution the same assembly.
+    fn is_empty(&self) -> bool {
+        self.frames.is_empty() && self.points.is_empty() && self.vectors.is_empty()
+    }
+
     /// How many numbers are compared: a frame's origin and rotation (a quaternion's four
     /// components in space, a unit complex's two in the plane), each point's and vector's
     /// coordinates.
@@ -385,7 +390,7 @@ impl Compared {
     fn fingerprint(&self, w: &mut Writer) {
         w.line("/// The sum of what `same_assembly` compares of `s`, and the scale of its points.");
         w.line("#[allow(dead_code)]");
-        if self.frames.is_empty() && self.points.is_empty() && self.vectors.is_empty() {
+        if self.is_empty() {
             w.open("fn fingerprint(_: &Solution) -> Kept {");
             w.line("(0.0, 1.0)");
             w.close("}");
@@ -450,7 +455,7 @@ impl Compared {
         w.line("/// size), read one at a time until two differ, the last declared first (a chain's far");
         w.line("/// links, which the most branches move).");
         w.line("#[allow(dead_code)]");
-        if self.frames.is_empty() && self.points.is_empty() && self.vectors.is_empty() {
+        if self.is_empty() {
             w.open("fn same_assembly(_: &Solution, _: &Solution, _: f64) -> bool {");
             w.line("true");
             w.close("}");

@@ -844,14 +844,8 @@ impl Machine<'_, '_, D3> {
                 dir,
                 d: None,
             } if component == 1 || component == 2 => {
-                let dir = self.v3(dir).normalize();
-                let across = frame::perpendicular(&dir);
-                let axis = if component == 1 {
-                    across
-                } else {
-                    dir.cross(&across)
-                };
-                (self.p3(p) - self.p3(base)).dot(&axis)
+                check::space::across_line(self.p3(p), self.p3(base), self.v3(dir))
+                    [usize::from(component - 1)]
             }
             Residual::Midpoint { p, a, b } => {
                 let v = locus3d::midpoint(self.p3(a), self.p3(b)) - self.p3(p);

@@ -475,14 +475,11 @@ fn assemble<O: gcs_runtime::outer::Outer>(
                 let arm_slide = arm.point_to_global(&Point3::new(0.3, 0.0, 0.5));
                 let carriage_guide = carriage.point_to_global(&Point3::new(0.1, 0.0, 0.5));
                 let carriage_guide_z_2 = carriage.vector_to_global(&Vector3::x());
-                let error = (arm_slide - carriage_guide)
-                    .dot(&frame::perpendicular(&carriage_guide_z_2.normalize()));
+                let error =
+                    check::space::across_line(arm_slide, carriage_guide, carriage_guide_z_2)[0];
                 errors[0] = error;
-                let error_2 = (arm_slide - carriage_guide).dot(
-                    &carriage_guide_z_2
-                        .normalize()
-                        .cross(&frame::perpendicular(&carriage_guide_z_2.normalize())),
-                );
+                let error_2 =
+                    check::space::across_line(arm_slide, carriage_guide, carriage_guide_z_2)[1];
                 errors[1] = error_2;
                 Ok(())
             },

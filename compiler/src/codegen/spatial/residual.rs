@@ -56,15 +56,13 @@ impl Solve<'_> {
                 base,
                 dir,
                 d: None,
-            } if component == 1 || component == 2 => {
-                let across = format!("frame::perpendicular(&{}.normalize())", r(dir));
-                let axis = if component == 1 {
-                    across
-                } else {
-                    format!("{}.normalize().cross(&{across})", r(dir))
-                };
-                format!("({} - {}).dot(&{axis})", r(p), r(base))
-            }
+            } if component == 1 || component == 2 => format!(
+                "check::space::across_line({}, {}, {})[{}]",
+                r(p),
+                r(base),
+                r(dir),
+                component - 1
+            ),
             Residual::Midpoint { p, a, b } => format!(
                 "(locus3d::midpoint({}, {}) - {})[{}]",
                 r(a),
